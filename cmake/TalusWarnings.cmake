@@ -1,0 +1,16 @@
+# Compile options every Talus target gets: warnings (errors with TALUS_WERROR) and sanitizers.
+# Applied per target so third-party code (OpenFOAM, CGAL headers included as SYSTEM) is left alone.
+
+## talus_target_defaults(<target>): warnings, sanitizers, OpenMP where enabled.
+function(talus_target_defaults target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
+                         -Wold-style-cast -Wcast-align -Wformat=2)
+  if(TALUS_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(TALUS_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                           -fno-sanitize-recover=all)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()

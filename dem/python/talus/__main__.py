@@ -1,0 +1,6 @@
+"""``python -m talus`` is the ``talus`` command."""
+import sys
+
+from talus.cli import main
+
+sys.exit(main())

@@ -1,0 +1,111 @@
+"""Side-by-side benchmarks: a command of ours against a peer's (Yade, LIGGGHTS, ...).
+
+Absolute times on shared machines are noise, so both programs run in the same invocation,
+alternately (ours, peer, ours, peer, ...), and the figure reported is the ratio of the medians.
+The runner installs nothing: a peer that is not on the machine is reported as such.
+
+Each command yields one figure per run: its wall time (default), or a number it prints, picked
+out by a regular expression with one group (e.g. ``r"([0-9.]+) iter/sec"``).
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+import shutil
+import statistics
+import subprocess
+import time
+from dataclasses import dataclass, field
+from typing import Sequence
+
+
+class PeerNotInstalled(RuntimeError):
+    """The peer program of a benchmark is not on this machine."""
+
+
+class CommandFailed(RuntimeError):
+    """A benchmarked command exited with an error, timed out or printed no figure."""
+
+
+@dataclass
+class Side:
+    """One side of a benchmark: a command and how to read its figure."""
+    label: str
+    command: Sequence[str]
+    pattern: str | None = None  # regex with one group; None: the figure is the wall time
+    samples: list[float] = field(default_factory=list)
+
+    @property
+    def median(self) -> float:
+        return statistics.median(self.samples)
+
+
+@dataclass
+class Comparison:
+    """Medians of both sides and the ratio (>1 means ours is faster)."""
+    ours: float
+    theirs: float
+    unit: str
+    ratio: float
+    ours_samples: list[float]
+    theirs_samples: list[float]
+
+
+def split_command(command: str | Sequence[str]) -> list[str]:
+    """Accept a shell-like string or an argument list."""
+    return shlex.split(command) if isinstance(command, str) else list(command)
+
+
+def require_program(command: Sequence[str], label: str, hint: str = "") -> None:
+    """Raise PeerNotInstalled if the command's program is not found."""
+    program = command[0] if command else ""
+    if not program or shutil.which(program) is None:
+        advice = f" ({hint})" if hint else ""
+        raise PeerNotInstalled(
+            f"{label}: program {program!r} is not installed{advice}; "
+            "the benchmark runner installs nothing")
+
+
+def run_once(side: Side, timeout: float) -> float:
+    """Run one side once and return its figure."""
+    started = time.perf_counter()
+    try:
+        done = subprocess.run(side.command, capture_output=True, text=True, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise CommandFailed(f"{side.label}: {shlex.join(side.command)} took longer than {timeout} s") from None
+    wall = time.perf_counter() - started
+    output = done.stdout + done.stderr
+    if done.returncode != 0:
+        tail = "\n".join(output.strip().splitlines()[-15:])
+        raise CommandFailed(
+            f"{side.label}: {shlex.join(side.command)} exited with {done.returncode}:\n{tail}")
+    if side.pattern is None:
+        return wall
+    matches = re.findall(side.pattern, output)
+    if not matches:
+        raise CommandFailed(f"{side.label}: no match for {side.pattern!r} in the output of "
+                            f"{shlex.join(side.command)}")
+    return float(matches[-1])
+
+
+def compare(ours: Side, theirs: Side, *, repeat: int = 3, unit: str = "s",
+            higher_is_better: bool = False, timeout: float = 3600.0,
+            progress=print) -> Comparison:
+    """Run both sides alternately ``repeat`` times and compare medians.
+
+    With wall times (or any lower-is-better figure) ratio = theirs / ours; with rates
+    (``higher_is_better``) ratio = ours / theirs; either way >1 means Talus is faster.
+    """
+    if repeat < 1:
+        raise ValueError(f"repeat must be at least 1, got {repeat}")
+    require_program(ours.command, ours.label)
+    require_program(theirs.command, theirs.label, hint="e.g. apt-get install yade")
+    for i in range(repeat):
+        for side in (ours, theirs):
+            side.samples.append(run_once(side, timeout))
+            if progress:
+                progress(f"[bench] run {i + 1}/{repeat} {side.label}: {side.samples[-1]:.6g} {unit}")
+    ratio = ours.median / theirs.median if higher_is_better else theirs.median / ours.median
+    return Comparison(ours.median, theirs.median, unit, ratio, list(ours.samples),
+                      list(theirs.samples))

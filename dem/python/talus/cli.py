@@ -1,0 +1,132 @@
+"""The ``talus`` command.
+
+    talus run SCRIPT [ARGS...]    run a case script (as ``yade -x SCRIPT``)
+    talus info                    version, components and features of this build
+    talus report                  write docs/validation.md from a results folder
+    talus bench                   time a command of ours against a peer's, side by side
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import runpy
+import sys
+import traceback
+from pathlib import Path
+
+import talus
+
+
+def _run(args: argparse.Namespace) -> int:
+    script = Path(args.script)
+    if not script.is_file():
+        print(f"talus run: no such script: {script}", file=sys.stderr)
+        return 2
+    if args.threads is not None:
+        if args.threads < 1:
+            print(f"talus run: -j must be at least 1, got {args.threads}", file=sys.stderr)
+            return 2
+        os.environ["OMP_NUM_THREADS"] = str(args.threads)
+    sys.argv = [str(script), *args.script_args]
+    sys.path.insert(0, str(script.resolve().parent))
+    try:
+        runpy.run_path(str(script), run_name="__main__")
+    except SystemExit as e:
+        return e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
+    except KeyboardInterrupt:
+        print("talus run: interrupted", file=sys.stderr)
+        return 130
+    except Exception:
+        # The script's own traceback, without the runner's frames.
+        exc_type, exc, tb = sys.exc_info()
+        while tb is not None and tb.tb_frame.f_code.co_filename != str(script):
+            tb = tb.tb_next
+        traceback.print_exception(exc_type, exc, tb)
+        return 1
+    return 0
+
+
+def _info(_args: argparse.Namespace) -> int:
+    info = talus.build_info()
+    print(f"talus {talus.__version__}  ({Path(talus.__file__).parent})")
+    for kind in ("components", "features"):
+        print(f"{kind}:")
+        for name, (on, note) in info[kind].items():
+            print(f"  {name:<14}{'ON ' if on else 'OFF'}  {note}")
+    return 0
+
+
+def _report(args: argparse.Namespace) -> int:
+    from talus import report
+    if not args.results.is_dir():
+        print(f"talus report: results folder {args.results} does not exist", file=sys.stderr)
+        return 2
+    report.render(args.results, args.output)
+    print(f"talus report: wrote {args.output}")
+    return 0
+
+
+def _bench(args: argparse.Namespace) -> int:
+    from talus import bench, results
+    ours = bench.Side("talus", bench.split_command(args.ours), args.parse_ours or args.parse)
+    theirs = bench.Side(args.peer_name, bench.split_command(args.peer), args.parse_peer or args.parse)
+    case = results.Case(args.name, quick=args.quick, folder=args.results)
+    try:
+        c = bench.compare(ours, theirs, repeat=args.repeat, unit=args.unit,
+                          higher_is_better=args.higher_is_better, timeout=args.timeout)
+    except (bench.PeerNotInstalled, bench.CommandFailed) as e:
+        print(f"talus bench: {e}", file=sys.stderr)
+        return 3
+    record = case.record(f"speed ratio against {args.peer_name} (median of {args.repeat} runs)",
+                         c.ratio, f"{args.peer_name}, same machine, same invocation",
+                         args.target, comparison=">=", peer=args.peer_name, ours=c.ours,
+                         theirs=c.theirs, unit=c.unit, ratio=c.ratio,
+                         ours_samples=c.ours_samples, theirs_samples=c.theirs_samples)
+    print(f"talus bench: {args.name}: ours {c.ours:.6g} {c.unit}, {args.peer_name} "
+          f"{c.theirs:.6g} {c.unit}, ratio {c.ratio:.3g} (target >= {args.target:g}) -> "
+          f"{'pass' if record['pass'] else 'FAIL'}")
+    return 0
+
+
+def parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="talus", description=__doc__,
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--version", action="version", version=f"talus {talus.__version__}")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    run = sub.add_parser("run", help="run a case script")
+    run.add_argument("-j", "--threads", type=int, default=None, help="OpenMP threads")
+    run.add_argument("script", help="Python script to run")
+    run.add_argument("script_args", nargs=argparse.REMAINDER, help="arguments passed to the script")
+    run.set_defaults(func=_run)
+
+    sub.add_parser("info", help="version, components and features").set_defaults(func=_info)
+
+    rep = sub.add_parser("report", help="write the validation page from result records")
+    rep.add_argument("--results", type=Path, default=Path("results"))
+    rep.add_argument("--output", type=Path, default=Path("docs/validation.md"))
+    rep.set_defaults(func=_report)
+
+    b = sub.add_parser("bench", help="side-by-side benchmark against a peer program")
+    b.add_argument("--name", required=True, help="record name, e.g. dem.bench.quickperf")
+    b.add_argument("--ours", required=True, help="our command (quoted)")
+    b.add_argument("--peer", required=True, help="the peer's command (quoted)")
+    b.add_argument("--peer-name", default="peer", help="e.g. 'yade 2023.02a, 1 thread'")
+    b.add_argument("--repeat", type=int, default=3)
+    b.add_argument("--unit", default="s")
+    b.add_argument("--parse", default=None, help="regex with one group: the figure both print")
+    b.add_argument("--parse-ours", default=None, help="regex for our output only")
+    b.add_argument("--parse-peer", default=None, help="regex for the peer's output only")
+    b.add_argument("--higher-is-better", action="store_true", help="the figure is a rate")
+    b.add_argument("--target", type=float, default=1.0, help="ratio the benchmark must reach")
+    b.add_argument("--timeout", type=float, default=3600.0, help="seconds per run")
+    b.add_argument("--quick", action="store_true")
+    b.add_argument("--results", type=Path, default=None)
+    b.set_defaults(func=_bench)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parser().parse_args(argv)
+    return args.func(args)

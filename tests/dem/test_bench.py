@@ -1,0 +1,74 @@
+"""The side-by-side benchmark runner: medians, ratio direction, missing peers, failing runs."""
+import json
+import sys
+
+import pytest
+
+from talus import bench
+
+PY = sys.executable
+
+
+def printer(*figures):
+    """A command that prints the next figure of a cycle each time it runs (state in a file)."""
+    return lambda state: [PY, "-c",
+                          "import sys,os;p=sys.argv[1];i=int(open(p).read()) if os.path.exists(p) else 0;"
+                          f"open(p,'w').write(str(i+1));print('rate', {list(figures)}[i % {len(figures)}])",
+                          str(state)]
+
+
+def test_rates_use_medians_and_ours_over_theirs(tmp_path):
+    ours = bench.Side("talus", printer(290, 300, 900)(tmp_path / "a"), r"rate ([0-9.]+)")
+    peer = bench.Side("yade", printer(100, 50, 101)(tmp_path / "b"), r"rate ([0-9.]+)")
+    c = bench.compare(ours, peer, repeat=3, unit="it/s", higher_is_better=True, progress=None)
+    assert (c.ours, c.theirs) == (300, 100)        # medians, not means: outliers do not count
+    assert c.ratio == pytest.approx(3.0)
+    assert c.ours_samples == [290, 300, 900]
+
+
+def test_wall_times_give_theirs_over_ours():
+    ours = bench.Side("talus", [PY, "-c", "pass"])
+    peer = bench.Side("slow", [PY, "-c", "import time; time.sleep(0.4)"])
+    c = bench.compare(ours, peer, repeat=1, progress=None)
+    assert c.ratio > 1.5 and c.unit == "s"
+
+
+def test_a_missing_peer_is_reported_not_installed():
+    ours = bench.Side("talus", [PY, "-c", "pass"])
+    peer = bench.Side("yade", ["no-such-peer-program-xyz", "-n"])
+    with pytest.raises(bench.PeerNotInstalled, match="no-such-peer-program-xyz.*not installed.*installs nothing"):
+        bench.compare(ours, peer, progress=None)
+
+
+def test_a_failing_command_shows_its_output():
+    ours = bench.Side("talus", [PY, "-c", "import sys; print('diverged at step 12'); sys.exit(4)"])
+    peer = bench.Side("peer", [PY, "-c", "pass"])
+    with pytest.raises(bench.CommandFailed, match="(?s)exited with 4.*diverged at step 12"):
+        bench.compare(ours, peer, progress=None)
+
+
+def test_a_missing_figure_is_an_error():
+    ours = bench.Side("talus", [PY, "-c", "print('nothing here')"], r"rate ([0-9.]+)")
+    peer = bench.Side("peer", [PY, "-c", "pass"])
+    with pytest.raises(bench.CommandFailed, match="no match"):
+        bench.compare(ours, peer, progress=None)
+
+
+def test_cli_writes_a_benchmark_record(talus_cmd, tmp_path):
+    done = talus_cmd("bench", "--name", "demo.bench.rates", "--repeat", "2",
+                     "--ours", f"{PY} -c \"print('rate 500')\"",
+                     "--peer", f"{PY} -c \"print('rate 100')\"", "--peer-name", "fake peer",
+                     "--parse", r"rate ([0-9.]+)", "--higher-is-better", "--unit", "it/s",
+                     "--target", "5", "--results", tmp_path)
+    assert "ratio 5" in done.stdout
+    record = json.loads((tmp_path / "demo.bench.rates.json").read_text())
+    assert record["ratio"] == 5.0 and record["pass"] is True
+    assert (record["ours"], record["theirs"], record["unit"], record["peer"]) == (500, 100, "it/s", "fake peer")
+
+
+def test_cli_says_when_the_peer_is_missing(talus_cmd, tmp_path):
+    done = talus_cmd("bench", "--name", "demo.bench.missing", "--ours", f"{PY} -c pass",
+                     "--peer", "no-such-peer-program-xyz", "--results", tmp_path, check=False)
+    assert done.returncode == 3
+    assert "not installed" in done.stderr
+    assert not list(tmp_path.glob("*.json"))

@@ -1,0 +1,46 @@
+"""The `talus` command: `talus run` behaves like `yade -x script.py`."""
+import os
+
+
+def test_version_and_info(talus_cmd):
+    import talus
+    assert talus_cmd("--version").stdout.strip() == f"talus {talus.__version__}"
+    info = talus_cmd("info").stdout
+    assert "components:" in info and "dem" in info and "features:" in info
+
+
+def test_run_passes_arguments_and_runs_as_main(talus_cmd, tmp_path):
+    script = tmp_path / "case.py"
+    script.write_text(
+        "import sys\n"
+        "import helper\n"              # the script's folder is importable, as with python3 script.py
+        "if __name__ == '__main__':\n"
+        "    print('args', sys.argv[1:], helper.VALUE)\n")
+    (tmp_path / "helper.py").write_text("VALUE = 42\n")
+    done = talus_cmd("run", script, "--quick", "x y")
+    assert "args ['--quick', 'x y'] 42" in done.stdout
+
+
+def test_run_sets_thread_count(talus_cmd, tmp_path):
+    script = tmp_path / "threads.py"
+    script.write_text("import os\nprint('threads', os.environ['OMP_NUM_THREADS'])\n")
+    assert "threads 3" in talus_cmd("run", "-j", "3", script).stdout
+
+
+def test_run_propagates_exit_status_and_errors(talus_cmd, tmp_path):
+    exits = tmp_path / "exits.py"
+    exits.write_text("raise SystemExit(7)\n")
+    assert talus_cmd("run", exits, check=False).returncode == 7
+
+    fails = tmp_path / "fails.py"
+    fails.write_text("def f():\n    raise ValueError('bad radius for body 3')\nf()\n")
+    done = talus_cmd("run", fails, check=False)
+    assert done.returncode == 1
+    assert "ValueError: bad radius for body 3" in done.stderr
+    assert "runpy" not in done.stderr          # the traceback is the script's, not the runner's
+
+
+def test_run_missing_script_is_a_clear_error(talus_cmd, tmp_path):
+    done = talus_cmd("run", tmp_path / "nope.py", check=False)
+    assert done.returncode == 2
+    assert "no such script" in done.stderr and "nope.py" in done.stderr
