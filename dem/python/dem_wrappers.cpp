@@ -1,6 +1,17 @@
-// Python bindings of dem/: no logic here, only the mapping of C++ names to Python.
+// Python bindings of dem/: no logic here, only the mapping of C++ names to Python. Defaults,
+// docstrings and Yade-style conveniences live in the talus.dem Python layer.
+#include "dem/CallbackEngine.h"
+#include "dem/Collider.h"
+#include "dem/ContactLaw.h"
+#include "dem/ForceResetter.h"
+#include "dem/InteractionLoop.h"
+#include "dem/NewtonIntegrator.h"
+#include "dem/Scene.h"
 #include "dem/build_config.h"
 
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -9,6 +20,25 @@
 #include <vector>
 
 namespace py = pybind11;
+using namespace talus::dem;
+
+namespace
+{
+/// Zero-copy (n, 3) view of a vector of Vec3 owned by `owner` (kept alive by the view).
+py::array_t<double> view3(std::vector<Vec3>& v, py::handle owner)
+{
+  return py::array_t<double>({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}},
+                             {static_cast<py::ssize_t>(sizeof(Vec3)), static_cast<py::ssize_t>(sizeof(double))},
+                             v.empty() ? nullptr : v.front().data(), owner);
+}
+
+template <class T>
+py::array_t<T> view1(std::vector<T>& v, py::handle owner)
+{
+  return py::array_t<T>({static_cast<py::ssize_t>(v.size())}, {static_cast<py::ssize_t>(sizeof(T))},
+                        v.empty() ? nullptr : v.data(), owner);
+}
+} // namespace
 
 PYBIND11_MODULE(_dem, m)
 {
@@ -20,4 +50,135 @@ PYBIND11_MODULE(_dem, m)
       rows.emplace_back(e.kind, e.name, e.enabled, e.note);
     return rows;
   });
+  m.def("contact_law_names", &contactLawNames);
+
+  py::enum_<MaterialKind>(m, "MaterialKind").value("Frict", MaterialKind::Frict).value("ViscEl", MaterialKind::ViscEl);
+  py::class_<Material>(m, "Material")
+      .def(py::init<>())
+      .def_readwrite("kind", &Material::kind)
+      .def_readwrite("label", &Material::label)
+      .def_readwrite("density", &Material::density)
+      .def_readwrite("young", &Material::young)
+      .def_readwrite("poisson", &Material::poisson)
+      .def_readwrite("frictionAngle", &Material::frictionAngle)
+      .def_readwrite("tc", &Material::tc)
+      .def_readwrite("en", &Material::en)
+      .def_readwrite("et", &Material::et)
+      .def_readwrite("kn", &Material::kn)
+      .def_readwrite("cn", &Material::cn)
+      .def_readwrite("ks", &Material::ks)
+      .def_readwrite("cs", &Material::cs)
+      .def("validate", &Material::validate);
+
+  py::class_<Engine, std::shared_ptr<Engine>>(m, "Engine")
+      .def_property_readonly("typeName", &Engine::typeName)
+      .def_readwrite("label", &Engine::label)
+      .def_readwrite("dead", &Engine::dead);
+  py::class_<ForceResetter, Engine, std::shared_ptr<ForceResetter>>(m, "ForceResetter").def(py::init<>());
+  py::class_<Collider, Engine, std::shared_ptr<Collider>>(m, "Collider")
+      .def(py::init<>())
+      .def_readwrite("verletDist", &Collider::verletDist)
+      .def_readonly("rebuilds", &Collider::rebuilds);
+  py::class_<ContactLaw, std::shared_ptr<ContactLaw>>(m, "ContactLaw")
+      .def_property_readonly("typeName", &ContactLaw::typeName)
+      .def_property_readonly("physicsName", &ContactLaw::physicsName);
+  m.def("make_contact_law", [](const std::string& name) { return std::shared_ptr<ContactLaw>(makeContactLaw(name)); });
+  py::class_<InteractionLoop, Engine, std::shared_ptr<InteractionLoop>>(m, "InteractionLoop")
+      .def(py::init<>())
+      .def_readwrite("laws", &InteractionLoop::laws);
+  py::class_<NewtonIntegrator, Engine, std::shared_ptr<NewtonIntegrator>>(m, "NewtonIntegrator")
+      .def(py::init<>())
+      .def_readwrite("gravity", &NewtonIntegrator::gravity)
+      .def_readwrite("damping", &NewtonIntegrator::damping);
+  py::class_<CallbackEngine, Engine, std::shared_ptr<CallbackEngine>>(m, "CallbackEngine")
+      .def(py::init<>())
+      .def_readwrite("callback", &CallbackEngine::callback)
+      .def_readwrite("iterPeriod", &CallbackEngine::iterPeriod)
+      .def_readwrite("initRun", &CallbackEngine::initRun)
+      .def_readwrite("iterLast", &CallbackEngine::iterLast)
+      .def_readwrite("nDone", &CallbackEngine::nDone);
+
+  py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene")
+      .def(py::init<>())
+      .def_readwrite("dt", &Scene::dt)
+      .def_readwrite("time", &Scene::time)
+      .def_readwrite("iter", &Scene::iter)
+      .def_readwrite("engines", &Scene::engines)
+      .def_readonly("bodiesVersion", &Scene::bodiesVersion)
+      .def("addMaterial", &Scene::addMaterial)
+      .def("material", [](const Scene& s, int i) { return s.materials.at(static_cast<std::size_t>(i)); })
+      .def("materialCount", [](const Scene& s) { return s.materials.size(); })
+      .def("addSphere", &Scene::addSphere)
+      .def("addWall", &Scene::addWall)
+      .def("erase", &Scene::erase)
+      .def("checkBody", &Scene::checkBody)
+      .def("bodyCount", [](const Scene& s) { return s.bodies.size(); })
+      .def("pWaveTimeStep", &Scene::pWaveTimeStep)
+      .def("step", &Scene::step, py::call_guard<py::gil_scoped_release>())
+      .def(
+          "run",
+          [](Scene& s, std::int64_t steps) {
+            for (std::int64_t k = 0; k < steps; ++k)
+            {
+              s.step();
+              if (k % 64 == 0)
+              {
+                py::gil_scoped_acquire gil;
+                if (PyErr_CheckSignals() != 0)
+                  throw py::error_already_set();
+              }
+            }
+          },
+          py::call_guard<py::gil_scoped_release>())
+      // Zero-copy array views of body state (the particle exchange interface in Python).
+      // A view stays valid until bodies are appended (which may move the arrays).
+      .def("pos", [](py::object self) { return view3(self.cast<Scene&>().bodies.pos, self); })
+      .def("vel", [](py::object self) { return view3(self.cast<Scene&>().bodies.vel, self); })
+      .def("angVel", [](py::object self) { return view3(self.cast<Scene&>().bodies.angVel, self); })
+      .def("force", [](py::object self) { return view3(self.cast<Scene&>().bodies.force, self); })
+      .def("torque", [](py::object self) { return view3(self.cast<Scene&>().bodies.torque, self); })
+      .def("extForce", [](py::object self) { return view3(self.cast<Scene&>().bodies.extForce, self); })
+      .def("extTorque", [](py::object self) { return view3(self.cast<Scene&>().bodies.extTorque, self); })
+      .def("inertia", [](py::object self) { return view3(self.cast<Scene&>().bodies.inertia, self); })
+      .def("mass", [](py::object self) { return view1(self.cast<Scene&>().bodies.mass, self); })
+      .def("radius", [](py::object self) { return view1(self.cast<Scene&>().bodies.radius, self); })
+      .def("blockedDofs", [](py::object self) { return view1(self.cast<Scene&>().bodies.blockedDofs, self); })
+      .def("dynamic", [](py::object self) { return view1(self.cast<Scene&>().bodies.dynamic, self); })
+      .def("alive", [](py::object self) { return view1(self.cast<Scene&>().bodies.alive, self); })
+      .def("materialIds", [](py::object self) { return view1(self.cast<Scene&>().bodies.material, self); })
+      .def("shapeKind", [](const Scene& s, BodyId id) {
+        s.checkBody(id);
+        return s.bodies.shape[static_cast<std::size_t>(id)] == ShapeKind::Sphere ? "Sphere" : "Wall";
+      })
+      .def("ori", [](const Scene& s, BodyId id) {
+        s.checkBody(id);
+        const Quat& q = s.bodies.ori[static_cast<std::size_t>(id)];
+        return std::make_tuple(q.w(), q.x(), q.y(), q.z());
+      })
+      .def("contactCount", [](const Scene& s) { return s.contacts.list.size(); })
+      .def("realContactCount", [](const Scene& s) { return s.contacts.countReal(); })
+      .def("contacts", [](const Scene& s) {
+        // A copy of the real contacts, for inspection (not for hot loops).
+        py::list out;
+        for (const Contact& c : s.contacts.list)
+          if (c.real)
+          {
+            py::dict d;
+            d["id1"] = c.id1;
+            d["id2"] = c.id2;
+            d["normal"] = c.normal;
+            d["contactPoint"] = c.contactPoint;
+            d["penetrationDepth"] = c.penetration;
+            d["kn"] = c.kn;
+            d["ks"] = c.ks;
+            d["cn"] = c.cn;
+            d["cs"] = c.cs;
+            d["tangensOfFrictionAngle"] = c.tanPhi;
+            d["normalForce"] = c.normalForce;
+            d["shearForce"] = c.shearForce;
+            d["force"] = c.force;
+            out.append(d);
+          }
+        return out;
+      });
 }

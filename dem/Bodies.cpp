@@ -1,0 +1,27 @@
+#include "dem/Bodies.h"
+
+namespace talus::dem
+{
+BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
+{
+  const auto id = static_cast<BodyId>(pos.size());
+  pos.emplace_back(Vec3::Zero());
+  vel.emplace_back(Vec3::Zero());
+  angVel.emplace_back(Vec3::Zero());
+  ori.emplace_back(Quat::Identity());
+  force.emplace_back(Vec3::Zero());
+  torque.emplace_back(Vec3::Zero());
+  extForce.emplace_back(Vec3::Zero());
+  extTorque.emplace_back(Vec3::Zero());
+  mass.push_back(0.0);
+  inertia.emplace_back(Vec3::Zero());
+  radius.push_back(0.0);
+  shape.push_back(kind);
+  shapeIndex.push_back(shapeIdx);
+  material.push_back(materialId);
+  blockedDofs.push_back(0);
+  dynamic.push_back(1);
+  alive.push_back(1);
+  return id;
+}
+} // namespace talus::dem

@@ -1,0 +1,53 @@
+#pragma once
+
+#include "dem/types.h"
+
+#include <span>
+#include <vector>
+
+namespace talus::dem
+{
+/// Shapes a body can have. Spheres are the fast path; other shapes add contact geometries.
+enum class ShapeKind : std::uint8_t
+{
+  Sphere,
+  Wall, ///< infinite plane normal to a coordinate axis (Yade's Wall)
+};
+
+/// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
+/// (-1 negative side, +1 positive side, 0 both), as Yade's Wall.sense.
+struct WallShape
+{
+  int axis = 2;
+  int sense = 0;
+};
+
+/// Every body of a scene as structure-of-arrays: index = BodyId. Arrays are contiguous, so the
+/// exchange interface and Python hand out views of them without copying.
+///
+/// Erased bodies keep their slot (ids stay stable, as in Yade) with `alive` false.
+struct Bodies
+{
+  // state
+  std::vector<Vec3> pos, vel, angVel;
+  std::vector<Quat> ori;
+  // forces of the current step, and persistent external ones added by couplings or users
+  std::vector<Vec3> force, torque, extForce, extTorque;
+  // constant properties
+  std::vector<double> mass;
+  std::vector<Vec3> inertia; ///< principal moments of inertia (spheres: 2/5 m r^2)
+  std::vector<double> radius; ///< sphere radius; 0 for other shapes
+  std::vector<ShapeKind> shape;
+  std::vector<int> shapeIndex; ///< index into `walls` for walls, -1 otherwise
+  std::vector<int> material;   ///< index into the scene's materials
+  std::vector<std::uint8_t> blockedDofs; ///< Dof bits; blocked DOFs keep their velocity
+  std::vector<std::uint8_t> dynamic;     ///< 1: moved by forces; 0: moved only by its velocity
+  std::vector<std::uint8_t> alive;
+  std::vector<WallShape> walls;
+
+  /// Number of slots, erased bodies included.
+  [[nodiscard]] std::size_t size() const { return pos.size(); }
+  /// Append a slot with zero state and the given shape; returns its id.
+  BodyId append(ShapeKind kind, int shapeIdx, int materialId);
+};
+} // namespace talus::dem

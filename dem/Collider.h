@@ -1,0 +1,37 @@
+#pragma once
+
+#include "dem/Engine.h"
+#include "dem/types.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace talus::dem
+{
+/// Contact detection: linked cells with a Verlet skin (Yade scripts name it
+/// InsertionSortCollider; the job and the parameters are the same).
+///
+/// At a rebuild every pair of shapes closer than the skin `verletDist` becomes a candidate pair
+/// in the contact list (existing pairs keep their history). Between rebuilds only candidates are
+/// checked, which is exact as long as no body has moved more than half the skin since the last
+/// rebuild; the collider checks that every step and rebuilds when it fails or bodies changed.
+class Collider : public Engine
+{
+public:
+  void run(Scene& scene) override;
+  [[nodiscard]] std::string typeName() const override { return "Collider"; }
+
+  /// Skin width; negative: that fraction of the smallest sphere radius (Yade's default -0.5).
+  double verletDist = -0.5;
+  /// Number of rebuilds so far (diagnostics).
+  std::int64_t rebuilds = 0;
+
+private:
+  [[nodiscard]] bool needsRebuild(const Scene& scene) const;
+  void rebuild(Scene& scene);
+
+  std::vector<Vec3> referencePos_;
+  std::int64_t seenBodiesVersion_ = -1;
+  double skin_ = 0;
+};
+} // namespace talus::dem

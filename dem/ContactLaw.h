@@ -1,0 +1,55 @@
+#pragma once
+
+#include "dem/Contacts.h"
+#include "dem/Material.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus::dem
+{
+class Scene;
+
+/// A contact model: how a contact's physics is set from the two materials when it becomes
+/// real (Yade's Ip2 functor) and how forces follow from its kinematics (Yade's Law2 functor).
+///
+/// Each model is one file in dem/laws/, registered by name with TALUS_REGISTER_CONTACT_LAW;
+/// adding one edits no other file. `computeForces` is called once per step and loops over the
+/// contacts itself, so there is no virtual call per contact.
+class ContactLaw
+{
+public:
+  ContactLaw() = default;
+  ContactLaw(const ContactLaw&) = delete;
+  ContactLaw& operator=(const ContactLaw&) = delete;
+  virtual ~ContactLaw() = default;
+
+  /// Yade's Law2 name, e.g. "Law2_ScGeom_FrictPhys_CundallStrack".
+  [[nodiscard]] virtual std::string typeName() const = 0;
+  /// Yade's Ip2 name that creates this law's physics, e.g. "Ip2_FrictMat_FrictMat_FrictPhys".
+  [[nodiscard]] virtual std::string physicsName() const = 0;
+  /// 0 if the law cannot handle this material pair; otherwise a specificity (higher wins).
+  [[nodiscard]] virtual int handles(const Material& m1, const Material& m2) const = 0;
+  /// Set the physics (stiffness, damping, friction) of a contact that just became real.
+  virtual void initialize(Contact& c, const Scene& scene) const = 0;
+  /// Set c.force, c.torque1, c.torque2 of every real contact whose c.law == lawIndex.
+  virtual void computeForces(Scene& scene, std::uint8_t lawIndex) = 0;
+};
+
+/// Register a contact law factory under its Law2 name (and optional aliases).
+bool registerContactLaw(const std::vector<std::string>& names, std::function<std::unique_ptr<ContactLaw>()> factory);
+/// Create a registered contact law. @throws std::invalid_argument listing the known names
+std::unique_ptr<ContactLaw> makeContactLaw(const std::string& name);
+/// Names of every registered contact law.
+std::vector<std::string> contactLawNames();
+} // namespace talus::dem
+
+/// Register contact law class TYPE under the given names (first: Yade's Law2 name).
+#define TALUS_REGISTER_CONTACT_LAW(TYPE, ...)                                                                    \
+  namespace                                                                                                      \
+  {                                                                                                              \
+  const bool registered_##TYPE                                                                                   \
+      = ::talus::dem::registerContactLaw({__VA_ARGS__}, [] { return std::make_unique<TYPE>(); });                \
+  }

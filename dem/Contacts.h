@@ -1,0 +1,75 @@
+#pragma once
+
+#include "dem/types.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace talus::dem
+{
+/// Which geometry routine a contact uses (decided once, when the pair is first detected).
+enum class ContactGeometryKind : std::uint8_t
+{
+  SphereSphere,
+  WallSphere, ///< id1 is the wall, as in Yade
+};
+
+/// One candidate pair within the collider's skin, with its persistent contact state.
+///
+/// A pair is "real" (Yade's isReal) while the shapes overlap; a real contact keeps its shear
+/// force from step to step, rotated with the contact frame (Yade's ScGeom). Plain data: the
+/// contact array is flat and copied, sorted and merged by value.
+struct Contact
+{
+  BodyId id1 = -1, id2 = -1;
+  ContactGeometryKind kind = ContactGeometryKind::SphereSphere;
+  bool real = false;   ///< the shapes overlap (Yade's isReal)
+  bool fresh = false;  ///< became real this step: the contact law sets its physics
+  std::uint8_t law = 0; ///< index of the contact law (in the InteractionLoop) that handles it
+
+  // Geometry (ScGeom): normal points from body 1 to body 2.
+  Vec3 normal = Vec3::Zero();
+  Vec3 contactPoint = Vec3::Zero();
+  double penetration = 0;
+  double refR1 = 0, refR2 = 0; ///< reference radii for stiffness and incident velocity
+  Vec3 shearIncrement = Vec3::Zero();
+
+  // Physics (FrictPhys / ViscElPhys), set when the contact becomes real.
+  double kn = 0, ks = 0, cn = 0, cs = 0, tanPhi = 0;
+  Vec3 normalForce = Vec3::Zero(); ///< force on body 2, normal part (elastic + viscous)
+  Vec3 shearForce = Vec3::Zero();  ///< force on body 2, tangential elastic part (history)
+
+  // Result of the step: force on body 2 (body 1 gets the opposite) and both torques.
+  Vec3 force = Vec3::Zero(), torque1 = Vec3::Zero(), torque2 = Vec3::Zero();
+
+  /// Forget all history (the shapes separated).
+  void reset()
+  {
+    real = false;
+    fresh = false;
+    normalForce.setZero();
+    shearForce.setZero();
+    force.setZero();
+    torque1.setZero();
+    torque2.setZero();
+  }
+};
+
+/// The contact list, kept sorted by (id1, id2), plus a per-body index to gather forces.
+///
+/// Forces are summed per body in a fixed order (body by body, over its contacts in list order),
+/// never with atomics, so results do not depend on the number of threads.
+struct Contacts
+{
+  std::vector<Contact> list;
+  /// CSR: contacts of body b are entries [start[b], start[b+1]) of `entries`; an entry is
+  /// (contact index << 1) | side, side 0 for id1 and 1 for id2.
+  std::vector<std::int64_t> start;
+  std::vector<std::int64_t> entries;
+
+  /// Rebuild the per-body index after the list changed.
+  void index(std::size_t bodyCount);
+  /// Number of real contacts.
+  [[nodiscard]] std::size_t countReal() const;
+};
+} // namespace talus::dem

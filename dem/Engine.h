@@ -1,0 +1,28 @@
+#pragma once
+
+#include <string>
+
+namespace talus::dem
+{
+class Scene;
+
+/// One stage of a time step (Yade's Engine): the scene runs its engines in order every step.
+/// Engines are called once per step, so a virtual call here costs nothing; hot loops live
+/// inside `run`.
+class Engine
+{
+public:
+  Engine() = default;
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+  virtual ~Engine() = default;
+
+  /// Do this engine's work for the current step.
+  virtual void run(Scene& scene) = 0;
+  /// Yade's class name of the engine, for messages and for Python.
+  [[nodiscard]] virtual std::string typeName() const = 0;
+
+  std::string label; ///< optional user label
+  bool dead = false; ///< skipped when true
+};
+} // namespace talus::dem

@@ -1,0 +1,15 @@
+#pragma once
+
+#include "dem/Engine.h"
+
+namespace talus::dem
+{
+/// Starts a step: every body's force and torque become its persistent external force and
+/// torque (zero unless a coupling or the user set them), ready for contacts to add to.
+class ForceResetter : public Engine
+{
+public:
+  void run(Scene& scene) override;
+  [[nodiscard]] std::string typeName() const override { return "ForceResetter"; }
+};
+} // namespace talus::dem

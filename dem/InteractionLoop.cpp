@@ -1,0 +1,103 @@
+#include "dem/InteractionLoop.h"
+
+#include "dem/ContactGeometry.h"
+#include "dem/Scene.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace talus::dem
+{
+void InteractionLoop::assignLaw(Contact& c, const Scene& scene) const
+{
+  const Material& m1 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id1)])];
+  const Material& m2 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id2)])];
+  int best = 0;
+  for (std::size_t k = 0; k < laws.size(); ++k)
+  {
+    const int score = laws[k]->handles(m1, m2);
+    if (score > best)
+    {
+      best = score;
+      c.law = static_cast<std::uint8_t>(k);
+    }
+  }
+  if (best == 0)
+    throw std::runtime_error("no contact law of the InteractionLoop handles the materials of bodies "
+                             + std::to_string(c.id1) + " and " + std::to_string(c.id2) + " ('" + m1.label
+                             + "', '" + m2.label + "')");
+  laws[c.law]->initialize(c, scene);
+}
+
+void InteractionLoop::run(Scene& scene)
+{
+  if (laws.empty())
+    throw std::runtime_error("InteractionLoop has no contact law");
+  if (laws.size() > 255)
+    throw std::runtime_error("InteractionLoop supports at most 255 contact laws");
+  std::vector<Contact>& list = scene.contacts.list;
+  const Bodies& bodies = scene.bodies;
+  const auto n = static_cast<std::int64_t>(list.size());
+
+  // 1. Geometry of every candidate pair; new contacts get their law and physics.
+  bool failed = false;
+  std::string failure;
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < n; ++k)
+  {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    if (updateContactGeometry(c, bodies, scene.dt) && c.fresh)
+    {
+      try
+      {
+        assignLaw(c, scene);
+      }
+      catch (const std::exception& e)
+      {
+#pragma omp critical(talus_interaction_loop_error)
+        if (!failed)
+        {
+          failed = true;
+          failure = e.what();
+        }
+      }
+    }
+  }
+  if (failed)
+    throw std::runtime_error(failure);
+
+  // 2. Forces, law by law.
+  for (std::size_t k = 0; k < laws.size(); ++k)
+    laws[k]->computeForces(scene, static_cast<std::uint8_t>(k));
+
+  // 3. Sum per body, over its contacts in list order: the same sums whatever the thread count.
+  Bodies& b = scene.bodies;
+  const Contacts& contacts = scene.contacts;
+  const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t id = 0; id < bodyCount; ++id)
+  {
+    const auto i = static_cast<std::size_t>(id);
+    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+    for (std::int64_t e = contacts.start[i]; e < contacts.start[i + 1]; ++e)
+    {
+      const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
+      const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
+      if (!c.real)
+        continue;
+      if (entry & 1)
+      {
+        f += c.force;
+        t += c.torque2;
+      }
+      else
+      {
+        f -= c.force;
+        t += c.torque1;
+      }
+    }
+    b.force[i] += f;
+    b.torque[i] += t;
+  }
+}
+} // namespace talus::dem

@@ -1,0 +1,44 @@
+#include "dem/Material.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace talus::dem
+{
+namespace
+{
+void require(bool ok, const Material& m, const std::string& what)
+{
+  if (!ok)
+    throw std::invalid_argument("material '" + (m.label.empty() ? std::string("(no label)") : m.label)
+                                + "': " + what);
+}
+} // namespace
+
+void Material::validate() const
+{
+  require(std::isfinite(density) && density > 0, *this, "density must be positive and finite");
+  require(std::isfinite(frictionAngle) && frictionAngle >= 0 && frictionAngle < M_PI / 2, *this,
+          "frictionAngle must be in [0, pi/2) radians");
+  if (kind == MaterialKind::Frict)
+  {
+    require(std::isfinite(young) && young > 0, *this, "young must be positive and finite");
+    require(std::isfinite(poisson) && poisson >= 0, *this, "poisson (the ks/kn ratio) must be >= 0");
+    return;
+  }
+  const bool fromTimes = std::isfinite(tc);
+  const bool fromStiffness = std::isfinite(kn);
+  require(fromTimes != fromStiffness, *this, "ViscElMat needs either tc (with en, et) or kn (with cn, ks, cs)");
+  if (fromTimes)
+  {
+    require(tc > 0, *this, "tc must be positive");
+    require(std::isfinite(en) && en > 0 && en <= 1, *this, "en must be in (0, 1]");
+    require(std::isfinite(et) && et > 0 && et <= 1, *this, "et must be in (0, 1]");
+  }
+  else
+  {
+    require(kn > 0 && std::isfinite(ks) && ks >= 0, *this, "kn must be positive and ks >= 0");
+    require(std::isfinite(cn) && cn >= 0 && std::isfinite(cs) && cs >= 0, *this, "cn and cs must be >= 0");
+  }
+}
+} // namespace talus::dem

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <limits>
+#include <string>
+
+namespace talus::dem
+{
+/// Material families, named as in Yade.
+enum class MaterialKind
+{
+  Frict,   ///< FrictMat: elastic-frictional (young, poisson, frictionAngle, density)
+  ViscEl,  ///< ViscElMat: linear visco-elastic, from (tc, en, et) or (kn, cn, ks, cs)
+};
+
+/// A material: the per-body parameters contact laws combine into per-contact stiffnesses.
+///
+/// FrictMat defaults are Yade's: young 1e7 Pa, poisson 0.3, frictionAngle 0.5 rad,
+/// density 1000 kg/m^3.
+struct Material
+{
+  MaterialKind kind = MaterialKind::Frict;
+  std::string label;
+  double density = 1000.0;
+  double young = 1e7;
+  double poisson = 0.3;
+  double frictionAngle = 0.5;
+  // ViscElMat: contact duration and restitution coefficients (normal, tangential), or
+  // directly the stiffnesses and damping coefficients. NaN means "not given".
+  double tc = std::numeric_limits<double>::quiet_NaN();
+  double en = std::numeric_limits<double>::quiet_NaN();
+  double et = std::numeric_limits<double>::quiet_NaN();
+  double kn = std::numeric_limits<double>::quiet_NaN();
+  double cn = std::numeric_limits<double>::quiet_NaN();
+  double ks = std::numeric_limits<double>::quiet_NaN();
+  double cs = std::numeric_limits<double>::quiet_NaN();
+
+  /// @throws std::invalid_argument naming the material and the parameter that is out of range
+  void validate() const;
+};
+} // namespace talus::dem

@@ -1,0 +1,24 @@
+#pragma once
+
+#include "dem/Engine.h"
+#include "dem/types.h"
+
+namespace talus::dem
+{
+/// Leap-frog integration of Newton's and Euler's equations (Yade's NewtonIntegrator).
+///
+/// For each dynamic body: a = F/m + g, then Cundall's non-viscous damping on each component,
+/// a_i <- a_i (1 - damping sign(a_i (v_i + a_i dt/2))) (gravity is damped too, as in Yade);
+/// v += a dt; x += v dt. Rotation of spheres: the same with torque / inertia, and the
+/// orientation turned by the rotation vector omega dt. Blocked DOFs keep their velocity.
+/// Non-dynamic bodies move with their imposed velocities.
+class NewtonIntegrator : public Engine
+{
+public:
+  void run(Scene& scene) override;
+  [[nodiscard]] std::string typeName() const override { return "NewtonIntegrator"; }
+
+  Vec3 gravity = Vec3::Zero();
+  double damping = 0.2; ///< Yade's default
+};
+} // namespace talus::dem

@@ -1,0 +1,99 @@
+#include "dem/Scene.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace talus::dem
+{
+namespace
+{
+std::string str(const Vec3& v)
+{
+  return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
+}
+} // namespace
+
+int Scene::addMaterial(const Material& material)
+{
+  material.validate();
+  materials.push_back(material);
+  return static_cast<int>(materials.size()) - 1;
+}
+
+BodyId Scene::addSphere(const Vec3& center, double radius, int material)
+{
+  const std::string which = "sphere #" + std::to_string(bodies.size());
+  if (!(std::isfinite(radius) && radius > 0))
+    throw std::invalid_argument(which + ": radius must be positive and finite, got " + std::to_string(radius));
+  if (!center.allFinite())
+    throw std::invalid_argument(which + ": centre is not finite " + str(center));
+  if (material < 0 || material >= static_cast<int>(materials.size()))
+    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material) + " (the scene has "
+                                + std::to_string(materials.size()) + " materials)");
+  const BodyId id = bodies.append(ShapeKind::Sphere, -1, material);
+  const auto i = static_cast<std::size_t>(id);
+  bodies.pos[i] = center;
+  bodies.radius[i] = radius;
+  bodies.mass[i] = materials[static_cast<std::size_t>(material)].density * 4.0 / 3.0 * M_PI * radius * radius * radius;
+  bodies.inertia[i] = Vec3::Constant(0.4 * bodies.mass[i] * radius * radius);
+  ++bodiesVersion;
+  return id;
+}
+
+BodyId Scene::addWall(double position, int axis, int sense, int material)
+{
+  const std::string which = "wall #" + std::to_string(bodies.size());
+  if (axis < 0 || axis > 2)
+    throw std::invalid_argument(which + ": axis must be 0, 1 or 2, got " + std::to_string(axis));
+  if (sense < -1 || sense > 1)
+    throw std::invalid_argument(which + ": sense must be -1, 0 or 1, got " + std::to_string(sense));
+  if (!std::isfinite(position))
+    throw std::invalid_argument(which + ": position is not finite");
+  if (material < 0 || material >= static_cast<int>(materials.size()))
+    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  bodies.walls.push_back({axis, sense});
+  const BodyId id = bodies.append(ShapeKind::Wall, static_cast<int>(bodies.walls.size()) - 1, material);
+  const auto i = static_cast<std::size_t>(id);
+  bodies.pos[i][axis] = position;
+  bodies.dynamic[i] = 0;
+  bodies.blockedDofs[i] = DofAll;
+  ++bodiesVersion;
+  return id;
+}
+
+void Scene::checkBody(BodyId id) const
+{
+  if (id < 0 || static_cast<std::size_t>(id) >= bodies.size() || !bodies.alive[static_cast<std::size_t>(id)])
+    throw std::out_of_range("no body with id " + std::to_string(id));
+}
+
+void Scene::erase(BodyId id)
+{
+  checkBody(id);
+  bodies.alive[static_cast<std::size_t>(id)] = 0;
+  ++bodiesVersion;
+}
+
+void Scene::step()
+{
+  for (const std::shared_ptr<Engine>& engine : engines)
+    if (!engine->dead)
+      engine->run(*this);
+  time += dt;
+  ++iter;
+}
+
+double Scene::pWaveTimeStep() const
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+    if (bodies.alive[i] && bodies.shape[i] == ShapeKind::Sphere)
+    {
+      const Material& m = materials[static_cast<std::size_t>(bodies.material[i])];
+      best = std::min(best, bodies.radius[i] * std::sqrt(m.density / m.young));
+    }
+  return best;
+}
+} // namespace talus::dem

@@ -1,0 +1,25 @@
+"""The DEM core from Python, with Yade's vocabulary.
+
+    from talus.dem import *
+    O.bodies.append([sphere((0, 0, 1), 0.1), wall(0, axis=2)])
+    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                                 [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                 [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(gravity=(0, 0, -9.81), damping=0)]
+    O.dt = 0.5 * PWaveTimeStep()
+    O.run(1000, True)
+
+``O`` is the default scene; ``Scene()`` makes another.
+"""
+
+from talus.dem.bodies import Body, BodySpec, sphere, wall
+from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
+from talus.dem.engines import __all__ as _engine_names
+from talus.dem.materials import FrictMat, Material, ViscElMat
+from talus.dem.scene import PWaveTimeStep, Scene
+
+O = Scene()
+
+__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "Material", "FrictMat", "ViscElMat",
+           "PWaveTimeStep", *_engine_names]

@@ -1,0 +1,161 @@
+"""Bodies: Yade-style constructors (``sphere``, ``wall``) and proxies over the scene's arrays."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Iterable, Sequence
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from talus.dem.scene import Scene
+
+_DOF_LETTERS = "xyzXYZ"
+
+
+@dataclass
+class BodySpec:
+    """A body not yet in a scene (what Yade's ``utils.sphere`` returns); append it to
+    ``O.bodies`` to create it."""
+    shape: str
+    center: tuple
+    radius: float = 0.0
+    axis: int = 2
+    sense: int = 0
+    material: object = -1
+    fixed: bool = False
+    color: tuple = field(default=(0.5, 0.5, 0.5))
+
+
+def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, **_ignored) -> BodySpec:
+    """A sphere of the given centre and radius; ``material`` is an index, a label or a
+    Material (default: the last material added, or Yade's default FrictMat)."""
+    return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=material, fixed=fixed)
+
+
+def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySpec:
+    """An infinite wall normal to ``axis`` through ``position`` (a number or a point, as in Yade);
+    ``sense`` -1/+1 makes only that side interact, 0 both. Walls are fixed."""
+    if axis not in (0, 1, 2):
+        raise ValueError(f"wall: axis must be 0, 1 or 2, got {axis!r}")
+    if isinstance(position, (int, float)):
+        coord = float(position)
+    else:
+        coord = float(tuple(position)[axis])
+    center = [0.0, 0.0, 0.0]
+    center[axis] = coord
+    return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True)
+
+
+def _dofs_to_mask(letters: str) -> int:
+    bad = set(letters) - set(_DOF_LETTERS)
+    if bad:
+        raise ValueError(f"blockedDOFs: unknown letters {''.join(sorted(bad))!r}; use any of 'xyzXYZ'")
+    return sum(1 << _DOF_LETTERS.index(c) for c in set(letters))
+
+
+class State:
+    """Position, velocity and other state of one body, read and written through the arrays."""
+
+    def __init__(self, scene: "Scene", id: int):
+        object.__setattr__(self, "_scene", scene)
+        object.__setattr__(self, "_id", id)
+
+    def _row(self, name):
+        return getattr(self._scene._cpp, name)()[self._id]
+
+    def _set(self, name, value):
+        value = np.asarray(value, dtype=float)
+        if value.shape != (3,) or not np.all(np.isfinite(value)):
+            raise ValueError(f"body {self._id}: {name} must be 3 finite numbers, got {value}")
+        getattr(self._scene._cpp, name)()[self._id] = value
+
+    pos = property(lambda s: s._row("pos").copy(), lambda s, v: s._set("pos", v))
+    vel = property(lambda s: s._row("vel").copy(), lambda s, v: s._set("vel", v))
+    angVel = property(lambda s: s._row("angVel").copy(), lambda s, v: s._set("angVel", v))
+    inertia = property(lambda s: s._row("inertia").copy())
+    mass = property(lambda s: float(s._row("mass")))
+    ori = property(lambda s: s._scene._cpp.ori(s._id), doc="orientation quaternion (w, x, y, z)")
+
+    @property
+    def blockedDOFs(self) -> str:
+        mask = int(self._row("blockedDofs"))
+        return "".join(c for i, c in enumerate(_DOF_LETTERS) if mask & (1 << i))
+
+    @blockedDOFs.setter
+    def blockedDOFs(self, letters: str):
+        self._scene._cpp.blockedDofs()[self._id] = _dofs_to_mask(letters)
+
+
+class Body:
+    """One body of a scene (Yade's Body): ``id``, ``state``, ``shape`` radius, ``dynamic``."""
+
+    def __init__(self, scene: "Scene", id: int):
+        scene._cpp.checkBody(id)
+        self._scene, self.id = scene, id
+        self.state = State(scene, id)
+
+    @property
+    def dynamic(self) -> bool:
+        return bool(self._scene._cpp.dynamic()[self.id])
+
+    @dynamic.setter
+    def dynamic(self, value: bool):
+        self._scene._cpp.dynamic()[self.id] = 1 if value else 0
+
+    @property
+    def radius(self) -> float:
+        return float(self._scene._cpp.radius()[self.id])
+
+    @property
+    def shape(self) -> str:
+        return self._scene._cpp.shapeKind(self.id)
+
+    @property
+    def material(self):
+        return self._scene.materials[int(self._scene._cpp.materialIds()[self.id])]
+
+    def __repr__(self):
+        return f"<Body {self.id} {self.shape}>"
+
+
+class BodyContainer:
+    """``O.bodies``: append specs, index bodies by id, erase; bulk arrays for couplings."""
+
+    def __init__(self, scene: "Scene"):
+        self._scene = scene
+
+    def append(self, spec: BodySpec | Iterable[BodySpec]):
+        """Add one body (returns its id) or a list of bodies (returns their ids)."""
+        if isinstance(spec, BodySpec):
+            return self._add(spec)
+        return [self._add(s) for s in spec]
+
+    def _add(self, spec: BodySpec) -> int:
+        scene = self._scene
+        material = scene.materials.resolve(spec.material)
+        if spec.shape == "Sphere":
+            id = scene._cpp.addSphere(np.asarray(spec.center, dtype=float), spec.radius, material)
+            if spec.fixed:
+                scene._cpp.dynamic()[id] = 0
+                scene._cpp.blockedDofs()[id] = 63
+            return id
+        return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
+
+    def erase(self, id: int):
+        self._scene._cpp.erase(id)
+
+    def __getitem__(self, id: int) -> Body:
+        if not isinstance(id, (int, np.integer)):
+            raise TypeError(f"body ids are integers, got {id!r}")
+        try:
+            return Body(self._scene, int(id))
+        except (IndexError, ValueError) as e:
+            raise IndexError(str(e)) from None
+
+    def __len__(self) -> int:
+        return self._scene._cpp.bodyCount()
+
+    def __iter__(self):
+        alive = self._scene._cpp.alive()
+        return (Body(self._scene, i) for i in range(len(self)) if alive[i])

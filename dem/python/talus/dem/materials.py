@@ -1,0 +1,61 @@
+"""Materials, named and parametrised as in Yade (FrictMat, ViscElMat)."""
+
+from __future__ import annotations
+
+from talus import _dem
+
+
+class Material:
+    """Base of the material classes: a thin typed wrapper of the C++ material record."""
+
+    _kind = _dem.MaterialKind.Frict
+
+    def __init__(self, **params):
+        self._cpp = _dem.Material()
+        self._cpp.kind = self._kind
+        for name, value in params.items():
+            if not hasattr(self._cpp, name) or name == "kind":
+                raise TypeError(f"{type(self).__name__} has no parameter {name!r}")
+            setattr(self._cpp, name, value)
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        return getattr(self._cpp, name)
+
+    def __setattr__(self, name, value):
+        if name.startswith("_"):
+            object.__setattr__(self, name, value)
+        else:
+            setattr(self._cpp, name, value)
+
+    def __repr__(self):
+        return f"{type(self).__name__}(label={self._cpp.label!r}, density={self._cpp.density})"
+
+
+class FrictMat(Material):
+    """Elastic-frictional material: ``young`` (Pa), ``poisson`` (shear/normal stiffness ratio),
+    ``frictionAngle`` (radians), ``density``; defaults 1e7, 0.3, 0.5, 1000 as in Yade."""
+
+    _kind = _dem.MaterialKind.Frict
+
+
+class ViscElMat(Material):
+    """Linear visco-elastic material: contact duration ``tc`` with restitution coefficients
+    ``en``, ``et``, or directly ``kn``, ``cn``, ``ks``, ``cs``; plus ``frictionAngle``,
+    ``density``. ``young`` and ``poisson`` (defaults 1e9 and 0.25, as Yade's) only matter
+    against FrictMat bodies and in the time-step estimate."""
+
+    _kind = _dem.MaterialKind.ViscEl
+
+    def __init__(self, **params):
+        params.setdefault("young", 1e9)
+        params.setdefault("poisson", 0.25)
+        super().__init__(**params)
+
+
+def default_material() -> FrictMat:
+    """Yade's defaultMaterial: FrictMat(density=1e3, young=1e7, poisson=.3, frictionAngle=.5)."""
+    return FrictMat(density=1e3, young=1e7, poisson=0.3, frictionAngle=0.5, label="defaultMat")
+
+__all__ = ["Material", "FrictMat", "ViscElMat", "default_material"]

@@ -1,0 +1,135 @@
+"""The scene (Yade's Omega ``O``): materials, bodies, engines, time step and clock."""
+
+from __future__ import annotations
+
+import __main__
+from typing import Sequence
+
+from talus import _dem
+from talus.dem.bodies import BodyContainer
+from talus.dem.engines import Engine
+from talus.dem.materials import Material, default_material
+
+
+class MaterialContainer:
+    """``O.materials``: append returns the index; look up by index or label."""
+
+    def __init__(self, scene: "Scene"):
+        self._scene = scene
+        self._materials: list[Material] = []
+
+    def append(self, material: Material) -> int:
+        if not isinstance(material, Material):
+            raise TypeError(f"O.materials.append takes a material (FrictMat, ViscElMat, ...), got {material!r}")
+        index = self._scene._cpp.addMaterial(material._cpp)
+        self._materials.append(material)
+        return index
+
+    def resolve(self, material) -> int:
+        """Index of a material given as index, label or Material; -1 means the last one (created
+        as Yade's default FrictMat if there is none)."""
+        if isinstance(material, Material):
+            for i, m in enumerate(self._materials):
+                if m is material:
+                    return i
+            return self.append(material)
+        if isinstance(material, str):
+            for i, m in enumerate(self._materials):
+                if m.label == material:
+                    return i
+            raise ValueError(f"no material labelled {material!r}")
+        if material == -1:
+            if not self._materials:
+                self.append(default_material())
+            return len(self._materials) - 1
+        if not 0 <= material < len(self._materials):
+            raise ValueError(f"unknown material index {material} (the scene has {len(self._materials)} materials)")
+        return int(material)
+
+    def __getitem__(self, i: int) -> Material:
+        return self._materials[i]
+
+    def __len__(self) -> int:
+        return len(self._materials)
+
+
+class Scene:
+    """A simulation. ``talus.dem.O`` is the default one, as Yade's ``O``."""
+
+    def __init__(self):
+        self._cpp = _dem.Scene()
+        self.materials = MaterialContainer(self)
+        self.bodies = BodyContainer(self)
+        self._engines: list[Engine] = []
+
+    dt = property(lambda s: s._cpp.dt, lambda s, v: s._set_dt(v), doc="time step (s)")
+    time = property(lambda s: s._cpp.time, doc="simulated time (s)")
+    iter = property(lambda s: s._cpp.iter, doc="completed steps")
+
+    def _set_dt(self, value: float):
+        if not (value > 0 and value < float("inf")):
+            raise ValueError(f"O.dt must be positive and finite, got {value}")
+        self._cpp.dt = float(value)
+
+    @property
+    def engines(self) -> list[Engine]:
+        return list(self._engines)
+
+    @engines.setter
+    def engines(self, engines: Sequence[Engine]):
+        engines = list(engines)
+        for e in engines:
+            if not isinstance(e, Engine):
+                raise TypeError(f"O.engines takes engines, got {e!r}")
+        self._cpp.engines = [e._cpp for e in engines]
+        self._engines = engines
+        # As in Yade, a labelled engine becomes a variable of the script.
+        for e in engines:
+            if e.label:
+                setattr(__main__, e.label, e)
+
+    def step(self):
+        """Run one time step."""
+        self._cpp.step()
+
+    def run(self, nSteps: int, wait: bool = True):
+        """Run ``nSteps`` steps (Yade's ``O.run(n, True)``; Talus always waits)."""
+        if nSteps < 0:
+            raise ValueError(f"O.run: nSteps must be >= 0, got {nSteps}")
+        self._cpp.run(int(nSteps))
+
+    # Array views of all bodies (index = body id): the particle exchange interface in Python.
+    # Views stay valid until bodies are appended.
+    def positions(self):
+        return self._cpp.pos()
+
+    def velocities(self):
+        return self._cpp.vel()
+
+    def angular_velocities(self):
+        return self._cpp.angVel()
+
+    def forces(self):
+        return self._cpp.force()
+
+    def torques(self):
+        return self._cpp.torque()
+
+    def radii(self):
+        return self._cpp.radius()
+
+    def masses(self):
+        return self._cpp.mass()
+
+    def contacts(self) -> list[dict]:
+        """A copy of the real contacts (ids, geometry, stiffness, forces), for inspection."""
+        return self._cpp.contacts()
+
+
+def PWaveTimeStep(scene: Scene | None = None) -> float:
+    """Yade's P-wave critical step estimate: min over spheres of r sqrt(density / young)."""
+    from talus.dem import O
+    value = (scene or O)._cpp.pWaveTimeStep()
+    if value == float("inf"):
+        raise ValueError("PWaveTimeStep: the scene has no spheres")
+    return value

@@ -1,0 +1,23 @@
+"""The seed's bouncing-sphere tutorial (a sphere falling on a fixed one, FrictMat defaults,
+damping 0.1), written so that the same file runs in Yade (`yade -n -x`) and in Talus
+(`talus run`). Prints the height of the falling sphere every 100 steps as JSON."""
+import json
+
+try:
+    O  # noqa: B018  (defined when Yade runs the script)
+except NameError:
+    from talus.dem import *  # noqa: F401,F403
+
+O.bodies.append([sphere((0, 0, 0), 0.5, fixed=True), sphere((0, 0, 2), 0.5)])
+O.engines = [
+    ForceResetter(),
+    InsertionSortCollider([Bo1_Sphere_Aabb()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
+    NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.1),
+    PyRunner(command="heights.append(O.bodies[1].state.pos[2])", iterPeriod=100),
+]
+O.dt = 5e-5  # 0.01 PWaveTimeStep(), written out so both programs use the same bits
+heights = []
+O.run(30001, True)
+print("TRAJECTORY " + json.dumps({"dt": O.dt, "z": heights}))

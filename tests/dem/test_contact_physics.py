@@ -1,0 +1,156 @@
+"""Contact physics against analytic solutions: free fall, restitution of the visco-elastic
+contact, energy of elastic collisions, the friction threshold on an incline."""
+import math
+
+import numpy as np
+import pytest
+
+from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Ip2_ViscElMat_ViscElMat_ViscElPhys,
+                       Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic,
+                       NewtonIntegrator, Scene, ViscElMat, sphere, wall)
+
+LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
+
+
+def engines(laws, gravity=(0, 0, 0), damping=0.0):
+    return [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *laws),
+            NewtonIntegrator(gravity=gravity, damping=damping)]
+
+
+def run_collision(scene, max_steps=10**7, chunk=200):
+    """Step until a contact has formed and ended (no gravity: after the collision the bodies
+    fly freely, so overshooting by part of a chunk changes nothing)."""
+    touched = False
+    for _ in range(max_steps // chunk):
+        scene.run(chunk)
+        n = scene._cpp.realContactCount()
+        touched = touched or n > 0
+        if touched and n == 0:
+            return
+    raise AssertionError("the collision did not end")
+
+
+def test_free_fall_is_the_exact_parabola():
+    # Leap-frog is exact for a constant force: with v(-dt/2) = 0 the positions lie on the
+    # parabola x(t) = x0 - g dt t / 2 - g t^2 / 2.
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 10), 0.1))
+    S.engines = engines(LINEAR, gravity=(0, 0, -9.81))
+    S.dt = 1e-3
+    S.run(2000)
+    t = S.time
+    expected = 10 - 9.81 * S.dt * t / 2 - 9.81 * t * t / 2
+    assert S.bodies[0].state.pos[2] == pytest.approx(expected, rel=1e-9)
+    assert S.bodies[0].state.vel[2] == pytest.approx(-9.81 * t, rel=1e-9)
+
+
+def test_damping_applies_to_gravity_as_in_yade():
+    # Yade 2023.02a, same set-up (g = -10, damping 0.2, dt 0.01, 10 steps): v = -0.8, z = -0.044.
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+    S.engines = engines(LINEAR, gravity=(0, 0, -10), damping=0.2)
+    S.dt = 0.01
+    S.run(10)
+    assert S.bodies[0].state.vel[2] == pytest.approx(-0.8, rel=1e-12)
+    assert S.bodies[0].state.pos[2] == pytest.approx(-0.044, rel=1e-12)
+
+
+@pytest.mark.parametrize("against_wall", [False, True])
+@pytest.mark.parametrize("en", [0.3, 0.5, 0.9])
+def test_viscoelastic_restitution(en, against_wall):
+    S = Scene()
+    m = S.materials.append(ViscElMat(tc=1e-3, en=en, et=en, density=2000, frictionAngle=0.5))
+    if against_wall:
+        S.bodies.append([wall(0, axis=2, material=m), sphere((0, 0, 0.1001), 0.1, material=m)])
+        S.bodies[1].state.vel = (0, 0, -1)
+    else:
+        S.bodies.append([sphere((0, 0, 0), 0.1, material=m), sphere((0, 0, 0.2001), 0.1, material=m)])
+        S.bodies[0].state.vel, S.bodies[1].state.vel = (0, 0, 0.5), (0, 0, -0.5)
+    S.engines = engines(([Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]))
+    # The dashpot sees the half-step velocity: the error is first order in dt / tc.
+    S.dt = 2e-5 * 1e-3
+    run_collision(S)
+    v = S.velocities()
+    separation_speed = v[1, 2] - (0.0 if against_wall else v[0, 2])
+    assert separation_speed == pytest.approx(en, rel=1e-4)
+
+
+def test_elastic_collision_conserves_energy():
+    # Oblique and frictionless (friction would rightly dissipate energy while sliding).
+    S = Scene()
+    m = S.materials.append(FrictMat(young=1e7, density=2000, frictionAngle=0.0))
+    S.bodies.append([sphere((0, 0, 0), 0.1, material=m), sphere((0.05, 0.03, 0.2001), 0.1, material=m)])
+    S.bodies[0].state.vel, S.bodies[1].state.vel = (0.1, 0, 0.5), (0, 0, -0.5)
+    S.engines = engines(LINEAR)
+    mass = S.bodies[0].state.mass
+    tc = math.pi * math.sqrt(mass / 2 / (1e7 * 0.1))      # kn = E r for equal spheres
+    # The error comes from the discrete start and end of the contact, O((dt / tc)^2).
+    S.dt = 1e-4 * tc
+
+    def energy():
+        v, w = S.velocities(), S.angular_velocities()
+        inertia = S._cpp.inertia()
+        return 0.5 * mass * float((v * v).sum()) + 0.5 * float((inertia * w * w).sum())
+
+    before = energy()
+    run_collision(S)
+    assert abs(energy() - before) < 1e-6 * before
+
+
+@pytest.mark.parametrize("angle_deg, slides", [(25.0, False), (28.0, False), (30.0, True), (35.0, True)])
+def test_block_on_incline_slides_exactly_above_the_friction_angle(angle_deg, slides):
+    # A non-rotating sphere resting on a wall, gravity tilted by `angle` from the wall's
+    # normal: it must stay (up to the elastic shear displacement) below the friction angle of
+    # 29 deg and slide with acceleration g (sin a - cos a tan phi) above it.
+    phi = math.radians(29.0)
+    a = math.radians(angle_deg)
+    S = Scene()
+    m = S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=phi, density=2000))
+    S.bodies.append([wall(0, axis=2, material=m), sphere((0, 0, 1.0), 0.1, material=m)])
+    mass = S.bodies[1].state.mass
+    overlap = mass * 9.81 * math.cos(a) / (1e7 * 0.1)         # at rest: kn = E r against a wall
+    S.bodies[1].state.pos = (0, 0, 0.1 - overlap)
+    S.bodies[1].state.blockedDOFs = "XYZ"
+    S.engines = engines(LINEAR, gravity=(9.81 * math.sin(a), 0, -9.81 * math.cos(a)), damping=0.0)
+    S.dt = 1e-5
+    # After the start-up transient (the fresh contact has no shear force yet), compare two
+    # instants: a sliding body accelerates exactly as Coulomb friction says, a sticking one
+    # only oscillates on its shear spring.
+    S.run(20000)
+    x1, v1, t1 = S.bodies[1].state.pos[0], S.bodies[1].state.vel[0], S.time
+    S.run(30000)
+    x2, v2, t2 = S.bodies[1].state.pos[0], S.bodies[1].state.vel[0], S.time
+    if slides:
+        expected = 9.81 * (math.sin(a) - math.cos(a) * math.tan(phi))
+        assert (v2 - v1) / (t2 - t1) == pytest.approx(expected, rel=1e-6)
+    else:
+        spring = 2 * mass * 9.81 * math.sin(a) / (0.3 * 1e7 * 0.1)  # peak-to-peak on ks = E r nu
+        assert abs(x2 - x1) <= spring
+
+
+def test_physics_parameters_equal_yades():
+    # Stiffnesses Yade 2023.02a gives for the same pairs (Ip2_FrictMat_FrictMat_FrictPhys,
+    # Ip2_ViscElMat_ViscElMat_ViscElPhys for two equal spheres).
+    S = Scene()
+    m1 = S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.4, density=2000))
+    m2 = S.materials.append(FrictMat(young=3e7, poisson=0.2, frictionAngle=0.6, density=2000))
+    v = S.materials.append(ViscElMat(tc=1e-3, en=0.5, et=0.6, density=2000, frictionAngle=0.3))
+    S.bodies.append([sphere((0, 0, 0), 0.1, material=m1), sphere((0, 0, 0.2499), 0.15, material=m2),
+                     wall((0, 0, -0.095), axis=2, material=m1)])
+    S.bodies.append([sphere((5, 0, 0), 0.1, material=v), sphere((5, 0, 0.19), 0.1, material=v)])
+    S.engines = engines(([Ip2_FrictMat_FrictMat_FrictPhys(), Ip2_ViscElMat_ViscElMat_ViscElPhys()],
+                         [Law2_ScGeom_FrictPhys_CundallStrack(), Law2_ScGeom_ViscElPhys_Basic()]))
+    S.dt = 1e-6
+    S.step()
+    got = {(c["id1"], c["id2"]): c for c in S.contacts()}
+    yade = {(0, 1): (1636363.6363636365, 450000.0, 0.4227932187381618),
+            (2, 0): (1000000.0, 300000.0, 0.4227932187381618),
+            (2, 3): (1980198.0198019801, 592885.3754940712, 0.30933624960962325),
+            (3, 4): (43354219.11896042, 12124210.560003292, 0.30933624960962325)}
+    for pair, (kn, ks, tan_phi) in yade.items():
+        assert got[pair]["kn"] == pytest.approx(kn, rel=1e-12)
+        assert got[pair]["ks"] == pytest.approx(ks, rel=1e-12)
+        assert got[pair]["tangensOfFrictionAngle"] == pytest.approx(tan_phi, rel=1e-12)
+    assert got[(3, 4)]["cn"] == pytest.approx(5806.896240809606, rel=1e-12)
+    assert got[(3, 4)]["cs"] == pytest.approx(1222.7093538199315, rel=1e-12)

@@ -1,0 +1,93 @@
+"""Bad input gets a clear error naming the item; nothing is half-added."""
+import math
+
+import pytest
+
+from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
+                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, PyRunner, Scene, ViscElMat,
+                       sphere, wall)
+
+
+@pytest.mark.parametrize("radius", [0.0, -0.1, math.nan, math.inf])
+def test_bad_radius_names_the_body(radius):
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+    with pytest.raises(ValueError, match=r"sphere #1: radius must be positive"):
+        S.bodies.append(sphere((1, 0, 0), radius))
+    assert len(S.bodies) == 1
+
+
+def test_nan_position_and_unknown_material():
+    S = Scene()
+    with pytest.raises(ValueError, match=r"sphere #0: centre is not finite"):
+        S.bodies.append(sphere((0, math.nan, 0), 0.1))
+    S.materials.append(FrictMat())
+    with pytest.raises(ValueError, match="unknown material index 5"):
+        S.bodies.append(sphere((0, 0, 0), 0.1, material=5))
+    with pytest.raises(ValueError, match="no material labelled 'steel'"):
+        S.bodies.append(sphere((0, 0, 0), 0.1, material="steel"))
+    assert len(S.bodies) == 0
+
+
+@pytest.mark.parametrize("params, message", [
+    (dict(young=-1.0), "young must be positive"),
+    (dict(density=0.0), "density must be positive"),
+    (dict(frictionAngle=2.0), "frictionAngle must be in"),
+])
+def test_bad_material_parameters(params, message):
+    with pytest.raises(ValueError, match=f"material 'sand': {message}"):
+        Scene().materials.append(FrictMat(label="sand", **params))
+
+
+def test_viscoelastic_material_needs_one_parameter_set():
+    with pytest.raises(ValueError, match="either tc"):
+        Scene().materials.append(ViscElMat(label="v"))
+    with pytest.raises(ValueError, match="en must be in"):
+        Scene().materials.append(ViscElMat(label="v", tc=1e-3, en=1.5, et=0.5))
+
+
+def test_unknown_parameter_and_body_id():
+    with pytest.raises(TypeError, match="no parameter 'yong'"):
+        FrictMat(yong=1e7)
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+    with pytest.raises(IndexError, match="no body with id 7"):
+        S.bodies[7]
+    S.bodies.erase(0)
+    with pytest.raises(IndexError, match="no body with id 0"):
+        S.bodies[0]
+
+
+def test_a_law_without_its_physics_functor_is_refused():
+    with pytest.raises(ValueError, match="needs Ip2_ViscElMat_ViscElMat_ViscElPhys"):
+        InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_ViscElPhys_Basic()])
+    with pytest.raises(ValueError, match="at least one Law2"):
+        InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [])
+
+
+def test_time_step_and_wall_parameters():
+    S = Scene()
+    for dt in (0.0, -1.0, math.nan):
+        with pytest.raises(ValueError, match="O.dt must be positive"):
+            S.dt = dt
+    with pytest.raises(ValueError, match="axis must be 0, 1 or 2"):
+        S.bodies.append(wall(0, axis=3))
+    with pytest.raises(ValueError, match="unknown letters 'q'"):
+        S.bodies.append(sphere((0, 0, 0), 0.1))
+        S.bodies[0].state.blockedDOFs = "xq"
+
+
+def test_an_error_in_a_pyrunner_stops_the_run_with_the_python_error():
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+
+    def boom():
+        raise RuntimeError(f"stop at iteration {S.iter}")
+    S.engines = [ForceResetter(), InsertionSortCollider(),
+                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(), PyRunner(boom, iterPeriod=5)]
+    S.dt = 1e-3
+    with pytest.raises(RuntimeError, match="stop at iteration 5"):
+        S.run(100)
+    assert S.iter == 5
