@@ -2,7 +2,7 @@
 
 #include "dem/types.h"
 
-#include <span>
+#include <array>
 #include <vector>
 
 namespace talus::dem
@@ -11,7 +11,8 @@ namespace talus::dem
 enum class ShapeKind : std::uint8_t
 {
   Sphere,
-  Wall, ///< infinite plane normal to a coordinate axis (Yade's Wall)
+  Wall,  ///< infinite plane normal to a coordinate axis (Yade's Wall)
+  Facet, ///< triangle (Yade's Facet), for meshes and boundaries
 };
 
 /// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
@@ -20,6 +21,14 @@ struct WallShape
 {
   int axis = 2;
   int sense = 0;
+};
+
+/// A triangle. Vertices are stored relative to the body's position (Yade puts it at the
+/// triangle's incentre) in the body's frame, so a facet moves and turns with its body.
+struct FacetShape
+{
+  std::array<Vec3, 3> vertices;
+  Vec3 normal; ///< unit normal, (v1 - v0) x (v2 - v0) normalised, in the body frame
 };
 
 /// Every body of a scene as structure-of-arrays: index = BodyId. Arrays are contiguous, so the
@@ -38,12 +47,13 @@ struct Bodies
   std::vector<Vec3> inertia; ///< principal moments of inertia (spheres: 2/5 m r^2)
   std::vector<double> radius; ///< sphere radius; 0 for other shapes
   std::vector<ShapeKind> shape;
-  std::vector<int> shapeIndex; ///< index into `walls` for walls, -1 otherwise
+  std::vector<int> shapeIndex; ///< index into `walls` or `facets`, -1 for spheres
   std::vector<int> material;   ///< index into the scene's materials
   std::vector<std::uint8_t> blockedDofs; ///< Dof bits; blocked DOFs keep their velocity
   std::vector<std::uint8_t> dynamic;     ///< 1: moved by forces; 0: moved only by its velocity
   std::vector<std::uint8_t> alive;
   std::vector<WallShape> walls;
+  std::vector<FacetShape> facets;
 
   /// Number of slots, erased bodies included.
   [[nodiscard]] std::size_t size() const { return pos.size(); }

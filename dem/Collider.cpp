@@ -1,5 +1,7 @@
 #include "dem/Collider.h"
 
+#include "dem/CellGrid.h"
+#include "dem/ContactGeometry.h"
 #include "dem/Scene.h"
 
 #include <algorithm>
@@ -19,56 +21,12 @@ using PairKey = std::uint64_t;
 
 PairKey key(BodyId a, BodyId b) { return (static_cast<PairKey>(a) << 32) | static_cast<std::uint32_t>(b); }
 
-/// Candidate sphere-sphere pairs (i < j, centres closer than ri + rj + skin), by linked cells.
-std::vector<PairKey> spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, double skin)
+/// Candidate sphere-sphere pairs (i < j, centres closer than ri + rj + skin), appended to
+/// `pairs`; `perThread` is scratch space kept between calls.
+void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const CellGrid& grid, double skin,
+                 std::vector<std::vector<PairKey>>& perThread, std::vector<PairKey>& pairs)
 {
-  if (spheres.size() < 2)
-    return {};
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  double rmax = 0;
-  for (BodyId id : spheres)
-  {
-    const auto i = static_cast<std::size_t>(id);
-    lo = lo.cwiseMin(b.pos[i]);
-    hi = hi.cwiseMax(b.pos[i]);
-    rmax = std::max(rmax, b.radius[i]);
-  }
-  // Cells at least as wide as the largest interaction range; coarser if the box is sparse,
-  // so memory stays proportional to the number of spheres.
-  double h = 2 * rmax + skin;
-  const Vec3 extent = (hi - lo).cwiseMax(Vec3::Constant(1e-300));
-  while ((extent / h).array().floor().prod() > 8.0 * static_cast<double>(spheres.size()) + 27)
-    h *= 1.5;
-  std::array<int, 3> dims{};
-  for (int d = 0; d < 3; ++d)
-    dims[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(extent[d] / h)) + 1;
-  using Cell = std::array<int, 3>;
-  auto cellOf = [&](const Vec3& p) {
-    Cell c{};
-    for (std::size_t d = 0; d < 3; ++d)
-      c[d] = std::clamp(static_cast<int>(std::floor((p[static_cast<int>(d)] - lo[static_cast<int>(d)]) / h)), 0, dims[d] - 1);
-    return c;
-  };
-  auto flat = [&](const Cell& c) { return (static_cast<std::int64_t>(c[2]) * dims[1] + c[1]) * dims[0] + c[0]; };
-
-  const std::int64_t cellCount = static_cast<std::int64_t>(dims[0]) * dims[1] * dims[2];
-  std::vector<std::int64_t> cellStart(static_cast<std::size_t>(cellCount) + 1, 0);
-  std::vector<std::int64_t> cellOfSphere(spheres.size());
-  for (std::size_t s = 0; s < spheres.size(); ++s)
-  {
-    cellOfSphere[s] = flat(cellOf(b.pos[static_cast<std::size_t>(spheres[s])]));
-    ++cellStart[static_cast<std::size_t>(cellOfSphere[s]) + 1];
-  }
-  for (std::int64_t c = 0; c < cellCount; ++c)
-    cellStart[static_cast<std::size_t>(c) + 1] += cellStart[static_cast<std::size_t>(c)];
-  std::vector<BodyId> sorted(spheres.size());
-  {
-    std::vector<std::int64_t> fill(cellStart.begin(), cellStart.end() - 1);
-    for (std::size_t s = 0; s < spheres.size(); ++s)
-      sorted[static_cast<std::size_t>(fill[static_cast<std::size_t>(cellOfSphere[s])]++)] = spheres[s];
-  }
-
-  std::vector<std::vector<PairKey>> perThread(1);
+  perThread.resize(1);
 #pragma omp parallel
   {
 #ifdef _OPENMP
@@ -78,37 +36,39 @@ std::vector<PairKey> spherePairs(const Bodies& b, const std::vector<BodyId>& sph
 #else
     std::vector<PairKey>& out = perThread[0];
 #endif
+    out.clear();
 #pragma omp for schedule(dynamic, 256)
     for (std::int64_t s = 0; s < static_cast<std::int64_t>(spheres.size()); ++s)
     {
       const BodyId id = spheres[static_cast<std::size_t>(s)];
       const auto i = static_cast<std::size_t>(id);
-      const Cell c = cellOf(b.pos[i]);
-      for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dx = -1; dx <= 1; ++dx)
-          {
-            const Cell nc{c[0] + dx, c[1] + dy, c[2] + dz};
-            if (nc[0] < 0 || nc[1] < 0 || nc[2] < 0 || nc[0] >= dims[0] || nc[1] >= dims[1] || nc[2] >= dims[2])
-              continue;
-            const auto f = static_cast<std::size_t>(flat(nc));
-            for (std::int64_t k = cellStart[f]; k < cellStart[f + 1]; ++k)
-            {
-              const BodyId other = sorted[static_cast<std::size_t>(k)];
-              if (other <= id)
-                continue;
-              const auto j = static_cast<std::size_t>(other);
-              const double reach = b.radius[i] + b.radius[j] + skin;
-              if ((b.pos[j] - b.pos[i]).squaredNorm() < reach * reach)
-                out.push_back(key(id, other));
-            }
-          }
+      const Vec3 reach = Vec3::Constant(grid.width());
+      grid.forEachInBox(b.pos[i] - reach, b.pos[i] + reach, [&](BodyId other) {
+        if (other <= id)
+          return;
+        const auto j = static_cast<std::size_t>(other);
+        const double range = b.radius[i] + b.radius[j] + skin;
+        if ((b.pos[j] - b.pos[i]).squaredNorm() < range * range)
+          out.push_back(key(id, other));
+      });
     }
   }
-  std::vector<PairKey> pairs;
   for (const auto& part : perThread)
     pairs.insert(pairs.end(), part.begin(), part.end());
-  return pairs;
+}
+
+/// Candidate facet-sphere pairs: spheres whose centre is within r + skin of the triangle.
+void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax, double skin, std::vector<PairKey>& out)
+{
+  const std::array<Vec3, 3> v = facetVertices(b, static_cast<std::size_t>(facet));
+  const Vec3 grow = Vec3::Constant(rmax + skin);
+  const Vec3 lo = v[0].cwiseMin(v[1]).cwiseMin(v[2]) - grow, hi = v[0].cwiseMax(v[1]).cwiseMax(v[2]) + grow;
+  grid.forEachInBox(lo, hi, [&](BodyId s) {
+    const auto i = static_cast<std::size_t>(s);
+    const double range = b.radius[i] + skin;
+    if ((b.pos[i] - closestPointOnTriangle(b.pos[i], v[0], v[1], v[2])).squaredNorm() < range * range)
+      out.push_back(key(facet, s));
+  });
 }
 } // namespace
 
@@ -139,8 +99,13 @@ void Collider::run(Scene& scene)
 void Collider::rebuild(Scene& scene)
 {
   const Bodies& b = scene.bodies;
-  std::vector<BodyId> spheres, walls;
-  double rmin = std::numeric_limits<double>::infinity();
+  std::vector<BodyId>& spheres = spheres_;
+  std::vector<BodyId>& walls = walls_;
+  std::vector<BodyId>& facets = facets_;
+  spheres.clear();
+  walls.clear();
+  facets.clear();
+  double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
     if (!b.alive[i])
@@ -149,13 +114,21 @@ void Collider::rebuild(Scene& scene)
     {
       spheres.push_back(static_cast<BodyId>(i));
       rmin = std::min(rmin, b.radius[i]);
+      rmax = std::max(rmax, b.radius[i]);
     }
-    else
+    else if (b.shape[i] == ShapeKind::Wall)
       walls.push_back(static_cast<BodyId>(i));
+    else
+      facets.push_back(static_cast<BodyId>(i));
   }
   skin_ = verletDist >= 0 ? verletDist : (spheres.empty() ? 0.0 : -verletDist * rmin);
 
-  std::vector<PairKey> pairs = spherePairs(b, spheres, skin_);
+  grid_.build(b, spheres, 2 * rmax + skin_);
+  std::vector<PairKey>& pairs = pairs_;
+  pairs.clear();
+  spherePairs(b, spheres, grid_, skin_, perThread_, pairs);
+  for (BodyId f : facets)
+    facetPairs(b, f, grid_, rmax, skin_, pairs);
   for (BodyId w : walls)
   {
     const auto wi = static_cast<std::size_t>(w);
@@ -173,8 +146,10 @@ void Collider::rebuild(Scene& scene)
 
   // Merge with the existing list (also sorted by key): surviving pairs keep their history.
   std::vector<Contact>& old = scene.contacts.list;
-  std::vector<Contact> merged;
-  merged.reserve(pairs.size());
+  std::vector<Contact>& merged = spare_;
+  merged.clear();
+  if (merged.capacity() < pairs.size()) // with room to grow: a reallocation faults in fresh pages
+    merged.reserve(pairs.size() + pairs.size() / 4);
   std::size_t o = 0;
   for (PairKey k : pairs)
   {
@@ -188,8 +163,12 @@ void Collider::rebuild(Scene& scene)
     Contact c;
     c.id1 = static_cast<BodyId>(k >> 32);
     c.id2 = static_cast<BodyId>(k & 0xffffffffu);
-    c.kind = b.shape[static_cast<std::size_t>(c.id1)] == ShapeKind::Wall ? ContactGeometryKind::WallSphere
-                                                                          : ContactGeometryKind::SphereSphere;
+    switch (b.shape[static_cast<std::size_t>(c.id1)])
+    {
+    case ShapeKind::Wall: c.kind = ContactGeometryKind::WallSphere; break;
+    case ShapeKind::Facet: c.kind = ContactGeometryKind::FacetSphere; break;
+    case ShapeKind::Sphere: c.kind = ContactGeometryKind::SphereSphere; break;
+    }
     merged.push_back(c);
   }
   old.swap(merged);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "dem/CellGrid.h"
+#include "dem/Contacts.h"
 #include "dem/Engine.h"
 #include "dem/types.h"
 
@@ -31,6 +33,12 @@ private:
   void rebuild(Scene& scene);
 
   std::vector<Vec3> referencePos_;
+  // Scratch space kept between rebuilds, so re-detection does not allocate (and fault in) memory.
+  std::vector<Contact> spare_; ///< the previous contact list's storage
+  CellGrid grid_;
+  std::vector<std::uint64_t> pairs_;
+  std::vector<std::vector<std::uint64_t>> perThread_;
+  std::vector<BodyId> spheres_, walls_, facets_;
   std::int64_t seenBodiesVersion_ = -1;
   double skin_ = 0;
 };

@@ -3,10 +3,52 @@
 #include "dem/Bodies.h"
 #include "dem/Contacts.h"
 
+#include <array>
 #include <cmath>
 
 namespace talus::dem
 {
+/// Closest point of triangle (a, b, c) to p, by the Voronoi region of p: a vertex, an edge or
+/// the face (Ericson, Real-Time Collision Detection, 5.1.5). `inFace` (optional) tells whether
+/// it lies inside the face rather than on an edge or a vertex.
+inline Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, bool* inFace = nullptr)
+{
+  if (inFace)
+    *inFace = false;
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0)
+    return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3)
+    return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0)
+    return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6)
+    return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0)
+    return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = 1.0 / (va + vb + vc);
+  if (inFace)
+    *inFace = true;
+  return a + ab * (vb * denom) + ac * (vc * denom);
+}
+
+/// World coordinates of a facet's vertices.
+inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
+{
+  const FacetShape& f = b.facets[static_cast<std::size_t>(b.shapeIndex[i])];
+  return {b.pos[i] + b.ori[i] * f.vertices[0], b.pos[i] + b.ori[i] * f.vertices[1], b.pos[i] + b.ori[i] * f.vertices[2]};
+}
+
 /// Contact kinematics of Yade's ScGeom, for one candidate pair.
 ///
 /// Computes normal, penetration depth and contact point; if the shapes do not overlap the
@@ -41,6 +83,35 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, double dt)
     penetration = reach - dist;
     normal = d / dist;
     contactPoint = b.pos[i1] + (r1 - 0.5 * penetration) * normal;
+  }
+  else if (c.kind == ContactGeometryKind::FacetSphere)
+  {
+    // Body 1 is the facet. The normal points from the closest point of the triangle (on its
+    // face, an edge or a vertex) to the sphere's centre; as in Yade, the facet's reference
+    // radius is the sphere's diameter.
+    const std::array<Vec3, 3> v = facetVertices(b, i1);
+    const double r = b.radius[i2];
+    bool inFace = false;
+    const Vec3 d = b.pos[i2] - closestPointOnTriangle(b.pos[i2], v[0], v[1], v[2], &inFace);
+    const double dist2 = d.squaredNorm();
+    if (dist2 > r * r)
+    {
+      if (c.real)
+        c.reset();
+      return false;
+    }
+    const double dist = std::sqrt(dist2);
+    const Vec3 faceNormal = b.ori[i1] * b.facets[static_cast<std::size_t>(b.shapeIndex[i1])].normal;
+    if (inFace) // exactly the face's normal, on the sphere's side (previous side if on the plane)
+      normal = (d.dot(faceNormal) > 0 || (d.dot(faceNormal) == 0 && c.real && c.normal.dot(faceNormal) > 0)) ? faceNormal : Vec3(-faceNormal);
+    else if (dist > 0)
+      normal = d / dist;
+    else // centre exactly on an edge or a vertex: take the face's normal
+      normal = faceNormal;
+    penetration = r - dist;
+    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
+    r1 = 2 * r;
+    r2 = r;
   }
   else // WallSphere: body 1 is the wall; the contact point lies on the wall plane
   {
@@ -93,12 +164,5 @@ inline Vec3 incidentVelocity(const Contact& c, const Bodies& b)
   return (b.vel[i2] + b.angVel[i2].cross(-c.refR2 * c.normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * c.normal));
 }
 
-/// Store the total force on body 2 (`force2`) and the torques it exerts about both centres,
-/// applied at the contact point.
-inline void setContactForce(Contact& c, const Bodies& b, const Vec3& force2)
-{
-  c.force = force2;
-  c.torque1 = (c.contactPoint - b.pos[static_cast<std::size_t>(c.id1)]).cross(-force2);
-  c.torque2 = (c.contactPoint - b.pos[static_cast<std::size_t>(c.id2)]).cross(force2);
-}
+
 } // namespace talus::dem

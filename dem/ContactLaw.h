@@ -1,5 +1,6 @@
 #pragma once
 
+#include "dem/ContactGeometry.h"
 #include "dem/Contacts.h"
 #include "dem/Material.h"
 
@@ -34,8 +35,21 @@ public:
   [[nodiscard]] virtual int handles(const Material& m1, const Material& m2) const = 0;
   /// Set the physics (stiffness, damping, friction) of a contact that just became real.
   virtual void initialize(Contact& c, const Scene& scene) const = 0;
-  /// Set c.force, c.torque1, c.torque2 of every real contact whose c.law == lawIndex.
+  /// Set c.force of every real contact whose c.law == lawIndex (geometry already updated).
   virtual void computeForces(Scene& scene, std::uint8_t lawIndex) = 0;
+  /// The law is the only one of its InteractionLoop: update the geometry of every candidate
+  /// pair, initialise new contacts and compute forces, in one pass over the contacts.
+  virtual void computeAll(Scene& scene) = 0;
+};
+
+/// Base of the concrete laws: the loops over contacts, calling the law's inline
+/// `void force(Contact&, const Bodies&, double dt) const` (no virtual call per contact).
+template <class Law>
+class ContactLawKernel : public ContactLaw
+{
+public:
+  void computeForces(Scene& scene, std::uint8_t lawIndex) override;
+  void computeAll(Scene& scene) override;
 };
 
 /// Register a contact law factory under its Law2 name (and optional aliases).

@@ -11,7 +11,8 @@ namespace talus::dem
 enum class ContactGeometryKind : std::uint8_t
 {
   SphereSphere,
-  WallSphere, ///< id1 is the wall, as in Yade
+  WallSphere,  ///< id1 is the wall, as in Yade
+  FacetSphere, ///< id1 is the facet, as in Yade
 };
 
 /// One candidate pair within the collider's skin, with its persistent contact state.
@@ -39,8 +40,9 @@ struct Contact
   Vec3 normalForce = Vec3::Zero(); ///< force on body 2, normal part (elastic + viscous)
   Vec3 shearForce = Vec3::Zero();  ///< force on body 2, tangential elastic part (history)
 
-  // Result of the step: force on body 2 (body 1 gets the opposite) and both torques.
-  Vec3 force = Vec3::Zero(), torque1 = Vec3::Zero(), torque2 = Vec3::Zero();
+  // Result of the step: force on body 2, applied at the contact point (body 1 gets the
+  // opposite); torques follow from the lever arms when forces are summed per body.
+  Vec3 force = Vec3::Zero();
 
   /// Forget all history (the shapes separated).
   void reset()
@@ -50,8 +52,6 @@ struct Contact
     normalForce.setZero();
     shearForce.setZero();
     force.setZero();
-    torque1.setZero();
-    torque2.setZero();
   }
 };
 

@@ -29,12 +29,38 @@ void InteractionLoop::assignLaw(Contact& c, const Scene& scene) const
   laws[c.law]->initialize(c, scene);
 }
 
+void InteractionLoop::checkMaterials(const Scene& scene)
+{
+  if (checkedMaterials_ == scene.materials.size())
+    return;
+  const std::vector<Material>& m = scene.materials;
+  for (std::size_t i = 0; i < m.size(); ++i)
+    for (std::size_t j = i; j < m.size(); ++j)
+      if (laws[0]->handles(m[i], m[j]) == 0)
+        throw std::runtime_error("the contact law " + laws[0]->typeName() + " cannot handle materials '" + m[i].label
+                                 + "' and '" + m[j].label + "'; add a law for them to the InteractionLoop");
+  checkedMaterials_ = m.size();
+}
+
 void InteractionLoop::run(Scene& scene)
 {
   if (laws.empty())
     throw std::runtime_error("InteractionLoop has no contact law");
   if (laws.size() > 255)
     throw std::runtime_error("InteractionLoop supports at most 255 contact laws");
+  if (laws.size() == 1)
+  {
+    // The usual case: geometry, physics and forces in one pass over the contacts.
+    checkMaterials(scene);
+    laws[0]->computeAll(scene);
+  }
+  else
+    computeWithSeveralLaws(scene);
+  sumForcesPerBody(scene);
+}
+
+void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
+{
   std::vector<Contact>& list = scene.contacts.list;
   const Bodies& bodies = scene.bodies;
   const auto n = static_cast<std::int64_t>(list.size());
@@ -69,8 +95,11 @@ void InteractionLoop::run(Scene& scene)
   // 2. Forces, law by law.
   for (std::size_t k = 0; k < laws.size(); ++k)
     laws[k]->computeForces(scene, static_cast<std::uint8_t>(k));
+}
 
-  // 3. Sum per body, over its contacts in list order: the same sums whatever the thread count.
+void InteractionLoop::sumForcesPerBody(Scene& scene)
+{
+  const std::vector<Contact>& list = scene.contacts.list;
   Bodies& b = scene.bodies;
   const Contacts& contacts = scene.contacts;
   const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
@@ -85,16 +114,10 @@ void InteractionLoop::run(Scene& scene)
       const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
       if (!c.real)
         continue;
-      if (entry & 1)
-      {
-        f += c.force;
-        t += c.torque2;
-      }
-      else
-      {
-        f -= c.force;
-        t += c.torque1;
-      }
+      // The force on this body and its moment about the centre, applied at the contact point.
+      const Vec3 force = (entry & 1) ? c.force : Vec3(-c.force);
+      f += force;
+      t += (c.contactPoint - b.pos[i]).cross(force);
     }
     b.force[i] += f;
     b.torque[i] += t;

@@ -21,5 +21,13 @@ public:
 
 private:
   void assignLaw(Contact& c, const Scene& scene) const;
+  /// With a single law: check once per material count that it handles every material pair.
+  void checkMaterials(const Scene& scene);
+  /// Several laws: geometry and law assignment in one pass, then each law's forces.
+  void computeWithSeveralLaws(Scene& scene) const;
+  /// Add every contact's force and moment to its two bodies, body by body in a fixed order,
+  /// so the sums do not depend on the number of threads.
+  static void sumForcesPerBody(Scene& scene);
+  std::size_t checkedMaterials_ = 0;
 };
 } // namespace talus::dem

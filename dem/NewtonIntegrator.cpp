@@ -16,18 +16,55 @@ inline double damped(double accel, double vel, double dt, double damping)
   return accel * (1.0 - damping * (s > 0 ? 1.0 : (s < 0 ? -1.0 : 0.0)));
 }
 
-/// Turn an orientation by the rotation vector w (angle |w| about w / |w|).
+/// Turn an orientation by the rotation vector w (angle |w| about w / |w|). Per-step angles are
+/// tiny, so the quaternion's cos(angle/2) and sin(angle/2)/angle come from their Taylor series
+/// (exact to round-off below 1e-3 rad) instead of trigonometric calls.
 inline Quat rotated(const Quat& q, const Vec3& w)
 {
-  const double angle = w.norm();
-  if (angle == 0)
+  const double angle2 = w.squaredNorm();
+  if (angle2 == 0)
     return q;
-  return (Quat(Eigen::AngleAxisd(angle, w / angle)) * q).normalized();
+  double c, s; // cos(angle/2) and sin(angle/2) / angle
+  if (angle2 < 1e-6)
+  {
+    c = 1 - angle2 / 8 + angle2 * angle2 / 384;
+    s = 0.5 - angle2 / 48 + angle2 * angle2 / 3840;
+  }
+  else
+  {
+    const double angle = std::sqrt(angle2);
+    c = std::cos(0.5 * angle);
+    s = std::sin(0.5 * angle) / angle;
+  }
+  return (Quat(c, s * w[0], s * w[1], s * w[2]) * q).normalized();
 }
 } // namespace
 
+void NewtonIntegrator::refreshInverses(const Scene& scene)
+{
+  const Bodies& b = scene.bodies;
+  invMass_.assign(b.size(), Vec3::Zero());
+  invInertia_.assign(b.size(), Vec3::Zero());
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    if (!b.alive[i] || !b.dynamic[i])
+      continue;
+    for (int d = 0; d < 3; ++d)
+    {
+      if (!(b.blockedDofs[i] & (1u << d)))
+        invMass_[i][d] = 1.0 / b.mass[i];
+      if (!(b.blockedDofs[i] & (8u << d)))
+        invInertia_[i][d] = 1.0 / b.inertia[i][d];
+    }
+  }
+  seenBodiesVersion_ = scene.bodiesVersion;
+  seenPropertiesVersion_ = scene.bodyPropertiesVersion;
+}
+
 void NewtonIntegrator::run(Scene& scene)
 {
+  if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_)
+    refreshInverses(scene);
   Bodies& b = scene.bodies;
   const double dt = scene.dt;
   const auto n = static_cast<std::int64_t>(b.size());
@@ -39,25 +76,21 @@ void NewtonIntegrator::run(Scene& scene)
       continue;
     if (b.dynamic[i])
     {
+      // Blocked DOFs have a zero inverse mass (or inertia) and no gravity: their velocity stays.
       const std::uint8_t blocked = b.blockedDofs[i];
+      Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
+      Vec3 alpha = b.torque[i].cwiseProduct(invInertia_[i]);
       for (int d = 0; d < 3; ++d)
-      {
-        if (blocked & (1u << d))
-          continue;
-        double a = b.force[i][d] / b.mass[i] + gravity[d];
-        if (damping != 0)
-          a = damped(a, b.vel[i][d], dt, damping);
-        b.vel[i][d] += a * dt;
-      }
-      for (int d = 0; d < 3; ++d)
-      {
-        if (blocked & (8u << d))
-          continue;
-        double a = b.torque[i][d] / b.inertia[i][d];
-        if (damping != 0)
-          a = damped(a, b.angVel[i][d], dt, damping);
-        b.angVel[i][d] += a * dt;
-      }
+        if (!(blocked & (1u << d)))
+          a[d] += gravity[d];
+      if (damping != 0)
+        for (int d = 0; d < 3; ++d)
+        {
+          a[d] = damped(a[d], b.vel[i][d], dt, damping);
+          alpha[d] = damped(alpha[d], b.angVel[i][d], dt, damping);
+        }
+      b.vel[i] += a * dt;
+      b.angVel[i] += alpha * dt;
     }
     b.pos[i] += b.vel[i] * dt;
     b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);

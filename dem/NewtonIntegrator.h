@@ -3,6 +3,9 @@
 #include "dem/Engine.h"
 #include "dem/types.h"
 
+#include <cstdint>
+#include <vector>
+
 namespace talus::dem
 {
 /// Leap-frog integration of Newton's and Euler's equations (Yade's NewtonIntegrator).
@@ -20,5 +23,12 @@ public:
 
   Vec3 gravity = Vec3::Zero();
   double damping = 0.2; ///< Yade's default
+
+private:
+  // 1/m and 1/I of every body (0 where blocked or not dynamic), refreshed when bodies change,
+  // so the step multiplies instead of dividing.
+  void refreshInverses(const Scene& scene);
+  std::vector<Vec3> invMass_, invInertia_;
+  std::int64_t seenBodiesVersion_ = -1, seenPropertiesVersion_ = -1;
 };
 } // namespace talus::dem

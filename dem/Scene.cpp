@@ -63,10 +63,49 @@ BodyId Scene::addWall(double position, int axis, int sense, int material)
   return id;
 }
 
+BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material)
+{
+  const std::string which = "facet #" + std::to_string(bodies.size());
+  if (!a.allFinite() || !b.allFinite() || !c.allFinite())
+    throw std::invalid_argument(which + ": vertices must be finite");
+  const Vec3 n = (b - a).cross(c - a);
+  const double la = (c - b).norm(), lb = (a - c).norm(), lc = (b - a).norm();
+  if (!(n.norm() > 1e-12 * (la + lb + lc) * (la + lb + lc)))
+    throw std::invalid_argument(which + ": the three vertices are (nearly) collinear " + str(a) + " " + str(b) + " " + str(c));
+  if (material < 0 || material >= static_cast<int>(materials.size()))
+    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  // Incentre: vertices weighted by the lengths of the opposite sides.
+  const Vec3 centre = (la * a + lb * b + lc * c) / (la + lb + lc);
+  bodies.facets.push_back({{a - centre, b - centre, c - centre}, n.normalized()});
+  const BodyId id = bodies.append(ShapeKind::Facet, static_cast<int>(bodies.facets.size()) - 1, material);
+  const auto i = static_cast<std::size_t>(id);
+  bodies.pos[i] = centre;
+  bodies.dynamic[i] = 0;
+  bodies.blockedDofs[i] = DofAll;
+  ++bodiesVersion;
+  return id;
+}
+
 void Scene::checkBody(BodyId id) const
 {
   if (id < 0 || static_cast<std::size_t>(id) >= bodies.size() || !bodies.alive[static_cast<std::size_t>(id)])
     throw std::out_of_range("no body with id " + std::to_string(id));
+}
+
+void Scene::setBlockedDofs(BodyId id, std::uint8_t mask)
+{
+  checkBody(id);
+  if (mask > DofAll)
+    throw std::invalid_argument("body " + std::to_string(id) + ": blocked DOF mask " + std::to_string(mask) + " is not in 0..63");
+  bodies.blockedDofs[static_cast<std::size_t>(id)] = mask;
+  ++bodyPropertiesVersion;
+}
+
+void Scene::setDynamic(BodyId id, bool dynamic)
+{
+  checkBody(id);
+  bodies.dynamic[static_cast<std::size_t>(id)] = dynamic ? 1 : 0;
+  ++bodyPropertiesVersion;
 }
 
 void Scene::erase(BodyId id)

@@ -25,6 +25,9 @@ public:
   std::int64_t iter = 0;  ///< completed steps
   /// Incremented whenever bodies are added or erased, so the collider knows to re-detect.
   std::int64_t bodiesVersion = 0;
+  /// Incremented whenever a body's mass, inertia, blocked DOFs or dynamic flag change, so
+  /// engines caching them (the integrator's inverse masses) refresh.
+  std::int64_t bodyPropertiesVersion = 0;
 
   /// Add a material after checking it; returns its index.
   int addMaterial(const Material& material);
@@ -33,6 +36,13 @@ public:
   BodyId addSphere(const Vec3& center, double radius, int material);
   /// Add an infinite wall x[axis] = position, interacting on side `sense` (-1, 0, +1); fixed.
   BodyId addWall(double position, int axis, int sense, int material);
+  /// Add a fixed triangular facet with vertices a, b, c (world coordinates).
+  /// @throws std::invalid_argument if the triangle is degenerate or not finite
+  BodyId addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material);
+  /// Set the blocked degrees of freedom of a body (Dof bits).
+  void setBlockedDofs(BodyId id, std::uint8_t mask);
+  /// Make a body dynamic (moved by forces) or not (moved only by its imposed velocity).
+  void setDynamic(BodyId id, bool dynamic);
   /// Remove a body; its id is not reused, its contacts disappear at the next collider run.
   void erase(BodyId id);
 

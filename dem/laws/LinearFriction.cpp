@@ -1,8 +1,6 @@
 // Linear elastic contact with Coulomb friction (Cundall & Strack), as Yade's
 // Ip2_FrictMat_FrictMat_FrictPhys + Law2_ScGeom_FrictPhys_CundallStrack.
-#include "dem/ContactGeometry.h"
-#include "dem/ContactLaw.h"
-#include "dem/Scene.h"
+#include "dem/ContactLawKernel.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +13,7 @@ namespace
 double series(double a, double b) { return a + b > 0 ? 2 * a * b / (a + b) : 0.0; }
 } // namespace
 
-class LinearFriction : public ContactLaw
+class LinearFriction : public ContactLawKernel<LinearFriction>
 {
 public:
   [[nodiscard]] std::string typeName() const override { return "Law2_ScGeom_FrictPhys_CundallStrack"; }
@@ -36,25 +34,15 @@ public:
   }
 
   /// F_n = kn u_n n; F_s -= ks du_s, capped at tan(phi) |F_n|.
-  void computeForces(Scene& scene, std::uint8_t lawIndex) override
+  void force(Contact& c, const Bodies& /*bodies*/, double /*dt*/) const
   {
-    std::vector<Contact>& list = scene.contacts.list;
-    const Bodies& bodies = scene.bodies;
-    const auto n = static_cast<std::int64_t>(list.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < n; ++k)
-    {
-      Contact& c = list[static_cast<std::size_t>(k)];
-      if (!c.real || c.law != lawIndex)
-        continue;
-      c.normalForce = c.kn * c.penetration * c.normal;
-      c.shearForce -= c.ks * c.shearIncrement;
-      const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
-      const double fs2 = c.shearForce.squaredNorm();
-      if (fs2 > maxFs2)
-        c.shearForce *= std::sqrt(maxFs2 / fs2);
-      setContactForce(c, bodies, c.normalForce + c.shearForce);
-    }
+    c.normalForce = c.kn * c.penetration * c.normal;
+    c.shearForce -= c.ks * c.shearIncrement;
+    const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
+    const double fs2 = c.shearForce.squaredNorm();
+    if (fs2 > maxFs2)
+      c.shearForce *= std::sqrt(maxFs2 / fs2);
+    c.force = c.normalForce + c.shearForce;
   }
 };
 

@@ -1,15 +1,13 @@
 // Linear visco-elastic contact (spring-dashpot) with Coulomb friction, as Yade's
 // Ip2_ViscElMat_ViscElMat_ViscElPhys + Law2_ScGeom_ViscElPhys_Basic.
-#include "dem/ContactGeometry.h"
-#include "dem/ContactLaw.h"
-#include "dem/Scene.h"
+#include "dem/ContactLawKernel.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace talus::dem
 {
-class ViscoElastic : public ContactLaw
+class ViscoElastic : public ContactLawKernel<ViscoElastic>
 {
 public:
   [[nodiscard]] std::string typeName() const override { return "Law2_ScGeom_ViscElPhys_Basic"; }
@@ -58,32 +56,21 @@ public:
   /// F_n = kn u_n - cn v_n (may be attractive while the dashpot pulls, which is what makes the
   /// restitution exactly en); F_s = elastic history - ks du_s plus viscous -cs v_s, capped at
   /// tan(phi) |F_n| (the viscous part is dropped while sliding).
-  void computeForces(Scene& scene, std::uint8_t lawIndex) override
+  void force(Contact& c, const Bodies& bodies, double dt) const
   {
-    std::vector<Contact>& list = scene.contacts.list;
-    const Bodies& bodies = scene.bodies;
-    const double dt = scene.dt;
-    const auto n = static_cast<std::int64_t>(list.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t k = 0; k < n; ++k)
+    const Vec3 v = incidentVelocity(c, bodies);
+    const double vn = c.normal.dot(v);
+    c.normalForce = (c.kn * c.penetration - c.cn * vn) * c.normal;
+    c.shearForce -= c.ks * c.shearIncrement;
+    Vec3 viscous = -c.cs * (c.shearIncrement / dt);
+    const Vec3 total = c.shearForce + viscous;
+    const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
+    if (total.squaredNorm() > maxFs2)
     {
-      Contact& c = list[static_cast<std::size_t>(k)];
-      if (!c.real || c.law != lawIndex)
-        continue;
-      const Vec3 v = incidentVelocity(c, bodies);
-      const double vn = c.normal.dot(v);
-      c.normalForce = (c.kn * c.penetration - c.cn * vn) * c.normal;
-      c.shearForce -= c.ks * c.shearIncrement;
-      Vec3 viscous = -c.cs * (c.shearIncrement / dt);
-      const Vec3 total = c.shearForce + viscous;
-      const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
-      if (total.squaredNorm() > maxFs2)
-      {
-        c.shearForce = total * std::sqrt(maxFs2 / total.squaredNorm());
-        viscous.setZero();
-      }
-      setContactForce(c, bodies, c.normalForce + c.shearForce + viscous);
+      c.shearForce = total * std::sqrt(maxFs2 / total.squaredNorm());
+      viscous.setZero();
     }
+    c.force = c.normalForce + c.shearForce + viscous;
   }
 };
 

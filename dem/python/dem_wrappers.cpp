@@ -38,6 +38,14 @@ py::array_t<T> view1(std::vector<T>& v, py::handle owner)
   return py::array_t<T>({static_cast<py::ssize_t>(v.size())}, {static_cast<py::ssize_t>(sizeof(T))},
                         v.empty() ? nullptr : v.data(), owner);
 }
+
+/// The same view, read-only: properties that engines cache must change through the Scene.
+template <class A>
+A readOnly(A array)
+{
+  py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return array;
+}
 } // namespace
 
 PYBIND11_MODULE(_dem, m)
@@ -110,7 +118,10 @@ PYBIND11_MODULE(_dem, m)
       .def("materialCount", [](const Scene& s) { return s.materials.size(); })
       .def("addSphere", &Scene::addSphere)
       .def("addWall", &Scene::addWall)
+      .def("addFacet", &Scene::addFacet)
       .def("erase", &Scene::erase)
+      .def("setBlockedDofs", &Scene::setBlockedDofs)
+      .def("setDynamic", &Scene::setDynamic)
       .def("checkBody", &Scene::checkBody)
       .def("bodyCount", [](const Scene& s) { return s.bodies.size(); })
       .def("pWaveTimeStep", &Scene::pWaveTimeStep)
@@ -139,16 +150,22 @@ PYBIND11_MODULE(_dem, m)
       .def("torque", [](py::object self) { return view3(self.cast<Scene&>().bodies.torque, self); })
       .def("extForce", [](py::object self) { return view3(self.cast<Scene&>().bodies.extForce, self); })
       .def("extTorque", [](py::object self) { return view3(self.cast<Scene&>().bodies.extTorque, self); })
-      .def("inertia", [](py::object self) { return view3(self.cast<Scene&>().bodies.inertia, self); })
-      .def("mass", [](py::object self) { return view1(self.cast<Scene&>().bodies.mass, self); })
-      .def("radius", [](py::object self) { return view1(self.cast<Scene&>().bodies.radius, self); })
-      .def("blockedDofs", [](py::object self) { return view1(self.cast<Scene&>().bodies.blockedDofs, self); })
-      .def("dynamic", [](py::object self) { return view1(self.cast<Scene&>().bodies.dynamic, self); })
-      .def("alive", [](py::object self) { return view1(self.cast<Scene&>().bodies.alive, self); })
-      .def("materialIds", [](py::object self) { return view1(self.cast<Scene&>().bodies.material, self); })
+      .def("inertia", [](py::object self) { return readOnly(view3(self.cast<Scene&>().bodies.inertia, self)); })
+      .def("mass", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.mass, self)); })
+      .def("radius", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.radius, self)); })
+      .def("blockedDofs", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.blockedDofs, self)); })
+      .def("dynamic", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.dynamic, self)); })
+      .def("alive", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.alive, self)); })
+      .def("materialIds", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.material, self)); })
       .def("shapeKind", [](const Scene& s, BodyId id) {
         s.checkBody(id);
-        return s.bodies.shape[static_cast<std::size_t>(id)] == ShapeKind::Sphere ? "Sphere" : "Wall";
+        switch (s.bodies.shape[static_cast<std::size_t>(id)])
+        {
+        case ShapeKind::Sphere: return "Sphere";
+        case ShapeKind::Wall: return "Wall";
+        case ShapeKind::Facet: return "Facet";
+        }
+        return "?";
       })
       .def("ori", [](const Scene& s, BodyId id) {
         s.checkBody(id);

@@ -13,7 +13,8 @@
 ``O`` is the default scene; ``Scene()`` makes another.
 """
 
-from talus.dem.bodies import Body, BodySpec, sphere, wall
+from talus.dem import geom, pack
+from talus.dem.bodies import Body, BodySpec, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.materials import FrictMat, Material, ViscElMat
@@ -21,5 +22,5 @@ from talus.dem.scene import PWaveTimeStep, Scene
 
 O = Scene()
 
-__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "Material", "FrictMat", "ViscElMat",
+__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
            "PWaveTimeStep", *_engine_names]

@@ -24,6 +24,7 @@ class BodySpec:
     sense: int = 0
     material: object = -1
     fixed: bool = False
+    vertices: tuple = ()
     color: tuple = field(default=(0.5, 0.5, 0.5))
 
 
@@ -45,6 +46,14 @@ def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySp
     center = [0.0, 0.0, 0.0]
     center[axis] = coord
     return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True)
+
+
+def facet(vertices: Sequence[Sequence[float]], material=-1, **_ignored) -> BodySpec:
+    """A fixed triangle with the three given vertices (its position is the incentre, as in Yade)."""
+    verts = tuple(tuple(float(x) for x in v) for v in vertices)
+    if len(verts) != 3 or any(len(v) != 3 for v in verts):
+        raise ValueError(f"facet: needs three 3D vertices, got {vertices!r}")
+    return BodySpec("Facet", verts[0], material=material, fixed=True, vertices=verts)
 
 
 def _dofs_to_mask(letters: str) -> int:
@@ -84,7 +93,7 @@ class State:
 
     @blockedDOFs.setter
     def blockedDOFs(self, letters: str):
-        self._scene._cpp.blockedDofs()[self._id] = _dofs_to_mask(letters)
+        self._scene._cpp.setBlockedDofs(self._id, _dofs_to_mask(letters))
 
 
 class Body:
@@ -101,7 +110,7 @@ class Body:
 
     @dynamic.setter
     def dynamic(self, value: bool):
-        self._scene._cpp.dynamic()[self.id] = 1 if value else 0
+        self._scene._cpp.setDynamic(self.id, bool(value))
 
     @property
     def radius(self) -> float:
@@ -137,9 +146,11 @@ class BodyContainer:
         if spec.shape == "Sphere":
             id = scene._cpp.addSphere(np.asarray(spec.center, dtype=float), spec.radius, material)
             if spec.fixed:
-                scene._cpp.dynamic()[id] = 0
-                scene._cpp.blockedDofs()[id] = 63
+                scene._cpp.setDynamic(id, False)
+                scene._cpp.setBlockedDofs(id, 63)
             return id
+        if spec.shape == "Facet":
+            return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material)
         return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
 
     def erase(self, id: int):

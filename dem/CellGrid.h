@@ -1,0 +1,95 @@
+#pragma once
+
+#include "dem/Bodies.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace talus::dem
+{
+/// Spheres binned into cubic cells at least as wide as the largest interaction range
+/// (linked cells, stored as a counting sort). Rebuilt in place: its arrays keep their capacity,
+/// so re-detection allocates nothing once the scene has settled in size.
+class CellGrid
+{
+public:
+  using Cell = std::array<int, 3>;
+
+  /// Bin `spheres` (ids into `b`); `range` is the largest centre distance that can interact.
+  void build(const Bodies& b, const std::vector<BodyId>& spheres, double range)
+  {
+    Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
+    lo_ = -hi;
+    for (BodyId id : spheres)
+    {
+      lo_ = lo_.cwiseMin(b.pos[static_cast<std::size_t>(id)]);
+      hi = hi.cwiseMax(b.pos[static_cast<std::size_t>(id)]);
+    }
+    if (spheres.empty())
+      lo_ = hi = Vec3::Zero();
+    // Coarser cells if the box is sparse, so memory stays proportional to the sphere count.
+    h_ = std::max(range, 1e-300);
+    const Vec3 extent = (hi - lo_).cwiseMax(Vec3::Constant(1e-300));
+    while ((extent / h_).array().floor().prod() > 8.0 * static_cast<double>(spheres.size()) + 27)
+      h_ *= 1.5;
+    for (int d = 0; d < 3; ++d)
+      dims_[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(extent[d] / h_)) + 1;
+
+    start_.assign(static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1])
+                      * static_cast<std::size_t>(dims_[2]) + 1,
+                  0);
+    cellOfSphere_.resize(spheres.size());
+    for (std::size_t s = 0; s < spheres.size(); ++s)
+    {
+      cellOfSphere_[s] = flat(cellOf(b.pos[static_cast<std::size_t>(spheres[s])]));
+      ++start_[static_cast<std::size_t>(cellOfSphere_[s]) + 1];
+    }
+    for (std::size_t k = 1; k < start_.size(); ++k)
+      start_[k] += start_[k - 1];
+    sorted_.resize(spheres.size());
+    fill_.assign(start_.begin(), start_.end() - 1);
+    for (std::size_t s = 0; s < spheres.size(); ++s)
+      sorted_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(cellOfSphere_[s])]++)] = spheres[s];
+  }
+
+  /// Cell width.
+  [[nodiscard]] double width() const { return h_; }
+
+  /// Call f(sphere id) for every sphere binned in cells overlapping the box [a, b].
+  template <class F>
+  void forEachInBox(const Vec3& a, const Vec3& b, F&& f) const
+  {
+    const Cell c0 = cellOf(a), c1 = cellOf(b);
+    for (int z = c0[2]; z <= c1[2]; ++z)
+      for (int y = c0[1]; y <= c1[1]; ++y)
+        for (int x = c0[0]; x <= c1[0]; ++x)
+        {
+          const auto k = static_cast<std::size_t>(flat({x, y, z}));
+          for (std::int64_t e = start_[k]; e < start_[k + 1]; ++e)
+            f(sorted_[static_cast<std::size_t>(e)]);
+        }
+  }
+
+private:
+  [[nodiscard]] int coord(double x, int d) const
+  {
+    return std::clamp(static_cast<int>(std::floor((x - lo_[d]) / h_)), 0, dims_[static_cast<std::size_t>(d)] - 1);
+  }
+  [[nodiscard]] Cell cellOf(const Vec3& p) const { return {coord(p[0], 0), coord(p[1], 1), coord(p[2], 2)}; }
+  [[nodiscard]] std::int64_t flat(const Cell& c) const
+  {
+    return (static_cast<std::int64_t>(c[2]) * dims_[1] + c[1]) * dims_[0] + c[0];
+  }
+
+  Vec3 lo_ = Vec3::Zero();
+  double h_ = 1;
+  Cell dims_{1, 1, 1};
+  std::vector<std::int64_t> start_; ///< spheres of cell k: sorted_[start_[k] .. start_[k+1])
+  std::vector<BodyId> sorted_;
+  std::vector<std::int64_t> cellOfSphere_, fill_;
+};
+} // namespace talus::dem

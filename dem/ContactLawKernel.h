@@ -1,0 +1,48 @@
+#pragma once
+
+// The loops of ContactLawKernel, included by each law's .cpp (they need the Scene).
+#include "dem/ContactLaw.h"
+#include "dem/Scene.h"
+
+namespace talus::dem
+{
+template <class Law>
+void ContactLawKernel<Law>::computeForces(Scene& scene, std::uint8_t lawIndex)
+{
+  const Law& law = static_cast<const Law&>(*this);
+  std::vector<Contact>& list = scene.contacts.list;
+  const Bodies& bodies = scene.bodies;
+  const double dt = scene.dt;
+  const auto n = static_cast<std::int64_t>(list.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < n; ++k)
+  {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    if (c.real && c.law == lawIndex)
+      law.force(c, bodies, dt);
+  }
+}
+
+template <class Law>
+void ContactLawKernel<Law>::computeAll(Scene& scene)
+{
+  const Law& law = static_cast<const Law&>(*this);
+  std::vector<Contact>& list = scene.contacts.list;
+  const Bodies& bodies = scene.bodies;
+  const double dt = scene.dt;
+  const auto n = static_cast<std::int64_t>(list.size());
+#pragma omp parallel for schedule(static)
+  for (std::int64_t k = 0; k < n; ++k)
+  {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    if (!updateContactGeometry(c, bodies, dt))
+      continue;
+    if (c.fresh)
+    {
+      c.law = 0;
+      law.initialize(c, scene);
+    }
+    law.force(c, bodies, dt);
+  }
+}
+} // namespace talus::dem
