@@ -53,7 +53,7 @@ def main():
         return
     args = results.case_arguments(__doc__).parse_args()
     repeat = 1 if args.quick else 3
-    me = [sys.executable, "-m", "talus", "run", os.path.abspath(__file__), "--run-talus"]
+    me = bench.talus_command("run", os.path.abspath(__file__), "--run-talus")
     pattern = r"Performance ([0-9.]+) iter/sec"
     case = results.Case("dem.bench.yade-quickperf", quick=args.quick, folder=args.results)
     if shutil.which("yade") is None:
@@ -61,8 +61,7 @@ def main():
         return
     ours = bench.Side("talus -j1", me, pattern)
     yade = bench.Side("yade -j1", ["yade", "-n", "-j1", "--quickperformance"], r"calculation velocity=\s*([0-9.]+)")
-    env = dict(os.environ, OMP_NUM_THREADS="1")
-    os.environ.update(env)
+    os.environ["OMP_NUM_THREADS"] = "1"
     c = bench.compare(ours, yade, repeat=repeat, unit="it/s", higher_is_better=True)
     case.record("iterations per second, Talus over Yade, 1 thread", c.ratio,
                 "yade 2023.02a --quickperformance, same machine, same invocation", 5.0, comparison=">=",

@@ -17,14 +17,14 @@ namespace talus::dem
 {
 namespace
 {
-using PairKey = std::uint64_t;
-
 PairKey key(BodyId a, BodyId b) { return (static_cast<PairKey>(a) << 32) | static_cast<std::uint32_t>(b); }
+
+bool byKey(const Candidate& a, const Candidate& b) { return a.key < b.key; }
 
 /// Candidate sphere-sphere pairs (i < j, centres closer than ri + rj + skin), appended to
 /// `pairs`; `perThread` is scratch space kept between calls.
 void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const CellGrid& grid, double skin,
-                 std::vector<std::vector<PairKey>>& perThread, std::vector<PairKey>& pairs)
+                 std::vector<std::vector<Candidate>>& perThread, std::vector<Candidate>& pairs)
 {
   perThread.resize(1);
 #pragma omp parallel
@@ -32,9 +32,9 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
 #ifdef _OPENMP
 #pragma omp single
     perThread.resize(static_cast<std::size_t>(omp_get_num_threads()));
-    std::vector<PairKey>& out = perThread[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<Candidate>& out = perThread[static_cast<std::size_t>(omp_get_thread_num())];
 #else
-    std::vector<PairKey>& out = perThread[0];
+    std::vector<Candidate>& out = perThread[0];
 #endif
     out.clear();
 #pragma omp for schedule(dynamic, 256)
@@ -49,7 +49,7 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
         const auto j = static_cast<std::size_t>(other);
         const double range = b.radius[i] + b.radius[j] + skin;
         if ((b.pos[j] - b.pos[i]).squaredNorm() < range * range)
-          out.push_back(key(id, other));
+          out.push_back({key(id, other), Eigen::Vector3i::Zero()});
       });
     }
   }
@@ -57,8 +57,87 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
     pairs.insert(pairs.end(), part.begin(), part.end());
 }
 
+/// Candidate sphere pairs in a periodic cell: for each pair, the nearest periodic image of the
+/// second sphere, with its integer cell offset. Spheres are binned by their fractional
+/// coordinates wrapped into the cell; with fewer than 3 bins along an axis (a cell not much
+/// larger than the interaction range) every pair is tested.
+void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell& cell, double rmax,
+                         double skin, std::vector<Candidate>& pairs)
+{
+  const Mat3 inv = cell.hSize.inverse();
+  const std::size_t n = spheres.size();
+  std::vector<Vec3> wrapped(n);
+  std::vector<Eigen::Vector3i> period(n);
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    const Vec3 f = inv * b.pos[static_cast<std::size_t>(spheres[s])];
+    const Vec3 fl = f.array().floor().matrix();
+    period[s] = fl.cast<int>();
+    wrapped[s] = f - fl;
+  }
+  // Fractional reach of the interaction range along each axis: range * |row of H^-1|.
+  const double range = 2 * rmax + skin;
+  std::array<int, 3> bins{};
+  for (int d = 0; d < 3; ++d)
+    bins[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(1.0 / (range * inv.row(d).norm())));
+  auto consider = [&](std::size_t s, std::size_t t) {
+    const BodyId a = spheres[s], c = spheres[t];
+    const std::size_t first = a < c ? s : t, second = a < c ? t : s;
+    const Vec3 delta = wrapped[second] - wrapped[first];
+    const Eigen::Vector3i image = -(delta.array().round().cast<int>()).matrix();
+    const Vec3 d = cell.hSize * (delta + image.cast<double>());
+    const auto i = static_cast<std::size_t>(spheres[first]), j = static_cast<std::size_t>(spheres[second]);
+    const double reach = b.radius[i] + b.radius[j] + skin;
+    if (d.squaredNorm() < reach * reach)
+      pairs.push_back({key(spheres[first], spheres[second]), image + period[first] - period[second]});
+  };
+  if (*std::min_element(bins.begin(), bins.end()) < 3)
+  {
+    for (std::size_t s = 0; s < n; ++s)
+      for (std::size_t t = s + 1; t < n; ++t)
+        consider(s, t);
+    return;
+  }
+  auto flat = [&](const std::array<int, 3>& c) {
+    return (static_cast<std::size_t>(c[2]) * static_cast<std::size_t>(bins[1]) + static_cast<std::size_t>(c[1]))
+               * static_cast<std::size_t>(bins[0])
+           + static_cast<std::size_t>(c[0]);
+  };
+  auto binOf = [&](const Vec3& w) {
+    std::array<int, 3> c{};
+    for (std::size_t d = 0; d < 3; ++d)
+      c[d] = std::min(static_cast<int>(w[static_cast<int>(d)] * bins[d]), bins[d] - 1);
+    return c;
+  };
+  std::vector<std::size_t> start(static_cast<std::size_t>(bins[0]) * static_cast<std::size_t>(bins[1])
+                                     * static_cast<std::size_t>(bins[2]) + 1,
+                                 0);
+  for (std::size_t s = 0; s < n; ++s)
+    ++start[flat(binOf(wrapped[s])) + 1];
+  for (std::size_t k = 1; k < start.size(); ++k)
+    start[k] += start[k - 1];
+  std::vector<std::size_t> sorted(n), fill(start.begin(), start.end() - 1);
+  for (std::size_t s = 0; s < n; ++s)
+    sorted[fill[flat(binOf(wrapped[s]))]++] = s;
+  for (std::size_t s = 0; s < n; ++s)
+  {
+    const std::array<int, 3> c = binOf(wrapped[s]);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+        {
+          const std::array<int, 3> nc{(c[0] + dx + bins[0]) % bins[0], (c[1] + dy + bins[1]) % bins[1],
+                                      (c[2] + dz + bins[2]) % bins[2]};
+          const std::size_t k = flat(nc);
+          for (std::size_t e = start[k]; e < start[k + 1]; ++e)
+            if (sorted[e] > s)
+              consider(s, sorted[e]);
+        }
+  }
+}
+
 /// Candidate facet-sphere pairs: spheres whose centre is within r + skin of the triangle.
-void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax, double skin, std::vector<PairKey>& out)
+void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax, double skin, std::vector<Candidate>& out)
 {
   const std::array<Vec3, 3> v = facetVertices(b, static_cast<std::size_t>(facet));
   const Vec3 grow = Vec3::Constant(rmax + skin);
@@ -67,7 +146,7 @@ void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax
     const auto i = static_cast<std::size_t>(s);
     const double range = b.radius[i] + skin;
     if ((b.pos[i] - closestPointOnTriangle(b.pos[i], v[0], v[1], v[2])).squaredNorm() < range * range)
-      out.push_back(key(facet, s));
+      out.push_back({key(facet, s), Eigen::Vector3i::Zero()});
   });
 }
 } // namespace
@@ -76,15 +155,25 @@ bool Collider::needsRebuild(const Scene& scene) const
 {
   if (scene.bodiesVersion != seenBodiesVersion_ || referencePos_.size() != scene.bodies.size())
     return true;
+  // A pair's distance changes by at most the two bodies' displacements beyond the cell's
+  // homogeneous deformation A = H H_ref^-1, plus (A - I) applied to its old distance (at most
+  // the interaction range): re-detect before that can exceed the skin.
   const Bodies& b = scene.bodies;
-  const double limit2 = 0.25 * skin_ * skin_;
+  const Mat3 affine = scene.periodic ? Mat3(scene.cell.hSize * referenceCellInverse_) : Mat3::Identity();
+  const double strainReach = (affine - Mat3::Identity()).norm() * referenceRange_;
+  if (strainReach >= skin_)
+    return true;
+  const double limit = 0.5 * (skin_ - strainReach);
+  const double limit2 = limit * limit;
   const auto n = static_cast<std::int64_t>(b.size());
   bool moved = false;
+  const bool deformed = scene.periodic && affine != Mat3::Identity();
 #pragma omp parallel for reduction(|| : moved) schedule(static)
   for (std::int64_t k = 0; k < n; ++k)
   {
     const auto i = static_cast<std::size_t>(k);
-    if (b.alive[i] && (b.pos[i] - referencePos_[i]).squaredNorm() > limit2)
+    const Vec3 reference = deformed ? Vec3(affine * referencePos_[i]) : referencePos_[i];
+    if (b.alive[i] && (b.pos[i] - reference).squaredNorm() > limit2)
       moved = true;
   }
   return moved;
@@ -123,10 +212,15 @@ void Collider::rebuild(Scene& scene)
   }
   skin_ = verletDist >= 0 ? verletDist : (spheres.empty() ? 0.0 : -verletDist * rmin);
 
-  grid_.build(b, spheres, 2 * rmax + skin_);
-  std::vector<PairKey>& pairs = pairs_;
+  std::vector<Candidate>& pairs = pairs_;
   pairs.clear();
-  spherePairs(b, spheres, grid_, skin_, perThread_, pairs);
+  if (scene.periodic)
+    periodicSpherePairs(b, spheres, scene.cell, rmax, skin_, pairs);
+  else
+  {
+    grid_.build(b, spheres, 2 * rmax + skin_);
+    spherePairs(b, spheres, grid_, skin_, perThread_, pairs);
+  }
   for (BodyId f : facets)
     facetPairs(b, f, grid_, rmax, skin_, pairs);
   for (BodyId w : walls)
@@ -139,10 +233,10 @@ void Collider::rebuild(Scene& scene)
       const double d = b.pos[si][wall.axis] - b.pos[wi][wall.axis];
       const bool side = wall.sense == 0 || (wall.sense > 0 ? d > -b.radius[si] : d < b.radius[si]);
       if (side && std::abs(d) < b.radius[si] + skin_)
-        pairs.push_back(key(w, s));
+        pairs.push_back({key(w, s), Eigen::Vector3i::Zero()});
     }
   }
-  std::sort(pairs.begin(), pairs.end());
+  std::sort(pairs.begin(), pairs.end(), byKey);
 
   // Merge with the existing list (also sorted by key): surviving pairs keep their history.
   std::vector<Contact>& old = scene.contacts.list;
@@ -151,16 +245,19 @@ void Collider::rebuild(Scene& scene)
   if (merged.capacity() < pairs.size()) // with room to grow: a reallocation faults in fresh pages
     merged.reserve(pairs.size() + pairs.size() / 4);
   std::size_t o = 0;
-  for (PairKey k : pairs)
+  for (const Candidate& candidate : pairs)
   {
+    const PairKey k = candidate.key;
     while (o < old.size() && key(old[o].id1, old[o].id2) < k)
       ++o;
-    if (o < old.size() && key(old[o].id1, old[o].id2) == k)
+    // The same pair through the same periodic image keeps its history.
+    if (o < old.size() && key(old[o].id1, old[o].id2) == k && old[o].cellDist == candidate.cellDist)
     {
       merged.push_back(old[o]);
       continue;
     }
     Contact c;
+    c.cellDist = candidate.cellDist;
     c.id1 = static_cast<BodyId>(k >> 32);
     c.id2 = static_cast<BodyId>(k & 0xffffffffu);
     switch (b.shape[static_cast<std::size_t>(c.id1)])
@@ -174,6 +271,8 @@ void Collider::rebuild(Scene& scene)
   old.swap(merged);
   scene.contacts.index(b.size());
   referencePos_ = b.pos;
+  referenceCellInverse_ = scene.cell.hSize.inverse();
+  referenceRange_ = 2 * rmax + skin_;
   seenBodiesVersion_ = scene.bodiesVersion;
   ++rebuilds;
 }

@@ -10,6 +10,14 @@
 
 namespace talus::dem
 {
+/// A candidate pair found by the collider: key (id1 << 32 | id2) and periodic image offset.
+using PairKey = std::uint64_t;
+struct Candidate
+{
+  PairKey key;
+  Eigen::Vector3i cellDist;
+};
+
 /// Contact detection: linked cells with a Verlet skin (Yade scripts name it
 /// InsertionSortCollider; the job and the parameters are the same).
 ///
@@ -36,8 +44,10 @@ private:
   // Scratch space kept between rebuilds, so re-detection does not allocate (and fault in) memory.
   std::vector<Contact> spare_; ///< the previous contact list's storage
   CellGrid grid_;
-  std::vector<std::uint64_t> pairs_;
-  std::vector<std::vector<std::uint64_t>> perThread_;
+  std::vector<Candidate> pairs_;
+  std::vector<std::vector<Candidate>> perThread_;
+  Mat3 referenceCellInverse_ = Mat3::Identity();
+  double referenceRange_ = 0;
   std::vector<BodyId> spheres_, walls_, facets_;
   std::int64_t seenBodiesVersion_ = -1;
   double skin_ = 0;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/Bodies.h"
+#include "dem/Cell.h"
 #include "dem/Contacts.h"
 
 #include <array>
@@ -58,7 +59,8 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 /// order as in the seed's "Shear deformation". The shear increment is the tangential part of
 /// the incident velocity at the contact times dt, with lever arms refR1 n and -refR2 n (Yade's
 /// avoidGranularRatcheting default).
-inline bool updateContactGeometry(Contact& c, const Bodies& b, double dt)
+/// `cell` is the periodic cell, or null when space is not periodic.
+inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt)
 {
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
@@ -66,9 +68,15 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, double dt)
   double penetration;
   Vec3 contactPoint;
   double r1, r2;
+  Vec3 shiftVel = Vec3::Zero();
+  if (cell)
+  {
+    c.shift2 = cell->shift(c.cellDist);
+    shiftVel = cell->shiftVelocity(c.cellDist);
+  }
   if (c.kind == ContactGeometryKind::SphereSphere)
   {
-    const Vec3 d = b.pos[i2] - b.pos[i1];
+    const Vec3 d = b.pos[i2] + c.shift2 - b.pos[i1];
     r1 = b.radius[i1];
     r2 = b.radius[i2];
     const double dist2 = d.squaredNorm();
@@ -151,17 +159,18 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, double dt)
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  const Vec3 incident = (b.vel[i2] + b.angVel[i2].cross(-r2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(r1 * normal));
+  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(-r2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(r1 * normal));
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }
 
-/// The relative velocity of body 2 with respect to body 1 at the contact (same arms as above).
-inline Vec3 incidentVelocity(const Contact& c, const Bodies& b)
+/// The relative velocity of body 2 with respect to body 1 at the contact (same arms as above);
+/// `shiftVel` is the velocity of body 2's periodic image relative to body 2 (zero if none).
+inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& shiftVel)
 {
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
-  return (b.vel[i2] + b.angVel[i2].cross(-c.refR2 * c.normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * c.normal));
+  return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * c.normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * c.normal));
 }
 
 

@@ -42,8 +42,16 @@ public:
   virtual void computeAll(Scene& scene) = 0;
 };
 
+/// What a law's per-contact force function may read besides the contact.
+struct StepContext
+{
+  const Bodies& bodies;
+  const Cell* cell; ///< the periodic cell, null if space is not periodic
+  double dt;
+};
+
 /// Base of the concrete laws: the loops over contacts, calling the law's inline
-/// `void force(Contact&, const Bodies&, double dt) const` (no virtual call per contact).
+/// `void force(Contact&, const StepContext&) const` (no virtual call per contact).
 template <class Law>
 class ContactLawKernel : public ContactLaw
 {

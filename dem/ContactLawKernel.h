@@ -11,15 +11,14 @@ void ContactLawKernel<Law>::computeForces(Scene& scene, std::uint8_t lawIndex)
 {
   const Law& law = static_cast<const Law&>(*this);
   std::vector<Contact>& list = scene.contacts.list;
-  const Bodies& bodies = scene.bodies;
-  const double dt = scene.dt;
+  const StepContext step{scene.bodies, scene.periodic ? &scene.cell : nullptr, scene.dt};
   const auto n = static_cast<std::int64_t>(list.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
     if (c.real && c.law == lawIndex)
-      law.force(c, bodies, dt);
+      law.force(c, step);
   }
 }
 
@@ -28,21 +27,20 @@ void ContactLawKernel<Law>::computeAll(Scene& scene)
 {
   const Law& law = static_cast<const Law&>(*this);
   std::vector<Contact>& list = scene.contacts.list;
-  const Bodies& bodies = scene.bodies;
-  const double dt = scene.dt;
+  const StepContext step{scene.bodies, scene.periodic ? &scene.cell : nullptr, scene.dt};
   const auto n = static_cast<std::int64_t>(list.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
-    if (!updateContactGeometry(c, bodies, dt))
+    if (!updateContactGeometry(c, step.bodies, step.cell, step.dt))
       continue;
     if (c.fresh)
     {
       c.law = 0;
       law.initialize(c, scene);
     }
-    law.force(c, bodies, dt);
+    law.force(c, step);
   }
 }
 } // namespace talus::dem

@@ -27,6 +27,10 @@ struct Contact
   bool real = false;   ///< the shapes overlap (Yade's isReal)
   bool fresh = false;  ///< became real this step: the contact law sets its physics
   std::uint8_t law = 0; ///< index of the contact law (in the InteractionLoop) that handles it
+  /// Periodic scenes: body 2 interacts through its image shifted by hSize * cellDist; `shift2`
+  /// is that shift at the current step (zero without periodicity).
+  Eigen::Vector3i cellDist = Eigen::Vector3i::Zero();
+  Vec3 shift2 = Vec3::Zero();
 
   // Geometry (ScGeom): normal points from body 1 to body 2.
   Vec3 normal = Vec3::Zero();

@@ -33,7 +33,7 @@ void InteractionLoop::checkMaterials(const Scene& scene)
 {
   if (checkedMaterials_ == scene.materials.size())
     return;
-  const std::vector<Material>& m = scene.materials;
+  const auto& m = scene.materials;
   for (std::size_t i = 0; i < m.size(); ++i)
     for (std::size_t j = i; j < m.size(); ++j)
       if (laws[0]->handles(m[i], m[j]) == 0)
@@ -72,7 +72,7 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
-    if (updateContactGeometry(c, bodies, scene.dt) && c.fresh)
+    if (updateContactGeometry(c, bodies, scene.periodic ? &scene.cell : nullptr, scene.dt) && c.fresh)
     {
       try
       {
@@ -117,7 +117,9 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
       // The force on this body and its moment about the centre, applied at the contact point.
       const Vec3 force = (entry & 1) ? c.force : Vec3(-c.force);
       f += force;
-      t += (c.contactPoint - b.pos[i]).cross(force);
+      // Body 2 is represented by its periodic image: its lever arm is taken from there.
+      const Vec3 centre = (entry & 1) ? Vec3(b.pos[i] + c.shift2) : b.pos[i];
+      t += (c.contactPoint - centre).cross(force);
     }
     b.force[i] += f;
     b.torque[i] += t;

@@ -61,12 +61,25 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
   seenPropertiesVersion_ = scene.bodyPropertiesVersion;
 }
 
+namespace
+{
+/// Rotation rate (axial vector) of the antisymmetric part of a velocity gradient.
+Vec3 spin(const Mat3& L) { return 0.5 * Vec3(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1)); }
+} // namespace
+
 void NewtonIntegrator::run(Scene& scene)
 {
   if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_)
     refreshInverses(scene);
   Bodies& b = scene.bodies;
   const double dt = scene.dt;
+  // In a deforming periodic cell with homoDeform, a velocity is the affine field L x (with the
+  // field's spin for rotations) plus the fluctuation that forces act on. The fluctuation is
+  // recovered with the previous step's L at the previous position x - v dt, so that positions
+  // follow x <- (I + L dt) x + v' dt exactly as the cell does.
+  const bool homogeneous = scene.periodic && scene.cell.homoDeform;
+  const Mat3 L = scene.cell.velGrad, previousL = scene.cell.prevVelGrad;
+  const Vec3 w = spin(L), previousW = spin(previousL);
   const auto n = static_cast<std::int64_t>(b.size());
 #pragma omp parallel for schedule(static)
   for (std::int64_t k = 0; k < n; ++k)
@@ -76,6 +89,12 @@ void NewtonIntegrator::run(Scene& scene)
       continue;
     if (b.dynamic[i])
     {
+      Vec3 v = b.vel[i], omega = b.angVel[i];
+      if (homogeneous)
+      {
+        v -= previousL * (b.pos[i] - dt * b.vel[i]);
+        omega -= previousW;
+      }
       // Blocked DOFs have a zero inverse mass (or inertia) and no gravity: their velocity stays.
       const std::uint8_t blocked = b.blockedDofs[i];
       Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
@@ -86,14 +105,23 @@ void NewtonIntegrator::run(Scene& scene)
       if (damping != 0)
         for (int d = 0; d < 3; ++d)
         {
-          a[d] = damped(a[d], b.vel[i][d], dt, damping);
-          alpha[d] = damped(alpha[d], b.angVel[i][d], dt, damping);
+          a[d] = damped(a[d], v[d], dt, damping);
+          alpha[d] = damped(alpha[d], omega[d], dt, damping);
         }
-      b.vel[i] += a * dt;
-      b.angVel[i] += alpha * dt;
+      v += a * dt;
+      omega += alpha * dt;
+      if (homogeneous)
+      {
+        v += L * b.pos[i];
+        omega += w;
+      }
+      b.vel[i] = v;
+      b.angVel[i] = omega;
     }
     b.pos[i] += b.vel[i] * dt;
     b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
   }
+  if (scene.periodic)
+    scene.cell.integrate(dt);
 }
 } // namespace talus::dem

@@ -32,6 +32,8 @@ BodyId Scene::addSphere(const Vec3& center, double radius, int material)
   if (material < 0 || material >= static_cast<int>(materials.size()))
     throw std::invalid_argument(which + ": unknown material index " + std::to_string(material) + " (the scene has "
                                 + std::to_string(materials.size()) + " materials)");
+  if (periodic)
+    checkInsideCell(which, center);
   const BodyId id = bodies.append(ShapeKind::Sphere, -1, material);
   const auto i = static_cast<std::size_t>(id);
   bodies.pos[i] = center;
@@ -45,6 +47,8 @@ BodyId Scene::addSphere(const Vec3& center, double radius, int material)
 BodyId Scene::addWall(double position, int axis, int sense, int material)
 {
   const std::string which = "wall #" + std::to_string(bodies.size());
+  if (periodic)
+    throw std::invalid_argument(which + ": walls are not supported in a periodic scene");
   if (axis < 0 || axis > 2)
     throw std::invalid_argument(which + ": axis must be 0, 1 or 2, got " + std::to_string(axis));
   if (sense < -1 || sense > 1)
@@ -66,6 +70,8 @@ BodyId Scene::addWall(double position, int axis, int sense, int material)
 BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material)
 {
   const std::string which = "facet #" + std::to_string(bodies.size());
+  if (periodic)
+    throw std::invalid_argument(which + ": facets are not supported in a periodic scene");
   if (!a.allFinite() || !b.allFinite() || !c.allFinite())
     throw std::invalid_argument(which + ": vertices must be finite");
   const Vec3 n = (b - a).cross(c - a);
@@ -90,6 +96,39 @@ void Scene::checkBody(BodyId id) const
 {
   if (id < 0 || static_cast<std::size_t>(id) >= bodies.size() || !bodies.alive[static_cast<std::size_t>(id)])
     throw std::out_of_range("no body with id " + std::to_string(id));
+}
+
+void Scene::checkInsideCell(const std::string& which, const Vec3& x) const
+{
+  const Vec3 s = cell.hSize.inverse() * x;
+  if ((s.array() < 0).any() || (s.array() >= 1).any())
+    throw std::invalid_argument(which + ": centre " + str(x) + " is outside the periodic cell (fractional coordinates "
+                                + str(s) + ")");
+}
+
+void Scene::setPeriodic(bool on)
+{
+  if (on)
+    for (std::size_t i = 0; i < bodies.size(); ++i)
+    {
+      if (!bodies.alive[i])
+        continue;
+      const std::string which = "body " + std::to_string(i);
+      if (bodies.shape[i] != ShapeKind::Sphere)
+        throw std::invalid_argument(which + ": only spheres are supported in a periodic scene");
+      checkInsideCell(which, bodies.pos[i]);
+    }
+  periodic = on;
+  ++bodiesVersion;
+}
+
+void Scene::setCellSize(const Mat3& h)
+{
+  if (!h.allFinite() || !(h.determinant() > 0))
+    throw std::invalid_argument("cell: hSize must be finite with a positive volume (right-handed edges), got det "
+                                + std::to_string(h.determinant()));
+  cell.hSize = h;
+  ++bodiesVersion;
 }
 
 void Scene::setBlockedDofs(BodyId id, std::uint8_t mask)

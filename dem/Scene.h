@@ -1,12 +1,15 @@
 #pragma once
 
 #include "dem/Bodies.h"
+#include "dem/Cell.h"
 #include "dem/Contacts.h"
 #include "dem/Engine.h"
 #include "dem/Material.h"
 
 #include <cstdint>
+#include <deque>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace talus::dem
@@ -16,9 +19,13 @@ class Scene
 {
 public:
   Bodies bodies;
-  std::vector<Material> materials;
+  /// A deque: references to a material stay valid when more are added (Python holds them).
+  std::deque<Material> materials;
   Contacts contacts;
   std::vector<std::shared_ptr<Engine>> engines;
+
+  bool periodic = false; ///< space is the periodic repetition of `cell`
+  Cell cell;
 
   double dt = 1e-8;       ///< time step
   double time = 0;        ///< simulated time
@@ -39,6 +46,12 @@ public:
   /// Add a fixed triangular facet with vertices a, b, c (world coordinates).
   /// @throws std::invalid_argument if the triangle is degenerate or not finite
   BodyId addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material);
+  /// Make space periodic (or not). Every body must then be a sphere inside the cell.
+  /// @throws std::invalid_argument naming the first body that is not
+  void setPeriodic(bool on);
+  /// Set the cell's edges (columns of h); the cell must be non-degenerate with positive volume.
+  void setCellSize(const Mat3& h);
+
   /// Set the blocked degrees of freedom of a body (Dof bits).
   void setBlockedDofs(BodyId id, std::uint8_t mask);
   /// Make a body dynamic (moved by forces) or not (moved only by its imposed velocity).
@@ -54,5 +67,8 @@ public:
 
   /// @throws std::out_of_range naming the id if it is not a live body
   void checkBody(BodyId id) const;
+
+private:
+  void checkInsideCell(const std::string& which, const Vec3& x) const;
 };
 } // namespace talus::dem

@@ -34,7 +34,7 @@ public:
   }
 
   /// F_n = kn u_n n; F_s -= ks du_s, capped at tan(phi) |F_n|.
-  void force(Contact& c, const Bodies& /*bodies*/, double /*dt*/) const
+  void force(Contact& c, const StepContext& /*step*/) const
   {
     c.normalForce = c.kn * c.penetration * c.normal;
     c.shearForce -= c.ks * c.shearIncrement;

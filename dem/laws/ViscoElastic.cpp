@@ -56,9 +56,10 @@ public:
   /// F_n = kn u_n - cn v_n (may be attractive while the dashpot pulls, which is what makes the
   /// restitution exactly en); F_s = elastic history - ks du_s plus viscous -cs v_s, capped at
   /// tan(phi) |F_n| (the viscous part is dropped while sliding).
-  void force(Contact& c, const Bodies& bodies, double dt) const
+  void force(Contact& c, const StepContext& step) const
   {
-    const Vec3 v = incidentVelocity(c, bodies);
+    const double dt = step.dt;
+    const Vec3 v = incidentVelocity(c, step.bodies, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero());
     const double vn = c.normal.dot(v);
     c.normalForce = (c.kn * c.penetration - c.cn * vn) * c.normal;
     c.shearForce -= c.ks * c.shearIncrement;

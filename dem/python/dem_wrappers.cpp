@@ -5,6 +5,7 @@
 #include "dem/ContactLaw.h"
 #include "dem/ForceResetter.h"
 #include "dem/InteractionLoop.h"
+#include "dem/Measurements.h"
 #include "dem/NewtonIntegrator.h"
 #include "dem/Scene.h"
 #include "dem/build_config.h"
@@ -106,15 +107,36 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("iterLast", &CallbackEngine::iterLast)
       .def_readwrite("nDone", &CallbackEngine::nDone);
 
+  py::class_<Cell>(m, "Cell")
+      .def_readonly("hSize", &Cell::hSize)
+      .def_readwrite("velGrad", &Cell::velGrad)
+      .def_readwrite("prevVelGrad", &Cell::prevVelGrad)
+      .def_readwrite("trsf", &Cell::trsf)
+      .def_readwrite("homoDeform", &Cell::homoDeform)
+      .def_property_readonly("volume", &Cell::volume);
+
+  m.def("unbalancedForce", &unbalancedForce);
+  m.def("loveWeberStress", &loveWeberStress);
+  m.def("coordinationNumber", &coordinationNumber);
+  m.def("fabricTensor", &fabricTensor);
+  m.def("sphereVolume", &sphereVolume);
+
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene")
       .def(py::init<>())
       .def_readwrite("dt", &Scene::dt)
       .def_readwrite("time", &Scene::time)
       .def_readwrite("iter", &Scene::iter)
       .def_readwrite("engines", &Scene::engines)
+      .def_readonly("periodic", &Scene::periodic)
+      .def("setPeriodic", &Scene::setPeriodic)
+      .def("setCellSize", &Scene::setCellSize)
+      .def_property_readonly(
+          "cell", [](Scene& s) -> Cell& { return s.cell; }, py::return_value_policy::reference_internal)
       .def_readonly("bodiesVersion", &Scene::bodiesVersion)
       .def("addMaterial", &Scene::addMaterial)
-      .def("material", [](const Scene& s, int i) { return s.materials.at(static_cast<std::size_t>(i)); })
+      .def(
+          "material", [](Scene& s, int i) -> Material& { return s.materials.at(static_cast<std::size_t>(i)); },
+          py::return_value_policy::reference_internal)
       .def("materialCount", [](const Scene& s) { return s.materials.size(); })
       .def("addSphere", &Scene::addSphere)
       .def("addWall", &Scene::addWall)

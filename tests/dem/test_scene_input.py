@@ -91,3 +91,16 @@ def test_an_error_in_a_pyrunner_stops_the_run_with_the_python_error():
     with pytest.raises(RuntimeError, match="stop at iteration 5"):
         S.run(100)
     assert S.iter == 5
+
+
+def test_material_edits_after_append_reach_the_scene_and_are_checked():
+    S = Scene()
+    mat = FrictMat(young=1e7, label="soft")
+    S.materials.append(mat)
+    mat.young = 2e7                                   # applies to contacts created from now on
+    assert S._cpp.material(0).young == 2e7
+    with pytest.raises(ValueError, match="material 'soft': young must be positive"):
+        mat.young = -5.0
+    assert mat.young == 2e7                           # the invalid value was not kept
+    with pytest.raises(ValueError, match="already in a scene"):
+        Scene().materials.append(mat)

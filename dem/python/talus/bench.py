@@ -52,6 +52,18 @@ class Comparison:
     theirs_samples: list[float]
 
 
+def talus_command(*args: str) -> list[str]:
+    """A command line running ``talus ARGS...`` with this interpreter and this talus package,
+    wherever it is (build tree or install), for a benchmark's own side."""
+    import os
+    import sys
+
+    import talus
+    package_parent = os.path.dirname(os.path.dirname(os.path.abspath(talus.__file__)))
+    launcher = f"import sys; sys.path.insert(0, {package_parent!r}); from talus.cli import main; sys.exit(main())"
+    return [sys.executable, "-c", launcher, *args]
+
+
 def split_command(command: str | Sequence[str]) -> list[str]:
     """Accept a shell-like string or an argument list."""
     return shlex.split(command) if isinstance(command, str) else list(command)

@@ -17,10 +17,13 @@ from talus.dem import geom, pack
 from talus.dem.bodies import Body, BodySpec, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
+from talus.dem.cell import Matrix3, Vector3
 from talus.dem.materials import FrictMat, Material, ViscElMat
+from talus.dem.measure import avgNumInteractions, fabricTensor, getStress, porosity, unbalancedForce
 from talus.dem.scene import PWaveTimeStep, Scene
 
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
-           "PWaveTimeStep", *_engine_names]
+           "PWaveTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
+           "fabricTensor", "porosity", *_engine_names]

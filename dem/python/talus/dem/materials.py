@@ -11,6 +11,7 @@ class Material:
     _kind = _dem.MaterialKind.Frict
 
     def __init__(self, **params):
+        self._scene = None
         self._cpp = _dem.Material()
         self._cpp.kind = self._kind
         for name, value in params.items():
@@ -26,8 +27,20 @@ class Material:
     def __setattr__(self, name, value):
         if name.startswith("_"):
             object.__setattr__(self, name, value)
-        else:
-            setattr(self._cpp, name, value)
+            return
+        old = getattr(self._cpp, name)
+        setattr(self._cpp, name, value)
+        if self._scene is not None:   # a material in use must stay valid
+            try:
+                self._cpp.validate()
+            except ValueError:
+                setattr(self._cpp, name, old)
+                raise
+
+    def _bind(self, scene, cpp):
+        """Edit the scene's copy of this material from now on."""
+        self._scene = scene
+        self._cpp = cpp
 
     def __repr__(self):
         return f"{type(self).__name__}(label={self._cpp.label!r}, density={self._cpp.density})"

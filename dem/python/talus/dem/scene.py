@@ -7,6 +7,7 @@ from typing import Sequence
 
 from talus import _dem
 from talus.dem.bodies import BodyContainer
+from talus.dem.cell import Cell
 from talus.dem.engines import Engine
 from talus.dem.materials import Material, default_material
 
@@ -21,7 +22,12 @@ class MaterialContainer:
     def append(self, material: Material) -> int:
         if not isinstance(material, Material):
             raise TypeError(f"O.materials.append takes a material (FrictMat, ViscElMat, ...), got {material!r}")
+        if material._scene is not None:
+            raise ValueError(f"{material!r} is already in a scene; create another material for this one")
         index = self._scene._cpp.addMaterial(material._cpp)
+        # From now on the Python object edits the scene's copy (as in Yade, changes apply to
+        # contacts created afterwards).
+        material._bind(self._scene, self._scene._cpp.material(index))
         self._materials.append(material)
         return index
 
@@ -60,11 +66,21 @@ class Scene:
         self._cpp = _dem.Scene()
         self.materials = MaterialContainer(self)
         self.bodies = BodyContainer(self)
+        self.cell = Cell(self)
         self._engines: list[Engine] = []
 
     dt = property(lambda s: s._cpp.dt, lambda s, v: s._set_dt(v), doc="time step (s)")
     time = property(lambda s: s._cpp.time, doc="simulated time (s)")
     iter = property(lambda s: s._cpp.iter, doc="completed steps")
+
+    @property
+    def periodic(self) -> bool:
+        """Space is the periodic repetition of ``O.cell`` (spheres only)."""
+        return self._cpp.periodic
+
+    @periodic.setter
+    def periodic(self, value: bool):
+        self._cpp.setPeriodic(bool(value))
 
     def _set_dt(self, value: float):
         if not (value > 0 and value < float("inf")):

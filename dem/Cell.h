@@ -1,0 +1,37 @@
+#pragma once
+
+#include "dem/types.h"
+
+namespace talus::dem
+{
+/// The periodic cell (Yade's Cell): a parallelepiped whose edges are the columns of `hSize`,
+/// repeated to fill space. Particles keep unwrapped positions; contacts across the boundary
+/// carry the integer cell offset of their second body.
+///
+/// The cell deforms with the homogeneous velocity gradient `velGrad`: each step
+/// H <- (I + L dt) H and trsf <- (I + L dt) trsf (seed 3.6.1). With `homoDeform` the particles
+/// follow the same field: their velocity holds the affine part L x plus their fluctuation.
+struct Cell
+{
+  Mat3 hSize = Mat3::Identity();      ///< cell edges as columns
+  Mat3 velGrad = Mat3::Zero();        ///< velocity gradient L
+  Mat3 prevVelGrad = Mat3::Zero();    ///< L of the previous step (to recover fluctuations)
+  Mat3 trsf = Mat3::Identity();       ///< deformation gradient accumulated since the reference
+  bool homoDeform = true;
+
+  [[nodiscard]] double volume() const { return hSize.determinant(); }
+  /// Shift of the periodic image with integer offset c.
+  [[nodiscard]] Vec3 shift(const Eigen::Vector3i& c) const { return hSize * c.cast<double>(); }
+  /// Velocity of that image relative to the original (the affine field over the shift).
+  [[nodiscard]] Vec3 shiftVelocity(const Eigen::Vector3i& c) const { return velGrad * shift(c); }
+
+  /// Advance the cell by one step of the current velocity gradient.
+  void integrate(double dt)
+  {
+    const Mat3 step = Mat3::Identity() + velGrad * dt;
+    hSize = step * hSize;
+    trsf = step * trsf;
+    prevVelGrad = velGrad;
+  }
+};
+} // namespace talus::dem

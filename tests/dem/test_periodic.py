@@ -1,0 +1,125 @@
+"""Periodic cells: contacts across the boundary, homogeneous deformation of the cell and of the
+particles (checked against Yade step by step), stress equal to Yade's on a sheared cell."""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
+                       NewtonIntegrator, Scene, getStress, sphere, wall)
+
+HERE = Path(__file__).parent
+LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
+
+
+def periodic_scene(size=(1, 1, 1), damping=0.0):
+    S = Scene()
+    S.periodic = True
+    S.cell.setBox(size)
+    S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
+    S.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *LINEAR), NewtonIntegrator(damping=damping)]
+    return S
+
+
+def test_contact_across_the_boundary():
+    S = periodic_scene()
+    S.bodies.append([sphere((0.03, 0.5, 0.5), 0.06), sphere((0.95, 0.5, 0.5), 0.06)])
+    S.dt = 1e-9
+    S.step()
+    (c,) = S.contacts()
+    # Through the boundary the centres are 0.08 apart: overlap 0.04, normal from 1 to 2's image.
+    assert c["penetrationDepth"] == pytest.approx(0.04, rel=1e-9)
+    assert c["normal"] == pytest.approx((-1, 0, 0), abs=1e-12)
+    assert c["normalForce"][0] == pytest.approx(-c["kn"] * 0.04, rel=1e-9)
+    f = S.forces()
+    assert f[0, 0] > 0 and f[1, 0] < 0 and f[0, 0] == pytest.approx(-f[1, 0])
+    stress = getStress(scene=S)
+    assert stress[0, 0] == pytest.approx(-c["kn"] * 0.04 * 0.08, rel=1e-9)   # -(f l) / V, V = 1
+
+
+@pytest.mark.parametrize("step, vel, pos", [  # Yade 2023.02a, the same single free particle
+    (1, (-0.25, -0.35, -0.25), (0.4975, 0.6965, 0.4975)),
+    (2, (-0.24875, -0.34825, -0.24875), (0.4950125, 0.6930175, 0.4950125)),
+    (3, (0.34650875, 0, 0), (0.49847758750000004, 0.6930175, 0.4950125)),
+    (5, (0.34650875, 0, 0), (0.5054077625, 0.6930175, 0.4950125)),
+])
+def test_homogeneous_deformation_matches_yade(step, vel, pos):
+    S = periodic_scene()
+    S.bodies.append(sphere((0.5, 0.7, 0.5), 0.1))
+    S.dt = 0.01
+    S.cell.velGrad = Matrix3(-0.5, 0, 0, 0, -0.5, 0, 0, 0, -0.5)
+    for k in range(1, step + 1):
+        if k == 3:
+            S.cell.velGrad = Matrix3(0, 0.5, 0, 0, 0, 0, 0, 0, 0)
+        S.step()
+    assert S.bodies[0].state.vel == pytest.approx(vel, abs=1e-15)
+    assert S.bodies[0].state.pos == pytest.approx(pos, abs=1e-15)
+
+
+def test_free_particles_follow_the_cell_exactly():
+    S = periodic_scene()
+    S.bodies.append([sphere((0.2, 0.3, 0.4), 0.05), sphere((0.7, 0.8, 0.1), 0.05)])
+    frac0 = np.linalg.solve(S.cell.hSize, S.positions().T)
+    S.dt = 1e-3
+    S.cell.velGrad = Matrix3(0.3, 0.8, 0, -0.2, -0.1, 0.4, 0, 0.1, 0.2)
+    S.run(500)
+    frac = np.linalg.solve(S.cell.hSize, S.positions().T)
+    assert np.abs(frac - frac0).max() < 1e-12
+    assert S.cell.trsf == pytest.approx(S.cell.hSize, abs=1e-15)
+
+
+def test_rigid_rotation_of_the_cell_spins_the_particles_and_makes_little_shear():
+    # Heavy spheres (no fluctuation) in a cell rotating rigidly about z: they spin with the
+    # cell, so the contact slides only through the ScGeom lever arms (radii, not the shorter
+    # centre-to-contact distances): du_s = penetration * angle, i.e. shear / normal
+    # = (ks / kn) * angle. Without the spin it would be (ks / kn) (distance / penetration) angle,
+    # 1200 times more here.
+    S = periodic_scene()
+    S.materials[0].density = 1e12
+    S.bodies.append([sphere((0.45, 0.5, 0.5), 0.06), sphere((0.5699, 0.5, 0.5), 0.06)])
+    S.dt = 1e-5
+    S.cell.velGrad = Matrix3(0, -1, 0, 1, 0, 0, 0, 0, 0)
+    S.run(200)
+    assert S.bodies[0].state.angVel == pytest.approx((0, 0, 1), abs=1e-9)
+    (c,) = S.contacts()
+    angle = S.time * 1.0
+    ratio = np.linalg.norm(c["shearForce"]) / np.linalg.norm(c["normalForce"])
+    assert ratio == pytest.approx(c["ks"] / c["kn"] * angle, rel=0.01)
+
+
+@pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed (./setup.sh installs it)")
+def test_stress_of_a_sheared_periodic_packing_equals_yades(build_dir):
+    def stress(cmd, env=None):
+        done = subprocess.run(cmd, capture_output=True, text=True, cwd=HERE, env=env, timeout=300)
+        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+        line = next(l for l in done.stdout.splitlines() if l.startswith("STRESS "))
+        return json.loads(line[len("STRESS "):])
+    ours = stress([sys.executable, "periodic_stress.py"], env={**os.environ, "PYTHONPATH": str(build_dir / "python")})
+    yade = stress(["yade", "-n", "-j1", "-x", "periodic_stress.py"])
+    assert ours["contacts"] == yade["contacts"] > 2
+    scale = np.abs(yade["stress"]).max()
+    assert np.abs(np.array(ours["stress"]) - np.array(yade["stress"])).max() < 1e-12 * scale
+
+
+def test_bad_periodic_input():
+    S = periodic_scene()
+    with pytest.raises(ValueError, match=r"sphere #0: centre .* is outside the periodic cell"):
+        S.bodies.append(sphere((1.2, 0.5, 0.5), 0.1))
+    with pytest.raises(ValueError, match="walls are not supported in a periodic scene"):
+        S.bodies.append(wall(0, axis=2))
+    with pytest.raises(ValueError, match="positive volume"):
+        S.cell.hSize = Matrix3(1, 0, 0, 0, 0, 0, 0, 0, 1)
+    with pytest.raises(ValueError, match="finite 3x3"):
+        S.cell.velGrad = [1, 2, 3]
+    T = Scene()
+    T.bodies.append(sphere((5, 5, 5), 0.1))
+    with pytest.raises(ValueError, match="body 0: centre .* is outside the periodic cell"):
+        T.periodic = True
+    assert not T.periodic
