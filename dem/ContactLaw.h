@@ -4,6 +4,7 @@
 #include "dem/Contacts.h"
 #include "dem/Material.h"
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
@@ -39,7 +40,9 @@ public:
   virtual void computeForces(Scene& scene, std::uint8_t lawIndex) = 0;
   /// The law is the only one of its InteractionLoop: update the geometry of every candidate
   /// pair, initialise new contacts and compute forces, in one pass over the contacts.
-  virtual void computeAll(Scene& scene) = 0;
+  /// @return the index of the first contact overlapping more than scene.maxOverlapRatio of its
+  /// smaller radius, or -1
+  virtual std::int64_t computeAll(Scene& scene) = 0;
 };
 
 /// What a law's per-contact force function may read besides the contact.
@@ -50,6 +53,12 @@ struct StepContext
   double dt;
 };
 
+/// True if a real contact overlaps more than `ratio` (> 0) of its smaller reference radius.
+inline bool overlapsTooMuch(const Contact& c, double ratio)
+{
+  return ratio > 0 && c.penetration > ratio * std::min(c.refR1, c.refR2);
+}
+
 /// Base of the concrete laws: the loops over contacts, calling the law's inline
 /// `void force(Contact&, const StepContext&) const` (no virtual call per contact).
 template <class Law>
@@ -57,7 +66,7 @@ class ContactLawKernel : public ContactLaw
 {
 public:
   void computeForces(Scene& scene, std::uint8_t lawIndex) override;
-  void computeAll(Scene& scene) override;
+  std::int64_t computeAll(Scene& scene) override;
 };
 
 /// Register a contact law factory under its Law2 name (and optional aliases).

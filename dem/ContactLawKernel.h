@@ -23,13 +23,15 @@ void ContactLawKernel<Law>::computeForces(Scene& scene, std::uint8_t lawIndex)
 }
 
 template <class Law>
-void ContactLawKernel<Law>::computeAll(Scene& scene)
+std::int64_t ContactLawKernel<Law>::computeAll(Scene& scene)
 {
   const Law& law = static_cast<const Law&>(*this);
   std::vector<Contact>& list = scene.contacts.list;
   const StepContext step{scene.bodies, scene.periodic ? &scene.cell : nullptr, scene.dt};
   const auto n = static_cast<std::int64_t>(list.size());
-#pragma omp parallel for schedule(static)
+  const double ratio = scene.maxOverlapRatio;
+  std::int64_t firstBad = n;
+#pragma omp parallel for schedule(static) reduction(min : firstBad)
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
@@ -41,6 +43,9 @@ void ContactLawKernel<Law>::computeAll(Scene& scene)
       law.initialize(c, scene);
     }
     law.force(c, step);
+    if (overlapsTooMuch(c, ratio))
+      firstBad = std::min(firstBad, k);
   }
+  return firstBad < n ? firstBad : -1;
 }
 } // namespace talus::dem

@@ -3,6 +3,8 @@
 #include "dem/ContactGeometry.h"
 #include "dem/Scene.h"
 
+#include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -42,20 +44,42 @@ void InteractionLoop::checkMaterials(const Scene& scene)
   checkedMaterials_ = m.size();
 }
 
+std::string InteractionLoop::overlapReport(const Scene& scene, const Contact& c)
+{
+  const double rmin = std::min(c.refR1, c.refR2);
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "step %lld: bodies %d and %d overlap by %.3g, %.0f%% of the smaller radius (limit %.0f%%, "
+                "O.maxOverlapRatio): the time step %.3g is too large for this contact (its own critical step is "
+                "about %.3g; P-wave estimate %.3g) or the packing was created overlapping",
+                static_cast<long long>(scene.iter), c.id1, c.id2, c.penetration, 100 * c.penetration / rmin,
+                100 * scene.maxOverlapRatio, scene.dt, scene.contactTimeStep(), scene.pWaveTimeStep());
+  return text;
+}
+
 void InteractionLoop::run(Scene& scene)
 {
   if (laws.empty())
     throw std::runtime_error("InteractionLoop has no contact law");
   if (laws.size() > 255)
     throw std::runtime_error("InteractionLoop supports at most 255 contact laws");
+  std::int64_t bad = -1;
   if (laws.size() == 1)
   {
     // The usual case: geometry, physics and forces in one pass over the contacts.
     checkMaterials(scene);
-    laws[0]->computeAll(scene);
+    bad = laws[0]->computeAll(scene);
   }
   else
+  {
     computeWithSeveralLaws(scene);
+    const auto& list = scene.contacts.list;
+    for (std::size_t k = 0; k < list.size() && bad < 0; ++k)
+      if (list[k].real && overlapsTooMuch(list[k], scene.maxOverlapRatio))
+        bad = static_cast<std::int64_t>(k);
+  }
+  if (bad >= 0)
+    throw std::runtime_error(overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(bad)]));
   sumForcesPerBody(scene);
 }
 

@@ -28,6 +28,8 @@ private:
   /// Add every contact's force and moment to its two bodies, body by body in a fixed order,
   /// so the sums do not depend on the number of threads.
   static void sumForcesPerBody(Scene& scene);
+  /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
+  static std::string overlapReport(const Scene& scene, const Contact& c);
   std::size_t checkedMaterials_ = 0;
 };
 } // namespace talus::dem

@@ -2,7 +2,10 @@
 
 #include "dem/Scene.h"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace talus::dem
 {
@@ -81,7 +84,8 @@ void NewtonIntegrator::run(Scene& scene)
   const Mat3 L = scene.cell.velGrad, previousL = scene.cell.prevVelGrad;
   const Vec3 w = spin(L), previousW = spin(previousL);
   const auto n = static_cast<std::int64_t>(b.size());
-#pragma omp parallel for schedule(static)
+  std::int64_t firstBad = n;
+#pragma omp parallel for schedule(static) reduction(min : firstBad)
   for (std::int64_t k = 0; k < n; ++k)
   {
     const auto i = static_cast<std::size_t>(k);
@@ -89,6 +93,11 @@ void NewtonIntegrator::run(Scene& scene)
       continue;
     if (b.dynamic[i])
     {
+      if (!b.force[i].allFinite() || !b.torque[i].allFinite())
+      {
+        firstBad = std::min(firstBad, k);
+        continue;
+      }
       Vec3 v = b.vel[i], omega = b.angVel[i];
       if (homogeneous)
       {
@@ -121,6 +130,10 @@ void NewtonIntegrator::run(Scene& scene)
     b.pos[i] += b.vel[i] * dt;
     b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
   }
+  if (firstBad < n)
+    throw std::runtime_error("step " + std::to_string(scene.iter) + ": body " + std::to_string(firstBad)
+                             + " has a non-finite force or torque; the run diverged (time step " + std::to_string(dt)
+                             + ", P-wave estimate " + std::to_string(scene.pWaveTimeStep()) + ")");
   if (scene.periodic)
     scene.cell.integrate(dt);
 }

@@ -163,6 +163,22 @@ void Scene::step()
   ++iter;
 }
 
+double Scene::contactTimeStep() const
+{
+  double best = std::numeric_limits<double>::infinity();
+  for (const Contact& c : contacts.list)
+  {
+    if (!c.real || !(c.kn > 0))
+      continue;
+    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+    const double m1 = bodies.dynamic[i1] ? bodies.mass[i1] : 0, m2 = bodies.dynamic[i2] ? bodies.mass[i2] : 0;
+    const double m = m1 > 0 && m2 > 0 ? m1 * m2 / (m1 + m2) : std::max(m1, m2);
+    if (m > 0)
+      best = std::min(best, 2 * std::sqrt(m / c.kn));
+  }
+  return best;
+}
+
 double Scene::pWaveTimeStep() const
 {
   double best = std::numeric_limits<double>::infinity();

@@ -27,6 +27,10 @@ public:
   bool periodic = false; ///< space is the periodic repetition of `cell`
   Cell cell;
 
+  /// A contact whose penetration exceeds this fraction of the smaller radius stops the run with
+  /// an error (the time step is too large or the packing was set up overlapping); 0 disables.
+  double maxOverlapRatio = 0.5;
+
   double dt = 1e-8;       ///< time step
   double time = 0;        ///< simulated time
   std::int64_t iter = 0;  ///< completed steps
@@ -64,6 +68,9 @@ public:
 
   /// Yade's PWaveTimeStep: min over spheres of r sqrt(density / young).
   [[nodiscard]] double pWaveTimeStep() const;
+  /// Critical step of the stiffest contact alone, min over real contacts of
+  /// 2 sqrt(m_reduced / kn) (a lower bound is what matters: packings need less, ~0.3 x P-wave).
+  [[nodiscard]] double contactTimeStep() const;
 
   /// @throws std::out_of_range naming the id if it is not a live body
   void checkBody(BodyId id) const;

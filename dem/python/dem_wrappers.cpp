@@ -147,6 +147,8 @@ PYBIND11_MODULE(_dem, m)
       .def("checkBody", &Scene::checkBody)
       .def("bodyCount", [](const Scene& s) { return s.bodies.size(); })
       .def("pWaveTimeStep", &Scene::pWaveTimeStep)
+      .def("contactTimeStep", &Scene::contactTimeStep)
+      .def_readwrite("maxOverlapRatio", &Scene::maxOverlapRatio)
       .def("step", &Scene::step, py::call_guard<py::gil_scoped_release>())
       .def(
           "run",

@@ -30,18 +30,18 @@ def periodic_scene(size=(1, 1, 1), damping=0.0):
 
 def test_contact_across_the_boundary():
     S = periodic_scene()
-    S.bodies.append([sphere((0.03, 0.5, 0.5), 0.06), sphere((0.95, 0.5, 0.5), 0.06)])
+    S.bodies.append([sphere((0.035, 0.5, 0.5), 0.06), sphere((0.935, 0.5, 0.5), 0.06)])
     S.dt = 1e-9
     S.step()
     (c,) = S.contacts()
-    # Through the boundary the centres are 0.08 apart: overlap 0.04, normal from 1 to 2's image.
-    assert c["penetrationDepth"] == pytest.approx(0.04, rel=1e-9)
+    # Through the boundary the centres are 0.1 apart: overlap 0.02, normal from 1 to 2's image.
+    assert c["penetrationDepth"] == pytest.approx(0.02, rel=1e-9)
     assert c["normal"] == pytest.approx((-1, 0, 0), abs=1e-12)
-    assert c["normalForce"][0] == pytest.approx(-c["kn"] * 0.04, rel=1e-9)
+    assert c["normalForce"][0] == pytest.approx(-c["kn"] * 0.02, rel=1e-9)
     f = S.forces()
     assert f[0, 0] > 0 and f[1, 0] < 0 and f[0, 0] == pytest.approx(-f[1, 0])
     stress = getStress(scene=S)
-    assert stress[0, 0] == pytest.approx(-c["kn"] * 0.04 * 0.08, rel=1e-9)   # -(f l) / V, V = 1
+    assert stress[0, 0] == pytest.approx(-c["kn"] * 0.02 * 0.1, rel=1e-9)   # -(f l) / V, V = 1
 
 
 @pytest.mark.parametrize("step, vel, pos", [  # Yade 2023.02a, the same single free particle

@@ -34,6 +34,7 @@ class Side:
     label: str
     command: Sequence[str]
     pattern: str | None = None  # regex with one group; None: the figure is the wall time
+    cwd: str | None = None      # where to run (peers such as Yade write files where they run)
     samples: list[float] = field(default_factory=list)
 
     @property
@@ -83,7 +84,7 @@ def run_once(side: Side, timeout: float) -> float:
     """Run one side once and return its figure."""
     started = time.perf_counter()
     try:
-        done = subprocess.run(side.command, capture_output=True, text=True, timeout=timeout)
+        done = subprocess.run(side.command, capture_output=True, text=True, timeout=timeout, cwd=side.cwd)
     except subprocess.TimeoutExpired:
         raise CommandFailed(f"{side.label}: {shlex.join(side.command)} took longer than {timeout} s") from None
     wall = time.perf_counter() - started

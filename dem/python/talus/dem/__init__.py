@@ -20,10 +20,10 @@ from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
 from talus.dem.materials import FrictMat, Material, ViscElMat
 from talus.dem.measure import avgNumInteractions, fabricTensor, getStress, porosity, unbalancedForce
-from talus.dem.scene import PWaveTimeStep, Scene
+from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
-           "PWaveTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
+           "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
            "fabricTensor", "porosity", *_engine_names]

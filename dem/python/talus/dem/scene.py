@@ -82,6 +82,18 @@ class Scene:
     def periodic(self, value: bool):
         self._cpp.setPeriodic(bool(value))
 
+    @property
+    def maxOverlapRatio(self) -> float:
+        """A contact overlapping more than this fraction of its smaller radius stops the run with
+        an error naming the two bodies and the stable time step (0 disables the check)."""
+        return self._cpp.maxOverlapRatio
+
+    @maxOverlapRatio.setter
+    def maxOverlapRatio(self, value: float):
+        if not value >= 0:
+            raise ValueError(f"O.maxOverlapRatio must be >= 0, got {value}")
+        self._cpp.maxOverlapRatio = float(value)
+
     def _set_dt(self, value: float):
         if not (value > 0 and value < float("inf")):
             raise ValueError(f"O.dt must be positive and finite, got {value}")
@@ -131,6 +143,32 @@ class Scene:
     def torques(self):
         return self._cpp.torque()
 
+    def persistent_forces(self):
+        """Forces that stay applied until changed (Yade's permanent forces), by body id."""
+        return self._cpp.extForce()
+
+    def persistent_torques(self):
+        return self._cpp.extTorque()
+
+    def add_hook(self, where: str, function, period: int = 1):
+        """Call ``function()`` every ``period`` steps at a point of the step: "before_forces"
+        (after ForceResetter: add this step's forces to ``forces()``), "after_forces" (before
+        NewtonIntegrator) or "after_step". Returns the hook engine (set ``dead`` to stop it)."""
+        from talus.dem.engines import ForceResetter, NewtonIntegrator, PyRunner
+        anchors = {"before_forces": (ForceResetter, 1), "after_forces": (NewtonIntegrator, 0),
+                   "after_step": (NewtonIntegrator, 1)}
+        if where not in anchors:
+            raise ValueError(f"add_hook: where must be one of {sorted(anchors)}, got {where!r}")
+        anchor, offset = anchors[where]
+        positions = [k for k, e in enumerate(self._engines) if isinstance(e, anchor)]
+        if not positions:
+            raise ValueError(f"add_hook: the engine list has no {anchor.__name__}")
+        hook = PyRunner(function, iterPeriod=period, initRun=True)
+        engines = list(self._engines)
+        engines.insert(positions[0] + offset, hook)
+        self.engines = engines
+        return hook
+
     def radii(self):
         return self._cpp.radius()
 
@@ -140,6 +178,12 @@ class Scene:
     def contacts(self) -> list[dict]:
         """A copy of the real contacts (ids, geometry, stiffness, forces), for inspection."""
         return self._cpp.contacts()
+
+
+def contactTimeStep(scene: Scene | None = None) -> float:
+    """Critical step of the stiffest current contact alone, 2 sqrt(m / kn)."""
+    from talus.dem import O
+    return (scene or O)._cpp.contactTimeStep()
 
 
 def PWaveTimeStep(scene: Scene | None = None) -> float:

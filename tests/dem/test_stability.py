@@ -1,0 +1,56 @@
+"""A time step past the stability limit, an overlapping start or a non-finite force stop the
+run with an error that names the bodies and the stable step, instead of going on silently."""
+import math
+
+import numpy as np
+import pytest
+
+from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
+                       NewtonIntegrator, PWaveTimeStep, Scene, contactTimeStep, sphere, wall)
+
+
+def column(dt_factor):
+    S = Scene()
+    S.materials.append(FrictMat(young=1e7, density=2600))
+    S.bodies.append([wall(0, axis=2)] + [sphere((0, 0, 0.1 + 0.2 * k), 0.1) for k in range(5)])
+    S.engines = [ForceResetter(), InsertionSortCollider(),
+                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.0)]
+    S.dt = dt_factor * PWaveTimeStep(S)
+    return S
+
+
+def test_a_stable_step_runs():
+    S = column(0.3)
+    S.run(3000)
+    assert np.all(np.isfinite(S.positions()))
+    assert contactTimeStep(S) > S.dt
+
+
+def test_an_unstable_step_is_detected_and_named():
+    S = column(8.0)
+    with pytest.raises(RuntimeError, match=r"step \d+: bodies \d+ and \d+ overlap by .*% of the smaller radius"
+                                           r".*time step .* is too large.*critical step is about .*P-wave"):
+        S.run(3000)
+    assert S.iter < 3000
+
+
+def test_an_overlapping_start_is_detected_at_the_first_step():
+    S = Scene()
+    S.bodies.append([sphere((0, 0, 0), 0.1), sphere((0, 0, 0.05), 0.1)])
+    S.engines = [ForceResetter(), InsertionSortCollider(),
+                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator()]
+    S.dt = 1e-6
+    with pytest.raises(RuntimeError, match="step 0: bodies 0 and 1 overlap by 0.15, 150% .*created overlapping"):
+        S.step()
+    S.maxOverlapRatio = 0            # the check can be switched off deliberately
+    S.step()
+
+
+def test_a_non_finite_force_names_the_body():
+    S = column(0.3)
+    S.persistent_forces()[3] = (0, math.nan, 0)
+    with pytest.raises(RuntimeError, match="step 0: body 3 has a non-finite force"):
+        S.step()
