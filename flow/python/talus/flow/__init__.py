@@ -1,0 +1,14 @@
+"""Fluid models on the DEM core (Yade's HydroForceEngine and FlowEngine families).
+
+Available now: the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
+``HydroForceEngine``; see ``talus.flow.vans`` and ``docs/flow.md``)::
+
+    from talus.flow import VansFluid, slope_gravity
+    fluid = VansFluid(nCell=200, deltaZ=1e-3, gravity=slope_gravity(0.05), ilm=0, iturbu=1)
+    fluid.fluidResolution(10.0, 1e-2)
+    print(fluid.vxFluid)
+"""
+
+from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansFluid, slope_gravity
+
+__all__ = ["VansFluid", "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]
