@@ -10,10 +10,12 @@ set(TALUS_PYTHON_INSTALL_DIR
     "lib/python${Python3_VERSION_MAJOR}.${Python3_VERSION_MINOR}/dist-packages"
     CACHE STRING "Where `cmake --install` puts the talus package, relative to the prefix")
 
-## talus_python_module(<name> <source> <libraries...>): compiled module talus.<name>.
+## talus_python_module(<name> <source> <libraries...> [SOURCES <more sources...>]): compiled
+## module talus.<name>, built from <source> and any further SOURCES.
 function(talus_python_module name source)
-  pybind11_add_module(${name} MODULE ${source})
-  target_link_libraries(${name} PRIVATE ${ARGN})
+  cmake_parse_arguments(PARSE_ARGV 2 MODULE "" "" "SOURCES")
+  pybind11_add_module(${name} MODULE ${source} ${MODULE_SOURCES})
+  target_link_libraries(${name} PRIVATE ${MODULE_UNPARSED_ARGUMENTS})
   talus_target_defaults(${name})
   # pybind11 code trips a few of our stricter warnings; they are not ours to fix.
   target_compile_options(${name} PRIVATE -Wno-old-style-cast)

@@ -8,12 +8,16 @@ namespace talus::dem
 {
 void CallbackEngine::run(Scene& scene)
 {
-  if (iterPeriod < 1)
-    throw std::invalid_argument("PyRunner '" + label + "': iterPeriod must be at least 1");
+  if (iterPeriod < 0 || realPeriod < 0 || (iterPeriod == 0 && realPeriod == 0))
+    throw std::invalid_argument("PyRunner '" + label + "': set iterPeriod >= 1 or realPeriod > 0");
+  const auto now = std::chrono::steady_clock::now();
   const bool first = initRun && nDone == 0;
-  if (!first && scene.iter - iterLast < iterPeriod)
+  const bool byIter = iterPeriod > 0 && scene.iter - iterLast >= iterPeriod;
+  const bool byTime = realPeriod > 0 && std::chrono::duration<double>(now - realLast_).count() >= realPeriod;
+  if (!first && !byIter && !byTime)
     return;
   iterLast = scene.iter;
+  realLast_ = now;
   ++nDone;
   if (callback)
     callback();

@@ -2,14 +2,16 @@
 
 #include "dem/Engine.h"
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 
 namespace talus::dem
 {
 /// Calls a function every `iterPeriod` steps (Yade's PyRunner when the function is Python; a
-/// coupling's step hook when it is C++). As Yade's PeriodicEngine: first call when `iter`
-/// reaches `iterPeriod`, or at the first step with `initRun`.
+/// coupling's step hook when it is C++). As Yade's PeriodicEngine: called when `iterPeriod`
+/// steps or `realPeriod` seconds have passed since the last call (whichever is set and comes
+/// first), and at the first step with `initRun`.
 class CallbackEngine : public Engine
 {
 public:
@@ -17,9 +19,13 @@ public:
   [[nodiscard]] std::string typeName() const override { return "PyRunner"; }
 
   std::function<void()> callback;
-  std::int64_t iterPeriod = 1;
+  std::int64_t iterPeriod = 1; ///< steps between calls (0: not by steps)
+  double realPeriod = 0;       ///< wall-clock seconds between calls (0: not by time)
   bool initRun = false;
   std::int64_t iterLast = 0; ///< iteration of the last call
   std::int64_t nDone = 0;    ///< number of calls so far
+
+private:
+  std::chrono::steady_clock::time_point realLast_ = std::chrono::steady_clock::now();
 };
 } // namespace talus::dem

@@ -163,6 +163,20 @@ void Scene::step()
   ++iter;
 }
 
+void Scene::run(std::int64_t steps, const std::function<void()>& poll)
+{
+  pauseRequested_ = false;
+  for (std::int64_t k = 0; steps < 0 || k < steps; ++k)
+  {
+    step();
+    if (pauseRequested_)
+      break;
+    if (poll && k % 64 == 63)
+      poll();
+  }
+  pauseRequested_ = false;
+}
+
 double Scene::contactTimeStep() const
 {
   double best = std::numeric_limits<double>::infinity();

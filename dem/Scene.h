@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -65,6 +66,11 @@ public:
 
   /// Run all engines once and advance the clock.
   void step();
+  /// Run `steps` steps (all steps until pause() if negative), stopping early after a step in
+  /// which pause() was called. `poll` (optional) runs every 64 steps, e.g. to notice Ctrl-C.
+  void run(std::int64_t steps, const std::function<void()>& poll = {});
+  /// Ask a running run() to stop after the current step (Yade's O.pause, e.g. from a PyRunner).
+  void pause() { pauseRequested_ = true; }
 
   /// Yade's PWaveTimeStep: min over spheres of r sqrt(density / young).
   [[nodiscard]] double pWaveTimeStep() const;
@@ -76,6 +82,7 @@ public:
   void checkBody(BodyId id) const;
 
 private:
+  bool pauseRequested_ = false;
   void checkInsideCell(const std::string& which, const Vec3& x) const;
 };
 } // namespace talus::dem

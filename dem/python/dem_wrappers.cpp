@@ -52,6 +52,7 @@ A readOnly(A array)
 PYBIND11_MODULE(_dem, m)
 {
   m.doc() = "Compiled core of talus.dem (use the talus package, not this module)";
+  void talus_wrap_io(py::module_&); talus_wrap_io(m); // checkpoints and export arrays: io_wrappers.cpp
   m.def("version", [] { return std::string(talus::version()); });
   m.def("build_config", [] {
     std::vector<std::tuple<std::string, std::string, bool, std::string>> rows;
@@ -103,6 +104,7 @@ PYBIND11_MODULE(_dem, m)
       .def(py::init<>())
       .def_readwrite("callback", &CallbackEngine::callback)
       .def_readwrite("iterPeriod", &CallbackEngine::iterPeriod)
+      .def_readwrite("realPeriod", &CallbackEngine::realPeriod)
       .def_readwrite("initRun", &CallbackEngine::initRun)
       .def_readwrite("iterLast", &CallbackEngine::iterLast)
       .def_readwrite("nDone", &CallbackEngine::nDone);
@@ -153,18 +155,14 @@ PYBIND11_MODULE(_dem, m)
       .def(
           "run",
           [](Scene& s, std::int64_t steps) {
-            for (std::int64_t k = 0; k < steps; ++k)
-            {
-              s.step();
-              if (k % 64 == 0)
-              {
-                py::gil_scoped_acquire gil;
-                if (PyErr_CheckSignals() != 0)
-                  throw py::error_already_set();
-              }
-            }
+            s.run(steps, [] {
+              py::gil_scoped_acquire gil;
+              if (PyErr_CheckSignals() != 0)
+                throw py::error_already_set();
+            });
           },
           py::call_guard<py::gil_scoped_release>())
+      .def("pause", &Scene::pause)
       // Zero-copy array views of body state (the particle exchange interface in Python).
       // A view stays valid until bodies are appended (which may move the arrays).
       .def("pos", [](py::object self) { return view3(self.cast<Scene&>().bodies.pos, self); })

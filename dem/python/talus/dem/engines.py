@@ -154,15 +154,19 @@ class NewtonIntegrator(Engine):
 
 
 class PyRunner(Engine):
-    """Runs ``command`` every ``iterPeriod`` steps: a string executed in the script's namespace
-    (as in Yade) or a Python callable."""
+    """Runs ``command`` every ``iterPeriod`` steps and/or every ``realPeriod`` seconds of wall
+    time: a string executed in the script's namespace (as in Yade) or a Python callable."""
 
-    def __init__(self, command: str | Callable[[], None] = "", iterPeriod: int = 1, initRun: bool = False,
-                 label: str = ""):
-        if iterPeriod < 1:
-            raise ValueError(f"PyRunner: iterPeriod must be at least 1, got {iterPeriod}")
+    def __init__(self, command: str | Callable[[], None] = "", iterPeriod: int = 0, realPeriod: float = 0,
+                 initRun: bool = False, label: str = ""):
+        if iterPeriod < 0 or realPeriod < 0 or (iterPeriod == 0 and realPeriod == 0):
+            if iterPeriod == 0 and realPeriod == 0:
+                iterPeriod = 1          # Yade's default: every step
+            else:
+                raise ValueError(f"PyRunner: iterPeriod and realPeriod must be >= 0, got {iterPeriod}, {realPeriod}")
         self._cpp = _dem.CallbackEngine()
         self._cpp.iterPeriod = iterPeriod
+        self._cpp.realPeriod = float(realPeriod)
         self._cpp.initRun = initRun
         self.command = command
         self.label = label

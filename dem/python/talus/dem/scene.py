@@ -9,6 +9,7 @@ from talus import _dem
 from talus.dem.bodies import BodyContainer
 from talus.dem.cell import Cell
 from talus.dem.engines import Engine
+from talus.dem.io import CheckpointMethods
 from talus.dem.materials import Material, default_material
 
 
@@ -59,7 +60,7 @@ class MaterialContainer:
         return len(self._materials)
 
 
-class Scene:
+class Scene(CheckpointMethods):
     """A simulation. ``talus.dem.O`` is the default one, as Yade's ``O``."""
 
     def __init__(self):
@@ -120,11 +121,18 @@ class Scene:
         """Run one time step."""
         self._cpp.step()
 
-    def run(self, nSteps: int, wait: bool = True):
-        """Run ``nSteps`` steps (Yade's ``O.run(n, True)``; Talus always waits)."""
-        if nSteps < 0:
-            raise ValueError(f"O.run: nSteps must be >= 0, got {nSteps}")
+    def run(self, nSteps: int = -1, wait: bool = True):
+        """Run ``nSteps`` steps, or until ``O.pause()`` if ``nSteps`` is -1 (Yade's
+        ``O.run(n, True)``; Talus always waits for the run to end)."""
+        if nSteps < -1:
+            raise ValueError(f"O.run: nSteps must be >= 0 (or -1: until O.pause()), got {nSteps}")
+        if nSteps == -1 and not any(type(e).__name__ == "PyRunner" for e in self._engines):
+            raise ValueError("O.run() without a step count runs until O.pause(), but no PyRunner could call it")
         self._cpp.run(int(nSteps))
+
+    def pause(self):
+        """Stop the current run after this step (call it from a PyRunner, as in Yade)."""
+        self._cpp.pause()
 
     # Array views of all bodies (index = body id): the particle exchange interface in Python.
     # Views stay valid until bodies are appended.

@@ -1,0 +1,359 @@
+"""ParaView output: VTK XML unstructured grids (``.vtu``) and ``.pvd`` time series, written with
+numpy alone (no VTK library), as Yade's ``VTKRecorder`` engine and ``export.VTKExporter``.
+
+Files (arrays in brackets; vectors have 3 components):
+
+- spheres: one point (with a vertex cell) per live sphere at its centre [radius, velocity,
+  angVel, force, torque, id, materialId, mass, nonfinite]. Show them with ParaView's Glyph
+  filter: glyph type Sphere, Scale Array ``radius``, scale factor 2 (the glyph's size is a
+  diameter), Scale Mode scalar.
+- facets: one triangle per live facet [id, materialId, normal, force, velocity].
+- walls: one square of side ``wallSize`` per wall, centred on the spheres [id, materialId, axis,
+  sense, force].
+- contacts (Yade's ``intrs``): one line per real contact, between the two sphere centres (the
+  periodic image of the second sphere when across the cell) or, for walls and facets, from the
+  contact point to the sphere centre [forceN (normal force magnitude), normalForce, shearForce,
+  force (on body 2), penetration, id1, id2, kind (0 sphere-sphere, 1 wall, 2 facet), real].
+
+Every file carries the simulated time as field data ``TimeValue``. Data are inline base64
+(``format="binary"``, ``header_type="UInt64"``), which ParaView 5.x reads and XML parsers accept.
+Files are written to a temporary name and renamed, so a reader never sees half a file. Non-finite
+numbers are written as they are (IEEE NaN/inf, legal in VTK) and flagged: the point array
+``nonfinite`` is 1 for the spheres concerned and a :class:`VTKWarning` names them.
+"""
+
+from __future__ import annotations
+
+import base64
+import itertools
+import os
+import warnings
+from typing import TYPE_CHECKING, Iterable, Sequence
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+
+from talus import _dem
+from talus.dem.engines import PyRunner
+from talus.dem.io import owner_scene
+
+if TYPE_CHECKING:
+    from talus.dem.scene import Scene
+
+__all__ = ["VTKWarning", "write_spheres", "write_facets", "write_walls", "write_contacts", "PvdCollection",
+           "VTKRecorder", "VTKExporter"]
+
+# VTK cell types.
+VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD = 1, 3, 5, 9
+_SPHERE, _WALL, _FACET = 0, 1, 2
+_VTK_TYPES = {np.dtype(np.float64): "Float64", np.dtype(np.float32): "Float32", np.dtype(np.int64): "Int64",
+              np.dtype(np.int32): "Int32", np.dtype(np.uint8): "UInt8"}
+
+
+class VTKWarning(UserWarning):
+    """Something unusual was written to a VTK file (non-finite values)."""
+
+
+# ------------------------------------------------------------------------------------------------
+# Writing files.
+
+_counter = itertools.count()
+
+
+def _atomic_write(path: str, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary file in the same folder and a rename."""
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    temporary = os.path.join(folder, f".{os.path.basename(path)}.tmp-{os.getpid()}-{next(_counter)}")
+    try:
+        with open(temporary, "wb") as f:
+            f.write(data)
+        os.replace(temporary, path)
+    except BaseException:
+        try:
+            os.unlink(temporary)
+        except OSError:
+            pass
+        raise
+
+
+def _data_array(array: np.ndarray, name: str | None, indent: str) -> str:
+    array = np.ascontiguousarray(array)
+    if array.dtype.byteorder == ">":
+        array = array.astype(array.dtype.newbyteorder("<"))
+    components = 1 if array.ndim == 1 else int(np.prod(array.shape[1:]))
+    raw = array.tobytes()
+    payload = base64.b64encode(np.uint64(len(raw)).tobytes() + raw).decode("ascii")
+    attrs = f'type="{_VTK_TYPES[array.dtype]}"'
+    if name is not None:
+        attrs += f" Name={quoteattr(name)}"
+    if components != 1:
+        attrs += f' NumberOfComponents="{components}"'
+    return f'{indent}<DataArray {attrs} format="binary">{payload}</DataArray>\n'
+
+
+def vtu_bytes(points: np.ndarray, connectivity: np.ndarray, offsets: np.ndarray, types: np.ndarray,
+              point_data: dict | None = None, cell_data: dict | None = None, time: float | None = None) -> bytes:
+    """The text of a ``.vtu`` file: an unstructured grid of ``points`` (n, 3) and cells given
+    by VTK's connectivity, end offsets and cell types, with named point and cell arrays."""
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    out = ['<?xml version="1.0"?>\n',
+           '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n',
+           "  <UnstructuredGrid>\n"]
+    if time is not None:
+        out += ["    <FieldData>\n",
+                _data_array(np.array([time], dtype=np.float64), "TimeValue", "      ").replace(
+                    "<DataArray ", '<DataArray NumberOfTuples="1" ', 1),
+                "    </FieldData>\n"]
+    out.append(f'    <Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(types)}">\n')
+    for tag, data in (("PointData", point_data or {}), ("CellData", cell_data or {})):
+        out.append(f"      <{tag}>\n")
+        for name, array in data.items():
+            out.append(_data_array(np.asarray(array), name, "        "))
+        out.append(f"      </{tag}>\n")
+    out += ["      <Points>\n", _data_array(points, None, "        "), "      </Points>\n",
+            "      <Cells>\n",
+            _data_array(np.asarray(connectivity, dtype=np.int64), "connectivity", "        "),
+            _data_array(np.asarray(offsets, dtype=np.int64), "offsets", "        "),
+            _data_array(np.asarray(types, dtype=np.uint8), "types", "        "),
+            "      </Cells>\n", "    </Piece>\n", "  </UnstructuredGrid>\n", "</VTKFile>\n"]
+    return "".join(out).encode("ascii")
+
+
+def _cells(count: int, size: int, cell_type: int):
+    """Connectivity, offsets and types of ``count`` cells of ``size`` consecutive points."""
+    return (np.arange(count * size, dtype=np.int64), np.arange(1, count + 1, dtype=np.int64) * size,
+            np.full(count, cell_type, dtype=np.uint8))
+
+
+def _flag_nonfinite(what: str, ids: np.ndarray, arrays: Iterable[np.ndarray]) -> np.ndarray:
+    bad = np.zeros(len(ids), dtype=bool)
+    for a in arrays:
+        a = np.asarray(a)
+        if a.dtype.kind == "f" and len(a):
+            bad |= ~np.isfinite(a.reshape(len(ids), -1)).all(axis=1)
+    if bad.any():
+        first = ", ".join(str(i) for i in ids[bad][:5])
+        warnings.warn(f"VTK export: {int(bad.sum())} {what} with non-finite values (ids {first}"
+                      f"{', ...' if bad.sum() > 5 else ''}); written as NaN/inf and flagged in 'nonfinite'",
+                      VTKWarning, stacklevel=3)
+    return bad.astype(np.uint8)
+
+
+def _live(scene: "Scene", code: int) -> np.ndarray:
+    return np.flatnonzero((_dem.shape_codes(scene._cpp) == code) & (scene._cpp.alive() != 0))
+
+
+def write_spheres(scene: "Scene", path: str, extra: dict | None = None) -> int:
+    """Write the live spheres of ``scene`` to ``path`` (.vtu); returns their number. ``extra``:
+    more point arrays (name -> array over the written spheres, in id order)."""
+    ids = _live(scene, _SPHERE)
+    cpp = scene._cpp
+    data = {
+        "radius": cpp.radius()[ids], "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids],
+        "force": cpp.force()[ids], "torque": cpp.torque()[ids], "id": ids.astype(np.int32),
+        "materialId": cpp.materialIds()[ids].astype(np.int32), "mass": cpp.mass()[ids],
+    }
+    data.update(extra or {})
+    positions = cpp.pos()[ids]
+    data["nonfinite"] = _flag_nonfinite("spheres", ids, [positions, *data.values()])
+    _atomic_write(path, vtu_bytes(positions, *_cells(len(ids), 1, VTK_VERTEX), point_data=data, time=cpp.time))
+    return len(ids)
+
+
+def write_facets(scene: "Scene", path: str) -> int:
+    """Write the live facets of ``scene`` to ``path`` as triangles; returns their number."""
+    f = _dem.facet_arrays(scene._cpp)
+    ids = f["id"]
+    data = {"id": ids, "materialId": f["material"], "normal": f["normal"],
+            "force": scene._cpp.force()[ids], "velocity": scene._cpp.vel()[ids]}
+    _atomic_write(path, vtu_bytes(f["vertices"].reshape(-1, 3), *_cells(len(ids), 3, VTK_TRIANGLE),
+                                  cell_data=data, time=scene._cpp.time))
+    return len(ids)
+
+
+def _sphere_box(scene: "Scene"):
+    ids = _live(scene, _SPHERE)
+    if not len(ids):
+        return np.zeros(3), np.ones(3)
+    pos, r = scene._cpp.pos()[ids], scene._cpp.radius()[ids]
+    finite = np.isfinite(pos).all(axis=1)
+    if not finite.any():
+        return np.zeros(3), np.ones(3)
+    return (pos[finite] - r[finite, None]).min(axis=0), (pos[finite] + r[finite, None]).max(axis=0)
+
+
+def write_walls(scene: "Scene", path: str, size: float | None = None) -> int:
+    """Write the walls of ``scene`` to ``path`` as squares of side ``size`` (default: 1.5 times
+    the largest extent of the spheres) centred on the spheres; returns their number."""
+    w = _dem.wall_arrays(scene._cpp)
+    lo, hi = _sphere_box(scene)
+    centre = 0.5 * (lo + hi)
+    half = 0.5 * (float(size) if size else 1.5 * max(float((hi - lo).max()), 1e-300))
+    corners = []
+    for axis, position in zip(w["axis"], w["position"]):
+        u, v = [d for d in range(3) if d != axis]
+        for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            p = centre.copy()
+            p[axis], p[u], p[v] = position, centre[u] + su * half, centre[v] + sv * half
+            corners.append(p)
+    ids = w["id"]
+    data = {"id": ids, "materialId": w["material"], "axis": w["axis"], "sense": w["sense"],
+            "force": scene._cpp.force()[ids]}
+    _atomic_write(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 4, VTK_QUAD),
+                                  cell_data=data, time=scene._cpp.time))
+    return len(ids)
+
+
+def write_contacts(scene: "Scene", path: str, real_only: bool = True) -> int:
+    """Write the contact-force network of ``scene`` to ``path``: one line per contact (only the
+    real ones unless ``real_only`` is false); returns the number of lines."""
+    c = _dem.contact_arrays(scene._cpp, bool(real_only))
+    pos = scene._cpp.pos()
+    id1, id2 = c["id1"], c["id2"]
+    sphere_pair = (c["kind"] == 0)[:, None]
+    start = np.where(sphere_pair, pos[id1], c["contactPoint"])
+    end = pos[id2] + np.where(sphere_pair, c["shift2"], 0.0)   # the periodic image of body 2
+    points = np.stack([start, end], axis=1).reshape(-1, 3)
+    data = {"forceN": np.linalg.norm(c["normalForce"], axis=1),
+            "normalForce": c["normalForce"], "shearForce": c["shearForce"], "force": c["force"],
+            "penetration": c["penetration"], "id1": id1, "id2": id2, "kind": c["kind"], "real": c["real"]}
+    _atomic_write(path, vtu_bytes(points, *_cells(len(id1), 2, VTK_LINE), cell_data=data, time=scene._cpp.time))
+    return len(id1)
+
+
+class PvdCollection:
+    """A ParaView time series (``.pvd``): one entry (time, file) per written step, rewritten
+    atomically after each addition. Files are stored relative to the ``.pvd``'s folder."""
+
+    def __init__(self, path: str, entries: Sequence[tuple[float, str]] = ()):
+        self.path = path
+        self.entries: list[tuple[float, str]] = [(float(t), str(f)) for t, f in entries]
+
+    def add(self, time: float, file: str) -> None:
+        rel = os.path.relpath(os.path.abspath(file), os.path.dirname(os.path.abspath(self.path)))
+        self.entries = [e for e in self.entries if e[1] != rel] + [(float(time), rel)]
+        self.write()
+
+    def write(self) -> None:
+        lines = ['<?xml version="1.0"?>\n', '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n',
+                 "  <Collection>\n"]
+        lines += [f'    <DataSet timestep="{t!r}" group="" part="0" file={quoteattr(f)}/>\n' for t, f in self.entries]
+        lines += ["  </Collection>\n", "</VTKFile>\n"]
+        _atomic_write(self.path, "".join(lines).encode("utf-8"))
+
+
+# ------------------------------------------------------------------------------------------------
+# Yade's VTKRecorder engine and export.VTKExporter.
+
+_WRITERS = {"spheres": write_spheres, "facets": write_facets, "walls": write_walls, "intrs": write_contacts}
+_RECORDERS = {"spheres": ("spheres",), "facets": ("facets",), "walls": ("walls",), "boxes": ("walls",),
+              "intr": ("intrs",), "all": ("spheres", "facets", "walls", "intrs")}
+# Yade recorders whose data the sphere file always holds.
+_INCLUDED = {"velocity", "id", "ids", "materialId", "mass", "force"}
+
+
+class VTKRecorder(PyRunner):
+    """Write ParaView files every ``iterPeriod`` steps (Yade's VTKRecorder).
+
+    ``fileName`` is a prefix: files are ``{fileName}spheres.{iter}.vtu``, ``...facets...``,
+    ``...walls...`` and ``...intrs...`` (the contact network), each series listed in
+    ``{fileName}spheres.pvd`` etc. for ParaView. ``recorders``: any of ``spheres``, ``facets``,
+    ``walls`` (Yade: ``boxes``), ``intr``, or ``all``; Yade's ``velocity``, ``ids``,
+    ``materialId``, ``mass``, ``force`` are accepted (the sphere file always has them).
+    ``wallSize``: side of the squares drawn for walls (default: from the spheres' extent).
+    Folders in ``fileName`` are created. Usable in ``O.engines`` and saved by ``O.save``.
+    """
+
+    def __init__(self, fileName: str = "", recorders: Sequence[str] = ("spheres", "facets", "intr"),
+                 iterPeriod: int = 1, initRun: bool = False, wallSize: float | None = None, label: str = ""):
+        if isinstance(recorders, str):
+            recorders = [recorders]
+        kinds: list[str] = []
+        for r in recorders:
+            if r in _RECORDERS:
+                kinds += [k for k in _RECORDERS[r] if k not in kinds]
+            elif r not in _INCLUDED:
+                known = sorted(set(_RECORDERS) | _INCLUDED)
+                raise ValueError(f"VTKRecorder: unknown recorder {r!r}; Talus knows {', '.join(known)}")
+        super().__init__(command=self._record, iterPeriod=iterPeriod, initRun=initRun, label=label)
+        self.fileName = str(fileName)
+        self.recorders = list(recorders)
+        self.wallSize = wallSize
+        self._kinds = kinds
+        self._series: dict[str, PvdCollection] = {}
+
+    def _collection(self, kind: str) -> PvdCollection:
+        if kind not in self._series:
+            self._series[kind] = PvdCollection(f"{self.fileName}{kind}.pvd")
+        return self._series[kind]
+
+    def _record(self):
+        scene = owner_scene(self)
+        for kind in self._kinds:
+            path = f"{self.fileName}{kind}.{scene.iter}.vtu"
+            if kind == "walls":
+                write_walls(scene, path, self.wallSize)
+            else:
+                _WRITERS[kind](scene, path)
+            self._collection(kind).add(scene.time, path)
+
+    # Saved with the engine by O.save, so that the series go on after O.load.
+    def _io_state(self):
+        return {kind: [list(e) for e in c.entries] for kind, c in self._series.items()}
+
+    def _io_restore(self, state):
+        self._series = {kind: PvdCollection(f"{self.fileName}{kind}.pvd", [tuple(e) for e in entries])
+                        for kind, entries in state.items()}
+
+
+class VTKExporter:
+    """Yade's ``export.VTKExporter``: write snapshots on demand, ``{baseName}-spheres-{n}.vtu``
+    etc., each kind numbered from ``startSnap`` (or ``numLabel`` when given). ``what`` adds
+    sphere arrays: a name and an expression of ``b`` (the Body) evaluated per sphere, e.g.
+    ``{"speed": "np.linalg.norm(b.state.vel)"}``."""
+
+    def __init__(self, baseName: str, startSnap: int = 0, scene: "Scene | None" = None):
+        self.baseName = baseName
+        self.startSnap = startSnap
+        self._counts: dict[str, int] = {}
+        self._scene = scene
+
+    @property
+    def scene(self) -> "Scene":
+        if self._scene is None:
+            from talus.dem import O
+            return O
+        return self._scene
+
+    def _path(self, kind: str, numLabel: int | None) -> str:
+        if numLabel is None:
+            numLabel = self._counts.get(kind, self.startSnap)
+            self._counts[kind] = numLabel + 1
+        return f"{self.baseName}-{kind}-{numLabel}.vtu"
+
+    def exportSpheres(self, what: dict | None = None, numLabel: int | None = None) -> str:
+        scene = self.scene
+        extra = {}
+        if what:
+            bodies = [scene.bodies[int(i)] for i in _live(scene, _SPHERE)]
+            for name, expression in what.items():
+                extra[name] = np.array([eval(expression, {"np": np}, {"b": b}) for b in bodies], dtype=float)
+        path = self._path("spheres", numLabel)
+        write_spheres(scene, path, extra)
+        return path
+
+    def exportFacets(self, numLabel: int | None = None) -> str:
+        path = self._path("facets", numLabel)
+        write_facets(self.scene, path)
+        return path
+
+    def exportWalls(self, size: float | None = None, numLabel: int | None = None) -> str:
+        path = self._path("walls", numLabel)
+        write_walls(self.scene, path, size)
+        return path
+
+    def exportInteractions(self, numLabel: int | None = None) -> str:
+        path = self._path("intrs", numLabel)
+        write_contacts(self.scene, path)
+        return path

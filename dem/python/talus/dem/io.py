@@ -1,0 +1,443 @@
+"""Checkpoints: Yade's ``O.save``, ``O.load``, ``O.saveTmp``, ``O.loadTmp`` for Talus scenes.
+
+A checkpoint is an HDF5 file (see ``docs/dem-io.md`` for its layout) holding everything the
+C++ core needs to continue a run bit-identically: clock, materials, every body array, the
+periodic cell and the contact list with its full history. It is written atomically (temporary
+file, sync, rename): a failed save raises :class:`CheckpointError` and leaves the previous file
+untouched.
+
+Engines are Python objects and are not part of the C++ state. ``save`` stores the engine list
+as JSON beside the state (each engine's class and constructor parameters, its ``dead`` flag
+and its counters, such as a PyRunner's ``iterLast``), and ``load`` rebuilds it when every engine
+is a Talus engine whose parameters could be written. A PyRunner whose command is a Python
+callable cannot be written to a file: ``save`` warns, and ``load`` then keeps the engines the
+scene has (give the command as a string, as in Yade). ``saveTmp``/``loadTmp`` keep their slots
+in memory, where callables are kept as they are.
+
+The functions take the scene first (``save(O, "run.h5")``); ``Scene`` offers them as methods
+(``O.save("run.h5")``) through :class:`CheckpointMethods`.
+"""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import json
+import math
+import os
+import warnings
+import weakref
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from talus import _dem
+
+if TYPE_CHECKING:
+    from talus.dem.scene import Scene
+
+__all__ = ["CheckpointError", "CheckpointWarning", "CheckpointMethods", "available", "save", "load",
+           "saveTmp", "loadTmp", "lsTmp", "reload", "owner_scene"]
+
+if hasattr(_dem, "CheckpointError"):
+    CheckpointError = _dem.CheckpointError
+else:  # built without HDF5
+    class CheckpointError(RuntimeError):
+        """A checkpoint could not be written or read (the message names the file and why)."""
+
+
+class CheckpointWarning(UserWarning):
+    """Something of the scene could not go into a checkpoint (or come back from it)."""
+
+
+_ENGINES_FORMAT = 1
+_ENGINE_MODES = ("auto", "saved", "current")
+# Constructor parameters accepted for Yade compatibility that carry nothing to restore.
+_IGNORED_PARAMETERS = {"boundDispatcher"}
+
+
+def available() -> bool:
+    """True if this Talus was built with HDF5, which checkpoints need."""
+    return bool(_dem.checkpoints_available())
+
+
+def _require():
+    if not available():
+        raise CheckpointError(
+            "checkpoints need HDF5, and this Talus was built without it (see `talus info`; install "
+            "libhdf5-openmpi-dev and rebuild, or configure with -DTALUS_WITH_HDF5=ON)")
+
+
+# ------------------------------------------------------------------------------------------------
+# Engines <-> plain data.
+
+class _NotSaveable(Exception):
+    pass
+
+
+def _describe(engine) -> str:
+    label = getattr(engine, "label", "")
+    return f"{type(engine).__name__}" + (f" '{label}'" if label else "")
+
+
+def _class_path(cls: type) -> str:
+    return f"{cls.__module__}:{cls.__qualname__}"
+
+
+def _import_class(path: str) -> type:
+    module, _, qualname = path.partition(":")
+    if not (module == "talus" or module.startswith("talus.")):
+        raise _NotSaveable(f"class {path} is not a Talus class")
+    obj: Any = importlib.import_module(module)
+    for part in qualname.split("."):
+        obj = getattr(obj, part)
+    if not isinstance(obj, type):
+        raise _NotSaveable(f"{path} is not a class")
+    return obj
+
+
+def _encode(value, to_file: bool):
+    """Plain data (JSON-ready when ``to_file``) for a constructor argument."""
+    from talus.dem.engines import Functor
+    if value is None or isinstance(value, (bool, int, str)):
+        return value
+    if isinstance(value, float):
+        return value if math.isfinite(value) else {"__float__": repr(value)}
+    if isinstance(value, np.generic):
+        return _encode(value.item(), to_file)
+    if isinstance(value, np.ndarray):
+        return {"__array__": [_encode(v, to_file) for v in value.tolist()]}
+    if isinstance(value, tuple):
+        return {"__tuple__": [_encode(v, to_file) for v in value]}
+    if isinstance(value, list):
+        return [_encode(v, to_file) for v in value]
+    if isinstance(value, dict) and all(isinstance(k, str) for k in value):
+        return {"__dict__": {k: _encode(v, to_file) for k, v in value.items()}}
+    if isinstance(value, Functor):
+        if not to_file:
+            return {"__functor__": _class_path(type(value)), "label": value.label, "class_object": type(value)}
+        return {"__functor__": _class_path(type(value)), "label": value.label}
+    if not to_file:
+        return {"__object__": value}   # kept by reference in memory slots
+    if callable(value):
+        raise _NotSaveable("a Python callable cannot be written to a file (give a PyRunner command as a "
+                           "string, as in Yade)")
+    raise _NotSaveable(f"a value of type {type(value).__name__} cannot be written to a file")
+
+
+def _decode(value):
+    if isinstance(value, list):
+        return [_decode(v) for v in value]
+    if not isinstance(value, dict):
+        return value
+    if "__object__" in value:
+        return value["__object__"]
+    if "__float__" in value:
+        return float(value["__float__"])
+    if "__array__" in value:
+        return np.array(_decode(value["__array__"]))
+    if "__tuple__" in value:
+        return tuple(_decode(v) for v in value["__tuple__"])
+    if "__dict__" in value:
+        return {k: _decode(v) for k, v in value["__dict__"].items()}
+    if "__functor__" in value:
+        cls = value.get("class_object") or _import_class(value["__functor__"])
+        return cls(label=value.get("label", ""))
+    raise _NotSaveable(f"unknown value {value!r}")
+
+
+def _parameter(engine, name: str):
+    """The current value of constructor parameter ``name``: the engine's attribute of that name,
+    or its C++ engine's."""
+    for owner in (engine, getattr(engine, "_cpp", None)):
+        if owner is not None:
+            try:
+                return getattr(owner, name)
+            except AttributeError:
+                pass
+    raise _NotSaveable(f"its parameter {name!r} cannot be read back")
+
+
+def _engine_spec(engine, to_file: bool) -> dict:
+    """Class, parameters, flags and counters of one engine; {"restorable": False, ...} if not."""
+    cls = type(engine)
+    spec: dict[str, Any] = {"class": _class_path(cls), "describe": _describe(engine)}
+    try:
+        if to_file:
+            _import_class(spec["class"])
+        else:
+            spec["class_object"] = cls
+        params = {}
+        if hasattr(engine, "_io_params"):      # engines may say themselves what rebuilds them
+            items = dict(engine._io_params()).items()
+        else:
+            items = []
+            for name, p in inspect.signature(cls).parameters.items():
+                if p.kind in (p.VAR_POSITIONAL, p.VAR_KEYWORD) or name in _IGNORED_PARAMETERS:
+                    continue
+                items.append((name, _parameter(engine, name)))
+        for name, value in items:
+            params[name] = _encode(value, to_file)
+        spec["params"] = params
+        spec["dead"] = bool(getattr(engine, "dead", False))
+        state = {}
+        cpp = getattr(engine, "_cpp", None)
+        for counter in ("iterLast", "nDone"):   # periodic engines (PyRunner): when they run next
+            if cpp is not None and hasattr(cpp, counter):
+                state[counter] = int(getattr(cpp, counter))
+        if hasattr(engine, "_io_state"):
+            state["custom"] = _encode(engine._io_state(), to_file)
+        spec["state"] = state
+        spec["restorable"] = True
+    except _NotSaveable as e:
+        spec = {"class": spec["class"], "describe": spec["describe"], "restorable": False, "reason": str(e)}
+    return spec
+
+
+def _engine_specs(scene: "Scene", to_file: bool) -> list[dict]:
+    return [_engine_spec(e, to_file) for e in scene.engines]
+
+
+def _rebuild(spec: dict):
+    cls = spec.get("class_object") or _import_class(spec["class"])
+    params = {k: _decode(v) for k, v in spec["params"].items()}
+    engine = cls(**params)
+    if spec.get("dead"):
+        engine.dead = True
+    state = spec.get("state", {})
+    cpp = getattr(engine, "_cpp", None)
+    for counter in ("iterLast", "nDone"):
+        if counter in state and cpp is not None:
+            setattr(cpp, counter, state[counter])
+    if "custom" in state and hasattr(engine, "_io_restore"):
+        engine._io_restore(_decode(state["custom"]))
+    return engine
+
+
+def _restore_engines(scene: "Scene", specs: list[dict] | None, mode: str, where: str):
+    """Set the scene's engines from ``specs`` according to ``mode`` (see :func:`load`)."""
+    if mode == "current":
+        return
+    if specs is None:
+        problem = "it holds no engine list"
+    else:
+        bad = [s for s in specs if not s.get("restorable")]
+        problem = "; ".join(f"{s['describe']}: {s['reason']}" for s in bad)
+        if not bad:
+            try:
+                scene.engines = [_rebuild(s) for s in specs]
+                return
+            except Exception as e:  # noqa: BLE001  (a class changed since the save, ...)
+                problem = f"rebuilding them failed: {type(e).__name__}: {e}"
+    message = f"{where}: the saved engines cannot be rebuilt ({problem})"
+    if mode == "saved":
+        raise CheckpointError(message)
+    warnings.warn(message + "; the scene keeps its current engines", CheckpointWarning, stacklevel=3)
+
+
+# ------------------------------------------------------------------------------------------------
+# Python-side materials: the Python Material objects edit the scene's C++ materials through
+# references, which a load replaces.
+
+def _material_class(kind):
+    from talus.dem.materials import Material
+    stack, found = [Material], []
+    while stack:
+        cls = stack.pop(0)
+        if cls is not Material and getattr(cls, "_kind", None) == kind:
+            found.append(cls)
+        stack.extend(cls.__subclasses__())
+    return found[0] if found else Material
+
+
+def _copy_material(cpp):
+    copy = _dem.Material()
+    for name in dir(cpp):
+        if not name.startswith("_") and not callable(getattr(cpp, name)):
+            try:
+                setattr(copy, name, getattr(cpp, name))
+            except AttributeError:
+                pass
+    return copy
+
+
+def _detach_materials(scene: "Scene") -> list:
+    """Give each Python material its own copy before the scene's are replaced."""
+    objects = list(getattr(scene.materials, "_materials", []))
+    for m in objects:
+        m._cpp = _copy_material(m._cpp)
+    return objects
+
+
+def _attach_materials(scene: "Scene", objects: list):
+    """Bind Python materials to the scene's C++ materials again: the objects that were there keep
+    their index when the kind matches, others are created."""
+    count = scene._cpp.materialCount()
+    bound = []
+    for i in range(count):
+        cpp = scene._cpp.material(i)
+        cls = _material_class(cpp.kind)
+        obj = objects[i] if i < len(objects) and type(objects[i]) is cls else cls()
+        obj._bind(scene, cpp)
+        bound.append(obj)
+    for obj in objects[count:]:
+        obj._scene = None
+    scene.materials._materials = bound
+
+
+def _load_state(scene: "Scene", loader) -> dict:
+    objects = _detach_materials(scene)
+    try:
+        extras = loader()
+    finally:
+        _attach_materials(scene, objects)
+    return extras
+
+
+def owner_scene(engine):
+    """The scene whose engine list holds ``engine`` (for engines written in Python, such as
+    ``VTKRecorder``, whose command is called without arguments). ``O`` is tried first; the
+    answer is remembered while the engine stays in that scene."""
+    ref = getattr(engine, "_owner_scene", None)
+    scene = ref() if ref is not None else None
+    if scene is not None and any(e is engine for e in scene.engines):
+        return scene
+    import gc
+    from talus.dem import O
+    from talus.dem.scene import Scene
+    for candidate in [O, *(o for o in gc.get_objects() if isinstance(o, Scene) and o is not O)]:
+        if any(e is engine for e in candidate.engines):
+            object.__setattr__(engine, "_owner_scene", weakref.ref(candidate))
+            return candidate
+    raise RuntimeError(f"{_describe(engine)} is not in the engine list of any scene")
+
+
+# ------------------------------------------------------------------------------------------------
+# Public functions.
+
+_memory: "weakref.WeakKeyDictionary[Any, dict]" = weakref.WeakKeyDictionary()
+
+
+def _scene_memory(scene) -> dict:
+    return _memory.setdefault(scene, {"slots": {}, "last": None})
+
+
+def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> None:
+    """Write a checkpoint of ``scene`` to ``path`` (conventionally ``*.h5``), atomically.
+
+    ``engines``: also store the engine list (as JSON) so that :func:`load` can rebuild it.
+    Engines that cannot be written (a PyRunner with a callable command, a class that is not
+    Talus's) give a :class:`CheckpointWarning`; the state is saved all the same.
+    Raises :class:`CheckpointError` naming the file if it cannot be written; a file already at
+    ``path`` is then left as it was.
+    """
+    _require()
+    path = os.fspath(path)
+    extras = {}
+    if engines:
+        specs = _engine_specs(scene, to_file=True)
+        bad = [s for s in specs if not s["restorable"]]
+        if bad:
+            warnings.warn(f"O.save({path!r}): " + "; ".join(f"{s['describe']}: {s['reason']}" for s in bad)
+                          + "; O.load will keep the engines the scene has then", CheckpointWarning, stacklevel=2)
+        extras["engines"] = json.dumps({"format": _ENGINES_FORMAT, "engines": specs})
+    _dem.save_checkpoint(scene._cpp, path, extras)
+    _scene_memory(scene)["last"] = path
+
+
+def _engine_list(extras: dict, where: str) -> list[dict] | None:
+    text = extras.get("engines")
+    if text is None:
+        return None
+    try:
+        data = json.loads(text)
+    except ValueError as e:
+        raise CheckpointError(f"{where}: the engine list is not valid JSON ({e})") from None
+    if not isinstance(data, dict) or data.get("format") != _ENGINES_FORMAT or not isinstance(data.get("engines"), list):
+        raise CheckpointError(f"{where}: the engine list has an unknown format")
+    return data["engines"]
+
+
+def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto") -> None:
+    """Restore ``scene`` from the checkpoint at ``path``: bodies, materials, contacts, periodic
+    cell and clock; the next step re-detects contacts and continues as the saved run would have.
+
+    ``engines``: ``"auto"`` rebuilds the saved engine list when possible and otherwise keeps the
+    scene's engines with a :class:`CheckpointWarning`; ``"saved"`` requires the saved list
+    (:class:`CheckpointError` if it cannot be rebuilt); ``"current"`` keeps the scene's engines.
+    Raises :class:`CheckpointError` naming the file if it is missing, truncated, corrupted, not a
+    Talus checkpoint or of another format version; the scene is then unchanged.
+    """
+    _require()
+    if engines not in _ENGINE_MODES:
+        raise ValueError(f"O.load: engines must be one of {_ENGINE_MODES}, got {engines!r}")
+    path = os.fspath(path)
+    where = f"checkpoint {path!r}"
+    extras = _load_state(scene, lambda: _dem.load_checkpoint(scene._cpp, path))
+    _restore_engines(scene, _engine_list(extras, where), engines, where)
+    _scene_memory(scene)["last"] = path
+
+
+def reload(scene: "Scene", *, engines: str = "auto") -> None:
+    """Load again the file last saved or loaded by this scene (Yade's ``O.reload()``)."""
+    last = _scene_memory(scene)["last"]
+    if last is None:
+        raise CheckpointError("O.reload: this scene has not been saved or loaded yet")
+    load(scene, last, engines=engines)
+
+
+def saveTmp(scene: "Scene", slot: str = "") -> None:
+    """Keep the scene's state and engines in memory slot ``slot`` (Yade's ``O.saveTmp``)."""
+    _require()
+    image = _dem.save_checkpoint_image(scene._cpp, {})
+    _scene_memory(scene)["slots"][str(slot)] = (image, _engine_specs(scene, to_file=False))
+
+
+def loadTmp(scene: "Scene", slot: str = "", *, engines: str = "auto") -> None:
+    """Restore the state and engines kept by :func:`saveTmp` in ``slot`` (Yade's ``O.loadTmp``).
+    ``engines`` as for :func:`load`."""
+    _require()
+    if engines not in _ENGINE_MODES:
+        raise ValueError(f"O.loadTmp: engines must be one of {_ENGINE_MODES}, got {engines!r}")
+    slots = _scene_memory(scene)["slots"]
+    if str(slot) not in slots:
+        known = ", ".join(repr(s) for s in slots) or "none"
+        raise CheckpointError(f"O.loadTmp: no slot {str(slot)!r} saved by O.saveTmp (slots: {known})")
+    image, specs = slots[str(slot)]
+    where = f"saveTmp slot {str(slot)!r}"
+    _load_state(scene, lambda: _dem.load_checkpoint_image(scene._cpp, image, where))
+    _restore_engines(scene, specs, engines, where)
+
+
+def lsTmp(scene: "Scene") -> list[str]:
+    """Names of the memory slots of ``scene`` (Yade's ``O.lsTmp()``)."""
+    return list(_scene_memory(scene)["slots"])
+
+
+class CheckpointMethods:
+    """Yade's ``O.save``/``O.load``/``O.saveTmp``/``O.loadTmp``/``O.reload``/``O.lsTmp`` as
+    methods: a base class of ``Scene``."""
+
+    def save(self, path: str | os.PathLike, *, engines: bool = True) -> None:
+        """Write a checkpoint (HDF5, atomic); see :func:`talus.dem.io.save`."""
+        save(self, path, engines=engines)
+
+    def load(self, path: str | os.PathLike, *, engines: str = "auto") -> None:
+        """Restore a checkpoint written by ``save``; see :func:`talus.dem.io.load`."""
+        load(self, path, engines=engines)
+
+    def reload(self, *, engines: str = "auto") -> None:
+        """Load again the file last saved or loaded; see :func:`talus.dem.io.reload`."""
+        reload(self, engines=engines)
+
+    def saveTmp(self, slot: str = "") -> None:
+        """Keep the state in a memory slot; see :func:`talus.dem.io.saveTmp`."""
+        saveTmp(self, slot)
+
+    def loadTmp(self, slot: str = "", *, engines: str = "auto") -> None:
+        """Restore a memory slot; see :func:`talus.dem.io.loadTmp`."""
+        loadTmp(self, slot, engines=engines)
+
+    def lsTmp(self) -> list[str]:
+        """Names of the memory slots; see :func:`talus.dem.io.lsTmp`."""
+        return lsTmp(self)

@@ -1,0 +1,402 @@
+"""Checkpoints (HDF5): a restart continues bit-identically, saveTmp/loadTmp slots, atomic writes
+(a failed save leaves the old file as it was, no temporary file left), and damaged, missing or
+foreign files give a CheckpointError naming the file, with the scene untouched."""
+import json
+import os
+import subprocess
+import sys
+import textwrap
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from talus import _dem
+from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Ip2_ViscElMat_ViscElMat_ViscElPhys,
+                       Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic, Matrix3,
+                       NewtonIntegrator, PWaveTimeStep, PyRunner, Scene, ViscElMat, facet, io, sphere, wall)
+
+pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
+HERE = Path(__file__).parent
+
+
+def deposition(visco: bool, m: int = 7) -> Scene:
+    """m^3 spheres, nearly touching, settling in a box: walls on four sides, a floor of two
+    facets (sphere-sphere, wall-sphere and facet-sphere contacts)."""
+    S = Scene()
+    rng = np.random.default_rng(7)
+    if visco:
+        S.materials.append(ViscElMat(tc=2e-3, en=0.5, et=0.5, frictionAngle=0.5, density=2600, label="glass"))
+        law = ([Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()])
+    else:
+        S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600, label="sand"))
+        law = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
+    S.bodies.append([facet([(-0.1, -0.1, 0), (1.1, -0.1, 0), (1.1, 1.1, 0)]),
+                     facet([(-0.1, -0.1, 0), (1.1, 1.1, 0), (-0.1, 1.1, 0)]),
+                     wall(0, axis=0, sense=1), wall(1, axis=0, sense=-1), wall(0, axis=1, sense=1),
+                     wall(1, axis=1, sense=-1)])
+    grid = np.stack(np.meshgrid(np.arange(m), np.arange(m), np.arange(m), indexing="ij"), -1).reshape(-1, 3)
+    centres = (grid + 0.5 + rng.uniform(-0.02, 0.02, grid.shape)) / m
+    S.bodies.append([sphere(c, r) for c, r in zip(centres, rng.uniform(0.46, 0.5, len(grid)) / m)])
+    S.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *law),
+                 NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.3),
+                 PyRunner(command="pass", iterPeriod=7, label="every7")]
+    S.dt = 2e-4 if visco else 0.5 * PWaveTimeStep(S)
+    return S
+
+
+def state(S: Scene) -> dict:
+    # Real contacts only: the candidate pairs within the collider's skin depend on when it last
+    # re-detected (a loaded scene re-detects at its first step), and never touch the physics.
+    c = _dem.contact_arrays(S._cpp, True)
+    ori = np.array([S._cpp.ori(i) for i in range(len(S.bodies)) if S._cpp.alive()[i]])
+    return {"pos": S.positions().copy(), "vel": S.velocities().copy(), "angVel": S.angular_velocities().copy(),
+            "force": S.forces().copy(), "ori": ori, "iter": S.iter, "time": S.time,
+            **{f"contact.{k}": v for k, v in c.items()}}
+
+
+def assert_identical(a: dict, b: dict):
+    assert a.keys() == b.keys()
+    for k in a:
+        assert np.array_equal(a[k], b[k]), f"{k} differs"
+
+
+def test_layout_is_covered():
+    """Every field of these structures is written by dem/Checkpoint.cpp (Scene: all but its
+    engines and the transient pauseRequested_). When one changes size, a field was added: store
+    it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
+    is transient, then update this table."""
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 128, "Bodies": 456, "WallShape": 8,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 992}
+
+
+@pytest.mark.parametrize("visco", [False, True], ids=["FrictMat", "ViscElMat"])
+def test_restart_continues_bit_identically(tmp_path, visco):
+    A = deposition(visco)
+    A.run(400 if visco else 200)    # settle into a contact-rich state
+    path = tmp_path / "half.h5"
+    io.save(A, path)                # N/2 steps ...
+    A.run(200)
+    reference = state(A)
+    assert A._cpp.realContactCount() > 100, "the run should be contact-rich"
+
+    B = Scene()                     # a fresh process would start like this
+    io.load(B, path)
+    assert [type(e) for e in B.engines] == [type(e) for e in A.engines]
+    B.run(200)                      # ... and N/2 more after loading
+    assert_identical(state(B), reference)
+    assert B.engines[-1].nDone == A.engines[-1].nDone   # the PyRunner kept its rhythm
+
+
+def test_periodic_restart_continues_bit_identically(tmp_path):
+    data = json.loads((HERE / "periodic_packing.json").read_text())
+    A = Scene()
+    A.periodic = True
+    A.cell.hSize = Matrix3(*[x for row in data["hSize"] for x in row])
+    A.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
+    A.bodies.append([sphere(tuple(c), r) for c, r in zip(data["pos"], data["radius"])])
+    A.engines = [ForceResetter(), InsertionSortCollider(),
+                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(damping=0.2)]
+    A.cell.velGrad = Matrix3(0, 0.5, 0, 0, 0, 0, 0, 0, -0.2)
+    A.dt = 0.3 * PWaveTimeStep(A)
+    A.run(150)
+    io.save(A, tmp_path / "p.h5")
+    h_saved = A.cell.hSize
+    A.run(150)
+    assert A._cpp.realContactCount() > 40 and not np.array_equal(A.cell.hSize, h_saved)
+    B = Scene()
+    io.load(B, tmp_path / "p.h5")
+    assert B.periodic and np.array_equal(B.cell.hSize, h_saved)
+    B.run(150)
+    assert_identical(state(B), state(A))
+    for name in ("hSize", "trsf", "velGrad", "prevVelGrad"):
+        assert np.array_equal(np.array(getattr(B._cpp.cell, name)), np.array(getattr(A._cpp.cell, name))), name
+
+
+def test_save_tmp_and_load_tmp(tmp_path):
+    S = deposition(False, m=5)
+    S.run(200)
+    io.saveTmp(S)
+    io.saveTmp(S, "init")
+    saved = state(S)
+    view = S.positions()                  # a view handed out before: must stay valid
+    material = S.materials[0]
+    S.run(300)
+    after = state(S)
+    io.loadTmp(S, "init")
+    assert S.iter == saved["iter"] and S.time == saved["time"]
+    assert_identical(state(S), saved)
+    assert np.array_equal(view, saved["pos"])
+    assert S.materials[0] is material and material.label == "sand"
+    material.frictionAngle = 0.3          # still edits the scene's material
+    assert S._cpp.material(0).frictionAngle == 0.3
+    material.frictionAngle = 0.5
+    S.run(300)
+    assert_identical(state(S), after)     # the same 300 steps again
+    # Keeping the engines (and the collider's state from later on) gives the same steps too.
+    collider = S.engines[1]
+    io.loadTmp(S, "init", engines="current")
+    assert S.engines[1] is collider
+    S.run(300)
+    assert_identical(state(S), after)
+    assert sorted(io.lsTmp(S)) == ["", "init"]
+    with pytest.raises(io.CheckpointError, match=r"no slot 'nope' .*slots: '', 'init'"):
+        io.loadTmp(S, "nope")
+
+
+def test_load_restores_materials_engines_and_labels(tmp_path):
+    S = deposition(True, m=3)
+    S.engines[1].verletDist = -0.3
+    S.engines[1].label = "collider"
+    S.engines[4].dead = True
+    S.run(20)
+    io.save(S, tmp_path / "s.h5")
+    T = Scene()
+    T.materials.append(FrictMat(label="other"))
+    T.materials.append(FrictMat(label="other2"))
+    T.bodies.append(sphere((0, 0, 0), 1.0))
+    io.load(T, tmp_path / "s.h5")
+    assert len(T.materials) == 1 and isinstance(T.materials[0], ViscElMat)
+    assert T.materials[0].label == "glass" and T.materials[0].tc == 2e-3
+    assert np.isnan(T.materials[0].kn)
+    assert len(T.bodies) == len(S.bodies) and T.iter == 20 and T.dt == S.dt
+    assert T.engines[1].verletDist == -0.3 and T.engines[1].label == "collider"
+    assert T.engines[3].gravity == (0, 0, -9.81) and T.engines[3].damping == 0.3
+    assert T.engines[4].command == "pass" and T.engines[4].iterPeriod == 7 and T.engines[4].dead
+    assert [type(f).__name__ for f in T.engines[2].lawFunctors] == ["Law2_ScGeom_ViscElPhys_Basic"]
+
+
+def test_callable_command_warns_and_load_keeps_current_engines(tmp_path):
+    S = deposition(False, m=2)
+    S.engines = [*S.engines, PyRunner(command=lambda: None, label="cb")]
+    with pytest.warns(io.CheckpointWarning, match="PyRunner 'cb': a Python callable cannot be written"):
+        io.save(S, tmp_path / "c.h5")
+    T = deposition(False, m=2)
+    current = T.engines
+    with pytest.warns(io.CheckpointWarning, match="keeps its current engines"):
+        io.load(T, tmp_path / "c.h5")
+    assert T.engines == current
+    with pytest.raises(io.CheckpointError, match="saved engines cannot be rebuilt"):
+        io.load(T, tmp_path / "c.h5", engines="saved")
+    # In memory the callable is kept: loadTmp rebuilds all engines.
+    io.saveTmp(S)
+    io.loadTmp(S)
+    assert S.engines[-1].label == "cb" and callable(S.engines[-1].command)
+
+
+def test_empty_scene_round_trip(tmp_path):
+    S = Scene()
+    S.dt = 1e-3
+    io.save(S, tmp_path / "e.h5")
+    T = deposition(False, m=2)
+    io.load(T, tmp_path / "e.h5", engines="current")
+    assert len(T.bodies) == 0 and len(T.materials) == 0 and T.dt == 1e-3 and T.iter == 0
+    T.run(3)   # the old engines run on the empty scene
+
+
+# ------------------------------------------------------------------------------------------------
+# Atomic writes.
+
+def leftovers(folder: Path) -> list[str]:
+    return [p.name for p in folder.iterdir() if ".tmp-" in p.name]
+
+
+FULL_DISK = """
+import resource, signal, sys
+import numpy as np
+from talus.dem import Scene, sphere, io
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)       # writes past the limit fail with EFBIG
+S = Scene()
+S.bodies.append([sphere((i, 0, 0), 0.4) for i in range(2000)])
+resource.setrlimit(resource.RLIMIT_FSIZE, (16384, 16384))
+try:
+    io.save(S, sys.argv[1])
+except io.CheckpointError as e:
+    print("ERROR", e)
+"""
+
+
+def test_failed_write_leaves_the_previous_checkpoint(tmp_path, build_dir):
+    path = tmp_path / "run.h5"
+    S = deposition(False, m=3)
+    S.run(10)
+    io.save(S, path)
+    before = path.read_bytes()
+    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
+    done = subprocess.run([sys.executable, "-c", FULL_DISK, str(path)], capture_output=True, text=True, env=env,
+                          timeout=60)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.startswith(f"ERROR checkpoint '{path}': cannot "), done.stdout
+    assert path.read_bytes() == before
+    assert leftovers(tmp_path) == []
+    T = Scene()
+    io.load(T, path)                      # and it still loads
+    assert T.iter == 10
+
+
+def test_bad_targets_are_refused(tmp_path):
+    S = deposition(False, m=2)
+    with pytest.raises(io.CheckpointError, match=r"checkpoint '.*/missing/x.h5': cannot write: the folder .* does not exist"):
+        io.save(S, tmp_path / "missing" / "x.h5")
+    (tmp_path / "dir.h5").mkdir()
+    with pytest.raises(io.CheckpointError, match="dir.h5': cannot write: it is a folder"):
+        io.save(S, tmp_path / "dir.h5")
+    assert leftovers(tmp_path) == []
+
+
+def test_save_replaces_the_previous_checkpoint(tmp_path):
+    S = deposition(False, m=2)
+    io.save(S, tmp_path / "x.h5")
+    S.run(5)
+    io.save(S, tmp_path / "x.h5")
+    T = Scene()
+    io.load(T, tmp_path / "x.h5")
+    assert T.iter == 5 and leftovers(tmp_path) == []
+
+
+# ------------------------------------------------------------------------------------------------
+# Bad files: a clear error naming the file, the scene untouched.
+
+@pytest.fixture(scope="module")
+def small_checkpoint(tmp_path_factory):
+    S = deposition(False, m=2)
+    S.run(300)
+    assert S._cpp.realContactCount() > 0
+    path = tmp_path_factory.mktemp("ck") / "small.h5"
+    io.save(S, path)
+    return path, state(S), S._cpp.contactCount()
+
+
+def untouched_scene():
+    T = Scene()
+    T.materials.append(FrictMat(label="mine"))
+    T.bodies.append(sphere((0, 0, 0), 0.5))
+    return T
+
+
+def check_untouched(T):
+    assert len(T.bodies) == 1 and T.materials[0].label == "mine" and T.iter == 0
+
+
+def test_missing_file(tmp_path):
+    T = untouched_scene()
+    with pytest.raises(io.CheckpointError, match=r"checkpoint '.*nothing.h5': no such file"):
+        io.load(T, tmp_path / "nothing.h5")
+    check_untouched(T)
+
+
+def test_not_hdf5(tmp_path):
+    (tmp_path / "text.h5").write_text("hello\n" * 100)
+    T = untouched_scene()
+    with pytest.raises(io.CheckpointError, match=r"text.h5': not an HDF5 file"):
+        io.load(T, tmp_path / "text.h5")
+    check_untouched(T)
+
+
+@pytest.mark.parametrize("fraction", [0.0, 0.01, 0.3, 0.6, 0.95, 0.9999])
+def test_truncated_file(tmp_path, small_checkpoint, fraction):
+    data = small_checkpoint[0].read_bytes()
+    path = tmp_path / "cut.h5"
+    path.write_bytes(data[: int(len(data) * fraction)])
+    T = untouched_scene()
+    with pytest.raises(io.CheckpointError, match=r"checkpoint '.*cut.h5': "):
+        io.load(T, path)
+    check_untouched(T)
+
+
+def test_corrupted_bytes_never_load_wrong_state(tmp_path, small_checkpoint):
+    """Flip bytes all over the file: each load either fails with a CheckpointError naming the
+    file, or (a byte nothing reads) gives exactly the saved state."""
+    source, saved, _ = small_checkpoint
+    data = source.read_bytes()
+    path = tmp_path / "bad.h5"
+    failures = 0
+    t0 = time.monotonic()
+    offsets = range(0, len(data), len(data) // 600 | 1)   # ~600 places, odd stride
+    for offset in offsets:
+        damaged = bytearray(data)
+        damaged[offset] ^= 0x5A
+        path.write_bytes(damaged)
+        T = untouched_scene()
+        try:
+            io.load(T, path, engines="current")
+        except io.CheckpointError as e:
+            assert f"checkpoint '{path}'" in str(e)
+            check_untouched(T)
+            failures += 1
+            continue
+        assert_identical(state(T), saved)
+    assert failures > 0.5 * len(offsets)
+    print(f"\n{len(offsets)} damaged files, {failures} refused, in {time.monotonic() - t0:.1f} s")
+
+
+def with_h5py(script: str, *args):
+    """Run an h5py script in another process (h5py's HDF5 is not the one Talus links)."""
+    pytest.importorskip("h5py")
+    done = subprocess.run([sys.executable, "-c", textwrap.dedent(script), *map(str, args)],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    return done.stdout
+
+
+def test_wrong_version_and_foreign_files(tmp_path, small_checkpoint):
+    source, saved, pairs = small_checkpoint
+    newer, foreign = tmp_path / "newer.h5", tmp_path / "foreign.h5"
+    newer.write_bytes(source.read_bytes())
+    out = with_h5py("""
+        import sys, h5py, numpy as np
+        with h5py.File(sys.argv[1], "r") as f:   # a standard HDF5 file, readable by other tools
+            print(f.attrs["magic"].decode(), f.attrs["format_version"], f["bodies/pos"].shape, f["contacts/id1"].shape)
+        with h5py.File(sys.argv[1], "r+") as f:
+            f.attrs["format_version"] = 99
+        with h5py.File(sys.argv[2], "w") as f:
+            f["data"] = np.arange(10)
+        """, newer, foreign)
+    assert out.split() == ["talus-checkpoint", "1", f"({len(saved['pos'])},", "3)", f"({pairs},)"]
+    T = untouched_scene()
+    with pytest.raises(io.CheckpointError, match=r"newer.h5': checkpoint format version 99 .*reads version 1"):
+        io.load(T, newer)
+    with pytest.raises(io.CheckpointError, match=r"foreign.h5': not a Talus checkpoint"):
+        io.load(T, foreign)
+    check_untouched(T)
+
+
+def test_size_and_speed_of_a_1000_sphere_checkpoint(tmp_path):
+    S = deposition(False, m=10)         # 1000 spheres
+    S.run(300)
+    path = tmp_path / "k.h5"
+    t0 = time.perf_counter()
+    io.save(S, path)
+    t_save = time.perf_counter() - t0
+    T = Scene()
+    t0 = time.perf_counter()
+    io.load(T, path)
+    t_load = time.perf_counter() - t0
+    size = path.stat().st_size
+    print(f"\n1000 spheres, {S._cpp.contactCount()} contact pairs: {size / 1e3:.0f} kB, "
+          f"save {t_save * 1e3:.1f} ms, load {t_load * 1e3:.1f} ms")
+    assert size < 2_000_000 and t_save < 2 and t_load < 2
+
+
+def test_scene_methods(tmp_path):
+    """Scene has O.save/O.load/O.saveTmp/O.loadTmp/O.reload/O.lsTmp (from io.CheckpointMethods)."""
+    assert issubclass(Scene, io.CheckpointMethods)
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 1), 0.1))
+    S.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -10))]
+    S.dt = 1e-3
+    S.save(tmp_path / "m.h5")
+    S.saveTmp("a")
+    S.run(10)
+    S.reload()
+    assert S.iter == 0
+    S.run(10)
+    S.loadTmp("a")
+    assert S.iter == 0 and S.lsTmp() == ["a"]
+    S.run(3)
+    S.load(tmp_path / "m.h5", engines="current")
+    assert S.iter == 0

@@ -1,0 +1,60 @@
+"""O.run() until O.pause() from a PyRunner, PyRunner periods by steps and by wall-clock time."""
+import time
+
+import pytest
+
+from talus.dem import ForceResetter, NewtonIntegrator, PyRunner, Scene, sphere
+
+
+def falling():
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+    S.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -10))]
+    S.dt = 1e-4
+    return S
+
+
+def test_run_until_pause_stops_after_the_pausing_step():
+    S = falling()
+    S.engines = S.engines + [PyRunner(command=lambda: S.iter == 1233 and S.pause(), iterPeriod=1)]
+    S.run()
+    assert S.iter == 1234           # the runner sees iter before the clock advances
+    S.run(10)                       # a pause does not carry over to the next run
+    assert S.iter == 1244
+
+
+def test_run_without_a_runner_is_refused():
+    S = falling()
+    with pytest.raises(ValueError, match="O.pause"):
+        S.run()
+    with pytest.raises(ValueError, match="nSteps"):
+        S.run(-5)
+
+
+def test_iter_period_counts_steps():
+    S = falling()
+    calls = []
+    S.engines = S.engines + [PyRunner(command=lambda: calls.append(S.iter), iterPeriod=10)]
+    S.run(35)
+    assert calls == [10, 20, 30]
+
+
+def test_real_period_counts_seconds():
+    S = falling()
+    calls = []
+    S.engines = S.engines + [PyRunner(command=lambda: (calls.append(time.monotonic()), time.sleep(0.002)),
+                                      realPeriod=0.05)]
+    start = time.monotonic()
+    while time.monotonic() - start < 0.3:
+        S.run(10)
+    assert 3 <= len(calls) <= 7
+    gaps = [b - a for a, b in zip(calls, calls[1:])]
+    assert min(gaps) >= 0.049
+
+
+def test_default_period_is_every_step():
+    S = falling()
+    calls = []
+    S.engines = S.engines + [PyRunner(command=lambda: calls.append(S.iter))]
+    S.run(5)
+    assert calls == [1, 2, 3, 4]     # as Yade: the first call when iter reaches iterPeriod
