@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace talus::dem
 {
@@ -36,24 +37,66 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
   return (useMaxForce ? maxBody : sumBodies / static_cast<double>(bodies)) / meanContact;
 }
 
+namespace
+{
+double sampleVolume(const Scene& scene, double volume, const char* caller)
+{
+  if (volume > 0)
+    return volume;
+  if (!scene.periodic)
+    throw std::invalid_argument(std::string(caller) + ": give the volume of the sample (the scene is not periodic)");
+  return scene.cell.volume();
+}
+
+Vec3 branchVector(const Bodies& b, const Contact& c)
+{
+  return b.pos[static_cast<std::size_t>(c.id2)] + c.shift2 - b.pos[static_cast<std::size_t>(c.id1)];
+}
+} // namespace
+
 Mat3 loveWeberStress(const Scene& scene, double volume)
 {
-  if (volume <= 0)
-  {
-    if (!scene.periodic)
-      throw std::invalid_argument("getStress: give the volume of the sample (the scene is not periodic)");
-    volume = scene.cell.volume();
-  }
+  volume = sampleVolume(scene, volume, "getStress");
   const Bodies& b = scene.bodies;
   Mat3 sum = Mat3::Zero();
   for (const Contact& c : scene.contacts.list)
   {
     if (!c.real)
       continue;
-    const Vec3 branch = b.pos[static_cast<std::size_t>(c.id2)] + c.shift2 - b.pos[static_cast<std::size_t>(c.id1)];
-    sum += c.force * branch.transpose();
+    sum += c.force * branchVector(b, c).transpose();
   }
   return -sum / volume;
+}
+
+Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume)
+{
+  volume = sampleVolume(scene, volume, "getStressAndTangent");
+  // D as a 9x9 matrix on (ij),(kl) pairs: D(3i+j, 3k+l) = sum K_ik l_j l_l, i.e. a sum of
+  // Kronecker products K (x) (l l^T) in a row-major pair numbering.
+  Eigen::Matrix<double, 9, 9> d = Eigen::Matrix<double, 9, 9>::Zero();
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    const Vec3 l = branchVector(scene.bodies, c);
+    const Mat3 nn = c.normal * c.normal.transpose();
+    const Mat3 k = c.kn * nn + c.ks * (Mat3::Identity() - nn);
+    const Mat3 ll = l * l.transpose();
+    for (int i = 0; i < 3; ++i)
+      for (int kk = 0; kk < 3; ++kk)
+        d.block<3, 3>(3 * i, 3 * kk) += k(i, kk) * ll;
+  }
+  static constexpr int voigtI[6] = {0, 1, 2, 1, 0, 0};
+  static constexpr int voigtJ[6] = {0, 1, 2, 2, 2, 1};
+  Eigen::Matrix<double, 6, 6> tangent;
+  for (int a = 0; a < 6; ++a)
+    for (int bb = 0; bb < 6; ++bb)
+    {
+      const int i = voigtI[a], j = voigtJ[a], k = voigtI[bb], l = voigtJ[bb];
+      tangent(a, bb) = 0.25 * (d(3 * i + j, 3 * k + l) + d(3 * j + i, 3 * k + l) + d(3 * i + j, 3 * l + k) +
+                               d(3 * j + i, 3 * l + k));
+    }
+  return tangent / volume;
 }
 
 double coordinationNumber(const Scene& scene, bool skipFree)

@@ -16,6 +16,17 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
 /// is negative, as Yade's getStress. `volume` <= 0 means the periodic cell's volume.
 Mat3 loveWeberStress(const Scene& scene, double volume = -1);
 
+/// Contact-stiffness tangent operator of the homogenised stress, as a 6x6 Voigt matrix (order
+/// xx, yy, zz, yz, xz, xy; shear strains as engineering strains 2 eps_ij), so that a small
+/// homogeneous strain increment deps changes loveWeberStress by about C deps when every particle
+/// follows the affine field and no contact slides, opens or closes:
+///   D_ijkl = (1/V) sum_c [kn n_i n_k + ks (delta_ik - n_i n_k)] l_j l_l,
+/// symmetrised in (i,j) and (k,l). kn, ks are the contacts' current (tangent) stiffnesses. It is
+/// the stiffness of the packing without particle relaxation and without the rotation of contact
+/// forces (an upper bound of the relaxed response), the operator the seed's FEMxDEM procedure
+/// hands to the finite elements. `volume` <= 0 means the periodic cell's volume.
+Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume = -1);
+
 /// Yade's avgNumInteractions: 2 Nc / N over live spheres (optionally not counting spheres with
 /// no contact, `skipFree`).
 double coordinationNumber(const Scene& scene, bool skipFree = false);

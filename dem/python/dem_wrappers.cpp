@@ -119,6 +119,7 @@ PYBIND11_MODULE(_dem, m)
 
   m.def("unbalancedForce", &unbalancedForce);
   m.def("loveWeberStress", &loveWeberStress);
+  m.def("contactStiffnessTangent", &contactStiffnessTangent);
   m.def("coordinationNumber", &coordinationNumber);
   m.def("fabricTensor", &fabricTensor);
   m.def("sphereVolume", &sphereVolume);

@@ -13,6 +13,7 @@
 ``O`` is the default scene; ``Scene()`` makes another.
 """
 
+from talus import plot
 from talus.dem import geom, pack, progress
 from talus.dem.bodies import Body, BodySpec, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
@@ -21,12 +22,13 @@ from talus.dem.cell import Matrix3, Vector3
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.io import CheckpointError
 from talus.dem.materials import FrictMat, Material, ViscElMat
-from talus.dem.measure import avgNumInteractions, fabricTensor, getStress, porosity, unbalancedForce
+from talus.dem.measure import (avgNumInteractions, fabricTensor, getStress, getStressAndTangent, porosity,
+                               unbalancedForce)
 from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
-           "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
-           "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
+           "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions",
+           "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot",
            *_engine_names]

@@ -66,6 +66,10 @@ def _dofs_to_mask(letters: str) -> int:
 class State:
     """Position, velocity and other state of one body, read and written through the arrays."""
 
+    # No other attributes: a misspelt one (or a Yade attribute Talus lacks) is an error, not a
+    # silently ignored assignment.
+    __slots__ = ("_scene", "_id")
+
     def __init__(self, scene: "Scene", id: int):
         object.__setattr__(self, "_scene", scene)
         object.__setattr__(self, "_id", id)
@@ -98,6 +102,8 @@ class State:
 
 class Body:
     """One body of a scene (Yade's Body): ``id``, ``state``, ``shape`` radius, ``dynamic``."""
+
+    __slots__ = ("_scene", "id", "state")   # unknown attributes are errors (see State)
 
     def __init__(self, scene: "Scene", id: int):
         scene._cpp.checkBody(id)

@@ -1,5 +1,5 @@
 """Measurements with Yade's names: unbalancedForce, getStress, avgNumInteractions,
-fabricTensor, porosity."""
+fabricTensor, porosity, getStressAndTangent."""
 
 from __future__ import annotations
 
@@ -35,6 +35,17 @@ def getStress(volume: float = -1, scene=None) -> np.ndarray:
     to the periodic cell's."""
     scene = _scene(scene)
     return np.array(_dem.loveWeberStress(scene._cpp, float(volume)))
+
+
+def getStressAndTangent(volume: float = -1, symmetry: bool = True, scene=None) -> tuple[np.ndarray, np.ndarray]:
+    """Love-Weber stress (as getStress) and the 6x6 contact-stiffness tangent operator in Voigt
+    order xx, yy, zz, yz, xz, xy with engineering shear strains: d(stress) ~ tangent @ d(strain)
+    for an affine strain increment without sliding (docs/dem.md gives the formula)."""
+    if not symmetry:
+        raise ValueError("getStressAndTangent: only the symmetric (Voigt) tangent is provided; use symmetry=True")
+    scene = _scene(scene)
+    return (np.array(_dem.loveWeberStress(scene._cpp, float(volume))),
+            np.array(_dem.contactStiffnessTangent(scene._cpp, float(volume))))
 
 
 def avgNumInteractions(skipFree: bool = False, scene=None) -> float:

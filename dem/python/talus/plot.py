@@ -1,0 +1,220 @@
+"""Time series of a run and their plots: Yade's ``plot`` module.
+
+    from talus import plot
+    plot.plots = {"i": ("unbalanced", None, "kinetic"), "t": ("sz",)}
+    O.engines = O.engines + [PyRunner(command=lambda: plot.addData(i=O.iter, t=O.time,
+                                      unbalanced=unbalancedForce(), kinetic=..., sz=...), iterPeriod=100)]
+    O.run(10000)
+    plot.saveDataTxt("run.txt")        # or run.csv, run.txt.bz2, run.txt.gz
+    plot.saveDataHdf5("run.h5")
+    plot.savePlot("run.png")          # or fig = plot.plot(noShow=True)
+
+``data`` maps each name to its list of values, one entry per ``addData`` call: a name first
+given late is padded with NaN in the rows before, a name missing from a call gets NaN in that
+row, so every column has the same length (as in Yade).
+
+``plots`` maps an x name to the y names plotted against it, one subplot per x name. Spaces
+around an x name are ignored when looking up data, so the same x can have several subplots
+(``"t"``, ``"t "``). In a y list, ``None`` moves the following names to a right-hand axis, a name
+may come with a matplotlib format (``("unbalanced", "go")``), and a callable (``O.energy.keys``)
+is called for a list of names.
+
+Files are written atomically (temporary file, then rename): an interrupted save never leaves a
+half-written file in place of a good one.
+"""
+
+from __future__ import annotations
+
+import bz2
+import gzip
+import math
+import os
+from typing import Callable, Iterable
+
+import numpy as np
+
+__all__ = ["data", "plots", "addData", "reset", "resetData", "plot", "savePlot", "saveDataTxt",
+           "saveDataHdf5", "loadDataTxt"]
+
+data: dict[str, list[float]] = {}
+plots: dict[str, Iterable] = {}
+
+
+def _rows() -> int:
+    return max((len(column) for column in data.values()), default=0)
+
+
+def addData(*dicts: dict, **values) -> None:
+    """Append one row: ``addData(i=O.iter, unbalanced=..., **O.energy)``. Positional arguments
+    are dicts merged into the row (later ones win, keywords last)."""
+    row: dict[str, float] = {}
+    for d in dicts:
+        row.update(d)
+    row.update(values)
+    before = _rows()
+    for name, value in row.items():
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise TypeError(f"plot.addData: value of {name!r} is not a number: {value!r}") from None
+        data.setdefault(name, [math.nan] * before).append(number)
+    for column in data.values():
+        if len(column) == before:
+            column.append(math.nan)
+
+
+def resetData() -> None:
+    """Forget the recorded rows (keep ``plots``)."""
+    data.clear()
+
+
+def reset() -> None:
+    """Forget the recorded rows and the plot layout."""
+    data.clear()
+    plots.clear()
+
+
+def _column(name: str) -> np.ndarray:
+    key = name.strip()
+    if key not in data:
+        known = ", ".join(sorted(data)) or "none yet"
+        raise KeyError(f"plot: no data named {key!r} (recorded: {known})")
+    return np.asarray(data[key], dtype=float)
+
+
+def _y_entries(spec) -> list[tuple[str | None, str]]:
+    """Expand a y list into (name or None for the axis switch, format)."""
+    if isinstance(spec, str) or callable(spec):
+        spec = (spec,)
+    entries: list[tuple[str | None, str]] = []
+    for item in spec:
+        if item is None:
+            entries.append((None, ""))
+        elif callable(item):
+            entries.extend((str(name), "") for name in item())
+        elif isinstance(item, str):
+            entries.append((item, ""))
+        elif isinstance(item, (tuple, list)) and len(item) == 2 and isinstance(item[0], str):
+            entries.append((item[0], str(item[1])))
+        else:
+            raise TypeError(f"plot.plots: cannot plot {item!r}; give a name, (name, format), None or a callable")
+    return entries
+
+
+def plot(noShow: bool = False, subPlots: bool = True):
+    """Draw ``plots`` from ``data`` and return the matplotlib figure; shown on screen unless
+    ``noShow`` or there is no display. ``subPlots=False`` gives one figure per x name (the list
+    of figures is returned)."""
+    import matplotlib
+    if noShow or not os.environ.get("DISPLAY"):
+        matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    if not plots:
+        raise ValueError("plot.plot: plot.plots is empty; set e.g. plot.plots = {'i': ('unbalanced',)}")
+    n = len(plots)
+    figures = []
+    if subPlots:
+        figure, axes = plt.subplots(n, 1, figsize=(7, 3.2 * n), squeeze=False)
+        axes_list = [row[0] for row in axes]
+        figures.append(figure)
+    else:
+        axes_list = []
+        for _ in range(n):
+            figure, ax = plt.subplots(figsize=(7, 3.6))
+            figures.append(figure)
+            axes_list.append(ax)
+    for ax, (x_name, y_spec) in zip(axes_list, plots.items()):
+        x = _column(x_name)
+        target, lines = ax, []
+        for name, fmt in _y_entries(y_spec):
+            if name is None:
+                target = ax.twinx()
+                continue
+            lines += target.plot(x, _column(name), fmt or "-", label=name.strip())
+        ax.set_xlabel(x_name.strip())
+        ax.grid(True, alpha=0.3)
+        if lines:
+            ax.legend(lines, [line.get_label() for line in lines], loc="best", fontsize="small")
+    for figure in figures:
+        figure.tight_layout()
+    if not (noShow or not os.environ.get("DISPLAY")):
+        plt.show()
+    return figures[0] if subPlots else figures
+
+
+def savePlot(path: str | os.PathLike, dpi: int = 120) -> None:
+    """Draw ``plots`` (all subplots in one figure) and write it as an image (PNG by suffix)."""
+    import matplotlib.pyplot as plt
+    figure = plot(noShow=True)
+    _atomic(path, lambda tmp: figure.savefig(tmp, dpi=dpi, format=os.path.splitext(str(path))[1][1:] or "png"))
+    plt.close(figure)
+
+
+def _atomic(path: str | os.PathLike, write: Callable[[str], None]) -> None:
+    path = os.fspath(path)
+    tmp = os.path.join(os.path.dirname(os.path.abspath(path)), f".{os.path.basename(path)}.tmp-{os.getpid()}")
+    try:
+        write(tmp)
+        os.replace(tmp, path)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+        raise
+
+
+def _open_text(path: str, mode: str):
+    if path.endswith(".bz2"):
+        return bz2.open(path, mode + "t")
+    if path.endswith(".gz"):
+        return gzip.open(path, mode + "t")
+    return open(path, mode, encoding="utf-8")
+
+
+def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None) -> None:
+    """Write ``data`` as columns with a header line of names (Yade's format: ``# a b c`` and
+    tab-separated values; comma-separated with a plain header when the name ends in ``.csv``;
+    compressed when it ends in ``.bz2`` or ``.gz``). ``vars`` chooses and orders the columns."""
+    names = list(vars) if vars is not None else sorted(data)
+    columns = [_column(name) for name in names]
+    name = os.fspath(fileName)
+    csv = name.removesuffix(".bz2").removesuffix(".gz").endswith(".csv")
+
+    def write(tmp: str):
+        # The compression is chosen from the real name, not the temporary one.
+        opener = bz2.open if name.endswith(".bz2") else gzip.open if name.endswith(".gz") else None
+        with (opener(tmp, "wt") if opener else open(tmp, "w", encoding="utf-8")) as out:
+            out.write((",".join(names) if csv else "# " + "\t".join(names)) + "\n")
+            for row in zip(*columns):
+                out.write((",".join if csv else "\t".join)(repr(float(v)) for v in row) + "\n")
+
+    _atomic(name, write)
+
+
+def loadDataTxt(fileName: str | os.PathLike) -> dict[str, list[float]]:
+    """Read a file written by ``saveDataTxt`` into ``data`` (replacing it) and return it."""
+    name = os.fspath(fileName)
+    with _open_text(name, "r") as source:
+        header = source.readline()
+        csv = not header.startswith("#")
+        names = header.lstrip("#").strip().split("," if csv else None)
+        rows = [line.split("," if csv else None) for line in source if line.strip()]
+    for number, row in enumerate(rows, start=2):
+        if len(row) != len(names):
+            raise ValueError(f"{name}, line {number}: {len(row)} values for {len(names)} columns")
+    data.clear()
+    for k, column in enumerate(names):
+        data[column] = [float(row[k]) for row in rows]
+    return data
+
+
+def saveDataHdf5(fileName: str | os.PathLike) -> None:
+    """Write ``data`` to an HDF5 file, one float64 dataset per name (needs h5py)."""
+    import h5py
+
+    def write(tmp: str):
+        with h5py.File(tmp, "w") as out:
+            for column in sorted(data):
+                out.create_dataset(column, data=_column(column))
+
+    _atomic(fileName, write)
