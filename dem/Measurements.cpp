@@ -48,29 +48,65 @@ double sampleVolume(const Scene& scene, double volume, const char* caller)
   return scene.cell.volume();
 }
 
-Vec3 branchVector(const Bodies& b, const Contact& c)
+/// From body 1's centre to body 2's image, with the cell as it is now: a contact's cached shift2
+/// is that of the step's start, before the integrator moved the bodies and the cell.
+Vec3 branchVector(const Scene& scene, const Contact& c)
 {
-  return b.pos[static_cast<std::size_t>(c.id2)] + c.shift2 - b.pos[static_cast<std::size_t>(c.id1)];
+  const Vec3 shift = scene.periodic ? scene.cell.shift(c.cellDist) : Vec3::Zero();
+  return scene.bodies.pos[static_cast<std::size_t>(c.id2)] + shift - scene.bodies.pos[static_cast<std::size_t>(c.id1)];
 }
 } // namespace
 
 Mat3 loveWeberStress(const Scene& scene, double volume)
 {
   volume = sampleVolume(scene, volume, "getStress");
-  const Bodies& b = scene.bodies;
   Mat3 sum = Mat3::Zero();
   for (const Contact& c : scene.contacts.list)
   {
     if (!c.real)
       continue;
-    sum += c.force * branchVector(b, c).transpose();
+    sum += c.force * branchVector(scene, c).transpose();
   }
   return -sum / volume;
 }
 
-Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume)
+namespace
+{
+/// sym(u (x) l) in Voigt form (xx, yy, zz, yz, xz, xy).
+Eigen::Matrix<double, 6, 1> symmetricVoigt(const Vec3& u, const Vec3& l)
+{
+  Eigen::Matrix<double, 6, 1> a;
+  a << u[0] * l[0], u[1] * l[1], u[2] * l[2], 0.5 * (u[1] * l[2] + u[2] * l[1]), 0.5 * (u[0] * l[2] + u[2] * l[0]),
+      0.5 * (u[0] * l[1] + u[1] * l[0]);
+  return a;
+}
+
+Eigen::Matrix<double, 6, 6> yadeTangent(const Scene& scene)
+{
+  Eigen::Matrix<double, 6, 6> tangent = Eigen::Matrix<double, 6, 6>::Zero();
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    const Vec3 l = branchVector(scene, c);
+    const Eigen::Matrix<double, 6, 1> a = symmetricVoigt(c.normal, l);
+    tangent += c.kn * a * a.transpose();
+    const double shear = c.shearForce.norm();
+    if (shear > 0)
+    {
+      const Eigen::Matrix<double, 6, 1> b = symmetricVoigt(c.shearForce / shear, l);
+      tangent += c.ks * b * b.transpose();
+    }
+  }
+  return tangent;
+}
+} // namespace
+
+Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume, TangentForm form)
 {
   volume = sampleVolume(scene, volume, "getStressAndTangent");
+  if (form == TangentForm::Yade)
+    return yadeTangent(scene) / volume;
   // D as a 9x9 matrix on (ij),(kl) pairs: D(3i+j, 3k+l) = sum K_ik l_j l_l, i.e. a sum of
   // Kronecker products K (x) (l l^T) in a row-major pair numbering.
   Eigen::Matrix<double, 9, 9> d = Eigen::Matrix<double, 9, 9>::Zero();
@@ -78,7 +114,7 @@ Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double v
   {
     if (!c.real)
       continue;
-    const Vec3 l = branchVector(scene.bodies, c);
+    const Vec3 l = branchVector(scene, c);
     const Mat3 nn = c.normal * c.normal.transpose();
     const Mat3 k = c.kn * nn + c.ks * (Mat3::Identity() - nn);
     const Mat3 ll = l * l.transpose();

@@ -25,7 +25,19 @@ Mat3 loveWeberStress(const Scene& scene, double volume = -1);
 /// the stiffness of the packing without particle relaxation and without the rotation of contact
 /// forces (an upper bound of the relaxed response), the operator the seed's FEMxDEM procedure
 /// hands to the finite elements. `volume` <= 0 means the periodic cell's volume.
-Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume = -1);
+///
+/// TangentForm::Yade gives instead the operator of Yade's getStressAndTangent (Shop.cpp, for its
+/// FEMxDEM coupling): sum of kn a a^T + ks b b^T with a = sym(n (x) l), b = sym(t (x) l) in Voigt
+/// form, t the direction of the current shear force (no shear term while it is zero). It keeps
+/// only the shear stiffness along the existing shear force, so it under-estimates the shear
+/// response; it is there to reproduce Yade's numbers.
+enum class TangentForm
+{
+  Full,
+  Yade
+};
+Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume = -1,
+                                                    TangentForm form = TangentForm::Full);
 
 /// Yade's avgNumInteractions: 2 Nc / N over live spheres (optionally not counting spheres with
 /// no contact, `skipFree`).

@@ -119,7 +119,9 @@ PYBIND11_MODULE(_dem, m)
 
   m.def("unbalancedForce", &unbalancedForce);
   m.def("loveWeberStress", &loveWeberStress);
-  m.def("contactStiffnessTangent", &contactStiffnessTangent);
+  m.def("contactStiffnessTangent", [](const Scene& s, double volume, bool yadeForm) {
+    return contactStiffnessTangent(s, volume, yadeForm ? TangentForm::Yade : TangentForm::Full);
+  });
   m.def("coordinationNumber", &coordinationNumber);
   m.def("fabricTensor", &fabricTensor);
   m.def("sphereVolume", &sphereVolume);

@@ -37,15 +37,20 @@ def getStress(volume: float = -1, scene=None) -> np.ndarray:
     return np.array(_dem.loveWeberStress(scene._cpp, float(volume)))
 
 
-def getStressAndTangent(volume: float = -1, symmetry: bool = True, scene=None) -> tuple[np.ndarray, np.ndarray]:
+def getStressAndTangent(volume: float = -1, symmetry: bool = True, form: str = "full",
+                        scene=None) -> tuple[np.ndarray, np.ndarray]:
     """Love-Weber stress (as getStress) and the 6x6 contact-stiffness tangent operator in Voigt
     order xx, yy, zz, yz, xz, xy with engineering shear strains: d(stress) ~ tangent @ d(strain)
-    for an affine strain increment without sliding (docs/dem.md gives the formula)."""
+    for an affine strain increment without sliding (docs/dem.md gives the formula).
+    ``form="yade"`` gives Yade's getStressAndTangent operator instead (shear stiffness only along
+    the current shear force), to reproduce Yade's numbers."""
     if not symmetry:
         raise ValueError("getStressAndTangent: only the symmetric (Voigt) tangent is provided; use symmetry=True")
+    if form not in ("full", "yade"):
+        raise ValueError(f"getStressAndTangent: form must be 'full' or 'yade', got {form!r}")
     scene = _scene(scene)
     return (np.array(_dem.loveWeberStress(scene._cpp, float(volume))),
-            np.array(_dem.contactStiffnessTangent(scene._cpp, float(volume))))
+            np.array(_dem.contactStiffnessTangent(scene._cpp, float(volume), form == "yade")))
 
 
 def avgNumInteractions(skipFree: bool = False, scene=None) -> float:

@@ -1,0 +1,44 @@
+"""Stress and tangent operator of a dense packing whose contacts carry shear forces, in Yade
+(`yade -n -x`, getStressAndTangent) and in Talus (form="yade" and the full form): the spheres of
+periodic_packing.json without the periodic cell, each given a deterministic velocity, after one
+step (fresh contacts get their first shear increment from the velocities). Prints one JSON
+line `TANGENT {...}` (the volume is the packing's bounding box)."""
+import json
+
+import numpy as np
+
+try:
+    O  # noqa: B018  (defined when Yade runs the script)
+    talus = False
+except NameError:
+    from talus.dem import *  # noqa: F401,F403
+    talus = True
+
+data = json.load(open("periodic_packing.json"))  # run from this folder (Yade has no __file__ of the script)
+O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
+O.bodies.append([sphere(tuple(c), r) for c, r in zip(data["pos"], data["radius"])])
+velocities = np.sin(np.arange(3 * len(data["pos"])).reshape(-1, 3) * 1.7) * 0.05
+for b, v in zip(O.bodies, velocities):
+    b.state.vel = Vector3(*v) if not talus else v
+O.engines = [
+    ForceResetter(),
+    InsertionSortCollider([Bo1_Sphere_Aabb()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
+    NewtonIntegrator(damping=0.0),
+]
+O.dt = 1e-5
+O.run(1, True)
+pos = np.array([list(b.state.pos) for b in O.bodies])
+volume = float(np.prod(pos.max(axis=0) - pos.min(axis=0)))
+if talus:
+    stress, tangent = getStressAndTangent(volume, form="yade")
+    full = getStressAndTangent(volume)[1].tolist()
+    shearing = sum(1 for c in O.contacts() if np.any(c["shearForce"]))
+else:
+    stress, tangent = getStressAndTangent(volume, True)
+    full, shearing = None, None
+tangent = np.array(tangent)
+tangent = np.triu(tangent) + np.triu(tangent, 1).T     # Yade fills the upper triangle only
+print("TANGENT " + json.dumps({"stress": np.array(stress).tolist(), "tangent": tangent.tolist(), "full": full,
+                               "shearing": shearing}))
