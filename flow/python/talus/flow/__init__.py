@@ -9,6 +9,7 @@ Available now: the 1D vertical VANS fluid resolution (``VansFluid``, the fluid p
     print(fluid.vxFluid)
 """
 
+from talus.flow.hydro import HydroForceEngine
 from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansFluid, slope_gravity
 
-__all__ = ["VansFluid", "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]
+__all__ = ["HydroForceEngine", "VansFluid", "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]
