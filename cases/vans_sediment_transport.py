@@ -1,6 +1,6 @@
 """VANS case: two-way coupled bedload transport, the seed's sediment-transport example.
 
-Run:      build/bin/talus run cases/vans_sediment_transport.py [--quick] [--results DIR]
+Run:      OMP_NUM_THREADS=1 build/bin/talus run cases/vans_sediment_transport.py [--quick] [--results DIR]
 Set-up:   Yade's twoWayCoupling/sedimentTransportExample_1DRANSCoupling.py: 6 mm grains
           (rho_p 2500 kg/m^3, visco-elastic contacts with restitution 0.7, friction 0.5, normal
           stiffness in the rigid limit 1e4 x the static bed pressure x d), 10 mobile layers over a
@@ -16,8 +16,9 @@ Checked:  the run stays stable (no overlap or non-finite force error, no grain o
           error; Shields number and the coupling's fluid-change statistics as extras). The
           comparison of the time-averaged rate with Yade's needs tens of seconds of transport
           in both programs and is not part of this case yet.
-          Quick: 0.3 s of deposition, 1 s of transport; full: 0.4 s and 10 s. Run it with -j1 on a
-          loaded machine (OpenMP threads waiting for a busy core cost far more than they gain).
+          Quick: 0.3 s of deposition, 1 s of transport; full: 0.4 s and 10 s. Run it with
+          OMP_NUM_THREADS=1 on a loaded machine (OpenMP threads waiting for a busy core cost far
+          more than they gain; talus -j1 is too late, libgomp is loaded with the CLI).
 Produces: record vans.sediment-transport; charts vans.sediment-transport.series.png (transport
           rate and Shields number against time) and vans.sediment-transport.profiles.png
           (solid fraction, particle and fluid velocity, averaged over the second half).

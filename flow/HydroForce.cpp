@@ -84,6 +84,14 @@ HydroForce::HydroForce(const HydroForceParameters& parameters) : m_parameters(pa
   m_vxFluid.assign(n + 1, 0.0);
   m_phiPart.assign(n, 0.0);
   m_reynoldStresses.assign(n, 0.0);
+  updateHindrance();
+}
+
+void HydroForce::updateHindrance()
+{
+  m_hindrance.resize(m_phiPart.size());
+  for (std::size_t c = 0; c < m_phiPart.size(); ++c)
+    m_hindrance[c] = std::pow(1 - m_phiPart[c], -m_parameters.expoRZ);
 }
 
 void HydroForce::setParameters(const HydroForceParameters& parameters)
@@ -98,6 +106,7 @@ void HydroForce::setParameters(const HydroForceParameters& parameters)
     m_phiPart.assign(n, 0.0);
     m_reynoldStresses.assign(n, 0.0);
   }
+  updateHindrance();
 }
 
 void HydroForce::setVxFluid(std::span<const double> vxFluid)
@@ -110,6 +119,7 @@ void HydroForce::setPhiPart(std::span<const double> phiPart)
 {
   checkProfile("phiPart", phiPart, m_phiPart.size(), true);
   m_phiPart.assign(phiPart.begin(), phiPart.end());
+  updateHindrance();
 }
 
 void HydroForce::setReynoldStresses(std::span<const double> stresses)
@@ -156,22 +166,26 @@ std::array<double, 3> HydroForce::dragForce(double radius, int layer, const doub
                         (fluct ? m_fluct[3 * id + 1] : 0.0) - vel[1], (fluct ? m_fluct[3 * id + 2] : 0.0) - vel[2]};
   const double norm = std::sqrt(ur[0] * ur[0] + ur[1] * ur[1] + ur[2] * ur[2]);
   // The grouping follows Yade's expression so that both agree to round-off.
-  const double coefficient = 0.5 * p.densFluid * std::numbers::pi * std::pow(radius, 2.0)
-                             * (0.44 * norm + 24.4 * p.viscoDyn / (p.densFluid * radius * 2))
-                             * std::pow(1 - m_phiPart[cell], -p.expoRZ);
+  const double coefficient = 0.5 * p.densFluid * std::numbers::pi * (radius * radius)
+                             * (0.44 * norm + 24.4 * p.viscoDyn / (p.densFluid * radius * 2)) * m_hindrance[cell];
   return {coefficient * ur[0], coefficient * ur[1], coefficient * ur[2]};
 }
 
 std::array<double, 3> HydroForce::force(const ParticleArrays& particles, std::int64_t id) const
 {
   checkId(particles, id, "force");
-  const HydroForceParameters& p = m_parameters;
   const auto i = static_cast<std::size_t>(id);
+  const int layer = layerOf(elevation(particles.positions[3 * i + 2]), m_parameters.deltaZ);
+  if (layer < 0 || layer >= m_parameters.nCell)
+    return {0.0, 0.0, 0.0};
+  return forceInLayer(particles, i, layer);
+}
+
+std::array<double, 3> HydroForce::forceInLayer(const ParticleArrays& particles, std::size_t i, int layer) const
+{
+  const HydroForceParameters& p = m_parameters;
   const double r = particles.radii[i];
   const double* vel = &particles.velocities[3 * i];
-  const int layer = layerOf(elevation(particles.positions[3 * i + 2]), p.deltaZ);
-  if (layer < 0 || layer >= p.nCell)
-    return {0.0, 0.0, 0.0};
   std::array<double, 3> f = dragForce(r, layer, vel, i);
   if (p.lift)
   {
@@ -180,10 +194,10 @@ std::array<double, 3> HydroForce::force(const ParticleArrays& particles, std::in
     {
       const double top = m_vxFluid[static_cast<std::size_t>(layer + 1 + intRadius)] - vel[0];
       const double bottom = m_vxFluid[static_cast<std::size_t>(layer + 1 - intRadius)] - vel[0];
-      f[2] += 0.5 * p.densFluid * std::numbers::pi * std::pow(r, 2.0) * p.Cl * (top * top - bottom * bottom);
+      f[2] += 0.5 * p.densFluid * std::numbers::pi * (r * r) * p.Cl * (top * top - bottom * bottom);
     }
   }
-  const double volume = -4.0 / 3.0 * std::numbers::pi * std::pow(r, 3.0) * p.densFluid;
+  const double volume = -4.0 / 3.0 * std::numbers::pi * (r * r * r) * p.densFluid;
   f[0] += p.steadyFlow ? 0.0 : volume * p.gravity[0];
   f[1] += volume * p.gravity[1];
   f[2] += volume * p.gravity[2];
@@ -248,17 +262,21 @@ void HydroForce::action(const ParticleArrays& particles, std::span<const std::in
     throw std::invalid_argument("HydroForceEngine.action: the force array has " + std::to_string(forces.size() / 3)
                                 + " rows for " + std::to_string(particles.radii.size()) + " bodies");
   // Validate everything first, so that an error leaves the forces untouched.
-  for (std::int64_t id : ids)
+  m_layers.resize(ids.size());
+  for (std::size_t k = 0; k < ids.size(); ++k)
   {
+    const std::int64_t id = ids[k];
     checkId(particles, id, "action");
     const double z = particles.positions[3 * static_cast<std::size_t>(id) + 2];
     const int layer = layerOf(elevation(z), p.deltaZ);
-    if (!std::isfinite(z) || ((layer < 0 || layer >= p.nCell) && !p.ignoreOutside))
+    const bool outside = !std::isfinite(z) || layer < 0 || layer >= p.nCell;
+    if (outside && !p.ignoreOutside)
       throw std::invalid_argument("HydroForceEngine.action: body " + std::to_string(id) + " at z = " + str(z)
                                   + " is outside the fluid grid [zRef, zRef + nCell deltaZ) = [" + str(p.zRef)
                                   + ", " + str(p.zRef + p.nCell * p.deltaZ)
                                   + "); extend the grid, or set ignoreOutside to leave such particles without "
                                     "fluid force (Yade's behaviour)");
+    m_layers[k] = outside ? -1 : layer;
   }
   if (p.velFluct)
   {
@@ -271,10 +289,13 @@ void HydroForce::action(const ParticleArrays& particles, std::span<const std::in
         drawFluctuation(i, elevation(particles.positions[3 * i + 2]));
     }
   }
-  for (std::int64_t id : ids)
+  for (std::size_t k = 0; k < ids.size(); ++k)
   {
-    const std::array<double, 3> f = force(particles, id);
-    double* out = &forces[3 * static_cast<std::size_t>(id)];
+    if (m_layers[k] < 0)
+      continue;
+    const auto i = static_cast<std::size_t>(ids[k]);
+    const std::array<double, 3> f = forceInLayer(particles, i, m_layers[k]);
+    double* out = &forces[3 * i];
     out[0] += f[0];
     out[1] += f[1];
     out[2] += f[2];

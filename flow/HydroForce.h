@@ -124,12 +124,17 @@ private:
   /// Elevation above zRef, wrapped into the period along z if any.
   [[nodiscard]] double elevation(double z) const;
   [[nodiscard]] std::array<double, 3> dragForce(double radius, int layer, const double* vel, std::size_t id) const;
+  /// Force on a particle known to be in `layer` of the grid.
+  [[nodiscard]] std::array<double, 3> forceInLayer(const ParticleArrays& particles, std::size_t id, int layer) const;
+  void updateHindrance();
   void checkId(const ParticleArrays& particles, std::int64_t id, const char* what) const;
   void drawFluctuation(std::size_t id, double height);
   void resizeFluctuations(std::size_t bodies);
 
   HydroForceParameters m_parameters;
   std::vector<double> m_vxFluid, m_phiPart, m_reynoldStresses;
+  std::vector<double> m_hindrance;  ///< (1 - phiPart)^-expoRZ per layer, cached
+  std::vector<int> m_layers;        ///< scratch: layer of each id in action()
   std::vector<double> m_fluct, m_life;
   std::mt19937_64 m_random{0};
   std::normal_distribution<double> m_normal{0.0, 1.0};
