@@ -212,3 +212,69 @@ def test_bad_input_is_refused_with_a_clear_error():
         engine(s).averageProfile()
     with pytest.raises(TypeError, match="unknown parameter"):
         engine(s, expoRz=3.0)
+
+
+# -- two-way coupling ------------------------------------------------------------------------------
+
+def film_with_bed(period, **kw):
+    """A 4 mm laminar film on a 0.05 rad slope, its fluid at steady state without grains; then a
+    bed of fixed grains appears at the bottom and the coupling starts."""
+    from talus.flow import VansCoupling
+    s = Scene()
+    s.dt = 1e-4
+    e = HydroForceEngine(nCell=41, deltaZ=1e-4, zRef=0.0, gravity=(0.49, 0.0, -9.8), iturbu=0, ids=[], scene=s,
+                         vCell=1.6e-5 * 1e-4, radiusPart=2e-4)
+    e.fluidResolution(50.0, 1e-2)                      # steady film, no grains yet
+    for x in range(10):
+        for y in range(10):
+            s.bodies.append(sphere((x * 4e-4, y * 4e-4, 3e-4), 2e-4, fixed=True))
+    s.engines = [ForceResetter(), e, NewtonIntegrator(gravity=(0.49, 0.0, -9.8))]
+    c = VansCoupling(e, period, 1e-5, densPart=2500.0, diameterPart=4e-4, **kw)
+    c.attach()
+    return s, e, c
+
+
+def test_coupling_alternates_and_records_series():
+    s, e, c = film_with_bed(1e-3, changeLimit=0.5)
+    with warnings_as_list() as caught:
+        s.run(41)                                               # couplings at steps 10, 20, 30, 40
+    assert len(c.series["time"]) == 4 and c.series["time"][0] == pytest.approx(1e-3)
+    assert np.max(e.phiPart) > 0.3 and e.taufsi.max() > 0     # the bed entered the fluid resolution
+    assert not [w for w in caught if "VansCoupling" in str(w.message)]
+    assert 0.05 < max(c.series["fluidChange"]) < 0.5            # the film slows down in the bed
+    assert c.series["fluidChange"][-1] < 0.02                   # and settles
+    assert c.series["shieldsNumber"] == [0.0] * 4               # laminar: no Reynolds stress
+    assert c.series["transportRate"] == [0.0] * 4               # fixed grains
+
+
+def test_coupling_warns_when_the_fluid_jumps_between_couplings():
+    s, e, c = film_with_bed(1e-3, changeLimit=0.1, warmup=0)
+    with warnings_as_list() as caught:
+        s.run(41)
+    changes = np.array(c.series["fluidChange"])
+    assert c.warned == np.sum(changes > 0.1) >= 1
+    messages = [str(w.message) for w in caught if "VansCoupling" in str(w.message)]
+    assert len(messages) == 1                                   # once, then counted in `warned`
+    first = changes[np.argmax(changes > 0.1)]
+    assert f"changed by {first:.0%}" in messages[0]
+    assert f"use about {1e-3 * 0.1 / first:.2g} s or less" in messages[0]
+
+
+def warnings_as_list():
+    import warnings
+    manager = warnings.catch_warnings(record=True)
+    class _Ctx:
+        def __enter__(self):
+            caught = manager.__enter__()
+            warnings.simplefilter("always", RuntimeWarning)
+            return caught
+        def __exit__(self, *exc):
+            return manager.__exit__(*exc)
+    return _Ctx()
+
+
+def test_settling_case_quick_mode(talus_cmd, repo_dir, tmp_path):
+    talus_cmd("run", repo_dir / "cases" / "vans_settling.py", "--quick", "--results", tmp_path)
+    record = json.loads((tmp_path / "vans.settling.json").read_text())
+    assert record["pass"] and record["value"] < 1e-6, record
+    assert (tmp_path / "vans.settling.png").exists()
