@@ -278,3 +278,14 @@ def test_settling_case_quick_mode(talus_cmd, repo_dir, tmp_path):
     record = json.loads((tmp_path / "vans.settling.json").read_text())
     assert record["pass"] and record["value"] < 1e-6, record
     assert (tmp_path / "vans.settling.png").exists()
+
+
+def test_standalone_measurement_leaves_the_engine_alone():
+    from talus.flow import averageProfile
+    s = scene_with([((0, 0, 0.0071), 2.5e-3, (0.3, 0, 0))], periodic_box=(0.02, 0.02, 0.05))
+    e = engine(s)
+    measured = e.measure()
+    assert np.all(e.phiPart == 0)                           # not stored
+    alone = averageProfile(nCell=20, deltaZ=1e-3, scene=s)
+    assert np.array_equal(alone["phiPart"], measured["phiPart"])
+    assert math.isclose(np.sum(alone["phiPart"]) * 0.02 * 0.02 * 1e-3, 4 / 3 * math.pi * 2.5e-3 ** 3, rel_tol=1e-12)

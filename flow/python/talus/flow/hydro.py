@@ -29,7 +29,7 @@ from talus import _flow
 from talus.dem.engines import Engine
 from talus.flow.vans import VansFluid
 
-__all__ = ["HydroForceEngine"]
+__all__ = ["HydroForceEngine", "averageProfile"]
 
 # Options of the fluid resolution that belong to the VansFluid alone.
 _FLUID_ONLY = ("radiusPart", "iturbu", "ilm", "phiMax", "viscousSubLayer", "irheolf", "iusl", "uTop",
@@ -337,17 +337,23 @@ class HydroForceEngine(Engine):
         self._sync_cell()
         return np.asarray(self._core.force(*self._arrays(), int(id)))
 
-    def averageProfile(self, ids: Sequence[int] | None = None) -> dict:
-        """Solid fraction ``phiPart``, mean velocity ``vxPart``/``vyPart``/``vzPart`` and mean
-        streamwise drag ``averageDrag`` per layer, each sphere split between layers with the
-        exact volume of its slices; over ``ids`` (default: every sphere, as Yade). Stores them
-        (inputs of the next fluidResolution and of the hindrance) and returns them."""
+    def measure(self, ids: Sequence[int] | None = None) -> dict:
+        """The solid-phase profiles of ``averageProfile`` without storing them: a standalone
+        measurement that leaves the coupling untouched. Returns a dict of nCell-long arrays
+        ``phiPart``, ``vxPart``, ``vyPart``, ``vzPart``, ``averageDrag``."""
         self._sync_cell()
         p = self._core.parameters()
         p.vCell = self._layer_volume()
         self._core.setParameters(p)
         chosen = self._sphere_ids() if ids is None else np.asarray(list(ids), dtype=np.int64)
-        profile = self._core.averageProfile(*self._arrays(), chosen)
+        return self._core.averageProfile(*self._arrays(), chosen)
+
+    def averageProfile(self, ids: Sequence[int] | None = None) -> dict:
+        """Solid fraction ``phiPart``, mean velocity ``vxPart``/``vyPart``/``vzPart`` and mean
+        streamwise drag ``averageDrag`` per layer, each sphere split between layers with the
+        exact volume of its slices; over ``ids`` (default: every sphere, as Yade). Stores them
+        (inputs of the next fluidResolution and of the hindrance) and returns them."""
+        profile = self.measure(ids)
         self.phiPart = profile["phiPart"]
         self.fluid.vxPart = profile["vxPart"]
         self.fluid.averageDrag = profile["averageDrag"]
@@ -380,3 +386,17 @@ class HydroForceEngine(Engine):
 
     def __repr__(self):
         return f"HydroForceEngine(nCell={self.nCell}, deltaZ={self.deltaZ:g}, ids={len(self._ids)}, label={self.label!r})"
+
+
+def averageProfile(*, nCell: int, deltaZ: float, zRef: float = 0.0, vCell: float = 0.0,
+                   ids: Sequence[int] | None = None, scene=None, vxFluid: ArrayLike | None = None,
+                   **options) -> dict:
+    """Standalone solid-phase measurement: the profiles of ``HydroForceEngine.averageProfile``
+    (solid fraction, mean velocity, mean drag in the fluid profile ``vxFluid`` if given) over
+    the spheres ``ids`` (default all) of ``scene`` (default ``talus.dem.O``), on nCell layers of
+    height deltaZ from zRef; ``vCell`` as for the engine. ``options`` are HydroForceEngine's
+    (densFluid, viscoDyn, expoRZ, ...), for the drag."""
+    engine = HydroForceEngine(nCell=nCell, deltaZ=deltaZ, zRef=zRef, vCell=vCell, scene=scene, dead=True, **options)
+    if vxFluid is not None:
+        engine.vxFluid = vxFluid
+    return engine.measure(ids)
