@@ -1,5 +1,6 @@
 // Python bindings of flow/: no logic here, only the mapping of C++ names to Python. Defaults,
 // docstrings, Yade's option numbers and attribute names live in the talus.flow Python layer.
+#include "flow/HydroForce.h"
 #include "flow/VansFluid.h"
 #include "flow/VansParameters.h"
 #include "flow/WallFriction.h"
@@ -8,7 +9,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstdint>
 #include <span>
+#include <string>
 
 namespace py = pybind11;
 using namespace talus::flow;
@@ -27,6 +30,31 @@ std::span<const double> span(const Array& a)
 Array array(std::span<const double> v)
 {
   return Array(static_cast<py::ssize_t>(v.size()), v.data());  // a copy: the owner may resize
+}
+
+using IdArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+std::span<const std::int64_t> idSpan(const IdArray& a)
+{
+  if (a.ndim() != 1)
+    throw py::value_error("ids must be a one-dimensional array of body ids");
+  return {a.data(), static_cast<std::size_t>(a.size())};
+}
+
+/// A (bodies, 3) array of the particle exchange interface, read without copying.
+std::span<const double> rows3(const Array& a, const char* name)
+{
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw py::value_error(std::string(name) + " must be an array of shape (bodies, 3)");
+  return {a.data(), static_cast<std::size_t>(a.size())};
+}
+
+ParticleArrays particles(const Array& pos, const Array& vel, const Array& radius)
+{
+  ParticleArrays p{rows3(pos, "positions"), rows3(vel, "velocities"), span(radius)};
+  if (p.positions.size() != 3 * p.radii.size() || p.velocities.size() != 3 * p.radii.size())
+    throw py::value_error("positions, velocities and radii must describe the same bodies");
+  return p;
 }
 
 template <void (VansFluid::*set)(std::span<const double>)>
@@ -100,6 +128,69 @@ PYBIND11_MODULE(_flow, m)
       .def("meshNodeElevations", &VansFluid::meshNodeElevations)
       // The resolution releases the GIL: it touches no Python object and can take seconds.
       .def("fluidResolution", &VansFluid::fluidResolution, py::call_guard<py::gil_scoped_release>());
+
+  py::class_<HydroForceParameters>(m, "HydroForceParameters")
+      .def(py::init<>())
+      .def_readwrite("nCell", &HydroForceParameters::nCell)
+      .def_readwrite("deltaZ", &HydroForceParameters::deltaZ)
+      .def_readwrite("zRef", &HydroForceParameters::zRef)
+      .def_readwrite("densFluid", &HydroForceParameters::densFluid)
+      .def_readwrite("viscoDyn", &HydroForceParameters::viscoDyn)
+      .def_readwrite("expoRZ", &HydroForceParameters::expoRZ)
+      .def_readwrite("lift", &HydroForceParameters::lift)
+      .def_readwrite("Cl", &HydroForceParameters::Cl)
+      .def_readwrite("steadyFlow", &HydroForceParameters::steadyFlow)
+      .def_readwrite("gravity", &HydroForceParameters::gravity)
+      .def_readwrite("vCell", &HydroForceParameters::vCell)
+      .def_readwrite("periodZ", &HydroForceParameters::periodZ)
+      .def_readwrite("ignoreOutside", &HydroForceParameters::ignoreOutside)
+      .def_readwrite("velFluct", &HydroForceParameters::velFluct)
+      .def_readwrite("bedElevation", &HydroForceParameters::bedElevation)
+      .def_readwrite("unCorrelatedFluctuations", &HydroForceParameters::unCorrelatedFluctuations)
+      .def_readwrite("kappa", &HydroForceParameters::kappa)
+      .def("validate", &HydroForceParameters::validate);
+
+  py::class_<HydroForce>(m, "HydroForce")
+      .def(py::init<const HydroForceParameters&>())
+      .def("parameters", &HydroForce::parameters)
+      .def("setParameters", &HydroForce::setParameters)
+      .def("setVxFluid", [](HydroForce& h, const Array& v) { h.setVxFluid(span(v)); })
+      .def("setPhiPart", [](HydroForce& h, const Array& v) { h.setPhiPart(span(v)); })
+      .def("setReynoldStresses", [](HydroForce& h, const Array& v) { h.setReynoldStresses(span(v)); })
+      .def("vxFluid", [](const HydroForce& h) { return array(h.vxFluid()); })
+      .def("phiPart", [](const HydroForce& h) { return array(h.phiPart()); })
+      .def("reynoldStresses", [](const HydroForce& h) { return array(h.reynoldStresses()); })
+      .def("action",
+           [](HydroForce& h, const Array& pos, const Array& vel, const Array& radius, py::array_t<double>& forces,
+              const IdArray& ids, double dt) {
+             // The forces are written in place: they must be the scene's own contiguous array.
+             if (forces.ndim() != 2 || forces.shape(1) != 3 || !(forces.flags() & py::array::c_style)
+                 || !forces.writeable())
+               throw py::value_error("forces must be a writable C-contiguous array of shape (bodies, 3)");
+             h.action(particles(pos, vel, radius), idSpan(ids),
+                      {forces.mutable_data(), static_cast<std::size_t>(forces.size())}, dt);
+           })
+      .def("force", [](const HydroForce& h, const Array& pos, const Array& vel, const Array& radius,
+                       std::int64_t id) { return h.force(particles(pos, vel, radius), id); })
+      .def("averageProfile",
+           [](const HydroForce& h, const Array& pos, const Array& vel, const Array& radius, const IdArray& ids) {
+             const SolidProfile s = h.averageProfile(particles(pos, vel, radius), idSpan(ids));
+             py::dict d;
+             d["phiPart"] = array(s.phiPart);
+             d["vxPart"] = array(s.vxPart);
+             d["vyPart"] = array(s.vyPart);
+             d["vzPart"] = array(s.vzPart);
+             d["averageDrag"] = array(s.averageDrag);
+             return d;
+           })
+      .def("turbulentFluctuation",
+           [](HydroForce& h, const Array& pos, const Array& vel, const Array& radius, const IdArray& ids) {
+             h.turbulentFluctuation(particles(pos, vel, radius), idSpan(ids));
+           })
+      .def("fluctuations", [](const HydroForce& h) { return array(h.fluctuations()); })
+      .def("fluctuationLife", [](const HydroForce& h) { return array(h.fluctuationLife()); })
+      .def("seed", &HydroForce::seed)
+      .def_static("sliceVolume", &HydroForce::sliceVolume);
 
   m.attr("oscillationThreshold") = VansFluid::oscillationThreshold;
   m.def("wallFrictionFactor", &wallFrictionFactor);

@@ -9,6 +9,8 @@ Available now: the 1D vertical VANS fluid resolution (``VansFluid``, the fluid p
     print(fluid.vxFluid)
 """
 
+from talus.flow.coupling import VansCoupling
+from talus.flow.hydro import HydroForceEngine, averageProfile
 from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansFluid, slope_gravity
 
-__all__ = ["VansFluid", "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]
+__all__ = ["HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid", "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]

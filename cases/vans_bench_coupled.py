@@ -1,0 +1,135 @@
+"""VANS benchmark: the coupled sediment-transport example in Talus and in Yade, same run length.
+
+Run:      OMP_NUM_THREADS=1 build/bin/talus run cases/vans_bench_coupled.py [--quick] [--results DIR]
+Set-up:   the scene of cases/vans_sediment_transport.py (1165 grains over 100 fixed ones, 6 mm,
+          10 d x 10 d periodic cell, ndimz = 900, fluid step 1e-5 s, coupling every 1e-2 s),
+          built once and given to both programs (positions, materials, engines as Yade's example:
+          ForceResetter, collider, visco-elastic InteractionLoop, HydroForceEngine, a coupling
+          PyRunner calling averageProfile() + fluidResolution(), NewtonIntegrator), single-threaded
+          (yade -j1; OMP_NUM_THREADS=1 for Talus: talus -j1 comes too late, libgomp is already
+          loaded when the CLI sets it). Each runs a deposition phase without fluid and then the coupled
+          phase from the same deposited state (Talus's, written to a JSON file), both timed inside
+          the program: 0.1 s deposition + 0.2 s coupled (quick: 0.05 s + 0.1 s).
+Checked:  speed ratio Yade time / Talus time of the coupled phase (issue #4's target >= 3),
+          record vans.bench.coupled; the deposition ratio is an extra.
+          If yade is not installed the case says so and records nothing.
+"""
+import json
+import shutil
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from talus import results
+
+import vans_sediment_transport as st
+
+YADE_SCRIPT = r'''
+import json, sys, time
+from yade import *
+cfg = json.load(open(sys.argv[-2]))
+O.periodic = True
+O.cell.setBox(*cfg["box"])
+m = cfg["material"]
+O.materials.append(ViscElMat(kn=m["kn"], cn=m["cn"], ks=m["ks"], cs=m["cs"], density=m["density"],
+                             frictionAngle=m["frictionAngle"], label="Mat"))
+for (x, y, z), fixed in zip(cfg["pos"], cfg["fixed"]):
+    O.bodies.append(sphere((x, y, z), cfg["radius"], fixed=fixed, material="Mat"))
+for i, v in enumerate(cfg["vel"]):
+    O.bodies[i].state.vel = Vector3(*v)
+h = cfg["hydro"]
+hydro = HydroForceEngine(densFluid=h["densFluid"], viscoDyn=h["viscoDyn"], zRef=h["zRef"],
+                         gravity=Vector3(*h["gravity"]), deltaZ=h["deltaZ"], expoRZ=3.1, lift=False,
+                         nCell=h["nCell"], vCell=h["vCell"], radiusPart=h["radiusPart"], phiMax=h["phiMax"],
+                         ids=cfg["mobile"], dead=True)
+def fluidModel():
+    hydro.averageProfile()
+    hydro.fluidResolution(cfg["period"], cfg["dtFluid"])
+newton = NewtonIntegrator(damping=0.2, gravity=Vector3(*h["gravity"]))
+runner = PyRunner(command="fluidModel()", iterPeriod=cfg["couplingSteps"], dead=True)
+O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()], allowBiggerThanPeriod=True),
+             InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_ViscElMat_ViscElMat_ViscElPhys()],
+                             [Law2_ScGeom_ViscElPhys_Basic()]), hydro, runner, newton]
+O.dt = cfg["dt"]
+hydro.initialization()
+t = time.perf_counter(); O.run(cfg["depositionSteps"], True); depo = time.perf_counter() - t
+# The coupled phase starts from Talus's deposited state, as Talus does.
+for i, ((x, y, z), v) in enumerate(zip(cfg["pos2"], cfg["vel2"])):
+    O.bodies[i].state.pos = Vector3(x, y, z)
+    O.bodies[i].state.vel = Vector3(*v)
+newton.damping = 0.0
+hydro.dead = False
+runner.dead = False
+hydro.ReynoldStresses = [1e-4] * h["nCell"]
+hydro.turbulentFluctuation()
+hydro.averageProfile()
+hydro.fluidResolution(cfg["initialFluid"], cfg["dtFluid"])
+t = time.perf_counter(); O.run(cfg["coupledSteps"], True); coupled = time.perf_counter() - t
+json.dump({"deposition": depo, "coupled": coupled}, open(sys.argv[-1], "w"))
+'''
+
+INITIAL_FLUID = 0.1   # s of fluid resolution before the coupled phase (not timed)
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    yade = shutil.which("yade")
+    if yade is None:
+        print("yade is not installed: nothing to compare with, no record written")
+        return
+    case = results.Case("vans.bench.coupled", quick=args.quick, folder=args.results)
+    deposition, coupled = (0.05, 0.1) if args.quick else (0.1, 0.2)
+    s, hydro, newton, mobile = st.build()
+    n_depo, n_coupled = round(deposition / s.dt), round(coupled / s.dt)
+    mat = s.materials[0]
+    cfg = {"box": [st.LENGTH, st.WIDTH, st.HEIGHT], "radius": st.D / 2,
+           "material": {"kn": mat.kn, "cn": mat.cn, "ks": mat.ks, "cs": mat.cs, "density": st.RHO_P,
+                        "frictionAngle": st.FRICTION},
+           "pos": s.positions().tolist(), "vel": s.velocities().tolist(),
+           "fixed": [not bool(d) for d in s._cpp.dynamic()], "mobile": [int(i) for i in mobile],
+           "hydro": {"densFluid": st.RHO_F, "viscoDyn": st.NU * st.RHO_F, "zRef": st.GROUND,
+                     "gravity": list(st.GRAVITY), "deltaZ": hydro.deltaZ, "nCell": st.N_CELL,
+                     "vCell": hydro.vCell, "radiusPart": st.D / 2, "phiMax": st.PHI_MAX},
+           "period": st.PERIOD, "dtFluid": st.DT_FLUID, "couplingSteps": round(st.PERIOD / s.dt), "dt": s.dt,
+           "depositionSteps": n_depo, "coupledSteps": n_coupled, "initialFluid": INITIAL_FLUID}
+
+    start = time.perf_counter()
+    s.run(n_depo)
+    talus_depo = time.perf_counter() - start
+    cfg["pos2"], cfg["vel2"] = s.positions().tolist(), s.velocities().tolist()
+    newton.damping = 0.0
+    hydro.dead = False
+    hydro.ReynoldStresses = np.full(st.N_CELL, 1e-4)
+    hydro.averageProfile()
+    hydro.fluidResolution(INITIAL_FLUID, st.DT_FLUID)
+    coupling = st.VansCoupling(hydro, st.PERIOD, st.DT_FLUID, densPart=st.RHO_P, diameterPart=st.D, changeLimit=0)
+    coupling.attach()
+    start = time.perf_counter()
+    s.run(n_coupled)
+    talus_coupled = time.perf_counter() - start
+
+    with tempfile.TemporaryDirectory() as tmp:
+        script, cfg_path, out = Path(tmp, "bench.py"), Path(tmp, "cfg.json"), Path(tmp, "out.json")
+        script.write_text(YADE_SCRIPT)
+        cfg_path.write_text(json.dumps(cfg))
+        done = subprocess.run([yade, "-n", "-j1", "-x", str(script), str(cfg_path), str(out)], cwd=tmp,
+                              capture_output=True, text=True, timeout=3600)
+        if done.returncode != 0 or not out.exists():
+            raise RuntimeError("yade failed:\n" + done.stdout[-3000:] + done.stderr[-3000:])
+        theirs = json.loads(out.read_text())
+    ratio = theirs["coupled"] / talus_coupled
+    print(f"coupled {coupled:g} s ({n_coupled} steps): Talus {talus_coupled:.2f} s, Yade {theirs['coupled']:.2f} s, "
+          f"ratio {ratio:.2f}; deposition {deposition:g} s: Talus {talus_depo:.2f} s, Yade "
+          f"{theirs['deposition']:.2f} s, ratio {theirs['deposition'] / talus_depo:.2f}")
+    case.record("Yade time / Talus time, coupled sediment transport (same steps, one thread)", ratio,
+                "Yade 2023.02a HydroForceEngine example, same scene and run length", 3.0, comparison=">=",
+                talus_s=talus_coupled, yade_s=theirs["coupled"], steps=n_coupled,
+                deposition_ratio=theirs["deposition"] / talus_depo, talus_deposition_s=talus_depo,
+                yade_deposition_s=theirs["deposition"])
+
+
+if __name__ == "__main__":
+    main()
