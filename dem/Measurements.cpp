@@ -1,5 +1,6 @@
 #include "dem/Measurements.h"
 
+#include "dem/NewtonIntegrator.h"
 #include "dem/Scene.h"
 
 #include <cmath>
@@ -34,6 +35,14 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
     return std::numeric_limits<double>::quiet_NaN();
   const double meanContact = sumContacts / static_cast<double>(contacts);
   return (useMaxForce ? maxBody : sumBodies / static_cast<double>(bodies)) / meanContact;
+}
+
+Vec3 sceneGravity(const Scene& scene)
+{
+  for (const auto& e : scene.engines)
+    if (const auto* newton = dynamic_cast<const NewtonIntegrator*>(e.get()))
+      return newton->gravity;
+  return Vec3::Zero();
 }
 
 Mat3 loveWeberStress(const Scene& scene, double volume)

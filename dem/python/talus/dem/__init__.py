@@ -14,10 +14,12 @@
 """
 
 from talus.dem import geom, pack, progress
-from talus.dem.bodies import Body, BodySpec, facet, sphere, wall
+from talus.dem.bodies import Body, BodySpec, aabbWalls, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
+from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
+                                   TriaxialStressController, growParticles)
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.io import CheckpointError
 from talus.dem.materials import FrictMat, Material, ViscElMat
@@ -29,4 +31,5 @@ O = Scene()
 __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
            "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
            "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
-           *_engine_names]
+           "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
+           "growParticles", "aabbWalls", *_engine_names]
