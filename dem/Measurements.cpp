@@ -59,7 +59,12 @@ Mat3 loveWeberStress(const Scene& scene, double volume)
   {
     if (!c.real)
       continue;
-    const Vec3 branch = b.pos[static_cast<std::size_t>(c.id2)] + c.shift2 - b.pos[static_cast<std::size_t>(c.id1)];
+    const auto i2 = static_cast<std::size_t>(c.id2);
+    // A wall or facet has no centre: its branch vector is the sphere's distance to it along the
+    // normal, so that in equilibrium the stress of a walled sample equals wall force over area.
+    const Vec3 branch = c.kind == ContactGeometryKind::SphereSphere
+                            ? Vec3(b.pos[i2] + c.shift2 - b.pos[static_cast<std::size_t>(c.id1)])
+                            : Vec3(c.normal * (b.radius[i2] - c.penetration));
     sum += c.force * branch.transpose();
   }
   return -sum / volume;

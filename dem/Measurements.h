@@ -16,8 +16,9 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
 Vec3 sceneGravity(const Scene& scene);
 
 /// Love-Weber homogenised stress -(1/V) sum over real contacts of f (x) l, with f the force on
-/// body 2 and l the branch vector from body 1's centre to body 2's (image) centre; compression
-/// is negative, as Yade's getStress. `volume` <= 0 means the periodic cell's volume.
+/// body 2 and l the branch vector from body 1's centre to body 2's (image) centre (for a wall or
+/// facet: from the sphere's closest point on it to its centre); compression is negative, as
+/// Yade's getStress. `volume` <= 0 means the periodic cell's volume.
 Mat3 loveWeberStress(const Scene& scene, double volume = -1);
 
 /// Yade's avgNumInteractions: 2 Nc / N over live spheres (optionally not counting spheres with

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/Engine.h"
+#include "dem/SampleOperations.h"
 #include "dem/types.h"
 
 #include <array>
@@ -69,8 +70,4 @@ private:
   void controlExternalStress(Scene& scene, int wall, const Vec3& resultantForce, double maxVelocity);
 };
 
-/// Yade's growParticles: multiply the radii of the spheres (only dynamic ones if dynamicOnly)
-/// by `multiplier`, their mass by its cube and inertia by its fifth power (updateMass), and
-/// scale the stiffness and reference radii of their current contacts accordingly.
-void growParticles(Scene& scene, double multiplier, bool updateMass = true, bool dynamicOnly = true);
 } // namespace talus::dem

@@ -3,6 +3,7 @@
 // (Yade's names, defaults, doneHook strings) is talus.dem.controllers.
 #include "dem/GlobalStiffnessTimeStepper.h"
 #include "dem/PeriTriaxController.h"
+#include "dem/SampleOperations.h"
 #include "dem/Scene.h"
 #include "dem/TriaxialStressController.h"
 
@@ -28,6 +29,7 @@ void talus_wrap_controllers(py::module_& m)
       .def("stiffnessTimeStep", &GlobalStiffnessTimeStepper::stiffnessTimeStep);
   m.def("rayleighWaveTimeStep", &rayleighWaveTimeStep);
   m.def("growParticles", &growParticles);
+  m.def("setContactFriction", &setContactFriction);
 
   py::class_<PeriTriaxController, Engine, std::shared_ptr<PeriTriaxController>>(m, "PeriTriaxController")
       .def(py::init<>())

@@ -19,7 +19,7 @@ from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor n
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
 from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
-                                   TriaxialStressController, growParticles)
+                                   TriaxialStressController, growParticles, setContactFriction)
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.io import CheckpointError
 from talus.dem.materials import FrictMat, Material, ViscElMat
@@ -32,4 +32,4 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", 
            "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
            "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
-           "growParticles", "aabbWalls", *_engine_names]
+           "growParticles", "setContactFriction", "aabbWalls", *_engine_names]

@@ -294,5 +294,13 @@ def growParticles(multiplier: float, updateMass: bool = True, dynamicOnly: bool 
     _dem.growParticles((scene or O)._cpp, float(multiplier), bool(updateMass), bool(dynamicOnly))
 
 
+def setContactFriction(angleRad: float, scene=None):
+    """Set the friction angle of the dynamic bodies' materials and of the existing contacts
+    (Yade's setContactFriction): e.g. compact frictionless, then shear with friction."""
+    from talus.dem import O
+    scene = scene or O
+    _dem.setContactFriction(scene._cpp, float(angleRad))
+
+
 __all__ = ["GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
-           "growParticles"]
+           "growParticles", "setContactFriction"]
