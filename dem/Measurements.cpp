@@ -1,5 +1,6 @@
 #include "dem/Measurements.h"
 
+#include "dem/NewtonIntegrator.h"
 #include "dem/Scene.h"
 
 #include <cmath>
@@ -49,13 +50,27 @@ double sampleVolume(const Scene& scene, double volume, const char* caller)
 }
 
 /// From body 1's centre to body 2's image, with the cell as it is now: a contact's cached shift2
-/// is that of the step's start, before the integrator moved the bodies and the cell.
+/// is that of the step's start, before the integrator moved the bodies and the cell. A wall or
+/// facet has no centre: its branch vector is the sphere's distance to it along the normal, so
+/// that in equilibrium the stress of a walled sample equals wall force over area.
 Vec3 branchVector(const Scene& scene, const Contact& c)
 {
+  const Bodies& b = scene.bodies;
+  const auto i2 = static_cast<std::size_t>(c.id2);
+  if (c.kind != ContactGeometryKind::SphereSphere)
+    return c.normal * (b.radius[i2] - c.penetration);
   const Vec3 shift = scene.periodic ? scene.cell.shift(c.cellDist) : Vec3::Zero();
-  return scene.bodies.pos[static_cast<std::size_t>(c.id2)] + shift - scene.bodies.pos[static_cast<std::size_t>(c.id1)];
+  return b.pos[i2] + shift - b.pos[static_cast<std::size_t>(c.id1)];
 }
 } // namespace
+
+Vec3 sceneGravity(const Scene& scene)
+{
+  for (const auto& e : scene.engines)
+    if (const auto* newton = dynamic_cast<const NewtonIntegrator*>(e.get()))
+      return newton->gravity;
+  return Vec3::Zero();
+}
 
 Mat3 loveWeberStress(const Scene& scene, double volume)
 {

@@ -11,9 +11,14 @@ class Scene;
 /// 0 for a scene at equilibrium; NaN when there is no contact force to compare with.
 double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce = false);
 
+/// Gravity of the scene's (first) NewtonIntegrator, zero without one: what unbalancedForce
+/// needs when an engine calls it.
+Vec3 sceneGravity(const Scene& scene);
+
 /// Love-Weber homogenised stress -(1/V) sum over real contacts of f (x) l, with f the force on
-/// body 2 and l the branch vector from body 1's centre to body 2's (image) centre; compression
-/// is negative, as Yade's getStress. `volume` <= 0 means the periodic cell's volume.
+/// body 2 and l the branch vector from body 1's centre to body 2's (image) centre (for a wall or
+/// facet: from the sphere's closest point on it to its centre); compression is negative, as
+/// Yade's getStress. `volume` <= 0 means the periodic cell's volume.
 Mat3 loveWeberStress(const Scene& scene, double volume = -1);
 
 /// Contact-stiffness tangent operator of the homogenised stress, as a 6x6 Voigt matrix (order

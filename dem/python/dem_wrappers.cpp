@@ -53,6 +53,7 @@ PYBIND11_MODULE(_dem, m)
 {
   m.doc() = "Compiled core of talus.dem (use the talus package, not this module)";
   void talus_wrap_io(py::module_&); talus_wrap_io(m); // checkpoints and export arrays: io_wrappers.cpp
+  void talus_wrap_pack(py::module_&); talus_wrap_pack(m); // SpherePack: pack_wrappers.cpp
   m.def("version", [] { return std::string(talus::version()); });
   m.def("build_config", [] {
     std::vector<std::tuple<std::string, std::string, bool, std::string>> rows;
@@ -108,6 +109,8 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("initRun", &CallbackEngine::initRun)
       .def_readwrite("iterLast", &CallbackEngine::iterLast)
       .def_readwrite("nDone", &CallbackEngine::nDone);
+
+  void talus_wrap_controllers(py::module_&); talus_wrap_controllers(m); // engines: controllers_wrappers.cpp
 
   py::class_<Cell>(m, "Cell")
       .def_readonly("hSize", &Cell::hSize)

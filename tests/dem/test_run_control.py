@@ -47,7 +47,10 @@ def test_real_period_counts_seconds():
     start = time.monotonic()
     while time.monotonic() - start < 0.3:
         S.run(10)
-    assert 3 <= len(calls) <= 7
+    elapsed = time.monotonic() - start
+    # Never more often than realPeriod; on a loaded machine the run may get fewer time slices,
+    # so only the upper bound is tight.
+    assert 2 <= len(calls) <= elapsed / 0.05 + 1
     gaps = [b - a for a, b in zip(calls, calls[1:])]
     assert min(gaps) >= 0.049
 

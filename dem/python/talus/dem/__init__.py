@@ -15,10 +15,12 @@
 
 from talus import plot
 from talus.dem import geom, pack, progress
-from talus.dem.bodies import Body, BodySpec, facet, sphere, wall
+from talus.dem.bodies import Body, BodySpec, aabbWalls, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
+from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
+                                   TriaxialStressController, growParticles, setContactFriction)
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.io import CheckpointError
 from talus.dem.materials import FrictMat, Material, ViscElMat
@@ -29,6 +31,7 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
-           "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions",
-           "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot",
-           *_engine_names]
+           "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "getStressAndTangent",
+           "avgNumInteractions", "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
+           "plot", "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
+           "growParticles", "setContactFriction", "aabbWalls", *_engine_names]

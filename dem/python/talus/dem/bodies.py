@@ -48,6 +48,16 @@ def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySp
     return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True)
 
 
+def aabbWalls(extrema, thickness: float = 0, material=-1, **_ignored) -> list[BodySpec]:
+    """Six walls on the faces of the box ``extrema = (minCorner, maxCorner)``, in the order a
+    TriaxialStressController expects by default (x-, x+, y-, y+, z-, z+). Talus walls are planes:
+    ``thickness`` is accepted for Yade scripts and ignored."""
+    lo, hi = (np.asarray(x, dtype=float).reshape(3) for x in extrema)
+    if np.any(hi <= lo):
+        raise ValueError(f"aabbWalls: the upper corner must exceed the lower one, got {lo}, {hi}")
+    return [wall(corner[axis], axis, material=material) for axis in range(3) for corner in (lo, hi)]
+
+
 def facet(vertices: Sequence[Sequence[float]], material=-1, **_ignored) -> BodySpec:
     """A fixed triangle with the three given vertices (its position is the incentre, as in Yade)."""
     verts = tuple(tuple(float(x) for x in v) for v in vertices)

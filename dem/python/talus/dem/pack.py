@@ -1,4 +1,5 @@
-"""Packings (Yade's ``pack`` module): regular lattices clipped by a predicate.
+"""Packings (Yade's ``pack`` module): regular lattices clipped by a predicate, random clouds
+(``SpherePack.makeCloud``) and dense packings by compression (``compressedCloud``).
 
 A predicate is a solid: ``pred(point, pad)`` says whether a sphere of radius ``pad`` centred at
 ``point`` lies inside, and ``pred.aabb()`` bounds it.
@@ -11,6 +12,7 @@ from typing import Sequence
 
 import numpy as np
 
+from talus import _dem
 from talus.dem.bodies import BodySpec, sphere
 
 
@@ -86,3 +88,148 @@ def regularHexa(predicate, radius: float, gap: float, **kw) -> list[BodySpec]:
 def regularOrtho(predicate, radius: float, gap: float, **kw) -> list[BodySpec]:
     """Spheres on a simple cubic lattice of spacing 2 radius + gap (Yade's pack.regularOrtho)."""
     return _lattice(predicate, radius, gap, "ortho", **kw)
+
+
+class SpherePack:
+    """Spheres that are not a simulation yet (Yade's ``pack.SpherePack``): iterate it as
+    ``(center, radius)`` pairs, fill it with :meth:`makeCloud`, put it in a scene with
+    :meth:`toSimulation`. ``cellSize`` is non-zero for a periodic packing."""
+
+    def __init__(self, spheres=None):
+        self._cpp = _dem.SpherePack()
+        if spheres is not None:
+            self.fromList(spheres)
+
+    # -- content ---------------------------------------------------------------------------------
+    def fromList(self, spheres):
+        """Replace the content by ``[(center, radius), ...]``."""
+        centers, radii = [], []
+        for k, item in enumerate(spheres):
+            c, r = np.asarray(item[0], dtype=float), float(item[1])
+            if c.shape != (3,) or not np.all(np.isfinite(c)) or not r > 0:
+                raise ValueError(f"SpherePack: sphere #{k} needs a finite centre and a positive radius, got {item!r}")
+            centers.append(c)
+            radii.append(r)
+        self._cpp.centers, self._cpp.radii = centers, radii
+
+    def toList(self) -> list:
+        return list(self)
+
+    def add(self, center, radius: float):
+        self.fromList(self.toList() + [(center, radius)])
+
+    def __len__(self) -> int:
+        return len(self._cpp.radii)
+
+    def __iter__(self):
+        return ((np.array(c), r) for c, r in zip(self._cpp.centers, self._cpp.radii))
+
+    def __getitem__(self, i: int):
+        return np.array(self._cpp.centers[i]), self._cpp.radii[i]
+
+    @property
+    def cellSize(self) -> np.ndarray:
+        return np.array(self._cpp.cellSize)
+
+    @cellSize.setter
+    def cellSize(self, value):
+        self._cpp.cellSize = np.asarray(value, dtype=float).reshape(3)
+
+    @property
+    def isPeriodic(self) -> bool:
+        return bool(np.any(self.cellSize != 0))
+
+    appliedPsdScaling = property(lambda self: self._cpp.appliedPsdScaling,
+                                 doc="factor by which makeCloud scaled the size distribution down (1: none)")
+
+    def aabb(self):
+        """Corners of the box bounding the spheres."""
+        if len(self) == 0:
+            raise ValueError("SpherePack.aabb: the packing is empty")
+        c, r = np.array(self._cpp.centers), np.array(self._cpp.radii)
+        return (c - r[:, None]).min(axis=0), (c + r[:, None]).max(axis=0)
+
+    # -- generation ------------------------------------------------------------------------------
+    def makeCloud(self, minCorner=(0, 0, 0), maxCorner=(0, 0, 0), rMean: float = -1, rRelFuzz: float = 0,
+                  num: int = -1, periodic: bool = False, porosity: float = 0.65, psdSizes=(), psdCumm=(),
+                  distributeMass: bool = False, seed: int = -1) -> int:
+        """Random loose cloud of non-overlapping spheres in the box [minCorner, maxCorner], added to
+        the packing (Yade's makeCloud, with its parameters and defaults). Radii: uniform in
+        rMean (1 +- rRelFuzz); or num spheres sized for ``porosity`` (rMean < 0); or a size
+        distribution ``psdSizes`` (diameters) / ``psdCumm`` (cumulative fractions, by mass with
+        ``distributeMass``). With ``seed`` >= 0 the cloud is deterministic and identical to
+        Yade's for the same arguments. Returns the number of spheres created."""
+        if periodic and len(self) == 0 and np.any(np.asarray(maxCorner, float) <= np.asarray(minCorner, float)):
+            raise ValueError("makeCloud: a periodic cloud needs maxCorner above minCorner in every direction")
+        return self._cpp.makeCloud(np.asarray(minCorner, dtype=float), np.asarray(maxCorner, dtype=float), float(rMean),
+                                   float(rRelFuzz), int(num), bool(periodic), float(porosity),
+                                   [float(x) for x in psdSizes], [float(x) for x in psdCumm], bool(distributeMass),
+                                   int(seed))
+
+    def psd(self, bins: int = 50, mass: bool = True):
+        """Particle size distribution: ``(edges, cumm)``, ``bins + 1`` diameters from the smallest to
+        the largest and the cumulative fraction (by mass, or by count) below each (as Yade)."""
+        if len(self) == 0:
+            return [], []
+        d = 2 * np.array(self._cpp.radii)
+        lo, hi = d.min(), d.max()
+        if lo == hi:
+            lo, hi = lo - .5, hi + .5
+        edges = lo + np.arange(bins + 1) * (hi - lo) / bins
+        index = np.minimum((bins * (d - lo) / (hi - lo)).astype(int), bins - 1)
+        weight = d ** 3 / np.sum(d ** 3) if mass else np.full(len(d), 1.0 / len(d))
+        cumm = np.concatenate([[0.0], np.minimum(1.0, np.cumsum(np.bincount(index, weight, minlength=bins)))])
+        return edges, cumm
+
+    # -- simulation and files --------------------------------------------------------------------
+    def toSimulation(self, scene=None, **kw) -> list[int]:
+        """Append the spheres to the scene (``O`` by default); a periodic packing also makes the
+        scene periodic with its cell (centres wrapped into it). Keyword arguments go to
+        :func:`sphere` (material, fixed, ...). Returns the new ids."""
+        if scene is None:
+            from talus.dem import O as scene
+        spheres = list(self)
+        if self.isPeriodic:
+            scene.periodic = True
+            scene.cell.setBox(self.cellSize)
+            scene.cell.trsf = np.eye(3)
+            spheres = [(scene.cell.wrap(c), r) for c, r in spheres]
+        return scene.bodies.append([sphere(c, r, **kw) for c, r in spheres])
+
+    def fromSimulation(self, scene=None):
+        """Replace the content by the scene's spheres (and its cell if periodic)."""
+        if scene is None:
+            from talus.dem import O as scene
+        alive = np.asarray(scene._cpp.alive(), dtype=bool)
+        r = np.asarray(scene.radii())
+        keep = alive & (r > 0)
+        self.fromList(list(zip(np.asarray(scene.positions())[keep], r[keep])))
+        self.cellSize = scene.cell.size if scene.periodic else np.zeros(3)
+
+    def save(self, fileName: str):
+        """Write the spheres as text, one ``x y z r`` line each (full precision), with Yade's
+        ``##PERIODIC:: sx sy sz`` first line for a periodic packing (readable by Yade's
+        SpherePack.load)."""
+        with open(fileName, "w") as f:
+            if self.isPeriodic:
+                f.write("##PERIODIC:: " + " ".join(repr(float(x)) for x in self.cellSize) + "\n")
+            for c, r in self:
+                f.write(" ".join(repr(float(x)) for x in c) + f" {float(r)!r} -1\n")
+
+    def load(self, fileName: str):
+        """Read a file written by :meth:`save` (or Yade's SpherePack.save)."""
+        spheres, cell = [], np.zeros(3)
+        with open(fileName) as f:
+            for n, line in enumerate(f, 1):
+                line = line.strip()
+                if line.startswith("##PERIODIC::"):
+                    cell = np.array([float(x) for x in line.split()[1:4]])
+                    continue
+                if not line or line.startswith("#"):
+                    continue
+                items = line.split()
+                if len(items) < 4:
+                    raise ValueError(f"{fileName}:{n}: expected 'x y z r', got {line!r}")
+                spheres.append(([float(x) for x in items[:3]], float(items[3])))
+        self.fromList(spheres)
+        self.cellSize = cell

@@ -1,0 +1,78 @@
+"""DEM case: the seed's gravity deposition tutorial, in Talus and in Yade on identical input.
+
+Run:      build/bin/talus run cases/dem_gravity_deposition.py [--quick] [--results DIR]
+Set-up:   cases/yade/gravity_deposition.py, run unchanged by both programs: a seeded cloud
+          (makeCloud in the unit cube, rRelFuzz 0.5; the same spheres in both programs) falls into an
+          open facet box (FrictMat defaults, damping 0.4, dt 0.5 P-wave) until the unbalanced force is
+          below 0.01. Quick: rMean 0.045 (~450 spheres); full: rMean 0.03 (~1500 spheres); seeds 1..4,
+          two runs at a time. Yade 2023.02a runs the same file (skipped if not installed).
+Checked:  dem.gravity-deposition.porosity: relative difference of the final porosity (slab
+          0.05 < z < 0.2, away from floor and surface; mean over seeds) from Yade's (<= 1 %).
+          dem.gravity-deposition.coordination: the same for the sphere-sphere coordination number
+          2 C / N (<= 1 %). Single deposits scatter by 2-3 % (chaotic divergence), hence the mean.
+          dem.gravity-deposition.settled: largest final unbalanced force (<= 0.01, Talus).
+Produces: the records and chart dem.gravity-deposition.png (porosity and coordination per seed).
+"""
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from talus import results
+from talus.dem import twin
+
+SCENARIO = Path(__file__).with_name("yade") / "gravity_deposition.py"
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    case = results.Case("dem.gravity-deposition", quick=args.quick, folder=args.results)
+    r_mean = .045 if args.quick else .03
+    seeds = [1, 2, 3, 4]
+    programs = ["talus", "yade"] if twin.yade_available() else ["talus"]
+    jobs = [(program, seed) for seed in seeds for program in programs]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        done = list(pool.map(lambda job: twin.run(SCENARIO, {"rMean": r_mean, "seed": job[1], "unbalanced": .01},
+                                                  job[0]), jobs))
+    ours = [r for (program, _), r in zip(jobs, done) if program == "talus"]
+    theirs = [r for (program, _), r in zip(jobs, done) if program == "yade"]
+    for k, seed in enumerate(seeds):
+        for label, runs in (("Talus", ours), ("Yade ", theirs)):
+            if runs:
+                r = runs[k]
+                print(f"seed {seed}: {label} {r['spheres']} spheres, {r['iter']} steps, porosity {r['porosity']:.4f}, "
+                      f"coordination {r['coordination']:.3f}")
+    case.record("largest unbalanced force at the end of the deposition", max(o["unbalanced"] for o in ours),
+                "stop criterion unbalancedForce() < 0.01", 0.01, suffix="settled")
+    if theirs:
+        for key, what in (("porosity", "porosity of the slab 0.05 < z < 0.2"),
+                          ("coordination", "sphere-sphere coordination number 2C/N")):
+            o, t = float(np.mean([r[key] for r in ours])), float(np.mean([r[key] for r in theirs]))
+            case.record(f"relative difference of the mean {what} from Yade's", abs(o / t - 1),
+                        "yade 2023.02a on the same scenario file (same seeded clouds)", 0.01, suffix=key, ours=o,
+                        theirs=t, ours_each=[r[key] for r in ours], theirs_each=[r[key] for r in theirs],
+                        seeds=seeds, spheres=[r["spheres"] for r in ours])
+
+    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    for ax, key in zip(axes, ("porosity", "coordination")):
+        ax.plot(seeds, [r[key] for r in ours], "o", label="Talus")
+        if theirs:
+            ax.plot(seeds, [r[key] for r in theirs], "s", mfc="none", label="Yade")
+        ax.axhline(np.mean([r[key] for r in ours]), color="C0", lw=.8)
+        if theirs:
+            ax.axhline(np.mean([r[key] for r in theirs]), color="C1", lw=.8, ls="--")
+        ax.set_xlabel("seed of makeCloud")
+        ax.set_ylabel(key)
+        ax.set_xticks(seeds)
+    axes[0].set_title("gravity deposition: slab porosity")
+    axes[1].set_title("sphere-sphere coordination")
+    axes[0].legend()
+    fig.tight_layout()
+    case.save_chart(fig)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,96 @@
+"""DEM case: the seed's periodic triaxial test (tutorial 06), in Talus and in Yade on identical input.
+
+Run:      build/bin/talus run cases/dem_periodic_triaxial.py [--quick] [--results DIR]
+Set-up:   cases/yade/periodic_triaxial.py, run unchanged by both programs: a seeded periodic cloud
+          (makeCloud, rMean 0.1, rRelFuzz 0.3, FrictMat E 1e7, friction 0.5) compacted to -100 kPa by
+          PeriTriaxController (dynCell), then compressed along z at 0.1/s to a log strain of -0.2 with
+          -100 kPa kept on x and y. Quick: a 2 m cell (458 spheres), one seed; full: 3 m (~1550
+          spheres), seeds 1..3. Yade 2023.02a runs the same file (skipped if not installed).
+Checked:  dem.periodic-triaxial.compaction: worst relative gap of the three stresses to -100 kPa when
+          the doneHook fires (PeriTriaxController's relStressTol, 1e-3).
+          dem.periodic-triaxial.lateral: worst relative deviation of the lateral stresses from
+          -100 kPa during the compression, after the first 1 % of strain (<= 10 %).
+          dem.periodic-triaxial.peak: relative difference of the peak friction sin(phi) = (s1 - s3) /
+          (s1 + s3) from Yade's (mean over seeds; <= 5 %: the runs diverge chaotically, so this is the
+          statistical agreement of two samples of the same packing).
+          dem.periodic-triaxial.porosity: porosity after compaction against Yade's (<= 1 %).
+Produces: the records and chart dem.periodic-triaxial.png (stress ratio and lateral stresses
+          against axial strain, Talus and Yade).
+"""
+from pathlib import Path
+
+import numpy as np
+
+from talus import results
+from talus.dem import twin
+
+SCENARIO = Path(__file__).with_name("yade") / "periodic_triaxial.py"
+SIGMA = -1e5
+
+
+def analyse(result: dict) -> dict:
+    h = {k: np.array(v) for k, v in result["history"].items()}
+    shear = h["stage"] == 1
+    s1, s3 = -h["szz"][shear], -(h["sxx"][shear] + h["syy"][shear]) / 2
+    ezz = h["ezz"][shear]
+    sinphi = (s1 - s3) / (s1 + s3)
+    settled = ezz < -0.01
+    lateral = np.concatenate([h["sxx"][shear][settled], h["syy"][shear][settled]])
+    return {"ezz": ezz, "sinphi": sinphi, "s3": s3, "peak": float(sinphi.max()),
+            "lateral": float(np.max(np.abs(lateral - SIGMA)) / abs(SIGMA)),
+            "compaction": float(np.max(np.abs(np.array(result["compaction"]["stress"]) - SIGMA)) / abs(SIGMA)),
+            "porosity": result["compaction"]["porosity"], "final_ezz": result["final_strain"][2],
+            "spheres": result["spheres"]}
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    case = results.Case("dem.periodic-triaxial", quick=args.quick, folder=args.results)
+    size, seeds = (2.0, [1]) if args.quick else (3.0, [1, 2, 3])
+    ours, theirs = [], []
+    for seed in seeds:
+        params = {"size": size, "seed": seed}
+        ours.append(analyse(twin.run(SCENARIO, params, "talus")))
+        print(f"seed {seed}: Talus {ours[-1]['spheres']} spheres, porosity {ours[-1]['porosity']:.4f}, "
+              f"peak sin(phi) {ours[-1]['peak']:.4f}, final ezz {ours[-1]['final_ezz']:.6f}")
+        if twin.yade_available():
+            theirs.append(analyse(twin.run(SCENARIO, params, "yade")))
+            print(f"seed {seed}: Yade  porosity {theirs[-1]['porosity']:.4f}, peak sin(phi) {theirs[-1]['peak']:.4f}")
+    case.record("worst relative gap of the cell stresses to the goal when the compaction doneHook fires",
+                max(o["compaction"] for o in ours), "goal -100 kPa, PeriTriaxController relStressTol", 1e-3,
+                suffix="compaction", seeds=seeds)
+    case.record("worst relative deviation of the lateral stresses from -100 kPa during the compression",
+                max(o["lateral"] for o in ours), "confinement -100 kPa (stressMask 3)", 0.10, suffix="lateral",
+                final_ezz=[o["final_ezz"] for o in ours])
+    if theirs:
+        peak_o, peak_t = np.mean([o["peak"] for o in ours]), np.mean([t["peak"] for t in theirs])
+        case.record("relative difference of the peak sin(phi) from Yade's (mean over seeds)",
+                    abs(peak_o / peak_t - 1), "yade 2023.02a on the same scenario file", 0.05, suffix="peak",
+                    ours=float(peak_o), theirs=float(peak_t), seeds=seeds)
+        por_o, por_t = np.mean([o["porosity"] for o in ours]), np.mean([t["porosity"] for t in theirs])
+        case.record("relative difference of the porosity after compaction from Yade's", abs(por_o / por_t - 1),
+                    "yade 2023.02a on the same scenario file", 0.01, suffix="porosity", ours=float(por_o),
+                    theirs=float(por_t))
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    for runs, style, label in ((ours, "-", "Talus"), (theirs, "--", "Yade")):
+        for k, r in enumerate(runs):
+            axes[0].plot(-r["ezz"], r["sinphi"], style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
+            axes[1].plot(-r["ezz"], -r["s3"] / 1e3, style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
+    axes[0].set_xlabel("axial strain -ezz (log)")
+    axes[0].set_ylabel("sin(phi) = (s1 - s3) / (s1 + s3)")
+    axes[0].set_title("periodic triaxial: mobilised friction")
+    axes[1].set_xlabel("axial strain -ezz (log)")
+    axes[1].set_ylabel("lateral stress (kPa, compression)")
+    axes[1].axhline(100, color="gray", lw=.8)
+    axes[1].set_title("confinement held by PeriTriaxController")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    case.save_chart(fig)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,103 @@
+"""DEM case: drained triaxial compression in a box of six walls (TriaxialStressController), in Talus
+and in Yade on identical input, up to a peak friction angle.
+
+Run:      build/bin/talus run cases/dem_triaxial_walls.py [--quick] [--results DIR]
+Set-up:   cases/yade/triaxial_walls.py (Yade's triax tutorial, session 1), run unchanged by both
+          programs: a seeded loose cloud between six frictionless plane walls, compacted to -10 kPa
+          by growing the spheres (internalCompaction), then compressed along y at 0.02/s with
+          -10 kPa on x and z. FrictMat E 5 MPa, nu 0.5, friction 5 deg while compacting (a dense
+          sample), 30 deg (setContactFriction) while shearing; GlobalStiffnessTimeStepper. Quick: 500
+          spheres to a log strain of -0.1; full: 2000 spheres to -0.15; seeds 1..4 each, two runs at a
+          time. Yade 2023.02a runs the same file (skipped if not installed). Single samples of 500
+          spheres scatter by about 5 % in peak ratio (chaotic divergence), hence the mean over seeds.
+Checked:  dem.triaxial-walls.peak: relative difference of the peak stress ratio s1/s3 (mean over
+          seeds) from Yade's (<= 3 %).
+          dem.triaxial-walls.steady: axial strain at the peak over the final strain (<= 0.9: a peak
+          is reached and followed by softening towards a steady state, not still rising).
+          dem.triaxial-walls.confinement: worst relative deviation of the lateral wall stresses
+          from -10 kPa during the compression (<= 5 %).
+          dem.triaxial-walls.porosity: mean porosity after compaction against Yade's (<= 1 %).
+Produces: the records and chart dem.triaxial-walls.png (stress ratio and volumetric strain
+          against axial strain, Talus and Yade).
+"""
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import numpy as np
+
+from talus import results
+from talus.dem import twin
+
+SCENARIO = Path(__file__).with_name("yade") / "triaxial_walls.py"
+SIGMA = -1e4
+
+
+def analyse(result: dict) -> dict:
+    h = {k: np.array(v) for k, v in result["history"].items()}
+    s1, s3 = -h["syy"], -(h["sxx"] + h["szz"]) / 2
+    ratio = s1 / s3
+    k = int(np.argmax(ratio))
+    lateral = np.concatenate([h["sxx"], h["szz"]])
+    return {"eyy": h["eyy"], "evol": h["evol"], "ratio": ratio, "peak": float(ratio[k]),
+            "peak_at": float(h["eyy"][k] / h["eyy"][-1]),
+            "phi": float(np.degrees(np.arcsin((ratio[k] - 1) / (ratio[k] + 1)))),
+            "lateral": float(np.max(np.abs(lateral - SIGMA)) / abs(SIGMA)),
+            "porosity": result["compaction"]["porosity"], "spheres": result["spheres"]}
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    case = results.Case("dem.triaxial-walls", quick=args.quick, folder=args.results)
+    num, end = (500, -0.1) if args.quick else (2000, -0.15)
+    seeds = [1, 2, 3, 4]
+    programs = ["talus", "yade"] if twin.yade_available() else ["talus"]
+    jobs = [(program, seed) for seed in seeds for program in programs]
+    with ThreadPoolExecutor(max_workers=2) as pool:   # the scenarios run as single-threaded processes
+        done = list(pool.map(lambda job: analyse(twin.run(SCENARIO, {"num": num, "seed": job[1], "eyyEnd": end},
+                                                          job[0])), jobs))
+    ours = [r for (program, _), r in zip(jobs, done) if program == "talus"]
+    theirs = [r for (program, _), r in zip(jobs, done) if program == "yade"]
+    for k, seed in enumerate(seeds):
+        for label, runs in (("Talus", ours), ("Yade ", theirs)):
+            if runs:
+                r = runs[k]
+                print(f"seed {seed}: {label} porosity {r['porosity']:.4f}, peak s1/s3 {r['peak']:.4f} "
+                      f"(phi {r['phi']:.2f} deg) at {r['peak_at']:.2f} of the final strain")
+    peak_o = float(np.mean([o["peak"] for o in ours]))
+    case.record("axial strain at the peak stress ratio over the final axial strain", max(o["peak_at"] for o in ours),
+                "a peak followed by softening (not still rising at the end)", 0.9, suffix="steady",
+                peak_friction_angle_deg=[o["phi"] for o in ours])
+    case.record("worst relative deviation of the lateral wall stresses from -10 kPa during the compression",
+                max(o["lateral"] for o in ours), "confinement goal1 = goal3 = -10 kPa", 0.05, suffix="confinement")
+    if theirs:
+        peak_t = float(np.mean([t["peak"] for t in theirs]))
+        case.record("relative difference of the peak stress ratio s1/s3 from Yade's (mean over seeds)",
+                    abs(peak_o / peak_t - 1), "yade 2023.02a on the same scenario file", 0.03, suffix="peak",
+                    ours=peak_o, theirs=peak_t, seeds=seeds, spheres=num,
+                    ours_each=[o["peak"] for o in ours], theirs_each=[t["peak"] for t in theirs])
+        por_o, por_t = np.mean([o["porosity"] for o in ours]), np.mean([t["porosity"] for t in theirs])
+        case.record("relative difference of the porosity after compaction from Yade's", abs(por_o / por_t - 1),
+                    "yade 2023.02a on the same scenario file", 0.01, suffix="porosity", ours=float(por_o),
+                    theirs=float(por_t))
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    for runs, style, label in ((ours, "-", "Talus"), (theirs, "--", "Yade")):
+        for k, r in enumerate(runs):
+            axes[0].plot(-r["eyy"], r["ratio"], style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
+            axes[1].plot(-r["eyy"], -r["evol"], style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
+    axes[0].set_xlabel("axial strain -eyy (log)")
+    axes[0].set_ylabel("stress ratio s1/s3")
+    axes[0].set_title("six-wall triaxial: peak and softening")
+    axes[1].set_xlabel("axial strain -eyy (log)")
+    axes[1].set_ylabel("volumetric strain (compression positive)")
+    axes[1].set_title("contraction then dilatancy")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    case.save_chart(fig)
+
+
+if __name__ == "__main__":
+    main()

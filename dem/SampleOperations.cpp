@@ -1,0 +1,60 @@
+#include "dem/SampleOperations.h"
+
+#include "dem/Scene.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace talus::dem
+{
+void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynamicOnly)
+{
+  if (!(multiplier > 0 && std::isfinite(multiplier)))
+    throw std::invalid_argument("growParticles: the multiplier must be positive and finite, got " + std::to_string(multiplier));
+  Bodies& b = scene.bodies;
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    if (!b.alive[i] || b.shape[i] != ShapeKind::Sphere || (dynamicOnly && !b.dynamic[i]))
+      continue;
+    if (updateMass)
+    {
+      b.mass[i] *= std::pow(multiplier, 3);
+      b.inertia[i] *= std::pow(multiplier, 5);
+    }
+    b.radius[i] *= multiplier;
+  }
+  for (Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+    if (b.shape[i1] == ShapeKind::Sphere && (!dynamicOnly || b.dynamic[i1]))
+      c.refR1 = b.radius[i1];
+    if (b.shape[i2] == ShapeKind::Sphere && (!dynamicOnly || b.dynamic[i2]))
+      c.refR2 = b.radius[i2];
+    c.kn *= multiplier;
+    c.ks *= multiplier;
+  }
+  ++scene.bodyPropertiesVersion;
+  ++scene.bodiesVersion; // the radii changed: re-detect contacts with the new sizes
+}
+void setContactFriction(Scene& scene, double angle)
+{
+  if (!(angle >= 0 && angle < M_PI / 2))
+    throw std::invalid_argument("setContactFriction: the angle must be in [0, pi/2) radians, got " + std::to_string(angle));
+  Bodies& b = scene.bodies;
+  std::vector<bool> dynamicMaterial(scene.materials.size(), false);
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b.alive[i] && b.dynamic[i])
+      dynamicMaterial[static_cast<std::size_t>(b.material[i])] = true;
+  for (std::size_t m = 0; m < scene.materials.size(); ++m)
+    if (dynamicMaterial[m])
+      scene.materials[m].frictionAngle = angle;
+  for (Contact& c : scene.contacts.list)
+    if (c.real)
+      c.tanPhi = std::tan(std::min(scene.materials[static_cast<std::size_t>(b.material[static_cast<std::size_t>(c.id1)])].frictionAngle,
+                                   scene.materials[static_cast<std::size_t>(b.material[static_cast<std::size_t>(c.id2)])].frictionAngle));
+}
+} // namespace talus::dem

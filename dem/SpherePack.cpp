@@ -1,0 +1,231 @@
+#include "dem/SpherePack.h"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+namespace talus::dem
+{
+namespace
+{
+/// x wrapped into [x0, x1), relative to x0 (the arithmetic of Yade's cellWrapRel, so that the
+/// overlap tests round as Yade's do).
+double wrapRelative(double x, double x0, double x1)
+{
+  const double period = x1 - x0;
+  const double s = (x - x0) / period;
+  return (s - std::floor(s)) * period;
+}
+
+/// Radius at fraction x between a and b such that x is distributed like the mass (volume)
+/// rather than the count: interpolation of r^-2.
+double massInterpolation(double x, double a, double b)
+{
+  return std::pow(x * (std::pow(b, -2) - std::pow(a, -2)) + std::pow(a, -2), -0.5);
+}
+
+/// Piece i of a cumulative table with cumm[i] <= x < cumm[i+1], and x's fraction in it.
+int pieceOf(double x, const std::vector<double>& cumm, double& fraction)
+{
+  const int n = static_cast<int>(cumm.size());
+  int i = 0;
+  while (i < n && cumm[static_cast<std::size_t>(i)] <= x)
+    ++i;
+  if (i == n - 1 && cumm[static_cast<std::size_t>(i)] <= x)
+  {
+    fraction = 1;
+    return n - 2;
+  }
+  --i;
+  const auto k = static_cast<std::size_t>(i);
+  fraction = (x - cumm[k]) / (cumm[k + 1] - cumm[k]);
+  return i;
+}
+
+enum class RadiusMode
+{
+  Undefined,
+  Mean,         ///< rMean and rRelFuzz given
+  FromPorosity, ///< rMean from num and porosity
+  Distribution, ///< psdSizes and psdCumm
+};
+} // namespace
+
+long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double rRelFuzz, int num, bool periodic,
+                           double porosity, const std::vector<double>& psdSizes, const std::vector<double>& psdCumm,
+                           bool distributeMass, int seed)
+{
+  if (!mn.allFinite() || !mx.allFinite() || ((mx - mn).array() < 0).any())
+    throw std::invalid_argument("makeCloud: maxCorner must be at or above minCorner in every direction");
+  std::random_device device;
+  std::mt19937 generator(seed >= 0 ? static_cast<std::mt19937::result_type>(seed) : device());
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+
+  const Vec3 size = mx - mn;
+  const double volume = size[0] * size[1] * size[2];
+  // With one size zero two of these terms vanish and the third is the area of the 2D box.
+  const double area = std::abs(size[0] * size[2] + size[0] * size[1] + size[1] * size[2]);
+  if (porosity <= 0 && rMean <= 0)
+    porosity = 0.5;
+  RadiusMode mode = RadiusMode::Undefined;
+  if (rMean > 0)
+    mode = RadiusMode::Mean;
+  else if (num > 0 && psdSizes.empty())
+  {
+    mode = RadiusMode::FromPorosity;
+    // mean volume of radii uniform in rMean (1 +- z): 4/3 pi rMean^3 (1 + z^2)
+    if (volume != 0)
+      rMean = std::pow(volume * (1 - porosity) / (M_PI * (4 / 3.) * (1 + rRelFuzz * rRelFuzz) * num), 1 / 3.);
+    else
+    {
+      if (area == 0)
+        throw std::invalid_argument("makeCloud: the box has neither a volume nor an area");
+      rMean = std::pow(area * (1 - porosity) / (M_PI * (1 + rRelFuzz * rRelFuzz) * num), 0.5);
+    }
+  }
+  std::vector<double> psdRadii, massCumm;
+  if (!psdSizes.empty())
+  {
+    if (mode != RadiusMode::Undefined)
+      throw std::invalid_argument("makeCloud: rMean cannot be combined with psdSizes");
+    mode = RadiusMode::Distribution;
+    if (psdSizes.size() != psdCumm.size())
+      throw std::invalid_argument("makeCloud: psdSizes and psdCumm must have the same length (" + std::to_string(psdSizes.size())
+                                  + " != " + std::to_string(psdCumm.size()) + ")");
+    if (psdSizes.size() < 2)
+      throw std::invalid_argument("makeCloud: psdSizes needs at least 2 sizes");
+    if (psdCumm.front() != 0 || psdCumm.back() != 1)
+      throw std::invalid_argument("makeCloud: psdCumm must start at exactly 0 and end at exactly 1");
+    const std::size_t n = psdSizes.size();
+    const double spread = volume != 0 ? volume : area * psdSizes.back();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (!(psdSizes[i] > 0))
+        throw std::invalid_argument("makeCloud: psdSizes[" + std::to_string(i) + "] must be positive");
+      if (i > 0 && (psdSizes[i - 1] > psdSizes[i] || psdCumm[i - 1] > psdCumm[i]))
+        throw std::invalid_argument("makeCloud: psdSizes and psdCumm must both be non-decreasing (item " + std::to_string(i) + ")");
+      psdRadii.push_back(0.5 * psdSizes[i]);
+      // By mass: the number of spheres per size interval, dN = V (1 - n) dP / (4/3 pi r^3),
+      // integrated over each interval; normalised below.
+      if (distributeMass)
+        massCumm.push_back(i == 0 ? 0.0
+                                  : massCumm[i - 1]
+                                        + 3.0 * spread * (1 - porosity) / M_PI * (psdCumm[i] - psdCumm[i - 1])
+                                              / (psdSizes[i] - psdSizes[i - 1])
+                                              * (std::pow(psdSizes[i - 1], -2) - std::pow(psdSizes[i], -2)));
+    }
+    if (num > 1)
+    {
+      // Scale the sizes down if `num` spheres of this distribution cannot fit at `porosity`.
+      appliedPsdScaling = 1;
+      if (distributeMass)
+      {
+        if (massCumm.back() < num)
+          appliedPsdScaling = std::pow(massCumm.back() / num, 1. / 3.);
+      }
+      else
+      {
+        double solid = 0;
+        // 4 / 3 is 1 in integer arithmetic in Yade too: the estimate is kept as it is.
+        for (std::size_t i = 1; i < n; ++i)
+          solid += 4 / 3 * M_PI * (psdCumm[i] - psdCumm[i - 1]) * num * std::pow(0.5 * (psdSizes[i] + psdSizes[i - 1]), 3)
+                   * (1 + std::pow(0.5 * (psdSizes[i] - psdSizes[i - 1]), 2));
+        const double ratio = solid / ((1 - porosity) * spread);
+        if (ratio > 1)
+          appliedPsdScaling = std::pow(ratio, -1. / 3.);
+      }
+      if (appliedPsdScaling < 1)
+        for (double& r : psdRadii)
+          r *= appliedPsdScaling;
+    }
+    if (distributeMass)
+      for (std::size_t i = 1; i < n; ++i)
+        massCumm[i] /= massCumm.back();
+  }
+  if (mode == RadiusMode::Undefined)
+    throw std::invalid_argument("makeCloud: give rMean, or num (with porosity), or psdSizes and psdCumm");
+  if (!(rRelFuzz >= 0 && rRelFuzz < 1) && mode != RadiusMode::Distribution)
+    throw std::invalid_argument("makeCloud: rRelFuzz must be in [0, 1), got " + std::to_string(rRelFuzz));
+
+  const int maxTry = 1000;
+  if (periodic && volume != 0)
+    cellSize = size;
+  double r = 0;
+  for (int i = 0; i < num || num < 0; ++i)
+  {
+    // With num given, radii are deterministic and decreasing; otherwise random.
+    const double x = num > 0 ? (static_cast<double>(num) - i + 0.5) / (static_cast<double>(num) + 1.) : uniform(generator);
+    double fraction = 0;
+    switch (mode)
+    {
+    case RadiusMode::Mean:
+    case RadiusMode::FromPorosity:
+      r = distributeMass ? massInterpolation(x, rMean * (1 - rRelFuzz), rMean * (1 + rRelFuzz))
+                         : rMean * (2 * (x - .5) * rRelFuzz + 1);
+      break;
+    case RadiusMode::Distribution:
+      if (distributeMass)
+      {
+        const auto k = static_cast<std::size_t>(pieceOf(x, massCumm, fraction));
+        r = massInterpolation(fraction, psdRadii[k], psdRadii[k + 1]);
+      }
+      else
+      {
+        const auto k = static_cast<std::size_t>(pieceOf(x, psdCumm, fraction));
+        r = psdRadii[k] + fraction * (psdRadii[k + 1] - psdRadii[k]);
+      }
+      break;
+    case RadiusMode::Undefined: break;
+    }
+    int t = 0;
+    for (; t < maxTry; ++t)
+    {
+      Vec3 c;
+      if (!periodic)
+      {
+        for (int a = 0; a < 3; ++a)
+          c[a] = mn[a] + (size[a] != 0 ? (size[a] - 2 * r) * uniform(generator) + r : 0);
+      }
+      else
+      {
+        for (int a = 0; a < 3; ++a)
+          c[a] = uniform(generator);
+        c = Vec3(size.cwiseProduct(c)) + mn;
+      }
+      bool overlap = false;
+      for (std::size_t j = 0; j < centers.size() && !overlap; ++j)
+      {
+        Vec3 d;
+        if (!periodic)
+          d = centers[j] - c;
+        else
+          for (int a = 0; a < 3; ++a)
+            d[a] = size[a] != 0 ? std::min(wrapRelative(c[a], centers[j][a], centers[j][a] + size[a]),
+                                           wrapRelative(centers[j][a], c[a], c[a] + size[a]))
+                                : 0;
+        overlap = std::pow(radii[j] + r, 2) >= d.squaredNorm();
+      }
+      if (!overlap)
+      {
+        centers.push_back(c);
+        radii.push_back(r);
+        break;
+      }
+    }
+    if (t == maxTry)
+    {
+      if (num > 0 && mode != RadiusMode::Mean)
+      {
+        // Retry from scratch with a higher porosity: smaller radii.
+        centers.clear();
+        radii.clear();
+        return makeCloud(mn, mx, -1., rRelFuzz, num, periodic, porosity + (1 - porosity) / 10., psdSizes, psdCumm,
+                         distributeMass, seed);
+      }
+      return i;
+    }
+  }
+  return static_cast<long>(centers.size());
+}
+} // namespace talus::dem

@@ -1,0 +1,34 @@
+#pragma once
+
+#include "dem/types.h"
+
+#include <vector>
+
+namespace talus::dem
+{
+/// A list of spheres (centres and radii) that is not a simulation yet: Yade's SpherePack.
+/// `cellSize` is non-zero for a periodic packing (the sizes of its axis-aligned cell).
+struct SpherePack
+{
+  std::vector<Vec3> centers;
+  std::vector<double> radii;
+  Vec3 cellSize = Vec3::Zero();
+  /// Factor by which makeCloud scaled a size distribution down to fit `num` spheres (1: none).
+  double appliedPsdScaling = 1;
+
+  /// Yade's makeCloud: random non-overlapping spheres in the box [minCorner, maxCorner] (a flat
+  /// box, one size 0, gives a 2D packing). Radii: uniform rMean (1 +- rRelFuzz); or, with
+  /// rMean < 0 and num > 0, rMean from `porosity`; or a size distribution (psdSizes are
+  /// diameters, psdCumm their cumulative fractions, by number or, with distributeMass, by
+  /// mass). With num > 0 radii are deterministic and decreasing; if they do not fit, the
+  /// distribution is scaled down (porosity raised) and the cloud redone. Each sphere gets up to
+  /// 1000 random tries. The random numbers are std::mt19937(seed) with
+  /// std::uniform_real_distribution (random_device if seed < 0), drawn in Yade's order, so a
+  /// seeded cloud is the same as Yade's.
+  /// @return the number of spheres created (may be below num when rMean is given)
+  /// @throws std::invalid_argument naming the inconsistent parameter
+  long makeCloud(const Vec3& minCorner, const Vec3& maxCorner, double rMean, double rRelFuzz, int num, bool periodic,
+                 double porosity, const std::vector<double>& psdSizes, const std::vector<double>& psdCumm,
+                 bool distributeMass, int seed);
+};
+} // namespace talus::dem

@@ -1,0 +1,98 @@
+// Python bindings of the time stepper and the stress/strain controllers. Compiled into
+// talus._dem; `talus_wrap_controllers(m)` is called from dem_wrappers.cpp. The Python API
+// (Yade's names, defaults, doneHook strings) is talus.dem.controllers.
+#include "dem/GlobalStiffnessTimeStepper.h"
+#include "dem/PeriTriaxController.h"
+#include "dem/SampleOperations.h"
+#include "dem/Scene.h"
+#include "dem/TriaxialStressController.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace talus::dem;
+
+void talus_wrap_controllers(py::module_& m)
+{
+  py::class_<GlobalStiffnessTimeStepper, Engine, std::shared_ptr<GlobalStiffnessTimeStepper>>(m, "GlobalStiffnessTimeStepper")
+      .def(py::init<>())
+      .def_readwrite("active", &GlobalStiffnessTimeStepper::active)
+      .def_readwrite("timestepSafetyCoefficient", &GlobalStiffnessTimeStepper::timestepSafetyCoefficient)
+      .def_readwrite("defaultDt", &GlobalStiffnessTimeStepper::defaultDt)
+      .def_readwrite("maxDt", &GlobalStiffnessTimeStepper::maxDt)
+      .def_readwrite("timeStepUpdateInterval", &GlobalStiffnessTimeStepper::timeStepUpdateInterval)
+      .def_readwrite("previousDt", &GlobalStiffnessTimeStepper::previousDt)
+      .def_readwrite("computedOnce", &GlobalStiffnessTimeStepper::computedOnce)
+      .def("stiffnessTimeStep", &GlobalStiffnessTimeStepper::stiffnessTimeStep);
+  m.def("rayleighWaveTimeStep", &rayleighWaveTimeStep);
+  m.def("growParticles", &growParticles);
+  m.def("setContactFriction", &setContactFriction);
+
+  py::class_<PeriTriaxController, Engine, std::shared_ptr<PeriTriaxController>>(m, "PeriTriaxController")
+      .def(py::init<>())
+      .def_readwrite("goal", &PeriTriaxController::goal)
+      .def_readwrite("stressMask", &PeriTriaxController::stressMask)
+      .def_readwrite("maxStrainRate", &PeriTriaxController::maxStrainRate)
+      .def_readwrite("maxUnbalanced", &PeriTriaxController::maxUnbalanced)
+      .def_readwrite("absStressTol", &PeriTriaxController::absStressTol)
+      .def_readwrite("relStressTol", &PeriTriaxController::relStressTol)
+      .def_readwrite("growDamping", &PeriTriaxController::growDamping)
+      .def_readwrite("globUpdate", &PeriTriaxController::globUpdate)
+      .def_readwrite("dynCell", &PeriTriaxController::dynCell)
+      .def_readwrite("mass", &PeriTriaxController::mass)
+      .def_readwrite("doneHook", &PeriTriaxController::doneHook)
+      .def_readwrite("stress", &PeriTriaxController::stress)
+      .def_readwrite("strain", &PeriTriaxController::strain)
+      .def_readwrite("strainRate", &PeriTriaxController::strainRate)
+      .def_readwrite("stiff", &PeriTriaxController::stiff)
+      .def_readwrite("stressTensor", &PeriTriaxController::stressTensor)
+      .def_readwrite("prevGrow", &PeriTriaxController::prevGrow)
+      .def_readwrite("maxBodySpan", &PeriTriaxController::maxBodySpan)
+      .def_readwrite("currUnbalanced", &PeriTriaxController::currUnbalanced)
+      .def_readwrite("externalWork", &PeriTriaxController::externalWork);
+
+  using T = TriaxialStressController;
+  py::class_<T, Engine, std::shared_ptr<T>>(m, "TriaxialStressController")
+      .def(py::init<>())
+      .def_readwrite("wallIds", &T::wallIds)
+      .def_readwrite("wallActivated", &T::wallActivated)
+      .def_readwrite("goal1", &T::goal1)
+      .def_readwrite("goal2", &T::goal2)
+      .def_readwrite("goal3", &T::goal3)
+      .def_readwrite("stressMask", &T::stressMask)
+      .def_readwrite("internalCompaction", &T::internalCompaction)
+      .def_readwrite("maxMultiplier", &T::maxMultiplier)
+      .def_readwrite("finalMaxMultiplier", &T::finalMaxMultiplier)
+      .def_readwrite("max_vel", &T::max_vel)
+      .def_readwrite("stressDamping", &T::stressDamping)
+      .def_readwrite("strainDamping", &T::strainDamping)
+      .def_readwrite("thickness", &T::thickness)
+      .def_readwrite("stiffnessUpdateInterval", &T::stiffnessUpdateInterval)
+      .def_readwrite("radiusControlInterval", &T::radiusControlInterval)
+      .def_readwrite("computeStressStrainInterval", &T::computeStressStrainInterval)
+      .def_readwrite("updatePorosity", &T::updatePorosity)
+      .def_readwrite("stressVectors", &T::stress)
+      .def_readwrite("force", &T::force)
+      .def_readwrite("stiffness", &T::stiffness)
+      .def_readwrite("previousTranslation", &T::previousTranslation)
+      .def_readwrite("strain", &T::strain)
+      .def_readwrite("volumetricStrain", &T::volumetricStrain)
+      .def_readwrite("meanStress", &T::meanStress)
+      .def_readwrite("porosity", &T::porosity)
+      .def_readwrite("boxVolume", &T::boxVolume)
+      .def_readwrite("particlesVolume", &T::particlesVolume)
+      .def_readwrite("width", &T::width)
+      .def_readwrite("height", &T::height)
+      .def_readwrite("depth", &T::depth)
+      .def_readwrite("width0", &T::width0)
+      .def_readwrite("height0", &T::height0)
+      .def_readwrite("depth0", &T::depth0)
+      .def_readwrite("externalWork", &T::externalWork)
+      .def_readwrite("previousStress", &T::previousStress)
+      .def_readwrite("previousMultiplier", &T::previousMultiplier)
+      .def_readwrite("first", &T::first)
+      .def("computeStressStrain", &T::computeStressStrain);
+}

@@ -1,0 +1,50 @@
+"""Run one scenario script in Talus and in Yade (its twin run), for side-by-side cases.
+
+A scenario script runs unchanged in both programs (``try: O / except NameError: from talus.dem
+import *``); it reads its parameters from the JSON in the environment variable
+``TALUS_SCENARIO`` and prints its result as one line ``RESULT {json}``. Yade runs it with
+``yade -n -j1 -x`` in the script's folder (Yade scripts have no ``__file__``); Talus runs it with
+this interpreter and this talus package, single-threaded like Yade.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ENV = "TALUS_SCENARIO"
+
+
+class ScenarioFailed(RuntimeError):
+    """The scenario exited with an error or printed no RESULT line."""
+
+
+def yade_available() -> bool:
+    return shutil.which("yade") is not None
+
+
+def run(script: str | os.PathLike, params: dict, program: str = "talus", timeout: float = 3600) -> dict:
+    """Run ``script`` with ``params`` in ``program`` ("talus" or "yade"); returns its RESULT."""
+    script = Path(script).resolve()
+    env = {**os.environ, ENV: json.dumps(params), "OMP_NUM_THREADS": "1"}
+    if program == "yade":
+        if not yade_available():
+            raise ScenarioFailed("yade is not installed")
+        command = [shutil.which("yade"), "-n", "-j1", "-x", str(script)]
+    elif program == "talus":
+        import talus
+        package_parent = str(Path(talus.__file__).resolve().parent.parent)
+        env["PYTHONPATH"] = os.pathsep.join([package_parent, env.get("PYTHONPATH", "")])
+        command = [sys.executable, str(script)]
+    else:
+        raise ValueError(f"program must be 'talus' or 'yade', got {program!r}")
+    done = subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=env, cwd=script.parent)
+    lines = [l for l in done.stdout.splitlines() if l.startswith("RESULT ")]
+    if done.returncode != 0 or not lines:
+        raise ScenarioFailed(f"{program} {script.name} failed (exit {done.returncode}):\n"
+                             + done.stdout[-3000:] + done.stderr[-3000:])
+    return json.loads(lines[-1][len("RESULT "):])

@@ -1,0 +1,140 @@
+"""SpherePack.makeCloud: counts, size distributions, no overlaps, determinism, and the same
+clouds as Yade's for the same seed; save/load and toSimulation."""
+import itertools
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from talus.dem import O, Scene, pack, porosity
+
+HERE = Path(__file__).parent
+
+
+def arrays(sp):
+    c = np.array([s[0] for s in sp])
+    r = np.array([s[1] for s in sp])
+    return c, r
+
+
+def min_gap(c, r, cell=None):
+    """Smallest surface gap between two spheres (periodic images with ``cell``)."""
+    d = c[:, None, :] - c[None, :, :]
+    if cell is not None:
+        d -= np.round(d / cell) * cell
+    dist = np.linalg.norm(d, axis=2) - (r[:, None] + r[None, :])
+    np.fill_diagonal(dist, np.inf)
+    return dist.min()
+
+
+def test_uniform_cloud_inside_box_no_overlap_and_radii():
+    sp = pack.SpherePack()
+    n = sp.makeCloud((0, 0, 0), (2, 1, 1), rMean=.06, rRelFuzz=.3, seed=4)
+    c, r = arrays(sp)
+    assert n == len(sp) > 100
+    assert np.all(r >= .06 * .7 - 1e-15) and np.all(r <= .06 * 1.3 + 1e-15)
+    assert np.all(c - r[:, None] >= -1e-12) and np.all(c + r[:, None] <= np.array([2, 1, 1]) + 1e-12)
+    assert min_gap(c, r) > 0
+
+
+def test_num_gives_exact_count_and_deterministic_radii():
+    sp = pack.SpherePack()
+    assert sp.makeCloud((0, 0, 0), (1, 1, 1), rMean=.05, rRelFuzz=.5, num=150, seed=1) == 150
+    _, r = arrays(sp)
+    # radii decrease linearly from rMean (1 + fuzz (N - 1)/(N + 1)) ... as Yade's deterministic sizes
+    N = 150
+    expected = .05 * (2 * ((N - np.arange(N) + .5) / (N + 1.) - .5) * .5 + 1)
+    assert np.allclose(r, expected, rtol=1e-14)
+
+
+def test_porosity_mode_reaches_num_and_target_porosity():
+    sp = pack.SpherePack()
+    assert sp.makeCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.2, num=300, porosity=.8, seed=2) == 300
+    c, r = arrays(sp)
+    solid = np.sum(4 / 3 * np.pi * r ** 3)
+    assert abs((1 - solid) - .8) < .02     # the radius follows from the porosity asked for
+
+
+def test_psd_by_count_follows_the_distribution():
+    sp = pack.SpherePack()
+    sizes, cumm = [.04, .06, .1], [0, .5, 1]
+    sp.makeCloud((0, 0, 0), (1, 1, 1), psdSizes=sizes, psdCumm=cumm, num=400, seed=3)
+    assert len(sp) == 400
+    _, r = arrays(sp)
+    d = 2 * r / sp.appliedPsdScaling
+    # by count: half of the spheres below the middle sieve size
+    assert abs(np.mean(d < .06 - 1e-12) - .5) < 0.01
+    edges, passing = sp.psd(bins=20, mass=False)
+    assert len(edges) == 21 and passing[0] == 0 and abs(passing[-1] - 1) < 1e-12
+    assert np.all(np.diff(passing) >= 0)
+
+
+def test_psd_of_equal_spheres_is_one_bin():
+    sp = pack.SpherePack([((0, 0, 0), .1), ((1, 0, 0), .1)])
+    edges, cumm = sp.psd(bins=4)
+    assert np.allclose(edges, [-.3, -.05, .2, .45, .7]) and np.allclose(cumm, [0, 0, 0, 1, 1])  # d = .2 falls in bin int(4 * .5 / 1) = 2
+
+
+def test_periodic_cloud_has_no_overlap_across_the_boundary():
+    sp = pack.SpherePack()
+    sp.makeCloud((0, 0, 0), (1, 1, 1), rMean=.08, rRelFuzz=.3, periodic=True, seed=9)
+    c, r = arrays(sp)
+    assert np.allclose(sp.cellSize, 1) and len(sp) > 50
+    assert min_gap(c, r, cell=np.ones(3)) > 0
+    scene = Scene()
+    ids = sp.toSimulation(scene)
+    assert scene.periodic and len(ids) == len(sp) and np.allclose(scene.cell.hSize, np.eye(3))
+    assert abs(porosity(scene=scene) - (1 - np.sum(4 / 3 * np.pi * r ** 3))) < 1e-12
+
+
+def test_seed_is_deterministic_and_seeds_differ():
+    def cloud(seed):
+        sp = pack.SpherePack()
+        sp.makeCloud((0, 0, 0), (1, 1, 1), rMean=.07, rRelFuzz=.4, seed=seed)
+        return np.array([list(c) + [r] for c, r in sp])
+    a, b, c = cloud(5), cloud(5), cloud(6)
+    assert np.array_equal(a, b)
+    assert a.shape != c.shape or not np.array_equal(a, c)
+
+
+def test_bad_arguments_are_named():
+    sp = pack.SpherePack()
+    with pytest.raises(ValueError, match="psdCumm"):
+        sp.makeCloud((0, 0, 0), (1, 1, 1), psdSizes=[.1, .2], psdCumm=[0, .5])
+    with pytest.raises(ValueError, match="rMean"):
+        sp.makeCloud((0, 0, 0), (1, 1, 1))
+    with pytest.raises(ValueError, match="maxCorner"):
+        sp.makeCloud((0, 0, 0), (-1, 1, 1), rMean=.1)
+    with pytest.raises(ValueError, match="sphere #1"):
+        pack.SpherePack([((0, 0, 0), .1), ((1, 0, 0), -1)])
+
+
+def test_save_load_round_trip(tmp_path):
+    sp = pack.SpherePack()
+    sp.makeCloud((0, 0, 0), (1, 1, 1), rMean=.1, rRelFuzz=.3, periodic=True, seed=1)
+    sp.save(tmp_path / "cloud.txt")
+    back = pack.SpherePack()
+    back.load(tmp_path / "cloud.txt")
+    assert np.array_equal(back.cellSize, sp.cellSize)
+    assert all(np.array_equal(a[0], b[0]) and a[1] == b[1] for a, b in itertools.zip_longest(sp, back))
+
+
+@pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed")
+def test_seeded_clouds_equal_yades(build_dir):
+    def run(cmd, env=None):
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env, cwd=HERE)
+        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+        line = next(l for l in done.stdout.splitlines() if l.startswith("CLOUDS "))
+        return json.loads(line[len("CLOUDS "):])
+    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
+    ours = run([sys.executable, str(HERE / "cloud_side_by_side.py")], env=env)
+    theirs = run([shutil.which("yade"), "-n", "-j1", "-x", str(HERE / "cloud_side_by_side.py")])
+    for name in theirs:
+        assert ours[name]["n"] == theirs[name]["n"], name
+        a, b = np.array(ours[name]["spheres"]), np.array(theirs[name]["spheres"])
+        assert a.shape == b.shape and np.max(np.abs(a - b)) <= 1e-14, name

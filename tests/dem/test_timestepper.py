@@ -1,0 +1,100 @@
+"""GlobalStiffnessTimeStepper and RayleighWaveTimeStep: analytic values on one contact, Yade's
+values on identical input, the update rules (default step, 5 % growth cap, maxDt, O.dt by hand)."""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from talus.dem import *  # noqa: F401,F403
+
+HERE = Path(__file__).parent
+
+
+def sphere_on_wall(coefficient=0.5, **kw):
+    scene = Scene()
+    scene.materials.append(FrictMat(young=1e7, poisson=0.3, density=2000))
+    scene.bodies.append([wall(0, axis=2), sphere((0, 0, 0.099), 0.1)])
+    stepper = GlobalStiffnessTimeStepper(timestepSafetyCoefficient=coefficient, **kw)
+    scene.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                                     [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                     stepper, NewtonIntegrator(damping=0.9)]
+    return scene, stepper
+
+
+def test_one_contact_gives_the_oscillator_period():
+    scene, stepper = sphere_on_wall(0.5)
+    scene.step()
+    (c,) = scene.contacts()
+    m = scene.bodies[1].state.mass
+    # normal along z: translational stiffness max(kn, ks) = kn; rotation I/(ks r^2) = 0.4 m / ks > m / kn
+    expected = 1.41044 * 0.5 * math.sqrt(m / c["kn"])
+    assert abs(scene.dt - expected) <= 1e-14 * expected
+    assert abs(stepper.stiffnessTimeStep(scene) - expected) <= 1e-12 * expected
+
+
+def test_rotational_stiffness_governs_when_shear_is_stiff():
+    scene, stepper = sphere_on_wall(0.5)
+    scene.materials[0].poisson = 1.0     # ks = kn: rotation 0.4 m / ks is the shorter period
+    scene.step()
+    (c,) = scene.contacts()
+    m = scene.bodies[1].state.mass
+    assert c["ks"] == c["kn"]
+    expected = 1.41044 * 0.5 * math.sqrt(0.4 * m * 0.1 ** 2 / (c["ks"] * 0.1 ** 2))
+    assert abs(scene.dt - expected) <= 1e-14 * expected
+
+
+def test_default_dt_before_contacts_growth_cap_and_max_dt():
+    scene, stepper = sphere_on_wall(0.5)
+    scene.bodies[1].state.pos = (0, 0, 0.5)       # no contact yet
+    scene.step()
+    assert scene.dt == 0.5 * PWaveTimeStep(scene)
+    scene, stepper = sphere_on_wall(0.5, maxDt=1e-5)
+    scene.step()
+    assert scene.dt == 1e-5
+    scene, stepper = sphere_on_wall(0.5)
+    scene.step()
+    first = scene.dt
+    scene.materials[0].young = 1e5   # new contacts would be softer, this one keeps its stiffness
+    stepper._cpp.previousDt = first / 2
+    scene.step()
+    assert scene.dt == pytest.approx(1.05 * first / 2, rel=1e-15)   # at most 5 % more per update
+
+
+def test_setting_dt_by_hand_deactivates_the_stepper():
+    scene, stepper = sphere_on_wall(0.5)
+    scene.dt = 1e-6
+    assert not stepper.active
+    scene.step()
+    assert scene.dt == 1e-6
+
+
+def test_rayleigh_time_step_formula():
+    scene = Scene()
+    scene.materials.append(FrictMat(young=2e7, poisson=0.2, density=3000))
+    scene.bodies.append([sphere((0, 0, 0), 0.2), sphere((1, 0, 0), 0.05)])
+    G = 2e7 / (2 * 1.2)
+    expected = math.pi * 0.05 / (0.1631 * 0.2 + 0.876605) * math.sqrt(3000 / G)
+    assert RayleighWaveTimeStep(scene) == pytest.approx(expected, rel=1e-14)
+
+
+@pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed")
+def test_time_steps_equal_yades(build_dir):
+    def run(cmd, env=None):
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env, cwd=HERE)
+        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
+        return json.loads(next(l for l in done.stdout.splitlines() if l.startswith("DT "))[3:])
+    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
+    ours = run([sys.executable, str(HERE / "timestepper_side_by_side.py")], env=env)
+    theirs = run([shutil.which("yade"), "-n", "-j1", "-x", str(HERE / "timestepper_side_by_side.py")])
+    assert ours["n"] == theirs["n"]
+    assert ours["dt"][0] == pytest.approx(theirs["dt"][0], rel=1e-14)   # the same contacts, the same step
+    assert np.allclose(ours["dt"], theirs["dt"], rtol=1e-12, atol=0)
+    assert ours["rayleigh"] == pytest.approx(theirs["rayleigh"], rel=1e-14)
+    assert ours["pwave"] == pytest.approx(theirs["pwave"], rel=1e-14)
