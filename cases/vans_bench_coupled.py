@@ -9,9 +9,13 @@ Set-up:   the scene of cases/vans_sediment_transport.py (1165 grains over 100 fi
           (yade -j1; OMP_NUM_THREADS=1 for Talus: talus -j1 comes too late, libgomp is already
           loaded when the CLI sets it). Each runs a deposition phase without fluid and then the coupled
           phase from the same deposited state (Talus's, written to a JSON file), both timed inside
-          the program: 0.1 s deposition + 0.2 s coupled (quick: 0.05 s + 0.1 s).
+          the program: quick 0.05 s deposition + 0.1 s coupled; full 0.4 s + 4 s.
 Checked:  speed ratio Yade time / Talus time of the coupled phase (issue #4's target >= 3),
-          record vans.bench.coupled; the deposition ratio is an extra.
+          record vans.bench.coupled; the deposition ratio is an extra. Full mode only (0.4 s
+          deposition, 4 s coupled): the transport rate averaged over the second half of the
+          coupled phase in both programs, standard errors from 0.5 s block means; record
+          vans.transport-vs-yade, the difference in standard errors (<= 3: within scatter).
+          Yade's qs is computed from its averageProfile() of each coupling, as Talus's.
           If yade is not installed the case says so and records nothing.
 """
 import json
@@ -45,9 +49,14 @@ hydro = HydroForceEngine(densFluid=h["densFluid"], viscoDyn=h["viscoDyn"], zRef=
                          gravity=Vector3(*h["gravity"]), deltaZ=h["deltaZ"], expoRZ=3.1, lift=False,
                          nCell=h["nCell"], vCell=h["vCell"], radiusPart=h["radiusPart"], phiMax=h["phiMax"],
                          ids=cfg["mobile"], dead=True)
+series = {"time": [], "qs": []}
+scale = ((cfg["densPart"] / h["densFluid"] - 1) * abs(h["gravity"][2]) * cfg["diameter"] ** 3) ** 0.5
 def fluidModel():
     hydro.averageProfile()
     hydro.fluidResolution(cfg["period"], cfg["dtFluid"])
+    phi, v = hydro.phiPart, hydro.vPart
+    series["time"].append(O.time)
+    series["qs"].append(sum(phi[i] * v[i][0] for i in range(len(phi))) * h["deltaZ"] / scale)
 newton = NewtonIntegrator(damping=0.2, gravity=Vector3(*h["gravity"]))
 runner = PyRunner(command="fluidModel()", iterPeriod=cfg["couplingSteps"], dead=True)
 O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()], allowBiggerThanPeriod=True),
@@ -68,10 +77,22 @@ hydro.turbulentFluctuation()
 hydro.averageProfile()
 hydro.fluidResolution(cfg["initialFluid"], cfg["dtFluid"])
 t = time.perf_counter(); O.run(cfg["coupledSteps"], True); coupled = time.perf_counter() - t
-json.dump({"deposition": depo, "coupled": coupled}, open(sys.argv[-1], "w"))
+json.dump({"deposition": depo, "coupled": coupled, "series": series}, open(sys.argv[-1], "w"))
 '''
 
-INITIAL_FLUID = 0.1   # s of fluid resolution before the coupled phase (not timed)
+INITIAL_FLUID = 1.0   # s of fluid resolution before the coupled phase (not timed), as Yade's example
+
+
+def block_mean(t, q, start, block=0.5):
+    """Mean of q over t > start and its standard error from block means (the series is
+    correlated over a few couplings)."""
+    t, q = np.asarray(t), np.asarray(q)
+    keep = t > start
+    t, q = t[keep], q[keep]
+    blocks = [q[(t >= a) & (t < a + block)] for a in np.arange(start, t.max(), block)]
+    means = np.array([b.mean() for b in blocks if len(b)])
+    error = means.std(ddof=1) / np.sqrt(len(means)) if len(means) > 1 else float("nan")
+    return float(q.mean()), float(error)
 
 
 def main():
@@ -81,7 +102,7 @@ def main():
         print("yade is not installed: nothing to compare with, no record written")
         return
     case = results.Case("vans.bench.coupled", quick=args.quick, folder=args.results)
-    deposition, coupled = (0.05, 0.1) if args.quick else (0.1, 0.2)
+    deposition, coupled = (0.05, 0.1) if args.quick else (0.4, 4.0)
     s, hydro, newton, mobile = st.build()
     n_depo, n_coupled = round(deposition / s.dt), round(coupled / s.dt)
     mat = s.materials[0]
@@ -94,7 +115,8 @@ def main():
                      "gravity": list(st.GRAVITY), "deltaZ": hydro.deltaZ, "nCell": st.N_CELL,
                      "vCell": hydro.vCell, "radiusPart": st.D / 2, "phiMax": st.PHI_MAX},
            "period": st.PERIOD, "dtFluid": st.DT_FLUID, "couplingSteps": round(st.PERIOD / s.dt), "dt": s.dt,
-           "depositionSteps": n_depo, "coupledSteps": n_coupled, "initialFluid": INITIAL_FLUID}
+           "depositionSteps": n_depo, "coupledSteps": n_coupled, "initialFluid": INITIAL_FLUID,
+           "densPart": st.RHO_P, "diameter": st.D}
 
     start = time.perf_counter()
     s.run(n_depo)
@@ -129,6 +151,20 @@ def main():
                 talus_s=talus_coupled, yade_s=theirs["coupled"], steps=n_coupled,
                 deposition_ratio=theirs["deposition"] / talus_depo, talus_deposition_s=talus_depo,
                 yade_deposition_s=theirs["deposition"])
+    if args.quick:
+        return
+    # Transport rate, time-averaged over the second half of the coupled phase, in both.
+    t0 = s.time - coupled
+    ours = block_mean(np.array(coupling.series["time"]) - t0, coupling.series["transportRate"], coupled / 2)
+    yade_t0 = theirs["series"]["time"][0] - st.PERIOD if theirs["series"]["time"] else 0.0
+    yade = block_mean(np.array(theirs["series"]["time"]) - yade_t0, theirs["series"]["qs"], coupled / 2)
+    sigmas = abs(ours[0] - yade[0]) / np.hypot(ours[1], yade[1])
+    print(f"transport rate (second half): Talus {ours[0]:.4f} +- {ours[1]:.4f}, Yade {yade[0]:.4f} +- {yade[1]:.4f}, "
+          f"{sigmas:.1f} standard errors apart")
+    results.Case("vans.transport-vs-yade", quick=False, folder=args.results).record(
+        "difference of the time-averaged transport rates in standard errors (Talus vs Yade)", float(sigmas),
+        "Yade 2023.02a, same scene, coupled example, second half of the run", 3.0,
+        talus_mean=ours[0], talus_error=ours[1], yade_mean=yade[0], yade_error=yade[1], coupled_s=coupled)
 
 
 if __name__ == "__main__":

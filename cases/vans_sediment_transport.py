@@ -122,7 +122,7 @@ def main():
         s.run(chunk)
         if s.time - t0 > transport / 2:
             profiles["phi"].append(hydro.phiPart)
-            profiles["vx"].append(hydro.vxPart)
+            profiles["vx"].append(hydro.vxPart * hydro.phiPart)    # phi-weighted, see below
             profiles["u"].append(hydro.vxFluid)
     wall = time.perf_counter() - start
     series = coupling.series
@@ -157,7 +157,11 @@ def main():
     b1.plot(np.mean(profiles["phi"], axis=0), zc)
     b1.set_xlabel("solid fraction")
     b1.set_ylabel("z / d")
-    b2.plot(np.mean(profiles["vx"], axis=0), zc)
+    # Mean particle velocity weighted by the solid fraction: <phi v> / <phi> (layers that are
+    # empty in some samples do not pull the mean down).
+    phi_mean = np.mean(profiles["phi"], axis=0)
+    occupied = phi_mean > 1e-4
+    b2.plot(np.mean(profiles["vx"], axis=0)[occupied] / phi_mean[occupied], zc[occupied])
     b2.set_xlabel("particle velocity (m/s)")
     b3.plot(np.mean(profiles["u"], axis=0), (hydro.fluid.zFluid) / D)
     b3.set_xlabel("fluid velocity (m/s)")

@@ -25,7 +25,7 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from talus import _flow
+from talus import _dem, _flow
 from talus.dem.engines import Engine
 from talus.flow.vans import VansFluid
 
@@ -130,7 +130,6 @@ class HydroForceEngine(Engine):
         self._vy = np.zeros(self.nCell)
         self._vz = np.zeros(self.nCell)
         self._spheres: tuple[int, np.ndarray] | None = None
-        from talus import _dem
         self._cpp = _dem.CallbackEngine()
         self._cpp.iterPeriod = 1
         self._cpp.initRun = True   # every step, the first one included

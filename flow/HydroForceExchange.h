@@ -1,0 +1,43 @@
+#pragma once
+
+// The C++ route of HydroForce into a DEM scene: through the particle exchange interface only.
+// Header-only so that talus_flow itself does not depend on talus_dem; a program using it links
+// both (Talus::flow and Talus::dem).
+#include "dem/Exchange.h"
+#include "flow/HydroForce.h"
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace talus::flow
+{
+static_assert(sizeof(dem::Vec3) == 3 * sizeof(double), "the exchange arrays must be packed triples of doubles");
+
+/// The exchange's arrays as HydroForce reads them (no copies; valid until bodies are added).
+inline ParticleArrays particleArrays(const dem::ParticleExchange& exchange)
+{
+  const auto pos = exchange.positions();
+  const auto vel = exchange.velocities();
+  return {{reinterpret_cast<const double*>(pos.data()), 3 * pos.size()},
+          {reinterpret_cast<const double*>(vel.data()), 3 * vel.size()},
+          exchange.radii()};
+}
+
+/// Apply `hydro`'s forces to the particles `ids` every step, from a hook placed right after the
+/// ForceResetter (Yade's HydroForceEngine in the engine list). `hydro` and `exchange` must
+/// outlive the hook; returns it (set `dead` to stop).
+inline std::shared_ptr<dem::CallbackEngine> attachHydroForce(dem::ParticleExchange& exchange, HydroForce& hydro,
+                                                               std::vector<std::int64_t> ids)
+{
+  return exchange.addHook(dem::ParticleExchange::HookPoint::BeforeForces,
+                          [&exchange, &hydro, ids = std::move(ids)] {
+                            const auto forces = exchange.stepForces();
+                            hydro.action(particleArrays(exchange), ids,
+                                         {reinterpret_cast<double*>(forces.data()), 3 * forces.size()},
+                                         exchange.dt());
+                          });
+}
+} // namespace talus::flow
