@@ -8,6 +8,7 @@
 #include "dem/Measurements.h"
 #include "dem/NewtonIntegrator.h"
 #include "dem/Scene.h"
+#include "dem/Threads.h"
 #include "dem/build_config.h"
 
 #include <pybind11/eigen.h>
@@ -55,6 +56,12 @@ PYBIND11_MODULE(_dem, m)
   void talus_wrap_io(py::module_&); talus_wrap_io(m); // checkpoints and export arrays: io_wrappers.cpp
   void talus_wrap_pack(py::module_&); talus_wrap_pack(m); // SpherePack: pack_wrappers.cpp
   m.def("version", [] { return std::string(talus::version()); });
+  m.def("threadCount", &threadCount);
+  m.def("setThreadCount", [](int n) {
+    if (n < 1)
+      throw std::invalid_argument("the number of threads must be at least 1, got " + std::to_string(n));
+    setThreadCount(n);
+  });
   m.def("build_config", [] {
     std::vector<std::tuple<std::string, std::string, bool, std::string>> rows;
     for (const talus::BuildEntry& e : talus::build_config())

@@ -23,8 +23,13 @@ def test_run_passes_arguments_and_runs_as_main(talus_cmd, tmp_path):
 
 def test_run_sets_thread_count(talus_cmd, tmp_path):
     script = tmp_path / "threads.py"
-    script.write_text("import os\nprint('threads', os.environ['OMP_NUM_THREADS'])\n")
-    assert "threads 3" in talus_cmd("run", "-j", "3", script).stdout
+    # Both the environment (for child processes) and the running OpenMP runtime, which read
+    # OMP_NUM_THREADS when talus was imported, before -j was seen.
+    script.write_text("import os\nfrom talus import _dem\n"
+                      "print('threads', os.environ['OMP_NUM_THREADS'], _dem.threadCount())\n")
+    import talus
+    expected = "threads 3 3" if talus.build_info()["features"]["openmp"][0] else "threads 3 1"
+    assert expected in talus_cmd("run", "-j", "3", script).stdout
 
 
 def test_run_propagates_exit_status_and_errors(talus_cmd, tmp_path):

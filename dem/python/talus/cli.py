@@ -27,7 +27,8 @@ def _run(args: argparse.Namespace) -> int:
         if args.threads < 1:
             print(f"talus run: -j must be at least 1, got {args.threads}", file=sys.stderr)
             return 2
-        os.environ["OMP_NUM_THREADS"] = str(args.threads)
+        os.environ["OMP_NUM_THREADS"] = str(args.threads)   # for child processes
+        talus._dem.setThreadCount(args.threads)             # this one's runtime already started
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))
     try:
