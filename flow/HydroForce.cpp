@@ -1,9 +1,10 @@
 #include "flow/HydroForce.h"
 
+#include "flow/InputChecks.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -11,38 +12,14 @@ namespace talus::flow
 {
 namespace
 {
-std::string str(double value)
-{
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
+constexpr const char* owner = "HydroForceEngine";
+using checks::str;
 
-void require(bool ok, const char* name, const std::string& what)
-{
-  if (!ok)
-    throw std::invalid_argument(std::string("HydroForceEngine: ") + name + " " + what);
-}
-
-void requireFinite(double value, const char* name)
-{
-  require(std::isfinite(value), name, "must be finite, got " + str(value));
-}
-
+void require(bool ok, const char* name, const std::string& what) { checks::require(ok, owner, name, what); }
+void requireFinite(double value, const char* name) { checks::requireFinite(value, owner, name); }
 void checkProfile(const char* name, std::span<const double> values, std::size_t expected, bool isFraction)
 {
-  if (values.size() != expected)
-    throw std::invalid_argument(std::string("HydroForceEngine: ") + name + " has " + std::to_string(values.size())
-                                + " values, expected " + std::to_string(expected));
-  for (std::size_t i = 0; i < values.size(); ++i)
-  {
-    if (!std::isfinite(values[i]))
-      throw std::invalid_argument(std::string("HydroForceEngine: ") + name + "[" + std::to_string(i)
-                                  + "] is not finite");
-    if (isFraction && (values[i] < 0.0 || values[i] >= 1.0))
-      throw std::invalid_argument(std::string("HydroForceEngine: ") + name + "[" + std::to_string(i) + "] = "
-                                  + str(values[i]) + " is not a solid fraction in [0, 1)");
-  }
+  checks::checkProfile(owner, name, values, expected, isFraction);
 }
 
 int layerOf(double height, double deltaZ)

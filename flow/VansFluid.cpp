@@ -1,13 +1,13 @@
 #include "flow/VansFluid.h"
 
 #include "flow/EffectiveViscosity.h"
+#include "flow/InputChecks.h"
 #include "flow/MixingLength.h"
 #include "flow/WallFriction.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -16,29 +16,11 @@ namespace talus::flow
 {
 namespace
 {
-std::string str(double value)
-{
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
+using checks::str;
 
-/// Check a profile's size, that its values are finite and, for a solid fraction, in [0, 1).
 void checkProfile(const char* name, std::span<const double> values, std::size_t expected, bool isFraction)
 {
-  if (values.size() != expected)
-    throw std::invalid_argument(std::string("VansFluid: ") + name + " has " + std::to_string(values.size())
-                                + " values, expected " + std::to_string(expected));
-  for (std::size_t i = 0; i < values.size(); ++i)
-  {
-    const double v = values[i];
-    if (!std::isfinite(v))
-      throw std::invalid_argument(std::string("VansFluid: ") + name + "[" + std::to_string(i)
-                                  + "] is not finite (" + str(v) + ")");
-    if (isFraction && (v < 0.0 || v >= 1.0))
-      throw std::invalid_argument(std::string("VansFluid: ") + name + "[" + std::to_string(i)
-                                  + "] = " + str(v) + " is not a solid fraction in [0, 1)");
-  }
+  checks::checkProfile("VansFluid", name, values, expected, isFraction);
 }
 
 void requireTime(bool ok, const char* name, double value, const char* what)

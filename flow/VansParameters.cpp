@@ -1,7 +1,8 @@
 #include "flow/VansParameters.h"
 
+#include "flow/InputChecks.h"
+
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -9,23 +10,11 @@ namespace talus::flow
 {
 namespace
 {
-std::string str(double value)
-{
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
+constexpr const char* owner = "VansFluid";
+using checks::str;
 
-void require(bool ok, const char* name, const std::string& what)
-{
-  if (!ok)
-    throw std::invalid_argument(std::string("VansFluid: ") + name + " " + what);
-}
-
-void requireFinite(double value, const char* name)
-{
-  require(std::isfinite(value), name, "must be finite, got " + str(value));
-}
+void require(bool ok, const char* name, const std::string& what) { checks::require(ok, owner, name, what); }
+void requireFinite(double value, const char* name) { checks::requireFinite(value, owner, name); }
 } // namespace
 
 void VansParameters::validate() const
