@@ -141,13 +141,13 @@ def test_seeded_clouds_equal_yades(build_dir):
 
 
 def test_compressed_cloud_to_porosity_and_to_stress():
-    dense = pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=150, seed=3, porosity=.42, stress=None)
-    assert len(dense) == 150 and dense.isPeriodic
+    dense = pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=100, seed=3, porosity=.42, stress=None)
+    assert len(dense) == 100 and dense.isPeriodic
     c, r = arrays(dense)
     solid = np.sum(4 / 3 * np.pi * r ** 3)
     assert 1 - solid / np.prod(dense.cellSize) == pytest.approx(.42, abs=1e-6)
     assert np.all(c >= 0) and np.all(c < dense.cellSize)
-    stressed = pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=150, seed=3, stress=-2e4)
+    stressed = pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=100, seed=3, stress=-2e4)
     scene = Scene()
     stressed.toSimulation(scene)
     scene.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
