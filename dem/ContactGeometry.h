@@ -159,7 +159,13 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(-r2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(r1 * normal));
+  // Lever arms r1 n and -r2 n avoid granular ratcheting; for facets Yade takes the arms to the
+  // contact point instead (its Ig2_Facet_Sphere_ScGeom), which Talus follows to give the same
+  // friction on facet walls.
+  const bool facetArms = c.kind == ContactGeometryKind::FacetSphere;
+  const Vec3 arm1 = facetArms ? Vec3(contactPoint - b.pos[i1]) : Vec3(r1 * normal);
+  const Vec3 arm2 = facetArms ? Vec3(contactPoint - b.pos[i2]) : Vec3(-r2 * normal);
+  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(arm2)) - (b.vel[i1] + b.angVel[i1].cross(arm1));
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }
