@@ -58,7 +58,7 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 /// normal (n_old x n_new) and by the mean spin about the normal (dt/2 n.(w1 + w2)), to first
 /// order as in the seed's "Shear deformation". The shear increment is the tangential part of
 /// the incident velocity at the contact times dt, with lever arms refR1 n and -refR2 n (Yade's
-/// avoidGranularRatcheting default).
+/// avoidGranularRatcheting default; for facets, as Yade, the arms to the contact point).
 /// `cell` is the periodic cell, or null when space is not periodic.
 inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt)
 {
@@ -68,6 +68,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   double penetration;
   Vec3 contactPoint;
   double r1, r2;
+  Vec3 arm1, arm2; // lever arms of the incident velocity
   Vec3 shiftVel = Vec3::Zero();
   if (cell)
   {
@@ -91,6 +92,8 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     penetration = reach - dist;
     normal = d / dist;
     contactPoint = b.pos[i1] + (r1 - 0.5 * penetration) * normal;
+    arm1 = r1 * normal;
+    arm2 = -r2 * normal;
   }
   else if (c.kind == ContactGeometryKind::FacetSphere)
   {
@@ -120,6 +123,10 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
     r1 = 2 * r;
     r2 = r;
+    // Yade's Ig2_Facet_Sphere_ScGeom takes the arms to the contact point (no ratcheting
+    // correction): the same here, so that friction on facet walls is Yade's.
+    arm1 = contactPoint - b.pos[i1];
+    arm2 = contactPoint - b.pos[i2];
   }
   else // WallSphere: body 1 is the wall; the contact point lies on the wall plane
   {
@@ -138,6 +145,8 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     normal[wall.axis] = side;
     contactPoint = b.pos[i2] - (r - penetration) * normal;
     r1 = r2 = r;
+    arm1 = r1 * normal;
+    arm2 = -r2 * normal;
   }
 
   if (c.real)
@@ -159,7 +168,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(-r2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(r1 * normal));
+  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(arm2)) - (b.vel[i1] + b.angVel[i1].cross(arm1));
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }

@@ -1,6 +1,7 @@
 #include "dem/NewtonIntegrator.h"
-
 #include "dem/Scene.h"
+
+#include "dem/Threads.h"
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +86,7 @@ void NewtonIntegrator::run(Scene& scene)
   const Vec3 w = spin(L), previousW = spin(previousL);
   const auto n = static_cast<std::int64_t>(b.size());
   std::int64_t firstBad = n;
-#pragma omp parallel for schedule(static) reduction(min : firstBad)
+#pragma omp parallel for if (n >= parallelLoopMinimum) schedule(static) reduction(min : firstBad)
   for (std::int64_t k = 0; k < n; ++k)
   {
     const auto i = static_cast<std::size_t>(k);

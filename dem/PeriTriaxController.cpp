@@ -3,6 +3,7 @@
 #include "dem/Measurements.h"
 #include "dem/Scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>

@@ -2,6 +2,7 @@
 
 #include "dem/Scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>

@@ -127,7 +127,8 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
       else
       {
         double solid = 0;
-        // 4 / 3 is 1 in integer arithmetic in Yade too: the estimate is kept as it is.
+        // Yade evaluates 4 / 3 in integer arithmetic (= 1) here; kept, so that the same arguments
+        // give the same scaling as in Yade.
         for (std::size_t i = 1; i < n; ++i)
           solid += 4 / 3 * M_PI * (psdCumm[i] - psdCumm[i - 1]) * num * std::pow(0.5 * (psdSizes[i] + psdSizes[i - 1]), 3)
                    * (1 + std::pow(0.5 * (psdSizes[i] - psdSizes[i - 1]), 2));

@@ -1,7 +1,8 @@
 """Scenario: the seed's gravity deposition tutorial (02-gravity-deposition): a seeded cloud
 (makeCloud, rMean `rMean`, rRelFuzz 0.5) falls into a facet box with an open top (FrictMat defaults,
-damping 0.4, dt 0.5 P-wave) until the unbalanced force is below `unbalanced` (checked every 200
-steps, after `minIter`). Runs unchanged in Yade (`yade -n -x`) and in Talus; parameters from
+damping 0.4, dt 0.5 P-wave) for the simulated time `time` (the same steps in both programs), or,
+without it, until the unbalanced force is below `unbalanced` (checked every 200 steps, after
+`minIter`). Runs unchanged in Yade (`yade -n -x`) and in Talus; parameters from
 $TALUS_SCENARIO (JSON), result printed as one `RESULT {json}` line (see talus.dem.twin).
 
 Measured, the same way in both programs: the porosity of the slab z in [zLow, zHigh] (sphere volume
@@ -23,7 +24,7 @@ except NameError:
     def contact_pairs():
         return [(c["id1"], c["id2"]) for c in O.contacts()]
 
-P = {"rMean": .05, "seed": 1, "unbalanced": .05, "minIter": 2000, "zLow": .05, "zHigh": .2,
+P = {"rMean": .05, "seed": 1, "time": None, "unbalanced": .05, "minIter": 2000, "zLow": .05, "zHigh": .2,
      **json.loads(os.environ.get("TALUS_SCENARIO", "{}"))}
 
 O.bodies.append(geom.facetBox((.5, .5, .5), (.5, .5, .5), wallMask=31))
@@ -39,7 +40,9 @@ O.engines = [
 ]
 O.dt = .5 * PWaveTimeStep()
 
-while True:
+if P["time"] is not None:
+    O.run(int(P["time"] / O.dt), True)
+while P["time"] is None:
     O.run(200, True)
     if O.iter >= P["minIter"] and unbalancedForce() < P["unbalanced"]:
         break

@@ -124,3 +124,25 @@ def test_strain_rate_control_and_homogenised_stress_equals_wall_stress():
     stress = getStress(volume, scene=scene)
     walls = [-(triax.stress(2 * a)[a] + triax.stress(2 * a + 1)[a]) / 2 for a in range(3)]
     assert np.allclose(np.diag(stress), [-w for w in walls], rtol=1e-6, atol=0), (np.diag(stress), walls)
+
+
+def test_checkpoint_restart_with_controllers_is_bit_identical(tmp_path):
+    scene, triax = walled_cloud(n=80, internalCompaction=False)
+    scene.run(300)
+    scene.save(tmp_path / "triax.h5")
+    scene.run(200)
+    expected = scene.positions().copy()
+    scene.load(tmp_path / "triax.h5")
+    scene.run(200)
+    assert np.array_equal(scene.positions(), expected)
+    peri = periodic_cloud(n=60)
+    peri.engines = frict_engines(PeriTriaxController(goal=(-1e4, -1e4, -1e4), stressMask=7, dynCell=True,
+                                                     doneHook="pass"))
+    peri.dt = .5 * PWaveTimeStep(peri)
+    peri.run(300)
+    peri.save(tmp_path / "peri.h5")
+    peri.run(200)
+    expected = peri.positions().copy()
+    peri.load(tmp_path / "peri.h5")
+    peri.run(200)
+    assert np.array_equal(peri.positions(), expected)

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import O, Scene, pack, porosity
+from talus.dem import *  # noqa: F401,F403
 
 HERE = Path(__file__).parent
 
@@ -138,3 +138,23 @@ def test_seeded_clouds_equal_yades(build_dir):
         assert ours[name]["n"] == theirs[name]["n"], name
         a, b = np.array(ours[name]["spheres"]), np.array(theirs[name]["spheres"])
         assert a.shape == b.shape and np.max(np.abs(a - b)) <= 1e-14, name
+
+
+def test_compressed_cloud_to_porosity_and_to_stress():
+    dense = pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=100, seed=3, porosity=.42, stress=None)
+    assert len(dense) == 100 and dense.isPeriodic
+    c, r = arrays(dense)
+    solid = np.sum(4 / 3 * np.pi * r ** 3)
+    assert 1 - solid / np.prod(dense.cellSize) == pytest.approx(.42, abs=1e-6)
+    assert np.all(c >= 0) and np.all(c < dense.cellSize)
+    stressed = pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=100, seed=3, stress=-2e4)
+    scene = Scene()
+    stressed.toSimulation(scene)
+    scene.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator()]
+    scene.dt = 1e-6
+    scene.step()
+    assert np.trace(getStress(scene=scene)) / 3 == pytest.approx(-2e4, rel=.02)
+    with pytest.raises(ValueError, match="compression"):
+        pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=20, seed=3, stress=1e4)

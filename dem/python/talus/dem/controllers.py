@@ -56,7 +56,7 @@ class GlobalStiffnessTimeStepper(Engine):
     bodies on their contact stiffnesses (translational kn, ks and rotational ks r^2), every
     ``timeStepUpdateInterval`` steps; ``defaultDt`` (default: timestepSafetyCoefficient x P-wave)
     before any contact; at most 5 % growth per update; ``maxDt`` caps it. Put it after the
-    InteractionLoop. As in Yade, setting ``O.dt`` by hand deactivates it (``active``)."""
+    InteractionLoop. As in Yade 2023, it overrides a step set by hand while ``active``."""
 
     def __init__(self, active: bool = True, timestepSafetyCoefficient: float = 0.8, defaultDt: float = -1,
                  maxDt: float = 1.7976931348623157e308, timeStepUpdateInterval: int = 1, label: str = ""):

@@ -233,3 +233,70 @@ class SpherePack:
                 spheres.append(([float(x) for x in items[:3]], float(items[3])))
         self.fromList(spheres)
         self.cellSize = cell
+
+
+def compressedCloud(minCorner, maxCorner, rMean: float = -1, rRelFuzz: float = 0, num: int = -1, seed: int = -1,
+                    stress: float | None = -1e5, porosity: float | None = None, young: float = 1e7,
+                    frictionAngle: float = 0.0, maxUnbalanced: float = 0.01, maxIter: int = 200000) -> "SpherePack":
+    """A dense periodic packing: a periodic makeCloud in [minCorner, maxCorner] (same size
+    parameters) compressed in a periodic cell, either isotropically to ``stress`` (Pa, negative:
+    compression) by PeriTriaxController, or, with ``porosity``, homothetically to that porosity.
+    The compaction runs frictionless by default (``frictionAngle``: denser packings) with FrictMat
+    ``young``, until the unbalanced force is below ``maxUnbalanced``. Returns the packing (its
+    ``cellSize`` is the compressed cell); ``toSimulation`` puts it in a scene.
+
+    :raises RuntimeError: if the target is not reached within ``maxIter`` steps
+    """
+    from talus.dem import (FrictMat, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriTriaxController,
+                           PWaveTimeStep, Scene, unbalancedForce)
+    from talus.dem.engines import (Bo1_Sphere_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom,
+                                   Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack)
+    from talus.dem.measure import porosity as scene_porosity
+    if (stress is None) == (porosity is None) and porosity is not None:
+        raise ValueError("compressedCloud: give either stress or porosity, not both")
+    cloud = SpherePack()
+    cloud.makeCloud(minCorner, maxCorner, rMean=rMean, rRelFuzz=rRelFuzz, num=num, periodic=True, seed=seed)
+    scene = Scene()
+    scene.materials.append(FrictMat(young=young, frictionAngle=frictionAngle))
+    cloud.toSimulation(scene)
+    done = []
+    if porosity is not None:
+        if not 0 < porosity < 1:
+            raise ValueError(f"compressedCloud: porosity must be in (0, 1), got {porosity}")
+        n0 = scene_porosity(scene=scene)
+        if porosity >= n0:
+            raise ValueError(f"compressedCloud: the cloud's porosity {n0:.3f} is already below {porosity}")
+        strain = np.log((1 - n0) / (1 - porosity)) / 3.0   # per axis: log of the volume ratio / 3
+        # strain control; reached when the cell's strain is the goal (a loose target has no contacts,
+        # hence no unbalanced force for the doneHook to wait for); the packing relaxes afterwards
+        controller = PeriTriaxController(goal=(strain,) * 3, stressMask=0, maxStrainRate=(.5, .5, .5))
+        reached = lambda: bool(np.all(np.abs(np.log(np.diag(scene.cell.trsf)) - strain) < 1e-9))
+    else:
+        if not stress < 0:
+            raise ValueError(f"compressedCloud: stress must be negative (compression), got {stress}")
+        controller = PeriTriaxController(goal=(stress,) * 3, stressMask=7, dynCell=True, maxStrainRate=(1, 1, 1),
+                                         maxUnbalanced=maxUnbalanced, relStressTol=1e-3,
+                                         doneHook=lambda: done.append(scene.pause()))
+    scene.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                     controller, NewtonIntegrator(damping=.4)]
+    scene.dt = .5 * PWaveTimeStep(scene)
+    while not (done or (porosity is not None and reached())):
+        if scene.iter >= maxIter:
+            raise RuntimeError(f"compressedCloud: the target was not reached in {maxIter} steps "
+                               f"(unbalanced force {unbalancedForce(scene=scene):.3g})")
+        scene.run(min(1000, maxIter - scene.iter))
+    if porosity is not None:
+        controller.dead = True
+        scene.cell.velGrad = np.zeros((3, 3))
+        while not unbalancedForce(scene=scene) <= maxUnbalanced and not np.isnan(unbalancedForce(scene=scene)):
+            if scene.iter >= maxIter:
+                raise RuntimeError(f"compressedCloud: the packing did not settle in {maxIter} steps")
+            scene.run(500)
+    packed = SpherePack()
+    packed.fromSimulation(scene)
+    centers = [scene.cell.wrap(c) for c, _ in packed]
+    packed.fromList(list(zip(centers, [r for _, r in packed])))
+    packed.cellSize = scene.cell.size
+    return packed

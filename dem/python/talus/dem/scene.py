@@ -99,10 +99,6 @@ class Scene(CheckpointMethods):
         if not (value > 0 and value < float("inf")):
             raise ValueError(f"O.dt must be positive and finite, got {value}")
         self._cpp.dt = float(value)
-        # As in Yade, a step set by hand wins over the time steppers.
-        for e in self._engines:
-            if type(e).__name__ == "GlobalStiffnessTimeStepper":
-                e.active = False
 
     @property
     def engines(self) -> list[Engine]:
