@@ -1,0 +1,219 @@
+"""Pore-scale finite-volume flow in a sphere packing (Yade's ``FlowEngine``, the PFV scheme of
+Chareyre et al. 2012 and Catalano et al. 2014).
+
+The packing is triangulated (CGAL regular triangulation, weights r²) together with six huge
+fictitious spheres standing for the sides of the box; pores are tetrahedra, throats the facets
+between them. Each throat gets Yade's conductance
+
+    k = permeabilityFactor * A_f * (2 R_h)² / (8 μ L)
+
+(A_f fluid area of the facet, R_h hydraulic radius = void volume / solid surface of the region
+between the facet and the two pore centres, L the distance between the pore centres), clamped to
+[minKdivKmean, maxKdivKmean] × a global reference value when ``clampKValues``. The pore
+pressures solve Σ_j k_ij (p_i − p_j) = 0 with imposed pressures on the boundaries whose
+``bndCondIsPressure`` is set (no flux on the others), by CHOLMOD (``useSolver=3``, the factor is
+kept until the mesh or the boundary types change) or Gauss–Seidel (``useSolver=0``).
+
+Attribute and method names are Yade's. Boundaries are numbered as Yade's ``wallIds``: 0 xmin,
+1 xmax, 2 ymin, 3 ymax, 4 zmin, 5 zmax. Sign convention of ``getBoundaryFlux`` as Yade: the sum of
+the fluxes the boundary pores receive, negative where fluid enters. See ``docs/flow.md``,
+section "Pore-scale flow".
+
+    from talus.flow import FlowEngine
+    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0])
+    flow.triangulate(positions, radii)      # or flow.triangulateScene(O)
+    flow.solve()
+    print(flow.getBoundaryFlux(2), flow.samplePermeability(2, 3))
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import Sequence
+
+import numpy as np
+
+from talus import _flow
+
+_BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
+_SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
+            "slipBoundary", "useSolver", "tolerance", "relax")
+
+
+class HiddenSphereWarning(UserWarning):
+    """Spheres the regular triangulation dropped (inside the power cells of their neighbours):
+    they carry no pore and receive no fluid force."""
+
+
+class FlowEngine:
+    """Pore-scale flow model with Yade's FlowEngine names (see the module docstring).
+
+    Parameters (Yade's defaults): ``bndCondIsPressure`` [0]*6, ``bndCondValue`` [0]*6,
+    ``boundaryUseMaxMin`` [1]*6 (boundary at the packing's extreme x±r; else at
+    ``wallPosition[k]``), ``permeabilityFactor`` 1, ``viscosity`` 1, ``clampKValues`` True,
+    ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
+    solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only).
+    """
+
+    def __init__(self, **attrs):
+        self._cpp = _flow.PoreFlow()
+        for name, value in attrs.items():
+            setattr(self, name, value)
+
+    # --- parameters: plain attributes mirrored into the C++ parameters -------------------
+    def __setattr__(self, name, value):
+        if name.startswith("_"):
+            object.__setattr__(self, name, value)
+            return
+        params = self._cpp.params
+        if name in _BOUNDARY_LISTS:
+            values = list(value)
+            if len(values) != 6:
+                raise ValueError(f"FlowEngine.{name} needs 6 values (xmin, xmax, ymin, ymax, zmin, zmax)")
+            kind = float if name in ("bndCondValue", "wallPosition") else bool
+            setattr(params, name, [kind(v) for v in values])
+        elif name in _SCALARS:
+            if name == "useSolver" and int(value) not in (0, 3):
+                raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD)")
+            setattr(params, name, value)
+        else:
+            raise AttributeError(f"FlowEngine has no attribute {name!r}")
+        self._cpp.params = params
+
+    def __getattr__(self, name):
+        if name in _BOUNDARY_LISTS or name in _SCALARS:
+            value = getattr(self._cpp.params, name)
+            return list(value) if name in _BOUNDARY_LISTS else value
+        raise AttributeError(f"FlowEngine has no attribute {name!r}")
+
+    # --- building and solving -------------------------------------------------------------
+    def triangulate(self, positions, radii, ids: Sequence[int] | None = None):
+        """Build the pore network of spheres (positions (n, 3), radii (n,)); ``ids`` name them in
+        messages and results (default 0..n-1). Warns (HiddenSphereWarning) with the body ids of
+        spheres the triangulation dropped; raises ValueError for fewer than 4 spheres, NaN
+        positions or a sphere centre outside the boundaries."""
+        pos = np.asarray(positions, dtype=float).reshape(-1, 3)
+        rad = np.asarray(radii, dtype=float).reshape(-1)
+        ident = np.arange(len(rad), dtype=np.int64) if ids is None else np.asarray(ids, dtype=np.int64)
+        self._cpp.build(pos, rad, ident)
+        hidden = self._cpp.hiddenSpheres()
+        if hidden:
+            warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
+                          "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
+
+    def triangulateScene(self, scene):
+        """Build the network of the live spheres of a talus.dem scene (ids = body ids)."""
+        ids = [b.id for b in scene.bodies if b.shape == "Sphere"]
+        pos = np.asarray(scene.positions())[ids]
+        rad = np.asarray(scene.radii())[ids]
+        self.triangulate(pos, rad, ids)
+
+    def updateConductances(self):
+        """Recompute conductances after changing permeabilityFactor, viscosity or the clamping."""
+        self._cpp.updateConductances()
+
+    def solve(self):
+        """Solve the pore pressures for the current boundary values. Raises ValueError when no
+        pressure is imposed anywhere (singular system)."""
+        self._cpp.solve()
+
+    # --- Yade's queries -------------------------------------------------------------------
+    def nCells(self) -> int:
+        return self._cpp.nCells()
+
+    def getBoundaryFlux(self, boundary: int) -> float:
+        return self._cpp.boundaryFlux(boundary)
+
+    def getPorePressure(self, pos) -> float:
+        return self._cpp.porePressure(np.asarray(pos, dtype=float))
+
+    def getCell(self, pos) -> int:
+        return self._cpp.locate(np.asarray(pos, dtype=float))
+
+    def getCellPressure(self, cell: int) -> float:
+        return float(self._cpp.pressures()[cell])
+
+    def getCellCenter(self, cell: int):
+        return tuple(self._cpp.poreCentres()[cell])
+
+    def getCellVolume(self, pos) -> float:
+        """Volume of the pore containing ``pos`` (Yade's signature)."""
+        return float(self._cpp.poreVolumes()[self.getCell(pos)])
+
+    def getVertices(self, cell: int) -> list[int]:
+        """Vertex ids of a pore: boundaries 0..5, spheres by body id."""
+        return [int(v) for v in self._cpp.poreVertexIds()[cell]]
+
+    def getNeighbors(self, cell: int) -> list[int]:
+        return [int(v) for v in self._cpp.poreNeighbours()[cell]]
+
+    def fluidForce(self, id: int):
+        """Fluid force on sphere ``id`` (body id) from the last solve: pressure on its sectors in
+        the facets plus its share of the viscous drag (Yade's fluidForce). Boundaries: use
+        ``boundaryForce``."""
+        ids = self._vertex_index()
+        if id not in ids:
+            raise KeyError(f"fluidForce: body {id} is not a sphere of the pore network")
+        return tuple(self._cpp.vertexForces()[ids[id]])
+
+    def boundaryForce(self, boundary: int):
+        """Fluid force on boundary 0..5 (xmin .. zmax)."""
+        if not 0 <= boundary < 6:
+            raise IndexError("boundary index must be 0..5")
+        return tuple(self._cpp.vertexForces()[boundary])
+
+    def _vertex_index(self):
+        return {int(v): k for k, v in enumerate(self._cpp.vertexIds()) if k >= 6}
+
+    def averageVelocity(self):
+        """Volume-averaged Darcy velocity over the pores not touching a boundary (as Yade)."""
+        return tuple(self._cpp.averageVelocity())
+
+    def samplePermeability(self, lo: int, hi: int) -> float:
+        """Darcy permeability K = Q μ L / (A ΔP) between the opposite pressure boundaries lo, hi."""
+        return self._cpp.samplePermeability(lo, hi)
+
+    # --- whole-network arrays (Talus additions) -------------------------------------------
+    @property
+    def pressures(self) -> np.ndarray:
+        return self._cpp.pressures()
+
+    @property
+    def cellVolumes(self) -> np.ndarray:
+        return self._cpp.poreVolumes()
+
+    @property
+    def cellVoidVolumes(self) -> np.ndarray:
+        return self._cpp.poreVoidVolumes()
+
+    @property
+    def cellCenters(self) -> np.ndarray:
+        return self._cpp.poreCentres()
+
+    @property
+    def cellVertexIds(self) -> np.ndarray:
+        return self._cpp.poreVertexIds()
+
+    @property
+    def throatPores(self) -> np.ndarray:
+        return self._cpp.throatPores()
+
+    @property
+    def throatConductances(self) -> np.ndarray:
+        return self._cpp.throatConductances()
+
+    @property
+    def throatFluidAreas(self) -> np.ndarray:
+        return self._cpp.throatFluidAreas()
+
+    @property
+    def throatHydraulicRadii(self) -> np.ndarray:
+        return self._cpp.throatHydraulicRadii()
+
+    @property
+    def throatLengths(self) -> np.ndarray:
+        return self._cpp.throatLengths()
+
+    @property
+    def hiddenSpheres(self) -> list[int]:
+        return list(self._cpp.hiddenSpheres())
