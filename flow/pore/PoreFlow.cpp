@@ -169,8 +169,10 @@ double PoreFlow::samplePermeability(int lo, int hi) const
 
 Vec3 PoreFlow::averageVelocity() const
 {
-  // Yade's averageVelocity: sum over pores of the facet fluxes times the facet positions,
-  // divided by the total volume -- the volume average of the Darcy velocity.
+  // Yade's averageVelocity: over all pores, the facet fluxes times the facet positions (the
+  // projection of the pore centre on the line to the neighbour's centre, through the facet's
+  // first vertex), minus the pore's net flux times its centre for imposed pores, divided by the
+  // total volume: the volume average of the Darcy velocity.
   const PoreNetwork& net = network();
   Vec3 sum = Vec3::Zero();
   double volume = 0;
@@ -178,8 +180,6 @@ Vec3 PoreFlow::averageVelocity() const
   for (std::size_t pi = 0; pi < net.pores.size(); ++pi)
   {
     const Pore& p = net.pores[pi];
-    if (p.nFictitious > 0)
-      continue;
     Vec3 v = Vec3::Zero();
     double total = 0;
     for (int f = 0; f < 4; ++f)

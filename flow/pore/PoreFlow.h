@@ -53,7 +53,7 @@ public:
   /// axis: K = Q mu L / (A dP) with the flux Q through boundary `lo`, the sample length L and
   /// cross-section A from the box. @throws if lo/hi are not opposite pressure boundaries
   [[nodiscard]] double samplePermeability(int lo, int hi) const;
-  /// Darcy velocity (flux per unit volume weighted, Yade's averageVelocity) over the sample.
+  /// Volume-averaged Darcy velocity over all pores (Yade's averageVelocity).
   [[nodiscard]] Vec3 averageVelocity() const;
   [[nodiscard]] double globalConductance() const { return globalK_; }
   /// Fluid force on each vertex of the network (index as PoreNetwork::vertices: 0..5 the

@@ -73,7 +73,24 @@ def compare(ref, flow):
     forces = flow._cpp.vertexForces()
     ids = flow._cpp.vertexIds()
     f_ref = np.array([ref["fluidForce"][str(i)] for i in ids[6:]])
-    df = np.abs(forces[6:] - f_ref).max() / np.abs(f_ref).max()
+    # Yade gives a sphere no force from its corner pore (three walls and the sphere); Talus gives
+    # it the pore pressure on the three wall-projected faces of the pore, p * (d_y d_z, d_x d_z,
+    # d_x d_y) toward the sample (d: the sphere centre's distances to the three walls). Put that
+    # back to compare the rest.
+    pos, rad, _ = packing()
+    lo, hi = (pos - rad[:, None]).min(axis=0), (pos + rad[:, None]).max(axis=0)
+    corner_fix = np.zeros_like(f_ref)
+    for cell, verts in enumerate(flow.cellVertexIds):
+        walls = [int(v) for v in verts if v < 6]
+        if len(walls) == 3:
+            s = int(next(v for v in verts if v >= 6))
+            k = list(ids).index(s) - 6
+            d = np.array([pos[k][w // 2] - (lo if w % 2 == 0 else hi)[w // 2] for w in sorted(walls)])
+            sign = np.sign(d)
+            d = np.abs(d)
+            corner_fix[k] += flow.getCellPressure(cell) * sign * np.array([d[1] * d[2], d[0] * d[2], d[0] * d[1]])
+    df = np.abs(forces[6:] - corner_fix - f_ref).max() / np.abs(f_ref).max()
+    boundary_force = np.abs(forces[:6] - [ref["fluidForce"][str(i)] for i in range(6)]).max()
     v, v_ref = np.array(flow.averageVelocity()), np.array(ref["averageVelocity"])
     return {
         "cellVolume": max(dv),
@@ -81,6 +98,7 @@ def compare(ref, flow):
         "pressure": max(dp),
         "conductance": max(dk),
         "force": df,
+        "boundaryForce": boundary_force,
         "averageVelocity": np.abs(v - v_ref).max() / np.abs(v_ref).max(),
         "flux": max(abs(q[b] - ref["boundaryFlux"][b]) / abs(ref["boundaryFlux"][b]) for b in (2, 3)),
     }
@@ -90,13 +108,16 @@ def test_same_network_and_flux_as_yade_stored():
     ref = json.load(open(DATA / "pore_yade_reference.json"))
     d = compare(ref, y_flow())
     # Identical formulas in double precision: differences are round-off.
-    # (measured: cell volume 1.9e-8 -- Yade returns the volume of a thin boundary cell from a
-    # different sum order --, total volume 4e-10, conductance 3e-15, pressure 5e-14, flux 2e-14)
+    # (measured: cell volume 1.9e-8 on a few pores touching two walls -- cause not found --, total
+    # volume 4e-10, average velocity 4e-10, conductance 3e-15, pressure 5e-14, flux 2e-14, forces
+    # 5e-14 after the corner-pore correction below)
     assert d["cellVolume"] < 1e-6, d
     assert d["totalVolume"] < 1e-8, d
     assert d["conductance"] < 1e-10, d
     assert d["pressure"] < 1e-10, d
     assert d["flux"] < 1e-10, d  # the target was 1 %
+    assert d["force"] < 1e-10 and d["boundaryForce"] < 1e-10, d
+    assert d["averageVelocity"] < 1e-8, d
 
 
 @pytest.mark.skipif(YADE is None, reason="yade not installed")

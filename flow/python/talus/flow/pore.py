@@ -166,7 +166,7 @@ class FlowEngine:
         return {int(v): k for k, v in enumerate(self._cpp.vertexIds()) if k >= 6}
 
     def averageVelocity(self):
-        """Volume-averaged Darcy velocity over the pores not touching a boundary (as Yade)."""
+        """Volume-averaged Darcy velocity over all pores (Yade's averageVelocity)."""
         return tuple(self._cpp.averageVelocity())
 
     def samplePermeability(self, lo: int, hi: int) -> float:
