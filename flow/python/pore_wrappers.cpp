@@ -1,5 +1,7 @@
 // Python bindings of the pore-scale flow (flow/pore/): no logic, only the mapping of C++ names to
 // Python. The typed, documented API with Yade's names is talus.flow.pore.FlowEngine.
+#include "dem/Scene.h"
+#include "flow/pore/FlowCoupling.h"
 #include "flow/pore/PoreFlow.h"
 
 #include <pybind11/eigen.h>
@@ -58,7 +60,7 @@ void registerPoreFlow(py::module_& m)
       .def_readwrite("tolerance", &FlowParameters::tolerance)
       .def_readwrite("relax", &FlowParameters::relax);
 
-  py::class_<PoreFlow>(m, "PoreFlow")
+  py::class_<PoreFlow, std::shared_ptr<PoreFlow>>(m, "PoreFlow")
       .def(py::init<>())
       .def_readwrite("params", &PoreFlow::params)
       .def(
@@ -139,4 +141,16 @@ void registerPoreFlow(py::module_& m)
       .def("throatFluidAreas", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.fluidArea; }); })
       .def("throatHydraulicRadii", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.hydraulicRadius; }); })
       .def("throatLengths", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.length; }); });
+
+  // The scene type is registered by talus._dem (imported first by the talus package).
+  py::class_<FlowCoupling, std::shared_ptr<FlowCoupling>>(m, "PoreFlowCoupling")
+      .def(py::init([](const std::shared_ptr<talus::dem::Scene>& scene, const std::shared_ptr<PoreFlow>& flow) {
+             return std::make_shared<FlowCoupling>(talus::dem::ParticleExchange(*scene), flow);
+           }),
+           py::arg("scene"), py::arg("flow"), py::keep_alive<1, 2>())
+      .def_readwrite("wallIds", &FlowCoupling::wallIds)
+      .def_readwrite("meshUpdateInterval", &FlowCoupling::meshUpdateInterval)
+      .def("step", &FlowCoupling::step)
+      .def("requestRebuild", &FlowCoupling::requestRebuild)
+      .def("rebuilds", &FlowCoupling::rebuilds);
 }

@@ -31,7 +31,7 @@ def y_flow(**kw):
 
 def facet_conductances_talus(flow):
     verts = flow.cellVertexIds
-    nb = flow._cpp.poreNeighbours()
+    nb = flow._flow.poreNeighbours()
     out = {}
     for i, row in enumerate(nb):
         for j, other in enumerate(row):
@@ -70,8 +70,8 @@ def compare(ref, flow):
     ky, kt = facet_conductances_yade(ref), facet_conductances_talus(flow)
     dk = [abs(kt[key] - k) / k for key, k in ky.items()]
     q = [flow.getBoundaryFlux(b) for b in range(6)]
-    forces = flow._cpp.vertexForces()
-    ids = flow._cpp.vertexIds()
+    forces = flow._flow.vertexForces()
+    ids = flow._flow.vertexIds()
     f_ref = np.array([ref["fluidForce"][str(i)] for i in ids[6:]])
     # Yade gives a sphere no force from its corner pore (three walls and the sphere); Talus gives
     # it the pore pressure on the three wall-projected faces of the pore, p * (d_y d_z, d_x d_z,
@@ -172,3 +172,26 @@ def test_bad_input():
     hidden_rad = np.append(rad, 1e-3 * rad[0])
     with pytest.warns(HiddenSphereWarning, match="9999"):
         flow.triangulate(hidden_pos, hidden_rad, np.append(ids, 9999))
+
+
+def test_engine_in_a_dem_scene_applies_the_fluid_forces():
+    from talus.dem import ForceResetter, NewtonIntegrator, Scene, sphere
+    S = Scene()
+    pos, rad, _ = packing()
+    S.bodies.append([sphere(p, r, fixed=True) for p, r in zip(pos, rad)])
+    flow = FlowEngine(scene=S, bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 2, 0, 0, 0],
+                      meshUpdateInterval=2)
+    S.engines = [ForceResetter(), flow, NewtonIntegrator()]
+    S.dt = 1e-6
+    for _ in range(3):
+        S.step()
+    assert flow._coupling.rebuilds() == 2
+    f = np.asarray(S.forces())
+    size = (pos + rad[:, None]).max(axis=0) - (pos - rad[:, None]).min(axis=0)
+    # the solids carry the pressure drop times the section (no wall bodies here: spheres only,
+    # slipBoundary leaves the lateral walls no viscous share)
+    assert f[:, 1].sum() == pytest.approx(2.0 * size[0] * size[2], rel=1e-4)
+    assert np.allclose(f[7], flow.fluidForce(7), rtol=0, atol=1e-15)
+    flow.wallIds = [-1, -1, 3, -1, -1, -1]  # body 3 is a sphere
+    with pytest.raises(ValueError, match="is a sphere"):
+        S.step()

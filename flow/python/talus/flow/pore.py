@@ -33,7 +33,8 @@ from typing import Sequence
 
 import numpy as np
 
-from talus import _flow
+from talus import _dem, _flow
+from talus.dem.engines import Engine
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
@@ -45,8 +46,15 @@ class HiddenSphereWarning(UserWarning):
     they carry no pore and receive no fluid force."""
 
 
-class FlowEngine:
+class FlowEngine(Engine):
     """Pore-scale flow model with Yade's FlowEngine names (see the module docstring).
+
+    Used standalone (``triangulate`` + ``solve``) or, as in Yade, as an engine of ``O.engines``
+    between the ForceResetter and the NewtonIntegrator: each step it reads the spheres of
+    ``talus.dem.O`` through the particle exchange interface, re-triangulates every
+    ``meshUpdateInterval`` steps (or when ``updateTriangulation`` is set), solves the pressures
+    and adds the fluid forces to the bodies; ``wallIds[k]`` (default -1: none) names the wall
+    body that receives the force of boundary k.
 
     Parameters (Yade's defaults): ``bndCondIsPressure`` [0]*6, ``bndCondValue`` [0]*6,
     ``boundaryUseMaxMin`` [1]*6 (boundary at the packing's extreme x±r; else at
@@ -55,17 +63,42 @@ class FlowEngine:
     solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only).
     """
 
-    def __init__(self, **attrs):
-        self._cpp = _flow.PoreFlow()
+    def __init__(self, scene=None, **attrs):
+        """``scene``: the talus.dem scene the engine acts on when in its engine list (default
+        ``talus.dem.O``); the other keywords set attributes."""
+        self._scene = scene
+        self._flow = _flow.PoreFlow()
+        self._coupling = None
+        self._wallIds = [-1] * 6
+        self._meshUpdateInterval = 1000
+        self._rebuild = False
+        self._cpp = _dem.CallbackEngine()
+        self._cpp.iterPeriod = 1
+        self._cpp.initRun = True  # act from the first step on, as Yade's FlowEngine
+        self._cpp.callback = self._step
         for name, value in attrs.items():
             setattr(self, name, value)
 
     # --- parameters: plain attributes mirrored into the C++ parameters -------------------
     def __setattr__(self, name, value):
-        if name.startswith("_"):
+        if name.startswith("_") or isinstance(getattr(type(self), name, None), property):
             object.__setattr__(self, name, value)
             return
-        params = self._cpp.params
+        if name == "wallIds":
+            ids = [int(v) for v in value]
+            if len(ids) != 6:
+                raise ValueError("FlowEngine.wallIds needs 6 body ids (-1: none)")
+            self._wallIds = ids
+            return
+        if name == "meshUpdateInterval":
+            if int(value) < 1:
+                raise ValueError("FlowEngine.meshUpdateInterval must be >= 1")
+            self._meshUpdateInterval = int(value)
+            return
+        if name == "updateTriangulation":
+            self._rebuild = bool(value)
+            return
+        params = self._flow.params
         if name in _BOUNDARY_LISTS:
             values = list(value)
             if len(values) != 6:
@@ -78,11 +111,16 @@ class FlowEngine:
             setattr(params, name, value)
         else:
             raise AttributeError(f"FlowEngine has no attribute {name!r}")
-        self._cpp.params = params
+        self._flow.params = params
 
     def __getattr__(self, name):
+        if name in ("wallIds", "meshUpdateInterval"):
+            value = object.__getattribute__(self, "_" + name)
+            return list(value) if name == "wallIds" else value
+        if name == "updateTriangulation":
+            return self._rebuild
         if name in _BOUNDARY_LISTS or name in _SCALARS:
-            value = getattr(self._cpp.params, name)
+            value = getattr(self._flow.params, name)
             return list(value) if name in _BOUNDARY_LISTS else value
         raise AttributeError(f"FlowEngine has no attribute {name!r}")
 
@@ -95,8 +133,8 @@ class FlowEngine:
         pos = np.asarray(positions, dtype=float).reshape(-1, 3)
         rad = np.asarray(radii, dtype=float).reshape(-1)
         ident = np.arange(len(rad), dtype=np.int64) if ids is None else np.asarray(ids, dtype=np.int64)
-        self._cpp.build(pos, rad, ident)
-        hidden = self._cpp.hiddenSpheres()
+        self._flow.build(pos, rad, ident)
+        hidden = self._flow.hiddenSpheres()
         if hidden:
             warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
                           "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
@@ -108,44 +146,61 @@ class FlowEngine:
         rad = np.asarray(scene.radii())[ids]
         self.triangulate(pos, rad, ids)
 
+    def _step(self):
+        """The engine's action: the C++ coupling on the running scene (talus.dem.O)."""
+        if self._coupling is None:
+            from talus.dem import O
+            self._coupling = _flow.PoreFlowCoupling((self._scene or O)._cpp, self._flow)
+        self._coupling.wallIds = self._wallIds
+        self._coupling.meshUpdateInterval = self._meshUpdateInterval
+        if self._rebuild:
+            self._coupling.requestRebuild()
+            self._rebuild = False
+        self._coupling.step()
+        hidden = self._flow.hiddenSpheres() if self._coupling.rebuilds() != getattr(self, "_warned", 0) else []
+        self._warned = self._coupling.rebuilds()
+        if hidden:
+            warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
+                          "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
+
     def updateConductances(self):
         """Recompute conductances after changing permeabilityFactor, viscosity or the clamping."""
-        self._cpp.updateConductances()
+        self._flow.updateConductances()
 
     def solve(self):
         """Solve the pore pressures for the current boundary values. Raises ValueError when no
         pressure is imposed anywhere (singular system)."""
-        self._cpp.solve()
+        self._flow.solve()
 
     # --- Yade's queries -------------------------------------------------------------------
     def nCells(self) -> int:
-        return self._cpp.nCells()
+        return self._flow.nCells()
 
     def getBoundaryFlux(self, boundary: int) -> float:
-        return self._cpp.boundaryFlux(boundary)
+        return self._flow.boundaryFlux(boundary)
 
     def getPorePressure(self, pos) -> float:
-        return self._cpp.porePressure(np.asarray(pos, dtype=float))
+        return self._flow.porePressure(np.asarray(pos, dtype=float))
 
     def getCell(self, pos) -> int:
-        return self._cpp.locate(np.asarray(pos, dtype=float))
+        return self._flow.locate(np.asarray(pos, dtype=float))
 
     def getCellPressure(self, cell: int) -> float:
-        return float(self._cpp.pressures()[cell])
+        return float(self._flow.pressures()[cell])
 
     def getCellCenter(self, cell: int):
-        return tuple(self._cpp.poreCentres()[cell])
+        return tuple(self._flow.poreCentres()[cell])
 
     def getCellVolume(self, pos) -> float:
         """Volume of the pore containing ``pos`` (Yade's signature)."""
-        return float(self._cpp.poreVolumes()[self.getCell(pos)])
+        return float(self._flow.poreVolumes()[self.getCell(pos)])
 
     def getVertices(self, cell: int) -> list[int]:
         """Vertex ids of a pore: boundaries 0..5, spheres by body id."""
-        return [int(v) for v in self._cpp.poreVertexIds()[cell]]
+        return [int(v) for v in self._flow.poreVertexIds()[cell]]
 
     def getNeighbors(self, cell: int) -> list[int]:
-        return [int(v) for v in self._cpp.poreNeighbours()[cell]]
+        return [int(v) for v in self._flow.poreNeighbours()[cell]]
 
     def fluidForce(self, id: int):
         """Fluid force on sphere ``id`` (body id) from the last solve: pressure on its sectors in
@@ -154,66 +209,66 @@ class FlowEngine:
         ids = self._vertex_index()
         if id not in ids:
             raise KeyError(f"fluidForce: body {id} is not a sphere of the pore network")
-        return tuple(self._cpp.vertexForces()[ids[id]])
+        return tuple(self._flow.vertexForces()[ids[id]])
 
     def boundaryForce(self, boundary: int):
         """Fluid force on boundary 0..5 (xmin .. zmax)."""
         if not 0 <= boundary < 6:
             raise IndexError("boundary index must be 0..5")
-        return tuple(self._cpp.vertexForces()[boundary])
+        return tuple(self._flow.vertexForces()[boundary])
 
     def _vertex_index(self):
-        return {int(v): k for k, v in enumerate(self._cpp.vertexIds()) if k >= 6}
+        return {int(v): k for k, v in enumerate(self._flow.vertexIds()) if k >= 6}
 
     def averageVelocity(self):
         """Volume-averaged Darcy velocity over all pores (Yade's averageVelocity)."""
-        return tuple(self._cpp.averageVelocity())
+        return tuple(self._flow.averageVelocity())
 
     def samplePermeability(self, lo: int, hi: int) -> float:
         """Darcy permeability K = Q μ L / (A ΔP) between the opposite pressure boundaries lo, hi."""
-        return self._cpp.samplePermeability(lo, hi)
+        return self._flow.samplePermeability(lo, hi)
 
     # --- whole-network arrays (Talus additions) -------------------------------------------
     @property
     def pressures(self) -> np.ndarray:
-        return self._cpp.pressures()
+        return self._flow.pressures()
 
     @property
     def cellVolumes(self) -> np.ndarray:
-        return self._cpp.poreVolumes()
+        return self._flow.poreVolumes()
 
     @property
     def cellVoidVolumes(self) -> np.ndarray:
-        return self._cpp.poreVoidVolumes()
+        return self._flow.poreVoidVolumes()
 
     @property
     def cellCenters(self) -> np.ndarray:
-        return self._cpp.poreCentres()
+        return self._flow.poreCentres()
 
     @property
     def cellVertexIds(self) -> np.ndarray:
-        return self._cpp.poreVertexIds()
+        return self._flow.poreVertexIds()
 
     @property
     def throatPores(self) -> np.ndarray:
-        return self._cpp.throatPores()
+        return self._flow.throatPores()
 
     @property
     def throatConductances(self) -> np.ndarray:
-        return self._cpp.throatConductances()
+        return self._flow.throatConductances()
 
     @property
     def throatFluidAreas(self) -> np.ndarray:
-        return self._cpp.throatFluidAreas()
+        return self._flow.throatFluidAreas()
 
     @property
     def throatHydraulicRadii(self) -> np.ndarray:
-        return self._cpp.throatHydraulicRadii()
+        return self._flow.throatHydraulicRadii()
 
     @property
     def throatLengths(self) -> np.ndarray:
-        return self._cpp.throatLengths()
+        return self._flow.throatLengths()
 
     @property
     def hiddenSpheres(self) -> list[int]:
-        return list(self._cpp.hiddenSpheres())
+        return list(self._flow.hiddenSpheres())
