@@ -48,7 +48,11 @@ void FlowCoupling::step()
   }
   if (meshUpdateInterval < 1)
     throw std::invalid_argument("FlowEngine.meshUpdateInterval must be >= 1");
-  if (sinceBuild_ < 0 || sinceBuild_ >= meshUpdateInterval || flow_->network().vertices.size() != sphereIds_.size() + kBoundaries)
+  // Spheres added or erased since the last mesh: the network no longer matches the bodies.
+  std::size_t live = 0;
+  for (std::size_t i = 0; i < nBodies; ++i)
+    live += exchange_.isSphere(static_cast<dem::BodyId>(i)) ? 1 : 0;
+  if (sinceBuild_ < 0 || sinceBuild_ >= meshUpdateInterval || live != sphereIds_.size())
     rebuild();
   ++sinceBuild_;
   flow_->solve();

@@ -192,6 +192,11 @@ def test_engine_in_a_dem_scene_applies_the_fluid_forces():
     # slipBoundary leaves the lateral walls no viscous share)
     assert f[:, 1].sum() == pytest.approx(2.0 * size[0] * size[2], rel=1e-4)
     assert np.allclose(f[7], flow.fluidForce(7), rtol=0, atol=1e-15)
+    S.bodies.erase(11)  # the network no longer matches the bodies: rebuilt at the next step
+    S.step()
+    assert flow._coupling.rebuilds() == 3 and flow.nCells() > 0
+    with pytest.raises(KeyError):
+        flow.fluidForce(11)
     flow.wallIds = [-1, -1, 3, -1, -1, -1]  # body 3 is a sphere
     with pytest.raises(ValueError, match="is a sphere"):
         S.step()
