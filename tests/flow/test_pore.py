@@ -108,7 +108,8 @@ def test_same_network_and_flux_as_yade_stored():
     ref = json.load(open(DATA / "pore_yade_reference.json"))
     d = compare(ref, y_flow())
     # Identical formulas in double precision: differences are round-off.
-    # (measured: cell volume 1.9e-8 on a few pores touching two walls -- cause not found --, total
+    # (measured: cell volume 1.9e-8 on pores touching two walls, where Yade uses 0.333333333 for
+    # 1/3 -- reproduced exactly with that constant --, total
     # volume 4e-10, average velocity 4e-10, conductance 3e-15, pressure 5e-14, flux 2e-14, forces
     # 5e-14 after the corner-pore correction below)
     assert d["cellVolume"] < 1e-6, d
