@@ -33,6 +33,9 @@ void FlowCoupling::rebuild()
 
 void FlowCoupling::step()
 {
+  if (exchange_.periodic())
+    throw std::invalid_argument("FlowEngine: the scene is periodic; the periodic pore flow (Yade's "
+                                "PeriodicFlowEngine) is not implemented yet");
   const std::size_t nBodies = exchange_.positions().size();
   for (int k = 0; k < kBoundaries; ++k)
   {

@@ -22,7 +22,8 @@ public:
   int meshUpdateInterval = 1000;
 
   /// One coupling step: rebuild if due, solve, add the fluid forces to the step forces.
-  /// @throws std::invalid_argument if a wallIds entry names a sphere or a missing body
+  /// @throws std::invalid_argument if a wallIds entry names a sphere or a missing body, or the
+  ///         scene is periodic
   void step();
   /// Rebuild at the next step (after moving walls or changing boundary types).
   void requestRebuild() { sinceBuild_ = -1; }

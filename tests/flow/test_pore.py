@@ -201,3 +201,8 @@ def test_engine_in_a_dem_scene_applies_the_fluid_forces():
     flow.wallIds = [-1, -1, 3, -1, -1, -1]  # body 3 is a sphere
     with pytest.raises(ValueError, match="is a sphere"):
         S.step()
+    flow.wallIds = [-1] * 6
+    S.step()  # the failed step's iteration again: the hook engine counts it as done (dem behaviour)
+    S.periodic = True
+    with pytest.raises(ValueError, match="periodic"):
+        S.step()
