@@ -101,7 +101,19 @@ void PoreFlow::applyBoundaryTypes()
     if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
       for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
         imposed_[static_cast<std::size_t>(pi)] = 1;
+  for (std::size_t n = 0; n < points_.size(); ++n)
+  {
+    // the triangulation extends far beyond the box (fictitious spheres): check the box itself
+    bool inside = true;
+    for (const Boundary& b : net_->boundaries)
+      inside = inside && (points_[n].pos[b.coordinate] - b.position) * b.normal[b.coordinate] >= 0;
+    points_[n].pore = inside ? locatePore(*net_, points_[n].pos) : -1;
+    if (points_[n].pore < 0)
+      throw std::invalid_argument("imposePressure: point " + std::to_string(n) + " is outside the pore network");
+    imposed_[static_cast<std::size_t>(points_[n].pore)] = 1;
+  }
   builtTypes_ = params.bndCondIsPressure;
+  pointsChanged_ = false;
   solver_.setSystem(*net_, imposed_);
 }
 
@@ -114,13 +126,54 @@ void PoreFlow::solve()
                                 std::to_string(params.useSolver));
   if (builtTypes_ != params.bndCondIsPressure)
     updateConductances(); // boundary types enter the hydraulic radii and the matrix
+  else if (pointsChanged_)
+    applyBoundaryTypes();
   for (int k = 0; k < kBoundaries; ++k)
     if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
       for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
         p_[static_cast<std::size_t>(pi)] = params.bndCondValue[static_cast<std::size_t>(k)];
+  for (const PointPressure& pt : points_)
+    p_[static_cast<std::size_t>(pt.pore)] = pt.value;
   solver_.tolerance = params.tolerance;
   solver_.relax = params.relax;
   solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_);
+}
+
+int PoreFlow::imposePressure(const Vec3& pos, double p)
+{
+  if (!pos.allFinite() || !std::isfinite(p))
+    throw std::invalid_argument("imposePressure: non-finite position or pressure");
+  points_.push_back(PointPressure{pos, p, -1});
+  pointsChanged_ = true;
+  return static_cast<int>(points_.size()) - 1;
+}
+
+void PoreFlow::setImposedPressure(int cond, double p)
+{
+  if (cond < 0 || static_cast<std::size_t>(cond) >= points_.size())
+    throw std::out_of_range("setImposedPressure: no imposed point " + std::to_string(cond));
+  points_[static_cast<std::size_t>(cond)].value = p;
+}
+
+void PoreFlow::clearImposedPressure()
+{
+  points_.clear();
+  pointsChanged_ = true;
+}
+
+double PoreFlow::getCellFlux(int cond) const
+{
+  if (cond < 0 || static_cast<std::size_t>(cond) >= points_.size() || points_[static_cast<std::size_t>(cond)].pore < 0)
+    throw std::out_of_range("getCellFlux: no located imposed point " + std::to_string(cond) + " (solve first)");
+  const PoreNetwork& net = network();
+  const auto pi = static_cast<std::size_t>(points_[static_cast<std::size_t>(cond)].pore);
+  const Pore& p = net.pores[pi];
+  double q = 0;
+  for (int f = 0; f < 4; ++f)
+    if (p.throats[f] >= 0)
+      q += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
+           (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]);
+  return q;
 }
 
 double PoreFlow::boundaryFlux(int k) const

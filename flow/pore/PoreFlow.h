@@ -39,6 +39,16 @@ public:
   /// boundary types are unchanged).
   void solve();
 
+  /// Impose pressure p in the pore containing `pos` (Yade's imposePressure), re-located at each
+  /// triangulation; overrides the boundary values. @returns its index ("cond")
+  int imposePressure(const Vec3& pos, double p);
+  /// Change the value of imposed point `cond` (keeps the factor).
+  void setImposedPressure(int cond, double p);
+  void clearImposedPressure();
+  /// Flux leaving the pore of imposed point `cond` into the network, sum k (p_cell - p_j)
+  /// (Yade's getCellFlux; positive for injection).
+  [[nodiscard]] double getCellFlux(int cond) const;
+
   [[nodiscard]] bool built() const { return net_.has_value(); }
   [[nodiscard]] const PoreNetwork& network() const;
   [[nodiscard]] const std::vector<double>& pressures() const { return p_; }
@@ -75,6 +85,14 @@ private:
   /// force on the pore's vertex k per unit pressure in the pore (Yade's unitForceVectors)
   std::vector<std::array<Vec3, 4>> unitForces_;
   std::array<bool, kBoundaries> builtTypes_{};
+  struct PointPressure
+  {
+    Vec3 pos;
+    double value;
+    int pore; ///< -1 until located in the current network
+  };
+  std::vector<PointPressure> points_;
+  bool pointsChanged_ = false;
   PressureSolver solver_;
   double globalK_ = 0;
 };

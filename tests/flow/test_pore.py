@@ -206,3 +206,27 @@ def test_engine_in_a_dem_scene_applies_the_fluid_forces():
     S.periodic = True
     with pytest.raises(ValueError, match="periodic"):
         S.step()
+
+
+def test_imposed_point_pressure_injects_what_the_boundaries_collect():
+    # Injection at the centre, pressure 0 on ymin and ymax, no flux elsewhere (the seed's
+    # fluid-injection set-up): the point's flux leaves through the two pressure boundaries.
+    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0] * 6)
+    flow.triangulate(*packing())
+    cond = flow.imposePressure((0.5, 0.5, 0.5), 10.0)
+    flow.solve()
+    q = flow.getCellFlux(cond)
+    assert q > 0
+    assert flow.getBoundaryFlux(2) + flow.getBoundaryFlux(3) == pytest.approx(q, rel=1e-9)
+    assert flow.getPorePressure((0.5, 0.5, 0.5)) == 10.0
+    flow.setImposedPressure(cond, 20.0)   # linear, same factor
+    flow.solve()
+    assert flow.getCellFlux(cond) == pytest.approx(2 * q, rel=1e-10)
+    flow.clearImposedPressure()
+    flow.bndCondIsPressure = [0] * 6
+    cond = flow.imposePressure((0.5, 0.5, 0.5), 1.0)  # a single imposed pore makes it solvable
+    flow.solve()
+    assert np.allclose(flow.pressures, 1.0)
+    with pytest.raises(ValueError, match="outside"):
+        flow.imposePressure((5.0, 5.0, 5.0), 1.0)
+        flow.solve()

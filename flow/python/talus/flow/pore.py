@@ -172,6 +172,23 @@ class FlowEngine(Engine):
         pressure is imposed anywhere (singular system)."""
         self._flow.solve()
 
+    def imposePressure(self, pos, p: float) -> int:
+        """Impose pressure ``p`` in the pore containing ``pos`` (located again at each
+        triangulation, overriding boundary values); returns its index for setImposedPressure
+        and getCellFlux."""
+        return self._flow.imposePressure(np.asarray(pos, dtype=float), float(p))
+
+    def setImposedPressure(self, cond: int, p: float):
+        """Change the value of imposed point ``cond`` (the factorisation is kept)."""
+        self._flow.setImposedPressure(cond, float(p))
+
+    def clearImposedPressure(self):
+        self._flow.clearImposedPressure()
+
+    def getCellFlux(self, cond: int) -> float:
+        """Flux injected into the network by imposed point ``cond`` (positive out of its pore)."""
+        return self._flow.getCellFlux(cond)
+
     # --- Yade's queries -------------------------------------------------------------------
     def nCells(self) -> int:
         return self._flow.nCells()
