@@ -1,6 +1,7 @@
 """Fluid models on the DEM core (Yade's HydroForceEngine and FlowEngine families).
 
-Available now: the pore-scale flow ``FlowEngine`` (Yade's FlowEngine, ``talus.flow.pore``) and the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
+Available now: the pore-scale flow ``FlowEngine`` (Yade's FlowEngine, ``talus.flow.pore``) and
+the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
 ``HydroForceEngine``; see ``talus.flow.vans`` and ``docs/flow.md``)::
 
     from talus.flow import VansFluid, slope_gravity
