@@ -66,6 +66,7 @@ void setProfile(VansFluid& fluid, const Array& values)
 
 PYBIND11_MODULE(_flow, m)
 {
+  void registerPoreFlow(py::module_&); registerPoreFlow(m); // pore flow: pore_wrappers.cpp
   m.doc() = "Compiled core of talus.flow (use the talus package, not this module)";
 
   py::enum_<MixingLengthModel>(m, "MixingLengthModel")

@@ -1,6 +1,7 @@
 """Fluid models on the DEM core (Yade's HydroForceEngine and FlowEngine families).
 
-Available now: the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
+Available now: the pore-scale flow ``FlowEngine`` (Yade's FlowEngine, ``talus.flow.pore``) and
+the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
 ``HydroForceEngine``; see ``talus.flow.vans`` and ``docs/flow.md``)::
 
     from talus.flow import VansFluid, slope_gravity
@@ -11,6 +12,8 @@ Available now: the 1D vertical VANS fluid resolution (``VansFluid``, the fluid p
 
 from talus.flow.coupling import VansCoupling
 from talus.flow.hydro import HydroForceEngine, averageProfile
+from talus.flow.pore import FlowEngine, HiddenSphereWarning
 from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansFluid, slope_gravity
 
-__all__ = ["HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid", "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]
+__all__ = ["FlowEngine", "HiddenSphereWarning", "HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid",
+           "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]

@@ -1,0 +1,79 @@
+#include "flow/pore/FlowCoupling.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace talus::flow::pore
+{
+FlowCoupling::FlowCoupling(dem::ParticleExchange exchange, std::shared_ptr<PoreFlow> flow)
+    : exchange_(exchange), flow_(std::move(flow))
+{
+  if (!flow_)
+    throw std::invalid_argument("FlowCoupling: no flow model");
+}
+
+void FlowCoupling::rebuild()
+{
+  const auto pos = exchange_.positions();
+  const auto radius = exchange_.radii();
+  std::vector<PoreSphere> spheres;
+  sphereIds_.clear();
+  for (std::size_t i = 0; i < pos.size(); ++i)
+  {
+    const auto id = static_cast<dem::BodyId>(i);
+    if (!exchange_.isSphere(id))
+      continue;
+    spheres.push_back(PoreSphere{pos[i], radius[i], id});
+    sphereIds_.push_back(id);
+  }
+  flow_->build(spheres);
+  sinceBuild_ = 0;
+  ++rebuilds_;
+}
+
+void FlowCoupling::step()
+{
+  if (exchange_.periodic())
+    throw std::invalid_argument("FlowEngine: the scene is periodic; the periodic pore flow (Yade's "
+                                "PeriodicFlowEngine) is not implemented yet");
+  const std::size_t nBodies = exchange_.positions().size();
+  for (int k = 0; k < kBoundaries; ++k)
+  {
+    const dem::BodyId id = wallIds[static_cast<std::size_t>(k)];
+    if (id < 0)
+      continue;
+    if (static_cast<std::size_t>(id) >= nBodies)
+      throw std::invalid_argument("FlowEngine.wallIds[" + std::to_string(k) + "] = " + std::to_string(id) +
+                                  ": no such body");
+    if (exchange_.isSphere(id))
+      throw std::invalid_argument("FlowEngine.wallIds[" + std::to_string(k) + "] = " + std::to_string(id) +
+                                  " is a sphere, not a wall");
+  }
+  if (meshUpdateInterval < 1)
+    throw std::invalid_argument("FlowEngine.meshUpdateInterval must be >= 1");
+  // Spheres added or erased since the last mesh: the network no longer matches the bodies.
+  std::size_t live = 0;
+  for (std::size_t i = 0; i < nBodies; ++i)
+    live += exchange_.isSphere(static_cast<dem::BodyId>(i)) ? 1 : 0;
+  if (sinceBuild_ < 0 || sinceBuild_ >= meshUpdateInterval || live != sphereIds_.size())
+    rebuild();
+  ++sinceBuild_;
+  flow_->solve();
+  const std::vector<Vec3> f = flow_->vertexForces();
+  forces_.assign(nBodies, Vec3::Zero());
+  for (std::size_t i = 0; i < sphereIds_.size(); ++i)
+    forces_[static_cast<std::size_t>(sphereIds_[i])] = f[kBoundaries + i];
+  for (int k = 0; k < kBoundaries; ++k)
+    if (wallIds[static_cast<std::size_t>(k)] >= 0)
+      forces_[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])] += f[static_cast<std::size_t>(k)];
+  auto out = exchange_.stepForces();
+  for (std::size_t i = 0; i < nBodies; ++i)
+    out[i] += forces_[i];
+}
+
+std::shared_ptr<dem::CallbackEngine> FlowCoupling::attach(const std::shared_ptr<FlowCoupling>& coupling)
+{
+  // the hook owns the coupling: it lives as long as the engine list holds the hook
+  return coupling->exchange_.addHook(dem::ParticleExchange::HookPoint::BeforeForces, [coupling] { coupling->step(); });
+}
+} // namespace talus::flow::pore

@@ -1,0 +1,49 @@
+#pragma once
+// Couples the pore-scale flow to a DEM scene through the particle exchange interface only: reads
+// the live spheres' positions and radii, rebuilds the pore network when due, solves the
+// pressures and adds the fluid forces to this step's forces (Yade's FlowEngine in the engine
+// list, before the NewtonIntegrator).
+#include "dem/Exchange.h"
+#include "flow/pore/PoreFlow.h"
+
+#include <array>
+#include <memory>
+
+namespace talus::flow::pore
+{
+class FlowCoupling
+{
+public:
+  FlowCoupling(dem::ParticleExchange exchange, std::shared_ptr<PoreFlow> flow);
+
+  /// Body receiving the force on boundary k (Yade's wallIds); -1: none. Must not be a sphere.
+  std::array<dem::BodyId, kBoundaries> wallIds{-1, -1, -1, -1, -1, -1};
+  /// Rebuild the pore network every this many calls (Yade's meshUpdateInterval).
+  int meshUpdateInterval = 1000;
+
+  /// One coupling step: rebuild if due, solve, add the fluid forces to the step forces.
+  /// @throws std::invalid_argument if a wallIds entry names a sphere or a missing body, or the
+  ///         scene is periodic
+  void step();
+  /// Rebuild at the next step (after moving walls or changing boundary types).
+  void requestRebuild() { sinceBuild_ = -1; }
+
+  [[nodiscard]] const PoreFlow& flow() const { return *flow_; }
+  /// The fluid forces of the last step, by body id (zero for bodies the flow does not see).
+  [[nodiscard]] const std::vector<Vec3>& forces() const { return forces_; }
+  [[nodiscard]] int rebuilds() const { return rebuilds_; }
+
+  /// Insert the coupling in the scene's step (before the contact forces), every step.
+  static std::shared_ptr<dem::CallbackEngine> attach(const std::shared_ptr<FlowCoupling>& coupling);
+
+private:
+  void rebuild();
+
+  dem::ParticleExchange exchange_;
+  std::shared_ptr<PoreFlow> flow_;
+  std::vector<dem::BodyId> sphereIds_; ///< network vertex 6+i is body sphereIds_[i]
+  std::vector<Vec3> forces_;
+  int sinceBuild_ = -1;
+  int rebuilds_ = 0;
+};
+} // namespace talus::flow::pore

@@ -1,0 +1,262 @@
+#include "flow/pore/PoreFlow.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace talus::flow::pore
+{
+const PoreNetwork& PoreFlow::network() const
+{
+  if (!net_)
+    throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
+  return *net_;
+}
+
+std::array<Boundary, kBoundaries> PoreFlow::boundaries(const std::vector<PoreSphere>& spheres) const
+{
+  std::array<Boundary, kBoundaries> b = boundingBoxBoundaries(spheres);
+  for (int k = 0; k < kBoundaries; ++k)
+  {
+    if (!params.boundaryUseMaxMin[static_cast<std::size_t>(k)])
+      b[static_cast<std::size_t>(k)].position = params.wallPosition[static_cast<std::size_t>(k)];
+    b[static_cast<std::size_t>(k)].imposedPressure = params.bndCondIsPressure[static_cast<std::size_t>(k)];
+    b[static_cast<std::size_t>(k)].value = params.bndCondValue[static_cast<std::size_t>(k)];
+  }
+  return b;
+}
+
+void PoreFlow::build(const std::vector<PoreSphere>& spheres)
+{
+  net_ = triangulate(spheres, boundaries(spheres));
+  p_.assign(net_->pores.size(), 0.0);
+  updateConductances();
+}
+
+void PoreFlow::updateConductances()
+{
+  PoreNetwork& net = *net_;
+  for (int k = 0; k < kBoundaries; ++k)
+    net.boundaries[static_cast<std::size_t>(k)].imposedPressure = params.bndCondIsPressure[static_cast<std::size_t>(k)];
+  computeGeometry(net, params.slipBoundary);
+  globalK_ = computeConductances(net, params);
+  computeUnitForces();
+  applyBoundaryTypes();
+}
+
+void PoreFlow::computeUnitForces()
+{
+  const PoreNetwork& net = *net_;
+  unitForces_.assign(net.pores.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+  for (const Throat& t : net.throats)
+  {
+    if (t.area <= 0)
+      continue;
+    for (int side = 0; side < 2; ++side)
+    {
+      const auto c = static_cast<std::size_t>(t.pores[static_cast<std::size_t>(side)]);
+      const Pore& pore = net.pores[c];
+      auto local = [&](int v) { return static_cast<std::size_t>(std::find(pore.vertices.begin(), pore.vertices.end(), v) - pore.vertices.begin()); };
+      // the facet vector pointing away from the other pore, as Yade orients it per cell
+      const Vec3 s = side == 0 ? t.facetVector : Vec3(-t.facetVector);
+      const Vec3 normal = s / t.area;
+      for (std::size_t k = 0; k < 4; ++k)
+      {
+        const Vertex& opp = net.vertices[static_cast<std::size_t>(pore.vertices[k])];
+        if (std::find(t.vertices.begin(), t.vertices.end(), pore.vertices[k]) != t.vertices.end() || !opp.fictitious)
+          continue;
+        // the facet facing a wall pushes the wall with its projected area
+        const Boundary& b = net.boundaries[static_cast<std::size_t>(opp.id)];
+        unitForces_[c][k] -= std::abs(s[b.coordinate]) * b.normal;
+      }
+      const Vec3 viscous = t.solidSurface > 0 ? Vec3(-s * (t.fluidArea / t.area) / t.solidSurface) : Vec3::Zero();
+      for (std::size_t y = 0; y < 3; ++y)
+      {
+        const std::size_t k = local(t.vertices[y]);
+        unitForces_[c][k] += viscous * t.solidSurfaces[y];
+        if (!net.vertices[static_cast<std::size_t>(t.vertices[y])].fictitious)
+          unitForces_[c][k] -= normal * t.crossSections[y];
+      }
+    }
+  }
+}
+
+std::vector<Vec3> PoreFlow::vertexForces() const
+{
+  const PoreNetwork& net = network();
+  std::vector<Vec3> f(net.vertices.size(), Vec3::Zero());
+  for (std::size_t c = 0; c < net.pores.size(); ++c)
+    for (std::size_t k = 0; k < 4; ++k)
+      f[static_cast<std::size_t>(net.pores[c].vertices[k])] += p_[c] * unitForces_[c][k];
+  return f;
+}
+
+void PoreFlow::applyBoundaryTypes()
+{
+  // As Yade's initializePressure: every pore touching a pressure boundary takes its value; a
+  // pore touching two takes the later one in the order xmin .. zmax.
+  imposed_.assign(net_->pores.size(), 0);
+  for (int k = 0; k < kBoundaries; ++k)
+    if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
+      for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
+        imposed_[static_cast<std::size_t>(pi)] = 1;
+  for (std::size_t n = 0; n < points_.size(); ++n)
+  {
+    // the triangulation extends far beyond the box (fictitious spheres): check the box itself
+    bool inside = true;
+    for (const Boundary& b : net_->boundaries)
+      inside = inside && (points_[n].pos[b.coordinate] - b.position) * b.normal[b.coordinate] >= 0;
+    points_[n].pore = inside ? locatePore(*net_, points_[n].pos) : -1;
+    if (points_[n].pore < 0)
+      throw std::invalid_argument("imposePressure: point " + std::to_string(n) + " is outside the pore network");
+    imposed_[static_cast<std::size_t>(points_[n].pore)] = 1;
+  }
+  builtTypes_ = params.bndCondIsPressure;
+  pointsChanged_ = false;
+  solver_.setSystem(*net_, imposed_);
+}
+
+void PoreFlow::solve()
+{
+  if (!net_)
+    throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
+  if (params.useSolver != 0 && params.useSolver != 3)
+    throw std::invalid_argument("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), got " +
+                                std::to_string(params.useSolver));
+  if (builtTypes_ != params.bndCondIsPressure)
+    updateConductances(); // boundary types enter the hydraulic radii and the matrix
+  else if (pointsChanged_)
+    applyBoundaryTypes();
+  for (int k = 0; k < kBoundaries; ++k)
+    if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
+      for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
+        p_[static_cast<std::size_t>(pi)] = params.bndCondValue[static_cast<std::size_t>(k)];
+  for (const PointPressure& pt : points_)
+    p_[static_cast<std::size_t>(pt.pore)] = pt.value;
+  solver_.tolerance = params.tolerance;
+  solver_.relax = params.relax;
+  solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_);
+}
+
+int PoreFlow::imposePressure(const Vec3& pos, double p)
+{
+  if (!pos.allFinite() || !std::isfinite(p))
+    throw std::invalid_argument("imposePressure: non-finite position or pressure");
+  points_.push_back(PointPressure{pos, p, -1});
+  pointsChanged_ = true;
+  return static_cast<int>(points_.size()) - 1;
+}
+
+void PoreFlow::setImposedPressure(int cond, double p)
+{
+  if (cond < 0 || static_cast<std::size_t>(cond) >= points_.size())
+    throw std::out_of_range("setImposedPressure: no imposed point " + std::to_string(cond));
+  points_[static_cast<std::size_t>(cond)].value = p;
+}
+
+void PoreFlow::clearImposedPressure()
+{
+  points_.clear();
+  pointsChanged_ = true;
+}
+
+double PoreFlow::getCellFlux(int cond) const
+{
+  if (cond < 0 || static_cast<std::size_t>(cond) >= points_.size() || points_[static_cast<std::size_t>(cond)].pore < 0)
+    throw std::out_of_range("getCellFlux: no located imposed point " + std::to_string(cond) + " (solve first)");
+  const PoreNetwork& net = network();
+  const auto pi = static_cast<std::size_t>(points_[static_cast<std::size_t>(cond)].pore);
+  const Pore& p = net.pores[pi];
+  double q = 0;
+  for (int f = 0; f < 4; ++f)
+    if (p.throats[f] >= 0)
+      q += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
+           (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]);
+  return q;
+}
+
+double PoreFlow::boundaryFlux(int k) const
+{
+  if (k < 0 || k >= kBoundaries)
+    throw std::out_of_range("getBoundaryFlux: boundary index must be 0..5, got " + std::to_string(k));
+  const PoreNetwork& net = network();
+  double q = 0;
+  for (int pi : net.boundaryPores[static_cast<std::size_t>(k)])
+  {
+    const Pore& p = net.pores[static_cast<std::size_t>(pi)];
+    for (int f = 0; f < 4; ++f)
+      if (p.throats[f] >= 0)
+        q += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
+             (p_[static_cast<std::size_t>(p.neighbours[f])] - p_[static_cast<std::size_t>(pi)]);
+  }
+  return q;
+}
+
+double PoreFlow::porePressure(const Vec3& x) const
+{
+  const int pi = locatePore(network(), x);
+  return pi < 0 ? 0.0 : p_[static_cast<std::size_t>(pi)];
+}
+
+double PoreFlow::samplePermeability(int lo, int hi) const
+{
+  const PoreNetwork& net = network();
+  if (lo < 0 || hi < 0 || lo >= kBoundaries || hi >= kBoundaries || lo / 2 != hi / 2 || lo == hi)
+    throw std::invalid_argument("samplePermeability: give two opposite boundaries (e.g. 2 and 3)");
+  if (!params.bndCondIsPressure[static_cast<std::size_t>(lo)] || !params.bndCondIsPressure[static_cast<std::size_t>(hi)])
+    throw std::invalid_argument("samplePermeability: both boundaries must have an imposed pressure");
+  const int c = lo / 2;
+  const double dp = params.bndCondValue[static_cast<std::size_t>(lo)] - params.bndCondValue[static_cast<std::size_t>(hi)];
+  if (dp == 0)
+    throw std::invalid_argument("samplePermeability: the two boundary pressures are equal");
+  double area = 1;
+  for (int d = 0; d < 3; ++d)
+    if (d != c)
+      area *= net.boundaries[static_cast<std::size_t>(2 * d + 1)].position - net.boundaries[static_cast<std::size_t>(2 * d)].position;
+  const double length = net.boundaries[static_cast<std::size_t>(2 * c + 1)].position - net.boundaries[static_cast<std::size_t>(2 * c)].position;
+  // Flux leaving boundary lo into the sample (getBoundaryFlux is negative there for dp > 0).
+  const double q = -boundaryFlux(lo);
+  return q * params.viscosity * length / (area * dp);
+}
+
+Vec3 PoreFlow::averageVelocity() const
+{
+  // Yade's averageVelocity: over all pores, the facet fluxes times the facet positions (the
+  // projection of the pore centre on the line to the neighbour's centre, through the facet's
+  // first vertex), minus the pore's net flux times its centre for imposed pores, divided by the
+  // total volume: the volume average of the Darcy velocity.
+  const PoreNetwork& net = network();
+  Vec3 sum = Vec3::Zero();
+  double volume = 0;
+  constexpr int kFacetVertex0[4] = {1, 0, 0, 0};
+  for (std::size_t pi = 0; pi < net.pores.size(); ++pi)
+  {
+    const Pore& p = net.pores[pi];
+    Vec3 v = Vec3::Zero();
+    double total = 0;
+    for (int f = 0; f < 4; ++f)
+    {
+      if (p.throats[f] < 0)
+        continue;
+      const Pore& q = net.pores[static_cast<std::size_t>(p.neighbours[f])];
+      Vec3 n = p.centre - q.centre;
+      const double len = n.norm();
+      if (len == 0)
+        continue;
+      n /= len;
+      const Vec3 branch = net.vertices[static_cast<std::size_t>(p.vertices[kFacetVertex0[f]])].pos - p.centre;
+      const Vec3 facetPoint = p.centre + branch.dot(n) * n;
+      const double flux = net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
+                          (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]);
+      total += flux;
+      v += flux * facetPoint;
+    }
+    if (imposed_[pi])
+      v -= total * p.centre;
+    sum += v;
+    volume += std::abs(p.volume);
+  }
+  return volume > 0 ? Vec3(sum / volume) : Vec3::Zero();
+}
+} // namespace talus::flow::pore

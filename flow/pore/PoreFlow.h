@@ -1,0 +1,99 @@
+#pragma once
+// The pore-scale flow model (Yade's FlowEngine, PFV): builds the pore network of a sphere
+// packing, its conductances and the pressure field for the six boundaries' conditions, and
+// reports fluxes, pressures and the sample permeability. No DEM here: the caller passes the
+// spheres (FlowCoupling.h connects it to a scene through the particle exchange interface).
+#include "flow/pore/PoreGeometry.h"
+#include "flow/pore/PoreNetwork.h"
+#include "flow/pore/PressureSolver.h"
+
+#include <array>
+#include <optional>
+#include <vector>
+
+namespace talus::flow::pore
+{
+/// FlowEngine's options, Yade's names and defaults.
+struct FlowParameters : ConductanceParameters
+{
+  std::array<bool, kBoundaries> bndCondIsPressure{};
+  std::array<double, kBoundaries> bndCondValue{};
+  /// true: the boundary is the packing's extreme (x - r or x + r); false: `wallPosition`
+  std::array<bool, kBoundaries> boundaryUseMaxMin{true, true, true, true, true, true};
+  std::array<double, kBoundaries> wallPosition{};
+  int useSolver = 3; ///< 0 Gauss-Seidel, 3 CHOLMOD (Yade's numbers)
+  double tolerance = 1e-6; ///< Gauss-Seidel relative change
+  double relax = 1.9;
+};
+
+class PoreFlow
+{
+public:
+  FlowParameters params;
+
+  /// Triangulate the packing and compute geometry and conductances (drops the factor).
+  void build(const std::vector<PoreSphere>& spheres);
+  /// Recompute conductances after a change of the parameters (same mesh; drops the factor).
+  void updateConductances();
+  /// Solve the pressures for the current boundary values (re-using the factor if the mesh and
+  /// boundary types are unchanged).
+  void solve();
+
+  /// Impose pressure p in the pore containing `pos` (Yade's imposePressure), re-located at each
+  /// triangulation; overrides the boundary values. @returns its index ("cond")
+  int imposePressure(const Vec3& pos, double p);
+  /// Change the value of imposed point `cond` (keeps the factor).
+  void setImposedPressure(int cond, double p);
+  void clearImposedPressure();
+  /// Flux leaving the pore of imposed point `cond` into the network, sum k (p_cell - p_j)
+  /// (Yade's getCellFlux; positive for injection).
+  [[nodiscard]] double getCellFlux(int cond) const;
+
+  [[nodiscard]] bool built() const { return net_.has_value(); }
+  [[nodiscard]] const PoreNetwork& network() const;
+  [[nodiscard]] const std::vector<double>& pressures() const { return p_; }
+
+  /// Yade's getBoundaryFlux: sum over the pores touching boundary k of the flux they receive,
+  /// sum k_ij (p_j - p_i); negative where fluid enters. Meaningful on pressure boundaries (a
+  /// no-flux boundary gives the flux crossing its first layer of pores, not zero).
+  [[nodiscard]] double boundaryFlux(int k) const;
+  /// Pressure of the pore containing x (Yade's getPorePressure); 0 outside.
+  [[nodiscard]] double porePressure(const Vec3& x) const;
+  /// Darcy permeability of the sample between two opposite pressure boundaries along their
+  /// axis: K = Q mu L / (A dP) with the flux Q through boundary `lo`, the sample length L and
+  /// cross-section A from the box. @throws if lo/hi are not opposite pressure boundaries
+  [[nodiscard]] double samplePermeability(int lo, int hi) const;
+  /// Volume-averaged Darcy velocity over all pores (Yade's averageVelocity).
+  [[nodiscard]] Vec3 averageVelocity() const;
+  [[nodiscard]] double globalConductance() const { return globalK_; }
+  /// Fluid force on each vertex of the network (index as PoreNetwork::vertices: 0..5 the
+  /// boundaries, then the spheres), Yade's computeFacetForcesWithCache: for each pore and throat,
+  /// the pressure on the sphere sectors cut by the facet (pressure part) plus the pressure drop
+  /// on the fluid area shared among the solids by their surface in the throat (viscous part).
+  [[nodiscard]] std::vector<Vec3> vertexForces() const;
+  [[nodiscard]] int lastIterations() const { return solver_.lastIterations(); }
+  [[nodiscard]] bool factorized() const { return solver_.factorized(); }
+
+private:
+  std::array<Boundary, kBoundaries> boundaries(const std::vector<PoreSphere>& spheres) const;
+  void applyBoundaryTypes();
+  void computeUnitForces();
+
+  std::optional<PoreNetwork> net_;
+  std::vector<char> imposed_;
+  std::vector<double> p_;
+  /// force on the pore's vertex k per unit pressure in the pore (Yade's unitForceVectors)
+  std::vector<std::array<Vec3, 4>> unitForces_;
+  std::array<bool, kBoundaries> builtTypes_{};
+  struct PointPressure
+  {
+    Vec3 pos;
+    double value;
+    int pore; ///< -1 until located in the current network
+  };
+  std::vector<PointPressure> points_;
+  bool pointsChanged_ = false;
+  PressureSolver solver_;
+  double globalK_ = 0;
+};
+} // namespace talus::flow::pore

@@ -1,0 +1,32 @@
+#pragma once
+// Hydraulic geometry of the pore network and throat conductances, with Yade's FlowEngine
+// formulas (CGT::Network and FlowBoundingSphere::computePermeability), so that results can be
+// compared with Yade throat by throat. Depends on the boundary flow conditions: no-flux walls
+// count as solid surface in the hydraulic radius, pressure boundaries do not.
+#include "flow/pore/PoreNetwork.h"
+
+namespace talus::flow::pore
+{
+/// Yade's FlowEngine options that enter the conductances (same names and defaults).
+struct ConductanceParameters
+{
+  double permeabilityFactor = 1.0; ///< > 0: scales Poiseuille; < 0: -value * area / length (Darcy)
+  double viscosity = 1.0;
+  bool clampKValues = true;
+  double minKdivKmean = 1e-4;
+  double maxKdivKmean = 100.0;
+  bool slipBoundary = true;        ///< no-flux walls not counted as solid surface (Yade: true)
+};
+
+/// Solid angle of the triangle (a, b, c) seen from `s` (Van Oosterom & Strackee; as Yade, the
+/// absolute value of 2 atan(ratio), i.e. correct below 2 pi steradians / 2).
+double solidAngle(const Vec3& s, const Vec3& a, const Vec3& b, const Vec3& c);
+
+/// Pore volumes, void volumes and the throat geometry (areas, fluid areas, hydraulic radii,
+/// lengths). Needs net.boundaries' flow conditions.
+void computeGeometry(PoreNetwork& net, bool slipBoundary);
+
+/// Throat conductances k = permeabilityFactor * A_f * (2 R_h)^2 / (8 mu L), clamped as Yade does.
+/// @returns the reference value the clamping used (Yade's "globalK")
+double computeConductances(PoreNetwork& net, const ConductanceParameters& params);
+} // namespace talus::flow::pore

@@ -1,0 +1,191 @@
+#include "flow/pore/PressureSolver.h"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace talus::flow::pore
+{
+/// CHOLMOD's workspace and the factor of the current matrix.
+struct PressureSolver::Cholmod
+{
+  cholmod_common common{};
+  cholmod_sparse* a = nullptr;
+  cholmod_factor* factor = nullptr;
+
+  Cholmod()
+  {
+    cholmod_start(&common);
+    common.supernodal = CHOLMOD_SUPERNODAL;
+  }
+  ~Cholmod()
+  {
+    clear();
+    cholmod_finish(&common);
+  }
+  Cholmod(const Cholmod&) = delete;
+  Cholmod& operator=(const Cholmod&) = delete;
+  void clear()
+  {
+    if (factor)
+      cholmod_free_factor(&factor, &common);
+    if (a)
+      cholmod_free_sparse(&a, &common);
+  }
+};
+
+PressureSolver::PressureSolver() : cholmod_(std::make_unique<Cholmod>()) {}
+PressureSolver::~PressureSolver() = default;
+PressureSolver::PressureSolver(PressureSolver&&) noexcept = default;
+PressureSolver& PressureSolver::operator=(PressureSolver&&) noexcept = default;
+
+bool PressureSolver::factorized() const { return cholmod_->factor != nullptr; }
+
+void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& imposed)
+{
+  const std::size_t n = net.pores.size();
+  if (imposed.size() != n)
+    throw std::invalid_argument("pressure system: imposed-pressure flags do not match the pores");
+  if (std::find(imposed.begin(), imposed.end(), 1) == imposed.end())
+    throw std::invalid_argument("pressure system is singular: no pressure is imposed anywhere (set "
+                                "bndCondIsPressure on at least one boundary)");
+  cholmod_->clear();
+  rowOfPore_.assign(n, -1);
+  poreOfRow_.clear();
+  for (std::size_t i = 0; i < n; ++i)
+    if (!imposed[i])
+    {
+      rowOfPore_[i] = static_cast<int>(poreOfRow_.size());
+      poreOfRow_.push_back(static_cast<int>(i));
+    }
+  nUnknown_ = static_cast<int>(poreOfRow_.size());
+  diag_.assign(poreOfRow_.size(), 0.0);
+  start_.assign(1, 0);
+  neighbour_.clear();
+  k_.clear();
+  for (std::size_t r = 0; r < poreOfRow_.size(); ++r)
+  {
+    const Pore& p = net.pores[static_cast<std::size_t>(poreOfRow_[r])];
+    for (int f = 0; f < 4; ++f)
+    {
+      if (p.throats[f] < 0)
+        continue;
+      const double k = net.throats[static_cast<std::size_t>(p.throats[f])].conductance;
+      diag_[r] += k;
+      neighbour_.push_back(p.neighbours[f]);
+      k_.push_back(k);
+    }
+    start_.push_back(static_cast<int>(neighbour_.size()));
+  }
+}
+
+void PressureSolver::factorize()
+{
+  Cholmod& c = *cholmod_;
+  const auto n = static_cast<std::size_t>(nUnknown_);
+  cholmod_triplet* t = cholmod_allocate_triplet(n, n, n + neighbour_.size(), -1 /* lower */, CHOLMOD_REAL, &c.common);
+  auto* ti = static_cast<int*>(t->i);
+  auto* tj = static_cast<int*>(t->j);
+  auto* tx = static_cast<double*>(t->x);
+  std::size_t nz = 0;
+  for (std::size_t r = 0; r < n; ++r)
+  {
+    ti[nz] = tj[nz] = static_cast<int>(r);
+    tx[nz++] = diag_[r];
+    for (int e = start_[r]; e < start_[r + 1]; ++e)
+    {
+      const int col = rowOfPore_[static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)])];
+      if (col < 0 || col > static_cast<int>(r))
+        continue;
+      ti[nz] = static_cast<int>(r);
+      tj[nz] = col;
+      tx[nz++] = -k_[static_cast<std::size_t>(e)];
+    }
+  }
+  t->nnz = nz;
+  c.a = cholmod_triplet_to_sparse(t, nz, &c.common);
+  cholmod_free_triplet(&t, &c.common);
+  c.factor = cholmod_analyze(c.a, &c.common);
+  cholmod_factorize(c.a, c.factor, &c.common);
+  if (c.common.status == CHOLMOD_NOT_POSDEF || c.factor->minor < c.factor->n)
+  {
+    const auto row = static_cast<std::size_t>(c.factor->minor);
+    const int pore = row < poreOfRow_.size() ? poreOfRow_[row] : -1;
+    c.clear();
+    throw std::runtime_error("pressure system is singular: pore " + std::to_string(pore) +
+                             " belongs to a group of pores connected to no imposed pressure");
+  }
+  if (c.common.status < CHOLMOD_OK)
+  {
+    c.clear();
+    throw std::runtime_error("CHOLMOD failed to factorise the pressure system (status " +
+                             std::to_string(c.common.status) + ")");
+  }
+}
+
+void PressureSolver::solve(SolverKind kind, std::vector<double>& p, const std::vector<double>& source)
+{
+  if (p.size() != rowOfPore_.size())
+    throw std::invalid_argument("pressure system: the pressure vector does not match the pores");
+  const auto n = static_cast<std::size_t>(nUnknown_);
+  // b_r = q_r + sum over imposed neighbours of k p_imposed
+  std::vector<double> b(n, 0.0);
+  for (std::size_t r = 0; r < n; ++r)
+  {
+    if (!source.empty())
+      b[r] = source[static_cast<std::size_t>(poreOfRow_[r])];
+    for (int e = start_[r]; e < start_[r + 1]; ++e)
+    {
+      const auto j = static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)]);
+      if (rowOfPore_[j] < 0)
+        b[r] += k_[static_cast<std::size_t>(e)] * p[j];
+    }
+  }
+  if (kind == SolverKind::Cholmod)
+  {
+    if (!factorized())
+      factorize();
+    Cholmod& c = *cholmod_;
+    cholmod_dense* rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &c.common);
+    std::copy(b.begin(), b.end(), static_cast<double*>(rhs->x));
+    cholmod_dense* x = cholmod_solve(CHOLMOD_A, c.factor, rhs, &c.common);
+    const auto* xv = static_cast<const double*>(x->x);
+    for (std::size_t r = 0; r < n; ++r)
+      p[static_cast<std::size_t>(poreOfRow_[r])] = xv[r];
+    cholmod_free_dense(&x, &c.common);
+    cholmod_free_dense(&rhs, &c.common);
+    iterations_ = 1;
+    return;
+  }
+  // Gauss-Seidel with over-relaxation, in place on p.
+  for (iterations_ = 1; iterations_ <= maxIterations; ++iterations_)
+  {
+    double maxDp = 0;
+    double maxP = 0;
+    for (std::size_t r = 0; r < n; ++r)
+    {
+      const auto i = static_cast<std::size_t>(poreOfRow_[r]);
+      double sum = b[r];
+      for (int e = start_[r]; e < start_[r + 1]; ++e)
+      {
+        const auto j = static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)]);
+        if (rowOfPore_[j] >= 0)
+          sum += k_[static_cast<std::size_t>(e)] * p[j];
+      }
+      const double dp = relax * (sum / diag_[r] - p[i]);
+      p[i] += dp;
+      maxDp = std::max(maxDp, std::abs(dp));
+      maxP = std::max(maxP, std::abs(p[i]));
+    }
+    if (!std::isfinite(maxDp))
+      throw std::runtime_error("Gauss-Seidel diverged (non-finite pressure)");
+    if (maxDp <= tolerance * std::max(maxP, 1e-300))
+      return;
+  }
+  throw std::runtime_error("Gauss-Seidel did not converge in " + std::to_string(maxIterations) +
+                           " iterations (a group of pores may be connected to no imposed pressure)");
+}
+} // namespace talus::flow::pore

@@ -1,0 +1,65 @@
+#pragma once
+// The linear system of the pore pressures: for each pore i whose pressure is not imposed,
+//   sum_j k_ij (p_i - p_j) = q_i
+// over its finite neighbours j (k_ij: throat conductance, q_i: imposed source). Symmetric positive
+// definite as soon as every connected group of unknown pores touches an imposed pressure.
+// Two solvers: CHOLMOD supernodal Cholesky (the factor is kept until the matrix changes) and
+// Gauss-Seidel with over-relaxation (Yade's useSolver=0) for comparison.
+#include "flow/pore/PoreNetwork.h"
+
+#include <memory>
+#include <vector>
+
+namespace talus::flow::pore
+{
+enum class SolverKind
+{
+  GaussSeidel = 0, ///< Yade's useSolver=0
+  Cholmod = 3,     ///< Yade's useSolver=3
+};
+
+class PressureSolver
+{
+public:
+  PressureSolver();
+  ~PressureSolver();
+  PressureSolver(const PressureSolver&) = delete;
+  PressureSolver& operator=(const PressureSolver&) = delete;
+  PressureSolver(PressureSolver&&) noexcept;
+  PressureSolver& operator=(PressureSolver&&) noexcept;
+
+  /// Set the matrix from the network's conductances; `imposed[i]` marks pores of known pressure.
+  /// Drops the Cholesky factor. @throws std::invalid_argument when no pressure is imposed anywhere
+  void setSystem(const PoreNetwork& net, const std::vector<char>& imposed);
+
+  /// Solve for the unknown pressures; `p` holds the imposed values on entry (and the initial
+  /// guess for Gauss-Seidel), the full field on exit. `source[i]` is q_i (may be empty).
+  /// @throws std::runtime_error on a singular system (a group of pores with no imposed pressure)
+  ///         or when Gauss-Seidel does not converge
+  void solve(SolverKind kind, std::vector<double>& p, const std::vector<double>& source = {});
+
+  double tolerance = 1e-7; ///< Gauss-Seidel: relative change of the pressure field
+  double relax = 1.9;      ///< Gauss-Seidel over-relaxation (Yade's relax)
+  int maxIterations = 100000;
+
+  [[nodiscard]] bool factorized() const;
+  [[nodiscard]] int lastIterations() const { return iterations_; }
+  [[nodiscard]] std::size_t unknowns() const { return rowOfPore_.empty() ? 0 : static_cast<std::size_t>(nUnknown_); }
+
+private:
+  struct Cholmod;
+  void factorize();
+
+  std::vector<int> rowOfPore_;  ///< -1 for imposed pores
+  std::vector<int> poreOfRow_;
+  int nUnknown_ = 0;
+  // Matrix in compressed rows: diagonal, then (column pore, conductance) couplings of each row
+  // to all its finite neighbours (imposed or not).
+  std::vector<double> diag_;
+  std::vector<int> start_;
+  std::vector<int> neighbour_;
+  std::vector<double> k_;
+  std::unique_ptr<Cholmod> cholmod_;
+  int iterations_ = 0;
+};
+} // namespace talus::flow::pore

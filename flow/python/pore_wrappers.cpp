@@ -1,0 +1,160 @@
+// Python bindings of the pore-scale flow (flow/pore/): no logic, only the mapping of C++ names to
+// Python. The typed, documented API with Yade's names is talus.flow.pore.FlowEngine.
+#include "dem/Scene.h"
+#include "flow/pore/FlowCoupling.h"
+#include "flow/pore/PoreFlow.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+namespace py = pybind11;
+using namespace talus::flow::pore;
+
+namespace
+{
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using IdArray = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+
+std::vector<PoreSphere> spheres(const Array& pos, const Array& radius, const IdArray& ids)
+{
+  if (pos.ndim() != 2 || pos.shape(1) != 3)
+    throw py::value_error("positions must be an (n, 3) array");
+  const auto n = static_cast<std::size_t>(pos.shape(0));
+  if (radius.ndim() != 1 || static_cast<std::size_t>(radius.size()) != n || static_cast<std::size_t>(ids.size()) != n)
+    throw py::value_error("positions, radii and ids must have the same length");
+  std::vector<PoreSphere> s(n);
+  for (std::size_t i = 0; i < n; ++i)
+    s[i] = PoreSphere{Vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2)), radius.at(i), ids.at(i)};
+  return s;
+}
+
+/// Per-pore or per-throat values as a numpy array.
+template <class T, class F>
+Array column(const std::vector<T>& items, F f)
+{
+  Array a(static_cast<py::ssize_t>(items.size()));
+  auto m = a.mutable_unchecked<1>();
+  for (std::size_t i = 0; i < items.size(); ++i)
+    m(static_cast<py::ssize_t>(i)) = f(items[i]);
+  return a;
+}
+} // namespace
+
+void registerPoreFlow(py::module_& m)
+{
+  py::class_<FlowParameters>(m, "PoreFlowParameters")
+      .def(py::init<>())
+      .def_readwrite("permeabilityFactor", &FlowParameters::permeabilityFactor)
+      .def_readwrite("viscosity", &FlowParameters::viscosity)
+      .def_readwrite("clampKValues", &FlowParameters::clampKValues)
+      .def_readwrite("minKdivKmean", &FlowParameters::minKdivKmean)
+      .def_readwrite("maxKdivKmean", &FlowParameters::maxKdivKmean)
+      .def_readwrite("slipBoundary", &FlowParameters::slipBoundary)
+      .def_readwrite("bndCondIsPressure", &FlowParameters::bndCondIsPressure)
+      .def_readwrite("bndCondValue", &FlowParameters::bndCondValue)
+      .def_readwrite("boundaryUseMaxMin", &FlowParameters::boundaryUseMaxMin)
+      .def_readwrite("wallPosition", &FlowParameters::wallPosition)
+      .def_readwrite("useSolver", &FlowParameters::useSolver)
+      .def_readwrite("tolerance", &FlowParameters::tolerance)
+      .def_readwrite("relax", &FlowParameters::relax);
+
+  py::class_<PoreFlow, std::shared_ptr<PoreFlow>>(m, "PoreFlow")
+      .def(py::init<>())
+      .def_readwrite("params", &PoreFlow::params)
+      .def(
+          "build", [](PoreFlow& f, const Array& pos, const Array& r, const IdArray& ids) { f.build(spheres(pos, r, ids)); },
+          py::arg("positions"), py::arg("radii"), py::arg("ids"))
+      .def("updateConductances", &PoreFlow::updateConductances)
+      .def("imposePressure", &PoreFlow::imposePressure)
+      .def("setImposedPressure", &PoreFlow::setImposedPressure)
+      .def("clearImposedPressure", &PoreFlow::clearImposedPressure)
+      .def("getCellFlux", &PoreFlow::getCellFlux)
+      .def("solve", &PoreFlow::solve)
+      .def("built", &PoreFlow::built)
+      .def("factorized", &PoreFlow::factorized)
+      .def("lastIterations", &PoreFlow::lastIterations)
+      .def("boundaryFlux", &PoreFlow::boundaryFlux)
+      .def("porePressure", &PoreFlow::porePressure)
+      .def("samplePermeability", &PoreFlow::samplePermeability)
+      .def("averageVelocity", &PoreFlow::averageVelocity)
+      .def("globalConductance", &PoreFlow::globalConductance)
+      .def("locate", [](const PoreFlow& f, const Vec3& x) { return locatePore(f.network(), x); })
+      .def("pressures", [](const PoreFlow& f) { return Array(static_cast<py::ssize_t>(f.pressures().size()), f.pressures().data()); })
+      .def("hiddenSpheres", [](const PoreFlow& f) { return f.network().hiddenSpheres; })
+      .def("nCells", [](const PoreFlow& f) { return f.network().pores.size(); })
+      .def("nThroats", [](const PoreFlow& f) { return f.network().throats.size(); })
+      .def("poreVolumes", [](const PoreFlow& f) { return column(f.network().pores, [](const Pore& p) { return p.volume; }); })
+      .def("poreVoidVolumes", [](const PoreFlow& f) { return column(f.network().pores, [](const Pore& p) { return p.voidVolume; }); })
+      .def("poreCentres", [](const PoreFlow& f) {
+        const auto& pores = f.network().pores;
+        Array a({static_cast<py::ssize_t>(pores.size()), py::ssize_t{3}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < pores.size(); ++i)
+          for (py::ssize_t d = 0; d < 3; ++d)
+            out(static_cast<py::ssize_t>(i), d) = pores[i].centre[d];
+        return a;
+      })
+      .def("poreVertexIds", [](const PoreFlow& f) {
+        // Yade's numbering: boundaries 0..5, spheres by body id.
+        const auto& net = f.network();
+        py::array_t<std::int64_t> a({static_cast<py::ssize_t>(net.pores.size()), py::ssize_t{4}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < net.pores.size(); ++i)
+          for (int k = 0; k < 4; ++k)
+            out(static_cast<py::ssize_t>(i), k) = net.vertices[static_cast<std::size_t>(net.pores[i].vertices[k])].id;
+        return a;
+      })
+      .def("poreNeighbours", [](const PoreFlow& f) {
+        const auto& pores = f.network().pores;
+        py::array_t<int> a({static_cast<py::ssize_t>(pores.size()), py::ssize_t{4}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < pores.size(); ++i)
+          for (int k = 0; k < 4; ++k)
+            out(static_cast<py::ssize_t>(i), k) = pores[i].neighbours[k];
+        return a;
+      })
+      .def("throatPores", [](const PoreFlow& f) {
+        const auto& t = f.network().throats;
+        py::array_t<int> a({static_cast<py::ssize_t>(t.size()), py::ssize_t{2}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < t.size(); ++i)
+          for (int k = 0; k < 2; ++k)
+            out(static_cast<py::ssize_t>(i), k) = t[i].pores[static_cast<std::size_t>(k)];
+        return a;
+      })
+      .def("vertexForces", [](const PoreFlow& f) {
+        // rows as poreVertexIds numbers them: 0..5 the boundaries, then the spheres in input order
+        const std::vector<Vec3> v = f.vertexForces();
+        Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < v.size(); ++i)
+          for (py::ssize_t d = 0; d < 3; ++d)
+            out(static_cast<py::ssize_t>(i), d) = v[i][d];
+        return a;
+      })
+      .def("vertexIds", [](const PoreFlow& f) {
+        std::vector<std::int64_t> ids;
+        for (const Vertex& v : f.network().vertices)
+          ids.push_back(v.id);
+        return ids;
+      })
+      .def("throatConductances", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.conductance; }); })
+      .def("throatAreas", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.area; }); })
+      .def("throatFluidAreas", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.fluidArea; }); })
+      .def("throatHydraulicRadii", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.hydraulicRadius; }); })
+      .def("throatLengths", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.length; }); });
+
+  // The scene type is registered by talus._dem (imported first by the talus package).
+  py::class_<FlowCoupling, std::shared_ptr<FlowCoupling>>(m, "PoreFlowCoupling")
+      .def(py::init([](const std::shared_ptr<talus::dem::Scene>& scene, const std::shared_ptr<PoreFlow>& flow) {
+             return std::make_shared<FlowCoupling>(talus::dem::ParticleExchange(*scene), flow);
+           }),
+           py::arg("scene"), py::arg("flow"), py::keep_alive<1, 2>())
+      .def_readwrite("wallIds", &FlowCoupling::wallIds)
+      .def_readwrite("meshUpdateInterval", &FlowCoupling::meshUpdateInterval)
+      .def("step", &FlowCoupling::step)
+      .def("requestRebuild", &FlowCoupling::requestRebuild)
+      .def("rebuilds", &FlowCoupling::rebuilds);
+}

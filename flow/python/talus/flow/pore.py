@@ -1,0 +1,291 @@
+"""Pore-scale finite-volume flow in a sphere packing (Yade's ``FlowEngine``, the PFV scheme of
+Chareyre et al. 2012 and Catalano et al. 2014).
+
+The packing is triangulated (CGAL regular triangulation, weights r²) together with six huge
+fictitious spheres standing for the sides of the box; pores are tetrahedra, throats the facets
+between them. Each throat gets Yade's conductance
+
+    k = permeabilityFactor * A_f * (2 R_h)² / (8 μ L)
+
+(A_f fluid area of the facet, R_h hydraulic radius = void volume / solid surface of the region
+between the facet and the two pore centres, L the distance between the pore centres), clamped to
+[minKdivKmean, maxKdivKmean] × a global reference value when ``clampKValues``. The pore
+pressures solve Σ_j k_ij (p_i − p_j) = 0 with imposed pressures on the boundaries whose
+``bndCondIsPressure`` is set (no flux on the others), by CHOLMOD (``useSolver=3``, the factor is
+kept until the mesh or the boundary types change) or Gauss–Seidel (``useSolver=0``).
+
+Attribute and method names are Yade's. Boundaries are numbered as Yade's ``wallIds``: 0 xmin,
+1 xmax, 2 ymin, 3 ymax, 4 zmin, 5 zmax. Sign convention of ``getBoundaryFlux`` as Yade: the sum of
+the fluxes the boundary pores receive, negative where fluid enters. See ``docs/flow.md``,
+section "Pore-scale flow".
+
+    from talus.flow import FlowEngine
+    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0])
+    flow.triangulate(positions, radii)      # or flow.triangulateScene(O)
+    flow.solve()
+    print(flow.getBoundaryFlux(2), flow.samplePermeability(2, 3))
+"""
+
+from __future__ import annotations
+
+import warnings
+from typing import Sequence
+
+import numpy as np
+
+from talus import _dem, _flow
+from talus.dem.engines import Engine
+
+_BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
+_SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
+            "slipBoundary", "useSolver", "tolerance", "relax")
+
+
+class HiddenSphereWarning(UserWarning):
+    """Spheres the regular triangulation dropped (inside the power cells of their neighbours):
+    they carry no pore and receive no fluid force."""
+
+
+class FlowEngine(Engine):
+    """Pore-scale flow model with Yade's FlowEngine names (see the module docstring).
+
+    Used standalone (``triangulate`` + ``solve``) or, as in Yade, as an engine of ``O.engines``
+    between the ForceResetter and the NewtonIntegrator: each step it reads the spheres of
+    ``talus.dem.O`` through the particle exchange interface, re-triangulates every
+    ``meshUpdateInterval`` steps (or when ``updateTriangulation`` is set), solves the pressures
+    and adds the fluid forces to the bodies; ``wallIds[k]`` (default -1: none) names the wall
+    body that receives the force of boundary k.
+
+    Parameters (Yade's defaults): ``bndCondIsPressure`` [0]*6, ``bndCondValue`` [0]*6,
+    ``boundaryUseMaxMin`` [1]*6 (boundary at the packing's extreme x±r; else at
+    ``wallPosition[k]``), ``permeabilityFactor`` 1, ``viscosity`` 1, ``clampKValues`` True,
+    ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
+    solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only).
+    """
+
+    def __init__(self, scene=None, **attrs):
+        """``scene``: the talus.dem scene the engine acts on when in its engine list (default
+        ``talus.dem.O``); the other keywords set attributes."""
+        self._scene = scene
+        self._flow = _flow.PoreFlow()
+        self._coupling = None
+        self._wallIds = [-1] * 6
+        self._meshUpdateInterval = 1000
+        self._rebuild = False
+        self._cpp = _dem.CallbackEngine()
+        self._cpp.iterPeriod = 1
+        self._cpp.initRun = True  # act from the first step on, as Yade's FlowEngine
+        self._cpp.callback = self._step
+        for name, value in attrs.items():
+            setattr(self, name, value)
+
+    # --- parameters: plain attributes mirrored into the C++ parameters -------------------
+    def __setattr__(self, name, value):
+        if name.startswith("_") or isinstance(getattr(type(self), name, None), property):
+            object.__setattr__(self, name, value)
+            return
+        if name == "wallIds":
+            ids = [int(v) for v in value]
+            if len(ids) != 6:
+                raise ValueError("FlowEngine.wallIds needs 6 body ids (-1: none)")
+            self._wallIds = ids
+            return
+        if name == "meshUpdateInterval":
+            if int(value) < 1:
+                raise ValueError("FlowEngine.meshUpdateInterval must be >= 1")
+            self._meshUpdateInterval = int(value)
+            return
+        if name == "updateTriangulation":
+            self._rebuild = bool(value)
+            return
+        params = self._flow.params
+        if name in _BOUNDARY_LISTS:
+            values = list(value)
+            if len(values) != 6:
+                raise ValueError(f"FlowEngine.{name} needs 6 values (xmin, xmax, ymin, ymax, zmin, zmax)")
+            kind = float if name in ("bndCondValue", "wallPosition") else bool
+            setattr(params, name, [kind(v) for v in values])
+        elif name in _SCALARS:
+            if name == "useSolver" and int(value) not in (0, 3):
+                raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD)")
+            setattr(params, name, value)
+        else:
+            raise AttributeError(f"FlowEngine has no attribute {name!r}")
+        self._flow.params = params
+
+    def __getattr__(self, name):
+        if name in ("wallIds", "meshUpdateInterval"):
+            value = object.__getattribute__(self, "_" + name)
+            return list(value) if name == "wallIds" else value
+        if name == "updateTriangulation":
+            return self._rebuild
+        if name in _BOUNDARY_LISTS or name in _SCALARS:
+            value = getattr(self._flow.params, name)
+            return list(value) if name in _BOUNDARY_LISTS else value
+        raise AttributeError(f"FlowEngine has no attribute {name!r}")
+
+    # --- building and solving -------------------------------------------------------------
+    def triangulate(self, positions, radii, ids: Sequence[int] | None = None):
+        """Build the pore network of spheres (positions (n, 3), radii (n,)); ``ids`` name them in
+        messages and results (default 0..n-1). Warns (HiddenSphereWarning) with the body ids of
+        spheres the triangulation dropped; raises ValueError for fewer than 4 spheres, NaN
+        positions or a sphere centre outside the boundaries."""
+        pos = np.asarray(positions, dtype=float).reshape(-1, 3)
+        rad = np.asarray(radii, dtype=float).reshape(-1)
+        ident = np.arange(len(rad), dtype=np.int64) if ids is None else np.asarray(ids, dtype=np.int64)
+        self._flow.build(pos, rad, ident)
+        hidden = self._flow.hiddenSpheres()
+        if hidden:
+            warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
+                          "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
+
+    def triangulateScene(self, scene):
+        """Build the network of the live spheres of a talus.dem scene (ids = body ids)."""
+        ids = [b.id for b in scene.bodies if b.shape == "Sphere"]
+        pos = np.asarray(scene.positions())[ids]
+        rad = np.asarray(scene.radii())[ids]
+        self.triangulate(pos, rad, ids)
+
+    def _step(self):
+        """The engine's action: the C++ coupling on the running scene (talus.dem.O)."""
+        if self._coupling is None:
+            from talus.dem import O
+            self._coupling = _flow.PoreFlowCoupling((self._scene or O)._cpp, self._flow)
+        self._coupling.wallIds = self._wallIds
+        self._coupling.meshUpdateInterval = self._meshUpdateInterval
+        if self._rebuild:
+            self._coupling.requestRebuild()
+            self._rebuild = False
+        self._coupling.step()
+        hidden = self._flow.hiddenSpheres() if self._coupling.rebuilds() != getattr(self, "_warned", 0) else []
+        self._warned = self._coupling.rebuilds()
+        if hidden:
+            warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
+                          "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
+
+    def updateConductances(self):
+        """Recompute conductances after changing permeabilityFactor, viscosity or the clamping."""
+        self._flow.updateConductances()
+
+    def solve(self):
+        """Solve the pore pressures for the current boundary values. Raises ValueError when no
+        pressure is imposed anywhere (singular system)."""
+        self._flow.solve()
+
+    def imposePressure(self, pos, p: float) -> int:
+        """Impose pressure ``p`` in the pore containing ``pos`` (located again at each
+        triangulation, overriding boundary values); returns its index for setImposedPressure
+        and getCellFlux."""
+        return self._flow.imposePressure(np.asarray(pos, dtype=float), float(p))
+
+    def setImposedPressure(self, cond: int, p: float):
+        """Change the value of imposed point ``cond`` (the factorisation is kept)."""
+        self._flow.setImposedPressure(cond, float(p))
+
+    def clearImposedPressure(self):
+        self._flow.clearImposedPressure()
+
+    def getCellFlux(self, cond: int) -> float:
+        """Flux injected into the network by imposed point ``cond`` (positive out of its pore)."""
+        return self._flow.getCellFlux(cond)
+
+    # --- Yade's queries -------------------------------------------------------------------
+    def nCells(self) -> int:
+        return self._flow.nCells()
+
+    def getBoundaryFlux(self, boundary: int) -> float:
+        return self._flow.boundaryFlux(boundary)
+
+    def getPorePressure(self, pos) -> float:
+        return self._flow.porePressure(np.asarray(pos, dtype=float))
+
+    def getCell(self, pos) -> int:
+        return self._flow.locate(np.asarray(pos, dtype=float))
+
+    def getCellPressure(self, cell: int) -> float:
+        return float(self._flow.pressures()[cell])
+
+    def getCellCenter(self, cell: int):
+        return tuple(self._flow.poreCentres()[cell])
+
+    def getCellVolume(self, pos) -> float:
+        """Volume of the pore containing ``pos`` (Yade's signature)."""
+        return float(self._flow.poreVolumes()[self.getCell(pos)])
+
+    def getVertices(self, cell: int) -> list[int]:
+        """Vertex ids of a pore: boundaries 0..5, spheres by body id."""
+        return [int(v) for v in self._flow.poreVertexIds()[cell]]
+
+    def getNeighbors(self, cell: int) -> list[int]:
+        return [int(v) for v in self._flow.poreNeighbours()[cell]]
+
+    def fluidForce(self, id: int):
+        """Fluid force on sphere ``id`` (body id) from the last solve: pressure on its sectors in
+        the facets plus its share of the viscous drag (Yade's fluidForce). Boundaries: use
+        ``boundaryForce``."""
+        ids = self._vertex_index()
+        if id not in ids:
+            raise KeyError(f"fluidForce: body {id} is not a sphere of the pore network")
+        return tuple(self._flow.vertexForces()[ids[id]])
+
+    def boundaryForce(self, boundary: int):
+        """Fluid force on boundary 0..5 (xmin .. zmax)."""
+        if not 0 <= boundary < 6:
+            raise IndexError("boundary index must be 0..5")
+        return tuple(self._flow.vertexForces()[boundary])
+
+    def _vertex_index(self):
+        return {int(v): k for k, v in enumerate(self._flow.vertexIds()) if k >= 6}
+
+    def averageVelocity(self):
+        """Volume-averaged Darcy velocity over all pores (Yade's averageVelocity)."""
+        return tuple(self._flow.averageVelocity())
+
+    def samplePermeability(self, lo: int, hi: int) -> float:
+        """Darcy permeability K = Q μ L / (A ΔP) between the opposite pressure boundaries lo, hi."""
+        return self._flow.samplePermeability(lo, hi)
+
+    # --- whole-network arrays (Talus additions) -------------------------------------------
+    @property
+    def pressures(self) -> np.ndarray:
+        return self._flow.pressures()
+
+    @property
+    def cellVolumes(self) -> np.ndarray:
+        return self._flow.poreVolumes()
+
+    @property
+    def cellVoidVolumes(self) -> np.ndarray:
+        return self._flow.poreVoidVolumes()
+
+    @property
+    def cellCenters(self) -> np.ndarray:
+        return self._flow.poreCentres()
+
+    @property
+    def cellVertexIds(self) -> np.ndarray:
+        return self._flow.poreVertexIds()
+
+    @property
+    def throatPores(self) -> np.ndarray:
+        return self._flow.throatPores()
+
+    @property
+    def throatConductances(self) -> np.ndarray:
+        return self._flow.throatConductances()
+
+    @property
+    def throatFluidAreas(self) -> np.ndarray:
+        return self._flow.throatFluidAreas()
+
+    @property
+    def throatHydraulicRadii(self) -> np.ndarray:
+        return self._flow.throatHydraulicRadii()
+
+    @property
+    def throatLengths(self) -> np.ndarray:
+        return self._flow.throatLengths()
+
+    @property
+    def hiddenSpheres(self) -> list[int]:
+        return list(self._flow.hiddenSpheres())
