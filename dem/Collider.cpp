@@ -244,6 +244,11 @@ void Collider::rebuild(Scene& scene)
   merged.clear();
   if (merged.capacity() < pairs.size()) // with room to grow: a reallocation faults in fresh pages
     merged.reserve(pairs.size() + pairs.size() / 4);
+  // The richer models' state (if any) follows its contact.
+  std::vector<ContactExtra>& oldExtra = scene.contacts.extra;
+  const bool withExtra = !oldExtra.empty();
+  std::vector<ContactExtra>& mergedExtra = spareExtra_;
+  mergedExtra.clear();
   std::size_t o = 0;
   for (const Candidate& candidate : pairs)
   {
@@ -254,8 +259,12 @@ void Collider::rebuild(Scene& scene)
     if (o < old.size() && key(old[o].id1, old[o].id2) == k && old[o].cellDist == candidate.cellDist)
     {
       merged.push_back(old[o]);
+      if (withExtra)
+        mergedExtra.push_back(oldExtra[o]);
       continue;
     }
+    if (withExtra)
+      mergedExtra.emplace_back();
     Contact c;
     c.cellDist = candidate.cellDist;
     c.id1 = static_cast<BodyId>(k >> 32);
@@ -269,6 +278,8 @@ void Collider::rebuild(Scene& scene)
     merged.push_back(c);
   }
   old.swap(merged);
+  if (withExtra)
+    oldExtra.swap(mergedExtra);
   scene.contacts.index(b.size());
   referencePos_ = b.pos;
   referenceCellInverse_ = scene.cell.hSize.inverse();

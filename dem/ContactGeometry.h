@@ -59,9 +59,11 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 /// order as in the seed's "Shear deformation". The shear increment is the tangential part of
 /// the incident velocity at the contact times dt, with lever arms refR1 n and -refR2 n (Yade's
 /// avoidGranularRatcheting default).
-/// `cell` is the periodic cell, or null when space is not periodic.
-inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt)
+/// `cell` is the periodic cell, or null when space is not periodic. `keepApart`: a real contact
+/// stays real when the shapes separate (a cohesive bond), with a negative penetration.
+inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, bool keepApart = false)
 {
+  const bool holds = keepApart && c.real;
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
   Vec3 normal;
@@ -81,7 +83,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     r2 = b.radius[i2];
     const double dist2 = d.squaredNorm();
     const double reach = r1 + r2;
-    if (dist2 > reach * reach)
+    if (dist2 > reach * reach && !holds)
     {
       if (c.real)
         c.reset();
@@ -102,7 +104,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     bool inFace = false;
     const Vec3 d = b.pos[i2] - closestPointOnTriangle(b.pos[i2], v[0], v[1], v[2], &inFace);
     const double dist2 = d.squaredNorm();
-    if (dist2 > r * r)
+    if (dist2 > r * r && !holds)
     {
       if (c.real)
         c.reset();
@@ -128,7 +130,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     const double d = b.pos[i2][wall.axis] - b.pos[i1][wall.axis];
     const double side = wall.sense != 0 ? wall.sense : (d >= 0 ? 1.0 : -1.0);
     penetration = r - side * d;
-    if (penetration < 0)
+    if (penetration < 0 && !holds)
     {
       if (c.real)
         c.reset();

@@ -3,6 +3,7 @@
 #include "dem/Scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -74,6 +75,19 @@ void NewtonIntegrator::run(Scene& scene)
 {
   if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_)
     refreshInverses(scene);
+  const std::int64_t firstBad = scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene);
+  if (firstBad >= 0)
+    throw std::runtime_error("step " + std::to_string(scene.iter) + ": body " + std::to_string(firstBad)
+                             + " has a non-finite force or torque; the run diverged (time step "
+                             + std::to_string(scene.dt) + ", P-wave estimate " + std::to_string(scene.pWaveTimeStep())
+                             + ")");
+  if (scene.periodic)
+    scene.cell.integrate(scene.dt);
+}
+
+template <bool Track>
+std::int64_t NewtonIntegrator::integrate(Scene& scene) const
+{
   Bodies& b = scene.bodies;
   const double dt = scene.dt;
   // In a deforming periodic cell with homoDeform, a velocity is the affine field L x (with the
@@ -84,57 +98,80 @@ void NewtonIntegrator::run(Scene& scene)
   const Mat3 L = scene.cell.velGrad, previousL = scene.cell.prevVelGrad;
   const Vec3 w = spin(L), previousW = spin(previousL);
   const auto n = static_cast<std::int64_t>(b.size());
+  // Tracking energy: bodies in fixed blocks, each block's sums added in order. The work of a
+  // step's force is taken over the mean of the old and new (fluctuating) velocities, which is
+  // exactly the change of kinetic energy it causes in the leap-frog scheme.
+  const std::int64_t blocks = Track ? (n + energyBlock - 1) / energyBlock : n;
+  const std::int64_t width = Track ? energyBlock : 1;
+  std::vector<std::array<double, 2>> energy(Track ? static_cast<std::size_t>(blocks) : 0); // gravWork, nonviscDamp
   std::int64_t firstBad = n;
 #pragma omp parallel for schedule(static) reduction(min : firstBad)
-  for (std::int64_t k = 0; k < n; ++k)
+  for (std::int64_t blk = 0; blk < blocks; ++blk)
   {
-    const auto i = static_cast<std::size_t>(k);
-    if (!b.alive[i])
-      continue;
-    if (b.dynamic[i])
+    double gravWork = 0, damp = 0;
+    for (std::int64_t k = blk * width, end = std::min(n, k + width); k < end; ++k)
     {
-      if (!b.force[i].allFinite() || !b.torque[i].allFinite())
-      {
-        firstBad = std::min(firstBad, k);
+      const auto i = static_cast<std::size_t>(k);
+      if (!b.alive[i])
         continue;
-      }
-      Vec3 v = b.vel[i], omega = b.angVel[i];
-      if (homogeneous)
+      if (b.dynamic[i])
       {
-        v -= previousL * (b.pos[i] - dt * b.vel[i]);
-        omega -= previousW;
-      }
-      // Blocked DOFs have a zero inverse mass (or inertia) and no gravity: their velocity stays.
-      const std::uint8_t blocked = b.blockedDofs[i];
-      Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
-      Vec3 alpha = b.torque[i].cwiseProduct(invInertia_[i]);
-      for (int d = 0; d < 3; ++d)
-        if (!(blocked & (1u << d)))
-          a[d] += gravity[d];
-      if (damping != 0)
-        for (int d = 0; d < 3; ++d)
+        if (!b.force[i].allFinite() || !b.torque[i].allFinite())
         {
-          a[d] = damped(a[d], v[d], dt, damping);
-          alpha[d] = damped(alpha[d], omega[d], dt, damping);
+          firstBad = std::min(firstBad, k);
+          continue;
         }
-      v += a * dt;
-      omega += alpha * dt;
-      if (homogeneous)
-      {
-        v += L * b.pos[i];
-        omega += w;
+        Vec3 v = b.vel[i], omega = b.angVel[i];
+        if (homogeneous)
+        {
+          v -= previousL * (b.pos[i] - dt * b.vel[i]);
+          omega -= previousW;
+        }
+        // Blocked DOFs have a zero inverse mass (or inertia) and no gravity: their velocity stays.
+        const std::uint8_t blocked = b.blockedDofs[i];
+        Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
+        Vec3 alpha = b.torque[i].cwiseProduct(invInertia_[i]);
+        Vec3 g = Vec3::Zero();
+        for (int d = 0; d < 3; ++d)
+          if (!(blocked & (1u << d)))
+            g[d] = gravity[d];
+        a += g;
+        const Vec3 undamped = a, undampedAlpha = alpha;
+        if (damping != 0)
+          for (int d = 0; d < 3; ++d)
+          {
+            a[d] = damped(a[d], v[d], dt, damping);
+            alpha[d] = damped(alpha[d], omega[d], dt, damping);
+          }
+        const Vec3 vOld = v, omegaOld = omega;
+        v += a * dt;
+        omega += alpha * dt;
+        if constexpr (Track)
+        {
+          const Vec3 vMean = 0.5 * (vOld + v), omegaMean = 0.5 * (omegaOld + omega);
+          gravWork -= b.mass[i] * g.dot(vMean) * dt;
+          damp -= (b.mass[i] * (a - undamped).dot(vMean) + (alpha - undampedAlpha).cwiseProduct(b.inertia[i]).dot(omegaMean)) * dt;
+        }
+        if (homogeneous)
+        {
+          v += L * b.pos[i];
+          omega += w;
+        }
+        b.vel[i] = v;
+        b.angVel[i] = omega;
       }
-      b.vel[i] = v;
-      b.angVel[i] = omega;
+      b.pos[i] += b.vel[i] * dt;
+      b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
     }
-    b.pos[i] += b.vel[i] * dt;
-    b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
+    if constexpr (Track)
+      energy[static_cast<std::size_t>(blk)] = {gravWork, damp};
   }
-  if (firstBad < n)
-    throw std::runtime_error("step " + std::to_string(scene.iter) + ": body " + std::to_string(firstBad)
-                             + " has a non-finite force or torque; the run diverged (time step " + std::to_string(dt)
-                             + ", P-wave estimate " + std::to_string(scene.pWaveTimeStep()) + ")");
-  if (scene.periodic)
-    scene.cell.integrate(dt);
+  if constexpr (Track)
+    for (const auto& [gravWork, damp] : energy)
+    {
+      scene.energy.gravWork += gravWork;
+      scene.energy.nonviscDamp += damp;
+    }
+  return firstBad < n ? firstBad : -1;
 }
 } // namespace talus::dem

@@ -23,7 +23,7 @@ public:
   /// (Yade instead gives the fixed body the other's mass, halving m: contacts with walls then
   /// last sqrt(2) tc). Parameters of the two materials are averaged. From (kn, cn, ks, cs):
   /// the two materials' springs and dashpots in series.
-  void initialize(Contact& c, const Scene& scene) const override
+  void initialize(Contact& c, ContactExtra* /*x*/, const Scene& scene) const override
   {
     const Bodies& b = scene.bodies;
     const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
@@ -56,7 +56,11 @@ public:
   /// F_n = kn u_n - cn v_n (may be attractive while the dashpot pulls, which is what makes the
   /// restitution exactly en); F_s = elastic history - ks du_s plus viscous -cs v_s, capped at
   /// tan(phi) |F_n| (the viscous part is dropped while sliding).
-  void force(Contact& c, const StepContext& step) const
+  /// Energy: the dashpots dissipate cn vn^2 dt + cs |vs|^2 dt; while sliding, the slip
+  /// (trial elastic force - capped force) / ks times the capped force is dissipated by friction
+  /// (the shear dashpot is then inactive).
+  template <bool Track>
+  void force(Contact& c, std::size_t /*k*/, const StepContext& step, ContactEnergy& e) const
   {
     const double dt = step.dt;
     const Vec3 v = incidentVelocity(c, step.bodies, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero());
@@ -68,10 +72,22 @@ public:
     const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
     if (total.squaredNorm() > maxFs2)
     {
+      const Vec3 trial = c.shearForce;
       c.shearForce = total * std::sqrt(maxFs2 / total.squaredNorm());
       viscous.setZero();
+      if constexpr (Track)
+        if (c.ks > 0)
+          e.plastDissip += (trial - c.shearForce).dot(c.shearForce) / c.ks;
     }
+    if constexpr (Track)
+      e.viscDamp += (c.cn * vn * vn - viscous.dot(c.shearIncrement / dt)) * dt;
     c.force = c.normalForce + c.shearForce + viscous;
+  }
+
+  /// 1/2 kn u^2 + 1/2 Fs^2 / ks (the dashpots store nothing).
+  double elastic(const Contact& c, const ContactExtra* /*x*/) const
+  {
+    return 0.5 * c.kn * c.penetration * c.penetration + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
   }
 };
 

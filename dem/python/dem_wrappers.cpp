@@ -53,6 +53,7 @@ PYBIND11_MODULE(_dem, m)
 {
   m.doc() = "Compiled core of talus.dem (use the talus package, not this module)";
   void talus_wrap_io(py::module_&); talus_wrap_io(m); // checkpoints and export arrays: io_wrappers.cpp
+  void talus_wrap_laws(py::module_&); talus_wrap_laws(m); // contact models, energy: laws_wrappers.cpp
   m.def("version", [] { return std::string(talus::version()); });
   m.def("build_config", [] {
     std::vector<std::tuple<std::string, std::string, bool, std::string>> rows;

@@ -18,6 +18,7 @@ from talus.dem.bodies import Body, BodySpec, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
+from talus.dem.energy import EnergyTracker
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.io import CheckpointError
 from talus.dem.materials import FrictMat, Material, ViscElMat
@@ -28,5 +29,5 @@ O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
            "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
-           "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
+           "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "EnergyTracker",
            *_engine_names]
