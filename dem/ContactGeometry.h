@@ -161,7 +161,11 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(-r2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(r1 * normal));
+  // Between two spheres the translational part is scaled by alpha = (r1 + r2) / (r1 + r2 - u),
+  // as Yade's avoidGranularRatcheting (McNamara et al.), so that rolling without sliding gives
+  // no shear increment.
+  const double alpha = c.kind == ContactGeometryKind::SphereSphere ? (r1 + r2) / (r1 + r2 - penetration) : 1.0;
+  const Vec3 incident = alpha * (b.vel[i2] + shiftVel - b.vel[i1]) + b.angVel[i2].cross(-r2 * normal) - b.angVel[i1].cross(r1 * normal);
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }

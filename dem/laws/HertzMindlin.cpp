@@ -42,10 +42,13 @@ public:
 
   // Ip2 parameters: restitution coefficients (normal, shear) or damping ratios; NaN: not given.
   double en = notGiven, es = notGiven, betan = notGiven, betas = notGiven;
-
-  [[nodiscard]] std::vector<std::string> parameterNames() const override { return {"en", "es", "betan", "betas"}; }
+  [[nodiscard]] std::vector<std::string> parameterNames() const override
+  {
+    return {"en", "es", "betan", "betas"};
+  }
   void setParameter(const std::string& name, double value) override
   {
+
     double* slot = name == "en" ? &en : name == "es" ? &es : name == "betan" ? &betan : name == "betas" ? &betas : nullptr;
     if (!slot)
       unknownParameter(name);
@@ -125,9 +128,13 @@ public:
     if constexpr (Track)
       if (ksOld > 0 && c.ks > 0)
         energy.plastDissip += 0.5 * c.shearForce.squaredNorm() * (1 / ksOld - 1 / c.ks);
+    // As Yade's Mindlin law: the shear increment from the geometry; the normal velocity of the
+    // bodies' centres (Yade's incident velocity at the contact point, whose rotational part
+    // has no normal component between spheres).
+    const Vec3 v = incidentVelocity(c, b, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero());
+    const double vn = c.normal.dot(v);
     const Vec3 vs = c.shearIncrement / step.dt;
     double fn = fnElastic;
-    double vn = 0;
     if (x.betan != 0 || x.betas != 0)
     {
       const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
@@ -136,7 +143,6 @@ public:
                                                             : b.mass[i1] * b.mass[i2] / (b.mass[i1] + b.mass[i2]);
       c.cn = 2 * std::sqrt(mass * c.kn) * x.betan;
       c.cs = 2 * std::sqrt(mass * c.ks) * x.betas;
-      vn = c.normal.dot(incidentVelocity(c, b, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero()));
       fn = std::max(0.0, fnElastic - c.cn * vn);
     }
     if constexpr (Track) // the normal dashpot's force is fnElastic - fn
