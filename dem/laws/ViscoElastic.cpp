@@ -56,9 +56,9 @@ public:
   /// F_n = kn u_n - cn v_n (may be attractive while the dashpot pulls, which is what makes the
   /// restitution exactly en); F_s = elastic history - ks du_s plus viscous -cs v_s, capped at
   /// tan(phi) |F_n| (the viscous part is dropped while sliding).
-  /// Energy: the dashpots dissipate cn vn^2 dt + cs |vs|^2 dt; while sliding, the slip
-  /// (trial elastic force - capped force) / ks times the capped force is dissipated by friction
-  /// (the shear dashpot is then inactive).
+  /// Energy: the dashpots dissipate cn vn^2 dt + cs |vs|^2 dt (with the half-step velocity the
+  /// force used: first order in dt / tc); while sliding, friction dissipates its work less the
+  /// change of the spring's energy (the shear dashpot is then inactive).
   template <bool Track>
   void force(Contact& c, std::size_t /*k*/, const StepContext& step, ContactEnergy& e) const
   {
@@ -66,6 +66,7 @@ public:
     const Vec3 v = incidentVelocity(c, step.bodies, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero());
     const double vn = c.normal.dot(v);
     c.normalForce = (c.kn * c.penetration - c.cn * vn) * c.normal;
+    const Vec3 before = c.shearForce;
     c.shearForce -= c.ks * c.shearIncrement;
     Vec3 viscous = -c.cs * (c.shearIncrement / dt);
     const Vec3 total = c.shearForce + viscous;
@@ -75,9 +76,11 @@ public:
       const Vec3 trial = c.shearForce;
       c.shearForce = total * std::sqrt(maxFs2 / total.squaredNorm());
       viscous.setZero();
+      // Friction's work over the step's shear displacement, less what the spring now holds
+      // more (the capped force need not be parallel to the elastic trial force here).
       if constexpr (Track)
         if (c.ks > 0)
-          e.plastDissip += (trial - c.shearForce).dot(c.shearForce) / c.ks;
+          e.plastDissip += (c.shearForce.dot(trial - before) - 0.5 * (c.shearForce.squaredNorm() - before.squaredNorm())) / c.ks;
     }
     if constexpr (Track)
       e.viscDamp += (c.cn * vn * vn - viscous.dot(c.shearIncrement / dt)) * dt;
