@@ -296,7 +296,13 @@ bool validExtraName(const std::string& name)
 constexpr std::pair<const char*, double Material::*> materialScalars[] = {
     {"density", &Material::density}, {"young", &Material::young}, {"poisson", &Material::poisson},
     {"frictionAngle", &Material::frictionAngle}, {"tc", &Material::tc}, {"en", &Material::en}, {"et", &Material::et},
-    {"kn", &Material::kn}, {"cn", &Material::cn}, {"ks", &Material::ks}, {"cs", &Material::cs}};
+    {"kn", &Material::kn}, {"cn", &Material::cn}, {"ks", &Material::ks}, {"cs", &Material::cs},
+    {"normalCohesion", &Material::normalCohesion}, {"shearCohesion", &Material::shearCohesion},
+    {"alphaKr", &Material::alphaKr}, {"alphaKtw", &Material::alphaKtw}, {"etaRoll", &Material::etaRoll},
+    {"etaTwist", &Material::etaTwist}};
+constexpr std::pair<const char*, bool Material::*> materialFlags[] = {
+    {"isCohesive", &Material::isCohesive}, {"momentRotationLaw", &Material::momentRotationLaw},
+    {"fragile", &Material::fragile}};
 constexpr std::pair<const char*, Vec3 Contact::*> contactVectors[] = {
     {"shift2", &Contact::shift2}, {"normal", &Contact::normal}, {"contactPoint", &Contact::contactPoint},
     {"shearIncrement", &Contact::shearIncrement}, {"normalForce", &Contact::normalForce},
@@ -409,6 +415,13 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
       for (std::size_t i = 0; i < mats.size(); ++i)
         column[i] = mats[i].*field;
       w.doubles(at("/materials/", name), {mats.size()}, column.data());
+    }
+    std::vector<std::uint8_t> flag(mats.size());
+    for (const auto& [name, field] : materialFlags)
+    {
+      for (std::size_t i = 0; i < mats.size(); ++i)
+        flag[i] = mats[i].*field ? 1 : 0;
+      w.uint8s(at("/materials/", name), flag.data(), flag.size());
     }
   }
 
@@ -832,9 +845,16 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
       for (std::size_t i = 0; i < m; ++i)
         in.materials[i].*field = column[i];
     }
+    std::vector<std::uint8_t> flag(m);
+    for (const auto& [name, field] : materialFlags)
+    {
+      r.uint8s(at("/materials/", name), flag);
+      for (std::size_t i = 0; i < m; ++i)
+        in.materials[i].*field = flag[i] != 0;
+    }
     for (std::size_t i = 0; i < m; ++i)
     {
-      if (kind[i] > static_cast<std::uint8_t>(MaterialKind::ViscEl))
+      if (kind[i] > static_cast<std::uint8_t>(MaterialKind::CohFrict))
         ctx.fail("material " + std::to_string(i) + " has unknown kind " + std::to_string(kind[i]), false);
       in.materials[i].kind = static_cast<MaterialKind>(kind[i]);
       in.materials[i].label = label[i];

@@ -59,11 +59,13 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 /// order as in the seed's "Shear deformation". The shear increment is the tangential part of
 /// the incident velocity at the contact times dt, with lever arms refR1 n and -refR2 n (Yade's
 /// avoidGranularRatcheting default).
-/// `cell` is the periodic cell, or null when space is not periodic. `keepApart`: a real contact
-/// stays real when the shapes separate (a cohesive bond), with a negative penetration.
-inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, bool keepApart = false)
+/// `cell` is the periodic cell, or null when space is not periodic. `x`: the contact's extra
+/// state, if any: a real contact with an unbroken bond stays real when the shapes separate
+/// (with a negative penetration), and its incremental moments turn with the frame as the shear
+/// force does.
+inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x = nullptr)
 {
-  const bool holds = keepApart && c.real;
+  const bool holds = x != nullptr && !x->cohesionBroken && c.real;
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
   Vec3 normal;
@@ -148,6 +150,12 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     const Vec3 twistAxis = (0.5 * dt * c.normal.dot(b.angVel[i1] + b.angVel[i2])) * c.normal;
     c.shearForce -= c.shearForce.cross(orthonormalAxis);
     c.shearForce -= c.shearForce.cross(twistAxis);
+    if (x)
+      for (Vec3* moment : {&x->momentBending, &x->momentTwist})
+      {
+        *moment -= moment->cross(orthonormalAxis);
+        *moment -= moment->cross(twistAxis);
+      }
     c.fresh = false;
   }
   else

@@ -6,6 +6,7 @@
 #include "dem/Material.h"
 
 #include <algorithm>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -60,12 +61,15 @@ public:
 
 protected:
   [[noreturn]] void unknownParameter(const std::string& name) const;
+  /// Called once per step after the law's contacts were processed (one-shot settings reset).
+  virtual void stepDone() {}
 };
 
 /// What a law's per-contact force function may read besides the contact.
 struct StepContext
 {
   const Bodies& bodies;
+  const std::deque<Material>& materials;
   const Cell* cell; ///< the periodic cell, null if space is not periodic
   double dt;
   ContactExtra* extra; ///< Contacts::extra (index = contact index), null unless the law needs it

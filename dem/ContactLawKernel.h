@@ -20,7 +20,7 @@ StepContext stepContext(Scene& scene)
     alignContactExtra(scene.contacts);
     extra = scene.contacts.extra.data();
   }
-  return StepContext{scene.bodies, scene.periodic ? &scene.cell : nullptr, scene.dt, extra};
+  return StepContext{scene.bodies, scene.materials, scene.periodic ? &scene.cell : nullptr, scene.dt, extra};
 }
 
 /// Add per-block contact energies to the scene's tracker, in block order.
@@ -70,6 +70,7 @@ void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
   }
   if constexpr (Track)
     detail::addContactEnergy(scene, energy);
+  stepDone();
 }
 
 template <class Law>
@@ -99,7 +100,7 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
     {
       Contact& c = list[static_cast<std::size_t>(k)];
       ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
-      if (!updateContactGeometry(c, step.bodies, step.cell, step.dt, x != nullptr && !x->cohesionBroken))
+      if (!updateContactGeometry(c, step.bodies, step.cell, step.dt, x))
         continue;
       if (c.fresh)
       {
@@ -115,6 +116,7 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
   }
   if constexpr (Track)
     detail::addContactEnergy(scene, energy);
+  stepDone();
   return firstBad < n ? firstBad : -1;
 }
 

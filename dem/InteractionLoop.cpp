@@ -100,8 +100,7 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
   {
     Contact& c = list[static_cast<std::size_t>(k)];
     ContactExtra* x = extra ? extra + k : nullptr;
-    if (updateContactGeometry(c, bodies, scene.periodic ? &scene.cell : nullptr, scene.dt, x && !x->cohesionBroken)
-        && c.fresh)
+    if (updateContactGeometry(c, bodies, scene.periodic ? &scene.cell : nullptr, scene.dt, x) && c.fresh)
     {
       try
       {
@@ -131,6 +130,8 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
   const std::vector<Contact>& list = scene.contacts.list;
   Bodies& b = scene.bodies;
   const Contacts& contacts = scene.contacts;
+  // Contact moments (rolling and twisting resistance) of the richer models, if any.
+  const ContactExtra* extra = contacts.extra.size() == list.size() ? contacts.extra.data() : nullptr;
   const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
 #pragma omp parallel for schedule(static)
   for (std::int64_t id = 0; id < bodyCount; ++id)
@@ -149,6 +150,12 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
       // Body 2 is represented by its periodic image: its lever arm is taken from there.
       const Vec3 centre = (entry & 1) ? Vec3(b.pos[i] + c.shift2) : b.pos[i];
       t += (c.contactPoint - centre).cross(force);
+      if (extra)
+      {
+        const ContactExtra& x = extra[entry >> 1];
+        const Vec3 moment = x.momentBending + x.momentTwist;
+        t += (entry & 1) ? moment : Vec3(-moment);
+      }
     }
     b.force[i] += f;
     b.torque[i] += t;

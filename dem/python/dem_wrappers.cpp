@@ -63,7 +63,10 @@ PYBIND11_MODULE(_dem, m)
   });
   m.def("contact_law_names", &contactLawNames);
 
-  py::enum_<MaterialKind>(m, "MaterialKind").value("Frict", MaterialKind::Frict).value("ViscEl", MaterialKind::ViscEl);
+  py::enum_<MaterialKind>(m, "MaterialKind")
+      .value("Frict", MaterialKind::Frict)
+      .value("ViscEl", MaterialKind::ViscEl)
+      .value("CohFrict", MaterialKind::CohFrict);
   py::class_<Material>(m, "Material")
       .def(py::init<>())
       .def_readwrite("kind", &Material::kind)
@@ -79,6 +82,15 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("cn", &Material::cn)
       .def_readwrite("ks", &Material::ks)
       .def_readwrite("cs", &Material::cs)
+      .def_readwrite("normalCohesion", &Material::normalCohesion)
+      .def_readwrite("shearCohesion", &Material::shearCohesion)
+      .def_readwrite("alphaKr", &Material::alphaKr)
+      .def_readwrite("alphaKtw", &Material::alphaKtw)
+      .def_readwrite("etaRoll", &Material::etaRoll)
+      .def_readwrite("etaTwist", &Material::etaTwist)
+      .def_readwrite("isCohesive", &Material::isCohesive)
+      .def_readwrite("momentRotationLaw", &Material::momentRotationLaw)
+      .def_readwrite("fragile", &Material::fragile)
       .def("validate", &Material::validate);
 
   py::class_<Engine, std::shared_ptr<Engine>>(m, "Engine")

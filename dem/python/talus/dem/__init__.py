@@ -21,13 +21,13 @@ from talus.dem.cell import Matrix3, Vector3
 from talus.dem.energy import EnergyTracker
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.io import CheckpointError
-from talus.dem.materials import FrictMat, Material, ViscElMat
+from talus.dem.materials import CohFrictMat, FrictMat, Material, ViscElMat
 from talus.dem.measure import avgNumInteractions, fabricTensor, getStress, porosity, unbalancedForce
 from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
-__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
+__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat", "CohFrictMat",
            "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
            "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "EnergyTracker",
            *_engine_names]

@@ -82,6 +82,9 @@ Bo1_Facet_Aabb = _functor("Bo1_Facet_Aabb", "Bounding box of facets (accepted; T
 Ig2_Sphere_Sphere_ScGeom = _functor("Ig2_Sphere_Sphere_ScGeom", "Sphere-sphere contact geometry.")
 Ig2_Facet_Sphere_ScGeom = _functor("Ig2_Facet_Sphere_ScGeom", "Facet-sphere contact geometry (face, edge, vertex).")
 Ig2_Wall_Sphere_ScGeom = _functor("Ig2_Wall_Sphere_ScGeom", "Wall-sphere contact geometry.")
+Ig2_Sphere_Sphere_ScGeom6D = _functor("Ig2_Sphere_Sphere_ScGeom6D",
+                                      "Sphere-sphere contact geometry with relative rotations (the law asks for them).")
+Ig2_Wall_Sphere_ScGeom6D = _functor("Ig2_Wall_Sphere_ScGeom6D", "Wall-sphere contact geometry with relative rotations.")
 Ip2_FrictMat_FrictMat_FrictPhys = _functor(
     "Ip2_FrictMat_FrictMat_FrictPhys", "Stiffness and friction of linear contacts from FrictMat parameters.")
 Ip2_ViscElMat_ViscElMat_ViscElPhys = _functor(
@@ -112,6 +115,37 @@ class _Law(Functor):
         """Take the parameters of the physics functor that goes with this law."""
         for name, value in phys._io_params().items():
             self._set(name, value)
+
+
+class Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(Functor):
+    """Cohesive-frictional physics from CohFrictMat: linear stiffnesses as FrictPhys, rolling and
+    twisting stiffnesses and limits. ``setCohesionOnNewContacts``: new contacts between cohesive
+    materials are bonded; ``setCohesionNow``: every existing contact is bonded at the next step
+    (then the flag goes back to False, as in Yade)."""
+    _parameters = ("setCohesionNow", "setCohesionOnNewContacts")
+
+    def __init__(self, label: str = "", **params):
+        super().__init__(label, **params)
+        self._laws = []
+
+    def __setattr__(self, name, value):
+        object.__setattr__(self, name, value)
+        if name == "setCohesionNow" and value:   # Yade scripts set it on the functor mid-run
+            for law in getattr(self, "_laws", []):
+                law._set(name, value)
+
+
+class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
+    """Cohesive bonds (normal and shear strengths, fragile or plastic), Coulomb friction, and
+    with momentRotationLaw rolling and twisting moments (``useIncrementalForm``: from
+    incremental rotations, needed for exact plastic limits; ``always_use_moment_law``: keep
+    them after the bond broke)."""
+    _cpp_name = "Law2_ScGeom6D_CohFrictPhys_CohesionMoment"
+    _parameters = ("useIncrementalForm", "always_use_moment_law")
+
+    def _configure(self, phys: Functor):
+        super()._configure(phys)
+        phys._laws.append(self)
 
 
 class Law2_ScGeom_MindlinPhys_Mindlin(_Law):
@@ -257,4 +291,6 @@ __all__ = [
     "Ip2_FrictMat_FrictMat_FrictPhys", "Ip2_ViscElMat_ViscElMat_ViscElPhys",
     "Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_ViscElPhys_Basic",
     "Ip2_FrictMat_FrictMat_MindlinPhys", "Law2_ScGeom_MindlinPhys_Mindlin", "MatchMaker",
+    "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys", "Law2_ScGeom6D_CohFrictPhys_CohesionMoment", "Ig2_Sphere_Sphere_ScGeom6D",
+    "Ig2_Wall_Sphere_ScGeom6D",
 ]
