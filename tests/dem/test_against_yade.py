@@ -44,3 +44,18 @@ def test_hertz_mindlin_collisions_match_yade(build_dir):
     assert spin > 1.0                   # the collisions did make the spheres turn
     assert max(abs(p - q) for ra, rb in zip(a, b) for ba, bb in zip(ra, rb) for p, q in zip(ba[:3], bb[:3])) < 1e-6
     assert max(abs(p - q) for ra, rb in zip(a, b) for ba, bb in zip(ra, rb) for p, q in zip(ba[3:], bb[3:])) < 1e-6 * spin
+
+
+@pytest.mark.skipif(yade is None, reason="yade is not installed (./setup.sh installs it)")
+def test_cohesive_bonds_with_moments_match_yade(build_dir):
+    # CohFrict: a bonded sphere spinning on a fixed one (bending and twisting moments), a third
+    # sphere bonding on impact, a bond breaking: positions and angular velocities.
+    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
+    ours = trajectory([sys.executable, str(HERE / "cohfrict_bond.py")], env=env)
+    theirs = trajectory([yade, "-n", "-j1", "-x", str(HERE / "cohfrict_bond.py")])
+    a, b = ours["x"], theirs["x"]
+    assert len(a) == len(b) == 3000
+    assert max(sum(p * p for p in row[0][:3]) ** 0.5 for row in b) > 0.11   # the first bond broke
+    spin = max(abs(v) for row in b for body in row for v in body[3:])
+    assert max(abs(p - q) for ra, rb in zip(a, b) for ba, bb in zip(ra, rb) for p, q in zip(ba[:3], bb[:3])) < 1e-6
+    assert max(abs(p - q) for ra, rb in zip(a, b) for ba, bb in zip(ra, rb) for p, q in zip(ba[3:], bb[3:])) < 1e-6 * spin

@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 from talus import _dem
-from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+from talus.dem import (CohFrictMat, FrictMat, ForceResetter, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
+                       Law2_ScGeom6D_CohFrictPhys_CohesionMoment, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Ip2_FrictMat_FrictMat_MindlinPhys,
                        Law2_ScGeom_MindlinPhys_Mindlin, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic, Matrix3,
@@ -30,7 +31,12 @@ def deposition(visco, m: int = 7) -> Scene:
     True (visco-elastic) or "hertz" (Hertz-Mindlin with restitution 0.5, energy tracked)."""
     S = Scene()
     rng = np.random.default_rng(7)
-    if visco == "hertz":
+    if visco == "cohfrict":
+        S.materials.append(CohFrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600, normalCohesion=2e3,
+                                       shearCohesion=2e3, momentRotationLaw=True, etaRoll=0.1, label="clay"))
+        law = ([Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionOnNewContacts=True)],
+               [Law2_ScGeom6D_CohFrictPhys_CohesionMoment()])
+    elif visco == "hertz":
         S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600, label="sand"))
         law = ([Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)], [Law2_ScGeom_MindlinPhys_Mindlin()])
         S.trackEnergy = True
@@ -75,12 +81,12 @@ def test_layout_is_covered():
     engines and the transient pauseRequested_). When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
     is transient, then update this table."""
-    assert _dem.layout_sizes() == {"Contact": 256, "Material": 128, "Bodies": 456, "WallShape": 8,
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 456, "WallShape": 8,
                                    "FacetShape": 96, "Cell": 296, "Scene": 1056, "ContactExtra": 256,
                                    "EnergyTracker": 40}
 
 
-@pytest.mark.parametrize("visco", [False, True, "hertz"], ids=["FrictMat", "ViscElMat", "Hertz"])
+@pytest.mark.parametrize("visco", [False, True, "hertz", "cohfrict"], ids=["FrictMat", "ViscElMat", "Hertz", "CohFrict"])
 def test_restart_continues_bit_identically(tmp_path, visco):
     A = deposition(visco)
     A.run(400 if visco is True else 200)    # settle into a contact-rich state
@@ -96,6 +102,10 @@ def test_restart_continues_bit_identically(tmp_path, visco):
     B.run(200)                      # ... and N/2 more after loading
     assert_identical(state(B), reference)
     assert B.trackEnergy == (visco == "hertz")
+    if visco == "cohfrict":         # bonds and moments were part of the state
+        x = _dem.contact_extra(B._cpp)
+        assert sum(not e["cohesionBroken"] for e in x) > 100
+        assert max(np.linalg.norm(e["moment_bending"]) for e in x) > 0
     assert list(B.energy.values()) == list(A.energy.values())
     assert B.engines[-1].nDone == A.engines[-1].nDone   # the PyRunner kept its rhythm
 
