@@ -3,10 +3,9 @@ stiffness constants equal Yade's, restitution equals an independent high-accurac
 same contact model, an elastic bounce conserves energy, the friction threshold on an incline."""
 import math
 
-import numpy as np
 import pytest
-from scipy.integrate import solve_ivp
 
+from talus.dem.analytic import hertz_contact_time, hertz_restitution, thornton_damping_ratio
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker,
                        NewtonIntegrator, Scene, sphere, wall)
@@ -23,32 +22,6 @@ def hertz(**ip2):
 def engines(laws, gravity=(0, 0, 0)):
     return [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *laws),
             NewtonIntegrator(gravity=gravity, damping=0.0)]
-
-
-def thornton_beta(e):
-    """Yade's damping ratio for restitution e (Thornton et al. 2013, eqs. B6-B7)."""
-    if e == 1:
-        return 0.0
-    h = [-6.918798, -16.41105, 146.8049, -796.4559, 2928.711, -7206.864, 11494.29, -11342.18, 6276.757, -1489.915]
-    alpha = e * np.polynomial.polynomial.polyval(e, h)
-    return math.sqrt(1 / (1 - (1 + e) ** 2 * math.exp(alpha)) - 1)
-
-
-def reference_restitution(mass, kno, beta, v0):
-    """Restitution of m u'' = -max(0, kno u^1.5 + 2 beta sqrt(m 3/2 kno u^0.5) u'), from
-    u = 0, u' = v0 until u = 0 again, integrated to 1e-12 (DOP853)."""
-    def rhs(_, y):
-        u, v = max(y[0], 0.0), y[1]
-        f = kno * u ** 1.5 + 2 * beta * math.sqrt(mass * 1.5 * kno * math.sqrt(u)) * v
-        return [v, -max(f, 0.0) / mass]
-
-    def leaves(_, y):
-        return y[0]
-    leaves.terminal, leaves.direction = True, -1
-    # Start just inside (the event at u = 0 must not fire at t = 0).
-    t0 = 1e-9 * (mass ** 2 / (kno ** 2 * v0)) ** 0.2
-    sol = solve_ivp(rhs, (0, 1.0), [v0 * t0, v0], method="DOP853", rtol=1e-12, atol=1e-20, events=leaves)
-    return -sol.y_events[0][0][1] / v0
 
 
 def single_collision(en=None, betan=None, v0=1.0):
@@ -85,11 +58,11 @@ def test_restitution_equals_the_contact_model(en):
     S = single_collision(en=en)
     mass = S.bodies[1].state.mass
     kno = 4 / 3 * E / (2 * (1 - NU ** 2)) * math.sqrt(R / 2)
-    tc = 2.87 * (mass ** 2 / (kno ** 2 * 1.0)) ** 0.2        # Hertz contact duration (m*, kno form)
+    tc = hertz_contact_time(mass, kno, 1.0)
     S.dt = 2e-5 * tc                                         # the dashpot sees half-step velocities
     run_collision(S)
     e = S.bodies[1].state.vel[2] / 1.0
-    expected = reference_restitution(mass, kno, thornton_beta(en), 1.0)
+    expected = hertz_restitution(mass, kno, thornton_damping_ratio(en), 1.0)
     assert e == pytest.approx(expected, rel=1e-4)
     # Thornton's fit maps the requested en to the damping ratio to within about a percent.
     assert e == pytest.approx(en, rel=2e-2)
