@@ -52,24 +52,29 @@ void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
   const StepContext step = detail::stepContext<Law>(scene);
   const auto n = static_cast<std::int64_t>(list.size());
   // Tracking energy: contacts in fixed blocks, each block's energies summed in order.
-  const std::int64_t blocks = Track ? (n + energyBlock - 1) / energyBlock : n;
-  const std::int64_t width = Track ? energyBlock : 1;
-  std::vector<ContactEnergy> energy(Track ? static_cast<std::size_t>(blocks) : 0);
-#pragma omp parallel for schedule(static)
-  for (std::int64_t blk = 0; blk < blocks; ++blk)
-  {
-    ContactEnergy e;
-    for (std::int64_t k = blk * width, end = std::min(n, k + width); k < end; ++k)
-    {
-      Contact& c = list[static_cast<std::size_t>(k)];
-      if (c.real && c.law == lawIndex)
-        law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
-    }
-    if constexpr (Track)
-      energy[static_cast<std::size_t>(blk)] = e;
-  }
+  auto one = [&](std::int64_t k, ContactEnergy& e) {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    if (c.real && c.law == lawIndex)
+      law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
+  };
   if constexpr (Track)
+  {
+    // Contacts in fixed blocks, each block's energies summed in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(static)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
+        one(k, energy[static_cast<std::size_t>(blk)]);
     detail::addContactEnergy(scene, energy);
+  }
+  else
+  {
+    ContactEnergy unused;
+#pragma omp parallel for schedule(static) firstprivate(unused)
+    for (std::int64_t k = 0; k < n; ++k)
+      one(k, unused);
+  }
   stepDone();
 }
 
@@ -88,34 +93,39 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
   const StepContext step = detail::stepContext<Law>(scene);
   const auto n = static_cast<std::int64_t>(list.size());
   const double ratio = scene.maxOverlapRatio;
-  const std::int64_t blocks = Track ? (n + energyBlock - 1) / energyBlock : n;
-  const std::int64_t width = Track ? energyBlock : 1;
-  std::vector<ContactEnergy> energy(Track ? static_cast<std::size_t>(blocks) : 0);
-  std::int64_t firstBad = n;
-#pragma omp parallel for schedule(static) reduction(min : firstBad)
-  for (std::int64_t blk = 0; blk < blocks; ++blk)
-  {
-    ContactEnergy e;
-    for (std::int64_t k = blk * width, end = std::min(n, k + width); k < end; ++k)
+  // The index of the first contact overlapping too much, or n.
+  auto one = [&](std::int64_t k, ContactEnergy& e) -> std::int64_t {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
+    if (!updateContactGeometry(c, step.bodies, step.cell, step.dt, x))
+      return n;
+    if (c.fresh)
     {
-      Contact& c = list[static_cast<std::size_t>(k)];
-      ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
-      if (!updateContactGeometry(c, step.bodies, step.cell, step.dt, x))
-        continue;
-      if (c.fresh)
-      {
-        c.law = 0;
-        law.initialize(c, x, scene);
-      }
-      law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
-      if (overlapsTooMuch(c, ratio))
-        firstBad = std::min(firstBad, k);
+      c.law = 0;
+      law.initialize(c, x, scene);
     }
-    if constexpr (Track)
-      energy[static_cast<std::size_t>(blk)] = e;
-  }
+    law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
+    return overlapsTooMuch(c, ratio) ? k : n;
+  };
+  std::int64_t firstBad = n;
   if constexpr (Track)
+  {
+    // Contacts in fixed blocks, each block's energies summed in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(static) reduction(min : firstBad)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
+        firstBad = std::min(firstBad, one(k, energy[static_cast<std::size_t>(blk)]));
     detail::addContactEnergy(scene, energy);
+  }
+  else
+  {
+    ContactEnergy unused;
+#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused)
+    for (std::int64_t k = 0; k < n; ++k)
+      firstBad = std::min(firstBad, one(k, unused));
+  }
   stepDone();
   return firstBad < n ? firstBad : -1;
 }

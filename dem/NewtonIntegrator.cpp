@@ -98,80 +98,84 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
   const Mat3 L = scene.cell.velGrad, previousL = scene.cell.prevVelGrad;
   const Vec3 w = spin(L), previousW = spin(previousL);
   const auto n = static_cast<std::int64_t>(b.size());
-  // Tracking energy: bodies in fixed blocks, each block's sums added in order. The work of a
+  // One body; false if its force or torque is not finite. Tracking energy, the work of the
   // step's force is taken over the mean of the old and new (fluctuating) velocities, which is
   // exactly the change of kinetic energy it causes in the leap-frog scheme.
-  const std::int64_t blocks = Track ? (n + energyBlock - 1) / energyBlock : n;
-  const std::int64_t width = Track ? energyBlock : 1;
-  std::vector<std::array<double, 2>> energy(Track ? static_cast<std::size_t>(blocks) : 0); // gravWork, nonviscDamp
-  std::int64_t firstBad = n;
-#pragma omp parallel for schedule(static) reduction(min : firstBad)
-  for (std::int64_t blk = 0; blk < blocks; ++blk)
-  {
-    double gravWork = 0, damp = 0;
-    for (std::int64_t k = blk * width, end = std::min(n, k + width); k < end; ++k)
+  auto one = [&](std::size_t i, double& gravWork, double& damp) -> bool {
+    if (!b.alive[i])
+      return true;
+    if (b.dynamic[i])
     {
-      const auto i = static_cast<std::size_t>(k);
-      if (!b.alive[i])
-        continue;
-      if (b.dynamic[i])
+      if (!b.force[i].allFinite() || !b.torque[i].allFinite())
+        return false;
+      Vec3 v = b.vel[i], omega = b.angVel[i];
+      if (homogeneous)
       {
-        if (!b.force[i].allFinite() || !b.torque[i].allFinite())
-        {
-          firstBad = std::min(firstBad, k);
-          continue;
-        }
-        Vec3 v = b.vel[i], omega = b.angVel[i];
-        if (homogeneous)
-        {
-          v -= previousL * (b.pos[i] - dt * b.vel[i]);
-          omega -= previousW;
-        }
-        // Blocked DOFs have a zero inverse mass (or inertia) and no gravity: their velocity stays.
-        const std::uint8_t blocked = b.blockedDofs[i];
-        Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
-        Vec3 alpha = b.torque[i].cwiseProduct(invInertia_[i]);
-        Vec3 g = Vec3::Zero();
-        for (int d = 0; d < 3; ++d)
-          if (!(blocked & (1u << d)))
-            g[d] = gravity[d];
-        a += g;
-        const Vec3 undamped = a, undampedAlpha = alpha;
-        if (damping != 0)
-          for (int d = 0; d < 3; ++d)
-          {
-            a[d] = damped(a[d], v[d], dt, damping);
-            alpha[d] = damped(alpha[d], omega[d], dt, damping);
-          }
-        const Vec3 vOld = v, omegaOld = omega;
-        v += a * dt;
-        omega += alpha * dt;
-        if constexpr (Track)
-        {
-          const Vec3 vMean = 0.5 * (vOld + v), omegaMean = 0.5 * (omegaOld + omega);
-          gravWork -= b.mass[i] * g.dot(vMean) * dt;
-          damp -= (b.mass[i] * (a - undamped).dot(vMean) + (alpha - undampedAlpha).cwiseProduct(b.inertia[i]).dot(omegaMean)) * dt;
-        }
-        if (homogeneous)
-        {
-          v += L * b.pos[i];
-          omega += w;
-        }
-        b.vel[i] = v;
-        b.angVel[i] = omega;
+        v -= previousL * (b.pos[i] - dt * b.vel[i]);
+        omega -= previousW;
       }
-      b.pos[i] += b.vel[i] * dt;
-      b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
+      // Blocked DOFs have a zero inverse mass (or inertia) and no gravity: their velocity stays.
+      const std::uint8_t blocked = b.blockedDofs[i];
+      Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
+      Vec3 alpha = b.torque[i].cwiseProduct(invInertia_[i]);
+      Vec3 g = Vec3::Zero();
+      for (int d = 0; d < 3; ++d)
+        if (!(blocked & (1u << d)))
+          g[d] = gravity[d];
+      a += g;
+      const Vec3 undamped = a, undampedAlpha = alpha;
+      if (damping != 0)
+        for (int d = 0; d < 3; ++d)
+        {
+          a[d] = damped(a[d], v[d], dt, damping);
+          alpha[d] = damped(alpha[d], omega[d], dt, damping);
+        }
+      const Vec3 vOld = v, omegaOld = omega;
+      v += a * dt;
+      omega += alpha * dt;
+      if constexpr (Track)
+      {
+        const Vec3 vMean = 0.5 * (vOld + v), omegaMean = 0.5 * (omegaOld + omega);
+        gravWork -= b.mass[i] * g.dot(vMean) * dt;
+        damp -= (b.mass[i] * (a - undamped).dot(vMean) + (alpha - undampedAlpha).cwiseProduct(b.inertia[i]).dot(omegaMean)) * dt;
+      }
+      if (homogeneous)
+      {
+        v += L * b.pos[i];
+        omega += w;
+      }
+      b.vel[i] = v;
+      b.angVel[i] = omega;
     }
-    if constexpr (Track)
-      energy[static_cast<std::size_t>(blk)] = {gravWork, damp};
-  }
+    b.pos[i] += b.vel[i] * dt;
+    b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
+    return true;
+  };
+  std::int64_t firstBad = n;
   if constexpr (Track)
+  {
+    // Bodies in fixed blocks, each block's sums added in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<std::array<double, 2>> energy(static_cast<std::size_t>(blocks), {0.0, 0.0}); // gravWork, damping
+#pragma omp parallel for schedule(static) reduction(min : firstBad)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
+        if (!one(static_cast<std::size_t>(k), energy[static_cast<std::size_t>(blk)][0], energy[static_cast<std::size_t>(blk)][1]))
+          firstBad = std::min(firstBad, k);
     for (const auto& [gravWork, damp] : energy)
     {
       scene.energy.gravWork += gravWork;
       scene.energy.nonviscDamp += damp;
     }
+  }
+  else
+  {
+    double unused = 0;
+#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused)
+    for (std::int64_t k = 0; k < n; ++k)
+      if (!one(static_cast<std::size_t>(k), unused, unused))
+        firstBad = std::min(firstBad, k);
+  }
   return firstBad < n ? firstBad : -1;
 }
 } // namespace talus::dem

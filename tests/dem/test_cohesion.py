@@ -173,3 +173,16 @@ def test_cohesive_materials_need_their_law():
     S.materials.append(CohFrictMat())
     with pytest.raises(ValueError, match="CohFrictMat|normalCohesion"):
         S.materials.append(CohFrictMat(normalCohesion=float("nan")))
+
+
+def test_set_cohesion_now_bonds_existing_contacts_once():
+    S = bonded_pair()
+    ip = Ip2_CohFrictMat_CohFrictMat_CohFrictPhys()
+    S.engines = engines(ip)
+    S.dt = 1e-5
+    S.step()
+    assert _dem.contact_extra(S._cpp)[0]["cohesionBroken"]      # touching, not bonded
+    ip.setCohesionNow = True                                      # as a Yade script does mid-run
+    S.step()
+    assert not _dem.contact_extra(S._cpp)[0]["cohesionBroken"]
+    assert ip.setCohesionNow is False                             # one shot, reset by the law

@@ -125,14 +125,22 @@ class Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(Functor):
     _parameters = ("setCohesionNow", "setCohesionOnNewContacts")
 
     def __init__(self, label: str = "", **params):
-        super().__init__(label, **params)
         self._laws = []
+        self._now = None
+        super().__init__(label, **params)
 
-    def __setattr__(self, name, value):
-        object.__setattr__(self, name, value)
-        if name == "setCohesionNow" and value:   # Yade scripts set it on the functor mid-run
-            for law in getattr(self, "_laws", []):
-                law._set(name, value)
+    @property
+    def setCohesionNow(self):
+        """Reads back False once the law has bonded the contacts (as in Yade)."""
+        if self._laws:
+            return bool(_dem.law_parameter(self._laws[0]._cpp, "setCohesionNow"))
+        return self._now
+
+    @setCohesionNow.setter
+    def setCohesionNow(self, value):   # Yade scripts set it on the functor mid-run
+        self._now = value
+        for law in self._laws:
+            law._set("setCohesionNow", bool(value))
 
 
 class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
