@@ -62,7 +62,7 @@ void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
     // Contacts in fixed blocks, each block's energies summed in order.
     const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
     std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallelMinimum)
     for (std::int64_t blk = 0; blk < blocks; ++blk)
       for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
         one(k, energy[static_cast<std::size_t>(blk)]);
@@ -71,7 +71,7 @@ void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
   else
   {
     ContactEnergy unused;
-#pragma omp parallel for schedule(static) firstprivate(unused)
+#pragma omp parallel for schedule(static) firstprivate(unused) if (n >= parallelMinimum)
     for (std::int64_t k = 0; k < n; ++k)
       one(k, unused);
   }
@@ -113,7 +113,7 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
     // Contacts in fixed blocks, each block's energies summed in order.
     const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
     std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
-#pragma omp parallel for schedule(static) reduction(min : firstBad)
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelMinimum)
     for (std::int64_t blk = 0; blk < blocks; ++blk)
       for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
         firstBad = std::min(firstBad, one(k, energy[static_cast<std::size_t>(blk)]));
@@ -122,7 +122,7 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
   else
   {
     ContactEnergy unused;
-#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused)
+#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused) if (n >= parallelMinimum)
     for (std::int64_t k = 0; k < n; ++k)
       firstBad = std::min(firstBad, one(k, unused));
   }

@@ -12,7 +12,7 @@ double kineticEnergy(const Scene& scene)
   const auto n = static_cast<std::int64_t>(b.size());
   const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
   std::vector<double> sums(static_cast<std::size_t>(blocks), 0.0);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallelMinimum)
   for (std::int64_t blk = 0; blk < blocks; ++blk)
   {
     double sum = 0;

@@ -157,7 +157,7 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
     // Bodies in fixed blocks, each block's sums added in order.
     const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
     std::vector<std::array<double, 2>> energy(static_cast<std::size_t>(blocks), {0.0, 0.0}); // gravWork, damping
-#pragma omp parallel for schedule(static) reduction(min : firstBad)
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelMinimum)
     for (std::int64_t blk = 0; blk < blocks; ++blk)
       for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
         if (!one(static_cast<std::size_t>(k), energy[static_cast<std::size_t>(blk)][0], energy[static_cast<std::size_t>(blk)][1]))
@@ -171,7 +171,7 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
   else
   {
     double unused = 0;
-#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused)
+#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused) if (n >= parallelMinimum)
     for (std::int64_t k = 0; k < n; ++k)
       if (!one(static_cast<std::size_t>(k), unused, unused))
         firstBad = std::min(firstBad, k);

@@ -12,6 +12,11 @@ using Vec3 = Eigen::Vector3d;
 using Quat = Eigen::Quaterniond;
 using Mat3 = Eigen::Matrix3d;
 
+/// Loops over fewer bodies or contacts than this run on one thread (OpenMP `if` clause): for
+/// small scenes forking the threads costs more than the work, and far more on a loaded machine.
+/// Results do not depend on it (sums are per body or per fixed block in any case).
+inline constexpr std::int64_t parallelMinimum = 256;
+
 /// Body identifier: the index of the body in the scene's arrays; stable for the body's life.
 using BodyId = std::int32_t;
 

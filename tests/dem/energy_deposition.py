@@ -1,6 +1,6 @@
 """A damped, frictional deposition with the energy tracker on; prints the energies (as exact
 reprs) so that runs with different thread counts can be compared. Usage: energy_deposition.py
-[linear|viscoelastic|hertz] [steps]."""
+[linear|viscoelastic|hertz] [steps] [m (m^3 spheres)]."""
 import json
 import sys
 
@@ -43,7 +43,7 @@ def scene(law: str, m: int = 6, damping: float = 0.3, track: bool = True) -> Sce
 if __name__ == "__main__":
     law = sys.argv[1] if len(sys.argv) > 1 else "linear"
     steps = int(sys.argv[2]) if len(sys.argv) > 2 else 1500
-    S = scene(law)
+    S = scene(law, m=int(sys.argv[3]) if len(sys.argv) > 3 else 6)
     S.run(steps)
     print("ENERGY " + json.dumps({k: repr(v) for k, v in S.energy.items()}))
-    print("CONTACTS", S._cpp.realContactCount())
+    print("CONTACTS", S._cpp.realContactCount(), S._cpp.contactCount())

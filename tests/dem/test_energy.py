@@ -61,13 +61,17 @@ def test_tracking_does_not_change_the_physics():
 def test_energies_do_not_depend_on_the_thread_count(build_dir):
     def run(threads):
         env = {**os.environ, "OMP_NUM_THREADS": str(threads), "PYTHONPATH": str(build_dir / "python")}
-        done = subprocess.run([sys.executable, str(SCRIPT), "hertz", "1500"], capture_output=True, text=True,
+        # 729 spheres: enough bodies and contacts for the loops to run in parallel
+        done = subprocess.run([sys.executable, str(SCRIPT), "hertz", "4000", "9"], capture_output=True, text=True,
                               env=env, timeout=300)
         assert done.returncode == 0, done.stderr
         line = next(l for l in done.stdout.splitlines() if l.startswith("ENERGY "))
-        return json.loads(line[len("ENERGY "):])
+        contacts = next(l for l in done.stdout.splitlines() if l.startswith("CONTACTS "))
+        return {**json.loads(line[len("ENERGY "):]), "contacts": contacts.split()[1:]}
     one, two = run(1), run(2)
     assert float(one["plastDissip"]) > 0 and float(one["viscDamp"]) > 0
+    real, candidates = map(int, one["contacts"])
+    assert real > 50 and candidates > 256          # the contact loops did run in parallel
     assert one == two
 
 
