@@ -40,10 +40,10 @@ def test_free_fall_with_damping_balances_to_round_off():
 def test_damped_frictional_deposition_closes_the_balance(law):
     S = deposition(law)
     before = S.energy.total()
-    S.run({"linear": 6000, "viscoelastic": 24000, "hertz": 20000}[law])
+    S.run({"linear": 4000, "viscoelastic": 16000, "hertz": 12000}[law])
     e = dict(S.energy.items())
-    assert S._cpp.realContactCount() > 300                 # a settled packing
-    assert e["kinetic"] < 0.01 * abs(e["gravWork"])
+    assert S._cpp.realContactCount() > 150                 # a packing, nearly settled
+    assert e["kinetic"] < 0.05 * abs(e["gravWork"])
     assert e["nonviscDamp"] > 0 and e["plastDissip"] > 0
     assert (e["viscDamp"] > 0) == (law != "linear")
     assert abs(S.energy.total() - before) < 0.01 * abs(e["gravWork"])
