@@ -296,7 +296,13 @@ bool validExtraName(const std::string& name)
 constexpr std::pair<const char*, double Material::*> materialScalars[] = {
     {"density", &Material::density}, {"young", &Material::young}, {"poisson", &Material::poisson},
     {"frictionAngle", &Material::frictionAngle}, {"tc", &Material::tc}, {"en", &Material::en}, {"et", &Material::et},
-    {"kn", &Material::kn}, {"cn", &Material::cn}, {"ks", &Material::ks}, {"cs", &Material::cs}};
+    {"kn", &Material::kn}, {"cn", &Material::cn}, {"ks", &Material::ks}, {"cs", &Material::cs},
+    {"normalCohesion", &Material::normalCohesion}, {"shearCohesion", &Material::shearCohesion},
+    {"alphaKr", &Material::alphaKr}, {"alphaKtw", &Material::alphaKtw}, {"etaRoll", &Material::etaRoll},
+    {"etaTwist", &Material::etaTwist}};
+constexpr std::pair<const char*, bool Material::*> materialFlags[] = {
+    {"isCohesive", &Material::isCohesive}, {"momentRotationLaw", &Material::momentRotationLaw},
+    {"fragile", &Material::fragile}};
 constexpr std::pair<const char*, Vec3 Contact::*> contactVectors[] = {
     {"shift2", &Contact::shift2}, {"normal", &Contact::normal}, {"contactPoint", &Contact::contactPoint},
     {"shearIncrement", &Contact::shearIncrement}, {"normalForce", &Contact::normalForce},
@@ -304,6 +310,26 @@ constexpr std::pair<const char*, Vec3 Contact::*> contactVectors[] = {
 constexpr std::pair<const char*, double Contact::*> contactScalars[] = {
     {"penetration", &Contact::penetration}, {"refR1", &Contact::refR1}, {"refR2", &Contact::refR2},
     {"kn", &Contact::kn}, {"ks", &Contact::ks}, {"cn", &Contact::cn}, {"cs", &Contact::cs}, {"tanPhi", &Contact::tanPhi}};
+// Contacts::extra (the richer contact models' state), one dataset per field under /contacts/extra.
+constexpr std::pair<const char*, double ContactExtra::*> extraScalars[] = {
+    {"kno", &ContactExtra::kno}, {"kso", &ContactExtra::kso}, {"betan", &ContactExtra::betan},
+    {"betas", &ContactExtra::betas}, {"twist", &ContactExtra::twist}, {"normalAdhesion", &ContactExtra::normalAdhesion},
+    {"shearAdhesion", &ContactExtra::shearAdhesion}, {"kr", &ContactExtra::kr}, {"ktw", &ContactExtra::ktw},
+    {"maxRollPl", &ContactExtra::maxRollPl}, {"maxTwistPl", &ContactExtra::maxTwistPl}, {"unp", &ContactExtra::unp},
+    {"unpMax", &ContactExtra::unpMax}};
+constexpr std::pair<const char*, Vec3 ContactExtra::*> extraVectors[] = {
+    {"bending", &ContactExtra::bending}, {"momentBending", &ContactExtra::momentBending},
+    {"momentTwist", &ContactExtra::momentTwist}};
+constexpr std::pair<const char*, Quat ContactExtra::*> extraQuats[] = {
+    {"initialOrientation1", &ContactExtra::initialOrientation1}, {"initialOrientation2", &ContactExtra::initialOrientation2}};
+constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
+    {"cohesionBroken", &ContactExtra::cohesionBroken}, {"fragile", &ContactExtra::fragile},
+    {"momentRotationLaw", &ContactExtra::momentRotationLaw},
+    {"cohesionDisablesFriction", &ContactExtra::cohesionDisablesFriction}};
+// The energy tracker's accumulated terms, attributes of /energy.
+constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
+    {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},
+    {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp}};
 constexpr std::pair<const char*, BodyId Contact::*> contactIds[] = {{"id1", &Contact::id1}, {"id2", &Contact::id2}};
 constexpr std::pair<const char*, bool Contact::*> contactFlags[] = {{"real", &Contact::real}, {"fresh", &Contact::fresh}};
 constexpr std::pair<const char*, std::vector<Vec3> Bodies::*> bodyVectors[] = {
@@ -346,6 +372,14 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     w.attribute(g.get(), "maxOverlapRatio", scene.maxOverlapRatio);
   }
 
+  // Energy tracker.
+  {
+    const Id g = w.group("/energy");
+    w.attribute(g.get(), "enabled", std::int64_t{scene.energy.enabled ? 1 : 0});
+    for (const auto& [name, field] : energyTerms)
+      w.attribute(g.get(), name, scene.energy.*field);
+  }
+
   // Periodic cell.
   {
     const Id g = w.group("/cell");
@@ -381,6 +415,13 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
       for (std::size_t i = 0; i < mats.size(); ++i)
         column[i] = mats[i].*field;
       w.doubles(at("/materials/", name), {mats.size()}, column.data());
+    }
+    std::vector<std::uint8_t> flag(mats.size());
+    for (const auto& [name, field] : materialFlags)
+    {
+      for (std::size_t i = 0; i < mats.size(); ++i)
+        flag[i] = mats[i].*field ? 1 : 0;
+      w.uint8s(at("/materials/", name), flag.data(), flag.size());
     }
   }
 
@@ -477,6 +518,41 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
         column[k] = list[k].*field;
       w.doubles(at("/contacts/", name), {c}, column.data());
     }
+    // The richer models' state: as many rows as contacts, or none.
+    const std::vector<ContactExtra>& extra = scene.contacts.extra;
+    const std::size_t e = extra.size();
+    const Id ge = w.group("/contacts/extra");
+    column.resize(e);
+    for (const auto& [name, field] : extraScalars)
+    {
+      for (std::size_t k = 0; k < e; ++k)
+        column[k] = extra[k].*field;
+      w.doubles(at("/contacts/extra/", name), {e}, column.data());
+    }
+    column3.resize(e);
+    for (const auto& [name, field] : extraVectors)
+    {
+      for (std::size_t k = 0; k < e; ++k)
+        column3[k] = extra[k].*field;
+      w.vec3s(at("/contacts/extra/", name), column3);
+    }
+    std::vector<double> quats(4 * e);
+    for (const auto& [name, field] : extraQuats)
+    {
+      for (std::size_t k = 0; k < e; ++k)
+      {
+        const Quat& q = extra[k].*field;
+        quats[4 * k] = q.w(), quats[4 * k + 1] = q.x(), quats[4 * k + 2] = q.y(), quats[4 * k + 3] = q.z();
+      }
+      w.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
+    }
+    bytes.resize(e);
+    for (const auto& [name, field] : extraBytes)
+    {
+      for (std::size_t k = 0; k < e; ++k)
+        bytes[k] = extra[k].*field;
+      w.uint8s(at("/contacts/extra/", name), bytes.data(), e);
+    }
   }
 
   // Extras: text records of the Python layer.
@@ -505,6 +581,8 @@ struct Loaded
   std::vector<Material> materials;
   Bodies bodies;
   std::vector<Contact> contacts;
+  std::vector<ContactExtra> contactExtra;
+  EnergyTracker energy;
   CheckpointExtras extras;
 };
 
@@ -737,6 +815,9 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
   in.bodyPropertiesVersion = r.integer("/clock", "bodyPropertiesVersion");
 
   in.maxOverlapRatio = r.real("/settings", "maxOverlapRatio");
+  in.energy.enabled = r.integer("/energy", "enabled") != 0;
+  for (const auto& [name, field] : energyTerms)
+    in.energy.*field = r.real("/energy", name);
   in.periodic = r.integer("/cell", "periodic") != 0;
   in.cell.homoDeform = r.integer("/cell", "homoDeform") != 0;
   in.cell.hSize = r.matrix("/cell/hSize");
@@ -764,9 +845,16 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
       for (std::size_t i = 0; i < m; ++i)
         in.materials[i].*field = column[i];
     }
+    std::vector<std::uint8_t> flag(m);
+    for (const auto& [name, field] : materialFlags)
+    {
+      r.uint8s(at("/materials/", name), flag);
+      for (std::size_t i = 0; i < m; ++i)
+        in.materials[i].*field = flag[i] != 0;
+    }
     for (std::size_t i = 0; i < m; ++i)
     {
-      if (kind[i] > static_cast<std::uint8_t>(MaterialKind::ViscEl))
+      if (kind[i] > static_cast<std::uint8_t>(MaterialKind::CohFrict))
         ctx.fail("material " + std::to_string(i) + " has unknown kind " + std::to_string(kind[i]), false);
       in.materials[i].kind = static_cast<MaterialKind>(kind[i]);
       in.materials[i].label = label[i];
@@ -889,6 +977,42 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
       for (std::size_t k = 0; k < c; ++k)
         list[k].*field = column[k];
     }
+    const std::vector<hsize_t> de = r.dims("/contacts/extra/kno");
+    if (de.size() != 1 || (de[0] != 0 && de[0] != c))
+      ctx.fail("/contacts/extra has " + std::to_string(de.empty() ? 0 : de[0]) + " rows for " + std::to_string(c)
+                   + " contacts (expected 0 or as many)",
+               false);
+    const std::size_t e = de[0];
+    std::vector<ContactExtra>& extra = in.contactExtra;
+    extra.resize(e);
+    column.resize(e);
+    for (const auto& [name, field] : extraScalars)
+    {
+      r.doubles(at("/contacts/extra/", name), {e}, column.data());
+      for (std::size_t k = 0; k < e; ++k)
+        extra[k].*field = column[k];
+    }
+    column3.resize(e);
+    for (const auto& [name, field] : extraVectors)
+    {
+      r.vec3s(at("/contacts/extra/", name), column3);
+      for (std::size_t k = 0; k < e; ++k)
+        extra[k].*field = column3[k];
+    }
+    std::vector<double> quats(4 * e);
+    for (const auto& [name, field] : extraQuats)
+    {
+      r.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
+      for (std::size_t k = 0; k < e; ++k)
+        extra[k].*field = Quat(quats[4 * k], quats[4 * k + 1], quats[4 * k + 2], quats[4 * k + 3]);
+    }
+    bytes.resize(e);
+    for (const auto& [name, field] : extraBytes)
+    {
+      r.uint8s(at("/contacts/extra/", name), bytes);
+      for (std::size_t k = 0; k < e; ++k)
+        extra[k].*field = bytes[k];
+    }
   }
 
   // Extras.
@@ -985,7 +1109,9 @@ void commit(Scene& scene, const Loaded& in)
                          in.materials.end());
   scene.bodies = in.bodies;
   scene.contacts.list = in.contacts;
+  scene.contacts.extra = in.contactExtra;
   scene.contacts.index(scene.bodies.size());
+  scene.energy = in.energy;
   // Above both the scene's counters (its engines have seen those) and the saved ones.
   scene.bodiesVersion = std::max(scene.bodiesVersion, in.bodiesVersion) + 1;
   scene.bodyPropertiesVersion = std::max(scene.bodyPropertiesVersion, in.bodyPropertiesVersion) + 1;

@@ -245,18 +245,36 @@ void Collider::rebuild(Scene& scene)
   merged.clear();
   if (merged.capacity() < pairs.size()) // with room to grow: a reallocation faults in fresh pages
     merged.reserve(pairs.size() + pairs.size() / 4);
+  // The richer models' state (if any) follows its contact.
+  std::vector<ContactExtra>& oldExtra = scene.contacts.extra;
+  const bool withExtra = !oldExtra.empty();
+  std::vector<ContactExtra>& mergedExtra = spareExtra_;
+  mergedExtra.clear();
+  // A real contact held by an unbroken bond survives even when its bodies are no longer within
+  // the skin (the law decides when it breaks).
+  auto keepBonded = [&](std::size_t i) {
+    if (withExtra && old[i].real && !oldExtra[i].cohesionBroken)
+    {
+      merged.push_back(old[i]);
+      mergedExtra.push_back(oldExtra[i]);
+    }
+  };
   std::size_t o = 0;
   for (const Candidate& candidate : pairs)
   {
     const PairKey k = candidate.key;
     while (o < old.size() && key(old[o].id1, old[o].id2) < k)
-      ++o;
+      keepBonded(o++);
     // The same pair through the same periodic image keeps its history.
     if (o < old.size() && key(old[o].id1, old[o].id2) == k && old[o].cellDist == candidate.cellDist)
     {
-      merged.push_back(old[o]);
+      if (withExtra)
+        mergedExtra.push_back(oldExtra[o]);
+      merged.push_back(old[o++]);
       continue;
     }
+    if (withExtra)
+      mergedExtra.emplace_back();
     Contact c;
     c.cellDist = candidate.cellDist;
     c.id1 = static_cast<BodyId>(k >> 32);
@@ -269,7 +287,11 @@ void Collider::rebuild(Scene& scene)
     }
     merged.push_back(c);
   }
+  while (o < old.size())
+    keepBonded(o++);
   old.swap(merged);
+  if (withExtra)
+    oldExtra.swap(mergedExtra);
   scene.contacts.index(b.size());
   referencePos_ = b.pos;
   referenceCellInverse_ = scene.cell.hSize.inverse();

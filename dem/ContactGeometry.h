@@ -59,9 +59,13 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 /// order as in the seed's "Shear deformation". The shear increment is the tangential part of
 /// the incident velocity at the contact times dt, with lever arms refR1 n and -refR2 n (Yade's
 /// avoidGranularRatcheting default; for facets, as Yade, the arms to the contact point).
-/// `cell` is the periodic cell, or null when space is not periodic.
-inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt)
+/// `cell` is the periodic cell, or null when space is not periodic. `x`: the contact's extra
+/// state, if any: a real contact with an unbroken bond stays real when the shapes separate
+/// (with a negative penetration), and its incremental moments turn with the frame as the shear
+/// force does.
+inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x = nullptr)
 {
+  const bool holds = x != nullptr && !x->cohesionBroken && c.real;
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
   Vec3 normal;
@@ -82,7 +86,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     r2 = b.radius[i2];
     const double dist2 = d.squaredNorm();
     const double reach = r1 + r2;
-    if (dist2 > reach * reach)
+    if (dist2 > reach * reach && !holds)
     {
       if (c.real)
         c.reset();
@@ -105,7 +109,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     bool inFace = false;
     const Vec3 d = b.pos[i2] - closestPointOnTriangle(b.pos[i2], v[0], v[1], v[2], &inFace);
     const double dist2 = d.squaredNorm();
-    if (dist2 > r * r)
+    if (dist2 > r * r && !holds)
     {
       if (c.real)
         c.reset();
@@ -135,7 +139,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     const double d = b.pos[i2][wall.axis] - b.pos[i1][wall.axis];
     const double side = wall.sense != 0 ? wall.sense : (d >= 0 ? 1.0 : -1.0);
     penetration = r - side * d;
-    if (penetration < 0)
+    if (penetration < 0 && !holds)
     {
       if (c.real)
         c.reset();
@@ -155,6 +159,12 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     const Vec3 twistAxis = (0.5 * dt * c.normal.dot(b.angVel[i1] + b.angVel[i2])) * c.normal;
     c.shearForce -= c.shearForce.cross(orthonormalAxis);
     c.shearForce -= c.shearForce.cross(twistAxis);
+    if (x)
+      for (Vec3* moment : {&x->momentBending, &x->momentTwist})
+      {
+        *moment -= moment->cross(orthonormalAxis);
+        *moment -= moment->cross(twistAxis);
+      }
     c.fresh = false;
   }
   else
@@ -168,7 +178,11 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(arm2)) - (b.vel[i1] + b.angVel[i1].cross(arm1));
+  // Between two spheres the translational part is scaled by alpha = (r1 + r2) / (r1 + r2 - u),
+  // as Yade's avoidGranularRatcheting (McNamara et al.), so that rolling without sliding gives
+  // no shear increment.
+  const double alpha = c.kind == ContactGeometryKind::SphereSphere ? (r1 + r2) / (r1 + r2 - penetration) : 1.0;
+  const Vec3 incident = alpha * (b.vel[i2] + shiftVel - b.vel[i1]) + b.angVel[i2].cross(arm2) - b.angVel[i1].cross(arm1);
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }

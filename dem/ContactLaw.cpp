@@ -34,6 +34,28 @@ std::unique_ptr<ContactLaw> makeContactLaw(const std::string& name)
   return it->second();
 }
 
+void ContactLaw::unknownParameter(const std::string& name) const
+{
+  std::string known;
+  for (const std::string& n : parameterNames())
+    known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument(typeName() + " has no parameter '" + name + "'"
+                              + (known.empty() ? std::string(" (it has none)") : "; known: " + known));
+}
+
+void ContactLaw::setParameter(const std::string& name, double /*value*/) { unknownParameter(name); }
+
+double ContactLaw::parameter(const std::string& name) const { unknownParameter(name); }
+
+void alignContactExtra(Contacts& contacts)
+{
+  if (contacts.extra.empty())
+    contacts.extra.resize(contacts.list.size());
+  if (contacts.extra.size() != contacts.list.size())
+    throw std::logic_error("contact state (Contacts::extra) has " + std::to_string(contacts.extra.size())
+                           + " entries for " + std::to_string(contacts.list.size()) + " contacts");
+}
+
 std::vector<std::string> contactLawNames()
 {
   std::vector<std::string> names;

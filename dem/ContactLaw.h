@@ -2,9 +2,11 @@
 
 #include "dem/ContactGeometry.h"
 #include "dem/Contacts.h"
+#include "dem/Energy.h"
 #include "dem/Material.h"
 
 #include <algorithm>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -34,8 +36,11 @@ public:
   [[nodiscard]] virtual std::string physicsName() const = 0;
   /// 0 if the law cannot handle this material pair; otherwise a specificity (higher wins).
   [[nodiscard]] virtual int handles(const Material& m1, const Material& m2) const = 0;
-  /// Set the physics (stiffness, damping, friction) of a contact that just became real.
-  virtual void initialize(Contact& c, const Scene& scene) const = 0;
+  /// The law keeps state in Contacts::extra (which is then allocated and kept aligned).
+  [[nodiscard]] virtual bool needsExtra() const = 0;
+  /// Set the physics (stiffness, damping, friction) of a contact that just became real; `x` is
+  /// its ContactExtra (null unless needsExtra()).
+  virtual void initialize(Contact& c, ContactExtra* x, const Scene& scene) const = 0;
   /// Set c.force of every real contact whose c.law == lawIndex (geometry already updated).
   virtual void computeForces(Scene& scene, std::uint8_t lawIndex) = 0;
   /// The law is the only one of its InteractionLoop: update the geometry of every candidate
@@ -43,15 +48,38 @@ public:
   /// @return the index of the first contact overlapping more than scene.maxOverlapRatio of its
   /// smaller radius, or -1
   virtual std::int64_t computeAll(Scene& scene) = 0;
+  /// Elastic energy stored in the real contacts whose c.law == lawIndex.
+  [[nodiscard]] virtual double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const = 0;
+
+  /// Parameters of the law and of its physics functor (Yade's Ip2/Law2 attributes), by name.
+  /// @throws std::invalid_argument naming the law and the parameter if it has no such one or
+  ///         the value is out of range
+  virtual void setParameter(const std::string& name, double value);
+  [[nodiscard]] virtual double parameter(const std::string& name) const;
+  /// Names accepted by setParameter.
+  [[nodiscard]] virtual std::vector<std::string> parameterNames() const { return {}; }
+
+protected:
+  [[noreturn]] void unknownParameter(const std::string& name) const;
+  /// Called once per step after the law's contacts were processed (one-shot settings reset).
+  virtual void stepDone() {}
 };
 
 /// What a law's per-contact force function may read besides the contact.
 struct StepContext
 {
   const Bodies& bodies;
+  const std::deque<Material>& materials;
   const Cell* cell; ///< the periodic cell, null if space is not periodic
   double dt;
+  ContactExtra* extra; ///< Contacts::extra (index = contact index), null unless the law needs it
 };
+
+/// 1/2 Fn^2/kn + 1/2 Fs^2/ks: the energy of a contact's linear springs.
+inline double springEnergy(const Contact& c)
+{
+  return (c.kn > 0 ? 0.5 * c.normalForce.squaredNorm() / c.kn : 0.0) + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
+}
 
 /// True if a real contact overlaps more than `ratio` (> 0) of its smaller reference radius.
 inline bool overlapsTooMuch(const Contact& c, double ratio)
@@ -60,14 +88,30 @@ inline bool overlapsTooMuch(const Contact& c, double ratio)
 }
 
 /// Base of the concrete laws: the loops over contacts, calling the law's inline
-/// `void force(Contact&, const StepContext&) const` (no virtual call per contact).
+/// `template <bool Track> void force(Contact&, std::size_t k, const StepContext&, ContactEnergy&) const`
+/// (k: the contact's index; energies dissipated are added to the last argument when Track) and
+/// `double elastic(const Contact&, const ContactExtra*) const` (no virtual call per contact).
+/// A law that keeps state in Contacts::extra declares `static constexpr bool usesExtra = true`.
 template <class Law>
 class ContactLawKernel : public ContactLaw
 {
 public:
+  static constexpr bool usesExtra = false;
+  [[nodiscard]] bool needsExtra() const override { return Law::usesExtra; }
   void computeForces(Scene& scene, std::uint8_t lawIndex) override;
   std::int64_t computeAll(Scene& scene) override;
+  [[nodiscard]] double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const override;
+
+private:
+  template <bool Track>
+  std::int64_t loopAll(Scene& scene);
+  template <bool Track>
+  void loopForces(Scene& scene, std::uint8_t lawIndex);
 };
+
+/// Make Contacts::extra as long as the contact list (allocating it on first use).
+/// @throws std::logic_error if it exists with another length
+void alignContactExtra(Contacts& contacts);
 
 /// Register a contact law factory under its Law2 name (and optional aliases).
 bool registerContactLaw(const std::vector<std::string>& names, std::function<std::unique_ptr<ContactLaw>()> factory);

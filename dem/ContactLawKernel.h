@@ -5,48 +5,142 @@
 #include "dem/Scene.h"
 #include "dem/Threads.h"
 
+#include <algorithm>
+
 namespace talus::dem
 {
+namespace detail
+{
+/// The step's context for a law (with Contacts::extra aligned if the law uses it).
+template <class Law>
+StepContext stepContext(Scene& scene)
+{
+  ContactExtra* extra = nullptr;
+  if constexpr (Law::usesExtra)
+  {
+    alignContactExtra(scene.contacts);
+    extra = scene.contacts.extra.data();
+  }
+  return StepContext{scene.bodies, scene.materials, scene.periodic ? &scene.cell : nullptr, scene.dt, extra};
+}
+
+/// Add per-block contact energies to the scene's tracker, in block order.
+inline void addContactEnergy(Scene& scene, const std::vector<ContactEnergy>& blocks)
+{
+  ContactEnergy total;
+  for (const ContactEnergy& e : blocks)
+    total += e;
+  scene.energy.plastDissip += total.plastDissip;
+  scene.energy.viscDamp += total.viscDamp;
+}
+} // namespace detail
+
 template <class Law>
 void ContactLawKernel<Law>::computeForces(Scene& scene, std::uint8_t lawIndex)
 {
+  if (scene.energy.enabled)
+    loopForces<true>(scene, lawIndex);
+  else
+    loopForces<false>(scene, lawIndex);
+}
+
+template <class Law>
+template <bool Track>
+void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
+{
   const Law& law = static_cast<const Law&>(*this);
   std::vector<Contact>& list = scene.contacts.list;
-  const StepContext step{scene.bodies, scene.periodic ? &scene.cell : nullptr, scene.dt};
+  const StepContext step = detail::stepContext<Law>(scene);
   const auto n = static_cast<std::int64_t>(list.size());
-#pragma omp parallel for if (n >= parallelLoopMinimum) schedule(static)
-  for (std::int64_t k = 0; k < n; ++k)
-  {
+  // Tracking energy: contacts in fixed blocks, each block's energies summed in order.
+  auto one = [&](std::int64_t k, ContactEnergy& e) {
     Contact& c = list[static_cast<std::size_t>(k)];
     if (c.real && c.law == lawIndex)
-      law.force(c, step);
+      law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
+  };
+  if constexpr (Track)
+  {
+    // Contacts in fixed blocks, each block's energies summed in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(static) if (n >= parallelLoopMinimum)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
+        one(k, energy[static_cast<std::size_t>(blk)]);
+    detail::addContactEnergy(scene, energy);
   }
+  else
+  {
+    ContactEnergy unused;
+#pragma omp parallel for schedule(static) firstprivate(unused) if (n >= parallelLoopMinimum)
+    for (std::int64_t k = 0; k < n; ++k)
+      one(k, unused);
+  }
+  stepDone();
 }
 
 template <class Law>
 std::int64_t ContactLawKernel<Law>::computeAll(Scene& scene)
 {
+  return scene.energy.enabled ? loopAll<true>(scene) : loopAll<false>(scene);
+}
+
+template <class Law>
+template <bool Track>
+std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
+{
   const Law& law = static_cast<const Law&>(*this);
   std::vector<Contact>& list = scene.contacts.list;
-  const StepContext step{scene.bodies, scene.periodic ? &scene.cell : nullptr, scene.dt};
+  const StepContext step = detail::stepContext<Law>(scene);
   const auto n = static_cast<std::int64_t>(list.size());
   const double ratio = scene.maxOverlapRatio;
-  std::int64_t firstBad = n;
-#pragma omp parallel for if (n >= parallelLoopMinimum) schedule(static) reduction(min : firstBad)
-  for (std::int64_t k = 0; k < n; ++k)
-  {
+  // The index of the first contact overlapping too much, or n.
+  auto one = [&](std::int64_t k, ContactEnergy& e) -> std::int64_t {
     Contact& c = list[static_cast<std::size_t>(k)];
-    if (!updateContactGeometry(c, step.bodies, step.cell, step.dt))
-      continue;
+    ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
+    if (!updateContactGeometry(c, step.bodies, step.cell, step.dt, x))
+      return n;
     if (c.fresh)
     {
       c.law = 0;
-      law.initialize(c, scene);
+      law.initialize(c, x, scene);
     }
-    law.force(c, step);
-    if (overlapsTooMuch(c, ratio))
-      firstBad = std::min(firstBad, k);
+    law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
+    return overlapsTooMuch(c, ratio) ? k : n;
+  };
+  std::int64_t firstBad = n;
+  if constexpr (Track)
+  {
+    // Contacts in fixed blocks, each block's energies summed in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelLoopMinimum)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
+        firstBad = std::min(firstBad, one(k, energy[static_cast<std::size_t>(blk)]));
+    detail::addContactEnergy(scene, energy);
   }
+  else
+  {
+    ContactEnergy unused;
+#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused) if (n >= parallelLoopMinimum)
+    for (std::int64_t k = 0; k < n; ++k)
+      firstBad = std::min(firstBad, one(k, unused));
+  }
+  stepDone();
   return firstBad < n ? firstBad : -1;
+}
+
+template <class Law>
+double ContactLawKernel<Law>::elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const
+{
+  const Law& law = static_cast<const Law&>(*this);
+  const std::vector<Contact>& list = scene.contacts.list;
+  const bool extra = Law::usesExtra && scene.contacts.extra.size() == list.size();
+  double sum = 0;
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (list[k].real && list[k].law == lawIndex)
+      sum += law.elastic(list[k], extra ? &scene.contacts.extra[k] : nullptr);
+  return sum;
 }
 } // namespace talus::dem

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "dem/ContactExtra.h"
 #include "dem/types.h"
 
 #include <cstdint>
@@ -70,6 +71,9 @@ struct Contacts
   /// (contact index << 1) | side, side 0 for id1 and 1 for id2.
   std::vector<std::int64_t> start;
   std::vector<std::int64_t> entries;
+  /// State of the richer contact models (ContactExtra), entry k for contact k: empty unless a
+  /// law that needs it runs (it sizes it on first use, the collider then keeps it aligned).
+  std::vector<ContactExtra> extra;
 
   /// Rebuild the per-body index after the list changed.
   void index(std::size_t bodyCount);

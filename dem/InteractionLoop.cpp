@@ -11,7 +11,7 @@
 
 namespace talus::dem
 {
-void InteractionLoop::assignLaw(Contact& c, const Scene& scene) const
+void InteractionLoop::assignLaw(Contact& c, ContactExtra* x, const Scene& scene) const
 {
   const Material& m1 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id1)])];
   const Material& m2 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id2)])];
@@ -29,7 +29,7 @@ void InteractionLoop::assignLaw(Contact& c, const Scene& scene) const
     throw std::runtime_error("no contact law of the InteractionLoop handles the materials of bodies "
                              + std::to_string(c.id1) + " and " + std::to_string(c.id2) + " ('" + m1.label
                              + "', '" + m2.label + "')");
-  laws[c.law]->initialize(c, scene);
+  laws[c.law]->initialize(c, laws[c.law]->needsExtra() ? x : nullptr, scene);
 }
 
 void InteractionLoop::checkMaterials(const Scene& scene)
@@ -89,6 +89,9 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
   std::vector<Contact>& list = scene.contacts.list;
   const Bodies& bodies = scene.bodies;
   const auto n = static_cast<std::int64_t>(list.size());
+  if (std::any_of(laws.begin(), laws.end(), [](const auto& law) { return law->needsExtra(); }))
+    alignContactExtra(scene.contacts);
+  ContactExtra* extra = scene.contacts.extra.size() == list.size() ? scene.contacts.extra.data() : nullptr;
 
   // 1. Geometry of every candidate pair; new contacts get their law and physics.
   bool failed = false;
@@ -97,11 +100,12 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
-    if (updateContactGeometry(c, bodies, scene.periodic ? &scene.cell : nullptr, scene.dt) && c.fresh)
+    ContactExtra* x = extra ? extra + k : nullptr;
+    if (updateContactGeometry(c, bodies, scene.periodic ? &scene.cell : nullptr, scene.dt, x) && c.fresh)
     {
       try
       {
-        assignLaw(c, scene);
+        assignLaw(c, x, scene);
       }
       catch (const std::exception& e)
       {
@@ -127,6 +131,8 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
   const std::vector<Contact>& list = scene.contacts.list;
   Bodies& b = scene.bodies;
   const Contacts& contacts = scene.contacts;
+  // Contact moments (rolling and twisting resistance) of the richer models, if any.
+  const ContactExtra* extra = contacts.extra.size() == list.size() ? contacts.extra.data() : nullptr;
   const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
 #pragma omp parallel for if (bodyCount >= parallelLoopMinimum) schedule(static)
   for (std::int64_t id = 0; id < bodyCount; ++id)
@@ -145,6 +151,12 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
       // Body 2 is represented by its periodic image: its lever arm is taken from there.
       const Vec3 centre = (entry & 1) ? Vec3(b.pos[i] + c.shift2) : b.pos[i];
       t += (c.contactPoint - centre).cross(force);
+      if (extra)
+      {
+        const ContactExtra& x = extra[entry >> 1];
+        const Vec3 moment = x.momentBending + x.momentTwist;
+        t += (entry & 1) ? moment : Vec3(-moment);
+      }
     }
     b.force[i] += f;
     b.torque[i] += t;

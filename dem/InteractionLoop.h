@@ -20,7 +20,7 @@ public:
   std::vector<std::shared_ptr<ContactLaw>> laws;
 
 private:
-  void assignLaw(Contact& c, const Scene& scene) const;
+  void assignLaw(Contact& c, ContactExtra* x, const Scene& scene) const;
   /// With a single law: check once per material count that it handles every material pair.
   void checkMaterials(const Scene& scene);
   /// Several laws: geometry and law assignment in one pass, then each law's forces.

@@ -20,7 +20,14 @@ void Material::validate() const
   require(std::isfinite(density) && density > 0, *this, "density must be positive and finite");
   require(std::isfinite(frictionAngle) && frictionAngle >= 0 && frictionAngle < M_PI / 2, *this,
           "frictionAngle must be in [0, pi/2) radians");
-  if (kind == MaterialKind::Frict)
+  if (kind == MaterialKind::CohFrict)
+  {
+    require(std::isfinite(normalCohesion) && std::isfinite(shearCohesion), *this, "normalCohesion and shearCohesion must be finite");
+    require(std::isfinite(alphaKr) && alphaKr >= 0 && std::isfinite(alphaKtw) && alphaKtw >= 0, *this,
+            "alphaKr and alphaKtw must be finite and >= 0");
+    require(std::isfinite(etaRoll) && std::isfinite(etaTwist), *this, "etaRoll and etaTwist must be finite");
+  }
+  if (kind == MaterialKind::Frict || kind == MaterialKind::CohFrict)
   {
     require(std::isfinite(young) && young > 0, *this, "young must be positive and finite");
     require(std::isfinite(poisson) && poisson >= 0, *this, "poisson (the ks/kn ratio) must be >= 0");

@@ -10,6 +10,7 @@ enum class MaterialKind
 {
   Frict,   ///< FrictMat: elastic-frictional (young, poisson, frictionAngle, density)
   ViscEl,  ///< ViscElMat: linear visco-elastic, from (tc, en, et) or (kn, cn, ks, cs)
+  CohFrict, ///< CohFrictMat: FrictMat with cohesive bonds and rolling/twisting resistance
 };
 
 /// A material: the per-body parameters contact laws combine into per-contact stiffnesses.
@@ -33,6 +34,15 @@ struct Material
   double cn = std::numeric_limits<double>::quiet_NaN();
   double ks = std::numeric_limits<double>::quiet_NaN();
   double cs = std::numeric_limits<double>::quiet_NaN();
+  // CohFrictMat (Yade's defaults): bond strengths as stresses (Pa, times the smaller radius
+  // squared gives the bond's forces; negative: no bond strength), rolling and twisting
+  // stiffnesses relative to ks r1 r2 (alphaKr, alphaKtw), plastic rolling/twisting moments per
+  // unit normal force relative to the radius (etaRoll, etaTwist; negative: no limit).
+  double normalCohesion = -1, shearCohesion = -1;
+  double alphaKr = 2, alphaKtw = 2, etaRoll = -1, etaTwist = -1;
+  bool isCohesive = true;         ///< bonds can be created between two such materials
+  bool momentRotationLaw = false; ///< contacts transmit rolling and twisting moments
+  bool fragile = true;            ///< a bond breaks for good at its first failure
 
   /// @throws std::invalid_argument naming the material and the parameter that is out of range
   void validate() const;

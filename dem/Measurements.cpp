@@ -131,7 +131,11 @@ Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double v
       continue;
     const Vec3 l = branchVector(scene, c);
     const Mat3 nn = c.normal * c.normal.transpose();
-    const Mat3 k = c.kn * nn + c.ks * (Mat3::Identity() - nn);
+    // Between spheres the shear increment scales the relative translation by
+    // alpha = (r1 + r2) / |l| (Yade's avoidGranularRatcheting, ContactGeometry.h): so does the
+    // shear stiffness seen by an affine strain.
+    const double alpha = c.kind == ContactGeometryKind::SphereSphere ? (c.refR1 + c.refR2) / l.norm() : 1.0;
+    const Mat3 k = c.kn * nn + alpha * c.ks * (Mat3::Identity() - nn);
     const Mat3 ll = l * l.transpose();
     for (int i = 0; i < 3; ++i)
       for (int kk = 0; kk < 3; ++kk)

@@ -25,8 +25,9 @@ Mat3 loveWeberStress(const Scene& scene, double volume = -1);
 /// xx, yy, zz, yz, xz, xy; shear strains as engineering strains 2 eps_ij), so that a small
 /// homogeneous strain increment deps changes loveWeberStress by about C deps when every particle
 /// follows the affine field and no contact slides, opens or closes:
-///   D_ijkl = (1/V) sum_c [kn n_i n_k + ks (delta_ik - n_i n_k)] l_j l_l,
-/// symmetrised in (i,j) and (k,l). kn, ks are the contacts' current (tangent) stiffnesses. It is
+///   D_ijkl = (1/V) sum_c [kn n_i n_k + alpha ks (delta_ik - n_i n_k)] l_j l_l,
+/// symmetrised in (i,j) and (k,l). kn, ks are the contacts' current (tangent) stiffnesses;
+/// alpha = (r1 + r2) / |l| between spheres (the shear increment's ratcheting factor), 1 otherwise. It is
 /// the stiffness of the packing without particle relaxation and without the rotation of contact
 /// forces (an upper bound of the relaxed response), the operator the seed's FEMxDEM procedure
 /// hands to the finite elements. `volume` <= 0 means the periodic cell's volume.

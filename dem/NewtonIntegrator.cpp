@@ -1,9 +1,10 @@
 #include "dem/NewtonIntegrator.h"
 #include "dem/Scene.h"
-
 #include "dem/Threads.h"
 
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -75,6 +76,19 @@ void NewtonIntegrator::run(Scene& scene)
 {
   if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_)
     refreshInverses(scene);
+  const std::int64_t firstBad = scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene);
+  if (firstBad >= 0)
+    throw std::runtime_error("step " + std::to_string(scene.iter) + ": body " + std::to_string(firstBad)
+                             + " has a non-finite force or torque; the run diverged (time step "
+                             + std::to_string(scene.dt) + ", P-wave estimate " + std::to_string(scene.pWaveTimeStep())
+                             + ")");
+  if (scene.periodic)
+    scene.cell.integrate(scene.dt);
+}
+
+template <bool Track>
+std::int64_t NewtonIntegrator::integrate(Scene& scene) const
+{
   Bodies& b = scene.bodies;
   const double dt = scene.dt;
   // In a deforming periodic cell with homoDeform, a velocity is the affine field L x (with the
@@ -85,20 +99,16 @@ void NewtonIntegrator::run(Scene& scene)
   const Mat3 L = scene.cell.velGrad, previousL = scene.cell.prevVelGrad;
   const Vec3 w = spin(L), previousW = spin(previousL);
   const auto n = static_cast<std::int64_t>(b.size());
-  std::int64_t firstBad = n;
-#pragma omp parallel for if (n >= parallelLoopMinimum) schedule(static) reduction(min : firstBad)
-  for (std::int64_t k = 0; k < n; ++k)
-  {
-    const auto i = static_cast<std::size_t>(k);
+  // One body; false if its force or torque is not finite. Tracking energy, the work of the
+  // step's force is taken over the mean of the old and new (fluctuating) velocities, which is
+  // exactly the change of kinetic energy it causes in the leap-frog scheme.
+  auto one = [&](std::size_t i, double& gravWork, double& damp) -> bool {
     if (!b.alive[i])
-      continue;
+      return true;
     if (b.dynamic[i])
     {
       if (!b.force[i].allFinite() || !b.torque[i].allFinite())
-      {
-        firstBad = std::min(firstBad, k);
-        continue;
-      }
+        return false;
       Vec3 v = b.vel[i], omega = b.angVel[i];
       if (homogeneous)
       {
@@ -109,17 +119,27 @@ void NewtonIntegrator::run(Scene& scene)
       const std::uint8_t blocked = b.blockedDofs[i];
       Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
       Vec3 alpha = b.torque[i].cwiseProduct(invInertia_[i]);
+      Vec3 g = Vec3::Zero();
       for (int d = 0; d < 3; ++d)
         if (!(blocked & (1u << d)))
-          a[d] += gravity[d];
+          g[d] = gravity[d];
+      a += g;
+      const Vec3 undamped = a, undampedAlpha = alpha;
       if (damping != 0)
         for (int d = 0; d < 3; ++d)
         {
           a[d] = damped(a[d], v[d], dt, damping);
           alpha[d] = damped(alpha[d], omega[d], dt, damping);
         }
+      const Vec3 vOld = v, omegaOld = omega;
       v += a * dt;
       omega += alpha * dt;
+      if constexpr (Track)
+      {
+        const Vec3 vMean = 0.5 * (vOld + v), omegaMean = 0.5 * (omegaOld + omega);
+        gravWork -= b.mass[i] * g.dot(vMean) * dt;
+        damp -= (b.mass[i] * (a - undamped).dot(vMean) + (alpha - undampedAlpha).cwiseProduct(b.inertia[i]).dot(omegaMean)) * dt;
+      }
       if (homogeneous)
       {
         v += L * b.pos[i];
@@ -130,12 +150,33 @@ void NewtonIntegrator::run(Scene& scene)
     }
     b.pos[i] += b.vel[i] * dt;
     b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
+    return true;
+  };
+  std::int64_t firstBad = n;
+  if constexpr (Track)
+  {
+    // Bodies in fixed blocks, each block's sums added in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<std::array<double, 2>> energy(static_cast<std::size_t>(blocks), {0.0, 0.0}); // gravWork, damping
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelLoopMinimum)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
+        if (!one(static_cast<std::size_t>(k), energy[static_cast<std::size_t>(blk)][0], energy[static_cast<std::size_t>(blk)][1]))
+          firstBad = std::min(firstBad, k);
+    for (const auto& [gravWork, damp] : energy)
+    {
+      scene.energy.gravWork += gravWork;
+      scene.energy.nonviscDamp += damp;
+    }
   }
-  if (firstBad < n)
-    throw std::runtime_error("step " + std::to_string(scene.iter) + ": body " + std::to_string(firstBad)
-                             + " has a non-finite force or torque; the run diverged (time step " + std::to_string(dt)
-                             + ", P-wave estimate " + std::to_string(scene.pWaveTimeStep()) + ")");
-  if (scene.periodic)
-    scene.cell.integrate(dt);
+  else
+  {
+    double unused = 0;
+#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused) if (n >= parallelLoopMinimum)
+    for (std::int64_t k = 0; k < n; ++k)
+      if (!one(static_cast<std::size_t>(k), unused, unused))
+        firstBad = std::min(firstBad, k);
+  }
+  return firstBad < n ? firstBad : -1;
 }
 } // namespace talus::dem

@@ -28,6 +28,10 @@ private:
   // 1/m and 1/I of every body (0 where blocked or not dynamic), refreshed when bodies change,
   // so the step multiplies instead of dividing.
   void refreshInverses(const Scene& scene);
+  /// The step for every body; Track: accumulate gravity's work and the damping's dissipation.
+  /// @return the first body with a non-finite force or torque, or -1
+  template <bool Track>
+  std::int64_t integrate(Scene& scene) const;
   std::vector<Vec3> invMass_, invInertia_;
   std::int64_t seenBodiesVersion_ = -1, seenPropertiesVersion_ = -1;
 };

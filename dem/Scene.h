@@ -3,6 +3,7 @@
 #include "dem/Bodies.h"
 #include "dem/Cell.h"
 #include "dem/Contacts.h"
+#include "dem/Energy.h"
 #include "dem/Engine.h"
 #include "dem/Material.h"
 
@@ -24,6 +25,9 @@ public:
   std::deque<Material> materials;
   Contacts contacts;
   std::vector<std::shared_ptr<Engine>> engines;
+
+  /// Energy tracking (O.trackEnergy / O.energy); off by default.
+  EnergyTracker energy;
 
   bool periodic = false; ///< space is the periodic repetition of `cell`
   Cell cell;

@@ -12,7 +12,7 @@ namespace talus::dem
 /// costs microseconds even on idle cores, and on an oversubscribed machine its barrier waits for
 /// descheduled threads, which made small scenes up to 100 times slower. Results do not depend on
 /// the thread count, so the threshold changes speed only.
-inline constexpr std::int64_t parallelLoopMinimum = 4096;
+inline constexpr std::int64_t parallelLoopMinimum = 1024;
 
 /// Number of OpenMP threads the DEM loops use (1 without OpenMP).
 inline int threadCount()

@@ -22,7 +22,7 @@ public:
 
   /// Two springs in series, each of stiffness E_i * 2 r_i (normal) and E_i * 2 r_i * nu_i
   /// (shear); friction angle = the smaller of the two.
-  void initialize(Contact& c, const Scene& scene) const override
+  void initialize(Contact& c, ContactExtra* /*x*/, const Scene& scene) const override
   {
     const Material& m1 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id1)])];
     const Material& m2 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id2)])];
@@ -33,17 +33,27 @@ public:
     c.tanPhi = std::tan(std::min(m1.frictionAngle, m2.frictionAngle));
   }
 
-  /// F_n = kn u_n n; F_s -= ks du_s, capped at tan(phi) |F_n|.
-  void force(Contact& c, const StepContext& /*step*/) const
+  /// F_n = kn u_n n; F_s -= ks du_s, capped at tan(phi) |F_n|; sliding dissipates the slip
+  /// (F_trial - F_s) / ks times F_s.
+  template <bool Track>
+  void force(Contact& c, std::size_t /*k*/, const StepContext& /*step*/, ContactEnergy& e) const
   {
     c.normalForce = c.kn * c.penetration * c.normal;
     c.shearForce -= c.ks * c.shearIncrement;
     const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
     const double fs2 = c.shearForce.squaredNorm();
     if (fs2 > maxFs2)
+    {
+      const Vec3 trial = c.shearForce;
       c.shearForce *= std::sqrt(maxFs2 / fs2);
+      if constexpr (Track)
+        e.plastDissip += (trial - c.shearForce).dot(c.shearForce) / c.ks;
+    }
     c.force = c.normalForce + c.shearForce;
   }
+
+  /// 1/2 Fn^2 / kn + 1/2 Fs^2 / ks.
+  double elastic(const Contact& c, const ContactExtra* /*x*/) const { return springEnergy(c); }
 };
 
 TALUS_REGISTER_CONTACT_LAW(LinearFriction, "Law2_ScGeom_FrictPhys_CundallStrack", "linear")

@@ -23,7 +23,7 @@ public:
   /// (Yade instead gives the fixed body the other's mass, halving m: contacts with walls then
   /// last sqrt(2) tc). Parameters of the two materials are averaged. From (kn, cn, ks, cs):
   /// the two materials' springs and dashpots in series.
-  void initialize(Contact& c, const Scene& scene) const override
+  void initialize(Contact& c, ContactExtra* /*x*/, const Scene& scene) const override
   {
     const Bodies& b = scene.bodies;
     const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
@@ -56,22 +56,41 @@ public:
   /// F_n = kn u_n - cn v_n (may be attractive while the dashpot pulls, which is what makes the
   /// restitution exactly en); F_s = elastic history - ks du_s plus viscous -cs v_s, capped at
   /// tan(phi) |F_n| (the viscous part is dropped while sliding).
-  void force(Contact& c, const StepContext& step) const
+  /// Energy: the dashpots dissipate cn vn^2 dt + cs |vs|^2 dt (with the half-step velocity the
+  /// force used: first order in dt / tc); while sliding, friction dissipates its work less the
+  /// change of the spring's energy (the shear dashpot is then inactive).
+  template <bool Track>
+  void force(Contact& c, std::size_t /*k*/, const StepContext& step, ContactEnergy& e) const
   {
     const double dt = step.dt;
     const Vec3 v = incidentVelocity(c, step.bodies, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero());
     const double vn = c.normal.dot(v);
     c.normalForce = (c.kn * c.penetration - c.cn * vn) * c.normal;
+    const Vec3 before = c.shearForce;
     c.shearForce -= c.ks * c.shearIncrement;
     Vec3 viscous = -c.cs * (c.shearIncrement / dt);
     const Vec3 total = c.shearForce + viscous;
     const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
     if (total.squaredNorm() > maxFs2)
     {
+      const Vec3 trial = c.shearForce;
       c.shearForce = total * std::sqrt(maxFs2 / total.squaredNorm());
       viscous.setZero();
+      // Friction's work over the step's shear displacement, less what the spring now holds
+      // more (the capped force need not be parallel to the elastic trial force here).
+      if constexpr (Track)
+        if (c.ks > 0)
+          e.plastDissip += (c.shearForce.dot(trial - before) - 0.5 * (c.shearForce.squaredNorm() - before.squaredNorm())) / c.ks;
     }
+    if constexpr (Track)
+      e.viscDamp += (c.cn * vn * vn - viscous.dot(c.shearIncrement / dt)) * dt;
     c.force = c.normalForce + c.shearForce + viscous;
+  }
+
+  /// 1/2 kn u^2 + 1/2 Fs^2 / ks (the dashpots store nothing).
+  double elastic(const Contact& c, const ContactExtra* /*x*/) const
+  {
+    return 0.5 * c.kn * c.penetration * c.penetration + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
   }
 };
 

@@ -55,6 +55,7 @@ PYBIND11_MODULE(_dem, m)
   m.doc() = "Compiled core of talus.dem (use the talus package, not this module)";
   void talus_wrap_io(py::module_&); talus_wrap_io(m); // checkpoints and export arrays: io_wrappers.cpp
   void talus_wrap_pack(py::module_&); talus_wrap_pack(m); // SpherePack: pack_wrappers.cpp
+  void talus_wrap_laws(py::module_&); talus_wrap_laws(m); // contact models, energy: laws_wrappers.cpp
   m.def("version", [] { return std::string(talus::version()); });
   m.def("threadCount", &threadCount);
   m.def("setThreadCount", [](int n) {
@@ -70,7 +71,10 @@ PYBIND11_MODULE(_dem, m)
   });
   m.def("contact_law_names", &contactLawNames);
 
-  py::enum_<MaterialKind>(m, "MaterialKind").value("Frict", MaterialKind::Frict).value("ViscEl", MaterialKind::ViscEl);
+  py::enum_<MaterialKind>(m, "MaterialKind")
+      .value("Frict", MaterialKind::Frict)
+      .value("ViscEl", MaterialKind::ViscEl)
+      .value("CohFrict", MaterialKind::CohFrict);
   py::class_<Material>(m, "Material")
       .def(py::init<>())
       .def_readwrite("kind", &Material::kind)
@@ -86,6 +90,15 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("cn", &Material::cn)
       .def_readwrite("ks", &Material::ks)
       .def_readwrite("cs", &Material::cs)
+      .def_readwrite("normalCohesion", &Material::normalCohesion)
+      .def_readwrite("shearCohesion", &Material::shearCohesion)
+      .def_readwrite("alphaKr", &Material::alphaKr)
+      .def_readwrite("alphaKtw", &Material::alphaKtw)
+      .def_readwrite("etaRoll", &Material::etaRoll)
+      .def_readwrite("etaTwist", &Material::etaTwist)
+      .def_readwrite("isCohesive", &Material::isCohesive)
+      .def_readwrite("momentRotationLaw", &Material::momentRotationLaw)
+      .def_readwrite("fragile", &Material::fragile)
       .def("validate", &Material::validate);
 
   py::class_<Engine, std::shared_ptr<Engine>>(m, "Engine")

@@ -143,6 +143,8 @@ void talus_wrap_io(py::module_& m)
     d["FacetShape"] = sizeof(FacetShape);
     d["Cell"] = sizeof(Cell);
     d["Scene"] = sizeof(Scene);
+    d["ContactExtra"] = sizeof(ContactExtra);
+    d["EnergyTracker"] = sizeof(EnergyTracker);
     return d;
   });
 

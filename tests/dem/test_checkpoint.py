@@ -14,8 +14,10 @@ import numpy as np
 import pytest
 
 from talus import _dem
-from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
-                       Ip2_FrictMat_FrictMat_FrictPhys, Ip2_ViscElMat_ViscElMat_ViscElPhys,
+from talus.dem import (CohFrictMat, FrictMat, ForceResetter, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
+                       Law2_ScGeom6D_CohFrictPhys_CohesionMoment, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Ip2_FrictMat_FrictMat_MindlinPhys,
+                       Law2_ScGeom_MindlinPhys_Mindlin, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic, Matrix3,
                        NewtonIntegrator, PWaveTimeStep, PyRunner, Scene, ViscElMat, facet, io, sphere, wall)
 
@@ -23,12 +25,22 @@ pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
 HERE = Path(__file__).parent
 
 
-def deposition(visco: bool, m: int = 7) -> Scene:
+def deposition(visco, m: int = 7) -> Scene:
     """m^3 spheres, nearly touching, settling in a box: walls on four sides, a floor of two
-    facets (sphere-sphere, wall-sphere and facet-sphere contacts)."""
+    facets (sphere-sphere, wall-sphere and facet-sphere contacts). `visco`: False (linear),
+    True (visco-elastic) or "hertz" (Hertz-Mindlin with restitution 0.5, energy tracked)."""
     S = Scene()
     rng = np.random.default_rng(7)
-    if visco:
+    if visco == "cohfrict":
+        S.materials.append(CohFrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600, normalCohesion=2e3,
+                                       shearCohesion=2e3, momentRotationLaw=True, etaRoll=0.1, label="clay"))
+        law = ([Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionOnNewContacts=True)],
+               [Law2_ScGeom6D_CohFrictPhys_CohesionMoment()])
+    elif visco == "hertz":
+        S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600, label="sand"))
+        law = ([Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)], [Law2_ScGeom_MindlinPhys_Mindlin()])
+        S.trackEnergy = True
+    elif visco:
         S.materials.append(ViscElMat(tc=2e-3, en=0.5, et=0.5, frictionAngle=0.5, density=2600, label="glass"))
         law = ([Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()])
     else:
@@ -44,7 +56,7 @@ def deposition(visco: bool, m: int = 7) -> Scene:
     S.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *law),
                  NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.3),
                  PyRunner(command="pass", iterPeriod=7, label="every7")]
-    S.dt = 2e-4 if visco else 0.5 * PWaveTimeStep(S)
+    S.dt = 2e-4 if visco is True else 0.5 * PWaveTimeStep(S)
     return S
 
 
@@ -55,7 +67,7 @@ def state(S: Scene) -> dict:
     ori = np.array([S._cpp.ori(i) for i in range(len(S.bodies)) if S._cpp.alive()[i]])
     return {"pos": S.positions().copy(), "vel": S.velocities().copy(), "angVel": S.angular_velocities().copy(),
             "force": S.forces().copy(), "ori": ori, "iter": S.iter, "time": S.time,
-            **{f"contact.{k}": v for k, v in c.items()}}
+            **{f"contact.{k}": v for k, v in c.items()}, "contact.extra": repr(_dem.contact_extra(S._cpp))}
 
 
 def assert_identical(a: dict, b: dict):
@@ -69,14 +81,15 @@ def test_layout_is_covered():
     engines and the transient pauseRequested_). When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
     is transient, then update this table."""
-    assert _dem.layout_sizes() == {"Contact": 256, "Material": 128, "Bodies": 456, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 992}
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 456, "WallShape": 8,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1056, "ContactExtra": 256,
+                                   "EnergyTracker": 40}
 
 
-@pytest.mark.parametrize("visco", [False, True], ids=["FrictMat", "ViscElMat"])
+@pytest.mark.parametrize("visco", [False, True, "hertz", "cohfrict"], ids=["FrictMat", "ViscElMat", "Hertz", "CohFrict"])
 def test_restart_continues_bit_identically(tmp_path, visco):
     A = deposition(visco)
-    A.run(400 if visco else 200)    # settle into a contact-rich state
+    A.run(400 if visco is True else 200)    # settle into a contact-rich state
     path = tmp_path / "half.h5"
     io.save(A, path)                # N/2 steps ...
     A.run(200)
@@ -88,6 +101,12 @@ def test_restart_continues_bit_identically(tmp_path, visco):
     assert [type(e) for e in B.engines] == [type(e) for e in A.engines]
     B.run(200)                      # ... and N/2 more after loading
     assert_identical(state(B), reference)
+    assert B.trackEnergy == (visco == "hertz")
+    if visco == "cohfrict":         # bonds and moments were part of the state
+        x = _dem.contact_extra(B._cpp)
+        assert sum(not e["cohesionBroken"] for e in x) > 100
+        assert max(np.linalg.norm(e["moment_bending"]) for e in x) > 0
+    assert list(B.energy.values()) == list(A.energy.values())
     assert B.engines[-1].nDone == A.engines[-1].nDone   # the PyRunner kept its rhythm
 
 
@@ -356,9 +375,9 @@ def test_wrong_version_and_foreign_files(tmp_path, small_checkpoint):
         with h5py.File(sys.argv[2], "w") as f:
             f["data"] = np.arange(10)
         """, newer, foreign)
-    assert out.split() == ["talus-checkpoint", "1", f"({len(saved['pos'])},", "3)", f"({pairs},)"]
+    assert out.split() == ["talus-checkpoint", "2", f"({len(saved['pos'])},", "3)", f"({pairs},)"]
     T = untouched_scene()
-    with pytest.raises(io.CheckpointError, match=r"newer.h5': checkpoint format version 99 .*reads version 1"):
+    with pytest.raises(io.CheckpointError, match=r"newer.h5': checkpoint format version 99 .*reads version 2"):
         io.load(T, newer)
     with pytest.raises(io.CheckpointError, match=r"foreign.h5': not a Talus checkpoint"):
         io.load(T, foreign)

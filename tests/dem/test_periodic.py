@@ -75,12 +75,13 @@ def test_free_particles_follow_the_cell_exactly():
     assert S.cell.trsf == pytest.approx(S.cell.hSize, abs=1e-15)
 
 
-def test_rigid_rotation_of_the_cell_spins_the_particles_and_makes_little_shear():
+def test_rigid_rotation_of_the_cell_spins_the_particles_and_makes_no_shear():
     # Heavy spheres (no fluctuation) in a cell rotating rigidly about z: they spin with the
-    # cell, so the contact slides only through the ScGeom lever arms (radii, not the shorter
-    # centre-to-contact distances): du_s = penetration * angle, i.e. shear / normal
-    # = (ks / kn) * angle. Without the spin it would be (ks / kn) (distance / penetration) angle,
-    # 1200 times more here.
+    # cell, and the ScGeom shear increment (lever arms = radii, translation scaled by
+    # alpha = (r1 + r2) / (r1 + r2 - u) as Yade's avoidGranularRatcheting) vanishes for a rigid
+    # motion: no shear force beyond round-off. Without the spin the shear / normal ratio would
+    # be (ks / kn) (distance / penetration) angle (0.7 here), with radii arms but no alpha
+    # (ks / kn) angle (6e-4).
     S = periodic_scene()
     S.materials[0].density = 1e12
     S.bodies.append([sphere((0.45, 0.5, 0.5), 0.06), sphere((0.5699, 0.5, 0.5), 0.06)])
@@ -91,7 +92,7 @@ def test_rigid_rotation_of_the_cell_spins_the_particles_and_makes_little_shear()
     (c,) = S.contacts()
     angle = S.time * 1.0
     ratio = np.linalg.norm(c["shearForce"]) / np.linalg.norm(c["normalForce"])
-    assert ratio == pytest.approx(c["ks"] / c["kn"] * angle, rel=0.01)
+    assert ratio < 1e-3 * c["ks"] / c["kn"] * angle
 
 
 @pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed (./setup.sh installs it)")

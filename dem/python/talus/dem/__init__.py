@@ -21,9 +21,10 @@ from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
 from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
                                    TriaxialStressController, growParticles, setContactFriction)
+from talus.dem.energy import EnergyTracker
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.io import CheckpointError
-from talus.dem.materials import FrictMat, Material, ViscElMat
+from talus.dem.materials import CohFrictMat, FrictMat, Material, ViscElMat
 from talus.dem.measure import (avgNumInteractions, fabricTensor, getStress, getStressAndTangent, porosity,
                                unbalancedForce)
 from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
@@ -31,7 +32,8 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
-           "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "getStressAndTangent",
-           "avgNumInteractions", "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
-           "plot", "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
-           "growParticles", "setContactFriction", "aabbWalls", *_engine_names]
+           "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress",
+           "getStressAndTangent", "avgNumInteractions", "fabricTensor", "porosity", "VTKRecorder", "VTKExporter",
+           "CheckpointError", "progress", "plot", "EnergyTracker", "GlobalStiffnessTimeStepper", "PeriTriaxController",
+           "TriaxialStressController", "RayleighWaveTimeStep", "growParticles", "setContactFriction", "aabbWalls",
+           *_engine_names]

@@ -26,13 +26,50 @@ from talus import _dem
 
 
 class Functor:
-    """A Yade functor named in an engine's functor list."""
+    """A Yade functor named in an engine's functor list. Functors with parameters list them in
+    ``_parameters``; only those given (not None) are stored and passed on."""
 
-    def __init__(self, label: str = ""):
+    _parameters: tuple = ()
+
+    def __init__(self, label: str = "", **params):
         self.label = label
+        unknown = set(params) - set(self._parameters)
+        if unknown:
+            raise TypeError(f"{type(self).__name__} has no parameter(s) {', '.join(sorted(unknown))}"
+                            + (f"; known: {', '.join(self._parameters)}" if self._parameters else ""))
+        for name in self._parameters:
+            setattr(self, name, params.get(name))
+
+    def _io_params(self) -> dict:
+        """The parameters that were given, to rebuild the functor (checkpoints)."""
+        return {name: getattr(self, name) for name in self._parameters if getattr(self, name) is not None}
 
     def __repr__(self):
-        return f"{type(self).__name__}()"
+        args = ", ".join(f"{k}={v!r}" for k, v in self._io_params().items())
+        return f"{type(self).__name__}({args})"
+
+
+class MatchMaker:
+    """Yade's MatchMaker, for the single case Talus supports: one value for every material pair
+    (``MatchMaker(algo='val', val=x)``); anywhere a MatchMaker is accepted a number is too."""
+
+    def __init__(self, algo: str = "val", val: float = float("nan"), matches=()):
+        if algo != "val" or matches:
+            raise ValueError("MatchMaker: only algo='val' (one value for all material pairs) is supported")
+        self.algo, self.val = algo, float(val)
+
+    def __float__(self):
+        return self.val
+
+    def __repr__(self):
+        return f"MatchMaker(algo='val', val={self.val!r})"
+
+
+def _number(functor: Functor, name: str, value) -> float:
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"{type(functor).__name__}.{name} must be a number (or MatchMaker), got {value!r}") from None
 
 
 def _functor(name: str, doc: str) -> type:
@@ -45,18 +82,84 @@ Bo1_Facet_Aabb = _functor("Bo1_Facet_Aabb", "Bounding box of facets (accepted; T
 Ig2_Sphere_Sphere_ScGeom = _functor("Ig2_Sphere_Sphere_ScGeom", "Sphere-sphere contact geometry.")
 Ig2_Facet_Sphere_ScGeom = _functor("Ig2_Facet_Sphere_ScGeom", "Facet-sphere contact geometry (face, edge, vertex).")
 Ig2_Wall_Sphere_ScGeom = _functor("Ig2_Wall_Sphere_ScGeom", "Wall-sphere contact geometry.")
+Ig2_Sphere_Sphere_ScGeom6D = _functor("Ig2_Sphere_Sphere_ScGeom6D",
+                                      "Sphere-sphere contact geometry with relative rotations (the law asks for them).")
+Ig2_Wall_Sphere_ScGeom6D = _functor("Ig2_Wall_Sphere_ScGeom6D", "Wall-sphere contact geometry with relative rotations.")
 Ip2_FrictMat_FrictMat_FrictPhys = _functor(
     "Ip2_FrictMat_FrictMat_FrictPhys", "Stiffness and friction of linear contacts from FrictMat parameters.")
 Ip2_ViscElMat_ViscElMat_ViscElPhys = _functor(
     "Ip2_ViscElMat_ViscElMat_ViscElPhys", "Spring-dashpot parameters from ViscElMat (tc, en, et or kn, cn, ks, cs).")
 
 
+class Ip2_FrictMat_FrictMat_MindlinPhys(Functor):
+    """Hertz-Mindlin physics from FrictMat (young, poisson, frictionAngle): kno = 4/3 E* sqrt(R*),
+    kso = 8 G* sqrt(R*). Damping from the restitution coefficients ``en``, ``es`` (Thornton's
+    fit, as Yade; one alone stands for both) or directly the damping ratios ``betan``,
+    ``betas``; none: elastic. Yade's krot, ktwist, eta and gamma are not supported."""
+    _parameters = ("en", "es", "betan", "betas")
+
+
 class _Law(Functor):
     _cpp_name = ""
 
-    def __init__(self, label: str = ""):
-        super().__init__(label)
+    def __init__(self, label: str = "", **params):
+        super().__init__(label, **params)
         self._cpp = _dem.make_contact_law(self._cpp_name)
+        for name, value in self._io_params().items():
+            self._set(name, value)
+
+    def _set(self, name: str, value):
+        _dem.law_set_parameter(self._cpp, name, _number(self, name, value))
+
+    def _configure(self, phys: Functor):
+        """Take the parameters of the physics functor that goes with this law."""
+        for name, value in phys._io_params().items():
+            self._set(name, value)
+
+
+class Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(Functor):
+    """Cohesive-frictional physics from CohFrictMat: linear stiffnesses as FrictPhys, rolling and
+    twisting stiffnesses and limits. ``setCohesionOnNewContacts``: new contacts between cohesive
+    materials are bonded; ``setCohesionNow``: every existing contact is bonded at the next step
+    (then the flag goes back to False, as in Yade)."""
+    _parameters = ("setCohesionNow", "setCohesionOnNewContacts")
+
+    def __init__(self, label: str = "", **params):
+        self._laws = []
+        self._now = None
+        super().__init__(label, **params)
+
+    @property
+    def setCohesionNow(self):
+        """Reads back False once the law has bonded the contacts (as in Yade)."""
+        if self._laws:
+            return bool(_dem.law_parameter(self._laws[0]._cpp, "setCohesionNow"))
+        return self._now
+
+    @setCohesionNow.setter
+    def setCohesionNow(self, value):   # Yade scripts set it on the functor mid-run
+        self._now = value
+        for law in self._laws:
+            law._set("setCohesionNow", bool(value))
+
+
+class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
+    """Cohesive bonds (normal and shear strengths, fragile or plastic), Coulomb friction, and
+    with momentRotationLaw rolling and twisting moments (``useIncrementalForm``: from
+    incremental rotations, needed for exact plastic limits; ``always_use_moment_law``: keep
+    them after the bond broke)."""
+    _cpp_name = "Law2_ScGeom6D_CohFrictPhys_CohesionMoment"
+    _parameters = ("useIncrementalForm", "always_use_moment_law")
+
+    def _configure(self, phys: Functor):
+        super()._configure(phys)
+        phys._laws.append(self)
+
+
+class Law2_ScGeom_MindlinPhys_Mindlin(_Law):
+    """Hertz normal force kno u^1.5, incremental Mindlin shear stiffness kso u^0.5 with Coulomb
+    friction, viscous damping from Ip2_FrictMat_FrictMat_MindlinPhys (never attractive)."""
+    _cpp_name = "Law2_ScGeom_MindlinPhys_Mindlin"
 
 
 class Law2_ScGeom_FrictPhys_CundallStrack(_Law):
@@ -128,11 +231,12 @@ class InteractionLoop(Engine):
         if not laws:
             raise ValueError("InteractionLoop needs at least one Law2 functor, e.g. "
                              "Law2_ScGeom_FrictPhys_CundallStrack()")
-        phys = {type(f).__name__ for f in physFunctors}
+        phys = {type(f).__name__: f for f in physFunctors}
         for law in laws:
             if law._cpp.physicsName not in phys:
                 raise ValueError(f"InteractionLoop: {type(law).__name__} needs "
                                  f"{law._cpp.physicsName}() in the physics functors")
+            law._configure(phys[law._cpp.physicsName])
         self._cpp = _dem.InteractionLoop()
         self._cpp.laws = [law._cpp for law in laws]
         self.geomFunctors, self.physFunctors, self.lawFunctors = list(geomFunctors), list(physFunctors), laws
@@ -194,4 +298,7 @@ __all__ = [
     "Ig2_Wall_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom",
     "Ip2_FrictMat_FrictMat_FrictPhys", "Ip2_ViscElMat_ViscElMat_ViscElPhys",
     "Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_ViscElPhys_Basic",
+    "Ip2_FrictMat_FrictMat_MindlinPhys", "Law2_ScGeom_MindlinPhys_Mindlin", "MatchMaker",
+    "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys", "Law2_ScGeom6D_CohFrictPhys_CohesionMoment", "Ig2_Sphere_Sphere_ScGeom6D",
+    "Ig2_Wall_Sphere_ScGeom6D",
 ]

@@ -114,9 +114,11 @@ def _encode(value, to_file: bool):
     if isinstance(value, dict) and all(isinstance(k, str) for k in value):
         return {"__dict__": {k: _encode(v, to_file) for k, v in value.items()}}
     if isinstance(value, Functor):
+        params = {k: _encode(float(v), to_file) for k, v in value._io_params().items()}
         if not to_file:
-            return {"__functor__": _class_path(type(value)), "label": value.label, "class_object": type(value)}
-        return {"__functor__": _class_path(type(value)), "label": value.label}
+            return {"__functor__": _class_path(type(value)), "label": value.label, "params": params,
+                    "class_object": type(value)}
+        return {"__functor__": _class_path(type(value)), "label": value.label, "params": params}
     if not to_file:
         return {"__object__": value}   # kept by reference in memory slots
     if callable(value):
@@ -142,7 +144,7 @@ def _decode(value):
         return {k: _decode(v) for k, v in value["__dict__"].items()}
     if "__functor__" in value:
         cls = value.get("class_object") or _import_class(value["__functor__"])
-        return cls(label=value.get("label", ""))
+        return cls(label=value.get("label", ""), **{k: _decode(v) for k, v in value.get("params", {}).items()})
     raise _NotSaveable(f"unknown value {value!r}")
 
 

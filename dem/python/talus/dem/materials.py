@@ -1,4 +1,4 @@
-"""Materials, named and parametrised as in Yade (FrictMat, ViscElMat)."""
+"""Materials, named and parametrised as in Yade (FrictMat, ViscElMat, CohFrictMat)."""
 
 from __future__ import annotations
 
@@ -67,8 +67,19 @@ class ViscElMat(Material):
         super().__init__(**params)
 
 
+class CohFrictMat(Material):
+    """FrictMat with cohesive bonds and rolling/twisting resistance (Yade's CohFrictMat):
+    ``normalCohesion``, ``shearCohesion`` (Pa; times the smaller radius squared: the bond's
+    strengths), ``isCohesive``, ``fragile`` (a bond breaks for good), ``momentRotationLaw``,
+    ``alphaKr``, ``alphaKtw`` (rolling/twisting stiffness relative to ks r1 r2), ``etaRoll``,
+    ``etaTwist`` (plastic moments per unit normal force relative to the radius; negative: none).
+    Defaults are Yade's."""
+
+    _kind = _dem.MaterialKind.CohFrict
+
+
 def default_material() -> FrictMat:
     """Yade's defaultMaterial: FrictMat(density=1e3, young=1e7, poisson=.3, frictionAngle=.5)."""
     return FrictMat(density=1e3, young=1e7, poisson=0.3, frictionAngle=0.5, label="defaultMat")
 
-__all__ = ["Material", "FrictMat", "ViscElMat", "default_material"]
+__all__ = ["Material", "FrictMat", "ViscElMat", "CohFrictMat", "default_material"]

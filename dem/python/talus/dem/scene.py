@@ -8,6 +8,7 @@ from typing import Sequence
 from talus import _dem
 from talus.dem.bodies import BodyContainer
 from talus.dem.cell import Cell
+from talus.dem.energy import EnergyTracker
 from talus.dem.engines import Engine
 from talus.dem.io import CheckpointMethods
 from talus.dem.materials import Material, default_material
@@ -68,6 +69,7 @@ class Scene(CheckpointMethods):
         self.materials = MaterialContainer(self)
         self.bodies = BodyContainer(self)
         self.cell = Cell(self)
+        self.energy = EnergyTracker(self)
         self._engines: list[Engine] = []
 
     dt = property(lambda s: s._cpp.dt, lambda s, v: s._set_dt(v), doc="time step (s)")
@@ -82,6 +84,16 @@ class Scene(CheckpointMethods):
     @periodic.setter
     def periodic(self, value: bool):
         self._cpp.setPeriodic(bool(value))
+
+    @property
+    def trackEnergy(self) -> bool:
+        """Accumulate the energy terms of ``O.energy`` (gravity's work, damping, friction and
+        dashpot dissipation) from now on; off by default (then it costs nothing)."""
+        return _dem.track_energy(self._cpp)
+
+    @trackEnergy.setter
+    def trackEnergy(self, value: bool):
+        _dem.set_track_energy(self._cpp, bool(value))
 
     @property
     def maxOverlapRatio(self) -> float:

@@ -1,0 +1,181 @@
+// Hertz-Mindlin contact with Coulomb friction and Thornton's viscous damping, as Yade's
+// Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin (without adhesion and
+// rolling moments).
+#include "dem/ContactLawKernel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace talus::dem
+{
+namespace
+{
+constexpr double notGiven = std::numeric_limits<double>::quiet_NaN();
+
+/// Damping ratio beta (fraction of the critical 2 sqrt(m kn)) that gives the restitution e with
+/// Hertz springs, from the fit of Thornton et al. (2013), eqs. B6-B7 (as Yade does).
+double thorntonDampingRatio(double e)
+{
+  if (e == 1.0)
+    return 0.0;
+  static constexpr double h[] = {-6.918798, -16.41105, 146.8049, -796.4559, 2928.711,
+                                 -7206.864, 11494.29,  -11342.18, 6276.757, -1489.915};
+  double poly = h[9];
+  for (int i = 8; i >= 0; --i)
+    poly = h[i] + e * poly;
+  const double alpha = e * poly;
+  return std::sqrt(1.0 / (1.0 - (1.0 + e) * (1.0 + e) * std::exp(alpha)) - 1.0);
+}
+} // namespace
+
+class HertzMindlin : public ContactLawKernel<HertzMindlin>
+{
+public:
+  static constexpr bool usesExtra = true;
+
+  [[nodiscard]] std::string typeName() const override { return "Law2_ScGeom_MindlinPhys_Mindlin"; }
+  [[nodiscard]] std::string physicsName() const override { return "Ip2_FrictMat_FrictMat_MindlinPhys"; }
+  /// Any pair of elastic materials (FrictMat and its kin), as the linear law.
+  [[nodiscard]] int handles(const Material&, const Material&) const override { return 1; }
+
+  // Ip2 parameters: restitution coefficients (normal, shear) or damping ratios; NaN: not given.
+  double en = notGiven, es = notGiven, betan = notGiven, betas = notGiven;
+  [[nodiscard]] std::vector<std::string> parameterNames() const override
+  {
+    return {"en", "es", "betan", "betas"};
+  }
+  void setParameter(const std::string& name, double value) override
+  {
+
+    double* slot = name == "en" ? &en : name == "es" ? &es : name == "betan" ? &betan : name == "betas" ? &betas : nullptr;
+    if (!slot)
+      unknownParameter(name);
+    const bool restitution = name[0] == 'e';
+    if (!std::isnan(value) && !(restitution ? (value > 0 && value <= 1) : (value >= 0 && std::isfinite(value))))
+      throw std::invalid_argument(physicsName() + "." + name + " must be "
+                                  + (restitution ? "in (0, 1]" : "finite and >= 0") + ", got " + std::to_string(value));
+    const double other = name == "en" ? betan : name == "betan" ? en : name == "es" ? betas : es;
+    if (!std::isnan(value) && !std::isnan(other))
+      throw std::invalid_argument(physicsName() + ": only one of " + (name.back() == 'n' ? "en, betan" : "es, betas")
+                                  + " can be specified");
+    *slot = value;
+  }
+  [[nodiscard]] double parameter(const std::string& name) const override
+  {
+    if (name == "en")
+      return en;
+    if (name == "es")
+      return es;
+    if (name == "betan")
+      return betan;
+    if (name == "betas")
+      return betas;
+    unknownParameter(name);
+  }
+
+  /// Effective moduli of the two materials: E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2),
+  /// G* = 1 / ((2 - nu1)/G1 + (2 - nu2)/G2), R* = R1 R2 / (R1 + R2) from the contact's reference
+  /// radii (for walls Yade's geometry gives both the sphere's radius, so R* = r/2; facets
+  /// R* = 2r/3); kno = 4/3 E* sqrt(R*), kso = 8 G* sqrt(R*). Damping ratios from en, es when
+  /// given (one alone stands for both), else betan, betas (betas defaults to betan), else none.
+  void initialize(Contact& c, ContactExtra* x, const Scene& scene) const override
+  {
+    const Material& m1 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id1)])];
+    const Material& m2 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id2)])];
+    const double da = c.refR1 > 0 ? c.refR1 : c.refR2, db = c.refR2 > 0 ? c.refR2 : c.refR1;
+    const double ga = m1.young / (2 * (1 + m1.poisson)), gb = m2.young / (2 * (1 + m2.poisson));
+    const double g = 1.0 / ((2 - m1.poisson) / ga + (2 - m2.poisson) / gb);
+    const double e = m1.young * m2.young / ((1 - m1.poisson * m1.poisson) * m2.young + (1 - m2.poisson * m2.poisson) * m1.young);
+    const double r = da * db / (da + db);
+    x->kno = 4.0 / 3.0 * e * std::sqrt(r);
+    x->kso = 8.0 * std::sqrt(r) * g;
+    c.tanPhi = std::tan(std::min(m1.frictionAngle, m2.frictionAngle));
+    if (!std::isnan(en) || !std::isnan(es))
+    {
+      x->betan = thorntonDampingRatio(std::isnan(en) ? es : en);
+      x->betas = thorntonDampingRatio(std::isnan(es) ? en : es);
+    }
+    else
+    {
+      x->betan = std::isnan(betan) ? 0.0 : betan;
+      x->betas = std::isnan(betas) ? x->betan : betas;
+    }
+    c.kn = c.ks = c.cn = c.cs = 0;
+  }
+
+  /// F_n = kno u^1.5 - cn v_n (never attractive: the dashpot at most cancels the spring),
+  /// with tangent stiffnesses kn = 3/2 kno u^0.5, ks = kso u^0.5 and dashpots
+  /// cn = 2 betan sqrt(m kn), cs = 2 betas sqrt(m ks) (m: the reduced mass, or the dynamic body's
+  /// mass against a fixed one). Shear: elastic history -= ks du_s, capped at tan(phi) |F_n|;
+  /// the shear dashpot acts only while sticking.
+  template <bool Track>
+  void force(Contact& c, std::size_t k, const StepContext& step, ContactEnergy& energy) const
+  {
+    const ContactExtra& x = step.extra[k];
+    const Bodies& b = step.bodies;
+    const double u = std::max(c.penetration, 0.0);
+    const double sqrtU = std::sqrt(u);
+    const double fnElastic = x.kno * u * sqrtU;
+    const double ksOld = c.ks;
+    c.kn = 1.5 * x.kno * sqrtU;
+    c.ks = x.kso * sqrtU;
+    // The incremental shear spring is not conservative when its stiffness changes with the
+    // overlap: the energy 1/2 Fs^2 / ks it holds changes by 1/2 Fs^2 (1/ks_new - 1/ks_old)
+    // without work. That difference is counted with the dissipation (it is negative while the
+    // contact unloads), so that the balance of the energy tracker closes.
+    if constexpr (Track)
+      if (ksOld > 0 && c.ks > 0)
+        energy.plastDissip += 0.5 * c.shearForce.squaredNorm() * (1 / ksOld - 1 / c.ks);
+    // As Yade's Mindlin law: the shear increment from the geometry; the normal velocity of the
+    // bodies' centres (Yade's incident velocity at the contact point, whose rotational part
+    // has no normal component between spheres).
+    const Vec3 v = incidentVelocity(c, b, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero());
+    const double vn = c.normal.dot(v);
+    const Vec3 vs = c.shearIncrement / step.dt;
+    double fn = fnElastic;
+    if (x.betan != 0 || x.betas != 0)
+    {
+      const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+      const double mass = !b.dynamic[i1] && b.dynamic[i2]   ? b.mass[i2]
+                          : !b.dynamic[i2] && b.dynamic[i1] ? b.mass[i1]
+                                                            : b.mass[i1] * b.mass[i2] / (b.mass[i1] + b.mass[i2]);
+      c.cn = 2 * std::sqrt(mass * c.kn) * x.betan;
+      c.cs = 2 * std::sqrt(mass * c.ks) * x.betas;
+      fn = std::max(0.0, fnElastic - c.cn * vn);
+    }
+    if constexpr (Track) // the normal dashpot's force is fnElastic - fn
+      energy.viscDamp += (fnElastic - fn) * vn * step.dt;
+    c.normalForce = fn * c.normal;
+    c.shearForce -= c.ks * c.shearIncrement;
+    const double maxFs = fn * c.tanPhi;
+    Vec3 shear = c.shearForce;
+    if (c.shearForce.squaredNorm() > maxFs * maxFs)
+    {
+      const Vec3 trial = c.shearForce;
+      c.shearForce *= maxFs / c.shearForce.norm();
+      shear = c.shearForce;
+      if constexpr (Track)
+        if (c.ks > 0)
+          energy.plastDissip += (trial - c.shearForce).dot(c.shearForce) / c.ks;
+    }
+    else if (c.cs != 0)
+    {
+      shear -= c.cs * vs;
+      if constexpr (Track)
+        energy.viscDamp += c.cs * vs.squaredNorm() * step.dt;
+    }
+    c.force = c.normalForce + shear;
+  }
+
+  /// 2/5 kno u^2.5 + 1/2 Fs^2 / ks.
+  double elastic(const Contact& c, const ContactExtra* x) const
+  {
+    const double u = std::max(c.penetration, 0.0);
+    return (x ? 0.4 * x->kno * u * u * std::sqrt(u) : 0.0) + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
+  }
+};
+
+TALUS_REGISTER_CONTACT_LAW(HertzMindlin, "Law2_ScGeom_MindlinPhys_Mindlin", "hertz")
+} // namespace talus::dem

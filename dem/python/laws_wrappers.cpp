@@ -1,0 +1,76 @@
+// Python bindings of the contact models' parameters and state and of the energy tracker.
+// Compiled into talus._dem; `talus_wrap_laws(m)` is called from dem_wrappers.cpp. The Python
+// API (Yade's functor classes, O.energy) is talus.dem.engines and talus.dem.energy.
+#include "dem/ContactLaw.h"
+#include "dem/Energy.h"
+#include "dem/Scene.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+
+namespace py = pybind11;
+using namespace talus::dem;
+
+/// Add the contact-law and energy functions to the compiled module talus._dem.
+void talus_wrap_laws(py::module_& m);
+
+void talus_wrap_laws(py::module_& m)
+{
+  m.def("law_set_parameter", [](ContactLaw& law, const std::string& name, double value) { law.setParameter(name, value); });
+  m.def("law_parameter", [](const ContactLaw& law, const std::string& name) { return law.parameter(name); });
+  m.def("law_parameter_names", [](const ContactLaw& law) { return law.parameterNames(); });
+
+  m.def("track_energy", [](const Scene& s) { return s.energy.enabled; });
+  m.def("set_track_energy", [](Scene& s, bool on) { s.energy.enabled = on; });
+  // The energies in Yade's names; kinetic and elastic energies are computed now.
+  m.def("energy", [](const Scene& s) {
+    py::dict d;
+    d["kinetic"] = kineticEnergy(s);
+    d["elastPotential"] = elasticPotential(s);
+    d["gravWork"] = s.energy.gravWork;
+    d["nonviscDamp"] = s.energy.nonviscDamp;
+    d["plastDissip"] = s.energy.plastDissip;
+    d["viscDamp"] = s.energy.viscDamp;
+    return d;
+  });
+  m.def("clear_energy", [](Scene& s) { s.energy.clear(); });
+
+  // State of the richer contact models, for the real contacts (same order as Scene.contacts()).
+  m.def("contact_extra", [](const Scene& s) {
+    py::list out;
+    const auto& list = s.contacts.list;
+    const bool have = s.contacts.extra.size() == list.size();
+    for (std::size_t k = 0; k < list.size(); ++k)
+    {
+      if (!list[k].real)
+        continue;
+      py::dict d;
+      if (have)
+      {
+        const ContactExtra& x = s.contacts.extra[k];
+        d["kno"] = x.kno;
+        d["kso"] = x.kso;
+        d["betan"] = x.betan;
+        d["betas"] = x.betas;
+        d["twist"] = x.twist;
+        d["bending"] = x.bending;
+        d["normalAdhesion"] = x.normalAdhesion;
+        d["shearAdhesion"] = x.shearAdhesion;
+        d["kr"] = x.kr;
+        d["ktw"] = x.ktw;
+        d["maxRollPl"] = x.maxRollPl;
+        d["maxTwistPl"] = x.maxTwistPl;
+        d["unp"] = x.unp;
+        d["moment_bending"] = x.momentBending;
+        d["moment_twist"] = x.momentTwist;
+        d["cohesionBroken"] = static_cast<bool>(x.cohesionBroken);
+        d["fragile"] = static_cast<bool>(x.fragile);
+      }
+      out.append(d);
+    }
+    return out;
+  });
+}

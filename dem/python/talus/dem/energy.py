@@ -1,0 +1,58 @@
+"""Yade's energy tracker: ``O.trackEnergy = True``, then ``O.energy`` (a read-only mapping).
+
+Keys, as in Yade: ``kinetic`` (translational and rotational, computed when read),
+``elastPotential`` (stored in the contacts' springs, computed when read), ``gravWork`` (minus the
+work of gravity), ``nonviscDamp`` (dissipated by NewtonIntegrator's damping), ``plastDissip``
+(friction sliding and plastic moments) and ``viscDamp`` (contact dashpots). Dissipations are
+positive; ``O.energy.total()`` is conserved in a closed system (it starts at the initial kinetic
+plus elastic energy). The accumulated terms count from when tracking was switched on (or from
+``O.energy.clear()``); they are deterministic and independent of the number of threads.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from talus import _dem
+
+KEYS = ("kinetic", "elastPotential", "gravWork", "nonviscDamp", "plastDissip", "viscDamp")
+
+
+class EnergyTracker(Mapping):
+    """``O.energy``: ``O.energy['kinetic']``, ``keys()``, ``items()``, ``total()``, ``clear()``;
+    ``plot.addData(**O.energy)`` works as in Yade."""
+
+    def __init__(self, scene):
+        self._scene = scene
+
+    def _values(self) -> dict:
+        return _dem.energy(self._scene._cpp)
+
+    def __getitem__(self, key: str) -> float:
+        if key not in KEYS:
+            raise KeyError(f"no energy {key!r}; the energies are {', '.join(KEYS)}")
+        return self._values()[key]
+
+    def __iter__(self):
+        return iter(KEYS)
+
+    def __len__(self) -> int:
+        return len(KEYS)
+
+    def keys(self):
+        return list(KEYS)
+
+    def items(self):
+        values = self._values()
+        return [(k, values[k]) for k in KEYS]
+
+    def total(self) -> float:
+        """Sum of every energy (kinetic + elastic + gravWork + dissipations)."""
+        return sum(self._values().values())
+
+    def clear(self):
+        """Set the accumulated energies (gravWork and the dissipations) to zero."""
+        _dem.clear_energy(self._scene._cpp)
+
+    def __repr__(self):
+        return "EnergyTracker(" + ", ".join(f"{k}={v:.6g}" for k, v in self.items()) + ")"
