@@ -1097,6 +1097,7 @@ void commit(Scene& scene, const Loaded& in)
   scene.dt = in.dt;
   scene.time = in.time;
   scene.iter = in.iter;
+  scene.clearFailedStep();
   scene.maxOverlapRatio = in.maxOverlapRatio;
   scene.periodic = in.periodic;
   scene.cell = in.cell;

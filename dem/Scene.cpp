@@ -156,9 +156,20 @@ void Scene::erase(BodyId id)
 
 void Scene::step()
 {
-  for (const std::shared_ptr<Engine>& engine : engines)
-    if (!engine->dead)
-      engine->run(*this);
+  if (!failedStep_.empty())
+    throw std::runtime_error("cannot continue: step " + std::to_string(iter) + " failed and left the scene half updated ("
+                             + failedStep_ + "); load a checkpoint (O.load, O.loadTmp) to go on from a saved state");
+  try
+  {
+    for (const std::shared_ptr<Engine>& engine : engines)
+      if (!engine->dead)
+        engine->run(*this);
+  }
+  catch (const std::exception& e)
+  {
+    failedStep_ = e.what();
+    throw;
+  }
   time += dt;
   ++iter;
 }

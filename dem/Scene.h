@@ -68,8 +68,12 @@ public:
   /// Remove a body; its id is not reused, its contacts disappear at the next collider run.
   void erase(BodyId id);
 
-  /// Run all engines once and advance the clock.
+  /// Run all engines once and advance the clock. If an engine throws, the step is left half
+  /// done (contact histories updated, some bodies moved), so the scene refuses further steps,
+  /// naming the failure, until a checkpoint is loaded (which calls clearFailedStep()).
   void step();
+  /// Forget a failed step: the scene's state was replaced (a checkpoint was loaded).
+  void clearFailedStep() { failedStep_.clear(); }
   /// Run `steps` steps (all steps until pause() if negative), stopping early after a step in
   /// which pause() was called. `poll` (optional) runs every 64 steps, e.g. to notice Ctrl-C.
   void run(std::int64_t steps, const std::function<void()>& poll = {});
@@ -87,6 +91,7 @@ public:
 
 private:
   bool pauseRequested_ = false;
+  std::string failedStep_; ///< message of the step that threw (transient), empty if none
   void checkInsideCell(const std::string& which, const Vec3& x) const;
 };
 } // namespace talus::dem

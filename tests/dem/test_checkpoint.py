@@ -78,11 +78,11 @@ def assert_identical(a: dict, b: dict):
 
 def test_layout_is_covered():
     """Every field of these structures is written by dem/Checkpoint.cpp (Scene: all but its
-    engines and the transient pauseRequested_). When one changes size, a field was added: store
+    engines and the transient pauseRequested_ and failedStep_). When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
     is transient, then update this table."""
     assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 456, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 1056, "ContactExtra": 256,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1088, "ContactExtra": 256,
                                    "EnergyTracker": 40}
 
 

@@ -37,14 +37,17 @@ def test_an_unstable_step_is_detected_and_named():
 
 
 def test_an_overlapping_start_is_detected_at_the_first_step():
-    S = Scene()
-    S.bodies.append([sphere((0, 0, 0), 0.1), sphere((0, 0, 0.05), 0.1)])
-    S.engines = [ForceResetter(), InsertionSortCollider(),
-                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
-                 NewtonIntegrator()]
-    S.dt = 1e-6
+    def overlapping():
+        S = Scene()
+        S.bodies.append([sphere((0, 0, 0), 0.1), sphere((0, 0, 0.05), 0.1)])
+        S.engines = [ForceResetter(), InsertionSortCollider(),
+                     InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                     NewtonIntegrator()]
+        S.dt = 1e-6
+        return S
     with pytest.raises(RuntimeError, match="step 0: bodies 0 and 1 overlap by 0.15, 150% .*created overlapping"):
-        S.step()
+        overlapping().step()
+    S = overlapping()
     S.maxOverlapRatio = 0            # the check can be switched off deliberately
     S.step()
 
@@ -54,3 +57,21 @@ def test_a_non_finite_force_names_the_body():
     S.persistent_forces()[3] = (0, math.nan, 0)
     with pytest.raises(RuntimeError, match="step 0: body 3 has a non-finite force"):
         S.step()
+
+
+def test_a_failed_step_is_not_silently_repeated():
+    """A step that threw left contact histories and bodies half updated: the scene refuses to go
+    on from there (instead of repeating the step on a corrupted state) until a checkpoint is
+    loaded."""
+    S = column(3.0)
+    S.saveTmp("start")
+    with pytest.raises(RuntimeError, match="overlap"):
+        S.run(3000)
+    failed_at = S.iter
+    with pytest.raises(RuntimeError, match=rf"cannot continue: step {failed_at} failed .*overlap.*load a checkpoint"):
+        S.step()
+    assert S.iter == failed_at
+    S.loadTmp("start")
+    S.dt = 0.3 * PWaveTimeStep(S)
+    S.run(100)
+    assert S.iter == 100
