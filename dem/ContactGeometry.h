@@ -50,6 +50,19 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
   return {b.pos[i] + b.ori[i] * f.vertices[0], b.pos[i] + b.ori[i] * f.vertices[1], b.pos[i] + b.ori[i] * f.vertices[2]};
 }
 
+/// Velocity of body 1's material at the contact (its geometry already set: c.refR1 and
+/// c.contactPoint, `normal` the current one). A sphere's uses Yade's lever arm refR1 n
+/// (avoidGranularRatcheting); a wall, facet or box, its rigid-body velocity at the contact
+/// point, so boundaries turned by kinematic engines shear their contacts correctly (Yade uses
+/// the sphere arm 2r n there, which is wrong for a turning facet).
+inline Vec3 body1Velocity(const Contact& c, const Bodies& b, const Vec3& normal)
+{
+  const auto i1 = static_cast<std::size_t>(c.id1);
+  if (c.kind == ContactGeometryKind::SphereSphere)
+    return b.vel[i1] + b.angVel[i1].cross(c.refR1 * normal);
+  return b.vel[i1] + b.angVel[i1].cross(c.contactPoint - b.pos[i1]);
+}
+
 /// Contact kinematics of Yade's ScGeom, for one candidate pair.
 ///
 /// Computes normal, penetration depth and contact point; if the shapes do not overlap the
@@ -121,6 +134,43 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     r1 = 2 * r;
     r2 = r;
   }
+  else if (c.kind == ContactGeometryKind::BoxSphere)
+  {
+    // Body 1 is the box (Yade's Ig2_Box_Sphere_ScGeom). Outside the box, the normal points from
+    // the closest point of the box (on a face, an edge or a corner) to the sphere's centre; with
+    // the centre inside, from the nearest face, penetration r + depth below that face.
+    const double r = b.radius[i2];
+    const Vec3 extents = b.boxes[static_cast<std::size_t>(b.shapeIndex[i1])].extents;
+    const Vec3 local = b.ori[i1].conjugate() * (b.pos[i2] - b.pos[i1]);
+    const Vec3 clamped = local.cwiseMax(-extents).cwiseMin(extents);
+    if (clamped != local)
+    {
+      const Vec3 d = b.ori[i1] * (local - clamped);
+      const double dist2 = d.squaredNorm();
+      if (dist2 > r * r)
+      {
+        if (c.real)
+          c.reset();
+        return false;
+      }
+      const double dist = std::sqrt(dist2);
+      normal = d / dist;
+      penetration = r - dist;
+    }
+    else
+    {
+      int axis = 0;
+      const Vec3 depth = extents - local.cwiseAbs();
+      depth.minCoeff(&axis);
+      Vec3 n = Vec3::Zero();
+      n[axis] = local[axis] >= 0 ? 1.0 : -1.0;
+      normal = b.ori[i1] * n;
+      penetration = r + depth[axis];
+    }
+    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
+    r1 = 2 * r;
+    r2 = r;
+  }
   else // WallSphere: body 1 is the wall; the contact point lies on the wall plane
   {
     const WallShape& wall = b.walls[static_cast<std::size_t>(b.shapeIndex[i1])];
@@ -159,7 +209,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(-r2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(r1 * normal));
+  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(-r2 * normal)) - body1Velocity(c, b, normal);
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }
@@ -168,9 +218,8 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
 /// `shiftVel` is the velocity of body 2's periodic image relative to body 2 (zero if none).
 inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& shiftVel)
 {
-  const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
-  return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * c.normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * c.normal));
+  return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * c.normal)) - body1Velocity(c, b, c.normal);
 }
 
 

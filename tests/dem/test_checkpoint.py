@@ -69,8 +69,8 @@ def test_layout_is_covered():
     engines and the transient pauseRequested_). When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
     is transient, then update this table."""
-    assert _dem.layout_sizes() == {"Contact": 256, "Material": 128, "Bodies": 456, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 992}
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 128, "Bodies": 552, "WallShape": 8,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1088}
 
 
 @pytest.mark.parametrize("visco", [False, True], ids=["FrictMat", "ViscElMat"])
@@ -356,7 +356,7 @@ def test_wrong_version_and_foreign_files(tmp_path, small_checkpoint):
         with h5py.File(sys.argv[2], "w") as f:
             f["data"] = np.arange(10)
         """, newer, foreign)
-    assert out.split() == ["talus-checkpoint", "1", f"({len(saved['pos'])},", "3)", f"({pairs},)"]
+    assert out.split() == ["talus-checkpoint", "2", f"({len(saved['pos'])},", "3)", f"({pairs},)"]
     T = untouched_scene()
     with pytest.raises(io.CheckpointError, match=r"newer.h5': checkpoint format version 99 .*reads version 1"):
         io.load(T, newer)

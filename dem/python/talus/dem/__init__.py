@@ -14,11 +14,12 @@
 """
 
 from talus.dem import geom, pack, progress
-from talus.dem.bodies import Body, BodySpec, facet, sphere, wall
+from talus.dem.bodies import Body, BodySpec, box, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
 from talus.dem.export import VTKExporter, VTKRecorder
+from talus.dem.kinematic import HarmonicMotionEngine, KinematicEngine, RotationEngine, TranslationEngine
 from talus.dem.io import CheckpointError
 from talus.dem.materials import FrictMat, Material, ViscElMat
 from talus.dem.measure import avgNumInteractions, fabricTensor, getStress, porosity, unbalancedForce
@@ -26,7 +27,8 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
-__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
+__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "box", "geom", "pack", "Material", "FrictMat", "ViscElMat",
            "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
            "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
+           "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",
            *_engine_names]
