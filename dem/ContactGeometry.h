@@ -50,17 +50,19 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
   return {b.pos[i] + b.ori[i] * f.vertices[0], b.pos[i] + b.ori[i] * f.vertices[1], b.pos[i] + b.ori[i] * f.vertices[2]};
 }
 
-/// Velocity of body 1's material at the contact (its geometry already set: c.refR1 and
-/// c.contactPoint, `normal` the current one). A sphere's uses Yade's lever arm refR1 n
-/// (avoidGranularRatcheting); a wall, facet or box, its rigid-body velocity at the contact
-/// point, so boundaries turned by kinematic engines shear their contacts correctly (Yade uses
-/// the sphere arm 2r n there, which is wrong for a turning facet).
-inline Vec3 body1Velocity(const Contact& c, const Bodies& b, const Vec3& normal)
+/// Velocity of body 2 relative to body 1 at the contact (geometry already set: c.refR1,
+/// c.refR2, c.contactPoint; `normal` the current normal, `shiftVel` the velocity of body 2's
+/// periodic image relative to body 2). As Yade's ScGeom::getIncidentVel: sphere-sphere and
+/// wall-sphere contacts use the lever arms refR1 n and -refR2 n (avoidGranularRatcheting, and
+/// a wall's noRatch); facet- and box-sphere contacts the true arms to the contact point, so a
+/// boundary turned by a kinematic engine shears its contacts with its velocity there.
+inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& normal, const Vec3& shiftVel)
 {
-  const auto i1 = static_cast<std::size_t>(c.id1);
-  if (c.kind == ContactGeometryKind::SphereSphere)
-    return b.vel[i1] + b.angVel[i1].cross(c.refR1 * normal);
-  return b.vel[i1] + b.angVel[i1].cross(c.contactPoint - b.pos[i1]);
+  const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+  if (c.kind == ContactGeometryKind::SphereSphere || c.kind == ContactGeometryKind::WallSphere)
+    return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * normal));
+  return (b.vel[i2] + b.angVel[i2].cross(c.contactPoint - b.pos[i2]))
+         - (b.vel[i1] + b.angVel[i1].cross(c.contactPoint - b.pos[i1]));
 }
 
 /// Contact kinematics of Yade's ScGeom, for one candidate pair.
@@ -171,7 +173,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     r1 = 2 * r;
     r2 = r;
   }
-  else // WallSphere: body 1 is the wall; the contact point lies on the wall plane
+  else // WallSphere: body 1 is the wall
   {
     const WallShape& wall = b.walls[static_cast<std::size_t>(b.shapeIndex[i1])];
     const double r = b.radius[i2];
@@ -186,7 +188,9 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     }
     normal = Vec3::Zero();
     normal[wall.axis] = side;
-    contactPoint = b.pos[i2] - (r - penetration) * normal;
+    // Mid-overlap, as for the other shapes: the sphere's torque arm r - penetration / 2 is
+    // Yade's (its Law2 takes the arms of spheres, not the wall-plane point Ig2 stores).
+    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
     r1 = r2 = r;
   }
 
@@ -209,18 +213,15 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  const Vec3 incident = (b.vel[i2] + shiftVel + b.angVel[i2].cross(-r2 * normal)) - body1Velocity(c, b, normal);
+  const Vec3 incident = incidentVelocity(c, b, normal, shiftVel);
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }
 
-/// The relative velocity of body 2 with respect to body 1 at the contact (same arms as above);
-/// `shiftVel` is the velocity of body 2's periodic image relative to body 2 (zero if none).
+/// The same for a contact whose geometry is up to date.
 inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& shiftVel)
 {
-  const auto i2 = static_cast<std::size_t>(c.id2);
-  return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * c.normal)) - body1Velocity(c, b, c.normal);
+  return incidentVelocity(c, b, c.normal, shiftVel);
 }
-
 
 } // namespace talus::dem
