@@ -13,7 +13,7 @@
 ``O`` is the default scene; ``Scene()`` makes another.
 """
 
-from talus.dem import geom, pack, progress
+from talus.dem import geom, pack, progress, ymport
 from talus.dem.bodies import Body, BodySpec, box, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
@@ -27,7 +27,7 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
-__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "box", "geom", "pack", "Material", "FrictMat", "ViscElMat",
+__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "box", "geom", "pack", "ymport", "Material", "FrictMat", "ViscElMat",
            "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress", "avgNumInteractions",
            "fabricTensor", "porosity", "VTKRecorder", "VTKExporter", "CheckpointError", "progress",
            "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",
