@@ -931,7 +931,7 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
     r.uint8s("/contacts/kind", bytes);
     for (std::size_t k = 0; k < c; ++k)
     {
-      if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::FacetSphere))
+      if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::BoxSphere))
         ctx.fail("contact " + std::to_string(k) + " has unknown kind " + std::to_string(bytes[k]), false);
       list[k].kind = static_cast<ContactGeometryKind>(bytes[k]);
     }
