@@ -27,7 +27,7 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
                  std::vector<std::vector<Candidate>>& perThread, std::vector<Candidate>& pairs)
 {
   perThread.resize(1);
-#pragma omp parallel
+#pragma omp parallel if (static_cast<std::int64_t>(spheres.size()) >= parallelMinimum)
   {
 #ifdef _OPENMP
 #pragma omp single
@@ -186,7 +186,7 @@ bool Collider::needsRebuild(const Scene& scene) const
   const auto n = static_cast<std::int64_t>(b.size());
   bool moved = false;
   const bool deformed = scene.periodic && affine != Mat3::Identity();
-#pragma omp parallel for reduction(|| : moved) schedule(static)
+#pragma omp parallel for reduction(|| : moved) schedule(static) if (n >= parallelMinimum)
   for (std::int64_t k = 0; k < n; ++k)
   {
     const auto i = static_cast<std::size_t>(k);

@@ -13,7 +13,7 @@ void ContactLawKernel<Law>::computeForces(Scene& scene, std::uint8_t lawIndex)
   std::vector<Contact>& list = scene.contacts.list;
   const StepContext step{scene.bodies, scene.periodic ? &scene.cell : nullptr, scene.dt};
   const auto n = static_cast<std::int64_t>(list.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallelMinimum)
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
@@ -31,7 +31,7 @@ std::int64_t ContactLawKernel<Law>::computeAll(Scene& scene)
   const auto n = static_cast<std::int64_t>(list.size());
   const double ratio = scene.maxOverlapRatio;
   std::int64_t firstBad = n;
-#pragma omp parallel for schedule(static) reduction(min : firstBad)
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelMinimum)
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];

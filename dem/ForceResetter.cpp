@@ -8,7 +8,7 @@ void ForceResetter::run(Scene& scene)
 {
   Bodies& b = scene.bodies;
   const auto n = static_cast<std::int64_t>(b.size());
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallelMinimum)
   for (std::int64_t k = 0; k < n; ++k)
   {
     const auto i = static_cast<std::size_t>(k);

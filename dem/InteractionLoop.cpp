@@ -92,7 +92,7 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
   // 1. Geometry of every candidate pair; new contacts get their law and physics.
   bool failed = false;
   std::string failure;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= parallelMinimum)
   for (std::int64_t k = 0; k < n; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
@@ -127,7 +127,7 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
   Bodies& b = scene.bodies;
   const Contacts& contacts = scene.contacts;
   const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (bodyCount >= parallelMinimum)
   for (std::int64_t id = 0; id < bodyCount; ++id)
   {
     const auto i = static_cast<std::size_t>(id);

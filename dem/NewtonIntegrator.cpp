@@ -159,7 +159,7 @@ void NewtonIntegrator::run(Scene& scene)
   const Vec3 w = spin(L), previousW = spin(previousL);
   const auto n = static_cast<std::int64_t>(b.size());
   std::int64_t firstBad = n;
-#pragma omp parallel for schedule(static) reduction(min : firstBad)
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelMinimum)
   for (std::int64_t k = 0; k < n; ++k)
   {
     const auto i = static_cast<std::size_t>(k);

@@ -15,6 +15,10 @@ using Mat3 = Eigen::Matrix3d;
 /// Body identifier: the index of the body in the scene's arrays; stable for the body's life.
 using BodyId = std::int32_t;
 
+/// Loops over fewer items than this run on one thread: for a scene of a few bodies the cost of
+/// waking a thread team (large on a loaded machine) exceeds the work. Results do not depend on it.
+inline constexpr std::int64_t parallelMinimum = 1024;
+
 /// Degrees of freedom that can be blocked (Yade's blockedDOFs letters x, y, z, X, Y, Z).
 enum Dof : std::uint8_t
 {

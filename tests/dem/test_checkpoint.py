@@ -384,7 +384,7 @@ def test_wrong_version_and_foreign_files(tmp_path, small_checkpoint):
         """, newer, foreign)
     assert out.split() == ["talus-checkpoint", "2", f"({len(saved['pos'])},", "3)", f"({pairs},)"]
     T = untouched_scene()
-    with pytest.raises(io.CheckpointError, match=r"newer.h5': checkpoint format version 99 .*reads version 1"):
+    with pytest.raises(io.CheckpointError, match=r"newer.h5': checkpoint format version 99 .*reads version 2"):
         io.load(T, newer)
     with pytest.raises(io.CheckpointError, match=r"foreign.h5': not a Talus checkpoint"):
         io.load(T, foreign)
