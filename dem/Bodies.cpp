@@ -9,6 +9,7 @@ BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
   vel.emplace_back(Vec3::Zero());
   angVel.emplace_back(Vec3::Zero());
   ori.emplace_back(Quat::Identity());
+  angMom.emplace_back(Vec3::Zero());
   force.emplace_back(Vec3::Zero());
   torque.emplace_back(Vec3::Zero());
   extForce.emplace_back(Vec3::Zero());
@@ -22,6 +23,14 @@ BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
   blockedDofs.push_back(0);
   dynamic.push_back(1);
   alive.push_back(1);
+  clumpId.push_back(-1);
   return id;
+}
+
+void Bodies::setAngularVelocity(std::size_t i, const Vec3& w)
+{
+  angVel[i] = w;
+  const Mat3 R = ori[i].toRotationMatrix();
+  angMom[i] = R * inertia[i].cwiseProduct(R.transpose() * w);
 }
 } // namespace talus::dem

@@ -13,6 +13,8 @@ enum class ShapeKind : std::uint8_t
   Sphere,
   Wall,  ///< infinite plane normal to a coordinate axis (Yade's Wall)
   Facet, ///< triangle (Yade's Facet), for meshes and boundaries
+  Box,   ///< rectangular box (Yade's Box), interacting with spheres
+  Clump, ///< rigid aggregate of member spheres (Yade's Clump); has no surface of its own
 };
 
 /// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
@@ -31,6 +33,21 @@ struct FacetShape
   Vec3 normal; ///< unit normal, (v1 - v0) x (v2 - v0) normalised, in the body frame
 };
 
+/// A box of half-sizes `extents` along the axes of the body's frame (Yade's Box.extents).
+struct BoxShape
+{
+  Vec3 extents;
+};
+
+/// The members of a clump and their placement in the clump's principal frame (Yade's
+/// Clump.members): member k sits at pos + ori * relPos[k] with orientation ori * relOri[k].
+struct ClumpShape
+{
+  std::vector<BodyId> members; ///< ascending ids (the order forces are summed in)
+  std::vector<Vec3> relPos;
+  std::vector<Quat> relOri;
+};
+
 /// Every body of a scene as structure-of-arrays: index = BodyId. Arrays are contiguous, so the
 /// exchange interface and Python hand out views of them without copying.
 ///
@@ -40,6 +57,9 @@ struct Bodies
   // state
   std::vector<Vec3> pos, vel, angVel;
   std::vector<Quat> ori;
+  /// Angular momentum (world frame) of aspherical bodies, integrated instead of the angular
+  /// velocity (Yade's State.angMom with exactAsphericalRot); unused for spheres.
+  std::vector<Vec3> angMom;
   // forces of the current step, and persistent external ones added by couplings or users
   std::vector<Vec3> force, torque, extForce, extTorque;
   // constant properties
@@ -52,12 +72,25 @@ struct Bodies
   std::vector<std::uint8_t> blockedDofs; ///< Dof bits; blocked DOFs keep their velocity
   std::vector<std::uint8_t> dynamic;     ///< 1: moved by forces; 0: moved only by its velocity
   std::vector<std::uint8_t> alive;
+  std::vector<BodyId> clumpId; ///< the clump this body is a member of, -1 if none
   std::vector<WallShape> walls;
   std::vector<FacetShape> facets;
+  std::vector<BoxShape> boxes;
+  std::vector<ClumpShape> clumps;
 
   /// Number of slots, erased bodies included.
   [[nodiscard]] std::size_t size() const { return pos.size(); }
   /// Append a slot with zero state and the given shape; returns its id.
   BodyId append(ShapeKind kind, int shapeIdx, int materialId);
+  /// Set a body's angular velocity, and the angular momentum that goes with it (what the
+  /// integrator advances for aspherical bodies).
+  void setAngularVelocity(std::size_t i, const Vec3& w);
+  /// True for bodies whose rotation integrates the angular momentum in the principal frame
+  /// (clumps and boxes with unequal principal moments, as Yade's isAspherical).
+  [[nodiscard]] bool aspherical(std::size_t i) const
+  {
+    return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box)
+           && (inertia[i][0] != inertia[i][1] || inertia[i][0] != inertia[i][2]);
+  }
 };
 } // namespace talus::dem

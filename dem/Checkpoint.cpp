@@ -335,11 +335,11 @@ constexpr std::pair<const char*, bool Contact::*> contactFlags[] = {{"real", &Co
 constexpr std::pair<const char*, std::vector<Vec3> Bodies::*> bodyVectors[] = {
     {"pos", &Bodies::pos},           {"vel", &Bodies::vel},       {"angVel", &Bodies::angVel},
     {"force", &Bodies::force},       {"torque", &Bodies::torque}, {"extForce", &Bodies::extForce},
-    {"extTorque", &Bodies::extTorque}, {"inertia", &Bodies::inertia}};
+    {"extTorque", &Bodies::extTorque}, {"inertia", &Bodies::inertia}, {"angMom", &Bodies::angMom}};
 constexpr std::pair<const char*, std::vector<double> Bodies::*> bodyScalars[] = {{"mass", &Bodies::mass},
                                                                                   {"radius", &Bodies::radius}};
-constexpr std::pair<const char*, std::vector<int> Bodies::*> bodyInts[] = {{"shapeIndex", &Bodies::shapeIndex},
-                                                                            {"material", &Bodies::material}};
+constexpr std::pair<const char*, std::vector<int> Bodies::*> bodyInts[] = {
+    {"shapeIndex", &Bodies::shapeIndex}, {"material", &Bodies::material}, {"clumpId", &Bodies::clumpId}};
 constexpr std::pair<const char*, std::vector<std::uint8_t> Bodies::*> bodyBytes[] = {
     {"blockedDofs", &Bodies::blockedDofs}, {"dynamic", &Bodies::dynamic}, {"alive", &Bodies::alive}};
 static_assert(sizeof(int) == 4 && sizeof(BodyId) == 4, "int arrays are written as 32-bit integers");
@@ -473,6 +473,33 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     }
     w.doubles("/bodies/facets/vertices", {nf, 3, 3}, vertices.data());
     w.doubles("/bodies/facets/normal", {nf, 3}, normal.data());
+
+    const Id boxes = w.group("/bodies/boxes");
+    std::vector<Vec3> extents;
+    for (const BoxShape& box : b.boxes)
+      extents.push_back(box.extents);
+    w.vec3s("/bodies/boxes/extents", extents);
+
+    // Clumps: members of all clumps concatenated; clump k owns entries [start[k], start[k+1]).
+    const Id clumps = w.group("/bodies/clumps");
+    std::vector<std::int32_t> start{0}, members;
+    std::vector<Vec3> relPos;
+    std::vector<double> relOri;
+    for (const ClumpShape& clump : b.clumps)
+    {
+      for (std::size_t k = 0; k < clump.members.size(); ++k)
+      {
+        members.push_back(clump.members[k]);
+        relPos.push_back(clump.relPos[k]);
+        const Quat& q = clump.relOri[k];
+        relOri.insert(relOri.end(), {q.w(), q.x(), q.y(), q.z()});
+      }
+      start.push_back(static_cast<std::int32_t>(members.size()));
+    }
+    w.int32s("/bodies/clumps/start", start.data(), start.size());
+    w.int32s("/bodies/clumps/members", members.data(), members.size());
+    w.vec3s("/bodies/clumps/relPos", relPos);
+    w.doubles("/bodies/clumps/relOri", {members.size(), 4}, relOri.data());
   }
 
   // Contacts: the list in its order, every field of Contact.
@@ -898,7 +925,7 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
     b.shape.resize(n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      if (shape[i] > static_cast<std::uint8_t>(ShapeKind::Facet))
+      if (shape[i] > static_cast<std::uint8_t>(ShapeKind::Clump))
         ctx.fail("body " + std::to_string(i) + " has unknown shape kind " + std::to_string(shape[i]), false);
       b.shape[i] = static_cast<ShapeKind>(shape[i]);
     }
@@ -925,6 +952,39 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
       for (std::size_t k = 0; k < 3; ++k)
         b.facets[f].vertices[k] = Vec3(vertices[9 * f + 3 * k], vertices[9 * f + 3 * k + 1], vertices[9 * f + 3 * k + 2]);
       b.facets[f].normal = Vec3(normal[3 * f], normal[3 * f + 1], normal[3 * f + 2]);
+    }
+
+    const std::vector<hsize_t> db = r.dims("/bodies/boxes/extents");
+    if (db.size() != 2 || db[1] != 3)
+      ctx.fail("/bodies/boxes/extents is not an (n, 3) array", false);
+    std::vector<Vec3> extents(db[0]);
+    r.vec3s("/bodies/boxes/extents", extents);
+    for (const Vec3& e : extents)
+      b.boxes.push_back({e});
+
+    const std::vector<hsize_t> ds = r.dims("/bodies/clumps/start"), dm = r.dims("/bodies/clumps/members");
+    if (ds.size() != 1 || ds[0] < 1 || dm.size() != 1)
+      ctx.fail("/bodies/clumps/start or /bodies/clumps/members is not a one-dimensional array", false);
+    std::vector<std::int32_t> start(ds[0]), members(dm[0]);
+    r.int32s("/bodies/clumps/start", start);
+    r.int32s("/bodies/clumps/members", members);
+    std::vector<Vec3> relPos(dm[0]);
+    std::vector<double> relOri(4 * dm[0]);
+    r.vec3s("/bodies/clumps/relPos", relPos);
+    r.doubles("/bodies/clumps/relOri", {dm[0], 4}, relOri.data());
+    if (start.front() != 0 || start.back() != static_cast<std::int32_t>(members.size())
+        || !std::is_sorted(start.begin(), start.end()))
+      ctx.fail("/bodies/clumps/start does not partition the members", false);
+    for (std::size_t k = 0; k + 1 < start.size(); ++k)
+    {
+      ClumpShape clump;
+      for (auto e = static_cast<std::size_t>(start[k]); e < static_cast<std::size_t>(start[k + 1]); ++e)
+      {
+        clump.members.push_back(members[e]);
+        clump.relPos.push_back(relPos[e]);
+        clump.relOri.emplace_back(relOri[4 * e], relOri[4 * e + 1], relOri[4 * e + 2], relOri[4 * e + 3]);
+      }
+      b.clumps.push_back(std::move(clump));
     }
   }
 
@@ -959,7 +1019,7 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
     r.uint8s("/contacts/kind", bytes);
     for (std::size_t k = 0; k < c; ++k)
     {
-      if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::FacetSphere))
+      if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::BoxSphere))
         ctx.fail("contact " + std::to_string(k) + " has unknown kind " + std::to_string(bytes[k]), false);
       list[k].kind = static_cast<ContactGeometryKind>(bytes[k]);
     }
@@ -1055,14 +1115,44 @@ void validate(const Loaded& in, const Context& ctx)
                    + std::to_string(in.materials.size()) + " materials",
                false);
     const int s = b.shapeIndex[i];
-    const bool ok = b.shape[i] == ShapeKind::Sphere ? s == -1
-                    : b.shape[i] == ShapeKind::Wall ? s >= 0 && static_cast<std::size_t>(s) < b.walls.size()
-                                                    : s >= 0 && static_cast<std::size_t>(s) < b.facets.size();
+    const auto within = [s](std::size_t count) { return s >= 0 && static_cast<std::size_t>(s) < count; };
+    bool ok = false;
+    switch (b.shape[i])
+    {
+    case ShapeKind::Sphere: ok = s == -1; break;
+    case ShapeKind::Wall: ok = within(b.walls.size()); break;
+    case ShapeKind::Facet: ok = within(b.facets.size()); break;
+    case ShapeKind::Box: ok = within(b.boxes.size()); break;
+    case ShapeKind::Clump: ok = within(b.clumps.size()); break;
+    }
     if (!ok)
       ctx.fail(which + " has an invalid shape index " + std::to_string(s), false);
+    const BodyId clump = b.clumpId[i];
+    if (clump >= 0)
+    {
+      // A member must be listed by the clump it names.
+      const bool listed = static_cast<std::size_t>(clump) < n && b.shape[static_cast<std::size_t>(clump)] == ShapeKind::Clump
+                          && b.shapeIndex[static_cast<std::size_t>(clump)] >= 0
+                          && static_cast<std::size_t>(b.shapeIndex[static_cast<std::size_t>(clump)]) < b.clumps.size();
+      const auto& members = listed ? b.clumps[static_cast<std::size_t>(b.shapeIndex[static_cast<std::size_t>(clump)])].members
+                                   : std::vector<BodyId>{};
+      if (!listed || std::find(members.begin(), members.end(), static_cast<BodyId>(i)) == members.end())
+        ctx.fail(which + " names clump " + std::to_string(clump) + " which does not list it as a member", false);
+    }
+    else if (clump != -1)
+      ctx.fail(which + " has an invalid clump id " + std::to_string(clump), false);
     if (b.blockedDofs[i] > DofAll || b.dynamic[i] > 1 || b.alive[i] > 1)
       ctx.fail(which + " has invalid flags (blockedDofs, dynamic or alive)", false);
   }
+  for (std::size_t k = 0; k < b.clumps.size(); ++k)
+    for (BodyId m : b.clumps[k].members)
+      if (m < 0 || static_cast<std::size_t>(m) >= n || b.clumpId[static_cast<std::size_t>(m)] < 0)
+        ctx.fail("clump shape " + std::to_string(k) + " lists body " + std::to_string(m)
+                     + " which is not one of its members",
+                 false);
+  for (std::size_t k = 0; k < b.boxes.size(); ++k)
+    if (!b.boxes[k].extents.allFinite() || !(b.boxes[k].extents.minCoeff() > 0))
+      ctx.fail("box shape " + std::to_string(k) + " has invalid extents", false);
   for (std::size_t k = 0; k < b.walls.size(); ++k)
     if (b.walls[k].axis < 0 || b.walls[k].axis > 2 || b.walls[k].sense < -1 || b.walls[k].sense > 1)
       ctx.fail("wall shape " + std::to_string(k) + " has an invalid axis or sense", false);
@@ -1080,6 +1170,7 @@ void validate(const Loaded& in, const Context& ctx)
     const ShapeKind first = b.shape[static_cast<std::size_t>(c.id1)];
     const ContactGeometryKind expected = first == ShapeKind::Wall    ? ContactGeometryKind::WallSphere
                                          : first == ShapeKind::Facet ? ContactGeometryKind::FacetSphere
+                                         : first == ShapeKind::Box   ? ContactGeometryKind::BoxSphere
                                                                      : ContactGeometryKind::SphereSphere;
     if (c.kind != expected || b.shape[static_cast<std::size_t>(c.id2)] != ShapeKind::Sphere)
       ctx.fail(which + " has a kind that does not match the shapes of its bodies", false);

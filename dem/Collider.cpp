@@ -48,6 +48,8 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
         if (other <= id)
           return;
         const auto j = static_cast<std::size_t>(other);
+        if (b.clumpId[i] >= 0 && b.clumpId[i] == b.clumpId[j]) // members of a clump never touch
+          return;
         const double range = b.radius[i] + b.radius[j] + skin;
         if ((b.pos[j] - b.pos[i]).squaredNorm() < range * range)
           out.push_back({key(id, other), Eigen::Vector3i::Zero()});
@@ -137,6 +139,22 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
   }
 }
 
+/// Candidate box-sphere pairs: spheres whose centre is within r + skin of the box.
+void boxPairs(const Bodies& b, BodyId box, const CellGrid& grid, double rmax, double skin, std::vector<Candidate>& out)
+{
+  const auto k = static_cast<std::size_t>(box);
+  const Vec3 extents = b.boxes[static_cast<std::size_t>(b.shapeIndex[k])].extents;
+  const Mat3 R = b.ori[k].toRotationMatrix();
+  const Vec3 half = R.cwiseAbs() * extents + Vec3::Constant(rmax + skin);
+  grid.forEachInBox(b.pos[k] - half, b.pos[k] + half, [&](BodyId s) {
+    const auto i = static_cast<std::size_t>(s);
+    const Vec3 local = R.transpose() * (b.pos[i] - b.pos[k]);
+    const double range = b.radius[i] + skin;
+    if ((local - local.cwiseMax(-extents).cwiseMin(extents)).squaredNorm() < range * range)
+      out.push_back({key(box, s), Eigen::Vector3i::Zero()});
+  });
+}
+
 /// Candidate facet-sphere pairs: spheres whose centre is within r + skin of the triangle.
 void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax, double skin, std::vector<Candidate>& out)
 {
@@ -195,6 +213,7 @@ void Collider::rebuild(Scene& scene)
   spheres.clear();
   walls.clear();
   facets.clear();
+  boxes_.clear();
   double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
@@ -208,8 +227,11 @@ void Collider::rebuild(Scene& scene)
     }
     else if (b.shape[i] == ShapeKind::Wall)
       walls.push_back(static_cast<BodyId>(i));
-    else
+    else if (b.shape[i] == ShapeKind::Facet)
       facets.push_back(static_cast<BodyId>(i));
+    else if (b.shape[i] == ShapeKind::Box)
+      boxes_.push_back(static_cast<BodyId>(i));
+    // a clump has no surface: its members interact
   }
   skin_ = verletDist >= 0 ? verletDist : (spheres.empty() ? 0.0 : -verletDist * rmin);
 
@@ -224,6 +246,8 @@ void Collider::rebuild(Scene& scene)
   }
   for (BodyId f : facets)
     facetPairs(b, f, grid_, rmax, skin_, pairs);
+  for (BodyId k : boxes_)
+    boxPairs(b, k, grid_, rmax, skin_, pairs);
   for (BodyId w : walls)
   {
     const auto wi = static_cast<std::size_t>(w);
@@ -283,7 +307,9 @@ void Collider::rebuild(Scene& scene)
     {
     case ShapeKind::Wall: c.kind = ContactGeometryKind::WallSphere; break;
     case ShapeKind::Facet: c.kind = ContactGeometryKind::FacetSphere; break;
-    case ShapeKind::Sphere: c.kind = ContactGeometryKind::SphereSphere; break;
+    case ShapeKind::Box: c.kind = ContactGeometryKind::BoxSphere; break;
+    case ShapeKind::Sphere:
+    case ShapeKind::Clump: c.kind = ContactGeometryKind::SphereSphere; break;
     }
     merged.push_back(c);
   }

@@ -49,7 +49,7 @@ private:
   std::vector<std::vector<Candidate>> perThread_;
   Mat3 referenceCellInverse_ = Mat3::Identity();
   double referenceRange_ = 0;
-  std::vector<BodyId> spheres_, walls_, facets_;
+  std::vector<BodyId> spheres_, walls_, facets_, boxes_;
   std::int64_t seenBodiesVersion_ = -1;
   double skin_ = 0;
 };

@@ -50,6 +50,21 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
   return {b.pos[i] + b.ori[i] * f.vertices[0], b.pos[i] + b.ori[i] * f.vertices[1], b.pos[i] + b.ori[i] * f.vertices[2]};
 }
 
+/// Velocity of body 2 relative to body 1 at the contact (geometry already set: c.refR1,
+/// c.refR2, c.contactPoint; `normal` the current normal, `shiftVel` the velocity of body 2's
+/// periodic image relative to body 2). As Yade's ScGeom::getIncidentVel: sphere-sphere and
+/// wall-sphere contacts use the lever arms refR1 n and -refR2 n (avoidGranularRatcheting, and
+/// a wall's noRatch); facet- and box-sphere contacts the true arms to the contact point, so a
+/// boundary turned by a kinematic engine shears its contacts with its velocity there.
+inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& normal, const Vec3& shiftVel)
+{
+  const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+  if (c.kind == ContactGeometryKind::SphereSphere || c.kind == ContactGeometryKind::WallSphere)
+    return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * normal));
+  return (b.vel[i2] + b.angVel[i2].cross(c.contactPoint - b.pos[i2]))
+         - (b.vel[i1] + b.angVel[i1].cross(c.contactPoint - b.pos[i1]));
+}
+
 /// Contact kinematics of Yade's ScGeom, for one candidate pair.
 ///
 /// Computes normal, penetration depth and contact point; if the shapes do not overlap the
@@ -72,7 +87,6 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   double penetration;
   Vec3 contactPoint;
   double r1, r2;
-  Vec3 arm1, arm2; // lever arms of the incident velocity
   Vec3 shiftVel = Vec3::Zero();
   if (cell)
   {
@@ -96,8 +110,6 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     penetration = reach - dist;
     normal = d / dist;
     contactPoint = b.pos[i1] + (r1 - 0.5 * penetration) * normal;
-    arm1 = r1 * normal;
-    arm2 = -r2 * normal;
   }
   else if (c.kind == ContactGeometryKind::FacetSphere)
   {
@@ -129,10 +141,45 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     r2 = r;
     // Yade's Ig2_Facet_Sphere_ScGeom takes the arms to the contact point (no ratcheting
     // correction): the same here, so that friction on facet walls is Yade's.
-    arm1 = contactPoint - b.pos[i1];
-    arm2 = contactPoint - b.pos[i2];
   }
-  else // WallSphere: body 1 is the wall; the contact point lies on the wall plane
+  else if (c.kind == ContactGeometryKind::BoxSphere)
+  {
+    // Body 1 is the box (Yade's Ig2_Box_Sphere_ScGeom). Outside the box, the normal points from
+    // the closest point of the box (on a face, an edge or a corner) to the sphere's centre; with
+    // the centre inside, from the nearest face, penetration r + depth below that face.
+    const double r = b.radius[i2];
+    const Vec3 extents = b.boxes[static_cast<std::size_t>(b.shapeIndex[i1])].extents;
+    const Vec3 local = b.ori[i1].conjugate() * (b.pos[i2] - b.pos[i1]);
+    const Vec3 clamped = local.cwiseMax(-extents).cwiseMin(extents);
+    if (clamped != local)
+    {
+      const Vec3 d = b.ori[i1] * (local - clamped);
+      const double dist2 = d.squaredNorm();
+      if (dist2 > r * r)
+      {
+        if (c.real)
+          c.reset();
+        return false;
+      }
+      const double dist = std::sqrt(dist2);
+      normal = d / dist;
+      penetration = r - dist;
+    }
+    else
+    {
+      int axis = 0;
+      const Vec3 depth = extents - local.cwiseAbs();
+      depth.minCoeff(&axis);
+      Vec3 n = Vec3::Zero();
+      n[axis] = local[axis] >= 0 ? 1.0 : -1.0;
+      normal = b.ori[i1] * n;
+      penetration = r + depth[axis];
+    }
+    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
+    r1 = 2 * r;
+    r2 = r;
+  }
+  else // WallSphere: body 1 is the wall
   {
     const WallShape& wall = b.walls[static_cast<std::size_t>(b.shapeIndex[i1])];
     const double r = b.radius[i2];
@@ -147,10 +194,10 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     }
     normal = Vec3::Zero();
     normal[wall.axis] = side;
-    contactPoint = b.pos[i2] - (r - penetration) * normal;
+    // Mid-overlap, as for the other shapes: the sphere's torque arm r - penetration / 2 is
+    // Yade's (its Law2 takes the arms of spheres, not the wall-plane point Ig2 stores).
+    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
     r1 = r2 = r;
-    arm1 = r1 * normal;
-    arm2 = -r2 * normal;
   }
 
   if (c.real)
@@ -181,20 +228,22 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   // Between two spheres the translational part is scaled by alpha = (r1 + r2) / (r1 + r2 - u),
   // as Yade's avoidGranularRatcheting (McNamara et al.), so that rolling without sliding gives
   // no shear increment.
-  const double alpha = c.kind == ContactGeometryKind::SphereSphere ? (r1 + r2) / (r1 + r2 - penetration) : 1.0;
-  const Vec3 incident = alpha * (b.vel[i2] + shiftVel - b.vel[i1]) + b.angVel[i2].cross(arm2) - b.angVel[i1].cross(arm1);
+  Vec3 incident;
+  if (c.kind == ContactGeometryKind::SphereSphere)
+  {
+    const double alpha = (r1 + r2) / (r1 + r2 - penetration);
+    incident = alpha * (b.vel[i2] + shiftVel - b.vel[i1]) + b.angVel[i2].cross(-r2 * normal) - b.angVel[i1].cross(r1 * normal);
+  }
+  else
+    incident = incidentVelocity(c, b, normal, shiftVel);
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }
 
-/// The relative velocity of body 2 with respect to body 1 at the contact (same arms as above);
-/// `shiftVel` is the velocity of body 2's periodic image relative to body 2 (zero if none).
+/// The same for a contact whose geometry is up to date.
 inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& shiftVel)
 {
-  const auto i1 = static_cast<std::size_t>(c.id1);
-  const auto i2 = static_cast<std::size_t>(c.id2);
-  return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * c.normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * c.normal));
+  return incidentVelocity(c, b, c.normal, shiftVel);
 }
-
 
 } // namespace talus::dem

@@ -14,6 +14,7 @@ enum class ContactGeometryKind : std::uint8_t
   SphereSphere,
   WallSphere,  ///< id1 is the wall, as in Yade
   FacetSphere, ///< id1 is the facet, as in Yade
+  BoxSphere,   ///< id1 is the box, as in Yade
 };
 
 /// One candidate pair within the collider's skin, with its persistent contact state.

@@ -1,5 +1,6 @@
 #include "dem/Measurements.h"
 
+#include "dem/Clump.h"
 #include "dem/NewtonIntegrator.h"
 #include "dem/Scene.h"
 
@@ -17,9 +18,13 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
   std::size_t bodies = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || !b.dynamic[i])
+    // A clump counts once, with its members' forces; its members do not count alone.
+    if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0)
       continue;
-    const double f = (b.force[i] + b.mass[i] * gravity).norm();
+    Vec3 force = b.force[i], torque = Vec3::Zero();
+    if (b.shape[i] == ShapeKind::Clump)
+      addClumpMemberForces(b, i, force, torque);
+    const double f = (force + b.mass[i] * gravity).norm();
     sumBodies += f;
     maxBody = std::max(maxBody, f);
     ++bodies;

@@ -1,7 +1,8 @@
 #include "dem/NewtonIntegrator.h"
+
+#include "dem/Clump.h"
 #include "dem/Scene.h"
 #include "dem/Threads.h"
-
 
 #include <algorithm>
 #include <array>
@@ -50,9 +51,19 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
   const Bodies& b = scene.bodies;
   invMass_.assign(b.size(), Vec3::Zero());
   invInertia_.assign(b.size(), Vec3::Zero());
+  mode_.assign(b.size(), 0);
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || !b.dynamic[i])
+    if (!b.alive[i])
+      continue;
+    if (b.clumpId[i] >= 0)
+      mode_[i] = Member;
+    else if (b.shape[i] == ShapeKind::Clump)
+      mode_[i] = ClumpBody;
+    // Fully blocked rotations keep their angular velocity: the spherical path does that.
+    if (b.aspherical(i) && b.dynamic[i] && (b.blockedDofs[i] & (DofRX | DofRY | DofRZ)) != (DofRX | DofRY | DofRZ))
+      mode_[i] |= Aspherical;
+    if (!b.dynamic[i])
       continue;
     for (int d = 0; d < 3; ++d)
     {
@@ -71,6 +82,69 @@ namespace
 /// Rotation rate (axial vector) of the antisymmetric part of a velocity gradient.
 Vec3 spin(const Mat3& L) { return 0.5 * Vec3(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1)); }
 } // namespace
+
+namespace
+{
+/// dQ/dt of orientation Q turning at angular velocity w given in the body frame (Yade's DotQ).
+Quat dotQ(const Vec3& w, const Quat& q)
+{
+  return Quat((-q.x() * w[0] - q.y() * w[1] - q.z() * w[2]) / 2, (q.w() * w[0] - q.z() * w[1] + q.y() * w[2]) / 2,
+              (q.z() * w[0] + q.w() * w[1] - q.x() * w[2]) / 2, (-q.y() * w[0] + q.x() * w[1] + q.w() * w[2]) / 2);
+}
+
+Quat plus(const Quat& a, double s, const Quat& b) { return Quat(a.coeffs() + s * b.coeffs()); }
+} // namespace
+
+void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& force, const Vec3& torque, double dt) const
+{
+  if (b.dynamic[i])
+  {
+    const std::uint8_t blocked = b.blockedDofs[i];
+    Vec3 a = force.cwiseProduct(invMass_[i]);
+    for (int d = 0; d < 3; ++d)
+    {
+      if (!(blocked & (1u << d)))
+        a[d] += gravity[d];
+      if (damping != 0)
+        a[d] = damped(a[d], b.vel[i][d], dt, damping);
+    }
+    b.vel[i] += a * dt;
+    if (mode_[i] & Aspherical)
+    {
+      // Torque with blocked axes removed and Cundall's damping on the current angular velocity
+      // (Yade's cundallDamp1st), then Yade's leapfrogAsphericalRotate.
+      Vec3 M = torque;
+      for (int d = 0; d < 3; ++d)
+      {
+        if (blocked & (8u << d))
+          M[d] = 0;
+        else if (damping != 0)
+        {
+          const double s = M[d] * b.angVel[i][d];
+          M[d] *= 1 - damping * (s > 0 ? 1.0 : (s < 0 ? -1.0 : 0.0));
+        }
+      }
+      Quat& q = b.ori[i];
+      const Mat3 A = q.conjugate().toRotationMatrix(); // world to body frame
+      const Vec3 wn = (A * (b.angMom[i] + dt / 2 * M)).cwiseQuotient(b.inertia[i]);
+      const Quat qHalf = plus(q, dt / 2, dotQ(wn, q));
+      b.angMom[i] += dt * M;
+      const Vec3 wHalf = (A * b.angMom[i]).cwiseQuotient(b.inertia[i]);
+      q = plus(q, dt, dotQ(wHalf, qHalf));
+      b.angVel[i] = q * wHalf; // as Yade: with the quaternion before normalisation
+      q.normalize();
+      b.pos[i] += b.vel[i] * dt;
+      return;
+    }
+    Vec3 alpha = torque.cwiseProduct(invInertia_[i]);
+    if (damping != 0)
+      for (int d = 0; d < 3; ++d)
+        alpha[d] = damped(alpha[d], b.angVel[i][d], dt, damping);
+    b.angVel[i] += alpha * dt;
+  }
+  b.pos[i] += b.vel[i] * dt;
+  b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
+}
 
 void NewtonIntegrator::run(Scene& scene)
 {
@@ -105,6 +179,21 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
   auto one = [&](std::size_t i, double& gravWork, double& damp) -> bool {
     if (!b.alive[i])
       return true;
+    if (mode_[i] != 0)
+    {
+      // Clumps and aspherical bodies: the rare path (not in the energy balance yet).
+      if (mode_[i] & Member)
+        return true;
+      Vec3 f = b.force[i], t = b.torque[i];
+      if (mode_[i] & ClumpBody)
+        addClumpMemberForces(b, i, f, t);
+      if (b.dynamic[i] && (!f.allFinite() || !t.allFinite()))
+        return false;
+      integrateRigid(b, i, f, t, dt);
+      if (mode_[i] & ClumpBody)
+        moveClumpMembers(b, i);
+      return true;
+    }
     if (b.dynamic[i])
     {
       if (!b.force[i].allFinite() || !b.torque[i].allFinite())

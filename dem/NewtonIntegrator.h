@@ -1,5 +1,6 @@
 #pragma once
 
+#include "dem/Bodies.h"
 #include "dem/Engine.h"
 #include "dem/types.h"
 
@@ -15,6 +16,12 @@ namespace talus::dem
 /// v += a dt; x += v dt. Rotation of spheres: the same with torque / inertia, and the
 /// orientation turned by the rotation vector omega dt. Blocked DOFs keep their velocity.
 /// Non-dynamic bodies move with their imposed velocities.
+///
+/// Clumps: the forces and torques of the members are added to the clump's (in member order),
+/// the clump is integrated and its members are placed rigidly. Aspherical bodies (clumps, boxes)
+/// rotate by Yade's exactAsphericalRot: the world angular momentum is integrated with the
+/// (damped) torque and the orientation follows from the angular velocity in the principal frame,
+/// a mid-step predictor for the quaternion (Yade's leapfrogAsphericalRotate, reproduced exactly).
 class NewtonIntegrator : public Engine
 {
 public:
@@ -32,7 +39,17 @@ private:
   /// @return the first body with a non-finite force or torque, or -1
   template <bool Track>
   std::int64_t integrate(Scene& scene) const;
+  /// One clump or aspherical body (the rare path, out of the sphere loop).
+  void integrateRigid(Bodies& b, std::size_t i, const Vec3& force, const Vec3& torque, double dt) const;
   std::vector<Vec3> invMass_, invInertia_;
+  /// Per body: 0 for the plain path, else Mode bits.
+  enum Mode : std::uint8_t
+  {
+    Member = 1,     ///< clump member: moved by its clump
+    ClumpBody = 2,  ///< sums its members' forces and moves them
+    Aspherical = 4, ///< exact rotation of an aspherical body
+  };
+  std::vector<std::uint8_t> mode_;
   std::int64_t seenBodiesVersion_ = -1, seenPropertiesVersion_ = -1;
 };
 } // namespace talus::dem

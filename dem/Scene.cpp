@@ -1,5 +1,8 @@
 #include "dem/Scene.h"
 
+#include "dem/Clump.h"
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -92,6 +95,36 @@ BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material
   return id;
 }
 
+BodyId Scene::addBox(const Vec3& center, const Vec3& extents, const Quat& orientation, int material, bool fixed)
+{
+  const std::string which = "box #" + std::to_string(bodies.size());
+  if (periodic)
+    throw std::invalid_argument(which + ": boxes are not supported in a periodic scene");
+  if (!center.allFinite())
+    throw std::invalid_argument(which + ": centre is not finite " + str(center));
+  if (!extents.allFinite() || !(extents.minCoeff() > 0))
+    throw std::invalid_argument(which + ": extents (half-sizes) must be positive and finite, got " + str(extents));
+  if (!orientation.coeffs().allFinite() || !(orientation.norm() > 0))
+    throw std::invalid_argument(which + ": orientation is not a finite non-zero quaternion");
+  if (material < 0 || material >= static_cast<int>(materials.size()))
+    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  bodies.boxes.push_back({extents});
+  const BodyId id = bodies.append(ShapeKind::Box, static_cast<int>(bodies.boxes.size()) - 1, material);
+  const auto i = static_cast<std::size_t>(id);
+  bodies.pos[i] = center;
+  bodies.ori[i] = orientation.normalized();
+  const Vec3 e2 = extents.cwiseProduct(extents);
+  bodies.mass[i] = materials[static_cast<std::size_t>(material)].density * 8 * extents.prod();
+  bodies.inertia[i] = bodies.mass[i] / 3 * Vec3(e2[1] + e2[2], e2[0] + e2[2], e2[0] + e2[1]);
+  if (fixed)
+  {
+    bodies.dynamic[i] = 0;
+    bodies.blockedDofs[i] = DofAll;
+  }
+  ++bodiesVersion;
+  return id;
+}
+
 void Scene::checkBody(BodyId id) const
 {
   if (id < 0 || static_cast<std::size_t>(id) >= bodies.size() || !bodies.alive[static_cast<std::size_t>(id)])
@@ -147,11 +180,41 @@ void Scene::setDynamic(BodyId id, bool dynamic)
   ++bodyPropertiesVersion;
 }
 
-void Scene::erase(BodyId id)
+void Scene::erase(BodyId id, bool eraseClumpMembers)
 {
   checkBody(id);
-  bodies.alive[static_cast<std::size_t>(id)] = 0;
+  const auto i = static_cast<std::size_t>(id);
+  if (bodies.shape[i] == ShapeKind::Clump)
+  {
+    std::vector<BodyId>& members = bodies.clumps[static_cast<std::size_t>(bodies.shapeIndex[i])].members;
+    for (BodyId m : members)
+    {
+      bodies.clumpId[static_cast<std::size_t>(m)] = -1;
+      if (eraseClumpMembers)
+        erase(m);
+    }
+    members.clear();
+  }
+  else if (bodies.clumpId[i] >= 0)
+  {
+    const BodyId clump = bodies.clumpId[i];
+    std::vector<BodyId>& members = bodies.clumps[static_cast<std::size_t>(bodies.shapeIndex[static_cast<std::size_t>(clump)])].members;
+    members.erase(std::find(members.begin(), members.end(), id));
+    bodies.clumpId[i] = -1;
+    if (members.empty())
+      erase(clump);
+    else
+      updateClump(clump);
+  }
+  // Its contacts go now, not at the next collider run: an engine between the collider and
+  // the interaction loop would otherwise still see them.
+  auto& list = contacts.list;
+  list.erase(std::remove_if(list.begin(), list.end(), [id](const Contact& c) { return c.id1 == id || c.id2 == id; }),
+             list.end());
+  contacts.index(bodies.size());
+  bodies.alive[i] = 0;
   ++bodiesVersion;
+  ++bodyPropertiesVersion;
 }
 
 void Scene::step()
@@ -196,7 +259,8 @@ double Scene::contactTimeStep() const
     if (!c.real || !(c.kn > 0))
       continue;
     const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
-    const double m1 = bodies.dynamic[i1] ? bodies.mass[i1] : 0, m2 = bodies.dynamic[i2] ? bodies.mass[i2] : 0;
+    const double m1 = rigidDynamic(bodies, i1) ? rigidMass(bodies, i1) : 0;
+    const double m2 = rigidDynamic(bodies, i2) ? rigidMass(bodies, i2) : 0;
     const double m = m1 > 0 && m2 > 0 ? m1 * m2 / (m1 + m2) : std::max(m1, m2);
     if (m > 0)
       best = std::min(best, 2 * std::sqrt(m / c.kn));

@@ -55,6 +55,19 @@ public:
   /// Add a fixed triangular facet with vertices a, b, c (world coordinates).
   /// @throws std::invalid_argument if the triangle is degenerate or not finite
   BodyId addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material);
+  /// Add a box of half-sizes `extents` centred at `center`, turned by `orientation`; mass and
+  /// inertia from its material's density. Dynamic unless `fixed`.
+  /// @throws std::invalid_argument naming the offending value
+  BodyId addBox(const Vec3& center, const Vec3& extents, const Quat& orientation, int material, bool fixed);
+  /// Make the spheres `members` a clump (Yade's O.bodies.clump): a rigid body at their centroid
+  /// with principal axes and moments of their union; returns the clump's id. Members are summed
+  /// as whole spheres (Yade's default), or, with `discretization` > 0 and overlapping members,
+  /// their union is integrated on a grid of rmin / discretization (Yade's discretization).
+  /// @throws std::invalid_argument naming a member that is not a free sphere
+  BodyId addClump(std::vector<BodyId> members, int discretization = 0);
+  /// Recompute a clump's centroid, mass, principal inertia and member placement from its
+  /// members' current state (the clump is left at rest).
+  void updateClump(BodyId clump, int discretization = 0);
   /// Make space periodic (or not). Every body must then be a sphere inside the cell.
   /// @throws std::invalid_argument naming the first body that is not
   void setPeriodic(bool on);
@@ -65,8 +78,10 @@ public:
   void setBlockedDofs(BodyId id, std::uint8_t mask);
   /// Make a body dynamic (moved by forces) or not (moved only by its imposed velocity).
   void setDynamic(BodyId id, bool dynamic);
-  /// Remove a body; its id is not reused, its contacts disappear at the next collider run.
-  void erase(BodyId id);
+  /// Remove a body and its contacts; its id is not reused (Yade's O.bodies.erase). Erasing a
+  /// clump frees its members (or erases them too with `eraseClumpMembers`); erasing a member
+  /// removes it from its clump, whose properties are recomputed.
+  void erase(BodyId id, bool eraseClumpMembers = false);
 
   /// Run all engines once and advance the clock. If an engine throws, the step is left half
   /// done (contact histories updated, some bodies moved), so the scene refuses further steps,

@@ -1,5 +1,6 @@
 // Linear visco-elastic contact (spring-dashpot) with Coulomb friction, as Yade's
 // Ip2_ViscElMat_ViscElMat_ViscElPhys + Law2_ScGeom_ViscElPhys_Basic.
+#include "dem/Clump.h"
 #include "dem/ContactLawKernel.h"
 
 #include <algorithm>
@@ -32,7 +33,8 @@ public:
     c.tanPhi = std::tan(std::min(m1.frictionAngle, m2.frictionAngle));
     if (std::isfinite(m1.tc) && std::isfinite(m2.tc))
     {
-      const double mass1 = b.dynamic[i1] ? b.mass[i1] : 0, mass2 = b.dynamic[i2] ? b.mass[i2] : 0;
+      // A clump member vibrates with its whole clump (as in Yade).
+      const double mass1 = rigidDynamic(b, i1) ? rigidMass(b, i1) : 0, mass2 = rigidDynamic(b, i2) ? rigidMass(b, i2) : 0;
       const double m = mass1 > 0 && mass2 > 0 ? mass1 * mass2 / (mass1 + mass2) : std::max(mass1, mass2);
       const double tc = 0.5 * (m1.tc + m2.tc), en = 0.5 * (m1.en + m2.en), et = 0.5 * (m1.et + m2.et);
       const double ln = std::log(en), lt = std::log(et);

@@ -212,6 +212,8 @@ PYBIND11_MODULE(_dem, m)
         case ShapeKind::Sphere: return "Sphere";
         case ShapeKind::Wall: return "Wall";
         case ShapeKind::Facet: return "Facet";
+        case ShapeKind::Box: return "Box";
+        case ShapeKind::Clump: return "Clump";
         }
         return "?";
       })
@@ -246,4 +248,5 @@ PYBIND11_MODULE(_dem, m)
           }
         return out;
       });
+  void talus_wrap_bodies(py::module_&); talus_wrap_bodies(m); // after Engine, Scene: kinematics, clumps, boxes: bodies_wrappers.cpp
 }

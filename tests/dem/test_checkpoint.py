@@ -19,7 +19,8 @@ from talus.dem import (CohFrictMat, FrictMat, ForceResetter, Ip2_CohFrictMat_Coh
                        Ip2_FrictMat_FrictMat_FrictPhys, Ip2_FrictMat_FrictMat_MindlinPhys,
                        Law2_ScGeom_MindlinPhys_Mindlin, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic, Matrix3,
-                       NewtonIntegrator, PWaveTimeStep, PyRunner, Scene, ViscElMat, facet, io, sphere, wall)
+                       NewtonIntegrator, PWaveTimeStep, PyRunner, Scene, TranslationEngine, ViscElMat, box, facet, io,
+                       sphere, wall)
 
 pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
 HERE = Path(__file__).parent
@@ -81,8 +82,8 @@ def test_layout_is_covered():
     engines and the transient pauseRequested_ and failedStep_). When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
     is transient, then update this table."""
-    assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 456, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 1088, "ContactExtra": 256,
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 552, "WallShape": 8,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1184, "ContactExtra": 256,
                                    "EnergyTracker": 40}
 
 
@@ -108,6 +109,31 @@ def test_restart_continues_bit_identically(tmp_path, visco):
         assert max(np.linalg.norm(e["moment_bending"]) for e in x) > 0
     assert list(B.energy.values()) == list(A.energy.values())
     assert B.engines[-1].nDone == A.engines[-1].nDone   # the PyRunner kept its rhythm
+
+
+def test_restart_with_clumps_boxes_and_kinematics(tmp_path):
+    """Clumps (aspherical rotation: the angular momentum must come back), a dynamic box and a
+    fixed box pushed down by a TranslationEngine into a settling packing."""
+    A = deposition(False, m=5)
+    A.bodies.append(box((0.5, 0.5, 1.3), (0.3, 0.3, 0.05), fixed=True, label="lid"))
+    lid = len(A.bodies) - 1
+    A.bodies.append(box((0.2, 0.3, 1.1), (0.04, 0.05, 0.06), orientation=(0.9, 0.1, 0.2, 0.3)))
+    for k, x in enumerate((0.3, 0.7)):
+        A.bodies.appendClumped([sphere((x, 0.5, 1.1), 0.05), sphere((x + 0.07, 0.5, 1.13), 0.04),
+                                sphere((x, 0.57, 1.15), 0.03)])
+    engines = A.engines
+    A.engines = [*engines[:3], TranslationEngine(translationAxis=(0, 0, -1), velocity=0.3, ids=[lid]), *engines[3:]]
+    A.run(600)
+    io.save(A, tmp_path / "c.h5")
+    A.run(300)
+    reference = state(A)
+    contacts = _dem.contact_arrays(A._cpp, True)
+    assert 3 in set(contacts["kind"]), "the box should touch spheres"
+    B = Scene()
+    io.load(B, tmp_path / "c.h5")
+    assert B.engines[3].ids == [lid] and B.engines[3].velocity == 0.3
+    B.run(300)
+    assert_identical(state(B), reference)
 
 
 def test_periodic_restart_continues_bit_identically(tmp_path):

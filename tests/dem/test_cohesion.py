@@ -121,7 +121,7 @@ def test_rolling_resistance_on_an_incline(slope_deg, rolls):
     # A sphere on a wall with gravity tilted by `slope`, friction high enough that it never
     # slides, rolling limit etaRoll = 0.27 (tan 15.1 deg): below, the plastic rolling moment
     # etaRoll r Fn holds it; above, it rolls with a = g (l/r sin a - etaRoll cos a) / (2/5 + l/r)
-    # (friction acts at the contact point, l = r - overlap from the centre). Without a bond,
+    # (friction acts at the contact point, mid-overlap as in Yade's Law2: l = r - overlap/2). Without a bond,
     # moments need always_use_moment_law (as in Yade).
     eta, a = 0.27, math.radians(slope_deg)
     S = Scene()
@@ -145,7 +145,7 @@ def test_rolling_resistance_on_an_incline(slope_deg, rolls):
         x.append(S.bodies[1].state.pos[0])
     accel = 2 * np.polyfit(t, x, 2)[0]
     if rolls:
-        arm = (R - overlap) / R
+        arm = (R - overlap / 2) / R
         expected = 9.81 * (arm * math.sin(a) - eta * math.cos(a)) / (0.4 + arm)
         assert accel == pytest.approx(expected, rel=1e-3)
     else:   # free rolling would cover 0.2 m in this time

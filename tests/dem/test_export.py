@@ -273,3 +273,22 @@ def test_progress_reporter_engine(capsys):
 def test_format_line():
     assert progress.format_line(1200, 1.2e-3, 100.0, 5000) == "iter 1200/5000 (24%)  t=0.0012 s  100 steps/s  ETA 0:00:38"
     assert progress.format_line(5, 0.0, 0.0) == "iter 5  t=0 s  - steps/s"
+
+
+def test_boxes_as_hexahedra(tmp_path):
+    import math
+    from talus.dem import box
+    S = Scene()
+    S.materials.append(FrictMat())
+    q = (math.cos(math.pi / 8), 0, 0, math.sin(math.pi / 8))      # 45 degrees about z
+    S.bodies.append([box((1, 2, 3), (0.5, 0.25, 0.125), orientation=q, fixed=True), box((0, 0, 0), (1, 1, 1))])
+    assert export.write_boxes(S, str(tmp_path / "b.vtu")) == 2
+    v = read_vtu(tmp_path / "b.vtu")
+    assert list(v["types"]) == [12, 12] and list(v["cell"]["id"]) == [0, 1]
+    p = v["points"][:8] - (1, 2, 3)
+    c, s = math.cos(math.pi / 4), math.sin(math.pi / 4)
+    local = np.c_[c * p[:, 0] + s * p[:, 1], -s * p[:, 0] + c * p[:, 1], p[:, 2]]   # back to the box frame
+    np.testing.assert_allclose(np.abs(local), np.tile((0.5, 0.25, 0.125), (8, 1)), atol=1e-14)
+    # VTK's hexahedron order: bottom face counter-clockwise, then the top face above it
+    np.testing.assert_allclose(np.sign(local[:4, 2]), -1)
+    np.testing.assert_allclose(local[4:, :2], local[:4, :2], atol=1e-14)

@@ -14,8 +14,8 @@
 """
 
 from talus import plot
-from talus.dem import geom, pack, progress
-from talus.dem.bodies import Body, BodySpec, aabbWalls, facet, sphere, wall
+from talus.dem import geom, pack, progress, ymport
+from talus.dem.bodies import Body, BodySpec, aabbWalls, box, facet, sphere, wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
@@ -23,6 +23,7 @@ from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxControll
                                    TriaxialStressController, growParticles, setContactFriction)
 from talus.dem.energy import EnergyTracker
 from talus.dem.export import VTKExporter, VTKRecorder
+from talus.dem.kinematic import HarmonicMotionEngine, KinematicEngine, RotationEngine, TranslationEngine
 from talus.dem.io import CheckpointError
 from talus.dem.materials import CohFrictMat, FrictMat, Material, ViscElMat
 from talus.dem.measure import (avgNumInteractions, fabricTensor, getStress, getStressAndTangent, porosity,
@@ -31,9 +32,11 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
-__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "geom", "pack", "Material", "FrictMat", "ViscElMat",
-           "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "unbalancedForce", "getStress",
-           "getStressAndTangent", "avgNumInteractions", "fabricTensor", "porosity", "VTKRecorder", "VTKExporter",
-           "CheckpointError", "progress", "plot", "EnergyTracker", "GlobalStiffnessTimeStepper", "PeriTriaxController",
-           "TriaxialStressController", "RayleighWaveTimeStep", "growParticles", "setContactFriction", "aabbWalls",
+__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "box", "geom", "pack", "ymport", "Material",
+           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3",
+           "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "porosity",
+           "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",
+           "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
+           "growParticles", "setContactFriction", "aabbWalls",
+           "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",
            *_engine_names]

@@ -7,6 +7,8 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 
 import numpy as np
 
+from talus import _dem
+
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
 
@@ -25,6 +27,8 @@ class BodySpec:
     material: object = -1
     fixed: bool = False
     vertices: tuple = ()
+    extents: tuple = ()
+    orientation: tuple = (1.0, 0.0, 0.0, 0.0)
     color: tuple = field(default=(0.5, 0.5, 0.5))
 
 
@@ -66,6 +70,27 @@ def facet(vertices: Sequence[Sequence[float]], material=-1, **_ignored) -> BodyS
     return BodySpec("Facet", verts[0], material=material, fixed=True, vertices=verts)
 
 
+def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0, 0.0, 0.0), fixed: bool = False,
+        material=-1, dynamic=None, **_ignored) -> BodySpec:
+    """A box of half-sizes ``extents`` (Yade's utils.box); ``orientation`` is a quaternion
+    (w, x, y, z) or anything with w, x, y, z attributes. Dynamic unless ``fixed`` (or
+    ``dynamic=False``); its mass and inertia come from the material's density. Boxes interact
+    with spheres (faces, edges and corners), not with walls, facets or other boxes."""
+    c = tuple(float(x) for x in center)
+    e = tuple(float(x) for x in extents)
+    if len(c) != 3 or len(e) != 3:
+        raise ValueError(f"box: center and extents must be 3 numbers, got {center!r}, {extents!r}")
+    if hasattr(orientation, "w"):
+        q = (orientation.w, orientation.x, orientation.y, orientation.z)
+    else:
+        q = tuple(float(x) for x in orientation)
+    if len(q) != 4:
+        raise ValueError(f"box: orientation must be a quaternion (w, x, y, z), got {orientation!r}")
+    if dynamic is not None:
+        fixed = not dynamic
+    return BodySpec("Box", c, material=material, fixed=fixed, extents=e, orientation=q)
+
+
 def _dofs_to_mask(letters: str) -> int:
     bad = set(letters) - set(_DOF_LETTERS)
     if bad:
@@ -95,10 +120,26 @@ class State:
 
     pos = property(lambda s: s._row("pos").copy(), lambda s, v: s._set("pos", v))
     vel = property(lambda s: s._row("vel").copy(), lambda s, v: s._set("vel", v))
-    angVel = property(lambda s: s._row("angVel").copy(), lambda s, v: s._set("angVel", v))
     inertia = property(lambda s: s._row("inertia").copy())
     mass = property(lambda s: float(s._row("mass")))
     ori = property(lambda s: s._scene._cpp.ori(s._id), doc="orientation quaternion (w, x, y, z)")
+
+    @property
+    def angVel(self):
+        return self._row("angVel").copy()
+
+    @angVel.setter
+    def angVel(self, value):
+        # Aspherical bodies integrate their angular momentum: it is set with the velocity.
+        value = np.asarray(value, dtype=float)
+        if value.shape != (3,) or not np.all(np.isfinite(value)):
+            raise ValueError(f"body {self._id}: angVel must be 3 finite numbers, got {value}")
+        _dem.set_ang_vel(self._scene._cpp, self._id, value)
+
+    @property
+    def angMom(self):
+        """Angular momentum (world frame) integrated for aspherical bodies (clumps, boxes)."""
+        return np.array(_dem.ang_mom(self._scene._cpp, self._id))
 
     @property
     def blockedDOFs(self) -> str:
@@ -137,6 +178,33 @@ class Body:
         return self._scene._cpp.shapeKind(self.id)
 
     @property
+    def isClump(self) -> bool:
+        return self.shape == "Clump"
+
+    @property
+    def clumpId(self) -> int:
+        """Id of the clump this body belongs to (its own id for a clump, -1 if standalone)."""
+        return self.id if self.isClump else int(_dem.clump_id(self._scene._cpp, self.id))
+
+    @property
+    def isClumpMember(self) -> bool:
+        return not self.isClump and self.clumpId >= 0
+
+    @property
+    def isStandalone(self) -> bool:
+        return not self.isClump and self.clumpId < 0
+
+    @property
+    def members(self) -> list[int]:
+        """Ids of a clump's members."""
+        return list(_dem.clump_members(self._scene._cpp, self.id))
+
+    @property
+    def extents(self):
+        """Half-sizes of a box."""
+        return np.array(_dem.box_extents(self._scene._cpp, self.id))
+
+    @property
     def material(self):
         return self._scene.materials[int(self._scene._cpp.materialIds()[self.id])]
 
@@ -165,12 +233,33 @@ class BodyContainer:
                 scene._cpp.setDynamic(id, False)
                 scene._cpp.setBlockedDofs(id, 63)
             return id
+        if spec.shape == "Box":
+            return _dem.add_box(scene._cpp, np.asarray(spec.center, dtype=float),
+                                np.asarray(spec.extents, dtype=float), np.asarray(spec.orientation, dtype=float),
+                                material, bool(spec.fixed))
         if spec.shape == "Facet":
             return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material)
         return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
 
-    def erase(self, id: int):
-        self._scene._cpp.erase(id)
+    def appendClumped(self, specs: Iterable[BodySpec], discretization: int = 0) -> tuple[int, list[int]]:
+        """Add spheres and make them one clump (Yade's appendClumped); returns (clump id,
+        member ids). With ``discretization`` > 0, overlapping members are integrated on a grid
+        of rmin / discretization for the mass and inertia (Yade's option); otherwise each member
+        counts as a whole sphere."""
+        specs = list(specs)
+        if any(s.shape != "Sphere" for s in specs):
+            raise ValueError("appendClumped: clumps are made of spheres")
+        ids = self.append(specs)
+        return self.clump(ids, discretization), ids
+
+    def clump(self, ids: Iterable[int], discretization: int = 0) -> int:
+        """Make existing free spheres one clump (Yade's O.bodies.clump); returns its id."""
+        return int(_dem.add_clump(self._scene._cpp, [int(i) for i in ids], int(discretization)))
+
+    def erase(self, id: int, eraseClumpMembers: bool = False):
+        """Remove a body and its contacts (its id is not reused). Erasing a clump frees its
+        members unless ``eraseClumpMembers``; erasing a member shrinks its clump."""
+        _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))
 
     def __getitem__(self, id: int) -> Body:
         if not isinstance(id, (int, np.integer)):

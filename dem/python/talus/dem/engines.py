@@ -79,6 +79,8 @@ def _functor(name: str, doc: str) -> type:
 Bo1_Sphere_Aabb = _functor("Bo1_Sphere_Aabb", "Bounding box of spheres (accepted; Talus bounds shapes itself).")
 Bo1_Wall_Aabb = _functor("Bo1_Wall_Aabb", "Bounding box of walls (accepted; Talus bounds shapes itself).")
 Bo1_Facet_Aabb = _functor("Bo1_Facet_Aabb", "Bounding box of facets (accepted; Talus bounds shapes itself).")
+Bo1_Box_Aabb = _functor("Bo1_Box_Aabb", "Bounding box of boxes (accepted; Talus bounds shapes itself).")
+Ig2_Box_Sphere_ScGeom = _functor("Ig2_Box_Sphere_ScGeom", "Box-sphere contact geometry (face, edge, corner).")
 Ig2_Sphere_Sphere_ScGeom = _functor("Ig2_Sphere_Sphere_ScGeom", "Sphere-sphere contact geometry.")
 Ig2_Facet_Sphere_ScGeom = _functor("Ig2_Facet_Sphere_ScGeom", "Facet-sphere contact geometry (face, edge, vertex).")
 Ig2_Wall_Sphere_ScGeom = _functor("Ig2_Wall_Sphere_ScGeom", "Wall-sphere contact geometry.")
@@ -294,7 +296,8 @@ class PyRunner(Engine):
 
 __all__ = [
     "Functor", "Engine", "ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator",
-    "PyRunner", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Ig2_Sphere_Sphere_ScGeom",
+    "PyRunner", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
+    "Ig2_Box_Sphere_ScGeom",
     "Ig2_Wall_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom",
     "Ip2_FrictMat_FrictMat_FrictPhys", "Ip2_ViscElMat_ViscElMat_ViscElPhys",
     "Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_ViscElPhys_Basic",

@@ -40,12 +40,15 @@ from talus.dem.io import owner_scene
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
 
-__all__ = ["VTKWarning", "write_spheres", "write_facets", "write_walls", "write_contacts", "PvdCollection",
+__all__ = ["VTKWarning", "write_spheres", "write_facets", "write_walls", "write_boxes", "write_contacts", "PvdCollection",
            "VTKRecorder", "VTKExporter"]
 
 # VTK cell types.
-VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD = 1, 3, 5, 9
-_SPHERE, _WALL, _FACET = 0, 1, 2
+VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, VTK_HEXAHEDRON = 1, 3, 5, 9, 12
+_SPHERE, _WALL, _FACET, _BOX = 0, 1, 2, 3
+# Corners of a box in VTK's hexahedron order, as signs of the extents.
+_HEX_CORNERS = np.array([(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
+                         (-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)], dtype=float)
 _VTK_TYPES = {np.dtype(np.float64): "Float64", np.dtype(np.float32): "Float32", np.dtype(np.int64): "Int64",
               np.dtype(np.int32): "Int32", np.dtype(np.uint8): "UInt8"}
 
@@ -172,6 +175,26 @@ def write_facets(scene: "Scene", path: str) -> int:
     return len(ids)
 
 
+def _rotation(q) -> np.ndarray:
+    w, x, y, z = q
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+
+
+def write_boxes(scene: "Scene", path: str) -> int:
+    """Write the live boxes of ``scene`` to ``path`` as hexahedra; returns their number."""
+    ids = _live(scene, _BOX)
+    cpp = scene._cpp
+    corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ _rotation(cpp.ori(int(i))).T
+               for i in ids]
+    data = {"id": ids.astype(np.int32), "materialId": cpp.materialIds()[ids].astype(np.int32),
+            "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids], "force": cpp.force()[ids]}
+    _atomic_write(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 8, VTK_HEXAHEDRON),
+                                  cell_data=data, time=cpp.time))
+    return len(ids)
+
+
 def _sphere_box(scene: "Scene"):
     ids = _live(scene, _SPHERE)
     if not len(ids):
@@ -246,9 +269,10 @@ class PvdCollection:
 # ------------------------------------------------------------------------------------------------
 # Yade's VTKRecorder engine and export.VTKExporter.
 
-_WRITERS = {"spheres": write_spheres, "facets": write_facets, "walls": write_walls, "intrs": write_contacts}
-_RECORDERS = {"spheres": ("spheres",), "facets": ("facets",), "walls": ("walls",), "boxes": ("walls",),
-              "intr": ("intrs",), "all": ("spheres", "facets", "walls", "intrs")}
+_WRITERS = {"spheres": write_spheres, "facets": write_facets, "walls": write_walls, "boxes": write_boxes,
+            "intrs": write_contacts}
+_RECORDERS = {"spheres": ("spheres",), "facets": ("facets",), "walls": ("walls",), "boxes": ("walls", "boxes"),
+              "intr": ("intrs",), "all": ("spheres", "facets", "walls", "boxes", "intrs")}
 # Yade recorders whose data the sphere file always holds.
 _INCLUDED = {"velocity", "id", "ids", "materialId", "mass", "force"}
 
@@ -259,7 +283,7 @@ class VTKRecorder(PyRunner):
     ``fileName`` is a prefix: files are ``{fileName}spheres.{iter}.vtu``, ``...facets...``,
     ``...walls...`` and ``...intrs...`` (the contact network), each series listed in
     ``{fileName}spheres.pvd`` etc. for ParaView. ``recorders``: any of ``spheres``, ``facets``,
-    ``walls`` (Yade: ``boxes``), ``intr``, or ``all``; Yade's ``velocity``, ``ids``,
+    ``walls``, ``boxes`` (Box bodies as hexahedra, and walls as Yade's ``boxes`` does), ``intr``, or ``all``; Yade's ``velocity``, ``ids``,
     ``materialId``, ``mass``, ``force`` are accepted (the sphere file always has them).
     ``wallSize``: side of the squares drawn for walls (default: from the spheres' extent).
     Folders in ``fileName`` are created. Usable in ``O.engines`` and saved by ``O.save``.
@@ -351,6 +375,11 @@ class VTKExporter:
     def exportWalls(self, size: float | None = None, numLabel: int | None = None) -> str:
         path = self._path("walls", numLabel)
         write_walls(self.scene, path, size)
+        return path
+
+    def exportBoxes(self, numLabel: int | None = None) -> str:
+        path = self._path("boxes", numLabel)
+        write_boxes(self.scene, path)
         return path
 
     def exportInteractions(self, numLabel: int | None = None) -> str:

@@ -34,3 +34,56 @@ def facetBox(center: Sequence[float], extents: Sequence[float], wallMask: int = 
         if wallMask & (1 << face):
             specs += [facet([corners[i] for i in tri], material=material) for tri in triangles]
     return specs
+
+
+def _rotate(q, v: np.ndarray) -> np.ndarray:
+    """Rotate rows of ``v`` by quaternion ``q`` = (w, x, y, z) or an object with w, x, y, z."""
+    if hasattr(q, "w"):
+        q = (q.w, q.x, q.y, q.z)
+    w, x, y, z = (float(c) for c in q)
+    n = np.sqrt(w * w + x * x + y * y + z * z)
+    if not n > 0:
+        raise ValueError(f"orientation must be a non-zero quaternion (w, x, y, z), got {q!r}")
+    w, x, y, z = w / n, x / n, y / n, z / n
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
+                  [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
+                  [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
+    return v @ R.T
+
+
+def facetCylinder(center: Sequence[float], radius: float, height: float, orientation=(1.0, 0.0, 0.0, 0.0),
+                  segmentsNumber: int = 10, wallMask: int = 7, angleRange=None, material=-1,
+                  **_ignored) -> list[BodySpec]:
+    """A cylinder of facets (Yade's geom.facetCylinder), axis along z before ``orientation``
+    (quaternion w, x, y, z) is applied, centred at ``center``. ``wallMask`` bits: 1 top disc,
+    2 bottom disc, 4 side; ``angleRange`` (min, max) makes a part of it. The triangles and their
+    vertex order are Yade's, so normals and contacts match."""
+    c = np.asarray(center, dtype=float)
+    if c.shape != (3,) or not np.all(np.isfinite(c)):
+        raise ValueError(f"facetCylinder: center must be 3 finite numbers, got {center!r}")
+    if not radius > 0:
+        raise ValueError(f"facetCylinder: radius must be positive, got {radius}")
+    if not height >= 0:
+        raise ValueError(f"facetCylinder: height must be >= 0, got {height}")
+    if height == 0:
+        wallMask = 1
+    if segmentsNumber < 3:
+        raise ValueError(f"facetCylinder: segmentsNumber must be at least 3, got {segmentsNumber}")
+    lo, hi = angleRange if angleRange is not None else (0.0, 2 * np.pi)
+    if hi < lo or hi - lo > 2 * np.pi:
+        raise ValueError(f"facetCylinder: angleRange must be (min, max) with 0 <= max - min <= 2 pi, got {angleRange!r}")
+    angles = np.linspace(lo, hi, segmentsNumber + 1, endpoint=True)
+    ring = np.c_[radius * np.cos(angles), radius * np.sin(angles)]
+    top = np.r_[[[0.0, 0.0, height / 2]], np.c_[ring, np.full(len(ring), height / 2)]]
+    bottom = np.r_[[[0.0, 0.0, -height / 2]], np.c_[ring, np.full(len(ring), -height / 2)]]
+    top, bottom = _rotate(orientation, top) + c, _rotate(orientation, bottom) + c
+    specs = []
+    for i in range(2, len(top)):
+        if wallMask & 1:
+            specs.append(facet((top[0], top[i], top[i - 1]), material=material))
+        if wallMask & 2:
+            specs.append(facet((bottom[0], bottom[i - 1], bottom[i]), material=material))
+        if wallMask & 4:
+            specs.append(facet((top[i], bottom[i], bottom[i - 1]), material=material))
+            specs.append(facet((bottom[i - 1], top[i - 1], top[i]), material=material))
+    return specs

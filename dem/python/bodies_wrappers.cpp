@@ -1,0 +1,70 @@
+// Python bindings of dem/'s body types and kinematics: kinematic engines, clumps, boxes.
+// Compiled into talus._dem; `talus_wrap_bodies(m)` is called from dem_wrappers.cpp. The Python
+// API (Yade's names, defaults, docstrings) is talus.dem.kinematic and talus.dem.bodies.
+#include "dem/KinematicEngines.h"
+#include "dem/Scene.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <stdexcept>
+#include <string>
+
+namespace py = pybind11;
+using namespace talus::dem;
+
+void talus_wrap_bodies(py::module_& m)
+{
+  py::class_<KinematicEngine, Engine, std::shared_ptr<KinematicEngine>>(m, "KinematicEngine")
+      .def_readwrite("ids", &KinematicEngine::ids);
+  py::class_<TranslationEngine, KinematicEngine, std::shared_ptr<TranslationEngine>>(m, "TranslationEngine")
+      .def(py::init<>())
+      .def_readwrite("translationAxis", &TranslationEngine::translationAxis)
+      .def_readwrite("velocity", &TranslationEngine::velocity);
+  py::class_<RotationEngine, KinematicEngine, std::shared_ptr<RotationEngine>>(m, "RotationEngine")
+      .def(py::init<>())
+      .def_readwrite("rotationAxis", &RotationEngine::rotationAxis)
+      .def_readwrite("angularVelocity", &RotationEngine::angularVelocity)
+      .def_readwrite("rotateAroundZero", &RotationEngine::rotateAroundZero)
+      .def_readwrite("zeroPoint", &RotationEngine::zeroPoint);
+  py::class_<HarmonicMotionEngine, KinematicEngine, std::shared_ptr<HarmonicMotionEngine>>(m, "HarmonicMotionEngine")
+      .def(py::init<>())
+      .def_readwrite("A", &HarmonicMotionEngine::A)
+      .def_readwrite("f", &HarmonicMotionEngine::f)
+      .def_readwrite("fi", &HarmonicMotionEngine::fi);
+
+  m.def("add_box", [](Scene& s, const Vec3& center, const Vec3& extents, const Eigen::Vector4d& wxyz, int material, bool fixed) {
+    return s.addBox(center, extents, Quat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]), material, fixed);
+  });
+  m.def("add_clump", &Scene::addClump, py::arg("scene"), py::arg("members"), py::arg("discretization") = 0);
+  m.def("clump_id", [](const Scene& s, BodyId id) {
+    s.checkBody(id);
+    return s.bodies.clumpId[static_cast<std::size_t>(id)];
+  });
+  m.def("clump_members", [](const Scene& s, BodyId id) {
+    s.checkBody(id);
+    const auto i = static_cast<std::size_t>(id);
+    if (s.bodies.shape[i] != ShapeKind::Clump)
+      throw std::invalid_argument("body " + std::to_string(id) + " is not a clump");
+    return s.bodies.clumps[static_cast<std::size_t>(s.bodies.shapeIndex[i])].members;
+  });
+  m.def("box_extents", [](const Scene& s, BodyId id) {
+    s.checkBody(id);
+    const auto i = static_cast<std::size_t>(id);
+    if (s.bodies.shape[i] != ShapeKind::Box)
+      throw std::invalid_argument("body " + std::to_string(id) + " is not a box");
+    return s.bodies.boxes[static_cast<std::size_t>(s.bodies.shapeIndex[i])].extents;
+  });
+  m.def("set_ang_vel", [](Scene& s, BodyId id, const Vec3& w) {
+    s.checkBody(id);
+    if (!w.allFinite())
+      throw std::invalid_argument("body " + std::to_string(id) + ": angVel must be finite");
+    s.bodies.setAngularVelocity(static_cast<std::size_t>(id), w);
+  });
+  m.def("ang_mom", [](Scene& s, BodyId id) {
+    s.checkBody(id);
+    return s.bodies.angMom[static_cast<std::size_t>(id)];
+  });
+  m.def("erase", &Scene::erase, py::arg("scene"), py::arg("id"), py::arg("eraseClumpMembers") = false);
+}

@@ -1,0 +1,306 @@
+"""Import of triangle meshes as facets (Yade's ``ymport``): STL files and OpenFOAM polyMesh
+boundaries, the walls of a CFD-DEM coupling.
+
+    from talus.dem import ymport
+    O.bodies.append(ymport.stl("hopper.stl", scale=1e-3))
+    O.bodies.append(ymport.polyMesh("case", patches=["walls", "inlet"]))
+
+A malformed file raises ``MeshError`` naming the file and the line. Degenerate triangles
+(collinear vertices, as left by CAD exporters) are skipped with a ``MeshWarning``.
+"""
+
+from __future__ import annotations
+
+import gzip
+import os
+import re
+import struct
+import warnings
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from talus.dem.bodies import BodySpec, facet
+
+__all__ = ["MeshError", "MeshWarning", "stl", "polyMesh", "read_stl", "read_polymesh"]
+
+
+class MeshError(ValueError):
+    """A mesh file could not be read (the message names the file and the line)."""
+
+
+class MeshWarning(UserWarning):
+    """Something of a mesh was left out (degenerate triangles)."""
+
+
+def _transform(triangles: np.ndarray, scale: float, shift) -> np.ndarray:
+    shift = np.asarray(shift, dtype=float).reshape(3)
+    return triangles * float(scale) + shift
+
+
+def _facets(triangles: np.ndarray, source: str, material, **kw) -> list[BodySpec]:
+    """Facets of the non-degenerate triangles (n, 3, 3)."""
+    a, b, c = triangles[:, 0], triangles[:, 1], triangles[:, 2]
+    area2 = np.linalg.norm(np.cross(b - a, c - a), axis=1)
+    perimeter = (np.linalg.norm(b - a, axis=1) + np.linalg.norm(c - b, axis=1) + np.linalg.norm(a - c, axis=1))
+    keep = area2 > 1e-12 * perimeter ** 2
+    if not keep.all():
+        warnings.warn(f"{source}: skipped {int((~keep).sum())} degenerate triangle(s) (collinear vertices)",
+                      MeshWarning, stacklevel=3)
+    return [facet(t, material=material, **kw) for t in triangles[keep]]
+
+
+# ------------------------------------------------------------------------------------------------
+# STL
+
+def read_stl(file: str) -> np.ndarray:
+    """Triangles (n, 3, 3) of an ASCII or binary STL file."""
+    with open(file, "rb") as f:
+        data = f.read()
+    if len(data) >= 84:
+        count = struct.unpack_from("<I", data, 80)[0]
+        if len(data) == 84 + 50 * count:     # binary: 80-byte header, count, 50 bytes a triangle
+            record = np.dtype([("normal", "<f4", 3), ("v", "<f4", (3, 3)), ("attr", "<u2")])
+            triangles = np.frombuffer(data, dtype=record, count=count, offset=84)["v"].astype(np.float64)
+            if not np.all(np.isfinite(triangles)):
+                bad = int(np.flatnonzero(~np.isfinite(triangles).all(axis=(1, 2)))[0])
+                raise MeshError(f"{file}: triangle {bad} (binary STL) has non-finite coordinates")
+            return triangles
+    try:
+        text = data.decode("ascii")
+    except UnicodeDecodeError:
+        raise MeshError(f"{file}: neither a binary STL (size {len(data)} bytes does not match its triangle "
+                        f"count) nor an ASCII one (non-ASCII bytes)") from None
+    return _read_ascii_stl(file, text)
+
+
+def _read_ascii_stl(file: str, text: str) -> np.ndarray:
+    lines = text.splitlines()
+    triangles, current = [], None
+    started = False
+    for number, line in enumerate(lines, 1):
+        words = line.split()
+        if not words:
+            continue
+        key = words[0].lower()
+        where = f"{file}, line {number}"
+        if key == "solid":
+            started = True
+        elif not started:
+            raise MeshError(f"{where}: an ASCII STL starts with 'solid', found {line.strip()!r}")
+        elif key == "facet":
+            if current is not None:
+                raise MeshError(f"{where}: 'facet' inside a facet (missing 'endfacet')")
+            current = []
+        elif key == "vertex":
+            if current is None:
+                raise MeshError(f"{where}: 'vertex' outside a facet")
+            try:
+                xyz = [float(w) for w in words[1:]]
+            except ValueError:
+                xyz = []
+            if len(xyz) != 3 or not all(np.isfinite(xyz)):
+                raise MeshError(f"{where}: a vertex needs three finite numbers, got {line.strip()!r}")
+            current.append(xyz)
+        elif key == "endfacet":
+            if current is None or len(current) != 3:
+                raise MeshError(f"{where}: a facet needs exactly 3 vertices, got "
+                                f"{0 if current is None else len(current)}")
+            triangles.append(current)
+            current = None
+        elif key in ("outer", "endloop", "endsolid"):
+            pass
+        else:
+            raise MeshError(f"{where}: unexpected {words[0]!r} in an ASCII STL")
+    if current is not None:
+        raise MeshError(f"{file}, line {len(lines)}: the file ends inside a facet")
+    if not started:
+        raise MeshError(f"{file}: empty file")
+    return np.array(triangles, dtype=np.float64).reshape(-1, 3, 3)
+
+
+def stl(file: str, material=-1, scale: float = 1.0, shift=(0.0, 0.0, 0.0), **kw) -> list[BodySpec]:
+    """Facets of an ASCII or binary STL file (Yade's ymport.stl), scaled then shifted. Append
+    them to ``O.bodies``."""
+    return _facets(_transform(read_stl(file), scale, shift), file, material)
+
+
+# ------------------------------------------------------------------------------------------------
+# OpenFOAM polyMesh
+
+_TOKEN = re.compile(r"\s+|//[^\n]*|/\*.*?\*/|[(){};]|[^\s(){};]+", re.S)
+
+
+class _Tokens:
+    """Tokens of an OpenFOAM dictionary file with their line numbers (comments dropped)."""
+
+    def __init__(self, path: str, text: str):
+        self.path = path
+        self.items: list[tuple[str, int]] = []
+        line = 1
+        for m in _TOKEN.finditer(text):
+            t = m.group()
+            if not (t.isspace() or t.startswith("//") or t.startswith("/*")):
+                self.items.append((t, line))
+            line += t.count("\n")
+        self.k = 0
+        self.last_line = line
+
+    def error(self, message: str, line: int | None = None) -> MeshError:
+        if line is None:
+            line = self.items[self.k][1] if self.k < len(self.items) else self.last_line
+        return MeshError(f"{self.path}, line {line}: {message}")
+
+    def peek(self) -> str | None:
+        return self.items[self.k][0] if self.k < len(self.items) else None
+
+    def next(self, what: str) -> str:
+        if self.k >= len(self.items):
+            raise self.error(f"unexpected end of file, expected {what}")
+        t = self.items[self.k][0]
+        self.k += 1
+        return t
+
+    def expect(self, token: str):
+        t = self.next(repr(token))
+        if t != token:
+            raise self.error(f"expected {token!r}, found {t!r}", self.items[self.k - 1][1])
+
+    def number(self, kind=float, what: str = "a number"):
+        t = self.next(what)
+        try:
+            return kind(t)
+        except ValueError:
+            raise self.error(f"expected {what}, found {t!r}", self.items[self.k - 1][1]) from None
+
+    def dictionary(self) -> dict:
+        """{ key value; ... } with nested dictionaries; values as token lists."""
+        self.expect("{")
+        out = {}
+        while self.peek() != "}":
+            key = self.next("a key or '}'")
+            if self.peek() == "{":
+                out[key] = self.dictionary()
+                continue
+            value = []
+            while self.peek() != ";":
+                value.append(self.next("';'"))
+            self.expect(";")
+            out[key] = value
+        self.expect("}")
+        return out
+
+
+def _open_foam(path: str) -> _Tokens:
+    """Tokens of an ASCII OpenFOAM file after its FoamFile header (``path`` or ``path.gz``)."""
+    if not os.path.exists(path) and os.path.exists(path + ".gz"):
+        path += ".gz"
+    try:
+        raw = gzip.open(path).read() if path.endswith(".gz") else open(path, "rb").read()
+    except OSError as e:
+        raise MeshError(f"{path}: cannot read ({e.strerror or e})") from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise MeshError(f"{path}: not a text file (binary OpenFOAM files are not supported: run "
+                        f"foamFormatConvert or set writeFormat ascii)") from None
+    tokens = _Tokens(path, text)
+    if tokens.peek() == "FoamFile":
+        tokens.next("FoamFile")
+        header = tokens.dictionary()
+        if header.get("format", ["ascii"])[0] != "ascii":
+            raise tokens.error(f"format {header['format'][0]} is not supported (ascii only: run foamFormatConvert)")
+    return tokens
+
+
+def _list(tokens: _Tokens, item) -> list:
+    """An OpenFOAM list: optional count, then ( items ); checks the count."""
+    count = None
+    if tokens.peek() not in ("(", None):
+        line = tokens.items[tokens.k][1]
+        count = tokens.number(int, "a list size")
+    tokens.expect("(")
+    out = []
+    while tokens.peek() != ")":
+        if tokens.peek() is None:
+            raise tokens.error("unexpected end of file inside a list")
+        out.append(item(tokens))
+    tokens.expect(")")
+    if count is not None and count != len(out):
+        raise tokens.error(f"the list announces {count} entries but has {len(out)}", line)
+    return out
+
+
+def _point(tokens: _Tokens):
+    tokens.expect("(")
+    p = [tokens.number(float, "a coordinate") for _ in range(3)]
+    tokens.expect(")")
+    return p
+
+
+def _face(tokens: _Tokens):
+    line = tokens.items[tokens.k][1] if tokens.k < len(tokens.items) else None
+    t = tokens.next("a face")
+    try:
+        n = int(t)  # "4(0 1 2 3)": the tokenizer splits the count from its parenthesis
+    except ValueError:
+        raise tokens.error(f"expected a face 'n(a b c ...)', found {t!r}", line) from None
+    tokens.expect("(")
+    labels = [tokens.number(int, "a point label") for _ in range(n)]
+    tokens.expect(")")
+    if n < 3:
+        raise tokens.error(f"a face needs at least 3 points, got {n}", line)
+    return labels
+
+
+def read_polymesh(case: str, patches: Iterable[str] | None = None) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Triangles (n, 3, 3) of the chosen boundary patches of ``case`` (its ``constant/polyMesh``,
+    or ``case`` itself if it is a polyMesh folder), and the triangle indices of each patch.
+    Polygons are split into fans from their first point, keeping OpenFOAM's orientation
+    (normals out of the fluid domain)."""
+    folder = case
+    if not os.path.exists(os.path.join(folder, "boundary")):
+        folder = os.path.join(case, "constant", "polyMesh")
+    t = _open_foam(os.path.join(folder, "points"))
+    points = np.array(_list(t, _point), dtype=np.float64).reshape(-1, 3)
+    t = _open_foam(os.path.join(folder, "faces"))
+    face_tokens = t
+    faces = _list(t, _face)
+    t = _open_foam(os.path.join(folder, "boundary"))
+
+    def entry(tokens: _Tokens):
+        return tokens.next("a patch name"), tokens.dictionary(), tokens.items[tokens.k - 1][1]
+
+    boundary = _list(t, entry)
+    known = [name for name, _, _ in boundary]
+    wanted = list(known if patches is None else patches)
+    missing = [p for p in wanted if p not in known]
+    if missing:
+        raise MeshError(f"{os.path.join(folder, 'boundary')}: no patch {missing[0]!r} (patches: {', '.join(known)})")
+    triangles, groups = [], {}
+    for name, d, line in boundary:
+        if name not in wanted:
+            continue
+        try:
+            start, n = int(d["startFace"][0]), int(d["nFaces"][0])
+        except (KeyError, IndexError, ValueError):
+            raise t.error(f"patch {name!r} needs integer startFace and nFaces", line) from None
+        if start < 0 or n < 0 or start + n > len(faces):
+            raise t.error(f"patch {name!r} covers faces {start}..{start + n - 1} but the mesh has {len(faces)}", line)
+        first = len(triangles)
+        for f in range(start, start + n):
+            labels = faces[f]
+            if max(labels) >= len(points) or min(labels) < 0:
+                raise face_tokens.error(f"face {f} refers to point {max(labels)} but there are {len(points)} points")
+            for k in range(1, len(labels) - 1):
+                triangles.append(points[[labels[0], labels[k], labels[k + 1]]])
+        groups[name] = np.arange(first, len(triangles))
+    return np.array(triangles, dtype=np.float64).reshape(-1, 3, 3), groups
+
+
+def polyMesh(case: str, patches: Sequence[str] | None = None, material=-1, scale: float = 1.0,
+             shift=(0.0, 0.0, 0.0), **kw) -> list[BodySpec]:
+    """Facets of the boundary patches ``patches`` (default: all) of an OpenFOAM case or polyMesh
+    folder, scaled then shifted; their normals point out of the fluid domain."""
+    triangles, _ = read_polymesh(case, patches)
+    return _facets(_transform(triangles, scale, shift), case, material)

@@ -1,0 +1,125 @@
+"""ymport: STL (ASCII and binary) and OpenFOAM polyMesh boundaries as facets, with errors naming
+the file and the line."""
+import struct
+import warnings
+
+import numpy as np
+import pytest
+
+from talus.dem import FrictMat, Scene, ymport
+
+TETRA = np.array([[(0, 0, 0), (0, 1, 0), (1, 0, 0)], [(0, 0, 0), (1, 0, 0), (0, 0, 1)],
+                  [(0, 0, 0), (0, 0, 1), (0, 1, 0)], [(1, 0, 0), (0, 1, 0), (0, 0, 1)]], dtype=float)
+
+
+def ascii_stl(triangles) -> str:
+    out = ["solid tetra"]
+    for t in triangles:
+        out += ["  facet normal 0 0 0", "    outer loop"] + [f"      vertex {x} {y} {z}" for x, y, z in t]
+        out += ["    endloop", "  endfacet"]
+    return "\n".join(out + ["endsolid tetra"]) + "\n"
+
+
+def binary_stl(triangles) -> bytes:
+    data = b"binary tetra".ljust(80, b" ") + struct.pack("<I", len(triangles))
+    for t in triangles:
+        data += struct.pack("<12fH", 0, 0, 0, *np.asarray(t, dtype=np.float32).ravel(), 0)
+    return data
+
+
+def test_stl_ascii_and_binary(tmp_path):
+    (tmp_path / "a.stl").write_text(ascii_stl(TETRA))
+    (tmp_path / "b.stl").write_bytes(binary_stl(TETRA))
+    for name in ("a.stl", "b.stl"):
+        np.testing.assert_array_equal(ymport.read_stl(str(tmp_path / name)), TETRA)
+    S = Scene()
+    S.materials.append(FrictMat())
+    ids = S.bodies.append(ymport.stl(str(tmp_path / "b.stl"), scale=2.0, shift=(0, 0, 1)))
+    assert len(ids) == 4 and all(S.bodies[i].shape == "Facet" for i in ids)
+    from talus import _dem
+    np.testing.assert_allclose(_dem.facet_arrays(S._cpp)["vertices"], TETRA * 2 + (0, 0, 1), atol=1e-15)
+
+
+def test_stl_errors_name_file_and_line(tmp_path):
+    bad = ascii_stl(TETRA).replace("vertex 1.0 0.0 0.0", "vertex 1.0 zero 0.0", 1)
+    (tmp_path / "bad.stl").write_text(bad)
+    line = bad.splitlines().index(next(l for l in bad.splitlines() if "zero" in l)) + 1
+    with pytest.raises(ymport.MeshError, match=rf"bad.stl, line {line}: a vertex needs three finite numbers"):
+        ymport.stl(str(tmp_path / "bad.stl"))
+    (tmp_path / "short.stl").write_text(ascii_stl(TETRA).replace("endfacet", "", 1))
+    with pytest.raises(ymport.MeshError, match=r"short.stl, line \d+: 'facet' inside a facet"):
+        ymport.stl(str(tmp_path / "short.stl"))
+    (tmp_path / "cut.stl").write_bytes(binary_stl(TETRA)[:-7] + bytes(100))
+    with pytest.raises(ymport.MeshError, match="cut.stl: neither a binary STL"):
+        ymport.stl(str(tmp_path / "cut.stl"))
+    flat = TETRA.copy()
+    flat[0] = [(0, 0, 0), (1, 0, 0), (2, 0, 0)]
+    (tmp_path / "flat.stl").write_text(ascii_stl(flat))
+    with pytest.warns(ymport.MeshWarning, match="skipped 1 degenerate"):
+        assert len(ymport.stl(str(tmp_path / "flat.stl"))) == 3
+
+
+HEADER = """FoamFile
+{{
+    version     2.0;
+    format      ascii;
+    class       {cls};
+    object      {obj};
+}}
+// comment
+"""
+
+
+def write_cube(folder, faces_text=None):
+    """The unit cube as one hex cell: 8 points, 6 boundary faces in patches 'walls' (4 sides),
+    'inlet' (z = 0) and 'outlet' (z = 1)."""
+    mesh = folder / "constant" / "polyMesh"
+    mesh.mkdir(parents=True)
+    pts = [(x, y, z) for z in (0, 1) for y in (0, 1) for x in (0, 1)]
+    (mesh / "points").write_text(HEADER.format(cls="vectorField", obj="points") + f"{len(pts)}\n(\n"
+                                 + "".join(f"({x} {y} {z})\n" for x, y, z in pts) + ")\n")
+    faces = faces_text or ("6\n(\n4(0 4 6 2)\n4(1 3 7 5)\n4(0 1 5 4)\n4(2 6 7 3)\n"
+                           "4(0 2 3 1)\n4(4 5 7 6)\n)\n")
+    (mesh / "faces").write_text(HEADER.format(cls="faceList", obj="faces") + faces)
+    (mesh / "boundary").write_text(HEADER.format(cls="polyBoundaryMesh", obj="boundary") + """3
+(
+    walls { type wall; inGroups 1(wall); nFaces 4; startFace 0; }
+    inlet { type patch; nFaces 1; startFace 4; }
+    outlet
+    {
+        type patch;
+        nFaces 1;
+        startFace 5;
+    }
+)
+""")
+    return mesh
+
+
+def test_polymesh_patches(tmp_path):
+    write_cube(tmp_path)
+    triangles, groups = ymport.read_polymesh(str(tmp_path))
+    assert len(triangles) == 12 and list(groups) == ["walls", "inlet", "outlet"]
+    normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    outward = triangles.mean(axis=1) - 0.5
+    assert np.all(np.einsum("ij,ij->i", normals, outward) > 0)     # out of the fluid domain
+    specs = ymport.polyMesh(str(tmp_path), patches=["inlet", "outlet"])
+    z = np.array([s.vertices for s in specs])[:, :, 2]
+    assert len(specs) == 4 and set(z.ravel()) == {0.0, 1.0}
+    with pytest.raises(ymport.MeshError, match="no patch 'top' \\(patches: walls, inlet, outlet\\)"):
+        ymport.polyMesh(str(tmp_path), patches=["top"])
+
+
+def test_polymesh_errors_name_file_and_line(tmp_path):
+    mesh = write_cube(tmp_path / "a", faces_text="6\n(\n4(0 4 6 2)\n4(1 3 7 5)\n4(0 1 x 4)\n")
+    with pytest.raises(ymport.MeshError, match=r"faces, line 13: expected a point label, found 'x'"):
+        ymport.polyMesh(str(tmp_path / "a"))
+    mesh = write_cube(tmp_path / "b", faces_text="7\n(\n4(0 4 6 2)\n4(1 3 7 5)\n4(0 1 5 4)\n4(2 6 7 3)\n"
+                                                 "4(0 2 3 1)\n4(4 5 7 6)\n)\n")
+    with pytest.raises(ymport.MeshError, match=r"faces, line 9: the list announces 7 entries but has 6"):
+        ymport.polyMesh(str(tmp_path / "b"))
+    (mesh / "points").write_text((mesh / "points").read_text().replace("ascii", "binary"))
+    with pytest.raises(ymport.MeshError, match="points, line .*format binary is not supported"):
+        ymport.polyMesh(str(tmp_path / "b"))
+    with pytest.raises(ymport.MeshError, match="cannot read"):
+        ymport.polyMesh(str(tmp_path / "nowhere"))
