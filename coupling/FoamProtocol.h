@@ -1,0 +1,72 @@
+#pragma once
+// The message protocol between the DEM process (coupling/) and the OpenFOAM coupling solvers
+// (foam-solvers/). This header is the protocol's description: plain constants, no OpenFOAM and
+// no Talus types, so both sides include it without depending on each other's code.
+//
+// Processes: one DEM process (rank 0 of its MPI_COMM_WORLD) and P fluid ranks started by it with
+// MPI_Comm_spawn; every message below travels on the intercommunicator (the DEM side's result of
+// MPI_Comm_spawn, the fluid side's MPI_Comm_get_parent). Fluid ranks are addressed by their rank
+// in the spawned world (0 .. P-1). All messages are bulk arrays: the number of messages per
+// exchange is 2 + 1 per fluid rank in each direction, whatever the particle count.
+//
+// 1. Handshake (once, before the fluid's first step)
+//    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts]   = {kMagic, kVersion, nParticles, 0}
+//                             tag kTagHelloD:  double[kHelloDoubles] = {rhoFluid [kg/m3],
+//                                               nu [m2/s], gx, gy, gz [m/s2], couplingInterval [s]}
+//    fluid rank 0 -> DEM, tag kTagHelloReply:  int[kReplyInts] = {kMagic, kVersion, status, nProcs,
+//                                               nCells (global)}
+//                             tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
+//                             tag kTagMessage:  char[kMessageChars], NUL-terminated text
+//                                               (empty if status == kStatusOk)
+//    The fluid side compares magic, version, rho, nu and gravity with its case (relative tolerance
+//    kMatchTolerance) and answers kStatusMismatch with the reason; both sides then stop with that
+//    message. The DEM side refuses a fluid deltaT larger than the coupling interval.
+//
+// 2. Each fluid step (the DEM drives the fluid's time loop)
+//    DEM -> every fluid rank, tag kTagCommand: int[2] = {kCommandStep | kCommandStop, nParticles}
+//    if kCommandStep:
+//      DEM -> every fluid rank, tag kTagParticles: double[kParticleDoubles * nParticles],
+//             per particle {x, y, z, vx, vy, vz, radius}
+//      every fluid rank -> DEM, tag kTagForces: double[1 + kForceDoubles * nParticles]:
+//             element 0 the rank's status (kStatusOk or kStatusError), then per particle
+//             {fx, fy, fz, owned}: the hydrodynamic force on the particle (drag + buoyancy) from
+//             the rank that owns the particle's cell, zeros and owned = 0 on the other ranks.
+//             The DEM sums over ranks; a particle with owned == 0 everywhere has left the mesh.
+//      a rank with kStatusError then sends tag kTagMessage (char[kMessageChars]).
+//    After the reply the fluid advances one deltaT with the reaction of the drag as a source.
+//    kCommandStop: the fluid writes its fields and exits.
+//
+// Timeouts: each side waits at most a configured time for the other (DEM: FoamCoupling.timeout,
+// fluid: couplingProperties.timeout) and then aborts every process with a message.
+namespace talus::foam_protocol
+{
+constexpr int kMagic = 0x54414c53; // "TALS"
+constexpr int kVersion = 1;
+
+constexpr int kTagHello = 6101;
+constexpr int kTagHelloD = 6102;
+constexpr int kTagHelloReply = 6103;
+constexpr int kTagHelloReplyD = 6104;
+constexpr int kTagMessage = 6105;
+constexpr int kTagCommand = 6106;
+constexpr int kTagParticles = 6107;
+constexpr int kTagForces = 6108;
+
+constexpr int kHelloInts = 4;
+constexpr int kHelloDoubles = 6;
+constexpr int kReplyInts = 5;
+constexpr int kReplyDoubles = 3;
+constexpr int kMessageChars = 1024;
+constexpr int kParticleDoubles = 7;
+constexpr int kForceDoubles = 4;
+
+constexpr int kStatusOk = 0;
+constexpr int kStatusMismatch = 1;
+constexpr int kStatusError = 2;
+
+constexpr int kCommandStop = 0;
+constexpr int kCommandStep = 1;
+
+/// Relative tolerance of the handshake's comparison of fluid properties and gravity.
+constexpr double kMatchTolerance = 1e-9;
+} // namespace talus::foam_protocol

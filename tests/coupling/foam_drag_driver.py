@@ -1,0 +1,35 @@
+"""DEM side of tests/coupling/test_foam_coupling.py, run as its own process (it starts MPI and
+spawns the fluid solver):  foam_drag_driver.py CASE OUT.json [nu [nProcs]]
+
+Two spheres moving in the fluid at rest of CASE; after two exchanges it writes the forces and
+the particles' velocities of each exchange, their radii, and the fluid step to OUT.json."""
+import json
+import sys
+
+import numpy as np
+
+from talus.coupling import FoamCoupling
+from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
+
+case, out = sys.argv[1], sys.argv[2]
+nu = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-3
+n_procs = int(sys.argv[4]) if len(sys.argv) > 4 else 1
+
+s = Scene()
+s.materials.append(FrictMat(density=2500.0))
+s.bodies.append([sphere((0.0011, -0.0013, 0.0031), 5e-4), sphere((-0.002, 0.0021, 0.0072), 6e-4)])
+s.bodies[0].state.vel = (0.01, -0.02, -0.05)
+s.bodies[1].state.vel = (-0.03, 0.0, 0.02)
+s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.0)]
+s.dt = 1e-6
+coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=20)
+coupling.start()
+forces, velocities = [], []
+for _ in range(2):
+    velocities.append(s.velocities()[:2].tolist())  # as the next exchange sends them
+    s.run(coupling.substeps, True)
+    forces.append(coupling.lastForces.tolist())
+coupling.stop()
+json.dump({"forces": forces, "velocities": velocities, "radii": s.radii()[:2].tolist(),
+           "substeps": coupling.substeps, "dt": s.dt, "fluidProcs": coupling.link.fluidProcs,
+           "nCells": coupling.link.nCells}, open(out, "w"))
