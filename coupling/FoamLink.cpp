@@ -75,7 +75,14 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   const int rc = MPI_Comm_spawn(settings_.solver.c_str(), argv.data(), settings_.nProcs,
                                 MPI_INFO_NULL, 0, MPI_COMM_SELF, &inter_, errors.data());
   if (rc != MPI_SUCCESS || inter_ == MPI_COMM_NULL)
-    throw std::runtime_error("FoamCoupling: MPI_Comm_spawn of '" + settings_.solver + "' failed");
+  {
+    char text[MPI_MAX_ERROR_STRING];
+    int length = 0;
+    MPI_Error_string(rc, text, &length);
+    throw std::runtime_error("FoamCoupling: MPI_Comm_spawn of " + std::to_string(settings_.nProcs) +
+                             " x '" + settings_.solver + "' failed: " + std::string(text, static_cast<std::size_t>(length)) +
+                             " (more ranks than slots? set OMPI_MCA_rmaps_base_oversubscribe=1)");
+  }
   MPI_Comm_remote_size(inter_, &fluidProcs_);
 
   const int hello[proto::kHelloInts] = {proto::kMagic, proto::kVersion, nParticles, 0};

@@ -28,6 +28,7 @@ License
 #include "uniformDimensionedFields.H"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace proto = talus::foam_protocol;
@@ -98,6 +99,17 @@ int main(int argc, char *argv[])
     );
 
     #include "setRootCaseLists.H"
+
+    // The solver's progress goes to the case's log file, not to the DEM process's terminal
+    // (Open MPI forwards a spawned process's stdout there); errors still go to stderr.
+    if (Pstream::master())
+    {
+        const fileName log = args.path()/"log.talusPointForceFoam";
+        if (!std::freopen(log.c_str(), "w", stdout))
+        {
+            std::cerr << "talusPointForceFoam: cannot write " << log << ", logging to stdout\n";
+        }
+    }
 
     // A serial run has no Pstream MPI: start MPI here to reach the DEM process.
     const bool ownMpi = !Pstream::parRun();

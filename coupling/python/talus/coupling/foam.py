@@ -134,6 +134,9 @@ class FoamCoupling:
             raise ValueError("FoamCoupling: no sphere to couple")
         self.ids = ids
         os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # OpenFOAM's etc/ files
+        # The DEM process plus the fluid ranks usually outnumber the cores; Open MPI refuses to
+        # spawn more processes than slots unless told (read when MPI starts, below).
+        os.environ.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
         m = _module()
         s = m.FoamSettings()
         s.solver, s.caseDir, s.nProcs = find_solver(self.solver), self.case, self.nProcs
