@@ -10,6 +10,10 @@
 #include <stdexcept>
 #include <thread>
 
+#include <cerrno>
+#include <csignal>
+#include <unistd.h>
+
 namespace talus::coupling
 {
 namespace proto = talus::foam_protocol;
@@ -29,6 +33,13 @@ void ensureMpi()
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SINGLE, &provided);
     mpiStartedHere = true;
   }
+}
+
+int thisHost()
+{
+  char name[256] = {};
+  gethostname(name, sizeof(name) - 1);
+  return proto::hostHash(name);
 }
 
 /// Errors that can be known before any process is started.
@@ -85,7 +96,8 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   }
   MPI_Comm_remote_size(inter_, &fluidProcs_);
 
-  const int hello[proto::kHelloInts] = {proto::kMagic, proto::kVersion, nParticles, 0};
+  const int hello[proto::kHelloInts] = {proto::kMagic, proto::kVersion, nParticles,
+                                       static_cast<int>(getpid()), thisHost()};
   const double helloD[proto::kHelloDoubles] = {settings_.rhoFluid, settings_.nu,
                                                settings_.gravity[0], settings_.gravity[1],
                                                settings_.gravity[2], settings_.couplingInterval};
@@ -95,12 +107,19 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   int reply[proto::kReplyInts];
   double replyD[proto::kReplyDoubles];
   std::vector<char> message(proto::kMessageChars, '\0');
-  std::array<MPI_Request, 3> rq{};
+  std::vector<int> pids(2 * static_cast<std::size_t>(fluidProcs_));
+  std::vector<MPI_Request> rq(3 + static_cast<std::size_t>(fluidProcs_));
   MPI_Irecv(reply, proto::kReplyInts, MPI_INT, 0, proto::kTagHelloReply, inter_, &rq[0]);
   MPI_Irecv(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, proto::kTagHelloReplyD, inter_, &rq[1]);
   MPI_Irecv(message.data(), proto::kMessageChars, MPI_CHAR, 0, proto::kTagMessage, inter_, &rq[2]);
+  for (int p = 0; p < fluidProcs_; ++p)
+    MPI_Irecv(&pids[2 * static_cast<std::size_t>(p)], 2, MPI_INT, p, proto::kTagPid, inter_,
+              &rq[3 + static_cast<std::size_t>(p)]);
   wait(rq, "the fluid side's handshake (is the case readable? see the solver's output)");
   message.back() = '\0';
+  for (int p = 0; p < fluidProcs_; ++p)
+    if (pids[2 * static_cast<std::size_t>(p) + 1] == thisHost())
+      peers_.push_back({p, pids[2 * static_cast<std::size_t>(p)]});
 
   std::string why;
   if (reply[0] != proto::kMagic || reply[1] != proto::kVersion)
@@ -145,6 +164,7 @@ void FoamLink::wait(std::span<MPI_Request> requests, const char* what)
 {
   const auto start = std::chrono::steady_clock::now();
   auto pause = std::chrono::microseconds(20);
+  double lastLivenessCheck = 0;
   while (true)
   {
     int done = 0;
@@ -152,6 +172,20 @@ void FoamLink::wait(std::span<MPI_Request> requests, const char* what)
     if (done)
       return;
     const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (waited - lastLivenessCheck > 0.1)
+    {
+      lastLivenessCheck = waited;
+      for (const auto& peer : peers_)
+        if (kill(peer.pid, 0) != 0 && errno == ESRCH)
+        {
+          std::fprintf(stderr,
+                       "FoamCoupling: fluid rank %d (pid %d) of '%s' has died while the DEM waited "
+                       "for %s; aborting every process of the coupled run\n",
+                       peer.rank, peer.pid, settings_.solver.c_str(), what);
+          std::fflush(stderr);
+          MPI_Abort(inter_, 4);
+        }
+    }
     if (waited > settings_.timeout)
     {
       std::fprintf(stderr,

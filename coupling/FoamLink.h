@@ -63,6 +63,12 @@ private:
   double fluidDt_ = 0;
   std::vector<double> particles_;
   std::vector<std::vector<double>> replies_;
+  struct Peer
+  {
+    int rank;
+    int pid;
+  };
+  std::vector<Peer> peers_; ///< fluid ranks on this host, watched while waiting
 };
 
 /// Finalizes MPI if this library started it (call once at interpreter exit).

@@ -10,7 +10,8 @@
 // exchange is 2 + 1 per fluid rank in each direction, whatever the particle count.
 //
 // 1. Handshake (once, before the fluid's first step)
-//    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts]   = {kMagic, kVersion, nParticles, 0}
+//    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts]   = {kMagic, kVersion, nParticles,
+//                                               pid, hostHash(hostname)}
 //                             tag kTagHelloD:  double[kHelloDoubles] = {rhoFluid [kg/m3],
 //                                               nu [m2/s], gx, gy, gz [m/s2], couplingInterval [s]}
 //    fluid rank 0 -> DEM, tag kTagHelloReply:  int[kReplyInts] = {kMagic, kVersion, status, nProcs,
@@ -18,6 +19,9 @@
 //                             tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
 //                             tag kTagMessage:  char[kMessageChars], NUL-terminated text
 //                                               (empty if status == kStatusOk)
+//    every fluid rank -> DEM, tag kTagPid:     int[2] = {pid, hostHash(hostname)}
+//    The process ids let each side notice within a fraction of a second that a process on the
+//    same host has died (kill(pid, 0)), instead of waiting for the timeout.
 //    The fluid side compares magic, version, rho, nu and gravity with its case (relative tolerance
 //    kMatchTolerance) and answers kStatusMismatch with the reason; both sides then stop with that
 //    message. The DEM side refuses a fluid deltaT larger than the coupling interval.
@@ -51,8 +55,9 @@ constexpr int kTagMessage = 6105;
 constexpr int kTagCommand = 6106;
 constexpr int kTagParticles = 6107;
 constexpr int kTagForces = 6108;
+constexpr int kTagPid = 6109;
 
-constexpr int kHelloInts = 4;
+constexpr int kHelloInts = 5;
 constexpr int kHelloDoubles = 6;
 constexpr int kReplyInts = 5;
 constexpr int kReplyDoubles = 3;
@@ -66,6 +71,15 @@ constexpr int kStatusError = 2;
 
 constexpr int kCommandStop = 0;
 constexpr int kCommandStep = 1;
+
+/// A non-negative hash of a host name (FNV-1a), to tell whether a peer runs on this host.
+inline int hostHash(const char* name)
+{
+  unsigned h = 2166136261u;
+  for (const char* c = name; *c; ++c)
+    h = (h ^ static_cast<unsigned char>(*c)) * 16777619u;
+  return static_cast<int>(h & 0x7fffffffu);
+}
 
 /// Relative tolerance of the handshake's comparison of fluid properties and gravity.
 constexpr double kMatchTolerance = 1e-9;

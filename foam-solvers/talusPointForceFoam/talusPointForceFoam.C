@@ -140,6 +140,9 @@ int main(int argc, char *argv[])
     double helloD[proto::kHelloDoubles];
     link.recv(hello, proto::kHelloInts, MPI_INT, proto::kTagHello, "the handshake");
     link.recv(helloD, proto::kHelloDoubles, MPI_DOUBLE, proto::kTagHelloD, "the handshake");
+    link.watch(hello[3], hello[4]);
+    const int self[2] = {static_cast<int>(getpid()), talusFoam::DemLink::thisHost()};
+    link.send(self, 2, MPI_INT, proto::kTagPid, "the handshake");
     const std::string why = mismatch(hello, helloD, rho.value(), nu.value(), gravity);
     if (Pstream::master())
     {
