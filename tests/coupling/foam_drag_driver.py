@@ -1,5 +1,5 @@
 """DEM side of tests/coupling/test_foam_coupling.py, run as its own process (it starts MPI and
-spawns the fluid solver):  foam_drag_driver.py CASE OUT.json [nu [nProcs]]
+spawns the fluid solver):  foam_drag_driver.py CASE OUT.json [nu [nProcs [outside]]]
 
 Two spheres moving in the fluid at rest of CASE; after two exchanges it writes the forces and
 the particles' velocities of each exchange, their radii, and the fluid step to OUT.json."""
@@ -14,10 +14,11 @@ from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
 case, out = sys.argv[1], sys.argv[2]
 nu = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-3
 n_procs = int(sys.argv[4]) if len(sys.argv) > 4 else 1
+outside = len(sys.argv) > 5 and sys.argv[5] == "outside"  # the second sphere starts out of the box
 
 s = Scene()
 s.materials.append(FrictMat(density=2500.0))
-s.bodies.append([sphere((0.0011, -0.0013, 0.0031), 5e-4), sphere((-0.002, 0.0021, 0.0072), 6e-4)])
+s.bodies.append([sphere((0.0011, -0.0013, 0.0031), 5e-4), sphere((-0.002, 0.0021, 0.0172 if outside else 0.0072), 6e-4)])
 s.bodies[0].state.vel = (0.01, -0.02, -0.05)
 s.bodies[1].state.vel = (-0.03, 0.0, 0.02)
 s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.0)]

@@ -5,6 +5,7 @@ Checked: on the first exchange the fluid is at rest, so the force equals the Sto
 -3 pi mu d u_p plus the buoyancy -rho V g to round-off (1e-12 relative); on the second the fluid
 has been set in motion by the particles' reactions, so the drag is smaller; a case whose
 viscosity differs from the DEM side's stops both sides with a message naming both values; a
+particle outside the mesh stops the run with its position; a
 decomposed case on 2 ranks gives the same first-exchange forces."""
 import json
 import math
@@ -77,6 +78,12 @@ def test_viscosity_mismatch_stops_both_sides_with_a_message(tmp_path):
     text = run.stdout + run.stderr
     assert "kinematic viscosity mismatch: DEM side nu = 0.002" in text
     assert "transportProperties nu = 0.001" in text
+
+
+def test_particle_outside_the_mesh_stops_the_run_with_its_position(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path, "1e-3", "1", "outside")
+    assert run.returncode != 0 and record is None
+    assert "particle 1 at (-0.002, 0.0021, 0.0172) is outside the fluid mesh" in run.stdout + run.stderr
 
 
 def test_two_fluid_ranks_give_the_same_first_exchange(tmp_path):
