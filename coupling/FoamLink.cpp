@@ -107,19 +107,24 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   int reply[proto::kReplyInts];
   double replyD[proto::kReplyDoubles];
   std::vector<char> message(proto::kMessageChars, '\0');
+  // The fluid ranks' pids come first (before they read the case), so that a solver dying on a
+  // bad case file is noticed at once rather than after the timeout.
   std::vector<int> pids(2 * static_cast<std::size_t>(fluidProcs_));
-  std::vector<MPI_Request> rq(3 + static_cast<std::size_t>(fluidProcs_));
-  MPI_Irecv(reply, proto::kReplyInts, MPI_INT, 0, proto::kTagHelloReply, inter_, &rq[0]);
-  MPI_Irecv(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, proto::kTagHelloReplyD, inter_, &rq[1]);
-  MPI_Irecv(message.data(), proto::kMessageChars, MPI_CHAR, 0, proto::kTagMessage, inter_, &rq[2]);
+  std::vector<MPI_Request> pidRequests(static_cast<std::size_t>(fluidProcs_));
   for (int p = 0; p < fluidProcs_; ++p)
     MPI_Irecv(&pids[2 * static_cast<std::size_t>(p)], 2, MPI_INT, p, proto::kTagPid, inter_,
-              &rq[3 + static_cast<std::size_t>(p)]);
-  wait(rq, "the fluid side's handshake (is the case readable? see the solver's output)");
-  message.back() = '\0';
+              &pidRequests[static_cast<std::size_t>(p)]);
+  wait(pidRequests, "the fluid ranks' process ids");
   for (int p = 0; p < fluidProcs_; ++p)
     if (pids[2 * static_cast<std::size_t>(p) + 1] == thisHost())
       peers_.push_back({p, pids[2 * static_cast<std::size_t>(p)]});
+
+  std::array<MPI_Request, 3> rq{};
+  MPI_Irecv(reply, proto::kReplyInts, MPI_INT, 0, proto::kTagHelloReply, inter_, &rq[0]);
+  MPI_Irecv(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, proto::kTagHelloReplyD, inter_, &rq[1]);
+  MPI_Irecv(message.data(), proto::kMessageChars, MPI_CHAR, 0, proto::kTagMessage, inter_, &rq[2]);
+  wait(rq, "the fluid side's handshake (is the case readable? see the solver's output)");
+  message.back() = '\0';
 
   std::string why;
   if (reply[0] != proto::kMagic || reply[1] != proto::kVersion)

@@ -19,7 +19,8 @@
 //                             tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
 //                             tag kTagMessage:  char[kMessageChars], NUL-terminated text
 //                                               (empty if status == kStatusOk)
-//    every fluid rank -> DEM, tag kTagPid:     int[2] = {pid, hostHash(hostname)}
+//    every fluid rank -> DEM, tag kTagPid:     int[2] = {pid, hostHash(hostname)}, sent as soon
+//                                               as the Hello arrives, before the case is read
 //    The process ids let each side notice within a fraction of a second that a process on the
 //    same host has died (kill(pid, 0)), instead of waiting for the timeout.
 //    The fluid side compares magic, version, rho, nu and gravity with its case (relative tolerance

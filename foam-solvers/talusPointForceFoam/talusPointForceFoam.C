@@ -124,6 +124,16 @@ int main(int argc, char *argv[])
     }
     talusFoam::DemLink link(args.getOrDefault<scalar>("couplingTimeout", 60));
 
+    // Handshake, first half: before reading the case, so a solver dying on a bad case file is
+    // noticed by the DEM process through its pid at once.
+    int hello[proto::kHelloInts];
+    double helloD[proto::kHelloDoubles];
+    link.recv(hello, proto::kHelloInts, MPI_INT, proto::kTagHello, "the handshake");
+    link.recv(helloD, proto::kHelloDoubles, MPI_DOUBLE, proto::kTagHelloD, "the handshake");
+    link.watch(hello[3], hello[4]);
+    const int self[2] = {static_cast<int>(getpid()), talusFoam::DemLink::thisHost()};
+    link.send(self, 2, MPI_INT, proto::kTagPid, "the handshake");
+
     #include "createTime.H"
     #include "createMesh.H"
 
@@ -135,14 +145,7 @@ int main(int argc, char *argv[])
     const scalar mu = (rho*nu).value();
     const vector gravity = g.value();
 
-    // Handshake: every rank checks; rank 0 answers.
-    int hello[proto::kHelloInts];
-    double helloD[proto::kHelloDoubles];
-    link.recv(hello, proto::kHelloInts, MPI_INT, proto::kTagHello, "the handshake");
-    link.recv(helloD, proto::kHelloDoubles, MPI_DOUBLE, proto::kTagHelloD, "the handshake");
-    link.watch(hello[3], hello[4]);
-    const int self[2] = {static_cast<int>(getpid()), talusFoam::DemLink::thisHost()};
-    link.send(self, 2, MPI_INT, proto::kTagPid, "the handshake");
+    // Handshake, second half: every rank checks the case; rank 0 answers.
     const std::string why = mismatch(hello, helloD, rho.value(), nu.value(), gravity);
     if (Pstream::master())
     {
