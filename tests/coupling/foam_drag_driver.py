@@ -1,20 +1,26 @@
 """DEM side of tests/coupling/test_foam_coupling.py, run as its own process (it starts MPI and
-spawns the fluid solver):  foam_drag_driver.py CASE OUT.json [nu [nProcs [outside]]]
+spawns the fluid solver):
+    foam_drag_driver.py CASE OUT.json [--nu NU] [--procs P] [--outside] [--interval SECONDS]
 
 Two spheres moving in the fluid at rest of CASE; after two exchanges it writes the forces and
 the particles' velocities of each exchange, their radii, and the fluid step to OUT.json."""
+import argparse
 import json
-import sys
 
 import numpy as np
 
 from talus.coupling import FoamCoupling
 from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
 
-case, out = sys.argv[1], sys.argv[2]
-nu = float(sys.argv[3]) if len(sys.argv) > 3 else 1e-3
-n_procs = int(sys.argv[4]) if len(sys.argv) > 4 else 1
-outside = len(sys.argv) > 5 and sys.argv[5] == "outside"  # the second sphere starts out of the box
+parser = argparse.ArgumentParser()
+parser.add_argument("case")
+parser.add_argument("out")
+parser.add_argument("--nu", type=float, default=1e-3)
+parser.add_argument("--procs", type=int, default=1)
+parser.add_argument("--outside", action="store_true", help="the second sphere starts out of the box")
+parser.add_argument("--interval", type=float, default=None, help="FoamCoupling couplingInterval")
+args = parser.parse_args()
+case, out, nu, n_procs, outside = args.case, args.out, args.nu, args.procs, args.outside
 
 s = Scene()
 s.materials.append(FrictMat(density=2500.0))
@@ -23,7 +29,8 @@ s.bodies[0].state.vel = (0.01, -0.02, -0.05)
 s.bodies[1].state.vel = (-0.03, 0.0, 0.02)
 s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.0)]
 s.dt = 1e-6
-coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=20)
+coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=20,
+                        couplingInterval=args.interval)
 coupling.start()
 forces, velocities = [], []
 for _ in range(2):

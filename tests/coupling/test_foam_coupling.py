@@ -5,7 +5,8 @@ Checked: on the first exchange the fluid is at rest, so the force equals the Sto
 -3 pi mu d u_p plus the buoyancy -rho V g to round-off (1e-12 relative); on the second the fluid
 has been set in motion by the particles' reactions, so the drag is smaller; a case whose
 viscosity differs from the DEM side's stops both sides with a message naming both values; a
-particle outside the mesh stops the run with its position; a
+particle outside the mesh stops the run with its position; a fluid step above the coupling
+interval is refused; a
 decomposed case on 2 ranks gives the same first-exchange forces."""
 import json
 import math
@@ -73,7 +74,7 @@ def test_first_exchange_is_stokes_drag_then_fluid_responds(tmp_path):
 
 
 def test_viscosity_mismatch_stops_both_sides_with_a_message(tmp_path):
-    run, record = drive(case(tmp_path), tmp_path, "2e-3")
+    run, record = drive(case(tmp_path), tmp_path, "--nu", "2e-3")
     assert run.returncode != 0 and record is None
     text = run.stdout + run.stderr
     assert "kinematic viscosity mismatch: DEM side nu = 0.002" in text
@@ -81,13 +82,20 @@ def test_viscosity_mismatch_stops_both_sides_with_a_message(tmp_path):
 
 
 def test_particle_outside_the_mesh_stops_the_run_with_its_position(tmp_path):
-    run, record = drive(case(tmp_path), tmp_path, "1e-3", "1", "outside")
+    run, record = drive(case(tmp_path), tmp_path, "--outside")
     assert run.returncode != 0 and record is None
     assert "particle 1 at (-0.002, 0.0021, 0.0172) is outside the fluid mesh" in run.stdout + run.stderr
 
 
+def test_fluid_step_larger_than_the_coupling_interval_is_refused(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path, "--interval", "5e-6")
+    assert run.returncode != 0 and record is None
+    assert "the fluid time step 1e-05 s (system/controlDict deltaT) is larger than the coupling interval 5e-06 s" \
+        in run.stdout + run.stderr
+
+
 def test_two_fluid_ranks_give_the_same_first_exchange(tmp_path):
-    run, record = drive(case(tmp_path, procs=2), tmp_path, "1e-3", "2")
+    run, record = drive(case(tmp_path, procs=2), tmp_path, "--procs", "2")
     assert run.returncode == 0, run.stdout + run.stderr
     assert record["fluidProcs"] == 2
     expected = stokes_drag(record, 0) + buoyancy(record)
