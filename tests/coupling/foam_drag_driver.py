@@ -39,5 +39,6 @@ for _ in range(2):
     forces.append(coupling.lastForces.tolist())
 coupling.stop()
 json.dump({"forces": forces, "velocities": velocities, "radii": s.radii()[:2].tolist(),
+           "masses": s.masses()[:2].tolist(),
            "substeps": coupling.substeps, "dt": s.dt, "fluidProcs": coupling.link.fluidProcs,
            "nCells": coupling.link.nCells}, open(out, "w"))

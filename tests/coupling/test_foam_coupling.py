@@ -67,6 +67,10 @@ def test_first_exchange_is_stokes_drag_then_fluid_responds(tmp_path):
     np.testing.assert_allclose(first, expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
     assert record["nCells"] == 64 and record["fluidProcs"] == 1
     assert record["substeps"] == 10 and record["dt"] == pytest.approx(1e-6)
+    # The force is held over the 10 DEM sub-steps of the fluid step, from the first one on.
+    dt_fluid = record["substeps"] * record["dt"]
+    v0, v1 = np.array(record["velocities"][0]), np.array(record["velocities"][1])
+    np.testing.assert_allclose(v1, v0 + (first / np.array(record["masses"])[:, None] + G) * dt_fluid, rtol=1e-9)
     # The reactions set the fluid in motion along the particles: the drag is now below the drag
     # the particles' new velocities would meet in a fluid at rest.
     drag2, at_rest = second - buoyancy(record), stokes_drag(record, 1)

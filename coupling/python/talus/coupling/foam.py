@@ -171,8 +171,11 @@ class FoamCoupling:
         ids = self.ids
         forces, re = self.link.exchange(self.scene.positions()[ids], self.scene.velocities()[ids],
                                         self.scene.radii()[ids])
-        pf = self.scene.persistent_forces()
-        pf[ids] += forces - self._applied
+        # The persistent forces carry the force over the sub-steps; this step's accumulator was
+        # already filled from them by the ForceResetter, so it gets the change too.
+        change = forces - self._applied
+        self.scene.persistent_forces()[ids] += change
+        self.scene.forces()[ids] += change
         self._applied = forces
         self.lastForces = forces
         self.exchanges += 1
