@@ -6,7 +6,7 @@ Checked: on the first exchange the fluid is at rest, so the force equals the Sto
 has been set in motion by the particles' reactions, so the drag is smaller; a case whose
 viscosity differs from the DEM side's stops both sides with a message naming both values; a
 particle outside the mesh stops the run with its position; a fluid step above the coupling
-interval is refused; a
+interval is refused, one above the particle relaxation time warns; a
 decomposed case on 2 ranks gives the same first-exchange forces."""
 import json
 import math
@@ -96,6 +96,13 @@ def test_fluid_step_larger_than_the_coupling_interval_is_refused(tmp_path):
     assert run.returncode != 0 and record is None
     assert "the fluid time step 1e-05 s (system/controlDict deltaT) is larger than the coupling interval 5e-06 s" \
         in run.stdout + run.stderr
+
+
+def test_fluid_step_above_the_relaxation_time_warns(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path, "--small")
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "RuntimeWarning: FoamCoupling: the fluid step 1e-05 s exceeds the particle relaxation time 1.38889e-06 s" \
+        in run.stderr
 
 
 def test_two_fluid_ranks_give_the_same_first_exchange(tmp_path):
