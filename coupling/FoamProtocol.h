@@ -6,43 +6,47 @@
 // Processes: one DEM process (rank 0 of its MPI_COMM_WORLD) and P fluid ranks started by it with
 // MPI_Comm_spawn; every message below travels on the intercommunicator (the DEM side's result of
 // MPI_Comm_spawn, the fluid side's MPI_Comm_get_parent). Fluid ranks are addressed by their rank
-// in the spawned world (0 .. P-1). All messages are bulk arrays: the number of messages per
-// exchange is 2 + 1 per fluid rank in each direction, whatever the particle count.
+// in the spawned world (0 .. P-1). All messages are bulk arrays: per exchange 2 messages to each
+// fluid rank and 1 back from each, whatever the particle count.
 //
 // 1. Handshake (once, before the fluid's first step)
-//    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts]   = {kMagic, kVersion, nParticles,
+//    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts] = {kMagic, kVersion, nParticles,
 //                                               pid, hostHash(hostname)}
 //                             tag kTagHelloD:  double[kHelloDoubles] = {rhoFluid [kg/m3],
 //                                               nu [m2/s], gx, gy, gz [m/s2], couplingInterval [s]}
-//    fluid rank 0 -> DEM, tag kTagHelloReply:  int[kReplyInts] = {kMagic, kVersion, status, nProcs,
-//                                               nCells (global)}
-//                             tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
-//                             tag kTagMessage:  char[kMessageChars], NUL-terminated text
-//                                               (empty if status == kStatusOk)
 //    every fluid rank -> DEM, tag kTagPid:     int[2] = {pid, hostHash(hostname)}, sent as soon
 //                                               as the Hello arrives, before the case is read
+//    fluid rank 0 -> DEM, tag kTagHelloReply:  int[kReplyInts] = {kMagic, kVersion, status, nProcs,
+//                                               nCells (global)}
+//                         tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
+//                         tag kTagMessage:     char[kMessageChars], NUL-terminated reason
+//                                               (empty if status == kStatusOk)
 //    The process ids let each side notice within a fraction of a second that a process on the
 //    same host has died (kill(pid, 0)), instead of waiting for the timeout.
 //    The fluid side compares magic, version, rho, nu and gravity with its case (relative tolerance
-//    kMatchTolerance) and answers kStatusMismatch with the reason; both sides then stop with that
-//    message. The DEM side refuses a fluid deltaT larger than the coupling interval.
+//    kMatchTolerance) and answers kStatusMismatch with the reason; both sides then disconnect and
+//    stop with that message. Otherwise the DEM side may still refuse a fluid deltaT larger than
+//    the coupling interval: it then sends kCommandStop.
 //
 // 2. Each fluid step (the DEM drives the fluid's time loop)
 //    DEM -> every fluid rank, tag kTagCommand: int[2] = {kCommandStep | kCommandStop, nParticles}
 //    if kCommandStep:
 //      DEM -> every fluid rank, tag kTagParticles: double[kParticleDoubles * nParticles],
 //             per particle {x, y, z, vx, vy, vz, radius}
-//      every fluid rank -> DEM, tag kTagForces: double[1 + kForceDoubles * nParticles]:
-//             element 0 the rank's status (kStatusOk or kStatusError), then per particle
-//             {fx, fy, fz, owned}: the hydrodynamic force on the particle (drag + buoyancy) from
-//             the rank that owns the particle's cell, zeros and owned = 0 on the other ranks.
-//             The DEM sums over ranks; a particle with owned == 0 everywhere has left the mesh.
-//      a rank with kStatusError then sends tag kTagMessage (char[kMessageChars]).
+//      every fluid rank -> DEM, tag kTagForces: double[2 + kForceDoubles * nParticles]:
+//             {status (kStatusOk), the largest particle Reynolds number on the rank}, then per
+//             particle {fx, fy, fz, owned}: the hydrodynamic force on the particle (drag +
+//             buoyancy) from the rank that owns the particle's cell, zeros and owned = 0 on the
+//             other ranks. The DEM sums over ranks; a particle with owned == 0 everywhere has
+//             left the mesh (the DEM then sends kCommandStop and reports it).
 //    After the reply the fluid advances one deltaT with the reaction of the drag as a source.
-//    kCommandStop: the fluid writes its fields and exits.
+//    kCommandStop: the fluid writes its fields, disconnects and exits.
+//    kStatusError is reserved for fluid-side errors reported in the reply (not sent yet: a
+//    failing solver exits, and the DEM notices through its pid or the timeout).
 //
 // Timeouts: each side waits at most a configured time for the other (DEM: FoamCoupling.timeout,
-// fluid: couplingProperties.timeout) and then aborts every process with a message.
+// fluid: the -couplingTimeout option, which FoamCoupling sets to its own) and then aborts every
+// process with a message.
 namespace talus::foam_protocol
 {
 constexpr int kMagic = 0x54414c53; // "TALS"
