@@ -1,0 +1,295 @@
+#include "coupling/FoamLink.h"
+
+#include "coupling/FoamProtocol.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include <cerrno>
+#include <csignal>
+#include <unistd.h>
+
+namespace talus::coupling
+{
+namespace proto = talus::foam_protocol;
+namespace fs = std::filesystem;
+
+namespace
+{
+bool mpiStartedHere = false;
+
+void ensureMpi()
+{
+  int initialised = 0;
+  MPI_Initialized(&initialised);
+  if (!initialised)
+  {
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SINGLE, &provided);
+    mpiStartedHere = true;
+  }
+}
+
+int thisHost()
+{
+  char name[256] = {};
+  gethostname(name, sizeof(name) - 1);
+  return proto::hostHash(name);
+}
+
+/// Errors that can be known before any process is started.
+void checkCase(const FoamSettings& s)
+{
+  if (!fs::is_regular_file(s.solver))
+    throw std::runtime_error("FoamCoupling: solver executable '" + s.solver + "' not found");
+  const fs::path dir(s.caseDir);
+  for (const char* f : {"system/controlDict", "system/fvSchemes", "system/fvSolution",
+                        "constant/transportProperties", "constant/g"})
+    if (!fs::is_regular_file(dir / f))
+      throw std::runtime_error("FoamCoupling: case '" + s.caseDir + "' has no " + f);
+  if (s.nProcs < 1)
+    throw std::runtime_error("FoamCoupling: nProcs must be at least 1, got " + std::to_string(s.nProcs));
+  if (s.nProcs == 1 && !fs::is_directory(dir / "constant/polyMesh"))
+    throw std::runtime_error("FoamCoupling: case '" + s.caseDir + "' has no mesh (run blockMesh)");
+  for (int p = 0; s.nProcs > 1 && p < s.nProcs; ++p)
+    if (!fs::is_directory(dir / ("processor" + std::to_string(p))))
+      throw std::runtime_error("FoamCoupling: case '" + s.caseDir + "' is not decomposed into " +
+                               std::to_string(s.nProcs) + " (no processor" + std::to_string(p) +
+                               "; run decomposePar)");
+  if (!(s.rhoFluid > 0) || !(s.nu > 0) || !(s.timeout > 0) || s.couplingInterval < 0)
+    throw std::runtime_error("FoamCoupling: rhoFluid, nu and timeout must be positive and "
+                             "couplingInterval not negative");
+}
+} // namespace
+
+FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
+  : settings_(settings), nParticles_(nParticles)
+{
+  checkCase(settings_);
+  if (nParticles < 0)
+    throw std::runtime_error("FoamCoupling: negative particle count");
+  ensureMpi();
+
+  std::string timeout = std::to_string(settings_.timeout);
+  std::vector<char*> argv{const_cast<char*>("-case"), settings_.caseDir.data(),
+                          const_cast<char*>("-couplingTimeout"), timeout.data()};
+  if (settings_.nProcs > 1)
+    argv.push_back(const_cast<char*>("-parallel"));
+  argv.push_back(nullptr);
+  std::vector<int> errors(static_cast<std::size_t>(settings_.nProcs));
+  MPI_Comm_set_errhandler(MPI_COMM_SELF, MPI_ERRORS_RETURN);
+  const int rc = MPI_Comm_spawn(settings_.solver.c_str(), argv.data(), settings_.nProcs,
+                                MPI_INFO_NULL, 0, MPI_COMM_SELF, &inter_, errors.data());
+  if (rc != MPI_SUCCESS || inter_ == MPI_COMM_NULL)
+  {
+    char text[MPI_MAX_ERROR_STRING];
+    int length = 0;
+    MPI_Error_string(rc, text, &length);
+    throw std::runtime_error("FoamCoupling: MPI_Comm_spawn of " + std::to_string(settings_.nProcs) +
+                             " x '" + settings_.solver + "' failed: " + std::string(text, static_cast<std::size_t>(length)) +
+                             " (more ranks than slots? set OMPI_MCA_rmaps_base_oversubscribe=1)");
+  }
+  MPI_Comm_remote_size(inter_, &fluidProcs_);
+
+  const int hello[proto::kHelloInts] = {proto::kMagic, proto::kVersion, nParticles,
+                                       static_cast<int>(getpid()), thisHost()};
+  const double helloD[proto::kHelloDoubles] = {settings_.rhoFluid, settings_.nu,
+                                               settings_.gravity[0], settings_.gravity[1],
+                                               settings_.gravity[2], settings_.couplingInterval};
+  sendAll(hello, proto::kHelloInts, MPI_INT, proto::kTagHello, "the handshake");
+  sendAll(helloD, proto::kHelloDoubles, MPI_DOUBLE, proto::kTagHelloD, "the handshake");
+
+  int reply[proto::kReplyInts];
+  double replyD[proto::kReplyDoubles];
+  std::vector<char> message(proto::kMessageChars, '\0');
+  // The fluid ranks' pids come first (before they read the case), so that a solver dying on a
+  // bad case file is noticed at once rather than after the timeout.
+  std::vector<int> pids(2 * static_cast<std::size_t>(fluidProcs_));
+  std::vector<MPI_Request> pidRequests(static_cast<std::size_t>(fluidProcs_));
+  for (int p = 0; p < fluidProcs_; ++p)
+    MPI_Irecv(&pids[2 * static_cast<std::size_t>(p)], 2, MPI_INT, p, proto::kTagPid, inter_,
+              &pidRequests[static_cast<std::size_t>(p)]);
+  wait(pidRequests, "the fluid ranks' process ids");
+  for (int p = 0; p < fluidProcs_; ++p)
+    if (pids[2 * static_cast<std::size_t>(p) + 1] == thisHost())
+      peers_.push_back({p, pids[2 * static_cast<std::size_t>(p)]});
+
+  std::array<MPI_Request, 3> rq{};
+  MPI_Irecv(reply, proto::kReplyInts, MPI_INT, 0, proto::kTagHelloReply, inter_, &rq[0]);
+  MPI_Irecv(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, proto::kTagHelloReplyD, inter_, &rq[1]);
+  MPI_Irecv(message.data(), proto::kMessageChars, MPI_CHAR, 0, proto::kTagMessage, inter_, &rq[2]);
+  wait(rq, "the fluid side's handshake (is the case readable? see the solver's output)");
+  message.back() = '\0';
+
+  std::string why;
+  if (reply[0] != proto::kMagic || reply[1] != proto::kVersion)
+    why = "protocol version mismatch: DEM side " + std::to_string(proto::kVersion) + ", solver " +
+          std::to_string(reply[1]);
+  else if (reply[2] != proto::kStatusOk)
+    why = message.data();
+  fluidDt_ = replyD[0];
+  nCells_ = reply[4];
+  if (why.empty() && settings_.couplingInterval > 0 &&
+      fluidDt_ > settings_.couplingInterval * (1 + 1e-12))
+  {
+    std::ostringstream s;
+    s << "the fluid time step " << fluidDt_ << " s (system/controlDict deltaT) is larger than "
+      << "the coupling interval " << settings_.couplingInterval << " s";
+    why = s.str();
+    // The fluid waits for a command: stop it cleanly.
+    const int stopCommand[2] = {proto::kCommandStop, 0};
+    sendAll(stopCommand, 2, MPI_INT, proto::kTagCommand, "the stop command");
+  }
+  if (!why.empty())
+  {
+    MPI_Comm_disconnect(&inter_);
+    throw std::runtime_error("FoamCoupling: " + why);
+  }
+  replies_.assign(static_cast<std::size_t>(fluidProcs_), {});
+}
+
+FoamLink::~FoamLink()
+{
+  try
+  {
+    stop();
+  }
+  catch (...)
+  {
+    // A destructor must not throw; stop() aborts on a silent fluid side anyway.
+  }
+}
+
+void FoamLink::wait(std::span<MPI_Request> requests, const char* what)
+{
+  const auto start = std::chrono::steady_clock::now();
+  auto pause = std::chrono::microseconds(20);
+  double lastLivenessCheck = 0;
+  while (true)
+  {
+    int done = 0;
+    MPI_Testall(static_cast<int>(requests.size()), requests.data(), &done, MPI_STATUSES_IGNORE);
+    if (done)
+      return;
+    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (waited - lastLivenessCheck > 0.1)
+    {
+      lastLivenessCheck = waited;
+      for (const auto& peer : peers_)
+        if (kill(peer.pid, 0) != 0 && errno == ESRCH)
+        {
+          std::fprintf(stderr,
+                       "FoamCoupling: fluid rank %d (pid %d) of '%s' has died while the DEM waited "
+                       "for %s; aborting every process of the coupled run\n",
+                       peer.rank, peer.pid, settings_.solver.c_str(), what);
+          std::fflush(stderr);
+          MPI_Abort(inter_, 4);
+        }
+    }
+    if (waited > settings_.timeout)
+    {
+      std::fprintf(stderr,
+                   "FoamCoupling: waited %g s for %s from the fluid solver '%s': it is gone or "
+                   "stuck; aborting every process of the coupled run\n",
+                   settings_.timeout, what, settings_.solver.c_str());
+      std::fflush(stderr);
+      MPI_Abort(inter_, 3);
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::microseconds(1000));
+  }
+}
+
+void FoamLink::sendAll(const void* data, int count, MPI_Datatype type, int tag, const char* what)
+{
+  std::vector<MPI_Request> rq(static_cast<std::size_t>(fluidProcs_));
+  for (int p = 0; p < fluidProcs_; ++p)
+    MPI_Isend(data, count, type, p, tag, inter_, &rq[static_cast<std::size_t>(p)]);
+  wait(rq, what);
+}
+
+double FoamLink::exchange(std::span<const double> positions, std::span<const double> velocities,
+                          std::span<const double> radii, std::span<double> forces)
+{
+  if (!running())
+    throw std::runtime_error("FoamCoupling: the fluid solver is not running");
+  const auto n = static_cast<std::size_t>(nParticles_);
+  if (positions.size() != 3 * n || velocities.size() != 3 * n || radii.size() != n || forces.size() != 3 * n)
+    throw std::runtime_error("FoamCoupling: particle arrays do not match the " +
+                             std::to_string(nParticles_) + " particles of the handshake");
+  particles_.resize(proto::kParticleDoubles * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    double* q = &particles_[proto::kParticleDoubles * i];
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      q[k] = positions[3 * i + k];
+      q[3 + k] = velocities[3 * i + k];
+    }
+    q[6] = radii[i];
+  }
+  const int command[2] = {proto::kCommandStep, nParticles_};
+  sendAll(command, 2, MPI_INT, proto::kTagCommand, "the step command");
+  std::vector<MPI_Request> rq(static_cast<std::size_t>(2 * fluidProcs_));
+  const auto replySize = 2 + proto::kForceDoubles * n;
+  for (int p = 0; p < fluidProcs_; ++p)
+  {
+    auto& reply = replies_[static_cast<std::size_t>(p)];
+    reply.resize(replySize);
+    MPI_Irecv(reply.data(), static_cast<int>(replySize), MPI_DOUBLE, p, proto::kTagForces, inter_,
+              &rq[static_cast<std::size_t>(fluidProcs_ + p)]);
+    MPI_Isend(particles_.data(), static_cast<int>(particles_.size()), MPI_DOUBLE, p,
+              proto::kTagParticles, inter_, &rq[static_cast<std::size_t>(p)]);
+  }
+  wait(rq, "the forces");
+
+  std::fill(forces.begin(), forces.end(), 0.0);
+  double maxRe = 0;
+  std::vector<double> owned(n, 0.0);
+  for (const auto& reply : replies_)
+  {
+    maxRe = std::max(maxRe, reply[1]);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const double* f = &reply[2 + proto::kForceDoubles * i];
+      for (std::size_t k = 0; k < 3; ++k)
+        forces[3 * i + k] += f[k];
+      owned[i] += f[3];
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (owned[i] < 0.5)
+    {
+      std::ostringstream s;
+      s << "FoamCoupling: particle " << i << " at (" << positions[3 * i] << ", "
+        << positions[3 * i + 1] << ", " << positions[3 * i + 2]
+        << ") is outside the fluid mesh of case '" << settings_.caseDir
+        << "'; the fluid solver was stopped";
+      stop();
+      throw std::runtime_error(s.str());
+    }
+  return maxRe;
+}
+
+void FoamLink::stop()
+{
+  if (!running())
+    return;
+  const int command[2] = {proto::kCommandStop, 0};
+  sendAll(command, 2, MPI_INT, proto::kTagCommand, "the stop command");
+  MPI_Comm_disconnect(&inter_);
+}
+
+void finalizeMpi()
+{
+  int finalised = 0;
+  MPI_Finalized(&finalised);
+  if (mpiStartedHere && !finalised)
+    MPI_Finalize();
+}
+} // namespace talus::coupling

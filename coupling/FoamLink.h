@@ -1,0 +1,76 @@
+#pragma once
+
+#include <array>
+#include <mpi.h>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace talus::coupling
+{
+/// What the DEM side states about the coupled run; the fluid side checks it against its case.
+struct FoamSettings
+{
+  std::string solver;        ///< executable path of the OpenFOAM coupling solver
+  std::string caseDir;       ///< OpenFOAM case folder (decomposed into nProcs if nProcs > 1)
+  int nProcs = 1;            ///< fluid ranks; > 1 runs the solver with -parallel
+  double rhoFluid = 0;       ///< fluid density [kg/m3], must equal transportProperties rho
+  double nu = 0;             ///< kinematic viscosity [m2/s], must equal transportProperties nu
+  std::array<double, 3> gravity{}; ///< must equal constant/g
+  double couplingInterval = 0;     ///< [s]; 0: one exchange per fluid step
+  double timeout = 60;             ///< longest wait for the fluid side [s] before aborting all
+};
+
+/// The DEM side of the link with an OpenFOAM coupling solver (protocol: coupling/FoamProtocol.h).
+/// The constructor spawns the solver ranks and does the handshake; each exchange() sends every
+/// particle once to every fluid rank and gets one force array back from each (2P + P messages).
+/// A fluid side gone silent for `timeout` seconds aborts every process with a message.
+class FoamLink
+{
+public:
+  /// Spawns the solver and checks the case against `settings`.
+  /// @throws std::runtime_error with the fluid side's reason on a mismatch
+  FoamLink(const FoamSettings& settings, int nParticles);
+  ~FoamLink();
+  FoamLink(const FoamLink&) = delete;
+  FoamLink& operator=(const FoamLink&) = delete;
+
+  [[nodiscard]] double fluidDt() const { return fluidDt_; }
+  [[nodiscard]] int fluidProcs() const { return fluidProcs_; }
+  [[nodiscard]] long nCells() const { return nCells_; }
+  [[nodiscard]] int nParticles() const { return nParticles_; }
+  [[nodiscard]] bool running() const { return inter_ != MPI_COMM_NULL; }
+
+  /// One fluid step: sends positions (3N), velocities (3N) and radii (N); writes the
+  /// hydrodynamic force on each particle into `forces` (3N); returns the largest particle
+  /// Reynolds number seen by the fluid. The fluid then advances one step.
+  /// @throws std::runtime_error if a particle is outside the fluid mesh (the fluid is stopped)
+  double exchange(std::span<const double> positions, std::span<const double> velocities,
+                  std::span<const double> radii, std::span<double> forces);
+
+  /// Tells the fluid to write its fields and exit, then disconnects. Idempotent.
+  void stop();
+
+private:
+  void wait(std::span<MPI_Request> requests, const char* what);
+  void sendAll(const void* data, int count, MPI_Datatype type, int tag, const char* what);
+
+  FoamSettings settings_;
+  MPI_Comm inter_ = MPI_COMM_NULL;
+  int fluidProcs_ = 0;
+  int nParticles_ = 0;
+  long nCells_ = 0;
+  double fluidDt_ = 0;
+  std::vector<double> particles_;
+  std::vector<std::vector<double>> replies_;
+  struct Peer
+  {
+    int rank;
+    int pid;
+  };
+  std::vector<Peer> peers_; ///< fluid ranks on this host, watched while waiting
+};
+
+/// Finalizes MPI if this library started it (call once at interpreter exit).
+void finalizeMpi();
+} // namespace talus::coupling

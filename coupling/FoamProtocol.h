@@ -1,0 +1,91 @@
+#pragma once
+// The message protocol between the DEM process (coupling/) and the OpenFOAM coupling solvers
+// (foam-solvers/). This header is the protocol's description: plain constants, no OpenFOAM and
+// no Talus types, so both sides include it without depending on each other's code.
+//
+// Processes: one DEM process (rank 0 of its MPI_COMM_WORLD) and P fluid ranks started by it with
+// MPI_Comm_spawn; every message below travels on the intercommunicator (the DEM side's result of
+// MPI_Comm_spawn, the fluid side's MPI_Comm_get_parent). Fluid ranks are addressed by their rank
+// in the spawned world (0 .. P-1). All messages are bulk arrays: per exchange 2 messages to each
+// fluid rank and 1 back from each, whatever the particle count.
+//
+// 1. Handshake (once, before the fluid's first step)
+//    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts] = {kMagic, kVersion, nParticles,
+//                                               pid, hostHash(hostname)}
+//                             tag kTagHelloD:  double[kHelloDoubles] = {rhoFluid [kg/m3],
+//                                               nu [m2/s], gx, gy, gz [m/s2], couplingInterval [s]}
+//    every fluid rank -> DEM, tag kTagPid:     int[2] = {pid, hostHash(hostname)}, sent as soon
+//                                               as the Hello arrives, before the case is read
+//    fluid rank 0 -> DEM, tag kTagHelloReply:  int[kReplyInts] = {kMagic, kVersion, status, nProcs,
+//                                               nCells (global)}
+//                         tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
+//                         tag kTagMessage:     char[kMessageChars], NUL-terminated reason
+//                                               (empty if status == kStatusOk)
+//    The process ids let each side notice within a fraction of a second that a process on the
+//    same host has died (kill(pid, 0)), instead of waiting for the timeout.
+//    The fluid side compares magic, version, rho, nu and gravity with its case (relative tolerance
+//    kMatchTolerance) and answers kStatusMismatch with the reason; both sides then disconnect and
+//    stop with that message. Otherwise the DEM side may still refuse a fluid deltaT larger than
+//    the coupling interval: it then sends kCommandStop.
+//
+// 2. Each fluid step (the DEM drives the fluid's time loop)
+//    DEM -> every fluid rank, tag kTagCommand: int[2] = {kCommandStep | kCommandStop, nParticles}
+//    if kCommandStep:
+//      DEM -> every fluid rank, tag kTagParticles: double[kParticleDoubles * nParticles],
+//             per particle {x, y, z, vx, vy, vz, radius}
+//      every fluid rank -> DEM, tag kTagForces: double[2 + kForceDoubles * nParticles]:
+//             {status (kStatusOk), the largest particle Reynolds number on the rank}, then per
+//             particle {fx, fy, fz, owned}: the hydrodynamic force on the particle (drag +
+//             buoyancy) from the rank that owns the particle's cell, zeros and owned = 0 on the
+//             other ranks. The DEM sums over ranks; a particle with owned == 0 everywhere has
+//             left the mesh (the DEM then sends kCommandStop and reports it).
+//    After the reply the fluid advances one deltaT with the reaction of the drag as a source.
+//    kCommandStop: the fluid writes its fields, disconnects and exits.
+//    kStatusError is reserved for fluid-side errors reported in the reply (not sent yet: a
+//    failing solver exits, and the DEM notices through its pid or the timeout).
+//
+// Timeouts: each side waits at most a configured time for the other (DEM: FoamCoupling.timeout,
+// fluid: the -couplingTimeout option, which FoamCoupling sets to its own) and then aborts every
+// process with a message.
+namespace talus::foam_protocol
+{
+constexpr int kMagic = 0x54414c53; // "TALS"
+constexpr int kVersion = 1;
+
+constexpr int kTagHello = 6101;
+constexpr int kTagHelloD = 6102;
+constexpr int kTagHelloReply = 6103;
+constexpr int kTagHelloReplyD = 6104;
+constexpr int kTagMessage = 6105;
+constexpr int kTagCommand = 6106;
+constexpr int kTagParticles = 6107;
+constexpr int kTagForces = 6108;
+constexpr int kTagPid = 6109;
+
+constexpr int kHelloInts = 5;
+constexpr int kHelloDoubles = 6;
+constexpr int kReplyInts = 5;
+constexpr int kReplyDoubles = 3;
+constexpr int kMessageChars = 1024;
+constexpr int kParticleDoubles = 7;
+constexpr int kForceDoubles = 4;
+
+constexpr int kStatusOk = 0;
+constexpr int kStatusMismatch = 1;
+constexpr int kStatusError = 2;
+
+constexpr int kCommandStop = 0;
+constexpr int kCommandStep = 1;
+
+/// A non-negative hash of a host name (FNV-1a), to tell whether a peer runs on this host.
+inline int hostHash(const char* name)
+{
+  unsigned h = 2166136261u;
+  for (const char* c = name; *c; ++c)
+    h = (h ^ static_cast<unsigned char>(*c)) * 16777619u;
+  return static_cast<int>(h & 0x7fffffffu);
+}
+
+/// Relative tolerance of the handshake's comparison of fluid properties and gravity.
+constexpr double kMatchTolerance = 1e-9;
+} // namespace talus::foam_protocol

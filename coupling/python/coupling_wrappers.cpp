@@ -1,0 +1,61 @@
+// Python bindings of coupling/: only the mapping of C++ names to Python. The engine logic
+// (hooks, sub-stepping, checks) lives in talus.coupling.foam.
+#include "coupling/FoamLink.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <span>
+#include <string>
+
+namespace py = pybind11;
+using namespace talus::coupling;
+
+namespace
+{
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::span<const double> values(const Array& a, py::ssize_t columns, const char* name)
+{
+  const bool ok = columns == 1 ? a.ndim() == 1 : (a.ndim() == 2 && a.shape(1) == columns);
+  if (!ok)
+    throw py::value_error(std::string(name) + (columns == 1 ? " must be a 1D array" : " must have shape (particles, 3)"));
+  return {a.data(), static_cast<std::size_t>(a.size())};
+}
+} // namespace
+
+PYBIND11_MODULE(_coupling, m)
+{
+  m.doc() = "CFD-DEM coupling with OpenFOAM over MPI (use talus.coupling)";
+  py::class_<FoamSettings>(m, "FoamSettings")
+    .def(py::init<>())
+    .def_readwrite("solver", &FoamSettings::solver)
+    .def_readwrite("caseDir", &FoamSettings::caseDir)
+    .def_readwrite("nProcs", &FoamSettings::nProcs)
+    .def_readwrite("rhoFluid", &FoamSettings::rhoFluid)
+    .def_readwrite("nu", &FoamSettings::nu)
+    .def_readwrite("gravity", &FoamSettings::gravity)
+    .def_readwrite("couplingInterval", &FoamSettings::couplingInterval)
+    .def_readwrite("timeout", &FoamSettings::timeout);
+
+  py::class_<FoamLink>(m, "FoamLink")
+    .def(py::init<const FoamSettings&, int>(), py::arg("settings"), py::arg("nParticles"))
+    .def_property_readonly("fluidDt", &FoamLink::fluidDt)
+    .def_property_readonly("fluidProcs", &FoamLink::fluidProcs)
+    .def_property_readonly("nCells", &FoamLink::nCells)
+    .def_property_readonly("nParticles", &FoamLink::nParticles)
+    .def_property_readonly("running", &FoamLink::running)
+    .def("exchange",
+         [](FoamLink& link, const Array& pos, const Array& vel, const Array& radius) {
+           Array forces({static_cast<py::ssize_t>(link.nParticles()), py::ssize_t{3}});
+           std::span<double> out{forces.mutable_data(), static_cast<std::size_t>(forces.size())};
+           const double re = link.exchange(values(pos, 3, "positions"), values(vel, 3, "velocities"),
+                                           values(radius, 1, "radii"), out);
+           return py::make_tuple(forces, re);
+         },
+         py::arg("positions"), py::arg("velocities"), py::arg("radii"))
+    .def("stop", &FoamLink::stop);
+
+  m.def("finalize_mpi", &finalizeMpi);
+}

@@ -1,0 +1,7 @@
+"""CFD-DEM coupling with OpenFOAM over MPI (issue #6): ``FoamCoupling`` spawns the OpenFOAM
+coupling solver (foam-solvers/talusPointForceFoam) and exchanges particles and forces with it
+every fluid step. See docs/coupling.md."""
+
+from talus.coupling.foam import FoamCoupling, find_solver
+
+__all__ = ["FoamCoupling", "find_solver"]

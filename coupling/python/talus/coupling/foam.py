@@ -1,0 +1,192 @@
+"""CFD-DEM coupling with OpenFOAM (seed chapter "CFD-DEM coupled simulations with Yade and
+OpenFOAM"; Yade's FoamCoupling): the DEM process spawns the OpenFOAM coupling solver ranks over
+MPI, and every fluid step sends them the particles and gets back the hydrodynamic forces::
+
+    coupling = FoamCoupling(O, case="my_case", rhoFluid=1000, nu=1e-3, gravity=(0, 0, -9.81))
+    coupling.start()        # spawns talusPointForceFoam, checks the case, sets O.dt, adds a hook
+    O.run(coupling.substeps * 100, True)
+    coupling.stop()
+
+The DEM sub-steps between fluid steps: ``substeps = ceil(fluid deltaT / O.dt)`` and ``O.dt`` is
+lowered to ``deltaT / substeps`` so both clocks agree at every exchange. The hydrodynamic force
+of the last exchange is held (as a persistent force) over the sub-steps.
+"""
+
+from __future__ import annotations
+
+import atexit
+import math
+import os
+import shutil
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+__all__ = ["FoamCoupling", "find_solver"]
+
+_links = []  # every started link, stopped at interpreter exit so no fluid rank is orphaned
+
+
+def _load_mpi_globally():
+    # Open MPI's plugins resolve symbols of libmpi: load it with RTLD_GLOBAL before our module.
+    import ctypes
+    for name in ("libmpi.so.40", "libmpi.so"):
+        try:
+            ctypes.CDLL(name, mode=ctypes.RTLD_GLOBAL)
+            return
+        except OSError:
+            continue
+
+
+def _module():
+    _load_mpi_globally()
+    from talus import _coupling
+    return _coupling
+
+
+@atexit.register
+def _shutdown():
+    for link in _links:
+        if link.running:
+            link.stop()
+    if _links:
+        _module().finalize_mpi()
+
+
+def find_solver(name: str) -> str:
+    """Path of an OpenFOAM coupling solver: a path as given, else TALUS_FOAM_BIN/<name>, the
+    build tree's or installation's bin/ folder, then PATH."""
+    if os.sep in name:
+        return name
+    candidates = []
+    if os.environ.get("TALUS_FOAM_BIN"):
+        candidates.append(Path(os.environ["TALUS_FOAM_BIN"]) / name)
+    import talus
+    root = Path(talus.__file__).resolve().parents[1]
+    candidates += [root.parent / "bin" / name, root / "bin" / name]
+    for c in candidates:
+        if c.is_file():
+            return str(c)
+    found = shutil.which(name)
+    if found is None:
+        raise FileNotFoundError(f"FoamCoupling: solver {name!r} not found (looked in "
+                                f"{', '.join(map(str, candidates))} and PATH); build Talus with foam-solvers")
+    return found
+
+
+class FoamCoupling:
+    """DEM side of the point-force CFD-DEM coupling.
+
+    Args:
+        scene: the DEM scene (O).
+        case: OpenFOAM case folder (0/, constant/ with transportProperties and g, system/);
+            decomposed into ``nProcs`` folders when ``nProcs > 1``.
+        rhoFluid, nu: fluid density [kg/m3] and kinematic viscosity [m2/s]; the solver refuses
+            values different from its transportProperties.
+        gravity: must equal the case's constant/g and the NewtonIntegrator's gravity.
+        ids: bodies coupled (default: every sphere).
+        solver: solver name or path (default talusPointForceFoam).
+        nProcs: fluid ranks (MPI_Comm_spawn, ``-parallel`` when > 1).
+        couplingInterval: [s] the fluid deltaT may not exceed it (None: no limit).
+        timeout: longest wait for the other side [s]; then every process is aborted.
+        reynoldsLimit: a RuntimeWarning when the particle Reynolds number exceeds it (Stokes
+            drag is 10 % off at Re_p ~ 0.5).
+    """
+
+    def __init__(self, scene, case, *, rhoFluid: float, nu: float, gravity=(0.0, 0.0, -9.81), ids=None,
+                 solver: str = "talusPointForceFoam", nProcs: int = 1, couplingInterval: float | None = None,
+                 timeout: float = 60.0, reynoldsLimit: float = 0.5):
+        self.scene = scene
+        self.case = str(Path(case).resolve())
+        self.rhoFluid, self.nu = float(rhoFluid), float(nu)
+        self.gravity = tuple(float(g) for g in gravity)
+        self.ids = None if ids is None else np.asarray(ids, dtype=np.int64)
+        self.solver, self.nProcs = solver, int(nProcs)
+        self.couplingInterval, self.timeout, self.reynoldsLimit = couplingInterval, float(timeout), reynoldsLimit
+        self.link = None
+        self.substeps = 0
+        self.hook = None
+        self.maxReynolds = 0.0
+        self.exchanges = 0
+        self._applied = None
+
+    # -- start ---------------------------------------------------------------------------------
+    def _coupled_ids(self) -> np.ndarray:
+        if self.ids is not None:
+            return self.ids
+        return np.array([b.id for b in self.scene.bodies if b.shape.lower() == "sphere"], dtype=np.int64)
+
+    def _check_gravity(self):
+        from talus.dem.engines import NewtonIntegrator
+        for e in self.scene.engines:
+            if isinstance(e, NewtonIntegrator) and not np.allclose(e.gravity, self.gravity, rtol=1e-12, atol=0):
+                raise ValueError(f"FoamCoupling: gravity {self.gravity} differs from the NewtonIntegrator's "
+                                 f"{tuple(e.gravity)}")
+
+    def start(self):
+        """Spawn the solver, check the case and the time steps, set O.dt and add the hook."""
+        if self.link is not None:
+            raise RuntimeError("FoamCoupling.start: already started")
+        self._check_gravity()
+        ids = self._coupled_ids()
+        if len(ids) == 0:
+            raise ValueError("FoamCoupling: no sphere to couple")
+        self.ids = ids
+        os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # OpenFOAM's etc/ files
+        # The DEM process plus the fluid ranks usually outnumber the cores; Open MPI refuses to
+        # spawn more processes than slots unless told (read when MPI starts, below).
+        os.environ.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        m = _module()
+        s = m.FoamSettings()
+        s.solver, s.caseDir, s.nProcs = find_solver(self.solver), self.case, self.nProcs
+        s.rhoFluid, s.nu, s.gravity = self.rhoFluid, self.nu, self.gravity
+        s.couplingInterval, s.timeout = float(self.couplingInterval or 0.0), self.timeout
+        self.link = m.FoamLink(s, len(ids))
+        _links.append(self.link)
+        dt_fluid = self.link.fluidDt
+        if not self.scene.dt > 0:
+            raise ValueError("FoamCoupling: set O.dt (the DEM time step) before start()")
+        self.substeps = max(1, math.ceil(dt_fluid / self.scene.dt * (1 - 1e-12)))
+        self.scene.dt = dt_fluid / self.substeps
+        self._warn_relaxation(dt_fluid, ids)
+        self._applied = np.zeros((len(ids), 3))
+        self.hook = self.scene.add_hook("before_forces", self.exchange, self.substeps)
+        return self
+
+    def _warn_relaxation(self, dt_fluid, ids):
+        r = self.scene.radii()[ids]
+        m = self.scene.masses()[ids]
+        rho_p = m / (4 / 3 * math.pi * r ** 3)
+        tau = float(np.min(rho_p * (2 * r) ** 2 / (18 * self.rhoFluid * self.nu)))
+        self.relaxationTime = tau
+        if dt_fluid > tau:
+            warnings.warn(f"FoamCoupling: the fluid step {dt_fluid:g} s exceeds the particle relaxation time "
+                          f"{tau:g} s: the explicit drag held over a fluid step is inaccurate or unstable; "
+                          f"lower deltaT in system/controlDict", RuntimeWarning, stacklevel=3)
+
+    # -- exchange ------------------------------------------------------------------------------
+    def exchange(self):
+        """One fluid step: send the particles, replace last step's forces by the new ones."""
+        ids = self.ids
+        forces, re = self.link.exchange(self.scene.positions()[ids], self.scene.velocities()[ids],
+                                        self.scene.radii()[ids])
+        # The persistent forces carry the force over the sub-steps; this step's accumulator was
+        # already filled from them by the ForceResetter, so it gets the change too.
+        change = forces - self._applied
+        self.scene.persistent_forces()[ids] += change
+        self.scene.forces()[ids] += change
+        self._applied = forces
+        self.lastForces = forces
+        self.exchanges += 1
+        if re > self.reynoldsLimit and self.maxReynolds <= self.reynoldsLimit:
+            warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
+                          f"Stokes drag is no longer accurate", RuntimeWarning, stacklevel=2)
+        self.maxReynolds = max(self.maxReynolds, re)
+
+    def stop(self):
+        """Let the fluid write its last fields and exit; remove the hook."""
+        if self.hook is not None:
+            self.hook.dead = True
+        if self.link is not None and self.link.running:
+            self.link.stop()

@@ -1,0 +1,113 @@
+"""coupling: the DEM process spawns talusPointForceFoam on a tiny case (4 x 4 x 4 cells) and
+exchanges two particles with it (tests/coupling/foam_drag_driver.py, its own MPI process).
+
+Checked: on the first exchange the fluid is at rest, so the force equals the Stokes drag
+-3 pi mu d u_p plus the buoyancy -rho V g to round-off (1e-12 relative); on the second the fluid
+has been set in motion by the particles' reactions, so the drag is smaller; a case whose
+viscosity differs from the DEM side's stops both sides with a message naming both values; a
+particle outside the mesh stops the run with its position; a fluid step above the coupling
+interval is refused, one above the particle relaxation time warns; a
+decomposed case on 2 ranks gives the same first-exchange forces."""
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+BUILD = Path(os.environ.get("TALUS_BUILD_DIR", REPO / "build")).resolve()
+SOLVER = BUILD / "bin" / "talusPointForceFoam"
+DRIVER = Path(__file__).with_name("foam_drag_driver.py")
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
+           OMPI_MCA_rmaps_base_oversubscribe="1", WM_PROJECT_DIR="/usr/share/openfoam",
+           PYTHONPATH=str(BUILD / "python"))
+RHO, NU, G = 1000.0, 1e-3, np.array([0.0, 0.0, -9.81])
+
+pytestmark = pytest.mark.skipif(
+    not SOLVER.exists() or not (BUILD / "python" / "talus" / "coupling").exists(),
+    reason="coupling or foam-solvers component off (see the configure summary)")
+
+
+def case(tmp_path: Path, procs: int = 1) -> Path:
+    work = tmp_path / "case"
+    shutil.copytree(Path(__file__).with_name("foam_box"), work)
+    for tool in ["blockMesh"] + (["decomposePar"] if procs > 1 else []):
+        subprocess.run([tool, "-case", str(work)], check=True, capture_output=True, env=ENV, timeout=60)
+    return work
+
+
+def drive(work: Path, tmp_path: Path, *extra: str):
+    out = tmp_path / "out.json"
+    run = subprocess.run([sys.executable, str(DRIVER), str(work), str(out), *extra], capture_output=True,
+                         text=True, env=ENV, timeout=90)
+    return run, (json.loads(out.read_text()) if out.exists() else None)
+
+
+def buoyancy(record) -> np.ndarray:
+    r = np.array(record["radii"])
+    return -RHO * (4 / 3 * math.pi * r ** 3)[:, None] * G
+
+
+def stokes_drag(record, exchange: int) -> np.ndarray:
+    """The drag in a fluid at rest, with the particles' velocities sent at that exchange."""
+    v, r = np.array(record["velocities"][exchange]), np.array(record["radii"])
+    return -3 * math.pi * RHO * NU * (2 * r)[:, None] * v
+
+
+def test_first_exchange_is_stokes_drag_then_fluid_responds(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path)
+    assert run.returncode == 0, run.stdout + run.stderr
+    expected = stokes_drag(record, 0) + buoyancy(record)
+    first, second = np.array(record["forces"][0]), np.array(record["forces"][1])
+    np.testing.assert_allclose(first, expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
+    assert record["nCells"] == 64 and record["fluidProcs"] == 1
+    assert record["substeps"] == 10 and record["dt"] == pytest.approx(1e-6)
+    # The force is held over the 10 DEM sub-steps of the fluid step, from the first one on.
+    dt_fluid = record["substeps"] * record["dt"]
+    v0, v1 = np.array(record["velocities"][0]), np.array(record["velocities"][1])
+    np.testing.assert_allclose(v1, v0 + (first / np.array(record["masses"])[:, None] + G) * dt_fluid, rtol=1e-9)
+    # The reactions set the fluid in motion along the particles: the drag is now below the drag
+    # the particles' new velocities would meet in a fluid at rest.
+    drag2, at_rest = second - buoyancy(record), stokes_drag(record, 1)
+    assert np.all(np.linalg.norm(drag2, axis=1) < 0.999 * np.linalg.norm(at_rest, axis=1))
+
+
+def test_viscosity_mismatch_stops_both_sides_with_a_message(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path, "--nu", "2e-3")
+    assert run.returncode != 0 and record is None
+    text = run.stdout + run.stderr
+    assert "kinematic viscosity mismatch: DEM side nu = 0.002" in text
+    assert "transportProperties nu = 0.001" in text
+
+
+def test_particle_outside_the_mesh_stops_the_run_with_its_position(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path, "--outside")
+    assert run.returncode != 0 and record is None
+    assert "particle 1 at (-0.002, 0.0021, 0.0172) is outside the fluid mesh" in run.stdout + run.stderr
+
+
+def test_fluid_step_larger_than_the_coupling_interval_is_refused(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path, "--interval", "5e-6")
+    assert run.returncode != 0 and record is None
+    assert "the fluid time step 1e-05 s (system/controlDict deltaT) is larger than the coupling interval 5e-06 s" \
+        in run.stdout + run.stderr
+
+
+def test_fluid_step_above_the_relaxation_time_warns(tmp_path):
+    run, record = drive(case(tmp_path), tmp_path, "--small")
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "RuntimeWarning: FoamCoupling: the fluid step 1e-05 s exceeds the particle relaxation time 1.38889e-06 s" \
+        in run.stderr
+
+
+def test_two_fluid_ranks_give_the_same_first_exchange(tmp_path):
+    run, record = drive(case(tmp_path, procs=2), tmp_path, "--procs", "2")
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert record["fluidProcs"] == 2
+    expected = stokes_drag(record, 0) + buoyancy(record)
+    np.testing.assert_allclose(record["forces"][0], expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
