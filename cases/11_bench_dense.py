@@ -146,8 +146,8 @@ def main():
             per_step = 1e9 / (count * steps)
             case.record(f"{count} spheres, {steps} steps: Talus speed over {name}, 1 thread", c.ratio,
                         f"{peer.label} on the same packing, same invocation", target, comparison=">=",
-                        suffix=f"dense-{name}", ours_ns_per_particle_step=c.ours * per_step,
-                        theirs_ns_per_particle_step=c.theirs * per_step, ratio=c.ratio, unit="s")
+                        suffix=f"dense-{name}", peer=peer.label, ours=c.ours * per_step,
+                        theirs=c.theirs * per_step, ratio=c.ratio, unit="ns per particle-step")
             print(f"{name}: Talus {c.ours * per_step:.0f} ns, {name} {c.theirs * per_step:.0f} ns per "
                   f"particle-step: {c.ratio:.2f}x")
 
