@@ -2,7 +2,7 @@
 (`yade -n -x`, getStressAndTangent) and in Talus (form="yade" and the full form): the spheres of
 periodic_packing.json without the periodic cell, each given a deterministic velocity, after one
 step (fresh contacts get their first shear increment from the velocities). Prints one JSON
-line `TANGENT {...}` (the volume is the packing's bounding box)."""
+line `RESULT {...}` (talus.dem.twin) (the volume is the packing's bounding box)."""
 import json
 
 import numpy as np
@@ -40,5 +40,5 @@ else:
     full, shearing = None, None
 tangent = np.array(tangent)
 tangent = np.triu(tangent) + np.triu(tangent, 1).T     # Yade fills the upper triangle only
-print("TANGENT " + json.dumps({"stress": np.array(stress).tolist(), "tangent": tangent.tolist(), "full": full,
+print("RESULT " + json.dumps({"stress": np.array(stress).tolist(), "tangent": tangent.tolist(), "full": full,
                                "shearing": shearing}))

@@ -1,6 +1,6 @@
 """A dense periodic packing (150 spheres, stored in periodic_packing.json, sheared cell): one
 step of contact forces and the homogenised stress, written so the same file runs in Yade
-(`yade -n -x`) and in Talus. Prints getStress() and the number of contacts."""
+(`yade -n -x`) and in Talus. Prints getStress() and the number of contacts as `RESULT {...}` (talus.dem.twin)."""
 import json
 
 import numpy as np
@@ -24,4 +24,4 @@ O.engines = [
 ]
 O.dt = 1e-12
 O.step()
-print("STRESS " + json.dumps({"stress": np.array(getStress()).tolist(), "contacts": avgNumInteractions()}))
+print("RESULT " + json.dumps({"stress": np.array(getStress()).tolist(), "contacts": avgNumInteractions()}))

@@ -1,11 +1,5 @@
 """Periodic cells: contacts across the boundary, homogeneous deformation of the cell and of the
 particles (checked against Yade step by step), stress equal to Yade's on a sheared cell."""
-import json
-import math
-import os
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -13,7 +7,7 @@ import pytest
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
-                       NewtonIntegrator, Scene, getStress, sphere, wall)
+                       NewtonIntegrator, Scene, getStress, sphere, twin, wall)
 
 HERE = Path(__file__).parent
 LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
@@ -95,15 +89,10 @@ def test_rigid_rotation_of_the_cell_spins_the_particles_and_makes_no_shear():
     assert ratio < 1e-3 * c["ks"] / c["kn"] * angle
 
 
-@pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed (./setup.sh installs it)")
-def test_stress_of_a_sheared_periodic_packing_equals_yades(build_dir):
-    def stress(cmd, env=None):
-        done = subprocess.run(cmd, capture_output=True, text=True, cwd=HERE, env=env, timeout=300)
-        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
-        line = next(l for l in done.stdout.splitlines() if l.startswith("STRESS "))
-        return json.loads(line[len("STRESS "):])
-    ours = stress([sys.executable, "periodic_stress.py"], env={**os.environ, "PYTHONPATH": str(build_dir / "python")})
-    yade = stress(["yade", "-n", "-j1", "-x", "periodic_stress.py"])
+@pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
+def test_stress_of_a_sheared_periodic_packing_equals_yades():
+    ours = twin.run(HERE / "periodic_stress.py", {}, "talus", timeout=300)
+    yade = twin.run(HERE / "periodic_stress.py", {}, "yade", timeout=300)
     assert ours["contacts"] == yade["contacts"] > 2
     scale = np.abs(yade["stress"]).max()
     assert np.abs(np.array(ours["stress"]) - np.array(yade["stress"])).max() < 1e-12 * scale

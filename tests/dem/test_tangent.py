@@ -1,10 +1,6 @@
 """Contact-stiffness tangent operator (getStressAndTangent): exact on a simple cubic lattice, and
 predicting the stress change of a dense periodic packing under small affine strains."""
 import json
-import os
-import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -12,7 +8,7 @@ import pytest
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
-                       NewtonIntegrator, Scene, getStress, getStressAndTangent, sphere)
+                       NewtonIntegrator, Scene, getStress, getStressAndTangent, sphere, twin)
 
 HERE = Path(__file__).parent
 
@@ -90,15 +86,12 @@ def force_rotation(S, E):
     return voigt(total / S.cell.volume)
 
 
-@pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed (./setup.sh installs it)")
-def test_yade_form_equals_yades_get_stress_and_tangent(build_dir):
-    def run(cmd, env=None):
-        done = subprocess.run(cmd, capture_output=True, text=True, cwd=HERE, env=env, timeout=300)
-        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
-        line = next(l for l in done.stdout.splitlines() if l.startswith("TANGENT "))
-        return {k: np.array(v) if isinstance(v, list) else v for k, v in json.loads(line[len("TANGENT "):]).items()}
-    ours = run([sys.executable, "packing_tangent.py"], env={**os.environ, "PYTHONPATH": str(build_dir / "python")})
-    yade = run(["yade", "-n", "-j1", "-x", "packing_tangent.py"])
+@pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
+def test_yade_form_equals_yades_get_stress_and_tangent():
+    def run(program):
+        result = twin.run(HERE / "packing_tangent.py", {}, program, timeout=300)
+        return {k: np.array(v) if isinstance(v, list) else v for k, v in result.items()}
+    ours, yade = run("talus"), run("yade")
     assert ours["shearing"] > 100                      # the shear part of Yade's form is exercised
     assert np.abs(ours["tangent"] - yade["tangent"]).max() < 1e-9 * np.abs(yade["tangent"]).max()
     assert np.abs(ours["stress"] - yade["stress"]).max() < 1e-6 * np.abs(yade["stress"]).max()
