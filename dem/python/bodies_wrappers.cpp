@@ -49,6 +49,26 @@ void talus_wrap_bodies(py::module_& m)
       throw std::invalid_argument("body " + std::to_string(id) + " is not a clump");
     return s.bodies.clumps[static_cast<std::size_t>(s.bodies.shapeIndex[i])].members;
   });
+  // What a script reads as `b.shape.<attribute>` (talus.dem.shapes): the per-kind geometry.
+  m.def("shape_data", [](const Scene& s, BodyId id) {
+    s.checkBody(id);
+    const auto i = static_cast<std::size_t>(id);
+    const auto k = static_cast<std::size_t>(s.bodies.shapeIndex[i]);
+    py::dict d;
+    switch (s.bodies.shape[i])
+    {
+    case ShapeKind::Wall:
+      d["axis"] = s.bodies.walls[k].axis;
+      d["sense"] = s.bodies.walls[k].sense;
+      break;
+    case ShapeKind::Facet:
+      d["vertices"] = std::vector<Vec3>(s.bodies.facets[k].vertices.begin(), s.bodies.facets[k].vertices.end());
+      d["normal"] = s.bodies.facets[k].normal;
+      break;
+    default: break;
+    }
+    return d;
+  });
   m.def("box_extents", [](const Scene& s, BodyId id) {
     s.checkBody(id);
     const auto i = static_cast<std::size_t>(id);

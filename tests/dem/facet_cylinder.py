@@ -8,9 +8,5 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
 
 O.bodies.append(geom.facetCylinder((0.1, 0.2, 0.3), 0.5, 0.8, segmentsNumber=7, wallMask=7))
-try:
-    vs = [[list(b.state.pos + b.state.ori * v) for v in b.shape.vertices] for b in O.bodies]
-except AttributeError:
-    from talus import _dem
-    vs = _dem.facet_arrays(O._cpp)["vertices"].tolist()
+vs = [[list(b.state.pos + b.state.ori * v) for v in b.shape.vertices] for b in O.bodies]
 print("VERTS " + json.dumps(vs))

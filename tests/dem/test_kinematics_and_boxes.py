@@ -104,7 +104,7 @@ def test_sphere_resting_on_box_and_dynamic_box():
     b = S.bodies[free]
     assert b.state.mass == pytest.approx(1000 * 8 * 0.1 * 0.2 * 0.3)
     np.testing.assert_allclose(b.state.inertia, b.state.mass / 3 * np.array([0.13, 0.1, 0.05]), rtol=1e-14)
-    np.testing.assert_allclose(b.extents, (0.1, 0.2, 0.3))
+    np.testing.assert_allclose(b.shape.extents, (0.1, 0.2, 0.3))
     base(S, gravity=(0, 0, -9.81), damping=0.5)
     S.dt = 0.2 * PWaveTimeStep(S)
     S.run(6000)
@@ -157,7 +157,7 @@ def test_erase_during_a_run():
     # clumps: erasing a member shrinks the clump, erasing the clump frees the others
     cid, members = S.bodies.appendClumped([sphere((3, 0, 1), 0.1), sphere((3.2, 0, 1), 0.1), sphere((3.4, 0, 1), 0.1)])
     S.bodies.erase(members[0])
-    assert S.bodies[cid].members == members[1:]
+    assert S.bodies[cid].shape.members == members[1:]
     assert S.bodies[cid].state.pos[0] == pytest.approx(3.3)
     S.bodies.erase(cid)
     assert all(S.bodies[m].isStandalone for m in members[1:])

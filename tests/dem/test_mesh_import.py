@@ -6,7 +6,7 @@ import warnings
 import numpy as np
 import pytest
 
-from talus.dem import FrictMat, Scene, ymport
+from talus.dem import Facet, FrictMat, Scene, ymport
 
 TETRA = np.array([[(0, 0, 0), (0, 1, 0), (1, 0, 0)], [(0, 0, 0), (1, 0, 0), (0, 0, 1)],
                   [(0, 0, 0), (0, 0, 1), (0, 1, 0)], [(1, 0, 0), (0, 1, 0), (0, 0, 1)]], dtype=float)
@@ -35,7 +35,7 @@ def test_stl_ascii_and_binary(tmp_path):
     S = Scene()
     S.materials.append(FrictMat())
     ids = S.bodies.append(ymport.stl(str(tmp_path / "b.stl"), scale=2.0, shift=(0, 0, 1)))
-    assert len(ids) == 4 and all(S.bodies[i].shape == "Facet" for i in ids)
+    assert len(ids) == 4 and all(isinstance(S.bodies[i].shape, Facet) for i in ids)
     from talus import _dem
     np.testing.assert_allclose(_dem.facet_arrays(S._cpp)["vertices"], TETRA * 2 + (0, 0, 1), atol=1e-15)
 

@@ -16,6 +16,8 @@
 from talus import plot
 from talus.dem import geom, pack, progress, ymport
 from talus.dem.bodies import Body, BodySpec, aabbWalls, box, facet, sphere, wall
+from talus.dem.quaternion import Quaternion
+from talus.dem.shapes import Box, Clump, Facet, Shape, Sphere, Wall
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
@@ -32,8 +34,8 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
-__all__ = ["O", "Scene", "Body", "BodySpec", "sphere", "wall", "facet", "box", "geom", "pack", "ymport", "Material",
-           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3",
+__all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "ymport", "Material",
+           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "Quaternion",
            "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "porosity",
            "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",

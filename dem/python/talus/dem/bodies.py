@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 import numpy as np
 
 from talus import _dem
+from talus.dem.quaternion import Quaternion
+from talus.dem.shapes import Shape, shape_of
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -122,7 +124,7 @@ class State:
     vel = property(lambda s: s._row("vel").copy(), lambda s, v: s._set("vel", v))
     inertia = property(lambda s: s._row("inertia").copy())
     mass = property(lambda s: float(s._row("mass")))
-    ori = property(lambda s: s._scene._cpp.ori(s._id), doc="orientation quaternion (w, x, y, z)")
+    ori = property(lambda s: Quaternion(s._scene._cpp.ori(s._id)), doc="orientation (Quaternion: w, x, y, z; ``ori * v`` rotates v)")
 
     @property
     def angVel(self):
@@ -152,7 +154,7 @@ class State:
 
 
 class Body:
-    """One body of a scene (Yade's Body): ``id``, ``state``, ``shape`` radius, ``dynamic``."""
+    """One body of a scene (Yade's Body): ``id``, ``state``, ``shape``, ``material``, ``dynamic``."""
 
     __slots__ = ("_scene", "id", "state")   # unknown attributes are errors (see State)
 
@@ -174,12 +176,13 @@ class Body:
         return float(self._scene._cpp.radius()[self.id])
 
     @property
-    def shape(self) -> str:
-        return self._scene._cpp.shapeKind(self.id)
+    def shape(self) -> Shape:
+        """The body's shape (talus.dem.shapes): ``b.shape.radius``, ``isinstance(b.shape, Sphere)``."""
+        return shape_of(self._scene, self.id)
 
     @property
     def isClump(self) -> bool:
-        return self.shape == "Clump"
+        return self._scene._cpp.shapeKind(self.id) == "Clump"
 
     @property
     def clumpId(self) -> int:
@@ -193,16 +196,6 @@ class Body:
     @property
     def isStandalone(self) -> bool:
         return not self.isClump and self.clumpId < 0
-
-    @property
-    def members(self) -> list[int]:
-        """Ids of a clump's members."""
-        return list(_dem.clump_members(self._scene._cpp, self.id))
-
-    @property
-    def extents(self):
-        """Half-sizes of a box."""
-        return np.array(_dem.box_extents(self._scene._cpp, self.id))
 
     @property
     def material(self):

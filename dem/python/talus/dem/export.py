@@ -36,6 +36,7 @@ import numpy as np
 from talus import _dem
 from talus.dem.engines import PyRunner
 from talus.dem.io import owner_scene
+from talus.dem.quaternion import Quaternion
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -175,18 +176,11 @@ def write_facets(scene: "Scene", path: str) -> int:
     return len(ids)
 
 
-def _rotation(q) -> np.ndarray:
-    w, x, y, z = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
-
-
 def write_boxes(scene: "Scene", path: str) -> int:
     """Write the live boxes of ``scene`` to ``path`` as hexahedra; returns their number."""
     ids = _live(scene, _BOX)
     cpp = scene._cpp
-    corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ _rotation(cpp.ori(int(i))).T
+    corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ Quaternion(cpp.ori(int(i))).toRotationMatrix().T
                for i in ids]
     data = {"id": ids.astype(np.int32), "materialId": cpp.materialIds()[ids].astype(np.int32),
             "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids], "force": cpp.force()[ids]}

@@ -1,0 +1,86 @@
+"""Shapes as Yade scripts read them: ``b.shape.radius``, ``isinstance(b.shape, Sphere)``,
+``b.shape.vertices``. Each is a read-only view of one body's geometry in the scene's arrays
+(Talus stores shapes per kind in C++; nothing is copied when a body is indexed)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from talus import _dem
+
+
+class Shape:
+    """Base of the shape views; ``str(shape)`` is the kind's name (``"Sphere"``, ...)."""
+
+    __slots__ = ("_scene", "_id")
+
+    def __init__(self, scene, id: int):
+        self._scene, self._id = scene, id
+
+    def _data(self) -> dict:
+        return _dem.shape_data(self._scene._cpp, self._id)
+
+    def __str__(self):
+        return type(self).__name__
+
+    def __repr__(self):
+        return f"<{type(self).__name__} of body {self._id}>"
+
+
+class Sphere(Shape):
+    __slots__ = ()
+
+    @property
+    def radius(self) -> float:
+        return float(self._scene._cpp.radius()[self._id])
+
+
+class Wall(Shape):
+    """An infinite plane normal to ``axis``; ``sense`` -1/+1/0: which side interacts."""
+    __slots__ = ()
+
+    @property
+    def axis(self) -> int:
+        return int(self._data()["axis"])
+
+    @property
+    def sense(self) -> int:
+        return int(self._data()["sense"])
+
+
+class Facet(Shape):
+    """A triangle; ``vertices`` and ``normal`` in the body's frame, relative to its position (as Yade)."""
+    __slots__ = ()
+
+    @property
+    def vertices(self) -> list[np.ndarray]:
+        return [np.array(v) for v in self._data()["vertices"]]
+
+    @property
+    def normal(self) -> np.ndarray:
+        return np.array(self._data()["normal"])
+
+
+class Box(Shape):
+    __slots__ = ()
+
+    @property
+    def extents(self) -> np.ndarray:
+        """Half-sizes along the body's axes."""
+        return np.array(_dem.box_extents(self._scene._cpp, self._id))
+
+
+class Clump(Shape):
+    __slots__ = ()
+
+    @property
+    def members(self) -> list[int]:
+        """Ids of the member bodies."""
+        return list(_dem.clump_members(self._scene._cpp, self._id))
+
+
+_BY_KIND = {cls.__name__: cls for cls in (Sphere, Wall, Facet, Box, Clump)}
+
+
+def shape_of(scene, id: int) -> Shape:
+    return _BY_KIND[scene._cpp.shapeKind(id)](scene, id)
