@@ -7,11 +7,12 @@ Set-up:   cases/yade/triaxial_walls.py (Yade's triax tutorial, session 1), run u
           by growing the spheres (internalCompaction), then compressed along y at 0.02/s with
           -10 kPa on x and z. FrictMat E 5 MPa, nu 0.5, friction 5 deg while compacting (a dense
           sample), 30 deg (setContactFriction) while shearing; GlobalStiffnessTimeStepper. Quick: 500
-          spheres to a log strain of -0.1; full: 2000 spheres to -0.15; seeds 1..4 each, two runs at a
+          spheres; full: 2000 spheres; both to a log strain of -0.15, seeds 1..4 each, two runs at a
           time. Yade 2023.02a runs the same file (skipped if not installed). Single samples of 500
           spheres scatter by about 5 % in peak ratio (chaotic divergence), hence the mean over seeds.
 Checked:  dem.triaxial-walls.peak: relative difference of the peak stress ratio s1/s3 (mean over
-          seeds) from Yade's (<= 3 %).
+          seeds) from Yade's: <= 3 % in the full run (measured 0.65 %); <= 8 % in the quick run,
+          whose 500-sphere samples scatter by about 5 % each, so a 4-seed mean by about 3.5 %.
           dem.triaxial-walls.steady: axial strain at the peak over the final strain (<= 0.9: a peak
           is reached and followed by softening towards a steady state, not still rising).
           dem.triaxial-walls.confinement: worst relative deviation of the lateral wall stresses
@@ -51,7 +52,7 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     case = results.Case("dem.triaxial-walls", quick=args.quick, folder=args.results)
-    num, end = (500, -0.1) if args.quick else (2000, -0.15)
+    num, end = (500 if args.quick else 2000), -0.15
     seeds = [1, 2, 3, 4]
     programs = ["talus", "yade"] if twin.yade_available() else ["talus"]
     jobs = [(program, seed) for seed in seeds for program in programs]
@@ -75,7 +76,7 @@ def main():
     if theirs:
         peak_t = float(np.mean([t["peak"] for t in theirs]))
         case.record("relative difference of the peak stress ratio s1/s3 from Yade's (mean over seeds)",
-                    abs(peak_o / peak_t - 1), "yade 2023.02a on the same scenario file", 0.03, suffix="peak",
+                    abs(peak_o / peak_t - 1), "yade 2023.02a on the same scenario file", 0.08 if args.quick else 0.03, suffix="peak",
                     ours=peak_o, theirs=peak_t, seeds=seeds, spheres=num,
                     ours_each=[o["peak"] for o in ours], theirs_each=[t["peak"] for t in theirs])
         por_o, por_t = np.mean([o["porosity"] for o in ours]), np.mean([t["porosity"] for t in theirs])

@@ -225,11 +225,12 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   c.contactPoint = contactPoint;
   c.refR1 = r1;
   c.refR2 = r2;
-  // Between two spheres the translational part is scaled by alpha = (r1 + r2) / (r1 + r2 - u),
-  // as Yade's avoidGranularRatcheting (McNamara et al.), so that rolling without sliding gives
+  // Between two spheres, and between a wall and a sphere (whose "radius" is the sphere's), the
+  // translational part is scaled by alpha = (r1 + r2) / (r1 + r2 - u), as Yade's
+  // avoidGranularRatcheting and noRatch (McNamara et al.), so that rolling without sliding gives
   // no shear increment.
   Vec3 incident;
-  if (c.kind == ContactGeometryKind::SphereSphere)
+  if (c.kind == ContactGeometryKind::SphereSphere || c.kind == ContactGeometryKind::WallSphere)
   {
     const double alpha = (r1 + r2) / (r1 + r2 - penetration);
     incident = alpha * (b.vel[i2] + shiftVel - b.vel[i1]) + b.angVel[i2].cross(-r2 * normal) - b.angVel[i1].cross(r1 * normal);

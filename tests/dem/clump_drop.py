@@ -13,8 +13,7 @@ import sys
 
 # Frictionless by default: the landing, tipping and rocking are decided by normal forces, member
 # torques and the aspherical rotation alone. With "friction" as argument (Yade: -x script
-# friction), FrictMat's default friction: shear history then differs from Yade's at 1e-4 of a
-# step's shear increment (see docs/dem.md), which the tipping amplifies.
+# friction), FrictMat's default friction: the shear history at the wall then matters too.
 friction = "friction" in sys.argv[1:]
 O.materials.append(FrictMat(young=1e9, poisson=0.25, density=1000, frictionAngle=0.5 if friction else 0.0))
 O.bodies.append(wall(0, axis=2, sense=1))
