@@ -21,9 +21,7 @@ Produces: dem.bench.dense-yade (Talus over Yade, target >= 5), dem.bench.dense-l
 """
 import math
 import os
-import re
 import shutil
-import sys
 import tempfile
 from pathlib import Path
 

@@ -102,7 +102,7 @@ def main():
         ax.loglog(r["wall"], max(r["error"], 1e-4), marker, color=color)
         ax.annotate(f"T={r['period']:g}, dt={r['dt_fluid']:g}", (r["wall"], max(r["error"], 1e-4)),
                     textcoords="offset points", xytext=(4, 2), fontsize=7)
-    ax.axvline(runs[0]["wall"], color="gray", ls="--", lw=0.8, label=f"reference (T=1e-3 s) wall time")
+    ax.axvline(runs[0]["wall"], color="gray", ls="--", lw=0.8, label="reference (T=1e-3 s) wall time")
     ax.set_xlabel(f"wall time of the {window:g} s coupled window (s)")
     ax.set_ylabel("relative error of the mean transport rate")
     ax.set_title("Coupling period / fluid step: error vs cost (red: run-time warning)")

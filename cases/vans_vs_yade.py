@@ -23,7 +23,6 @@ Produces: records vans.yade-parity and vans.bench.fluid-resolution; chart
           difference).
 """
 import json
-import math
 import shutil
 import subprocess
 import tempfile

@@ -20,4 +20,4 @@ O.engines = [
 O.dt = 5e-5  # 0.01 PWaveTimeStep(), written out so both programs use the same bits
 heights = []
 O.run(30001, True)
-print("TRAJECTORY " + json.dumps({"dt": O.dt, "z": heights}))
+print("RESULT " + json.dumps({"dt": O.dt, "z": heights}))

@@ -23,4 +23,4 @@ for name, kw in CALLS.items():
     n = sp.makeCloud(**kw)
     out[name] = {"n": n, "spheres": [[float(c[0]), float(c[1]), float(c[2]), float(r)] for c, r in sp],
                  "scaling": float(sp.appliedPsdScaling) if hasattr(sp, "appliedPsdScaling") else 1.0}
-print("CLOUDS " + json.dumps(out))
+print("RESULT " + json.dumps(out))

@@ -3,18 +3,17 @@ on one sphere, tips over and settles, so translation, exact aspherical rotation 
 forces all matter. Runs unchanged in Yade (`yade -n -x`) and in Talus (`talus run`); prints the
 clump's centroid, member positions and the clump's mass and principal moments as JSON."""
 import json
+import os
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
 except NameError:
     from talus.dem import *  # noqa: F401,F403
 
-import sys
-
 # Frictionless by default: the landing, tipping and rocking are decided by normal forces, member
-# torques and the aspherical rotation alone. With "friction" as argument (Yade: -x script
-# friction), FrictMat's default friction: the shear history at the wall then matters too.
-friction = "friction" in sys.argv[1:]
+# torques and the aspherical rotation alone. With {"friction": true} in $TALUS_SCENARIO
+# (talus.dem.twin), FrictMat's default friction: the shear history at the wall then matters too.
+friction = json.loads(os.environ.get("TALUS_SCENARIO", "{}")).get("friction", False)
 O.materials.append(FrictMat(young=1e9, poisson=0.25, density=1000, frictionAngle=0.5 if friction else 0.0))
 O.bodies.append(wall(0, axis=2, sense=1))
 clumpId, memberIds = O.bodies.appendClumped([sphere((0, 0, 0.5), 0.1), sphere((0.15, 0, 0.55), 0.08),
@@ -39,4 +38,4 @@ def record():
 O.run(40001, True)
 c = O.bodies[clumpId].state
 track.update(dt=O.dt, mass=c.mass, inertia=sorted(list(c.inertia)))
-print("TRAJECTORY " + json.dumps(track))
+print("RESULT " + json.dumps(track))

@@ -30,4 +30,4 @@ O.engines = [
 O.dt = 1e-6
 track = []
 O.run(60001, True)
-print("TRAJECTORY " + json.dumps({"dt": O.dt, "x": track}))
+print("RESULT " + json.dumps({"dt": O.dt, "x": track}))

@@ -9,4 +9,4 @@ except NameError:
 
 O.bodies.append(geom.facetCylinder((0.1, 0.2, 0.3), 0.5, 0.8, segmentsNumber=7, wallMask=7))
 vs = [[list(b.state.pos + b.state.ori * v) for v in b.shape.vertices] for b in O.bodies]
-print("VERTS " + json.dumps(vs))
+print("RESULT " + json.dumps(vs))

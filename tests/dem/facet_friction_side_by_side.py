@@ -24,4 +24,4 @@ positions = []
 for k in range(60):
     O.run(500, True)
     positions.append([float(x) for i in spheres for x in O.bodies[i].state.pos])
-print("TRAJECTORY " + json.dumps(positions))
+print("RESULT " + json.dumps(positions))

@@ -27,4 +27,4 @@ O.engines = [
 O.dt = 2e-6
 track = []
 O.run(60001, True)
-print("TRAJECTORY " + json.dumps({"dt": O.dt, "x": track}))
+print("RESULT " + json.dumps({"dt": O.dt, "x": track}))

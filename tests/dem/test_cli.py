@@ -1,5 +1,4 @@
 """The `talus` command: `talus run` behaves like `yade -x script.py`."""
-import os
 
 
 def test_version_and_info(talus_cmd):

@@ -1,16 +1,13 @@
 """Clumps: rigid aggregates of spheres (Yade's appendClumped), their mass properties, exact
 rotation of aspherical bodies, contact forces on members, and the comparison with Yade."""
-import json
 import math
-import os
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from talus.dem import twin
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, sphere, wall)
 
@@ -130,19 +127,11 @@ def test_members_never_touch_each_other_and_blocked_rotation():
 
 @pytest.mark.skipif(yade is None, reason="yade is not installed (./setup.sh installs it)")
 @pytest.mark.parametrize("friction", [False, True])
-def test_clump_drop_matches_yade(build_dir, friction):
+def test_clump_drop_matches_yade(friction):
     """The same clump dropped on a wall in Yade and Talus, frictionless and frictional: member
     positions every 200 steps through the landing, tipping and rocking agree within 1e-6
     (measured 2e-15 and 4e-14)."""
-    def trajectory(cmd, env=None):
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=600, env=env, cwd=HERE)
-        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
-        line = next(l for l in done.stdout.splitlines() if l.startswith("TRAJECTORY "))
-        return json.loads(line[len("TRAJECTORY "):])
-    env = {**os.environ, "PYTHONPATH": str(build_dir / "python"), "OMP_NUM_THREADS": "1"}
-    args = ["friction"] if friction else []
-    ours = trajectory([sys.executable, str(HERE / "clump_drop.py"), *args], env=env)
-    theirs = trajectory([yade, "-n", "-j1", "-x", str(HERE / "clump_drop.py"), *args])
+    ours, theirs = (twin.run(HERE / "clump_drop.py", {"friction": friction}, who) for who in ("talus", "yade"))
     assert ours["mass"] == pytest.approx(theirs["mass"], rel=1e-13)
     np.testing.assert_allclose(ours["inertia"], theirs["inertia"], rtol=1e-12)
     m_ours, m_yade = np.array(ours["members"]), np.array(theirs["members"])

@@ -2,7 +2,6 @@
 contact, energy of elastic collisions, the friction threshold on an incline."""
 import math
 
-import numpy as np
 import pytest
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,

@@ -4,9 +4,7 @@ import base64
 import io as stdio
 import shutil
 import subprocess
-import sys
 import xml.etree.ElementTree as ET
-from pathlib import Path
 
 import numpy as np
 import pytest

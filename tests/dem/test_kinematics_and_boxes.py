@@ -1,14 +1,13 @@
 """Kinematic bodies (imposed velocities, Translation/Rotation/HarmonicMotion engines), boxes
 (Box-sphere contacts on faces, edges and corners), geom.facetCylinder, erase during a run."""
-import json
 import math
 import shutil
-import subprocess
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from talus.dem import twin
 from talus.dem import (FrictMat, ForceResetter, HarmonicMotionEngine, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
                        PWaveTimeStep, PyRunner, RotationEngine, Scene, TranslationEngine, box, facet, geom, sphere)
@@ -126,15 +125,8 @@ def test_facet_cylinder_geometry():
 
 
 @pytest.mark.skipif(yade is None, reason="yade is not installed")
-def test_facet_cylinder_matches_yade(build_dir):
-    import os
-    import sys
-    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
-    out = {}
-    for who, cmd in (("talus", [sys.executable, "facet_cylinder.py"]), ("yade", [yade, "-n", "-x", "facet_cylinder.py"])):
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=300, cwd=HERE, env=env if who == "talus" else None)
-        line = next(l for l in done.stdout.splitlines() if l.startswith("VERTS "))
-        out[who] = np.array(json.loads(line[6:]))
+def test_facet_cylinder_matches_yade():
+    out = {who: np.array(twin.run(HERE / "facet_cylinder.py", {}, who)) for who in ("talus", "yade")}
     assert out["talus"].shape == out["yade"].shape == (28, 3, 3)
     np.testing.assert_allclose(out["talus"], out["yade"], atol=1e-14)
 

@@ -1,7 +1,6 @@
 """ymport: STL (ASCII and binary) and OpenFOAM polyMesh boundaries as facets, with errors naming
 the file and the line."""
 import struct
-import warnings
 
 import numpy as np
 import pytest

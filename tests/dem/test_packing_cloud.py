@@ -1,16 +1,13 @@
 """SpherePack.makeCloud: counts, size distributions, no overlaps, determinism, and the same
 clouds as Yade's for the same seed; save/load and toSimulation."""
 import itertools
-import json
-import os
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from talus.dem import twin
 from talus.dem import *  # noqa: F401,F403
 
 HERE = Path(__file__).parent
@@ -125,15 +122,8 @@ def test_save_load_round_trip(tmp_path):
 
 
 @pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed")
-def test_seeded_clouds_equal_yades(build_dir):
-    def run(cmd, env=None):
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env, cwd=HERE)
-        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
-        line = next(l for l in done.stdout.splitlines() if l.startswith("CLOUDS "))
-        return json.loads(line[len("CLOUDS "):])
-    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
-    ours = run([sys.executable, str(HERE / "cloud_side_by_side.py")], env=env)
-    theirs = run([shutil.which("yade"), "-n", "-j1", "-x", str(HERE / "cloud_side_by_side.py")])
+def test_seeded_clouds_equal_yades():
+    ours, theirs = (twin.run(HERE / "cloud_side_by_side.py", {}, who) for who in ("talus", "yade"))
     for name in theirs:
         assert ours[name]["n"] == theirs[name]["n"], name
         a, b = np.array(ours[name]["spheres"]), np.array(theirs[name]["spheres"])

@@ -1,16 +1,13 @@
 """GlobalStiffnessTimeStepper and RayleighWaveTimeStep: analytic values on one contact, Yade's
 values on identical input, the update rules (default step, 5 % growth cap, maxDt, O.dt by hand)."""
-import json
 import math
-import os
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from talus.dem import twin
 from talus.dem import *  # noqa: F401,F403
 
 HERE = Path(__file__).parent
@@ -88,14 +85,8 @@ def test_rayleigh_time_step_formula():
 
 
 @pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed")
-def test_time_steps_equal_yades(build_dir):
-    def run(cmd, env=None):
-        done = subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=env, cwd=HERE)
-        assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
-        return json.loads(next(l for l in done.stdout.splitlines() if l.startswith("DT "))[3:])
-    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
-    ours = run([sys.executable, str(HERE / "timestepper_side_by_side.py")], env=env)
-    theirs = run([shutil.which("yade"), "-n", "-j1", "-x", str(HERE / "timestepper_side_by_side.py")])
+def test_time_steps_equal_yades():
+    ours, theirs = (twin.run(HERE / "timestepper_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert ours["n"] == theirs["n"]
     assert ours["dt"][0] == pytest.approx(theirs["dt"][0], rel=1e-14)   # the same contacts, the same step
     assert np.allclose(ours["dt"], theirs["dt"], rtol=1e-12, atol=0)

@@ -27,4 +27,4 @@ dts = []
 for k in range(12):
     O.step()
     dts.append(O.dt)
-print("DT " + json.dumps({"dt": dts, "pwave": PWaveTimeStep(), "rayleigh": RayleighWaveTimeStep(), "n": len(O.bodies)}))
+print("RESULT " + json.dumps({"dt": dts, "pwave": PWaveTimeStep(), "rayleigh": RayleighWaveTimeStep(), "n": len(O.bodies)}))
