@@ -50,8 +50,6 @@ BodyId Scene::addSphere(const Vec3& center, double radius, int material)
 BodyId Scene::addWall(double position, int axis, int sense, int material)
 {
   const std::string which = "wall #" + std::to_string(bodies.size());
-  if (periodic)
-    throw std::invalid_argument(which + ": walls are not supported in a periodic scene");
   if (axis < 0 || axis > 2)
     throw std::invalid_argument(which + ": axis must be 0, 1 or 2, got " + std::to_string(axis));
   if (sense < -1 || sense > 1)
@@ -147,8 +145,10 @@ void Scene::setPeriodic(bool on)
       if (!bodies.alive[i])
         continue;
       const std::string which = "body " + std::to_string(i);
+      if (bodies.shape[i] == ShapeKind::Wall)
+        continue; // an infinite plane: no periodic image of it is needed (see addWall)
       if (bodies.shape[i] != ShapeKind::Sphere)
-        throw std::invalid_argument(which + ": only spheres are supported in a periodic scene");
+        throw std::invalid_argument(which + ": only spheres and walls are supported in a periodic scene");
       checkInsideCell(which, bodies.pos[i]);
     }
   periodic = on;

@@ -51,6 +51,9 @@ public:
   /// @throws std::invalid_argument naming the offending value (radius, centre, material)
   BodyId addSphere(const Vec3& center, double radius, int material);
   /// Add an infinite wall x[axis] = position, interacting on side `sense` (-1, 0, +1); fixed.
+  /// In a periodic scene a wall meets the bodies themselves, never their periodic images: put it
+  /// across a direction in which the cell is wider than the sample (a bed in a tall cell, the
+  /// side walls of a channel in a wide one), as Yade's periodic scenes with walls do.
   BodyId addWall(double position, int axis, int sense, int material);
   /// Add a fixed triangular facet with vertices a, b, c (world coordinates).
   /// @throws std::invalid_argument if the triangle is degenerate or not finite

@@ -7,7 +7,7 @@ import pytest
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
-                       NewtonIntegrator, Scene, getStress, sphere, twin, wall)
+                       NewtonIntegrator, Scene, facet, getStress, sphere, twin, wall)
 
 HERE = Path(__file__).parent
 LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
@@ -102,8 +102,6 @@ def test_bad_periodic_input():
     S = periodic_scene()
     with pytest.raises(ValueError, match=r"sphere #0: centre .* is outside the periodic cell"):
         S.bodies.append(sphere((1.2, 0.5, 0.5), 0.1))
-    with pytest.raises(ValueError, match="walls are not supported in a periodic scene"):
-        S.bodies.append(wall(0, axis=2))
     with pytest.raises(ValueError, match="positive volume"):
         S.cell.hSize = Matrix3(1, 0, 0, 0, 0, 0, 0, 0, 1)
     with pytest.raises(ValueError, match="finite 3x3"):
@@ -113,3 +111,49 @@ def test_bad_periodic_input():
     with pytest.raises(ValueError, match="body 0: centre .* is outside the periodic cell"):
         T.periodic = True
     assert not T.periodic
+
+
+def spheres_on_a_wall(periodic: bool):
+    """Spheres bouncing and rolling on a bed wall, crossing the cell's side boundaries."""
+    S = Scene()
+    if periodic:
+        S.periodic = True
+        S.cell.setBox(0.5, 0.5, 2.0)
+    S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
+    S.bodies.append(wall(0.2, axis=2, sense=1))
+    ids = S.bodies.append([sphere((0.47, 0.25, 0.2501), 0.05), sphere((0.25, 0.43, 0.2501), 0.05),
+                           sphere((0.25, 0.07, 0.27), 0.05)])
+    for i, v in zip(ids, [(1.0, 0.1, 0), (0.0, 0.5, 0), (0, -0.5, -0.5)]):
+        S.bodies[i].state.vel = v
+    S.engines = [ForceResetter(), InsertionSortCollider(),
+                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.1)]
+    S.dt = 2e-5
+    return S, ids
+
+
+def test_a_bed_wall_in_a_periodic_cell():
+    """A wall in a periodic cell meets the spheres themselves: while no two spheres touch, the
+    periodic run equals the same scene without a cell to round-off, spheres crossing the side
+    boundaries included; across a boundary, spheres then meet each other as periodic images."""
+    P, ids = spheres_on_a_wall(True)
+    F, _ = spheres_on_a_wall(False)
+    first_meeting, crossed, on_wall = None, False, set()
+    for k in range(400):
+        P.run(20)
+        F.run(20)
+        on_wall |= {c["id2"] for c in P.contacts() if c["id1"] == 0}
+        if any(c["id1"] != 0 for c in P.contacts()):
+            first_meeting = P.iter
+            break
+        np.testing.assert_allclose(P.positions()[ids], F.positions()[ids], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(P.angular_velocities()[ids], F.angular_velocities()[ids], rtol=0, atol=1e-9)
+        crossed |= P.positions()[ids[0]][0] > 0.5
+    assert crossed, "sphere 1 rolls out through x = 0.5 before the others meet"
+    assert first_meeting is not None, "spheres 2 and 3 should meet across the y boundary"
+    assert all(c["id1"] == 0 for c in F.contacts())  # without the cell they never meet
+    assert on_wall == set(ids), "all three bounce on the bed wall"
+    with pytest.raises(ValueError, match="only spheres and walls"):
+        T = Scene()
+        T.bodies.append(facet([(0, 0, 0), (1, 0, 0), (0, 1, 0)]))
+        T.periodic = True
