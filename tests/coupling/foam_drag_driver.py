@@ -1,8 +1,9 @@
 """DEM side of tests/coupling/test_foam_coupling.py, run as its own process (it starts MPI and
 spawns the fluid solver):
     foam_drag_driver.py CASE OUT.json [--nu NU] [--procs P] [--outside] [--small] [--interval SECONDS]
+                        [--solver NAME] [--exchanges K]
 
-Two spheres moving in the fluid at rest of CASE; after two exchanges it writes the forces and
+Two spheres moving in the fluid at rest of CASE; after two (K) exchanges it writes the forces and
 the particles' velocities of each exchange, their radii, and the fluid step to OUT.json."""
 import argparse
 import json
@@ -20,6 +21,8 @@ parser.add_argument("--procs", type=int, default=1)
 parser.add_argument("--outside", action="store_true", help="the second sphere starts out of the box")
 parser.add_argument("--small", action="store_true", help="radii / 10: relaxation time below the fluid step")
 parser.add_argument("--interval", type=float, default=None, help="FoamCoupling couplingInterval")
+parser.add_argument("--solver", default="talusPointForceFoam")
+parser.add_argument("--exchanges", type=int, default=2)
 args = parser.parse_args()
 case, out, nu, n_procs, outside = args.case, args.out, args.nu, args.procs, args.outside
 
@@ -33,15 +36,15 @@ s.bodies[1].state.vel = (-0.03, 0.0, 0.02)
 s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.0)]
 s.dt = 1e-6
 coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=20,
-                        couplingInterval=args.interval)
+                        couplingInterval=args.interval, solver=args.solver)
 coupling.start()
 forces, velocities = [], []
-for _ in range(2):
+for _ in range(args.exchanges):
     velocities.append(s.velocities()[:2].tolist())  # as the next exchange sends them
     s.run(coupling.substeps, True)
     forces.append(coupling.lastForces.tolist())
 coupling.stop()
 json.dump({"forces": forces, "velocities": velocities, "radii": s.radii()[:2].tolist(),
            "masses": s.masses()[:2].tolist(),
-           "substeps": coupling.substeps, "dt": s.dt, "fluidProcs": coupling.link.fluidProcs,
+           "positions": s.positions()[:2].tolist(), "substeps": coupling.substeps, "dt": s.dt, "fluidProcs": coupling.link.fluidProcs,
            "nCells": coupling.link.nCells}, open(out, "w"))
