@@ -109,7 +109,7 @@ int main(int argc, char *argv[])
         for (label i = 0; i < n; ++i)
         {
             const scalar Vp = 4.0/3.0*pi*pow3(particles[proto::kParticleDoubles*i + 6]);
-            envelope.forEach(i, [&](label c, double w) { solid[c] += w*Vp/V[c]; });
+            envelope.forEachSpread(i, [&](label c, double w) { solid[c] += w*Vp/V[c]; });
         }
         alphaNew = max(1 - solid, alphaMin);
 
@@ -121,7 +121,7 @@ int main(int argc, char *argv[])
         for (label i = 0; i < n; ++i)
         {
             double* s = &interp[kInterp*i];
-            envelope.forEach(i, [&](label c, double w)
+            envelope.forEachInterpolation(i, [&](label c, double w)
             {
                 s[0] += w*alphaNew[c];
                 for (direction k = 0; k < 3; ++k)
@@ -171,7 +171,7 @@ int main(int argc, char *argv[])
                              previousVelocity[3*i + 2]))/dt;
             const vector addedMass =
                 addedMassCoefficient*rhoF*Vp*(vector(s[10], s[11], s[12]) - dupdt);
-            envelope.forEach(i, [&](label c, double w)
+            envelope.forEachSpread(i, [&](label c, double w)
             {
                 const scalar share = w*Vp/(rhoF*V[c]);
                 Ksp[c] += share*K;
