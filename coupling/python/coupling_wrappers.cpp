@@ -55,6 +55,10 @@ PYBIND11_MODULE(_coupling, m)
            return py::make_tuple(forces, re);
          },
          py::arg("positions"), py::arg("velocities"), py::arg("radii"))
+    .def_property_readonly("boxes", &FoamLink::boxes)
+    .def_property_readonly("lastMessages", [](const FoamLink& l) { return l.lastExchange().messages; })
+    .def_property_readonly("lastDemDoubles", [](const FoamLink& l) { return l.lastExchange().demDoubles; })
+    .def_property_readonly("lastExchangeSeconds", [](const FoamLink& l) { return l.lastExchange().seconds; })
     .def("stop", &FoamLink::stop);
 
   m.def("finalize_mpi", &finalizeMpi);

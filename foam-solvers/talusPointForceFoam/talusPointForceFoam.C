@@ -59,14 +59,16 @@ int main(int argc, char *argv[])
     #include "createFields.H"
     #include "initContinuityErrs.H"
 
+    // A particle concerns the rank whose cell holds it only.
+    const scalar couplingMargin = 0;
     #include "answerDemHandshake.H"
 
     const scalar mu = (rho*nu).value();
     const vector gravity = g.value();
 
     talusFoam::ParticleLocator locator(mesh);
-    std::vector<double> particles;    // per particle x y z vx vy vz r
-    std::vector<double> reply;        // status, max Re_p, then per particle fx fy fz owned
+    std::vector<double> particles;    // per particle x y z vx vy vz r index
+    std::vector<double> reply;        // status, max Re_p, messages, then per particle fx fy fz owned
 
     Info<< "\nStarting the coupled time loop\n" << endl;
 
@@ -76,9 +78,9 @@ int main(int argc, char *argv[])
         runTime++;
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
-        locator.locate(particles, n);
+        locator.locate(particles, n, halo);
 
-        reply.assign(2 + proto::kForceDoubles*n, 0.0);
+        reply.assign(proto::kReplyHeader + proto::kForceDoubles*n, 0.0);
         S.primitiveFieldRef() = Zero;
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
@@ -97,7 +99,7 @@ int main(int argc, char *argv[])
                 -rho.value()*(4.0/3.0)*constant::mathematical::pi*pow3(r)*gravity;
             S[celli] -= drag/(rho.value()*mesh.V()[celli]);
             maxRe = max(maxRe, mag(slip)*2*r/nu.value());
-            double* f = &reply[2 + proto::kForceDoubles*i];
+            double* f = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
             f[0] = drag.x() + buoyancy.x();
             f[1] = drag.y() + buoyancy.y();
             f[2] = drag.z() + buoyancy.z();
@@ -105,6 +107,7 @@ int main(int argc, char *argv[])
         }
         reply[0] = proto::kStatusOk;
         reply[1] = maxRe;
+        reply[2] = halo.messages();
         link.send
         (
             reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, proto::kTagForces,

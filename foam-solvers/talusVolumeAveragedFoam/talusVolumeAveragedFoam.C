@@ -41,6 +41,7 @@ License
 #include "uniformDimensionedFields.H"
 
 #include <cstdio>
+#include <unordered_map>
 
 namespace proto = talus::foam_protocol;
 
@@ -78,6 +79,9 @@ int main(int argc, char *argv[])
 
     #include "createFields.H"
 
+    // A particle concerns every rank with cells within its envelope's cut-off.
+    const scalar couplingMargin =
+        envelopeType == "gaussian" ? talusFoam::ParticleEnvelope::cutoffOf(envelopeWidth) : 0;
     #include "answerDemHandshake.H"
 
     const scalar rhoF = rho.value();
@@ -87,10 +91,10 @@ int main(int argc, char *argv[])
 
     talusFoam::ParticleLocator locator(mesh);
     talusFoam::ParticleEnvelope envelope(mesh, envelopeType == "gaussian" ? envelopeWidth : 0);
-    std::vector<double> particles;    // per particle x y z vx vy vz r
-    std::vector<double> reply;        // status, max Re_p, then per particle fx fy fz owned
+    std::vector<double> particles;    // per particle x y z vx vy vz r index
+    std::vector<double> reply;        // status, max Re_p, messages, then per particle fx fy fz owned
     std::vector<double> interp;       // kInterp per particle, summed over ranks
-    std::vector<double> previousVelocity;  // 3 per particle, for du_p/dt
+    std::unordered_map<label, vector> previousVelocity;  // by particle index, for du_p/dt
     scalarField alphaNew(mesh.nCells());
     const scalarField& V = mesh.V();
     bool first = true;
@@ -101,8 +105,8 @@ int main(int argc, char *argv[])
     {
         #include "receiveParticles.H"
 
-        locator.locate(particles, n);
-        envelope.build(particles, n, locator);
+        locator.locate(particles, n, halo);
+        envelope.build(particles, n, locator, halo);
 
         // Fluid fraction of the particles' new positions.
         scalarField solid(mesh.nCells(), 0.0);
@@ -133,15 +137,15 @@ int main(int argc, char *argv[])
                 }
             });
         }
-        talusFoam::ParticleEnvelope::sum(interp);
+        halo.combine(interp, kInterp);
 
         // Forces on the particles (every rank whose cells a particle touches computes it from
         // the same summed values; its owner returns it) and their reactions on the fluid.
         Ksp.primitiveFieldRef() = 0;
         KUp.primitiveFieldRef() = Zero;
         Sexplicit.primitiveFieldRef() = Zero;
-        reply.assign(2 + proto::kForceDoubles*n, 0.0);
-        previousVelocity.resize(3*n, 0.0);
+        reply.assign(proto::kReplyHeader + proto::kForceDoubles*n, 0.0);
+        std::unordered_map<label, vector> velocity;
         const scalar dt = runTime.deltaTValue();
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
@@ -166,9 +170,11 @@ int main(int argc, char *argv[])
             const vector buoyancy =
                 Vp*rhoF*(vector(-s[4], -s[5], -s[6]) + vector(s[7], s[8], s[9]))
               - rhoF*Vp*gravity;
-            const vector dupdt = first ? vector::zero :
-                (up - vector(previousVelocity[3*i], previousVelocity[3*i + 1],
-                             previousVelocity[3*i + 2]))/dt;
+            const label id = static_cast<label>(q[7]);
+            velocity.emplace(id, up);
+            const auto last = previousVelocity.find(id);
+            const vector dupdt =
+                last == previousVelocity.end() ? vector::zero : (up - last->second)/dt;
             const vector addedMass =
                 addedMassCoefficient*rhoF*Vp*(vector(s[10], s[11], s[12]) - dupdt);
             envelope.forEachSpread(i, [&](label c, double w)
@@ -181,7 +187,7 @@ int main(int argc, char *argv[])
             if (locator.owned(i))
             {
                 const vector f = drag + buoyancy + addedMass;
-                double* r = &reply[2 + proto::kForceDoubles*i];
+                double* r = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
                 r[0] = f.x();
                 r[1] = f.y();
                 r[2] = f.z();
@@ -189,12 +195,10 @@ int main(int argc, char *argv[])
                 maxRe = max(maxRe, Re);
             }
         }
-        for (label i = 0; i < 3*n; ++i)
-        {
-            previousVelocity[i] = particles[proto::kParticleDoubles*(i/3) + 3 + i%3];
-        }
+        previousVelocity.swap(velocity);
         reply[0] = proto::kStatusOk;
         reply[1] = maxRe;
+        reply[2] = halo.messages();
         link.send
         (
             reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, proto::kTagForces,
