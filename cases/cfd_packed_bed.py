@@ -137,6 +137,9 @@ def flow(x, r, u0: float, procs: int, steps: int):
     start = time.perf_counter()
     s.run(steps * coupling.substeps, True)
     elapsed = time.perf_counter() - start
+    # The bed's pressure drop seen from the particles: their vertical hydrodynamic force less
+    # the hydrostatic buoyancy, per column area (model A: equal to the fluid's drop over the bed).
+    particle_dp = (float(np.sum(coupling.lastForces[:, 2])) - RHO * G * float(np.sum(4 / 3 * math.pi * r ** 3))) / (L * L)
     coupling.stop()
     env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
     if procs > 1:
@@ -150,6 +153,7 @@ def flow(x, r, u0: float, procs: int, steps: int):
     p_z = RHO * p.reshape(-1, n * n).mean(axis=1)          # blockMesh order: x, then y, then z
     alpha_z = alpha.reshape(-1, n * n).mean(axis=1)
     shutil.rmtree(work, ignore_errors=True)
+    coupling.particlePressureDrop = particle_dp
     return z, p_z, alpha_z, elapsed, coupling
 
 
@@ -182,11 +186,14 @@ def main():
                    rel_error=(slope - ergun(u0, eps)) / ergun(u0, eps),
                    rel_error_model=(slope - model(u0, eps)) / model(u0, eps),
                    alphaf_window=float(np.mean(alpha_z[window])), wall_time_s=elapsed,
+                   fluid_pressure_drop=float(np.interp(FLOOR - 1e-3, z, p_z) - p_z[-1]),
+                   particle_pressure_drop=coupling.particlePressureDrop,
                    max_Re_p=coupling.maxReynolds)
         rows.append(row)
         print(f"U0 {u0:.3e} m/s: dP/dz {slope:.1f} Pa/m, Ergun {row['ergun']:.1f} ({row['rel_error']:+.2%}), "
               f"closure in the Stokes limit {row['model']:.1f} ({row['rel_error_model']:+.2%}); porosity {eps:.4f}, "
-              f"solver alphaf {row['alphaf_window']:.4f}; Re_p {coupling.maxReynolds:.3g}; {elapsed:.1f} s")
+              f"solver alphaf {row['alphaf_window']:.4f}; bed pressure drop {row['fluid_pressure_drop']:.3f} Pa (fluid), "
+              f"{row['particle_pressure_drop']:.3f} Pa (particles); Re_p {coupling.maxReynolds:.3g}; {elapsed:.1f} s")
     fig, ax = plt.subplots(figsize=(5.5, 4))
     u = np.array([row["u0"] for row in rows])
     us = np.linspace(0, u_mf, 50)
