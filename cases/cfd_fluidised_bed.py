@@ -124,7 +124,7 @@ def main():
     s.engines[-1].damping = 0.0
     s.velocities()[ids] = 0.0
     coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), nProcs=args.procs, ids=ids,
-                            solver="talusVolumeAveragedFoam").start()
+                            solver="talusVolumeAveragedFoam", implicitDrag=True).start()
     dt_fluid = coupling.link.fluidDt
     steps = round((ramp + HOLD) / dt_fluid)
     t, u0, dp = [], [], []

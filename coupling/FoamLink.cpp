@@ -221,12 +221,14 @@ void FoamLink::sendAll(const void* data, int count, MPI_Datatype type, int tag, 
 }
 
 double FoamLink::exchange(std::span<const double> positions, std::span<const double> velocities,
-                          std::span<const double> radii, std::span<double> forces)
+                          std::span<const double> radii, std::span<double> forces, std::span<double> beta,
+                          std::span<double> fluidVelocities)
 {
   if (!running())
     throw std::runtime_error("FoamCoupling: the fluid solver is not running");
   const auto n = static_cast<std::size_t>(nParticles_);
-  if (positions.size() != 3 * n || velocities.size() != 3 * n || radii.size() != n || forces.size() != 3 * n)
+  if (positions.size() != 3 * n || velocities.size() != 3 * n || radii.size() != n || forces.size() != 3 * n ||
+      beta.size() != n || fluidVelocities.size() != 3 * n)
     throw std::runtime_error("FoamCoupling: particle arrays do not match the " +
                              std::to_string(nParticles_) + " particles of the handshake");
   const auto start = std::chrono::steady_clock::now();
@@ -271,6 +273,8 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   wait(rq, "the forces");
 
   std::fill(forces.begin(), forces.end(), 0.0);
+  std::fill(beta.begin(), beta.end(), 0.0);
+  std::fill(fluidVelocities.begin(), fluidVelocities.end(), 0.0);
   double maxRe = 0;
   long fluidMessages = 0;
   std::vector<double> owned(n, 0.0);
@@ -284,8 +288,12 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     {
       const double* f = &reply[proto::kReplyHeader + proto::kForceDoubles * j];
       for (std::size_t k = 0; k < 3; ++k)
+      {
         forces[3 * members[j] + k] += f[k];
+        fluidVelocities[3 * members[j] + k] += f[5 + k];
+      }
       owned[members[j]] += f[3];
+      beta[members[j]] += f[4];
     }
   }
   stats_.messages = 3L * fluidProcs_ + fluidMessages;

@@ -54,11 +54,14 @@ public:
   [[nodiscard]] const std::vector<double>& boxes() const { return boxes_; }
 
   /// One fluid step: sends positions (3N), velocities (3N) and radii (N); writes the
-  /// hydrodynamic force on each particle into `forces` (3N); returns the largest particle
-  /// Reynolds number seen by the fluid. The fluid then advances one step.
+  /// hydrodynamic force on each particle into `forces` (3N), its drag coefficient beta (N) and
+  /// the fluid velocity the drag uses (3N): the drag in `forces` is beta (uf - v) with the
+  /// velocities sent. Returns the largest particle Reynolds number seen by the fluid. The fluid
+  /// then advances one step.
   /// @throws std::runtime_error if a particle is outside the fluid mesh (the fluid is stopped)
   double exchange(std::span<const double> positions, std::span<const double> velocities,
-                  std::span<const double> radii, std::span<double> forces);
+                  std::span<const double> radii, std::span<double> forces, std::span<double> beta,
+                  std::span<double> fluidVelocities);
 
   /// Tells the fluid to write its fields and exit, then disconnects. Idempotent.
   void stop();

@@ -45,9 +45,11 @@
 //      every fluid rank -> DEM, tag kTagForces: double[kReplyHeader + kForceDoubles * n]:
 //             {status (kStatusOk), the largest particle Reynolds number on the rank, messages
 //             this rank sent to other fluid ranks in this exchange}, then per particle, in the
-//             order received, {fx, fy, fz, owned}: the hydrodynamic force on the particle from
-//             the one rank that owns the particle's cell (the lowest rank finding it), zeros and
-//             owned = 0 on the other ranks. A particle owned nowhere has left the mesh (the DEM
+//             order received, {fx, fy, fz, owned, beta, ufx, ufy, ufz}: the hydrodynamic force on
+//             the particle from the one rank that owns the particle's cell (the lowest rank
+//             finding it), zeros and owned = 0 on the other ranks; the drag in it is
+//             beta (uf - u_p) with u_p the velocity sent, so that the DEM side may re-evaluate it
+//             with the particle's current velocity at each of its sub-steps. A particle owned nowhere has left the mesh (the DEM
 //             then sends kCommandStop and reports it).
 //    After the reply the fluid advances one deltaT with the reaction of the drag as a source.
 //    kCommandStop: the fluid writes its fields, disconnects and exits.
@@ -81,7 +83,7 @@ constexpr int kReplyInts = 5;
 constexpr int kReplyDoubles = 3;
 constexpr int kMessageChars = 1024;
 constexpr int kParticleDoubles = 8;
-constexpr int kForceDoubles = 4;
+constexpr int kForceDoubles = 8;
 constexpr int kReplyHeader = 3;
 constexpr int kBoxDoubles = 7;
 

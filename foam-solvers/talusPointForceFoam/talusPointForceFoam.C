@@ -94,7 +94,8 @@ int main(int argc, char *argv[])
             const scalar r = q[6];
             const label celli = locator.cell(i);
             const vector slip = U[celli] - up;
-            const vector drag = 3*constant::mathematical::pi*mu*(2*r)*slip;
+            const scalar beta = 3*constant::mathematical::pi*mu*(2*r);
+            const vector drag = beta*slip;
             const vector buoyancy =
                 -rho.value()*(4.0/3.0)*constant::mathematical::pi*pow3(r)*gravity;
             S[celli] -= drag/(rho.value()*mesh.V()[celli]);
@@ -104,6 +105,10 @@ int main(int argc, char *argv[])
             f[1] = drag.y() + buoyancy.y();
             f[2] = drag.z() + buoyancy.z();
             f[3] = 1;
+            f[4] = beta;
+            f[5] = U[celli].x();
+            f[6] = U[celli].y();
+            f[7] = U[celli].z();
         }
         reply[0] = proto::kStatusOk;
         reply[1] = maxRe;

@@ -192,6 +192,10 @@ int main(int argc, char *argv[])
                 r[1] = f.y();
                 r[2] = f.z();
                 r[3] = 1;
+                r[4] = Vp*K;
+                r[5] = uf.x();
+                r[6] = uf.y();
+                r[7] = uf.z();
                 maxRe = max(maxRe, Re);
             }
         }

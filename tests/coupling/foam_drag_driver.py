@@ -1,7 +1,7 @@
 """DEM side of tests/coupling/test_foam_coupling.py, run as its own process (it starts MPI and
 spawns the fluid solver):
     foam_drag_driver.py CASE OUT.json [--nu NU] [--procs P] [--outside] [--small] [--interval SECONDS]
-                        [--solver NAME] [--exchanges K] [--checkpoint FILE] [--leave]
+                        [--solver NAME] [--exchanges K] [--checkpoint FILE] [--leave] [--implicit]
 
 Two spheres moving in the fluid at rest of CASE; after two (K) exchanges it writes the forces and
 the particles' velocities of each exchange, their radii, and the fluid step to OUT.json."""
@@ -25,6 +25,7 @@ parser.add_argument("--interval", type=float, default=None, help="FoamCoupling c
 parser.add_argument("--solver", default="talusPointForceFoam")
 parser.add_argument("--exchanges", type=int, default=2)
 parser.add_argument("--checkpoint", default=None, help="FoamCoupling checkpoint file (every 10 exchanges)")
+parser.add_argument("--implicit", action="store_true", help="FoamCoupling implicitDrag")
 parser.add_argument("--leave", action="store_true", help="the second sphere is driven up through the top at 5 m/s")
 args = parser.parse_args()
 case, out, nu, n_procs, outside = args.case, args.out, args.nu, args.procs, args.outside
@@ -43,7 +44,7 @@ s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.
 s.dt = 1e-6
 coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=20,
                         couplingInterval=args.interval, solver=args.solver, checkpoint=args.checkpoint,
-                        checkpointInterval=10)
+                        checkpointInterval=10, implicitDrag=args.implicit)
 coupling.start()
 forces, velocities = [], []
 print("DEM process", os.getpid(), "started the fluid", flush=True)

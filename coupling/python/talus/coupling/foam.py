@@ -98,6 +98,10 @@ class FoamCoupling:
         timeout: longest wait for the other side [s]; then every process is aborted.
         reynoldsLimit: a RuntimeWarning when the particle Reynolds number exceeds it (default:
             0.5 for talusPointForceFoam, 1000 for talusVolumeAveragedFoam).
+        implicitDrag: re-evaluate the drag beta (u_f - v) at every DEM sub-step with the particle's
+            current velocity (beta and u_f from the last exchange) instead of holding the drag of
+            the exchange over the fluid step. Needed when the particles' velocities change within
+            a fluid step (contacts in a dense bed), stable for DEM steps below the relaxation time.
         checkpoint: DEM checkpoint file written (atomically, O.save) every
             ``checkpointInterval`` fluid steps at the end of a DEM step; if the coupled run fails
             (a particle leaves the mesh, a fluid rank dies) the last one written is intact.
@@ -106,7 +110,7 @@ class FoamCoupling:
     def __init__(self, scene, case, *, rhoFluid: float, nu: float, gravity=(0.0, 0.0, -9.81), ids=None,
                  solver: str = "talusPointForceFoam", nProcs: int = 1, couplingInterval: float | None = None,
                  timeout: float = 60.0, reynoldsLimit: float | None = None, checkpoint=None,
-                 checkpointInterval: int = 100):
+                 checkpointInterval: int = 100, implicitDrag: bool = False):
         self.scene = scene
         self.case = str(Path(case).resolve())
         self.rhoFluid, self.nu = float(rhoFluid), float(nu)
@@ -121,6 +125,9 @@ class FoamCoupling:
         self.checkpoint = None if checkpoint is None else str(checkpoint)
         self.checkpointInterval = int(checkpointInterval)
         self._checkpoint_hook = None
+        self.implicitDrag = bool(implicitDrag)
+        self._drag_hook = None
+        self._beta = self._fluid_velocity = self._sent_velocity = None
         self.link = None
         self.substeps = 0
         self.hook = None
@@ -169,6 +176,8 @@ class FoamCoupling:
         self._warn_relaxation(dt_fluid, ids)
         self._applied = np.zeros((len(ids), 3))
         self.hook = self.scene.add_hook("before_forces", self.exchange, self.substeps)
+        if self.implicitDrag:
+            self._drag_hook = self.scene.add_hook("after_forces", self._update_drag, 1)
         if self.checkpoint is not None:
             self.save_checkpoint()
             self._checkpoint_hook = self.scene.add_hook("after_step", self.save_checkpoint,
@@ -195,8 +204,10 @@ class FoamCoupling:
     def exchange(self):
         """One fluid step: send the particles, replace last step's forces by the new ones."""
         ids = self.ids
-        forces, re = self.link.exchange(self.scene.positions()[ids], self.scene.velocities()[ids],
-                                        self.scene.radii()[ids])
+        velocities = self.scene.velocities()[ids]
+        forces, re, self._beta, self._fluid_velocity = self.link.exchange(self.scene.positions()[ids], velocities,
+                                                                          self.scene.radii()[ids])
+        self._sent_velocity = velocities
         # The persistent forces carry the force over the sub-steps; this step's accumulator was
         # already filled from them by the ForceResetter, so it gets the change too.
         change = forces - self._applied
@@ -210,9 +221,16 @@ class FoamCoupling:
                           f"the drag law of {Path(self.solver).name} is no longer accurate", RuntimeWarning, stacklevel=2)
         self.maxReynolds = max(self.maxReynolds, re)
 
+    def _update_drag(self):
+        """This sub-step's drag minus the exchange's: beta (v_exchange - v) (implicitDrag)."""
+        if self._beta is None:
+            return
+        ids = self.ids
+        self.scene.forces()[ids] += self._beta[:, None] * (self._sent_velocity - self.scene.velocities()[ids])
+
     def stop(self):
-        """Let the fluid write its last fields and exit; remove the hook."""
-        for hook in (self.hook, self._checkpoint_hook):
+        """Let the fluid write its last fields and exit; remove the hooks."""
+        for hook in (self.hook, self._checkpoint_hook, self._drag_hook):
             if hook is not None:
                 hook.dead = True
         if self.link is not None and self.link.running:
