@@ -16,8 +16,11 @@ Checked:  the final velocity against the Schiller-Naumann terminal velocity with
           motion (m + C_m rho V) dv/dt = (m - rho V) g - 3 pi mu d v (1 + 0.15 Re^0.687),
           recorded as the largest deviation relative to w. The error that grows with d/dx is the
           particle's own wake seen through the envelope (as for point forces, weaker since the
-          force is spread over ~3 cells).
-Produces: record cfd.settling_sphere_va; chart cfd.settling_sphere_va.png.
+          force is spread over ~3 cells). Serial against 2 fluid ranks: the d/dx = 0.1 run is
+          repeated on the case decomposed in 2 (along z) and the settling velocities of the two
+          runs must agree within 1e-6 relative at every fluid step (issue #6).
+Produces: records cfd.settling_sphere_va and cfd.settling_sphere_va.ranks; chart
+          cfd.settling_sphere_va.png.
 """
 import math
 import os
@@ -121,9 +124,10 @@ def main():
     print(f"Schiller-Naumann terminal velocity {w:.6e} m/s (Re_p {w * D / NU:.2f}, tau {TAU:.3e} s)")
     fig, ax = plt.subplots(figsize=(5.5, 4))
     ax.plot(t_ref, v_ref * 100, "k--", lw=0.8, label="equation of motion (Schiller-Naumann)")
-    rows = []
+    rows, velocities = [], {}
     for dx in CELL_SIZES:
         t, v, coupling, elapsed = settle(args.procs, dx, fluid_steps, args.envelope)
+        velocities[dx] = v
         transient = float(np.max(np.abs(v - np.interp(t, t_ref, v_ref)))) / w
         row = dict(d_over_dx=D / dx, dx=dx, v_end=float(v[-1]), t_end=float(t[-1]),
                    rel_error_end=(v[-1] - w) / w, max_transient_error=transient, wall_time_s=elapsed,
@@ -142,6 +146,14 @@ def main():
     case.record("relative error of the final settling velocity, d/dx = 0.1", abs(checked["rel_error_end"]),
                 "Schiller-Naumann terminal velocity", CHECKED, w_terminal=w, Re_p=w * D / NU, tau=TAU,
                 fluid_procs=args.procs, fluid_steps=fluid_steps, envelope=args.envelope, meshes=rows)
+    if args.procs == 1:
+        _, v2, _, elapsed2 = settle(2, 0.02, fluid_steps, args.envelope)
+        v1 = velocities[0.02]
+        difference = float(np.max(np.abs(v2 - v1)[1:] / np.abs(v1[1:])))
+        print(f"serial against 2 fluid ranks (d/dx 0.1): largest relative difference of the velocity {difference:.2e} "
+              f"({elapsed2:.1f} s on 2 ranks)")
+        case.record("largest relative difference of the settling velocity, serial against 2 fluid ranks", difference,
+                    "the serial run", 1e-6, suffix="ranks", fluid_steps=fluid_steps, envelope=args.envelope)
     case.save_chart(fig)
 
 
