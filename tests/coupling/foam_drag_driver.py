@@ -2,6 +2,7 @@
 spawns the fluid solver):
     foam_drag_driver.py CASE OUT.json [--nu NU] [--procs P] [--outside] [--small] [--interval SECONDS]
                         [--solver NAME] [--exchanges K] [--checkpoint FILE] [--leave] [--implicit]
+                        [--density RHO]
 
 Two spheres moving in the fluid at rest of CASE; after two (K) exchanges it writes the forces and
 the particles' velocities of each exchange, their radii, and the fluid step to OUT.json."""
@@ -26,12 +27,13 @@ parser.add_argument("--solver", default="talusPointForceFoam")
 parser.add_argument("--exchanges", type=int, default=2)
 parser.add_argument("--checkpoint", default=None, help="FoamCoupling checkpoint file (every 10 exchanges)")
 parser.add_argument("--implicit", action="store_true", help="FoamCoupling implicitDrag")
+parser.add_argument("--density", type=float, default=2500.0, help="particle density")
 parser.add_argument("--leave", action="store_true", help="the second sphere is driven up through the top at 5 m/s")
 args = parser.parse_args()
 case, out, nu, n_procs, outside = args.case, args.out, args.nu, args.procs, args.outside
 
 s = Scene()
-s.materials.append(FrictMat(density=2500.0))
+s.materials.append(FrictMat(density=args.density))
 scale = 0.1 if args.small else 1.0
 s.bodies.append([sphere((0.0011, -0.0013, 0.0031), 5e-4 * scale),
                  sphere((-0.002, 0.0021, 0.0172 if outside else 0.0072), 6e-4 * scale)])

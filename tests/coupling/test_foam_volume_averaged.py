@@ -6,7 +6,8 @@ Schiller-Naumann drag with the hindrance factor of the particle's cell, (1 - V_p
 plus the buoyancy (1e-12 relative); with the Gaussian envelope, a case decomposed on 2 fluid
 ranks (the envelopes cross the processor boundary) gives the serial forces, to 1e-12 on the
 first exchange and 1e-6 of the largest force over 3 exchanges (the pressure solver's tolerance); a sphere settling at Re_p ~ 5 reaches the Schiller-Naumann terminal velocity
-within 2 %; an unknown envelope stops the run before the first step with OpenFOAM's message."""
+within 2 %; an unknown envelope stops the run before the first step with OpenFOAM's message; a
+fluid step below the Stokes relaxation time but above m/beta with the hindered drag warns."""
 import importlib.util
 import json
 import math
@@ -103,3 +104,14 @@ json.dump(dict(v=list(v), w=m.terminal_velocity(), re=coupling.maxReynolds), ope
     result = json.loads(out.read_text())
     assert 4 < result["re"] < 6
     assert abs(result["v"][-1] - result["w"]) < 0.02 * result["w"]
+
+
+def test_fluid_step_above_the_hindered_relaxation_time_warns(tmp_path):
+    # rho_p = 190: Stokes tau = rho_p d^2 / (18 mu) = 1.06e-5 s above the fluid step 1e-5 s (no
+    # warning at start), but the drag with hindrance and Schiller-Naumann (x 1.12) makes
+    # m / beta = 9.4e-6 s for the 1 mm sphere.
+    run, record = drive(case(tmp_path, "cell"), "--density", "190")
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "exceeds the particle relaxation time" not in run.stderr
+    assert "RuntimeWarning: FoamCoupling: the fluid step 1e-05 s exceeds the relaxation time m/beta = 9.4" in run.stderr
+    assert "s of body 0 with the drag of the first exchange (hindrance included)" in run.stderr

@@ -200,6 +200,26 @@ class FoamCoupling:
                           f"{tau:g} s: the explicit drag held over a fluid step is inaccurate or unstable; "
                           f"lower deltaT in system/controlDict", RuntimeWarning, stacklevel=3)
 
+    def _warn_drag_relaxation(self, ids):
+        """The relaxation time m / beta with the drag the fluid actually applies (with the
+        volume-averaged solver: Schiller-Naumann and the hindrance factor, up to ~20 times shorter
+        than the Stokes estimate of start() in a dense bed)."""
+        beta = self._beta
+        if not np.any(beta > 0):
+            return
+        tau = np.where(beta > 0, self.scene.masses()[ids] / np.where(beta > 0, beta, 1.0), np.inf)
+        k = int(np.argmin(tau))
+        if self.implicitDrag:
+            step, what, fix = self.scene.dt, "DEM step", "lower O.dt"
+        else:
+            step, what, fix = self.link.fluidDt, "fluid step", "lower deltaT in system/controlDict or use implicitDrag=True"
+            if step > self.relaxationTime:
+                return  # start() has warned already
+        if step > tau[k]:
+            warnings.warn(f"FoamCoupling: the {what} {step:g} s exceeds the relaxation time m/beta = {tau[k]:g} s of "
+                          f"body {int(ids[k])} with the drag of the first exchange (hindrance included): the drag "
+                          f"is inaccurate or unstable; {fix}", RuntimeWarning, stacklevel=3)
+
     # -- exchange ------------------------------------------------------------------------------
     def exchange(self):
         """One fluid step: send the particles, replace last step's forces by the new ones."""
@@ -208,6 +228,8 @@ class FoamCoupling:
         forces, re, self._beta, self._fluid_velocity = self.link.exchange(self.scene.positions()[ids], velocities,
                                                                           self.scene.radii()[ids])
         self._sent_velocity = velocities
+        if self.exchanges == 0:
+            self._warn_drag_relaxation(ids)
         # The persistent forces carry the force over the sub-steps; this step's accumulator was
         # already filled from them by the ForceResetter, so it gets the change too.
         change = forces - self._applied
