@@ -63,7 +63,7 @@ def prepare_case(procs: int, cells: tuple[int, int]) -> Path:
     return work
 
 
-def settle(procs: int, cells: tuple[int, int], fluid_steps: int):
+def settle(procs: int, cells: tuple[int, int], fluid_steps: int, solver: str = "talusPointForceFoam"):
     """One run; returns times, velocities, the coupling, the wall time."""
     work = prepare_case(procs, cells)
     s = Scene()
@@ -71,7 +71,7 @@ def settle(procs: int, cells: tuple[int, int], fluid_steps: int):
     s.bodies.append(sphere((0.0, 0.0, 0.06), D / 2))
     s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -G), damping=0.0)]
     s.dt = 2e-6
-    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), nProcs=procs).start()
+    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), nProcs=procs, solver=solver).start()
     t, v = [0.0], [0.0]
     start = time.perf_counter()
     for _ in range(fluid_steps):

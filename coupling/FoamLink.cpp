@@ -3,6 +3,7 @@
 #include "coupling/FoamProtocol.h"
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -119,10 +120,14 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
     if (pids[2 * static_cast<std::size_t>(p) + 1] == thisHost())
       peers_.push_back({p, pids[2 * static_cast<std::size_t>(p)]});
 
-  std::array<MPI_Request, 3> rq{};
+  boxes_.assign(proto::kBoxDoubles * static_cast<std::size_t>(fluidProcs_), 0.0);
+  std::vector<MPI_Request> rq(3 + static_cast<std::size_t>(fluidProcs_));
   MPI_Irecv(reply, proto::kReplyInts, MPI_INT, 0, proto::kTagHelloReply, inter_, &rq[0]);
   MPI_Irecv(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, proto::kTagHelloReplyD, inter_, &rq[1]);
   MPI_Irecv(message.data(), proto::kMessageChars, MPI_CHAR, 0, proto::kTagMessage, inter_, &rq[2]);
+  for (int p = 0; p < fluidProcs_; ++p)
+    MPI_Irecv(&boxes_[proto::kBoxDoubles * static_cast<std::size_t>(p)], proto::kBoxDoubles, MPI_DOUBLE, p,
+              proto::kTagBox, inter_, &rq[3 + static_cast<std::size_t>(p)]);
   wait(rq, "the fluid side's handshake (is the case readable? see the solver's output)");
   message.back() = '\0';
 
@@ -151,6 +156,8 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
     throw std::runtime_error("FoamCoupling: " + why);
   }
   replies_.assign(static_cast<std::size_t>(fluidProcs_), {});
+  sent_.assign(static_cast<std::size_t>(fluidProcs_), {});
+  members_.assign(static_cast<std::size_t>(fluidProcs_), {});
 }
 
 FoamLink::~FoamLink()
@@ -214,54 +221,84 @@ void FoamLink::sendAll(const void* data, int count, MPI_Datatype type, int tag, 
 }
 
 double FoamLink::exchange(std::span<const double> positions, std::span<const double> velocities,
-                          std::span<const double> radii, std::span<double> forces)
+                          std::span<const double> radii, std::span<double> forces, std::span<double> beta,
+                          std::span<double> fluidVelocities)
 {
   if (!running())
     throw std::runtime_error("FoamCoupling: the fluid solver is not running");
   const auto n = static_cast<std::size_t>(nParticles_);
-  if (positions.size() != 3 * n || velocities.size() != 3 * n || radii.size() != n || forces.size() != 3 * n)
+  if (positions.size() != 3 * n || velocities.size() != 3 * n || radii.size() != n || forces.size() != 3 * n ||
+      beta.size() != n || fluidVelocities.size() != 3 * n)
     throw std::runtime_error("FoamCoupling: particle arrays do not match the " +
                              std::to_string(nParticles_) + " particles of the handshake");
-  particles_.resize(proto::kParticleDoubles * n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    double* q = &particles_[proto::kParticleDoubles * i];
-    for (std::size_t k = 0; k < 3; ++k)
-    {
-      q[k] = positions[3 * i + k];
-      q[3 + k] = velocities[3 * i + k];
-    }
-    q[6] = radii[i];
-  }
-  const int command[2] = {proto::kCommandStep, nParticles_};
-  sendAll(command, 2, MPI_INT, proto::kTagCommand, "the step command");
-  std::vector<MPI_Request> rq(static_cast<std::size_t>(2 * fluidProcs_));
-  const auto replySize = 2 + proto::kForceDoubles * n;
+  const auto start = std::chrono::steady_clock::now();
+  // Each fluid rank gets the particles inside its widened box only (FoamProtocol.h, inBox).
   for (int p = 0; p < fluidProcs_; ++p)
   {
-    auto& reply = replies_[static_cast<std::size_t>(p)];
-    reply.resize(replySize);
-    MPI_Irecv(reply.data(), static_cast<int>(replySize), MPI_DOUBLE, p, proto::kTagForces, inter_,
-              &rq[static_cast<std::size_t>(fluidProcs_ + p)]);
-    MPI_Isend(particles_.data(), static_cast<int>(particles_.size()), MPI_DOUBLE, p,
-              proto::kTagParticles, inter_, &rq[static_cast<std::size_t>(p)]);
+    const double* box = &boxes_[proto::kBoxDoubles * static_cast<std::size_t>(p)];
+    auto& members = members_[static_cast<std::size_t>(p)];
+    auto& data = sent_[static_cast<std::size_t>(p)];
+    members.clear();
+    data.clear();
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (!proto::inBox(box, positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]))
+        continue;
+      members.push_back(i);
+      for (std::size_t k = 0; k < 3; ++k)
+        data.push_back(positions[3 * i + k]);
+      for (std::size_t k = 0; k < 3; ++k)
+        data.push_back(velocities[3 * i + k]);
+      data.push_back(radii[i]);
+      data.push_back(static_cast<double>(i));
+    }
+  }
+  std::vector<MPI_Request> rq(static_cast<std::size_t>(3 * fluidProcs_));
+  std::vector<std::array<int, 2>> commands(static_cast<std::size_t>(fluidProcs_));
+  long doubles = 0;
+  for (int p = 0; p < fluidProcs_; ++p)
+  {
+    const auto q = static_cast<std::size_t>(p);
+    const auto count = members_[q].size();
+    commands[q] = {proto::kCommandStep, static_cast<int>(count)};
+    auto& reply = replies_[q];
+    reply.resize(proto::kReplyHeader + proto::kForceDoubles * count);
+    MPI_Irecv(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, p, proto::kTagForces, inter_,
+              &rq[2 * q + static_cast<std::size_t>(fluidProcs_)]);
+    MPI_Isend(commands[q].data(), 2, MPI_INT, p, proto::kTagCommand, inter_, &rq[q]);
+    MPI_Isend(sent_[q].data(), static_cast<int>(sent_[q].size()), MPI_DOUBLE, p, proto::kTagParticles, inter_,
+              &rq[2 * q + 1 + static_cast<std::size_t>(fluidProcs_)]);
+    doubles += static_cast<long>(sent_[q].size() + reply.size());
   }
   wait(rq, "the forces");
 
   std::fill(forces.begin(), forces.end(), 0.0);
+  std::fill(beta.begin(), beta.end(), 0.0);
+  std::fill(fluidVelocities.begin(), fluidVelocities.end(), 0.0);
   double maxRe = 0;
+  long fluidMessages = 0;
   std::vector<double> owned(n, 0.0);
-  for (const auto& reply : replies_)
+  for (int p = 0; p < fluidProcs_; ++p)
   {
+    const auto& reply = replies_[static_cast<std::size_t>(p)];
+    const auto& members = members_[static_cast<std::size_t>(p)];
     maxRe = std::max(maxRe, reply[1]);
-    for (std::size_t i = 0; i < n; ++i)
+    fluidMessages += std::lround(reply[2]);
+    for (std::size_t j = 0; j < members.size(); ++j)
     {
-      const double* f = &reply[2 + proto::kForceDoubles * i];
+      const double* f = &reply[proto::kReplyHeader + proto::kForceDoubles * j];
       for (std::size_t k = 0; k < 3; ++k)
-        forces[3 * i + k] += f[k];
-      owned[i] += f[3];
+      {
+        forces[3 * members[j] + k] += f[k];
+        fluidVelocities[3 * members[j] + k] += f[5 + k];
+      }
+      owned[members[j]] += f[3];
+      beta[members[j]] += f[4];
     }
   }
+  stats_.messages = 3L * fluidProcs_ + fluidMessages;
+  stats_.demDoubles = doubles;
+  stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   for (std::size_t i = 0; i < n; ++i)
     if (owned[i] < 0.5)
     {

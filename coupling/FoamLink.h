@@ -21,9 +21,18 @@ struct FoamSettings
   double timeout = 60;             ///< longest wait for the fluid side [s] before aborting all
 };
 
+/// What the last exchange cost.
+struct ExchangeStats
+{
+  long messages = 0;    ///< point-to-point messages: 3 per fluid rank with the DEM + between fluid ranks
+  long demDoubles = 0;  ///< doubles sent and received by the DEM process
+  double seconds = 0;   ///< wall time of the exchange seen by the DEM (sending to last reply)
+};
+
 /// The DEM side of the link with an OpenFOAM coupling solver (protocol: coupling/FoamProtocol.h).
-/// The constructor spawns the solver ranks and does the handshake; each exchange() sends every
-/// particle once to every fluid rank and gets one force array back from each (2P + P messages).
+/// The constructor spawns the solver ranks and does the handshake; each exchange() sends each
+/// fluid rank the particles inside its sub-mesh's widened box and gets one force array back from
+/// each (2P + P messages; the fluid ranks add one message per neighbour and reduction).
 /// A fluid side gone silent for `timeout` seconds aborts every process with a message.
 class FoamLink
 {
@@ -40,13 +49,19 @@ public:
   [[nodiscard]] long nCells() const { return nCells_; }
   [[nodiscard]] int nParticles() const { return nParticles_; }
   [[nodiscard]] bool running() const { return inter_ != MPI_COMM_NULL; }
+  [[nodiscard]] const ExchangeStats& lastExchange() const { return stats_; }
+  /// Each fluid rank's {xmin, ymin, zmin, xmax, ymax, zmax, margin}.
+  [[nodiscard]] const std::vector<double>& boxes() const { return boxes_; }
 
   /// One fluid step: sends positions (3N), velocities (3N) and radii (N); writes the
-  /// hydrodynamic force on each particle into `forces` (3N); returns the largest particle
-  /// Reynolds number seen by the fluid. The fluid then advances one step.
+  /// hydrodynamic force on each particle into `forces` (3N), its drag coefficient beta (N) and
+  /// the fluid velocity the drag uses (3N): the drag in `forces` is beta (uf - v) with the
+  /// velocities sent. Returns the largest particle Reynolds number seen by the fluid. The fluid
+  /// then advances one step.
   /// @throws std::runtime_error if a particle is outside the fluid mesh (the fluid is stopped)
   double exchange(std::span<const double> positions, std::span<const double> velocities,
-                  std::span<const double> radii, std::span<double> forces);
+                  std::span<const double> radii, std::span<double> forces, std::span<double> beta,
+                  std::span<double> fluidVelocities);
 
   /// Tells the fluid to write its fields and exit, then disconnects. Idempotent.
   void stop();
@@ -61,8 +76,11 @@ private:
   int nParticles_ = 0;
   long nCells_ = 0;
   double fluidDt_ = 0;
-  std::vector<double> particles_;
+  std::vector<double> boxes_;
+  std::vector<std::vector<double>> sent_;                ///< per fluid rank: its particles
+  std::vector<std::vector<std::size_t>> members_;        ///< per fluid rank: their indices
   std::vector<std::vector<double>> replies_;
+  ExchangeStats stats_;
   struct Peer
   {
     int rank;

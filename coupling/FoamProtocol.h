@@ -7,7 +7,11 @@
 // MPI_Comm_spawn; every message below travels on the intercommunicator (the DEM side's result of
 // MPI_Comm_spawn, the fluid side's MPI_Comm_get_parent). Fluid ranks are addressed by their rank
 // in the spawned world (0 .. P-1). All messages are bulk arrays: per exchange 2 messages to each
-// fluid rank and 1 back from each, whatever the particle count.
+// fluid rank and 1 back from each, whatever the particle count. Each fluid rank gets only the
+// particles inside its sub-mesh's bounding box widened by its margin (inBox below, the same test
+// on both sides), so the data per rank is O(N/P) plus a halo; the fluid ranks settle the
+// particles they share (ownership, envelope sums) with one message per neighbouring rank per
+// reduction.
 //
 // 1. Handshake (once, before the fluid's first step)
 //    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts] = {kMagic, kVersion, nParticles,
@@ -16,6 +20,10 @@
 //                                               nu [m2/s], gx, gy, gz [m/s2], couplingInterval [s]}
 //    every fluid rank -> DEM, tag kTagPid:     int[2] = {pid, hostHash(hostname)}, sent as soon
 //                                               as the Hello arrives, before the case is read
+//    every fluid rank -> DEM, tag kTagBox:     double[kBoxDoubles] = {xmin, ymin, zmin, xmax, ymax,
+//                                               zmax, margin}: its sub-mesh's bounding box and how
+//                                               far beyond it particles still concern it (the
+//                                               envelope's cut-off), sent once the case is read
 //    fluid rank 0 -> DEM, tag kTagHelloReply:  int[kReplyInts] = {kMagic, kVersion, status, nProcs,
 //                                               nCells (global)}
 //                         tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
@@ -29,16 +37,20 @@
 //    the coupling interval: it then sends kCommandStop.
 //
 // 2. Each fluid step (the DEM drives the fluid's time loop)
-//    DEM -> every fluid rank, tag kTagCommand: int[2] = {kCommandStep | kCommandStop, nParticles}
+//    DEM -> every fluid rank, tag kTagCommand: int[2] = {kCommandStep | kCommandStop, n}, n the
+//             number of particles for that rank (those inside its widened box)
 //    if kCommandStep:
-//      DEM -> every fluid rank, tag kTagParticles: double[kParticleDoubles * nParticles],
-//             per particle {x, y, z, vx, vy, vz, radius}
-//      every fluid rank -> DEM, tag kTagForces: double[2 + kForceDoubles * nParticles]:
-//             {status (kStatusOk), the largest particle Reynolds number on the rank}, then per
-//             particle {fx, fy, fz, owned}: the hydrodynamic force on the particle (drag +
-//             buoyancy) from the rank that owns the particle's cell, zeros and owned = 0 on the
-//             other ranks. The DEM sums over ranks; a particle with owned == 0 everywhere has
-//             left the mesh (the DEM then sends kCommandStop and reports it).
+//      DEM -> every fluid rank, tag kTagParticles: double[kParticleDoubles * n],
+//             per particle {x, y, z, vx, vy, vz, radius, global index}, in increasing index
+//      every fluid rank -> DEM, tag kTagForces: double[kReplyHeader + kForceDoubles * n]:
+//             {status (kStatusOk), the largest particle Reynolds number on the rank, messages
+//             this rank sent to other fluid ranks in this exchange}, then per particle, in the
+//             order received, {fx, fy, fz, owned, beta, ufx, ufy, ufz}: the hydrodynamic force on
+//             the particle from the one rank that owns the particle's cell (the lowest rank
+//             finding it), zeros and owned = 0 on the other ranks; the drag in it is
+//             beta (uf - u_p) with u_p the velocity sent, so that the DEM side may re-evaluate it
+//             with the particle's current velocity at each of its sub-steps. A particle owned nowhere has left the mesh (the DEM
+//             then sends kCommandStop and reports it).
 //    After the reply the fluid advances one deltaT with the reaction of the drag as a source.
 //    kCommandStop: the fluid writes its fields, disconnects and exits.
 //    kStatusError is reserved for fluid-side errors reported in the reply (not sent yet: a
@@ -50,7 +62,7 @@
 namespace talus::foam_protocol
 {
 constexpr int kMagic = 0x54414c53; // "TALS"
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;
 
 constexpr int kTagHello = 6101;
 constexpr int kTagHelloD = 6102;
@@ -61,14 +73,19 @@ constexpr int kTagCommand = 6106;
 constexpr int kTagParticles = 6107;
 constexpr int kTagForces = 6108;
 constexpr int kTagPid = 6109;
+constexpr int kTagBox = 6110;
+// Between fluid ranks (their own MPI_COMM_WORLD): partial sums over shared particles.
+constexpr int kTagHalo = 6111;
 
 constexpr int kHelloInts = 5;
 constexpr int kHelloDoubles = 6;
 constexpr int kReplyInts = 5;
 constexpr int kReplyDoubles = 3;
 constexpr int kMessageChars = 1024;
-constexpr int kParticleDoubles = 7;
-constexpr int kForceDoubles = 4;
+constexpr int kParticleDoubles = 8;
+constexpr int kForceDoubles = 8;
+constexpr int kReplyHeader = 3;
+constexpr int kBoxDoubles = 7;
 
 constexpr int kStatusOk = 0;
 constexpr int kStatusMismatch = 1;
@@ -84,6 +101,15 @@ inline int hostHash(const char* name)
   for (const char* c = name; *c; ++c)
     h = (h ^ static_cast<unsigned char>(*c)) * 16777619u;
   return static_cast<int>(h & 0x7fffffffu);
+}
+
+/// Whether the point (x, y, z) concerns a fluid rank whose box is {xmin, ymin, zmin, xmax, ymax,
+/// zmax, margin}. Both sides decide with this function, on the same numbers.
+inline bool inBox(const double* box, double x, double y, double z)
+{
+  const double m = box[6];
+  return x >= box[0] - m && x <= box[3] + m && y >= box[1] - m && y <= box[4] + m &&
+         z >= box[2] - m && z <= box[5] + m;
 }
 
 /// Relative tolerance of the handshake's comparison of fluid properties and gravity.

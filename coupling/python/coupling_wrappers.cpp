@@ -48,13 +48,20 @@ PYBIND11_MODULE(_coupling, m)
     .def_property_readonly("running", &FoamLink::running)
     .def("exchange",
          [](FoamLink& link, const Array& pos, const Array& vel, const Array& radius) {
-           Array forces({static_cast<py::ssize_t>(link.nParticles()), py::ssize_t{3}});
-           std::span<double> out{forces.mutable_data(), static_cast<std::size_t>(forces.size())};
+           const auto n = static_cast<py::ssize_t>(link.nParticles());
+           Array forces({n, py::ssize_t{3}}), fluid({n, py::ssize_t{3}}), beta(n);
            const double re = link.exchange(values(pos, 3, "positions"), values(vel, 3, "velocities"),
-                                           values(radius, 1, "radii"), out);
-           return py::make_tuple(forces, re);
+                                           values(radius, 1, "radii"),
+                                           {forces.mutable_data(), static_cast<std::size_t>(forces.size())},
+                                           {beta.mutable_data(), static_cast<std::size_t>(beta.size())},
+                                           {fluid.mutable_data(), static_cast<std::size_t>(fluid.size())});
+           return py::make_tuple(forces, re, beta, fluid);
          },
          py::arg("positions"), py::arg("velocities"), py::arg("radii"))
+    .def_property_readonly("boxes", &FoamLink::boxes)
+    .def_property_readonly("lastMessages", [](const FoamLink& l) { return l.lastExchange().messages; })
+    .def_property_readonly("lastDemDoubles", [](const FoamLink& l) { return l.lastExchange().demDoubles; })
+    .def_property_readonly("lastExchangeSeconds", [](const FoamLink& l) { return l.lastExchange().seconds; })
     .def("stop", &FoamLink::stop);
 
   m.def("finalize_mpi", &finalizeMpi);

@@ -20,68 +20,17 @@ License
     GPL-3.0-or-later, like OpenFOAM.
 \*---------------------------------------------------------------------------*/
 
-#include "demLink.H"
+#include "demCoupling.H"
 
 #include "fvCFD.H"
-#include "meshSearch.H"
 #include "pisoControl.H"
 #include "uniformDimensionedFields.H"
 
-#include <cmath>
 #include <cstdio>
-#include <sstream>
 
 namespace proto = talus::foam_protocol;
 
-namespace
-{
-bool differs(double a, double b)
-{
-    return std::abs(a - b) > proto::kMatchTolerance*std::max(std::abs(a), std::abs(b));
-}
-
-//- The reason the DEM side's description does not fit this case, or "".
-std::string mismatch
-(
-    const int hello[proto::kHelloInts],
-    const double helloD[proto::kHelloDoubles],
-    double rho,
-    double nu,
-    const Foam::vector& g
-)
-{
-    std::ostringstream why;
-    if (hello[0] != proto::kMagic)
-    {
-        why << "the DEM process does not speak the Talus coupling protocol (bad magic number)";
-    }
-    else if (hello[1] != proto::kVersion)
-    {
-        why << "protocol version mismatch: DEM side " << hello[1]
-            << ", talusPointForceFoam " << proto::kVersion;
-    }
-    else if (differs(helloD[0], rho))
-    {
-        why << "fluid density mismatch: DEM side rhoFluid = " << helloD[0]
-            << ", case constant/transportProperties rho = " << rho;
-    }
-    else if (differs(helloD[1], nu))
-    {
-        why << "kinematic viscosity mismatch: DEM side nu = " << helloD[1]
-            << ", case constant/transportProperties nu = " << nu;
-    }
-    else if
-    (
-        differs(helloD[2], g.x()) || differs(helloD[3], g.y()) || differs(helloD[4], g.z())
-    )
-    {
-        why << "gravity mismatch: DEM side (" << helloD[2] << " " << helloD[3] << " "
-            << helloD[4] << "), case constant/g (" << g.x() << " " << g.y() << " "
-            << g.z() << ")";
-    }
-    return why.str();
-}
-} // namespace
+static const char* const solverName = "talusPointForceFoam";
 
 
 int main(int argc, char *argv[])
@@ -100,39 +49,7 @@ int main(int argc, char *argv[])
 
     #include "setRootCaseLists.H"
 
-    // The solver's progress goes to the case's log file, not to the DEM process's terminal
-    // (Open MPI forwards a spawned process's stdout there); errors still go to stderr.
-    if (Pstream::master())
-    {
-        const fileName log = args.path()/"log.talusPointForceFoam";
-        if (!std::freopen(log.c_str(), "w", stdout))
-        {
-            std::cerr << "talusPointForceFoam: cannot write " << log << ", logging to stdout\n";
-        }
-    }
-
-    // A serial run has no Pstream MPI: start MPI here to reach the DEM process.
-    const bool ownMpi = !Pstream::parRun();
-    if (ownMpi)
-    {
-        int initialised = 0;
-        MPI_Initialized(&initialised);
-        if (!initialised)
-        {
-            MPI_Init(&argc, &argv);
-        }
-    }
-    talusFoam::DemLink link(args.getOrDefault<scalar>("couplingTimeout", 60));
-
-    // Handshake, first half: before reading the case, so a solver dying on a bad case file is
-    // noticed by the DEM process through its pid at once.
-    int hello[proto::kHelloInts];
-    double helloD[proto::kHelloDoubles];
-    link.recv(hello, proto::kHelloInts, MPI_INT, proto::kTagHello, "the handshake");
-    link.recv(helloD, proto::kHelloDoubles, MPI_DOUBLE, proto::kTagHelloD, "the handshake");
-    link.watch(hello[3], hello[4]);
-    const int self[2] = {static_cast<int>(getpid()), talusFoam::DemLink::thisHost()};
-    link.send(self, 2, MPI_INT, proto::kTagPid, "the handshake");
+    #include "startDemLink.H"
 
     #include "createTime.H"
     #include "createMesh.H"
@@ -142,127 +59,60 @@ int main(int argc, char *argv[])
     #include "createFields.H"
     #include "initContinuityErrs.H"
 
+    // A particle concerns the rank whose cell holds it only.
+    const scalar couplingMargin = 0;
+    #include "answerDemHandshake.H"
+
     const scalar mu = (rho*nu).value();
     const vector gravity = g.value();
 
-    // Handshake, second half: every rank checks the case; rank 0 answers.
-    const std::string why = mismatch(hello, helloD, rho.value(), nu.value(), gravity);
-    if (Pstream::master())
-    {
-        const int reply[proto::kReplyInts] =
-        {
-            proto::kMagic,
-            proto::kVersion,
-            why.empty() ? proto::kStatusOk : proto::kStatusMismatch,
-            Pstream::nProcs(),
-            static_cast<int>(returnReduce(mesh.nCells(), sumOp<label>()))
-        };
-        const double replyD[proto::kReplyDoubles] =
-        {
-            runTime.deltaTValue(), rho.value(), nu.value()
-        };
-        link.send(reply, proto::kReplyInts, MPI_INT, proto::kTagHelloReply, "the handshake");
-        link.send
-        (
-            replyD, proto::kReplyDoubles, MPI_DOUBLE, proto::kTagHelloReplyD, "the handshake"
-        );
-        link.sendMessage(why);
-    }
-    else
-    {
-        returnReduce(mesh.nCells(), sumOp<label>());
-    }
-    if (!why.empty())
-    {
-        Info<< "talusPointForceFoam: " << why.c_str() << endl;
-        link.disconnect();
-        if (ownMpi)
-        {
-            MPI_Finalize();
-        }
-        return 1;
-    }
-
-    meshSearch search(mesh);
-    labelList cells;                  // each particle's cell on this rank, -1 if elsewhere
-    std::vector<double> particles;    // per particle x y z vx vy vz r
-    std::vector<double> reply;        // status, max Re_p, then per particle fx fy fz owned
+    talusFoam::ParticleLocator locator(mesh);
+    std::vector<double> particles;    // per particle x y z vx vy vz r index
+    std::vector<double> reply;        // status, max Re_p, messages, then per particle fx fy fz owned
 
     Info<< "\nStarting the coupled time loop\n" << endl;
 
     while (true)
     {
-        int command[2];
-        link.recv(command, 2, MPI_INT, proto::kTagCommand, "the next command");
-        if (command[0] == proto::kCommandStop)
-        {
-            break;
-        }
-        const label n = command[1];
-        particles.resize(proto::kParticleDoubles*n);
-        link.recv
-        (
-            particles.data(), static_cast<int>(particles.size()), MPI_DOUBLE,
-            proto::kTagParticles, "the particles"
-        );
+        #include "receiveParticles.H"
         runTime++;
         Info<< "Time = " << runTime.timeName() << nl << endl;
 
-        // Locate: walk from last step's cell (a particle moves a fraction of a cell per step),
-        // octree search when the walk stops at a local minimum or the particle is new here.
-        cells.setSize(n, -1);
-        labelList ownerRank(n, Pstream::nProcs());
-        for (label i = 0; i < n; ++i)
-        {
-            const double* q = &particles[proto::kParticleDoubles*i];
-            const point x(q[0], q[1], q[2]);
-            label celli = cells[i] >= 0 ? search.findCell(x, cells[i]) : -1;
-            if (celli < 0)
-            {
-                celli = search.findCell(x);
-            }
-            cells[i] = celli;
-            if (celli >= 0)
-            {
-                ownerRank[i] = Pstream::myProcNo();
-            }
-        }
-        // A particle on a face between two ranks' cells belongs to the lower rank only.
-        if (Pstream::parRun())
-        {
-            MPI_Allreduce
-            (
-                MPI_IN_PLACE, ownerRank.begin(), n, MPI_INT, MPI_MIN, MPI_COMM_WORLD
-            );
-        }
+        locator.locate(particles, n, halo);
 
-        reply.assign(2 + proto::kForceDoubles*n, 0.0);
+        reply.assign(proto::kReplyHeader + proto::kForceDoubles*n, 0.0);
         S.primitiveFieldRef() = Zero;
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
         {
-            if (ownerRank[i] != Pstream::myProcNo())
+            if (!locator.owned(i))
             {
                 continue;
             }
             const double* q = &particles[proto::kParticleDoubles*i];
             const vector up(q[3], q[4], q[5]);
             const scalar r = q[6];
-            const label celli = cells[i];
+            const label celli = locator.cell(i);
             const vector slip = U[celli] - up;
-            const vector drag = 3*constant::mathematical::pi*mu*(2*r)*slip;
+            const scalar beta = 3*constant::mathematical::pi*mu*(2*r);
+            const vector drag = beta*slip;
             const vector buoyancy =
                 -rho.value()*(4.0/3.0)*constant::mathematical::pi*pow3(r)*gravity;
             S[celli] -= drag/(rho.value()*mesh.V()[celli]);
             maxRe = max(maxRe, mag(slip)*2*r/nu.value());
-            double* f = &reply[2 + proto::kForceDoubles*i];
+            double* f = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
             f[0] = drag.x() + buoyancy.x();
             f[1] = drag.y() + buoyancy.y();
             f[2] = drag.z() + buoyancy.z();
             f[3] = 1;
+            f[4] = beta;
+            f[5] = U[celli].x();
+            f[6] = U[celli].y();
+            f[7] = U[celli].z();
         }
         reply[0] = proto::kStatusOk;
         reply[1] = maxRe;
+        reply[2] = halo.messages();
         link.send
         (
             reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, proto::kTagForces,

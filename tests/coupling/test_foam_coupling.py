@@ -111,3 +111,20 @@ def test_two_fluid_ranks_give_the_same_first_exchange(tmp_path):
     assert record["fluidProcs"] == 2
     expected = stokes_drag(record, 0) + buoyancy(record)
     np.testing.assert_allclose(record["forces"][0], expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
+
+
+def test_implicit_drag_is_re_evaluated_at_every_sub_step(tmp_path):
+    """implicitDrag: over the 10 DEM sub-steps the force is the exchange's plus
+    beta (v_exchange - v_k), beta = 3 pi mu d, integrated as the NewtonIntegrator does."""
+    run, record = drive(case(tmp_path), tmp_path, "--implicit")
+    assert run.returncode == 0, run.stdout + run.stderr
+    first = np.array(record["forces"][0])
+    v0, v1 = np.array(record["velocities"][0]), np.array(record["velocities"][1])
+    m = np.array(record["masses"])[:, None]
+    beta = 3 * math.pi * RHO * NU * 2 * np.array(record["radii"])[:, None]
+    v = v0.copy()
+    for _ in range(record["substeps"]):
+        v = v + record["dt"] * ((first + beta * (v0 - v)) / m + G)
+    np.testing.assert_allclose(v1, v, rtol=1e-9)
+    held = v0 + (first / m + G) * record["substeps"] * record["dt"]
+    assert np.abs(v1 - held).max() > 1e-3 * np.abs(v1 - v0).max()  # not the held force

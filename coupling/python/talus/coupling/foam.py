@@ -75,8 +75,13 @@ def find_solver(name: str) -> str:
     return found
 
 
+# The particle Reynolds number up to which each solver's drag law holds (Stokes drag: 10 % off
+# at Re_p ~ 0.5; Schiller-Naumann: fitted up to Re_p ~ 1000).
+_REYNOLDS_LIMITS = {"talusPointForceFoam": 0.5, "talusVolumeAveragedFoam": 1000.0}
+
+
 class FoamCoupling:
-    """DEM side of the point-force CFD-DEM coupling.
+    """DEM side of the CFD-DEM coupling (point-force or volume-averaged solver).
 
     Args:
         scene: the DEM scene (O).
@@ -86,24 +91,43 @@ class FoamCoupling:
             values different from its transportProperties.
         gravity: must equal the case's constant/g and the NewtonIntegrator's gravity.
         ids: bodies coupled (default: every sphere).
-        solver: solver name or path (default talusPointForceFoam).
+        solver: solver name or path: talusPointForceFoam (default; Stokes drag, point forces) or
+            talusVolumeAveragedFoam (fluid fraction, Gaussian envelope, Schiller-Naumann drag).
         nProcs: fluid ranks (MPI_Comm_spawn, ``-parallel`` when > 1).
         couplingInterval: [s] the fluid deltaT may not exceed it (None: no limit).
         timeout: longest wait for the other side [s]; then every process is aborted.
-        reynoldsLimit: a RuntimeWarning when the particle Reynolds number exceeds it (Stokes
-            drag is 10 % off at Re_p ~ 0.5).
+        reynoldsLimit: a RuntimeWarning when the particle Reynolds number exceeds it (default:
+            0.5 for talusPointForceFoam, 1000 for talusVolumeAveragedFoam).
+        implicitDrag: re-evaluate the drag beta (u_f - v) at every DEM sub-step with the particle's
+            current velocity (beta and u_f from the last exchange) instead of holding the drag of
+            the exchange over the fluid step. Needed when the particles' velocities change within
+            a fluid step (contacts in a dense bed), stable for DEM steps below the relaxation time.
+        checkpoint: DEM checkpoint file written (atomically, O.save) every
+            ``checkpointInterval`` fluid steps at the end of a DEM step; if the coupled run fails
+            (a particle leaves the mesh, a fluid rank dies) the last one written is intact.
     """
 
     def __init__(self, scene, case, *, rhoFluid: float, nu: float, gravity=(0.0, 0.0, -9.81), ids=None,
                  solver: str = "talusPointForceFoam", nProcs: int = 1, couplingInterval: float | None = None,
-                 timeout: float = 60.0, reynoldsLimit: float = 0.5):
+                 timeout: float = 60.0, reynoldsLimit: float | None = None, checkpoint=None,
+                 checkpointInterval: int = 100, implicitDrag: bool = False):
         self.scene = scene
         self.case = str(Path(case).resolve())
         self.rhoFluid, self.nu = float(rhoFluid), float(nu)
         self.gravity = tuple(float(g) for g in gravity)
         self.ids = None if ids is None else np.asarray(ids, dtype=np.int64)
         self.solver, self.nProcs = solver, int(nProcs)
+        if reynoldsLimit is None:
+            reynoldsLimit = _REYNOLDS_LIMITS.get(Path(solver).name, 0.5)
         self.couplingInterval, self.timeout, self.reynoldsLimit = couplingInterval, float(timeout), reynoldsLimit
+        if checkpoint is not None and int(checkpointInterval) < 1:
+            raise ValueError(f"FoamCoupling: checkpointInterval must be >= 1 fluid steps, got {checkpointInterval}")
+        self.checkpoint = None if checkpoint is None else str(checkpoint)
+        self.checkpointInterval = int(checkpointInterval)
+        self._checkpoint_hook = None
+        self.implicitDrag = bool(implicitDrag)
+        self._drag_hook = None
+        self._beta = self._fluid_velocity = self._sent_velocity = None
         self.link = None
         self.substeps = 0
         self.hook = None
@@ -152,7 +176,18 @@ class FoamCoupling:
         self._warn_relaxation(dt_fluid, ids)
         self._applied = np.zeros((len(ids), 3))
         self.hook = self.scene.add_hook("before_forces", self.exchange, self.substeps)
+        if self.implicitDrag:
+            self._drag_hook = self.scene.add_hook("after_forces", self._update_drag, 1)
+        if self.checkpoint is not None:
+            self.save_checkpoint()
+            self._checkpoint_hook = self.scene.add_hook("after_step", self.save_checkpoint,
+                                                        self.substeps * self.checkpointInterval)
         return self
+
+    def save_checkpoint(self):
+        """Write the DEM checkpoint (O.save, atomic; the engines are not stored: the coupling's
+        hooks cannot be)."""
+        self.scene.save(self.checkpoint, engines=False)
 
     def _warn_relaxation(self, dt_fluid, ids):
         r = self.scene.radii()[ids]
@@ -165,12 +200,36 @@ class FoamCoupling:
                           f"{tau:g} s: the explicit drag held over a fluid step is inaccurate or unstable; "
                           f"lower deltaT in system/controlDict", RuntimeWarning, stacklevel=3)
 
+    def _warn_drag_relaxation(self, ids):
+        """The relaxation time m / beta with the drag the fluid actually applies (with the
+        volume-averaged solver: Schiller-Naumann and the hindrance factor, up to ~20 times shorter
+        than the Stokes estimate of start() in a dense bed)."""
+        beta = self._beta
+        if not np.any(beta > 0):
+            return
+        tau = np.where(beta > 0, self.scene.masses()[ids] / np.where(beta > 0, beta, 1.0), np.inf)
+        k = int(np.argmin(tau))
+        if self.implicitDrag:
+            step, what, fix = self.scene.dt, "DEM step", "lower O.dt"
+        else:
+            step, what, fix = self.link.fluidDt, "fluid step", "lower deltaT in system/controlDict or use implicitDrag=True"
+            if step > self.relaxationTime:
+                return  # start() has warned already
+        if step > tau[k]:
+            warnings.warn(f"FoamCoupling: the {what} {step:g} s exceeds the relaxation time m/beta = {tau[k]:g} s of "
+                          f"body {int(ids[k])} with the drag of the first exchange (hindrance included): the drag "
+                          f"is inaccurate or unstable; {fix}", RuntimeWarning, stacklevel=3)
+
     # -- exchange ------------------------------------------------------------------------------
     def exchange(self):
         """One fluid step: send the particles, replace last step's forces by the new ones."""
         ids = self.ids
-        forces, re = self.link.exchange(self.scene.positions()[ids], self.scene.velocities()[ids],
-                                        self.scene.radii()[ids])
+        velocities = self.scene.velocities()[ids]
+        forces, re, self._beta, self._fluid_velocity = self.link.exchange(self.scene.positions()[ids], velocities,
+                                                                          self.scene.radii()[ids])
+        self._sent_velocity = velocities
+        if self.exchanges == 0:
+            self._warn_drag_relaxation(ids)
         # The persistent forces carry the force over the sub-steps; this step's accumulator was
         # already filled from them by the ForceResetter, so it gets the change too.
         change = forces - self._applied
@@ -181,12 +240,20 @@ class FoamCoupling:
         self.exchanges += 1
         if re > self.reynoldsLimit and self.maxReynolds <= self.reynoldsLimit:
             warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
-                          f"Stokes drag is no longer accurate", RuntimeWarning, stacklevel=2)
+                          f"the drag law of {Path(self.solver).name} is no longer accurate", RuntimeWarning, stacklevel=2)
         self.maxReynolds = max(self.maxReynolds, re)
 
+    def _update_drag(self):
+        """This sub-step's drag minus the exchange's: beta (v_exchange - v) (implicitDrag)."""
+        if self._beta is None:
+            return
+        ids = self.ids
+        self.scene.forces()[ids] += self._beta[:, None] * (self._sent_velocity - self.scene.velocities()[ids])
+
     def stop(self):
-        """Let the fluid write its last fields and exit; remove the hook."""
-        if self.hook is not None:
-            self.hook.dead = True
+        """Let the fluid write its last fields and exit; remove the hooks."""
+        for hook in (self.hook, self._checkpoint_hook, self._drag_hook):
+            if hook is not None:
+                hook.dead = True
         if self.link is not None and self.link.running:
             self.link.stop()

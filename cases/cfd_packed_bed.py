@@ -1,0 +1,216 @@
+"""CFD-DEM case: pressure drop through a fixed packed bed against the Ergun equation,
+volume-averaged coupling with OpenFOAM (talusVolumeAveragedFoam spawned over MPI; case folder
+cases/cfd_packed_bed/).
+
+Run:      build/bin/talus run cases/cfd_packed_bed.py [--quick] [--results DIR] [--procs 2]
+          (as root export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1)
+Set-up:   spheres d = 1 mm, rho_p = 2500 kg/m3, deposited frictionless (E = 1e5 Pa, gravity 10 g
+          to settle fast, damping 0.7; makeCloud seed 1) on a floor 4 mm above the inlet of a
+          square column 8 x 8 mm (frictionless side walls); quick 900 spheres (bed ~ 13 mm),
+          full 1500. Then every particle is held (blockedDOFs) and fluid rho = 1000 kg/m3,
+          nu = 1e-4 m2/s enters at the bottom at the superficial velocity U0 (below minimum
+          fluidisation, Re_p < 0.1) and leaves at the top (p = 0); slip side walls. Fluid cells
+          1.6 mm (5 x 5 across), Gaussian envelope width 3 mm, fluid step 1 ms, 30 steps per
+          velocity (steady after a few: the drag relaxes the flow in ~ 1e-4 s).
+Checked:  the pressure gradient, fitted by least squares to the laterally averaged cell
+          pressures over the middle 40 % of the bed, against the Ergun equation
+          dP/dz = 150 mu (1 - e)^2 U0 / (e^3 d^2) + 1.75 rho (1 - e) U0^2 / (e^3 d) at the porosity e
+          of the packing in that window (exact sphere-slab volumes), within 10 % (issue #6).
+          What the model predicts: at steady state in a fixed bed the Schiller-Naumann drag with
+          the hindrance exponent h = 2.65 gives 18 mu (1 - e) U0 / (d^2 e^(2 + h)) in the Stokes
+          limit, Ergun times 0.12 e^(1 - h) / (1 - e) = 0.995 at e = 0.366, 0.907 at e = 0.40,
+          0.87 at e = 0.42: the comparison checks the coupling (fluid fraction, implicit drag, pressure) and shows the
+          closure's own distance from Ergun, also recorded. Measured (quick): -10.4 % from Ergun,
+          -10.0 % from the closure at the packing's porosity 0.366 (the solver's smoothed fluid
+          fraction in the window is 0.370: with the drag ~ e^-4.65 that alone is -5 %). The
+          result depends on the envelope: width 2.4 mm gave -16 %, 2 mm (below the cell size)
+          -38 %, the cell-local envelope (2 mm cells, ~8 particles each) -37 %, width 6 mm on
+          2 mm cells -60 % (the bed's fluid fraction smeared over the whole 12 mm bed).
+Produces: record cfd.packed_bed; chart cfd.packed_bed.png (pressure gradient against U0).
+"""
+import math
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from talus import results
+from talus.coupling import FoamCoupling
+from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
+                       Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
+                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, aabbWalls, pack,
+                       sphere, unbalancedForce)
+
+HERE = Path(__file__).resolve().parent
+CASE = HERE / "cfd_packed_bed"
+RHO, NU, RHO_P, D, G = 1000.0, 1e-4, 2500.0, 1e-3, 9.81
+MU = RHO * NU
+L, FLOOR, DX, HINDRANCE = 8e-3, 4e-3, 1.6e-3, 2.65
+CHECKED = 0.10
+
+
+def ergun(u0, eps):
+    return 150 * MU * (1 - eps) ** 2 * u0 / (eps ** 3 * D ** 2) + 1.75 * RHO * (1 - eps) * u0 ** 2 / (eps ** 3 * D)
+
+
+def model(u0, eps):
+    """The Stokes-limit pressure gradient of Schiller-Naumann drag with the hindrance exponent."""
+    return 18 * MU * (1 - eps) * u0 / (D ** 2 * eps ** (2 + HINDRANCE))
+
+
+def deposit(n: int, seed: int = 1):
+    """A frictionless packing on the floor z = FLOOR (cached in the temporary folder)."""
+    cache = Path(tempfile.gettempdir()) / f"talus_cfd_packed_bed_{n}_{seed}.npz"
+    if cache.exists():
+        data = np.load(cache)
+        return data["x"], data["r"]
+    s = Scene()
+    s.materials.append(FrictMat(young=1e5, poisson=.3, frictionAngle=0.0, density=RHO_P, label="grains"))
+    top = FLOOR + n * (math.pi * D ** 3 / 6) / (L * L * 0.25)
+    s.bodies.append(aabbWalls(((0, 0, FLOOR), (L, L, top)), material="grains"))
+    sp = pack.SpherePack()
+    sp.makeCloud((0, 0, FLOOR), (L, L, top), D / 2, 0, n, False, seed=seed)
+    ids = sp.toSimulation(s, material="grains")
+    if len(ids) != n:
+        raise RuntimeError(f"makeCloud placed {len(ids)} of {n} spheres")
+    s.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                                 [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(gravity=(0, 0, -10 * G), damping=0.7)]
+    s.dt = .5 * PWaveTimeStep(s)
+    while s.iter < 2000 or unbalancedForce(scene=s) > .05:
+        s.run(500)
+    x, r = s.positions()[ids], s.radii()[ids]
+    np.savez(cache, x=x, r=r)
+    return x, r
+
+
+def slab_porosity(x, r, z1, z2):
+    """Porosity of the column between heights z1 and z2 (exact sphere-slab volumes)."""
+    a = np.clip(z1 - x[:, 2], -r, r)
+    b = np.clip(z2 - x[:, 2], -r, r)
+    solid = np.sum(math.pi * (r ** 2 * (b - a) - (b ** 3 - a ** 3) / 3))
+    return 1 - solid / (L * L * (z2 - z1))
+
+
+def read_internal_field(path: Path) -> np.ndarray:
+    text = path.read_text()
+    m = re.search(r"internalField\s+nonuniform\s+List<scalar>\s+(\d+)\s*\(([^)]*)\)", text)
+    if m is None:
+        raise RuntimeError(f"{path}: no nonuniform internalField")
+    return np.array(m.group(2).split(), dtype=float)
+
+
+def prepare_case(procs: int, height: float, u0: float) -> Path:
+    work = Path(tempfile.mkdtemp(prefix="talus_cfd_packed_bed_"))
+    shutil.copytree(CASE, work, dirs_exist_ok=True)
+    nz = round(height / DX)
+    mesh = work / "system" / "blockMeshDict"
+    text = mesh.read_text().replace("(NX NX NZ)", f"({round(L / DX)} {round(L / DX)} {nz})")
+    text = re.sub(r"\bL\b", repr(L), re.sub(r"\bH\b", repr(nz * DX), text.split("vertices", 1)[1]))
+    mesh.write_text(mesh.read_text().split("vertices", 1)[0] + "vertices" + text)
+    (work / "0" / "U").write_text((work / "0" / "U").read_text().replace("U0", repr(u0)))
+    env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
+    for tool in ["blockMesh"] + (["decomposePar"] if procs > 1 else []):
+        with open(work / f"log.{tool}", "w") as log:
+            subprocess.run([tool, "-case", str(work)], check=True, stdout=log, stderr=subprocess.STDOUT, env=env)
+    return work
+
+
+def flow(x, r, u0: float, procs: int, steps: int):
+    height = FLOOR + float(np.max(x[:, 2] + r)) + 6e-3
+    work = prepare_case(procs, height, u0)
+    s = Scene()
+    s.materials.append(FrictMat(density=RHO_P))
+    for xi, ri in zip(x, r):
+        b = s.bodies[s.bodies.append(sphere(tuple(xi), float(ri)))]
+        b.state.blockedDOFs = "xyzXYZ"
+    s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -G), damping=0.0)]
+    s.dt = 1e-3
+    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), nProcs=procs,
+                            solver="talusVolumeAveragedFoam").start()
+    start = time.perf_counter()
+    s.run(steps * coupling.substeps, True)
+    elapsed = time.perf_counter() - start
+    # The bed's pressure drop seen from the particles: their vertical hydrodynamic force less
+    # the hydrostatic buoyancy, per column area (model A: equal to the fluid's drop over the bed).
+    particle_dp = (float(np.sum(coupling.lastForces[:, 2])) - RHO * G * float(np.sum(4 / 3 * math.pi * r ** 3))) / (L * L)
+    coupling.stop()
+    env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
+    if procs > 1:
+        subprocess.run(["reconstructPar", "-latestTime", "-case", str(work)], check=True, capture_output=True, env=env)
+    last = max((p for p in work.iterdir() if re.fullmatch(r"[0-9.e-]+", p.name) and p.name != "0"),
+               key=lambda p: float(p.name))
+    p = read_internal_field(last / "p")
+    alpha = read_internal_field(last / "alphaf")
+    n = round(L / DX)
+    z = (np.arange(len(p) // (n * n)) + 0.5) * DX
+    p_z = RHO * p.reshape(-1, n * n).mean(axis=1)          # blockMesh order: x, then y, then z
+    alpha_z = alpha.reshape(-1, n * n).mean(axis=1)
+    shutil.rmtree(work, ignore_errors=True)
+    coupling.particlePressureDrop = particle_dp
+    return z, p_z, alpha_z, elapsed, coupling
+
+
+def main():
+    parser = results.case_arguments(__doc__)
+    parser.add_argument("--procs", type=int, default=1, help="fluid ranks (decomposed case)")
+    args = parser.parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    case = results.Case("cfd.packed_bed", quick=args.quick, folder=args.results)
+    n = 900 if args.quick else 1500
+    t0 = time.perf_counter()
+    x, r = deposit(n)
+    bed_top = float(np.max(x[:, 2] + r))
+    print(f"{n} spheres deposited in {time.perf_counter() - t0:.1f} s, bed {FLOOR:.4f}..{bed_top:.4f} m")
+    z1 = FLOOR + 0.3 * (bed_top - FLOOR)
+    z2 = FLOOR + 0.7 * (bed_top - FLOOR)
+    eps = slab_porosity(x, r, z1, z2)
+    # Minimum fluidisation (Ergun, viscous limit): (1 - e)(rho_p - rho) g = 150 mu (1-e)^2 U / (e^3 d^2)
+    u_mf = (RHO_P - RHO) * G * eps ** 3 * D ** 2 / (150 * MU * (1 - eps))
+    velocities = [0.2 * u_mf, 0.5 * u_mf, 0.8 * u_mf]
+    rows = []
+    for u0 in velocities:
+        z, p_z, alpha_z, elapsed, coupling = flow(x, r, u0, args.procs, 30)
+        window = (z > z1) & (z < z2)
+        slope = -np.polyfit(z[window], p_z[window], 1)[0]
+        row = dict(u0=u0, dPdz=slope, ergun=ergun(u0, eps), model=model(u0, eps),
+                   rel_error=(slope - ergun(u0, eps)) / ergun(u0, eps),
+                   rel_error_model=(slope - model(u0, eps)) / model(u0, eps),
+                   alphaf_window=float(np.mean(alpha_z[window])), wall_time_s=elapsed,
+                   fluid_pressure_drop=float(np.interp(FLOOR - 1e-3, z, p_z) - p_z[-1]),
+                   particle_pressure_drop=coupling.particlePressureDrop,
+                   max_Re_p=coupling.maxReynolds)
+        rows.append(row)
+        print(f"U0 {u0:.3e} m/s: dP/dz {slope:.1f} Pa/m, Ergun {row['ergun']:.1f} ({row['rel_error']:+.2%}), "
+              f"closure in the Stokes limit {row['model']:.1f} ({row['rel_error_model']:+.2%}); porosity {eps:.4f}, "
+              f"solver alphaf {row['alphaf_window']:.4f}; bed pressure drop {row['fluid_pressure_drop']:.3f} Pa (fluid), "
+              f"{row['particle_pressure_drop']:.3f} Pa (particles); Re_p {coupling.maxReynolds:.3g}; {elapsed:.1f} s")
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    u = np.array([row["u0"] for row in rows])
+    us = np.linspace(0, u_mf, 50)
+    ax.plot(us * 1e3, ergun(us, eps), "k--", lw=0.8, label=f"Ergun, porosity {eps:.3f}")
+    ax.plot(us * 1e3, model(us, eps), "k:", lw=0.8, label="Schiller-Naumann + hindrance (Stokes limit)")
+    ax.plot(u * 1e3, [row["dPdz"] for row in rows], "o", label="talusVolumeAveragedFoam")
+    ax.axhline((1 - eps) * (RHO_P - RHO) * G, color="grey", lw=0.5, ls=":", label="buoyant bed weight / volume")
+    ax.set_xlabel("superficial velocity U0 [mm/s]")
+    ax.set_ylabel("pressure gradient [Pa/m]")
+    ax.set_title(f"Packed bed, {n} spheres, volume-averaged coupling")
+    ax.legend(fontsize=7)
+    worst = max(abs(row["rel_error"]) for row in rows)
+    case.record("largest relative deviation of the bed pressure gradient from Ergun", worst,
+                "Ergun equation at the measured porosity", CHECKED, porosity=eps, u_mf=u_mf, spheres=n,
+                window=[z1, z2], fluid_procs=args.procs, rows=rows)
+    case.save_chart(fig)
+
+
+if __name__ == "__main__":
+    main()
