@@ -41,3 +41,10 @@ def test_quaternion_rotates_and_composes_like_yade():
     assert q == tuple(q) and (q.w, q.z) == (q[0], q[3])
     with pytest.raises(ValueError, match="axis must be non-zero"):
         Quaternion((0, 0, 0), 1.0)
+
+
+def test_a_shape_still_equals_its_kind_name():
+    S = Scene()
+    s = S.bodies.append(sphere((0, 0, 0), 0.25))
+    assert S.bodies[s].shape == "Sphere" and S.bodies[s].shape != "Wall"
+    assert S.bodies[s].shape == S.bodies[s].shape and len({S.bodies[s].shape, S.bodies[s].shape}) == 1

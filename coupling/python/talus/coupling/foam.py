@@ -23,6 +23,8 @@ from pathlib import Path
 
 import numpy as np
 
+from talus.dem.shapes import Sphere
+
 __all__ = ["FoamCoupling", "find_solver"]
 
 _links = []  # every started link, stopped at interpreter exit so no fluid rank is orphaned
@@ -139,7 +141,7 @@ class FoamCoupling:
     def _coupled_ids(self) -> np.ndarray:
         if self.ids is not None:
             return self.ids
-        return np.array([b.id for b in self.scene.bodies if b.shape.lower() == "sphere"], dtype=np.int64)
+        return np.array([b.id for b in self.scene.bodies if isinstance(b.shape, Sphere)], dtype=np.int64)
 
     def _check_gravity(self):
         from talus.dem.engines import NewtonIntegrator

@@ -23,6 +23,15 @@ class Shape:
     def __str__(self):
         return type(self).__name__
 
+    def __eq__(self, other):
+        # ``b.shape == "Sphere"`` keeps working (scripts written when shapes were kind names).
+        if isinstance(other, str):
+            return other == type(self).__name__
+        return isinstance(other, Shape) and (type(other), other._scene, other._id) == (type(self), self._scene, self._id)
+
+    def __hash__(self):
+        return hash((type(self).__name__, self._id))
+
     def __repr__(self):
         return f"<{type(self).__name__} of body {self._id}>"
 

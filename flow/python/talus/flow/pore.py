@@ -35,6 +35,7 @@ import numpy as np
 
 from talus import _dem, _flow
 from talus.dem.engines import Engine
+from talus.dem.shapes import Sphere
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
@@ -141,7 +142,7 @@ class FlowEngine(Engine):
 
     def triangulateScene(self, scene):
         """Build the network of the live spheres of a talus.dem scene (ids = body ids)."""
-        ids = [b.id for b in scene.bodies if b.shape == "Sphere"]
+        ids = [b.id for b in scene.bodies if isinstance(b.shape, Sphere)]
         pos = np.asarray(scene.positions())[ids]
         rad = np.asarray(scene.radii())[ids]
         self.triangulate(pos, rad, ids)
