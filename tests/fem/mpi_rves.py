@@ -1,0 +1,30 @@
+"""Run under mpirun: the Gauss-point calls with the RVEs spread over the ranks give the same
+stress and tangent as one process holding them all, over two committed increments and a
+rollback. Prints `points <local count>` per rank and `err <max relative difference>` on rank 0."""
+import sys
+
+import numpy as np
+from mpi4py import MPI
+
+from talus.fem import MultiscaleRVEs
+
+path, comm = sys.argv[1], MPI.COMM_WORLD
+rng = np.random.default_rng(3)
+grads = [rng.uniform(-1e-3, 1e-3, (5, 3, 3)) for _ in range(3)]
+spread = MultiscaleRVEs(path, numPoints=5, nSteps=10, comm=comm)
+alone = MultiscaleRVEs(path, numPoints=5, nSteps=10)
+err = 0.0
+for k, g in enumerate(grads):
+    for rves in (spread, alone):
+        rves.run(g)
+        if k == 1:                      # a rejected trial, then the accepted one
+            rves.rollback()
+            rves.run(g * 0.5)
+        rves.commit()
+    (s1, c1), (s2, c2) = spread.getStressAndTangent(), alone.getStressAndTangent()
+    err = max(err, np.abs(s1 - s2).max() / np.abs(s2).max(), np.abs(c1 - c2).max() / np.abs(c2).max(),
+              np.abs(spread.getVoidRatio() - alone.getVoidRatio()).max())
+print(f"points {len(spread.localPoints)}", flush=True)
+err = comm.allreduce(err, op=MPI.MAX)
+if comm.rank == 0:
+    print(f"err {err}", flush=True)

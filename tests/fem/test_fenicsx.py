@@ -1,0 +1,75 @@
+"""FEniCSx driver (talus.fem.fenicsx) on one element under drained biaxial loading: the stress path
+equals a direct DEM run of the same RVE under the converged strain path (1e-8), the escript client
+gives the same path, and bad set-ups are reported."""
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import talus
+
+HERE = Path(__file__).parent
+pytestmark = pytest.mark.skipif(not talus.build_info()["features"].get("fenicsx", (False,))[0],
+                                reason="this build has no FEniCSx (see `talus info`)")
+STEPS, STRAIN, N_STEPS = 3, 0.006, 20
+
+
+def one_element(path, tol=1e-8):
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+
+    from talus.fem import MultiscaleRVEs
+    from talus.fem.fenicsx import Dirichlet, MultiscaleSolver, Traction
+    msh = dmesh.create_rectangle(MPI.COMM_SELF, [np.zeros(2), np.ones(2)], [1, 1], dmesh.CellType.quadrilateral)
+    rves = MultiscaleRVEs(str(path), numPoints=4, nSteps=N_STEPS)
+    solver = MultiscaleSolver(
+        msh, rves, tol=tol,
+        dirichlet=[Dirichlet(lambda x: np.isclose(x[0], 0), 0), Dirichlet(lambda x: np.isclose(x[1], 0), 1),
+                   Dirichlet(lambda x: x[1] > 0.5, 1, lambda t: -STRAIN * t)],
+        tractions=[Traction(lambda x: x[0] > 0.5, lambda t: (-1e5, 0.0))])
+    stresses = []
+    for n in range(1, STEPS + 1):
+        solver.step(n / STEPS)
+        stresses.append(rves.getStressAndTangent()[0][0])
+    return solver, np.array(stresses)
+
+
+def test_one_element_equals_direct_dem(rve_file):
+    from talus.fem.direct import replay
+    solver, stresses = one_element(rve_file[0])
+    grads = [r.gradients[0] for r in solver.history]
+    assert len(grads) == STEPS and max(r.iterations for r in solver.history) >= 2   # Newton iterated (rollbacks)
+    direct = replay(rve_file[0], grads, N_STEPS)[1][:, :2, :2]
+    assert np.abs(stresses - direct).max() < 1e-8 * np.abs(direct).max()
+    assert stresses[-1][1, 1] < 1.2 * stresses[-1][0, 0]                 # loaded axially ...
+    assert abs(stresses[-1][0, 0] / -1e5 - 1) < 1e-6                     # ... under the confinement
+    total = solver.mesh.geometry.x[:, :2].max(axis=0)
+    assert total[1] == pytest.approx(1 - STRAIN, rel=1e-12)              # updated Lagrangian mesh
+
+
+def test_mesh_and_rves_must_match(rve_file):
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+
+    from talus.fem import MultiscaleRVEs
+    from talus.fem.fenicsx import MultiscaleSolver
+    msh = dmesh.create_rectangle(MPI.COMM_SELF, [np.zeros(2), np.ones(2)], [2, 1], dmesh.CellType.quadrilateral)
+    with pytest.raises(ValueError, match="2 cells x 4 quadrature points = 8 Gauss points, but 4 RVEs"):
+        MultiscaleSolver(msh, MultiscaleRVEs(str(rve_file[0]), numPoints=4))
+
+
+@pytest.mark.skipif(shutil.which("run-escript") is None, reason="escript is not installed")
+def test_escript_client_gives_the_same_path(rve_file):
+    _, stresses = one_element(rve_file[0])
+    env = {**os.environ, "PYTHONPATH": str(Path(talus.__file__).resolve().parent.parent), "OMP_NUM_THREADS": "1"}
+    done = subprocess.run(["run-escript", HERE / "escript_one_element.py", rve_file[0], str(STEPS), str(STRAIN),
+                           str(N_STEPS)], capture_output=True, text=True, env=env, timeout=120)
+    assert done.returncode == 0, done.stdout + done.stderr
+    theirs = np.array([[float(a), float(b)] for a, b in re.findall(r"^stress (\S+) (\S+)", done.stdout, re.MULTILINE)])
+    ours = np.stack([stresses[:, 0, 0], stresses[:, 1, 1]], axis=1)
+    assert theirs.shape == ours.shape
+    assert np.abs(theirs - ours).max() < 1e-5 * np.abs(ours).max()

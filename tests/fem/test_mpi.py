@@ -1,0 +1,22 @@
+"""The Gauss-point calls over 2 MPI ranks (mpi4py) equal the single-process calls."""
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+HERE = Path(__file__).parent
+MPI_ENV = {**os.environ, "OMPI_ALLOW_RUN_AS_ROOT": "1", "OMPI_ALLOW_RUN_AS_ROOT_CONFIRM": "1", "OMP_NUM_THREADS": "1"}
+
+
+def test_two_ranks_equal_one_process(rve_file):
+    pytest.importorskip("mpi4py")
+    import talus
+    MPI_ENV["PYTHONPATH"] = str(Path(talus.__file__).resolve().parent.parent)
+    done = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-n", "2", sys.executable,
+                           HERE / "mpi_rves.py", rve_file[0]], capture_output=True, text=True, env=MPI_ENV, timeout=120)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert sorted(re.findall(r"^points (\d+)$", done.stdout, re.MULTILINE)) == ["2", "3"]
+    assert float(re.findall(r"^err (\S+)$", done.stdout, re.MULTILINE)[0]) < 1e-12
