@@ -41,12 +41,16 @@ def one_element(path, tol=1e-8):
 def test_one_element_equals_direct_dem(rve_file):
     from talus.fem.direct import replay
     solver, stresses = one_element(rve_file[0])
-    grads = [r.gradients[0] for r in solver.history]
-    assert len(grads) == STEPS and max(r.iterations for r in solver.history) >= 2   # Newton iterated (rollbacks)
-    direct = replay(rve_file[0], grads, N_STEPS)[1][:, :2, :2]
-    assert np.abs(stresses - direct).max() < 1e-8 * np.abs(direct).max()
-    assert stresses[-1][1, 1] < 1.2 * stresses[-1][0, 0]                 # loaded axially ...
-    assert abs(stresses[-1][0, 0] / -1e5 - 1) < 1e-6                     # ... under the confinement
+    assert min(r.iterations for r in solver.history) >= 2   # Newton iterated: RVEs rolled back between
+    for p in (0, 3):    # every converged increment (a cut step has several), each point on its own path
+        ours = np.array([r.stress[p] for r in solver.history])
+        direct = replay(rve_file[0], [r.gradients[p] for r in solver.history], N_STEPS)[1][:, :2, :2]
+        assert np.abs(ours - direct).max() < 1e-8 * np.abs(direct).max()
+    assert stresses[-1][1, 1] < 1.2 * stresses[-1][0, 0]                 # loaded axially
+    # The confinement holds the right edge (equilibrium is solved on the configuration at the start
+    # of each step, the updated Lagrangian approximation of the seed: O(step strain) off after it)
+    right = solver.reactions(lambda x: x[0] > 0.5, 0)
+    assert right == pytest.approx(-1e5 * (1 - STRAIN), rel=1e-3)
     total = solver.mesh.geometry.x[:, :2].max(axis=0)
     assert total[1] == pytest.approx(1 - STRAIN, rel=1e-12)              # updated Lagrangian mesh
 

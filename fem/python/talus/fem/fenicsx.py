@@ -48,6 +48,7 @@ class StepReport:
     residuals: list = field(default_factory=list)
     cut: bool = False
     gradients: np.ndarray | None = None   # the converged grad du at every Gauss point
+    stress: np.ndarray | None = None      # and the RVEs' stress
 
 
 class NewtonDivergence(RuntimeError):
@@ -68,7 +69,7 @@ class MultiscaleSolver:
     points on quadrilaterals)."""
 
     def __init__(self, mesh, rves, dirichlet: Sequence[Dirichlet] = (), tractions: Sequence[Traction] = (),
-                 degree: int = 1, quadratureDegree: int = 2, tol: float = 1e-6, maxIter: int = 20,
+                 degree: int = 1, quadratureDegree: int = 2, tol: float = 1e-6, maxIter: int = 50,
                  minStepFraction: float = 1 / 64):
         import basix
         import ufl
@@ -166,6 +167,7 @@ class MultiscaleSolver:
         self._grads = self.gaussGradients()
         self.rves.run(self._grads)
         stress, tangent = self.rves.getStressAndTangent()
+        self._stress = stress
         self._update_quadrature(stress, tangent)
 
     def _try_step(self, t0: float, t1: float) -> StepReport:
@@ -179,7 +181,7 @@ class MultiscaleSolver:
         self.du.x.array[:] = 0
         fem.set_bc(self.du.vector, bcs)
         self.du.x.scatter_forward()
-        zero = [fem.dirichletbc(fem.Function(self.V), bc.dof_indices()[0]) for bc in bcs]
+        zero = self._bcs(t0, t0)      # the same dofs, homogeneous: for the Newton corrections
         ksp = PETSc.KSP().create(self.mesh.comm)
         ksp.setType("preonly")
         ksp.getPC().setType("lu")
@@ -190,7 +192,7 @@ class MultiscaleSolver:
             res = r.norm() / max(scale, 1e-300)
             report.residuals.append(float(res))
             if res < self.tol:
-                report.iterations, report.gradients = it, self._grads
+                report.iterations, report.gradients, report.stress = it, self._grads, self._stress
                 return report
             A = assemble_matrix(self.jacobianForm, bcs=zero)
             A.assemble()
