@@ -19,8 +19,8 @@ for n in range(steps):
     left, bottom, top = whereZero(x[0]), whereZero(x[1]), wherePositive(x[1] - 0.5)
     mask = left * np.array([1.0, 0.0]) + (bottom + top) * np.array([0.0, 1.0])
     increment = top * np.array([0.0, -strain / steps])
-    xb = FunctionOnBoundary(dom).getX()
-    traction = wherePositive(xb[0] - 0.5) * np.array([-1e5, 0.0])
+    normal = FunctionOnBoundary(dom).getNormal()      # the right edge: outward normal along +x
+    traction = wherePositive(normal[0] - 0.5) * np.array([-1e5, 0.0])
     it = solver.step(mask, increment, traction)
     s, _ = rves.getStressAndTangent()
     print(f"stress {s[0][0, 0]!r} {s[0][1, 1]!r} iterations {it}", flush=True)

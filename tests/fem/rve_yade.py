@@ -1,11 +1,10 @@
-"""Scenario (talus.dem.twin): an exported RVE packing (rve_packing.json, written by the test)
-built as a periodic scene in Yade and in Talus, deformed by the displacement gradient G over
-nSteps steps (L_k dt = (G / n) (I + (k - 1) / n G)^-1, the Gauss-point calls' sub-steps). Yade
-steps O.cell.velGrad itself; Talus hands the scene to talus.fem.MultiscaleRVEs, whose C++ RVE
-does the same. Prints `RESULT {stress, tangent}`: Yade's getStressAndTangent and Talus's
-Gauss-point getStressAndTangent with form="yade"."""
+"""Scenario (talus.dem.twin): an exported RVE packing (rve_packing.json, written by the test) built
+as a periodic scene in Yade and in Talus, each sphere given a deterministic velocity, one step
+(fresh contacts get a first shear increment, so Yade's shear term is exercised; the method of
+tests/dem/packing_tangent.py on a periodic RVE). Yade prints its getStressAndTangent; Talus hands
+the scene to talus.fem.MultiscaleRVEs (a C++ RVE holding a copy of it) and prints the Gauss-point
+getStressAndTangent with form="yade". Output: `RESULT {stress, tangent, shearing}`."""
 import json
-import os
 
 import numpy as np
 
@@ -16,9 +15,7 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
     talus = True
 
-P = json.loads(os.environ.get("TALUS_SCENARIO", "{}"))
 data = json.load(open("rve_packing.json"))
-G, n = np.array(P["G"]), int(P["nSteps"])
 O.periodic = True
 O.cell.hSize = Matrix3(*np.array(data["hSize"]).ravel())
 O.materials.append(FrictMat(young=data["young"], poisson=data["poisson"], frictionAngle=data["frictionAngle"],
@@ -31,17 +28,20 @@ O.engines = [
                     [Law2_ScGeom_FrictPhys_CundallStrack()]),
     NewtonIntegrator(damping=0.2),
 ]
-O.dt = data["dt"]
+velocities = np.sin(np.arange(3 * len(data["pos"])).reshape(-1, 3) * 1.7) * 0.05
+for b, v in zip(O.bodies, velocities):
+    b.state.vel = Vector3(*v) if not talus else v
+O.dt = 1e-5
+O.run(1, True)
 if talus:
     from talus.fem import MultiscaleRVEs
-    rves = MultiscaleRVEs([O], nSteps=n, form="yade")
-    rves.run(G[None])
+    rves = MultiscaleRVEs([O], form="yade")
     stress, tangent = (x[0] for x in rves.getStressAndTangent())
+    shearing = sum(1 for c in O.contacts() if np.any(c["shearForce"]))
 else:
-    for k in range(n):
-        O.cell.velGrad = Matrix3(*((G / n) @ np.linalg.inv(np.eye(3) + k / n * G) / O.dt).ravel())
-        O.run(1, True)
     stress, tangent = getStressAndTangent(O.cell.volume, True)
     tangent = np.array(tangent)
     tangent = np.triu(tangent) + np.triu(tangent, 1).T     # Yade fills the upper triangle only
-print("RESULT " + json.dumps({"stress": np.array(stress).tolist(), "tangent": np.array(tangent).tolist()}))
+    shearing = None
+print("RESULT " + json.dumps({"stress": np.array(stress).tolist(), "tangent": np.array(tangent).tolist(),
+                              "shearing": shearing}))

@@ -1,5 +1,6 @@
-"""Against Yade: on the same exported RVE packing, deformed by the same gradient, the Gauss-point
-stress and tangent (form="yade") equal Yade's getStressAndTangent within 1e-6."""
+"""Against Yade: on the same exported RVE packing (one step of deterministic particle velocities, as
+tests/dem/test_tangent.py), the Gauss-point stress and tangent (form="yade") equal Yade's
+getStressAndTangent within 1e-6."""
 import shutil
 
 import numpy as np
@@ -15,11 +16,11 @@ def test_rve_stress_and_tangent_equal_yades(rve_file, tmp_path):
     from talus.fem import exportRVE
     exportRVE(rve_file[0], tmp_path / "rve_packing.json")
     shutil.copy(Path(__file__).with_name("rve_yade.py"), tmp_path / "rve_yade.py")
-    params = {"G": [[-1e-3, 4e-4, 0], [0, 5e-4, -2e-4], [1e-4, 0, 3e-4]], "nSteps": 20}
-    ours, yade = (twin.run(tmp_path / "rve_yade.py", params, program, timeout=300) for program in ("talus", "yade"))
+    ours, yade = (twin.run(tmp_path / "rve_yade.py", {}, program, timeout=300) for program in ("talus", "yade"))
+    assert ours["shearing"] > 50                       # contacts with a shear force: Yade's shear term is used
     s, sy = np.array(ours["stress"]), np.array(yade["stress"])
     c, cy = np.array(ours["tangent"]), np.array(yade["tangent"])
     assert np.abs(sy).max() > 1e3                     # the packing is loaded
     assert np.abs(s - sy).max() < 1e-6 * np.abs(sy).max()
     assert np.abs(c - cy).max() < 1e-6 * np.abs(cy).max()
-    assert np.abs(cy[3:, 3:]).max() > 0.01 * np.abs(cy[:3, :3]).max()   # shear terms are exercised
+    print(f"stress {np.abs(s - sy).max() / np.abs(sy).max():.2e} tangent {np.abs(c - cy).max() / np.abs(cy).max():.2e}")

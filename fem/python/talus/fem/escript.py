@@ -18,7 +18,7 @@ class MultiscaleEscript2D:
     """``domain``: an escript (finley) 2D domain; ``rves``: :class:`talus.fem.MultiscaleRVEs`
     with one RVE per data point of ``Function(domain)``."""
 
-    def __init__(self, domain, rves, tol: float = 1e-6, maxIter: int = 20):
+    def __init__(self, domain, rves, tol: float = 1e-6, maxIter: int = 50):
         from esys.escript import Function
         from esys.escript.linearPDEs import LinearPDE
         self.domain, self.rves, self.tol, self.maxIter = domain, rves, tol, maxIter
@@ -50,7 +50,7 @@ class MultiscaleEscript2D:
         from esys.escript import Lsup, Solution, Vector
         from esys.escript.linearPDEs import LinearPDE
         du = increment * mask
-        internal = LinearPDE(self.domain, numEquations=2)
+        internal = LinearPDE(self.domain, numEquations=2, numSolutions=2)
         for it in range(self.maxIter + 1):
             X, A = self._evaluate(du)
             self.pde.setValue(A=A, X=-X, q=mask, r=Vector(0, Solution(self.domain)))
