@@ -1,6 +1,6 @@
 """escript client (run-escript): one finley element, drained biaxial plane-strain loading as in
 cases/fem_one_element.py (left ux = 0, bottom uy = 0, top lowered by 0.4 % per step, right edge
-under 100 kPa), RVEs from argv[1]. Prints `stress <sxx> <syy>` (Gauss point 0) after each step."""
+under 100 kPa); argv: RVE file, load steps, axial strain, DEM steps per call, Newton tolerance. Prints `stress <sxx> <syy>` (Gauss point 0) after each step."""
 import sys
 
 import numpy as np
@@ -13,7 +13,7 @@ from talus.fem.escript import MultiscaleEscript2D
 path, steps, strain = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
 dom = Rectangle(l0=1.0, l1=1.0, n0=1, n1=1)
 rves = MultiscaleRVEs(path, numPoints=4, nSteps=int(sys.argv[4]))
-solver = MultiscaleEscript2D(dom, rves, tol=1e-8)
+solver = MultiscaleEscript2D(dom, rves, tol=float(sys.argv[5]))
 for n in range(steps):
     x = ContinuousFunction(dom).getX()
     left, bottom, top = whereZero(x[0]), whereZero(x[1]), wherePositive(x[1] - 0.5)
