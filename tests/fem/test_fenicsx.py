@@ -55,6 +55,18 @@ def test_one_element_equals_direct_dem(rve_file):
     assert total[1] == pytest.approx(1 - STRAIN, rel=1e-12)              # updated Lagrangian mesh
 
 
+def test_paraview_output(rve_file, tmp_path):
+    from dolfinx.io import XDMFFile
+    solver, _ = one_element(rve_file[0], tol=1e-4)
+    with XDMFFile(solver.mesh.comm, str(tmp_path / "out.xdmf"), "w") as xdmf:
+        xdmf.write_mesh(solver.mesh)
+        solver.write(xdmf, 1.0)
+    text = (tmp_path / "out.xdmf").read_text()
+    for name in ("displacement", "voidRatio", "sxx", "syy", "sxy", "shearStrain"):
+        assert f'Name="{name}"' in text
+    assert (tmp_path / "out.h5").stat().st_size > 0
+
+
 def test_mesh_and_rves_must_match(rve_file):
     from dolfinx import mesh as dmesh
     from mpi4py import MPI

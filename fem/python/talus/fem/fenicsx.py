@@ -258,23 +258,33 @@ class MultiscaleSolver:
         return float(np.sum(f.array[dofs]))
 
     def fields(self) -> dict:
-        """Per-cell averages over the Gauss points: stress (Voigt), void ratio, shear strain
-        magnitude of the last increment, for output."""
+        """Per-cell averages over the Gauss points, for output: stress (d x d), void ratio, and
+        the deviatoric (shear) strain magnitude of the last converged increment,
+        sqrt(2/3 e':e') with e' the deviator of sym(grad du)."""
         nq = len(self.points)
         stress, _ = self.rves.getStressAndTangent()
         e = self.rves.getVoidRatio()
-        return {"stress": stress.reshape(len(self.cells), nq, self.d, self.d).mean(axis=1),
-                "voidRatio": e.reshape(len(self.cells), nq).mean(axis=1)}
+        g = self.history[-1].gradients if self.history else np.zeros((len(stress), self.d, self.d))
+        eps = np.zeros((len(g), 3, 3))            # plane strain: eps_zz = 0, but it has a deviator
+        eps[:, :self.d, :self.d] = 0.5 * (g + g.transpose(0, 2, 1))
+        dev = eps - np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
+        shear = np.sqrt(2 / 3 * np.einsum("pij,pij->p", dev, dev))
+        cells = len(self.cells)
+        return {"stress": stress.reshape(cells, nq, self.d, self.d).mean(axis=1),
+                "voidRatio": e.reshape(cells, nq).mean(axis=1),
+                "shearStrain": shear.reshape(cells, nq).mean(axis=1)}
 
     def write(self, xdmf, t: float):
-        """Write displacement, cellwise stress, void ratio and deviatoric strain to an open
-        dolfinx.io.XDMFFile (ParaView)."""
+        """Write the displacement (total since the start) and cellwise stress components, void
+        ratio and shear strain increment to an open dolfinx.io.XDMFFile (ParaView)."""
         from dolfinx import fem
         Q = fem.FunctionSpace(self.mesh, ("DG", 0))
         f = self.fields()
         xdmf.write_function(self.u, t)
-        for name, values in (("voidRatio", f["voidRatio"]), ("sxx", f["stress"][:, 0, 0]),
-                             ("syy", f["stress"][:, 1, 1]), ("sxy", f["stress"][:, 0, 1])):
+        names = [("sxx", (0, 0)), ("syy", (1, 1)), ("sxy", (0, 1))] + (
+            [("szz", (2, 2)), ("syz", (1, 2)), ("sxz", (0, 2))] if self.d == 3 else [])
+        values = [(n, f["stress"][:, i, j]) for n, (i, j) in names]
+        for name, v in values + [("voidRatio", f["voidRatio"]), ("shearStrain", f["shearStrain"])]:
             q = fem.Function(Q, name=name)
-            q.x.array[:len(values)] = values
+            q.x.array[:len(v)] = v
             xdmf.write_function(q, t)
