@@ -65,15 +65,16 @@ void RVE::setUp(const RVEEngines& engines)
   loop->laws.push_back(dem::makeContactLaw(engines.law));
   auto integrator = std::make_shared<dem::NewtonIntegrator>();
   integrator->damping = engines.damping;
-  scene_.engines = {std::make_shared<dem::ForceResetter>(), std::make_shared<dem::Collider>(), loop, integrator};
+  collider_ = std::make_shared<dem::Collider>();
+  scene_.engines = {std::make_shared<dem::ForceResetter>(), collider_, loop, integrator};
   // The state came from elsewhere: engines must not trust any cache (as after loading a checkpoint).
   ++scene_.bodiesVersion;
   ++scene_.bodyPropertiesVersion;
   initialOri_ = scene_.bodies.ori;
-  committed_ = {scene_.bodies, scene_.contacts, scene_.cell, scene_.time, scene_.iter};
+  commit();
 }
 
-void RVE::restore()
+void RVE::restore(bool failed)
 {
   scene_.bodies = committed_.bodies;
   scene_.contacts = committed_.contacts;
@@ -81,9 +82,10 @@ void RVE::restore()
   scene_.time = committed_.time;
   scene_.iter = committed_.iter;
   scene_.clearFailedStep();
-  // Positions jumped back: the collider must re-detect, the integrator refresh its caches.
-  ++scene_.bodiesVersion;
-  ++scene_.bodyPropertiesVersion;
+  // The contact list is the committed one: valid for the collider's reference positions unless
+  // the collider rebuilt during the trial (or a step failed half-way); then it must re-detect.
+  if (failed || collider_->rebuilds != committedRebuilds_)
+    ++scene_.bodiesVersion;
   trial_ = false;
 }
 
@@ -112,7 +114,7 @@ void RVE::deform(const Mat3& grad, int nSteps)
   }
   catch (const std::exception& e)
   {
-    restore();
+    restore(true);
     throw std::runtime_error("RVE " + name_ + ": DEM step failed while deforming (" + e.what()
                              + "); the last committed state was restored");
   }
@@ -123,6 +125,7 @@ void RVE::deform(const Mat3& grad, int nSteps)
 void RVE::commit()
 {
   committed_ = {scene_.bodies, scene_.contacts, scene_.cell, scene_.time, scene_.iter};
+  committedRebuilds_ = collider_->rebuilds;
   trial_ = false;
 }
 

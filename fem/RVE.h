@@ -4,8 +4,14 @@
 #include "dem/Scene.h"
 
 #include <Eigen/Dense>
+#include <memory>
 #include <string>
 #include <vector>
+
+namespace talus::dem
+{
+class Collider;
+}
 
 namespace talus::fem
 {
@@ -76,7 +82,7 @@ public:
 private:
   RVE(const std::string& name) : name_(name) {}
   void setUp(const RVEEngines& engines);
-  void restore();
+  void restore(bool failed = false);
 
   struct Snapshot
   {
@@ -89,6 +95,11 @@ private:
   std::string name_;
   dem::Scene scene_;
   Snapshot committed_;
+  /// The RVE's collider and its rebuild count at the last commit: a rollback forces a new
+  /// contact detection only if the collider rebuilt its candidate list during the trial
+  /// (otherwise the committed list still matches the collider's reference positions).
+  std::shared_ptr<dem::Collider> collider_;
+  std::int64_t committedRebuilds_ = -1;
   std::vector<dem::Quat> initialOri_;
   bool trial_ = false;
 };
