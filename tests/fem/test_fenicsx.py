@@ -18,7 +18,7 @@ pytestmark = pytest.mark.skipif(not talus.build_info()["features"].get("fenicsx"
 STEPS, STRAIN, N_STEPS = 3, 0.006, 20
 
 
-def one_element(path, tol=1e-8):
+def one_element(path, tol=1e-6):
     from dolfinx import mesh as dmesh
     from mpi4py import MPI
 
@@ -38,9 +38,15 @@ def one_element(path, tol=1e-8):
     return solver, np.array(stresses)
 
 
-def test_one_element_equals_direct_dem(rve_file):
+@pytest.fixture(scope="module")
+def solved(rve_file):
+    """The one-element run (Newton tolerance 1e-6), shared by the read-only checks."""
+    return one_element(rve_file[0])
+
+
+def test_one_element_equals_direct_dem(rve_file, solved):
     from talus.fem.direct import replay
-    solver, stresses = one_element(rve_file[0])
+    solver, stresses = solved
     assert min(r.iterations for r in solver.history) >= 2   # Newton iterated: RVEs rolled back between
     for p in (0, 3):    # every converged increment (a cut step has several), each point on its own path
         ours = np.array([r.stress[p] for r in solver.history])
@@ -55,9 +61,9 @@ def test_one_element_equals_direct_dem(rve_file):
     assert total[1] == pytest.approx(1 - STRAIN, rel=1e-12)              # updated Lagrangian mesh
 
 
-def test_paraview_output(rve_file, tmp_path):
+def test_paraview_output(solved, tmp_path):
     from dolfinx.io import XDMFFile
-    solver, _ = one_element(rve_file[0], tol=1e-4)
+    solver, _ = solved
     with XDMFFile(solver.mesh.comm, str(tmp_path / "out.xdmf"), "w") as xdmf:
         xdmf.write_mesh(solver.mesh)
         solver.write(xdmf, 1.0)
@@ -65,6 +71,19 @@ def test_paraview_output(rve_file, tmp_path):
     for name in ("displacement", "voidRatio", "sxx", "syy", "sxy", "shearStrain"):
         assert f'Name="{name}"' in text
     assert (tmp_path / "out.h5").stat().st_size > 0
+
+
+def test_too_large_step_stops_with_the_last_converged_state(rve_file):
+    from talus.fem.fenicsx import NewtonDivergence
+    solver, _ = one_element(rve_file[0], tol=1e-4)      # converged to t = 1 (axial strain 0.6 %)
+    solver.minStepFraction = 0.25
+    before = solver.rves.getStressAndTangent()[0]
+    x = solver.mesh.geometry.x.copy()
+    solver.dirichlet[2].value = lambda t: -STRAIN - 0.8 * (t - 1)    # 80 % more in one step: crushes the RVEs
+    with pytest.raises(NewtonDivergence, match="last converged state .t = 1. is kept"):
+        solver.step(2.0)
+    assert solver.t == 1.0 and np.array_equal(solver.mesh.geometry.x, x)
+    assert np.array_equal(solver.rves.getStressAndTangent()[0], before)
 
 
 def test_mesh_and_rves_must_match(rve_file):
@@ -79,10 +98,10 @@ def test_mesh_and_rves_must_match(rve_file):
 
 
 @pytest.mark.skipif(shutil.which("run-escript") is None, reason="escript is not installed")
-def test_escript_client_gives_the_same_path(rve_file):
+def test_escript_client_gives_the_same_path(rve_file, solved):
     # The RVE response is not smooth (contacts open, close and slide between Newton iterations),
-    # so the residual of a 60-sphere RVE stalls near 1e-6; both drivers stop at 1e-6.
-    _, stresses = one_element(rve_file[0], tol=1e-6)
+    # so the residual of a 60-sphere RVE stalls near 1e-6 to 1e-7; both drivers stop at 1e-6.
+    _, stresses = solved
     env = {**os.environ, "PYTHONPATH": str(Path(talus.__file__).resolve().parent.parent), "OMP_NUM_THREADS": "1"}
     done = subprocess.run(["run-escript", HERE / "escript_one_element.py", rve_file[0], str(STEPS), str(STRAIN),
                            str(N_STEPS), "1e-6"], capture_output=True, text=True, env=env, timeout=120)
