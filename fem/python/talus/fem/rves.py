@@ -8,7 +8,7 @@ import numpy as np
 
 from talus import _fem
 
-_FORMS = ("full", "yade")
+_FORMS = ("full", "yade", "fd")
 
 
 def _source(rve, point: int):
@@ -36,8 +36,11 @@ class MultiscaleRVEs:
     copies (a uniform sample). ``nSteps``: DEM steps over which each call applies its
     displacement gradient (each step's strain is the gradient / nSteps). ``law`` and
     ``damping``: the RVEs' contact law (Yade's Law2 name) and NewtonIntegrator damping.
-    ``form``: the tangent operator, "full" (contact stiffness in every tangential direction)
-    or "yade" (Yade's getStressAndTangent).
+    ``form``: the tangent operator, "full" (contact stiffness in every tangential direction),
+    "yade" (Yade's getStressAndTangent) or "fd": the consistent tangent by finite differences,
+    each column re-running every RVE from its committed state with the last gradients plus
+    ``fdStep`` times a unit strain (relaxation, sliding and contact changes included; costs
+    3 (2D) or 6 (3D) more runs per call).
 
     ``comm`` (an mpi4py communicator): the calls are collective; every rank passes the
     gradients of all points (the same array), keeps the RVEs of its own block of points
@@ -47,7 +50,7 @@ class MultiscaleRVEs:
 
     def __init__(self, rves, numPoints: int | None = None, nSteps: int = 100,
                  law: str = "Law2_ScGeom_FrictPhys_CundallStrack", damping: float = 0.2, form: str = "full",
-                 comm=None):
+                 comm=None, fdStep: float = 1e-5):
         single = isinstance(rves, (str, os.PathLike)) or hasattr(rves, "_cpp")
         if single:
             if numPoints is None or numPoints < 1:
@@ -59,7 +62,8 @@ class MultiscaleRVEs:
             raise ValueError(f"MultiscaleRVEs: form must be one of {_FORMS}, got {form!r}")
         if int(nSteps) < 1:
             raise ValueError(f"MultiscaleRVEs: nSteps must be >= 1, got {nSteps}")
-        self.numPoints, self.nSteps, self.form, self.comm = len(rves), int(nSteps), form, comm
+        self.numPoints, self.nSteps, self.form, self.comm, self.fdStep = len(rves), int(nSteps), form, comm, fdStep
+        self._grads = None
         size, rank = (comm.Get_size(), comm.Get_rank()) if comm is not None else (1, 0)
         self._start, self._stop = _block(self.numPoints, size, rank)
         self._blocks = [_block(self.numPoints, size, r) for r in range(size)]
@@ -86,6 +90,7 @@ class MultiscaleRVEs:
         if len(bad):
             raise ValueError(f"MultiscaleRVEs.run: displacement gradient of Gauss point {bad[0]} is not finite")
         self.dim = g.shape[1]
+        self._grads = g
         error = None
         try:
             self._cpp.deform(g[self._start:self._stop], self.nSteps)
@@ -106,7 +111,28 @@ class MultiscaleRVEs:
         Voigt order (3D: xx, yy, zz, yz, xz, xy; 2D: xx, yy, xy) with engineering shear strains."""
         dim = self.dim or 3
         stress, tangent = self._cpp.getStressAndTangent(dim, self.form == "yade")
-        return self._gather(stress), self._gather(tangent)
+        stress, tangent = self._gather(stress), self._gather(tangent)
+        if self.form == "fd" and self._grads is not None:
+            tangent = self._finiteDifferenceTangent(stress)
+        return stress, tangent
+
+    def _finiteDifferenceTangent(self, stress):
+        """d(stress)/d(strain) column by column (Voigt, engineering shear), from runs at the last
+        gradients plus fdStep times each unit strain; the trial state at the last gradients is
+        re-run at the end (the runs are deterministic, so it is the same state)."""
+        d, base = self.dim, self._grads
+        pairs = [(0, 0), (1, 1), (0, 1)] if d == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
+        voigt = lambda s: np.stack([s[:, i, j] for i, j in pairs], axis=1)   # noqa: E731
+        s0, columns = voigt(stress), []
+        for i, j in pairs:
+            E = np.zeros((d, d))
+            E[i, j] += self.fdStep / (1 if i == j else 2)
+            E[j, i] += 0 if i == j else self.fdStep / 2
+            self.run(base + E)
+            s, _ = self._cpp.getStressAndTangent(d, False)
+            columns.append((voigt(self._gather(s)) - s0) / self.fdStep)
+        self.run(base)
+        return np.stack(columns, axis=2)
 
     def _gather(self, local: np.ndarray) -> np.ndarray:
         if self.comm is None:
