@@ -50,7 +50,7 @@ def main():
     centres = dmesh.compute_midpoints(msh, 2, np.arange(nx * ny, dtype=np.int32))[:, :2]
     target = np.argmin(np.linalg.norm(centres - [0.3 * W, 0.5 * H], axis=1))
     rves = MultiscaleRVEs([str(weak) if c == target else str(strong) for c in range(nx * ny) for _ in range(4)],
-                          nSteps=nSteps)
+                          nSteps=nSteps, form="fd")
     dx, dy = W / nx / 2, H / ny / 2            # edges are found by their side of these lines
     solver = MultiscaleSolver(
         msh, rves, tol=1e-5,
@@ -77,7 +77,8 @@ def main():
             top = -solver.reactions(lambda y: y[1] > height - dy, 1) / width      # compressive, Pa
             rows.append((solver.t * strain, top, 1 - width * height / area0))
             print(f"step {n}: axial strain {rows[-1][0]:.4f}, axial stress {top:.0f} Pa, volumetric strain "
-                  f"{rows[-1][2]:.5f}, Newton iterations {report.iterations}", flush=True)
+                  f"{rows[-1][2]:.5f}, Newton iterations {report.iterations}"
+                  f"{' (step cut)' if report.cut else ''}, increments so far {len(solver.history)}", flush=True)
             solver.write(xdmf, solver.t)
     lateral = abs(solver.reactions(lambda y: y[0] < dx, 0) / (P_CONF * (msh.geometry.x[:, 1].max())) - 1)
     case.record("fraction of the load steps that converged", converged / steps, "all steps", 1.0, comparison=">=",
