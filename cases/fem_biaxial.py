@@ -5,8 +5,10 @@ Set-up:   a 1 x 2 sample of bilinear quadrilaterals (quick: 2 x 4, full: 4 x 8; 
           with an RVE at every Gauss point (talus.fem.prepareRVE, rMean 0.1, -100 kPa, friction
           0.5); the four points of one cell left of the centre get a weaker RVE (friction 0.3)
           as the imperfection. Smooth platens: bottom uy = 0 (and ux = 0 at the bottom-left
-          corner), top lowered to an axial strain of 2 % (quick) or 6 %, left and right edges under a
-          100 kPa traction. 50 (quick) or 100 DEM steps per call; Newton tolerance 1e-5; updated
+          corner), top lowered to an axial strain of 1.5 % (quick) or 6 %, left and right edges under a
+          100 kPa traction. 40 (quick) or 100 DEM steps per call; finite-difference consistent
+          tangent (form="fd"); Newton tolerance 1e-5, a step is cut after 4 iterations without
+          progress; updated
           Lagrangian; step cutting on divergence.
 Checked:  fem.biaxial.converged: fraction of the load steps that converged (= 1).
           fem.biaxial.lateral: relative gap of the left-edge reaction to the 100 kPa traction times
@@ -39,7 +41,7 @@ def main():
     from talus.fem.fenicsx import Dirichlet, MultiscaleSolver, NewtonDivergence, Traction
 
     case = results.Case("fem.biaxial", quick=args.quick, folder=args.results)
-    (nx, ny), strain, steps, nSteps = ((2, 4), 0.02, 8, 50) if args.quick else ((4, 8), 0.06, 30, 100)
+    (nx, ny), strain, steps, nSteps = ((2, 4), 0.015, 6, 40) if args.quick else ((4, 8), 0.06, 30, 100)
     W, H = 1.0, 2.0
     work = Path(tempfile.mkdtemp(prefix="fem_biaxial_"))
     strong, weak = work / "strong.h5", work / "weak.h5"
@@ -53,7 +55,7 @@ def main():
                           nSteps=nSteps, form="fd")
     dx, dy = W / nx / 2, H / ny / 2            # edges are found by their side of these lines
     solver = MultiscaleSolver(
-        msh, rves, tol=1e-5,
+        msh, rves, tol=1e-5, stall=4,
         dirichlet=[Dirichlet(lambda x: x[1] < dy, 1), Dirichlet(lambda x: (x[1] < dy) & (x[0] < dx), 0),
                    Dirichlet(lambda x: x[1] > H - dy, 1, lambda t: -strain * H * t)],
         tractions=[Traction(lambda x: x[0] < dx, lambda t: (P_CONF, 0.0)),

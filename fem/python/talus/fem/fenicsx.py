@@ -70,12 +70,13 @@ class MultiscaleSolver:
 
     def __init__(self, mesh, rves, dirichlet: Sequence[Dirichlet] = (), tractions: Sequence[Traction] = (),
                  degree: int = 1, quadratureDegree: int = 2, tol: float = 1e-6, maxIter: int = 50,
-                 minStepFraction: float = 1 / 64):
+                 minStepFraction: float = 1 / 64, stall: int = 8):
         import basix
         import ufl
         from dolfinx import fem
         from petsc4py import PETSc
         self.mesh, self.rves, self.tol, self.maxIter, self.minStepFraction = mesh, rves, tol, maxIter, minStepFraction
+        self.stall = stall
         self.dirichlet, self.tractions = list(dirichlet), list(tractions)
         d = self.d = mesh.geometry.dim
         tdim = mesh.topology.dim
@@ -194,6 +195,11 @@ class MultiscaleSolver:
             if res < self.tol:
                 report.iterations, report.gradients, report.stress = it, self._grads, self._stress
                 return report
+            # The RVE response is not smooth: a residual that has not reached a new minimum for
+            # `stall` iterations will not converge, so give up early and let the step be cut.
+            if it - int(np.argmin(report.residuals)) >= self.stall:
+                raise NewtonDivergence(f"Newton stalled for {self.stall} iterations (relative residuals "
+                                       f"{report.residuals})")
             A = assemble_matrix(self.jacobianForm, bcs=zero)
             A.assemble()
             ksp.setOperators(A)
@@ -228,7 +234,9 @@ class MultiscaleSolver:
         report.cut = cut
         self.history.append(report)
         if target < t1:
-            return self.step(t1)
+            rest = self.step(t1)
+            rest.cut = True
+            return rest
         return report
 
     def _move_mesh(self):

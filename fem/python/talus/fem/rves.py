@@ -38,9 +38,10 @@ class MultiscaleRVEs:
     ``damping``: the RVEs' contact law (Yade's Law2 name) and NewtonIntegrator damping.
     ``form``: the tangent operator, "full" (contact stiffness in every tangential direction),
     "yade" (Yade's getStressAndTangent) or "fd": the consistent tangent by finite differences,
-    each column re-running every RVE from its committed state with the last gradients plus
-    ``fdStep`` times a unit strain (relaxation, sliding and contact changes included; costs
-    3 (2D) or 6 (3D) more runs per call).
+    each column re-running every RVE from its committed state with the gradients of the
+    pending trial plus ``fdStep`` times a unit strain (relaxation, sliding and contact changes
+    included; costs 3 (2D) or 6 (3D) more runs per call; without a pending trial, after commit
+    or rollback, the contact-stiffness tangent is returned).
 
     ``comm`` (an mpi4py communicator): the calls are collective; every rank passes the
     gradients of all points (the same array), keeps the RVEs of its own block of points
@@ -167,10 +168,12 @@ class MultiscaleRVEs:
     def commit(self) -> None:
         """The trial states become the committed ones (the load step converged)."""
         self._cpp.commit()
+        self._grads = None
 
     def rollback(self) -> None:
         """Every RVE returns to its last committed state."""
         self._cpp.rollback()
+        self._grads = None
 
 
 def _mpi_double():
