@@ -7,9 +7,8 @@ Set-up:   a 1 x 2 sample of bilinear quadrilaterals (quick: 2 x 4, full: 4 x 8; 
           as the imperfection. Smooth platens: bottom uy = 0 (and ux = 0 at the bottom-left
           corner), top lowered to an axial strain of 1.5 % (quick) or 6 %, left and right edges under a
           100 kPa traction. 40 (quick) or 100 DEM steps per call; finite-difference consistent
-          tangent (form="fd"); Newton tolerance 1e-5, a step is cut after 4 iterations without
-          progress; updated
-          Lagrangian; step cutting on divergence.
+          tangent (form="fd"); Newton tolerance 1e-5, a step is cut in half after 4 iterations
+          without progress; updated Lagrangian.
 Checked:  fem.biaxial.converged: fraction of the load steps that converged (= 1).
           fem.biaxial.lateral: relative gap of the left-edge reaction to the 100 kPa traction times
           the edge height at the end (equilibrium on the configuration at the start of the step:
