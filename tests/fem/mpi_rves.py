@@ -1,6 +1,6 @@
 """Run under mpirun: the Gauss-point calls with the RVEs spread over the ranks give the same
 stress and tangent as one process holding them all, over two committed increments and a
-rollback. Prints `points <local count>` per rank and `err <max relative difference>` on rank 0."""
+rollback. Rank 0 prints `points <local count of each rank>` and `err <max relative difference>`."""
 import sys
 
 import numpy as np
@@ -24,7 +24,8 @@ for k, g in enumerate(grads):
     (s1, c1), (s2, c2) = spread.getStressAndTangent(), alone.getStressAndTangent()
     err = max(err, np.abs(s1 - s2).max() / np.abs(s2).max(), np.abs(c1 - c2).max() / np.abs(c2).max(),
               np.abs(spread.getVoidRatio() - alone.getVoidRatio()).max())
-print(f"points {len(spread.localPoints)}", flush=True)
+counts = comm.gather(len(spread.localPoints))      # printed by rank 0 only: ranks' lines could interleave
 err = comm.allreduce(err, op=MPI.MAX)
 if comm.rank == 0:
+    print("points " + " ".join(map(str, counts)), flush=True)
     print(f"err {err}", flush=True)
