@@ -24,8 +24,15 @@ for k, g in enumerate(grads):
     (s1, c1), (s2, c2) = spread.getStressAndTangent(), alone.getStressAndTangent()
     err = max(err, np.abs(s1 - s2).max() / np.abs(s2).max(), np.abs(c1 - c2).max() / np.abs(c2).max(),
               np.abs(spread.getVoidRatio() - alone.getVoidRatio()).max())
+try:                                     # an error names the global Gauss point on any rank
+    MultiscaleRVEs([path] * 4 + ["/nonexistent/rve.h5"], comm=comm)
+    message = ""
+except ValueError as e:
+    message = str(e)
+messages = comm.gather(message)
 counts = comm.gather(len(spread.localPoints))      # printed by rank 0 only: ranks' lines could interleave
 err = comm.allreduce(err, op=MPI.MAX)
 if comm.rank == 0:
     print("points " + " ".join(map(str, counts)), flush=True)
     print(f"err {err}", flush=True)
+    print(f"errors {messages}", flush=True)

@@ -71,7 +71,10 @@ class MultiscaleRVEs:
         if self._stop <= self._start:
             raise ValueError(f"MultiscaleRVEs: {self.numPoints} Gauss points cannot be spread over {size} ranks")
         mine = [_source(r, p) for p, r in enumerate(rves)][self._start:self._stop]
-        self._cpp = _fem.GaussPointRVEs(mine, law, float(damping))
+        try:
+            self._cpp = _fem.GaussPointRVEs(mine, law, float(damping))
+        except ValueError as e:     # the C++ side numbers this rank's points from 0
+            raise ValueError(self._renumber(str(e))) from None
         self.dim = None
 
     @property
