@@ -98,13 +98,13 @@ class MultiscaleRVEs:
         error = None
         try:
             self._cpp.deform(g[self._start:self._stop], self.nSteps)
-        except RuntimeError as e:       # a DEM failure: renumber the local Gauss points
-            error = self._renumber(str(e))
-        if self.comm is not None:
+        except (RuntimeError, ValueError) as e:   # DEM failure or bad gradient: renumber the local points
+            error = (type(e), self._renumber(str(e)))
+        if self.comm is not None:     # every rank raises, so none is left waiting in a collective call
             errors = [e for e in self.comm.allgather(error) if e]
-            error = "; ".join(errors) if errors else None
+            error = (errors[0][0], "; ".join(m for _, m in errors)) if errors else None
         if error:
-            raise RuntimeError(error)
+            raise error[0](error[1])
 
     def _renumber(self, message: str) -> str:
         import re
