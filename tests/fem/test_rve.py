@@ -127,3 +127,23 @@ def test_bad_input(rve_file, tmp_path):
     (tmp_path / "junk.h5").write_text("not hdf5")
     with pytest.raises(ValueError, match="junk.h5' is not a readable Talus checkpoint"):
         MultiscaleRVEs(str(tmp_path / "junk.h5"), numPoints=1)
+
+
+def test_planar_rve(tmp_path):
+    """The seed's 2D-like RVE: one layer of spheres moving in a plane, compacted in x and y."""
+    from talus.fem import MultiscaleRVEs, prepareRVE
+    from talus.fem.direct import replay
+    path = tmp_path / "rve2d.h5"
+    info = prepareRVE(path, size=0.8, rMean=0.03, planar=True, sigma=-1e5, young=1e8)
+    assert np.abs(np.array(info["stress"][:2]) / -1e5 - 1).max() < 1e-3 and info["stress"][2] == 0
+    S = Scene()
+    S.load(str(path))
+    z = S.positions()[:, 2]
+    assert np.ptp(z) == 0 and S.cell.hSize[2, 2] > 2 * S.radii().max()     # one layer, no contact through z
+    rves = MultiscaleRVEs(str(path), numPoints=2, nSteps=20)
+    g = np.array([[1e-3, 2e-4], [0, -2e-3]])
+    rves.run(np.array([g, g]))
+    stress, _ = rves.getStressAndTangent()
+    S, ref = replay(path, [g], 20)
+    assert rel(stress[0], ref[0][:2, :2]) < 1e-10
+    assert np.ptp(S.positions()[:, 2]) == 0                                  # still in the plane

@@ -11,12 +11,17 @@ import numpy as np
 def prepareRVE(path: str | os.PathLike, size: float = 1.0, rMean: float = 0.1, rRelFuzz: float = 0.3, seed: int = 1,
                sigma: float = -1e5, young: float = 1e8, poisson: float = 0.3, friction: float = 0.5,
                compactionFriction: float | None = None, density: float = 2600, damping: float = 0.2,
-               maxIter: int = 200000) -> dict:
+               maxIter: int = 200000, planar: bool = False) -> dict:
     """Generate a periodic cloud of spheres (makeCloud) in a cube of edge ``size``, compact it
     isotropically to the mean stress ``sigma`` (compression negative) with PeriTriaxController,
     and save it to ``path`` (O.save). ``compactionFriction`` (default ``friction``): the friction
     angle during compaction (lower gives a denser packing); the contacts get ``friction``
     before saving. Returns the final stress, porosity, coordination and sphere count.
+
+    ``planar``: the seed's 2D-like RVE (its prepareRVE.py): one layer of spheres in the plane
+    z = const of a periodic cell 4 maximum diameters thick, moving only in that plane
+    (blockedDOFs "zXY"), compacted in x and y only (the z edge is kept); for plane-strain
+    Gauss points (2x2 gradients). Its stresses are per that cell thickness.
 
     The saved scene has velGrad 0 and trsf = I, so an RVE's strains count from this state.
     """
@@ -29,11 +34,21 @@ def prepareRVE(path: str | os.PathLike, size: float = 1.0, rMean: float = 0.1, r
     phi0 = friction if compactionFriction is None else compactionFriction
     mat = FrictMat(young=young, poisson=poisson, frictionAngle=phi0, density=density)
     S.materials.append(mat)
-    sp = pack.SpherePack()
-    sp.makeCloud((0, 0, 0), (size,) * 3, rMean=rMean, rRelFuzz=rRelFuzz, periodic=True, seed=seed)
-    sp.toSimulation(scene=S)
+    if planar:
+        from talus.dem import sphere
+        thickness = 8 * rMean * (1 + rRelFuzz)
+        S.cell.hSize = Matrix3(*np.diag([size, size, thickness]).ravel())
+        centres, radii = _flatCloud(size, rMean, rRelFuzz, seed)
+        S.bodies.append([sphere((x, y, thickness / 2), r) for (x, y), r in zip(centres, radii)])
+        for b in S.bodies:
+            b.state.blockedDOFs = "zXY"
+    else:
+        sp = pack.SpherePack()
+        sp.makeCloud((0, 0, 0), (size,) * 3, rMean=rMean, rRelFuzz=rRelFuzz, periodic=True, seed=seed)
+        sp.toSimulation(scene=S)
     done = {}
-    triax = PeriTriaxController(goal=(sigma,) * 3, stressMask=7, dynCell=True, maxStrainRate=(10,) * 3,
+    goal, mask, rate = ((sigma, sigma, 0.0), 3, (10, 10, 0)) if planar else ((sigma,) * 3, 7, (10,) * 3)
+    triax = PeriTriaxController(goal=goal, stressMask=mask, dynCell=True, maxStrainRate=rate,
                                 maxUnbalanced=1e-3, relStressTol=1e-3, doneHook=lambda: (done.setdefault("iter", S.iter),
                                                                                          S.pause()))
     S.engines = [ForceResetter(), InsertionSortCollider(),
@@ -54,6 +69,25 @@ def prepareRVE(path: str | os.PathLike, size: float = 1.0, rMean: float = 0.1, r
     return {"stress": [float(x) for x in triax.stress], "porosity": float(porosity(scene=S)),
             "coordination": float(avgNumInteractions(scene=S)), "spheres": len(S.bodies), "iter": int(S.iter),
             "dt": float(S.dt)}
+
+
+def _flatCloud(size: float, rMean: float, rRelFuzz: float, seed: int, fill: float = 0.55, tries: int = 100000):
+    """Random non-overlapping disks (centres, radii) in the periodic square of edge `size`,
+    added one by one until they cover `fill` of the area (or `tries` placements failed)."""
+    rng = np.random.default_rng(seed)
+    centres, radii, covered = np.zeros((0, 2)), np.zeros(0), 0.0
+    for _ in range(tries):
+        if covered >= fill * size * size:
+            break
+        r = rMean * (1 + rRelFuzz * rng.uniform(-1, 1))
+        p = rng.uniform(0, size, 2)
+        d = centres - p
+        d -= size * np.round(d / size)                  # nearest periodic image
+        if len(radii) and np.any(np.hypot(d[:, 0], d[:, 1]) < radii + r):
+            continue
+        centres, radii = np.vstack([centres, p]), np.append(radii, r)
+        covered += np.pi * r * r
+    return centres, radii
 
 
 def exportRVE(path: str | os.PathLike, jsonPath: str | os.PathLike | None = None) -> dict:
