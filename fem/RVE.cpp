@@ -19,6 +19,12 @@ namespace
 bool isSphere(const dem::Bodies& b, std::size_t i) { return b.alive[i] && b.shape[i] == dem::ShapeKind::Sphere; }
 } // namespace
 
+Mat3 subStepVelocityGradient(const Mat3& grad, int k, int nSteps, double dt)
+{
+  const double n = nSteps;
+  return (grad / n) * (Mat3::Identity() + (k / n) * grad).inverse() / dt;
+}
+
 RVE::RVE(const dem::Scene& source, const RVEEngines& engines, const std::string& name) : name_(name)
 {
   scene_.materials = source.materials;
@@ -102,13 +108,11 @@ void RVE::deform(const Mat3& grad, int nSteps)
   if (trial_)
     restore();
   trial_ = true;
-  const double n = nSteps;
   try
   {
     for (int k = 0; k < nSteps; ++k)
     {
-      // Step k + 1 takes the cell from (I + k/n G) H0 to (I + (k+1)/n G) H0.
-      scene_.cell.velGrad = (grad / n) * (I + (k / n) * grad).inverse() / scene_.dt;
+      scene_.cell.velGrad = subStepVelocityGradient(grad, k, nSteps, scene_.dt);
       scene_.step();
     }
   }

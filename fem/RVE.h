@@ -39,6 +39,12 @@ struct RVEState
   Vec3 meanRotation = Vec3::Zero();
 };
 
+/// Velocity gradient of DEM step k (0-based) of an increment `grad` over `nSteps` steps of `dt`:
+/// L dt = (grad / n) (I + k / n grad)^-1, which takes the cell from (I + k/n grad) H0 to
+/// (I + (k+1)/n grad) H0. (One definition, also used by talus.fem.direct's reference runs, so
+/// that they apply the very same numbers.)
+[[nodiscard]] Mat3 subStepVelocityGradient(const Mat3& grad, int k, int nSteps, double dt);
+
 /// A representative volume element: one periodic DEM scene owned here, with a committed state
 /// (the last converged one of the finite-element Newton iterations) and a trial state.
 ///

@@ -10,8 +10,11 @@ import numpy as np
 
 def subStepVelGrad(G: np.ndarray, k: int, nSteps: int, dt: float) -> np.ndarray:
     """Velocity gradient of sub-step k (0-based) of an increment G over nSteps steps:
-    L dt = (G / n) (I + k / n G)^-1, which takes the cell from (I + k/n G) H0 to (I + (k+1)/n G) H0."""
-    return (G / nSteps) @ np.linalg.inv(np.eye(3) + k / nSteps * G) / dt
+    L dt = (G / n) (I + k / n G)^-1, which takes the cell from (I + k/n G) H0 to (I + (k+1)/n G) H0.
+    The C++ function the RVEs use, so that a reference run applies bit-identical numbers (a
+    different 3x3 inverse differs in the last bits, which a dense packing amplifies)."""
+    from talus import _fem
+    return np.array(_fem.subStepVelocityGradient(np.asarray(G, dtype=float), int(k), int(nSteps), float(dt)))
 
 
 def replay(path: str | os.PathLike, grads, nSteps: int, law: str = "Law2_ScGeom_FrictPhys_CundallStrack",
