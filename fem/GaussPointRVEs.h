@@ -1,0 +1,44 @@
+#pragma once
+
+#include "fem/RVE.h"
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace talus::fem
+{
+/// The RVEs of a set of Gauss points, called together (the seed's escript-side calls, batched
+/// in C++): every call loops over the RVEs with OpenMP, one RVE per thread at a time (the DEM
+/// loops inside an RVE then run on one thread).
+///
+/// Gradients are `dim x dim` per point, dim = 3, or 2 for plane strain (the RVE is then
+/// deformed with zero out-of-plane components). Results use the same dimension: stress dim x dim,
+/// tangent in Voigt order (3D: xx, yy, zz, yz, xz, xy; 2D: xx, yy, xy) with engineering shear.
+class GaussPointRVEs
+{
+public:
+  explicit GaussPointRVEs(std::vector<std::unique_ptr<RVE>> rves);
+
+  [[nodiscard]] std::size_t size() const { return rves_.size(); }
+  [[nodiscard]] RVE& rve(std::size_t i) { return *rves_.at(i); }
+
+  /// Deform every RVE from its committed state by its displacement gradient (`grads`: points x
+  /// dim x dim, row-major) over nSteps DEM steps each.
+  /// @throws std::invalid_argument on a count mismatch or a non-finite gradient, naming the
+  ///         Gauss point, before any RVE moves
+  /// @throws std::runtime_error naming the Gauss points whose DEM run failed (those RVEs are
+  ///         back at their committed state; the others hold their trial state)
+  void deform(std::span<const double> grads, int dim, int nSteps);
+  /// Stress (points x dim x dim) and tangent (points x v x v, v = 6 or 3) of every RVE.
+  void getStressAndTangent(std::span<double> stress, std::span<double> tangent, int dim,
+                           dem::TangentForm form = dem::TangentForm::Full) const;
+  [[nodiscard]] std::vector<RVEState> states() const;
+  void commit();
+  void rollback();
+
+private:
+  std::vector<std::unique_ptr<RVE>> rves_;
+};
+} // namespace talus::fem

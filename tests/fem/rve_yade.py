@@ -1,0 +1,47 @@
+"""Scenario (talus.dem.twin): an exported RVE packing (rve_packing.json, written by the test) built
+as a periodic scene in Yade and in Talus, each sphere given a deterministic velocity, one step
+(fresh contacts get a first shear increment, so Yade's shear term is exercised; the method of
+tests/dem/packing_tangent.py on a periodic RVE). Yade prints its getStressAndTangent; Talus hands
+the scene to talus.fem.MultiscaleRVEs (a C++ RVE holding a copy of it) and prints the Gauss-point
+getStressAndTangent with form="yade". Output: `RESULT {stress, tangent, shearing}`."""
+import json
+
+import numpy as np
+
+try:
+    O  # noqa: B018  (defined when Yade runs the script)
+    talus = False
+except NameError:
+    from talus.dem import *  # noqa: F401,F403
+    talus = True
+
+data = json.load(open("rve_packing.json"))
+O.periodic = True
+O.cell.hSize = Matrix3(*np.array(data["hSize"]).ravel())
+O.materials.append(FrictMat(young=data["young"], poisson=data["poisson"], frictionAngle=data["frictionAngle"],
+                            density=data["density"]))
+O.bodies.append([sphere(tuple(c), r) for c, r in zip(data["pos"], data["radius"])])
+O.engines = [
+    ForceResetter(),
+    InsertionSortCollider([Bo1_Sphere_Aabb()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
+    NewtonIntegrator(damping=0.2),
+]
+velocities = np.sin(np.arange(3 * len(data["pos"])).reshape(-1, 3) * 1.7) * 0.05
+for b, v in zip(O.bodies, velocities):
+    b.state.vel = Vector3(*v) if not talus else v
+O.dt = 1e-5
+O.run(1, True)
+if talus:
+    from talus.fem import MultiscaleRVEs
+    rves = MultiscaleRVEs([O], form="yade")
+    stress, tangent = (x[0] for x in rves.getStressAndTangent())
+    shearing = sum(1 for c in O.contacts() if np.any(c["shearForce"]))
+else:
+    stress, tangent = getStressAndTangent(O.cell.volume, True)
+    tangent = np.array(tangent)
+    tangent = np.triu(tangent) + np.triu(tangent, 1).T     # Yade fills the upper triangle only
+    shearing = None
+print("RESULT " + json.dumps({"stress": np.array(stress).tolist(), "tangent": np.array(tangent).tolist(),
+                              "shearing": shearing}))
