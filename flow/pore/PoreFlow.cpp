@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -27,11 +28,123 @@ std::array<Boundary, kBoundaries> PoreFlow::boundaries(const std::vector<PoreSph
   return b;
 }
 
+namespace
+{
+/// A point inside the pore (its weighted circumcentre may lie outside the tetrahedron): the
+/// centroid of its vertices, a boundary vertex standing for the projection of the real
+/// vertices' centroid on that boundary plane.
+Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore)
+{
+  Vec3 real = Vec3::Zero();
+  int nReal = 0;
+  for (int v : pore.vertices)
+    if (!net.vertices[static_cast<std::size_t>(v)].fictitious)
+    {
+      real += net.vertices[static_cast<std::size_t>(v)].pos;
+      ++nReal;
+    }
+  real /= nReal;
+  Vec3 sum = Vec3::Zero();
+  for (int v : pore.vertices)
+  {
+    const Vertex& vx = net.vertices[static_cast<std::size_t>(v)];
+    if (vx.fictitious)
+    {
+      const Boundary& b = net.boundaries[static_cast<std::size_t>(vx.id)];
+      Vec3 q = real;
+      q[b.coordinate] = b.position;
+      sum += q;
+    }
+    else
+      sum += vx.pos;
+  }
+  return sum / 4;
+}
+} // namespace
+
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
 {
+  std::optional<PoreNetwork> old = std::move(net_);
+  const std::vector<double> oldP = std::move(p_);
+  net_.reset();
   net_ = triangulate(spheres, boundaries(spheres));
-  p_.assign(net_->pores.size(), 0.0);
+  const PoreNetwork& net = *net_;
+  p_.assign(net.pores.size(), 0.0);
+  if (old && !old->pores.empty())
+    for (std::size_t i = 0; i < net.pores.size(); ++i)
+    {
+      const int at = locatePore(*old, interiorPoint(net, net.pores[i]));
+      if (at >= 0)
+        p_[i] = oldP[static_cast<std::size_t>(at)];
+    }
+  dv_.assign(net.pores.size(), 0.0);
+  maxStrain_ = 0;
+  inverted_ = 0;
   updateConductances();
+  meshVolume_.resize(net.pores.size());
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+    meshVolume_[i] = net.pores[i].volume;
+}
+
+void PoreFlow::setTimeStep(double dt)
+{
+  if (!(dt > 0) || !std::isfinite(dt))
+    throw std::invalid_argument("FlowEngine: the time step must be positive, got " + std::to_string(dt));
+  dt_ = dt;
+}
+
+void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
+                            const std::array<double, kBoundaries>& boundaryPositions, double dt)
+{
+  PoreNetwork& net = *net_;
+  if (spherePositions.size() != net.sphereCount())
+    throw std::invalid_argument("FlowEngine: " + std::to_string(spherePositions.size()) + " positions for " +
+                                std::to_string(net.sphereCount()) + " spheres of the pore network");
+  setTimeStep(dt);
+  for (std::size_t i = 0; i < spherePositions.size(); ++i)
+  {
+    if (!spherePositions[i].allFinite())
+      throw std::invalid_argument("FlowEngine: non-finite position of body " +
+                                  std::to_string(net.vertices[kBoundaries + i].id));
+    net.vertices[kBoundaries + i].pos = spherePositions[i];
+  }
+  for (int k = 0; k < kBoundaries; ++k)
+  {
+    if (!std::isfinite(boundaryPositions[static_cast<std::size_t>(k)]))
+      throw std::invalid_argument("FlowEngine: non-finite position of boundary " + std::to_string(k));
+    net.boundaries[static_cast<std::size_t>(k)].position = boundaryPositions[static_cast<std::size_t>(k)];
+  }
+  std::vector<double> before(net.pores.size());
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+    before[i] = net.pores[i].volume;
+  updatePoreVolumes(net);
+  maxStrain_ = 0;
+  inverted_ = 0;
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+  {
+    const double v = net.pores[i].volume;
+    // the sign of the mesh volume orients the pore (Yade's volumeSign)
+    const double sign = meshVolume_[i] < 0 ? -1.0 : 1.0;
+    dv_[i] = sign * (v - before[i]) / dt;
+    if (sign * v <= 0)
+      ++inverted_;
+    maxStrain_ = std::max(maxStrain_, std::abs(v - meshVolume_[i]) / std::abs(meshVolume_[i]));
+  }
+  if (inverted_ > 0)
+    maxStrain_ = std::numeric_limits<double>::infinity();
+}
+
+std::vector<double> PoreFlow::storage() const
+{
+  if (params.fluidBulkModulus <= 0)
+    return {};
+  if (!(dt_ > 0))
+    throw std::invalid_argument("FlowEngine: a compressible fluid (fluidBulkModulus > 0) needs a time step "
+                                "(run it as an engine, or setTimeStep / moveVertices)");
+  std::vector<double> c(net_->pores.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+    c[i] = std::max(net_->pores[i].voidVolume, 0.0) / (params.fluidBulkModulus * dt_);
+  return c;
 }
 
 void PoreFlow::updateConductances()
@@ -114,7 +227,9 @@ void PoreFlow::applyBoundaryTypes()
   }
   builtTypes_ = params.bndCondIsPressure;
   pointsChanged_ = false;
-  solver_.setSystem(*net_, imposed_);
+  // before the first time step is known (a standalone build) the storage term waits for solve()
+  storageInMatrix_ = params.fluidBulkModulus > 0 && dt_ > 0;
+  solver_.setSystem(*net_, imposed_, storageInMatrix_ ? storage() : std::vector<double>{});
 }
 
 void PoreFlow::solve()
@@ -124,10 +239,19 @@ void PoreFlow::solve()
   if (params.useSolver != 0 && params.useSolver != 3)
     throw std::invalid_argument("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), got " +
                                 std::to_string(params.useSolver));
+  if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
+    throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
+  const bool compressible = params.fluidBulkModulus > 0;
   if (builtTypes_ != params.bndCondIsPressure)
     updateConductances(); // boundary types enter the hydraulic radii and the matrix
-  else if (pointsChanged_)
-    applyBoundaryTypes();
+  else if (pointsChanged_ || compressible || storageInMatrix_)
+    applyBoundaryTypes(); // the storage term follows the void volumes and dt (same pattern: the
+                          // symbolic analysis is kept, only the numeric factor is redone)
+  // source: fluid expelled by shrinking pores, plus the storage of the last pressures
+  std::vector<double> source(p_.size());
+  const std::vector<double> c = compressible ? storage() : std::vector<double>{};
+  for (std::size_t i = 0; i < source.size(); ++i)
+    source[i] = -dv_[i] + (compressible ? c[i] * p_[i] : 0.0);
   for (int k = 0; k < kBoundaries; ++k)
     if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
       for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
@@ -136,7 +260,7 @@ void PoreFlow::solve()
     p_[static_cast<std::size_t>(pt.pore)] = pt.value;
   solver_.tolerance = params.tolerance;
   solver_.relax = params.relax;
-  solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_);
+  solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_, source);
 }
 
 int PoreFlow::imposePressure(const Vec3& pos, double p)

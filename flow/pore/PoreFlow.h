@@ -24,6 +24,9 @@ struct FlowParameters : ConductanceParameters
   int useSolver = 3; ///< 0 Gauss-Seidel, 3 CHOLMOD (Yade's numbers)
   double tolerance = 1e-6; ///< Gauss-Seidel relative change
   double relax = 1.9;
+  /// Bulk modulus of the fluid; 0: incompressible (Yade's fluidBulkModulus). With K_f > 0 each
+  /// pore stores fluid, V_void / (K_f dt) (p - p_old), and the solve is transient.
+  double fluidBulkModulus = 0;
 };
 
 class PoreFlow
@@ -31,8 +34,26 @@ class PoreFlow
 public:
   FlowParameters params;
 
-  /// Triangulate the packing and compute geometry and conductances (drops the factor).
+  /// Triangulate the packing and compute geometry and conductances (drops the factor). The
+  /// pressures of a previous network are carried over: each new pore takes the pressure of the
+  /// old pore containing its centre (Yade's interpolate), so a transient solve continues.
   void build(const std::vector<PoreSphere>& spheres);
+  /// Move the spheres (same order as in build) and the boundaries without remeshing, over the
+  /// time step dt: pore volumes are recomputed and their rates of change dV/dt become the source
+  /// of the next solve (fluid expelled from shrinking pores; Yade's updateVolumes).
+  /// @throws std::invalid_argument on a size mismatch, non-finite positions or dt <= 0
+  void moveVertices(const std::vector<Vec3>& spherePositions, const std::array<double, kBoundaries>& boundaryPositions,
+                    double dt);
+  /// Time step of the transient (compressible) solve when no motion was given.
+  void setTimeStep(double dt);
+  /// Largest relative change of a pore volume since the last triangulation, |V - V_mesh| / |V_mesh|
+  /// (infinite once a pore has turned inside out: the mesh is invalid).
+  [[nodiscard]] double maxVolumetricStrain() const { return maxStrain_; }
+  /// Pores whose volume changed sign since the triangulation (inverted tetrahedra).
+  [[nodiscard]] int invertedPores() const { return inverted_; }
+  /// Rate of volume change of each pore from the last moveVertices (Yade's dv()).
+  [[nodiscard]] const std::vector<double>& volumeRates() const { return dv_; }
+  [[nodiscard]] const PressureSolver::Counters& solverCounters() const { return solver_.counters(); }
   /// Recompute conductances after a change of the parameters (same mesh; drops the factor).
   void updateConductances();
   /// Solve the pressures for the current boundary values (re-using the factor if the mesh and
@@ -79,9 +100,18 @@ private:
   void applyBoundaryTypes();
   void computeUnitForces();
 
+  /// The storage term V_void / (K_f dt) per pore (empty when incompressible).
+  std::vector<double> storage() const;
+
   std::optional<PoreNetwork> net_;
   std::vector<char> imposed_;
   std::vector<double> p_;
+  std::vector<double> dv_;        ///< dV/dt per pore since the last moveVertices (0 after a build)
+  std::vector<double> meshVolume_; ///< pore volumes at the triangulation
+  double maxStrain_ = 0;
+  int inverted_ = 0;
+  double dt_ = 0;
+  bool storageInMatrix_ = false;  ///< the factor includes a storage term
   /// force on the pore's vertex k per unit pressure in the pore (Yade's unitForceVectors)
   std::vector<std::array<Vec3, 4>> unitForces_;
   std::array<bool, kBoundaries> builtTypes_{};

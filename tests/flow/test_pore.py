@@ -234,3 +234,89 @@ def test_imposed_point_pressure_injects_what_the_boundaries_collect():
     with pytest.raises(ValueError, match="outside"):
         flow.imposePressure((5.0, 5.0, 5.0), 1.0)
         flow.solve()
+
+
+def _squeezed(flow, strain):
+    """Positions and boundary planes of the packing shrunk homothetically about the box centre."""
+    pos, rad, _ = packing()
+    walls = np.array(flow.boundaryPositions())
+    centre = np.array([(walls[0] + walls[1]) / 2, (walls[2] + walls[3]) / 2, (walls[4] + walls[5]) / 2])
+    return centre + (1 - strain) * (pos - centre), centre[[0, 0, 1, 1, 2, 2]] + (1 - strain) * (walls - centre[[0, 0, 1, 1, 2, 2]])
+
+
+def test_shrinking_pores_expel_their_volume_through_the_drained_boundaries():
+    # Incompressible fluid, drained top and bottom (p = 0 on ymin, ymax), the packing squeezed
+    # by 1e-3 over dt: the fluid leaving through the two boundaries is the volume lost by the
+    # pores of unknown pressure, per unit time (the discrete balance: exact to round-off).
+    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0] * 6)
+    flow.triangulate(*packing())
+    volumes = np.abs(flow.cellVolumes)
+    pos, walls = _squeezed(flow, 1e-3)
+    dt = 1e-2
+    flow.moveVertices(pos, dt, walls)
+    dv = flow._flow.volumeRates()
+    assert np.allclose(dv, (np.abs(flow.cellVolumes) - volumes) / dt, rtol=1e-9, atol=0)
+    assert flow.maxVolumetricStrain() == pytest.approx(1 - (1 - 1e-3) ** 3, rel=1e-6)  # homothety: same for all pores
+    flow.solve()
+    p = flow.pressures
+    unknown = p != 0
+    out = flow.getBoundaryFlux(2) + flow.getBoundaryFlux(3)
+    assert out > 0 and p.max() > 0
+    assert out == pytest.approx(-dv[unknown].sum(), rel=1e-10)
+    # every pore loses the fraction 1 - (1 - e)^3 of its volume
+    assert -dv.sum() * dt == pytest.approx(volumes.sum() * (1 - (1 - 1e-3) ** 3), rel=1e-10)
+    # the factor of the unchanged mesh was kept: one analysis, one factorisation
+    stats = flow.solverStats()
+    assert stats["analyses"] == 1 and stats["factorizations"] == 1
+
+
+def test_compressible_fluid_stores_what_does_not_flow_out():
+    # No motion, fluidBulkModulus K: starting from a uniform pressure p0 with the boundaries
+    # drained (p = 0 on ymin, ymax), one step dt. Each pore's storage V_void/(K dt) (p - p_old)
+    # plus its net outflow is zero; summed: the storage lost equals the boundary outflow.
+    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0] * 6)
+    flow.triangulate(*packing())
+    flow.solve()                            # incompressible, all zero: nothing moves
+    assert np.all(flow.pressures == 0)
+    flow.fluidBulkModulus = 1e3
+    flow.setTimeStep(1e-4)
+    with pytest.raises(ValueError, match="fluidBulkModulus"):
+        flow.fluidBulkModulus = -1.0
+        flow.solve()
+    flow.fluidBulkModulus = 1e3
+    # start from p0 = 1 everywhere: a second network built on the same spheres carries it over
+    flow.bndCondValue = [0, 0, 1, 1, 0, 0]
+    flow.fluidBulkModulus = 0.0
+    flow.solve()
+    assert np.allclose(flow.pressures, 1.0)
+    flow.fluidBulkModulus = 1e3
+    flow.bndCondValue = [0] * 6
+    p_old = flow.pressures.copy()
+    flow.solve()
+    p = flow.pressures
+    storage = np.maximum(flow.cellVoidVolumes, 0) / (1e3 * 1e-4)
+    unknown = np.ones(len(p), bool)
+    for row, v in enumerate(flow.cellVertexIds):
+        if 2 in v or 3 in v:
+            unknown[row] = False
+    assert np.all(p[unknown] <= 1) and np.all(p[unknown] > 0) and p[unknown].min() < 0.9
+    stored = (storage * (p_old - p))[unknown].sum()
+    assert flow.getBoundaryFlux(2) + flow.getBoundaryFlux(3) == pytest.approx(stored, rel=1e-10)
+    # same pattern, new values: the symbolic analysis is reused
+    stats = flow.solverStats()
+    assert stats["analyses"] == 1 and stats["factorizations"] == 2
+    # a stiff fluid gives the incompressible (steady, here zero) solution at once
+    flow.fluidBulkModulus = 1e18
+    flow.solve()
+    assert np.max(np.abs(flow.pressures)) < 1e-6
+
+
+def test_remeshing_carries_the_pressures_over():
+    flow = y_flow()
+    before = flow.pressures.copy()
+    centres = flow.cellCenters.copy()
+    flow.triangulate(*packing())   # same spheres: same pores; pressures taken from the old mesh
+    assert np.array_equal(flow.cellCenters, centres)
+    assert np.array_equal(flow.pressures, before)
+    flow.solve()
+    assert np.allclose(flow.pressures, before, rtol=0, atol=1e-12)
