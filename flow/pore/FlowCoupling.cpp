@@ -81,12 +81,16 @@ void FlowCoupling::step()
   std::size_t live = 0;
   for (std::size_t i = 0; i < nBodies; ++i)
     live += exchange_.isSphere(static_cast<dem::BodyId>(i)) ? 1 : 0;
-  if (sinceBuild_ < 0 || sinceBuild_ >= meshUpdateInterval || live != sphereIds_.size())
+  // A requested rebuild, or spheres added or erased, need a new mesh before this solve. A due
+  // rebuild (interval or strain) is done after it instead: the old mesh still gives this step's
+  // volume changes, so the fluid never loses a step of support (remeshing first would leave
+  // the step without a volume-change source, a jolt in a consolidating sample).
+  if (sinceBuild_ < 0 || live != sphereIds_.size())
     rebuild();
   else
   {
     move();
-    if (flow_->invertedPores() > 0 || (defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance))
+    if (flow_->invertedPores() > 0) // the old mesh is wrong for this step already
     {
       rebuild();
       ++strainRebuilds_;
@@ -106,6 +110,12 @@ void FlowCoupling::step()
   auto out = exchange_.stepForces();
   for (std::size_t i = 0; i < nBodies; ++i)
     out[i] += forces_[i];
+  const bool strained = defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance;
+  if (sinceBuild_ >= meshUpdateInterval || strained)
+  {
+    rebuild();
+    strainRebuilds_ += strained ? 1 : 0;
+  }
 }
 
 std::shared_ptr<dem::CallbackEngine> FlowCoupling::attach(const std::shared_ptr<FlowCoupling>& coupling)

@@ -29,7 +29,9 @@ public:
   /// conditions that need the new mesh.
   std::function<void()> blockHook;
 
-  /// One coupling step: rebuild if due, solve, add the fluid forces to the step forces.
+  /// One coupling step: move the network's spheres (volume changes), solve, add the fluid
+  /// forces to the step forces, then rebuild if due for the next step (at once when requested,
+  /// when spheres were added or erased, or when a pore turned inside out).
   /// @throws std::invalid_argument if a wallIds entry names a sphere or a missing body, or the
   ///         scene is periodic
   void step();
