@@ -60,6 +60,15 @@ Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore)
   }
   return sum / 4;
 }
+/// The pore containing x, -1 outside the box (the triangulation itself extends far beyond it,
+/// to the fictitious boundary spheres).
+int locateInBox(const PoreNetwork& net, const Vec3& x)
+{
+  for (const Boundary& b : net.boundaries)
+    if ((x[b.coordinate] - b.position) * b.normal[b.coordinate] < 0)
+      return -1;
+  return locatePore(net, x);
+}
 } // namespace
 
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
@@ -78,6 +87,8 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
         p_[i] = oldP[static_cast<std::size_t>(at)];
     }
   dv_.assign(net.pores.size(), 0.0);
+  for (PointPressure& f : fluxPoints_)
+    f.pore = -1;
   maxStrain_ = 0;
   inverted_ = 0;
   updateConductances();
@@ -216,11 +227,7 @@ void PoreFlow::applyBoundaryTypes()
         imposed_[static_cast<std::size_t>(pi)] = 1;
   for (std::size_t n = 0; n < points_.size(); ++n)
   {
-    // the triangulation extends far beyond the box (fictitious spheres): check the box itself
-    bool inside = true;
-    for (const Boundary& b : net_->boundaries)
-      inside = inside && (points_[n].pos[b.coordinate] - b.position) * b.normal[b.coordinate] >= 0;
-    points_[n].pore = inside ? locatePore(*net_, points_[n].pos) : -1;
+    points_[n].pore = locateInBox(*net_, points_[n].pos);
     if (points_[n].pore < 0)
       throw std::invalid_argument("imposePressure: point " + std::to_string(n) + " is outside the pore network");
     imposed_[static_cast<std::size_t>(points_[n].pore)] = 1;
@@ -252,6 +259,15 @@ void PoreFlow::solve()
   const std::vector<double> c = compressible ? storage() : std::vector<double>{};
   for (std::size_t i = 0; i < source.size(); ++i)
     source[i] = -dv_[i] + (compressible ? c[i] * p_[i] : 0.0);
+  for (std::size_t n = 0; n < fluxPoints_.size(); ++n)
+  {
+    PointPressure& f = fluxPoints_[n];
+    if (f.pore < 0)
+      f.pore = locateInBox(*net_, f.pos);
+    if (f.pore < 0)
+      throw std::invalid_argument("imposeFlux: point " + std::to_string(n) + " is outside the pore network");
+    source[static_cast<std::size_t>(f.pore)] -= f.value;
+  }
   for (int k = 0; k < kBoundaries; ++k)
     if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
       for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
@@ -271,6 +287,16 @@ int PoreFlow::imposePressure(const Vec3& pos, double p)
   pointsChanged_ = true;
   return static_cast<int>(points_.size()) - 1;
 }
+
+int PoreFlow::imposeFlux(const Vec3& pos, double q)
+{
+  if (!pos.allFinite() || !std::isfinite(q))
+    throw std::invalid_argument("imposeFlux: non-finite position or flux");
+  fluxPoints_.push_back(PointPressure{pos, q, -1});
+  return static_cast<int>(fluxPoints_.size()) - 1;
+}
+
+void PoreFlow::clearImposedFlux() { fluxPoints_.clear(); }
 
 void PoreFlow::setImposedPressure(int cond, double p)
 {
@@ -342,6 +368,34 @@ double PoreFlow::samplePermeability(int lo, int hi) const
   // Flux leaving boundary lo into the sample (getBoundaryFlux is negative there for dp > 0).
   const double q = -boundaryFlux(lo);
   return q * params.viscosity * length / (area * dp);
+}
+
+std::vector<Vec3> PoreFlow::poreVelocities() const
+{
+  const PoreNetwork& net = network();
+  std::vector<Vec3> v(net.pores.size(), Vec3::Zero());
+  constexpr int kFacetVertex0[4] = {1, 0, 0, 0};
+  for (std::size_t pi = 0; pi < net.pores.size(); ++pi)
+  {
+    const Pore& p = net.pores[pi];
+    for (int f = 0; f < 4; ++f)
+    {
+      if (p.throats[f] < 0)
+        continue;
+      Vec3 n = p.centre - net.pores[static_cast<std::size_t>(p.neighbours[f])].centre;
+      const double len = n.norm();
+      if (len == 0)
+        continue;
+      n /= len;
+      // the facet's position along the line of centres, as averageVelocity takes it
+      const double at = (net.vertices[static_cast<std::size_t>(p.vertices[kFacetVertex0[f]])].pos - p.centre).dot(n);
+      v[pi] += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
+               (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]) * at * n;
+    }
+    if (p.volume != 0)
+      v[pi] /= std::abs(p.volume);
+  }
+  return v;
 }
 
 Vec3 PoreFlow::averageVelocity() const

@@ -66,6 +66,10 @@ public:
   /// Change the value of imposed point `cond` (keeps the factor).
   void setImposedPressure(int cond, double p);
   void clearImposedPressure();
+  /// Impose the flux q at the pore containing `pos`, a source term (Yade's imposeFlux: outflux
+  /// positive, influx negative), located again after each triangulation. @returns its index
+  int imposeFlux(const Vec3& pos, double q);
+  void clearImposedFlux();
   /// Flux leaving the pore of imposed point `cond` into the network, sum k (p_cell - p_j)
   /// (Yade's getCellFlux; positive for injection).
   [[nodiscard]] double getCellFlux(int cond) const;
@@ -84,6 +88,9 @@ public:
   /// axis: K = Q mu L / (A dP) with the flux Q through boundary `lo`, the sample length L and
   /// cross-section A from the box. @throws if lo/hi are not opposite pressure boundaries
   [[nodiscard]] double samplePermeability(int lo, int hi) const;
+  /// Darcy velocity of each pore: sum over its facets of the outgoing flux times the facet
+  /// position relative to the pore centre, over the pore volume (the terms of averageVelocity).
+  [[nodiscard]] std::vector<Vec3> poreVelocities() const;
   /// Volume-averaged Darcy velocity over all pores (Yade's averageVelocity).
   [[nodiscard]] Vec3 averageVelocity() const;
   [[nodiscard]] double globalConductance() const { return globalK_; }
@@ -122,6 +129,7 @@ private:
     int pore; ///< -1 until located in the current network
   };
   std::vector<PointPressure> points_;
+  std::vector<PointPressure> fluxPoints_; ///< value: the imposed outflux
   bool pointsChanged_ = false;
   PressureSolver solver_;
   double globalK_ = 0;

@@ -3,6 +3,7 @@
 #include "dem/Scene.h"
 #include "flow/pore/FlowCoupling.h"
 #include "flow/pore/PoreFlow.h"
+#include "flow/pore/VtkOutput.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -99,6 +100,18 @@ void registerPoreFlow(py::module_& m)
       })
       .def("imposePressure", &PoreFlow::imposePressure)
       .def("setImposedPressure", &PoreFlow::setImposedPressure)
+      .def("imposeFlux", &PoreFlow::imposeFlux)
+      .def("clearImposedFlux", &PoreFlow::clearImposedFlux)
+      .def("saveVtk", [](const PoreFlow& f, const std::string& base) { return saveVtk(f, base); })
+      .def("poreVelocities", [](const PoreFlow& f) {
+        const std::vector<Vec3> v = f.poreVelocities();
+        Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < v.size(); ++i)
+          for (py::ssize_t d = 0; d < 3; ++d)
+            out(static_cast<py::ssize_t>(i), d) = v[i][d];
+        return a;
+      })
       .def("clearImposedPressure", &PoreFlow::clearImposedPressure)
       .def("getCellFlux", &PoreFlow::getCellFlux)
       .def("solve", &PoreFlow::solve)

@@ -320,3 +320,124 @@ def test_remeshing_carries_the_pressures_over():
     assert np.array_equal(flow.pressures, before)
     flow.solve()
     assert np.allclose(flow.pressures, before, rtol=0, atol=1e-12)
+
+
+def test_imposed_point_flux_leaves_through_the_boundaries():
+    # Yade's imposeFlux: outflux positive, influx negative. Injecting Q at the centre with both y
+    # boundaries drained: Q leaves through them; the field is linear in Q and the factor is kept.
+    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0] * 6)
+    flow.triangulate(*packing())
+    flow.imposeFlux((0.5, 0.5, 0.5), -2e-3)
+    flow.solve()
+    assert flow.getBoundaryFlux(2) + flow.getBoundaryFlux(3) == pytest.approx(2e-3, rel=1e-10)
+    p1 = flow.getPorePressure((0.5, 0.5, 0.5))
+    assert p1 > 0 and p1 == flow.pressures.max()
+    flow.imposeFlux((0.5, 0.5, 0.5), -2e-3)   # two sources in the same pore add up
+    flow.solve()
+    assert flow.getPorePressure((0.5, 0.5, 0.5)) == pytest.approx(2 * p1, rel=1e-10)
+    assert flow.solverStats()["factorizations"] == 1
+    flow.clearImposedFlux()
+    flow.solve()
+    assert np.all(flow.pressures == 0)
+    flow.imposeFlux((7.0, 0.5, 0.5), 1.0)
+    with pytest.raises(ValueError, match="outside"):
+        flow.solve()
+
+
+def _read_legacy_vtk(path):
+    """A minimal reader of the legacy ASCII files saveVtk writes: sections and their numbers."""
+    tokens = open(path).read().split("\n")
+    assert tokens[0].startswith("# vtk DataFile") and tokens[2] == "ASCII"
+    out, i = {"type": tokens[3].split()[1]}, 4
+    while i < len(tokens):
+        words = tokens[i].split()
+        i += 1
+        if not words:
+            continue
+        key = words[0]
+        if key in ("POINTS",):
+            n = int(words[1])
+            out["POINTS"] = np.array([[float(x) for x in tokens[i + k].split()] for k in range(n)])
+            i += n
+        elif key in ("CELLS", "LINES"):
+            n = int(words[1])
+            out[key] = [[int(x) for x in tokens[i + k].split()][1:] for k in range(n)]
+            assert sum(len(c) + 1 for c in out[key]) == int(words[2])
+            i += n
+        elif key == "CELL_TYPES":
+            n = int(words[1])
+            out[key] = [int(tokens[i + k]) for k in range(n)]
+            i += n
+        elif key in ("CELL_DATA", "POINT_DATA"):
+            where, count = key, int(words[1])
+        elif key == "SCALARS":
+            i += 1  # LOOKUP_TABLE
+            out[(where, words[1])] = np.array([float(tokens[i + k]) for k in range(count)])
+            i += count
+        elif key == "VECTORS":
+            out[(where, words[1])] = np.array([[float(x) for x in tokens[i + k].split()] for k in range(count)])
+            i += count
+        else:
+            raise AssertionError(f"{path}: unexpected line {tokens[i - 1]!r}")
+    return out
+
+
+def test_paraview_output_reads_back(tmp_path):
+    flow = y_flow()
+    pores, throats = flow.saveVtk(str(tmp_path / "net"))
+    a = _read_legacy_vtk(pores)
+    n = flow.nCells()
+    assert a["type"] == "UNSTRUCTURED_GRID" and len(a["CELLS"]) == n and set(a["CELL_TYPES"]) == {10}
+    assert np.allclose(a[("CELL_DATA", "pressure")], flow.pressures, rtol=1e-11, atol=1e-13)
+    assert np.allclose(a[("CELL_DATA", "volume")], np.abs(flow.cellVolumes), rtol=1e-11)
+    pos, rad, ids = packing()
+    assert np.allclose(a["POINTS"][:len(pos)], pos, rtol=1e-11)   # spheres first, in input order
+    assert np.allclose(a[("POINT_DATA", "radius")][:len(pos)], rad, rtol=1e-11)
+    assert np.allclose(a[("POINT_DATA", "fluidForce")][1], flow.fluidForce(int(ids[1])), rtol=1e-10, atol=1e-14)
+    # every tetrahedron's points lie in the box (wall vertices projected on their wall)
+    lo, hi = (pos - rad[:, None]).min(axis=0), (pos + rad[:, None]).max(axis=0)
+    assert np.all(a["POINTS"] >= lo - 1e-12) and np.all(a["POINTS"] <= hi + 1e-12)
+    # Darcy velocity: pores' velocities weighted by their volumes average to the sample's
+    v = a[("CELL_DATA", "velocity")]
+    mean = (v * np.abs(flow.cellVolumes)[:, None]).sum(axis=0) / np.abs(flow.cellVolumes).sum()
+    q = -flow.getBoundaryFlux(2) / ((hi[0] - lo[0]) * (hi[2] - lo[2]))
+    assert mean[1] == pytest.approx(q, rel=0.05) and abs(mean[0]) < 0.1 * q and abs(mean[2]) < 0.1 * q
+    t = _read_legacy_vtk(throats)
+    assert t["type"] == "POLYDATA" and len(t["LINES"]) == len(flow.throatPores)
+    pr = flow.pressures
+    flux = t[("CELL_DATA", "flux")]
+    a_, b_ = flow.throatPores[:, 0], flow.throatPores[:, 1]
+    assert np.allclose(flux, flow.throatConductances * (pr[a_] - pr[b_]), rtol=1e-10, atol=1e-16)
+
+
+def test_engine_remeshes_on_strain_and_calls_the_block_hook():
+    # Spheres moving towards the centre (no contacts, no gravity): pores shrink; with
+    # defTolerance the engine remeshes before meshUpdateInterval, and blockHook runs after
+    # every remesh, before the solve (it can impose a point pressure on the new mesh).
+    from talus.dem import NewtonIntegrator, ForceResetter, Scene, sphere
+    S = Scene()
+    pos, rad, _ = packing()
+    ids = S.bodies.append([sphere(p, r) for p, r in zip(pos, rad)])
+    vel = np.asarray(S.velocities())
+    for i in ids:
+        vel[i] = -0.5 * (pos[i] - 0.5)
+    S.velocities()[:] = vel
+    calls = []
+
+    def hook():
+        calls.append(flow.nCells())
+        flow.clearImposedPressure()
+        flow.imposePressure((0.5, 0.5, 0.5), 1.0)
+
+    flow = FlowEngine(scene=S, bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0] * 6,
+                      meshUpdateInterval=10 ** 6, defTolerance=0.02, blockHook=hook)
+    S.engines = [ForceResetter(), flow, NewtonIntegrator(damping=0)]
+    S.dt = 2e-3
+    for _ in range(10):
+        S.step()
+    total, strained = flow.remeshCount()
+    assert strained >= 1 and total == strained + 1 and len(calls) == total
+    assert flow.maxVolumetricStrain() <= 0.02 + 1e-12 or flow.maxVolumetricStrain() < 0.1
+    assert flow.getPorePressure((0.5, 0.5, 0.5)) == pytest.approx(1.0)
+    # the volume change drives the flow out of the shrinking sample
+    assert flow.getBoundaryFlux(2) + flow.getBoundaryFlux(3) > 0

@@ -233,6 +233,27 @@ class FlowEngine(Engine):
     def clearImposedPressure(self):
         self._flow.clearImposedPressure()
 
+    def imposeFlux(self, pos, q: float) -> int:
+        """Impose the flux ``q`` in the pore containing ``pos`` (a source term; as Yade:
+        outflux positive, influx negative), located again at each triangulation."""
+        return self._flow.imposeFlux(np.asarray(pos, dtype=float), float(q))
+
+    def clearImposedFlux(self):
+        self._flow.clearImposedFlux()
+
+    def saveVtk(self, base: str = "pores") -> list[str]:
+        """ParaView output (legacy VTK): ``<base>.pores.vtk``, the pores as tetrahedra with
+        pressure, volume, voidVolume and velocity per pore, radius and fluidForce per sphere
+        (boundary pores drawn with their wall vertices projected on the wall), and
+        ``<base>.throats.vtk``, one line per throat between the pore centres with flux,
+        conductance, fluidArea, hydraulicRadius. Returns the two paths."""
+        return list(self._flow.saveVtk(str(base)))
+
+    @property
+    def poreVelocities(self) -> np.ndarray:
+        """Darcy velocity of each pore, (nCells, 3)."""
+        return self._flow.poreVelocities()
+
     def getCellFlux(self, cond: int) -> float:
         """Flux injected into the network by imposed point ``cond`` (positive out of its pore)."""
         return self._flow.getCellFlux(cond)
