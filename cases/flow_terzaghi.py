@@ -14,7 +14,7 @@ Set-up:   (after the seed's FlowEngine oedometer example) a seeded cloud between
              forces on spheres and walls, remeshing every 200 steps or at 5 % pore strain): the
              fluid first carries the load, then drains. Viscosity chosen so that the
              consolidation time H^2 / c_v, c_v = K E_oed / mu, is `--tc` seconds (0.6 s). Variant
-             (not in quick mode): a compressible fluid, fluidBulkModulus = n E_oed (Skempton
+             (not in quick mode): a compressible fluid, 5 tc, fluidBulkModulus = n E_oed (Skempton
              B = m_v / (m_v + n / K_f) = 0.5): c_v = K / (mu (m_v + n / K_f)), initial excess
              pressure B * 1 kPa, instant settlement (1 - B) s_final, then s / s_final =
              1 - B (1 - U).
@@ -129,6 +129,7 @@ def load_step(steps: int, sample_every: int, flow=None):
 def main():
     parser = results.case_arguments(__doc__)
     parser.add_argument("--tc", type=float, default=0.6, help="consolidation time H^2/c_v in seconds")
+    parser.add_argument("--damping", type=float, default=0.2, help="NewtonIntegrator damping while loading")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -138,6 +139,10 @@ def main():
     num = 400 if args.quick else 1000
     start = time.perf_counter()
     triax, newton = compacted_sample(num, seed=1)
+    # the servo-loaded top wall rings (the drained settlement swings by +-50 % for a few periods
+    # of ~0.25 s at damping 0.2); more damping slows the loading down instead (0.7: the excess
+    # pressure peaks at half the load only): 0.2 is the better compromise here
+    newton.damping = args.damping
     height = top() - bottom()
     print(f"compacted {num} spheres in {time.perf_counter() - start:.1f} s, {O.iter} steps, dt {O.dt:.3g} s, "
           f"porosity {triax.porosity:.3f}, height {height:.4f}")
@@ -155,19 +160,20 @@ def main():
     porosity = float(triax.porosity)
     print(f"K = {k:.4e} m^2 (mu = 1), drained settlement {s_final:.4e} m, E_oed {e_oed:.4e} Pa, n {porosity:.3f}")
 
-    def coupled(bulk: float):
+    def coupled(bulk: float, tc: float):
         O.loadTmp("oedometer", engines="current")
         m_v = 1 / e_oed
         storage = m_v + (porosity / bulk if bulk > 0 else 0.0)
-        mu = k * args.tc / (height ** 2 * storage)
+        mu = k * tc / (height ** 2 * storage)
         flow = FlowEngine(bndCondIsPressure=[0, 0, 0, 1, 0, 0], bndCondValue=[0] * 6, boundaryUseMaxMin=[0] * 6,
                           wallIds=WALLS, viscosity=mu, meshUpdateInterval=200, defTolerance=0.05,
                           fluidBulkModulus=bulk)
         engines = list(O.engines)
         engines.insert(3, flow)   # after the contact forces, before the time stepper and the controller
         O.engines = engines
-        series = load_step(steps, every, flow)
-        series["Tv"] = series["t"] / args.tc
+        n_steps = int(round(3 * tc / O.dt))
+        series = load_step(n_steps, max(1, n_steps // 300), flow)
+        series["Tv"] = series["t"] / tc
         b = m_v / storage
         # the fluid's compression settles (1 - B) of s_final at once; the rest consolidates:
         # s / s_final = 1 - B (1 - U)
@@ -175,7 +181,7 @@ def main():
         series["p_rel"] = series["p"] / (b * abs(DSIGMA))
         return series, flow, mu, b
 
-    wet, flow, mu, _ = coupled(0.0)
+    wet, flow, mu, _ = coupled(0.0, args.tc)
     window = (wet["Tv"] >= 0.05) & (wet["Tv"] <= 1.0)
     u_an = terzaghi_u(wet["Tv"])
     err = float(np.max(np.abs(wet["U"] - u_an)[window]))
@@ -191,8 +197,10 @@ def main():
                 "Terzaghi's series (mean excess pressure = 1 - U)", 0.1, suffix="pressure", **common)
     runs = [("incompressible", wet)]
     if not args.quick:
-        comp, flow_c, mu_c, b = coupled(porosity * e_oed)
-        err_c = float(np.max(np.abs(comp["U"] - terzaghi_u(comp["Tv"]))[window[:len(comp["Tv"])]]))
+        # five times slower, so that the ringing of the instant (1 - B) settlement dies out early
+        comp, flow_c, mu_c, b = coupled(porosity * e_oed, 5 * args.tc)
+        window_c = (comp["Tv"] >= 0.05) & (comp["Tv"] <= 1.0)
+        err_c = float(np.max(np.abs(comp["U"] - terzaghi_u(comp["Tv"]))[window_c]))
         print(f"compressible (B = {b:.2f}): worst |U - U_T| {err_c:.4f}")
         case.record("worst |U - U_Terzaghi| for Tv in [0.05, 1], compressible fluid (Skempton B = 0.5)", err_c,
                     "Terzaghi's series with c_v = K / (mu (m_v + n / K_f))", 0.05, suffix="compressible",

@@ -87,6 +87,7 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
         p_[i] = oldP[static_cast<std::size_t>(at)];
     }
   dv_.assign(net.pores.size(), 0.0);
+  voidsStale_ = false;
   for (PointPressure& f : fluxPoints_)
     f.pore = -1;
   maxStrain_ = 0;
@@ -95,6 +96,14 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
   meshVolume_.resize(net.pores.size());
   for (std::size_t i = 0; i < net.pores.size(); ++i)
     meshVolume_[i] = net.pores[i].volume;
+}
+
+void PoreFlow::updateVoidVolumes()
+{
+  if (!voidsStale_)
+    return;
+  updatePoreVolumes(*net_, true);
+  voidsStale_ = false;
 }
 
 void PoreFlow::setTimeStep(double dt)
@@ -128,7 +137,9 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
   std::vector<double> before(net.pores.size());
   for (std::size_t i = 0; i < net.pores.size(); ++i)
     before[i] = net.pores[i].volume;
-  updatePoreVolumes(net);
+  // void volumes only feed the compressible storage term: recomputed there when needed
+  updatePoreVolumes(net, params.fluidBulkModulus > 0);
+  voidsStale_ = params.fluidBulkModulus <= 0;
   maxStrain_ = 0;
   inverted_ = 0;
   for (std::size_t i = 0; i < net.pores.size(); ++i)
@@ -249,6 +260,8 @@ void PoreFlow::solve()
   if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
     throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
   const bool compressible = params.fluidBulkModulus > 0;
+  if (compressible)
+    updateVoidVolumes();
   if (builtTypes_ != params.bndCondIsPressure)
     updateConductances(); // boundary types enter the hydraulic radii and the matrix
   else if (pointsChanged_ || compressible || storageInMatrix_)

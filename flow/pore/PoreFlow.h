@@ -44,6 +44,9 @@ public:
   /// @throws std::invalid_argument on a size mismatch, non-finite positions or dt <= 0
   void moveVertices(const std::vector<Vec3>& spherePositions, const std::array<double, kBoundaries>& boundaryPositions,
                     double dt);
+  /// Recompute the void volumes if the spheres moved since (moveVertices skips them for an
+  /// incompressible fluid, which does not need them).
+  void updateVoidVolumes();
   /// Time step of the transient (compressible) solve when no motion was given.
   void setTimeStep(double dt);
   /// Largest relative change of a pore volume since the last triangulation, |V - V_mesh| / |V_mesh|
@@ -119,6 +122,7 @@ private:
   int inverted_ = 0;
   double dt_ = 0;
   bool storageInMatrix_ = false;  ///< the factor includes a storage term
+  bool voidsStale_ = false;       ///< spheres moved, void volumes not recomputed (incompressible)
   /// force on the pore's vertex k per unit pressure in the pore (Yade's unitForceVectors)
   std::vector<std::array<Vec3, 4>> unitForces_;
   std::array<bool, kBoundaries> builtTypes_{};

@@ -129,7 +129,10 @@ void registerPoreFlow(py::module_& m)
       .def("nCells", [](const PoreFlow& f) { return f.network().pores.size(); })
       .def("nThroats", [](const PoreFlow& f) { return f.network().throats.size(); })
       .def("poreVolumes", [](const PoreFlow& f) { return column(f.network().pores, [](const Pore& p) { return p.volume; }); })
-      .def("poreVoidVolumes", [](const PoreFlow& f) { return column(f.network().pores, [](const Pore& p) { return p.voidVolume; }); })
+      .def("poreVoidVolumes", [](PoreFlow& f) {
+        f.updateVoidVolumes();
+        return column(f.network().pores, [](const Pore& p) { return p.voidVolume; });
+      })
       .def("poreCentres", [](const PoreFlow& f) {
         const auto& pores = f.network().pores;
         Array a({static_cast<py::ssize_t>(pores.size()), py::ssize_t{3}});
