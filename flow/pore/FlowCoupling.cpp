@@ -82,20 +82,16 @@ void FlowCoupling::step()
   for (std::size_t i = 0; i < nBodies; ++i)
     live += exchange_.isSphere(static_cast<dem::BodyId>(i)) ? 1 : 0;
   // A requested rebuild, or spheres added or erased, need a new mesh before this solve. A due
-  // rebuild (interval or strain) is done after it instead: the old mesh still gives this step's
-  // volume changes, so the fluid never loses a step of support (remeshing first would leave
-  // the step without a volume-change source, a jolt in a consolidating sample).
+  // rebuild (interval, strain, an inverted pore) is done after it instead: the old mesh still
+  // gives this step's volume changes, so the fluid never loses a step of support (remeshing
+  // first would leave the step without a volume-change source: the whole load jumps to the
+  // skeleton for one step, a jolt in a consolidating sample). An inverted pore's change is
+  // counted with its sign, so the pores' changes still add up to the sample's; the mesh is
+  // replaced before the next step.
   if (sinceBuild_ < 0 || live != sphereIds_.size())
     rebuild();
   else
-  {
     move();
-    if (flow_->invertedPores() > 0) // the old mesh is wrong for this step already
-    {
-      rebuild();
-      ++strainRebuilds_;
-    }
-  }
   ++sinceBuild_;
   if (exchange_.dt() > 0)
     flow_->setTimeStep(exchange_.dt());
@@ -110,7 +106,8 @@ void FlowCoupling::step()
   auto out = exchange_.stepForces();
   for (std::size_t i = 0; i < nBodies; ++i)
     out[i] += forces_[i];
-  const bool strained = defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance;
+  const bool strained =
+      flow_->invertedPores() > 0 || (defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance);
   if (sinceBuild_ >= meshUpdateInterval || strained)
   {
     rebuild();

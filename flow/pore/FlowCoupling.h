@@ -23,15 +23,16 @@ public:
   int meshUpdateInterval = 1000;
   /// Rebuild as soon as a pore's volume changed by more than this fraction since the last mesh
   /// (Yade's defTolerance; <= 0: only every meshUpdateInterval). An inverted pore always
-  /// triggers a rebuild, whatever the settings: the old mesh would be silently wrong.
+  /// triggers a rebuild at the end of the step, whatever the settings.
   double defTolerance = 0.05;
   /// Called after each rebuild, before the solve (Yade's blockHook): the place to impose
   /// conditions that need the new mesh.
   std::function<void()> blockHook;
 
   /// One coupling step: move the network's spheres (volume changes), solve, add the fluid
-  /// forces to the step forces, then rebuild if due for the next step (at once when requested,
-  /// when spheres were added or erased, or when a pore turned inside out).
+  /// forces to the step forces, then rebuild if due for the next step (interval, pore strain
+  /// above defTolerance, a pore turned inside out; at once, before the solve, when requested or
+  /// when spheres were added or erased).
   /// @throws std::invalid_argument if a wallIds entry names a sphere or a missing body, or the
   ///         scene is periodic
   void step();

@@ -441,3 +441,21 @@ def test_engine_remeshes_on_strain_and_calls_the_block_hook():
     assert flow.getPorePressure((0.5, 0.5, 0.5)) == pytest.approx(1.0)
     # the volume change drives the flow out of the shrinking sample
     assert flow.getBoundaryFlux(2) + flow.getBoundaryFlux(3) > 0
+
+
+def test_inverted_pore_is_detected():
+    # Push one sphere through the opposite face of an interior tetrahedron: that pore's volume
+    # changes sign; the strain measure becomes infinite (the engine remeshes after that step).
+    flow = y_flow()
+    pos, rad, ids = packing()
+    verts = flow.cellVertexIds
+    cell = next(i for i, v in enumerate(verts) if min(v) >= 6)
+    a, b, c, d = (pos[int(v) - 6] for v in verts[cell])
+    normal = np.cross(b - a, c - a)
+    normal /= np.linalg.norm(normal)
+    moved = pos.copy()
+    moved[int(verts[cell][3]) - 6] = d - 2 * np.dot(d - a, normal) * normal   # mirror d through the face abc
+    flow.moveVertices(moved, 1e-3)
+    assert flow._flow.invertedPores() >= 1 and flow.maxVolumetricStrain() == np.inf
+    flow.moveVertices(pos, 1e-3)
+    assert flow._flow.invertedPores() == 0 and flow.maxVolumetricStrain() == pytest.approx(0, abs=1e-12)
