@@ -459,3 +459,22 @@ def test_inverted_pore_is_detected():
     assert flow._flow.invertedPores() >= 1 and flow.maxVolumetricStrain() == np.inf
     flow.moveVertices(pos, 1e-3)
     assert flow._flow.invertedPores() == 0 and flow.maxVolumetricStrain() == pytest.approx(0, abs=1e-12)
+
+
+def test_bad_input_of_the_transient_solve():
+    flow = y_flow()
+    pos, _, ids = packing()
+    with pytest.raises(ValueError, match="399 positions for 400 spheres"):
+        flow.moveVertices(pos[:-1], 1e-3)
+    bad = pos.copy()
+    bad[3, 2] = np.nan
+    with pytest.raises(ValueError, match="body 9"):
+        flow.moveVertices(bad, 1e-3)
+    with pytest.raises(ValueError, match="time step"):
+        flow.moveVertices(pos, 0.0)
+    fresh = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], fluidBulkModulus=1e5)
+    fresh.triangulate(*packing())
+    with pytest.raises(ValueError, match="needs a time step"):
+        fresh.solve()
+    with pytest.raises(ValueError, match="callable or a Python command"):
+        fresh.blockHook = 3
