@@ -24,7 +24,7 @@ public:
   /// Rebuild as soon as a pore's volume changed by more than this fraction since the last mesh
   /// (Yade's defTolerance; <= 0: only every meshUpdateInterval). An inverted pore always
   /// triggers a rebuild at the end of the step, whatever the settings.
-  double defTolerance = 0.05;
+  double defTolerance = 0; // Yade 2023.02a's default: off
   /// Called after each rebuild, before the solve (Yade's blockHook): the place to impose
   /// conditions that need the new mesh.
   std::function<void()> blockHook;

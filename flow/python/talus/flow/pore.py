@@ -63,7 +63,7 @@ class FlowEngine(Engine):
     ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
     solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
     ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), and for the engine
-    ``meshUpdateInterval`` 1000, ``defTolerance`` 0.05 (remesh when a pore's volume changed by more than this
+    ``meshUpdateInterval`` 1000, ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
     fraction since the mesh; an inverted pore always remeshes), ``blockHook`` (callable or command string run
     after each remesh, before the solve). Between remeshes the engine moves the network's spheres each step:
     the pores' volume changes drive the flow (consolidation), see ``moveVertices``.
@@ -77,7 +77,7 @@ class FlowEngine(Engine):
         self._coupling = None
         self._wallIds = [-1] * 6
         self._meshUpdateInterval = 1000
-        self._defTolerance = 0.05
+        self._defTolerance = 0.0
         self._blockHook = None
         self._rebuild = False
         self._cpp = _dem.CallbackEngine()
