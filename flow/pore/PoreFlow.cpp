@@ -94,8 +94,12 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
   inverted_ = 0;
   updateConductances();
   meshVolume_.resize(net.pores.size());
+  meshVoidVolume_.resize(net.pores.size());
   for (std::size_t i = 0; i < net.pores.size(); ++i)
+  {
     meshVolume_[i] = net.pores[i].volume;
+    meshVoidVolume_[i] = net.pores[i].voidVolume;
+  }
 }
 
 void PoreFlow::updateVoidVolumes()
@@ -137,9 +141,9 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
   std::vector<double> before(net.pores.size());
   for (std::size_t i = 0; i < net.pores.size(); ++i)
     before[i] = net.pores[i].volume;
-  // void volumes only feed the compressible storage term: recomputed there when needed
-  updatePoreVolumes(net, params.fluidBulkModulus > 0);
-  voidsStale_ = params.fluidBulkModulus <= 0;
+  // void volumes (the costly sphere sectors) are recomputed only when asked for
+  updatePoreVolumes(net, false);
+  voidsStale_ = true;
   maxStrain_ = 0;
   inverted_ = 0;
   for (std::size_t i = 0; i < net.pores.size(); ++i)
@@ -163,9 +167,11 @@ std::vector<double> PoreFlow::storage() const
   if (!(dt_ > 0))
     throw std::invalid_argument("FlowEngine: a compressible fluid (fluidBulkModulus > 0) needs a time step "
                                 "(run it as an engine, or setTimeStep / moveVertices)");
+  // the void volumes of the mesh, as Yade (invVoidVolume is set at meshing only): between
+  // remeshes they change by the pore strain, a second-order effect on the storage term
   std::vector<double> c(net_->pores.size());
   for (std::size_t i = 0; i < c.size(); ++i)
-    c[i] = std::max(net_->pores[i].voidVolume, 0.0) / (params.fluidBulkModulus * dt_);
+    c[i] = std::max(meshVoidVolume_[i], 0.0) / (params.fluidBulkModulus * dt_);
   return c;
 }
 
@@ -260,8 +266,6 @@ void PoreFlow::solve()
   if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
     throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
   const bool compressible = params.fluidBulkModulus > 0;
-  if (compressible)
-    updateVoidVolumes();
   if (builtTypes_ != params.bndCondIsPressure)
     updateConductances(); // boundary types enter the hydraulic radii and the matrix
   else if (pointsChanged_ || compressible || storageInMatrix_)

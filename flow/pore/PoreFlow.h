@@ -25,7 +25,8 @@ struct FlowParameters : ConductanceParameters
   double tolerance = 1e-6; ///< Gauss-Seidel relative change
   double relax = 1.9;
   /// Bulk modulus of the fluid; 0: incompressible (Yade's fluidBulkModulus). With K_f > 0 each
-  /// pore stores fluid, V_void / (K_f dt) (p - p_old), and the solve is transient.
+  /// pore stores fluid, V_void / (K_f dt) (p - p_old) (V_void of the mesh, as Yade), and the
+  /// solve is transient.
   double fluidBulkModulus = 0;
 };
 
@@ -44,8 +45,8 @@ public:
   /// @throws std::invalid_argument on a size mismatch, non-finite positions or dt <= 0
   void moveVertices(const std::vector<Vec3>& spherePositions, const std::array<double, kBoundaries>& boundaryPositions,
                     double dt);
-  /// Recompute the void volumes if the spheres moved since (moveVertices skips them for an
-  /// incompressible fluid, which does not need them).
+  /// Recompute the void volumes if the spheres moved since (moveVertices skips them: the
+  /// storage term uses the mesh's void volumes, as Yade).
   void updateVoidVolumes();
   /// Time step of the transient (compressible) solve when no motion was given.
   void setTimeStep(double dt);
@@ -118,11 +119,12 @@ private:
   std::vector<double> p_;
   std::vector<double> dv_;        ///< dV/dt per pore since the last moveVertices (0 after a build)
   std::vector<double> meshVolume_; ///< pore volumes at the triangulation
+  std::vector<double> meshVoidVolume_; ///< void volumes at the triangulation (storage term)
   double maxStrain_ = 0;
   int inverted_ = 0;
   double dt_ = 0;
   bool storageInMatrix_ = false;  ///< the factor includes a storage term
-  bool voidsStale_ = false;       ///< spheres moved, void volumes not recomputed (incompressible)
+  bool voidsStale_ = false;       ///< spheres moved, void volumes not recomputed
   /// force on the pore's vertex k per unit pressure in the pore (Yade's unitForceVectors)
   std::vector<std::array<Vec3, 4>> unitForces_;
   std::array<bool, kBoundaries> builtTypes_{};
