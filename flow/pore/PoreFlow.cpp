@@ -43,6 +43,8 @@ Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore)
       real += net.vertices[static_cast<std::size_t>(v)].pos;
       ++nReal;
     }
+  if (nReal == 0) // four walls: no sphere to place it by
+    return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
   real /= nReal;
   Vec3 sum = Vec3::Zero();
   for (int v : pore.vertices)
@@ -73,19 +75,19 @@ int locateInBox(const PoreNetwork& net, const Vec3& x)
 
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
 {
-  std::optional<PoreNetwork> old = std::move(net_);
-  const std::vector<double> oldP = std::move(p_);
-  net_.reset();
-  net_ = triangulate(spheres, boundaries(spheres));
-  const PoreNetwork& net = *net_;
-  p_.assign(net.pores.size(), 0.0);
-  if (old && !old->pores.empty())
-    for (std::size_t i = 0; i < net.pores.size(); ++i)
+  PoreNetwork fresh = triangulate(spheres, boundaries(spheres)); // on bad input the old network stays
+  std::vector<double> p(fresh.pores.size(), 0.0);
+  if (net_ && !net_->pores.empty())
+    for (std::size_t i = 0; i < fresh.pores.size(); ++i)
     {
-      const int at = locatePore(*old, interiorPoint(net, net.pores[i]));
+      const Vec3 x = interiorPoint(fresh, fresh.pores[i]);
+      const int at = x.allFinite() ? locatePore(*net_, x) : -1;
       if (at >= 0)
-        p_[i] = oldP[static_cast<std::size_t>(at)];
+        p[i] = p_[static_cast<std::size_t>(at)];
     }
+  net_ = std::move(fresh);
+  p_ = std::move(p);
+  const PoreNetwork& net = *net_;
   dv_.assign(net.pores.size(), 0.0);
   voidsStale_ = false;
   for (PointPressure& f : fluxPoints_)
@@ -120,24 +122,25 @@ void PoreFlow::setTimeStep(double dt)
 void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
                             const std::array<double, kBoundaries>& boundaryPositions, double dt)
 {
+  if (!net_)
+    throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
   PoreNetwork& net = *net_;
   if (spherePositions.size() != net.sphereCount())
     throw std::invalid_argument("FlowEngine: " + std::to_string(spherePositions.size()) + " positions for " +
                                 std::to_string(net.sphereCount()) + " spheres of the pore network");
-  setTimeStep(dt);
+  // everything is checked before anything moves: a refused call leaves the network as it was
   for (std::size_t i = 0; i < spherePositions.size(); ++i)
-  {
     if (!spherePositions[i].allFinite())
       throw std::invalid_argument("FlowEngine: non-finite position of body " +
                                   std::to_string(net.vertices[kBoundaries + i].id));
-    net.vertices[kBoundaries + i].pos = spherePositions[i];
-  }
   for (int k = 0; k < kBoundaries; ++k)
-  {
     if (!std::isfinite(boundaryPositions[static_cast<std::size_t>(k)]))
       throw std::invalid_argument("FlowEngine: non-finite position of boundary " + std::to_string(k));
+  setTimeStep(dt);
+  for (std::size_t i = 0; i < spherePositions.size(); ++i)
+    net.vertices[kBoundaries + i].pos = spherePositions[i];
+  for (int k = 0; k < kBoundaries; ++k)
     net.boundaries[static_cast<std::size_t>(k)].position = boundaryPositions[static_cast<std::size_t>(k)];
-  }
   std::vector<double> before(net.pores.size());
   for (std::size_t i = 0; i < net.pores.size(); ++i)
     before[i] = net.pores[i].volume;

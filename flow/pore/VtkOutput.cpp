@@ -43,7 +43,8 @@ std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base
         centroid += net.vertices[static_cast<std::size_t>(v)].pos;
         ++real;
       }
-    centroid /= real;
+    if (real > 0) // a pore of four walls (none in practice) is drawn at the box corner
+      centroid /= real;
     for (int k = 0; k < 4; ++k)
     {
       const Vertex& vx = net.vertices[static_cast<std::size_t>(pore.vertices[k])];
