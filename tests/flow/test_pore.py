@@ -470,6 +470,9 @@ def test_bad_input_of_the_transient_solve():
     bad[3, 2] = np.nan
     with pytest.raises(ValueError, match="body 9"):
         flow.moveVertices(bad, 1e-3)
+    assert flow.maxVolumetricStrain() == 0   # the refused move changed nothing
+    with pytest.raises(RuntimeError, match="triangulate first"):
+        FlowEngine().moveVertices(pos, 1e-3)
     with pytest.raises(ValueError, match="time step"):
         flow.moveVertices(pos, 0.0)
     fresh = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], fluidBulkModulus=1e5)
