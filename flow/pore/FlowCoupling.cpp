@@ -12,9 +12,33 @@ FlowCoupling::FlowCoupling(dem::ParticleExchange exchange, std::shared_ptr<PoreF
     throw std::invalid_argument("FlowCoupling: no flow model");
 }
 
+bool FlowCoupling::followsWall(int k) const
+{
+  return wallIds[static_cast<std::size_t>(k)] >= 0 && !flow_->params.boundaryUseMaxMin[static_cast<std::size_t>(k)];
+}
+
+void FlowCoupling::move()
+{
+  const auto pos = exchange_.positions();
+  std::vector<Vec3> at(sphereIds_.size());
+  for (std::size_t i = 0; i < sphereIds_.size(); ++i)
+    at[i] = pos[static_cast<std::size_t>(sphereIds_[i])];
+  std::array<double, kBoundaries> walls{};
+  for (int k = 0; k < kBoundaries; ++k)
+  {
+    const Boundary& b = flow_->network().boundaries[static_cast<std::size_t>(k)];
+    walls[static_cast<std::size_t>(k)] =
+        followsWall(k) ? pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][b.coordinate] : b.position;
+  }
+  flow_->moveVertices(at, walls, exchange_.dt());
+}
+
 void FlowCoupling::rebuild()
 {
   const auto pos = exchange_.positions();
+  for (int k = 0; k < kBoundaries; ++k)
+    if (followsWall(k))
+      flow_->params.wallPosition[static_cast<std::size_t>(k)] = pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][k / 2];
   const auto radius = exchange_.radii();
   std::vector<PoreSphere> spheres;
   sphereIds_.clear();
@@ -29,6 +53,8 @@ void FlowCoupling::rebuild()
   flow_->build(spheres);
   sinceBuild_ = 0;
   ++rebuilds_;
+  if (blockHook)
+    blockHook();
 }
 
 void FlowCoupling::step()
@@ -55,9 +81,20 @@ void FlowCoupling::step()
   std::size_t live = 0;
   for (std::size_t i = 0; i < nBodies; ++i)
     live += exchange_.isSphere(static_cast<dem::BodyId>(i)) ? 1 : 0;
-  if (sinceBuild_ < 0 || sinceBuild_ >= meshUpdateInterval || live != sphereIds_.size())
+  // A requested rebuild, or spheres added or erased, need a new mesh before this solve. A due
+  // rebuild (interval, strain, an inverted pore) is done after it instead: the old mesh still
+  // gives this step's volume changes, so the fluid never loses a step of support (remeshing
+  // first would leave the step without a volume-change source: the whole load jumps to the
+  // skeleton for one step, a jolt in a consolidating sample). An inverted pore's change is
+  // counted with its sign, so the pores' changes still add up to the sample's; the mesh is
+  // replaced before the next step.
+  if (sinceBuild_ < 0 || live != sphereIds_.size())
     rebuild();
+  else
+    move();
   ++sinceBuild_;
+  if (exchange_.dt() > 0)
+    flow_->setTimeStep(exchange_.dt());
   flow_->solve();
   const std::vector<Vec3> f = flow_->vertexForces();
   forces_.assign(nBodies, Vec3::Zero());
@@ -69,6 +106,13 @@ void FlowCoupling::step()
   auto out = exchange_.stepForces();
   for (std::size_t i = 0; i < nBodies; ++i)
     out[i] += forces_[i];
+  const bool strained =
+      flow_->invertedPores() > 0 || (defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance);
+  if (sinceBuild_ >= meshUpdateInterval || strained)
+  {
+    rebuild();
+    strainRebuilds_ += strained ? 1 : 0;
+  }
 }
 
 std::shared_ptr<dem::CallbackEngine> FlowCoupling::attach(const std::shared_ptr<FlowCoupling>& coupling)

@@ -7,6 +7,7 @@
 #include "flow/pore/PoreFlow.h"
 
 #include <array>
+#include <functional>
 #include <memory>
 
 namespace talus::flow::pore
@@ -20,8 +21,18 @@ public:
   std::array<dem::BodyId, kBoundaries> wallIds{-1, -1, -1, -1, -1, -1};
   /// Rebuild the pore network every this many calls (Yade's meshUpdateInterval).
   int meshUpdateInterval = 1000;
+  /// Rebuild as soon as a pore's volume changed by more than this fraction since the last mesh
+  /// (Yade's defTolerance; <= 0: only every meshUpdateInterval). An inverted pore always
+  /// triggers a rebuild at the end of the step, whatever the settings.
+  double defTolerance = 0; // Yade 2023.02a's default: off
+  /// Called after each rebuild, before the solve (Yade's blockHook): the place to impose
+  /// conditions that need the new mesh.
+  std::function<void()> blockHook;
 
-  /// One coupling step: rebuild if due, solve, add the fluid forces to the step forces.
+  /// One coupling step: move the network's spheres (volume changes), solve, add the fluid
+  /// forces to the step forces, then rebuild if due for the next step (interval, pore strain
+  /// above defTolerance, a pore turned inside out; at once, before the solve, when requested or
+  /// when spheres were added or erased).
   /// @throws std::invalid_argument if a wallIds entry names a sphere or a missing body, or the
   ///         scene is periodic
   void step();
@@ -32,12 +43,18 @@ public:
   /// The fluid forces of the last step, by body id (zero for bodies the flow does not see).
   [[nodiscard]] const std::vector<Vec3>& forces() const { return forces_; }
   [[nodiscard]] int rebuilds() const { return rebuilds_; }
+  /// Rebuilds triggered by defTolerance or inverted pores (a subset of rebuilds()).
+  [[nodiscard]] int strainRebuilds() const { return strainRebuilds_; }
 
   /// Insert the coupling in the scene's step (before the contact forces), every step.
   static std::shared_ptr<dem::CallbackEngine> attach(const std::shared_ptr<FlowCoupling>& coupling);
 
 private:
   void rebuild();
+  /// Move the network's spheres and the wall-following boundaries to the bodies' positions.
+  void move();
+  /// Boundary k follows the wall body wallIds[k] (Yade: boundaryUseMaxMin false with a wall).
+  [[nodiscard]] bool followsWall(int k) const;
 
   dem::ParticleExchange exchange_;
   std::shared_ptr<PoreFlow> flow_;
@@ -45,5 +62,6 @@ private:
   std::vector<Vec3> forces_;
   int sinceBuild_ = -1;
   int rebuilds_ = 0;
+  int strainRebuilds_ = 0;
 };
 } // namespace talus::flow::pore

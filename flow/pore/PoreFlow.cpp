@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -27,11 +28,154 @@ std::array<Boundary, kBoundaries> PoreFlow::boundaries(const std::vector<PoreSph
   return b;
 }
 
+namespace
+{
+/// A point inside the pore (its weighted circumcentre may lie outside the tetrahedron): the
+/// centroid of its vertices, a boundary vertex standing for the projection of the real
+/// vertices' centroid on that boundary plane.
+Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore)
+{
+  Vec3 real = Vec3::Zero();
+  int nReal = 0;
+  for (int v : pore.vertices)
+    if (!net.vertices[static_cast<std::size_t>(v)].fictitious)
+    {
+      real += net.vertices[static_cast<std::size_t>(v)].pos;
+      ++nReal;
+    }
+  if (nReal == 0) // four walls: no sphere to place it by
+    return Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  real /= nReal;
+  Vec3 sum = Vec3::Zero();
+  for (int v : pore.vertices)
+  {
+    const Vertex& vx = net.vertices[static_cast<std::size_t>(v)];
+    if (vx.fictitious)
+    {
+      const Boundary& b = net.boundaries[static_cast<std::size_t>(vx.id)];
+      Vec3 q = real;
+      q[b.coordinate] = b.position;
+      sum += q;
+    }
+    else
+      sum += vx.pos;
+  }
+  return sum / 4;
+}
+/// The pore containing x, -1 outside the box (the triangulation itself extends far beyond it,
+/// to the fictitious boundary spheres).
+int locateInBox(const PoreNetwork& net, const Vec3& x)
+{
+  for (const Boundary& b : net.boundaries)
+    if ((x[b.coordinate] - b.position) * b.normal[b.coordinate] < 0)
+      return -1;
+  return locatePore(net, x);
+}
+} // namespace
+
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
 {
-  net_ = triangulate(spheres, boundaries(spheres));
-  p_.assign(net_->pores.size(), 0.0);
+  PoreNetwork fresh = triangulate(spheres, boundaries(spheres)); // on bad input the old network stays
+  std::vector<double> p(fresh.pores.size(), 0.0);
+  if (net_ && !net_->pores.empty())
+    for (std::size_t i = 0; i < fresh.pores.size(); ++i)
+    {
+      const Vec3 x = interiorPoint(fresh, fresh.pores[i]);
+      const int at = x.allFinite() ? locatePore(*net_, x) : -1;
+      if (at >= 0)
+        p[i] = p_[static_cast<std::size_t>(at)];
+    }
+  net_ = std::move(fresh);
+  p_ = std::move(p);
+  const PoreNetwork& net = *net_;
+  dv_.assign(net.pores.size(), 0.0);
+  voidsStale_ = false;
+  for (PointPressure& f : fluxPoints_)
+    f.pore = -1;
+  maxStrain_ = 0;
+  inverted_ = 0;
   updateConductances();
+  meshVolume_.resize(net.pores.size());
+  meshVoidVolume_.resize(net.pores.size());
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+  {
+    meshVolume_[i] = net.pores[i].volume;
+    meshVoidVolume_[i] = net.pores[i].voidVolume;
+  }
+}
+
+void PoreFlow::updateVoidVolumes()
+{
+  if (!voidsStale_)
+    return;
+  updatePoreVolumes(*net_, true);
+  voidsStale_ = false;
+}
+
+void PoreFlow::setTimeStep(double dt)
+{
+  if (!(dt > 0) || !std::isfinite(dt))
+    throw std::invalid_argument("FlowEngine: the time step must be positive, got " + std::to_string(dt));
+  dt_ = dt;
+}
+
+void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
+                            const std::array<double, kBoundaries>& boundaryPositions, double dt)
+{
+  if (!net_)
+    throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
+  PoreNetwork& net = *net_;
+  if (spherePositions.size() != net.sphereCount())
+    throw std::invalid_argument("FlowEngine: " + std::to_string(spherePositions.size()) + " positions for " +
+                                std::to_string(net.sphereCount()) + " spheres of the pore network");
+  // everything is checked before anything moves: a refused call leaves the network as it was
+  for (std::size_t i = 0; i < spherePositions.size(); ++i)
+    if (!spherePositions[i].allFinite())
+      throw std::invalid_argument("FlowEngine: non-finite position of body " +
+                                  std::to_string(net.vertices[kBoundaries + i].id));
+  for (int k = 0; k < kBoundaries; ++k)
+    if (!std::isfinite(boundaryPositions[static_cast<std::size_t>(k)]))
+      throw std::invalid_argument("FlowEngine: non-finite position of boundary " + std::to_string(k));
+  setTimeStep(dt);
+  for (std::size_t i = 0; i < spherePositions.size(); ++i)
+    net.vertices[kBoundaries + i].pos = spherePositions[i];
+  for (int k = 0; k < kBoundaries; ++k)
+    net.boundaries[static_cast<std::size_t>(k)].position = boundaryPositions[static_cast<std::size_t>(k)];
+  std::vector<double> before(net.pores.size());
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+    before[i] = net.pores[i].volume;
+  // void volumes (the costly sphere sectors) are recomputed only when asked for
+  updatePoreVolumes(net, false);
+  voidsStale_ = true;
+  maxStrain_ = 0;
+  inverted_ = 0;
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+  {
+    const double v = net.pores[i].volume;
+    // the sign of the mesh volume orients the pore (Yade's volumeSign)
+    const double sign = meshVolume_[i] < 0 ? -1.0 : 1.0;
+    dv_[i] = sign * (v - before[i]) / dt;
+    if (sign * v <= 0)
+      ++inverted_;
+    maxStrain_ = std::max(maxStrain_, std::abs(v - meshVolume_[i]) / std::abs(meshVolume_[i]));
+  }
+  if (inverted_ > 0)
+    maxStrain_ = std::numeric_limits<double>::infinity();
+}
+
+std::vector<double> PoreFlow::storage() const
+{
+  if (params.fluidBulkModulus <= 0)
+    return {};
+  if (!(dt_ > 0))
+    throw std::invalid_argument("FlowEngine: a compressible fluid (fluidBulkModulus > 0) needs a time step "
+                                "(run it as an engine, or setTimeStep / moveVertices)");
+  // the void volumes of the mesh, as Yade (invVoidVolume is set at meshing only): between
+  // remeshes they change by the pore strain, a second-order effect on the storage term
+  std::vector<double> c(net_->pores.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+    c[i] = std::max(meshVoidVolume_[i], 0.0) / (params.fluidBulkModulus * dt_);
+  return c;
 }
 
 void PoreFlow::updateConductances()
@@ -103,18 +247,16 @@ void PoreFlow::applyBoundaryTypes()
         imposed_[static_cast<std::size_t>(pi)] = 1;
   for (std::size_t n = 0; n < points_.size(); ++n)
   {
-    // the triangulation extends far beyond the box (fictitious spheres): check the box itself
-    bool inside = true;
-    for (const Boundary& b : net_->boundaries)
-      inside = inside && (points_[n].pos[b.coordinate] - b.position) * b.normal[b.coordinate] >= 0;
-    points_[n].pore = inside ? locatePore(*net_, points_[n].pos) : -1;
+    points_[n].pore = locateInBox(*net_, points_[n].pos);
     if (points_[n].pore < 0)
       throw std::invalid_argument("imposePressure: point " + std::to_string(n) + " is outside the pore network");
     imposed_[static_cast<std::size_t>(points_[n].pore)] = 1;
   }
   builtTypes_ = params.bndCondIsPressure;
   pointsChanged_ = false;
-  solver_.setSystem(*net_, imposed_);
+  // before the first time step is known (a standalone build) the storage term waits for solve()
+  storageInMatrix_ = params.fluidBulkModulus > 0 && dt_ > 0;
+  solver_.setSystem(*net_, imposed_, storageInMatrix_ ? storage() : std::vector<double>{});
 }
 
 void PoreFlow::solve()
@@ -124,10 +266,28 @@ void PoreFlow::solve()
   if (params.useSolver != 0 && params.useSolver != 3)
     throw std::invalid_argument("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), got " +
                                 std::to_string(params.useSolver));
+  if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
+    throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
+  const bool compressible = params.fluidBulkModulus > 0;
   if (builtTypes_ != params.bndCondIsPressure)
     updateConductances(); // boundary types enter the hydraulic radii and the matrix
-  else if (pointsChanged_)
-    applyBoundaryTypes();
+  else if (pointsChanged_ || compressible || storageInMatrix_)
+    applyBoundaryTypes(); // the storage term follows the void volumes and dt (same pattern: the
+                          // symbolic analysis is kept, only the numeric factor is redone)
+  // source: fluid expelled by shrinking pores, plus the storage of the last pressures
+  std::vector<double> source(p_.size());
+  const std::vector<double> c = compressible ? storage() : std::vector<double>{};
+  for (std::size_t i = 0; i < source.size(); ++i)
+    source[i] = -dv_[i] + (compressible ? c[i] * p_[i] : 0.0);
+  for (std::size_t n = 0; n < fluxPoints_.size(); ++n)
+  {
+    PointPressure& f = fluxPoints_[n];
+    if (f.pore < 0)
+      f.pore = locateInBox(*net_, f.pos);
+    if (f.pore < 0)
+      throw std::invalid_argument("imposeFlux: point " + std::to_string(n) + " is outside the pore network");
+    source[static_cast<std::size_t>(f.pore)] -= f.value;
+  }
   for (int k = 0; k < kBoundaries; ++k)
     if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
       for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
@@ -136,7 +296,7 @@ void PoreFlow::solve()
     p_[static_cast<std::size_t>(pt.pore)] = pt.value;
   solver_.tolerance = params.tolerance;
   solver_.relax = params.relax;
-  solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_);
+  solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_, source);
 }
 
 int PoreFlow::imposePressure(const Vec3& pos, double p)
@@ -147,6 +307,16 @@ int PoreFlow::imposePressure(const Vec3& pos, double p)
   pointsChanged_ = true;
   return static_cast<int>(points_.size()) - 1;
 }
+
+int PoreFlow::imposeFlux(const Vec3& pos, double q)
+{
+  if (!pos.allFinite() || !std::isfinite(q))
+    throw std::invalid_argument("imposeFlux: non-finite position or flux");
+  fluxPoints_.push_back(PointPressure{pos, q, -1});
+  return static_cast<int>(fluxPoints_.size()) - 1;
+}
+
+void PoreFlow::clearImposedFlux() { fluxPoints_.clear(); }
 
 void PoreFlow::setImposedPressure(int cond, double p)
 {
@@ -218,6 +388,34 @@ double PoreFlow::samplePermeability(int lo, int hi) const
   // Flux leaving boundary lo into the sample (getBoundaryFlux is negative there for dp > 0).
   const double q = -boundaryFlux(lo);
   return q * params.viscosity * length / (area * dp);
+}
+
+std::vector<Vec3> PoreFlow::poreVelocities() const
+{
+  const PoreNetwork& net = network();
+  std::vector<Vec3> v(net.pores.size(), Vec3::Zero());
+  constexpr int kFacetVertex0[4] = {1, 0, 0, 0};
+  for (std::size_t pi = 0; pi < net.pores.size(); ++pi)
+  {
+    const Pore& p = net.pores[pi];
+    for (int f = 0; f < 4; ++f)
+    {
+      if (p.throats[f] < 0)
+        continue;
+      Vec3 n = p.centre - net.pores[static_cast<std::size_t>(p.neighbours[f])].centre;
+      const double len = n.norm();
+      if (len == 0)
+        continue;
+      n /= len;
+      // the facet's position along the line of centres, as averageVelocity takes it
+      const double at = (net.vertices[static_cast<std::size_t>(p.vertices[kFacetVertex0[f]])].pos - p.centre).dot(n);
+      v[pi] += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
+               (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]) * at * n;
+    }
+    if (p.volume != 0)
+      v[pi] /= std::abs(p.volume);
+  }
+  return v;
 }
 
 Vec3 PoreFlow::averageVelocity() const

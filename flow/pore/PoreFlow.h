@@ -24,6 +24,10 @@ struct FlowParameters : ConductanceParameters
   int useSolver = 3; ///< 0 Gauss-Seidel, 3 CHOLMOD (Yade's numbers)
   double tolerance = 1e-6; ///< Gauss-Seidel relative change
   double relax = 1.9;
+  /// Bulk modulus of the fluid; 0: incompressible (Yade's fluidBulkModulus). With K_f > 0 each
+  /// pore stores fluid, V_void / (K_f dt) (p - p_old) (V_void of the mesh, as Yade), and the
+  /// solve is transient.
+  double fluidBulkModulus = 0;
 };
 
 class PoreFlow
@@ -31,8 +35,29 @@ class PoreFlow
 public:
   FlowParameters params;
 
-  /// Triangulate the packing and compute geometry and conductances (drops the factor).
+  /// Triangulate the packing and compute geometry and conductances (drops the factor). The
+  /// pressures of a previous network are carried over: each new pore takes the pressure of the
+  /// old pore containing its centre (Yade's interpolate), so a transient solve continues.
   void build(const std::vector<PoreSphere>& spheres);
+  /// Move the spheres (same order as in build) and the boundaries without remeshing, over the
+  /// time step dt: pore volumes are recomputed and their rates of change dV/dt become the source
+  /// of the next solve (fluid expelled from shrinking pores; Yade's updateVolumes).
+  /// @throws std::invalid_argument on a size mismatch, non-finite positions or dt <= 0
+  void moveVertices(const std::vector<Vec3>& spherePositions, const std::array<double, kBoundaries>& boundaryPositions,
+                    double dt);
+  /// Recompute the void volumes if the spheres moved since (moveVertices skips them: the
+  /// storage term uses the mesh's void volumes, as Yade).
+  void updateVoidVolumes();
+  /// Time step of the transient (compressible) solve when no motion was given.
+  void setTimeStep(double dt);
+  /// Largest relative change of a pore volume since the last triangulation, |V - V_mesh| / |V_mesh|
+  /// (infinite once a pore has turned inside out: the mesh is invalid).
+  [[nodiscard]] double maxVolumetricStrain() const { return maxStrain_; }
+  /// Pores whose volume changed sign since the triangulation (inverted tetrahedra).
+  [[nodiscard]] int invertedPores() const { return inverted_; }
+  /// Rate of volume change of each pore from the last moveVertices (Yade's dv()).
+  [[nodiscard]] const std::vector<double>& volumeRates() const { return dv_; }
+  [[nodiscard]] const PressureSolver::Counters& solverCounters() const { return solver_.counters(); }
   /// Recompute conductances after a change of the parameters (same mesh; drops the factor).
   void updateConductances();
   /// Solve the pressures for the current boundary values (re-using the factor if the mesh and
@@ -45,6 +70,10 @@ public:
   /// Change the value of imposed point `cond` (keeps the factor).
   void setImposedPressure(int cond, double p);
   void clearImposedPressure();
+  /// Impose the flux q at the pore containing `pos`, a source term (Yade's imposeFlux: outflux
+  /// positive, influx negative), located again after each triangulation. @returns its index
+  int imposeFlux(const Vec3& pos, double q);
+  void clearImposedFlux();
   /// Flux leaving the pore of imposed point `cond` into the network, sum k (p_cell - p_j)
   /// (Yade's getCellFlux; positive for injection).
   [[nodiscard]] double getCellFlux(int cond) const;
@@ -63,6 +92,9 @@ public:
   /// axis: K = Q mu L / (A dP) with the flux Q through boundary `lo`, the sample length L and
   /// cross-section A from the box. @throws if lo/hi are not opposite pressure boundaries
   [[nodiscard]] double samplePermeability(int lo, int hi) const;
+  /// Darcy velocity of each pore: sum over its facets of the outgoing flux times the facet
+  /// position relative to the pore centre, over the pore volume (the terms of averageVelocity).
+  [[nodiscard]] std::vector<Vec3> poreVelocities() const;
   /// Volume-averaged Darcy velocity over all pores (Yade's averageVelocity).
   [[nodiscard]] Vec3 averageVelocity() const;
   [[nodiscard]] double globalConductance() const { return globalK_; }
@@ -79,9 +111,20 @@ private:
   void applyBoundaryTypes();
   void computeUnitForces();
 
+  /// The storage term V_void / (K_f dt) per pore (empty when incompressible).
+  std::vector<double> storage() const;
+
   std::optional<PoreNetwork> net_;
   std::vector<char> imposed_;
   std::vector<double> p_;
+  std::vector<double> dv_;        ///< dV/dt per pore since the last moveVertices (0 after a build)
+  std::vector<double> meshVolume_; ///< pore volumes at the triangulation
+  std::vector<double> meshVoidVolume_; ///< void volumes at the triangulation (storage term)
+  double maxStrain_ = 0;
+  int inverted_ = 0;
+  double dt_ = 0;
+  bool storageInMatrix_ = false;  ///< the factor includes a storage term
+  bool voidsStale_ = false;       ///< spheres moved, void volumes not recomputed
   /// force on the pore's vertex k per unit pressure in the pore (Yade's unitForceVectors)
   std::vector<std::array<Vec3, 4>> unitForces_;
   std::array<bool, kBoundaries> builtTypes_{};
@@ -92,6 +135,7 @@ private:
     int pore; ///< -1 until located in the current network
   };
   std::vector<PointPressure> points_;
+  std::vector<PointPressure> fluxPoints_; ///< value: the imposed outflux
   bool pointsChanged_ = false;
   PressureSolver solver_;
   double globalK_ = 0;

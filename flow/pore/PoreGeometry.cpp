@@ -270,13 +270,19 @@ double solidAngle(const Vec3& s, const Vec3& a, const Vec3& b, const Vec3& c)
   return std::abs(2 * std::atan(ratio));
 }
 
-void computeGeometry(PoreNetwork& net, bool slipBoundary)
+void updatePoreVolumes(PoreNetwork& net, bool voids)
 {
   for (Pore& p : net.pores)
   {
     p.volume = cellVolume(net, p);
-    p.voidVolume = std::abs(p.volume) - solidVolume(net, p);
+    if (voids)
+      p.voidVolume = std::abs(p.volume) - solidVolume(net, p);
   }
+}
+
+void computeGeometry(PoreNetwork& net, bool slipBoundary)
+{
+  updatePoreVolumes(net, true);
   for (Throat& t : net.throats)
   {
     const Pore& p = net.pores[static_cast<std::size_t>(t.pores[0])];

@@ -26,6 +26,11 @@ double solidAngle(const Vec3& s, const Vec3& a, const Vec3& b, const Vec3& c);
 /// lengths). Needs net.boundaries' flow conditions.
 void computeGeometry(PoreNetwork& net, bool slipBoundary);
 
+/// Pore volumes (and void volumes if `voids`: the sphere sectors' solid angles are most of the
+/// cost) from the current vertex and boundary positions, the mesh being kept between remeshes
+/// while the spheres move (Yade's updateVolumes).
+void updatePoreVolumes(PoreNetwork& net, bool voids);
+
 /// Throat conductances k = permeabilityFactor * A_f * (2 R_h)^2 / (8 mu L), clamped as Yade does.
 /// @returns the reference value the clamping used (Yade's "globalK")
 double computeConductances(PoreNetwork& net, const ConductanceParameters& params);

@@ -3,6 +3,7 @@
 #include <cholmod.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -42,17 +43,25 @@ PressureSolver::~PressureSolver() = default;
 PressureSolver::PressureSolver(PressureSolver&&) noexcept = default;
 PressureSolver& PressureSolver::operator=(PressureSolver&&) noexcept = default;
 
-bool PressureSolver::factorized() const { return cholmod_->factor != nullptr; }
+bool PressureSolver::factorized() const { return numeric_; }
 
-void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& imposed)
+void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& imposed, const std::vector<double>& diagonal)
 {
   const std::size_t n = net.pores.size();
   if (imposed.size() != n)
     throw std::invalid_argument("pressure system: imposed-pressure flags do not match the pores");
+  if (!diagonal.empty() && diagonal.size() != n)
+    throw std::invalid_argument("pressure system: diagonal terms do not match the pores");
   if (std::find(imposed.begin(), imposed.end(), 1) == imposed.end())
     throw std::invalid_argument("pressure system is singular: no pressure is imposed anywhere (set "
                                 "bndCondIsPressure on at least one boundary)");
-  cholmod_->clear();
+  // The pattern is kept to compare: same rows and same couplings keep the symbolic analysis.
+  const std::vector<int> oldRows = std::move(rowOfPore_);
+  const std::vector<int> oldStart = std::move(start_);
+  const std::vector<int> oldNeighbour = std::move(neighbour_);
+  numeric_ = false;
+  if (cholmod_->a)
+    cholmod_free_sparse(&cholmod_->a, &cholmod_->common);
   rowOfPore_.assign(n, -1);
   poreOfRow_.clear();
   for (std::size_t i = 0; i < n; ++i)
@@ -78,8 +87,12 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
       neighbour_.push_back(p.neighbours[f]);
       k_.push_back(k);
     }
+    if (!diagonal.empty())
+      diag_[r] += diagonal[static_cast<std::size_t>(poreOfRow_[r])];
     start_.push_back(static_cast<int>(neighbour_.size()));
   }
+  if (oldRows != rowOfPore_ || oldStart != start_ || oldNeighbour != neighbour_)
+    cholmod_->clear();
 }
 
 void PressureSolver::factorize()
@@ -108,8 +121,18 @@ void PressureSolver::factorize()
   t->nnz = nz;
   c.a = cholmod_triplet_to_sparse(t, nz, &c.common);
   cholmod_free_triplet(&t, &c.common);
-  c.factor = cholmod_analyze(c.a, &c.common);
+  using Clock = std::chrono::steady_clock;
+  if (!c.factor)
+  {
+    const auto start = Clock::now();
+    c.factor = cholmod_analyze(c.a, &c.common);
+    counters_.analyseSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+    ++counters_.analyses;
+  }
+  const auto start = Clock::now();
   cholmod_factorize(c.a, c.factor, &c.common);
+  counters_.factorizeSeconds += std::chrono::duration<double>(Clock::now() - start).count();
+  ++counters_.factorizations;
   if (c.common.status == CHOLMOD_NOT_POSDEF || c.factor->minor < c.factor->n)
   {
     const auto row = static_cast<std::size_t>(c.factor->minor);
@@ -124,6 +147,7 @@ void PressureSolver::factorize()
     throw std::runtime_error("CHOLMOD failed to factorise the pressure system (status " +
                              std::to_string(c.common.status) + ")");
   }
+  numeric_ = true;
 }
 
 void PressureSolver::solve(SolverKind kind, std::vector<double>& p, const std::vector<double>& source)

@@ -28,9 +28,12 @@ public:
   PressureSolver(PressureSolver&&) noexcept;
   PressureSolver& operator=(PressureSolver&&) noexcept;
 
-  /// Set the matrix from the network's conductances; `imposed[i]` marks pores of known pressure.
-  /// Drops the Cholesky factor. @throws std::invalid_argument when no pressure is imposed anywhere
-  void setSystem(const PoreNetwork& net, const std::vector<char>& imposed);
+  /// Set the matrix from the network's conductances; `imposed[i]` marks pores of known pressure;
+  /// `diagonal[i]` (may be empty) is added to pore i's diagonal (the storage term of a
+  /// compressible fluid). Drops the numeric factor; the symbolic analysis (fill-reducing ordering
+  /// and supernodes, CHOLMOD's dominant cost) is kept when the sparsity pattern is unchanged.
+  /// @throws std::invalid_argument when no pressure is imposed anywhere
+  void setSystem(const PoreNetwork& net, const std::vector<char>& imposed, const std::vector<double>& diagonal = {});
 
   /// Solve for the unknown pressures; `p` holds the imposed values on entry (and the initial
   /// guess for Gauss-Seidel), the full field on exit. `source[i]` is q_i (may be empty).
@@ -43,6 +46,15 @@ public:
   int maxIterations = 100000;
 
   [[nodiscard]] bool factorized() const;
+  /// How many symbolic analyses and numeric factorisations CHOLMOD has done, and their times.
+  struct Counters
+  {
+    int analyses = 0;
+    int factorizations = 0;
+    double analyseSeconds = 0;
+    double factorizeSeconds = 0;
+  };
+  [[nodiscard]] const Counters& counters() const { return counters_; }
   [[nodiscard]] int lastIterations() const { return iterations_; }
   [[nodiscard]] std::size_t unknowns() const { return rowOfPore_.empty() ? 0 : static_cast<std::size_t>(nUnknown_); }
 
@@ -60,6 +72,8 @@ private:
   std::vector<int> neighbour_;
   std::vector<double> k_;
   std::unique_ptr<Cholmod> cholmod_;
+  bool numeric_ = false; ///< the factor holds the current matrix's values
   int iterations_ = 0;
+  Counters counters_;
 };
 } // namespace talus::flow::pore

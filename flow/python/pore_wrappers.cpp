@@ -3,10 +3,12 @@
 #include "dem/Scene.h"
 #include "flow/pore/FlowCoupling.h"
 #include "flow/pore/PoreFlow.h"
+#include "flow/pore/VtkOutput.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
 namespace py = pybind11;
@@ -58,7 +60,14 @@ void registerPoreFlow(py::module_& m)
       .def_readwrite("wallPosition", &FlowParameters::wallPosition)
       .def_readwrite("useSolver", &FlowParameters::useSolver)
       .def_readwrite("tolerance", &FlowParameters::tolerance)
-      .def_readwrite("relax", &FlowParameters::relax);
+      .def_readwrite("relax", &FlowParameters::relax)
+      .def_readwrite("fluidBulkModulus", &FlowParameters::fluidBulkModulus);
+
+  py::class_<PressureSolver::Counters>(m, "PoreSolverCounters")
+      .def_readonly("analyses", &PressureSolver::Counters::analyses)
+      .def_readonly("factorizations", &PressureSolver::Counters::factorizations)
+      .def_readonly("analyseSeconds", &PressureSolver::Counters::analyseSeconds)
+      .def_readonly("factorizeSeconds", &PressureSolver::Counters::factorizeSeconds);
 
   py::class_<PoreFlow, std::shared_ptr<PoreFlow>>(m, "PoreFlow")
       .def(py::init<>())
@@ -67,8 +76,42 @@ void registerPoreFlow(py::module_& m)
           "build", [](PoreFlow& f, const Array& pos, const Array& r, const IdArray& ids) { f.build(spheres(pos, r, ids)); },
           py::arg("positions"), py::arg("radii"), py::arg("ids"))
       .def("updateConductances", &PoreFlow::updateConductances)
+      .def(
+          "moveVertices",
+          [](PoreFlow& f, const Array& pos, const std::array<double, kBoundaries>& walls, double dt) {
+            if (pos.ndim() != 2 || pos.shape(1) != 3)
+              throw py::value_error("positions must be an (n, 3) array");
+            std::vector<Vec3> at(static_cast<std::size_t>(pos.shape(0)));
+            for (std::size_t i = 0; i < at.size(); ++i)
+              at[i] = Vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
+            f.moveVertices(at, walls, dt);
+          },
+          py::arg("positions"), py::arg("boundaryPositions"), py::arg("dt"))
+      .def("setTimeStep", &PoreFlow::setTimeStep)
+      .def("maxVolumetricStrain", &PoreFlow::maxVolumetricStrain)
+      .def("invertedPores", &PoreFlow::invertedPores)
+      .def("volumeRates", [](const PoreFlow& f) { return Array(static_cast<py::ssize_t>(f.volumeRates().size()), f.volumeRates().data()); })
+      .def("solverCounters", &PoreFlow::solverCounters)
+      .def("boundaryPositions", [](const PoreFlow& f) {
+        std::array<double, kBoundaries> b{};
+        for (int k = 0; k < kBoundaries; ++k)
+          b[static_cast<std::size_t>(k)] = f.network().boundaries[static_cast<std::size_t>(k)].position;
+        return b;
+      })
       .def("imposePressure", &PoreFlow::imposePressure)
       .def("setImposedPressure", &PoreFlow::setImposedPressure)
+      .def("imposeFlux", &PoreFlow::imposeFlux)
+      .def("clearImposedFlux", &PoreFlow::clearImposedFlux)
+      .def("saveVtk", [](const PoreFlow& f, const std::string& base) { return saveVtk(f, base); })
+      .def("poreVelocities", [](const PoreFlow& f) {
+        const std::vector<Vec3> v = f.poreVelocities();
+        Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < v.size(); ++i)
+          for (py::ssize_t d = 0; d < 3; ++d)
+            out(static_cast<py::ssize_t>(i), d) = v[i][d];
+        return a;
+      })
       .def("clearImposedPressure", &PoreFlow::clearImposedPressure)
       .def("getCellFlux", &PoreFlow::getCellFlux)
       .def("solve", &PoreFlow::solve)
@@ -86,7 +129,10 @@ void registerPoreFlow(py::module_& m)
       .def("nCells", [](const PoreFlow& f) { return f.network().pores.size(); })
       .def("nThroats", [](const PoreFlow& f) { return f.network().throats.size(); })
       .def("poreVolumes", [](const PoreFlow& f) { return column(f.network().pores, [](const Pore& p) { return p.volume; }); })
-      .def("poreVoidVolumes", [](const PoreFlow& f) { return column(f.network().pores, [](const Pore& p) { return p.voidVolume; }); })
+      .def("poreVoidVolumes", [](PoreFlow& f) {
+        f.updateVoidVolumes();
+        return column(f.network().pores, [](const Pore& p) { return p.voidVolume; });
+      })
       .def("poreCentres", [](const PoreFlow& f) {
         const auto& pores = f.network().pores;
         Array a({static_cast<py::ssize_t>(pores.size()), py::ssize_t{3}});
@@ -154,6 +200,9 @@ void registerPoreFlow(py::module_& m)
            py::arg("scene"), py::arg("flow"), py::keep_alive<1, 2>())
       .def_readwrite("wallIds", &FlowCoupling::wallIds)
       .def_readwrite("meshUpdateInterval", &FlowCoupling::meshUpdateInterval)
+      .def_readwrite("defTolerance", &FlowCoupling::defTolerance)
+      .def_readwrite("blockHook", &FlowCoupling::blockHook)
+      .def("strainRebuilds", &FlowCoupling::strainRebuilds)
       .def("step", &FlowCoupling::step)
       .def("requestRebuild", &FlowCoupling::requestRebuild)
       .def("rebuilds", &FlowCoupling::rebuilds);

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -125,6 +126,49 @@ TEST(PoreFlowSolve, FactorIsReusedWhenOnlyPressureValuesChangeAndTheSystemIsLine
   // a uniform pressure shift changes nothing: p at a point = shifted
   const double k = f.samplePermeability(2, 3);
   EXPECT_GT(k, 0);
+}
+
+TEST(PressureSolver, SymbolicAnalysisIsKeptWhileThePatternIsUnchanged)
+{
+  PoreFlow f = yFlow();
+  f.build(loadPacking());
+  const PoreNetwork& net = f.network();
+  std::vector<char> imposed(net.pores.size(), 0);
+  for (int k : {2, 3})
+    for (int pi : net.boundaryPores[static_cast<std::size_t>(k)])
+      imposed[static_cast<std::size_t>(pi)] = 1;
+  PressureSolver solver;
+  std::vector<double> p(net.pores.size(), 0.0);
+  for (int pi : net.boundaryPores[2])
+    p[static_cast<std::size_t>(pi)] = 1.0;
+  solver.setSystem(net, imposed);
+  solver.solve(SolverKind::Cholmod, p);
+  const std::vector<double> steady = p;
+  // a storage term on the diagonal: new values, same pattern -> numeric factorisation only
+  const std::vector<double> storage(net.pores.size(), 1e-3);
+  solver.setSystem(net, imposed, storage);
+  EXPECT_FALSE(solver.factorized());
+  std::vector<double> source(net.pores.size());
+  for (std::size_t i = 0; i < source.size(); ++i)
+    source[i] = storage[i] * steady[i]; // the steady field is a fixed point of the transient step
+  solver.solve(SolverKind::Cholmod, p, source);
+  EXPECT_EQ(solver.counters().analyses, 1);
+  EXPECT_EQ(solver.counters().factorizations, 2);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    ASSERT_NEAR(p[i], steady[i], 1e-10);
+  // Gauss-Seidel on the same shifted system agrees
+  std::vector<double> gs(p.size(), 0.0);
+  for (int pi : net.boundaryPores[2])
+    gs[static_cast<std::size_t>(pi)] = 1.0;
+  solver.tolerance = 1e-12;
+  solver.solve(SolverKind::GaussSeidel, gs, source);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    ASSERT_NEAR(gs[i], steady[i], 1e-8);
+  // another pattern (one more imposed pore): a new analysis
+  imposed[static_cast<std::size_t>(std::find(imposed.begin(), imposed.end(), 0) - imposed.begin())] = 1;
+  solver.setSystem(net, imposed);
+  solver.solve(SolverKind::Cholmod, p);
+  EXPECT_EQ(solver.counters().analyses, 2);
 }
 
 TEST(PoreFlowErrors, FewerThanFourSpheresNaNAndOutside)

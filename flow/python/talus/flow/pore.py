@@ -34,12 +34,13 @@ from typing import Sequence
 import numpy as np
 
 from talus import _dem, _flow
+from talus.dem.controllers import _hook
 from talus.dem.engines import Engine
 from talus.dem.shapes import Sphere
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
-            "slipBoundary", "useSolver", "tolerance", "relax")
+            "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus")
 
 
 class HiddenSphereWarning(UserWarning):
@@ -61,7 +62,12 @@ class FlowEngine(Engine):
     ``boundaryUseMaxMin`` [1]*6 (boundary at the packing's extreme x±r; else at
     ``wallPosition[k]``), ``permeabilityFactor`` 1, ``viscosity`` 1, ``clampKValues`` True,
     ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
-    solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only).
+    solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
+    ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), and for the engine
+    ``meshUpdateInterval`` 1000, ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
+    fraction since the mesh; an inverted pore always remeshes), ``blockHook`` (callable or command string run
+    after each remesh, before the solve). Between remeshes the engine moves the network's spheres each step:
+    the pores' volume changes drive the flow (consolidation), see ``moveVertices``.
     """
 
     def __init__(self, scene=None, **attrs):
@@ -72,6 +78,8 @@ class FlowEngine(Engine):
         self._coupling = None
         self._wallIds = [-1] * 6
         self._meshUpdateInterval = 1000
+        self._defTolerance = 0.0
+        self._blockHook = None
         self._rebuild = False
         self._cpp = _dem.CallbackEngine()
         self._cpp.iterPeriod = 1
@@ -99,6 +107,14 @@ class FlowEngine(Engine):
         if name == "updateTriangulation":
             self._rebuild = bool(value)
             return
+        if name == "defTolerance":
+            self._defTolerance = float(value)
+            return
+        if name == "blockHook":
+            if value and not (callable(value) or isinstance(value, str)):
+                raise ValueError("FlowEngine.blockHook must be a callable or a Python command string")
+            self._blockHook = value
+            return
         params = self._flow.params
         if name in _BOUNDARY_LISTS:
             values = list(value)
@@ -120,6 +136,8 @@ class FlowEngine(Engine):
             return list(value) if name == "wallIds" else value
         if name == "updateTriangulation":
             return self._rebuild
+        if name in ("defTolerance", "blockHook"):
+            return object.__getattribute__(self, "_" + name)
         if name in _BOUNDARY_LISTS or name in _SCALARS:
             value = getattr(self._flow.params, name)
             return list(value) if name in _BOUNDARY_LISTS else value
@@ -154,6 +172,8 @@ class FlowEngine(Engine):
             self._coupling = _flow.PoreFlowCoupling((self._scene or O)._cpp, self._flow)
         self._coupling.wallIds = self._wallIds
         self._coupling.meshUpdateInterval = self._meshUpdateInterval
+        self._coupling.defTolerance = self._defTolerance
+        self._coupling.blockHook = _hook(self._blockHook)
         if self._rebuild:
             self._coupling.requestRebuild()
             self._rebuild = False
@@ -163,6 +183,39 @@ class FlowEngine(Engine):
         if hidden:
             warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
                           "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
+
+    def moveVertices(self, positions, dt: float, boundaryPositions=None):
+        """Move the spheres (same order as in ``triangulate``) and, optionally, the six
+        boundary planes, over the time step ``dt`` without remeshing: pore volumes are
+        recomputed and their rates of change drive the next solve (fluid expelled from shrinking
+        pores), as Yade's FlowEngine does between remeshes. See ``maxVolumetricStrain``."""
+        walls = self._flow.boundaryPositions() if boundaryPositions is None else [float(b) for b in boundaryPositions]
+        self._flow.moveVertices(np.asarray(positions, dtype=float).reshape(-1, 3), walls, float(dt))
+
+    def setTimeStep(self, dt: float):
+        """Time step of the compressible (transient) solve when used standalone."""
+        self._flow.setTimeStep(float(dt))
+
+    def maxVolumetricStrain(self) -> float:
+        """Largest relative change of a pore volume since the last triangulation (inf once a
+        pore turned inside out); the engine remeshes when it exceeds ``defTolerance``."""
+        return self._flow.maxVolumetricStrain()
+
+    def boundaryPositions(self) -> list[float]:
+        """Current positions of the six boundary planes (xmin .. zmax)."""
+        return list(self._flow.boundaryPositions())
+
+    def solverStats(self) -> dict:
+        """CHOLMOD work so far: symbolic analyses, numeric factorisations and their seconds."""
+        c = self._flow.solverCounters()
+        return dict(analyses=c.analyses, factorizations=c.factorizations,
+                    analyseSeconds=c.analyseSeconds, factorizeSeconds=c.factorizeSeconds)
+
+    def remeshCount(self) -> tuple[int, int]:
+        """(all rebuilds, rebuilds triggered by defTolerance or an inverted pore) of the engine."""
+        if self._coupling is None:
+            return (0, 0)
+        return (self._coupling.rebuilds(), self._coupling.strainRebuilds())
 
     def updateConductances(self):
         """Recompute conductances after changing permeabilityFactor, viscosity or the clamping."""
@@ -185,6 +238,27 @@ class FlowEngine(Engine):
 
     def clearImposedPressure(self):
         self._flow.clearImposedPressure()
+
+    def imposeFlux(self, pos, q: float) -> int:
+        """Impose the flux ``q`` in the pore containing ``pos`` (a source term; as Yade:
+        outflux positive, influx negative), located again at each triangulation."""
+        return self._flow.imposeFlux(np.asarray(pos, dtype=float), float(q))
+
+    def clearImposedFlux(self):
+        self._flow.clearImposedFlux()
+
+    def saveVtk(self, base: str = "pores") -> list[str]:
+        """ParaView output (legacy VTK): ``<base>.pores.vtk``, the pores as tetrahedra with
+        pressure, volume, voidVolume and velocity per pore, radius and fluidForce per sphere
+        (boundary pores drawn with their wall vertices projected on the wall), and
+        ``<base>.throats.vtk``, one line per throat between the pore centres with flux,
+        conductance, fluidArea, hydraulicRadius. Returns the two paths."""
+        return list(self._flow.saveVtk(str(base)))
+
+    @property
+    def poreVelocities(self) -> np.ndarray:
+        """Darcy velocity of each pore, (nCells, 3)."""
+        return self._flow.poreVelocities()
 
     def getCellFlux(self, cond: int) -> float:
         """Flux injected into the network by imposed point ``cond`` (positive out of its pore)."""

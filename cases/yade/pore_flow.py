@@ -1,0 +1,55 @@
+# Yade side of the pore-flow cases (cases/flow_permeability.py, cases/flow_bench_pore.py): run by
+# talus.dem.twin.run(script, params, "yade"), i.e. `yade -n -j1 -x pore_flow.py` with the
+# parameters as JSON in $TALUS_SCENARIO:
+#   packings   list of sphere files (x y z r per line, talus SpherePack.save format)
+#   boxes      optional, one [lo, hi] per packing: the corners of the six walls (default: the
+#              packing's extremes)
+#   axis       flow direction 0, 1, 2: pressure `dp` on its lower boundary, 0 on the upper one
+#   dp, viscosity, permeabilityFactor
+#   solves     extra solves timed after the first step (0: none)
+# For each packing the spheres are put in the six walls of its box (boundaryUseMaxMin off) or of
+# their bounding box (boundaryUseMaxMin on), FlowEngine (CHOLMOD, useSolver=3) runs one step, and the case gets the
+# boundary fluxes, the cell count, the time of the first step (triangulation, geometry,
+# conductances, factorisation, solve) and of the later solves, as one line `RESULT {json}`.
+import json
+import os
+import time
+
+params = json.loads(os.environ["TALUS_SCENARIO"])
+axis = int(params.get("axis", 1))
+out = []
+boxes = params.get("boxes")
+for n, path in enumerate(params["packings"]):
+    O.reset()
+    spheres = [tuple(map(float, l.split()[:4])) for l in open(path) if l.strip() and not l.startswith("#")]
+    if boxes:   # walls at given planes (spheres may cross them)
+        lo, hi = boxes[n]
+    else:                 # the packing's extremes
+        lo = [min(s[k] - s[3] for s in spheres) for k in range(3)]
+        hi = [max(s[k] + s[3] for s in spheres) for k in range(3)]
+    O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
+    for x, y, z, r in spheres:
+        O.bodies.append(sphere((x, y, z), r, fixed=True))
+    flow = FlowEngine(useSolver=3, permeabilityFactor=float(params.get("permeabilityFactor", 1.0)),
+                      viscosity=float(params.get("viscosity", 1.0)))
+    cond = [0] * 6
+    cond[2 * axis] = cond[2 * axis + 1] = 1
+    value = [0.0] * 6
+    value[2 * axis] = float(params.get("dp", 1.0))
+    flow.bndCondIsPressure = cond
+    flow.bndCondValue = value
+    flow.boundaryUseMaxMin = [0] * 6 if boxes else [1] * 6
+    flow.meshUpdateInterval = 10 ** 9
+    O.engines = [flow]
+    O.dt = 1e-6
+    t0 = time.perf_counter()
+    O.step()
+    first = time.perf_counter() - t0
+    solve_times = []
+    for _ in range(int(params.get("solves", 0))):
+        t0 = time.perf_counter()
+        O.step()
+        solve_times.append(time.perf_counter() - t0)
+    out.append({"packing": path, "nCells": flow.nCells(), "boundaryFlux": [flow.getBoundaryFlux(k) for k in range(6)],
+                "box": [lo, hi], "first_step_s": first, "solve_s": solve_times})
+print("RESULT " + json.dumps(out))
