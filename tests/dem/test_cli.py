@@ -48,3 +48,15 @@ def test_run_missing_script_is_a_clear_error(talus_cmd, tmp_path):
     done = talus_cmd("run", tmp_path / "nope.py", check=False)
     assert done.returncode == 2
     assert "no such script" in done.stderr and "nope.py" in done.stderr
+
+
+def test_run_warns_when_threads_would_wait_for_busy_cores(monkeypatch, capsys):
+    from talus import cli
+    monkeypatch.setattr(cli.os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(cli.os, "getloadavg", lambda: (3.0, 3.0, 3.0))
+    cli._warn_if_oversubscribed(2)
+    assert "2 OpenMP threads on 2 cores with a load average of 3.0" in capsys.readouterr().err
+    monkeypatch.setattr(cli.os, "getloadavg", lambda: (0.1, 0.1, 0.1))
+    cli._warn_if_oversubscribed(2)
+    cli._warn_if_oversubscribed(1)
+    assert capsys.readouterr().err == ""

@@ -18,6 +18,18 @@ from pathlib import Path
 import talus
 
 
+def _warn_if_oversubscribed(threads: int) -> None:
+    """OpenMP threads spin at every barrier waiting for each other: when other processes keep the
+    cores busy, a descheduled thread stalls the rest and 2 threads can run 10x slower than 1
+    (measured). Say so at the start instead of leaving the user with a mysteriously slow run."""
+    cores = os.cpu_count() or 1
+    busy = os.getloadavg()[0]
+    if threads > 1 and busy + threads > cores + 0.5:
+        print(f"talus run: warning: {threads} OpenMP threads on {cores} cores with a load average of {busy:.1f}: "
+              f"threads waiting for busy cores can make the run many times slower; use -j "
+              f"{max(1, min(threads, int(cores - busy)))} or fewer", file=sys.stderr)
+
+
 def _run(args: argparse.Namespace) -> int:
     script = Path(args.script)
     if not script.is_file():
@@ -29,6 +41,7 @@ def _run(args: argparse.Namespace) -> int:
             return 2
         os.environ["OMP_NUM_THREADS"] = str(args.threads)   # for child processes
         talus._dem.setThreadCount(args.threads)             # this one's runtime already started
+    _warn_if_oversubscribed(talus._dem.threadCount())
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))
     try:
