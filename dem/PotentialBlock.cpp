@@ -125,6 +125,20 @@ PotentialBlockShape makePotentialBlock(const std::vector<double>& a, const std::
     s.facePlane.push_back(static_cast<int>(i));
   }
 
+  // Edges: two faces sharing two vertices meet along the cross product of their normals.
+  std::vector<Vec3> edges;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    for (std::size_t g = f + 1; g < s.faces.size(); ++g)
+    {
+      int shared = 0;
+      for (int p : s.faces[f])
+        shared += static_cast<int>(std::count(s.faces[g].begin(), s.faces[g].end(), p));
+      const Vec3 e = n[static_cast<std::size_t>(s.facePlane[f])].cross(n[static_cast<std::size_t>(s.facePlane[g])]);
+      if (shared >= 2 && e.norm() > 1e-9
+          && std::none_of(edges.begin(), edges.end(), [&](const Vec3& o) { return o.cross(e.normalized()).norm() < 1e-9; }))
+        edges.push_back(e.normalized());
+    }
+
   // Volume, centroid and second moments: tetrahedra from an inner point to each face triangle
   // (integral of x x^T over a tetrahedron p0..p3: V/20 (sum p p^T + (sum p)(sum p)^T)).
   double volume = 0;
@@ -165,6 +179,8 @@ PotentialBlockShape makePotentialBlock(const std::vector<double>& a, const std::
     s.normals[i] = Q.transpose() * n[i];
     s.d[i] = d[i] - n[i].dot(centroid);
   }
+  for (const Vec3& e : edges)
+    s.edgeDirections.push_back(Q.transpose() * e);
   double diameter = 0;
   for (const Vec3& x : v)
   {

@@ -24,6 +24,7 @@ struct PotentialBlockShape
   std::vector<Vec3> vertices;            ///< corners of the block (body frame)
   std::vector<std::vector<int>> faces;   ///< per plane touching the block in an area: its vertices, counter-clockwise seen from outside
   std::vector<int> facePlane;            ///< the plane index of each face
+  std::vector<Vec3> edgeDirections;      ///< unit directions of the edges, parallel ones once (separating-axis tests)
   double volume = 0;
   double boundingRadius = 0; ///< largest distance of a vertex from the centroid (for the collider's skin check)
 };

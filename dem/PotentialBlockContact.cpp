@@ -84,6 +84,37 @@ bool separatedByFace(const HalfSpaces& own, std::size_t first, std::size_t count
   return false;
 }
 
+/// Separating axes between two polyhedra besides their face normals: the cross products of
+/// an edge of each (the face normals are tested with the planes themselves).
+bool separatedByEdges(const Bodies& b, std::size_t i1, std::size_t i2, const std::vector<Vec3>& v1,
+                      const std::vector<Vec3>& v2)
+{
+  const Mat3 R1 = b.ori[i1].toRotationMatrix(), R2 = b.ori[i2].toRotationMatrix();
+  for (const Vec3& e1 : shapeOf(b, i1).edgeDirections)
+    for (const Vec3& e2 : shapeOf(b, i2).edgeDirections)
+    {
+      const Vec3 axis = (R1 * e1).cross(R2 * e2);
+      if (axis.squaredNorm() < 1e-18)
+        continue;
+      double lo1 = std::numeric_limits<double>::infinity(), hi1 = -lo1, lo2 = lo1, hi2 = hi1;
+      for (const Vec3& v : v1)
+      {
+        const double p = axis.dot(v);
+        lo1 = std::min(lo1, p);
+        hi1 = std::max(hi1, p);
+      }
+      for (const Vec3& v : v2)
+      {
+        const double p = axis.dot(v);
+        lo2 = std::min(lo2, p);
+        hi2 = std::max(hi2, p);
+      }
+      if (hi1 < lo2 || hi2 < lo1)
+        return true;
+    }
+  return false;
+}
+
 /// The mean of the points of `candidates` inside every half-space (within `tol`) is in their
 /// intersection's closure; added to `sum` and counted.
 void addContained(const HalfSpaces& hs, std::size_t first, std::size_t count, const std::vector<Vec3>& candidates,
@@ -259,7 +290,9 @@ bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, cons
     addBlock(b, i2, origin, hs);
     reach += shapeOf(b, i1).boundingRadius;
     const std::vector<Vec3> v1 = worldVertices(b, i1, origin);
-    if (separatedByFace(hs, 0, m1, v2) || separatedByFace(hs, m1, hs.n.size() - m1, v1))
+    // Separating-axis theorem: no separating face plane nor edge-edge axis means they overlap.
+    if (separatedByFace(hs, 0, m1, v2) || separatedByFace(hs, m1, hs.n.size() - m1, v1)
+        || separatedByEdges(b, i1, i2, v1, v2))
       return false;
     addContained(hs, 0, m1, v2, 1e-12 * reach, cornerSum, corners);
     addContained(hs, m1, hs.n.size() - m1, v1, 1e-12 * reach, cornerSum, corners);

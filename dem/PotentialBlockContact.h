@@ -24,8 +24,9 @@ struct BlockContactGeometry
 /// gradient of the inner potential of the block whose face holds the point (the average of
 /// both blocks' gradients when neither or both do; a wall's own normal). The penetration is
 /// the overlap region's chord through the analytic centre along the normal, clipped exactly
-/// against every plane (the limit of Yade's bracketed bisection). Blocks separated by a face
-/// plane of either are rejected before any linear program.
+/// against every plane (the limit of Yade's bracketed bisection). Pairs separated by a face
+/// plane of either or by the cross product of two edges (separating-axis theorem, exact for
+/// polyhedra) are rejected before any linear program.
 /// @return false if the shapes do not overlap
 bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                            BlockContactGeometry& out);
