@@ -47,6 +47,22 @@ void talus_wrap_blocks(py::module_& m)
       },
       py::arg("scene"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("d"), py::arg("r"), py::arg("R"),
       py::arg("isBoundary"), py::arg("center"), py::arg("orientation"), py::arg("material"), py::arg("fixed"));
+  // Volume, centroid and corners (in the planes' frame) of the block the planes bound, without
+  // adding a body (block generation); raises as addPotentialBlock does on bad planes.
+  m.def("potential_block_geometry", [](const std::vector<double>& a, const std::vector<double>& b,
+                                       const std::vector<double>& c, const std::vector<double>& d, double r,
+                                       const std::string& which) {
+    PotentialBlockPlacement p;
+    const PotentialBlockShape s = makePotentialBlock(a, b, c, d, r, 0.0, false, which, &p);
+    std::vector<Vec3> corners;
+    for (const Vec3& v : s.vertices)
+      corners.push_back(p.principalAxes * v + p.centroid);
+    py::dict out;
+    out["volume"] = s.volume;
+    out["centroid"] = p.centroid;
+    out["vertices"] = corners;
+    return out;
+  });
   // The shape in the body's (principal) frame.
   m.def("block_shape", [](const Scene& s, BodyId id) {
     const PotentialBlockShape& b = blockOf(s, id);
