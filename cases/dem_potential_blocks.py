@@ -9,7 +9,11 @@ Set-up:   unit cubes (edge 1 m, r = 0.02 m, density 1000 kg/m^3) with the KnKsPB
              damping 0.5, Cundall damping 0.3), 2 s (quick 1 s);
           3. incline: the resting cube (friction angle 30 deg) under gravity turned from the
              plate's normal to theta (an inclined plane) over 0.25 s with Cundall damping 0.3,
-             then T = 1 s (quick 0.5 s) undamped, for theta = 20 ... 40 deg.
+             then T = 1 s (quick 0.5 s) undamped, for theta = 20 ... 40 deg;
+          4. plane failure: a 4 x 2 x 2 m block cut by one persistent joint dipping 35 deg
+             (generateBlocks), the lower piece fixed, friction angle phi = 31 ... 39 deg, Knormal
+             1e9 N/m^3, Kshear 1e8 N/m^3; gravity
+             ramped up over 0.25 s with Cundall damping, then T undamped.
           Yade's Debian build has no PotentialBlock (its ENABLE_POTENTIAL_BLOCKS is off), so no
           side-by-side run: references are analytic.
 Checked:  dem.potential-blocks.pressing: worst relative error of the normal force against
@@ -19,9 +23,13 @@ Checked:  dem.potential-blocks.pressing: worst relative error of the normal forc
           dem.potential-blocks.incline-slip: worst relative error of the sliding acceleration
           (quadratic fit of the undamped phase) against g (sin theta - cos theta tan phi) above
           the friction angle <= 1e-2; dem.potential-blocks.incline-stick: largest displacement
-          along the slope below it (elastic shear only, ~0.5 mm) <= 1 mm.
-Produces: the four records and chart dem.potential-blocks.png (force against analytic, the
-          resting cube's contact force over time, sliding acceleration against theta).
+          along the slope below it (elastic shear only, ~0.5 mm) <= 1 mm;
+          dem.potential-blocks.plane-failure: worst relative error of the upper piece's
+          acceleration for FS = tan phi / tan psi < 1, plus the number of wrong slide/stick
+          outcomes (displacement > 1 mm), <= 1e-2.
+Produces: the five records and chart dem.potential-blocks.png (force against analytic, the
+          resting cube's contact force over time, sliding acceleration against theta and against
+          the factor of safety of the plane failure).
 """
 import math
 
@@ -29,20 +37,21 @@ import numpy as np
 
 from talus import results
 from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortCollider, InteractionLoop,
-                       Ip2_FrictMat_FrictMat_KnKsPBPhys, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
-                       PotentialBlock, PotentialBlock2AABB, Scene, potentialBlock)
+                       Ip2_FrictMat_FrictMat_KnKsPBPhys, Joint, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
+                       PotentialBlock, PotentialBlock2AABB, Scene, generateBlocks, potentialBlock)
+from talus.dem.blockgen import dipNormal
 
 KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
 CUBE = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.02)
 MASS = RHO * 1.0
 
 
-def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G)):
+def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G), kn=KN, ks=KS):
     S = Scene()
     m = S.materials.append(FrictMat(density=RHO, frictionAngle=friction))
     S.engines = [ForceResetter(), InsertionSortCollider([PotentialBlock2AABB()], verletDist=0.01),
                  InteractionLoop([Ig2_PB_PB_ScGeom(calContactArea=True)],
-                                 [Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=KN, Kshear=KS, kn_i=KN, ks_i=KS,
+                                 [Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=kn, Kshear=ks, kn_i=kn, ks_i=ks,
                                                                    viscousDamping=viscous)],
                                  [Law2_SCG_KnKsPBPhys_KnKsPBLaw()]),
                  NewtonIntegrator(gravity=gravity, damping=damping)]
@@ -106,6 +115,38 @@ def incline(theta, seconds):
     return xs[-1] - start, acceleration
 
 
+PSI = math.radians(35)   # dip of the joint of the plane-failure test
+
+
+def plane_failure(phi_deg, seconds):
+    """A 4 x 2 x 2 m rock block cut by one persistent joint dipping at PSI (generateBlocks); the
+    piece below is fixed, the one above rests on the joint. Gravity ramped up over 0.25 s with
+    Cundall damping (the joint's shear spring loads quasi-statically), then `seconds` undamped.
+    Returns (displacement down the dip since the ramp, acceleration fitted to its second half)."""
+    blocks = generateBlocks(PotentialBlock.cuboid((2, 1, 1), r=0.02), [Joint(dipNormal(35, 0), np.zeros(3))])
+    # Stiffer joint (1e9 N/m^3): the acceleration's error is first order in the contact's
+    # compliance (1.8 %, 0.3 %, 0.09 % at Knormal 1e8, 1e9, 1e10 for phi = 33 deg).
+    S, m = make_scene(friction=math.radians(phi_deg), damping=0.3, viscous=0.5, gravity=(0, 0, 0), kn=10 * KN,
+                      ks=10 * KS)
+    ids = S.bodies.append([potentialBlock(b, material=m) for b in blocks])
+    low, up = sorted(ids, key=lambda i: S.bodies[i].state.pos[2])
+    S.bodies[low].dynamic = False
+    newton = S.engines[-1]
+    for k in range(1, 21):
+        newton.gravity = (0.0, 0.0, -G * k / 20)
+        S.run(int(round(0.25 / 20 / S.dt)), True)
+    newton.damping = 0.0
+    start = np.array(S.bodies[up].state.pos)
+    down = np.array([-math.cos(PSI), 0.0, -math.sin(PSI)])
+    times, moved = [], []
+    for _ in range(int(round(seconds / S.dt / 20))):
+        S.run(20, True)
+        times.append(S.time)
+        moved.append(float((np.array(S.bodies[up].state.pos) - start) @ down))
+    half = len(times) // 2   # after the release transient (the block slid during the ramp already)
+    return moved[-1], 2 * float(np.polyfit(times[half:], moved[half:], 2)[0])
+
+
 def main():
     args = results.case_arguments(__doc__).parse_args()
     import matplotlib
@@ -148,7 +189,25 @@ def main():
                 "no sliding: elastic shear only, m g sin theta / (Kshear A) ~ 5e-4 m", 1e-3, suffix="incline-stick",
                 thetas_deg=thetas, moved=moved)
 
-    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(15, 4.2))
+    phis = [31, 33, 34, 36, 37, 39] if not args.quick else [33, 34, 36, 37]
+    fs, pf_moved, pf_acc, pf_ref = [], [], [], []
+    for deg in phis:
+        s, a = plane_failure(deg, T)
+        fs.append(math.tan(math.radians(deg)) / math.tan(PSI))
+        pf_moved.append(s)
+        pf_acc.append(a)
+        pf_ref.append(max(G * (math.sin(PSI) - math.cos(PSI) * math.tan(math.radians(deg))), 0.0))
+        print(f"plane failure, joint dip 35 deg, phi {deg} deg (FS {fs[-1]:.3f}): moved {s:.6f} m, "
+              f"acceleration {a:.5f} m/s^2, analytic {pf_ref[-1]:.5f}")
+    wrong = sum((ref > 0) != (abs(s) > 1e-3) for s, ref in zip(pf_moved, pf_ref))
+    pf_error = max(abs(a - ref) / ref for a, ref in zip(pf_acc, pf_ref) if ref > 0)
+    case.record("worst relative error of the sliding acceleration of a block generated by a joint (FS < 1) "
+                "plus the number of wrong slide/stick outcomes", pf_error + wrong,
+                "g (sin psi - cos psi tan phi), psi = 35 deg; FS = tan phi / tan psi", 1e-2, suffix="plane-failure",
+                phis_deg=phis, factor_of_safety=fs, moved=pf_moved, accelerations=pf_acc, analytic=pf_ref,
+                wrong_outcomes=wrong)
+
+    fig, (ax1, ax2, ax3, ax4) = plt.subplots(1, 4, figsize=(20, 4.2))
     ref = np.array([r[3] for r in rows])
     ax1.loglog(ref, [r[2] for r in rows], "bo", label="Talus")
     ax1.loglog(ref, ref, "k-", lw=0.8, label="Knormal A u_n")
@@ -171,6 +230,13 @@ def main():
     ax3.set_ylabel("sliding acceleration (m/s^2)")
     ax3.set_title("block on an inclined plane")
     ax3.legend(fontsize=8)
+    ax4.plot(fs, pf_ref, "k-", lw=0.8, label="g (sin psi - cos psi tan phi)")
+    ax4.plot(fs, pf_acc, "bo", label="Talus")
+    ax4.axvline(1.0, color="r", ls=":", label="FS = 1")
+    ax4.set_xlabel("factor of safety tan phi / tan psi")
+    ax4.set_ylabel("sliding acceleration (m/s^2)")
+    ax4.set_title("plane failure on a generated joint (psi = 35 deg)")
+    ax4.legend(fontsize=8)
     fig.tight_layout()
     case.save_chart(fig)
 
