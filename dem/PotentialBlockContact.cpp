@@ -173,6 +173,12 @@ double deepestPoint(const HalfSpaces& hs, double bound, Vec3& x)
   x = Vec3(sol[0], sol[1], sol[2]);
   return sol[3];
 }
+#else
+// Without CLP no block can be added (Scene::addPotentialBlock refuses), so this is unreachable.
+[[noreturn]] double deepestPoint(const HalfSpaces& /*hs*/, double /*bound*/, Vec3& /*x*/)
+{
+  throw std::logic_error("Potential Blocks need CLP, which this build of Talus does not have");
+}
 #endif
 
 /// Analytic centre of the half-spaces (minimum of -sum log(h_j - n_j . x)) by damped Newton
@@ -250,10 +256,6 @@ void potentialBlockAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
 bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                            BlockContactGeometry& out)
 {
-#ifndef TALUS_HAVE_CLP
-  (void)b, (void)i1, (void)i2, (void)previous, (void)out;
-  throw std::logic_error("Potential Blocks need CLP, which this build of Talus does not have");
-#else
   const PotentialBlockShape& s2 = shapeOf(b, i2);
   const bool wall = b.shape[i1] == ShapeKind::Wall;
   const Vec3 origin = wall ? b.pos[i2] : Vec3(0.5 * (b.pos[i1] + b.pos[i2]));
@@ -356,6 +358,5 @@ bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, cons
   out.contactPoint = mid + origin;
   out.area = sectionArea(hs, mid, n, 2 * reach);
   return true;
-#endif
 }
 } // namespace talus::dem
