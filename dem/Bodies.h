@@ -1,5 +1,6 @@
 #pragma once
 
+#include "dem/PotentialBlock.h"
 #include "dem/types.h"
 
 #include <array>
@@ -15,6 +16,7 @@ enum class ShapeKind : std::uint8_t
   Facet, ///< triangle (Yade's Facet), for meshes and boundaries
   Box,   ///< rectangular box (Yade's Box), interacting with spheres
   Clump, ///< rigid aggregate of member spheres (Yade's Clump); has no surface of its own
+  PotentialBlock, ///< convex polyhedron from planes (Yade's PotentialBlock), with blocks and walls
 };
 
 /// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
@@ -77,6 +79,7 @@ struct Bodies
   std::vector<FacetShape> facets;
   std::vector<BoxShape> boxes;
   std::vector<ClumpShape> clumps;
+  std::vector<PotentialBlockShape> blocks;
 
   /// Number of slots, erased bodies included.
   [[nodiscard]] std::size_t size() const { return pos.size(); }
@@ -86,10 +89,10 @@ struct Bodies
   /// integrator advances for aspherical bodies).
   void setAngularVelocity(std::size_t i, const Vec3& w);
   /// True for bodies whose rotation integrates the angular momentum in the principal frame
-  /// (clumps and boxes with unequal principal moments, as Yade's isAspherical).
+  /// (clumps, boxes and blocks with unequal principal moments, as Yade's isAspherical).
   [[nodiscard]] bool aspherical(std::size_t i) const
   {
-    return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box)
+    return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box || shape[i] == ShapeKind::PotentialBlock)
            && (inertia[i][0] != inertia[i][1] || inertia[i][0] != inertia[i][2]);
   }
 };

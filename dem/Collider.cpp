@@ -2,6 +2,7 @@
 #include "dem/CellGrid.h"
 
 #include "dem/ContactGeometry.h"
+#include "dem/PotentialBlockContact.h"
 #include "dem/Scene.h"
 #include "dem/Threads.h"
 
@@ -168,6 +169,51 @@ void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax
       out.push_back({key(facet, s), Eigen::Vector3i::Zero()});
   });
 }
+/// Candidate pairs of Potential Blocks (Aabbs closer than the skin; two boundary blocks never
+/// interact) and of walls with blocks (Aabb within the skin of the plane, on its side).
+void blockPairs(const Bodies& b, const std::vector<BodyId>& blocks, const std::vector<BodyId>& walls, double skin,
+                std::vector<Candidate>& out)
+{
+  const std::size_t n = blocks.size();
+  std::vector<Vec3> lo(n), hi(n);
+  for (std::size_t k = 0; k < n; ++k)
+    potentialBlockAabb(b, static_cast<std::size_t>(blocks[k]), lo[k], hi[k]);
+  // Sweep along x: blocks sorted by their lower bound.
+  std::vector<std::size_t> order(n);
+  for (std::size_t k = 0; k < n; ++k)
+    order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return lo[p][0] < lo[q][0]; });
+  auto boundary = [&](BodyId id) {
+    return b.blocks[static_cast<std::size_t>(b.shapeIndex[static_cast<std::size_t>(id)])].isBoundary;
+  };
+  for (std::size_t s = 0; s < n; ++s)
+    for (std::size_t t = s + 1; t < n && lo[order[t]][0] <= hi[order[s]][0] + skin; ++t)
+    {
+      const std::size_t p = order[s], q = order[t];
+      if (((lo[p] - hi[q]).array() > skin).any() || ((lo[q] - hi[p]).array() > skin).any())
+        continue;
+      const BodyId i = blocks[p], j = blocks[q];
+      if (boundary(i) && boundary(j))
+        continue;
+      out.push_back({key(std::min(i, j), std::max(i, j)), Eigen::Vector3i::Zero()});
+    }
+  for (BodyId w : walls)
+  {
+    const auto wi = static_cast<std::size_t>(w);
+    const WallShape& wall = b.walls[static_cast<std::size_t>(b.shapeIndex[wi])];
+    const double x = b.pos[wi][wall.axis];
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const double below = lo[k][wall.axis] - x, above = hi[k][wall.axis] - x;
+      // the block's Aabb reaches the wall's solid side (within the skin)
+      const bool reaches = wall.sense > 0   ? below < skin
+                           : wall.sense < 0 ? above > -skin
+                                            : below < skin && above > -skin;
+      if (reaches)
+        out.push_back({key(w, blocks[k]), Eigen::Vector3i::Zero()});
+    }
+  }
+}
 } // namespace
 
 bool Collider::needsRebuild(const Scene& scene) const
@@ -187,6 +233,14 @@ bool Collider::needsRebuild(const Scene& scene) const
   const auto n = static_cast<std::int64_t>(b.size());
   bool moved = false;
   const bool deformed = scene.periodic && affine != Mat3::Identity();
+  // A block's corners also move by its rotation: at most its bounding radius times the angle.
+  for (std::size_t k = 0; k < blocks_.size() && !moved; ++k)
+  {
+    const auto i = static_cast<std::size_t>(blocks_[k]);
+    const double reach = b.blocks[static_cast<std::size_t>(b.shapeIndex[i])].boundingRadius;
+    const double angle = b.ori[i].angularDistance(referenceOri_[k]);
+    moved = (b.pos[i] - referencePos_[i]).norm() + reach * angle > limit;
+  }
 #pragma omp parallel for if (n >= parallelLoopMinimum) reduction(|| : moved) schedule(static)
   for (std::int64_t k = 0; k < n; ++k)
   {
@@ -214,6 +268,8 @@ void Collider::rebuild(Scene& scene)
   walls.clear();
   facets.clear();
   boxes_.clear();
+  blocks_.clear();
+  double blockRmin = std::numeric_limits<double>::infinity();
   double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
@@ -231,9 +287,16 @@ void Collider::rebuild(Scene& scene)
       facets.push_back(static_cast<BodyId>(i));
     else if (b.shape[i] == ShapeKind::Box)
       boxes_.push_back(static_cast<BodyId>(i));
+    else if (b.shape[i] == ShapeKind::PotentialBlock)
+    {
+      blocks_.push_back(static_cast<BodyId>(i));
+      blockRmin = std::min(blockRmin, b.blocks[static_cast<std::size_t>(b.shapeIndex[i])].R);
+    }
     // a clump has no surface: its members interact
   }
-  skin_ = verletDist >= 0 ? verletDist : (spheres.empty() ? 0.0 : -verletDist * rmin);
+  // Without spheres, a negative verletDist is a fraction of the smallest block's R.
+  const double smallest = spheres.empty() ? blockRmin : rmin;
+  skin_ = verletDist >= 0 ? verletDist : (std::isfinite(smallest) ? -verletDist * smallest : 0.0);
 
   std::vector<Candidate>& pairs = pairs_;
   pairs.clear();
@@ -248,6 +311,8 @@ void Collider::rebuild(Scene& scene)
     facetPairs(b, f, grid_, rmax, skin_, pairs);
   for (BodyId k : boxes_)
     boxPairs(b, k, grid_, rmax, skin_, pairs);
+  if (!blocks_.empty())
+    blockPairs(b, blocks_, walls, skin_, pairs);
   for (BodyId w : walls)
   {
     const auto wi = static_cast<std::size_t>(w);
@@ -305,7 +370,11 @@ void Collider::rebuild(Scene& scene)
     c.id2 = static_cast<BodyId>(k & 0xffffffffu);
     switch (b.shape[static_cast<std::size_t>(c.id1)])
     {
-    case ShapeKind::Wall: c.kind = ContactGeometryKind::WallSphere; break;
+    case ShapeKind::Wall:
+      c.kind = b.shape[static_cast<std::size_t>(c.id2)] == ShapeKind::PotentialBlock ? ContactGeometryKind::WallBlock
+                                                                                     : ContactGeometryKind::WallSphere;
+      break;
+    case ShapeKind::PotentialBlock: c.kind = ContactGeometryKind::BlockBlock; break;
     case ShapeKind::Facet: c.kind = ContactGeometryKind::FacetSphere; break;
     case ShapeKind::Box: c.kind = ContactGeometryKind::BoxSphere; break;
     case ShapeKind::Sphere:
@@ -320,6 +389,9 @@ void Collider::rebuild(Scene& scene)
     oldExtra.swap(mergedExtra);
   scene.contacts.index(b.size());
   referencePos_ = b.pos;
+  referenceOri_.resize(blocks_.size());
+  for (std::size_t k = 0; k < blocks_.size(); ++k)
+    referenceOri_[k] = b.ori[static_cast<std::size_t>(blocks_[k])];
   referenceCellInverse_ = scene.cell.hSize.inverse();
   referenceRange_ = 2 * rmax + skin_;
   seenBodiesVersion_ = scene.bodiesVersion;

@@ -34,5 +34,8 @@ struct ContactExtra
   std::uint8_t fragile = 1;        ///< the bond breaks for good at its first failure
   std::uint8_t momentRotationLaw = 0;
   std::uint8_t cohesionDisablesFriction = 0;
+
+  // KnKsPBPhys: area of the overlap region's section (Potential Block contacts).
+  double contactArea = 0;
 };
 } // namespace talus::dem

@@ -3,6 +3,7 @@
 #include "dem/Bodies.h"
 #include "dem/Cell.h"
 #include "dem/Contacts.h"
+#include "dem/PotentialBlockContact.h"
 
 #include <array>
 #include <cmath>
@@ -178,6 +179,26 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
     r1 = 2 * r;
     r2 = r;
+  }
+  else if (c.kind == ContactGeometryKind::BlockBlock || c.kind == ContactGeometryKind::WallBlock)
+  {
+    // Potential Blocks (out of line: a linear program and Newton steps, see
+    // PotentialBlockContact.h); reference radii are the blocks' R, the overlap section's area
+    // goes to the contact's extra state for the KnKsPB law.
+    BlockContactGeometry g;
+    if (!potentialBlockContact(b, i1, i2, c.real ? &c.contactPoint : nullptr, g))
+    {
+      if (c.real)
+        c.reset();
+      return false;
+    }
+    normal = g.normal;
+    penetration = g.penetration;
+    contactPoint = g.contactPoint;
+    r2 = b.blocks[static_cast<std::size_t>(b.shapeIndex[i2])].R;
+    r1 = c.kind == ContactGeometryKind::WallBlock ? r2 : b.blocks[static_cast<std::size_t>(b.shapeIndex[i1])].R;
+    if (x)
+      x->contactArea = g.area;
   }
   else // WallSphere: body 1 is the wall
   {

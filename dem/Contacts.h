@@ -15,6 +15,8 @@ enum class ContactGeometryKind : std::uint8_t
   WallSphere,  ///< id1 is the wall, as in Yade
   FacetSphere, ///< id1 is the facet, as in Yade
   BoxSphere,   ///< id1 is the box, as in Yade
+  BlockBlock,  ///< two Potential Blocks (Yade's Ig2_PB_PB_ScGeom)
+  WallBlock,   ///< id1 is the wall, id2 a Potential Block
 };
 
 /// One candidate pair within the collider's skin, with its persistent contact state.

@@ -123,6 +123,44 @@ BodyId Scene::addBox(const Vec3& center, const Vec3& extents, const Quat& orient
   return id;
 }
 
+BodyId Scene::addPotentialBlock(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c,
+                                const std::vector<double>& d, double r, double R, bool isBoundary, const Vec3* center,
+                                const Quat& orientation, int material, bool fixed)
+{
+  const std::string which = "PotentialBlock #" + std::to_string(bodies.size());
+#ifndef TALUS_HAVE_CLP
+  (void)a, (void)b, (void)c, (void)d, (void)r, (void)R, (void)isBoundary, (void)center, (void)orientation, (void)material,
+      (void)fixed;
+  throw std::runtime_error(which + ": Potential Blocks need CLP, and this build has none "
+                           "(apt-get install coinor-libclp-dev, then configure again)");
+#else
+  if (periodic)
+    throw std::invalid_argument(which + ": Potential Blocks are not supported in a periodic scene");
+  if (center && !center->allFinite())
+    throw std::invalid_argument(which + ": centre is not finite " + str(*center));
+  if (!orientation.coeffs().allFinite() || !(orientation.norm() > 0))
+    throw std::invalid_argument(which + ": orientation is not a finite non-zero quaternion");
+  if (material < 0 || material >= static_cast<int>(materials.size()))
+    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  PotentialBlockPlacement placement;
+  bodies.blocks.push_back(makePotentialBlock(a, b, c, d, r, R, isBoundary, which, &placement));
+  const BodyId id = bodies.append(ShapeKind::PotentialBlock, static_cast<int>(bodies.blocks.size()) - 1, material);
+  const auto i = static_cast<std::size_t>(id);
+  bodies.pos[i] = center ? *center : placement.centroid;
+  bodies.ori[i] = (orientation.normalized() * placement.principalAxes).normalized();
+  const double density = materials[static_cast<std::size_t>(material)].density;
+  bodies.mass[i] = density * bodies.blocks.back().volume;
+  bodies.inertia[i] = density * placement.inertiaPerDensity;
+  if (fixed)
+  {
+    bodies.dynamic[i] = 0;
+    bodies.blockedDofs[i] = DofAll;
+  }
+  ++bodiesVersion;
+  return id;
+#endif
+}
+
 void Scene::checkBody(BodyId id) const
 {
   if (id < 0 || static_cast<std::size_t>(id) >= bodies.size() || !bodies.alive[static_cast<std::size_t>(id)])

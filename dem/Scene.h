@@ -62,6 +62,15 @@ public:
   /// inertia from its material's density. Dynamic unless `fixed`.
   /// @throws std::invalid_argument naming the offending value
   BodyId addBox(const Vec3& center, const Vec3& extents, const Quat& orientation, int material, bool fixed);
+  /// Add a Potential Block (Yade's PotentialBlock): the planes a_i x + b_i y + c_i z <= d_i + r
+  /// (see makePotentialBlock), turned by `orientation` about its centroid, which is placed at
+  /// `center` (null: where the planes put it). Volume, mass and principal inertia are computed;
+  /// the body's frame is the principal frame. Dynamic unless `fixed`.
+  /// @throws std::invalid_argument naming the block ("PotentialBlock #id") and the bad value;
+  ///         std::runtime_error if Talus was built without CLP
+  BodyId addPotentialBlock(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c,
+                           const std::vector<double>& d, double r, double R, bool isBoundary, const Vec3* center,
+                           const Quat& orientation, int material, bool fixed);
   /// Make the spheres `members` a clump (Yade's O.bodies.clump): a rigid body at their centroid
   /// with principal axes and moments of their union; returns the clump's id. Members are summed
   /// as whole spheres (Yade's default), or, with `discretization` > 0 and overlapping members,

@@ -214,6 +214,7 @@ PYBIND11_MODULE(_dem, m)
         case ShapeKind::Facet: return "Facet";
         case ShapeKind::Box: return "Box";
         case ShapeKind::Clump: return "Clump";
+        case ShapeKind::PotentialBlock: return "PotentialBlock";
         }
         return "?";
       })
@@ -249,4 +250,5 @@ PYBIND11_MODULE(_dem, m)
         return out;
       });
   void talus_wrap_bodies(py::module_&); talus_wrap_bodies(m); // after Engine, Scene: kinematics, clumps, boxes: bodies_wrappers.cpp
+  void talus_wrap_blocks(py::module_&); talus_wrap_blocks(m); // Potential Blocks: blocks_wrappers.cpp
 }

@@ -18,6 +18,9 @@ from talus.dem import geom, pack, progress, ymport
 from talus.dem.bodies import Body, BodySpec, aabbWalls, box, facet, sphere, wall
 from talus.dem.quaternion import Quaternion
 from talus.dem.shapes import Box, Clump, Facet, Shape, Sphere, Wall
+from talus.dem.blocks import *  # noqa: F401,F403  (Potential Blocks, Yade's names)
+from talus.dem.blocks import __all__ as _block_names
+from talus.dem.blockgen import Joint, JointFileError, generateBlocks, readJoints
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.cell import Matrix3, Vector3
@@ -41,4 +44,4 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",
            "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",
-           *_engine_names]
+           *_engine_names, *_block_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]

@@ -32,6 +32,7 @@ class BodySpec:
     extents: tuple = ()
     orientation: tuple = (1.0, 0.0, 0.0, 0.0)
     color: tuple = field(default=(0.5, 0.5, 0.5))
+    block: object = None  # the PotentialBlock shape (talus.dem.blocks)
 
 
 def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, **_ignored) -> BodySpec:
@@ -230,6 +231,9 @@ class BodyContainer:
             return _dem.add_box(scene._cpp, np.asarray(spec.center, dtype=float),
                                 np.asarray(spec.extents, dtype=float), np.asarray(spec.orientation, dtype=float),
                                 material, bool(spec.fixed))
+        if spec.shape == "PotentialBlock":
+            from talus.dem import blocks
+            return blocks._add(scene, spec, material)
         if spec.shape == "Facet":
             return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material)
         return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)

@@ -239,6 +239,8 @@ class InteractionLoop(Engine):
                 raise ValueError(f"InteractionLoop: {type(law).__name__} needs "
                                  f"{law._cpp.physicsName}() in the physics functors")
             law._configure(phys[law._cpp.physicsName])
+            if hasattr(law, "_configureGeometry"):   # laws with geometry parameters (Ig2_PB_PB_ScGeom)
+                law._configureGeometry(geomFunctors)
         self._cpp = _dem.InteractionLoop()
         self._cpp.laws = [law._cpp for law in laws]
         self.geomFunctors, self.physFunctors, self.lawFunctors = list(geomFunctors), list(physFunctors), laws

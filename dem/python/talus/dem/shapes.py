@@ -91,5 +91,11 @@ class Clump(Shape):
 _BY_KIND = {cls.__name__: cls for cls in (Sphere, Wall, Facet, Box, Clump)}
 
 
-def shape_of(scene, id: int) -> Shape:
-    return _BY_KIND[scene._cpp.shapeKind(id)](scene, id)
+def shape_of(scene, id: int):
+    kind = scene._cpp.shapeKind(id)
+    if kind == "PotentialBlock":   # Yade's PotentialBlock shape: its planes, r, R, isBoundary
+        from talus.dem.blocks import PotentialBlock
+        s = _dem.block_shape(scene._cpp, id)   # planes in the body's principal frame
+        n = np.asarray(s["normals"], dtype=float).reshape(-1, 3)
+        return PotentialBlock(n[:, 0], n[:, 1], n[:, 2], s["d"], r=s["r"], R=s["R"], isBoundary=s["isBoundary"])
+    return _BY_KIND[kind](scene, id)

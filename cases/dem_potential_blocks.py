@@ -1,0 +1,248 @@
+"""DEM case: Potential Blocks (Yade's PotentialBlock) against analytic contact forces and friction.
+
+Run:      build/bin/talus run cases/dem_potential_blocks.py [--quick] [--results DIR]
+Set-up:   unit cubes (edge 1 m, r = 0.02 m, density 1000 kg/m^3) with the KnKsPB law
+          (Knormal 1e8 N/m^3, Kshear 1e7 N/m^3; kn_i, ks_i the same for the boundary plate):
+          1. pressing: two fixed cubes face to face, overlaps 1e-5 ... 1e-2 m, lateral offsets
+             (0, 0), (0.2, 0.1), (0.4, 0.3) m and a 45-degree twist about the normal; one step;
+          2. resting: a cube dropped 1 mm onto a fixed boundary plate under gravity (viscous
+             damping 0.5, Cundall damping 0.3), 2 s (quick 1 s);
+          3. incline: the resting cube (friction angle 30 deg) under gravity turned from the
+             plate's normal to theta (an inclined plane) over 0.25 s with Cundall damping 0.3,
+             then T = 1 s (quick 0.5 s) undamped, for theta = 20 ... 40 deg;
+          4. plane failure: a 4 x 2 x 2 m block cut by one persistent joint dipping 35 deg
+             (generateBlocks), the lower piece fixed, friction angle phi = 31 ... 39 deg, Knormal
+             1e9 N/m^3, Kshear 1e8 N/m^3; gravity
+             ramped up over 0.25 s with Cundall damping, then 0.5 s undamped.
+          Yade's Debian build has no PotentialBlock (its ENABLE_POTENTIAL_BLOCKS is off), so no
+          side-by-side run: references are analytic.
+Checked:  dem.potential-blocks.pressing: worst relative error of the normal force against
+          Knormal A u_n (A the exact overlap area: offset rectangle, or the octagon 2(sqrt 2 - 1)
+          of the twisted squares) <= 1e-8, and of the overlap against u_n (in the record);
+          dem.potential-blocks.resting: relative error of the contact force against m g <= 1e-6;
+          dem.potential-blocks.incline-slip: worst relative error of the sliding acceleration
+          (quadratic fit of the undamped phase) against g (sin theta - cos theta tan phi) above
+          the friction angle <= 1e-2; dem.potential-blocks.incline-stick: largest displacement
+          along the slope below it (elastic shear only, ~0.5 mm) <= 1 mm;
+          dem.potential-blocks.plane-failure: worst relative error of the upper piece's
+          acceleration for FS = tan phi / tan psi < 1, plus the number of wrong slide/stick
+          outcomes (displacement > 1 mm), <= 1e-2.
+Produces: the five records and chart dem.potential-blocks.png (force against analytic, the
+          resting cube's contact force over time, sliding acceleration against theta and against
+          the factor of safety of the plane failure).
+"""
+import math
+
+import numpy as np
+
+from talus import results
+from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_KnKsPBPhys, Joint, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
+                       PotentialBlock, PotentialBlock2AABB, Scene, generateBlocks, potentialBlock)
+from talus.dem.blockgen import dipNormal
+
+KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
+CUBE = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.02)
+MASS = RHO * 1.0
+
+
+def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G), kn=KN, ks=KS):
+    S = Scene()
+    m = S.materials.append(FrictMat(density=RHO, frictionAngle=friction))
+    S.engines = [ForceResetter(), InsertionSortCollider([PotentialBlock2AABB()], verletDist=0.01),
+                 InteractionLoop([Ig2_PB_PB_ScGeom(calContactArea=True)],
+                                 [Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=kn, Kshear=ks, kn_i=kn, ks_i=ks,
+                                                                   viscousDamping=viscous)],
+                                 [Law2_SCG_KnKsPBPhys_KnKsPBLaw()]),
+                 NewtonIntegrator(gravity=gravity, damping=damping)]
+    S.dt = 5e-4
+    return S, m
+
+
+def quat_z(angle):
+    return (math.cos(angle / 2), 0.0, 0.0, math.sin(angle / 2))
+
+
+def pressing():
+    """Rows (overlap, area, force, analytic force, overlap found)."""
+    rows = []
+    for ox, oy, twist, area in [(0, 0, 0, 1.0), (0.2, 0.1, 0, 0.8 * 0.9), (0.4, 0.3, 0, 0.6 * 0.7),
+                                (0, 0, math.pi / 4, 2 * (math.sqrt(2) - 1))]:
+        for u in np.logspace(-5, -2, 7):
+            S, m = make_scene(gravity=(0, 0, 0))
+            S.bodies.append(potentialBlock(CUBE, pos=(0, 0, 0), material=m, fixed=True))
+            S.bodies.append(potentialBlock(CUBE, pos=(ox, oy, 1 - u), orientation=quat_z(twist), material=m, fixed=True))
+            S.run(1, True)
+            c = S._cpp.contacts()[0]
+            rows.append((u, area, float(c["normalForce"][2]), KN * area * u, float(c["penetrationDepth"])))
+    return rows
+
+
+def resting(seconds):
+    S, m = make_scene(damping=0.3, viscous=0.5)
+    S.bodies.append(potentialBlock(PotentialBlock.cuboid((3, 3, 0.25), r=0.02, isBoundary=True), pos=(0, 0, -0.25),
+                                   material=m, fixed=True))
+    S.bodies.append(potentialBlock(CUBE, pos=(0, 0, 0.501), material=m))
+    times, forces = [], []
+    for _ in range(int(seconds / S.dt / 20)):
+        S.run(20, True)
+        c = S._cpp.contacts()
+        times.append(S.time)
+        forces.append(float(c[0]["normalForce"][2]) if c else 0.0)
+    return S, times, forces
+
+
+def incline(theta, seconds):
+    """The resting cube under gravity turned from the plate's normal to theta over 0.25 s (with
+    Cundall damping, so the shear spring loads quasi-statically), then `seconds` undamped.
+    Returns (displacement along the slope since the start, acceleration fitted to the free
+    phase)."""
+    S, _, _ = resting(0.5)
+    start = float(S.bodies[1].state.pos[0])
+    newton = S.engines[-1]
+    ramp = 20
+    for k in range(1, ramp + 1):
+        th = theta * k / ramp
+        newton.gravity = (G * math.sin(th), 0.0, -G * math.cos(th))
+        S.run(int(round(0.25 / ramp / S.dt)), True)
+    newton.damping = 0.0
+    times, xs = [], []
+    for _ in range(int(round(seconds / S.dt / 20))):
+        S.run(20, True)
+        times.append(S.time)
+        xs.append(float(S.bodies[1].state.pos[0]))
+    acceleration = 2 * float(np.polyfit(times, xs, 2)[0])
+    return xs[-1] - start, acceleration
+
+
+PSI = math.radians(35)   # dip of the joint of the plane-failure test
+
+
+def plane_failure(phi_deg, seconds):
+    """A 4 x 2 x 2 m rock block cut by one persistent joint dipping at PSI (generateBlocks); the
+    piece below is fixed, the one above rests on the joint. Gravity ramped up over 0.25 s with
+    Cundall damping (the joint's shear spring loads quasi-statically), then `seconds` undamped.
+    Returns (displacement down the dip since the ramp, acceleration fitted to its second half)."""
+    blocks = generateBlocks(PotentialBlock.cuboid((2, 1, 1), r=0.02), [Joint(dipNormal(35, 0), np.zeros(3))])
+    # Stiffer joint (1e9 N/m^3): the acceleration's error is first order in the contact's
+    # compliance (1.8 %, 0.3 %, 0.09 % at Knormal 1e8, 1e9, 1e10 for phi = 33 deg).
+    S, m = make_scene(friction=math.radians(phi_deg), damping=0.3, viscous=0.5, gravity=(0, 0, 0), kn=10 * KN,
+                      ks=10 * KS)
+    ids = S.bodies.append([potentialBlock(b, material=m) for b in blocks])
+    low, up = sorted(ids, key=lambda i: S.bodies[i].state.pos[2])
+    S.bodies[low].dynamic = False
+    newton = S.engines[-1]
+    for k in range(1, 21):
+        newton.gravity = (0.0, 0.0, -G * k / 20)
+        S.run(int(round(0.25 / 20 / S.dt)), True)
+    newton.damping = 0.0
+    start = np.array(S.bodies[up].state.pos)
+    down = np.array([-math.cos(PSI), 0.0, -math.sin(PSI)])
+    times, moved = [], []
+    for _ in range(int(round(seconds / S.dt / 20))):
+        S.run(20, True)
+        times.append(S.time)
+        moved.append(float((np.array(S.bodies[up].state.pos) - start) @ down))
+    half = len(times) // 2   # after the release transient (the block slid during the ramp already)
+    return moved[-1], 2 * float(np.polyfit(times[half:], moved[half:], 2)[0])
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    case = results.Case("dem.potential-blocks", quick=args.quick, folder=args.results)
+
+    rows = pressing()
+    force_error = max(abs(f - ref) / ref for _, _, f, ref, _ in rows)
+    overlap_error = max(abs(found - u) / u for u, _, _, _, found in rows)
+    print(f"pressing: worst force error {force_error:.2e}, worst overlap error {overlap_error:.2e}")
+    case.record("worst relative error of the normal force of two cubes pressed face to face", force_error,
+                "Knormal A u_n with the exact overlap area A (rectangle, or octagon for the 45-degree twist)", 1e-8,
+                suffix="pressing", overlap_relative_error=overlap_error, overlaps=[r[0] for r in rows],
+                areas=[r[1] for r in rows], forces=[r[2] for r in rows])
+
+    seconds = 1.0 if args.quick else 2.0
+    _, times, forces = resting(seconds)
+    rest_error = abs(forces[-1] - MASS * G) / (MASS * G)
+    print(f"resting: contact force {forces[-1]:.6f} N, m g = {MASS * G:.6f} N, error {rest_error:.2e}")
+    case.record("relative error of the resting cube's contact force", rest_error, "the weight m g", 1e-6,
+                suffix="resting", force=forces[-1], weight=MASS * G)
+
+    T = 0.5 if args.quick else 1.0
+    thetas = [20, 25, 28, 29, 31, 32, 35, 40] if not args.quick else [25, 29, 31, 35]
+    moved, accelerations, analytic = [], [], []
+    for deg in thetas:
+        th = math.radians(deg)
+        s, a = incline(th, T)
+        moved.append(s)
+        accelerations.append(a)
+        analytic.append(max(G * (math.sin(th) - math.cos(th) * math.tan(PHI)), 0.0))
+        print(f"incline {deg:4.1f} deg: moved {s:.6f} m, acceleration {a:.5f} m/s^2, analytic {analytic[-1]:.5f}")
+    slip = max(abs(a - ref) / ref for a, ref in zip(accelerations, analytic) if ref > 0)
+    stick = max(abs(s) for s, ref in zip(moved, analytic) if ref == 0)
+    case.record(f"worst relative error of the sliding acceleration above the friction angle ({math.degrees(PHI):.0f} deg)",
+                slip, "g (sin theta - cos theta tan phi)", 1e-2, suffix="incline-slip",
+                thetas_deg=thetas, accelerations=accelerations, analytic=analytic, moved=moved, T=T)
+    case.record("largest displacement (m) along the slope below the friction angle", stick,
+                "no sliding: elastic shear only, m g sin theta / (Kshear A) ~ 5e-4 m", 1e-3, suffix="incline-stick",
+                thetas_deg=thetas, moved=moved)
+
+    phis = [31, 33, 34, 36, 37, 39] if not args.quick else [33, 34, 36, 37]
+    fs, pf_moved, pf_acc, pf_ref = [], [], [], []
+    for deg in phis:
+        # 0.5 s in both modes: the error grows with the distance slid (about 1 % after 0.48 m in
+        # 1 s at phi = 31 deg): the single contact point at the overlap's centre lets the block
+        # tilt as its support shifts, and the normal averaged between the faces tilts with it.
+        s, a = plane_failure(deg, 0.5)
+        fs.append(math.tan(math.radians(deg)) / math.tan(PSI))
+        pf_moved.append(s)
+        pf_acc.append(a)
+        pf_ref.append(max(G * (math.sin(PSI) - math.cos(PSI) * math.tan(math.radians(deg))), 0.0))
+        print(f"plane failure, joint dip 35 deg, phi {deg} deg (FS {fs[-1]:.3f}): moved {s:.6f} m, "
+              f"acceleration {a:.5f} m/s^2, analytic {pf_ref[-1]:.5f}")
+    wrong = sum((ref > 0) != (abs(s) > 1e-3) for s, ref in zip(pf_moved, pf_ref))
+    pf_error = max(abs(a - ref) / ref for a, ref in zip(pf_acc, pf_ref) if ref > 0)
+    case.record("worst relative error of the sliding acceleration of a block generated by a joint (FS < 1) "
+                "plus the number of wrong slide/stick outcomes", pf_error + wrong,
+                "g (sin psi - cos psi tan phi), psi = 35 deg; FS = tan phi / tan psi", 1e-2, suffix="plane-failure",
+                phis_deg=phis, factor_of_safety=fs, moved=pf_moved, accelerations=pf_acc, analytic=pf_ref,
+                wrong_outcomes=wrong)
+
+    fig, (ax1, ax2, ax3, ax4) = plt.subplots(1, 4, figsize=(20, 4.2))
+    ref = np.array([r[3] for r in rows])
+    ax1.loglog(ref, [r[2] for r in rows], "bo", label="Talus")
+    ax1.loglog(ref, ref, "k-", lw=0.8, label="Knormal A u_n")
+    ax1.set_xlabel("analytic normal force (N)")
+    ax1.set_ylabel("contact normal force (N)")
+    ax1.set_title(f"two cubes pressed (worst error {force_error:.1e})")
+    ax1.legend(fontsize=8)
+    ax2.plot(times, forces, "b-", label="contact force")
+    ax2.axhline(MASS * G, color="k", lw=0.8, ls="--", label="m g")
+    ax2.set_xlabel("time (s)")
+    ax2.set_ylabel("normal force (N)")
+    ax2.set_title("cube resting on a boundary plate")
+    ax2.legend(fontsize=8)
+    fine = np.linspace(min(thetas), max(thetas), 200)
+    ax3.plot(fine, [max(G * (math.sin(math.radians(t)) - math.cos(math.radians(t)) * math.tan(PHI)), 0) for t in fine],
+             "k-", lw=0.8, label="g (sin theta - cos theta tan phi)")
+    ax3.plot(thetas, accelerations, "bo", label="Talus (fit of the free phase)")
+    ax3.axvline(math.degrees(PHI), color="r", ls=":", label="friction angle")
+    ax3.set_xlabel("slope angle theta (deg)")
+    ax3.set_ylabel("sliding acceleration (m/s^2)")
+    ax3.set_title("block on an inclined plane")
+    ax3.legend(fontsize=8)
+    ax4.plot(fs, pf_ref, "k-", lw=0.8, label="g (sin psi - cos psi tan phi)")
+    ax4.plot(fs, pf_acc, "bo", label="Talus")
+    ax4.axvline(1.0, color="r", ls=":", label="FS = 1")
+    ax4.set_xlabel("factor of safety tan phi / tan psi")
+    ax4.set_ylabel("sliding acceleration (m/s^2)")
+    ax4.set_title("plane failure on a generated joint (psi = 35 deg)")
+    ax4.legend(fontsize=8)
+    fig.tight_layout()
+    case.save_chart(fig)
+
+
+if __name__ == "__main__":
+    main()

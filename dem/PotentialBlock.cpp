@@ -1,0 +1,227 @@
+#include "dem/PotentialBlock.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace talus::dem
+{
+namespace
+{
+/// Vertices of { x : n_i . x <= h_i }: intersections of plane triples lying inside every plane,
+/// merged within `tol`.
+std::vector<Vec3> enumerateVertices(const std::vector<Vec3>& n, const std::vector<double>& h, double tol)
+{
+  std::vector<Vec3> out;
+  const std::size_t m = n.size();
+  for (std::size_t i = 0; i < m; ++i)
+    for (std::size_t j = i + 1; j < m; ++j)
+      for (std::size_t k = j + 1; k < m; ++k)
+      {
+        Mat3 A;
+        A.row(0) = n[i];
+        A.row(1) = n[j];
+        A.row(2) = n[k];
+        if (std::abs(A.determinant()) < 1e-10)
+          continue;
+        const Vec3 x = A.partialPivLu().solve(Vec3(h[i], h[j], h[k]));
+        bool inside = true;
+        for (std::size_t q = 0; q < m && inside; ++q)
+          inside = n[q].dot(x) <= h[q] + tol;
+        if (inside && std::none_of(out.begin(), out.end(), [&](const Vec3& v) { return (v - x).norm() < tol; }))
+          out.push_back(x);
+      }
+  return out;
+}
+} // namespace
+
+PotentialBlockShape makePotentialBlock(const std::vector<double>& a, const std::vector<double>& b,
+                                       const std::vector<double>& c, const std::vector<double>& d, double r,
+                                       double R, bool isBoundary, const std::string& which,
+                                       PotentialBlockPlacement* placement)
+{
+  const std::size_t m = a.size();
+  if (b.size() != m || c.size() != m || d.size() != m)
+    throw std::invalid_argument(which + ": a, b, c, d must have the same length, got " + std::to_string(a.size()) + ", "
+                                + std::to_string(b.size()) + ", " + std::to_string(c.size()) + ", "
+                                + std::to_string(d.size()));
+  if (m < 4)
+    throw std::invalid_argument(which + ": a closed block needs at least 4 planes, got " + std::to_string(m));
+  if (!std::isfinite(r) || r < 0)
+    throw std::invalid_argument(which + ": r must be finite and >= 0, got " + std::to_string(r));
+  if (!std::isfinite(R) || R < 0)
+    throw std::invalid_argument(which + ": R must be finite and >= 0 (0: automatic), got " + std::to_string(R));
+  PotentialBlockShape s;
+  s.r = r;
+  s.isBoundary = isBoundary;
+  std::vector<Vec3> n(m);
+  std::vector<double> h(m);
+  double scale = 0;
+  for (std::size_t i = 0; i < m; ++i)
+  {
+    n[i] = Vec3(a[i], b[i], c[i]);
+    const std::string plane = which + ": plane " + std::to_string(i);
+    if (!n[i].allFinite() || !std::isfinite(d[i]))
+      throw std::invalid_argument(plane + " is not finite");
+    if (std::abs(n[i].norm() - 1) > 1e-6)
+      throw std::invalid_argument(plane + " has a non-unit normal (" + std::to_string(a[i]) + ", " + std::to_string(b[i])
+                                  + ", " + std::to_string(c[i]) + "), norm " + std::to_string(n[i].norm()));
+    n[i].normalize();
+    h[i] = d[i] + r;
+    scale = std::max(scale, std::abs(h[i]));
+  }
+  if (!(scale > 0))
+    throw std::invalid_argument(which + ": every face passes through the origin: the planes bound no volume");
+  // A region that is unbounded reaches a far box added around it: a vertex on that box means
+  // the planes leave a direction open.
+  const double far = 1e6 * scale, tol = 1e-9 * scale;
+  std::vector<Vec3> nb = n;
+  std::vector<double> hb = h;
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {1.0, -1.0})
+    {
+      Vec3 e = Vec3::Zero();
+      e[axis] = sign;
+      nb.push_back(e);
+      hb.push_back(far);
+    }
+  std::vector<Vec3> v = enumerateVertices(nb, hb, tol);
+  if (v.empty())
+    throw std::invalid_argument(which + ": the planes have an empty intersection (no point satisfies all a x + b y + c z <= d + r)");
+  for (const Vec3& x : v)
+    if (x.cwiseAbs().maxCoeff() > 0.5 * far)
+      throw std::invalid_argument(which + ": the planes do not bound a finite region (it is open towards ("
+                                  + std::to_string(x[0] / far) + ", " + std::to_string(x[1] / far) + ", "
+                                  + std::to_string(x[2] / far) + "))");
+
+  // Faces: the vertices on each plane, sorted by angle around their mean.
+  Vec3 inside = Vec3::Zero();
+  for (const Vec3& x : v)
+    inside += x;
+  inside /= static_cast<double>(v.size());
+  for (std::size_t i = 0; i < m; ++i)
+  {
+    std::vector<int> on;
+    for (std::size_t k = 0; k < v.size(); ++k)
+      if (std::abs(n[i].dot(v[k]) - h[i]) <= 10 * tol)
+        on.push_back(static_cast<int>(k));
+    if (on.size() < 3)
+      continue; // a plane touching the block at an edge or a vertex, or not at all
+    Vec3 mid = Vec3::Zero();
+    for (int k : on)
+      mid += v[static_cast<std::size_t>(k)];
+    mid /= static_cast<double>(on.size());
+    const Vec3 t1 = (v[static_cast<std::size_t>(on[0])] - mid).normalized();
+    const Vec3 t2 = n[i].cross(t1);
+    std::sort(on.begin(), on.end(), [&](int p, int q) {
+      const Vec3 dp = v[static_cast<std::size_t>(p)] - mid, dq = v[static_cast<std::size_t>(q)] - mid;
+      return std::atan2(dp.dot(t2), dp.dot(t1)) < std::atan2(dq.dot(t2), dq.dot(t1));
+    });
+    s.faces.push_back(on);
+    s.facePlane.push_back(static_cast<int>(i));
+  }
+
+  // Edges: two faces sharing two vertices meet along the cross product of their normals.
+  std::vector<Vec3> edges;
+  for (std::size_t f = 0; f < s.faces.size(); ++f)
+    for (std::size_t g = f + 1; g < s.faces.size(); ++g)
+    {
+      int shared = 0;
+      for (int p : s.faces[f])
+        shared += static_cast<int>(std::count(s.faces[g].begin(), s.faces[g].end(), p));
+      const Vec3 e = n[static_cast<std::size_t>(s.facePlane[f])].cross(n[static_cast<std::size_t>(s.facePlane[g])]);
+      if (shared >= 2 && e.norm() > 1e-9
+          && std::none_of(edges.begin(), edges.end(), [&](const Vec3& o) { return o.cross(e.normalized()).norm() < 1e-9; }))
+        edges.push_back(e.normalized());
+    }
+
+  // Volume, centroid and second moments: tetrahedra from an inner point to each face triangle
+  // (integral of x x^T over a tetrahedron p0..p3: V/20 (sum p p^T + (sum p)(sum p)^T)).
+  double volume = 0;
+  Vec3 first = Vec3::Zero();
+  Mat3 second = Mat3::Zero();
+  for (const auto& face : s.faces)
+    for (std::size_t k = 1; k + 1 < face.size(); ++k)
+    {
+      const Vec3 p[4] = {inside, v[static_cast<std::size_t>(face[0])], v[static_cast<std::size_t>(face[k])],
+                         v[static_cast<std::size_t>(face[k + 1])]};
+      const double vt = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6;
+      const Vec3 sum = p[0] + p[1] + p[2] + p[3];
+      volume += vt;
+      first += vt * sum / 4;
+      Mat3 pp = sum * sum.transpose();
+      for (const Vec3& q : p)
+        pp += q * q.transpose();
+      second += vt / 20 * pp;
+    }
+  const double extent = 2 * std::max(scale, 1e-300);
+  if (!(volume > 1e-12 * extent * extent * extent))
+    throw std::invalid_argument(which + ": the planes bound no volume (flat or degenerate region, volume "
+                                + std::to_string(volume) + ")");
+  const Vec3 centroid = first / volume;
+  const Mat3 central = second - volume * centroid * centroid.transpose();
+  const Mat3 inertia = central.trace() * Mat3::Identity() - central;
+  Eigen::SelfAdjointEigenSolver<Mat3> eig(inertia);
+  Mat3 Q = eig.eigenvectors();
+  if (Q.determinant() < 0)
+    Q.col(2) = -Q.col(2);
+
+  // Into the principal frame: y = Q^T (x - centroid).
+  s.volume = volume;
+  s.normals.resize(m);
+  s.d.resize(m);
+  for (std::size_t i = 0; i < m; ++i)
+  {
+    s.normals[i] = Q.transpose() * n[i];
+    s.d[i] = d[i] - n[i].dot(centroid);
+  }
+  for (const Vec3& e : edges)
+    s.edgeDirections.push_back(Q.transpose() * e);
+  double diameter = 0;
+  for (const Vec3& x : v)
+  {
+    s.vertices.push_back(Q.transpose() * (x - centroid));
+    s.boundingRadius = std::max(s.boundingRadius, s.vertices.back().norm());
+    for (const Vec3& y : v)
+      diameter = std::max(diameter, (x - y).norm());
+  }
+  s.R = R > 0 ? R : 0.5 * diameter;
+  if (placement)
+  {
+    placement->centroid = centroid;
+    placement->principalAxes = Quat(Q);
+    placement->inertiaPerDensity = eig.eigenvalues();
+  }
+  return s;
+}
+
+Vec3 potentialBlockNormal(const PotentialBlockShape& s, const Vec3& y, int* active)
+{
+  Vec3 g = Vec3::Zero();
+  int count = 0;
+  std::size_t nearest = 0;
+  double best = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < s.normals.size(); ++i)
+  {
+    const double f = s.normals[i].dot(y) - s.d[i];
+    if (f > 0)
+    {
+      g += f * s.normals[i];
+      ++count;
+    }
+    if (f > best)
+    {
+      best = f;
+      nearest = i;
+    }
+  }
+  if (active)
+    *active = count;
+  const double norm = g.norm();
+  return norm > 0 ? Vec3(g / norm) : s.normals[nearest];
+}
+} // namespace talus::dem

@@ -1,0 +1,136 @@
+// Python bindings of Potential Blocks (shape, contact geometry probe). Compiled into
+// talus._dem; `talus_wrap_blocks(m)` is called from dem_wrappers.cpp. The Python API (Yade's
+// names) is talus.dem.blocks.
+#include "dem/PotentialBlockContact.h"
+#include "dem/Scene.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <optional>
+#include <stdexcept>
+#include <string>
+
+namespace py = pybind11;
+using namespace talus::dem;
+
+void talus_wrap_blocks(py::module_& m);
+
+namespace
+{
+const PotentialBlockShape& blockOf(const Scene& s, BodyId id)
+{
+  s.checkBody(id);
+  const auto i = static_cast<std::size_t>(id);
+  if (s.bodies.shape[i] != ShapeKind::PotentialBlock)
+    throw std::invalid_argument("body " + std::to_string(id) + " is not a PotentialBlock");
+  return s.bodies.blocks[static_cast<std::size_t>(s.bodies.shapeIndex[i])];
+}
+} // namespace
+
+void talus_wrap_blocks(py::module_& m)
+{
+#ifdef TALUS_HAVE_CLP
+  m.attr("have_potential_blocks") = true;
+#else
+  m.attr("have_potential_blocks") = false;
+#endif
+  m.def(
+      "add_potential_block",
+      [](Scene& s, const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c,
+         const std::vector<double>& d, double r, double R, bool isBoundary, std::optional<Vec3> center,
+         const Eigen::Vector4d& wxyz, int material, bool fixed) {
+        return s.addPotentialBlock(a, b, c, d, r, R, isBoundary, center ? &*center : nullptr,
+                                   Quat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]), material, fixed);
+      },
+      py::arg("scene"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("d"), py::arg("r"), py::arg("R"),
+      py::arg("isBoundary"), py::arg("center"), py::arg("orientation"), py::arg("material"), py::arg("fixed"));
+  // Volume, centroid and corners (in the planes' frame) of the block the planes bound, without
+  // adding a body (block generation); raises as addPotentialBlock does on bad planes.
+  m.def("potential_block_geometry", [](const std::vector<double>& a, const std::vector<double>& b,
+                                       const std::vector<double>& c, const std::vector<double>& d, double r,
+                                       const std::string& which) {
+    PotentialBlockPlacement p;
+    const PotentialBlockShape s = makePotentialBlock(a, b, c, d, r, 0.0, false, which, &p);
+    std::vector<Vec3> corners;
+    for (const Vec3& v : s.vertices)
+      corners.push_back(p.principalAxes * v + p.centroid);
+    py::dict out;
+    out["volume"] = s.volume;
+    out["centroid"] = p.centroid;
+    out["vertices"] = corners;
+    return out;
+  });
+  // The shape in the body's (principal) frame.
+  m.def("block_shape", [](const Scene& s, BodyId id) {
+    const PotentialBlockShape& b = blockOf(s, id);
+    py::dict out;
+    out["normals"] = b.normals;
+    out["d"] = b.d;
+    out["r"] = b.r;
+    out["R"] = b.R;
+    out["isBoundary"] = b.isBoundary;
+    out["vertices"] = b.vertices;
+    out["faces"] = b.faces;
+    out["volume"] = b.volume;
+    return out;
+  });
+  m.def("block_aabb", [](const Scene& s, BodyId id) {
+    blockOf(s, id);
+    Vec3 lo, hi;
+    potentialBlockAabb(s.bodies, static_cast<std::size_t>(id), lo, hi);
+    return std::make_pair(lo, hi);
+  });
+  // The contact geometry of a pair as it stands (no history), with the solver's mean wall time
+  // over `repeats` calls: `seconds` solving the linear program every time (a new contact's
+  // cost), `secondsWarm` starting from the contact point found (a persistent contact's cost).
+  m.def(
+      "block_contact",
+      [](const Scene& s, BodyId id1, BodyId id2, int repeats) -> py::object {
+        s.checkBody(id1);
+        blockOf(s, id2);
+        const auto i1 = static_cast<std::size_t>(id1), i2 = static_cast<std::size_t>(id2);
+        if (s.bodies.shape[i1] != ShapeKind::Wall)
+          blockOf(s, id1);
+        BlockContactGeometry g;
+        bool touching = false;
+        const int n = std::max(repeats, 1);
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int k = 0; k < n; ++k)
+          touching = potentialBlockContact(s.bodies, i1, i2, nullptr, g);
+        const auto t1 = std::chrono::steady_clock::now();
+        py::dict out;
+        out["touching"] = touching;
+        out["lpSolves"] = g.lpSolves;
+        out["seconds"] = std::chrono::duration<double>(t1 - t0).count() / n;
+        if (touching)
+        {
+          // A persistent contact starts from its previous contact point (no linear program).
+          const Vec3 previous = g.contactPoint;
+          for (int k = 0; k < n; ++k)
+            potentialBlockContact(s.bodies, i1, i2, &previous, g);
+          out["secondsWarm"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count() / n;
+        }
+        if (touching)
+        {
+          out["normal"] = g.normal;
+          out["contactPoint"] = g.contactPoint;
+          out["penetrationDepth"] = g.penetration;
+          out["contactArea"] = g.area;
+        }
+        return out;
+      },
+      py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1);
+  // Contact areas of the real contacts (same order as Scene.contacts()); 0 without extra state.
+  m.def("contact_areas", [](const Scene& s) {
+    std::vector<double> out;
+    const auto& list = s.contacts.list;
+    const bool have = s.contacts.extra.size() == list.size();
+    for (std::size_t k = 0; k < list.size(); ++k)
+      if (list[k].real)
+        out.push_back(have ? s.contacts.extra[k].contactArea : 0.0);
+    return out;
+  });
+}

@@ -1,0 +1,172 @@
+"""Potential Blocks (Yade's PotentialBlock, Boon et al. 2012): convex polyhedra given by planes.
+
+    mat = O.materials.append(FrictMat(density=2000, frictionAngle=radians(30)))
+    cube = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.01)
+    O.bodies.append(potentialBlock(cube, pos=(0, 0, 0.5), material=mat))
+    O.engines = [ForceResetter(), InsertionSortCollider([PotentialBlock2AABB()], verletDist=0.01),
+                 InteractionLoop([Ig2_PB_PB_ScGeom()],
+                                 [Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=1e8, Kshear=1e7, viscousDamping=0.2)],
+                                 [Law2_SCG_KnKsPBPhys_KnKsPBLaw()]),
+                 NewtonIntegrator(gravity=(0, 0, -9.81), damping=0)]
+
+A block is { x : a_i x + b_i y + c_i z <= d_i + r } with unit normals (a_i, b_i, c_i); volume,
+centroid and principal inertia are computed from its vertices. Blocks interact with blocks and
+with walls (``wall``); two boundary blocks (``isBoundary``) do not interact.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from talus import _dem
+from talus.dem.bodies import BodySpec
+from talus.dem.engines import Functor, _Law
+from talus.dem.export import _atomic_write, vtu_bytes
+from talus.dem.quaternion import Quaternion
+
+if TYPE_CHECKING:
+    from talus.dem.scene import Scene
+
+VTK_POLYGON = 7
+
+
+class PotentialBlock:
+    """The shape of a block, with Yade's argument names. ``R`` = 0: half the largest distance
+    between vertices. ``k`` is accepted as Yade's (must be 0: blocks have no spherical term);
+    Yade's display and Aabb options (color, wire, minAabb, AabbMinMax, ...) are accepted and
+    ignored: Talus always bounds blocks tightly from their turned vertices."""
+    def __init__(self, a, b, c, d, r=0.0, R=0.0, isBoundary=False, k=0.0, **yadeOptions):
+        self.a, self.b, self.c, self.d = (list(map(float, v)) for v in (a, b, c, d))
+        self.r, self.R, self.isBoundary, self.k = float(r), float(R), bool(isBoundary), float(k)
+        if self.k != 0:
+            raise ValueError(f"PotentialBlock: k must be 0 (blocks have no spherical term), got {k}")
+        self.extra = yadeOptions
+
+    def __repr__(self):
+        return (f"PotentialBlock(a={self.a}, b={self.b}, c={self.c}, d={self.d}, r={self.r}, R={self.R}, "
+                f"isBoundary={self.isBoundary})")
+
+    @classmethod
+    def cuboid(cls, halfSizes, r=0.0, **kw) -> "PotentialBlock":
+        """A rectangular block of half-sizes ``halfSizes`` whose faces are at the half-sizes
+        (planes d = half-size - r, as Yade's examples write them)."""
+        hx, hy, hz = (float(h) for h in halfSizes)
+        return cls(a=[1, -1, 0, 0, 0, 0], b=[0, 0, 1, -1, 0, 0], c=[0, 0, 0, 0, 1, -1],
+                   d=[hx - r, hx - r, hy - r, hy - r, hz - r, hz - r], r=r, **kw)
+
+
+def potentialBlock(shape: PotentialBlock, pos=None, orientation=(1.0, 0.0, 0.0, 0.0), material=-1,
+                   fixed: bool = False, **_ignored) -> BodySpec:
+    """A body of the given shape whose centroid is at ``pos`` (None: where the planes put it,
+    i.e. planes given in world coordinates), turned by ``orientation`` (w, x, y, z) about the
+    centroid. Its mass and inertia come from the material's density and the block's volume."""
+    if hasattr(orientation, "w"):
+        orientation = (orientation.w, orientation.x, orientation.y, orientation.z)
+    q = tuple(float(x) for x in orientation)
+    if len(q) != 4:
+        raise ValueError(f"potentialBlock: orientation must be a quaternion (w, x, y, z), got {orientation!r}")
+    center = None if pos is None else tuple(float(x) for x in pos)
+    return BodySpec("PotentialBlock", center, material=material, fixed=fixed, orientation=q, block=shape)
+
+
+def _add(scene: "Scene", spec: BodySpec, material: int) -> int:
+    """Add a PotentialBlock body spec to the scene (called by O.bodies.append)."""
+    s = spec.block
+    center = None if spec.center is None else np.asarray(spec.center, dtype=float)
+    return _dem.add_potential_block(scene._cpp, s.a, s.b, s.c, s.d, s.r, s.R, s.isBoundary, center,
+                                    np.asarray(spec.orientation, dtype=float), material, bool(spec.fixed))
+
+
+def blockShape(scene: "Scene", id: int) -> dict:
+    """The block's planes, vertices and faces in its principal frame, volume, r, R."""
+    return _dem.block_shape(scene._cpp, int(id))
+
+
+def blockVertices(scene: "Scene", id: int) -> np.ndarray:
+    """World coordinates of the block's corners."""
+    cpp = scene._cpp
+    v = np.asarray(_dem.block_shape(cpp, int(id))["vertices"], dtype=float)
+    return cpp.pos()[int(id)] + v @ Quaternion(cpp.ori(int(id))).toRotationMatrix().T
+
+
+def blockContact(scene: "Scene", id1: int, id2: int, repeats: int = 1) -> dict:
+    """Contact geometry of a block pair (or wall id1, block id2) as it stands now, and the
+    solver's mean time per call over ``repeats`` calls (each solving the linear program)."""
+    return _dem.block_contact(scene._cpp, int(id1), int(id2), int(repeats))
+
+
+def write_blocks(scene: "Scene", path: str) -> int:
+    """Write the live Potential Blocks of ``scene`` to ``path`` (.vtu) as their true polygonal
+    faces (not a rounded approximation); returns their number."""
+    cpp = scene._cpp
+    ids = [i for i in range(len(cpp.pos())) if cpp.alive()[i] and cpp.shapeKind(i) == "PotentialBlock"]
+    points, conn, offsets, owner = [], [], [], []
+    for i in ids:
+        shape = _dem.block_shape(cpp, i)
+        base = sum(len(p) for p in points)
+        points.append(cpp.pos()[i] + np.asarray(shape["vertices"]) @ Quaternion(cpp.ori(i)).toRotationMatrix().T)
+        for face in shape["faces"]:
+            conn.extend(base + k for k in face)
+            offsets.append(len(conn))
+            owner.append(i)
+    pts = np.concatenate(points) if points else np.zeros((0, 3))
+    owner = np.asarray(owner, dtype=np.int32)
+    data = {"id": owner, "velocity": cpp.vel()[owner] if len(owner) else np.zeros((0, 3))}
+    _atomic_write(path, vtu_bytes(pts, np.asarray(conn, dtype=np.int64), np.asarray(offsets, dtype=np.int64),
+                                  np.full(len(offsets), VTK_POLYGON, dtype=np.uint8), cell_data=data, time=cpp.time))
+    return len(ids)
+
+
+# Yade's functors for Potential Blocks.
+class PotentialBlock2AABB(Functor):
+    """Bounding box of blocks (accepted; Talus bounds blocks tightly from their vertices)."""
+    _parameters = ("AabbMinMax",)
+
+
+class Ig2_PB_PB_ScGeom(Functor):
+    """Block-block and wall-block contact geometry. ``calContactArea`` False: area 1 (constant
+    stiffnesses). Yade's 2D mode (``twoDimension``) is not supported yet."""
+    _parameters = ("calContactArea", "twoDimension", "unitWidth2D")
+
+    def __init__(self, label: str = "", **params):
+        super().__init__(label, **params)
+        if self.twoDimension:
+            raise ValueError("Ig2_PB_PB_ScGeom: twoDimension=True (contact area = joint length x unitWidth2D) "
+                             "is not supported yet")
+
+
+class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
+    """Stiffnesses per unit contact area: ``Knormal``, ``Kshear`` between blocks, ``kn_i``,
+    ``ks_i`` with a boundary block; ``viscousDamping``: fraction of the critical damping
+    2 sqrt(m kn) of the normal spring. Friction from the FrictMat's frictionAngle."""
+    _parameters = ("Knormal", "Kshear", "kn_i", "ks_i", "viscousDamping", "useFaceProperties")
+
+
+class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
+    """F_n = Knormal A u_n n, incremental F_s with Kshear A, Coulomb friction, optional viscous
+    damping (``allowViscousAttraction``: the damped normal force may pull). ``neverErase``
+    and ``traceEnergy`` are accepted (energies follow O.trackEnergy)."""
+    _cpp_name = "Law2_SCG_KnKsPBPhys_KnKsPBLaw"
+    _parameters = ("allowViscousAttraction", "neverErase", "traceEnergy")
+    _yade_only = ("neverErase", "traceEnergy", "useFaceProperties", "twoDimension", "unitWidth2D", "AabbMinMax")
+
+    def _set(self, name: str, value):
+        if name in self._yade_only:
+            if name == "useFaceProperties" and value:
+                raise ValueError("Ip2_FrictMat_FrictMat_KnKsPBPhys: useFaceProperties=True is not supported")
+            return
+        super()._set(name, value)
+
+    def _configureGeometry(self, geomFunctors):
+        """Take calContactArea from Ig2_PB_PB_ScGeom."""
+        for g in geomFunctors:
+            if isinstance(g, Ig2_PB_PB_ScGeom):
+                for name, value in g._io_params().items():
+                    self._set(name, value)
+
+
+__all__ = ["PotentialBlock", "potentialBlock", "blockShape", "blockVertices", "blockContact", "write_blocks",
+           "PotentialBlock2AABB", "Ig2_PB_PB_ScGeom", "Ip2_FrictMat_FrictMat_KnKsPBPhys",
+           "Law2_SCG_KnKsPBPhys_KnKsPBLaw"]
