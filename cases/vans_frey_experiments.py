@@ -28,6 +28,7 @@ Checked:  per experiment, the profiles averaged over the second half of the tran
           10-20 % (their Fig. 6-8); the values are recorded, not tuned.
           Quick: experiment 6 only, 20 d long, 0.3 s deposition and 3 s of transport; full:
           the three experiments, 60 d long, 0.4 s and 20 s.
+          --experiments 6 14 20 and --transport SECONDS override the mode's choice.
 Produces: records vans.frey-experiments.exp<N>.phi, .vx, .transport; chart
           vans.frey-experiments.png (simulated and measured profiles, one column per experiment).
 """
@@ -164,7 +165,11 @@ def compare(sim: dict, data: dict) -> dict:
 
 
 def main():
-    args = results.case_arguments(__doc__).parse_args()
+    parser = results.case_arguments(__doc__)
+    parser.add_argument("--experiments", type=int, nargs="+", choices=sorted(EXPERIMENTS),
+                        help="experiments to run (default: 6 in quick mode, all in full mode)")
+    parser.add_argument("--transport", type=float, help="seconds of coupled transport (overrides the mode's)")
+    args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -174,6 +179,8 @@ def main():
         experiments, length_d, deposition, transport = (6,), 20, 0.3, 3.0
     else:
         experiments, length_d, deposition, transport = (6, 14, 20), 60, 0.4, 20.0
+    experiments = args.experiments or experiments
+    transport = args.transport or transport
     available = {exp: load_data(exp) for exp in experiments}
     available = {exp: data for exp, data in available.items() if data is not None}
     if not available:
