@@ -28,7 +28,7 @@ Checked:  per experiment, the profiles averaged over the second half of the tran
           10-20 % (their Fig. 6-8); the values are recorded, not tuned.
           Quick: experiment 6 only, 20 d long, 0.3 s deposition and 3 s of transport; full:
           the three experiments, 60 d long, 0.4 s and 20 s.
-          --experiments 6 14 20 and --transport SECONDS override the mode's choice.
+          --experiments 6 14 20, --transport SECONDS, --length D and --seed N override the mode's choice.
 Produces: records vans.frey-experiments.exp<N>.phi, .vx, .transport; chart
           vans.frey-experiments.png (simulated and measured profiles, one column per experiment).
 """
@@ -119,9 +119,9 @@ def build(length_d: int, hs_d: float, depth: float, seed: int = 1):
     return s, hydro, newton, mobile
 
 
-def run_experiment(exp: int, length_d: int, deposition: float, transport: float) -> dict:
+def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int) -> dict:
     hs_d, depth = EXPERIMENTS[exp]
-    s, hydro, newton, mobile = build(length_d, hs_d, depth)
+    s, hydro, newton, mobile = build(length_d, hs_d, depth, seed)
     start = time.perf_counter()
     s.run(round(deposition / s.dt))
     newton.damping = 0.0
@@ -169,6 +169,8 @@ def main():
     parser.add_argument("--experiments", type=int, nargs="+", choices=sorted(EXPERIMENTS),
                         help="experiments to run (default: 6 in quick mode, all in full mode)")
     parser.add_argument("--transport", type=float, help="seconds of coupled transport (overrides the mode's)")
+    parser.add_argument("--length", type=int, help="periodic length in grain diameters (overrides the mode's)")
+    parser.add_argument("--seed", type=int, default=1, help="seed of the rough bed and the initial lattice")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -181,6 +183,7 @@ def main():
         experiments, length_d, deposition, transport = (6, 14, 20), 60, 0.4, 20.0
     experiments = args.experiments or experiments
     transport = args.transport or transport
+    length_d = args.length or length_d
     available = {exp: load_data(exp) for exp in experiments}
     available = {exp: data for exp, data in available.items() if data is not None}
     if not available:
@@ -188,13 +191,13 @@ def main():
         return
     fig, axes = plt.subplots(2, len(available), figsize=(3.2 * len(available) + 0.5, 7), squeeze=False)
     for col, (exp, data) in enumerate(sorted(available.items())):
-        sim = run_experiment(exp, length_d, deposition, transport)
+        sim = run_experiment(exp, length_d, deposition, transport, args.seed)
         c = compare(sim, data)
         print(f"exp {exp}: {sim['grains']} grains, {sim['wall_s']:.0f} s wall; RMS error / data range: "
               f"phi {c['phi_err']:.3f}, vx {c['vx_err']:.3f} ({c['vx_points']} of {c['points']} points); "
               f"transport rate {c['q_sim']:.3e} vs {c['q_exp']:.3e} m^2/s ({c['q_err']:.1%}); "
               f"qs* {sim['qs_star']:.4f}, Shields {sim['shields']:.3f}")
-        common = dict(experiment=exp, length_d=length_d, transport_s=transport, deposition_s=deposition,
+        common = dict(experiment=exp, seed=args.seed, length_d=length_d, transport_s=transport, deposition_s=deposition,
                       grains=sim["grains"], wall_run_s=sim["wall_s"], shields_mean=sim["shields"],
                       qs_star_mean=sim["qs_star"], phi_max=PHI_MAX, averaged="second half of the transport")
         ref = "Frey (2014) data; Maurin et al. (2015) reach about 10-20 %"
