@@ -18,7 +18,7 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
 
 P = {"size": 2.0, "rMean": .1, "rRelFuzz": .3, "seed": 1, "sigmaIso": -1e5, "ezzGoal": -.2, "rate": .1,
-     "friction": .5, "clumps": 0, **json.loads(os.environ.get("TALUS_SCENARIO", "{}"))}
+     "friction": .5, "clumps": 0, "compactionRate": 10, **json.loads(os.environ.get("TALUS_SCENARIO", "{}"))}
 sigmaIso = P["sigmaIso"]
 
 O.periodic = True
@@ -38,7 +38,7 @@ O.engines = [
     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
                     [Law2_ScGeom_FrictPhys_CundallStrack()]),
     PeriTriaxController(label='triax', goal=(sigmaIso, sigmaIso, sigmaIso), stressMask=7, dynCell=True,
-                        maxStrainRate=(10, 10, 10), maxUnbalanced=.1, relStressTol=1e-3,
+                        maxStrainRate=(P["compactionRate"],) * 3, maxUnbalanced=.1, relStressTol=1e-3,
                         doneHook='compactionFinished()'),
     NewtonIntegrator(damping=.2),
     PyRunner(command='addData()', iterPeriod=50),
