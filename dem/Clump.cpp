@@ -97,8 +97,6 @@ bool membersOverlap(const Bodies& b, const std::vector<BodyId>& members)
 BodyId Scene::addClump(std::vector<BodyId> members, int discretization)
 {
   const std::string which = "clump #" + std::to_string(bodies.size());
-  if (periodic)
-    throw std::invalid_argument(which + ": clumps are not supported in a periodic scene");
   if (members.empty())
     throw std::invalid_argument(which + ": needs at least one member");
   if (discretization < 0)

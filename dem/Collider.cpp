@@ -86,6 +86,8 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
     bins[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(1.0 / (range * inv.row(d).norm())));
   auto consider = [&](std::size_t s, std::size_t t) {
     const BodyId a = spheres[s], c = spheres[t];
+    if (b.clumpId[static_cast<std::size_t>(a)] >= 0 && b.clumpId[static_cast<std::size_t>(a)] == b.clumpId[static_cast<std::size_t>(c)])
+      return; // members of a clump never touch, not even through an image
     const std::size_t first = a < c ? s : t, second = a < c ? t : s;
     const Vec3 delta = wrapped[second] - wrapped[first];
     const Eigen::Vector3i image = -(delta.array().round().cast<int>()).matrix();

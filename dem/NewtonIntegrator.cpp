@@ -189,7 +189,24 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
         addClumpMemberForces(b, i, f, t);
       if (b.dynamic[i] && (!f.allFinite() || !t.allFinite()))
         return false;
+      // As for spheres below: forces act on the fluctuation, the affine field (at the centre)
+      // and its spin are added back. An aspherical body's angular momentum is its fluctuation's.
+      const bool affine = homogeneous && b.dynamic[i];
+      Vec3 field = Vec3::Zero();
+      if (affine)
+      {
+        b.vel[i] -= previousL * (b.pos[i] - dt * b.vel[i]);
+        b.angVel[i] -= previousW;
+        field = L * b.pos[i];
+      }
       integrateRigid(b, i, f, t, dt);
+      if (affine)
+      {
+        b.vel[i] += field;
+        b.pos[i] += field * dt;
+        b.angVel[i] += w;
+        b.ori[i] = rotated(b.ori[i], w * dt);
+      }
       if (mode_[i] & ClumpBody)
         moveClumpMembers(b, i);
       return true;

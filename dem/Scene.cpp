@@ -185,9 +185,11 @@ void Scene::setPeriodic(bool on)
       const std::string which = "body " + std::to_string(i);
       if (bodies.shape[i] == ShapeKind::Wall)
         continue; // an infinite plane: no periodic image of it is needed (see addWall)
-      if (bodies.shape[i] != ShapeKind::Sphere)
-        throw std::invalid_argument(which + ": only spheres and walls are supported in a periodic scene");
-      checkInsideCell(which, bodies.pos[i]);
+      if (bodies.shape[i] != ShapeKind::Sphere && bodies.shape[i] != ShapeKind::Clump)
+        throw std::invalid_argument(which + ": only spheres, clumps of spheres and walls are supported in a periodic scene");
+      // A clump member may stick out of the cell: its clump's centre is what is kept inside.
+      if (bodies.clumpId[i] < 0)
+        checkInsideCell(which, bodies.pos[i]);
     }
   periodic = on;
   ++bodiesVersion;

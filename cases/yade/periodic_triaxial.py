@@ -1,4 +1,5 @@
-"""Scenario: the seed's periodic triaxial tutorial (06-periodic-triaxial-test, uniform cloud).
+"""Scenario: the seed's periodic triaxial tutorial (06-periodic-triaxial-test, uniform cloud, or with
+`clumps` > 0 the tutorial's variant: that many clumps of its three-sphere template by makeClumpCloud).
 Runs unchanged in Yade (`yade -n -x`) and in Talus; parameters from $TALUS_SCENARIO (JSON), result
 printed as one `RESULT {json}` line (see talus.dem.twin).
 
@@ -17,13 +18,18 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
 
 P = {"size": 2.0, "rMean": .1, "rRelFuzz": .3, "seed": 1, "sigmaIso": -1e5, "ezzGoal": -.2, "rate": .1,
-     "friction": .5, **json.loads(os.environ.get("TALUS_SCENARIO", "{}"))}
+     "friction": .5, "clumps": 0, "compactionRate": 10, **json.loads(os.environ.get("TALUS_SCENARIO", "{}"))}
 sigmaIso = P["sigmaIso"]
 
 O.periodic = True
 O.materials.append(FrictMat(young=1e7, poisson=.3, frictionAngle=P["friction"], density=1000))
 sp = pack.SpherePack()
-sp.makeCloud((0, 0, 0), (P["size"],) * 3, rMean=P["rMean"], rRelFuzz=P["rRelFuzz"], periodic=True, seed=P["seed"])
+if P["clumps"]:
+    c1 = pack.SpherePack([((0, 0, 0), .03333), ((.03, 0, 0), .017), ((0, .03, 0), .017)])
+    sp.makeClumpCloud((0, 0, 0), (P["size"],) * 3, [c1], periodic=True, num=P["clumps"], seed=P["seed"])
+else:
+    sp.makeCloud((0, 0, 0), (P["size"],) * 3, rMean=P["rMean"], rRelFuzz=P["rRelFuzz"], periodic=True,
+                 seed=P["seed"])
 sp.toSimulation()
 
 O.engines = [
@@ -32,7 +38,7 @@ O.engines = [
     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
                     [Law2_ScGeom_FrictPhys_CundallStrack()]),
     PeriTriaxController(label='triax', goal=(sigmaIso, sigmaIso, sigmaIso), stressMask=7, dynCell=True,
-                        maxStrainRate=(10, 10, 10), maxUnbalanced=.1, relStressTol=1e-3,
+                        maxStrainRate=(P["compactionRate"],) * 3, maxUnbalanced=.1, relStressTol=1e-3,
                         doneHook='compactionFinished()'),
     NewtonIntegrator(damping=.2),
     PyRunner(command='addData()', iterPeriod=50),

@@ -153,7 +153,7 @@ def test_a_bed_wall_in_a_periodic_cell():
     assert first_meeting is not None, "spheres 2 and 3 should meet across the y boundary"
     assert all(c["id1"] == 0 for c in F.contacts())  # without the cell they never meet
     assert on_wall == set(ids), "all three bounce on the bed wall"
-    with pytest.raises(ValueError, match="only spheres and walls"):
+    with pytest.raises(ValueError, match="only spheres, clumps of spheres and walls"):
         T = Scene()
         T.bodies.append(facet([(0, 0, 0), (1, 0, 0), (0, 1, 0)]))
         T.periodic = True

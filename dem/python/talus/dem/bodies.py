@@ -246,8 +246,29 @@ class BodyContainer:
         specs = list(specs)
         if any(s.shape != "Sphere" for s in specs):
             raise ValueError("appendClumped: clumps are made of spheres")
-        ids = self.append(specs)
-        return self.clump(ids, discretization), ids
+        scene = self._scene
+        if not scene.periodic:
+            ids = self.append(specs)
+            return self.clump(ids, discretization), ids
+        # In a periodic cell members may stick out of it, only the clump's centre must be inside:
+        # the members are added with the cell's check off, the clump's centre checked after (on
+        # failure everything added is removed again).
+        scene._cpp.setPeriodic(False)
+        ids, clump = [], None
+        try:
+            for spec in specs:
+                ids.append(self._add(spec))
+            clump = self.clump(ids, discretization)
+            scene._cpp.setPeriodic(True)
+        except ValueError as e:
+            if clump is not None:
+                self.erase(clump, eraseClumpMembers=True)
+            else:
+                for i in ids:
+                    self.erase(i)
+            scene._cpp.setPeriodic(True)
+            raise ValueError(f"appendClumped: {e}") from None
+        return clump, ids
 
     def clump(self, ids: Iterable[int], discretization: int = 0) -> int:
         """Make existing free spheres one clump (Yade's O.bodies.clump); returns its id."""

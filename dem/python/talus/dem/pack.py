@@ -97,6 +97,7 @@ class SpherePack:
 
     def __init__(self, spheres=None):
         self._cpp = _dem.SpherePack()
+        self._clumpIds: list[int] = []  # per sphere, -1 for a free one; shorter lists end in free spheres
         if spheres is not None:
             self.fromList(spheres)
 
@@ -111,6 +112,7 @@ class SpherePack:
             centers.append(c)
             radii.append(r)
         self._cpp.centers, self._cpp.radii = centers, radii
+        self._clumpIds = []
 
     def toList(self) -> list:
         return list(self)
@@ -166,6 +168,86 @@ class SpherePack:
                                    [float(x) for x in psdSizes], [float(x) for x in psdCumm], bool(distributeMass),
                                    int(seed))
 
+    @property
+    def clumpIds(self) -> np.ndarray:
+        """Per sphere, the index of the clump it is a member of (from :meth:`makeClumpCloud`), -1
+        for a free sphere."""
+        ids = np.full(len(self), -1, dtype=int)
+        ids[:len(self._clumpIds)] = self._clumpIds
+        return ids
+
+    def getClumps(self):
+        """``(standalone, clumps)``: the indices of the free spheres and, per clump, the indices of
+        its spheres (Yade's getClumps)."""
+        ids = self.clumpIds
+        return [int(k) for k in np.flatnonzero(ids < 0)], [[int(k) for k in np.flatnonzero(ids == c)]
+                                                            for c in np.unique(ids[ids >= 0])]
+
+    def makeClumpCloud(self, minCorner, maxCorner, clumps, periodic: bool = False, num: int = -1,
+                       seed: int = -1) -> int:
+        """Random cloud of non-overlapping clumps in the box [minCorner, maxCorner], added to the
+        packing (Yade's makeClumpCloud). ``clumps`` are SpherePacks used as templates, each
+        recentred on its centroid (volume-weighted); a clump is a random template at a random
+        centre with a random orientation (uniform on rotations), rejected if one of its spheres
+        overlaps an existing sphere (through the periodic images with ``periodic``, which also
+        makes the packing periodic with that box; otherwise the clump must lie inside the box).
+        Up to 200 tries per clump; without ``num`` clumps are added until one fails. The pack
+        remembers which spheres form a clump (:attr:`clumpIds`) and :meth:`toSimulation` makes
+        them clumps. Yade draws with C rand(), this with numpy's generator (seeded with ``seed``
+        >= 0): same statistics, not the same cloud. Returns the number of clumps created."""
+        lo, hi = np.asarray(minCorner, dtype=float).reshape(3), np.asarray(maxCorner, dtype=float).reshape(3)
+        size = hi - lo
+        if np.any(size <= 0):
+            raise ValueError(f"makeClumpCloud: maxCorner {hi} must be above minCorner {lo} in every direction")
+        templates = []
+        for k, c in enumerate(clumps):
+            c = c if isinstance(c, SpherePack) else SpherePack(c)
+            if len(c) == 0:
+                raise ValueError(f"makeClumpCloud: clump template #{k} is empty")
+            x, r = np.array(c._cpp.centers), np.array(c._cpp.radii)
+            templates.append((x - (r[:, None] ** 3 * x).sum(axis=0) / (r ** 3).sum(), r))
+        if not templates:
+            raise ValueError("makeClumpCloud: no clump templates given")
+        if periodic:
+            if len(self) and self.isPeriodic and np.any(self.cellSize != size):
+                raise ValueError(f"makeClumpCloud: the packing's cell {self.cellSize} differs from the box {size}")
+        rng = np.random.default_rng(seed if seed >= 0 else None)
+        centers = np.array(self._cpp.centers, dtype=float).reshape(-1, 3)
+        radii = np.array(self._cpp.radii, dtype=float)
+        ids = list(self.clumpIds)
+        nextClump = max(ids, default=-1) + 1
+        maxTry, made = 200, 0
+        while num < 0 or made < num:
+            rel, r = templates[int(rng.integers(len(templates)))]
+            for _ in range(maxTry):
+                q = rng.normal(size=4)
+                w, x, y, z = q / np.linalg.norm(q)
+                R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                              [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                              [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+                x = lo + rng.random(3) * size + rel @ R.T
+                if not periodic and (np.any(x - r[:, None] < lo) or np.any(x + r[:, None] > hi)):
+                    continue
+                if len(radii):
+                    d = x[:, None, :] - centers[None, :, :]
+                    if periodic:
+                        d -= size * np.round(d / size)
+                    if np.any(np.einsum("ijk,ijk->ij", d, d) < (r[:, None] + radii[None, :]) ** 2):
+                        continue
+                centers = np.vstack([centers, x])
+                radii = np.concatenate([radii, r])
+                ids += [nextClump] * len(r)
+                nextClump += 1
+                break
+            else:
+                break
+            made += 1
+        self._cpp.centers, self._cpp.radii = list(centers), list(radii)
+        self._clumpIds = ids
+        if periodic:
+            self.cellSize = size
+        return made
+
     def psd(self, bins: int = 50, mass: bool = True):
         """Particle size distribution: ``(edges, cumm)``, ``bins + 1`` diameters from the smallest to
         the largest and the cumulative fraction (by mass, or by count) below each (as Yade)."""
@@ -182,19 +264,37 @@ class SpherePack:
         return edges, cumm
 
     # -- simulation and files --------------------------------------------------------------------
-    def toSimulation(self, scene=None, **kw) -> list[int]:
+    def toSimulation(self, scene=None, **kw) -> list:
         """Append the spheres to the scene (``O`` by default); a periodic packing also makes the
-        scene periodic with its cell (centres wrapped into it). Keyword arguments go to
-        :func:`sphere` (material, fixed, ...). Returns the new ids."""
+        scene periodic with its cell (centres wrapped into it). Spheres of a clump (see
+        :meth:`makeClumpCloud`) become a clump (appendClumped), moved together so that the
+        clump's centre is in the cell (members may stick out of it). Keyword arguments go to
+        :func:`sphere` (material, fixed, ...). Returns the new ids: an id per free sphere, a
+        ``(clump id, member ids)`` pair per clump (as Yade)."""
         if scene is None:
             from talus.dem import O as scene
-        spheres = list(self)
         if self.isPeriodic:
             scene.periodic = True
             scene.cell.setBox(self.cellSize)
             scene.cell.trsf = np.eye(3)
-            spheres = [(scene.cell.wrap(c), r) for c, r in spheres]
-        return scene.bodies.append([sphere(c, r, **kw) for c, r in spheres])
+        ids = self.clumpIds
+        if np.all(ids < 0):
+            spheres = [(scene.cell.wrap(c), r) for c, r in self] if self.isPeriodic else list(self)
+            return scene.bodies.append([sphere(c, r, **kw) for c, r in spheres])
+        centers, radii = np.array(self._cpp.centers).reshape(-1, 3), np.array(self._cpp.radii)
+        standalone, clumps = self.getClumps()
+        groups = sorted([[k] for k in standalone] + clumps, key=lambda g: g[0])
+        made = []
+        for g in groups:
+            x, r = centers[g], radii[g]
+            if self.isPeriodic:
+                mid = (r[:, None] ** 3 * x).sum(axis=0) / (r ** 3).sum()
+                x = x + (scene.cell.wrap(mid) - mid)
+            if ids[g[0]] < 0:
+                made.append(scene.bodies.append(sphere(x[0], r[0], **kw)))
+            else:
+                made.append(scene.bodies.appendClumped([sphere(c, rr, **kw) for c, rr in zip(x, r)]))
+        return made
 
     def fromSimulation(self, scene=None):
         """Replace the content by the scene's spheres (and its cell if periodic)."""
