@@ -10,8 +10,6 @@ interval is refused, one above the particle relaxation time warns; a
 decomposed case on 2 ranks gives the same first-exchange forces."""
 import json
 import math
-import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -19,26 +17,15 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-BUILD = Path(os.environ.get("TALUS_BUILD_DIR", REPO / "build")).resolve()
-SOLVER = BUILD / "bin" / "talusPointForceFoam"
-DRIVER = Path(__file__).with_name("foam_drag_driver.py")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", WM_PROJECT_DIR="/usr/share/openfoam",
-           PYTHONPATH=str(BUILD / "python"))
+from foam_case import DRIVER, ENV, meshed_box, needs_solver
+
 RHO, NU, G = 1000.0, 1e-3, np.array([0.0, 0.0, -9.81])
 
-pytestmark = pytest.mark.skipif(
-    not SOLVER.exists() or not (BUILD / "python" / "talus" / "coupling").exists(),
-    reason="coupling or foam-solvers component off (see the configure summary)")
+pytestmark = needs_solver("talusPointForceFoam")
 
 
 def case(tmp_path: Path, procs: int = 1) -> Path:
-    work = tmp_path / "case"
-    shutil.copytree(Path(__file__).with_name("foam_box"), work)
-    for tool in ["blockMesh"] + (["decomposePar"] if procs > 1 else []):
-        subprocess.run([tool, "-case", str(work)], check=True, capture_output=True, env=ENV, timeout=60)
-    return work
+    return meshed_box(tmp_path / "case", procs)
 
 
 def drive(work: Path, tmp_path: Path, *extra: str):

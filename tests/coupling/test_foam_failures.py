@@ -6,32 +6,20 @@ Checked: every process of the run is gone within 5 s (no orphan: no process left
 line names the case), the surviving side names what happened, and the last DEM checkpoint
 loads (O.load) with the particles inside the mesh."""
 import os
-import shutil
 import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-BUILD = Path(os.environ.get("TALUS_BUILD_DIR", REPO / "build")).resolve()
-DRIVER = Path(__file__).with_name("foam_drag_driver.py")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", WM_PROJECT_DIR="/usr/share/openfoam",
-           PYTHONPATH=str(BUILD / "python"))
+from foam_case import DRIVER, ENV, meshed_box, needs_solver
 
-pytestmark = pytest.mark.skipif(
-    not (BUILD / "bin" / "talusVolumeAveragedFoam").exists() or not (BUILD / "python" / "talus" / "coupling").exists(),
-    reason="coupling or foam-solvers component off (see the configure summary)")
+pytestmark = needs_solver("talusVolumeAveragedFoam")
 
 
 def case(tmp_path: Path) -> Path:
-    work = tmp_path / "case"
-    shutil.copytree(Path(__file__).with_name("foam_box"), work)
-    subprocess.run(["blockMesh", "-case", str(work)], check=True, capture_output=True, env=ENV, timeout=60)
-    return work
+    return meshed_box(tmp_path / "case")
 
 
 def processes_naming(path: Path) -> list[int]:

@@ -11,38 +11,23 @@ fluid step below the Stokes relaxation time but above m/beta with the hindered d
 import importlib.util
 import json
 import math
-import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
-import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-BUILD = Path(os.environ.get("TALUS_BUILD_DIR", REPO / "build")).resolve()
-SOLVER = BUILD / "bin" / "talusVolumeAveragedFoam"
-DRIVER = Path(__file__).with_name("foam_drag_driver.py")
-ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1",
-           OMPI_MCA_rmaps_base_oversubscribe="1", WM_PROJECT_DIR="/usr/share/openfoam",
-           PYTHONPATH=str(BUILD / "python"))
+from foam_case import DRIVER, ENV, REPO, meshed_box, needs_solver
+
 RHO, NU, G = 1000.0, 1e-3, np.array([0.0, 0.0, -9.81])
 
-pytestmark = pytest.mark.skipif(
-    not SOLVER.exists() or not (BUILD / "python" / "talus" / "coupling").exists(),
-    reason="coupling or foam-solvers component off (see the configure summary)")
+pytestmark = needs_solver("talusVolumeAveragedFoam")
 
 
 def case(tmp_path: Path, envelope: str, procs: int = 1) -> Path:
-    work = tmp_path / f"case_{envelope}_{procs}"
-    shutil.copytree(Path(__file__).with_name("foam_box"), work)
-    (work / "constant" / "couplingProperties").write_text(
-        "FoamFile { version 2.0; format ascii; class dictionary; object couplingProperties; }\n"
-        f"envelope {envelope};\n")
-    for tool in ["blockMesh"] + (["decomposePar"] if procs > 1 else []):
-        subprocess.run([tool, "-case", str(work)], check=True, capture_output=True, env=ENV, timeout=60)
-    return work
+    properties = ("FoamFile { version 2.0; format ascii; class dictionary; object couplingProperties; }\n"
+                  f"envelope {envelope};\n")
+    return meshed_box(tmp_path / f"case_{envelope}_{procs}", procs, {"constant/couplingProperties": properties})
 
 
 def drive(work: Path, *extra: str):
