@@ -256,8 +256,14 @@ bool Collider::needsRebuild(const Scene& scene) const
 
 void Collider::run(Scene& scene)
 {
-  if (needsRebuild(scene))
+  timingDeltas.start(scene.timingEnabled);
+  const bool rebuilding = needsRebuild(scene);
+  timingDeltas.checkpoint("skin check");
+  if (rebuilding)
+  {
     rebuild(scene);
+    timingDeltas.checkpoint("re-detection");
+  }
 }
 
 void Collider::rebuild(Scene& scene)

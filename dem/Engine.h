@@ -1,5 +1,8 @@
 #pragma once
 
+#include "dem/Timing.h"
+
+#include <cstdint>
 #include <string>
 
 namespace talus::dem
@@ -24,5 +27,10 @@ public:
 
   std::string label; ///< optional user label
   bool dead = false; ///< skipped when true
+
+  // Timing (O.timingEnabled; Yade's Engine.execTime, execCount and timingDeltas).
+  std::int64_t execTime = 0;  ///< nanoseconds spent in run()
+  std::int64_t execCount = 0; ///< timed calls of run()
+  TimingDeltas timingDeltas;  ///< stages inside run(), for engines that label them
 };
 } // namespace talus::dem

@@ -64,6 +64,7 @@ void InteractionLoop::run(Scene& scene)
     throw std::runtime_error("InteractionLoop has no contact law");
   if (laws.size() > 255)
     throw std::runtime_error("InteractionLoop supports at most 255 contact laws");
+  timingDeltas.start(scene.timingEnabled);
   std::int64_t bad = -1;
   if (laws.size() == 1)
   {
@@ -79,9 +80,11 @@ void InteractionLoop::run(Scene& scene)
       if (list[k].real && overlapsTooMuch(list[k], scene.maxOverlapRatio))
         bad = static_cast<std::int64_t>(k);
   }
+  timingDeltas.checkpoint("geometry, physics, law");
   if (bad >= 0)
     throw std::runtime_error(overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(bad)]));
   sumForcesPerBody(scene);
+  timingDeltas.checkpoint("forces per body");
 }
 
 void InteractionLoop::computeWithSeveralLaws(Scene& scene) const

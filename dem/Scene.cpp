@@ -3,6 +3,7 @@
 #include "dem/Clump.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -265,8 +266,19 @@ void Scene::step()
   try
   {
     for (const std::shared_ptr<Engine>& engine : engines)
-      if (!engine->dead)
+    {
+      if (engine->dead)
+        continue;
+      if (!timingEnabled)
+      {
         engine->run(*this);
+        continue;
+      }
+      const auto start = std::chrono::steady_clock::now();
+      engine->run(*this);
+      engine->execTime += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+      ++engine->execCount;
+    }
   }
   catch (const std::exception& e)
   {

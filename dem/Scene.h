@@ -29,6 +29,10 @@ public:
   /// Energy tracking (O.trackEnergy / O.energy); off by default.
   EnergyTracker energy;
 
+  /// Time every engine's run() (and the stages engines label) per step (Yade's
+  /// O.timingEnabled; talus.dem.timing.stats() prints them); off by default.
+  bool timingEnabled = false;
+
   bool periodic = false; ///< space is the periodic repetition of `cell`
   Cell cell;
 

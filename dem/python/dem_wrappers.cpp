@@ -104,7 +104,18 @@ PYBIND11_MODULE(_dem, m)
   py::class_<Engine, std::shared_ptr<Engine>>(m, "Engine")
       .def_property_readonly("typeName", &Engine::typeName)
       .def_readwrite("label", &Engine::label)
-      .def_readwrite("dead", &Engine::dead);
+      .def_readwrite("dead", &Engine::dead)
+      .def_readwrite("execTime", &Engine::execTime)
+      .def_readwrite("execCount", &Engine::execCount)
+      .def_property_readonly("timingDeltasData",
+                             [](const Engine& e) {
+                               py::list data;
+                               const TimingDeltas& t = e.timingDeltas;
+                               for (std::size_t k = 0; k < t.labels.size(); ++k)
+                                 data.append(py::make_tuple(t.labels[k], t.nsec[k], t.count[k]));
+                               return data;
+                             })
+      .def("resetTimingDeltas", [](Engine& e) { e.timingDeltas.reset(); });
   py::class_<ForceResetter, Engine, std::shared_ptr<ForceResetter>>(m, "ForceResetter").def(py::init<>());
   py::class_<Collider, Engine, std::shared_ptr<Collider>>(m, "Collider")
       .def(py::init<>())
@@ -177,6 +188,7 @@ PYBIND11_MODULE(_dem, m)
       .def("pWaveTimeStep", &Scene::pWaveTimeStep)
       .def("contactTimeStep", &Scene::contactTimeStep)
       .def_readwrite("maxOverlapRatio", &Scene::maxOverlapRatio)
+      .def_readwrite("timingEnabled", &Scene::timingEnabled)
       .def("step", &Scene::step, py::call_guard<py::gil_scoped_release>())
       .def(
           "run",

@@ -14,7 +14,7 @@
 """
 
 from talus import plot
-from talus.dem import geom, pack, progress, ymport
+from talus.dem import geom, pack, progress, timing, ymport
 from talus.dem.bodies import Body, BodySpec, aabbWalls, box, facet, sphere, wall
 from talus.dem.quaternion import Quaternion
 from talus.dem.shapes import Box, Clump, Facet, Shape, Sphere, Wall
@@ -37,7 +37,7 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
-__all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "ymport", "Material",
+__all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "timing", "ymport", "Material",
            "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "Quaternion",
            "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "porosity",
            "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",

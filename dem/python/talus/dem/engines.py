@@ -174,6 +174,20 @@ class Law2_ScGeom_ViscElPhys_Basic(_Law):
     _cpp_name = "Law2_ScGeom_ViscElPhys_Basic"
 
 
+class TimingDeltas:
+    """Time per labelled stage inside one engine (Yade's TimingDeltas)."""
+
+    def __init__(self, cpp_engine):
+        self._cpp = cpp_engine
+
+    @property
+    def data(self) -> list[tuple[str, int, int]]:
+        return list(self._cpp.timingDeltasData)
+
+    def reset(self):
+        self._cpp.resetTimingDeltas()
+
+
 class Engine:
     """Base of the engines: holds the C++ engine and forwards its parameters."""
 
@@ -194,6 +208,30 @@ class Engine:
     @dead.setter
     def dead(self, value: bool):
         self._cpp.dead = value
+
+    # Timing (O.timingEnabled), as Yade's Engine.execTime / execCount / timingDeltas.
+    @property
+    def execTime(self) -> int:
+        """Nanoseconds spent in this engine while O.timingEnabled was on."""
+        return self._cpp.execTime
+
+    @execTime.setter
+    def execTime(self, value: int):
+        self._cpp.execTime = int(value)
+
+    @property
+    def execCount(self) -> int:
+        """Timed calls of this engine."""
+        return self._cpp.execCount
+
+    @execCount.setter
+    def execCount(self, value: int):
+        self._cpp.execCount = int(value)
+
+    @property
+    def timingDeltas(self) -> "TimingDeltas":
+        """The engine's labelled stages: ``.data`` is [(label, nanoseconds, count), ...]."""
+        return TimingDeltas(self._cpp)
 
     def __repr__(self):
         return f"{type(self).__name__}(label={self.label!r})"

@@ -107,6 +107,15 @@ class Scene(CheckpointMethods):
             raise ValueError(f"O.maxOverlapRatio must be >= 0, got {value}")
         self._cpp.maxOverlapRatio = float(value)
 
+    @property
+    def timingEnabled(self) -> bool:
+        """Time every engine (and its labelled stages) each step; see talus.dem.timing.stats()."""
+        return self._cpp.timingEnabled
+
+    @timingEnabled.setter
+    def timingEnabled(self, value: bool):
+        self._cpp.timingEnabled = bool(value)
+
     def _set_dt(self, value: float):
         if not (value > 0 and value < float("inf")):
             raise ValueError(f"O.dt must be positive and finite, got {value}")
