@@ -66,6 +66,14 @@ inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& norm
          - (b.vel[i1] + b.angVel[i1].cross(c.contactPoint - b.pos[i1]));
 }
 
+/// Overlap of a pair whose body 1 is not a sphere (wall, facet, box, Potential Block; the
+/// routines of Yade's Ig2 functors, out of line: they are the rarer pairs). Sets the normal
+/// (from body 1 to body 2), penetration depth, contact point and reference radii; false if the
+/// shapes are apart and `holds` (an unbroken bond) does not keep the contact. The overlap
+/// section's area of Potential Blocks goes to `x` when given.
+bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtra* x, Vec3& normal, double& penetration,
+                      Vec3& contactPoint, double& r1, double& r2);
+
 /// Contact kinematics of Yade's ScGeom, for one candidate pair.
 ///
 /// Computes normal, penetration depth and contact point; if the shapes do not overlap the
@@ -79,8 +87,19 @@ inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& norm
 /// state, if any: a real contact with an unbroken bond stays real when the shapes separate
 /// (with a negative penetration), and its incremental moments turn with the frame as the shear
 /// force does.
-inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x = nullptr)
+///
+/// `SpheresOnly`: the caller knows the pair is two spheres in a non-periodic scene without
+/// extra state (cell and x null) — the hot path of dense granular runs, which the contact laws'
+/// loop inlines so that those pairs pay no call and no test of other shapes. Both forms do the
+/// same arithmetic in the same order, so they give the same bits.
+template <bool SpheresOnly = false>
+[[gnu::always_inline]] inline bool contactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x)
 {
+  if constexpr (SpheresOnly)
+  {
+    cell = nullptr;
+    x = nullptr;
+  }
   const bool holds = x != nullptr && !x->cohesionBroken && c.real;
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
@@ -94,7 +113,8 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     c.shift2 = cell->shift(c.cellDist);
     shiftVel = cell->shiftVelocity(c.cellDist);
   }
-  if (c.kind == ContactGeometryKind::SphereSphere)
+  const bool spheres = SpheresOnly || c.kind == ContactGeometryKind::SphereSphere;
+  if (spheres)
   {
     const Vec3 d = b.pos[i2] + c.shift2 - b.pos[i1];
     r1 = b.radius[i1];
@@ -112,113 +132,11 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     normal = d / dist;
     contactPoint = b.pos[i1] + (r1 - 0.5 * penetration) * normal;
   }
-  else if (c.kind == ContactGeometryKind::FacetSphere)
+  else if (!nonSphereOverlap(c, b, holds, x, normal, penetration, contactPoint, r1, r2))
   {
-    // Body 1 is the facet. The normal points from the closest point of the triangle (on its
-    // face, an edge or a vertex) to the sphere's centre; as in Yade, the facet's reference
-    // radius is the sphere's diameter.
-    const std::array<Vec3, 3> v = facetVertices(b, i1);
-    const double r = b.radius[i2];
-    bool inFace = false;
-    const Vec3 d = b.pos[i2] - closestPointOnTriangle(b.pos[i2], v[0], v[1], v[2], &inFace);
-    const double dist2 = d.squaredNorm();
-    if (dist2 > r * r && !holds)
-    {
-      if (c.real)
-        c.reset();
-      return false;
-    }
-    const double dist = std::sqrt(dist2);
-    const Vec3 faceNormal = b.ori[i1] * b.facets[static_cast<std::size_t>(b.shapeIndex[i1])].normal;
-    if (inFace) // exactly the face's normal, on the sphere's side (previous side if on the plane)
-      normal = (d.dot(faceNormal) > 0 || (d.dot(faceNormal) == 0 && c.real && c.normal.dot(faceNormal) > 0)) ? faceNormal : Vec3(-faceNormal);
-    else if (dist > 0)
-      normal = d / dist;
-    else // centre exactly on an edge or a vertex: take the face's normal
-      normal = faceNormal;
-    penetration = r - dist;
-    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
-    r1 = 2 * r;
-    r2 = r;
-    // Yade's Ig2_Facet_Sphere_ScGeom takes the arms to the contact point (no ratcheting
-    // correction): the same here, so that friction on facet walls is Yade's.
-  }
-  else if (c.kind == ContactGeometryKind::BoxSphere)
-  {
-    // Body 1 is the box (Yade's Ig2_Box_Sphere_ScGeom). Outside the box, the normal points from
-    // the closest point of the box (on a face, an edge or a corner) to the sphere's centre; with
-    // the centre inside, from the nearest face, penetration r + depth below that face.
-    const double r = b.radius[i2];
-    const Vec3 extents = b.boxes[static_cast<std::size_t>(b.shapeIndex[i1])].extents;
-    const Vec3 local = b.ori[i1].conjugate() * (b.pos[i2] - b.pos[i1]);
-    const Vec3 clamped = local.cwiseMax(-extents).cwiseMin(extents);
-    if (clamped != local)
-    {
-      const Vec3 d = b.ori[i1] * (local - clamped);
-      const double dist2 = d.squaredNorm();
-      if (dist2 > r * r)
-      {
-        if (c.real)
-          c.reset();
-        return false;
-      }
-      const double dist = std::sqrt(dist2);
-      normal = d / dist;
-      penetration = r - dist;
-    }
-    else
-    {
-      int axis = 0;
-      const Vec3 depth = extents - local.cwiseAbs();
-      depth.minCoeff(&axis);
-      Vec3 n = Vec3::Zero();
-      n[axis] = local[axis] >= 0 ? 1.0 : -1.0;
-      normal = b.ori[i1] * n;
-      penetration = r + depth[axis];
-    }
-    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
-    r1 = 2 * r;
-    r2 = r;
-  }
-  else if (c.kind == ContactGeometryKind::BlockBlock || c.kind == ContactGeometryKind::WallBlock)
-  {
-    // Potential Blocks (out of line: a linear program and Newton steps, see
-    // PotentialBlockContact.h); reference radii are the blocks' R, the overlap section's area
-    // goes to the contact's extra state for the KnKsPB law.
-    BlockContactGeometry g;
-    if (!potentialBlockContact(b, i1, i2, c.real ? &c.contactPoint : nullptr, g))
-    {
-      if (c.real)
-        c.reset();
-      return false;
-    }
-    normal = g.normal;
-    penetration = g.penetration;
-    contactPoint = g.contactPoint;
-    r2 = b.blocks[static_cast<std::size_t>(b.shapeIndex[i2])].R;
-    r1 = c.kind == ContactGeometryKind::WallBlock ? r2 : b.blocks[static_cast<std::size_t>(b.shapeIndex[i1])].R;
-    if (x)
-      x->contactArea = g.area;
-  }
-  else // WallSphere: body 1 is the wall
-  {
-    const WallShape& wall = b.walls[static_cast<std::size_t>(b.shapeIndex[i1])];
-    const double r = b.radius[i2];
-    const double d = b.pos[i2][wall.axis] - b.pos[i1][wall.axis];
-    const double side = wall.sense != 0 ? wall.sense : (d >= 0 ? 1.0 : -1.0);
-    penetration = r - side * d;
-    if (penetration < 0 && !holds)
-    {
-      if (c.real)
-        c.reset();
-      return false;
-    }
-    normal = Vec3::Zero();
-    normal[wall.axis] = side;
-    // Mid-overlap, as for the other shapes: the sphere's torque arm r - penetration / 2 is
-    // Yade's (its Law2 takes the arms of spheres, not the wall-plane point Ig2 stores).
-    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
-    r1 = r2 = r;
+    if (c.real)
+      c.reset();
+    return false;
   }
 
   if (c.real)
@@ -251,7 +169,7 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   // avoidGranularRatcheting and noRatch (McNamara et al.), so that rolling without sliding gives
   // no shear increment.
   Vec3 incident;
-  if (c.kind == ContactGeometryKind::SphereSphere || c.kind == ContactGeometryKind::WallSphere)
+  if (spheres || c.kind == ContactGeometryKind::WallSphere)
   {
     const double alpha = (r1 + r2) / (r1 + r2 - penetration);
     incident = alpha * (b.vel[i2] + shiftVel - b.vel[i1]) + b.angVel[i2].cross(-r2 * normal) - b.angVel[i1].cross(r1 * normal);
@@ -260,6 +178,12 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
     incident = incidentVelocity(c, b, normal, shiftVel);
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
+}
+
+/// contactGeometry for any pair (out of line where the compiler chooses).
+inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x = nullptr)
+{
+  return contactGeometry<false>(c, b, cell, dt, x);
 }
 
 /// The same for a contact whose geometry is up to date.
