@@ -30,6 +30,8 @@ Description
         hindranceExponent    h                    (default 2.65; SchillerNaumann only)
         addedMassCoefficient C_m                  (default 0.5; 0 switches it off)
         alphaMin             lower bound of alphaf (default 0.2)
+        alphaRelaxationTime  T [s]: alphaf relaxes towards the particles' fraction over T
+                             (default 0: follows at once)
 
 License
     GPL-3.0-or-later, like OpenFOAM.
@@ -119,6 +121,13 @@ int main(int argc, char *argv[])
             envelope.forEachSpread(i, [&](label c, double w) { solid[c] += w*Vp/V[c]; });
         }
         alphaNew = max(1 - solid, alphaMin);
+        if (alphaRelaxationTime > 0 && !first)
+        {
+            alphaNew =
+                alphaf.primitiveField()
+              + min(1.0, runTime.deltaTValue()/alphaRelaxationTime)
+               *(alphaNew - alphaf.primitiveField());
+        }
 
         // The fluid quantities the particles feel, from the fluid state of this time.
         const volVectorField gradp(fvc::grad(p));
