@@ -2,41 +2,43 @@
 talusVolumeAveragedFoam; case folder cases/cfd_fluidised_bed/).
 
 Run:      build/bin/talus run cases/cfd_fluidised_bed.py [--quick] [--results DIR] [--procs 2] [--fixed]
-Set-up:   the periodic packing of cfd_packed_bed.py (900 spheres d = 1 mm, rho_p = 2500, quick;
-          1500 full; column 8 x 8 mm periodic across x and y, in the DEM and in the mesh), free,
-          on a floor that is the fluid's inlet; visco-elastic contacts (ViscElMat tc = 1 ms,
-          en = et = 0.3, friction 0.3 between spheres, 0 with the floor); fluid rho = 1000,
-          nu = 1e-5 m2/s (Re_p < 0.5). The superficial inlet velocity is ramped linearly from 0
-          to 2 U_mf (U_mf from Ergun at the packing's porosity) over 0.5 s (quick; 1.5 s full) and
+Set-up:   a packing deposited like cfd_packed_bed.py's periodic one (900 spheres d = 1 mm,
+          rho_p = 2500, quick; 1500 full; column 8 x 8 mm periodic across x and y, in the DEM and
+          in the mesh) but with the visco-elastic contacts of the coupled run (ViscElMat
+          tc = 0.15 ms, en = et = 0.3; cfd_packed_bed.deposit(tc=...), gravity brought down to
+          the buoyant weight by halves), freed (friction 0.3 between spheres, 0 with the floor)
+          on a floor that is the fluid's inlet; fluid rho = 1000, nu = 1e-5 m2/s (Re_p < 1.4).
+          The superficial inlet velocity is ramped linearly from 0 to 2 U_mf (U_mf from Ergun at
+          the packing's porosity, middle 40 % of the bed) over 0.5 s (quick; 1.5 s full) and
           held 0.08 s (0.15 s). Fluid cells 0.8 mm, Gaussian envelope 1.5 mm; fluid step 0.1 ms,
-          2 DEM steps per fluid step, drag re-evaluated at each (implicitDrag); alphaf fixedValue
-          1 at the inlet (0/alphaf: U there is the superficial velocity); the fluid fraction
-          relaxes over 5 ms (alphaRelaxationTime); no added mass. Before the coupling the
+          14 DEM steps per fluid step, drag re-evaluated at each (implicitDrag); alphaf
+          fixedValue 1 at the inlet (0/alphaf: U there is the superficial velocity); the fluid
+          fraction relaxes over 5 ms (alphaRelaxationTime); no added mass. Before the coupling the
           packing settles under its buoyant weight (numerical damping only then).
           --fixed: the same with every particle held (the set-up's fixed-bed check).
 Measured: the bed's pressure drop from the particles' side each fluid step: the vertical
           hydrodynamic force on all particles minus their hydrostatic buoyancy, per column area
           (model A: the fluid's pressure drop over the bed carries exactly that); at the end also
-          from the fluid's pressure field (inlet minus outlet).
+          from the fluid's pressure field (first cell above the inlet minus the outlet).
 Checked:  the plateau (mean over the held phase) against the buoyant bed weight per area
           (rho_p - rho) g sum V_p / A within 5 %; the minimum fluidisation velocity (where the
           line fitted to the pressure drop below 0.6 of the plateau meets the plateau) against
           the Ergun estimate within 15 % (issue #6).
-Produces: records cfd.fluidised_bed.plateau and .umf (cfd.fluidised_bed_fixed.* with --fixed);
-          chart cfd.fluidised_bed.png (pressure drop against the superficial velocity).
-Status:   NOT VALIDATED YET, both records fail (quick: plateau -22.9 %, U_mf +94 %). What was
-          fixed (docs/coupling.md): the contact vibrations (+-100 Pa per fluid step, now smooth:
-          visco-elastic contacts and the fluid fraction's relaxation time; the particles' and
-          the fluid's pressure drops agree within 4 %), the inlet flux (the bed on the inlet got
-          alpha U0: a third of the flow), the wall channeling (periodic column) and the envelope
-          smearing the bed's ends (finer cells, narrower envelope). With --fixed the bed's
-          pressure drop reaches its buoyant weight at 1.08 U_mf (Ergun; asked 15 %). What is
-          left: the free bed creeps upward from the start at about half the superficial
-          velocity, which takes that much off the relative flow (pressure drop at about half of
-          Ergun's slope, bed not fluidised at 2 U_mf): the contacts are too soft (without fluid,
-          taking 30 % of its weight off lifts this bed by 70 um, it rings undamped for 0.2 s).
-          Stiffer contacts (tc = 0.1-0.3 ms) launched particles while the packing, deposited
-          with other contacts, settled: it needs a deposit made with the stiff contacts.
+Produces: records cfd.fluidised_bed.plateau and .umf (cfd.fluidised_bed_fixed.umf with
+          --fixed); chart cfd.fluidised_bed.png (pressure drop against the superficial velocity).
+Result:   quick (porosity 0.3677, Ergun U_mf 0.770 mm/s, buoyant weight 108.35 Pa): plateau
+          106.68 Pa (-1.5 %; the fluid's own drop at the end 102.7 Pa), U_mf 0.872 mm/s
+          (+13.2 %: the loose top layers and the envelope at the bed's top carry less drag than
+          Ergun at the interior porosity); bed top rose 0.15 mm at 2 U_mf; 5800 fluid steps x
+          14 DEM steps in 258 s on the loaded 2-core machine. How it got there (docs/coupling.md):
+          undamped contacts made the pressure drop jump +-100 Pa per fluid step (visco-elastic
+          contacts and the fluid fraction's relaxation time); the bed resting on the inlet got
+          alpha U0 through it (0/alphaf); side walls channelled the flow (periodic column); a
+          3 mm envelope on 1.6 mm cells smeared 4 of the 12 layers at each end (0.8 mm / 1.5 mm);
+          soft contacts (tc = 1 ms: the bed rose 70 um when 30 % of its weight was taken off)
+          let the bed creep up at half the superficial velocity, the pressure drop at half of
+          Ergun's slope (plateau -23 %, U_mf +94 %); stiffer contacts need a packing deposited
+          with them (settling one deposited with softer contacts launched particles).
 """
 import math
 import re
@@ -66,10 +68,12 @@ L, FLOOR = packed.L, packed.FLOOR
 # interior porosity gives (fluidised at ~1.9 U_mf).
 DX = 0.8e-3
 HOLD = 0.08  # held at 2 U_mf this long (quick; 0.15 s full) to average the plateau
-# Contact duration and restitution of the visco-elastic contacts: tc = 1 ms keeps the overlap
-# under the bed's weight below 1 % of d (kn = m (pi^2 + ln^2 en) / tc^2 = 14 N/m) and is long
-# against the DEM step tc / 20; en = 0.3 damps a vibration within ~2 contact periods.
-TC, EN = 1e-3, 0.3
+# Contact duration and restitution of the visco-elastic contacts: tc = 0.15 ms gives
+# kn = m (pi^2 + ln^2 en) / tc^2 = 330 N/m between spheres, so the whole bed yields only a few
+# um as the fluid takes its weight (with tc = 1 ms it rose 70 um per 30 % of its weight and
+# crept up at half the superficial velocity); DEM step tc / 20; en = 0.3 damps a vibration
+# within ~2 contact periods.
+TC, EN = 1.5e-4, 0.3
 
 
 def ergun(u0, eps):
@@ -114,7 +118,7 @@ def main():
     n = 900 if args.quick else 1500
     ramp = 0.5 if args.quick else 1.5
     hold = HOLD if args.quick else 0.15
-    x, r = packed.deposit(n, periodic=True)
+    x, r = packed.deposit(n, periodic=True, tc=TC)
     bed_top = float(np.max(x[:, 2] + r))
     eps = packed.slab_porosity(x, r, FLOOR + 0.3 * (bed_top - FLOOR), FLOOR + 0.7 * (bed_top - FLOOR))
     u_mf = ergun_umf(eps)

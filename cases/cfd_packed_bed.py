@@ -47,8 +47,9 @@ from talus.coupling import FoamCoupling
 from talus.coupling.cases import foam_environment, mesh_case
 from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
                        Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, aabbWalls, pack,
-                       sphere, unbalancedForce, wall)
+                       Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_FrictPhys_CundallStrack,
+                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, PWaveTimeStep, Scene, ViscElMat, aabbWalls,
+                       pack, sphere, unbalancedForce, wall)
 
 HERE = Path(__file__).resolve().parent
 CASE = HERE / "cfd_packed_bed"
@@ -67,17 +68,24 @@ def model(u0, eps):
     return 18 * MU * (1 - eps) * u0 / (D ** 2 * eps ** (2 + HINDRANCE))
 
 
-def deposit(n: int, seed: int = 1, periodic: bool = False):
+def deposit(n: int, seed: int = 1, periodic: bool = False, tc: float | None = None):
     """A frictionless packing on the floor z = FLOOR (cached in the temporary folder): in the
     column with side walls, or (``periodic``) in a cell periodic across x and y, its centres
-    returned wrapped into [0, L)."""
-    kind = "periodic" if periodic else "walls"
+    returned wrapped into [0, L). Linear contacts (FrictMat E = 1e5 Pa), or with ``tc`` the
+    visco-elastic contacts of that duration (ViscElMat, restitution 0.3) whose overlaps a bed
+    coupled with those contacts can start from."""
+    kind = ("periodic" if periodic else "walls") + ("" if tc is None else f"_tc{tc:g}")
     cache = Path(tempfile.gettempdir()) / f"talus_cfd_packed_bed_{kind}_{n}_{seed}.npz"
     if cache.exists():
         data = np.load(cache)
         return data["x"], data["r"]
     s = Scene()
-    s.materials.append(FrictMat(young=1e5, poisson=.3, frictionAngle=0.0, density=RHO_P, label="grains"))
+    if tc is None:
+        s.materials.append(FrictMat(young=1e5, poisson=.3, frictionAngle=0.0, density=RHO_P, label="grains"))
+        physics, law = Ip2_FrictMat_FrictMat_FrictPhys(), Law2_ScGeom_FrictPhys_CundallStrack()
+    else:
+        s.materials.append(ViscElMat(tc=tc, en=0.3, et=0.3, frictionAngle=0.0, density=RHO_P, label="grains"))
+        physics, law = Ip2_ViscElMat_ViscElMat_ViscElPhys(), Law2_ScGeom_ViscElPhys_Basic()
     top = FLOOR + n * (math.pi * D ** 3 / 6) / (L * L * 0.25)
     if periodic:
         # The cell is far taller than the cloud, so nothing crosses its z boundary; the floor
@@ -93,12 +101,17 @@ def deposit(n: int, seed: int = 1, periodic: bool = False):
     if len(ids) != n:
         raise RuntimeError(f"makeCloud placed {len(ids)} of {n} spheres")
     s.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
-                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
-                                 [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()], [physics], [law]),
                  NewtonIntegrator(gravity=(0, 0, -10 * G), damping=0.7)]
-    s.dt = .5 * PWaveTimeStep(s)
+    s.dt = .5 * PWaveTimeStep(s) if tc is None else tc / 20
     while s.iter < 2000 or unbalancedForce(scene=s) > .05:
         s.run(500)
+    if tc is not None:
+        # Down to the buoyant weight in water by halves, so that the stiff contacts' overlaps
+        # shrink without launching particles.
+        for g in (5, 2.5, 1.2, 1 - 1000.0 / RHO_P):
+            s.engines[-1].gravity = (0, 0, -g * G)
+            s.run(1000, True)
     x, r = s.positions()[ids].copy(), s.radii()[ids]
     if periodic:
         x[:, :2] = np.mod(x[:, :2], L)
