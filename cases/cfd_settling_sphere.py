@@ -23,18 +23,13 @@ Checked:  the velocity after 10 tau on the coarsest mesh (d/dx = 0.067) against 
 Produces: record cfd.settling_sphere; chart cfd.settling_sphere.png (velocity against time, one
           curve per d/dx).
 """
-import os
 import shutil
-import subprocess
-import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 
 from talus import results
-from talus.coupling import FoamCoupling
-from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
+from talus.coupling.cases import mesh_case, settle_sphere
 
 HERE = Path(__file__).resolve().parent
 CASE = HERE / "cfd_settling_sphere"
@@ -50,38 +45,21 @@ BOX = 0.045
 
 def prepare_case(procs: int, cells: tuple[int, int]) -> Path:
     """A fresh copy of the case folder with its mesh coarsened to ``cells`` (and decomposed)."""
-    work = Path(tempfile.mkdtemp(prefix="talus_cfd_settling_"))
-    shutil.copytree(CASE, work, dirs_exist_ok=True)
-    mesh = work / "system" / "blockMeshDict"
-    n, nz = cells
-    mesh.write_text(mesh.read_text().replace("(9 9 18)", f"({n} {n} {nz})"))
-    env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
-    tools = ["blockMesh"] + (["decomposePar"] if procs > 1 else [])
-    for tool in tools:
-        with open(work / f"log.{tool}", "w") as log:
-            subprocess.run([tool, "-case", str(work)], check=True, stdout=log, stderr=subprocess.STDOUT, env=env)
-    return work
+    def coarsen(work: Path):
+        mesh = work / "system" / "blockMeshDict"
+        mesh.write_text(mesh.read_text().replace("(9 9 18)", f"({cells[0]} {cells[0]} {cells[1]})"))
+    return mesh_case(CASE, procs, coarsen, prefix="talus_cfd_settling_")
 
 
 def settle(procs: int, cells: tuple[int, int], fluid_steps: int, solver: str = "talusPointForceFoam"):
     """One run; returns times, velocities, the coupling, the wall time."""
     work = prepare_case(procs, cells)
-    s = Scene()
-    s.materials.append(FrictMat(density=RHO_P))
-    s.bodies.append(sphere((0.0, 0.0, 0.06), D / 2))
-    s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -G), damping=0.0)]
-    s.dt = 2e-6
-    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), nProcs=procs, solver=solver).start()
-    t, v = [0.0], [0.0]
-    start = time.perf_counter()
-    for _ in range(fluid_steps):
-        s.run(coupling.substeps, True)
-        t.append(s.time)
-        v.append(-float(s.velocities()[0][2]))
-    elapsed = time.perf_counter() - start
-    coupling.stop()
-    shutil.rmtree(work, ignore_errors=True)
-    return np.array(t), np.array(v), coupling, elapsed
+    try:
+        run = settle_sphere(work, diameter=D, density=RHO_P, position=(0.0, 0.0, 0.06), rhoFluid=RHO, nu=NU,
+                            gravity=G, dt=2e-6, fluid_steps=fluid_steps, solver=solver, nProcs=procs)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    return run.t, run.v, run.coupling, run.elapsed
 
 
 def main():

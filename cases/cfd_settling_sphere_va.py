@@ -23,18 +23,13 @@ Produces: records cfd.settling_sphere_va and cfd.settling_sphere_va.ranks; chart
           cfd.settling_sphere_va.png.
 """
 import math
-import os
 import shutil
-import subprocess
-import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
 
 from talus import results
-from talus.coupling import FoamCoupling
-from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
+from talus.coupling.cases import mesh_case, settle_sphere
 
 HERE = Path(__file__).resolve().parent
 CASE = HERE / "cfd_settling_sphere_va"
@@ -73,38 +68,23 @@ def reference(t_end: float, dt: float = 1e-5):
 
 
 def prepare_case(procs: int, dx: float, envelope: str) -> Path:
-    work = Path(tempfile.mkdtemp(prefix="talus_cfd_settling_va_"))
-    shutil.copytree(CASE, work, dirs_exist_ok=True)
-    mesh = work / "system" / "blockMeshDict"
-    mesh.write_text(mesh.read_text().replace("scale DX;", f"scale {dx};"))
-    props = work / "constant" / "couplingProperties"
-    props.write_text(props.read_text().replace("envelope             gaussian;", f"envelope {envelope};"))
-    env = dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
-    for tool in ["blockMesh"] + (["decomposePar"] if procs > 1 else []):
-        with open(work / f"log.{tool}", "w") as log:
-            subprocess.run([tool, "-case", str(work)], check=True, stdout=log, stderr=subprocess.STDOUT, env=env)
-    return work
+    def configure(work: Path):
+        mesh = work / "system" / "blockMeshDict"
+        mesh.write_text(mesh.read_text().replace("scale DX;", f"scale {dx};"))
+        props = work / "constant" / "couplingProperties"
+        props.write_text(props.read_text().replace("envelope             gaussian;", f"envelope {envelope};"))
+    return mesh_case(CASE, procs, configure, prefix="talus_cfd_settling_va_")
 
 
 def settle(procs: int, dx: float, fluid_steps: int, envelope: str):
     work = prepare_case(procs, dx, envelope)
-    s = Scene()
-    s.materials.append(FrictMat(density=RHO_P))
-    s.bodies.append(sphere((0.0, 0.0, 12.5 * dx), D / 2))
-    s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -G), damping=0.0)]
-    s.dt = 1e-4
-    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), nProcs=procs,
-                            solver="talusVolumeAveragedFoam").start()
-    t, v = [0.0], [0.0]
-    start = time.perf_counter()
-    for _ in range(fluid_steps):
-        s.run(coupling.substeps, True)
-        t.append(s.time)
-        v.append(-float(s.velocities()[0][2]))
-    elapsed = time.perf_counter() - start
-    coupling.stop()
-    shutil.rmtree(work, ignore_errors=True)
-    return np.array(t), np.array(v), coupling, elapsed
+    try:
+        run = settle_sphere(work, diameter=D, density=RHO_P, position=(0.0, 0.0, 12.5 * dx), rhoFluid=RHO, nu=NU,
+                            gravity=G, dt=1e-4, fluid_steps=fluid_steps, solver="talusVolumeAveragedFoam",
+                            nProcs=procs)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    return run.t, run.v, run.coupling, run.elapsed
 
 
 def main():

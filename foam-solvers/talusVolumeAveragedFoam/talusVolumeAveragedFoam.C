@@ -10,8 +10,9 @@ Description
     envelope or cell-locally (particleEnvelope.H), interpolates the fluid velocity, pressure
     gradient, viscous stress divergence and material acceleration to the particles, and returns
     per particle
-        drag       V_p K (u_f - u_p), K = 18 rho nu / d^2 (1 + 0.15 Re_p^0.687) alpha^-h
-                   (Schiller-Naumann with the hindrance exponent h), Re_p = |u_f - u_p| d / nu
+        drag       V_p K (u_f - u_p), by default K = 18 rho nu / d^2 (1 + 0.15 Re_p^0.687)
+                   alpha^-h (Schiller-Naumann with the hindrance exponent h), Re_p = |u_f - u_p| d
+                   / nu; or Di Felice, or Ergun / Wen-Yu (dragClosure.H)
         buoyancy   V_p rho (-grad p + nu lap U) - rho V_p g   (p without its hydrostatic part)
         added mass C_m rho V_p (Du_f/Dt - du_p/dt), du_p/dt from the last two exchanges.
     The fluid gets the drag's reaction implicitly (-Ksp (U - U_p), hindrance included) and the
@@ -25,15 +26,19 @@ Description
     optionally constant/couplingProperties:
         envelope             gaussian | cell      (default gaussian)
         envelopeWidth        delta [m]            (default 3 x the mean cell size)
-        hindranceExponent    h                    (default 2.65)
+        dragModel            SchillerNaumann | DiFelice | ErgunWenYu (default SchillerNaumann)
+        hindranceExponent    h                    (default 2.65; SchillerNaumann only)
         addedMassCoefficient C_m                  (default 0.5; 0 switches it off)
         alphaMin             lower bound of alphaf (default 0.2)
+        alphaRelaxationTime  T [s]: alphaf relaxes towards the particles' fraction over T
+                             (default 0: follows at once)
 
 License
     GPL-3.0-or-later, like OpenFOAM.
 \*---------------------------------------------------------------------------*/
 
 #include "demCoupling.H"
+#include "dragClosure.H"
 #include "particleEnvelope.H"
 
 #include "fvCFD.H"
@@ -116,6 +121,13 @@ int main(int argc, char *argv[])
             envelope.forEachSpread(i, [&](label c, double w) { solid[c] += w*Vp/V[c]; });
         }
         alphaNew = max(1 - solid, alphaMin);
+        if (alphaRelaxationTime > 0 && !first)
+        {
+            alphaNew =
+                alphaf.primitiveField()
+              + min(1.0, runTime.deltaTValue()/alphaRelaxationTime)
+               *(alphaNew - alphaf.primitiveField());
+        }
 
         // The fluid quantities the particles feel, from the fluid state of this time.
         const volVectorField gradp(fvc::grad(p));
@@ -163,10 +175,8 @@ int main(int argc, char *argv[])
             const vector uf(s[1], s[2], s[3]);
             const vector slip = uf - up;
             const scalar Re = mag(slip)*d/nuF;
-            // Schiller-Naumann, (3/4) C_d rho |slip| / d written without the 1/Re singularity
-            const scalar K =
-                18*rhoF*nuF/sqr(d)*(1 + 0.15*std::pow(Re, 0.687))*std::pow(alpha, -hindranceExponent);
-            const vector drag = Vp*K*slip;
+            const scalar K = drag.K(alpha, mag(slip), d);
+            const vector dragForce = Vp*K*slip;
             const vector buoyancy =
                 Vp*rhoF*(vector(-s[4], -s[5], -s[6]) + vector(s[7], s[8], s[9]))
               - rhoF*Vp*gravity;
@@ -186,7 +196,7 @@ int main(int argc, char *argv[])
             });
             if (locator.owned(i))
             {
-                const vector f = drag + buoyancy + addedMass;
+                const vector f = dragForce + buoyancy + addedMass;
                 double* r = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
                 r[0] = f.x();
                 r[1] = f.y();

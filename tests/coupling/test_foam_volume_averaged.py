@@ -3,7 +3,8 @@ two particles; tests/coupling/foam_drag_driver.py is the DEM process) and a shor
 
 Checked: with the cell-local envelope, the first exchange (fluid at rest) returns exactly the
 Schiller-Naumann drag with the hindrance factor of the particle's cell, (1 - V_p / V_cell)^-2.65,
-plus the buoyancy (1e-12 relative); with the Gaussian envelope, a case decomposed on 2 fluid
+plus the buoyancy (1e-12 relative), and with dragModel ErgunWenYu or DiFelice those closures
+(an unknown dragModel stops the run before the first step); with the Gaussian envelope, a case decomposed on 2 fluid
 ranks (the envelopes cross the processor boundary) gives the serial forces, to 1e-12 on the
 first exchange and 1e-6 of the largest force over 3 exchanges (the pressure solver's tolerance); a sphere settling at Re_p ~ 5 reaches the Schiller-Naumann terminal velocity
 within 2 %; an unknown envelope stops the run before the first step with OpenFOAM's message; a
@@ -16,6 +17,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from foam_case import DRIVER, ENV, REPO, meshed_box, needs_solver
 
@@ -24,10 +26,10 @@ RHO, NU, G = 1000.0, 1e-3, np.array([0.0, 0.0, -9.81])
 pytestmark = needs_solver("talusVolumeAveragedFoam")
 
 
-def case(tmp_path: Path, envelope: str, procs: int = 1) -> Path:
+def case(tmp_path: Path, envelope: str, procs: int = 1, drag: str | None = None) -> Path:
     properties = ("FoamFile { version 2.0; format ascii; class dictionary; object couplingProperties; }\n"
-                  f"envelope {envelope};\n")
-    return meshed_box(tmp_path / f"case_{envelope}_{procs}", procs, {"constant/couplingProperties": properties})
+                  f"envelope {envelope};\n" + ("" if drag is None else f"dragModel {drag};\n"))
+    return meshed_box(tmp_path / f"case_{envelope}_{procs}_{drag}", procs, {"constant/couplingProperties": properties})
 
 
 def drive(work: Path, *extra: str):
@@ -48,6 +50,36 @@ def test_cell_envelope_first_exchange_is_schiller_naumann_with_hindrance(tmp_pat
     k = 18 * RHO * NU / d ** 2 * (1 + 0.15 * re ** 0.687) * alpha ** -2.65
     expected = -(vp * k)[:, None] * v - RHO * vp[:, None] * G
     np.testing.assert_allclose(record["forces"][0], expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
+
+
+def ergun_wen_yu(alpha, w, d):
+    if alpha < 0.8:
+        return 150 * RHO * NU * (1 - alpha) / (alpha * d ** 2) + 1.75 * RHO * w / d
+    return 18 * RHO * NU / d ** 2 * (1 + 0.15 * (alpha * w * d / NU) ** 0.687) * alpha ** -2.65
+
+
+def di_felice(alpha, w, d):
+    re = alpha * w * d / NU
+    chi = 3.7 - 0.65 * math.exp(-(1.5 - math.log10(re)) ** 2 / 2)
+    return 0.75 * (0.63 + 4.8 / math.sqrt(re)) ** 2 * RHO * w * alpha ** (2 - chi) / d
+
+
+@pytest.mark.parametrize("model, closure", [("ErgunWenYu", ergun_wen_yu), ("DiFelice", di_felice)])
+def test_cell_envelope_first_exchange_follows_the_selected_drag_closure(tmp_path, model, closure):
+    run, record = drive(case(tmp_path, "cell", drag=model))
+    assert run.returncode == 0, run.stdout + run.stderr
+    v, r = np.array(record["velocities"][0]), np.array(record["radii"])
+    d = 2 * r
+    vp = math.pi * d ** 3 / 6
+    alpha = 1 - vp / 0.0025 ** 3
+    k = np.array([closure(a, w, di) for a, w, di in zip(alpha, np.linalg.norm(v, axis=1), d)])
+    expected = -(vp * k)[:, None] * v - RHO * vp[:, None] * G
+    np.testing.assert_allclose(record["forces"][0], expected, rtol=1e-12, atol=1e-12 * np.abs(expected).max())
+
+
+def test_unknown_drag_model_stops_before_the_first_step(tmp_path):
+    run, record = drive(case(tmp_path, "cell", drag="Stokes"))
+    assert run.returncode != 0 and record is None
 
 
 def test_gaussian_envelope_two_fluid_ranks_equal_serial(tmp_path):

@@ -85,6 +85,9 @@ _REYNOLDS_LIMITS = {"talusPointForceFoam": 0.5, "talusVolumeAveragedFoam": 1000.
 class FoamCoupling:
     """DEM side of the CFD-DEM coupling (point-force or volume-averaged solver).
 
+    A periodic scene (``O.periodic``) is coupled with a mesh whose cyclic patches span the cell:
+    the particles' positions are sent wrapped into the cell (origin 0).
+
     Args:
         scene: the DEM scene (O).
         case: OpenFOAM case folder (0/, constant/ with transportProperties and g, system/);
@@ -227,7 +230,7 @@ class FoamCoupling:
         """One fluid step: send the particles, replace last step's forces by the new ones."""
         ids = self.ids
         velocities = self.scene.velocities()[ids]
-        forces, re, self._beta, self._fluid_velocity = self.link.exchange(self.scene.positions()[ids], velocities,
+        forces, re, self._beta, self._fluid_velocity = self.link.exchange(self._positions(ids), velocities,
                                                                           self.scene.radii()[ids])
         self._sent_velocity = velocities
         if self.exchanges == 0:
@@ -244,6 +247,16 @@ class FoamCoupling:
             warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
                           f"the drag law of {Path(self.solver).name} is no longer accurate", RuntimeWarning, stacklevel=2)
         self.maxReynolds = max(self.maxReynolds, re)
+
+    def _positions(self, ids) -> np.ndarray:
+        """The particles' positions; in a periodic scene moved into the cell by whole periods (the
+        DEM keeps positions unwrapped; the mesh's cyclic patches span the cell)."""
+        x = self.scene.positions()[ids]
+        if not self.scene.periodic:
+            return x
+        h = self.scene.cell.hSize
+        frac = np.linalg.solve(h, x.T)
+        return (h @ (frac - np.floor(frac))).T
 
     def _update_drag(self):
         """This sub-step's drag minus the exchange's: beta (v_exchange - v) (implicitDrag)."""
