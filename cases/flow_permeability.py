@@ -10,7 +10,9 @@ Set-up:   periodic clouds (Yade's makeCloud, fixed seeds) of two size distributi
           (boundaryUseMaxMin off; the walls cut the spheres crossing them, so that the sample has
           the cell's porosity -- the packing's bounding box would add a loose layer of a radius
           on every side, porosity 0.6 for a few hundred spheres). Pressure dp = 1 on ymin, 0 on ymax, no flux elsewhere, viscosity 1:
-          K = Q mu L / (A dp) from the inlet flux getBoundaryFlux(2) and the box.
+          K = Q mu L / (A dp) from the inlet flux getBoundaryFlux(2) and the box. The same
+          packing also in its periodic cell (PeriodicFlowEngine, gradP (0, 1, 0), no walls):
+          K = -mu <v_y> / gradP_y.
 Checked:  - against Yade 2023.02a's FlowEngine (CHOLMOD) on the same sphere files, run by
             cases/yade/pore_flow.py in the same invocation: worst relative difference of K over
             all packings <= 1 % (record flow.permeability.yade); skipped (no record) without yade;
@@ -18,6 +20,9 @@ Checked:  - against Yade 2023.02a's FlowEngine (CHOLMOD) on the same sphere file
             and the sample's porosity n (solid volume inside the walls): worst |ln(K / K_KC)| reported, bound ln 3 (the PFV model
             is known to sit within a small factor of Kozeny-Carman; a bug in the conductances or
             the flux shows up as orders of magnitude).
+          - the periodic K against Yade's PeriodicFlowEngine on the same files and cells (record
+            flow.permeability.periodic-yade, <= 1 %), and the box K against the periodic K of
+            the same packing (record flow.permeability.periodic-vs-box: |ln ratio| <= ln 1.25).
 Produces: records flow.permeability.yade and flow.permeability.kozeny-carman (per-packing
           numbers in the records' `packings`); chart flow.permeability.png (K / d32^2 against
           porosity, both distributions, Talus, Yade and Kozeny-Carman).
@@ -31,10 +36,12 @@ import numpy as np
 from talus import results
 from talus.dem import twin
 from talus.dem.pack import SpherePack, compressedCloud
-from talus.flow import FlowEngine
+from talus.flow import FlowEngine, PeriodicFlowEngine
 
 DISTRIBUTIONS = {"narrow": 0.1, "wide": 0.5}
 YADE_SCRIPT = Path(__file__).resolve().parent / "yade" / "pore_flow.py"
+YADE_PERIODIC = Path(__file__).resolve().parent / "yade" / "pore_flow_periodic.py"
+THRESHOLD = 0.25  # duplicateThreshold: images within 0.25 of the unit cell (2-3 diameters)
 
 
 def make_packing(fuzz: float, porosity: float, num: int, seed: int):
@@ -79,6 +86,17 @@ def permeability(sp: SpherePack, size):
                 nCells=flow.nCells(), flux=flow.getBoundaryFlux(2), wall_s=wall)
 
 
+def periodic_permeability(sp: SpherePack, size):
+    """Talus's K along y of the periodic packing itself (PeriodicFlowEngine, gradP (0, 1, 0), no
+    walls) and the time of triangulate + solve."""
+    flow = PeriodicFlowEngine(gradP=(0, 1, 0), duplicateThreshold=THRESHOLD)
+    start = time.perf_counter()
+    flow.triangulate(np.array([c for c, _ in sp]), np.array([r for _, r in sp]), cellSize=size)
+    flow.solve()
+    return dict(K_periodic=flow.samplePermeability(), nCells_periodic=flow.nCells(),
+                wall_periodic_s=time.perf_counter() - start)
+
+
 def kozeny_carman(porosity: float, d32: float) -> float:
     return d32 ** 2 * porosity ** 3 / (180 * (1 - porosity) ** 2)
 
@@ -104,19 +122,30 @@ def main():
                 sp.load(str(path))  # Yade reads the same text: both start from identical spheres
                 row = dict(distribution=name, rRelFuzz=fuzz, cell_porosity=target, spheres=len(sp),
                            packing_s=time.perf_counter() - start, file=str(path), box=[[0, 0, 0], list(size)],
-                           **permeability(sp, size))
+                           **permeability(sp, size), **periodic_permeability(sp, size))
+                row["box_over_periodic"] = row["K"] / row["K_periodic"]
                 row["K_KC"] = kozeny_carman(row["porosity"], row["d32"])
                 rows.append(row)
                 print(f"{name:6s} cell n {target:.3f}: sample n {row['porosity']:.3f}, {row['nCells']} pores, "
                       f"K/d32^2 = {row['K'] / row['d32'] ** 2:.3e}, K/K_KC = {row['K'] / row['K_KC']:.3f} "
+                      f"K_box/K_periodic = {row['box_over_periodic']:.3f} "
                       f"(packing {row['packing_s']:.1f} s, flow {row['wall_s']:.2f} s)")
         yade = None
         if twin.yade_available():
             yade = twin.run(YADE_SCRIPT, {"packings": [r["file"] for r in rows], "boxes": [r["box"] for r in rows],
                                                 "axis": 1, "dp": 1.0}, "yade")
+            yade_periodic = twin.run(YADE_PERIODIC, {"packings": [r["file"] for r in rows],
+                                                     "cells": [r["box"][1] for r in rows], "gradP": [0, 1, 0],
+                                                     "threshold": THRESHOLD}, "yade")
     for row in rows:
         row.pop("file")
 
+    ratios = [r["box_over_periodic"] for r in rows]
+    case.record("worst |ln(K_box / K_periodic)| over the packings", float(max(abs(np.log(ratios)))),
+                "the same packing in its periodic cell (PeriodicFlowEngine) and between walls on the cell faces "
+                "(FlowEngine): the walls change K by a boundary layer only", float(np.log(1.25)),
+                suffix="periodic-vs-box", ratios=ratios)
+    print(f"K_box / K_periodic from {min(ratios):.3f} to {max(ratios):.3f}")
     log_kc = max(abs(np.log(r["K"] / r["K_KC"])) for r in rows)
     case.record("worst |ln(K / K_KC)| over the packings", log_kc,
                 "Kozeny-Carman d32^2 n^3 / (180 (1 - n)^2) at the sample porosity", float(np.log(3.0)),
@@ -135,6 +164,15 @@ def main():
                     "Yade 2023.02a FlowEngine (useSolver=3) on the same sphere files", 0.01,
                     suffix="yade", packings=rows)
         print(f"Yade: worst relative difference of K {worst:.2e}")
+        for row, y in zip(rows, yade_periodic):
+            row["K_periodic_yade"] = -y["averageVelocity"][1]
+            row["nCells_periodic_yade"] = y["nCells"]
+            row["rel_diff_periodic_yade"] = abs(row["K_periodic"] / row["K_periodic_yade"] - 1)
+        worst = max(r["rel_diff_periodic_yade"] for r in rows)
+        case.record("worst relative difference of the periodic permeability from Yade's over the packings", worst,
+                    "Yade 2023.02a PeriodicFlowEngine (useSolver=3, gradP (0, 1, 0)) on the same sphere files and cells",
+                    0.01, suffix="periodic-yade", packings=rows)
+        print(f"Yade, periodic: worst relative difference of K {worst:.2e}")
     else:
         print("yade is not installed: no side-by-side record")
 
@@ -146,6 +184,8 @@ def main():
         n = [r["porosity"] for r in sel]
         ax.plot(n, [r["K"] / r["d32"] ** 2 for r in sel], marker, mfc="none", ms=8,
                 label=f"Talus, {name} (rRelFuzz {DISTRIBUTIONS[name]})")
+        ax.plot(n, [r["K_periodic"] / r["d32"] ** 2 for r in sel], marker, ms=4,
+                label=f"Talus periodic, {name}")
         if yade is not None:
             ax.plot(n, [r["K_yade"] / r["d32"] ** 2 for r in sel], "x", ms=6, label=f"Yade, {name}")
     ax.set_yscale("log")

@@ -293,8 +293,10 @@ void computeGeometry(PoreNetwork& net, bool slipBoundary)
       t.vertices[static_cast<std::size_t>(k)] = p.vertices[kFacetVertices[t.facet][k]];
       w[static_cast<std::size_t>(k)] = &net.vertices[static_cast<std::size_t>(t.vertices[static_cast<std::size_t>(k)])];
     }
-    throatRegion(net, t, w, p.centre, q.centre, slipBoundary);
-    t.length = std::max(kMinPermLength * 2 * t.hydraulicRadius, (p.centre - q.centre).norm());
+    // the other pore as this one sees it (its periodic image next to it)
+    const Vec3 other = q.centre + net.shift(t.period);
+    throatRegion(net, t, w, p.centre, other, slipBoundary);
+    t.length = std::max(kMinPermLength * 2 * t.hydraulicRadius, (p.centre - other).norm());
   }
 }
 
