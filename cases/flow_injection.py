@@ -34,7 +34,7 @@ import numpy as np
 
 from talus import results
 from talus.dem import (FrictMat, GlobalStiffnessTimeStepper, InsertionSortCollider, InteractionLoop, Matrix3,
-                       NewtonIntegrator, O, unbalancedForce, wall)
+                       NewtonIntegrator, O, sphere, unbalancedForce, wall)
 from talus.dem import twin
 from talus.dem.engines import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom,
                                Ig2_Wall_Sphere_ScGeom, Ip2_FrictMat_FrictMat_FrictPhys,
@@ -51,7 +51,6 @@ YADE_SCRIPT = Path(__file__).resolve().parent / "yade" / "pore_injection.py"
 def deposit(num: int, seed: int):
     """The tutorial's layer: a loose periodic cloud falling on the bottom wall (body 0; body 1 the
     top wall)."""
-    O.reset()
     O.periodic = True
     O.cell.hSize = Matrix3(WIDTH, 0, 0, 0, 3 * HEIGHT, 0, 0, 0, DEPTH)
     O.materials.append(FrictMat(young=4e5, poisson=0.5, frictionAngle=math.radians(10), density=1600, label="spheres"))
@@ -62,7 +61,8 @@ def deposit(num: int, seed: int):
     sp = SpherePack()
     sp.makeCloud((0, HEIGHT + 2 * mean_rad, 0), (WIDTH, 2 * HEIGHT + 2 * mean_rad, DEPTH), -1, 0.002, num,
                  periodic=True, porosity=0.8, seed=seed)
-    sp.toSimulation(material="spheres")
+    # appended one by one: toSimulation would make the cell the cloud's box
+    O.bodies.append([sphere(c, r, material="spheres") for c, r in sp])
     newton = NewtonIntegrator(damping=0.4, gravity=(0, -9.81, 0))
     O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
                  InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],

@@ -23,8 +23,16 @@ for line in open(params["packing"]):
 flow = PeriodicFlowEngine(useSolver=3, duplicateThreshold=params["threshold"], wallIds=[-1, -1, 0, 1, -1, -1],
                           bndCondIsPressure=[0, 0, 0, 1, 0, 0], viscosity=params["viscosity"], permeabilityFactor=1.0)
 points = params["points"]
-for p in points:
-    flow.imposeFlux(Vector3(*p), -params["flux"] / len(points))
+
+
+def impose():
+    # as the tutorial: imposed in blockHook, once the mesh exists
+    flow.clearImposedFlux()
+    for p in points:
+        flow.imposeFlux(Vector3(*p), -params["flux"] / len(points))
+
+
+flow.blockHook = "impose()"
 O.engines = [flow]
 O.dt = 1e-6
 O.step()
