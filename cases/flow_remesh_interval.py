@@ -48,7 +48,8 @@ def main():
         O.loadTmp("oedometer", engines="current")
         flow = FlowEngine(bndCondIsPressure=[0, 0, 0, 1, 0, 0], bndCondValue=[0] * 6, boundaryUseMaxMin=[0] * 6,
                           wallIds=terzaghi.WALLS, viscosity=mu, meshUpdateInterval=interval, defTolerance=0)
-        engines = list(O.engines)
+        # loadTmp(engines="current") keeps the engine list: drop the previous run's flow engine
+        engines = [e for e in O.engines if not isinstance(e, FlowEngine)]
         engines.insert(3, flow)
         O.engines = engines
         start = time.perf_counter()

@@ -59,9 +59,21 @@ void FlowCoupling::rebuild()
 
 void FlowCoupling::step()
 {
-  if (exchange_.periodic())
-    throw std::invalid_argument("FlowEngine: the scene is periodic; the periodic pore flow (Yade's "
-                                "PeriodicFlowEngine) is not implemented yet");
+  if (exchange_.periodic() != flow_->params.periodic)
+    throw std::invalid_argument(exchange_.periodic() ? "FlowEngine: the scene is periodic: use PeriodicFlowEngine"
+                                                     : "PeriodicFlowEngine: the scene is not periodic: use FlowEngine");
+  if (flow_->params.periodic)
+  {
+    // the cell as it is now (it may deform); Yade's PeriodicFlowEngine has boundaries only where
+    // a wall is named, the other axes being periodic
+    const dem::Mat3& h = exchange_.cell().hSize;
+    if (!(h - dem::Mat3(h.diagonal().asDiagonal())).isZero(0))
+      throw std::invalid_argument("PeriodicFlowEngine: the periodic cell is sheared or rotated (hSize not "
+                                  "diagonal); only orthorhombic cells are supported");
+    flow_->params.cellSize = h.diagonal();
+    for (int k = 0; k < kBoundaries; ++k)
+      flow_->params.hasBoundary[static_cast<std::size_t>(k)] = wallIds[static_cast<std::size_t>(k)] >= 0;
+  }
   const std::size_t nBodies = exchange_.positions().size();
   for (int k = 0; k < kBoundaries; ++k)
   {

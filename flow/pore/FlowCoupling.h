@@ -33,8 +33,10 @@ public:
   /// forces to the step forces, then rebuild if due for the next step (interval, pore strain
   /// above defTolerance, a pore turned inside out; at once, before the solve, when requested or
   /// when spheres were added or erased).
+  /// Periodic scenes need a periodic flow model (params.periodic, Yade's PeriodicFlowEngine):
+  /// the cell size is read each step, and boundary k exists only if wallIds[k] >= 0.
   /// @throws std::invalid_argument if a wallIds entry names a sphere or a missing body, or the
-  ///         scene is periodic
+  ///         scene and the flow model disagree on periodicity, or the cell is not orthorhombic
   void step();
   /// Rebuild at the next step (after moving walls or changing boundary types).
   void requestRebuild() { sinceBuild_ = -1; }

@@ -28,11 +28,6 @@ std::array<Boundary, kBoundaries> PoreFlow::boundaries(const std::vector<PoreSph
   return b;
 }
 
-namespace
-{
-/// A point inside the pore (its weighted circumcentre may lie outside the tetrahedron): the
-/// centroid of its vertices, a boundary vertex standing for the projection of the real
-/// vertices' centroid on that boundary plane.
 Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore)
 {
   Vec3 real = Vec3::Zero();
@@ -62,6 +57,9 @@ Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore)
   }
   return sum / 4;
 }
+
+namespace
+{
 /// The pore containing x, -1 outside the box (the triangulation itself extends far beyond it,
 /// to the fictitious boundary spheres).
 int locateInBox(const PoreNetwork& net, const Vec3& x)
@@ -75,15 +73,19 @@ int locateInBox(const PoreNetwork& net, const Vec3& x)
 
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
 {
-  PoreNetwork fresh = triangulate(spheres, boundaries(spheres)); // on bad input the old network stays
+  // on bad input the old network stays
+  PoreNetwork fresh = params.periodic ? triangulatePeriodic(spheres, boundaries(spheres), params.hasBoundary,
+                                                            params.cellSize, params.duplicateThreshold)
+                                      : triangulate(spheres, boundaries(spheres));
   std::vector<double> p(fresh.pores.size(), 0.0);
   if (net_ && !net_->pores.empty())
     for (std::size_t i = 0; i < fresh.pores.size(); ++i)
     {
       const Vec3 x = interiorPoint(fresh, fresh.pores[i]);
-      const int at = x.allFinite() ? locatePore(*net_, x) : -1;
+      Vec3i period;
+      const int at = x.allFinite() ? locatePore(*net_, x, &period) : -1;
       if (at >= 0)
-        p[i] = p_[static_cast<std::size_t>(at)];
+        p[i] = p_[static_cast<std::size_t>(at)] + pressureJump(period);
     }
   net_ = std::move(fresh);
   p_ = std::move(p);
@@ -137,8 +139,15 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
     if (!std::isfinite(boundaryPositions[static_cast<std::size_t>(k)]))
       throw std::invalid_argument("FlowEngine: non-finite position of boundary " + std::to_string(k));
   setTimeStep(dt);
+  if (net.periodic)
+    net.cellSize = params.cellSize; // the cell may deform between remeshes
   for (std::size_t i = 0; i < spherePositions.size(); ++i)
-    net.vertices[kBoundaries + i].pos = spherePositions[i];
+    net.vertices[kBoundaries + i].pos = net.periodic ? Vec3(spherePositions[i] - net.shift(net.wrap[i])) : spherePositions[i];
+  for (std::size_t v = kBoundaries + net.nSpheres; v < net.vertices.size(); ++v)
+  {
+    Vertex& image = net.vertices[v];
+    image.pos = net.vertices[static_cast<std::size_t>(image.image)].pos + net.shift(image.period);
+  }
   for (int k = 0; k < kBoundaries; ++k)
     net.boundaries[static_cast<std::size_t>(k)].position = boundaryPositions[static_cast<std::size_t>(k)];
   std::vector<double> before(net.pores.size());
@@ -201,14 +210,19 @@ void PoreFlow::computeUnitForces()
     {
       const auto c = static_cast<std::size_t>(t.pores[static_cast<std::size_t>(side)]);
       const Pore& pore = net.pores[c];
-      auto local = [&](int v) { return static_cast<std::size_t>(std::find(pore.vertices.begin(), pore.vertices.end(), v) - pore.vertices.begin()); };
+      // local index in this pore of facet vertex y (t.vertices are in pores[0]'s frame)
+      auto local = [&](std::size_t y) {
+        return side == 1 ? static_cast<std::size_t>(t.mirrorLocal[y])
+                         : static_cast<std::size_t>(std::find(pore.vertices.begin(), pore.vertices.end(), t.vertices[y]) -
+                                                    pore.vertices.begin());
+      };
       // the facet vector pointing away from the other pore, as Yade orients it per cell
       const Vec3 s = side == 0 ? t.facetVector : Vec3(-t.facetVector);
       const Vec3 normal = s / t.area;
       for (std::size_t k = 0; k < 4; ++k)
       {
         const Vertex& opp = net.vertices[static_cast<std::size_t>(pore.vertices[k])];
-        if (std::find(t.vertices.begin(), t.vertices.end(), pore.vertices[k]) != t.vertices.end() || !opp.fictitious)
+        if (k == local(0) || k == local(1) || k == local(2) || !opp.fictitious)
           continue;
         // the facet facing a wall pushes the wall with its projected area
         const Boundary& b = net.boundaries[static_cast<std::size_t>(opp.id)];
@@ -217,7 +231,7 @@ void PoreFlow::computeUnitForces()
       const Vec3 viscous = t.solidSurface > 0 ? Vec3(-s * (t.fluidArea / t.area) / t.solidSurface) : Vec3::Zero();
       for (std::size_t y = 0; y < 3; ++y)
       {
-        const std::size_t k = local(t.vertices[y]);
+        const std::size_t k = local(y);
         unitForces_[c][k] += viscous * t.solidSurfaces[y];
         if (!net.vertices[static_cast<std::size_t>(t.vertices[y])].fictitious)
           unitForces_[c][k] -= normal * t.crossSections[y];
@@ -232,7 +246,16 @@ std::vector<Vec3> PoreFlow::vertexForces() const
   std::vector<Vec3> f(net.vertices.size(), Vec3::Zero());
   for (std::size_t c = 0; c < net.pores.size(); ++c)
     for (std::size_t k = 0; k < 4; ++k)
-      f[static_cast<std::size_t>(net.pores[c].vertices[k])] += p_[c] * unitForces_[c][k];
+    {
+      // an image vertex takes the pressure of the pore as seen from the real sphere (Yade's
+      // unshiftedP), so that all the pores around a sphere use one frame
+      const auto v = static_cast<std::size_t>(net.pores[c].vertices[k]);
+      f[v] += (p_[c] - pressureJump(net.vertices[v].period)) * unitForces_[c][k];
+    }
+  // images pass their force to the sphere they copy
+  for (std::size_t v = kBoundaries + net.nSpheres; v < net.vertices.size(); ++v)
+    f[static_cast<std::size_t>(net.vertices[v].image)] += f[v];
+  f.resize(kBoundaries + net.nSpheres);
   return f;
 }
 
@@ -252,6 +275,10 @@ void PoreFlow::applyBoundaryTypes()
       throw std::invalid_argument("imposePressure: point " + std::to_string(n) + " is outside the pore network");
     imposed_[static_cast<std::size_t>(points_[n].pore)] = 1;
   }
+  reference_ = net_->periodic && params.fluidBulkModulus <= 0 &&
+               std::find(imposed_.begin(), imposed_.end(), 1) == imposed_.end() && !imposed_.empty();
+  if (reference_)
+    imposed_[0] = 1;
   builtTypes_ = params.bndCondIsPressure;
   pointsChanged_ = false;
   // before the first time step is known (a standalone build) the storage term waits for solve()
@@ -294,9 +321,36 @@ void PoreFlow::solve()
         p_[static_cast<std::size_t>(pi)] = params.bndCondValue[static_cast<std::size_t>(k)];
   for (const PointPressure& pt : points_)
     p_[static_cast<std::size_t>(pt.pore)] = pt.value;
+  const PoreNetwork& net = *net_;
+  if (net.periodic)
+  {
+    // the macroscopic gradient: a neighbour's image across the period is at p_j + g . shift
+    for (std::size_t i = 0; i < net.pores.size(); ++i)
+      for (int f = 0; f < 4; ++f)
+        if (net.pores[i].throats[f] >= 0)
+          source[i] += net.throats[static_cast<std::size_t>(net.pores[i].throats[f])].conductance *
+                       pressureJump(net.pores[i].neighbourPeriod[f]);
+    if (reference_)
+      p_[0] = 0;
+  }
   solver_.tolerance = params.tolerance;
   solver_.relax = params.relax;
   solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_, source);
+  if (reference_)
+  {
+    // zero volume-weighted mean of the periodic part p - g . x
+    double sum = 0;
+    double volume = 0;
+    for (std::size_t i = 0; i < net.pores.size(); ++i)
+    {
+      const double v = std::abs(net.pores[i].volume);
+      sum += v * (p_[i] - params.gradP.dot(net.pores[i].centre));
+      volume += v;
+    }
+    const double mean = volume > 0 ? sum / volume : 0.0;
+    for (double& x : p_)
+      x -= mean;
+  }
 }
 
 int PoreFlow::imposePressure(const Vec3& pos, double p)
@@ -341,8 +395,7 @@ double PoreFlow::getCellFlux(int cond) const
   double q = 0;
   for (int f = 0; f < 4; ++f)
     if (p.throats[f] >= 0)
-      q += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
-           (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]);
+      q += facetFlux(pi, f);
   return q;
 }
 
@@ -357,16 +410,16 @@ double PoreFlow::boundaryFlux(int k) const
     const Pore& p = net.pores[static_cast<std::size_t>(pi)];
     for (int f = 0; f < 4; ++f)
       if (p.throats[f] >= 0)
-        q += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
-             (p_[static_cast<std::size_t>(p.neighbours[f])] - p_[static_cast<std::size_t>(pi)]);
+        q -= facetFlux(static_cast<std::size_t>(pi), f);
   }
   return q;
 }
 
 double PoreFlow::porePressure(const Vec3& x) const
 {
-  const int pi = locatePore(network(), x);
-  return pi < 0 ? 0.0 : p_[static_cast<std::size_t>(pi)];
+  Vec3i period;
+  const int pi = locatePore(network(), x, &period);
+  return pi < 0 ? 0.0 : p_[static_cast<std::size_t>(pi)] + pressureJump(period);
 }
 
 double PoreFlow::samplePermeability(int lo, int hi) const
@@ -402,15 +455,14 @@ std::vector<Vec3> PoreFlow::poreVelocities() const
     {
       if (p.throats[f] < 0)
         continue;
-      Vec3 n = p.centre - net.pores[static_cast<std::size_t>(p.neighbours[f])].centre;
+      Vec3 n = p.centre - net.pores[static_cast<std::size_t>(p.neighbours[f])].centre - net.shift(p.neighbourPeriod[f]);
       const double len = n.norm();
       if (len == 0)
         continue;
       n /= len;
       // the facet's position along the line of centres, as averageVelocity takes it
       const double at = (net.vertices[static_cast<std::size_t>(p.vertices[kFacetVertex0[f]])].pos - p.centre).dot(n);
-      v[pi] += net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
-               (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]) * at * n;
+      v[pi] += facetFlux(pi, f) * at * n;
     }
     if (p.volume != 0)
       v[pi] /= std::abs(p.volume);
@@ -438,15 +490,14 @@ Vec3 PoreFlow::averageVelocity() const
       if (p.throats[f] < 0)
         continue;
       const Pore& q = net.pores[static_cast<std::size_t>(p.neighbours[f])];
-      Vec3 n = p.centre - q.centre;
+      Vec3 n = p.centre - q.centre - net.shift(p.neighbourPeriod[f]);
       const double len = n.norm();
       if (len == 0)
         continue;
       n /= len;
       const Vec3 branch = net.vertices[static_cast<std::size_t>(p.vertices[kFacetVertex0[f]])].pos - p.centre;
       const Vec3 facetPoint = p.centre + branch.dot(n) * n;
-      const double flux = net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
-                          (p_[pi] - p_[static_cast<std::size_t>(p.neighbours[f])]);
+      const double flux = facetFlux(pi, f);
       total += flux;
       v += flux * facetPoint;
     }
@@ -456,5 +507,28 @@ Vec3 PoreFlow::averageVelocity() const
     volume += std::abs(p.volume);
   }
   return volume > 0 ? Vec3(sum / volume) : Vec3::Zero();
+}
+
+double PoreFlow::pressureJump(const Vec3i& period) const
+{
+  return net_ && net_->periodic ? params.gradP.dot(net_->shift(period)) : 0.0;
+}
+
+double PoreFlow::facetFlux(std::size_t i, int f) const
+{
+  const PoreNetwork& net = *net_;
+  const Pore& p = net.pores[i];
+  return net.throats[static_cast<std::size_t>(p.throats[f])].conductance *
+         (p_[i] - p_[static_cast<std::size_t>(p.neighbours[f])] - pressureJump(p.neighbourPeriod[f]));
+}
+
+double PoreFlow::periodicPermeability() const
+{
+  if (!network().periodic)
+    throw std::logic_error("periodicPermeability: the network is not periodic (use samplePermeability)");
+  const double g2 = params.gradP.squaredNorm();
+  if (!(g2 > 0))
+    throw std::invalid_argument("periodicPermeability: gradP is zero");
+  return -params.viscosity * averageVelocity().dot(params.gradP) / g2;
 }
 } // namespace talus::flow::pore

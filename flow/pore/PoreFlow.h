@@ -28,7 +28,25 @@ struct FlowParameters : ConductanceParameters
   /// pore stores fluid, V_void / (K_f dt) (p - p_old) (V_void of the mesh, as Yade), and the
   /// solve is transient.
   double fluidBulkModulus = 0;
+
+  // --- periodic variant (Yade's PeriodicFlowEngine) ---
+  bool periodic = false;
+  /// edges of the orthorhombic periodic cell [0, cellSize)
+  Vec3 cellSize = Vec3::Ones();
+  /// images of the spheres within radius + this distance of a cell face enter the triangulation
+  double duplicateThreshold = 0.06;
+  /// macroscopic pressure gradient: the pressure is periodic plus gradP . x (Yade's gradP)
+  Vec3 gradP = Vec3::Zero();
+  /// which of the six boundaries exist (Yade: those with a wallIds entry); an axis with none is
+  /// periodic. Ignored when not periodic (all six exist).
+  std::array<bool, kBoundaries> hasBoundary{};
 };
+
+/// A point inside the pore (its weighted circumcentre may lie outside the tetrahedron): the
+/// centroid of its vertices, a boundary vertex standing for the projection of the real
+/// vertices' centroid on that boundary plane (Yade's getCellBarycenter). NaN for a pore of
+/// boundary vertices only.
+Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore);
 
 class PoreFlow
 {
@@ -92,6 +110,11 @@ public:
   /// axis: K = Q mu L / (A dP) with the flux Q through boundary `lo`, the sample length L and
   /// cross-section A from the box. @throws if lo/hi are not opposite pressure boundaries
   [[nodiscard]] double samplePermeability(int lo, int hi) const;
+  /// Periodic networks: Darcy permeability along the imposed gradient, K = -mu (v . g) / |g|^2
+  /// with v the volume-averaged Darcy velocity. @throws if not periodic or gradP is zero
+  [[nodiscard]] double periodicPermeability() const;
+  /// Periodic networks: the pressure drop g . shift across `period` cells (0 otherwise).
+  [[nodiscard]] double pressureJump(const Vec3i& period) const;
   /// Darcy velocity of each pore: sum over its facets of the outgoing flux times the facet
   /// position relative to the pore centre, over the pore volume (the terms of averageVelocity).
   [[nodiscard]] std::vector<Vec3> poreVelocities() const;
@@ -111,6 +134,8 @@ private:
   void applyBoundaryTypes();
   void computeUnitForces();
 
+  /// Net flux leaving pore i through its facet f, k (p_i - p_j - jump).
+  [[nodiscard]] double facetFlux(std::size_t i, int f) const;
   /// The storage term V_void / (K_f dt) per pore (empty when incompressible).
   std::vector<double> storage() const;
 
@@ -137,6 +162,9 @@ private:
   std::vector<PointPressure> points_;
   std::vector<PointPressure> fluxPoints_; ///< value: the imposed outflux
   bool pointsChanged_ = false;
+  /// A periodic network with nothing imposed is singular (pressure known up to a constant):
+  /// pore 0 is held at 0 for the solve, then the field is shifted to a zero-mean periodic part.
+  bool reference_ = false;
   PressureSolver solver_;
   double globalK_ = 0;
 };

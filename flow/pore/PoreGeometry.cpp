@@ -272,8 +272,12 @@ double solidAngle(const Vec3& s, const Vec3& a, const Vec3& b, const Vec3& c)
 
 void updatePoreVolumes(PoreNetwork& net, bool voids)
 {
-  for (Pore& p : net.pores)
+  // each pore and (below) each throat only writes its own entry: parallel with OpenMP
+  const auto n = static_cast<std::ptrdiff_t>(net.pores.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
   {
+    Pore& p = net.pores[static_cast<std::size_t>(i)];
     p.volume = cellVolume(net, p);
     if (voids)
       p.voidVolume = std::abs(p.volume) - solidVolume(net, p);
@@ -283,8 +287,11 @@ void updatePoreVolumes(PoreNetwork& net, bool voids)
 void computeGeometry(PoreNetwork& net, bool slipBoundary)
 {
   updatePoreVolumes(net, true);
-  for (Throat& t : net.throats)
+  const auto n = static_cast<std::ptrdiff_t>(net.throats.size());
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t i = 0; i < n; ++i)
   {
+    Throat& t = net.throats[static_cast<std::size_t>(i)];
     const Pore& p = net.pores[static_cast<std::size_t>(t.pores[0])];
     const Pore& q = net.pores[static_cast<std::size_t>(t.pores[1])];
     std::array<const Vertex*, 3> w{};
@@ -293,8 +300,10 @@ void computeGeometry(PoreNetwork& net, bool slipBoundary)
       t.vertices[static_cast<std::size_t>(k)] = p.vertices[kFacetVertices[t.facet][k]];
       w[static_cast<std::size_t>(k)] = &net.vertices[static_cast<std::size_t>(t.vertices[static_cast<std::size_t>(k)])];
     }
-    throatRegion(net, t, w, p.centre, q.centre, slipBoundary);
-    t.length = std::max(kMinPermLength * 2 * t.hydraulicRadius, (p.centre - q.centre).norm());
+    // the other pore as this one sees it (its periodic image next to it)
+    const Vec3 other = q.centre + net.shift(t.period);
+    throatRegion(net, t, w, p.centre, other, slipBoundary);
+    t.length = std::max(kMinPermLength * 2 * t.hydraulicRadius, (p.centre - other).norm());
   }
 }
 

@@ -1,10 +1,6 @@
-// The only translation unit that includes CGAL (it compiles slowly): triangulation and topology.
-#include "flow/pore/PoreNetwork.h"
-
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Regular_triangulation_3.h>
-#include <CGAL/Triangulation_cell_base_with_info_3.h>
-#include <CGAL/Triangulation_vertex_base_with_info_3.h>
+// The box variant of the pore network (the periodic one is PeriodicNetwork.cpp): triangulation
+// and topology, and the construction steps both variants share.
+#include "flow/pore/CgalTriangulation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -15,13 +11,9 @@ namespace talus::flow::pore
 {
 namespace
 {
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using VertexBase = CGAL::Triangulation_vertex_base_with_info_3<int, Kernel, CGAL::Regular_triangulation_vertex_base_3<Kernel>>;
-using CellBase = CGAL::Triangulation_cell_base_with_info_3<int, Kernel, CGAL::Regular_triangulation_cell_base_3<Kernel>>;
-using Tds = CGAL::Triangulation_data_structure_3<VertexBase, CellBase>;
-using Regular = CGAL::Regular_triangulation_3<Kernel, Tds>;
-using Weighted = Kernel::Weighted_point_3;
-using Point = Kernel::Point_3;
+using cgal::Point;
+using cgal::Regular;
+using cgal::Weighted;
 
 /// Yade's FAR: the fictitious sphere of a boundary has radius FAR * (height of the box along y),
 /// large enough for its surface to be flat to round-off over the sample.
@@ -30,10 +22,65 @@ constexpr double kFar = 50000;
 std::string bodyName(std::int64_t id) { return "body " + std::to_string(id); }
 } // namespace
 
-struct Triangulation
+namespace detail
 {
-  Regular rt;
-};
+void checkSpheres(const std::vector<PoreSphere>& spheres)
+{
+  if (spheres.size() < 4)
+    throw std::invalid_argument("pore network: needs at least 4 spheres, got " + std::to_string(spheres.size()));
+  for (const PoreSphere& s : spheres)
+  {
+    if (!s.pos.allFinite() || !std::isfinite(s.radius))
+      throw std::invalid_argument("pore network: " + bodyName(s.id) + " has a non-finite position or radius");
+    if (s.radius <= 0)
+      throw std::invalid_argument("pore network: " + bodyName(s.id) + " has a non-positive radius");
+  }
+}
+
+Vertex boundaryVertex(const std::array<Boundary, kBoundaries>& boundaries, int k, const Vec3& lo, const Vec3& hi)
+{
+  const Boundary& b = boundaries[static_cast<std::size_t>(k)];
+  const double far = kFar * (hi.y() - lo.y());
+  Vec3 c = 0.5 * (lo + hi);
+  c[b.coordinate] = b.position - b.normal[b.coordinate] * far;
+  Vertex v;
+  v.pos = c;
+  v.radius = far;
+  v.fictitious = true;
+  v.id = k;
+  return v;
+}
+
+void insertVertices(PoreNetwork& net, Regular& rt, const std::vector<int>& order)
+{
+  std::vector<char> inserted(net.vertices.size(), 0);
+  for (const int i : order)
+  {
+    const Vertex& v = net.vertices[static_cast<std::size_t>(i)];
+    inserted[static_cast<std::size_t>(i)] = 1;
+    const Regular::Vertex_handle h = rt.insert(Weighted(Point(v.pos.x(), v.pos.y(), v.pos.z()), v.radius * v.radius));
+    if (h != Regular::Vertex_handle())
+      h->info() = i;
+  }
+  // A sphere is hidden if it was not inserted or a later one removed it.
+  std::vector<char> present(net.vertices.size(), 0);
+  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
+    present[static_cast<std::size_t>(v->info())] = 1;
+  for (int k = 0; k < kBoundaries; ++k)
+    if (inserted[static_cast<std::size_t>(k)] && !present[static_cast<std::size_t>(k)])
+      throw std::logic_error("pore network: a boundary vertex was dropped by the triangulation");
+  for (std::size_t i = kBoundaries; i < kBoundaries + net.nSpheres; ++i)
+    if (!present[i])
+      net.hiddenSpheres.push_back(net.vertices[i].id);
+}
+
+Vec3 weightedCentre(const Regular& rt, Regular::Cell_handle c)
+{
+  const auto centre = rt.geom_traits().construct_weighted_circumcenter_3_object();
+  const Point q = centre(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point());
+  return {q.x(), q.y(), q.z()};
+}
+} // namespace detail
 
 std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSphere>& spheres)
 {
@@ -59,71 +106,38 @@ std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSp
 
 PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries)
 {
-  if (spheres.size() < 4)
-    throw std::invalid_argument("pore network: needs at least 4 spheres, got " + std::to_string(spheres.size()));
+  detail::checkSpheres(spheres);
   for (const PoreSphere& s : spheres)
-  {
-    if (!s.pos.allFinite() || !std::isfinite(s.radius))
-      throw std::invalid_argument("pore network: " + bodyName(s.id) + " has a non-finite position or radius");
-    if (s.radius <= 0)
-      throw std::invalid_argument("pore network: " + bodyName(s.id) + " has a non-positive radius");
     for (const Boundary& b : boundaries)
       if ((s.pos[b.coordinate] - b.position) * b.normal[b.coordinate] < 0)
         throw std::invalid_argument("pore network: the centre of " + bodyName(s.id) + " is outside the boundary at " +
                                     "xyz"[b.coordinate] + " = " + std::to_string(b.position));
-  }
   for (int k = 0; k < kBoundaries; k += 2)
     if (!(boundaries[k + 1].position > boundaries[k].position))
       throw std::invalid_argument("pore network: empty box along " + std::string(1, "xyz"[k / 2]));
 
   PoreNetwork net;
   net.boundaries = boundaries;
+  net.nSpheres = spheres.size();
   const Vec3 lo(boundaries[0].position, boundaries[2].position, boundaries[4].position);
   const Vec3 hi(boundaries[1].position, boundaries[3].position, boundaries[5].position);
-  const Vec3 mid = 0.5 * (lo + hi);
-  const double far = kFar * (hi.y() - lo.y());
-
   auto owner = std::make_shared<Triangulation>();
   Regular& rt = owner->rt;
   // Boundaries first, then the spheres in the caller's order, one by one as Yade does (the
   // triangulation is unique anyway unless points are degenerate).
   for (int k = 0; k < kBoundaries; ++k)
-  {
-    const Boundary& b = boundaries[k];
-    Vec3 c = mid;
-    c[b.coordinate] = b.position - b.normal[b.coordinate] * far;
-    Vertex v;
-    v.pos = c;
-    v.radius = far;
-    v.fictitious = true;
-    v.id = k;
-    net.vertices.push_back(v);
-  }
+    net.vertices.push_back(detail::boundaryVertex(boundaries, k, lo, hi));
   for (const PoreSphere& s : spheres)
     net.vertices.push_back(Vertex{s.pos, s.radius, false, s.id});
-  for (std::size_t i = 0; i < net.vertices.size(); ++i)
-  {
-    const Vertex& v = net.vertices[i];
-    const Regular::Vertex_handle h = rt.insert(Weighted(Point(v.pos.x(), v.pos.y(), v.pos.z()), v.radius * v.radius));
-    if (h != Regular::Vertex_handle())
-      h->info() = static_cast<int>(i);
-  }
-  // A sphere is hidden if it was not inserted or a later one removed it.
-  std::vector<char> present(net.vertices.size(), 0);
-  for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
-    present[static_cast<std::size_t>(v->info())] = 1;
-  for (int k = 0; k < kBoundaries; ++k)
-    if (!present[static_cast<std::size_t>(k)])
-      throw std::logic_error("pore network: a boundary vertex was dropped by the triangulation");
-  for (std::size_t i = kBoundaries; i < net.vertices.size(); ++i)
-    if (!present[i])
-      net.hiddenSpheres.push_back(net.vertices[i].id);
+  std::vector<int> order(net.vertices.size());
+  for (std::size_t i = 0; i < order.size(); ++i)
+    order[i] = static_cast<int>(i);
+  detail::insertVertices(net, rt, order);
 
   int n = 0;
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
     c->info() = n++;
   net.pores.resize(static_cast<std::size_t>(n));
-  const auto centre = rt.geom_traits().construct_weighted_circumcenter_3_object();
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
   {
     Pore& p = net.pores[static_cast<std::size_t>(c->info())];
@@ -134,29 +148,25 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
       p.throats[k] = -1;
       p.nFictitious += net.vertices[static_cast<std::size_t>(p.vertices[k])].fictitious ? 1 : 0;
     }
-    const Point q = centre(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point());
-    p.centre = Vec3(q.x(), q.y(), q.z());
+    p.centre = detail::weightedCentre(rt, c);
+  }
+  for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
     for (int k = 0; k < 4; ++k)
     {
-      const int other = p.neighbours[k];
+      const int other = net.pores[static_cast<std::size_t>(c->info())].neighbours[k];
       if (other < 0 || other < c->info())
         continue;
       Throat t;
       t.pores = {c->info(), other};
       t.facet = k;
-      p.throats[k] = static_cast<int>(net.throats.size());
+      const int mirror = rt.mirror_index(c, k);
+      for (int y = 0, m = 0; y < 4; ++y)
+        if (y != k)
+          t.mirrorLocal[static_cast<std::size_t>(m++)] = c->neighbor(k)->index(c->vertex(y));
+      net.pores[static_cast<std::size_t>(c->info())].throats[k] = static_cast<int>(net.throats.size());
+      net.pores[static_cast<std::size_t>(other)].throats[mirror] = static_cast<int>(net.throats.size());
       net.throats.push_back(t);
     }
-  }
-  // The mirror side of each throat.
-  for (std::size_t ti = 0; ti < net.throats.size(); ++ti)
-  {
-    const Throat& t = net.throats[ti];
-    Pore& q = net.pores[static_cast<std::size_t>(t.pores[1])];
-    for (int k = 0; k < 4; ++k)
-      if (q.neighbours[k] == t.pores[0])
-        q.throats[k] = static_cast<int>(ti);
-  }
   for (std::size_t pi = 0; pi < net.pores.size(); ++pi)
     for (int v : net.pores[pi].vertices)
       if (v < kBoundaries)
@@ -165,12 +175,30 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   return net;
 }
 
-int locatePore(const PoreNetwork& net, const Vec3& x)
+int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period)
 {
+  if (period)
+    *period = Vec3i::Zero();
   if (!net.triangulation)
     return -1;
-  const Regular& rt = net.triangulation->rt;
-  const Regular::Cell_handle c = rt.locate(Weighted(Point(x.x(), x.y(), x.z()), 0.0));
-  return rt.is_infinite(c) ? -1 : c->info();
+  const Triangulation& tri = *net.triangulation;
+  if (!net.periodic)
+  {
+    const Regular::Cell_handle c = tri.rt.locate(Weighted(Point(x.x(), x.y(), x.z()), 0.0));
+    return tri.rt.is_infinite(c) ? -1 : c->info();
+  }
+  // periodic: wrap x into the cell along the periodic axes, then undo the wrap in `period`
+  Vec3i wrap = Vec3i::Zero();
+  for (int a = 0; a < 3; ++a)
+    if (net.periodicAxis(a))
+      wrap[a] = static_cast<int>(std::floor(x[a] / net.cellSize[a]));
+  const Vec3 w = x - net.shift(wrap);
+  const Regular::Cell_handle c = tri.rt.locate(Weighted(Point(w.x(), w.y(), w.z()), 0.0));
+  if (tri.rt.is_infinite(c))
+    return -1;
+  const auto i = static_cast<std::size_t>(c->info());
+  if (period)
+    *period = tri.periodOf[i] + wrap;
+  return tri.poreOf[i];
 }
 } // namespace talus::flow::pore

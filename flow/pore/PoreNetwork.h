@@ -15,6 +15,7 @@
 namespace talus::flow::pore
 {
 using Vec3 = Eigen::Vector3d;
+using Vec3i = Eigen::Vector3i;
 
 /// A sphere of the packing; `id` is the caller's body id, used in messages and results.
 struct PoreSphere
@@ -45,6 +46,10 @@ struct Vertex
   double radius = 0;
   bool fictitious = false;
   std::int64_t id = -1; ///< body id of a sphere, boundary index for a fictitious vertex
+  /// Periodic networks: the real vertex this one is an image of (-1: not an image), shifted by
+  /// `period` cells (pos = vertices[image].pos + period * cell size).
+  int image = -1;
+  Vec3i period = Vec3i::Zero();
 };
 
 /// A pore: a finite tetrahedron.
@@ -53,6 +58,9 @@ struct Pore
   std::array<int, 4> vertices{};   ///< indices into PoreNetwork::vertices
   std::array<int, 4> neighbours{}; ///< pore across the facet opposite vertex k; -1: infinite cell
   std::array<int, 4> throats{};    ///< throat across facet k; -1 when the neighbour is infinite
+  /// Periodic networks: the neighbour across facet k is pore neighbours[k] shifted by this many
+  /// cells (its pressure there is p + gradP . shift); zero otherwise.
+  std::array<Vec3i, 4> neighbourPeriod{Vec3i::Zero(), Vec3i::Zero(), Vec3i::Zero(), Vec3i::Zero()};
   Vec3 centre = Vec3::Zero();      ///< weighted circumcentre (vertex of the power diagram)
   double volume = 0;               ///< Yade's cell volume (tetrahedron; cut at the walls)
   double voidVolume = 0;           ///< volume minus the sphere sectors inside it
@@ -64,6 +72,10 @@ struct Throat
 {
   std::array<int, 2> pores{};    ///< pores[0] sees this facet as facet `facet` (opposite vertex)
   int facet = 0;
+  /// pores[1] as pores[0] sees it: shifted by this many periodic cells (zero if not periodic)
+  Vec3i period = Vec3i::Zero();
+  /// local index (0..3) in pores[1] of each facet vertex (`vertices`, given in pores[0]'s frame)
+  std::array<int, 3> mirrorLocal{};
   double area = 0;               ///< facet area (walls: the projected quadrilateral, as Yade)
   double fluidArea = 0;          ///< facet area minus the sphere sectors cut by it
   double poreVolume = 0;         ///< void volume of the double pyramid (facet, both centres)
@@ -92,8 +104,24 @@ struct PoreNetwork
   std::vector<std::int64_t> hiddenSpheres; ///< body ids the regular triangulation dropped
   /// pores incident to each boundary vertex (Yade's boundingCells)
   std::array<std::vector<int>, kBoundaries> boundaryPores{};
+  /// Periodic networks (Yade's PeriodicFlowEngine): the spheres are wrapped into the cell
+  /// [0, cellSize) and images of those near its faces are added as vertices after the spheres;
+  /// pores are one per periodic pore. Boundaries absent (`hasBoundary` false) leave their
+  /// axis periodic; an axis with a boundary is not wrapped nor duplicated.
+  bool periodic = false;
+  Vec3 cellSize = Vec3::Zero();
+  std::array<bool, kBoundaries> hasBoundary{true, true, true, true, true, true};
+  std::size_t nSpheres = 0;          ///< real spheres (vertices kBoundaries .. kBoundaries + nSpheres)
+  std::vector<Vec3i> wrap;           ///< periodic: cells each sphere was moved by to enter the cell
 
-  [[nodiscard]] std::size_t sphereCount() const { return vertices.size() - kBoundaries; }
+  [[nodiscard]] std::size_t sphereCount() const { return nSpheres; }
+  /// Periodic networks: axis a (0..2) is periodic when it has no boundary on either side.
+  [[nodiscard]] bool periodicAxis(int a) const
+  {
+    return periodic && !hasBoundary[static_cast<std::size_t>(2 * a)] && !hasBoundary[static_cast<std::size_t>(2 * a + 1)];
+  }
+  /// The shift of `period` cells (zero vector for non-periodic networks).
+  [[nodiscard]] Vec3 shift(const Vec3i& period) const { return cellSize.cwiseProduct(period.cast<double>()); }
 };
 
 /// The box of a packing: Yade's boundaryUseMaxMin, the extremes of x-r .. x+r over the spheres.
@@ -105,6 +133,18 @@ std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSp
 ///         non-positive radius or a sphere centre outside the boundaries (naming the body id)
 PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries);
 
-/// The pore containing point x (Yade's Tri.locate), -1 outside the triangulated region.
-int locatePore(const PoreNetwork& net, const Vec3& x);
+/// Periodic variant (Yade's PeriodicFlowEngine): `spheres` (any positions, wrapped here along
+/// the periodic axes) in the orthorhombic cell [0, cellSize); images of the spheres closer than
+/// radius + duplicateThreshold to a cell face are added so that the pores of the cell are complete;
+/// boundary k is used only if `hasBoundary[k]` (its axis then is neither wrapped nor duplicated).
+/// @throws std::invalid_argument on bad input (as triangulate, plus a non-positive cell size)
+/// @throws std::runtime_error if a pore of the cell has a neighbour with no periodic counterpart
+///         (duplicateThreshold too small for the packing)
+PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
+                                const std::array<bool, kBoundaries>& hasBoundary, const Vec3& cellSize,
+                                double duplicateThreshold);
+
+/// The pore containing point x (Yade's Tri.locate), -1 outside the triangulated region. In a
+/// periodic network, `period` (if given) receives how many cells x is from that pore's frame.
+int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period = nullptr);
 } // namespace talus::flow::pore

@@ -61,7 +61,12 @@ void registerPoreFlow(py::module_& m)
       .def_readwrite("useSolver", &FlowParameters::useSolver)
       .def_readwrite("tolerance", &FlowParameters::tolerance)
       .def_readwrite("relax", &FlowParameters::relax)
-      .def_readwrite("fluidBulkModulus", &FlowParameters::fluidBulkModulus);
+      .def_readwrite("fluidBulkModulus", &FlowParameters::fluidBulkModulus)
+      .def_readwrite("periodic", &FlowParameters::periodic)
+      .def_readwrite("cellSize", &FlowParameters::cellSize)
+      .def_readwrite("duplicateThreshold", &FlowParameters::duplicateThreshold)
+      .def_readwrite("gradP", &FlowParameters::gradP)
+      .def_readwrite("hasBoundary", &FlowParameters::hasBoundary);
 
   py::class_<PressureSolver::Counters>(m, "PoreSolverCounters")
       .def_readonly("analyses", &PressureSolver::Counters::analyses)
@@ -121,6 +126,17 @@ void registerPoreFlow(py::module_& m)
       .def("boundaryFlux", &PoreFlow::boundaryFlux)
       .def("porePressure", &PoreFlow::porePressure)
       .def("samplePermeability", &PoreFlow::samplePermeability)
+      .def("periodicPermeability", &PoreFlow::periodicPermeability)
+      .def("nImages", [](const PoreFlow& f) { return f.network().vertices.size() - kBoundaries - f.network().sphereCount(); })
+      .def("throatPeriods", [](const PoreFlow& f) {
+        const auto& t = f.network().throats;
+        py::array_t<int> a({static_cast<py::ssize_t>(t.size()), py::ssize_t{3}});
+        auto out = a.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < t.size(); ++i)
+          for (int d = 0; d < 3; ++d)
+            out(static_cast<py::ssize_t>(i), d) = t[i].period[d];
+        return a;
+      })
       .def("averageVelocity", &PoreFlow::averageVelocity)
       .def("globalConductance", &PoreFlow::globalConductance)
       .def("locate", [](const PoreFlow& f, const Vec3& x) { return locatePore(f.network(), x); })
@@ -141,6 +157,11 @@ void registerPoreFlow(py::module_& m)
           for (py::ssize_t d = 0; d < 3; ++d)
             out(static_cast<py::ssize_t>(i), d) = pores[i].centre[d];
         return a;
+      })
+      .def("poreBarycentre", [](const PoreFlow& f, std::size_t i) {
+        if (i >= f.network().pores.size())
+          throw py::index_error("getCellBarycenter: no pore " + std::to_string(i));
+        return interiorPoint(f.network(), f.network().pores[i]);
       })
       .def("poreVertexIds", [](const PoreFlow& f) {
         // Yade's numbering: boundaries 0..5, spheres by body id.
@@ -181,9 +202,11 @@ void registerPoreFlow(py::module_& m)
         return a;
       })
       .def("vertexIds", [](const PoreFlow& f) {
+        // boundaries and spheres (not the periodic images, which come after them)
         std::vector<std::int64_t> ids;
-        for (const Vertex& v : f.network().vertices)
-          ids.push_back(v.id);
+        const auto& net = f.network();
+        for (std::size_t v = 0; v < kBoundaries + net.sphereCount(); ++v)
+          ids.push_back(net.vertices[v].id);
         return ids;
       })
       .def("throatConductances", [](const PoreFlow& f) { return column(f.network().throats, [](const Throat& t) { return t.conductance; }); })

@@ -283,6 +283,12 @@ class FlowEngine(Engine):
     def getCellCenter(self, cell: int):
         return tuple(self._flow.poreCentres()[cell])
 
+    def getCellBarycenter(self, cell: int):
+        """A point inside pore ``cell``: the centroid of its vertices (a boundary vertex taken as
+        the projection of the others' centroid on its plane); the place to impose a point
+        condition on that pore."""
+        return tuple(self._flow.poreBarycentre(cell))
+
     def getCellVolume(self, pos) -> float:
         """Volume of the pore containing ``pos`` (Yade's signature)."""
         return float(self._flow.poreVolumes()[self.getCell(pos)])
