@@ -56,6 +56,16 @@ class NewtonDivergence(RuntimeError):
     mesh hold the last converged state."""
 
 
+def shearStrain(grads: np.ndarray) -> np.ndarray:
+    """The deviatoric (shear) strain magnitude sqrt(2/3 e':e') of displacement gradients
+    (n, d, d), e' the deviator of sym(grad u); in 2D with eps_zz = 0 (plane strain)."""
+    d = grads.shape[-1]
+    eps = np.zeros((len(grads), 3, 3))            # plane strain: eps_zz = 0, but it has a deviator
+    eps[:, :d, :d] = 0.5 * (grads + grads.transpose(0, 2, 1))
+    dev = eps - np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
+    return np.sqrt(2 / 3 * np.einsum("pij,pij->p", dev, dev))
+
+
 def _voigt_pairs(d: int):
     return [(0, 0), (1, 1), (0, 1)] if d == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
 
@@ -273,10 +283,7 @@ class MultiscaleSolver:
         stress, _ = self.rves.getStressAndTangent()
         e = self.rves.getVoidRatio()
         g = self.history[-1].gradients if self.history else np.zeros((len(stress), self.d, self.d))
-        eps = np.zeros((len(g), 3, 3))            # plane strain: eps_zz = 0, but it has a deviator
-        eps[:, :self.d, :self.d] = 0.5 * (g + g.transpose(0, 2, 1))
-        dev = eps - np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
-        shear = np.sqrt(2 / 3 * np.einsum("pij,pij->p", dev, dev))
+        shear = shearStrain(g)
         cells = len(self.cells)
         return {"stress": stress.reshape(cells, nq, self.d, self.d).mean(axis=1),
                 "voidRatio": e.reshape(cells, nq).mean(axis=1),
