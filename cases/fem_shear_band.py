@@ -39,9 +39,10 @@ Checked:  fem.shear-band.localised-<mesh>: max / mean post-peak shear strain ove
           response).
           fem.shear-band.converged: fraction of the load steps that converged on both meshes (= 1).
 Produces: the records; chart fem.shear-band.png (stress ratio and volumetric strain against axial
-          strain, both meshes); fem.shear-band.field.png (accumulated shear strain per cell at the
-          end, each mesh, with the band axis); shear_band_<nx>x<ny>.xdmf (ParaView: displacement,
-          stress, void ratio, shear strain of the last increment, every load step).
+          strain, both meshes); fem.shear-band.field.png (accumulated shear strain per cell over the
+          whole test and after the peak, each mesh, with the band axis); shear_band_<nx>x<ny>.xdmf
+          (ParaView: displacement, stress, void ratio, shear strain of the last increment, every
+          load step).
 """
 import tempfile
 import time
@@ -191,7 +192,7 @@ def main():
         runs[(nx, ny)] = run_mesh(nx, ny, strong, weak, region, steps, nSteps, tol, folder)
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    fieldFig, fieldAxes = plt.subplots(1, len(meshes), figsize=(4 * len(meshes), 5.5))
+    fieldFig, fieldAxes = plt.subplots(2, len(meshes), figsize=(4 * len(meshes), 10))
     peaks = []
     for k, ((nx, ny), r) in enumerate(runs.items()):
         label = f"{nx}x{ny}"
@@ -218,20 +219,20 @@ def main():
                     outside, "45 + psi/2 and 45 + phi/2 from the measured peak friction and dilatancy angles", 0.0,
                     suffix=f"inclination-{label}", inclination=incl, phi=phi, psi=psi, roscoe=roscoe,
                     mohr_coulomb=mc, elongation=elong, peak_strain=float(rows[peak, 0]), **common)
-        # the field: accumulated shear strain of the whole test per cell, and the band axis
-        total = r["shear"].sum(axis=0)
-        ax = fieldAxes[k]
-        patches = PolyCollection(r["polygons"], array=total, cmap="viridis", edgecolor="face")
-        ax.add_collection(patches)
-        region_cells = r["polygons"][r["inside"]]
-        for poly in region_cells:
-            ax.add_patch(plt.Polygon(poly, fill=False, edgecolor="w", lw=0.8, ls=":"))
-        ax.plot(*np.array([m - 0.6 * axis, m + 0.6 * axis]).T, "r--", lw=1.2)
-        ax.autoscale()
-        ax.set_aspect("equal")
-        ax.set_title(f"{label} at {100 * rows[-1, 0]:.1f} %: band {incl:.0f}° (MC {mc:.0f}°, Roscoe {roscoe:.0f}°)",
-                     fontsize=9)
-        fieldFig.colorbar(patches, ax=ax, shrink=0.8)
+        # the fields: accumulated shear strain of the whole test and after the peak, per cell
+        for row, (field, what) in enumerate(((r["shear"].sum(axis=0), "whole test"), (post, "after the peak"))):
+            ax = fieldAxes[row, k]
+            patches = PolyCollection(r["polygons"], array=field, cmap="viridis", edgecolor="face")
+            ax.add_collection(patches)
+            for poly in r["polygons"][r["inside"]]:
+                ax.add_patch(plt.Polygon(poly, fill=False, edgecolor="w", lw=0.8, ls=":"))
+            ax.plot(*np.array([m - 0.6 * axis, m + 0.6 * axis]).T, "r--", lw=1.2)
+            ax.autoscale()
+            ax.set_aspect("equal")
+            ax.set_title(f"{label}, {what} (to {100 * rows[-1, 0]:.1f} %)\nband {incl:.0f}° (Mohr-Coulomb {mc:.0f}°, "
+                         f"Roscoe {roscoe:.0f}°), max/mean {loc:.1f}" if row else f"{label}, {what} (to "
+                         f"{100 * rows[-1, 0]:.1f} %)", fontsize=9)
+            fieldFig.colorbar(patches, ax=ax, shrink=0.8)
     gap = abs(peaks[1] - peaks[0]) / peaks[0]
     case.record("relative difference of the peak stress ratio, refined mesh against coarse mesh", gap,
                 "the coarse mesh (same RVEs and imperfection)", 0.05, suffix="peak", coarse=peaks[0], refined=peaks[1])
@@ -247,7 +248,7 @@ def main():
     fig.suptitle(f"FEM x DEM drained biaxial, 100 kPa, planar RVEs of {infos['strong']['spheres']} disks "
                  f"(weak: {infos['weak']['spheres']})")
     case.save_chart(fig)
-    fieldFig.suptitle("accumulated shear strain at the end (dotted: the weak RVEs; dashed: band axis)", fontsize=9)
+    fieldFig.suptitle("accumulated shear strain per cell (dotted: the weak RVEs; dashed: band axis)", fontsize=9)
     case.save_chart(fieldFig, "field")
 
 
