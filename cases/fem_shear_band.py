@@ -19,9 +19,10 @@ Set-up:   a W x H = 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Ga
           (backtracking); updated Lagrangian. A load step that still fails (small RVEs in the band
           lose their contacts or are crushed) ends that mesh's run with the solver's report; the
           records use the converged steps. When the fd tangent fails a step (near collapse it is
-          nearly singular), the run goes on with the contact-stiffness tangent. Quick mode is sized for a shared 2-core machine
-          (360 RVEs of 63 disks, ~10 min on a loaded core); the full mode (704 RVEs of 111 disks,
-          2.5 times the load steps and DEM steps per call) is hours on one core.
+          nearly singular), the run goes on with the contact-stiffness tangent. Quick mode is
+          sized for a shared 2-core machine (360 RVEs of 63 disks, ~13 min on a loaded core); the
+          full mode (640 RVEs of 111 disks, 2.5 times the load steps and DEM steps per call) is
+          hours on one core.
 Measured: friction angle phi from the peak stress ratio, sin phi = (s1 - s3) / (s1 + s3); dilatancy
           angle psi from the volumetric curve, the largest dilatancy rate
           sin psi = -d eps_v / d(eps_1 - eps_3) (compression positive) between consecutive load
