@@ -8,8 +8,9 @@ Set-up:   a W x H = 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Ga
           quick: cell edge 0.5, 63 disks, seed 2; full: edge 0.7, 111 disks, seed 3). Such small
           RVEs are anisotropic: under a biaxial strain they carry a shear stress, which shears the
           whole sample between its smooth platens; the seeds are those of the least anisotropic of
-          three packings (|s_xy / s_yy| < 0.03 against up to 0.15). The imperfection, as in Yade's
-          FEMxDEM biaxial example: the Gauss points inside one square of the coarse cell size,
+          three packings (|s_xy / s_yy| < 0.03 against up to 0.15). The imperfection (Yade's FEMxDEM
+          biaxial example loads 0.yade.gz everywhere, or one file per Gauss point from initLoad's
+          other branch; here a weak region): the Gauss points inside one square of the coarse cell size,
           left of the centre (the same region on both meshes), get a looser, weaker RVE (compacted
           with friction 0.5, then friction 0.3). Smooth platens: bottom uy = 0 (and ux = 0 at the
           bottom-left corner), top lowered to 10 % axial strain in 20 (quick) or 50 load steps, left
