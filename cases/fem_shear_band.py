@@ -21,7 +21,7 @@ Set-up:   a W x H = 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Ga
           lose their contacts or are crushed) ends that mesh's run with the solver's report; the
           records use the converged steps. When the fd tangent fails a step (near collapse it is
           nearly singular), the run goes on with the contact-stiffness tangent. Quick mode is
-          sized for a shared 2-core machine (360 RVEs of 63 disks, ~13 min on a loaded core); the
+          sized for a shared 2-core machine (360 RVEs of 63 disks, ~20 min on a loaded core); the
           full mode (640 RVEs of 111 disks, 2.5 times the load steps and DEM steps per call) is
           hours on one core.
 Measured: friction angle phi from the peak stress ratio, sin phi = (s1 - s3) / (s1 + s3); dilatancy
