@@ -11,7 +11,8 @@ Set-up:   one RVE (talus.fem.prepareRVE, rMean 0.1, cube of edge 1.5 (quick) or 
 Checked:  fem.bench.rve-calls: Gauss-point calls per second, Talus / Yade (target >= 5).
           fem.bench.mpi-2: calls per second on 2 MPI ranks / on 1 (>= 1.3; the machine has 2
           cores shared with other jobs, so this is indicative).
-Produces: the records and chart fem.bench.png (calls per second: Yade, Talus 1 rank, 2 ranks).
+Produces: the records and chart fem.bench.png (calls per second: Yade, Talus 1 rank, 2 ranks; MPI
+          scaling 1 -> 2 ranks against ideal).
 """
 import json
 import os
@@ -32,13 +33,14 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from talus.fem import exportRVE, prepareRVE
+    from talus.fem import exportRVE, prepareRVE, rve_scene
     case = results.Case("fem.bench", quick=args.quick, folder=args.results)
     size, points, calls = (1.5, 4, 3) if args.quick else (2.5, 8, 5)
     work = Path(tempfile.mkdtemp(prefix="fem_bench_"))
     prepareRVE(work / "rve.h5", size=size, rMean=0.1, sigma=-1e5, young=1e8)
     exportRVE(work / "rve.h5", work / "packing.json")
-    params = {"packing": str(work / "packing.json"), "points": points, "calls": calls, "nSteps": 100}
+    params = {"packing": str(work / "packing.json"), "points": points, "calls": calls, "nSteps": 100,
+              "rveSceneDir": rve_scene.FOLDER}
     ours = twin.run(SCENARIO, params, "talus")
     print(f"Talus: {ours['calls_per_s']:.1f} Gauss-point calls/s ({ours['spheres']} spheres)", flush=True)
     import talus
@@ -65,10 +67,18 @@ def main():
     case.record("Gauss-point calls per second on 2 MPI ranks / on 1", two["calls_per_s"] / ours["calls_per_s"],
                 "the same calls on one rank", 1.3, comparison=">=", suffix="mpi-2", one_rank=ours["calls_per_s"],
                 two_ranks=two["calls_per_s"])
-    fig, ax = plt.subplots(figsize=(6, 3.5))
+    fig, (ax, scaling) = plt.subplots(1, 2, figsize=(11, 3.5))
     ax.bar(list(bars), list(bars.values()), color=["C0", "C1", "C7"][:len(bars)])
     ax.set_ylabel("Gauss-point calls per second")
     ax.set_title(f"{ours['spheres']}-sphere RVE, 100 DEM steps per call")
+    ranks = [1, 2]
+    scaling.plot(ranks, [ours["calls_per_s"], two["calls_per_s"]], "o-", label="Talus (mpirun -n)")
+    scaling.plot(ranks, [ours["calls_per_s"] * r for r in ranks], "k:", label="ideal")
+    scaling.set_xticks(ranks)
+    scaling.set_xlabel("MPI ranks (one thread each)")
+    scaling.set_ylabel("Gauss-point calls per second")
+    scaling.set_title(f"MPI scaling, {points} Gauss points (2-core machine, shared)")
+    scaling.legend()
     case.save_chart(fig)
 
 

@@ -56,7 +56,7 @@ def main():
     solver = MultiscaleSolver(
         msh, rves, tol=1e-5, stall=4,
         dirichlet=[Dirichlet(lambda x: x[1] < dy, 1), Dirichlet(lambda x: (x[1] < dy) & (x[0] < dx), 0),
-                   Dirichlet(lambda x: x[1] > H - dy, 1, lambda t: -strain * H * t)],
+                   Dirichlet(lambda x: x[1] > x[1].max() - dy, 1, lambda t: -strain * H * t)],  # current top
         tractions=[Traction(lambda x: x[0] < dx, lambda t: (P_CONF, 0.0)),
                    Traction(lambda x: x[0] > W - dx, lambda t: (-P_CONF, 0.0))])
     area0 = W * H

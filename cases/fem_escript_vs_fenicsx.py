@@ -40,7 +40,7 @@ def fenicsx(rve, nx, ny, strain, steps, nSteps, tol):
     solver = MultiscaleSolver(
         msh, rves, tol=tol,
         dirichlet=[Dirichlet(lambda x: x[1] < dy, 1), Dirichlet(lambda x: (x[1] < dy) & (x[0] < dx), 0),
-                   Dirichlet(lambda x: x[1] > H - dy, 1, lambda t: -strain * H * t)],
+                   Dirichlet(lambda x: x[1] > x[1].max() - dy, 1, lambda t: -strain * H * t)],  # current top
         tractions=[Traction(lambda x: x[0] < dx, lambda t: (P_CONF, 0.0)),
                    Traction(lambda x: x[0] > W - dx, lambda t: (-P_CONF, 0.0))])
     rows = []

@@ -1,5 +1,6 @@
 """Scenario: the Gauss-point call on one RVE packing, timed, in Yade and in Talus (talus.dem.twin).
-Parameters ($TALUS_SCENARIO): `packing` (JSON of talus.fem.exportRVE), `points`, `calls`, `nSteps`.
+Parameters ($TALUS_SCENARIO): `packing` (JSON of talus.fem.exportRVE), `points`, `calls`, `nSteps`,
+`rveSceneDir` (talus.fem.rve_scene.FOLDER: the scene builder shared with tests/fem/rve_yade.py).
 
 Each call deforms every Gauss point's RVE from its committed state by a small gradient over
 nSteps DEM steps and reads the stress and tangent; then the trial is rejected (rollback), as in a
@@ -9,6 +10,7 @@ getStressAndTangent / rollback (all points in one C++ call). Under mpirun (Talus
 spread over the ranks. Prints `RESULT {seconds, calls_per_s (Gauss-point calls per second)}`."""
 import json
 import os
+import sys
 import time
 
 import numpy as np
@@ -21,21 +23,11 @@ except NameError:
     talus = True
 
 P = json.loads(os.environ.get("TALUS_SCENARIO", "{}"))
-data = json.load(open(P["packing"]))
 points, calls, n = int(P["points"]), int(P["calls"]), int(P["nSteps"])
-O.periodic = True
-O.cell.hSize = Matrix3(*np.array(data["hSize"]).ravel())
-O.materials.append(FrictMat(young=data["young"], poisson=data["poisson"], frictionAngle=data["frictionAngle"],
-                            density=data["density"]))
-O.bodies.append([sphere(tuple(c), r) for c, r in zip(data["pos"], data["radius"])])
-O.engines = [
-    ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb()]),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
-    NewtonIntegrator(damping=0.2),
-]
-O.dt = data["dt"]
+sys.path.append(P["rveSceneDir"])
+from rve_scene import buildRVEScene  # noqa: E402  (the shared builder, talus/fem/rve_scene.py)
+
+data = buildRVEScene(globals(), P["packing"])
 O.run(1, True)                       # contacts exist before the calls
 G = np.array([[-1e-3, 2e-4, 0], [0, 5e-4, 0], [0, 0, 5e-4]])
 comm = None

@@ -5,6 +5,8 @@ tests/dem/packing_tangent.py on a periodic RVE). Yade prints its getStressAndTan
 the scene to talus.fem.MultiscaleRVEs (a C++ RVE holding a copy of it) and prints the Gauss-point
 getStressAndTangent with form="yade". Output: `RESULT {stress, tangent, shearing}`."""
 import json
+import os
+import sys
 
 import numpy as np
 
@@ -15,23 +17,14 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
     talus = True
 
-data = json.load(open("rve_packing.json"))
-O.periodic = True
-O.cell.hSize = Matrix3(*np.array(data["hSize"]).ravel())
-O.materials.append(FrictMat(young=data["young"], poisson=data["poisson"], frictionAngle=data["frictionAngle"],
-                            density=data["density"]))
-O.bodies.append([sphere(tuple(c), r) for c, r in zip(data["pos"], data["radius"])])
-O.engines = [
-    ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb()]),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
-    NewtonIntegrator(damping=0.2),
-]
+P = json.loads(os.environ.get("TALUS_SCENARIO", "{}"))
+sys.path.append(P["rveSceneDir"])
+from rve_scene import buildRVEScene  # noqa: E402  (the shared builder, talus/fem/rve_scene.py)
+
+data = buildRVEScene(globals(), "rve_packing.json", dt=1e-5)
 velocities = np.sin(np.arange(3 * len(data["pos"])).reshape(-1, 3) * 1.7) * 0.05
 for b, v in zip(O.bodies, velocities):
     b.state.vel = Vector3(*v) if not talus else v
-O.dt = 1e-5
 O.run(1, True)
 if talus:
     from talus.fem import MultiscaleRVEs

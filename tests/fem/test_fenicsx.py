@@ -94,6 +94,25 @@ def test_too_large_step_stops_with_the_last_converged_state(rve_file):
     assert np.array_equal(solver.rves.getStressAndTangent()[0], before)
 
 
+def test_failing_newton_correction_is_halved(rve_file, solved, monkeypatch):
+    # An RVE run failing at a Newton iterate (not at the step's first evaluation) halves the
+    # correction instead of cutting the whole load step; the step converges to the same solution.
+    from talus.fem.fenicsx import MultiscaleSolver
+    calls = {"n": 0}
+    evaluate = MultiscaleSolver._evaluate
+
+    def failing_once(self):
+        calls["n"] += 1
+        if calls["n"] == 2:                              # the first Newton correction of the first step
+            self.rves.run(self.gaussGradients())         # leaves a trial pending, as a real failure would
+            raise RuntimeError("Gauss point 0: DEM step failed (test)")
+        evaluate(self)
+    monkeypatch.setattr(MultiscaleSolver, "_evaluate", failing_once)
+    again, stresses = one_element(rve_file[0], tol=1e-6)
+    assert again.backtracks == 1 and not any(r.cut for r in again.history)
+    assert np.abs(stresses - solved[1]).max() < 1e-4 * np.abs(stresses).max()
+
+
 def test_mesh_and_rves_must_match(rve_file):
     from dolfinx import mesh as dmesh
     from mpi4py import MPI

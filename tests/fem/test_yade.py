@@ -13,10 +13,10 @@ from talus.dem import twin
 def test_rve_stress_and_tangent_equal_yades(rve_file, tmp_path):
     from pathlib import Path
 
-    from talus.fem import exportRVE
+    from talus.fem import exportRVE, rve_scene
     exportRVE(rve_file[0], tmp_path / "rve_packing.json")
     shutil.copy(Path(__file__).with_name("rve_yade.py"), tmp_path / "rve_yade.py")
-    ours, yade = (twin.run(tmp_path / "rve_yade.py", {}, program, timeout=300) for program in ("talus", "yade"))
+    ours, yade = (twin.run(tmp_path / "rve_yade.py", {"rveSceneDir": rve_scene.FOLDER}, program, timeout=300) for program in ("talus", "yade"))
     assert ours["shearing"] > 50                       # contacts with a shear force: Yade's shear term is used
     s, sy = np.array(ours["stress"]), np.array(yade["stress"])
     c, cy = np.array(ours["tangent"]), np.array(yade["tangent"])

@@ -56,6 +56,16 @@ class NewtonDivergence(RuntimeError):
     mesh hold the last converged state."""
 
 
+def shearStrain(grads: np.ndarray) -> np.ndarray:
+    """The deviatoric (shear) strain magnitude sqrt(2/3 e':e') of displacement gradients
+    (n, d, d), e' the deviator of sym(grad u); in 2D with eps_zz = 0 (plane strain)."""
+    d = grads.shape[-1]
+    eps = np.zeros((len(grads), 3, 3))            # plane strain: eps_zz = 0, but it has a deviator
+    eps[:, :d, :d] = 0.5 * (grads + grads.transpose(0, 2, 1))
+    dev = eps - np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
+    return np.sqrt(2 / 3 * np.einsum("pij,pij->p", dev, dev))
+
+
 def _voigt_pairs(d: int):
     return [(0, 0), (1, 1), (0, 1)] if d == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
 
@@ -70,13 +80,13 @@ class MultiscaleSolver:
 
     def __init__(self, mesh, rves, dirichlet: Sequence[Dirichlet] = (), tractions: Sequence[Traction] = (),
                  degree: int = 1, quadratureDegree: int = 2, tol: float = 1e-6, maxIter: int = 50,
-                 minStepFraction: float = 1 / 64, stall: int = 8):
+                 minStepFraction: float = 1 / 64, stall: int = 8, backtrack: int = 4):
         import basix
         import ufl
         from dolfinx import fem
         from petsc4py import PETSc
         self.mesh, self.rves, self.tol, self.maxIter, self.minStepFraction = mesh, rves, tol, maxIter, minStepFraction
-        self.stall = stall
+        self.stall, self.backtrack, self.backtracks = stall, backtrack, 0
         self.dirichlet, self.tractions = list(dirichlet), list(tractions)
         d = self.d = mesh.geometry.dim
         tdim = mesh.topology.dim
@@ -171,6 +181,23 @@ class MultiscaleSolver:
         self._stress = stress
         self._update_quadrature(stress, tangent)
 
+    def _evaluate_backtracking(self, it: int):
+        """Evaluate the RVEs at du; when a Newton correction makes an RVE fail (crushed, inverted:
+        near a limit point the tangent is nearly singular and a full correction overshoots),
+        halve the correction, up to ``backtrack`` times, before giving up on the iteration."""
+        correction = self.ddu.x.array.copy() if it else None
+        for halving in range(self.backtrack + 1):
+            try:
+                self._evaluate()
+                return
+            except RuntimeError:
+                if correction is None or halving == self.backtrack:
+                    raise
+                self.rves.rollback()
+                correction *= 0.5
+                self.du.x.array[:] -= correction
+                self.backtracks += 1
+
     def _try_step(self, t0: float, t1: float) -> StepReport:
         from dolfinx import fem
         from dolfinx.fem.petsc import assemble_matrix
@@ -187,7 +214,7 @@ class MultiscaleSolver:
         ksp.setType("preonly")
         ksp.getPC().setType("lu")
         for it in range(self.maxIter + 1):
-            self._evaluate()
+            self._evaluate_backtracking(it)
             r = self._assemble_vector(self.residualForm, zero)
             scale = self._assemble_vector(self.internalForm).norm()
             res = r.norm() / max(scale, 1e-300)
@@ -273,10 +300,7 @@ class MultiscaleSolver:
         stress, _ = self.rves.getStressAndTangent()
         e = self.rves.getVoidRatio()
         g = self.history[-1].gradients if self.history else np.zeros((len(stress), self.d, self.d))
-        eps = np.zeros((len(g), 3, 3))            # plane strain: eps_zz = 0, but it has a deviator
-        eps[:, :self.d, :self.d] = 0.5 * (g + g.transpose(0, 2, 1))
-        dev = eps - np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
-        shear = np.sqrt(2 / 3 * np.einsum("pij,pij->p", dev, dev))
+        shear = shearStrain(g)
         cells = len(self.cells)
         return {"stress": stress.reshape(cells, nq, self.d, self.d).mean(axis=1),
                 "voidRatio": e.reshape(cells, nq).mean(axis=1),
