@@ -146,19 +146,21 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
     {
       const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
       const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
-      if (!c.real)
-        continue;
-      // The force on this body and its moment about the centre, applied at the contact point.
-      const Vec3 force = (entry & 1) ? c.force : Vec3(-c.force);
+      // No test of c.real and no branch on the side: a contact that is not real carries a zero
+      // force (Contact::reset), and whether a body is a contact's first or second is as
+      // unpredictable as whether a candidate pair touches. The force on this body and its moment
+      // about the centre, applied at the contact point; body 2 is represented by its periodic
+      // image, so its lever arm is taken from there.
+      const bool second = (entry & 1) != 0;
+      const Vec3 force = (second ? 1.0 : -1.0) * c.force;
       f += force;
-      // Body 2 is represented by its periodic image: its lever arm is taken from there.
-      const Vec3 centre = (entry & 1) ? Vec3(b.pos[i] + c.shift2) : b.pos[i];
+      const Vec3 centre = b.pos[i] + static_cast<double>(second) * c.shift2;
       t += (c.contactPoint - centre).cross(force);
-      if (extra)
+      if (extra && c.real)
       {
         const ContactExtra& x = extra[entry >> 1];
         const Vec3 moment = x.momentBending + x.momentTwist;
-        t += (entry & 1) ? moment : Vec3(-moment);
+        t += second ? moment : Vec3(-moment);
       }
     }
     b.force[i] += f;

@@ -19,7 +19,9 @@ inline double damped(double accel, double vel, double dt, double damping)
 {
   const double v = vel + 0.5 * dt * accel;
   const double s = accel * v;
-  return accel * (1.0 - damping * (s > 0 ? 1.0 : (s < 0 ? -1.0 : 0.0)));
+  // sign(s) without branches: the sign of a resting packing's accelerations is a coin flip, which
+  // a branch predictor cannot learn.
+  return accel * (1.0 - damping * (static_cast<double>(s > 0) - static_cast<double>(s < 0)));
 }
 
 /// Turn an orientation by the rotation vector w (angle |w| about w / |w|). Per-step angles are
@@ -121,7 +123,7 @@ void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& forc
         else if (damping != 0)
         {
           const double s = M[d] * b.angVel[i][d];
-          M[d] *= 1 - damping * (s > 0 ? 1.0 : (s < 0 ? -1.0 : 0.0));
+          M[d] *= 1 - damping * (static_cast<double>(s > 0) - static_cast<double>(s < 0));
         }
       }
       Quat& q = b.ori[i];
