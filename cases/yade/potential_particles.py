@@ -103,7 +103,7 @@ if mode == "pressing":
     add("cube", (0, 0, 0), fixed=True)
     add("cube", (0, 0, P["D"]), fixed=True)
     O.dt = 1e-5
-    O.run(1, True)
+    O.run(2, True)   # Yade's Ig2 stores the area in the contact's physics, which exists from the 2nd step
     print("RESULT " + json.dumps({"contacts": contacts()}))
 elif mode == "resting":
     engines((0, 0, -G), P.get("damping", 0.3), P.get("viscous", 0.5))
