@@ -3,6 +3,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -175,8 +176,40 @@ double rayExit(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3&
   return t;
 }
 
-void supportPoint(const PlacedPotential& f, const Vec3& e, Vec3& x)
+void supportPoint(const PlacedPotential& f, const Vec3& e, Vec3& x, const Vec3* nearby)
 {
+  if (nearby)
+  {
+    // Newton on (x, s): grad f(x) - s e = 0, f(x) = 0; quadratic once the active planes are
+    // right. Accepted only if it ends on the surface with grad f along +e.
+    Vec3 y = *nearby, g;
+    Mat3 H;
+    double v = f.eval(y, &g, &H), s = std::max(g.dot(e), 0.0);
+    for (int iter = 0; iter < 30; ++iter)
+    {
+      Eigen::Matrix4d J = Eigen::Matrix4d::Zero();
+      J.topLeftCorner<3, 3>() = H;
+      J.block<3, 1>(0, 3) = -e;
+      J.block<1, 3>(3, 0) = g.transpose();
+      Eigen::Vector4d F;
+      F << g - s * e, v;
+      const Eigen::Vector4d step = J.partialPivLu().solve(-F);
+      if (!step.allFinite())
+        break;
+      y += step.head<3>();
+      s += step[3];
+      v = f.eval(y, &g, &H);
+      if (step.head<3>().norm() <= 1e-13 * f.length)
+      {
+        if (s > 0 && std::abs(v) < 1e-10 && (g - s * e).norm() <= 1e-8 * g.norm())
+        {
+          x = y;
+          return;
+        }
+        break;
+      }
+    }
+  }
   minimisePotentials(f, 1, nullptr, 0, Vec3::Zero(), x);
   if (!(f.eval(x) < 0))
     return;
@@ -199,7 +232,7 @@ void supportPoint(const PlacedPotential& f, const Vec3& e, Vec3& x)
         slope = -s * e.dot(H.ldlt().solve(e));
         return -f.eval(xm);
       },
-      0.0, hi, 0.5 * hi, 1e-13, 1e-15 * hi);
+      0.0, hi, 0.5 * hi, 1e-13, 1e-14 * hi);
   x = xm;
 }
 
@@ -330,6 +363,13 @@ PotentialParticleShape makePotentialParticle(const std::vector<double>& a, const
       farthest = std::max(farthest, rayExit(fc, nullptr, xc, Vec3(sz * std::cos(phi), sz * std::sin(phi), cz), farthest, R));
     }
   s.boundingRadius = 1.05 * farthest;
+  for (int i = 0; i < 12; ++i)
+    for (int j = 0; j < 24; ++j)
+    {
+      const double cz = std::cos(M_PI * (i + 0.5) / 12), sz = std::sqrt(1 - cz * cz), phi = 2 * M_PI * j / 24;
+      const Vec3 u(sz * std::cos(phi), sz * std::sin(phi), cz);
+      s.samples.push_back(rayExit(fc, nullptr, xc, u, 0, R) * u);
+    }
   {
     std::lock_guard<std::mutex> lock(cacheMutex);
     cache.emplace(key, s);

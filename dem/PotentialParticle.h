@@ -27,6 +27,7 @@ struct PotentialParticleShape
   double volume = 0;
   Vec3 inertiaPerDensity = Vec3::Zero(); ///< principal moments / density
   double boundingRadius = 0; ///< largest distance of the surface from the centroid
+  std::vector<Vec3> samples; ///< surface points on rays from the centroid (body frame): starting points for support points
 };
 
 /// The potential placed in a frame (world, or relative to an origin near a pair): for each
@@ -81,12 +82,16 @@ double rayExit(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3&
 /// The point of the particle farthest along the unit direction e (its support point), from
 /// the Lagrange condition grad f = s e: for s >= 0, x(s) minimises f - s e . x and f(x(s))
 /// grows with s (derivative s e . H^-1 e); s is found by Newton steps kept inside a bracket.
-/// `x`: a starting point inside, replaced by the support point.
-void supportPoint(const PlacedPotential& f, const Vec3& e, Vec3& x);
+/// `x`: a starting point inside, replaced by the support point. With `nearby` (a surface point
+/// whose outward normal is close to e), Newton steps on the Lagrange system
+/// (grad f = s e, f = 0) are tried first, kept if they converge to a valid support point.
+void supportPoint(const PlacedPotential& f, const Vec3& e, Vec3& x, const Vec3* nearby = nullptr);
 
 /// A root of a decreasing function g on [lo, hi] by Newton steps (g returns the value and its
 /// derivative), falling back to bisection whenever a step leaves the bracket; stops when
-/// |g| <= tol or the bracket is below `width`. Returns the last point evaluated.
+/// |g| <= tol, or the bracket or a step is below `width` (Newton converges from one side, so
+/// the bracket alone need not shrink). Returns the last point evaluated, whose state the
+/// callers read.
 template <class G>
 double decreasingRoot(G&& g, double lo, double hi, double start, double tol, double width, int maxIter = 100)
 {
@@ -103,10 +108,14 @@ double decreasingRoot(G&& g, double lo, double hi, double start, double tol, dou
     double next = slope < 0 ? x - v / slope : 0.5 * (lo + hi);
     if (!(next > lo && next < hi))
       next = 0.5 * (lo + hi);
+    const bool last = std::abs(next - x) <= width || it + 1 == maxIter;
     x = next;
+    if (last)
+    {
+      g(x, slope);
+      return x;
+    }
   }
-  double slope = 0;
-  g(x, slope); // callers read the state of the last evaluation
   return x;
 }
 } // namespace talus::dem

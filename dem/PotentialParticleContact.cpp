@@ -38,6 +38,22 @@ double sectionArea(const PlacedPotential& f1, const PlacedPotential* f2, const V
 }
 } // namespace
 
+/// Support point of particle i along the unit world direction e, relative to b.pos[i], from the
+/// stored surface sample farthest along e.
+Vec3 support(const Bodies& b, std::size_t i, const PlacedPotential& f, const Vec3& e)
+{
+  const PotentialParticleShape& s = shapeOf(b, i);
+  const Vec3 eb = b.ori[i].conjugate() * e;
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < s.samples.size(); ++k)
+    if (s.samples[k].dot(eb) > s.samples[best].dot(eb))
+      best = k;
+  const Vec3 start = b.ori[i] * s.samples[best];
+  Vec3 x = Vec3::Zero();
+  supportPoint(f, e, x, &start);
+  return x;
+}
+
 void potentialParticleAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
 {
   const PlacedPotential f = placed(b, i, b.pos[i]);
@@ -45,12 +61,8 @@ void potentialParticleAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
   {
     Vec3 e = Vec3::Zero();
     e[axis] = 1;
-    Vec3 x = Vec3::Zero();
-    supportPoint(f, e, x);
-    hi[axis] = b.pos[i][axis] + x[axis];
-    x.setZero();
-    supportPoint(f, -e, x);
-    lo[axis] = b.pos[i][axis] + x[axis];
+    hi[axis] = b.pos[i][axis] + support(b, i, f, e)[axis];
+    lo[axis] = b.pos[i][axis] + support(b, i, f, -e)[axis];
   }
 }
 
@@ -73,8 +85,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
     // Cheap rejection: the bounding sphere does not reach the plane.
     if (side * dpos > s2.boundingRadius)
       return false;
-    Vec3 x = Vec3::Zero();
-    supportPoint(f, -n, x);
+    const Vec3 x = support(b, i2, f, -n);
     const double depth = side * (b.pos[i1][w.axis] - origin[w.axis]) - n.dot(x);
     if (!(depth > 0))
       return false;
@@ -114,7 +125,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
         slope = -dg.dot(H.ldlt().solve(dg));
         return v1 - v2;
       },
-      0.0, 1.0, 0.5, 1e-13, 1e-15);
+      0.0, 1.0, 0.5, 1e-13, 1e-14);
   if (separated || !(std::max(v1, v2) < 0))
     return false;
 
