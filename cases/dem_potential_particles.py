@@ -24,7 +24,8 @@ Checked:  dem.potential-particles.pressing: worst relative error of the overlap 
           dem.potential-particles.resting: relative error of the contact force against m g <= 1e-6;
           dem.potential-particles.incline-slip: worst relative error of the sliding acceleration
           above the friction angle against g (sin theta - cos theta tan phi) <= 1e-2;
-          dem.potential-particles.incline-stick: largest displacement below it <= 1 mm;
+          dem.potential-particles.incline-stick: largest displacement below it after the ramp
+          <= 5 mm (the undamped oscillation of the shear spring, Kshear A ~ 1.4e6 N/m);
           dem.potential-particles.yade-pressing / yade-resting: relative difference of overlap
           and force from Yade's (reported; tolerance 5 %, Yade's area is a heuristic);
           dem.potential-particles.yade-packing: porosity difference (absolute, <= 0.05) and
@@ -211,8 +212,9 @@ def main():
     case.record("worst relative error of the sliding acceleration above the friction angle (30 deg)", slip,
                 "g (sin theta - cos theta tan phi)", 1e-2, suffix="incline-slip", thetas_deg=thetas,
                 accelerations=accelerations, analytic=analytic, moved=moved, T=T)
-    case.record("largest displacement (m) along the slope below the friction angle", stick,
-                "no sliding: elastic shear only", 1e-3, suffix="incline-stick", thetas_deg=thetas, moved=moved)
+    case.record("largest displacement (m) along the slope below the friction angle, after the ramp", stick,
+                "no sliding: the undamped elastic oscillation only (m g sin theta / (Kshear A) ~ 2.5 mm, "
+                "A ~ 0.14 m^2 on the bulged face)", 5e-3, suffix="incline-stick", thetas_deg=thetas, moved=moved)
 
     yade = None
     if twin.yade_available():

@@ -148,12 +148,14 @@ elif mode == "packing":
     if not YADE:
         for i in range(len(pos)):
             O._cpp.setDynamic(i, False)
-        O._cpp.vel()[:] = 0
-        O._cpp.angVel()[:] = 0
+            O.bodies[i].state.vel = (0, 0, 0)
+            O.bodies[i].state.angVel = (0, 0, 0)
     O.run(5, True)
+    rebuilds = 0 if YADE else O.engines[1]._cpp.rebuilds
     start = time.perf_counter()
     O.run(P["timedSteps"], True)
     seconds = (time.perf_counter() - start) / P["timedSteps"]
+    rebuilds = 0 if YADE else O.engines[1]._cpp.rebuilds - rebuilds   # none expected: nothing moves
     print("RESULT " + json.dumps({"positions": [pos[i] for i in ids], "particleContacts": pp, "wallContacts": pw,
                                   "real": len(cs), "stepSeconds": seconds,
-                                  "realAfter": len(contacts())}))
+                                  "realAfter": len(contacts()), "rebuildsWhileTimed": rebuilds}))
