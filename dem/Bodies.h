@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/PotentialBlock.h"
+#include "dem/PotentialParticle.h"
 #include "dem/types.h"
 
 #include <array>
@@ -17,6 +18,7 @@ enum class ShapeKind : std::uint8_t
   Box,   ///< rectangular box (Yade's Box), interacting with spheres
   Clump, ///< rigid aggregate of member spheres (Yade's Clump); has no surface of its own
   PotentialBlock, ///< convex polyhedron from planes (Yade's PotentialBlock), with blocks and walls
+  PotentialParticle, ///< rounded convex particle from planes and a sphere term (Yade's PotentialParticle), with particles and walls
 };
 
 /// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
@@ -80,6 +82,7 @@ struct Bodies
   std::vector<BoxShape> boxes;
   std::vector<ClumpShape> clumps;
   std::vector<PotentialBlockShape> blocks;
+  std::vector<PotentialParticleShape> particles;
 
   /// Number of slots, erased bodies included.
   [[nodiscard]] std::size_t size() const { return pos.size(); }
@@ -89,10 +92,11 @@ struct Bodies
   /// integrator advances for aspherical bodies).
   void setAngularVelocity(std::size_t i, const Vec3& w);
   /// True for bodies whose rotation integrates the angular momentum in the principal frame
-  /// (clumps, boxes and blocks with unequal principal moments, as Yade's isAspherical).
+  /// (clumps, boxes, blocks and potential particles with unequal principal moments, as Yade's isAspherical).
   [[nodiscard]] bool aspherical(std::size_t i) const
   {
-    return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box || shape[i] == ShapeKind::PotentialBlock)
+    return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box || shape[i] == ShapeKind::PotentialBlock
+            || shape[i] == ShapeKind::PotentialParticle)
            && (inertia[i][0] != inertia[i][1] || inertia[i][0] != inertia[i][2]);
   }
 };

@@ -1124,7 +1124,8 @@ void validate(const Loaded& in, const Context& ctx)
     case ShapeKind::Facet: ok = within(b.facets.size()); break;
     case ShapeKind::Box: ok = within(b.boxes.size()); break;
     case ShapeKind::Clump: ok = within(b.clumps.size()); break;
-    case ShapeKind::PotentialBlock: break; // never saved (saveCheckpoint refuses them)
+    case ShapeKind::PotentialBlock:
+    case ShapeKind::PotentialParticle: break; // never saved (saveCheckpoint refuses them)
     }
     if (!ok)
       ctx.fail(which + " has an invalid shape index " + std::to_string(s), false);
@@ -1265,11 +1266,14 @@ void saveCheckpoint(const Scene& scene, const std::string& path, const Checkpoin
   const QuietErrors quiet;
   if (path.empty())
     ctx.fail("the file name is empty", false);
-  // Potential Blocks (planes, vertices, faces) are not part of the checkpoint format yet: refuse
-  // rather than write a scene that cannot be restored.
+  // Potential Blocks and Particles (planes, derived geometry) are not part of the checkpoint
+  // format yet: refuse rather than write a scene that cannot be restored.
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
     if (scene.bodies.alive[i] && scene.bodies.shape[i] == ShapeKind::PotentialBlock)
       ctx.fail("body " + std::to_string(i) + " is a PotentialBlock: checkpoints do not store Potential Blocks yet", false);
+    else if (scene.bodies.alive[i] && scene.bodies.shape[i] == ShapeKind::PotentialParticle)
+      ctx.fail("body " + std::to_string(i) + " is a PotentialParticle: checkpoints do not store Potential Particles yet",
+               false);
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;

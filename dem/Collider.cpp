@@ -3,6 +3,7 @@
 
 #include "dem/ContactGeometry.h"
 #include "dem/PotentialBlockContact.h"
+#include "dem/PotentialParticleContact.h"
 #include "dem/Scene.h"
 #include "dem/Threads.h"
 
@@ -171,31 +172,56 @@ void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax
       out.push_back({key(facet, s), Eigen::Vector3i::Zero()});
   });
 }
-/// Candidate pairs of Potential Blocks (Aabbs closer than the skin; two boundary blocks never
-/// interact) and of walls with blocks (Aabb within the skin of the plane, on its side).
-void blockPairs(const Bodies& b, const std::vector<BodyId>& blocks, const std::vector<BodyId>& walls, double skin,
-                std::vector<Candidate>& out)
+/// Potential Blocks and Particles: shapes given by planes, bounded by exact Aabbs.
+bool isBoundary(const Bodies& b, BodyId id)
 {
-  const std::size_t n = blocks.size();
+  const auto i = static_cast<std::size_t>(id);
+  const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+  return b.shape[i] == ShapeKind::PotentialBlock ? b.blocks[s].isBoundary : b.particles[s].isBoundary;
+}
+
+double boundingRadius(const Bodies& b, std::size_t i)
+{
+  const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+  return b.shape[i] == ShapeKind::PotentialBlock ? b.blocks[s].boundingRadius : b.particles[s].boundingRadius;
+}
+
+double referenceLength(const Bodies& b, std::size_t i)
+{
+  const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+  return b.shape[i] == ShapeKind::PotentialBlock ? b.blocks[s].R : b.particles[s].R;
+}
+
+/// Candidate pairs of Potential Blocks or Particles (Aabbs closer than the skin; two boundary
+/// bodies never interact, nor a block with a particle, as in Yade) and of walls with them
+/// (Aabb within the skin of the plane, on its side).
+void convexPairs(const Bodies& b, const std::vector<BodyId>& convex, const std::vector<BodyId>& walls, double skin,
+                 std::vector<Candidate>& out)
+{
+  const std::size_t n = convex.size();
   std::vector<Vec3> lo(n), hi(n);
   for (std::size_t k = 0; k < n; ++k)
-    potentialBlockAabb(b, static_cast<std::size_t>(blocks[k]), lo[k], hi[k]);
+  {
+    const auto i = static_cast<std::size_t>(convex[k]);
+    if (b.shape[i] == ShapeKind::PotentialBlock)
+      potentialBlockAabb(b, i, lo[k], hi[k]);
+    else
+      potentialParticleAabb(b, i, lo[k], hi[k]);
+  }
   // Sweep along x: blocks sorted by their lower bound.
   std::vector<std::size_t> order(n);
   for (std::size_t k = 0; k < n; ++k)
     order[k] = k;
   std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return lo[p][0] < lo[q][0]; });
-  auto boundary = [&](BodyId id) {
-    return b.blocks[static_cast<std::size_t>(b.shapeIndex[static_cast<std::size_t>(id)])].isBoundary;
-  };
   for (std::size_t s = 0; s < n; ++s)
     for (std::size_t t = s + 1; t < n && lo[order[t]][0] <= hi[order[s]][0] + skin; ++t)
     {
       const std::size_t p = order[s], q = order[t];
       if (((lo[p] - hi[q]).array() > skin).any() || ((lo[q] - hi[p]).array() > skin).any())
         continue;
-      const BodyId i = blocks[p], j = blocks[q];
-      if (boundary(i) && boundary(j))
+      const BodyId i = convex[p], j = convex[q];
+      if ((isBoundary(b, i) && isBoundary(b, j))
+          || b.shape[static_cast<std::size_t>(i)] != b.shape[static_cast<std::size_t>(j)])
         continue;
       out.push_back({key(std::min(i, j), std::max(i, j)), Eigen::Vector3i::Zero()});
     }
@@ -212,7 +238,7 @@ void blockPairs(const Bodies& b, const std::vector<BodyId>& blocks, const std::v
                            : wall.sense < 0 ? above > -skin
                                             : below < skin && above > -skin;
       if (reaches)
-        out.push_back({key(w, blocks[k]), Eigen::Vector3i::Zero()});
+        out.push_back({key(w, convex[k]), Eigen::Vector3i::Zero()});
     }
   }
 }
@@ -235,11 +261,12 @@ bool Collider::needsRebuild(const Scene& scene) const
   const auto n = static_cast<std::int64_t>(b.size());
   bool moved = false;
   const bool deformed = scene.periodic && affine != Mat3::Identity();
-  // A block's corners also move by its rotation: at most its bounding radius times the angle.
-  for (std::size_t k = 0; k < blocks_.size() && !moved; ++k)
+  // A block's or particle's surface also moves by its rotation: at most its bounding radius
+  // times the angle.
+  for (std::size_t k = 0; k < convex_.size() && !moved; ++k)
   {
-    const auto i = static_cast<std::size_t>(blocks_[k]);
-    const double reach = b.blocks[static_cast<std::size_t>(b.shapeIndex[i])].boundingRadius;
+    const auto i = static_cast<std::size_t>(convex_[k]);
+    const double reach = boundingRadius(b, i);
     const double angle = b.ori[i].angularDistance(referenceOri_[k]);
     moved = (b.pos[i] - referencePos_[i]).norm() + reach * angle > limit;
   }
@@ -276,7 +303,7 @@ void Collider::rebuild(Scene& scene)
   walls.clear();
   facets.clear();
   boxes_.clear();
-  blocks_.clear();
+  convex_.clear();
   double blockRmin = std::numeric_limits<double>::infinity();
   double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
@@ -295,14 +322,14 @@ void Collider::rebuild(Scene& scene)
       facets.push_back(static_cast<BodyId>(i));
     else if (b.shape[i] == ShapeKind::Box)
       boxes_.push_back(static_cast<BodyId>(i));
-    else if (b.shape[i] == ShapeKind::PotentialBlock)
+    else if (b.shape[i] == ShapeKind::PotentialBlock || b.shape[i] == ShapeKind::PotentialParticle)
     {
-      blocks_.push_back(static_cast<BodyId>(i));
-      blockRmin = std::min(blockRmin, b.blocks[static_cast<std::size_t>(b.shapeIndex[i])].R);
+      convex_.push_back(static_cast<BodyId>(i));
+      blockRmin = std::min(blockRmin, referenceLength(b, i));
     }
     // a clump has no surface: its members interact
   }
-  // Without spheres, a negative verletDist is a fraction of the smallest block's R.
+  // Without spheres, a negative verletDist is a fraction of the smallest block's or particle's R.
   const double smallest = spheres.empty() ? blockRmin : rmin;
   skin_ = verletDist >= 0 ? verletDist : (std::isfinite(smallest) ? -verletDist * smallest : 0.0);
 
@@ -319,8 +346,8 @@ void Collider::rebuild(Scene& scene)
     facetPairs(b, f, grid_, rmax, skin_, pairs);
   for (BodyId k : boxes_)
     boxPairs(b, k, grid_, rmax, skin_, pairs);
-  if (!blocks_.empty())
-    blockPairs(b, blocks_, walls, skin_, pairs);
+  if (!convex_.empty())
+    convexPairs(b, convex_, walls, skin_, pairs);
   for (BodyId w : walls)
   {
     const auto wi = static_cast<std::size_t>(w);
@@ -379,10 +406,12 @@ void Collider::rebuild(Scene& scene)
     switch (b.shape[static_cast<std::size_t>(c.id1)])
     {
     case ShapeKind::Wall:
-      c.kind = b.shape[static_cast<std::size_t>(c.id2)] == ShapeKind::PotentialBlock ? ContactGeometryKind::WallBlock
-                                                                                     : ContactGeometryKind::WallSphere;
+      c.kind = b.shape[static_cast<std::size_t>(c.id2)] == ShapeKind::PotentialBlock      ? ContactGeometryKind::WallBlock
+               : b.shape[static_cast<std::size_t>(c.id2)] == ShapeKind::PotentialParticle ? ContactGeometryKind::WallParticle
+                                                                                            : ContactGeometryKind::WallSphere;
       break;
     case ShapeKind::PotentialBlock: c.kind = ContactGeometryKind::BlockBlock; break;
+    case ShapeKind::PotentialParticle: c.kind = ContactGeometryKind::ParticleParticle; break;
     case ShapeKind::Facet: c.kind = ContactGeometryKind::FacetSphere; break;
     case ShapeKind::Box: c.kind = ContactGeometryKind::BoxSphere; break;
     case ShapeKind::Sphere:
@@ -397,9 +426,9 @@ void Collider::rebuild(Scene& scene)
     oldExtra.swap(mergedExtra);
   scene.contacts.index(b.size());
   referencePos_ = b.pos;
-  referenceOri_.resize(blocks_.size());
-  for (std::size_t k = 0; k < blocks_.size(); ++k)
-    referenceOri_[k] = b.ori[static_cast<std::size_t>(blocks_[k])];
+  referenceOri_.resize(convex_.size());
+  for (std::size_t k = 0; k < convex_.size(); ++k)
+    referenceOri_[k] = b.ori[static_cast<std::size_t>(convex_[k])];
   referenceCellInverse_ = scene.cell.hSize.inverse();
   referenceRange_ = 2 * rmax + skin_;
   seenBodiesVersion_ = scene.bodiesVersion;

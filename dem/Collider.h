@@ -49,7 +49,7 @@ private:
   std::vector<std::vector<Candidate>> perThread_;
   Mat3 referenceCellInverse_ = Mat3::Identity();
   double referenceRange_ = 0;
-  std::vector<BodyId> spheres_, walls_, facets_, boxes_, blocks_;
+  std::vector<BodyId> spheres_, walls_, facets_, boxes_, convex_; ///< convex_: Potential Blocks and Particles
   /// Potential Blocks turn their corners about the centre: their orientations at the last
   /// rebuild, to bound how far a corner moved.
   std::vector<Quat> referenceOri_;

@@ -69,19 +69,26 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
     r2 = r;
     return true;
   }
-  if (c.kind == ContactGeometryKind::BlockBlock || c.kind == ContactGeometryKind::WallBlock)
+  if (c.kind == ContactGeometryKind::BlockBlock || c.kind == ContactGeometryKind::WallBlock
+      || c.kind == ContactGeometryKind::ParticleParticle || c.kind == ContactGeometryKind::WallParticle)
   {
-    // Potential Blocks (a linear program and Newton steps, see PotentialBlockContact.h);
-    // reference radii are the blocks' R, the overlap section's area goes to the contact's extra
-    // state for the KnKsPB law.
-    BlockContactGeometry g;
-    if (!potentialBlockContact(b, i1, i2, c.real ? &c.contactPoint : nullptr, g))
+    // Potential Blocks and Particles (see PotentialBlockContact.h and
+    // PotentialParticleContact.h); reference radii are their R, the overlap section's area goes
+    // to the contact's extra state for the KnKs laws.
+    ConvexContactGeometry g;
+    const bool blocks = c.kind == ContactGeometryKind::BlockBlock || c.kind == ContactGeometryKind::WallBlock;
+    const Vec3* previous = c.real ? &c.contactPoint : nullptr;
+    if (!(blocks ? potentialBlockContact(b, i1, i2, previous, g) : potentialParticleContact(b, i1, i2, previous, g)))
       return false;
     normal = g.normal;
     penetration = g.penetration;
     contactPoint = g.contactPoint;
-    r2 = b.blocks[static_cast<std::size_t>(b.shapeIndex[i2])].R;
-    r1 = c.kind == ContactGeometryKind::WallBlock ? r2 : b.blocks[static_cast<std::size_t>(b.shapeIndex[i1])].R;
+    auto R = [&](std::size_t i) {
+      const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+      return blocks ? b.blocks[s].R : b.particles[s].R;
+    };
+    r2 = R(i2);
+    r1 = b.shape[i1] == ShapeKind::Wall ? r2 : R(i1);
     if (x)
       x->contactArea = g.area;
     return true;

@@ -4,6 +4,7 @@
 #include "dem/Cell.h"
 #include "dem/Contacts.h"
 #include "dem/PotentialBlockContact.h"
+#include "dem/PotentialParticleContact.h"
 
 #include <array>
 #include <cmath>
@@ -66,11 +67,11 @@ inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& norm
          - (b.vel[i1] + b.angVel[i1].cross(c.contactPoint - b.pos[i1]));
 }
 
-/// Overlap of a pair whose body 1 is not a sphere (wall, facet, box, Potential Block; the
+/// Overlap of a pair whose body 1 is not a sphere (wall, facet, box, Potential Block or Particle; the
 /// routines of Yade's Ig2 functors, out of line: they are the rarer pairs). Sets the normal
 /// (from body 1 to body 2), penetration depth, contact point and reference radii; false if the
 /// shapes are apart and `holds` (an unbroken bond) does not keep the contact. The overlap
-/// section's area of Potential Blocks goes to `x` when given.
+/// section's area of Potential Blocks and Particles goes to `x` when given.
 bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtra* x, Vec3& normal, double& penetration,
                       Vec3& contactPoint, double& r1, double& r2);
 

@@ -17,6 +17,8 @@ enum class ContactGeometryKind : std::uint8_t
   BoxSphere,   ///< id1 is the box, as in Yade
   BlockBlock,  ///< two Potential Blocks (Yade's Ig2_PB_PB_ScGeom)
   WallBlock,   ///< id1 is the wall, id2 a Potential Block
+  ParticleParticle, ///< two Potential Particles (Yade's Ig2_PP_PP_ScGeom)
+  WallParticle,     ///< id1 is the wall, id2 a Potential Particle
 };
 
 /// One candidate pair within the collider's skin, with its persistent contact state.

@@ -254,7 +254,7 @@ void potentialBlockAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
 }
 
 bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
-                           BlockContactGeometry& out)
+                           ConvexContactGeometry& out)
 {
   const PotentialBlockShape& s2 = shapeOf(b, i2);
   const bool wall = b.shape[i1] == ShapeKind::Wall;

@@ -162,6 +162,39 @@ BodyId Scene::addPotentialBlock(const std::vector<double>& a, const std::vector<
 #endif
 }
 
+BodyId Scene::addPotentialParticle(const std::vector<double>& a, const std::vector<double>& b,
+                                   const std::vector<double>& c, const std::vector<double>& d, double r, double k,
+                                   double R, bool isBoundary, const Vec3& position, const Quat& orientation,
+                                   int material, bool fixed)
+{
+  const std::string which = "PotentialParticle #" + std::to_string(bodies.size());
+  if (periodic)
+    throw std::invalid_argument(which + ": Potential Particles are not supported in a periodic scene");
+  if (!position.allFinite())
+    throw std::invalid_argument(which + ": position is not finite " + str(position));
+  if (!orientation.coeffs().allFinite() || !(orientation.norm() > 0))
+    throw std::invalid_argument(which + ": orientation is not a finite non-zero quaternion");
+  if (material < 0 || material >= static_cast<int>(materials.size()))
+    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  bodies.particles.push_back(makePotentialParticle(a, b, c, d, r, k, R, isBoundary, which));
+  const PotentialParticleShape& s = bodies.particles.back();
+  const BodyId id = bodies.append(ShapeKind::PotentialParticle, static_cast<int>(bodies.particles.size()) - 1, material);
+  const auto i = static_cast<std::size_t>(id);
+  const Quat q = orientation.normalized();
+  bodies.pos[i] = position + q * s.centroid;
+  bodies.ori[i] = (q * Quat(s.axes)).normalized();
+  const double density = materials[static_cast<std::size_t>(material)].density;
+  bodies.mass[i] = density * s.volume;
+  bodies.inertia[i] = density * s.inertiaPerDensity;
+  if (fixed)
+  {
+    bodies.dynamic[i] = 0;
+    bodies.blockedDofs[i] = DofAll;
+  }
+  ++bodiesVersion;
+  return id;
+}
+
 void Scene::checkBody(BodyId id) const
 {
   if (id < 0 || static_cast<std::size_t>(id) >= bodies.size() || !bodies.alive[static_cast<std::size_t>(id)])

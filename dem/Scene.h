@@ -75,6 +75,14 @@ public:
   BodyId addPotentialBlock(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c,
                            const std::vector<double>& d, double r, double R, bool isBoundary, const Vec3* center,
                            const Quat& orientation, int material, bool fixed);
+  /// Add a Potential Particle (Yade's PotentialParticle; see makePotentialParticle): its shape
+  /// frame (the planes' frame) placed at `position` and turned by `orientation`, as Yade's
+  /// state.pos and state.ori. Volume, mass and principal inertia are computed; the body's
+  /// frame is the principal frame at the centroid. Dynamic unless `fixed`.
+  /// @throws std::invalid_argument naming the particle ("PotentialParticle #id") and the bad value
+  BodyId addPotentialParticle(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c,
+                              const std::vector<double>& d, double r, double k, double R, bool isBoundary,
+                              const Vec3& position, const Quat& orientation, int material, bool fixed);
   /// Make the spheres `members` a clump (Yade's O.bodies.clump): a rigid body at their centroid
   /// with principal axes and moments of their union; returns the clump's id. Members are summed
   /// as whole spheres (Yade's default), or, with `discretization` > 0 and overlapping members,

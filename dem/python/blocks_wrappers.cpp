@@ -94,7 +94,7 @@ void talus_wrap_blocks(py::module_& m)
         const auto i1 = static_cast<std::size_t>(id1), i2 = static_cast<std::size_t>(id2);
         if (s.bodies.shape[i1] != ShapeKind::Wall)
           blockOf(s, id1);
-        BlockContactGeometry g;
+        ConvexContactGeometry g;
         bool touching = false;
         const int n = std::max(repeats, 1);
         const auto t0 = std::chrono::steady_clock::now();

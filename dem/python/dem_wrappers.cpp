@@ -227,6 +227,7 @@ PYBIND11_MODULE(_dem, m)
         case ShapeKind::Box: return "Box";
         case ShapeKind::Clump: return "Clump";
         case ShapeKind::PotentialBlock: return "PotentialBlock";
+        case ShapeKind::PotentialParticle: return "PotentialParticle";
         }
         return "?";
       })
@@ -263,4 +264,5 @@ PYBIND11_MODULE(_dem, m)
       });
   void talus_wrap_bodies(py::module_&); talus_wrap_bodies(m); // after Engine, Scene: kinematics, clumps, boxes: bodies_wrappers.cpp
   void talus_wrap_blocks(py::module_&); talus_wrap_blocks(m); // Potential Blocks: blocks_wrappers.cpp
+  void talus_wrap_particles(py::module_&); talus_wrap_particles(m); // Potential Particles: particles_wrappers.cpp
 }

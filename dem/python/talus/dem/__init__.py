@@ -20,6 +20,8 @@ from talus.dem.quaternion import Quaternion
 from talus.dem.shapes import Box, Clump, Facet, Shape, Sphere, Wall
 from talus.dem.blocks import *  # noqa: F401,F403  (Potential Blocks, Yade's names)
 from talus.dem.blocks import __all__ as _block_names
+from talus.dem.particles import *  # noqa: F401,F403  (Potential Particles, Yade's names)
+from talus.dem.particles import __all__ as _particle_names
 from talus.dem.blockgen import Joint, JointFileError, generateBlocks, readJoints
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
@@ -44,4 +46,4 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",
            "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",
-           *_engine_names, *_block_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]
+           *_engine_names, *_block_names, *_particle_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]

@@ -32,7 +32,7 @@ class BodySpec:
     extents: tuple = ()
     orientation: tuple = (1.0, 0.0, 0.0, 0.0)
     color: tuple = field(default=(0.5, 0.5, 0.5))
-    block: object = None  # the PotentialBlock shape (talus.dem.blocks)
+    block: object = None  # the PotentialBlock or PotentialParticle shape (talus.dem.blocks, .particles)
 
 
 def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, **_ignored) -> BodySpec:
@@ -234,6 +234,9 @@ class BodyContainer:
         if spec.shape == "PotentialBlock":
             from talus.dem import blocks
             return blocks._add(scene, spec, material)
+        if spec.shape == "PotentialParticle":
+            from talus.dem import particles
+            return particles._add(scene, spec, material)
         if spec.shape == "Facet":
             return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material)
         return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)

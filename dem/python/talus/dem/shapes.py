@@ -98,4 +98,10 @@ def shape_of(scene, id: int):
         s = _dem.block_shape(scene._cpp, id)   # planes in the body's principal frame
         n = np.asarray(s["normals"], dtype=float).reshape(-1, 3)
         return PotentialBlock(n[:, 0], n[:, 1], n[:, 2], s["d"], r=s["r"], R=s["R"], isBoundary=s["isBoundary"])
+    if kind == "PotentialParticle":   # Yade's PotentialParticle shape: its planes, r, k, R, isBoundary
+        from talus.dem.particles import PotentialParticle
+        s = _dem.particle_shape(scene._cpp, id)   # planes in the shape frame
+        n = np.asarray(s["normals"], dtype=float).reshape(-1, 3)
+        return PotentialParticle(n[:, 0], n[:, 1], n[:, 2], s["d"], r=s["r"], k=s["k"], R=s["R"],
+                                 isBoundary=s["isBoundary"])
     return _BY_KIND[kind](scene, id)

@@ -1,6 +1,9 @@
-// Contact law of Potential Blocks (Boon et al. 2012), as Yade's
-// Ip2_FrictMat_FrictMat_KnKsPBPhys + Law2_SCG_KnKsPBPhys_KnKsPBLaw: stiffnesses per unit contact
-// area, times the area of the overlap region's section computed by the geometry.
+// Contact laws of Potential Blocks (Boon et al. 2012) and Potential Particles (Boon et al.
+// 2013), as Yade's Ip2_FrictMat_FrictMat_KnKsPBPhys + Law2_SCG_KnKsPBPhys_KnKsPBLaw and
+// Ip2_FrictMat_FrictMat_KnKsPhys + Law2_SCG_KnKsPhys_KnKsLaw: stiffnesses per unit contact
+// area, times the area of the overlap region's section computed by the geometry. The two
+// differ only where Yade's do: the particles' law has no separate boundary stiffness (its
+// kn_i, ks_i are accepted and unused) and caps the shear force with the damped normal force.
 #include "dem/ContactLawKernel.h"
 
 #include <algorithm>
@@ -9,7 +12,8 @@
 
 namespace talus::dem
 {
-class KnKsPB : public ContactLawKernel<KnKsPB>
+template <bool Particles>
+class KnKs : public ContactLawKernel<KnKs<Particles>>
 {
 public:
   static constexpr bool usesExtra = true; // the contact area (ContactExtra::contactArea)
@@ -22,8 +26,14 @@ public:
   // Law2's allowViscousAttraction: the damped normal force may pull.
   bool calContactArea = true, allowViscousAttraction = false;
 
-  [[nodiscard]] std::string typeName() const override { return "Law2_SCG_KnKsPBPhys_KnKsPBLaw"; }
-  [[nodiscard]] std::string physicsName() const override { return "Ip2_FrictMat_FrictMat_KnKsPBPhys"; }
+  [[nodiscard]] std::string typeName() const override
+  {
+    return Particles ? "Law2_SCG_KnKsPhys_KnKsLaw" : "Law2_SCG_KnKsPBPhys_KnKsPBLaw";
+  }
+  [[nodiscard]] std::string physicsName() const override
+  {
+    return Particles ? "Ip2_FrictMat_FrictMat_KnKsPhys" : "Ip2_FrictMat_FrictMat_KnKsPBPhys";
+  }
   [[nodiscard]] int handles(const Material&, const Material&) const override { return 1; }
 
   [[nodiscard]] std::vector<std::string> parameterNames() const override
@@ -48,7 +58,7 @@ public:
       return calContactArea ? 1 : 0;
     if (name == "allowViscousAttraction")
       return allowViscousAttraction ? 1 : 0;
-    return *const_cast<KnKsPB*>(this)->stiffness(name);
+    return *const_cast<KnKs*>(this)->stiffness(name);
   }
 
   /// Friction from the smaller FrictMat angle; stiffnesses follow the area at every step.
@@ -61,14 +71,14 @@ public:
   }
 
   /// F_n = Knormal A u_n n (+ viscous part), F_s -= Kshear A du_s capped at tan(phi) |F_n
-  /// elastic|; with a boundary block kn_i, ks_i instead. A has a floor of (1e-3 R)^2 so a
-  /// vertex touching a face still has some stiffness.
+  /// elastic| (particles: |F_n| with its viscous part); with a boundary block kn_i, ks_i
+  /// instead. A has a floor of (1e-3 R)^2 so a vertex touching a face still has some stiffness.
   template <bool Track>
   void force(Contact& c, std::size_t k, const StepContext& step, ContactEnergy& e) const
   {
     const Bodies& b = step.bodies;
     const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
-    const bool boundary = isBoundary(b, i1) || isBoundary(b, i2);
+    const bool boundary = !Particles && (isBoundary(b, i1) || isBoundary(b, i2));
     const double floor = 1e-6 * std::min(c.refR1, c.refR2) * std::min(c.refR1, c.refR2);
     const double area = calContactArea ? std::max(step.extra[k].contactArea, floor) : 1.0;
     c.kn = (boundary ? kn_i : Knormal) * area;
@@ -87,7 +97,7 @@ public:
         c.normalForce.setZero();
     }
     c.shearForce -= c.ks * c.shearIncrement;
-    const double maxFs2 = elastic.squaredNorm() * c.tanPhi * c.tanPhi;
+    const double maxFs2 = (Particles ? c.normalForce : elastic).squaredNorm() * c.tanPhi * c.tanPhi;
     const double fs2 = c.shearForce.squaredNorm();
     if (fs2 > maxFs2)
     {
@@ -111,7 +121,7 @@ private:
                    : name == "viscousDamping" ? &viscousDamping
                                               : nullptr;
     if (!slot)
-      unknownParameter(name);
+      this->unknownParameter(name);
     return slot;
   }
   static bool isBoundary(const Bodies& b, std::size_t i)
@@ -128,5 +138,8 @@ private:
   }
 };
 
+using KnKsPB = KnKs<false>;
+using KnKsPP = KnKs<true>;
 TALUS_REGISTER_CONTACT_LAW(KnKsPB, "Law2_SCG_KnKsPBPhys_KnKsPBLaw")
+TALUS_REGISTER_CONTACT_LAW(KnKsPP, "Law2_SCG_KnKsPhys_KnKsLaw")
 } // namespace talus::dem

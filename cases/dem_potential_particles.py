@@ -1,0 +1,338 @@
+"""DEM case: Potential Particles (Yade's PotentialParticle) against analytic contact geometry and
+forces, friction, and side by side with Yade (Debian's yade has PotentialParticle).
+
+Run:      build/bin/talus run cases/dem_potential_particles.py [--quick] [--results DIR]
+Set-up:   cube particles with Yade's cubePPscaled.py planes (half-size 0.5 m: d = 0.5 - r,
+          r = 0.05 m, k = 0.2, R = sqrt(3) 0.5 m), density 1000 kg/m^3, the KnKs law (Knormal
+          1e8 N/m^3, Kshear 1e7 N/m^3):
+          1. pressing: two fixed cubes face to face, overlaps 1e-5 ... 1e-2 m, aligned and
+             twisted 45 deg about the normal; one step;
+          2. resting: a cube dropped 0.1 mm onto a wall under gravity (viscous damping 0.5,
+             Cundall damping 0.3), 1 s;
+          3. incline: a flat block (half-sizes 0.5, 0.5, 0.25 m, friction angle 30 deg) resting
+             on a wall, gravity turned to theta over 0.25 s with Cundall damping, then 0.5 s
+             (quick) or 1 s undamped, theta = 25 ... 35 deg (displacements from the ramp's end);
+          4. Yade side by side (cases/yade/potential_particles.py, same input in both): the
+             pressing and resting set-ups with a boundary plate instead of the wall (Yade's PP
+             has no wall contact), and a packing of 8 (quick) or 27 cubes settled in a box of
+             five boundary plates (cubePPscaled.py made small): porosity, coordination, and the
+             cost of a step per contact with every body fixed (contact geometry only).
+Checked:  dem.potential-particles.pressing: worst relative error of the overlap against
+          2 s - D (s the face centre's distance, root of the potential on the axis) <= 1e-8,
+          and of the normal force against Knormal A u_n with A the section of the overlap by
+          the mid-plane integrated independently (numpy, 720 rays) <= 2e-3;
+          dem.potential-particles.resting: relative error of the contact force against m g <= 1e-6;
+          dem.potential-particles.incline-slip: worst relative error of the sliding acceleration
+          above the friction angle against g (sin theta - cos theta tan phi) <= 1e-2;
+          dem.potential-particles.incline-stick: largest displacement below it after the ramp
+          <= 5 mm (the undamped oscillation of the shear spring, Kshear A ~ 1.4e6 N/m);
+          dem.potential-particles.yade-pressing / yade-resting: relative difference of overlap
+          and force from Yade's (reported; tolerance 5 %, Yade's area is a heuristic);
+          dem.potential-particles.yade-packing: porosity difference (absolute, <= 0.05) and
+          coordination difference (relative, reported);
+          dem.potential-particles.yade-cost: Yade's step time per contact over Talus's (>= 3).
+Produces: the records and chart dem.potential-particles.png.
+"""
+import math
+from pathlib import Path
+
+import numpy as np
+
+from talus import results
+from talus.dem import (ForceResetter, FrictMat, Ig2_PP_PP_ScGeom, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_KnKsPhys, Law2_SCG_KnKsPhys_KnKsLaw, NewtonIntegrator,
+                       PotentialParticle, PotentialParticle2AABB, Scene, potentialParticle, twin, wall)
+from talus import _dem
+
+KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
+HALF, R_ROUND, K_SPH = 0.5, 0.05, 0.2
+CUBE = PotentialParticle.cuboid((HALF, HALF, HALF), r=R_ROUND, k=K_SPH)
+SCENARIO = Path(__file__).resolve().parent / "yade" / "potential_particles.py"
+
+
+def face_centre(shape, axis=2):
+    """Distance of the face centre along `axis` (the root s > d of the potential on the axis)."""
+    d, r, k, R = shape.d[2 * axis], shape.r, shape.k, shape.R
+    A = (1 - k) / r**2 + k / R**2
+    B = -2 * d * (1 - k) / r**2
+    C = (1 - k) * d * d / r**2 - 1
+    return (-B + math.sqrt(B * B - 4 * A * C)) / (2 * A)
+
+
+def potential(shape, p, rot=np.eye(3)):
+    """f of `shape` (at the origin, turned by `rot`) at points p (n x 3), in numpy."""
+    N = np.stack([shape.a, shape.b, shape.c], axis=1) @ rot.T
+    g = np.maximum(p @ N.T - np.asarray(shape.d), 0)
+    return (1 - shape.k) * ((g * g).sum(-1) / shape.r**2 - 1) + shape.k * ((p * p).sum(-1) / shape.R**2 - 1)
+
+
+def section_area(f, z, n=720):
+    """Area of {(x, y) : f(x, y, z) <= 0} (f convex, (0, 0, z) inside) by polar bisection."""
+    th = 2 * np.pi * np.arange(n) / n
+    u = np.stack([np.cos(th), np.sin(th), np.zeros(n)], axis=1)
+    lo, hi = np.zeros(n), np.full(n, 3.0)
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        inside = f(np.array([0, 0, z]) + mid[:, None] * u) <= 0
+        lo, hi = np.where(inside, mid, lo), np.where(inside, hi, mid)
+    return 0.5 * np.sum(lo**2) * 2 * np.pi / n
+
+
+def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G)):
+    S = Scene()
+    m = S.materials.append(FrictMat(density=RHO, frictionAngle=friction))
+    S.engines = [ForceResetter(), InsertionSortCollider([PotentialParticle2AABB()], verletDist=0.01),
+                 InteractionLoop([Ig2_PP_PP_ScGeom(calContactArea=True)],
+                                 [Ip2_FrictMat_FrictMat_KnKsPhys(Knormal=KN, Kshear=KS, viscousDamping=viscous)],
+                                 [Law2_SCG_KnKsPhys_KnKsLaw()]),
+                 NewtonIntegrator(gravity=gravity, damping=damping)]
+    S.dt = 2e-4
+    return S, m
+
+
+def pressing(overlaps):
+    """Rows (twist, overlap, overlap found, force, analytic force, area, reference area)."""
+    s = face_centre(CUBE)
+    rows = []
+    for twist in (0.0, math.pi / 4):
+        c, sn = math.cos(twist), math.sin(twist)
+        rot = np.array([[c, -sn, 0], [sn, c, 0], [0, 0, 1]])
+        for u in overlaps:
+            S, m = make_scene(gravity=(0, 0, 0))
+            S.bodies.append(potentialParticle(CUBE, pos=(0, 0, 0), material=m, fixed=True))
+            S.bodies.append(potentialParticle(CUBE, pos=(0, 0, 2 * s - u), orientation=(math.cos(twist / 2), 0, 0,
+                                                                                         math.sin(twist / 2)),
+                                              material=m, fixed=True))
+            S.run(1, True)
+            c0 = S._cpp.contacts()[0]
+            area = _dem.contact_areas(S._cpp)[0]
+            zc = s - u / 2
+            ref = section_area(lambda p: np.maximum(potential(CUBE, p),
+                                                    potential(CUBE, p - np.array([0, 0, 2 * s - u]), rot)), zc)
+            rows.append((twist, u, float(c0["penetrationDepth"]), float(c0["normalForce"][2]), KN * ref * u, area, ref))
+    return rows
+
+
+def resting(seconds):
+    S, m = make_scene(damping=0.3, viscous=0.5)
+    S.bodies.append(wall(0, axis=2, sense=1, material=m))
+    i = S.bodies.append(potentialParticle(CUBE, pos=(0, 0, face_centre(CUBE) + 1e-4), material=m))
+    times, forces = [], []
+    for _ in range(int(seconds / S.dt / 20)):
+        S.run(20, True)
+        c = S._cpp.contacts()
+        times.append(S.time)
+        forces.append(float(c[0]["normalForce"][2]) if c else 0.0)
+    return S, i, times, forces
+
+
+def incline(theta, seconds):
+    """A flat block resting on a wall, gravity turned to theta over 0.25 s with Cundall damping,
+    then `seconds` undamped: (displacement along the slope, acceleration fitted to the free
+    phase)."""
+    block = PotentialParticle.cuboid((HALF, HALF, HALF / 2), r=R_ROUND, k=K_SPH)
+    S, m = make_scene(damping=0.3, viscous=0.5)
+    S.bodies.append(wall(0, axis=2, sense=1, material=m))
+    i = S.bodies.append(potentialParticle(block, pos=(0, 0, face_centre(block) + 1e-4), material=m))
+    S.run(2500, True)
+    newton = S.engines[-1]
+    ramp = 20
+    for k in range(1, ramp + 1):
+        th = theta * k / ramp
+        newton.gravity = (G * math.sin(th), 0.0, -G * math.cos(th))
+        S.run(int(round(0.25 / ramp / S.dt)), True)
+    newton.damping = 0.0
+    # Displacement counted from the end of the ramp: the shear spring (and the small rocking of
+    # the bulged face) loads during the ramp, a few mm at Kshear A ~ 1e6 N/m.
+    start = float(S.bodies[i].state.pos[0])
+    times, xs = [], []
+    for _ in range(int(round(seconds / S.dt / 20))):
+        S.run(20, True)
+        times.append(S.time)
+        xs.append(float(S.bodies[i].state.pos[0]))
+    return xs[-1] - start, 2 * float(np.polyfit(times, xs, 2)[0])
+
+
+def shapes_for_yade(box, height):
+    """Planes and Talus's volume and principal inertia (per density) of every shape the twin
+    scenario uses."""
+    t = 0.5
+    out = {}
+    for name, half, k in [("cube", (HALF, HALF, HALF), K_SPH), ("plate", (3.0, 3.0, 0.25), 0.1),
+                          ("floor", (box / 2 + t, t / 2, box / 2 + t), 0.1), ("side_x", (t / 2, height / 2, box / 2 + t), 0.1),
+                          ("side_z", (box / 2 + t, height / 2, t / 2), 0.1)]:
+        r = R_ROUND if name == "cube" else 0.1 * t
+        R = math.sqrt(sum(h * h for h in half)) if name == "cube" else 0.5 * max(half)
+        shape = PotentialParticle.cuboid(half, r=r, k=k, R=R)
+        p = shape.properties()
+        out[name] = dict(d=shape.d, r=r, k=k, R=R, volume=p["volume"], inertia=list(map(float, p["inertiaPerDensity"])),
+                         half=[face_centre(shape, a) for a in range(3)])
+    return out
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    case = results.Case("dem.potential-particles", quick=args.quick, folder=args.results)
+
+    overlaps = list(np.logspace(-5, -2, 4 if args.quick else 7))
+    rows = pressing(overlaps)
+    overlap_error = max(abs(found - u) / u for _, u, found, *_ in rows)
+    force_error = max(abs(f - ref) / ref for *_, f, ref, _, _ in rows)
+    print(f"pressing: worst overlap error {overlap_error:.2e}, worst force error {force_error:.2e}")
+    case.record("worst relative error of the overlap of two cubes pressed face to face", overlap_error,
+                "2 s - D, s the face centre's distance from the centre", 1e-8, suffix="pressing-overlap",
+                overlaps=[r[1] for r in rows], found=[r[2] for r in rows])
+    case.record("worst relative error of the normal force of two cubes pressed face to face", force_error,
+                "Knormal A u_n, A the overlap's mid-plane section integrated in numpy (720 rays)", 2e-3,
+                suffix="pressing", forces=[r[3] for r in rows], analytic=[r[4] for r in rows],
+                areas=[r[5] for r in rows], reference_areas=[r[6] for r in rows], twists=[r[0] for r in rows])
+
+    S, i, times, forces = resting(1.0)
+    weight = float(S._cpp.mass()[i]) * G
+    rest_error = abs(forces[-1] - weight) / weight
+    print(f"resting: contact force {forces[-1]:.6f} N, m g = {weight:.6f} N, error {rest_error:.2e}")
+    case.record("relative error of the resting cube's contact force", rest_error, "the weight m g", 1e-6,
+                suffix="resting", force=forces[-1], weight=weight)
+
+    T = 0.5 if args.quick else 1.0
+    thetas = [25, 29, 31, 35] if args.quick else [20, 25, 28, 29, 31, 32, 35, 40]
+    moved, accelerations, analytic = [], [], []
+    for deg in thetas:
+        th = math.radians(deg)
+        s, a = incline(th, T)
+        moved.append(s)
+        accelerations.append(a)
+        analytic.append(max(G * (math.sin(th) - math.cos(th) * math.tan(PHI)), 0.0))
+        print(f"incline {deg} deg: moved {s:.6f} m, acceleration {a:.5f}, analytic {analytic[-1]:.5f}")
+    slip = max(abs(a - ref) / ref for a, ref in zip(accelerations, analytic) if ref > 0)
+    stick = max(abs(s) for s, ref in zip(moved, analytic) if ref == 0)
+    case.record("worst relative error of the sliding acceleration above the friction angle (30 deg)", slip,
+                "g (sin theta - cos theta tan phi)", 1e-2, suffix="incline-slip", thetas_deg=thetas,
+                accelerations=accelerations, analytic=analytic, moved=moved, T=T)
+    case.record("largest displacement (m) along the slope below the friction angle, after the ramp", stick,
+                "no sliding: the undamped elastic oscillation only (m g sin theta / (Kshear A) ~ 2.5 mm, "
+                "A ~ 0.14 m^2 on the bulged face)", 5e-3, suffix="incline-stick", thetas_deg=thetas, moved=moved)
+
+    yade = None
+    if twin.yade_available():
+        yade = side_by_side(case, args.quick)
+    else:
+        print("yade is not installed: no side-by-side run")
+
+    fig, axes = plt.subplots(1, 4, figsize=(20, 4.2))
+    ax1, ax2, ax3, ax4 = axes
+    for twist, style in [(0.0, "bo"), (math.pi / 4, "gs")]:
+        sel = [r for r in rows if r[0] == twist]
+        ax1.loglog([r[1] for r in sel], [r[3] for r in sel], style, label=f"Talus, twist {math.degrees(twist):.0f} deg")
+        ax1.loglog([r[1] for r in sel], [r[4] for r in sel], "k-", lw=0.8)
+    if yade:
+        ax1.loglog(yade["overlaps"], yade["forces"], "rx", ms=9, label="Yade (same input)")
+    ax1.set_xlabel("overlap (m)")
+    ax1.set_ylabel("normal force (N)")
+    ax1.set_title("two PP cubes pressed (line: Knormal A u_n)")
+    ax1.legend(fontsize=8)
+    ax2.plot(times, forces, "b-", label="Talus, cube on a wall")
+    ax2.axhline(weight, color="k", lw=0.8, ls="--", label="m g")
+    if yade:
+        ax2.plot(yade["rest_times"], yade["rest_yade"], "r--", label="Yade, on a boundary plate")
+        ax2.plot(yade["rest_times"], yade["rest_talus"], "c:", label="Talus, on a boundary plate")
+    ax2.set_xlabel("time (s)")
+    ax2.set_ylabel("normal force (N)")
+    ax2.set_title("cube resting under gravity")
+    ax2.legend(fontsize=8)
+    fine = np.linspace(min(thetas), max(thetas), 200)
+    ax3.plot(fine, [max(G * (math.sin(math.radians(t)) - math.cos(math.radians(t)) * math.tan(PHI)), 0) for t in fine],
+             "k-", lw=0.8, label="g (sin theta - cos theta tan phi)")
+    ax3.plot(thetas, accelerations, "bo", label="Talus")
+    ax3.axvline(30, color="r", ls=":", label="friction angle")
+    ax3.set_xlabel("slope angle theta (deg)")
+    ax3.set_ylabel("sliding acceleration (m/s^2)")
+    ax3.set_title("PP block on an inclined wall")
+    ax3.legend(fontsize=8)
+    if yade:
+        labels = ["porosity", "coordination", "us per contact-step"]
+        x = np.arange(3)
+        ax4.bar(x - 0.2, yade["pack_talus"], 0.4, label="Talus")
+        ax4.bar(x + 0.2, yade["pack_yade"], 0.4, label="Yade")
+        ax4.set_xticks(x, labels)
+        ax4.set_yscale("log")
+        ax4.set_title("packing of PP cubes settled in a box")
+        ax4.legend(fontsize=8)
+    fig.tight_layout()
+    case.save_chart(fig)
+
+
+def side_by_side(case, quick):
+    out = {}
+    box, height = 4.0, 8.0
+    shapes = shapes_for_yade(box, height)
+    s = face_centre(CUBE)
+    overlaps = [1e-4, 1e-3, 1e-2]
+    diffs_u, diffs_f, forces = [], [], []
+    for u in overlaps:
+        params = dict(mode="pressing", D=2 * s - u, shapes=shapes, Knormal=KN, Kshear=KS)
+        ours, theirs = twin.run(SCENARIO, params, "talus"), twin.run(SCENARIO, params, "yade")
+        a, b = ours["contacts"][0], theirs["contacts"][0]
+        diffs_u.append(abs(a["penetrationDepth"] - b["penetrationDepth"]) / b["penetrationDepth"])
+        diffs_f.append(abs(a["normalForce"][2] - b["normalForce"][2]) / abs(b["normalForce"][2]))
+        forces.append(abs(b["normalForce"][2]))
+        print(f"Yade pressing u={u:.0e}: overlap Talus {a['penetrationDepth']:.6e} Yade {b['penetrationDepth']:.6e}; "
+              f"area {a['contactArea']:.5e} / {b['contactArea']:.5e}; force {a['normalForce'][2]:.5e} / "
+              f"{b['normalForce'][2]:.5e}")
+    out["overlaps"], out["forces"] = overlaps, forces
+    case.record("largest relative difference of the contact force of two pressed cubes from Yade's", max(diffs_f),
+                "Yade's Ig2_PP_PP_ScGeom + KnKsLaw on the same input", 0.05, suffix="yade-pressing",
+                overlap_differences=diffs_u, force_differences=diffs_f, overlaps=overlaps)
+
+    steps = 5000 if quick else 10000
+    params = dict(mode="resting", shapes=shapes, steps=steps, dt=2e-4, Knormal=KN, Kshear=KS)
+    ours, theirs = twin.run(SCENARIO, params, "talus"), twin.run(SCENARIO, params, "yade")
+    a, b = ours["contacts"][0], theirs["contacts"][0]
+    du = abs(a["penetrationDepth"] - b["penetrationDepth"]) / b["penetrationDepth"]
+    df = abs(a["normalForce"][2] - b["normalForce"][2]) / abs(b["normalForce"][2])
+    print(f"Yade resting: force Talus {a['normalForce'][2]:.6f} Yade {b['normalForce'][2]:.6f}; overlap Talus "
+          f"{a['penetrationDepth']:.6e} Yade {b['penetrationDepth']:.6e}; area {a['contactArea']:.5e} / {b['contactArea']:.5e}")
+    case.record("relative difference of the resting cube's overlap from Yade's", du,
+                "Yade on the same input (cube on a boundary PP plate)", 0.05, suffix="yade-resting",
+                force_difference=df, talus=a, yade=b)
+    out["rest_times"] = [0.02 * (k + 1) for k in range(len(ours["history"]))]
+    out["rest_talus"], out["rest_yade"] = ours["history"], theirs["history"]
+
+    # Yade's particle contact costs about 10 ms per contact and step here: a small packing.
+    n, per_row = (8, 2) if quick else (27, 3)
+    params = dict(mode="packing", shapes=shapes, n=n, perRow=per_row, spacing=1.3, box=box, height=height,
+                  dt=5e-4, steps=2500 if quick else 4000, timedSteps=20, seed=7, Knormal=KN, Kshear=KS)
+    ours, theirs = twin.run(SCENARIO, params, "talus"), twin.run(SCENARIO, params, "yade")
+    V = shapes["cube"]["volume"]
+
+    def porosity(r):
+        top = max(p[1] for p in r["positions"]) + s
+        return 1 - n * V / (box * box * top)
+
+    def coordination(r):
+        return (2 * r["particleContacts"] + r["wallContacts"]) / n
+
+    pt, py = porosity(ours), porosity(theirs)
+    ct, cy = coordination(ours), coordination(theirs)
+    cost_t = ours["stepSeconds"] / max(ours["realAfter"], 1)
+    cost_y = theirs["stepSeconds"] / max(theirs["realAfter"], 1)
+    print(f"Yade packing: porosity Talus {pt:.4f} Yade {py:.4f}; coordination Talus {ct:.3f} Yade {cy:.3f}; "
+          f"contacts {ours['realAfter']} / {theirs['realAfter']}; step per contact {cost_t * 1e6:.2f} us / "
+          f"{cost_y * 1e6:.2f} us (ratio {cost_y / cost_t:.1f})")
+    case.record("absolute difference of the settled packing's porosity from Yade's", abs(pt - py),
+                "Yade's run of the same packing (cubePPscaled.py style)", 0.05, suffix="yade-packing",
+                porosity_talus=pt, porosity_yade=py, coordination_talus=ct, coordination_yade=cy, n=n)
+    case.record("Yade's step time per contact over Talus's (contact geometry of a fixed packing)", cost_y / cost_t,
+                "Yade 2023.02a, one thread, same packing and engines", 3.0, comparison=">=", suffix="yade-cost",
+                talus_seconds_per_contact=cost_t, yade_seconds_per_contact=cost_y,
+                contacts_talus=ours["realAfter"], contacts_yade=theirs["realAfter"])
+    out["pack_talus"] = [pt, ct, cost_t * 1e6]
+    out["pack_yade"] = [py, cy, cost_y * 1e6]
+    return out
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,156 @@
+#include "dem/PotentialParticleContact.h"
+#include "dem/PotentialParticle.h"
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+
+namespace talus::dem
+{
+namespace
+{
+const PotentialParticleShape& shapeOf(const Bodies& b, std::size_t i)
+{
+  return b.particles[static_cast<std::size_t>(b.shapeIndex[i])];
+}
+
+PlacedPotential placed(const Bodies& b, std::size_t i, const Vec3& origin)
+{
+  return placePotential(shapeOf(b, i), b.pos[i], b.ori[i], origin);
+}
+
+constexpr int areaRays = 72; // Yade's default areaStep, 5 degrees
+
+/// Area of the section of {f1 <= 0, f2 <= 0} (f2 may be null) through x normal to n.
+double sectionArea(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3& x, const Vec3& n, double scale)
+{
+  const Vec3 t1 = (std::abs(n[0]) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+  const Vec3 t2 = n.cross(t1);
+  double sum = 0, rho = 0;
+  for (int j = 0; j < areaRays; ++j)
+  {
+    const double theta = 2 * M_PI * j / areaRays;
+    rho = rayExit(f1, f2, x, std::cos(theta) * t1 + std::sin(theta) * t2, rho, scale);
+    sum += rho * rho;
+  }
+  return 0.5 * sum * (2 * M_PI / areaRays);
+}
+} // namespace
+
+/// Support point of particle i along the unit world direction e, relative to b.pos[i], from the
+/// stored surface sample farthest along e.
+Vec3 support(const Bodies& b, std::size_t i, const PlacedPotential& f, const Vec3& e)
+{
+  const PotentialParticleShape& s = shapeOf(b, i);
+  const Vec3 eb = b.ori[i].conjugate() * e;
+  std::size_t best = 0;
+  for (std::size_t k = 1; k < s.samples.size(); ++k)
+    if (s.samples[k].dot(eb) > s.samples[best].dot(eb))
+      best = k;
+  const Vec3 start = b.ori[i] * s.samples[best];
+  Vec3 x = Vec3::Zero();
+  supportPoint(f, e, x, &start);
+  return x;
+}
+
+void potentialParticleAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
+{
+  const PlacedPotential f = placed(b, i, b.pos[i]);
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    Vec3 e = Vec3::Zero();
+    e[axis] = 1;
+    hi[axis] = b.pos[i][axis] + support(b, i, f, e)[axis];
+    lo[axis] = b.pos[i][axis] + support(b, i, f, -e)[axis];
+  }
+}
+
+bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
+                              ConvexContactGeometry& out)
+{
+  const PotentialParticleShape& s2 = shapeOf(b, i2);
+  out.lpSolves = 0;
+  if (b.shape[i1] == ShapeKind::Wall)
+  {
+    // The wall's solid side is behind its plane, seen from the particle: the deepest point is
+    // the particle's support point along -normal.
+    const WallShape& w = b.walls[static_cast<std::size_t>(b.shapeIndex[i1])];
+    const double dpos = b.pos[i2][w.axis] - b.pos[i1][w.axis];
+    const double side = w.sense != 0 ? w.sense : (dpos >= 0 ? 1.0 : -1.0);
+    Vec3 n = Vec3::Zero();
+    n[w.axis] = side;
+    const Vec3 origin = b.pos[i2];
+    const PlacedPotential f = placePotential(s2, b.pos[i2], b.ori[i2], origin);
+    // Cheap rejection: the bounding sphere does not reach the plane.
+    if (side * dpos > s2.boundingRadius)
+      return false;
+    const Vec3 x = support(b, i2, f, -n);
+    const double depth = side * (b.pos[i1][w.axis] - origin[w.axis]) - n.dot(x);
+    if (!(depth > 0))
+      return false;
+    out.normal = n;
+    out.penetration = depth;
+    const Vec3 mid = x + 0.5 * depth * n;
+    out.contactPoint = mid + origin;
+    out.area = sectionArea(f, nullptr, mid, n, s2.R);
+    return true;
+  }
+
+  const PotentialParticleShape& s1 = shapeOf(b, i1);
+  const Vec3 origin = 0.5 * (b.pos[i1] + b.pos[i2]);
+  const PlacedPotential f1 = placed(b, i1, origin), f2 = placed(b, i2, origin);
+  const double scale = std::min(s1.R, s2.R);
+  // Bounding spheres apart: no contact.
+  if ((b.pos[i2] - b.pos[i1]).norm() > s1.boundingRadius + s2.boundingRadius)
+    return false;
+  Vec3 x = previous ? Vec3(*previous - origin) : Vec3::Zero();
+  bool separated = false;
+  Vec3 g1, g2;
+  double v1 = 0, v2 = 0;
+  decreasingRoot(
+      [&](double mu, double& slope) {
+        Mat3 H;
+        minimisePotentials(f1, mu, &f2, 1 - mu, Vec3::Zero(), x, &H);
+        v1 = f1.eval(x, &g1);
+        v2 = f2.eval(x, &g2);
+        // Weak duality: min_x mu f1 + (1 - mu) f2 > 0 means no point is inside both.
+        if (mu * v1 + (1 - mu) * v2 > 0)
+        {
+          separated = true;
+          slope = 0;
+          return 0.0; // stops the search
+        }
+        const Vec3 dg = g1 - g2;
+        slope = -dg.dot(H.ldlt().solve(dg));
+        return v1 - v2;
+      },
+      0.0, 1.0, 0.5, 1e-13, 1e-14);
+  if (separated || !(std::max(v1, v2) < 0))
+    return false;
+
+  // The normal: grad f1 and -grad f2 are parallel at x*; their mean is robust when one is tiny.
+  Vec3 n = Vec3::Zero();
+  const double n1 = g1.norm(), n2 = g2.norm();
+  if (n1 > 0)
+    n += g1 / n1;
+  if (n2 > 0)
+    n -= g2 / n2;
+  if (!(n.norm() > 1e-12))
+    n = b.pos[i2] - b.pos[i1];
+  if (!(n.norm() > 0))
+    n = Vec3::UnitZ();
+  n.normalize();
+
+  const double tPlus = rayExit(f1, &f2, x, n, 0, scale), tMinus = rayExit(f1, &f2, x, -n, 0, scale);
+  const double chord = tPlus + tMinus;
+  if (!(chord > 0) || !std::isfinite(chord))
+    return false;
+  out.normal = n;
+  out.penetration = chord;
+  const Vec3 mid = x + 0.5 * (tPlus - tMinus) * n;
+  out.contactPoint = mid + origin;
+  out.area = sectionArea(f1, &f2, mid, n, scale);
+  return true;
+}
+} // namespace talus::dem
