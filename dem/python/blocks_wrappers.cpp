@@ -3,12 +3,12 @@
 // names) is talus.dem.blocks.
 #include "dem/PotentialBlockContact.h"
 #include "dem/Scene.h"
+#include "dem/python/convex_contact_probe.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -83,44 +83,12 @@ void talus_wrap_blocks(py::module_& m)
     potentialBlockAabb(s.bodies, static_cast<std::size_t>(id), lo, hi);
     return std::make_pair(lo, hi);
   });
-  // The contact geometry of a pair as it stands (no history), with the solver's mean wall time
-  // over `repeats` calls: `seconds` solving the linear program every time (a new contact's
-  // cost), `secondsWarm` starting from the contact point found (a persistent contact's cost).
+  // The contact geometry of a pair as it stands, timed (convex_contact_probe.h).
   m.def(
       "block_contact",
-      [](const Scene& s, BodyId id1, BodyId id2, int repeats) -> py::object {
-        s.checkBody(id1);
-        blockOf(s, id2);
-        const auto i1 = static_cast<std::size_t>(id1), i2 = static_cast<std::size_t>(id2);
-        if (s.bodies.shape[i1] != ShapeKind::Wall)
-          blockOf(s, id1);
-        ConvexContactGeometry g;
-        bool touching = false;
-        const int n = std::max(repeats, 1);
-        const auto t0 = std::chrono::steady_clock::now();
-        for (int k = 0; k < n; ++k)
-          touching = potentialBlockContact(s.bodies, i1, i2, nullptr, g);
-        const auto t1 = std::chrono::steady_clock::now();
-        py::dict out;
-        out["touching"] = touching;
-        out["lpSolves"] = g.lpSolves;
-        out["seconds"] = std::chrono::duration<double>(t1 - t0).count() / n;
-        if (touching)
-        {
-          // A persistent contact starts from its previous contact point (no linear program).
-          const Vec3 previous = g.contactPoint;
-          for (int k = 0; k < n; ++k)
-            potentialBlockContact(s.bodies, i1, i2, &previous, g);
-          out["secondsWarm"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count() / n;
-        }
-        if (touching)
-        {
-          out["normal"] = g.normal;
-          out["contactPoint"] = g.contactPoint;
-          out["penetrationDepth"] = g.penetration;
-          out["contactArea"] = g.area;
-        }
-        return out;
+      [](const Scene& s, BodyId id1, BodyId id2, int repeats) {
+        return probeConvexContact(s, id1, id2, repeats, [](const Scene& sc, BodyId id) { blockOf(sc, id); },
+                                  potentialBlockContact);
       },
       py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1);
   // Contact areas of the real contacts (same order as Scene.contacts()); 0 without extra state.

@@ -3,13 +3,13 @@
 // API (Yade's names) is talus.dem.particles.
 #include "dem/PotentialParticleContact.h"
 #include "dem/Scene.h"
+#include "dem/python/convex_contact_probe.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -110,39 +110,12 @@ void talus_wrap_particles(py::module_& m)
       }
     return out;
   });
-  // The contact geometry of a pair as it stands (no history), with the solver's mean wall time
-  // over `repeats` calls: `seconds` from a cold start, `secondsWarm` from the contact point
-  // found (a persistent contact's cost).
+  // The contact geometry of a pair as it stands, timed (convex_contact_probe.h).
   m.def(
       "particle_contact",
-      [](const Scene& s, BodyId id1, BodyId id2, int repeats) -> py::object {
-        s.checkBody(id1);
-        particleOf(s, id2);
-        const auto i1 = static_cast<std::size_t>(id1), i2 = static_cast<std::size_t>(id2);
-        if (s.bodies.shape[i1] != ShapeKind::Wall)
-          particleOf(s, id1);
-        ConvexContactGeometry g;
-        bool touching = false;
-        const int n = std::max(repeats, 1);
-        const auto t0 = std::chrono::steady_clock::now();
-        for (int k = 0; k < n; ++k)
-          touching = potentialParticleContact(s.bodies, i1, i2, nullptr, g);
-        const auto t1 = std::chrono::steady_clock::now();
-        py::dict out;
-        out["touching"] = touching;
-        out["seconds"] = std::chrono::duration<double>(t1 - t0).count() / n;
-        if (touching)
-        {
-          const Vec3 previous = g.contactPoint;
-          for (int k = 0; k < n; ++k)
-            potentialParticleContact(s.bodies, i1, i2, &previous, g);
-          out["secondsWarm"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count() / n;
-          out["normal"] = g.normal;
-          out["contactPoint"] = g.contactPoint;
-          out["penetrationDepth"] = g.penetration;
-          out["contactArea"] = g.area;
-        }
-        return out;
+      [](const Scene& s, BodyId id1, BodyId id2, int repeats) {
+        return probeConvexContact(s, id1, id2, repeats, [](const Scene& sc, BodyId id) { particleOf(sc, id); },
+                                  potentialParticleContact);
       },
       py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1);
 }

@@ -1,0 +1,53 @@
+#pragma once
+
+// The contact probe that the Potential Block and Potential Particle bindings share
+// (blocks_wrappers.cpp, particles_wrappers.cpp).
+#include "dem/ConvexContact.h"
+#include "dem/Scene.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/pybind11.h>
+
+#include <algorithm>
+#include <chrono>
+
+namespace talus::dem
+{
+/// The contact geometry of a pair as it stands (no history), with the solver's mean wall time over
+/// `repeats` calls: `seconds` from a cold start (a new contact's cost), `secondsWarm` starting from
+/// the contact point found (a persistent contact's cost). `check(scene, id)` throws unless the body
+/// has the shape; body 1 may be a wall. `solve(bodies, i1, i2, previous, g)` is the shape's contact
+/// routine.
+template <class Check, class Solve>
+pybind11::dict probeConvexContact(const Scene& s, BodyId id1, BodyId id2, int repeats, Check check, Solve solve)
+{
+  s.checkBody(id1);
+  check(s, id2);
+  const auto i1 = static_cast<std::size_t>(id1), i2 = static_cast<std::size_t>(id2);
+  if (s.bodies.shape[i1] != ShapeKind::Wall)
+    check(s, id1);
+  ConvexContactGeometry g;
+  bool touching = false;
+  const int n = std::max(repeats, 1);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < n; ++k)
+    touching = solve(s.bodies, i1, i2, nullptr, g);
+  const auto t1 = std::chrono::steady_clock::now();
+  pybind11::dict out;
+  out["touching"] = touching;
+  out["lpSolves"] = g.lpSolves;
+  out["seconds"] = std::chrono::duration<double>(t1 - t0).count() / n;
+  if (touching)
+  {
+    const Vec3 previous = g.contactPoint;
+    for (int k = 0; k < n; ++k)
+      solve(s.bodies, i1, i2, &previous, g);
+    out["secondsWarm"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count() / n;
+    out["normal"] = g.normal;
+    out["contactPoint"] = g.contactPoint;
+    out["penetrationDepth"] = g.penetration;
+    out["contactArea"] = g.area;
+  }
+  return out;
+}
+} // namespace talus::dem
