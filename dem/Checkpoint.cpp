@@ -304,7 +304,7 @@ constexpr std::pair<const char*, bool Material::*> materialFlags[] = {
     {"isCohesive", &Material::isCohesive}, {"momentRotationLaw", &Material::momentRotationLaw},
     {"fragile", &Material::fragile}};
 constexpr std::pair<const char*, Vec3 Contact::*> contactVectors[] = {
-    {"shift2", &Contact::shift2}, {"normal", &Contact::normal}, {"contactPoint", &Contact::contactPoint},
+    {"normal", &Contact::normal}, {"contactPoint", &Contact::contactPoint},
     {"shearIncrement", &Contact::shearIncrement}, {"normalForce", &Contact::normalForce},
     {"shearForce", &Contact::shearForce}, {"force", &Contact::force}};
 constexpr std::pair<const char*, double Contact::*> contactScalars[] = {

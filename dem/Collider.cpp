@@ -287,10 +287,7 @@ void Collider::run(Scene& scene)
   const bool rebuilding = needsRebuild(scene);
   timingDeltas.checkpoint("skin check");
   if (rebuilding)
-  {
     rebuild(scene);
-    timingDeltas.checkpoint("re-detection");
-  }
 }
 
 void Collider::rebuild(Scene& scene)
@@ -340,8 +337,10 @@ void Collider::rebuild(Scene& scene)
   else
   {
     grid_.build(b, spheres, 2 * rmax + skin_);
+    timingDeltas.checkpoint("re-detection: binning");
     spherePairs(b, spheres, grid_, skin_, perThread_, pairs);
   }
+  timingDeltas.checkpoint("re-detection: sphere pairs");
   for (BodyId f : facets)
     facetPairs(b, f, grid_, rmax, skin_, pairs);
   for (BodyId k : boxes_)
@@ -361,7 +360,9 @@ void Collider::rebuild(Scene& scene)
         pairs.push_back({key(w, s), Eigen::Vector3i::Zero()});
     }
   }
+  timingDeltas.checkpoint("re-detection: boundary pairs");
   std::sort(pairs.begin(), pairs.end(), byKey);
+  timingDeltas.checkpoint("re-detection: sort");
 
   // Merge with the existing list (also sorted by key): surviving pairs keep their history.
   std::vector<Contact>& old = scene.contacts.list;
@@ -424,7 +425,9 @@ void Collider::rebuild(Scene& scene)
   old.swap(merged);
   if (withExtra)
     oldExtra.swap(mergedExtra);
+  timingDeltas.checkpoint("re-detection: merge");
   scene.contacts.index(b.size());
+  timingDeltas.checkpoint("re-detection: index");
   referencePos_ = b.pos;
   referenceOri_.resize(convex_.size());
   for (std::size_t k = 0; k < convex_.size(); ++k)

@@ -108,16 +108,16 @@ template <bool SpheresOnly = false>
   double penetration;
   Vec3 contactPoint;
   double r1, r2;
-  Vec3 shiftVel = Vec3::Zero();
+  Vec3 shift2 = Vec3::Zero(), shiftVel = Vec3::Zero();
   if (cell)
   {
-    c.shift2 = cell->shift(c.cellDist);
+    shift2 = cell->shift(c.cellDist);
     shiftVel = cell->shiftVelocity(c.cellDist);
   }
   const bool spheres = SpheresOnly || c.kind == ContactGeometryKind::SphereSphere;
   if (spheres)
   {
-    const Vec3 d = b.pos[i2] + c.shift2 - b.pos[i1];
+    const Vec3 d = b.pos[i2] + shift2 - b.pos[i1];
     r1 = b.radius[i1];
     r2 = b.radius[i2];
     const double dist2 = d.squaredNorm();

@@ -129,14 +129,22 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
     laws[k]->computeForces(scene, static_cast<std::uint8_t>(k));
 }
 
-void InteractionLoop::sumForcesPerBody(Scene& scene)
+namespace
+{
+/// The force-and-torque gather of sumForcesPerBody for one kind of scene: `Periodic` takes
+/// body 2's lever arm from its periodic image (Cell::shift of the contact's cellDist, the
+/// shift the geometry used this step: the cell does not change inside the InteractionLoop);
+/// otherwise no record is read beyond its first cache line (Contact's layout note).
+template <bool Periodic>
+void gatherForces(Scene& scene, const ContactExtra* extra)
 {
   const std::vector<Contact>& list = scene.contacts.list;
   Bodies& b = scene.bodies;
   const Contacts& contacts = scene.contacts;
-  // Contact moments (rolling and twisting resistance) of the richer models, if any.
-  const ContactExtra* extra = contacts.extra.size() == list.size() ? contacts.extra.data() : nullptr;
+  const Cell& cell = scene.cell;
   const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
+  const auto entryCount = static_cast<std::int64_t>(contacts.entries.size());
+  constexpr std::int64_t prefetchDistance = 16; // entries ahead: a few hundred nanoseconds of work
 #pragma omp parallel for if (bodyCount >= parallelLoopMinimum) schedule(static)
   for (std::int64_t id = 0; id < bodyCount; ++id)
   {
@@ -146,25 +154,47 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
     {
       const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
       const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
+      // The records come in a few interleaved runs (a body's contacts with its lower and higher
+      // neighbours), one cache line each: the hardware prefetchers miss that pattern, and
+      // without this hint the gather waited on memory (2.2 times slower on a 65k-sphere bed).
+      if (e + prefetchDistance < entryCount)
+        __builtin_prefetch(&list[static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1)]);
       // No test of c.real and no branch on the side: a contact that is not real carries a zero
       // force (Contact::reset), and whether a body is a contact's first or second is as
-      // unpredictable as whether a candidate pair touches. The force on this body and its moment
-      // about the centre, applied at the contact point; body 2 is represented by its periodic
-      // image, so its lever arm is taken from there.
-      const bool second = (entry & 1) != 0;
-      const Vec3 force = (second ? 1.0 : -1.0) * c.force;
+      // unpredictable as whether a candidate pair touches. The sign is computed, not selected
+      // (for `second ? 1.0 : -1.0` GCC 12 emits a branch). The force on this body and its moment
+      // about the centre, applied at the contact point.
+      const std::int64_t second = entry & 1;
+      const Vec3 force = static_cast<double>(2 * second - 1) * c.force;
       f += force;
-      const Vec3 centre = b.pos[i] + static_cast<double>(second) * c.shift2;
-      t += (c.contactPoint - centre).cross(force);
+      if constexpr (Periodic)
+      {
+        const Vec3 centre = b.pos[i] + static_cast<double>(second) * cell.shift(c.cellDist);
+        t += (c.contactPoint - centre).cross(force);
+      }
+      else
+        t += (c.contactPoint - b.pos[i]).cross(force);
       if (extra && c.real)
       {
         const ContactExtra& x = extra[entry >> 1];
         const Vec3 moment = x.momentBending + x.momentTwist;
-        t += second ? moment : Vec3(-moment);
+        t += static_cast<double>(2 * second - 1) * moment;
       }
     }
     b.force[i] += f;
     b.torque[i] += t;
   }
+}
+} // namespace
+
+void InteractionLoop::sumForcesPerBody(Scene& scene)
+{
+  // Contact moments (rolling and twisting resistance) of the richer models, if any.
+  const auto& contacts = scene.contacts;
+  const ContactExtra* extra = contacts.extra.size() == contacts.list.size() ? contacts.extra.data() : nullptr;
+  if (scene.periodic)
+    gatherForces<true>(scene, extra);
+  else
+    gatherForces<false>(scene, extra);
 }
 } // namespace talus::dem

@@ -54,8 +54,8 @@ double sampleVolume(const Scene& scene, double volume, const char* caller)
   return scene.cell.volume();
 }
 
-/// From body 1's centre to body 2's image, with the cell as it is now: a contact's cached shift2
-/// is that of the step's start, before the integrator moved the bodies and the cell. A wall or
+/// From body 1's centre to body 2's image, with the cell as it is now (not as the geometry saw
+/// it at the step's start, before the integrator moved the bodies and the cell). A wall or
 /// facet has no centre: its branch vector is the sphere's distance to it along the normal, so
 /// that in equilibrium the stress of a walled sample equals wall force over area.
 Vec3 branchVector(const Scene& scene, const Contact& c)

@@ -59,7 +59,8 @@ py::dict contactArrays(const Scene& scene, bool realOnly)
   d["id2"] = column<std::int32_t>(n, [&](std::size_t k) { return list[k]->id2; });
   d["kind"] = column<std::uint8_t>(n, [&](std::size_t k) { return static_cast<std::uint8_t>(list[k]->kind); });
   d["real"] = column<std::uint8_t>(n, [&](std::size_t k) { return static_cast<std::uint8_t>(list[k]->real); });
-  d["shift2"] = rows3(n, [&](std::size_t k) { return list[k]->shift2; });
+  // Where body 2's periodic image is, with the cell as it is now (zero without periodicity).
+  d["shift2"] = rows3(n, [&](std::size_t k) { return scene.periodic ? scene.cell.shift(list[k]->cellDist) : Vec3::Zero(); });
   d["normal"] = rows3(n, [&](std::size_t k) { return list[k]->normal; });
   d["contactPoint"] = rows3(n, [&](std::size_t k) { return list[k]->contactPoint; });
   d["penetration"] = column<double>(n, [&](std::size_t k) { return list[k]->penetration; });

@@ -7,7 +7,8 @@
     timing.reset()
 
 Only the time spent while ``O.timingEnabled`` is on is counted. Engines that label stages (the
-collider: skin check, re-detection; the interaction loop: geometry/physics/law, forces per body)
+collider: skin check and the stages of a re-detection — binning, sphere pairs, boundary pairs,
+sort, merge with the previous contacts, per-body index; the interaction loop: geometry/physics/law, forces per body)
 show them below their own line, as Yade's timingDeltas.
 """
 
