@@ -216,6 +216,21 @@ def test_bad_input_is_refused_with_a_clear_error():
         engine(s, expoRz=3.0)
 
 
+@pytest.mark.parametrize("z, where", [(0.0195, "above the free surface"), (-1e-4, "outside the fluid grid")])
+def test_particles_out_of_the_water_are_refused_not_clipped(z, where):
+    # 20 layers of 1 mm: the fluid profile ends at its free surface, 19 mm; the top layer is dry.
+    for ignore in (False, True):
+        s = scene_with([((0, 0, z), 3e-4, (0, 0, 0)), ((0, 0, 0.0185), 3e-4, (0, 0, 0))])
+        s.engines = [ForceResetter(), engine(s, ignoreOutside=ignore)]
+        if not ignore:
+            with pytest.raises(ValueError, match=f"body 0 at z = {z:g} .*{where}"):
+                s.step()
+            continue
+        s.step()
+        assert np.all(s.forces()[0] == 0)
+        assert s.forces()[1][2] > 0                     # the submerged one has its buoyancy
+
+
 # -- two-way coupling ------------------------------------------------------------------------------
 
 def film_with_bed(period, **kw):
