@@ -171,6 +171,7 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     hydro.fluidResolution(1.0, DT_FLUID)
     coupling = VansCoupling(hydro, PERIOD, DT_FLUID, densPart=RHO_P, diameterPart=D)
     coupling.attach()
+    refresh = None
     if fluctuations == "turnover":
         refresh = TurnoverFluctuations(hydro, s)
         s.engines = list(s.engines) + [PyRunner(refresh, iterPeriod=max(1, round(1e-3 / s.dt)))]
@@ -191,7 +192,7 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     return {"z": zc, "phi": phi_mean, "phivx": phivx_mean, "wall_s": wall_s, "grains": len(mobile),
             "qs_star": float(np.mean(qs[t > transport / 2])),
             "shields": float(np.mean(np.array(coupling.series["shieldsNumber"])[t > transport / 2])),
-            "refreshes": refresh.refreshes if fluctuations == "turnover" else None}
+            "refreshes": refresh.refreshes if refresh else None}
 
 
 def compare(sim: dict, data: dict) -> dict:
