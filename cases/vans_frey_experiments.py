@@ -15,11 +15,20 @@ Set-up:   that folder's case-exp*/params.py and common/*.py (Maurin et al. 2015)
           hs = 7.08 / 7.37 / 7.30 d, fluid + sediment height 5.3 / 5.7 / 5.9 cm for exp 6 / 14 / 20;
           water rho 1000, nu 1e-6; Dallavalle drag with Richardson-Zaki exponent 3.1; 301 fluid
           layers over the flow depth; side-wall friction (channel width w); turbulent velocity
-          fluctuations. Yade's example uses turbulence model 3, which only exists in a modified
-          Yade; Maurin et al. (2015) used the Li-Sawamoto mixing length with phiMax 0.51 (the
-          bed's solid fraction in this quasi-2D channel), as here. Gravity deposition (damping
-          0.2, no fluid), a 1 s fluid resolution, then DEM and fluid alternate every 1e-2 s
-          (fluid step 1e-5 s). The grains start from a jittered lattice with a seed.
+          fluctuations as in both of Yade's scripts for these experiments (validations/
+          DEMCoupling/Maurinetal2015/validMaurin2015.py and shapeVariation's
+          computeTurbulentFluctuations): Yade's turbulentFluctuation() redraws every grain's
+          fluctuation at once every eddy turnover time (water depth above the bed / mean fluid
+          velocity there), the bed being the first layer from the top above phi = 0.5, starting
+          0.5 s after the fluid (--fluctuations zdep: per-grain lives 0.33 kappa z / u* instead,
+          Yade's velFluct / turbulentFluctuationZDep). Yade's shapeVariation example uses
+          turbulence model 3, which only exists in a modified Yade; Maurin et al. (2015) used the
+          Li-Sawamoto mixing length with phiMax 0.51 (the bed's solid fraction in this quasi-2D
+          channel), as here. Gravity deposition (damping 0.2, no fluid), a 1 s fluid resolution
+          (shapeVariation's start-up), then DEM and fluid alternate every 1e-2 s (fluid step
+          1e-5 s). The grains start from a jittered lattice with a seed. Not as in Yade's
+          scripts: the channel is 20 d (quick) or 60 d (full) long instead of 1000 d, and the
+          average is over 1.5 s (quick) or 10 s (full) instead of 30-100 s.
 Checked:  per experiment, the profiles averaged over the second half of the transport against the
           data at the data's elevations: RMS error of the solid fraction and of the particle
           velocity (<phi vx>/<phi>, where the simulated phi > 0.01) divided by the range of the
@@ -41,7 +50,7 @@ import numpy as np
 
 from talus import results
 from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_ViscElMat_ViscElMat_ViscElPhys,
-                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, Scene, ViscElMat, sphere, wall)
+                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, PyRunner, Scene, ViscElMat, sphere, wall)
 from talus.flow import HydroForceEngine, VansCoupling
 
 DATA = "/usr/share/doc/yade/examples/FluidCouplingVANS1D/twoWayCoupling/shapeVariation/data-exp"
@@ -81,7 +90,36 @@ def material(hs: float) -> ViscElMat:
                      frictionAngle=FRICTION)
 
 
-def build(length_d: int, hs_d: float, depth: float, seed: int = 1):
+class TurnoverFluctuations:
+    """Maurin et al. (2015)'s fluctuations, as Yade's validMaurin2015.py (and shapeVariation's
+    computeTurbulentFluctuations): every grain's fluctuation is redrawn at once
+    (HydroForceEngine.turbulentFluctuation, Yade's discrete random walk) every eddy turnover time,
+    the water depth above the bed over the mean fluid velocity there, and kept in between. The
+    bed is the first layer from the top whose solid fraction exceeds 0.5 and still rises
+    downwards; grains below it get no fluctuation. Starts `delay` after the fluid (0.5 s in
+    Yade's script, for stability)."""
+
+    def __init__(self, hydro, scene, delay: float = 0.5):
+        self.hydro, self.scene = hydro, scene
+        self.next = scene.time + delay
+        self.refreshes = 0
+
+    def __call__(self):
+        if self.scene.time < self.next:
+            return
+        phi = self.hydro.phiPart
+        bed = next((k for k in range(len(phi) - 1, 0, -1) if phi[k] < phi[k - 1] and phi[k] > 0.5), None)
+        velocity = float(np.mean(self.hydro.vxFluid[bed:])) if bed is not None else 0.0
+        if bed is None or not velocity > 0:
+            self.next = self.scene.time + PERIOD       # no bed found yet: look again at the next coupling
+            return
+        self.hydro.bedElevation = bed * self.hydro.deltaZ
+        self.hydro.turbulentFluctuation()
+        self.refreshes += 1
+        self.next = self.scene.time + (len(phi) - 1 - bed) * self.hydro.deltaZ / velocity
+
+
+def build(length_d: int, hs_d: float, depth: float, seed: int = 1, fluctuations: str = "turnover"):
     rnd = random.Random(seed)
     length = length_d * D
     height = 5 * depth
@@ -109,7 +147,8 @@ def build(length_d: int, hs_d: float, depth: float, seed: int = 1):
     hydro = HydroForceEngine(densFluid=RHO_F, viscoDyn=NU * RHO_F, zRef=ground, gravity=GRAVITY, deltaZ=dz,
                              expoRZ=3.1, lift=False, nCell=N_CELL, vCell=length * W * dz, radiusPart=D / 2,
                              phiMax=PHI_MAX, ilm=2, fluidWallFriction=True, channelWidth=W,
-                             velFluct=True, bedElevation=hs_d * D, seed=seed, ignoreOutside=True, ids=mobile, scene=s,
+                             velFluct=fluctuations == "zdep", bedElevation=hs_d * D, seed=seed, ignoreOutside=True,
+                             ids=mobile, scene=s,
                              dead=True)   # a grain leaping out of the water gets no fluid force, as in Yade
     newton = NewtonIntegrator(damping=0.2, gravity=GRAVITY)
     s.engines = [ForceResetter(), InsertionSortCollider(),
@@ -119,9 +158,10 @@ def build(length_d: int, hs_d: float, depth: float, seed: int = 1):
     return s, hydro, newton, mobile
 
 
-def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int) -> dict:
+def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int,
+                   fluctuations: str = "turnover") -> dict:
     hs_d, depth = EXPERIMENTS[exp]
-    s, hydro, newton, mobile = build(length_d, hs_d, depth, seed)
+    s, hydro, newton, mobile = build(length_d, hs_d, depth, seed, fluctuations)
     start = time.perf_counter()
     s.run(round(deposition / s.dt))
     newton.damping = 0.0
@@ -131,6 +171,10 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     hydro.fluidResolution(1.0, DT_FLUID)
     coupling = VansCoupling(hydro, PERIOD, DT_FLUID, densPart=RHO_P, diameterPart=D)
     coupling.attach()
+    refresh = None
+    if fluctuations == "turnover":
+        refresh = TurnoverFluctuations(hydro, s)
+        s.engines = list(s.engines) + [PyRunner(refresh, iterPeriod=max(1, round(1e-3 / s.dt)))]
     chunk = round(PERIOD / s.dt)
     t0 = s.time
     phi, phivx = [], []
@@ -147,7 +191,8 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     qs = np.array(coupling.series["transportRate"])
     return {"z": zc, "phi": phi_mean, "phivx": phivx_mean, "wall_s": wall_s, "grains": len(mobile),
             "qs_star": float(np.mean(qs[t > transport / 2])),
-            "shields": float(np.mean(np.array(coupling.series["shieldsNumber"])[t > transport / 2]))}
+            "shields": float(np.mean(np.array(coupling.series["shieldsNumber"])[t > transport / 2])),
+            "refreshes": refresh.refreshes if refresh else None}
 
 
 def compare(sim: dict, data: dict) -> dict:
@@ -171,6 +216,10 @@ def main():
     parser.add_argument("--transport", type=float, help="seconds of coupled transport (overrides the mode's)")
     parser.add_argument("--length", type=int, help="periodic length in grain diameters (overrides the mode's)")
     parser.add_argument("--seed", type=int, default=1, help="seed of the rough bed and the initial lattice")
+    parser.add_argument("--fluctuations", choices=("turnover", "zdep"), default="turnover",
+                        help="turbulent fluctuations: redrawn for all grains every eddy turnover time (Maurin et "
+                             "al. 2015, Yade's validMaurin2015.py; default) or per grain on its z-dependent eddy "
+                             "life (Yade's turbulentFluctuationZDep, velFluct=True)")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -191,15 +240,16 @@ def main():
         return
     fig, axes = plt.subplots(2, len(available), figsize=(3.2 * len(available) + 0.5, 7), squeeze=False)
     for col, (exp, data) in enumerate(sorted(available.items())):
-        sim = run_experiment(exp, length_d, deposition, transport, args.seed)
+        sim = run_experiment(exp, length_d, deposition, transport, args.seed, args.fluctuations)
         c = compare(sim, data)
         print(f"exp {exp}: {sim['grains']} grains, {sim['wall_s']:.0f} s wall; RMS error / data range: "
               f"phi {c['phi_err']:.3f}, vx {c['vx_err']:.3f} ({c['vx_points']} of {c['points']} points); "
               f"transport rate {c['q_sim']:.3e} vs {c['q_exp']:.3e} m^2/s ({c['q_err']:.1%}); "
-              f"qs* {sim['qs_star']:.4f}, Shields {sim['shields']:.3f}")
+              f"qs* {sim['qs_star']:.4f}, Shields {sim['shields']:.3f}; fluctuations {args.fluctuations}"
+              + (f" ({sim['refreshes']} turnover refreshes)" if sim["refreshes"] is not None else ""))
         common = dict(experiment=exp, seed=args.seed, length_d=length_d, transport_s=transport, deposition_s=deposition,
                       grains=sim["grains"], wall_run_s=sim["wall_s"], shields_mean=sim["shields"],
-                      qs_star_mean=sim["qs_star"], phi_max=PHI_MAX, averaged="second half of the transport")
+                      qs_star_mean=sim["qs_star"], phi_max=PHI_MAX, fluctuations=args.fluctuations, averaged="second half of the transport")
         ref = "Frey (2014) data; Maurin et al. (2015) reach about 10-20 %"
         case.record("RMS error of the solid fraction profile / data range", c["phi_err"], ref, TOLERANCE,
                     suffix=f"exp{exp}.phi", points=c["points"], **common)

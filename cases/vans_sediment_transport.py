@@ -14,8 +14,8 @@ Checked:  the run stays stable (no overlap or non-finite force error, no grain o
           and transports sediment: time-averaged dimensionless transport rate > 0 over the
           second half (record vans.sediment-transport, with the series' mean and standard
           error; Shields number and the coupling's fluid-change statistics as extras). The
-          comparison of the time-averaged rate with Yade's needs tens of seconds of transport
-          in both programs and is not part of this case yet.
+          time-averaged rate against Yade's, from the same developed state, is
+          cases/vans_bench_coupled.py's full mode (record vans.transport-vs-yade).
           Quick: 0.3 s of deposition, 1 s of transport; full: 0.4 s and 10 s. Run it with
           OMP_NUM_THREADS=1 on a loaded machine (OpenMP threads waiting for a busy core cost far
           more than they gain; talus -j1 is too late, libgomp is loaded with the CLI).
@@ -137,7 +137,7 @@ def main():
           f"max fluid change between couplings (second half) "
           f"{np.max(np.array(series['fluidChange'])[second]):.3f}")
     case.record("time-averaged dimensionless transport rate (second half)", mean_qs,
-                "sediment is transported (>= 1e-6); Yade comparison pending", 1e-6, comparison=">=",
+                "sediment is transported (>= 1e-6); against Yade: vans.transport-vs-yade", 1e-6, comparison=">=",
                 standard_error=err_qs, shields_mean=float(np.mean(shields[second])), couplings=len(t),
                 transport_s=transport, wall_transport_s=wall, wall_deposition_s=wall_depo,
                 grains=len(mobile), max_fluid_change=float(np.max(np.array(series["fluidChange"])[second])),

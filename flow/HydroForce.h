@@ -12,7 +12,7 @@ namespace talus::flow
 /// defaults are Yade 2023.02a's.
 struct HydroForceParameters
 {
-  int nCell = 0;              ///< number of layers of the 1D grid; >= 1
+  int nCell = 0;              ///< number of layers of the 1D grid; >= 2 (free surface at (nCell - 1) deltaZ)
   double deltaZ = 0;          ///< layer height [m]; > 0
   double zRef = 0;            ///< elevation of the bottom of the grid [m]
   double densFluid = 1000.0;  ///< fluid density [kg/m^3]; > 0
@@ -29,7 +29,9 @@ struct HydroForceParameters
   /// Period of space along z [m] in a periodic cell (0: not periodic along z); elevations are
   /// wrapped into [zRef, zRef + periodZ) before they are located in the grid.
   double periodZ = 0;
-  /// Particles in `ids` outside the grid: an error (false) or no fluid force, as Yade (true).
+  /// Particles in `ids` outside the fluid (below zRef, or centred above the free surface
+  /// zRef + (nCell - 1) deltaZ): an error (false) or no fluid force (true). Yade gives no force
+  /// below zRef or above zRef + nCell deltaZ, but applies the surface velocity in the top layer.
   bool ignoreOutside = false;
   // Turbulent velocity fluctuations (discrete random walk, Yade's turbulentFluctuationZDep).
   bool velFluct = false;          ///< apply the fluctuations in action()

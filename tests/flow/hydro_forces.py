@@ -39,8 +39,9 @@ def build():
     ids = []
     for k in range(40):
         r = radii[k % 3]
-        # Keep 4 spheres per radius away from the grid ends, the rest anywhere inside.
-        z = Z_REF + r + (N_CELL * DZ - 2 * r) * next(rnd)
+        # Anywhere in the fluid, below the free surface at (N_CELL - 1) DZ (Talus refuses a sphere
+        # centred in the top layer, above the water; Yade gives it the surface velocity).
+        z = Z_REF + r + ((N_CELL - 1) * DZ - 2 * r) * next(rnd)
         b = O.bodies.append(sphere((0.01 * next(rnd), 0.01 * next(rnd), z), r))
         O.bodies[b].state.vel = (0.5 * next(rnd) - 0.1, 0.2 * next(rnd) - 0.1, 0.2 * next(rnd) - 0.1)
         ids.append(b)

@@ -216,6 +216,21 @@ def test_bad_input_is_refused_with_a_clear_error():
         engine(s, expoRz=3.0)
 
 
+@pytest.mark.parametrize("z, where", [(0.0195, "above the free surface"), (-1e-4, "outside the fluid grid")])
+def test_particles_out_of_the_water_are_refused_not_clipped(z, where):
+    # 20 layers of 1 mm: the fluid profile ends at its free surface, 19 mm; the top layer is dry.
+    for ignore in (False, True):
+        s = scene_with([((0, 0, z), 3e-4, (0, 0, 0)), ((0, 0, 0.0185), 3e-4, (0, 0, 0))])
+        s.engines = [ForceResetter(), engine(s, ignoreOutside=ignore)]
+        if not ignore:
+            with pytest.raises(ValueError, match=f"body 0 at z = {z:g} .*{where}"):
+                s.step()
+            continue
+        s.step()
+        assert np.all(s.forces()[0] == 0)
+        assert s.forces()[1][2] > 0                     # the submerged one has its buoyancy
+
+
 # -- two-way coupling ------------------------------------------------------------------------------
 
 def film_with_bed(period, **kw):
@@ -291,3 +306,27 @@ def test_standalone_measurement_leaves_the_engine_alone():
     alone = averageProfile(nCell=20, deltaZ=1e-3, scene=s)
     assert np.array_equal(alone["phiPart"], measured["phiPart"])
     assert math.isclose(np.sum(alone["phiPart"]) * 0.02 * 0.02 * 1e-3, 4 / 3 * math.pi * 2.5e-3 ** 3, rel_tol=1e-12)
+
+
+def test_frey_case_redraws_fluctuations_every_eddy_turnover_time(repo_dir, monkeypatch):
+    # The Frey-experiment case's fluctuation scheme (Yade's validMaurin2015.py): the bed is the
+    # first layer from the top above phi = 0.5 that still rises downwards; all fluctuations are
+    # redrawn at once, then kept for (water depth above the bed) / (mean fluid velocity there).
+    monkeypatch.syspath_prepend(str(repo_dir / "cases"))
+    from vans_frey_experiments import TurnoverFluctuations
+    s = scene_with([((0, 0, 0.0035), 5e-4, (0, 0, 0)), ((0, 0, 0.0155), 5e-4, (0, 0, 0))])
+    e = engine(s)
+    phi = np.zeros(20)
+    phi[:7] = [0.6, 0.55, 0.58, 0.6, 0.52, 0.3, 0.1]     # layers 0..6: bed top at layer 4
+    e.phiPart = phi
+    e.vxFluid = np.linspace(0.0, 1.0, 21)
+    e.ReynoldStresses = np.full(20, 1.0)
+    refresh = TurnoverFluctuations(e, s, delay=0.0)
+    refresh()
+    assert refresh.refreshes == 1
+    assert e.bedElevation == pytest.approx(4e-3)
+    assert np.all(e.vFluct[0] == 0) and np.any(e.vFluct[1] != 0)    # below / above the bed
+    assert refresh.next == pytest.approx(15 * 1e-3 / np.mean(e.vxFluid[4:]))
+    drawn = e.vFluct.copy()
+    refresh()                                            # before the turnover time: kept
+    assert refresh.refreshes == 1 and np.array_equal(e.vFluct, drawn)

@@ -94,8 +94,9 @@ class HydroForceEngine(Engine):
         velFluct: turbulent velocity fluctuations (discrete random walk on an eddy time scale
             0.33 kappa z / u*, u* = sqrt(ReynoldStresses / rho)), reproducible with ``seed``;
             bedElevation (above zRef) and unCorrelatedFluctuations as in Yade.
-        ignoreOutside: particles of ids outside the grid get no fluid force (Yade) instead of an
-            error.
+        ignoreOutside: particles of ids outside the fluid (below zRef, or centred above the free
+            surface zRef + (nCell - 1) deltaZ) get no fluid force instead of an error (Yade gives
+            the top layer, above the free surface, the surface velocity).
         scene: the scene (default ``talus.dem.O``).
         Other keywords are the fluid resolution's (VansFluid): radiusPart, iturbu, ilm, kappa,
             phiMax, viscousSubLayer, irheolf, iusl, uTop, dpdx, fluidWallFriction, channelWidth,
@@ -228,8 +229,8 @@ class HydroForceEngine(Engine):
                                                        "fluctuations [m].")
     unCorrelatedFluctuations = _particle_parameter("unCorrelatedFluctuations",
                                                    "Streamwise and wall-normal fluctuations independent.", bool)
-    ignoreOutside = _particle_parameter("ignoreOutside", "Particles outside the grid get no fluid force "
-                                                         "(instead of an error).", bool)
+    ignoreOutside = _particle_parameter("ignoreOutside", "Particles below zRef or above the free surface get no "
+                                                         "fluid force (instead of an error).", bool)
     for _name in _FLUID_ONLY:
         locals()[_name] = _fluid_parameter(_name)
     del _name
