@@ -22,6 +22,12 @@ struct PressureSolver::Cholmod
   cholmod_common common{};
   cholmod_sparse* a = nullptr;
   cholmod_factor* factor = nullptr;
+  // right-hand side, solution and cholmod_solve2's workspaces, kept from solve to solve (a
+  // step between remeshes is one solve: no allocation in it)
+  cholmod_dense* b = nullptr;
+  cholmod_dense* x = nullptr;
+  cholmod_dense* y = nullptr;
+  cholmod_dense* e = nullptr;
 
   Cholmod()
   {
@@ -35,6 +41,9 @@ struct PressureSolver::Cholmod
   ~Cholmod()
   {
     clear();
+    for (cholmod_dense** d : {&b, &x, &y, &e})
+      if (*d)
+        cholmod_free_dense(d, &common);
     cholmod_finish(&common);
   }
   Cholmod(const Cholmod&) = delete;
@@ -54,6 +63,20 @@ PressureSolver::PressureSolver(PressureSolver&&) noexcept = default;
 PressureSolver& PressureSolver::operator=(PressureSolver&&) noexcept = default;
 
 bool PressureSolver::factorized() const { return numeric_; }
+
+void PressureSolver::prepare(SolverKind kind)
+{
+  if (kind == SolverKind::Cholmod && !numeric_ && nUnknown_ > 0)
+    factorize();
+}
+
+void PressureSolver::addCounters(const Counters& earlier)
+{
+  counters_.analyses += earlier.analyses;
+  counters_.factorizations += earlier.factorizations;
+  counters_.analyseSeconds += earlier.analyseSeconds;
+  counters_.factorizeSeconds += earlier.factorizeSeconds;
+}
 
 void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& imposed, const std::vector<double>& diagonal)
 {
@@ -194,14 +217,16 @@ void PressureSolver::solve(SolverKind kind, std::vector<double>& p, const std::v
     if (!factorized())
       factorize();
     Cholmod& c = *cholmod_;
-    cholmod_dense* rhs = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &c.common);
-    std::copy(b.begin(), b.end(), static_cast<double*>(rhs->x));
-    cholmod_dense* x = cholmod_solve(CHOLMOD_A, c.factor, rhs, &c.common);
-    const auto* xv = static_cast<const double*>(x->x);
+    if (c.b && c.b->nrow != n)
+      cholmod_free_dense(&c.b, &c.common);
+    if (!c.b)
+      c.b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &c.common);
+    std::copy(b.begin(), b.end(), static_cast<double*>(c.b->x));
+    // cholmod_solve2 re-uses x, y and e when their sizes fit
+    cholmod_solve2(CHOLMOD_A, c.factor, c.b, nullptr, &c.x, nullptr, &c.y, &c.e, &c.common);
+    const auto* xv = static_cast<const double*>(c.x->x);
     for (std::size_t r = 0; r < n; ++r)
       p[static_cast<std::size_t>(poreOfRow_[r])] = xv[r];
-    cholmod_free_dense(&x, &c.common);
-    cholmod_free_dense(&rhs, &c.common);
     iterations_ = 1;
     return;
   }

@@ -45,6 +45,8 @@ public:
   double relax = 1.9;      ///< Gauss-Seidel over-relaxation (Yade's relax)
   int maxIterations = 100000;
 
+  /// Factorise now (CHOLMOD) instead of at the next solve; nothing for Gauss-Seidel.
+  void prepare(SolverKind kind);
   [[nodiscard]] bool factorized() const;
   /// How many symbolic analyses and numeric factorisations CHOLMOD has done, and their times.
   struct Counters
@@ -55,6 +57,8 @@ public:
     double factorizeSeconds = 0;
   };
   [[nodiscard]] const Counters& counters() const { return counters_; }
+  /// Add the work of an earlier solver to the counters (a model that replaced its network).
+  void addCounters(const Counters& earlier);
   [[nodiscard]] int lastIterations() const { return iterations_; }
   [[nodiscard]] std::size_t unknowns() const { return rowOfPore_.empty() ? 0 : static_cast<std::size_t>(nUnknown_); }
 
