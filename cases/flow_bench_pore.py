@@ -18,7 +18,8 @@ Checked:  nothing is timed as a test; records flow.bench.remesh-<n> and flow.ben
           = Yade's time / Talus's, > 1: Talus faster; the issue's targets: >= 2 on remeshing,
           >= 1 on solves; taken on process CPU time, which the load of a shared machine disturbs
           far less than wall time; the wall-time ratio is kept in the record) and flow.bench.symbolic-reuse (analysis share of a factorisation at the
-          largest size). Both give the same flux (relative difference reported, <= 1e-6).
+          largest size). Both give the same flux (relative difference reported, <= 1e-2, the
+          issue's bar: the sorted insertion differs from Yade's by ~1e-6, see docs/flow.md).
           Without yade the Yade records are skipped.
 Produces: the records and flow.bench.png (time against spheres, both programs, both phases).
 """
@@ -144,7 +145,7 @@ def main():
                   f"wall {row['yade_solve_s'] / row['solve_s']:.2f}), flux difference {row['flux_rel_diff']:.1e}")
         worst = max(r["flux_rel_diff"] for r in rows)
         case.record("worst relative difference of the inlet flux from Yade's", worst,
-                    "Yade 2023.02a FlowEngine, same packings", 1e-6, suffix="flux")
+                    "Yade 2023.02a FlowEngine, same packings", 1e-2, suffix="flux")
 
     fig, ax = plt.subplots(figsize=(6, 4.5))
     n = [r["spheres"] for r in rows]
