@@ -17,20 +17,42 @@ bool FlowCoupling::followsWall(int k) const
   return wallIds[static_cast<std::size_t>(k)] >= 0 && !flow_->params.boundaryUseMaxMin[static_cast<std::size_t>(k)];
 }
 
-void FlowCoupling::move()
+void FlowCoupling::placement(const PoreNetwork& net, std::vector<Vec3>& at, std::array<double, kBoundaries>& walls) const
 {
   const auto pos = exchange_.positions();
-  std::vector<Vec3> at(sphereIds_.size());
+  at.resize(sphereIds_.size());
   for (std::size_t i = 0; i < sphereIds_.size(); ++i)
     at[i] = pos[static_cast<std::size_t>(sphereIds_[i])];
-  std::array<double, kBoundaries> walls{};
   for (int k = 0; k < kBoundaries; ++k)
   {
-    const Boundary& b = flow_->network().boundaries[static_cast<std::size_t>(k)];
+    const Boundary& b = net.boundaries[static_cast<std::size_t>(k)];
     walls[static_cast<std::size_t>(k)] =
         followsWall(k) ? pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][b.coordinate] : b.position;
   }
+}
+
+void FlowCoupling::move()
+{
+  std::vector<Vec3> at;
+  std::array<double, kBoundaries> walls{};
+  placement(flow_->network(), at, walls);
   flow_->moveVertices(at, walls, exchange_.dt());
+}
+
+void FlowCoupling::followWallBodies()
+{
+  const auto pos = exchange_.positions();
+  for (int k = 0; k < kBoundaries; ++k)
+    if (followsWall(k))
+      flow_->params.wallPosition[static_cast<std::size_t>(k)] = pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][k / 2];
+}
+
+void FlowCoupling::rebuilt()
+{
+  sinceBuild_ = 0;
+  ++rebuilds_;
+  if (blockHook)
+    blockHook();
 }
 
 std::vector<PoreSphere> FlowCoupling::liveSpheres(std::vector<dem::BodyId>& ids) const
@@ -53,23 +75,14 @@ std::vector<PoreSphere> FlowCoupling::liveSpheres(std::vector<dem::BodyId>& ids)
 void FlowCoupling::rebuild()
 {
   discardRebuild();
-  const auto pos = exchange_.positions();
-  for (int k = 0; k < kBoundaries; ++k)
-    if (followsWall(k))
-      flow_->params.wallPosition[static_cast<std::size_t>(k)] = pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][k / 2];
+  followWallBodies();
   flow_->build(liveSpheres(sphereIds_));
-  sinceBuild_ = 0;
-  ++rebuilds_;
-  if (blockHook)
-    blockHook();
+  rebuilt();
 }
 
 void FlowCoupling::launchRebuild()
 {
-  const auto pos = exchange_.positions();
-  for (int k = 0; k < kBoundaries; ++k)
-    if (followsWall(k))
-      flow_->params.wallPosition[static_cast<std::size_t>(k)] = pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][k / 2];
+  followWallBodies();
   PendingRebuild job;
   std::vector<PoreSphere> spheres = liveSpheres(job.sphereIds);
   // the copy and the snapshot are the thread's own: nothing it reads changes meanwhile
@@ -87,22 +100,11 @@ void FlowCoupling::adoptRebuild()
   pending_.reset();
   std::unique_ptr<PoreFlow> fresh = job.mesh.get(); // rethrows what the build threw
   sphereIds_ = std::move(job.sphereIds);
-  const auto pos = exchange_.positions();
-  std::vector<Vec3> at(sphereIds_.size());
-  for (std::size_t i = 0; i < sphereIds_.size(); ++i)
-    at[i] = pos[static_cast<std::size_t>(sphereIds_[i])];
+  std::vector<Vec3> at;
   std::array<double, kBoundaries> walls{};
-  for (int k = 0; k < kBoundaries; ++k)
-  {
-    const Boundary& b = fresh->network().boundaries[static_cast<std::size_t>(k)];
-    walls[static_cast<std::size_t>(k)] =
-        followsWall(k) ? pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][b.coordinate] : b.position;
-  }
+  placement(fresh->network(), at, walls);
   flow_->adopt(std::move(fresh), at, walls);
-  sinceBuild_ = 0;
-  ++rebuilds_;
-  if (blockHook)
-    blockHook();
+  rebuilt();
 }
 
 void FlowCoupling::discardRebuild()

@@ -78,6 +78,13 @@ private:
   void discardRebuild();
   /// Move the network's spheres and the wall-following boundaries to the bodies' positions.
   void move();
+  /// The bodies' positions of the network's spheres (sphereIds_) and the boundary positions of
+  /// `net`, those following a wall body taken from it.
+  void placement(const PoreNetwork& net, std::vector<Vec3>& at, std::array<double, kBoundaries>& walls) const;
+  /// wallPosition of the boundaries that follow a wall body, from the body (before a build).
+  void followWallBodies();
+  /// A new mesh is in place: restart the interval count, count it, call blockHook.
+  void rebuilt();
   /// Boundary k follows the wall body wallIds[k] (Yade: boundaryUseMaxMin false with a wall).
   [[nodiscard]] bool followsWall(int k) const;
 

@@ -39,6 +39,8 @@ from talus.dem.engines import Engine
 from talus.dem.shapes import Sphere
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
+# engine step counts and their smallest allowed values
+_ENGINE_COUNTS = {"meshUpdateInterval": 1, "backgroundSteps": 0}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder")
 
@@ -108,10 +110,10 @@ class FlowEngine(Engine):
                 raise ValueError("FlowEngine.wallIds needs 6 body ids (-1: none)")
             self._wallIds = ids
             return
-        if name == "meshUpdateInterval":
-            if int(value) < 1:
-                raise ValueError("FlowEngine.meshUpdateInterval must be >= 1")
-            self._meshUpdateInterval = int(value)
+        if name in _ENGINE_COUNTS:
+            if int(value) < _ENGINE_COUNTS[name]:
+                raise ValueError(f"FlowEngine.{name} must be >= {_ENGINE_COUNTS[name]}")
+            object.__setattr__(self, "_" + name, int(value))
             return
         if name == "updateTriangulation":
             self._rebuild = bool(value)
@@ -121,11 +123,6 @@ class FlowEngine(Engine):
             return
         if name == "multithread":
             self._multithread = bool(value)
-            return
-        if name == "backgroundSteps":
-            if int(value) < 0:
-                raise ValueError("FlowEngine.backgroundSteps must be >= 0")
-            self._backgroundSteps = int(value)
             return
         if name == "blockHook":
             if value and not (callable(value) or isinstance(value, str)):
