@@ -9,6 +9,7 @@
 #include <CGAL/Triangulation_cell_base_with_info_3.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
 
+#include <tuple>
 #include <vector>
 
 namespace talus::flow::pore
@@ -41,11 +42,29 @@ void checkSpheres(const std::vector<PoreSphere>& spheres);
 /// The fictitious sphere standing for boundary k (Yade's addBoundingPlane), around the box
 /// [lo, hi].
 Vertex boundaryVertex(const std::array<Boundary, kBoundaries>& boundaries, int k, const Vec3& lo, const Vec3& hi);
-/// Insert the vertices net.vertices[order[0]], net.vertices[order[1]], ... one by one, as Yade
-/// does; the vertex info() is the index in net.vertices. Fills net.hiddenSpheres with the real
-/// spheres the triangulation dropped; @throws std::logic_error if a boundary vertex was dropped.
-void insertVertices(PoreNetwork& net, cgal::Regular& rt, const std::vector<int>& order);
-/// Pore centre (CGAL's weighted circumcentre) of a finite cell.
-Vec3 weightedCentre(const cgal::Regular& rt, cgal::Regular::Cell_handle c);
+/// Insert the vertices net.vertices[order[0]], net.vertices[order[1]], ...: with
+/// InsertionOrder::Sorted the boundaries one by one, then all the spheres (and images) as one
+/// range, which CGAL sorts along a space-filling curve and inserts each next to the previous one;
+/// with InsertionOrder::Yade all one by one. The vertex info() is the index in net.vertices.
+/// Fills net.hiddenSpheres with the real spheres the triangulation dropped;
+/// @throws std::logic_error if a boundary vertex was dropped.
+void insertVertices(PoreNetwork& net, cgal::Regular& rt, const std::vector<int>& order, InsertionOrder insertion);
+/// The facet vertices of throat t (the facet opposite t.facet in pore `poreVertices`): in the
+/// cell's order for InsertionOrder::Yade, else boundaries first then by body id, with
+/// t.mirrorLocal (given in the cell's order) permuted alike, so that the throat formulas that
+/// depend on the order of the facet vertices give the same value whatever order CGAL left them
+/// in and whatever order the spheres were given in.
+void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const std::vector<Vertex>& vertices,
+                      InsertionOrder insertion);
+/// The canonical order of vertices (InsertionOrder::Sorted): boundaries first, then by body
+/// id (an image after its sphere, by index), independent of CGAL's and of the input's order.
+std::tuple<bool, std::int64_t, int> canonicalKey(const std::vector<Vertex>& vertices, int index);
+/// Pore centre (CGAL's weighted circumcentre) of a finite cell, from its vertices in the
+/// canonical order for InsertionOrder::Sorted (the centres of pores touching a wall come from
+/// the fictitious spheres' huge weights and carry round-off that depends on the order: up to
+/// 6e-5 of the box on the 400-sphere reference; where two such centres nearly coincide the
+/// throat length changes by percents), in the cell's order for InsertionOrder::Yade.
+Vec3 weightedCentre(const PoreNetwork& net, const cgal::Regular& rt, cgal::Regular::Cell_handle c,
+                    InsertionOrder insertion);
 } // namespace detail
 } // namespace talus::flow::pore

@@ -17,44 +17,103 @@ bool FlowCoupling::followsWall(int k) const
   return wallIds[static_cast<std::size_t>(k)] >= 0 && !flow_->params.boundaryUseMaxMin[static_cast<std::size_t>(k)];
 }
 
-void FlowCoupling::move()
+void FlowCoupling::placement(const PoreNetwork& net, std::vector<Vec3>& at, std::array<double, kBoundaries>& walls) const
 {
   const auto pos = exchange_.positions();
-  std::vector<Vec3> at(sphereIds_.size());
+  at.resize(sphereIds_.size());
   for (std::size_t i = 0; i < sphereIds_.size(); ++i)
     at[i] = pos[static_cast<std::size_t>(sphereIds_[i])];
-  std::array<double, kBoundaries> walls{};
   for (int k = 0; k < kBoundaries; ++k)
   {
-    const Boundary& b = flow_->network().boundaries[static_cast<std::size_t>(k)];
+    const Boundary& b = net.boundaries[static_cast<std::size_t>(k)];
     walls[static_cast<std::size_t>(k)] =
         followsWall(k) ? pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][b.coordinate] : b.position;
   }
+}
+
+void FlowCoupling::move()
+{
+  std::vector<Vec3> at;
+  std::array<double, kBoundaries> walls{};
+  placement(flow_->network(), at, walls);
   flow_->moveVertices(at, walls, exchange_.dt());
 }
 
-void FlowCoupling::rebuild()
+void FlowCoupling::followWallBodies()
 {
   const auto pos = exchange_.positions();
   for (int k = 0; k < kBoundaries; ++k)
     if (followsWall(k))
       flow_->params.wallPosition[static_cast<std::size_t>(k)] = pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])][k / 2];
+}
+
+void FlowCoupling::rebuilt()
+{
+  sinceBuild_ = 0;
+  ++rebuilds_;
+  if (blockHook)
+    blockHook();
+}
+
+std::vector<PoreSphere> FlowCoupling::liveSpheres(std::vector<dem::BodyId>& ids) const
+{
+  const auto pos = exchange_.positions();
   const auto radius = exchange_.radii();
   std::vector<PoreSphere> spheres;
-  sphereIds_.clear();
+  ids.clear();
   for (std::size_t i = 0; i < pos.size(); ++i)
   {
     const auto id = static_cast<dem::BodyId>(i);
     if (!exchange_.isSphere(id))
       continue;
     spheres.push_back(PoreSphere{pos[i], radius[i], id});
-    sphereIds_.push_back(id);
+    ids.push_back(id);
   }
-  flow_->build(spheres);
-  sinceBuild_ = 0;
-  ++rebuilds_;
-  if (blockHook)
-    blockHook();
+  return spheres;
+}
+
+void FlowCoupling::rebuild()
+{
+  discardRebuild();
+  followWallBodies();
+  flow_->build(liveSpheres(sphereIds_));
+  rebuilt();
+}
+
+void FlowCoupling::launchRebuild()
+{
+  followWallBodies();
+  PendingRebuild job;
+  std::vector<PoreSphere> spheres = liveSpheres(job.sphereIds);
+  // the copy and the snapshot are the thread's own: nothing it reads changes meanwhile
+  job.mesh = std::async(std::launch::async, [fresh = flow_->detachedCopy(), spheres = std::move(spheres)]() mutable {
+    fresh->build(spheres);
+    fresh->prepareSolver();
+    return std::move(fresh);
+  });
+  pending_ = std::move(job);
+}
+
+void FlowCoupling::adoptRebuild()
+{
+  PendingRebuild job = std::move(*pending_);
+  pending_.reset();
+  std::unique_ptr<PoreFlow> fresh = job.mesh.get(); // rethrows what the build threw
+  sphereIds_ = std::move(job.sphereIds);
+  std::vector<Vec3> at;
+  std::array<double, kBoundaries> walls{};
+  placement(fresh->network(), at, walls);
+  flow_->adopt(std::move(fresh), at, walls);
+  rebuilt();
+}
+
+void FlowCoupling::discardRebuild()
+{
+  if (!pending_)
+    return;
+  if (pending_->mesh.valid())
+    pending_->mesh.wait();
+  pending_.reset();
 }
 
 void FlowCoupling::step()
@@ -89,6 +148,8 @@ void FlowCoupling::step()
   }
   if (meshUpdateInterval < 1)
     throw std::invalid_argument("FlowEngine.meshUpdateInterval must be >= 1");
+  if (backgroundSteps < 0)
+    throw std::invalid_argument("FlowEngine.backgroundSteps must be >= 0");
   // Spheres added or erased since the last mesh: the network no longer matches the bodies.
   std::size_t live = 0;
   for (std::size_t i = 0; i < nBodies; ++i)
@@ -118,12 +179,30 @@ void FlowCoupling::step()
   auto out = exchange_.stepForces();
   for (std::size_t i = 0; i < nBodies; ++i)
     out[i] += forces_[i];
-  const bool strained =
-      flow_->invertedPores() > 0 || (defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance);
-  if (sinceBuild_ >= meshUpdateInterval || strained)
+  const bool inverted = flow_->invertedPores() > 0;
+  const bool strained = inverted || (defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance);
+  if (pending_ && inverted)
   {
+    // the old mesh is no longer valid: no waiting for the background one
     rebuild();
+    ++strainRebuilds_;
+  }
+  else if (pending_)
+  {
+    if (++pending_->age >= backgroundSteps)
+      adoptRebuild();
+  }
+  else if (sinceBuild_ >= meshUpdateInterval || strained)
+  {
     strainRebuilds_ += strained ? 1 : 0;
+    if (multithread && !inverted)
+    {
+      launchRebuild();
+      if (backgroundSteps == 0)
+        adoptRebuild();
+    }
+    else
+      rebuild();
   }
 }
 

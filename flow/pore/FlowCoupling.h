@@ -8,7 +8,10 @@
 
 #include <array>
 #include <functional>
+#include <future>
 #include <memory>
+#include <optional>
+#include <vector>
 
 namespace talus::flow::pore
 {
@@ -28,6 +31,15 @@ public:
   /// Called after each rebuild, before the solve (Yade's blockHook): the place to impose
   /// conditions that need the new mesh.
   std::function<void()> blockHook;
+  /// Build due meshes in a second thread while the old mesh and factor keep being used (Yade's
+  /// multithread). Deterministic: the mesh of the positions at the end of step s (when the
+  /// rebuild fell due) replaces the old one at the end of step s + backgroundSteps, waiting for
+  /// the thread if it has not finished, so results never depend on thread timing. An inverted
+  /// pore, spheres added or erased, or a requested rebuild still rebuild at once.
+  bool multithread = false;
+  /// Steps the old mesh stays in use after a background rebuild started (0: the same results
+  /// as without multithread, the build merely runs in the other thread).
+  int backgroundSteps = 10;
 
   /// One coupling step: move the network's spheres (volume changes), solve, add the fluid
   /// forces to the step forces, then rebuild if due for the next step (interval, pore strain
@@ -51,10 +63,28 @@ public:
   /// Insert the coupling in the scene's step (before the contact forces), every step.
   static std::shared_ptr<dem::CallbackEngine> attach(const std::shared_ptr<FlowCoupling>& coupling);
 
+  /// A background rebuild is running or waiting to be adopted.
+  [[nodiscard]] bool rebuildPending() const { return pending_.has_value(); }
+
 private:
+  /// The spheres of the scene now, and their body ids.
+  std::vector<PoreSphere> liveSpheres(std::vector<dem::BodyId>& ids) const;
   void rebuild();
+  /// Start building the mesh of the current positions in the other thread.
+  void launchRebuild();
+  /// Wait for the background mesh, put it in place of the old one, call blockHook.
+  void adoptRebuild();
+  /// Drop a background rebuild (waits for its thread).
+  void discardRebuild();
   /// Move the network's spheres and the wall-following boundaries to the bodies' positions.
   void move();
+  /// The bodies' positions of the network's spheres (sphereIds_) and the boundary positions of
+  /// `net`, those following a wall body taken from it.
+  void placement(const PoreNetwork& net, std::vector<Vec3>& at, std::array<double, kBoundaries>& walls) const;
+  /// wallPosition of the boundaries that follow a wall body, from the body (before a build).
+  void followWallBodies();
+  /// A new mesh is in place: restart the interval count, count it, call blockHook.
+  void rebuilt();
   /// Boundary k follows the wall body wallIds[k] (Yade: boundaryUseMaxMin false with a wall).
   [[nodiscard]] bool followsWall(int k) const;
 
@@ -62,6 +92,13 @@ private:
   std::shared_ptr<PoreFlow> flow_;
   std::vector<dem::BodyId> sphereIds_; ///< network vertex 6+i is body sphereIds_[i]
   std::vector<Vec3> forces_;
+  struct PendingRebuild
+  {
+    std::future<std::unique_ptr<PoreFlow>> mesh;
+    std::vector<dem::BodyId> sphereIds;
+    int age = 0; ///< steps since it was launched
+  };
+  std::optional<PendingRebuild> pending_;
   int sinceBuild_ = -1;
   int rebuilds_ = 0;
   int strainRebuilds_ = 0;

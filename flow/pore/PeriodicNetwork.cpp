@@ -75,7 +75,7 @@ int localIndex(const PoreNetwork& net, Cell c, const VertexKey& key)
 
 PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
                                 const std::array<bool, kBoundaries>& hasBoundary, const Vec3& cellSize,
-                                double duplicateThreshold)
+                                double duplicateThreshold, InsertionOrder insertion)
 {
   detail::checkSpheres(spheres);
   if (!cellSize.allFinite() || !(cellSize.minCoeff() > 0))
@@ -159,7 +159,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
   }
   auto owner = std::make_shared<Triangulation>();
   Regular& rt = owner->rt;
-  detail::insertVertices(net, rt, order);
+  detail::insertVertices(net, rt, order, insertion);
 
   // Group the cells by periodic translation. Each group's representative point (the centroid of
   // its sphere vertices, from the key so that every image computes the same number) falls in the
@@ -263,7 +263,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       p.neighbours[k] = owner->poreOf[ni];
       p.neighbourPeriod[k] = owner->periodOf[ni];
     }
-    p.centre = detail::weightedCentre(rt, c);
+    p.centre = detail::weightedCentre(net, rt, c, insertion);
   }
   // One throat per facet up to translation, made from the side of the smaller pore index (or
   // towards the positive shift between a pore and its own image), linked to the mirror facet.
@@ -291,6 +291,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       for (int y = 0, m = 0; y < 4; ++y)
         if (y != k)
           t.mirrorLocal[static_cast<std::size_t>(m++)] = inOther(c->vertex(y)->info());
+      detail::setFacetVertices(t, net.pores[pi].vertices, net.vertices, insertion);
       const int mirror = inOther(n->vertex(rt.mirror_index(c, k))->info());
       if (mirror < 0 || std::find(t.mirrorLocal.begin(), t.mirrorLocal.end(), -1) != t.mirrorLocal.end() ||
           net.pores[static_cast<std::size_t>(j)].throats[mirror] >= 0)

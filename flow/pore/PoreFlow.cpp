@@ -74,19 +74,11 @@ int locateInBox(const PoreNetwork& net, const Vec3& x)
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
 {
   // on bad input the old network stays
+  const InsertionOrder order = params.yadeInsertionOrder ? InsertionOrder::Yade : InsertionOrder::Sorted;
   PoreNetwork fresh = params.periodic ? triangulatePeriodic(spheres, boundaries(spheres), params.hasBoundary,
-                                                            params.cellSize, params.duplicateThreshold)
-                                      : triangulate(spheres, boundaries(spheres));
-  std::vector<double> p(fresh.pores.size(), 0.0);
-  if (net_ && !net_->pores.empty())
-    for (std::size_t i = 0; i < fresh.pores.size(); ++i)
-    {
-      const Vec3 x = interiorPoint(fresh, fresh.pores[i]);
-      Vec3i period;
-      const int at = x.allFinite() ? locatePore(*net_, x, &period) : -1;
-      if (at >= 0)
-        p[i] = p_[static_cast<std::size_t>(at)] + pressureJump(period);
-    }
+                                                            params.cellSize, params.duplicateThreshold, order)
+                                      : triangulate(spheres, boundaries(spheres), order);
+  std::vector<double> p = carriedPressures(fresh);
   net_ = std::move(fresh);
   p_ = std::move(p);
   const PoreNetwork& net = *net_;
@@ -96,7 +88,8 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
     f.pore = -1;
   maxStrain_ = 0;
   inverted_ = 0;
-  updateConductances();
+  computeHydraulics();
+  // the mesh's volumes before the system is set: its storage term uses the void volumes
   meshVolume_.resize(net.pores.size());
   meshVoidVolume_.resize(net.pores.size());
   for (std::size_t i = 0; i < net.pores.size(); ++i)
@@ -104,6 +97,73 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
     meshVolume_[i] = net.pores[i].volume;
     meshVoidVolume_[i] = net.pores[i].voidVolume;
   }
+  applyBoundaryTypes();
+}
+
+std::vector<double> PoreFlow::carriedPressures(const PoreNetwork& fresh) const
+{
+  std::vector<double> p(fresh.pores.size(), 0.0);
+  if (!net_ || net_->pores.empty())
+    return p;
+  for (std::size_t i = 0; i < fresh.pores.size(); ++i)
+  {
+    const Vec3 x = interiorPoint(fresh, fresh.pores[i]);
+    Vec3i period;
+    const int at = x.allFinite() ? locatePore(*net_, x, &period) : -1;
+    if (at >= 0)
+      p[i] = p_[static_cast<std::size_t>(at)] + pressureJump(period);
+  }
+  return p;
+}
+
+std::unique_ptr<PoreFlow> PoreFlow::detachedCopy() const
+{
+  auto copy = std::make_unique<PoreFlow>();
+  copy->params = params;
+  copy->points_ = points_;
+  copy->fluxPoints_ = fluxPoints_;
+  copy->dt_ = dt_;
+  return copy;
+}
+
+void PoreFlow::prepareSolver()
+{
+  // an incompressible fluid keeps the matrix until the next mesh: factorise it now; a
+  // compressible one rebuilds it at every solve anyway
+  if (params.useSolver == 3 && params.fluidBulkModulus <= 0)
+    solver_.prepare(SolverKind::Cholmod);
+}
+
+void PoreFlow::adopt(std::unique_ptr<PoreFlow> fresh, const std::vector<Vec3>& spherePositions,
+                     const std::array<double, kBoundaries>& boundaryPositions)
+{
+  if (!fresh || !fresh->net_)
+    throw std::logic_error("FlowEngine: no background network to adopt");
+  // what changed here since the copy was taken wins: parameters, time step, imposed points
+  const bool samePoints =
+      fresh->points_.size() == points_.size() &&
+      std::equal(points_.begin(), points_.end(), fresh->points_.begin(),
+                 [](const PointPressure& a, const PointPressure& b) { return a.pos == b.pos; });
+  std::vector<int> located(points_.size(), -1);
+  if (samePoints)
+    for (std::size_t n = 0; n < points_.size(); ++n)
+      located[n] = fresh->points_[n].pore;
+  fresh->points_ = points_;
+  for (std::size_t n = 0; n < points_.size(); ++n)
+    fresh->points_[n].pore = located[n];
+  fresh->pointsChanged_ = fresh->pointsChanged_ || !samePoints;
+  fresh->fluxPoints_ = fluxPoints_;
+  for (PointPressure& f : fresh->fluxPoints_)
+    f.pore = -1;
+  fresh->params = params;
+  fresh->dt_ = dt_;
+  fresh->p_ = carriedPressures(*fresh->net_);
+  fresh->solver_.addCounters(solver_.counters());
+  // the spheres have moved since the snapshot: bring the mesh to where they are now, without a
+  // volume change source (that motion happened while the old mesh gave the sources)
+  fresh->placeVertices(spherePositions, boundaryPositions);
+  std::fill(fresh->dv_.begin(), fresh->dv_.end(), 0.0);
+  *this = std::move(*fresh);
 }
 
 void PoreFlow::updateVoidVolumes()
@@ -126,6 +186,26 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
 {
   if (!net_)
     throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
+  if (!(dt > 0) || !std::isfinite(dt))
+    throw std::invalid_argument("FlowEngine: the time step must be positive, got " + std::to_string(dt));
+  std::vector<double> before(net_->pores.size());
+  for (std::size_t i = 0; i < before.size(); ++i)
+    before[i] = net_->pores[i].volume;
+  placeVertices(spherePositions, boundaryPositions);
+  setTimeStep(dt);
+  for (std::size_t i = 0; i < before.size(); ++i)
+  {
+    // the sign of the mesh volume orients the pore (Yade's volumeSign)
+    const double sign = meshVolume_[i] < 0 ? -1.0 : 1.0;
+    dv_[i] = sign * (net_->pores[i].volume - before[i]) / dt;
+  }
+}
+
+void PoreFlow::placeVertices(const std::vector<Vec3>& spherePositions,
+                             const std::array<double, kBoundaries>& boundaryPositions)
+{
+  if (!net_)
+    throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
   PoreNetwork& net = *net_;
   if (spherePositions.size() != net.sphereCount())
     throw std::invalid_argument("FlowEngine: " + std::to_string(spherePositions.size()) + " positions for " +
@@ -138,7 +218,6 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
   for (int k = 0; k < kBoundaries; ++k)
     if (!std::isfinite(boundaryPositions[static_cast<std::size_t>(k)]))
       throw std::invalid_argument("FlowEngine: non-finite position of boundary " + std::to_string(k));
-  setTimeStep(dt);
   if (net.periodic)
     net.cellSize = params.cellSize; // the cell may deform between remeshes
   for (std::size_t i = 0; i < spherePositions.size(); ++i)
@@ -150,9 +229,6 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
   }
   for (int k = 0; k < kBoundaries; ++k)
     net.boundaries[static_cast<std::size_t>(k)].position = boundaryPositions[static_cast<std::size_t>(k)];
-  std::vector<double> before(net.pores.size());
-  for (std::size_t i = 0; i < net.pores.size(); ++i)
-    before[i] = net.pores[i].volume;
   // void volumes (the costly sphere sectors) are recomputed only when asked for
   updatePoreVolumes(net, false);
   voidsStale_ = true;
@@ -161,9 +237,7 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
   for (std::size_t i = 0; i < net.pores.size(); ++i)
   {
     const double v = net.pores[i].volume;
-    // the sign of the mesh volume orients the pore (Yade's volumeSign)
     const double sign = meshVolume_[i] < 0 ? -1.0 : 1.0;
-    dv_[i] = sign * (v - before[i]) / dt;
     if (sign * v <= 0)
       ++inverted_;
     maxStrain_ = std::max(maxStrain_, std::abs(v - meshVolume_[i]) / std::abs(meshVolume_[i]));
@@ -189,13 +263,20 @@ std::vector<double> PoreFlow::storage() const
 
 void PoreFlow::updateConductances()
 {
+  computeHydraulics();
+  applyBoundaryTypes();
+}
+
+void PoreFlow::computeHydraulics()
+{
+  if (!net_)
+    throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
   PoreNetwork& net = *net_;
   for (int k = 0; k < kBoundaries; ++k)
     net.boundaries[static_cast<std::size_t>(k)].imposedPressure = params.bndCondIsPressure[static_cast<std::size_t>(k)];
   computeGeometry(net, params.slipBoundary);
   globalK_ = computeConductances(net, params);
   computeUnitForces();
-  applyBoundaryTypes();
 }
 
 void PoreFlow::computeUnitForces()

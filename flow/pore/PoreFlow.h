@@ -8,6 +8,7 @@
 #include "flow/pore/PressureSolver.h"
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct FlowParameters : ConductanceParameters
   /// which of the six boundaries exist (Yade: those with a wallIds entry); an axis with none is
   /// periodic. Ignored when not periodic (all six exist).
   std::array<bool, kBoundaries> hasBoundary{};
+  /// Talus: insert the spheres one by one and keep CGAL's vertex order, as Yade (slower; the
+  /// same numbers as Yade to round-off), instead of a sorted range (see InsertionOrder)
+  bool yadeInsertionOrder = false;
 };
 
 /// A point inside the pore (its weighted circumcentre may lie outside the tetrahedron): the
@@ -63,6 +67,22 @@ public:
   /// @throws std::invalid_argument on a size mismatch, non-finite positions or dt <= 0
   void moveVertices(const std::vector<Vec3>& spherePositions, const std::array<double, kBoundaries>& boundaryPositions,
                     double dt);
+  // --- background remeshing (Yade's FlowEngine.multithread) ---
+  /// A model with this one's parameters, imposed points and time step but no network: build it
+  /// (build + prepareSolver) in another thread while this one keeps solving, then adopt it.
+  [[nodiscard]] std::unique_ptr<PoreFlow> detachedCopy() const;
+  /// Factorise the pressure system now if the next solve would re-use the factor (CHOLMOD,
+  /// incompressible fluid), so that a background build also takes the factorisation off the
+  /// stepping thread.
+  void prepareSolver();
+  /// Replace this model's network by `fresh` (a detachedCopy built since): pressures carried
+  /// over from the current network as in build, the mesh's spheres and boundaries moved to the
+  /// given current positions with no volume-change source for that motion (it happened while
+  /// the old mesh gave the sources), this model's parameters, time step and imposed points kept
+  /// (imposed pressure points moved since the copy are located again, refactorising).
+  void adopt(std::unique_ptr<PoreFlow> fresh, const std::vector<Vec3>& spherePositions,
+             const std::array<double, kBoundaries>& boundaryPositions);
+
   /// Recompute the void volumes if the spheres moved since (moveVertices skips them: the
   /// storage term uses the mesh's void volumes, as Yade).
   void updateVoidVolumes();
@@ -131,6 +151,13 @@ public:
 
 private:
   std::array<Boundary, kBoundaries> boundaries(const std::vector<PoreSphere>& spheres) const;
+  /// The pressures of the current network carried to the pores of `fresh` (0 where none).
+  [[nodiscard]] std::vector<double> carriedPressures(const PoreNetwork& fresh) const;
+  /// Move the network's spheres and boundaries (checked first), recompute the pore volumes,
+  /// the strain since the mesh and the inverted pores; no volume-change source.
+  void placeVertices(const std::vector<Vec3>& spherePositions, const std::array<double, kBoundaries>& boundaryPositions);
+  /// Geometry, conductances and force vectors of the network (not the linear system).
+  void computeHydraulics();
   void applyBoundaryTypes();
   void computeUnitForces();
 

@@ -11,8 +11,6 @@ namespace talus::flow::pore
 {
 namespace
 {
-/// Vertices of the facet opposite vertex j of a tetrahedron (CGAL's and Yade's order).
-constexpr int kFacetVertices[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
 constexpr double kThird = 1.0 / 3.0;
 /// Yade's hydraulic-radius factors for throats touching one or two walls (symmetry images).
 const double kMultSym1 = 1 / std::pow(2.0, 0.25);
@@ -81,17 +79,20 @@ double bipyramidVolume(Vec3& s, const Vec3& p1, const Vec3& p2)
 /// spheres and the wall planes (FlowEngine::volumeCell*Fictious).
 double cellVolume(const PoreNetwork& net, const Pore& p)
 {
-  std::vector<Vec3> real;
-  std::vector<const Boundary*> walls;
+  // fixed-size lists: this runs for every pore at every step (moveVertices)
+  std::array<Vec3, 4> real;
+  std::array<const Boundary*, 4> walls{};
+  std::size_t nWalls = 0;
+  std::size_t nReal = 0;
   for (int v : p.vertices)
   {
     const Vertex& vx = net.vertices[static_cast<std::size_t>(v)];
     if (vx.fictitious)
-      walls.push_back(&net.boundaries[static_cast<std::size_t>(vx.id)]);
+      walls[nWalls++] = &net.boundaries[static_cast<std::size_t>(vx.id)];
     else
-      real.push_back(vx.pos);
+      real[nReal++] = vx.pos;
   }
-  switch (walls.size())
+  switch (nWalls)
   {
   case 0:
   {
@@ -123,8 +124,8 @@ double cellVolume(const PoreNetwork& net, const Pore& p)
   {
     const Vec3& a = real[0];
     double v = 1;
-    for (const Boundary* w : walls)
-      v *= a[w->coordinate] - w->position;
+    for (std::size_t k = 0; k < nWalls; ++k)
+      v *= a[walls[k]->coordinate] - walls[k]->position;
     return std::abs(v);
   }
   default: return 0;
@@ -294,12 +295,10 @@ void computeGeometry(PoreNetwork& net, bool slipBoundary)
     Throat& t = net.throats[static_cast<std::size_t>(i)];
     const Pore& p = net.pores[static_cast<std::size_t>(t.pores[0])];
     const Pore& q = net.pores[static_cast<std::size_t>(t.pores[1])];
+    // the facet's vertices in the network's canonical order (setFacetVertices)
     std::array<const Vertex*, 3> w{};
-    for (int k = 0; k < 3; ++k)
-    {
-      t.vertices[static_cast<std::size_t>(k)] = p.vertices[kFacetVertices[t.facet][k]];
-      w[static_cast<std::size_t>(k)] = &net.vertices[static_cast<std::size_t>(t.vertices[static_cast<std::size_t>(k)])];
-    }
+    for (std::size_t k = 0; k < 3; ++k)
+      w[k] = &net.vertices[static_cast<std::size_t>(t.vertices[k])];
     // the other pore as this one sees it (its periodic image next to it)
     const Vec3 other = q.centre + net.shift(t.period);
     throatRegion(net, t, w, p.centre, other, slipBoundary);

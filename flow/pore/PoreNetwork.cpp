@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 
 namespace talus::flow::pore
 {
@@ -51,17 +52,28 @@ Vertex boundaryVertex(const std::array<Boundary, kBoundaries>& boundaries, int k
   return v;
 }
 
-void insertVertices(PoreNetwork& net, Regular& rt, const std::vector<int>& order)
+void insertVertices(PoreNetwork& net, Regular& rt, const std::vector<int>& order, InsertionOrder insertion)
 {
   std::vector<char> inserted(net.vertices.size(), 0);
+  std::vector<std::pair<Weighted, int>> range;
+  range.reserve(order.size());
   for (const int i : order)
   {
     const Vertex& v = net.vertices[static_cast<std::size_t>(i)];
     inserted[static_cast<std::size_t>(i)] = 1;
-    const Regular::Vertex_handle h = rt.insert(Weighted(Point(v.pos.x(), v.pos.y(), v.pos.z()), v.radius * v.radius));
+    const Weighted w(Point(v.pos.x(), v.pos.y(), v.pos.z()), v.radius * v.radius);
+    if (i >= kBoundaries && insertion == InsertionOrder::Sorted)
+    {
+      range.emplace_back(w, i);
+      continue;
+    }
+    // the six boundaries first, one by one (they enclose the sample, the spheres' range goes
+    // inside them); everything one by one in Yade's order
+    const Regular::Vertex_handle h = rt.insert(w);
     if (h != Regular::Vertex_handle())
       h->info() = i;
   }
+  rt.insert(range.begin(), range.end());
   // A sphere is hidden if it was not inserted or a later one removed it.
   std::vector<char> present(net.vertices.size(), 0);
   for (auto v = rt.finite_vertices_begin(); v != rt.finite_vertices_end(); ++v)
@@ -74,10 +86,41 @@ void insertVertices(PoreNetwork& net, Regular& rt, const std::vector<int>& order
       net.hiddenSpheres.push_back(net.vertices[i].id);
 }
 
-Vec3 weightedCentre(const Regular& rt, Regular::Cell_handle c)
+std::tuple<bool, std::int64_t, int> canonicalKey(const std::vector<Vertex>& vertices, int index)
 {
+  const Vertex& v = vertices[static_cast<std::size_t>(index)];
+  return {!v.fictitious, v.id, index};
+}
+
+void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const std::vector<Vertex>& vertices,
+                      InsertionOrder insertion)
+{
+  constexpr int kFacetVertices[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  std::array<std::array<int, 2>, 3> facet{}; // (vertex, its local index in the other pore)
+  for (std::size_t k = 0; k < 3; ++k)
+    facet[k] = {poreVertices[static_cast<std::size_t>(kFacetVertices[t.facet][k])], t.mirrorLocal[k]};
+  if (insertion == InsertionOrder::Sorted)
+  {
+    std::sort(facet.begin(), facet.end(), [&](const auto& a, const auto& b) {
+      return canonicalKey(vertices, a[0]) < canonicalKey(vertices, b[0]);
+    });
+  }
+  for (std::size_t k = 0; k < 3; ++k)
+  {
+    t.vertices[k] = facet[k][0];
+    t.mirrorLocal[k] = facet[k][1];
+  }
+}
+
+Vec3 weightedCentre(const PoreNetwork& net, const Regular& rt, Regular::Cell_handle c, InsertionOrder insertion)
+{
+  std::array<Regular::Vertex_handle, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};
+  if (insertion == InsertionOrder::Sorted)
+    std::sort(v.begin(), v.end(), [&](Regular::Vertex_handle a, Regular::Vertex_handle b) {
+      return canonicalKey(net.vertices, a->info()) < canonicalKey(net.vertices, b->info());
+    });
   const auto centre = rt.geom_traits().construct_weighted_circumcenter_3_object();
-  const Point q = centre(c->vertex(0)->point(), c->vertex(1)->point(), c->vertex(2)->point(), c->vertex(3)->point());
+  const Point q = centre(v[0]->point(), v[1]->point(), v[2]->point(), v[3]->point());
   return {q.x(), q.y(), q.z()};
 }
 } // namespace detail
@@ -104,7 +147,8 @@ std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSp
   return b;
 }
 
-PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries)
+PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
+                        InsertionOrder insertion)
 {
   detail::checkSpheres(spheres);
   for (const PoreSphere& s : spheres)
@@ -123,8 +167,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   const Vec3 hi(boundaries[1].position, boundaries[3].position, boundaries[5].position);
   auto owner = std::make_shared<Triangulation>();
   Regular& rt = owner->rt;
-  // Boundaries first, then the spheres in the caller's order, one by one as Yade does (the
-  // triangulation is unique anyway unless points are degenerate).
+  // Boundaries first, then the spheres (see insertVertices).
   for (int k = 0; k < kBoundaries; ++k)
     net.vertices.push_back(detail::boundaryVertex(boundaries, k, lo, hi));
   for (const PoreSphere& s : spheres)
@@ -132,7 +175,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   std::vector<int> order(net.vertices.size());
   for (std::size_t i = 0; i < order.size(); ++i)
     order[i] = static_cast<int>(i);
-  detail::insertVertices(net, rt, order);
+  detail::insertVertices(net, rt, order, insertion);
 
   int n = 0;
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
@@ -148,7 +191,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
       p.throats[k] = -1;
       p.nFictitious += net.vertices[static_cast<std::size_t>(p.vertices[k])].fictitious ? 1 : 0;
     }
-    p.centre = detail::weightedCentre(rt, c);
+    p.centre = detail::weightedCentre(net, rt, c, insertion);
   }
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
     for (int k = 0; k < 4; ++k)
@@ -163,6 +206,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
       for (int y = 0, m = 0; y < 4; ++y)
         if (y != k)
           t.mirrorLocal[static_cast<std::size_t>(m++)] = c->neighbor(k)->index(c->vertex(y));
+      detail::setFacetVertices(t, net.pores[static_cast<std::size_t>(c->info())].vertices, net.vertices, insertion);
       net.pores[static_cast<std::size_t>(c->info())].throats[k] = static_cast<int>(net.throats.size());
       net.pores[static_cast<std::size_t>(other)].throats[mirror] = static_cast<int>(net.throats.size());
       net.throats.push_back(t);

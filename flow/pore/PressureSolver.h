@@ -3,7 +3,8 @@
 //   sum_j k_ij (p_i - p_j) = q_i
 // over its finite neighbours j (k_ij: throat conductance, q_i: imposed source). Symmetric positive
 // definite as soon as every connected group of unknown pores touches an imposed pressure.
-// Two solvers: CHOLMOD supernodal Cholesky (the factor is kept until the matrix changes) and
+// Two solvers: CHOLMOD Cholesky (simplicial for small systems, supernodal above; the factor is
+// kept until the matrix changes, ordered by nested dissection on the pore centres) and
 // Gauss-Seidel with over-relaxation (Yade's useSolver=0) for comparison.
 #include "flow/pore/PoreNetwork.h"
 
@@ -45,6 +46,8 @@ public:
   double relax = 1.9;      ///< Gauss-Seidel over-relaxation (Yade's relax)
   int maxIterations = 100000;
 
+  /// Factorise now (CHOLMOD) instead of at the next solve; nothing for Gauss-Seidel.
+  void prepare(SolverKind kind);
   [[nodiscard]] bool factorized() const;
   /// How many symbolic analyses and numeric factorisations CHOLMOD has done, and their times.
   struct Counters
@@ -55,6 +58,8 @@ public:
     double factorizeSeconds = 0;
   };
   [[nodiscard]] const Counters& counters() const { return counters_; }
+  /// Add the work of an earlier solver to the counters (a model that replaced its network).
+  void addCounters(const Counters& earlier);
   [[nodiscard]] int lastIterations() const { return iterations_; }
   [[nodiscard]] std::size_t unknowns() const { return rowOfPore_.empty() ? 0 : static_cast<std::size_t>(nUnknown_); }
 
@@ -64,6 +69,7 @@ private:
 
   std::vector<int> rowOfPore_;  ///< -1 for imposed pores
   std::vector<int> poreOfRow_;
+  std::vector<Vec3> centreOfRow_; ///< pore centres, for the fill-reducing ordering
   int nUnknown_ = 0;
   // Matrix in compressed rows: diagonal, then (column pore, conductance) couplings of each row
   // to all its finite neighbours (imposed or not).

@@ -221,6 +221,35 @@ TEST(PoreFlowErrors, NoImposedPressureIsASingularSystem)
   }
 }
 
+TEST(PoreFlowErrors, PoreConnectedToNoImposedPressureIsNamed)
+{
+  // A pore whose throats all have zero conductance is a group of pores (of one) connected to
+  // no imposed pressure: the factorisation (simplicial for this size) reports it by its index.
+  PoreFlow f = yFlow();
+  f.build(loadPacking());
+  PoreNetwork net = f.network();
+  std::vector<char> imposed(net.pores.size(), 0);
+  for (int k : {2, 3})
+    for (int pi : net.boundaryPores[static_cast<std::size_t>(k)])
+      imposed[static_cast<std::size_t>(pi)] = 1;
+  const auto lonely = static_cast<std::size_t>(std::find(imposed.begin(), imposed.end(), 0) - imposed.begin());
+  for (int t : net.pores[lonely].throats)
+    if (t >= 0)
+      net.throats[static_cast<std::size_t>(t)].conductance = 0;
+  PressureSolver solver;
+  solver.setSystem(net, imposed);
+  std::vector<double> p(net.pores.size(), 0.0);
+  try
+  {
+    solver.solve(SolverKind::Cholmod, p);
+    FAIL() << "isolated pore accepted";
+  }
+  catch (const std::runtime_error& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("pore " + std::to_string(lonely) + " "), std::string::npos) << e.what();
+  }
+}
+
 TEST(FlowCoupling, FluidForcesReachTheParticlesAndBalanceThePressureDrop)
 {
   // The packing as fixed spheres of a DEM scene; the coupling reads them through the exchange

@@ -106,7 +106,7 @@ def compare(ref, flow):
 
 def test_same_network_and_flux_as_yade_stored():
     ref = json.load(open(DATA / "pore_yade_reference.json"))
-    d = compare(ref, y_flow())
+    d = compare(ref, y_flow(yadeInsertionOrder=True))
     # Identical formulas in double precision: differences are round-off.
     # (measured: cell volume 1.9e-8 on pores touching two walls, where Yade uses 0.333333333 for
     # 1/3 -- reproduced exactly with that constant --, total
@@ -121,12 +121,40 @@ def test_same_network_and_flux_as_yade_stored():
     assert d["averageVelocity"] < 1e-8, d
 
 
+def test_sorted_insertion_stays_within_the_issue_tolerance_of_yade():
+    # The default inserts the spheres as one sorted range: the same pores, but each cell's
+    # vertices in a canonical order instead of CGAL's. Two things then differ from Yade by
+    # more than round-off: which sphere Yade's sphere-edge overlap S0 counts on facets where
+    # two spheres cross their opposite edges, and the round-off of the weighted circumcentres
+    # of pores touching a wall (computed from the fictitious spheres' huge weights: up to 6e-5
+    # of the box), which changes the length of the few throats whose two centres nearly
+    # coincide by percents. Measured: 1 201 of 4 630 conductances differ, 35 by more than
+    # 1e-3, 2 by more than 1e-2 (worst 2.2 %); pressure 3.1e-5, flux 8.2e-7, forces 1.5e-5,
+    # average velocity 9.5e-5. The issue's bar is 1 % on permeability (the flux).
+    ref = json.load(open(DATA / "pore_yade_reference.json"))
+    flow = y_flow()
+    d = compare(ref, flow)
+    assert d["conductance"] < 5e-2 and d["flux"] < 1e-5, d
+    assert d["pressure"] < 1e-4 and d["force"] < 1e-4 and d["averageVelocity"] < 1e-3, d
+    assert d["cellVolume"] < 1e-6 and d["totalVolume"] < 1e-8, d
+    ky, kt = facet_conductances_yade(ref), facet_conductances_talus(flow)
+    same = sum(abs(kt[key] - k) <= 1e-10 * k for key, k in ky.items())
+    assert same > 0.7 * len(ky)
+    # and the geometry no longer depends on the order of the spheres (measured: 1e-14)
+    pos, rad, ids = packing()
+    order = np.random.default_rng(3).permutation(len(rad))
+    shuffled = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0])
+    shuffled.triangulate(pos[order], rad[order], ids[order])
+    shuffled.solve()
+    assert shuffled.getBoundaryFlux(2) == pytest.approx(flow.getBoundaryFlux(2), rel=1e-12)
+
+
 @pytest.mark.skipif(YADE is None, reason="yade not installed")
 def test_same_flux_as_yade_live(tmp_path):
     out = tmp_path / "ref.json"
     subprocess.run([YADE, "-n", "-x", "pore_yade_reference.py", str(DATA / "pore_packing.txt"), str(out)],
                    cwd=HERE, check=True, capture_output=True, timeout=120)
-    d = compare(json.load(open(out)), y_flow())
+    d = compare(json.load(open(out)), y_flow(yadeInsertionOrder=True))
     assert d["flux"] < 1e-10 and d["conductance"] < 1e-10, d
 
 
@@ -481,6 +509,10 @@ def test_bad_input_of_the_transient_solve():
         fresh.solve()
     with pytest.raises(ValueError, match="callable or a Python command"):
         fresh.blockHook = 3
+    with pytest.raises(ValueError, match="backgroundSteps must be >= 0"):
+        fresh.backgroundSteps = -1
+    with pytest.raises(ValueError, match="meshUpdateInterval must be >= 1"):
+        fresh.meshUpdateInterval = 0
 
 
 @pytest.fixture(scope="module")
@@ -499,7 +531,8 @@ def test_moving_spheres_same_pressures_as_yade(yade_transient, bulk):
     # volume-change source, and with a fluid bulk modulus the storage term, give Yade's pressures.
     ref = yade_transient[str(int(bulk))]
     pos, rad, ids = packing()
-    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0], fluidBulkModulus=bulk)
+    flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0], fluidBulkModulus=bulk,
+                      yadeInsertionOrder=True)
     flow.triangulate(pos, rad, ids)
     flow.setTimeStep(1e-3)
     flow.solve()
@@ -517,3 +550,83 @@ def test_moving_spheres_same_pressures_as_yade(yade_transient, bulk):
         scale = max(abs(p) for p in theirs.values())
         # 1e-9: dV is a difference of volumes; Yade's 0.333333333 in the two-wall pore volumes
         assert diff < 1e-8 * scale, (step, diff, scale)
+
+
+def _moving_sample(steps, **engine):
+    """The 400 spheres moving towards the centre at constant velocity (no contacts): the pores
+    shrink, the fluid leaves through the drained y faces. Returns the per-step inlet flux, the
+    fluid forces each step applied and the steps after which a remesh came."""
+    from talus.dem import ForceResetter, NewtonIntegrator, Scene, sphere
+    S = Scene()
+    pos, rad, _ = packing()
+    ids = S.bodies.append([sphere(p, r, fixed=True) for p, r in zip(pos, rad)])
+    vel = np.asarray(S.velocities())
+    for i in ids:
+        vel[i] = -0.5 * (pos[i] - 0.5)
+    S.velocities()[:] = vel
+    flow = FlowEngine(scene=S, bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0] * 6, **engine)
+    S.engines = [ForceResetter(), flow, NewtonIntegrator(damping=0)]
+    S.dt = 2e-3
+    flux, forces, remeshed = [], [], []
+    for step in range(1, steps + 1):
+        before = flow.remeshCount()[0]
+        S.step()
+        flux.append(flow.getBoundaryFlux(3))   # after a remesh: of the carried-over field
+        forces.append(np.asarray(S.forces())[ids].copy())
+        if flow.remeshCount()[0] > before and step > 1:
+            remeshed.append(step)
+    return np.array(flux), np.array(forces), remeshed, flow
+
+
+def test_background_remeshing_is_deterministic_and_arrives_backgroundSteps_later():
+    steps = 12
+    sync, f_sync, at_sync, _ = _moving_sample(steps, meshUpdateInterval=3)
+    fixed, f_fixed, at_fixed, _ = _moving_sample(steps, meshUpdateInterval=10 ** 6)
+    assert at_sync == [3, 6, 9, 12] and at_fixed == []
+    # backgroundSteps 0: the build runs in the other thread, the results are the synchronous ones
+    bg0, f_bg0, at_bg0, _ = _moving_sample(steps, meshUpdateInterval=3, multithread=True, backgroundSteps=0)
+    assert at_bg0 == at_sync
+    assert np.array_equal(bg0, sync) and np.array_equal(f_bg0, f_sync)
+    # backgroundSteps 2: the mesh due after step 3 (positions of step 3) replaces the old one
+    # after step 5; until then the old mesh gives exactly the fixed-mesh forces
+    bg2, f_bg2, at_bg2, flow = _moving_sample(steps, meshUpdateInterval=3, multithread=True, backgroundSteps=2)
+    assert at_bg2 == [5, 10]
+    assert np.array_equal(f_bg2[:5], f_fixed[:5]) and not np.array_equal(f_bg2[5], f_fixed[5])
+    # deterministic: the thread's timing does not enter
+    again, f_again, _, _ = _moving_sample(steps, meshUpdateInterval=3, multithread=True, backgroundSteps=2)
+    assert np.array_equal(again, bg2) and np.array_equal(f_again, f_bg2)
+    # the later meshes change the flux by little (a mesh a few steps old keeps its volume-change
+    # source right; only conductances and force vectors are those of the older positions)
+    assert np.abs(bg2 - sync).max() < 0.05 * np.abs(sync).max()
+    assert np.abs(f_bg2 - f_sync).max() < 0.05 * np.abs(f_sync).max()
+    assert not flow._coupling.rebuildPending()   # the next one falls due after step 13
+
+
+def test_engine_remeshes_at_once_when_a_pore_inverts_even_in_the_background():
+    # One sphere jumps through the opposite face of an interior tetrahedron between two steps:
+    # the engine sees the inverted pore in the next step and remeshes at its end (counted as a
+    # strain remesh), also when a background mesh is pending (it is dropped, not waited for).
+    from talus.dem import ForceResetter, Scene, sphere
+    pos, rad, ids = packing()
+    probe = y_flow()
+    verts = probe.cellVertexIds
+    cell = next(i for i, v in enumerate(verts) if min(v) >= 6)
+    a, b, c, d = (pos[int(v) - 6] for v in verts[cell])
+    normal = np.cross(b - a, c - a)
+    normal /= np.linalg.norm(normal)
+    jumper = int(verts[cell][3]) - 6
+    for multithread in (False, True):
+        S = Scene()
+        body = S.bodies.append([sphere(p, r, fixed=True) for p, r in zip(pos, rad)])
+        flow = FlowEngine(scene=S, bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0],
+                          meshUpdateInterval=1 if multithread else 10 ** 6, multithread=multithread,
+                          backgroundSteps=50)
+        S.engines = [ForceResetter(), flow]
+        S.dt = 1e-3
+        S.step()
+        assert flow._coupling.rebuildPending() == multithread
+        S.positions()[body[jumper]] = d - 2 * np.dot(d - a, normal) * normal
+        S.step()
+        assert flow.remeshCount() == (2, 1), multithread
+        assert not flow._coupling.rebuildPending()
+        assert flow.maxVolumetricStrain() == 0   # the new mesh is of the moved packing

@@ -80,7 +80,9 @@ def test_balances():
     net = np.zeros(flow.nCells())
     np.add.at(net, pores[:, 0], q)
     np.add.at(net, pores[:, 1], -q)
-    assert np.abs(net).max() < 1e-12 * np.abs(q).max()
+    # (round-off of the direct solve: 1.2e-12 of the largest throat flux with the nested-dissection
+    # ordering, below 1e-12 with AMD's)
+    assert np.abs(net).max() < 1e-11 * np.abs(q).max()
     # the solids carry the whole driving gradient: sum of the fluid forces = -gradP * volume
     total = np.sum([flow.fluidForce(i) for i in range(len(packing()[1]))], axis=0)
     assert total == pytest.approx([0, -1, 0], abs=1e-10)

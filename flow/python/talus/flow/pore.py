@@ -39,8 +39,10 @@ from talus.dem.engines import Engine
 from talus.dem.shapes import Sphere
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
+# engine step counts and their smallest allowed values
+_ENGINE_COUNTS = {"meshUpdateInterval": 1, "backgroundSteps": 0}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
-            "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus")
+            "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder")
 
 
 class HiddenSphereWarning(UserWarning):
@@ -63,10 +65,17 @@ class FlowEngine(Engine):
     ``wallPosition[k]``), ``permeabilityFactor`` 1, ``viscosity`` 1, ``clampKValues`` True,
     ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
     solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
-    ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), and for the engine
+    ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), ``yadeInsertionOrder``
+    False (Talus: True inserts the spheres one by one and keeps CGAL's vertex order as Yade does, slower, the
+    same numbers as Yade to round-off; False inserts them as one spatially sorted range and takes the facet
+    vertices in a canonical order, within 0.4 % of Yade on the most affected throat), and for the engine
     ``meshUpdateInterval`` 1000, ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
     fraction since the mesh; an inverted pore always remeshes), ``blockHook`` (callable or command string run
-    after each remesh, before the solve). Between remeshes the engine moves the network's spheres each step:
+    after each remesh, before the solve), ``multithread`` False (Yade's name: build due meshes and their
+    CHOLMOD factor in a second thread while the old mesh keeps being used) with ``backgroundSteps`` 10 (Talus:
+    the new mesh, of the positions when the remesh fell due, replaces the old one exactly this many steps
+    later, waiting for the thread if needed, so results do not depend on thread timing; 0 gives the results of
+    ``multithread`` False). Between remeshes the engine moves the network's spheres each step:
     the pores' volume changes drive the flow (consolidation), see ``moveVertices``.
     """
 
@@ -80,6 +89,8 @@ class FlowEngine(Engine):
         self._meshUpdateInterval = 1000
         self._defTolerance = 0.0
         self._blockHook = None
+        self._multithread = False
+        self._backgroundSteps = 10
         self._rebuild = False
         self._cpp = _dem.CallbackEngine()
         self._cpp.iterPeriod = 1
@@ -99,16 +110,19 @@ class FlowEngine(Engine):
                 raise ValueError("FlowEngine.wallIds needs 6 body ids (-1: none)")
             self._wallIds = ids
             return
-        if name == "meshUpdateInterval":
-            if int(value) < 1:
-                raise ValueError("FlowEngine.meshUpdateInterval must be >= 1")
-            self._meshUpdateInterval = int(value)
+        if name in _ENGINE_COUNTS:
+            if int(value) < _ENGINE_COUNTS[name]:
+                raise ValueError(f"FlowEngine.{name} must be >= {_ENGINE_COUNTS[name]}")
+            object.__setattr__(self, "_" + name, int(value))
             return
         if name == "updateTriangulation":
             self._rebuild = bool(value)
             return
         if name == "defTolerance":
             self._defTolerance = float(value)
+            return
+        if name == "multithread":
+            self._multithread = bool(value)
             return
         if name == "blockHook":
             if value and not (callable(value) or isinstance(value, str)):
@@ -136,7 +150,7 @@ class FlowEngine(Engine):
             return list(value) if name == "wallIds" else value
         if name == "updateTriangulation":
             return self._rebuild
-        if name in ("defTolerance", "blockHook"):
+        if name in ("defTolerance", "blockHook", "multithread", "backgroundSteps"):
             return object.__getattribute__(self, "_" + name)
         if name in _BOUNDARY_LISTS or name in _SCALARS:
             value = getattr(self._flow.params, name)
@@ -173,6 +187,8 @@ class FlowEngine(Engine):
         self._coupling.wallIds = self._wallIds
         self._coupling.meshUpdateInterval = self._meshUpdateInterval
         self._coupling.defTolerance = self._defTolerance
+        self._coupling.multithread = self._multithread
+        self._coupling.backgroundSteps = self._backgroundSteps
         self._coupling.blockHook = _hook(self._blockHook)
         if self._rebuild:
             self._coupling.requestRebuild()
