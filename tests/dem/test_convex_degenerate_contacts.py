@@ -13,6 +13,7 @@ import pytest
 from talus import _dem
 from talus.dem import (FrictMat, PotentialBlock, PotentialParticle, Scene, blockContact, particleContact,
                        potentialBlock, potentialParticle)
+from test_potential_blocks import _mul as quaternion_product   # (w, x, y, z) product
 
 SHAPES = {
     "block": (lambda: PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.05), potentialBlock, blockContact),
@@ -25,13 +26,6 @@ TILTS = [0.0, 1e-9, 1e-6, 1e-3]
 def quat(axis, angle):
     axis = np.asarray(axis, float) / np.linalg.norm(axis)
     return (math.cos(angle / 2), *(math.sin(angle / 2) * axis))
-
-
-def mul(p, q):
-    w1, x1, y1, z1 = p
-    w2, x2, y2, z2 = q
-    return (w1 * w2 - x1 * x2 - y1 * y2 - z1 * z2, w1 * x2 + x1 * w2 + y1 * z2 - z1 * y2,
-            w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)
 
 
 def configurations():
@@ -64,7 +58,7 @@ def test_near_degenerate_contacts_never_give_nan_nor_a_wrong_normal(kind, name, 
     S = Scene()
     m = S.materials.append(FrictMat(density=1000))
     # the tilt turns body 2 about an axis across the normal, away from the exact configuration
-    q2 = mul(quat((1, 0.3, 0), tilt), q2) if tilt else q2
+    q2 = quaternion_product(quat((1, 0.3, 0), tilt), q2) if tilt else q2
     a = S.bodies.append(make_body(shape, pos=(0, 0, 0), orientation=q1, material=m))
     b = S.bodies.append(make_body(shape, pos=(0, 0, 3), orientation=q2, material=m))
     direction = np.asarray(direction, float)
