@@ -116,15 +116,36 @@ bool separatedByEdges(const Bodies& b, std::size_t i1, std::size_t i2, const std
   return false;
 }
 
+/// The shorter translation of body 2 (vertices v2), along +u or -u, that ends its overlap with
+/// body 1 (vertices v1) along the unit axis u, and its sense (+1: along +u).
+double overlapAlong(const Vec3& u, const std::vector<Vec3>& v1, const std::vector<Vec3>& v2, double* sense = nullptr)
+{
+  double lo1 = std::numeric_limits<double>::infinity(), hi1 = -lo1, lo2 = lo1, hi2 = hi1;
+  for (const Vec3& v : v1)
+  {
+    lo1 = std::min(lo1, u.dot(v));
+    hi1 = std::max(hi1, u.dot(v));
+  }
+  for (const Vec3& v : v2)
+  {
+    lo2 = std::min(lo2, u.dot(v));
+    hi2 = std::max(hi2, u.dot(v));
+  }
+  const double plus = hi1 - lo2, minus = hi2 - lo1;
+  if (sense)
+    *sense = plus <= minus ? 1.0 : -1.0;
+  return std::min(plus, minus);
+}
+
 /// The contact normal of two overlapping polyhedra from their separating-axis candidates (the
 /// faces' normals of both and the cross products of their edges): along each axis, the shorter
-/// translation of body 2 (in either sense) that ends the overlap; the least of these is the
-/// exact polyhedral normal (the penetration depth's direction). The axes within a few
-/// `smoothing` of the least are averaged with weights exp(-(depth - least) / smoothing), so that
-/// the normal turns smoothly between axes that (nearly) tie, as the two faces beside parallel
-/// edges do, instead of jumping between them.
+/// translation of body 2 that ends the overlap; the least of these (`least`) is the exact
+/// polyhedral normal (the penetration depth's direction). The axes within a few `smoothing` of
+/// the least are averaged with weights exp(-(depth - least) / smoothing), so that the normal
+/// turns smoothly between axes that (nearly) tie, as the two faces beside parallel edges do,
+/// instead of jumping between them.
 Vec3 leastOverlapNormal(const Bodies& b, std::size_t i1, std::size_t i2, const std::vector<Vec3>& v1,
-                        const std::vector<Vec3>& v2, double smoothing)
+                        const std::vector<Vec3>& v2, double smoothing, double& least)
 {
   std::vector<std::pair<double, Vec3>> axes; // depth, unit direction from body 1 to body 2
   auto consider = [&](Vec3 u) {
@@ -135,19 +156,9 @@ Vec3 leastOverlapNormal(const Bodies& b, std::size_t i1, std::size_t i2, const s
     for (const auto& [depth, w] : axes)
       if (std::abs(w.dot(u)) > 1 - 1e-12)
         return; // the same axis (opposite faces, or a face and an edge pair)
-    double lo1 = std::numeric_limits<double>::infinity(), hi1 = -lo1, lo2 = lo1, hi2 = hi1;
-    for (const Vec3& v : v1)
-    {
-      lo1 = std::min(lo1, u.dot(v));
-      hi1 = std::max(hi1, u.dot(v));
-    }
-    for (const Vec3& v : v2)
-    {
-      lo2 = std::min(lo2, u.dot(v));
-      hi2 = std::max(hi2, u.dot(v));
-    }
-    const double plus = hi1 - lo2, minus = hi2 - lo1; // body 2 moved along +u or -u
-    axes.emplace_back(std::min(plus, minus), plus <= minus ? u : Vec3(-u));
+    double sense = 1;
+    const double depth = overlapAlong(u, v1, v2, &sense);
+    axes.emplace_back(depth, sense * u);
   };
   const Mat3 R1 = b.ori[i1].toRotationMatrix(), R2 = b.ori[i2].toRotationMatrix();
   for (const Vec3& n : shapeOf(b, i1).normals)
@@ -157,7 +168,7 @@ Vec3 leastOverlapNormal(const Bodies& b, std::size_t i1, std::size_t i2, const s
   for (const Vec3& e1 : shapeOf(b, i1).edgeDirections)
     for (const Vec3& e2 : shapeOf(b, i2).edgeDirections)
       consider((R1 * e1).cross(R2 * e2));
-  double least = std::numeric_limits<double>::infinity();
+  least = std::numeric_limits<double>::infinity();
   Vec3 leastAxis = Vec3::UnitZ();
   for (const auto& [depth, u] : axes)
     if (depth < least)
@@ -394,7 +405,10 @@ bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, cons
     // two faces' normals) are averaged. Near edges or corners of both, the gradients of the
     // rounded potentials lean towards the side faces (by 20 degrees and more for nearly
     // parallel edges of nearly parallel faces): the polyhedra's least-overlap axis instead,
-    // smoothed over a tenth of the roundings.
+    // smoothed over a tenth of the roundings. So too when the face taken is not (within that
+    // smoothing) a least-overlap axis: the analytic centre of a deep edge-edge overlap can lie
+    // in a face region of one block (9 degrees off in the accuracy case).
+    const bool faceRule = (a1 <= 1) != (a2 <= 1);
     if (a1 <= 1 && a2 > 1)
       n = g1;
     else if (a2 <= 1 && a1 > 1)
@@ -404,9 +418,15 @@ bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, cons
       n = g1 - g2;
       n = n.norm() > 1e-12 ? Vec3(n.normalized()) : g1;
     }
-    else
-      n = leastOverlapNormal(b, i1, i2, worldVertices(b, i1, origin), v2,
-                             std::max(0.1 * (shapeOf(b, i1).r + s2.r), 1e-9 * reach));
+    if (a1 > 1 || a2 > 1)
+    {
+      const std::vector<Vec3> v1 = worldVertices(b, i1, origin);
+      const double smoothing = std::max(1e-3 * (shapeOf(b, i1).r + s2.r), 1e-9 * reach);
+      double least = 0;
+      const Vec3 axis = leastOverlapNormal(b, i1, i2, v1, v2, smoothing, least);
+      if (!faceRule || overlapAlong(n, v1, v2) > least + smoothing)
+        n = axis;
+    }
   }
 
   // The chord of the overlap region along n through x.
