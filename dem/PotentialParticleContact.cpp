@@ -79,7 +79,10 @@ void potentialParticleAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
 bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                               ConvexContactGeometry& out, double accuracyTol)
 {
-  const double stepTol = 0.1 * accuracyTol;
+  // Lengths (inner minimisations, rays) to accuracyTol / 10 R, but never coarser than 1e-9 R:
+  // Newton converges quadratically there, so a loose accuracyTol would save little and would
+  // blur the chord of a shallow overlap.
+  const double stepTol = std::min(0.1 * accuracyTol, 1e-9);
   const PotentialParticleShape& s2 = shapeOf(b, i2);
   out.lpSolves = 0;
   if (b.shape[i1] == ShapeKind::Wall)
@@ -134,6 +137,11 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
         }
         const Vec3 dg = g1 - g2;
         slope = -dg.dot(H.ldlt().solve(dg));
+        // |f1 - f2| <= accuracyTol ends the search only once the point is inside both (the
+        // contact decided): with a loose tolerance a shallow overlap would otherwise be missed
+        // (at 0.1, a 1e-3 m vertex into a face). Until then the search goes on with the sign.
+        if (!(std::max(v1, v2) < 0) && v1 != v2 && std::abs(v1 - v2) <= accuracyTol)
+          return std::copysign(2 * accuracyTol, v1 - v2);
         return v1 - v2;
       },
       0.0, 1.0, 0.5, accuracyTol, stepTol);

@@ -28,7 +28,8 @@ constexpr double defaultParticleAccuracyTol = 1e-8;
 /// `accuracyTol` (Yade's name): the dual iteration stops once |f1 - f2| <= accuracyTol at x*
 /// (f is dimensionless, -1 at the centre; its gradient at the surface is about 2 / r, so the
 /// point is then within about accuracyTol r / 2 of the equal-potential surface), the inner
-/// minimisations and the chord's ends once their steps are below accuracyTol / 10 R.
+/// minimisations and the chord's ends once their steps are below min(accuracyTol / 10, 1e-9) R;
+/// a contact is reported only once its point is inside both (however loose the tolerance).
 /// @return false if the shapes do not overlap
 bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                               ConvexContactGeometry& out, double accuracyTol = defaultParticleAccuracyTol);

@@ -95,3 +95,33 @@ def test_near_degenerate_contacts_never_give_nan_nor_a_wrong_normal(kind, name, 
             # abs: blocks count as touching once the overlap is deeper than 1e-12 of their
             # size, which shifts the bisected first touch by a few 1e-12 m
             assert g["penetrationDepth"] == pytest.approx(-gap, rel=1e-5, abs=1e-11), (name, gap)
+
+
+@pytest.mark.parametrize("kind", sorted(SHAPES))
+def test_accuracy_tolerance_is_checked_and_trades_accuracy(kind):
+    if kind == "block" and not _dem.have_potential_blocks:
+        pytest.skip("built without CLP")
+    make_shape, make_body, probe = SHAPES[kind]
+    shape = make_shape()
+    S = Scene()
+    m = S.materials.append(FrictMat(density=1000))
+    a = S.bodies.append(make_body(shape, pos=(0, 0, 0), material=m))
+    # a vertex of body 2 into a face of body 1, off-centre
+    diag = np.array([1, 1, 1]) / math.sqrt(3)
+    b = S.bodies.append(make_body(shape, pos=(0.1, 0.05, 3), orientation=quat(np.cross(diag, [0, 0, -1]),
+                                                                              math.acos(-diag[2])), material=m))
+    lo, hi = 0.5, 2.5
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        S.bodies[b].state.pos = (0.1, 0.05, mid)
+        lo, hi = (mid, hi) if probe(S, a, b)["touching"] else (lo, mid)
+    S.bodies[b].state.pos = (0.1, 0.05, hi - 1e-3)
+    for bad in (0.0, -1e-8, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="accuracyTol"):
+            probe(S, a, b, accuracyTol=bad)
+    tight, loose = probe(S, a, b, accuracyTol=1e-12), probe(S, a, b, accuracyTol=1e-1)
+    default = probe(S, a, b)
+    assert tight["touching"] and loose["touching"] and default["touching"]
+    # the default is as accurate as a tight tolerance; a loose one is not worse than 1 %
+    assert default["penetrationDepth"] == pytest.approx(tight["penetrationDepth"], rel=1e-6)
+    assert loose["penetrationDepth"] == pytest.approx(tight["penetrationDepth"], rel=1e-2)
