@@ -5,6 +5,9 @@
 
 namespace talus::dem
 {
+/// The Potential Blocks' default solver tolerance (see potentialBlockContact).
+constexpr double defaultBlockAccuracyTol = 1e-10;
+
 /// Overlap of two Potential Blocks i1, i2, or of wall i1 and block i2.
 ///
 /// The overlap region is the intersection of both sets of half-spaces. A linear program (CLP)
@@ -18,9 +21,11 @@ namespace talus::dem
 /// against every plane (the limit of Yade's bracketed bisection). Pairs separated by a face
 /// plane of either or by the cross product of two edges (separating-axis theorem, exact for
 /// polyhedra) are rejected before any linear program.
+/// `accuracyTol`: the analytic centre's Newton iteration stops once its Newton decrement is
+/// below it (the chord and the area are exact for the point and normal found).
 /// @return false if the shapes do not overlap
 bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
-                           ConvexContactGeometry& out);
+                           ConvexContactGeometry& out, double accuracyTol = defaultBlockAccuracyTol);
 
 /// World-frame axis-aligned bounding box of block i, from its turned vertices.
 void potentialBlockAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi);

@@ -44,8 +44,6 @@ struct PlacedPotential
 
   /// Value of f at x; gradient and Hessian if asked.
   double eval(const Vec3& x, Vec3* grad = nullptr, Mat3* hess = nullptr) const;
-  /// f and its derivative along x + t u.
-  double alongRay(const Vec3& x, const Vec3& u, double t, double* slope) const;
 };
 
 /// Build a particle from Yade's arguments. Volume, centroid and principal inertia are
@@ -69,15 +67,15 @@ PlacedPotential placePotential(const PotentialParticleShape& s, const Vec3& pos,
 /// The minimum over x of w1 f1(x) + w2 f2(x) - c . x (f2 may be null), by Newton steps with a
 /// backtracking line search from x (updated in place): f is piecewise quadratic and strongly
 /// convex, so this converges, and in one step once the active planes are right.
-/// `hessian` (optional): the Hessian there.
+/// `hessian` (optional): the Hessian there. Stops once a step is below `tol` f1.length.
 void minimisePotentials(const PlacedPotential& f1, double w1, const PlacedPotential* f2, double w2, const Vec3& c,
-                        Vec3& x, Mat3* hessian = nullptr);
+                        Vec3& x, Mat3* hessian = nullptr, double tol = 1e-14);
 
 /// Where the ray x + t u (t > 0) leaves {max(f1, f2) <= 0}, from x inside (f2 may be null):
 /// Newton steps from outside, which for a convex function approach the root monotonically.
-/// `guess`: a length to try first (<= 0: `scale`).
+/// `guess`: a length to try first (<= 0: `scale`); stops once a step is below `tol` scale.
 double rayExit(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3& x, const Vec3& u, double guess,
-               double scale);
+               double scale, double tol = 1e-14);
 
 /// The point of the particle farthest along the unit direction e (its support point), from
 /// the Lagrange condition grad f = s e: for s >= 0, x(s) minimises f - s e . x and f(x(s))

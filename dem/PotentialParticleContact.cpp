@@ -4,7 +4,9 @@
 #include <Eigen/Cholesky>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <utility>
 
 namespace talus::dem
 {
@@ -22,16 +24,24 @@ PlacedPotential placed(const Bodies& b, std::size_t i, const Vec3& origin)
 
 constexpr int areaRays = 72; // Yade's default areaStep, 5 degrees
 
-/// Area of the section of {f1 <= 0, f2 <= 0} (f2 may be null) through x normal to n.
-double sectionArea(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3& x, const Vec3& n, double scale)
+/// Area of the section of {f1 <= 0, f2 <= 0} (f2 may be null) through x normal to n, each ray
+/// to `tol` scale.
+double sectionArea(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3& x, const Vec3& n, double scale,
+                   double tol)
 {
+  // The rays' directions in the section's plane, computed once.
+  static const auto circle = [] {
+    std::array<std::pair<double, double>, areaRays> cs;
+    for (int j = 0; j < areaRays; ++j)
+      cs[static_cast<std::size_t>(j)] = {std::cos(2 * M_PI * j / areaRays), std::sin(2 * M_PI * j / areaRays)};
+    return cs;
+  }();
   const Vec3 t1 = (std::abs(n[0]) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
   const Vec3 t2 = n.cross(t1);
   double sum = 0, rho = 0;
-  for (int j = 0; j < areaRays; ++j)
+  for (const auto& [c, s] : circle)
   {
-    const double theta = 2 * M_PI * j / areaRays;
-    rho = rayExit(f1, f2, x, std::cos(theta) * t1 + std::sin(theta) * t2, rho, scale);
+    rho = rayExit(f1, f2, x, c * t1 + s * t2, rho, scale, tol);
     sum += rho * rho;
   }
   return 0.5 * sum * (2 * M_PI / areaRays);
@@ -67,8 +77,12 @@ void potentialParticleAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
 }
 
 bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
-                              ConvexContactGeometry& out)
+                              ConvexContactGeometry& out, double accuracyTol)
 {
+  // Lengths (inner minimisations, rays) to accuracyTol / 10 R, but never coarser than 1e-9 R:
+  // Newton converges quadratically there, so a loose accuracyTol would save little and would
+  // blur the chord of a shallow overlap.
+  const double stepTol = std::min(0.1 * accuracyTol, 1e-9);
   const PotentialParticleShape& s2 = shapeOf(b, i2);
   out.lpSolves = 0;
   if (b.shape[i1] == ShapeKind::Wall)
@@ -93,7 +107,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
     out.penetration = depth;
     const Vec3 mid = x + 0.5 * depth * n;
     out.contactPoint = mid + origin;
-    out.area = sectionArea(f, nullptr, mid, n, s2.R);
+    out.area = sectionArea(f, nullptr, mid, n, s2.R, stepTol);
     return true;
   }
 
@@ -111,7 +125,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
   decreasingRoot(
       [&](double mu, double& slope) {
         Mat3 H;
-        minimisePotentials(f1, mu, &f2, 1 - mu, Vec3::Zero(), x, &H);
+        minimisePotentials(f1, mu, &f2, 1 - mu, Vec3::Zero(), x, &H, stepTol);
         v1 = f1.eval(x, &g1);
         v2 = f2.eval(x, &g2);
         // Weak duality: min_x mu f1 + (1 - mu) f2 > 0 means no point is inside both.
@@ -123,9 +137,14 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
         }
         const Vec3 dg = g1 - g2;
         slope = -dg.dot(H.ldlt().solve(dg));
+        // |f1 - f2| <= accuracyTol ends the search only once the point is inside both (the
+        // contact decided): with a loose tolerance a shallow overlap would otherwise be missed
+        // (at 0.1, a 1e-3 m vertex into a face). Until then the search goes on with the sign.
+        if (!(std::max(v1, v2) < 0) && v1 != v2 && std::abs(v1 - v2) <= accuracyTol)
+          return std::copysign(2 * accuracyTol, v1 - v2);
         return v1 - v2;
       },
-      0.0, 1.0, 0.5, 1e-13, 1e-14);
+      0.0, 1.0, 0.5, accuracyTol, stepTol);
   if (separated || !(std::max(v1, v2) < 0))
     return false;
 
@@ -142,7 +161,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
     n = Vec3::UnitZ();
   n.normalize();
 
-  const double tPlus = rayExit(f1, &f2, x, n, 0, scale), tMinus = rayExit(f1, &f2, x, -n, 0, scale);
+  const double tPlus = rayExit(f1, &f2, x, n, 0, scale, stepTol), tMinus = rayExit(f1, &f2, x, -n, 0, scale, stepTol);
   const double chord = tPlus + tMinus;
   if (!(chord > 0) || !std::isfinite(chord))
     return false;
@@ -150,7 +169,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
   out.penetration = chord;
   const Vec3 mid = x + 0.5 * (tPlus - tMinus) * n;
   out.contactPoint = mid + origin;
-  out.area = sectionArea(f1, &f2, mid, n, scale);
+  out.area = sectionArea(f1, &f2, mid, n, scale, stepTol);
   return true;
 }
 } // namespace talus::dem

@@ -5,6 +5,11 @@
 
 namespace talus::dem
 {
+/// The Potential Particles' default solver tolerance (see potentialParticleContact): the
+/// overlap is then as accurate as at 1e-13 (cases/dem_potential_accuracy.py), while tighter
+/// values cost many more iterations where a small k leaves the potentials nearly flat.
+constexpr double defaultParticleAccuracyTol = 1e-8;
+
 /// Overlap of two Potential Particles i1, i2, or of wall i1 and particle i2 (Yade's
 /// Ig2_PP_PP_ScGeom; see docs/blocks.md).
 ///
@@ -20,9 +25,14 @@ namespace talus::dem
 /// the normal, area 1/2 sum rho(theta)^2 dtheta over 72 rays (trapezoidal rule on a periodic
 /// function).
 /// `previous` (may be null): last step's contact point, a warm start.
+/// `accuracyTol` (Yade's name): the dual iteration stops once |f1 - f2| <= accuracyTol at x*
+/// (f is dimensionless, -1 at the centre; its gradient at the surface is about 2 / r, so the
+/// point is then within about accuracyTol r / 2 of the equal-potential surface), the inner
+/// minimisations and the chord's ends once their steps are below min(accuracyTol / 10, 1e-9) R;
+/// a contact is reported only once its point is inside both (however loose the tolerance).
 /// @return false if the shapes do not overlap
 bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
-                              ConvexContactGeometry& out);
+                              ConvexContactGeometry& out, double accuracyTol = defaultParticleAccuracyTol);
 
 /// World-frame axis-aligned bounding box of particle i: its support points along +-x, y, z
 /// (exact for any orientation).

@@ -86,11 +86,12 @@ void talus_wrap_blocks(py::module_& m)
   // The contact geometry of a pair as it stands, timed (convex_contact_probe.h).
   m.def(
       "block_contact",
-      [](const Scene& s, BodyId id1, BodyId id2, int repeats) {
-        return probeConvexContact(s, id1, id2, repeats, [](const Scene& sc, BodyId id) { blockOf(sc, id); },
-                                  potentialBlockContact);
+      [](const Scene& s, BodyId id1, BodyId id2, int repeats, double accuracyTol) {
+        return probeConvexContact(s, id1, id2, repeats, accuracyTol,
+                                  [](const Scene& sc, BodyId id) { blockOf(sc, id); }, potentialBlockContact);
       },
-      py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1);
+      py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1,
+      py::arg("accuracyTol") = defaultBlockAccuracyTol);
   // Contact areas of the real contacts (same order as Scene.contacts()); 0 without extra state.
   m.def("contact_areas", [](const Scene& s) {
     std::vector<double> out;

@@ -10,17 +10,25 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace talus::dem
 {
 /// The contact geometry of a pair as it stands (no history), with the solver's mean wall time over
 /// `repeats` calls: `seconds` from a cold start (a new contact's cost), `secondsWarm` starting from
 /// the contact point found (a persistent contact's cost). `check(scene, id)` throws unless the body
-/// has the shape; body 1 may be a wall. `solve(bodies, i1, i2, previous, g)` is the shape's contact
-/// routine.
+/// has the shape; body 1 may be a wall. `solve(bodies, i1, i2, previous, g, accuracyTol)` is the
+/// shape's contact routine.
+/// @throws std::invalid_argument unless accuracyTol is finite and > 0
 template <class Check, class Solve>
-pybind11::dict probeConvexContact(const Scene& s, BodyId id1, BodyId id2, int repeats, Check check, Solve solve)
+pybind11::dict probeConvexContact(const Scene& s, BodyId id1, BodyId id2, int repeats, double accuracyTol, Check check,
+                                  Solve solve)
 {
+  if (!std::isfinite(accuracyTol) || !(accuracyTol > 0))
+    throw std::invalid_argument("accuracyTol (the contact solver's tolerance) must be finite and > 0, got "
+                                + std::to_string(accuracyTol));
   s.checkBody(id1);
   check(s, id2);
   const auto i1 = static_cast<std::size_t>(id1), i2 = static_cast<std::size_t>(id2);
@@ -31,7 +39,7 @@ pybind11::dict probeConvexContact(const Scene& s, BodyId id1, BodyId id2, int re
   const int n = std::max(repeats, 1);
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < n; ++k)
-    touching = solve(s.bodies, i1, i2, nullptr, g);
+    touching = solve(s.bodies, i1, i2, nullptr, g, accuracyTol);
   const auto t1 = std::chrono::steady_clock::now();
   pybind11::dict out;
   out["touching"] = touching;
@@ -41,7 +49,7 @@ pybind11::dict probeConvexContact(const Scene& s, BodyId id1, BodyId id2, int re
   {
     const Vec3 previous = g.contactPoint;
     for (int k = 0; k < n; ++k)
-      solve(s.bodies, i1, i2, &previous, g);
+      solve(s.bodies, i1, i2, &previous, g, accuracyTol);
     out["secondsWarm"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count() / n;
     out["normal"] = g.normal;
     out["contactPoint"] = g.contactPoint;

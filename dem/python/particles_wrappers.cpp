@@ -113,9 +113,10 @@ void talus_wrap_particles(py::module_& m)
   // The contact geometry of a pair as it stands, timed (convex_contact_probe.h).
   m.def(
       "particle_contact",
-      [](const Scene& s, BodyId id1, BodyId id2, int repeats) {
-        return probeConvexContact(s, id1, id2, repeats, [](const Scene& sc, BodyId id) { particleOf(sc, id); },
-                                  potentialParticleContact);
+      [](const Scene& s, BodyId id1, BodyId id2, int repeats, double accuracyTol) {
+        return probeConvexContact(s, id1, id2, repeats, accuracyTol,
+                                  [](const Scene& sc, BodyId id) { particleOf(sc, id); }, potentialParticleContact);
       },
-      py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1);
+      py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1,
+      py::arg("accuracyTol") = defaultParticleAccuracyTol);
 }

@@ -1,6 +1,7 @@
 """Potential Particles: shape properties (volume, inertia, Aabb), contact geometry and the KnKs
-law against analytic values and an independent voxel integration; degenerate contacts; bad
-input. (The side-by-side runs with Yade are in cases/dem_potential_particles.py.)"""
+law against analytic values and an independent voxel integration; bad input. (Degenerate
+contacts: test_convex_degenerate_contacts.py; the side-by-side runs with Yade are in
+cases/dem_potential_particles.py.)"""
 import math
 
 import numpy as np
@@ -170,62 +171,6 @@ def test_wall_contact_is_the_support_depth():
     assert g["penetrationDepth"] == pytest.approx(1e-3, rel=1e-8)
     assert np.allclose(g["contactPoint"], [0.3, -0.2, -5e-4], atol=1e-9)
     assert g["contactArea"] == pytest.approx(midplane_area(shape, s - 5e-4), rel=1e-3)
-
-
-def degenerate_configurations():
-    """(name, orientation 1, orientation 2, direction from 1 to 2, expected normal or None)."""
-    z = (0, 0, 1)
-    diag = np.array([1, 1, 1]) / math.sqrt(3)
-    # turn the cube's diagonal onto -z (a vertex pointing down)
-    axis = np.cross(diag, [0, 0, -1])
-    vertex_down = quat(axis, math.acos(np.dot(diag, [0, 0, -1])))
-    return [
-        ("parallel faces", (1, 0, 0, 0), (1, 0, 0, 0), z, z),
-        ("parallel faces, twisted 45", (1, 0, 0, 0), quat(z, math.pi / 4), z, z),
-        ("edge-edge crossed", quat((1, 0, 0), math.pi / 4), quat((0, 1, 0), math.pi / 4), z, z),
-        ("edge-edge parallel", quat((1, 0, 0), math.pi / 4), quat((1, 0, 0), math.pi / 4), z, z),
-        ("vertex-face", (1, 0, 0, 0), vertex_down, z, None),
-        ("vertex-vertex", quat(axis, -math.acos(np.dot(diag, [0, 0, -1]))), vertex_down, z, None),
-        ("edge-face", (1, 0, 0, 0), quat((1, 0, 0), math.pi / 4), z, None),
-        ("oblique", quat((1, 2, 3), 0.3), quat((3, -1, 2), 1.1), np.array([1, 2, 3]) / math.sqrt(14), None),
-    ]
-
-
-@pytest.mark.parametrize("name, q1, q2, direction, expected", degenerate_configurations())
-def test_near_degenerate_contacts_never_give_nan(name, q1, q2, direction, expected):
-    shape = cube()
-    S, m = scene()
-    a = S.bodies.append(potentialParticle(shape, pos=(0, 0, 0), orientation=q1, material=m))
-    b = S.bodies.append(potentialParticle(shape, pos=(0, 0, 3), orientation=q2, material=m))
-    direction = np.asarray(direction, float)
-    # the distance at first touch along `direction`: bisection on "touching"
-    lo, hi = 0.5, 2.5
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        S.bodies[b].state.pos = tuple(mid * direction)
-        lo, hi = (mid, hi) if particleContact(S, a, b)["touching"] else (lo, mid)
-    touch = hi
-    for gap in [1e-6, 1e-12, 0.0, -1e-12, -1e-9, -1e-6, -1e-4, -1e-2, -0.1, -0.3, -0.6, -touch]:
-        S.bodies[b].state.pos = tuple((touch + gap) * direction)
-        g = particleContact(S, a, b)
-        if gap > 1e-10:
-            assert not g["touching"], (name, gap)
-        if gap < -1e-10:
-            assert g["touching"], (name, gap)
-        if not g["touching"]:
-            continue
-        n = np.asarray(g["normal"])
-        assert np.all(np.isfinite(n)) and abs(np.linalg.norm(n) - 1) < 1e-12, (name, gap, n)
-        assert np.isfinite(g["penetrationDepth"]) and g["penetrationDepth"] >= 0, (name, gap)
-        assert np.isfinite(g["contactArea"]) and g["contactArea"] >= 0, (name, gap)
-        assert np.all(np.isfinite(g["contactPoint"])), (name, gap)
-        if gap == -touch:
-            continue   # centres together: any normal is right
-        assert n @ direction > 0, (name, gap, n)
-        if expected is not None and gap > -0.3:
-            assert np.allclose(n, expected, atol=1e-7), (name, gap, n)
-        if -1e-2 <= gap <= -1e-9 and expected is not None:
-            assert g["penetrationDepth"] == pytest.approx(-gap, rel=1e-5), (name, gap)
 
 
 def make_scene(friction=0.5, damping=0.0, viscous=0.0, gravity=(0, 0, -9.81), kn=1e8, ks=1e7):

@@ -91,10 +91,14 @@ def blockVertices(scene: "Scene", id: int) -> np.ndarray:
     return cpp.pos()[int(id)] + v @ Quaternion(cpp.ori(int(id))).toRotationMatrix().T
 
 
-def blockContact(scene: "Scene", id1: int, id2: int, repeats: int = 1) -> dict:
+def blockContact(scene: "Scene", id1: int, id2: int, repeats: int = 1, accuracyTol: float | None = None) -> dict:
     """Contact geometry of a block pair (or wall id1, block id2) as it stands now, and the
-    solver's mean time per call over ``repeats`` calls (each solving the linear program)."""
-    return _dem.block_contact(scene._cpp, int(id1), int(id2), int(repeats))
+    solver's mean time per call over ``repeats`` calls (``seconds`` cold, ``secondsWarm``
+    starting from the contact point). ``accuracyTol``: the analytic centre's stopping Newton
+    decrement (None: the simulation's default, 1e-10)."""
+    if accuracyTol is None:
+        return _dem.block_contact(scene._cpp, int(id1), int(id2), int(repeats))
+    return _dem.block_contact(scene._cpp, int(id1), int(id2), int(repeats), float(accuracyTol))
 
 
 def write_blocks(scene: "Scene", path: str) -> int:

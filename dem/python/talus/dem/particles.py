@@ -90,11 +90,14 @@ def particleShape(scene: "Scene", id: int) -> dict:
     return _dem.particle_shape(scene._cpp, int(id))
 
 
-def particleContact(scene: "Scene", id1: int, id2: int, repeats: int = 1) -> dict:
+def particleContact(scene: "Scene", id1: int, id2: int, repeats: int = 1, accuracyTol: float | None = None) -> dict:
     """Contact geometry of a particle pair (or wall id1, particle id2) as it stands now, and the
     solver's mean time per call over ``repeats`` calls (``seconds`` cold, ``secondsWarm``
-    starting from the contact point)."""
-    return _dem.particle_contact(scene._cpp, int(id1), int(id2), int(repeats))
+    starting from the contact point). ``accuracyTol``: the solver's tolerance on |f1 - f2| at
+    the contact point (None: the simulation's default)."""
+    if accuracyTol is None:
+        return _dem.particle_contact(scene._cpp, int(id1), int(id2), int(repeats))
+    return _dem.particle_contact(scene._cpp, int(id1), int(id2), int(repeats), float(accuracyTol))
 
 
 def particlePotential(scene: "Scene", id: int, points) -> np.ndarray:
