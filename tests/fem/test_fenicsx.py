@@ -97,6 +97,18 @@ def test_too_large_step_stops_with_the_last_converged_state(rve_file):
     assert np.array_equal(solver.rves.getStressAndTangent()[0], before)
 
 
+def test_too_large_step_is_cut_and_converges(rve_file):
+    # 10 % more axial strain in one load step (17 times the previous steps): Newton fails at the
+    # full step, the step is halved and both halves converge (31 and 45 iterations).
+    solver, _ = one_element(rve_file[0], tol=1e-4)
+    solver.dirichlet[2].value = lambda t: -STRAIN - 0.1 * (t - 1)
+    report = solver.step(2.0)
+    assert report.cut and solver.t == 2.0
+    assert [r.t for r in solver.history[STEPS:]] == [1.5, 2.0] and all(r.cut for r in solver.history[STEPS:])
+    top = solver.mesh.geometry.x[solver.mesh.geometry.x[:, 1] > 0.5, 1]
+    assert top == pytest.approx(1 - STRAIN - 0.1, abs=1e-12)
+
+
 def test_failing_newton_correction_is_halved(rve_file, solved, monkeypatch):
     # An RVE run failing at a Newton iterate (not at the step's first evaluation) halves the
     # correction instead of cutting the whole load step; the step converges to the same solution.
