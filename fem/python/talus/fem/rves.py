@@ -37,10 +37,10 @@ class MultiscaleRVEs:
     displacement gradient (each step's strain is the gradient / nSteps). ``law`` and
     ``damping``: the RVEs' contact law (Yade's Law2 name) and NewtonIntegrator damping.
     ``form``: the tangent operator, "full" (contact stiffness in every tangential direction),
-    "yade" (Yade's getStressAndTangent) or "fd": the consistent tangent by finite differences,
-    each column re-running every RVE from its committed state with the gradients of the
-    pending trial plus ``fdStep`` times a unit strain (relaxation, sliding and contact changes
-    included; costs 3 (2D) or 6 (3D) more runs per call; without a pending trial, after commit
+    "yade" (Yade's getStressAndTangent) or "fd": the consistent tangent of the symmetric part
+    of the stress (what the drivers balance) by finite differences, each column re-running
+    every RVE from its committed state with the gradients of the pending trial plus ``fdStep``
+    times a unit strain (relaxation, sliding and contact changes included; costs 3 (2D) or 6 (3D) more runs per call; without a pending trial, after commit
     or rollback, the contact-stiffness tangent is returned).
 
     ``comm`` (an mpi4py communicator): the calls are collective; every rank passes the
@@ -121,12 +121,16 @@ class MultiscaleRVEs:
         return stress, tangent
 
     def _finiteDifferenceTangent(self, stress):
-        """d(stress)/d(strain) column by column (Voigt, engineering shear), from runs at the last
-        gradients plus fdStep times each unit strain; the trial state at the last gradients is
-        re-run at the end (the runs are deterministic, so it is the same state)."""
+        """d(sym stress)/d(strain) column by column (Voigt, engineering shear), from runs at the
+        last gradients plus fdStep times each unit strain; the trial state at the last gradients
+        is re-run at the end (the runs are deterministic, so it is the same state).
+
+        The Love-Weber stress of an RVE is slightly asymmetric and the drivers
+        (talus.fem.newton) balance its symmetric part, so the shear row is that of
+        (s_ij + s_ji) / 2, not of s_ij: the tangent of exactly the stress Newton balances."""
         d, base = self.dim, self._grads
         pairs = [(0, 0), (1, 1), (0, 1)] if d == 2 else [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
-        voigt = lambda s: np.stack([s[:, i, j] for i, j in pairs], axis=1)   # noqa: E731
+        voigt = lambda s: np.stack([0.5 * (s[:, i, j] + s[:, j, i]) for i, j in pairs], axis=1)   # noqa: E731
         s0, columns = voigt(stress), []
         for i, j in pairs:
             E = np.zeros((d, d))
