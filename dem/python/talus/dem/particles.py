@@ -139,9 +139,11 @@ class PotentialParticle2AABB(Functor):
 
 class Ig2_PP_PP_ScGeom(Functor):
     """Particle-particle and wall-particle contact geometry. ``calContactArea`` False: area 1
-    (constant stiffnesses). ``areaStep`` and ``accuracyTol`` are accepted (Talus integrates the
-    section with 72 rays, Yade's default 5 degrees, and solves to machine precision); 2D mode (``twoDimension``) is not
-    supported yet."""
+    (constant stiffnesses). ``areaStep`` and ``accuracyTol`` are accepted for Yade's scripts
+    but not used: Talus integrates the section with 72 rays (Yade's default 5 degrees) and
+    solves every contact to its own tolerance, 1e-8 on |f1 - f2| (``particleContact`` takes
+    another for a probe; docs/blocks.md charts error against cost). 2D mode
+    (``twoDimension``) is not supported yet."""
     _parameters = ("calContactArea", "twoDimension", "unitWidth2D", "areaStep", "accuracyTol", "twoDdir")
 
     def __init__(self, label: str = "", **params):
