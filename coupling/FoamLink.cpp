@@ -270,13 +270,16 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
               &rq[2 * q + 1 + static_cast<std::size_t>(fluidProcs_)]);
     doubles += static_cast<long>(sent_[q].size() + reply.size());
   }
+  const auto sent = std::chrono::steady_clock::now();
   wait(rq, "the forces");
+  const auto received = std::chrono::steady_clock::now();
 
   std::fill(forces.begin(), forces.end(), 0.0);
   std::fill(beta.begin(), beta.end(), 0.0);
   std::fill(fluidVelocities.begin(), fluidVelocities.end(), 0.0);
   double maxRe = 0;
   long fluidMessages = 0;
+  stats_.fluidExchangeSeconds = stats_.fluidStepSeconds = 0;
   std::vector<double> owned(n, 0.0);
   for (int p = 0; p < fluidProcs_; ++p)
   {
@@ -284,6 +287,8 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     const auto& members = members_[static_cast<std::size_t>(p)];
     maxRe = std::max(maxRe, reply[1]);
     fluidMessages += std::lround(reply[2]);
+    stats_.fluidExchangeSeconds = std::max(stats_.fluidExchangeSeconds, reply[3]);
+    stats_.fluidStepSeconds = std::max(stats_.fluidStepSeconds, reply[4]);
     for (std::size_t j = 0; j < members.size(); ++j)
     {
       const double* f = &reply[proto::kReplyHeader + proto::kForceDoubles * j];
@@ -299,6 +304,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   stats_.messages = 3L * fluidProcs_ + fluidMessages;
   stats_.demDoubles = doubles;
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.waitSeconds = std::chrono::duration<double>(received - sent).count();
   for (std::size_t i = 0; i < n; ++i)
     if (owned[i] < 0.5)
     {

@@ -95,9 +95,10 @@ int main(int argc, char *argv[])
     const scalar pi = constant::mathematical::pi;
 
     talusFoam::ParticleLocator locator(mesh);
+    talusFoam::ExchangeTimer exchangeTimer;
     talusFoam::ParticleEnvelope envelope(mesh, envelopeType == "gaussian" ? envelopeWidth : 0);
     std::vector<double> particles;    // per particle x y z vx vy vz r index
-    std::vector<double> reply;        // status, max Re_p, messages, then per particle fx fy fz owned
+    std::vector<double> reply;        // header (FoamProtocol.h), then per particle fx fy fz owned beta uf
     std::vector<double> interp;       // kInterp per particle, summed over ranks
     std::unordered_map<label, vector> previousVelocity;  // by particle index, for du_p/dt
     scalarField alphaNew(mesh.nCells());
@@ -210,14 +211,7 @@ int main(int argc, char *argv[])
             }
         }
         previousVelocity.swap(velocity);
-        reply[0] = proto::kStatusOk;
-        reply[1] = maxRe;
-        reply[2] = halo.messages();
-        link.send
-        (
-            reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, proto::kTagForces,
-            "the forces"
-        );
+        talusFoam::sendForces(link, reply, maxRe, halo, exchangeTimer);
 
         runTime++;
         Info<< "Time = " << runTime.timeName() << nl << endl;
@@ -248,6 +242,7 @@ int main(int argc, char *argv[])
 
         runTime.write();
         runTime.printExecutionTime(Info);
+        exchangeTimer.stepDone();
     }
 
     runTime.writeNow();

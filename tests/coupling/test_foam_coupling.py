@@ -5,7 +5,7 @@ Checked: on the first exchange the fluid is at rest, so the force equals the Sto
 -3 pi mu d u_p plus the buoyancy -rho V g to round-off (1e-12 relative); on the second the fluid
 has been set in motion by the particles' reactions, so the drag is smaller; a case whose
 viscosity differs from the DEM side's stops both sides with a message naming both values; a
-particle outside the mesh stops the run with its position; a fluid step above the coupling
+particle outside the mesh at the start is refused by start() with its position; a fluid step above the coupling
 interval is refused, one above the particle relaxation time warns; a
 decomposed case on 2 ranks gives the same first-exchange forces."""
 import json
@@ -72,10 +72,13 @@ def test_viscosity_mismatch_stops_both_sides_with_a_message(tmp_path):
     assert "transportProperties nu = 0.001" in text
 
 
-def test_particle_outside_the_mesh_stops_the_run_with_its_position(tmp_path):
+def test_particle_outside_the_mesh_at_start_is_refused_before_the_run(tmp_path):
     run, record = drive(case(tmp_path), tmp_path, "--outside")
     assert run.returncode != 0 and record is None
-    assert "particle 1 at (-0.002, 0.0021, 0.0172) is outside the fluid mesh" in run.stdout + run.stderr
+    text = run.stdout + run.stderr
+    assert "ValueError: FoamCoupling: particle 1 at (-0.002, 0.0021, 0.0172) is outside the fluid mesh" in text
+    assert "(-0.005, -0.005, 0) - (0.005, 0.005, 0.01)); 1 particle(s) outside, nothing was run" in text
+    assert "started the fluid" not in run.stdout  # start() itself refused it
 
 
 def test_fluid_step_larger_than_the_coupling_interval_is_refused(tmp_path):
