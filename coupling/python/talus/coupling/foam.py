@@ -191,6 +191,12 @@ class FoamCoupling:
         if len(ids) == 0:
             raise ValueError("FoamCoupling: no sphere to couple")
         self.ids = ids
+        # The rows of the coupled bodies in the per-body arrays: a slice when they are one run of
+        # ids (every sphere of a scene that has its walls first, say), so that the per-exchange
+        # gathers and updates are views instead of copies (100 000 particles: 40 ms of DEM-side
+        # work per exchange with index arrays).
+        contiguous = np.array_equal(ids, np.arange(ids[0], ids[0] + len(ids)))
+        self._rows = slice(int(ids[0]), int(ids[0]) + len(ids)) if contiguous else ids
         os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # OpenFOAM's etc/ files
         # The DEM process plus the fluid ranks usually outnumber the cores; Open MPI refuses to
         # spawn more processes than slots unless told (read when MPI starts, below).
@@ -277,18 +283,18 @@ class FoamCoupling:
     def exchange(self):
         """One fluid step: send the particles, replace last step's forces by the new ones."""
         start = time.perf_counter()
-        ids = self.ids
-        velocities = self.scene.velocities()[ids]
-        forces, re, self._beta, self._fluid_velocity = self.link.exchange(self._positions(ids), velocities,
-                                                                          self.scene.radii()[ids])
+        ids, rows = self.ids, self._rows
+        velocities = np.array(self.scene.velocities()[rows])  # a copy: kept for implicitDrag
+        forces, re, self._beta, self._fluid_velocity = self.link.exchange(self._positions(rows), velocities,
+                                                                          self.scene.radii()[rows])
         self._sent_velocity = velocities
         if self.exchanges == 0:
             self._warn_drag_relaxation(ids)
         # The persistent forces carry the force over the sub-steps; this step's accumulator was
         # already filled from them by the ForceResetter, so it gets the change too.
         change = forces - self._applied
-        self.scene.persistent_forces()[ids] += change
-        self.scene.forces()[ids] += change
+        self.scene.persistent_forces()[rows] += change
+        self.scene.forces()[rows] += change
         self._applied = forces
         self.lastForces = forces
         self.exchanges += 1
@@ -308,10 +314,10 @@ class FoamCoupling:
             times.fluidExchange += link.lastFluidExchangeSeconds
             times.fluidSteps += link.lastFluidStepSeconds
 
-    def _positions(self, ids) -> np.ndarray:
+    def _positions(self, rows) -> np.ndarray:
         """The particles' positions; in a periodic scene moved into the cell by whole periods (the
         DEM keeps positions unwrapped; the mesh's cyclic patches span the cell)."""
-        x = self.scene.positions()[ids]
+        x = self.scene.positions()[rows]
         if not self.scene.periodic:
             return x
         h = self.scene.cell.hSize
@@ -323,8 +329,8 @@ class FoamCoupling:
         if self._beta is None:
             return
         start = time.perf_counter()
-        ids = self.ids
-        self.scene.forces()[ids] += self._beta[:, None] * (self._sent_velocity - self.scene.velocities()[ids])
+        rows = self._rows
+        self.scene.forces()[rows] += self._beta[:, None] * (self._sent_velocity - self.scene.velocities()[rows])
         self.times.dem += time.perf_counter() - start
 
     def stop(self):
