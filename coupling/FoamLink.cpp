@@ -6,6 +6,7 @@
 #include <cmath>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -34,6 +35,13 @@ void ensureMpi()
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SINGLE, &provided);
     mpiStartedHere = true;
   }
+}
+
+double threadCpuSeconds()
+{
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 int thisHost()
@@ -271,8 +279,10 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     doubles += static_cast<long>(sent_[q].size() + reply.size());
   }
   const auto sent = std::chrono::steady_clock::now();
+  const double sentCpu = threadCpuSeconds();
   wait(rq, "the forces");
   const auto received = std::chrono::steady_clock::now();
+  stats_.waitCpuSeconds = threadCpuSeconds() - sentCpu;
 
   std::fill(forces.begin(), forces.end(), 0.0);
   std::fill(beta.begin(), beta.end(), 0.0);
@@ -280,6 +290,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   double maxRe = 0;
   long fluidMessages = 0;
   stats_.fluidExchangeSeconds = stats_.fluidStepSeconds = 0;
+  stats_.fluidExchangeCpuSeconds = stats_.fluidStepCpuSeconds = 0;
   std::vector<double> owned(n, 0.0);
   for (int p = 0; p < fluidProcs_; ++p)
   {
@@ -289,6 +300,8 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     fluidMessages += std::lround(reply[2]);
     stats_.fluidExchangeSeconds = std::max(stats_.fluidExchangeSeconds, reply[3]);
     stats_.fluidStepSeconds = std::max(stats_.fluidStepSeconds, reply[4]);
+    stats_.fluidExchangeCpuSeconds = std::max(stats_.fluidExchangeCpuSeconds, reply[5]);
+    stats_.fluidStepCpuSeconds = std::max(stats_.fluidStepCpuSeconds, reply[6]);
     for (std::size_t j = 0; j < members.size(); ++j)
     {
       const double* f = &reply[proto::kReplyHeader + proto::kForceDoubles * j];

@@ -47,9 +47,9 @@
 //             this rank sent to other fluid ranks in this exchange, the wall time [s] of this
 //             rank's previous exchange (from the command's arrival to the forces sent: receiving
 //             the particles, locating them, the forces, the halo messages, the reply), the wall
-//             time [s] of its previous fluid step (solution and output); both 0 before the
-//             first, and the previous ones because a reply cannot carry the time of its own
-//             sending}, then per particle, in the order received, {fx, fy, fz, owned, beta,
+//             time [s] of its previous fluid step (solution and output), then the same two as
+//             the rank's CPU time [s]; all 0 before the first, and the previous ones because a
+//             reply cannot carry the time of its own sending}, then per particle, in the order received, {fx, fy, fz, owned, beta,
 //             ufx, ufy, ufz}: the hydrodynamic force on the particle from the one rank that
 //             owns the particle's cell (the lowest rank finding it), zeros and owned = 0 on the
 //             other ranks; the drag in it is
@@ -89,7 +89,7 @@ constexpr int kReplyDoubles = 3;
 constexpr int kMessageChars = 1024;
 constexpr int kParticleDoubles = 8;
 constexpr int kForceDoubles = 8;
-constexpr int kReplyHeader = 5;
+constexpr int kReplyHeader = 7;
 constexpr int kBoxDoubles = 7;
 
 constexpr int kStatusOk = 0;

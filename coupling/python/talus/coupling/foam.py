@@ -89,13 +89,18 @@ class CouplingTimes:
     exchange plus whatever was left of its previous step). The fluid ranks report their
     exchanges (particles received, located, forces computed and sent) and fluid steps one
     exchange late: ``fluidExchange`` and ``fluidSteps`` sum ``fluidReports`` of them, each the
-    slowest rank's."""
+    slowest rank's. The ``...Cpu`` fields are the same as CPU time (``demCpu``: the DEM's main
+    thread in the coupling's hooks, without its polling while it waits for the forces), which a
+    busy machine does not stretch as it stretches wall times."""
     exchanges: int = 0
     dem: float = 0.0
     waiting: float = 0.0
     fluidReports: int = 0
     fluidExchange: float = 0.0
     fluidSteps: float = 0.0
+    demCpu: float = 0.0
+    fluidExchangeCpu: float = 0.0
+    fluidStepsCpu: float = 0.0
 
     def since(self, earlier: "CouplingTimes") -> "CouplingTimes":
         """The times spent between the snapshot ``earlier`` (a ``copy()``) and this one."""
@@ -282,7 +287,7 @@ class FoamCoupling:
     # -- exchange ------------------------------------------------------------------------------
     def exchange(self):
         """One fluid step: send the particles, replace last step's forces by the new ones."""
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.thread_time()
         ids, rows = self.ids, self._rows
         velocities = np.array(self.scene.velocities()[rows])  # a copy: kept for implicitDrag
         forces, re, self._beta, self._fluid_velocity = self.link.exchange(self._positions(rows), velocities,
@@ -302,17 +307,20 @@ class FoamCoupling:
             warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
                           f"the drag law of {Path(self.solver).name} is no longer accurate", RuntimeWarning, stacklevel=2)
         self.maxReynolds = max(self.maxReynolds, re)
-        self._count_times(time.perf_counter() - start)
+        self._count_times(time.perf_counter() - start, time.thread_time() - start_cpu)
 
-    def _count_times(self, hook_seconds: float):
+    def _count_times(self, hook_seconds: float, hook_cpu: float):
         link, times = self.link, self.times
         times.exchanges += 1
         times.waiting += link.lastWaitSeconds
         times.dem += hook_seconds - link.lastWaitSeconds
+        times.demCpu += hook_cpu - link.lastWaitCpuSeconds
         if self.exchanges > 1:  # the first reply has nothing to report yet
             times.fluidReports += 1
             times.fluidExchange += link.lastFluidExchangeSeconds
             times.fluidSteps += link.lastFluidStepSeconds
+            times.fluidExchangeCpu += link.lastFluidExchangeCpuSeconds
+            times.fluidStepsCpu += link.lastFluidStepCpuSeconds
 
     def _positions(self, rows) -> np.ndarray:
         """The particles' positions; in a periodic scene moved into the cell by whole periods (the
@@ -328,10 +336,11 @@ class FoamCoupling:
         """This sub-step's drag minus the exchange's: beta (v_exchange - v) (implicitDrag)."""
         if self._beta is None:
             return
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.thread_time()
         rows = self._rows
         self.scene.forces()[rows] += self._beta[:, None] * (self._sent_velocity - self.scene.velocities()[rows])
         self.times.dem += time.perf_counter() - start
+        self.times.demCpu += time.thread_time() - start_cpu
 
     def stop(self):
         """Let the fluid write its last fields and exit; remove the hooks."""
