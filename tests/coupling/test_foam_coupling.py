@@ -5,11 +5,11 @@ Checked: on the first exchange the fluid is at rest, so the force equals the Sto
 -3 pi mu d u_p plus the buoyancy -rho V g to round-off (1e-12 relative); on the second the fluid
 has been set in motion by the particles' reactions, so the drag is smaller; a case whose
 viscosity differs from the DEM side's stops both sides with a message naming both values; a
-particle outside the mesh at the start is refused by start() with its position; bodies coupled in
-another order get the same forces; FoamCoupling.times holds the DEM's and the fluid ranks' times
-(wall and CPU); a fluid step above the coupling
-interval is refused, one above the particle relaxation time warns; a
-decomposed case on 2 ranks gives the same first-exchange forces."""
+particle outside the mesh at the start is refused by start() with its position; a fluid step
+above the coupling interval is refused, one above the particle relaxation time warns; a
+decomposed case on 2 ranks gives the same first-exchange forces; bodies coupled in another
+order get the same forces; FoamCoupling.times holds the DEM's and the fluid ranks' times (wall
+and CPU)."""
 import json
 import math
 import subprocess
