@@ -2,7 +2,7 @@
 (talusPointForceFoam spawned over MPI; case folder cases/cfd_shear_flow/). The set-up of Yade's
 shipped example examples/openfoam/example_icoFoamYade (scriptYade.py, icoFoamYade).
 
-Run:      build/bin/talus run cases/cfd_shear_flow.py [--quick] [--results DIR] [--procs 2]
+Run:      build/bin/talus run cases/cfd_shear_flow.py [--quick] [--results DIR] [--procs 2] [--vtk DIR]
           (as root export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1)
 Set-up:   as Yade's example: a 0.1 m cube of fluid (rho = 1000 kg/m3, nu = 1e-4 m2/s) between
           the walls y = 0 and y = 0.1 m moving at -/+ U_w = 0.05 m/s, periodic across x and z
@@ -25,6 +25,9 @@ Checked:  each sphere's velocity along x against the Stokes drag balance: the po
           height (the cell-value interpolation of point-force coupling: up to dx / H = 10 % of
           U_w on the quick mesh), the largest |v| (Yade's example raises above U_w), and the
           sphere velocities across the flow (y, z).
+ParaView: --vtk DIR keeps the OpenFOAM case in DIR with the fluid fields every 10 fluid steps
+          and the spheres at the same steps (the DEM's VTKRecorder, DIR/VTK/particles-spheres.pvd;
+          positions as the periodic DEM keeps them, unwrapped); open DIR/case.foam and the .pvd.
 Produces: record cfd.shear_flow; chart cfd.shear_flow.png (u_x against y at the end; mean
           relaxation against t / tau_p).
 """
@@ -43,6 +46,7 @@ from talus.coupling.cases import foam_environment, mesh_case
 from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
                        Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, pack, wall)
+from talus.dem.export import PvdCollection, write_spheres
 
 HERE = Path(__file__).resolve().parent
 CASE = HERE / "cfd_shear_flow"
@@ -56,8 +60,15 @@ def profile(y):
     return U_WALL * (2 * np.asarray(y) / H - 1)
 
 
-def prepare_case(procs: int, cells: int) -> Path:
+# With --vtk: the fluid's fields and the spheres are written every this many fluid steps.
+VTK_EVERY = 10
+
+
+def prepare_case(procs: int, cells: int, vtk: bool) -> Path:
     def configure(work: Path):
+        if vtk:
+            control = work / "system" / "controlDict"
+            control.write_text(re.sub(r"writeInterval\s+\d+;", f"writeInterval   {VTK_EVERY};", control.read_text()))
         mesh = work / "system" / "blockMeshDict"
         mesh.write_text(mesh.read_text().replace("(NCELLS NCELLS NCELLS)", f"({cells} {cells} {cells})"))
         # blockMesh numbers the cells x fastest, then y, then z.
@@ -70,8 +81,8 @@ def prepare_case(procs: int, cells: int) -> Path:
     return mesh_case(CASE, procs, configure, prefix="talus_cfd_shear_flow_")
 
 
-def run(procs: int, cells: int, fluid_steps: int):
-    work = prepare_case(procs, cells)
+def run(procs: int, cells: int, fluid_steps: int, vtk: Path | None = None):
+    work = prepare_case(procs, cells, vtk is not None)
     s = Scene()
     s.periodic = True
     s.cell.setBox(H, 2 * H, H)
@@ -93,22 +104,33 @@ def run(procs: int, cells: int, fluid_steps: int):
     tau = RHO_P * (2 * r) ** 2 / (18 * MU)
     t, u = [0.0], [s.velocities()[ids].copy()]
     y_start = s.positions()[ids][:, 1].copy()
+    if vtk is not None:
+        (work / "VTK").mkdir()
+        spheres = PvdCollection(str(work / "VTK" / "particles-spheres.pvd"))
     start = time.perf_counter()
     try:
-        for _ in range(fluid_steps):
+        for k in range(1, fluid_steps + 1):
             s.run(coupling.substeps, True)
             t.append(s.time)
             u.append(s.velocities()[ids].copy())
+            if vtk is not None and k % VTK_EVERY == 0:  # when the fluid writes its fields
+                path = work / "VTK" / f"particles-spheres.{k}.vtu"
+                write_spheres(s, str(path))
+                spheres.add(s.time, str(path))
         elapsed = time.perf_counter() - start
     finally:
         coupling.stop()
     y_end = s.positions()[ids][:, 1]
     if procs > 1:
-        subprocess.run(["reconstructPar", "-latestTime", "-case", str(work)], check=True, capture_output=True,
-                       env=foam_environment())
+        subprocess.run(["reconstructPar", "-case", str(work)] + ([] if vtk else ["-latestTime"]), check=True,
+                       capture_output=True, env=foam_environment())
     last = max((p for p in work.iterdir() if re.fullmatch(r"[0-9.e-]+", p.name) and p.name != "0"),
                key=lambda p: float(p.name))
     fluid = (last / "U").read_text()
+    if vtk is not None:
+        shutil.copytree(work, vtk, dirs_exist_ok=True)
+        (vtk / "case.foam").touch()  # what ParaView's OpenFOAM reader opens
+        print(f"ParaView: open {vtk / 'case.foam'} (fluid) and {vtk / 'VTK' / 'particles-spheres.pvd'} (spheres)")
     shutil.rmtree(work, ignore_errors=True)
     return dict(t=np.array(t), u=np.array(u), tau=tau, y_start=y_start, y_end=y_end, coupling=coupling,
                 elapsed=elapsed, fluid_U=fluid, substeps=coupling.substeps)
@@ -128,6 +150,8 @@ def fluid_profile(text: str, cells: int) -> np.ndarray:
 def main():
     parser = results.case_arguments(__doc__)
     parser.add_argument("--procs", type=int, default=1, help="fluid ranks (decomposed case)")
+    parser.add_argument("--vtk", type=Path, default=None,
+                        help="keep the fluid case with its fields and the spheres every 10 fluid steps here")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -135,7 +159,7 @@ def main():
 
     case = results.Case("cfd.shear_flow", quick=args.quick, folder=args.results)
     cells, fluid_steps = (10, 40) if args.quick else (20, 200)
-    res = run(args.procs, cells, fluid_steps)
+    res = run(args.procs, cells, fluid_steps, args.vtk)
     t, u, tau = res["t"], res["u"], res["tau"]
     dx = H / cells
     # Spheres barely move across the flow (checked below), so the cell row of the start holds.

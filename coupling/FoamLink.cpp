@@ -6,6 +6,7 @@
 #include <cmath>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
@@ -34,6 +35,13 @@ void ensureMpi()
     MPI_Init_thread(nullptr, nullptr, MPI_THREAD_SINGLE, &provided);
     mpiStartedHere = true;
   }
+}
+
+double threadCpuSeconds()
+{
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 int thisHost()
@@ -270,13 +278,19 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
               &rq[2 * q + 1 + static_cast<std::size_t>(fluidProcs_)]);
     doubles += static_cast<long>(sent_[q].size() + reply.size());
   }
+  const auto sent = std::chrono::steady_clock::now();
+  const double sentCpu = threadCpuSeconds();
   wait(rq, "the forces");
+  const auto received = std::chrono::steady_clock::now();
+  stats_.waitCpuSeconds = threadCpuSeconds() - sentCpu;
 
   std::fill(forces.begin(), forces.end(), 0.0);
   std::fill(beta.begin(), beta.end(), 0.0);
   std::fill(fluidVelocities.begin(), fluidVelocities.end(), 0.0);
   double maxRe = 0;
   long fluidMessages = 0;
+  stats_.fluidExchangeSeconds = stats_.fluidStepSeconds = 0;
+  stats_.fluidExchangeCpuSeconds = stats_.fluidStepCpuSeconds = 0;
   std::vector<double> owned(n, 0.0);
   for (int p = 0; p < fluidProcs_; ++p)
   {
@@ -284,6 +298,10 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     const auto& members = members_[static_cast<std::size_t>(p)];
     maxRe = std::max(maxRe, reply[1]);
     fluidMessages += std::lround(reply[2]);
+    stats_.fluidExchangeSeconds = std::max(stats_.fluidExchangeSeconds, reply[3]);
+    stats_.fluidStepSeconds = std::max(stats_.fluidStepSeconds, reply[4]);
+    stats_.fluidExchangeCpuSeconds = std::max(stats_.fluidExchangeCpuSeconds, reply[5]);
+    stats_.fluidStepCpuSeconds = std::max(stats_.fluidStepCpuSeconds, reply[6]);
     for (std::size_t j = 0; j < members.size(); ++j)
     {
       const double* f = &reply[proto::kReplyHeader + proto::kForceDoubles * j];
@@ -299,6 +317,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   stats_.messages = 3L * fluidProcs_ + fluidMessages;
   stats_.demDoubles = doubles;
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.waitSeconds = std::chrono::duration<double>(received - sent).count();
   for (std::size_t i = 0; i < n; ++i)
     if (owned[i] < 0.5)
     {

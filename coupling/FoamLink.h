@@ -27,6 +27,15 @@ struct ExchangeStats
   long messages = 0;    ///< point-to-point messages: 3 per fluid rank with the DEM + between fluid ranks
   long demDoubles = 0;  ///< doubles sent and received by the DEM process
   double seconds = 0;   ///< wall time of the exchange seen by the DEM (sending to last reply)
+  double waitSeconds = 0; ///< of which waiting for the replies (the rest is the DEM's own work)
+  double waitCpuSeconds = 0; ///< CPU time of this thread while it waited (polling)
+  /// The fluid ranks' previous exchange (command received to forces sent) and previous fluid
+  /// step, the slowest rank's; 0 at the first exchange (FoamProtocol.h, kTagForces).
+  double fluidExchangeSeconds = 0;
+  double fluidStepSeconds = 0;
+  /// The same as CPU time of the rank.
+  double fluidExchangeCpuSeconds = 0;
+  double fluidStepCpuSeconds = 0;
 };
 
 /// The DEM side of the link with an OpenFOAM coupling solver (protocol: coupling/FoamProtocol.h).

@@ -44,10 +44,15 @@
 //             per particle {x, y, z, vx, vy, vz, radius, global index}, in increasing index
 //      every fluid rank -> DEM, tag kTagForces: double[kReplyHeader + kForceDoubles * n]:
 //             {status (kStatusOk), the largest particle Reynolds number on the rank, messages
-//             this rank sent to other fluid ranks in this exchange}, then per particle, in the
-//             order received, {fx, fy, fz, owned, beta, ufx, ufy, ufz}: the hydrodynamic force on
-//             the particle from the one rank that owns the particle's cell (the lowest rank
-//             finding it), zeros and owned = 0 on the other ranks; the drag in it is
+//             this rank sent to other fluid ranks in this exchange, the wall time [s] of this
+//             rank's previous exchange (from the command's arrival to the forces sent: receiving
+//             the particles, locating them, the forces, the halo messages, the reply), the wall
+//             time [s] of its previous fluid step (solution and output), then the same two as
+//             the rank's CPU time [s]; all 0 before the first, and the previous ones because a
+//             reply cannot carry the time of its own sending}, then per particle, in the order received, {fx, fy, fz, owned, beta,
+//             ufx, ufy, ufz}: the hydrodynamic force on the particle from the one rank that
+//             owns the particle's cell (the lowest rank finding it), zeros and owned = 0 on the
+//             other ranks; the drag in it is
 //             beta (uf - u_p) with u_p the velocity sent, so that the DEM side may re-evaluate it
 //             with the particle's current velocity at each of its sub-steps. A particle owned nowhere has left the mesh (the DEM
 //             then sends kCommandStop and reports it).
@@ -62,7 +67,7 @@
 namespace talus::foam_protocol
 {
 constexpr int kMagic = 0x54414c53; // "TALS"
-constexpr int kVersion = 2;
+constexpr int kVersion = 3;
 
 constexpr int kTagHello = 6101;
 constexpr int kTagHelloD = 6102;
@@ -84,7 +89,7 @@ constexpr int kReplyDoubles = 3;
 constexpr int kMessageChars = 1024;
 constexpr int kParticleDoubles = 8;
 constexpr int kForceDoubles = 8;
-constexpr int kReplyHeader = 3;
+constexpr int kReplyHeader = 7;
 constexpr int kBoxDoubles = 7;
 
 constexpr int kStatusOk = 0;

@@ -62,6 +62,15 @@ PYBIND11_MODULE(_coupling, m)
     .def_property_readonly("lastMessages", [](const FoamLink& l) { return l.lastExchange().messages; })
     .def_property_readonly("lastDemDoubles", [](const FoamLink& l) { return l.lastExchange().demDoubles; })
     .def_property_readonly("lastExchangeSeconds", [](const FoamLink& l) { return l.lastExchange().seconds; })
+    .def_property_readonly("lastWaitSeconds", [](const FoamLink& l) { return l.lastExchange().waitSeconds; })
+    .def_property_readonly("lastWaitCpuSeconds", [](const FoamLink& l) { return l.lastExchange().waitCpuSeconds; })
+    .def_property_readonly("lastFluidExchangeSeconds",
+                           [](const FoamLink& l) { return l.lastExchange().fluidExchangeSeconds; })
+    .def_property_readonly("lastFluidStepSeconds", [](const FoamLink& l) { return l.lastExchange().fluidStepSeconds; })
+    .def_property_readonly("lastFluidExchangeCpuSeconds",
+                           [](const FoamLink& l) { return l.lastExchange().fluidExchangeCpuSeconds; })
+    .def_property_readonly("lastFluidStepCpuSeconds",
+                           [](const FoamLink& l) { return l.lastExchange().fluidStepCpuSeconds; })
     .def("stop", &FoamLink::stop);
 
   m.def("finalize_mpi", &finalizeMpi);

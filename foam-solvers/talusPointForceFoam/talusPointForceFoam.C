@@ -67,8 +67,9 @@ int main(int argc, char *argv[])
     const vector gravity = g.value();
 
     talusFoam::ParticleLocator locator(mesh);
+    talusFoam::ExchangeTimer exchangeTimer;
     std::vector<double> particles;    // per particle x y z vx vy vz r index
-    std::vector<double> reply;        // status, max Re_p, messages, then per particle fx fy fz owned
+    std::vector<double> reply;        // header (FoamProtocol.h), then per particle fx fy fz owned beta uf
 
     Info<< "\nStarting the coupled time loop\n" << endl;
 
@@ -110,14 +111,7 @@ int main(int argc, char *argv[])
             f[6] = U[celli].y();
             f[7] = U[celli].z();
         }
-        reply[0] = proto::kStatusOk;
-        reply[1] = maxRe;
-        reply[2] = halo.messages();
-        link.send
-        (
-            reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, proto::kTagForces,
-            "the forces"
-        );
+        talusFoam::sendForces(link, reply, maxRe, halo, exchangeTimer);
         S.correctBoundaryConditions();
 
         #include "CourantNo.H"
@@ -125,6 +119,7 @@ int main(int argc, char *argv[])
 
         runTime.write();
         runTime.printExecutionTime(Info);
+        exchangeTimer.stepDone();
     }
 
     runTime.writeNow();

@@ -45,8 +45,9 @@ License
 #include "pimpleControl.H"
 #include "uniformDimensionedFields.H"
 
+#include <algorithm>
+#include <array>
 #include <cstdio>
-#include <unordered_map>
 
 namespace proto = talus::foam_protocol;
 
@@ -95,13 +96,26 @@ int main(int argc, char *argv[])
     const scalar pi = constant::mathematical::pi;
 
     talusFoam::ParticleLocator locator(mesh);
+    talusFoam::ExchangeTimer exchangeTimer;
     talusFoam::ParticleEnvelope envelope(mesh, envelopeType == "gaussian" ? envelopeWidth : 0);
     std::vector<double> particles;    // per particle x y z vx vy vz r index
-    std::vector<double> reply;        // status, max Re_p, messages, then per particle fx fy fz owned
+    std::vector<double> reply;        // header (FoamProtocol.h), then per particle fx fy fz owned beta uf
     std::vector<double> interp;       // kInterp per particle, summed over ranks
-    std::unordered_map<label, vector> previousVelocity;  // by particle index, for du_p/dt
+    // The kInterp values per cell side by side: the envelope's loop reads one cache line or two
+    // per cell instead of five fields.
+    std::vector<double> cellValues(kInterp*mesh.nCells());
+    // By particle index, for du_p/dt: its velocity at the last exchange that had it on this
+    // rank, and that exchange's number (-1: none; a vector, not a map: no allocation per
+    // particle).
+    std::vector<vector> lastVelocity;
+    std::vector<label> lastExchange;
+    label exchange = 0;
     scalarField alphaNew(mesh.nCells());
     const scalarField& V = mesh.V();
+    // Spreading a particle's volume and reactions multiplies by 1/V_c and 1/rho instead of
+    // dividing for every cell the envelope reaches.
+    const scalarField inverseV(1/V);
+    const scalar inverseRho = 1/rhoF;
     bool first = true;
 
     Info<< "\nStarting the coupled time loop\n" << endl;
@@ -118,7 +132,10 @@ int main(int argc, char *argv[])
         for (label i = 0; i < n; ++i)
         {
             const scalar Vp = 4.0/3.0*pi*pow3(particles[proto::kParticleDoubles*i + 6]);
-            envelope.forEachSpread(i, [&](label c, double w) { solid[c] += w*Vp/V[c]; });
+            envelope.forEachSpread(i, [&](label c, double w)
+            {
+                solid[c] += w*Vp*inverseV[c];
+            });
         }
         alphaNew = max(1 - solid, alphaMin);
         if (alphaRelaxationTime > 0 && !first)
@@ -133,21 +150,33 @@ int main(int argc, char *argv[])
         const volVectorField gradp(fvc::grad(p));
         const volVectorField lapU(fvc::laplacian(nu, U));
         const volVectorField DUDt(fvc::ddt(U) + (U & fvc::grad(U)));
+        forAll(alphaNew, c)
+        {
+            double* v = &cellValues[kInterp*c];
+            v[0] = alphaNew[c];
+            for (direction k = 0; k < 3; ++k)
+            {
+                v[1 + k] = U[c][k];
+                v[4 + k] = gradp[c][k];
+                v[7 + k] = lapU[c][k];
+                v[10 + k] = DUDt[c][k];
+            }
+        }
         interp.assign(kInterp*n, 0.0);
         for (label i = 0; i < n; ++i)
         {
-            double* s = &interp[kInterp*i];
+            // Summed in a local array, stored once: through interp's pointer the compiler
+            // must load and store all 13 sums at every cell (it may alias cellValues).
+            std::array<double, kInterp> sums{};
             envelope.forEachInterpolation(i, [&](label c, double w)
             {
-                s[0] += w*alphaNew[c];
-                for (direction k = 0; k < 3; ++k)
+                const double* v = &cellValues[kInterp*c];
+                for (int k = 0; k < kInterp; ++k)
                 {
-                    s[1 + k] += w*U[c][k];
-                    s[4 + k] += w*gradp[c][k];
-                    s[7 + k] += w*lapU[c][k];
-                    s[10 + k] += w*DUDt[c][k];
+                    sums[k] += w*v[k];
                 }
             });
+            std::copy(sums.begin(), sums.end(), &interp[kInterp*i]);
         }
         halo.combine(interp, kInterp);
 
@@ -157,7 +186,6 @@ int main(int argc, char *argv[])
         KUp.primitiveFieldRef() = Zero;
         Sexplicit.primitiveFieldRef() = Zero;
         reply.assign(proto::kReplyHeader + proto::kForceDoubles*n, 0.0);
-        std::unordered_map<label, vector> velocity;
         const scalar dt = runTime.deltaTValue();
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
@@ -180,19 +208,25 @@ int main(int argc, char *argv[])
             const vector buoyancy =
                 Vp*rhoF*(vector(-s[4], -s[5], -s[6]) + vector(s[7], s[8], s[9]))
               - rhoF*Vp*gravity;
-            const label id = static_cast<label>(q[7]);
-            velocity.emplace(id, up);
-            const auto last = previousVelocity.find(id);
-            const vector dupdt =
-                last == previousVelocity.end() ? vector::zero : (up - last->second)/dt;
+            const std::size_t id = static_cast<std::size_t>(q[7]);
+            if (id >= lastVelocity.size())
+            {
+                lastVelocity.resize(id + 1, vector::zero);
+                lastExchange.resize(id + 1, -1);
+            }
+            const bool lastSeen = lastExchange[id] >= 0 && lastExchange[id] == exchange - 1;
+            const vector dupdt = lastSeen ? (up - lastVelocity[id])/dt : vector::zero;
+            lastVelocity[id] = up;
+            lastExchange[id] = exchange;
             const vector addedMass =
                 addedMassCoefficient*rhoF*Vp*(vector(s[10], s[11], s[12]) - dupdt);
             envelope.forEachSpread(i, [&](label c, double w)
             {
-                const scalar share = w*Vp/(rhoF*V[c]);
+                const scalar wV = w*inverseV[c]*inverseRho;
+                const scalar share = wV*Vp;
                 Ksp[c] += share*K;
                 KUp[c] += share*K*up;
-                Sexplicit[c] -= w*addedMass/(rhoF*V[c]);
+                Sexplicit[c] -= wV*addedMass;
             });
             if (locator.owned(i))
             {
@@ -209,15 +243,8 @@ int main(int argc, char *argv[])
                 maxRe = max(maxRe, Re);
             }
         }
-        previousVelocity.swap(velocity);
-        reply[0] = proto::kStatusOk;
-        reply[1] = maxRe;
-        reply[2] = halo.messages();
-        link.send
-        (
-            reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, proto::kTagForces,
-            "the forces"
-        );
+        ++exchange;
+        talusFoam::sendForces(link, reply, maxRe, halo, exchangeTimer);
 
         runTime++;
         Info<< "Time = " << runTime.timeName() << nl << endl;
@@ -248,6 +275,7 @@ int main(int argc, char *argv[])
 
         runTime.write();
         runTime.printExecutionTime(Info);
+        exchangeTimer.stepDone();
     }
 
     runTime.writeNow();

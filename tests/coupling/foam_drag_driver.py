@@ -2,10 +2,11 @@
 spawns the fluid solver):
     foam_drag_driver.py CASE OUT.json [--nu NU] [--procs P] [--outside] [--small] [--interval SECONDS]
                         [--solver NAME] [--exchanges K] [--checkpoint FILE] [--leave] [--implicit]
-                        [--density RHO]
+                        [--density RHO] [--newton-gravity GZ] [--reversed]
 
 Two spheres moving in the fluid at rest of CASE; after two (K) exchanges it writes the forces and
-the particles' velocities of each exchange, their radii, and the fluid step to OUT.json."""
+the particles' velocities of each exchange, their radii, the fluid step and where the time went
+(FoamCoupling.times) to OUT.json."""
 import argparse
 import json
 import os
@@ -29,6 +30,9 @@ parser.add_argument("--checkpoint", default=None, help="FoamCoupling checkpoint 
 parser.add_argument("--implicit", action="store_true", help="FoamCoupling implicitDrag")
 parser.add_argument("--density", type=float, default=2500.0, help="particle density")
 parser.add_argument("--leave", action="store_true", help="the second sphere is driven up through the top at 5 m/s")
+parser.add_argument("--reversed", action="store_true", help="couple the bodies as ids=[1, 0] (not one run of ids)")
+parser.add_argument("--newton-gravity", type=float, default=-9.81,
+                    help="the NewtonIntegrator's gravity along z (FoamCoupling is told -9.81)")
 args = parser.parse_args()
 case, out, nu, n_procs, outside = args.case, args.out, args.nu, args.procs, args.outside
 
@@ -42,11 +46,11 @@ s.bodies[1].state.vel = (-0.03, 0.0, 0.02)
 if args.leave:
     s.bodies[1].state.blockedDOFs = "xyz"
     s.bodies[1].state.vel = (0.0, 0.0, 5.0)
-s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.0)]
+s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, args.newton_gravity), damping=0.0)]
 s.dt = 1e-6
 coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=20,
                         couplingInterval=args.interval, solver=args.solver, checkpoint=args.checkpoint,
-                        checkpointInterval=10, implicitDrag=args.implicit)
+                        checkpointInterval=10, implicitDrag=args.implicit, ids=[1, 0] if args.reversed else None)
 coupling.start()
 forces, velocities = [], []
 print("DEM process", os.getpid(), "started the fluid", flush=True)
@@ -58,4 +62,4 @@ coupling.stop()
 json.dump({"forces": forces, "velocities": velocities, "radii": s.radii()[:2].tolist(),
            "masses": s.masses()[:2].tolist(),
            "positions": s.positions()[:2].tolist(), "substeps": coupling.substeps, "dt": s.dt, "fluidProcs": coupling.link.fluidProcs,
-           "nCells": coupling.link.nCells}, open(out, "w"))
+           "nCells": coupling.link.nCells, "times": vars(coupling.times)}, open(out, "w"))

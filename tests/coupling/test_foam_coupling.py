@@ -5,9 +5,11 @@ Checked: on the first exchange the fluid is at rest, so the force equals the Sto
 -3 pi mu d u_p plus the buoyancy -rho V g to round-off (1e-12 relative); on the second the fluid
 has been set in motion by the particles' reactions, so the drag is smaller; a case whose
 viscosity differs from the DEM side's stops both sides with a message naming both values; a
-particle outside the mesh stops the run with its position; a fluid step above the coupling
-interval is refused, one above the particle relaxation time warns; a
-decomposed case on 2 ranks gives the same first-exchange forces."""
+particle outside the mesh at the start is refused by start() with its position; a fluid step
+above the coupling interval is refused, one above the particle relaxation time warns; a
+decomposed case on 2 ranks gives the same first-exchange forces; bodies coupled in another
+order get the same forces; FoamCoupling.times holds the DEM's and the fluid ranks' times (wall
+and CPU)."""
 import json
 import math
 import subprocess
@@ -72,10 +74,13 @@ def test_viscosity_mismatch_stops_both_sides_with_a_message(tmp_path):
     assert "transportProperties nu = 0.001" in text
 
 
-def test_particle_outside_the_mesh_stops_the_run_with_its_position(tmp_path):
+def test_particle_outside_the_mesh_at_start_is_refused_before_the_run(tmp_path):
     run, record = drive(case(tmp_path), tmp_path, "--outside")
     assert run.returncode != 0 and record is None
-    assert "particle 1 at (-0.002, 0.0021, 0.0172) is outside the fluid mesh" in run.stdout + run.stderr
+    text = run.stdout + run.stderr
+    assert "ValueError: FoamCoupling: particle 1 at (-0.002, 0.0021, 0.0172) is outside the fluid mesh" in text
+    assert "(-0.005, -0.005, 0) - (0.005, 0.005, 0.01)); 1 particle(s) outside, nothing was run" in text
+    assert "started the fluid" not in run.stdout  # start() itself refused it
 
 
 def test_fluid_step_larger_than_the_coupling_interval_is_refused(tmp_path):
@@ -115,3 +120,27 @@ def test_implicit_drag_is_re_evaluated_at_every_sub_step(tmp_path):
     np.testing.assert_allclose(v1, v, rtol=1e-9)
     held = v0 + (first / m + G) * record["substeps"] * record["dt"]
     assert np.abs(v1 - held).max() > 1e-3 * np.abs(v1 - v0).max()  # not the held force
+
+
+def test_bodies_coupled_in_any_order_get_the_same_forces(tmp_path):
+    """ids=[1, 0] takes the index-array path of FoamCoupling (one run of ids takes a slice)."""
+    run, record = drive(case(tmp_path), tmp_path)
+    swapped_run, swapped = drive(meshed_box(tmp_path / "swapped"), tmp_path, "--reversed")
+    assert run.returncode == 0 and swapped_run.returncode == 0, swapped_run.stdout + swapped_run.stderr
+    # lastForces is per coupled body, in the order of ids.
+    np.testing.assert_allclose(np.array(swapped["forces"])[:, ::-1], record["forces"], rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(swapped["velocities"], record["velocities"], rtol=1e-12, atol=1e-15)
+
+
+def test_times_tell_the_coupling_from_the_fluid_and_the_dem(tmp_path):
+    """FoamCoupling.times: the fluid ranks report each exchange and fluid step one exchange late,
+    as wall and CPU time; the DEM side counts its own coupling work apart from its waits."""
+    run, record = drive(case(tmp_path), tmp_path, "--exchanges", "4")
+    assert run.returncode == 0, run.stdout + run.stderr
+    times = record["times"]
+    assert times["exchanges"] == 4 and times["fluidReports"] == 3
+    for key in ("dem", "waiting", "fluidExchange", "fluidSteps", "demCpu", "fluidExchangeCpu", "fluidStepsCpu"):
+        assert times[key] > 0, key
+    # A fluid step (a PISO solve) costs more than locating two particles.
+    assert times["fluidStepsCpu"] > times["fluidExchangeCpu"]
+
