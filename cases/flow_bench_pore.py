@@ -1,7 +1,7 @@
 """Pore-scale flow benchmark: Talus's FlowEngine against Yade's on the same packings, same
 invocation; and what re-using CHOLMOD's symbolic analysis saves.
 
-Run:      build/bin/talus run cases/flow_bench_pore.py [--quick] [--results DIR]
+Run:      OMP_NUM_THREADS=1 build/bin/talus run cases/flow_bench_pore.py [--quick] [--results DIR]
 Set-up:   loose seeded clouds (makeCloud, rRelFuzz 0.3) of 1 000 and 10 000 spheres (full mode:
           also 50 000), written to a file that both programs read; pressure 1 on ymin, 0 on ymax,
           box of the spheres' extremes. Both single-threaded (OMP_NUM_THREADS=1).
@@ -23,6 +23,7 @@ Checked:  nothing is timed as a test; records flow.bench.remesh-<n> and flow.ben
           Without yade the Yade records are skipped.
 Produces: the records and flow.bench.png (time against spheres, both programs, both phases).
 """
+import os
 import tempfile
 import time
 from pathlib import Path
@@ -87,6 +88,12 @@ def talus_times(centers, radii):
 
 def main():
     args = results.case_arguments(__doc__).parse_args()
+    # One thread, as Yade's side. It has to be the environment: CHOLMOD's supernodal factor runs
+    # in OpenBLAS's own threads, which read OMP_NUM_THREADS when the library loads (measured
+    # idle with two: the CPU-time remesh ratio at 10k 1.65, against 2.26 on one thread).
+    if os.environ.get("OMP_NUM_THREADS") != "1":
+        raise SystemExit("flow_bench_pore: run it single-threaded, as Yade's side: "
+                         "OMP_NUM_THREADS=1 build/bin/talus run cases/flow_bench_pore.py")
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
