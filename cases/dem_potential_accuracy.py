@@ -41,8 +41,8 @@ import numpy as np
 from scipy.spatial import ConvexHull
 
 from talus import results
-from talus.dem import (FrictMat, PotentialBlock, PotentialParticle, Scene, blockContact, particleContact,
-                       potentialBlock, potentialParticle)
+from talus.dem import (FrictMat, PotentialBlock, PotentialParticle, Quaternion, Scene, blockContact,
+                       particleContact, potentialBlock, potentialParticle)
 from talus import _dem
 
 HALF, ROUND, K_SPHERE = 0.5, 0.02, 1e-7
@@ -53,27 +53,15 @@ DEFAULT_BLOCK_TOL, DEFAULT_PARTICLE_TOL = 1e-10, 1e-8
 CORNERS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)], float)
 
 
-def quat(axis, angle):
-    axis = np.asarray(axis, float) / np.linalg.norm(axis)
-    return np.array([math.cos(angle / 2), *(math.sin(angle / 2) * axis)])
-
-
-def rotation(q):
-    w, x, y, z = q / np.linalg.norm(q)
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)],
-                     [2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)],
-                     [2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)]])
-
-
 def configurations(n_random):
     """(name, orientation of body 1, of body 2, lateral offset of body 2)."""
     diag = np.array([1, 1, 1]) / math.sqrt(3)
-    vertex_down = quat(np.cross(diag, [0, 0, -1]), math.acos(-diag[2]))
-    out = [("faces twisted 30 deg", quat((0, 0, 1), 0), quat((0, 0, 1), math.pi / 6), (0.1, 0.05)),
-           ("nearly parallel faces", quat((0, 0, 1), 0), quat((1, 0.3, 0), 1e-3), (0.1, 0.05)),
-           ("vertex into a face", quat((0, 0, 1), 0), vertex_down, (0.1, 0.05)),
-           ("crossed edges", quat((1, 0, 0), math.pi / 4), quat((0, 1, 0), math.pi / 4), (0.02, 0.03)),
-           ("edge into a face", quat((0, 0, 1), 0), quat((1, 0, 0), math.pi / 4), (0.1, 0.05))]
+    vertex_down = Quaternion(np.cross(diag, [0, 0, -1]), math.acos(-diag[2]))
+    out = [("faces twisted 30 deg", Quaternion((0, 0, 1), 0), Quaternion((0, 0, 1), math.pi / 6), (0.1, 0.05)),
+           ("nearly parallel faces", Quaternion((0, 0, 1), 0), Quaternion((1, 0.3, 0), 1e-3), (0.1, 0.05)),
+           ("vertex into a face", Quaternion((0, 0, 1), 0), vertex_down, (0.1, 0.05)),
+           ("crossed edges", Quaternion((1, 0, 0), math.pi / 4), Quaternion((0, 1, 0), math.pi / 4), (0.02, 0.03)),
+           ("edge into a face", Quaternion((0, 0, 1), 0), Quaternion((1, 0, 0), math.pi / 4), (0.1, 0.05))]
     rng = np.random.default_rng(11)
     for k in range(n_random):
         q1, q2 = rng.normal(size=4), rng.normal(size=4)
@@ -112,8 +100,8 @@ def penetration(half, q1, q2, pos2):
     """Penetration depth of cube 2 (centre pos2) into cube 1 (at the origin), both of half-size
     `half`, negative for their distance when apart, and the direction from 1 to 2 that
     separates them fastest (None when several facets of the Minkowski difference tie)."""
-    v1 = half * CORNERS @ rotation(q1).T
-    v2 = half * CORNERS @ rotation(q2).T + pos2
+    v1 = half * CORNERS @ Quaternion(q1).toRotationMatrix().T
+    v2 = half * CORNERS @ Quaternion(q2).toRotationMatrix().T + pos2
     hull = ConvexHull((v2[:, None, :] - v1[None, :, :]).reshape(-1, 3))
     normals, offsets = hull.equations[:, :3], hull.equations[:, 3]   # n . x + offset <= 0 inside
     if np.all(offsets < 0):

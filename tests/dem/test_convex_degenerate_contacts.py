@@ -11,9 +11,8 @@ import numpy as np
 import pytest
 
 from talus import _dem
-from talus.dem import (FrictMat, PotentialBlock, PotentialParticle, Scene, blockContact, particleContact,
-                       potentialBlock, potentialParticle)
-from test_potential_blocks import _mul as quaternion_product   # (w, x, y, z) product
+from talus.dem import (FrictMat, PotentialBlock, PotentialParticle, Quaternion, Scene, blockContact,
+                       particleContact, potentialBlock, potentialParticle)
 
 SHAPES = {
     "block": (lambda: PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.05), potentialBlock, blockContact),
@@ -23,9 +22,25 @@ SHAPES = {
 TILTS = [0.0, 1e-9, 1e-6, 1e-3]
 
 
-def quat(axis, angle):
-    axis = np.asarray(axis, float) / np.linalg.norm(axis)
-    return (math.cos(angle / 2), *(math.sin(angle / 2) * axis))
+def scene_of(kind):
+    """The shape, body maker and contact probe of `kind`, a scene and its material."""
+    if kind == "block" and not _dem.have_potential_blocks:
+        pytest.skip("built without CLP")
+    make_shape, make_body, probe = SHAPES[kind]
+    S = Scene()
+    m = S.materials.append(FrictMat(density=1000))
+    return make_shape(), make_body, probe, S, m
+
+
+def first_touch(S, a, b, probe, position):
+    """The smallest s in [0.5, 2.5] at which body b, placed at position(s), touches body a
+    (bisection on "touching")."""
+    lo, hi = 0.5, 2.5
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        S.bodies[b].state.pos = position(mid)
+        lo, hi = (mid, hi) if probe(S, a, b)["touching"] else (lo, mid)
+    return hi
 
 
 def configurations():
@@ -34,16 +49,16 @@ def configurations():
     diag = np.array([1, 1, 1]) / math.sqrt(3)
     # turn the cube's diagonal onto -z (a vertex pointing down)
     axis = np.cross(diag, [0, 0, -1])
-    vertex_down = quat(axis, math.acos(np.dot(diag, [0, 0, -1])))
+    vertex_down = Quaternion(axis, math.acos(np.dot(diag, [0, 0, -1])))
     return [
         ("parallel faces", (1, 0, 0, 0), (1, 0, 0, 0), z, z),
-        ("parallel faces, twisted 45", (1, 0, 0, 0), quat(z, math.pi / 4), z, z),
-        ("edge-edge crossed", quat((1, 0, 0), math.pi / 4), quat((0, 1, 0), math.pi / 4), z, z),
-        ("edge-edge parallel", quat((1, 0, 0), math.pi / 4), quat((1, 0, 0), math.pi / 4), z, z),
+        ("parallel faces, twisted 45", (1, 0, 0, 0), Quaternion(z, math.pi / 4), z, z),
+        ("edge-edge crossed", Quaternion((1, 0, 0), math.pi / 4), Quaternion((0, 1, 0), math.pi / 4), z, z),
+        ("edge-edge parallel", Quaternion((1, 0, 0), math.pi / 4), Quaternion((1, 0, 0), math.pi / 4), z, z),
         ("vertex-face", (1, 0, 0, 0), vertex_down, z, None),
-        ("vertex-vertex", quat(axis, -math.acos(np.dot(diag, [0, 0, -1]))), vertex_down, z, None),
-        ("edge-face", (1, 0, 0, 0), quat((1, 0, 0), math.pi / 4), z, None),
-        ("oblique", quat((1, 2, 3), 0.3), quat((3, -1, 2), 1.1), np.array([1, 2, 3]) / math.sqrt(14), None),
+        ("vertex-vertex", Quaternion(axis, -math.acos(np.dot(diag, [0, 0, -1]))), vertex_down, z, None),
+        ("edge-face", (1, 0, 0, 0), Quaternion((1, 0, 0), math.pi / 4), z, None),
+        ("oblique", Quaternion((1, 2, 3), 0.3), Quaternion((3, -1, 2), 1.1), np.array([1, 2, 3]) / math.sqrt(14), None),
     ]
 
 
@@ -51,24 +66,14 @@ def configurations():
 @pytest.mark.parametrize("name, q1, q2, direction, expected", configurations())
 @pytest.mark.parametrize("kind", sorted(SHAPES))
 def test_near_degenerate_contacts_never_give_nan_nor_a_wrong_normal(kind, name, q1, q2, direction, expected, tilt):
-    if kind == "block" and not _dem.have_potential_blocks:
-        pytest.skip("built without CLP")
-    make_shape, make_body, probe = SHAPES[kind]
-    shape = make_shape()
-    S = Scene()
-    m = S.materials.append(FrictMat(density=1000))
+    shape, make_body, probe, S, m = scene_of(kind)
     # the tilt turns body 2 about an axis across the normal, away from the exact configuration
-    q2 = quaternion_product(quat((1, 0.3, 0), tilt), q2) if tilt else q2
+    q2 = tuple(Quaternion((1, 0.3, 0), tilt) * Quaternion(q2)) if tilt else q2
     a = S.bodies.append(make_body(shape, pos=(0, 0, 0), orientation=q1, material=m))
     b = S.bodies.append(make_body(shape, pos=(0, 0, 3), orientation=q2, material=m))
     direction = np.asarray(direction, float)
-    # the distance at first touch along `direction`: bisection on "touching"
-    lo, hi = 0.5, 2.5
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        S.bodies[b].state.pos = tuple(mid * direction)
-        lo, hi = (mid, hi) if probe(S, a, b)["touching"] else (lo, mid)
-    touch = hi
+    # the distance at first touch along `direction`
+    touch = first_touch(S, a, b, probe, lambda s: tuple(s * direction))
     for gap in [1e-6, 1e-12, 0.0, -1e-12, -1e-9, -1e-6, -1e-4, -1e-2, -0.1, -0.3, -0.6, -touch]:
         S.bodies[b].state.pos = tuple((touch + gap) * direction)
         g = probe(S, a, b)
@@ -99,23 +104,14 @@ def test_near_degenerate_contacts_never_give_nan_nor_a_wrong_normal(kind, name, 
 
 @pytest.mark.parametrize("kind", sorted(SHAPES))
 def test_accuracy_tolerance_is_checked_and_trades_accuracy(kind):
-    if kind == "block" and not _dem.have_potential_blocks:
-        pytest.skip("built without CLP")
-    make_shape, make_body, probe = SHAPES[kind]
-    shape = make_shape()
-    S = Scene()
-    m = S.materials.append(FrictMat(density=1000))
+    shape, make_body, probe, S, m = scene_of(kind)
     a = S.bodies.append(make_body(shape, pos=(0, 0, 0), material=m))
     # a vertex of body 2 into a face of body 1, off-centre
     diag = np.array([1, 1, 1]) / math.sqrt(3)
-    b = S.bodies.append(make_body(shape, pos=(0.1, 0.05, 3), orientation=quat(np.cross(diag, [0, 0, -1]),
+    b = S.bodies.append(make_body(shape, pos=(0.1, 0.05, 3), orientation=Quaternion(np.cross(diag, [0, 0, -1]),
                                                                               math.acos(-diag[2])), material=m))
-    lo, hi = 0.5, 2.5
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        S.bodies[b].state.pos = (0.1, 0.05, mid)
-        lo, hi = (mid, hi) if probe(S, a, b)["touching"] else (lo, mid)
-    S.bodies[b].state.pos = (0.1, 0.05, hi - 1e-3)
+    touch = first_touch(S, a, b, probe, lambda s: (0.1, 0.05, s))
+    S.bodies[b].state.pos = (0.1, 0.05, touch - 1e-3)
     for bad in (0.0, -1e-8, float("nan"), float("inf")):
         with pytest.raises(ValueError, match="accuracyTol"):
             probe(S, a, b, accuracyTol=bad)
