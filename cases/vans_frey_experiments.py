@@ -192,7 +192,7 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     return {"z": zc, "phi": phi_mean, "phivx": phivx_mean, "wall_s": wall_s, "grains": len(mobile),
             "qs_star": float(np.mean(qs[t > transport / 2])),
             "shields": float(np.mean(np.array(coupling.series["shieldsNumber"])[t > transport / 2])),
-            "refreshes": refresh.refreshes if refresh else None}
+            "refreshes": refresh.refreshes if refresh else None, "t": t, "qs": qs}
 
 
 def compare(sim: dict, data: dict) -> dict:

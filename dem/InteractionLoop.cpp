@@ -171,7 +171,11 @@ void gatherForces(Scene& scene, const ContactExtra* extra)
       f += force;
       if constexpr (Periodic)
       {
-        const Vec3 centre = b.pos[i] + static_cast<double>(second) * cell.shift(c.cellDist);
+        // Only contacts across the boundary have an image to shift to, and they are few: a
+        // predictable test spares the others the shift's matrix product.
+        Vec3 centre = b.pos[i];
+        if (c.cellDist != Eigen::Vector3i::Zero())
+          centre += static_cast<double>(second) * cell.shift(c.cellDist);
         t += (c.contactPoint - centre).cross(force);
       }
       else
