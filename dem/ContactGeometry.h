@@ -89,18 +89,14 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
 /// (with a negative penetration), and its incremental moments turn with the frame as the shear
 /// force does.
 ///
-/// `SpheresOnly`: the caller knows the pair is two spheres in a non-periodic scene without
-/// extra state (cell and x null) — the hot path of dense granular runs, which the contact laws'
-/// loop inlines so that those pairs pay no call and no test of other shapes. Both forms do the
-/// same arithmetic in the same order, so they give the same bits.
+/// `SpheresOnly`: the caller knows the pair is two spheres without extra state (x null), in a
+/// periodic scene or not — the hot path of dense granular runs, whose code carries no test of
+/// other shapes. Both forms do the same arithmetic in the same order, so they give the same bits.
 template <bool SpheresOnly = false>
 [[gnu::always_inline]] inline bool contactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x)
 {
   if constexpr (SpheresOnly)
-  {
-    cell = nullptr;
     x = nullptr;
-  }
   const bool holds = x != nullptr && !x->cohesionBroken && c.real;
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
@@ -109,7 +105,8 @@ template <bool SpheresOnly = false>
   Vec3 contactPoint;
   double r1, r2;
   Vec3 shift2 = Vec3::Zero(), shiftVel = Vec3::Zero();
-  if (cell)
+  // Only a pair across the boundary sees an image: the others (most) skip two matrix products.
+  if (cell && c.cellDist != Eigen::Vector3i::Zero())
   {
     shift2 = cell->shift(c.cellDist);
     shiftVel = cell->shiftVelocity(c.cellDist);

@@ -98,8 +98,8 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
   auto one = [&](std::int64_t k, ContactEnergy& e) -> std::int64_t {
     Contact& c = list[static_cast<std::size_t>(k)];
     ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
-    const bool sphereFastPath = !Law::usesExtra && !step.cell && c.kind == ContactGeometryKind::SphereSphere;
-    if (!(sphereFastPath ? contactGeometry<true>(c, step.bodies, nullptr, step.dt, nullptr)
+    const bool sphereFastPath = !Law::usesExtra && c.kind == ContactGeometryKind::SphereSphere;
+    if (!(sphereFastPath ? contactGeometry<true>(c, step.bodies, step.cell, step.dt, nullptr)
                          : updateContactGeometry(c, step.bodies, step.cell, step.dt, x)))
       return n;
     if (c.fresh)
