@@ -158,12 +158,10 @@ def build(length_d: int, hs_d: float, depth: float, seed: int = 1, fluctuations:
     return s, hydro, newton, mobile
 
 
-def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int,
-                   fluctuations: str = "turnover") -> dict:
-    hs_d, depth = EXPERIMENTS[exp]
-    s, hydro, newton, mobile = build(length_d, hs_d, depth, seed, fluctuations)
-    start = time.perf_counter()
-    s.run(round(deposition / s.dt))
+def start_transport(s, hydro, newton, fluctuations: str = "turnover"):
+    """After the deposition: the fluid on (no damping, the 1 s start-up resolution from the
+    deposited bed), the two-way coupling every PERIOD and the chosen fluctuations; returns the
+    coupling and the turnover refresher (None for zdep)."""
     newton.damping = 0.0
     hydro.dead = False
     hydro.ReynoldStresses = np.full(N_CELL, 1e-4)
@@ -175,6 +173,16 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     if fluctuations == "turnover":
         refresh = TurnoverFluctuations(hydro, s)
         s.engines = list(s.engines) + [PyRunner(refresh, iterPeriod=max(1, round(1e-3 / s.dt)))]
+    return coupling, refresh
+
+
+def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int,
+                   fluctuations: str = "turnover") -> dict:
+    hs_d, depth = EXPERIMENTS[exp]
+    s, hydro, newton, mobile = build(length_d, hs_d, depth, seed, fluctuations)
+    start = time.perf_counter()
+    s.run(round(deposition / s.dt))
+    coupling, refresh = start_transport(s, hydro, newton, fluctuations)
     chunk = round(PERIOD / s.dt)
     t0 = s.time
     phi, phivx = [], []
