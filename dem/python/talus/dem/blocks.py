@@ -131,14 +131,32 @@ class PotentialBlock2AABB(Functor):
 
 class Ig2_PB_PB_ScGeom(Functor):
     """Block-block and wall-block contact geometry. ``calContactArea`` False: area 1 (constant
-    stiffnesses). Yade's 2D mode (``twoDimension``) is not supported yet."""
-    _parameters = ("calContactArea", "twoDimension", "unitWidth2D")
+    stiffnesses). ``twoDimension`` (Yade's 2D mode): the blocks are prisms along ``twoDdir``
+    (default (0, 1, 0)) and the contact area is the joint length (the overlap region's chord
+    through the contact point along normal x twoDdir) times ``unitWidth2D`` (default 1).
+    ``exactDepth`` (Talus only, default False): the overlap is the polyhedra's penetration depth
+    and the normal its direction, instead of Yade's chord through the analytic centre."""
+    _parameters = ("calContactArea", "twoDimension", "unitWidth2D", "twoDdir", "exactDepth")
 
-    def __init__(self, label: str = "", **params):
-        super().__init__(label, **params)
-        if self.twoDimension:
-            raise ValueError("Ig2_PB_PB_ScGeom: twoDimension=True (contact area = joint length x unitWidth2D) "
-                             "is not supported yet")
+    def _applyToScene(self, cpp):
+        """Set these settings for every block contact of the scene whose engines hold us."""
+        direction = (0.0, 1.0, 0.0) if self.twoDdir is None else tuple(float(x) for x in self.twoDdir)
+        if len(direction) != 3:
+            raise ValueError(f"Ig2_PB_PB_ScGeom.twoDdir must be a 3-vector, got {self.twoDdir!r}")
+        _dem.set_block_contact_settings(cpp, bool(self.twoDimension), np.asarray(direction, dtype=float),
+                                        1.0 if self.unitWidth2D is None else float(self.unitWidth2D),
+                                        bool(self.exactDepth))
+
+
+def _applyBlockContactSettings(cpp, engines):
+    """The block contacts' settings of a scene from its engines: those of the first
+    Ig2_PB_PB_ScGeom of an InteractionLoop, or the defaults."""
+    for engine in engines:
+        for g in getattr(engine, "geomFunctors", ()):
+            if isinstance(g, Ig2_PB_PB_ScGeom):
+                g._applyToScene(cpp)
+                return
+    Ig2_PB_PB_ScGeom()._applyToScene(cpp)
 
 
 class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
@@ -154,10 +172,13 @@ class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
     and ``traceEnergy`` are accepted (energies follow O.trackEnergy)."""
     _cpp_name = "Law2_SCG_KnKsPBPhys_KnKsPBLaw"
     _parameters = ("allowViscousAttraction", "neverErase", "traceEnergy")
-    _yade_only = ("neverErase", "traceEnergy", "useFaceProperties", "twoDimension", "unitWidth2D", "AabbMinMax")
+    # Accepted, but not the law's: Yade's options without effect here, and the geometry's
+    # settings that go to the scene (Ig2_PB_PB_ScGeom._applyToScene).
+    _not_the_laws = ("neverErase", "traceEnergy", "useFaceProperties", "twoDimension", "unitWidth2D", "twoDdir",
+                     "exactDepth", "AabbMinMax")
 
     def _set(self, name: str, value):
-        if name in self._yade_only:
+        if name in self._not_the_laws:
             if name == "useFaceProperties" and value:
                 raise ValueError("Ip2_FrictMat_FrictMat_KnKsPBPhys: useFaceProperties=True is not supported")
             return
