@@ -121,13 +121,20 @@ def _mul(p, q):
             w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)
 
 
-def test_edge_to_edge_crossing_gives_a_finite_unit_normal():
-    S, m = scene()
+def crossed_bars(S, m):
+    """Two bars turned 45 degrees about their axes, crossing at right angles, an edge of each
+    1e-3 m into the other; returns their ids."""
     bar = PotentialBlock.cuboid((1.0, 0.2, 0.2), r=0.02)
     a = S.bodies.append(potentialBlock(bar, pos=(0, 0, 0), orientation=quat((1, 0, 0), math.pi / 4), material=m))
     b = S.bodies.append(potentialBlock(bar, pos=(0, 0, 0.4 * math.sqrt(2) - 1e-3),
                                        orientation=_mul(quat((0, 0, 1), math.pi / 2), quat((1, 0, 0), math.pi / 4)),
                                        material=m))
+    return a, b
+
+
+def test_edge_to_edge_crossing_gives_a_finite_unit_normal():
+    S, m = scene()
+    a, b = crossed_bars(S, m)
     g = blockContact(S, a, b)
     assert g["touching"]
     assert np.linalg.norm(g["normal"]) == pytest.approx(1, abs=1e-12)
@@ -231,11 +238,7 @@ def test_exact_depth_option_gives_the_penetration_depth():
     another's face and into a wall: the depth exactly (the seed's chord: within 1 % for the
     bars, 4e-4 short for the corner into the face)."""
     S, m = scene()
-    bar = PotentialBlock.cuboid((1.0, 0.2, 0.2), r=0.02)
-    a = S.bodies.append(potentialBlock(bar, pos=(0, 0, 0), orientation=quat((1, 0, 0), math.pi / 4), material=m))
-    b = S.bodies.append(potentialBlock(bar, pos=(0, 0, 0.4 * math.sqrt(2) - 1e-3),
-                                       orientation=_mul(quat((0, 0, 1), math.pi / 2), quat((1, 0, 0), math.pi / 4)),
-                                       material=m))
+    a, b = crossed_bars(S, m)
     cube = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.05)
     corner_down = quat(np.cross([1, 1, 1], [0, 0, 1]), math.acos(1 / math.sqrt(3)))
     c = S.bodies.append(potentialBlock(cube, pos=(5, 0, 0), material=m))
