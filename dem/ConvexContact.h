@@ -16,6 +16,9 @@ struct ConvexContactGeometry
   int lpSolves = 0;  ///< linear programs solved (Potential Blocks; 0 when a cheaper interior point was found)
 };
 
+/// The Potential Blocks' default solver tolerance (see potentialBlockContact).
+constexpr double defaultBlockAccuracyTol = 1e-10;
+
 /// Settings of the Potential Blocks' contact geometry (attributes of Yade's Ig2_PB_PB_ScGeom),
 /// shared by every block contact of a scene. They come from the engines (O.engines), so
 /// checkpoints do not store them.
@@ -33,5 +36,8 @@ struct BlockContactSettings
   /// analytic centre along the inner potentials' normal (the seed's definition, which gives
   /// about half the depth for an edge-edge contact).
   bool exactDepth = false;
+  /// The analytic centre's stopping Newton decrement (Ig2_PB_PB_ScGeom.accuracyTol; Yade's is
+  /// the tolerance of its conic solver).
+  double accuracyTol = defaultBlockAccuracyTol;
 };
 } // namespace talus::dem

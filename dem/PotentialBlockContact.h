@@ -5,9 +5,6 @@
 
 namespace talus::dem
 {
-/// The Potential Blocks' default solver tolerance (see potentialBlockContact).
-constexpr double defaultBlockAccuracyTol = 1e-10;
-
 /// Overlap of two Potential Blocks i1, i2, or of wall i1 and block i2.
 ///
 /// The overlap region is the intersection of both sets of half-spaces. A linear program (CLP)

@@ -258,3 +258,28 @@ def test_exact_depth_option_gives_the_penetration_depth():
     assert g["penetrationDepth"] == pytest.approx(2e-3, rel=1e-9)
     assert np.allclose(g["normal"], [0, 0, 1], atol=1e-12)
     assert blockContact(S, w, e)["penetrationDepth"] == pytest.approx(2e-3, rel=1e-9)
+
+
+def test_accuracy_tolerance_of_the_geometry_functor_reaches_the_solver():
+    """Ig2_PB_PB_ScGeom(accuracyTol=...) sets the analytic centre's tolerance of every block
+    contact, in the simulation and in the probe (a loose one moves the seed's chord of a corner
+    into a face); 0 is refused."""
+    def corner_into_face(**geometry):
+        S, m = scene()
+        cube = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.05)
+        corner_down = quat(np.cross([1, 1, 1], [0, 0, 1]), math.acos(1 / math.sqrt(3)))
+        S.bodies.append(potentialBlock(cube, pos=(0, 0, 0), material=m, fixed=True))
+        S.bodies.append(potentialBlock(cube, pos=(0.1, 0.05, 0.5 + math.sqrt(3) / 2 - 2e-3), orientation=corner_down,
+                                       material=m, fixed=True))
+        engines(S, **geometry)
+        return S
+
+    tight, loose = corner_into_face(), corner_into_face(accuracyTol=0.1)
+    assert blockContact(tight, 0, 1)["penetrationDepth"] == blockContact(tight, 0, 1, accuracyTol=1e-10)["penetrationDepth"]
+    assert blockContact(loose, 0, 1)["penetrationDepth"] == blockContact(loose, 0, 1, accuracyTol=0.1)["penetrationDepth"]
+    for S in (tight, loose):
+        S.run(1, True)
+    depths = [S._cpp.contacts()[0]["penetrationDepth"] for S in (tight, loose)]
+    assert depths[0] == pytest.approx(2e-3, rel=1e-3) and depths[1] != depths[0]
+    with pytest.raises(ValueError, match="accuracyTol must be finite and > 0"):
+        engines(tight, accuracyTol=0)
