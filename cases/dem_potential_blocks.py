@@ -10,6 +10,8 @@ Set-up:   unit cubes (edge 1 m, r = 0.02 m, density 1000 kg/m^3) with the KnKsPB
           3. incline: the resting cube (friction angle 30 deg) under gravity turned from the
              plate's normal to theta (an inclined plane) over 0.25 s with Cundall damping 0.3,
              then T = 1 s (quick 0.5 s) undamped, for theta = 20 ... 40 deg;
+          2b. resting in 2D (Ig2_PB_PB_ScGeom twoDimension=True, unitWidth2D = 0.5): a prism
+             1 m wide (x) and 6 m long along twoDdir = y, dropped 1 mm onto the plate;
           4. plane failure: a 4 x 2 x 2 m block cut by one persistent joint dipping 35 deg
              (generateBlocks), the lower piece fixed, friction angle phi = 31 ... 39 deg, Knormal
              1e9 N/m^3, Kshear 1e8 N/m^3; gravity
@@ -20,6 +22,9 @@ Checked:  dem.potential-blocks.pressing: worst relative error of the normal forc
           Knormal A u_n (A the exact overlap area: offset rectangle, or the octagon 2(sqrt 2 - 1)
           of the twisted squares) <= 1e-8, and of the overlap against u_n (in the record);
           dem.potential-blocks.resting: relative error of the contact force against m g <= 1e-6;
+          dem.potential-blocks.resting-2d: relative error of the prism's overlap against
+          m g / (Knormal L w), the seed's 2D area being the joint length L = 1 m times
+          unitWidth2D w (in 3D the section would be 6 m^2), <= 1e-4;
           dem.potential-blocks.incline-slip: worst relative error of the sliding acceleration
           (quadratic fit of the undamped phase) against g (sin theta - cos theta tan phi) above
           the friction angle <= 1e-2; dem.potential-blocks.incline-stick: largest displacement
@@ -27,7 +32,7 @@ Checked:  dem.potential-blocks.pressing: worst relative error of the normal forc
           dem.potential-blocks.plane-failure: worst relative error of the upper piece's
           acceleration for FS = tan phi / tan psi < 1, plus the number of wrong slide/stick
           outcomes (displacement > 1 mm), <= 1e-2.
-Produces: the five records and chart dem.potential-blocks.png (force against analytic, the
+Produces: the six records and chart dem.potential-blocks.png (force against analytic, the
           resting cube's contact force over time, sliding acceleration against theta and against
           the factor of safety of the plane failure).
 """
@@ -35,7 +40,7 @@ import math
 
 import numpy as np
 
-from talus import results
+from talus import _dem, results
 from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, Joint, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
                        PotentialBlock, PotentialBlock2AABB, Scene, generateBlocks, potentialBlock)
@@ -46,11 +51,11 @@ CUBE = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.02)
 MASS = RHO * 1.0
 
 
-def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G), kn=KN, ks=KS):
+def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G), kn=KN, ks=KS, **geometry):
     S = Scene()
     m = S.materials.append(FrictMat(density=RHO, frictionAngle=friction))
     S.engines = [ForceResetter(), InsertionSortCollider([PotentialBlock2AABB()], verletDist=0.01),
-                 InteractionLoop([Ig2_PB_PB_ScGeom(calContactArea=True)],
+                 InteractionLoop([Ig2_PB_PB_ScGeom(calContactArea=True, **geometry)],
                                  [Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=kn, Kshear=ks, kn_i=kn, ks_i=ks,
                                                                    viscousDamping=viscous)],
                                  [Law2_SCG_KnKsPBPhys_KnKsPBLaw()]),
@@ -78,10 +83,15 @@ def pressing():
     return rows
 
 
+def plate(m):
+    """The fixed boundary plate, top face at z = 0."""
+    return potentialBlock(PotentialBlock.cuboid((3, 4, 0.25), r=0.02, isBoundary=True), pos=(0, 0, -0.25), material=m,
+                          fixed=True)
+
+
 def resting(seconds):
     S, m = make_scene(damping=0.3, viscous=0.5)
-    S.bodies.append(potentialBlock(PotentialBlock.cuboid((3, 3, 0.25), r=0.02, isBoundary=True), pos=(0, 0, -0.25),
-                                   material=m, fixed=True))
+    S.bodies.append(plate(m))
     S.bodies.append(potentialBlock(CUBE, pos=(0, 0, 0.501), material=m))
     times, forces = [], []
     for _ in range(int(seconds / S.dt / 20)):
@@ -90,6 +100,17 @@ def resting(seconds):
         times.append(S.time)
         forces.append(float(c[0]["normalForce"][2]) if c else 0.0)
     return S, times, forces
+
+
+def resting_2d(seconds, width):
+    """The 2D prism at rest on the plate: (contact force, overlap, area, mass)."""
+    S, m = make_scene(damping=0.3, viscous=0.5, twoDimension=True, unitWidth2D=width)
+    S.bodies.append(plate(m))
+    prism = S.bodies.append(potentialBlock(PotentialBlock.cuboid((0.5, 3.0, 0.5), r=0.02), pos=(0, 0, 0.501),
+                                           material=m))
+    S.run(int(seconds / S.dt), True)
+    c = S._cpp.contacts()[0]
+    return float(c["normalForce"][2]), float(c["penetrationDepth"]), _dem.contact_areas(S._cpp)[0], S._cpp.mass()[prism]
 
 
 def incline(theta, seconds):
@@ -169,6 +190,16 @@ def main():
     print(f"resting: contact force {forces[-1]:.6f} N, m g = {MASS * G:.6f} N, error {rest_error:.2e}")
     case.record("relative error of the resting cube's contact force", rest_error, "the weight m g", 1e-6,
                 suffix="resting", force=forces[-1], weight=MASS * G)
+
+    width = 0.5
+    force, overlap, area, mass = resting_2d(seconds, width)
+    expected = mass * G / (KN * 1.0 * width)
+    overlap_2d_error = abs(overlap - expected) / expected
+    print(f"resting 2D: overlap {overlap:.6e} m, m g / (Knormal L w) = {expected:.6e} m, error {overlap_2d_error:.2e}; "
+          f"area {area:.6f} m^2 (L w = {width}), force error {abs(force - mass * G) / (mass * G):.2e}")
+    case.record("relative error of the 2D prism's overlap at rest (contact area = joint length x unitWidth2D)",
+                overlap_2d_error, "m g / (Knormal L unitWidth2D), L = 1 m the joint", 1e-4, suffix="resting-2d",
+                overlap=overlap, area=area, force=force, weight=mass * G, unitWidth2D=width)
 
     T = 0.5 if args.quick else 1.0
     thetas = [20, 25, 28, 29, 31, 32, 35, 40] if not args.quick else [25, 29, 31, 35]

@@ -2,6 +2,21 @@
 
 namespace talus::dem
 {
+const char* shapeName(ShapeKind kind)
+{
+  switch (kind)
+  {
+  case ShapeKind::Sphere: return "Sphere";
+  case ShapeKind::Wall: return "Wall";
+  case ShapeKind::Facet: return "Facet";
+  case ShapeKind::Box: return "Box";
+  case ShapeKind::Clump: return "Clump";
+  case ShapeKind::PotentialBlock: return "PotentialBlock";
+  case ShapeKind::PotentialParticle: return "PotentialParticle";
+  }
+  return "?";
+}
+
 BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
 {
   const auto id = static_cast<BodyId>(pos.size());

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "dem/ConvexContact.h"
 #include "dem/PotentialBlock.h"
 #include "dem/PotentialParticle.h"
 #include "dem/types.h"
@@ -20,6 +21,9 @@ enum class ShapeKind : std::uint8_t
   PotentialBlock, ///< convex polyhedron from planes (Yade's PotentialBlock), with blocks and walls
   PotentialParticle, ///< rounded convex particle from planes and a sphere term (Yade's PotentialParticle), with particles and walls
 };
+
+/// Yade's class name of a shape kind ("Sphere", "PotentialBlock", ...), for messages.
+const char* shapeName(ShapeKind kind);
 
 /// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
 /// (-1 negative side, +1 positive side, 0 both), as Yade's Wall.sense.
@@ -83,6 +87,8 @@ struct Bodies
   std::vector<ClumpShape> clumps;
   std::vector<PotentialBlockShape> blocks;
   std::vector<PotentialParticleShape> particles;
+  /// How Potential Blocks touch (Ig2_PB_PB_ScGeom's settings, from the engines).
+  BlockContactSettings blockContact;
 
   /// Number of slots, erased bodies included.
   [[nodiscard]] std::size_t size() const { return pos.size(); }

@@ -346,6 +346,105 @@ static_assert(sizeof(int) == 4 && sizeof(BodyId) == 4, "int arrays are written a
 
 std::string at(const char* group, const char* name) { return std::string(group) + name; }
 
+// Potential Blocks and Particles: every field of their shapes, derived ones included (vertices,
+// faces, principal frame, surface samples), so that a restored scene computes the same bits
+// as the saved one (recomputing them from the planes would round differently). Lists of
+// varying length (planes, vertices, ...) are concatenated over the shapes: shape k owns entries
+// [start[k], start[k + 1]) of `<name>` with `<name>Start` (n + 1 entries).
+constexpr std::pair<const char*, double PotentialBlockShape::*> blockScalars[] = {
+    {"r", &PotentialBlockShape::r}, {"R", &PotentialBlockShape::R}, {"volume", &PotentialBlockShape::volume},
+    {"boundingRadius", &PotentialBlockShape::boundingRadius}};
+constexpr std::pair<const char*, std::vector<Vec3> PotentialBlockShape::*> blockVectorLists[] = {
+    {"normals", &PotentialBlockShape::normals}, {"vertices", &PotentialBlockShape::vertices},
+    {"edgeDirections", &PotentialBlockShape::edgeDirections}};
+constexpr std::pair<const char*, double PotentialParticleShape::*> particleScalars[] = {
+    {"r", &PotentialParticleShape::r}, {"k", &PotentialParticleShape::k}, {"R", &PotentialParticleShape::R},
+    {"volume", &PotentialParticleShape::volume}, {"boundingRadius", &PotentialParticleShape::boundingRadius}};
+constexpr std::pair<const char*, Vec3 PotentialParticleShape::*> particleVectors[] = {
+    {"centroid", &PotentialParticleShape::centroid}, {"inertiaPerDensity", &PotentialParticleShape::inertiaPerDensity}};
+constexpr std::pair<const char*, std::vector<Vec3> PotentialParticleShape::*> particleVectorLists[] = {
+    {"normals", &PotentialParticleShape::normals}, {"samples", &PotentialParticleShape::samples}};
+
+/// The fields both shape kinds have: per shape the scalars, the boundary flag and the lists of
+/// vectors (`vectorLists`), and the plane offsets d beside the normals.
+template <class Shape, std::size_t NS, std::size_t NL>
+void writeShapeColumns(const Writer& w, const std::string& group, const std::vector<Shape>& shapes,
+                       const std::pair<const char*, double Shape::*> (&scalars)[NS],
+                       const std::pair<const char*, std::vector<Vec3> Shape::*> (&vectorLists)[NL])
+{
+  const std::size_t n = shapes.size();
+  std::vector<double> column(n);
+  for (const auto& [name, field] : scalars)
+  {
+    for (std::size_t k = 0; k < n; ++k)
+      column[k] = shapes[k].*field;
+    w.doubles(group + name, {n}, column.data());
+  }
+  std::vector<std::uint8_t> boundary(n);
+  for (std::size_t k = 0; k < n; ++k)
+    boundary[k] = shapes[k].isBoundary ? 1 : 0;
+  w.uint8s(group + "isBoundary", boundary.data(), n);
+  for (const auto& [name, field] : vectorLists)
+  {
+    std::vector<std::int32_t> start{0};
+    std::vector<Vec3> values;
+    for (const Shape& s : shapes)
+    {
+      values.insert(values.end(), (s.*field).begin(), (s.*field).end());
+      start.push_back(static_cast<std::int32_t>(values.size()));
+    }
+    w.int32s(group + name + "Start", start.data(), start.size());
+    w.vec3s(group + name, values);
+  }
+  std::vector<double> d;
+  for (const Shape& s : shapes)
+    d.insert(d.end(), s.d.begin(), s.d.end());
+  w.doubles(group + "d", {d.size()}, d.data());
+}
+
+void writePlaneShapes(const Writer& w, const Bodies& b)
+{
+  {
+    const Id g = w.group("/bodies/blocks");
+    writeShapeColumns(w, "/bodies/blocks/", b.blocks, blockScalars, blockVectorLists);
+    // Faces: a list of faces per block (facePlane beside it), each face a list of vertices.
+    std::vector<std::int32_t> faceStart{0}, facePlane, faceVertexStart{0}, faceVertices;
+    for (const PotentialBlockShape& s : b.blocks)
+    {
+      for (const std::vector<int>& face : s.faces)
+      {
+        faceVertices.insert(faceVertices.end(), face.begin(), face.end());
+        faceVertexStart.push_back(static_cast<std::int32_t>(faceVertices.size()));
+      }
+      facePlane.insert(facePlane.end(), s.facePlane.begin(), s.facePlane.end());
+      faceStart.push_back(static_cast<std::int32_t>(faceVertexStart.size() - 1));
+    }
+    w.int32s("/bodies/blocks/faceStart", faceStart.data(), faceStart.size());
+    w.int32s("/bodies/blocks/facePlane", facePlane.data(), facePlane.size());
+    w.int32s("/bodies/blocks/faceVerticesStart", faceVertexStart.data(), faceVertexStart.size());
+    w.int32s("/bodies/blocks/faceVertices", faceVertices.data(), faceVertices.size());
+  }
+  {
+    const Id g = w.group("/bodies/particles");
+    writeShapeColumns(w, "/bodies/particles/", b.particles, particleScalars, particleVectorLists);
+    const std::size_t n = b.particles.size();
+    std::vector<Vec3> column(n);
+    for (const auto& [name, field] : particleVectors)
+    {
+      for (std::size_t k = 0; k < n; ++k)
+        column[k] = b.particles[k].*field;
+      w.vec3s(at("/bodies/particles/", name), column);
+    }
+    std::vector<double> axes(9 * n);
+    for (std::size_t k = 0; k < n; ++k)
+    {
+      const std::array<double, 9> a = rowMajor(b.particles[k].axes);
+      std::copy(a.begin(), a.end(), axes.begin() + static_cast<std::ptrdiff_t>(9 * k));
+    }
+    w.doubles("/bodies/particles/axes", {n, 3, 3}, axes.data());
+  }
+}
+
 void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx, bool checksums)
 {
   const Writer w(file, ctx, checksums);
@@ -500,6 +599,7 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     w.int32s("/bodies/clumps/members", members.data(), members.size());
     w.vec3s("/bodies/clumps/relPos", relPos);
     w.doubles("/bodies/clumps/relOri", {members.size(), 4}, relOri.data());
+    writePlaneShapes(w, b);
   }
 
   // Contacts: the list in its order, every field of Contact.
@@ -817,6 +917,135 @@ private:
   const Context& ctx_;
 };
 
+/// The starts of the lists `<path>` written for `n` shapes (see writePlaneShapes), checked to
+/// partition its `entries` entries.
+std::vector<std::int32_t> listStarts(const Reader& r, const std::string& path, std::size_t n, std::size_t entries,
+                                     const Context& ctx)
+{
+  std::vector<std::int32_t> start(n + 1);
+  r.int32s(path + "Start", start);
+  if (start.front() != 0 || start.back() != static_cast<std::int32_t>(entries) || !std::is_sorted(start.begin(), start.end()))
+    ctx.fail(path + "Start does not partition the entries of " + path + " among the shapes", false);
+  return start;
+}
+
+/// The number of rows of a dataset that must be an (n, columns) array (columns 0: 1-D).
+std::size_t rows(const Reader& r, const std::string& path, hsize_t columns, const Context& ctx)
+{
+  const std::vector<hsize_t> d = r.dims(path);
+  if (columns == 0 ? d.size() != 1 : (d.size() != 2 || d[1] != columns))
+    ctx.fail(path + " is not " + (columns == 0 ? std::string("one-dimensional") : "an (n, 3) array"), false);
+  return d[0];
+}
+
+template <class Shape, std::size_t NS, std::size_t NL>
+void readShapeColumns(const Reader& r, const std::string& group, std::vector<Shape>& shapes,
+                      const std::pair<const char*, double Shape::*> (&scalars)[NS],
+                      const std::pair<const char*, std::vector<Vec3> Shape::*> (&vectorLists)[NL], const Context& ctx)
+{
+  const std::size_t n = rows(r, group + "r", 0, ctx);
+  shapes.resize(n);
+  std::vector<double> column(n);
+  for (const auto& [name, field] : scalars)
+  {
+    r.doubles(group + name, {n}, column.data());
+    for (std::size_t k = 0; k < n; ++k)
+      shapes[k].*field = column[k];
+  }
+  std::vector<std::uint8_t> boundary(n);
+  r.uint8s(group + "isBoundary", boundary);
+  for (std::size_t k = 0; k < n; ++k)
+    shapes[k].isBoundary = boundary[k] != 0;
+  for (const auto& [name, field] : vectorLists)
+  {
+    std::vector<Vec3> values(rows(r, group + name, 3, ctx));
+    r.vec3s(group + name, values);
+    const std::vector<std::int32_t> start = listStarts(r, group + name, n, values.size(), ctx);
+    for (std::size_t k = 0; k < n; ++k)
+      (shapes[k].*field).assign(values.begin() + start[k], values.begin() + start[k + 1]);
+  }
+  std::size_t planes = 0;
+  for (const Shape& s : shapes)
+    planes += s.normals.size();
+  std::vector<double> d(planes);
+  r.doubles(group + "d", {planes}, d.data());
+  auto next = d.begin();
+  for (Shape& s : shapes)
+  {
+    s.d.assign(next, next + static_cast<std::ptrdiff_t>(s.normals.size()));
+    next += static_cast<std::ptrdiff_t>(s.normals.size());
+  }
+}
+
+void readPlaneShapes(const Reader& r, Bodies& b, const Context& ctx)
+{
+  readShapeColumns(r, "/bodies/blocks/", b.blocks, blockScalars, blockVectorLists, ctx);
+  std::vector<std::int32_t> facePlane(rows(r, "/bodies/blocks/facePlane", 0, ctx));
+  r.int32s("/bodies/blocks/facePlane", facePlane);
+  std::vector<std::int32_t> faceVertices(rows(r, "/bodies/blocks/faceVertices", 0, ctx));
+  r.int32s("/bodies/blocks/faceVertices", faceVertices);
+  const std::vector<std::int32_t> faceStart =
+      listStarts(r, "/bodies/blocks/face", b.blocks.size(), facePlane.size(), ctx);
+  const std::vector<std::int32_t> vertexStart =
+      listStarts(r, "/bodies/blocks/faceVertices", facePlane.size(), faceVertices.size(), ctx);
+  for (std::size_t k = 0; k < b.blocks.size(); ++k)
+  {
+    PotentialBlockShape& s = b.blocks[k];
+    s.facePlane.assign(facePlane.begin() + faceStart[k], facePlane.begin() + faceStart[k + 1]);
+    for (auto f = static_cast<std::size_t>(faceStart[k]); f < static_cast<std::size_t>(faceStart[k + 1]); ++f)
+      s.faces.emplace_back(faceVertices.begin() + vertexStart[f], faceVertices.begin() + vertexStart[f + 1]);
+  }
+
+  readShapeColumns(r, "/bodies/particles/", b.particles, particleScalars, particleVectorLists, ctx);
+  const std::size_t n = b.particles.size();
+  std::vector<Vec3> column(n);
+  for (const auto& [name, field] : particleVectors)
+  {
+    r.vec3s(at("/bodies/particles/", name), column);
+    for (std::size_t k = 0; k < n; ++k)
+      b.particles[k].*field = column[k];
+  }
+  std::vector<double> axes(9 * n);
+  r.doubles("/bodies/particles/axes", {n, 3, 3}, axes.data());
+  for (std::size_t k = 0; k < n; ++k)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        b.particles[k].axes(i, j) = axes[9 * k + static_cast<std::size_t>(3 * i + j)];
+}
+
+/// Shapes given by planes that a solver can use: enough finite planes, faces naming existing
+/// vertices and planes, a valid rounding (and for particles k in (0, 1]).
+void validatePlaneShapes(const Bodies& b, const Context& ctx)
+{
+  auto finite = [](const auto& shape) {
+    bool ok = std::all_of(shape.d.begin(), shape.d.end(), [](double x) { return std::isfinite(x); });
+    for (const Vec3& v : shape.normals)
+      ok = ok && v.allFinite() && std::abs(v.norm() - 1) <= 1e-6;
+    return ok && shape.normals.size() >= 4 && std::isfinite(shape.volume) && shape.volume > 0
+           && std::isfinite(shape.boundingRadius) && std::isfinite(shape.R) && std::isfinite(shape.r);
+  };
+  for (std::size_t k = 0; k < b.blocks.size(); ++k)
+  {
+    const PotentialBlockShape& s = b.blocks[k];
+    bool ok = finite(s) && s.r >= 0 && s.R > 0 && s.vertices.size() >= 4 && s.faces.size() == s.facePlane.size();
+    for (std::size_t f = 0; ok && f < s.faces.size(); ++f)
+      ok = s.facePlane[f] >= 0 && static_cast<std::size_t>(s.facePlane[f]) < s.normals.size() && s.faces[f].size() >= 3
+           && std::all_of(s.faces[f].begin(), s.faces[f].end(),
+                          [&](int v) { return v >= 0 && static_cast<std::size_t>(v) < s.vertices.size(); });
+    if (!ok)
+      ctx.fail("Potential Block shape " + std::to_string(k)
+                   + " is invalid (planes, rounding, volume or faces out of range)",
+               false);
+  }
+  for (std::size_t k = 0; k < b.particles.size(); ++k)
+  {
+    const PotentialParticleShape& s = b.particles[k];
+    if (!(finite(s) && s.r > 0 && s.R > 0 && s.k > 0 && s.k <= 1 && !s.samples.empty()))
+      ctx.fail("Potential Particle shape " + std::to_string(k) + " is invalid (planes, r, k, R, volume or samples)",
+               false);
+  }
+}
+
 /// Read and check the header; then everything else, into `in`.
 void readScene(hid_t file, Loaded& in, const Context& ctx)
 {
@@ -925,7 +1154,7 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
     b.shape.resize(n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      if (shape[i] > static_cast<std::uint8_t>(ShapeKind::Clump))
+      if (shape[i] > static_cast<std::uint8_t>(ShapeKind::PotentialParticle))
         ctx.fail("body " + std::to_string(i) + " has unknown shape kind " + std::to_string(shape[i]), false);
       b.shape[i] = static_cast<ShapeKind>(shape[i]);
     }
@@ -986,6 +1215,7 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
       }
       b.clumps.push_back(std::move(clump));
     }
+    readPlaneShapes(r, b, ctx);
   }
 
   // Contacts.
@@ -1019,7 +1249,7 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
     r.uint8s("/contacts/kind", bytes);
     for (std::size_t k = 0; k < c; ++k)
     {
-      if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::BoxSphere))
+      if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::WallParticle))
         ctx.fail("contact " + std::to_string(k) + " has unknown kind " + std::to_string(bytes[k]), false);
       list[k].kind = static_cast<ContactGeometryKind>(bytes[k]);
     }
@@ -1086,6 +1316,24 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
     }
 }
 
+/// The geometry kind the collider gives a pair of these shapes (body 1 first).
+bool kindMatchesShapes(ContactGeometryKind kind, ShapeKind first, ShapeKind second)
+{
+  switch (kind)
+  {
+  case ContactGeometryKind::SphereSphere: return first == ShapeKind::Sphere && second == ShapeKind::Sphere;
+  case ContactGeometryKind::WallSphere: return first == ShapeKind::Wall && second == ShapeKind::Sphere;
+  case ContactGeometryKind::FacetSphere: return first == ShapeKind::Facet && second == ShapeKind::Sphere;
+  case ContactGeometryKind::BoxSphere: return first == ShapeKind::Box && second == ShapeKind::Sphere;
+  case ContactGeometryKind::BlockBlock: return first == ShapeKind::PotentialBlock && second == ShapeKind::PotentialBlock;
+  case ContactGeometryKind::WallBlock: return first == ShapeKind::Wall && second == ShapeKind::PotentialBlock;
+  case ContactGeometryKind::ParticleParticle:
+    return first == ShapeKind::PotentialParticle && second == ShapeKind::PotentialParticle;
+  case ContactGeometryKind::WallParticle: return first == ShapeKind::Wall && second == ShapeKind::PotentialParticle;
+  }
+  return false;
+}
+
 /// Consistency of what was read: every index in range, the contact list sorted, the
 /// materials valid. Catches damage that checksums cannot (a file edited by hand).
 void validate(const Loaded& in, const Context& ctx)
@@ -1124,8 +1372,8 @@ void validate(const Loaded& in, const Context& ctx)
     case ShapeKind::Facet: ok = within(b.facets.size()); break;
     case ShapeKind::Box: ok = within(b.boxes.size()); break;
     case ShapeKind::Clump: ok = within(b.clumps.size()); break;
-    case ShapeKind::PotentialBlock:
-    case ShapeKind::PotentialParticle: break; // never saved (saveCheckpoint refuses them)
+    case ShapeKind::PotentialBlock: ok = within(b.blocks.size()); break;
+    case ShapeKind::PotentialParticle: ok = within(b.particles.size()); break;
     }
     if (!ok)
       ctx.fail(which + " has an invalid shape index " + std::to_string(s), false);
@@ -1152,6 +1400,7 @@ void validate(const Loaded& in, const Context& ctx)
         ctx.fail("clump shape " + std::to_string(k) + " lists body " + std::to_string(m)
                      + " which is not one of its members",
                  false);
+  validatePlaneShapes(b, ctx);
   for (std::size_t k = 0; k < b.boxes.size(); ++k)
     if (!b.boxes[k].extents.allFinite() || !(b.boxes[k].extents.minCoeff() > 0))
       ctx.fail("box shape " + std::to_string(k) + " has invalid extents", false);
@@ -1169,12 +1418,7 @@ void validate(const Loaded& in, const Context& ctx)
     if (c.id1 < 0 || c.id2 < 0 || static_cast<std::size_t>(c.id1) >= n || static_cast<std::size_t>(c.id2) >= n
         || c.id1 == c.id2)
       ctx.fail(which + " refers to bodies that do not exist (" + std::to_string(n) + " bodies)", false);
-    const ShapeKind first = b.shape[static_cast<std::size_t>(c.id1)];
-    const ContactGeometryKind expected = first == ShapeKind::Wall    ? ContactGeometryKind::WallSphere
-                                         : first == ShapeKind::Facet ? ContactGeometryKind::FacetSphere
-                                         : first == ShapeKind::Box   ? ContactGeometryKind::BoxSphere
-                                                                     : ContactGeometryKind::SphereSphere;
-    if (c.kind != expected || b.shape[static_cast<std::size_t>(c.id2)] != ShapeKind::Sphere)
+    if (!kindMatchesShapes(c.kind, b.shape[static_cast<std::size_t>(c.id1)], b.shape[static_cast<std::size_t>(c.id2)]))
       ctx.fail(which + " has a kind that does not match the shapes of its bodies", false);
     if (k > 0 && key(in.contacts[k - 1]) > key(c))
       ctx.fail("the contact list is not sorted by (id1, id2) at " + which, false);
@@ -1201,7 +1445,10 @@ void commit(Scene& scene, const Loaded& in)
   scene.materials.resize(kept);
   scene.materials.insert(scene.materials.end(), in.materials.begin() + static_cast<std::ptrdiff_t>(kept),
                          in.materials.end());
+  // The block contacts' settings belong to the engines (Ig2_PB_PB_ScGeom), not to the file.
+  const BlockContactSettings blockContact = scene.bodies.blockContact;
   scene.bodies = in.bodies;
+  scene.bodies.blockContact = blockContact;
   scene.contacts.list = in.contacts;
   scene.contacts.extra = in.contactExtra;
   scene.contacts.index(scene.bodies.size());
@@ -1266,14 +1513,6 @@ void saveCheckpoint(const Scene& scene, const std::string& path, const Checkpoin
   const QuietErrors quiet;
   if (path.empty())
     ctx.fail("the file name is empty", false);
-  // Potential Blocks and Particles (planes, derived geometry) are not part of the checkpoint
-  // format yet: refuse rather than write a scene that cannot be restored.
-  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-    if (scene.bodies.alive[i] && scene.bodies.shape[i] == ShapeKind::PotentialBlock)
-      ctx.fail("body " + std::to_string(i) + " is a PotentialBlock: checkpoints do not store Potential Blocks yet", false);
-    else if (scene.bodies.alive[i] && scene.bodies.shape[i] == ShapeKind::PotentialParticle)
-      ctx.fail("body " + std::to_string(i) + " is a PotentialParticle: checkpoints do not store Potential Particles yet",
-               false);
   const fs::path target(path);
   const fs::path folder = target.has_parent_path() ? target.parent_path() : fs::path(".");
   std::error_code ec;

@@ -19,7 +19,7 @@ inline constexpr bool haveCheckpoints = false;
 #endif
 
 /// Layout version written in the root attribute `format_version`; the only one read back.
-inline constexpr int checkpointFormatVersion = 2;
+inline constexpr int checkpointFormatVersion = 3;
 /// Value of the root attribute `magic` of every Talus checkpoint.
 inline constexpr const char* checkpointMagic = "talus-checkpoint";
 
@@ -37,7 +37,7 @@ public:
 
 /// Write everything a run needs to continue bit-identically: the clock (dt, time, iter), the
 /// scene's settings (maxOverlapRatio), the periodic cell, every material, every body array
-/// (erased slots, blocked DOFs, external forces, wall and facet shapes included) and the
+/// (erased slots, blocked DOFs, external forces, every shape included) and the
 /// contact list in order with its full state (ids, kind, real, fresh, law, periodic image,
 /// geometry, physics, shear history, forces) with the richer models' state (Contacts::extra),
 /// and the energy tracker. Engines are not stored (they are Python
@@ -47,9 +47,9 @@ public:
 /// flushed, synced and closed, and only then renamed over `path`. On failure the temporary file
 /// is removed, an existing file at `path` is left untouched, and CheckpointError is thrown.
 ///
-/// HDF5 layout (format_version 2): root attributes `magic`, `format_version`,
+/// HDF5 layout (format_version 3): root attributes `magic`, `format_version`,
 /// `talus_version`; groups `clock`, `settings`, `energy`, `cell`, `materials`, `bodies` (with
-/// `walls`, `facets`), `contacts` (with `extra`), `extras` (docs/dem-io.md lists every dataset). Numeric datasets are chunked with a Fletcher-32 checksum, and the object headers
+/// `walls`, `facets`, `boxes`, `clumps`, `blocks`, `particles`: Potential Blocks and Particles with their derived geometry), `contacts` (with `extra`), `extras` (docs/dem-io.md lists every dataset). Numeric datasets are chunked with a Fletcher-32 checksum, and the object headers
 /// carry metadata checksums, so corruption is detected when reading.
 /// @param[in] scene the scene to save
 /// @param[in] path the checkpoint file (conventionally `*.h5`); its folder must exist

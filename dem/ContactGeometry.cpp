@@ -78,7 +78,8 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
     ConvexContactGeometry g;
     const bool blocks = c.kind == ContactGeometryKind::BlockBlock || c.kind == ContactGeometryKind::WallBlock;
     const Vec3* previous = c.real ? &c.contactPoint : nullptr;
-    if (!(blocks ? potentialBlockContact(b, i1, i2, previous, g) : potentialParticleContact(b, i1, i2, previous, g)))
+    if (!(blocks ? potentialBlockContact(b, i1, i2, previous, g, b.blockContact.accuracyTol)
+                 : potentialParticleContact(b, i1, i2, previous, g)))
       return false;
     normal = g.normal;
     penetration = g.penetration;

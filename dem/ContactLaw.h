@@ -36,6 +36,15 @@ public:
   [[nodiscard]] virtual std::string physicsName() const = 0;
   /// 0 if the law cannot handle this material pair; otherwise a specificity (higher wins).
   [[nodiscard]] virtual int handles(const Material& m1, const Material& m2) const = 0;
+  /// Whether the law's model applies to contacts of this geometry (in an InteractionLoop with
+  /// several laws, a contact goes to the most specific law among those that do): by default
+  /// the spheres' contacts (with spheres, walls, facets, boxes); the Potential Blocks' and
+  /// Particles' laws take their own.
+  [[nodiscard]] virtual bool handlesGeometry(ContactGeometryKind kind) const
+  {
+    return kind == ContactGeometryKind::SphereSphere || kind == ContactGeometryKind::WallSphere
+           || kind == ContactGeometryKind::FacetSphere || kind == ContactGeometryKind::BoxSphere;
+  }
   /// The law keeps state in Contacts::extra (which is then allocated and kept aligned).
   [[nodiscard]] virtual bool needsExtra() const = 0;
   /// Set the physics (stiffness, damping, friction) of a contact that just became real; `x` is

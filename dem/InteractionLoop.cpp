@@ -18,7 +18,7 @@ void InteractionLoop::assignLaw(Contact& c, ContactExtra* x, const Scene& scene)
   int best = 0;
   for (std::size_t k = 0; k < laws.size(); ++k)
   {
-    const int score = laws[k]->handles(m1, m2);
+    const int score = laws[k]->handlesGeometry(c.kind) ? laws[k]->handles(m1, m2) : 0;
     if (score > best)
     {
       best = score;
@@ -26,9 +26,10 @@ void InteractionLoop::assignLaw(Contact& c, ContactExtra* x, const Scene& scene)
     }
   }
   if (best == 0)
-    throw std::runtime_error("no contact law of the InteractionLoop handles the materials of bodies "
-                             + std::to_string(c.id1) + " and " + std::to_string(c.id2) + " ('" + m1.label
-                             + "', '" + m2.label + "')");
+    throw std::runtime_error("no contact law of the InteractionLoop handles the contact of bodies "
+                             + std::to_string(c.id1) + " and " + std::to_string(c.id2) + " (materials '" + m1.label
+                             + "', '" + m2.label + "', shapes " + shapeName(scene.bodies.shape[static_cast<std::size_t>(c.id1)])
+                             + " and " + shapeName(scene.bodies.shape[static_cast<std::size_t>(c.id2)]) + ")");
   laws[c.law]->initialize(c, laws[c.law]->needsExtra() ? x : nullptr, scene);
 }
 
@@ -43,6 +44,29 @@ void InteractionLoop::checkMaterials(const Scene& scene)
         throw std::runtime_error("the contact law " + laws[0]->typeName() + " cannot handle materials '" + m[i].label
                                  + "' and '" + m[j].label + "'; add a law for them to the InteractionLoop");
   checkedMaterials_ = m.size();
+}
+
+void InteractionLoop::checkShapes(const Scene& scene)
+{
+  if (checkedBodiesVersion_ == scene.bodiesVersion)
+    return;
+  const Bodies& b = scene.bodies;
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    // The contact the body's shape makes with its own kind (walls, facets, boxes and clumps
+    // touch only the others).
+    const ShapeKind shape = b.shape[i];
+    const ContactGeometryKind own = shape == ShapeKind::PotentialBlock      ? ContactGeometryKind::BlockBlock
+                                    : shape == ShapeKind::PotentialParticle ? ContactGeometryKind::ParticleParticle
+                                                                            : ContactGeometryKind::SphereSphere;
+    const bool touchesItsKind = shape == ShapeKind::Sphere || shape == ShapeKind::PotentialBlock
+                                || shape == ShapeKind::PotentialParticle;
+    if (b.alive[i] && touchesItsKind && !laws[0]->handlesGeometry(own))
+      throw std::runtime_error("the contact law " + laws[0]->typeName() + " cannot handle the contacts of body "
+                               + std::to_string(i) + " (" + shapeName(shape)
+                               + "); add a law for them to the InteractionLoop");
+  }
+  checkedBodiesVersion_ = scene.bodiesVersion;
 }
 
 std::string InteractionLoop::overlapReport(const Scene& scene, const Contact& c)
@@ -70,6 +94,7 @@ void InteractionLoop::run(Scene& scene)
   {
     // The usual case: geometry, physics and forces in one pass over the contacts.
     checkMaterials(scene);
+    checkShapes(scene);
     bad = laws[0]->computeAll(scene);
   }
   else

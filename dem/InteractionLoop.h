@@ -23,6 +23,10 @@ private:
   void assignLaw(Contact& c, ContactExtra* x, const Scene& scene) const;
   /// With a single law: check once per material count that it handles every material pair.
   void checkMaterials(const Scene& scene);
+  /// With a single law: check once per change of the bodies that its model applies to the
+  /// contacts their shapes can make (spheres, Potential Blocks, Potential Particles; a mixed
+  /// scene needs a law for each).
+  void checkShapes(const Scene& scene);
   /// Several laws: geometry and law assignment in one pass, then each law's forces.
   void computeWithSeveralLaws(Scene& scene) const;
   /// Add every contact's force and moment to its two bodies, body by body in a fixed order,
@@ -31,5 +35,6 @@ private:
   /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
   static std::string overlapReport(const Scene& scene, const Contact& c);
   std::size_t checkedMaterials_ = 0;
+  std::int64_t checkedBodiesVersion_ = -1;
 };
 } // namespace talus::dem

@@ -278,6 +278,23 @@ void analyticCentre(const HalfSpaces& hs, double tol, Vec3& x)
   }
 }
 
+/// The chord of the half-spaces along the unit direction u through x (inside): the parameters
+/// [tmin, tmax] of x + t u, clipped exactly against every plane. False if it is empty or open.
+bool chord(const HalfSpaces& hs, const Vec3& x, const Vec3& u, double& tmin, double& tmax)
+{
+  tmin = -std::numeric_limits<double>::infinity();
+  tmax = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < hs.n.size(); ++j)
+  {
+    const double a = hs.n[j].dot(u), slack = hs.h[j] - hs.n[j].dot(x);
+    if (a > 1e-14)
+      tmax = std::min(tmax, slack / a);
+    else if (a < -1e-14)
+      tmin = std::max(tmin, slack / a);
+  }
+  return tmax > tmin && std::isfinite(tmax - tmin);
+}
+
 /// Area of the section of the half-spaces by the plane through x normal to n (a polygon
 /// clipped from a square of half-size `half`).
 double sectionArea(const HalfSpaces& hs, const Vec3& x, const Vec3& n, double half)
@@ -391,61 +408,83 @@ bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, cons
   }
   analyticCentre(hs, accuracyTol, x);
 
+  const BlockContactSettings& settings = b.blockContact;
   Vec3 n;
+  double depth = 0; // the exact penetration depth along n (settings.exactDepth)
   if (wall)
+  {
     n = wallNormal;
+    for (const Vec3& v : v2)
+      depth = std::max(depth, hs.h[0] - wallNormal.dot(v));
+  }
   else
   {
-    int a1 = 0, a2 = 0;
-    const Vec3 xw = x + origin;
-    const Vec3 g1 = b.ori[i1] * potentialBlockNormal(shapeOf(b, i1), b.ori[i1].conjugate() * (xw - b.pos[i1]), &a1);
-    const Vec3 g2 = b.ori[i2] * potentialBlockNormal(s2, b.ori[i2].conjugate() * (xw - b.pos[i2]), &a2);
-    // A point in the face region of one block (at most one plane active) and near an edge or a
-    // corner of the other takes that face's normal; in both face regions both gradients (the
-    // two faces' normals) are averaged. Near edges or corners of both, the gradients of the
-    // rounded potentials lean towards the side faces (by 20 degrees and more for nearly
-    // parallel edges of nearly parallel faces): the polyhedra's least-overlap axis instead,
-    // smoothed over a tenth of the roundings. So too when the face taken is not (within that
-    // smoothing) a least-overlap axis: the analytic centre of a deep edge-edge overlap can lie
-    // in a face region of one block (9 degrees off in the accuracy case).
-    const bool faceRule = (a1 <= 1) != (a2 <= 1);
-    if (a1 <= 1 && a2 > 1)
-      n = g1;
-    else if (a2 <= 1 && a1 > 1)
-      n = -g2;
-    else if (a1 <= 1 && a2 <= 1)
+    const std::vector<Vec3> v1 = worldVertices(b, i1, origin);
+    double least = 0;
+    if (settings.exactDepth)
     {
-      n = g1 - g2;
-      n = n.norm() > 1e-12 ? Vec3(n.normalized()) : g1;
+      // The polyhedra's least-overlap axis, averaged only over ties to the rounding (exactly
+      // parallel edges): where two axes nearly tie, the depth's direction jumps from one to
+      // the other, and so does this normal (smoothing over 1e-3 (r1 + r2), as below, put the
+      // depth 20 % off between faces 1e-3 rad from parallel, 1e-4 m deep).
+      n = leastOverlapNormal(b, i1, i2, v1, v2, 1e-9 * reach, least);
+      depth = least;
     }
-    if (a1 > 1 || a2 > 1)
+    else
     {
-      const std::vector<Vec3> v1 = worldVertices(b, i1, origin);
-      const double smoothing = std::max(1e-3 * (shapeOf(b, i1).r + s2.r), 1e-9 * reach);
-      double least = 0;
-      const Vec3 axis = leastOverlapNormal(b, i1, i2, v1, v2, smoothing, least);
-      if (!faceRule || overlapAlong(n, v1, v2) > least + smoothing)
-        n = axis;
+      // Yade's normal, from the inner potentials' gradients. A point in the face region of one
+      // block (at most one plane active) and near an edge or a corner of the other takes that
+      // face's normal; in both face regions both gradients (the two faces' normals) are
+      // averaged. Near edges or corners of both, the gradients of the rounded potentials lean
+      // towards the side faces (by 20 degrees and more for nearly parallel edges of nearly
+      // parallel faces): the polyhedra's least-overlap axis instead, smoothed over a
+      // thousandth of the roundings. So too when the face taken is not (within that
+      // smoothing) a least-overlap axis: the analytic centre of a deep edge-edge overlap can
+      // lie in a face region of one block (9 degrees off in the accuracy case).
+      int a1 = 0, a2 = 0;
+      const Vec3 xw = x + origin;
+      const Vec3 g1 = b.ori[i1] * potentialBlockNormal(shapeOf(b, i1), b.ori[i1].conjugate() * (xw - b.pos[i1]), &a1);
+      const Vec3 g2 = b.ori[i2] * potentialBlockNormal(s2, b.ori[i2].conjugate() * (xw - b.pos[i2]), &a2);
+      const bool faceRule = (a1 <= 1) != (a2 <= 1);
+      if (a1 <= 1 && a2 > 1)
+        n = g1;
+      else if (a2 <= 1 && a1 > 1)
+        n = -g2;
+      else if (a1 <= 1 && a2 <= 1)
+      {
+        n = g1 - g2;
+        n = n.norm() > 1e-12 ? Vec3(n.normalized()) : g1;
+      }
+      if (a1 > 1 || a2 > 1)
+      {
+        const double smoothing = std::max(1e-3 * (shapeOf(b, i1).r + s2.r), 1e-9 * reach);
+        const Vec3 axis = leastOverlapNormal(b, i1, i2, v1, v2, smoothing, least);
+        if (!faceRule || overlapAlong(n, v1, v2) > least + smoothing)
+          n = axis;
+      }
     }
   }
 
-  // The chord of the overlap region along n through x.
-  double tmin = -std::numeric_limits<double>::infinity(), tmax = std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j < hs.n.size(); ++j)
-  {
-    const double a = hs.n[j].dot(n), slack = hs.h[j] - hs.n[j].dot(x);
-    if (a > 1e-14)
-      tmax = std::min(tmax, slack / a);
-    else if (a < -1e-14)
-      tmin = std::max(tmin, slack / a);
-  }
-  if (!(tmax > tmin) || !std::isfinite(tmax - tmin))
+  // The chord of the overlap region along n through x: the seed's overlap, and the contact
+  // point at its middle.
+  double tmin = 0, tmax = 0;
+  if (!chord(hs, x, n, tmin, tmax))
     return false;
   out.normal = n;
-  out.penetration = tmax - tmin;
+  out.penetration = settings.exactDepth ? depth : tmax - tmin;
   const Vec3 mid = x + 0.5 * (tmin + tmax) * n;
   out.contactPoint = mid + origin;
-  out.area = sectionArea(hs, mid, n, 2 * reach);
+  if (settings.twoDimension)
+  {
+    // The joint: the chord through the contact point across the normal, in the plane of motion.
+    Vec3 across = n.cross(settings.twoDdir);
+    if (across.squaredNorm() < 1e-14)
+      across = Vec3::UnitX().cross(settings.twoDdir);
+    double lo = 0, hi = 0;
+    out.area = chord(hs, mid, across.normalized(), lo, hi) ? settings.unitWidth2D * (hi - lo) : 0.0;
+  }
+  else
+    out.area = sectionArea(hs, mid, n, 2 * reach);
   return true;
 }
 } // namespace talus::dem

@@ -5,9 +5,6 @@
 
 namespace talus::dem
 {
-/// The Potential Blocks' default solver tolerance (see potentialBlockContact).
-constexpr double defaultBlockAccuracyTol = 1e-10;
-
 /// Overlap of two Potential Blocks i1, i2, or of wall i1 and block i2.
 ///
 /// The overlap region is the intersection of both sets of half-spaces. A linear program (CLP)
@@ -21,6 +18,10 @@ constexpr double defaultBlockAccuracyTol = 1e-10;
 /// against every plane (the limit of Yade's bracketed bisection). Pairs separated by a face
 /// plane of either or by the cross product of two edges (separating-axis theorem, exact for
 /// polyhedra) are rejected before any linear program.
+/// `b.blockContact` (Ig2_PB_PB_ScGeom's settings): with `exactDepth` the normal is the
+/// polyhedra's least-overlap axis and the penetration the depth along it; with `twoDimension`
+/// the area is the joint length (the chord through the contact point along normal x twoDdir)
+/// times unitWidth2D.
 /// `accuracyTol`: the analytic centre's Newton iteration stops once its Newton decrement is
 /// below it (the chord and the area are exact for the point and normal found).
 /// @return false if the shapes do not overlap

@@ -35,6 +35,11 @@ public:
     return Particles ? "Ip2_FrictMat_FrictMat_KnKsPhys" : "Ip2_FrictMat_FrictMat_KnKsPBPhys";
   }
   [[nodiscard]] int handles(const Material&, const Material&) const override { return 1; }
+  [[nodiscard]] bool handlesGeometry(ContactGeometryKind kind) const override
+  {
+    return Particles ? kind == ContactGeometryKind::ParticleParticle || kind == ContactGeometryKind::WallParticle
+                     : kind == ContactGeometryKind::BlockBlock || kind == ContactGeometryKind::WallBlock;
+  }
 
   [[nodiscard]] std::vector<std::string> parameterNames() const override
   {

@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -86,12 +87,32 @@ void talus_wrap_blocks(py::module_& m)
   // The contact geometry of a pair as it stands, timed (convex_contact_probe.h).
   m.def(
       "block_contact",
-      [](const Scene& s, BodyId id1, BodyId id2, int repeats, double accuracyTol) {
-        return probeConvexContact(s, id1, id2, repeats, accuracyTol,
+      [](const Scene& s, BodyId id1, BodyId id2, int repeats, std::optional<double> accuracyTol) {
+        return probeConvexContact(s, id1, id2, repeats, accuracyTol.value_or(s.bodies.blockContact.accuracyTol),
                                   [](const Scene& sc, BodyId id) { blockOf(sc, id); }, potentialBlockContact);
       },
       py::arg("scene"), py::arg("id1"), py::arg("id2"), py::arg("repeats") = 1,
-      py::arg("accuracyTol") = defaultBlockAccuracyTol);
+      py::arg("accuracyTol") = std::nullopt);
+  m.attr("default_block_accuracy_tol") = defaultBlockAccuracyTol;
+  // Ig2_PB_PB_ScGeom's settings for every block contact of the scene (set from O.engines).
+  m.def(
+      "set_block_contact_settings",
+      [](Scene& s, bool twoDimension, const Vec3& twoDdir, double unitWidth2D, bool exactDepth, double accuracyTol) {
+        if (!twoDdir.allFinite() || !(twoDdir.norm() > 0))
+          throw std::invalid_argument("Ig2_PB_PB_ScGeom.twoDdir must be a finite non-zero vector, got ("
+                                      + std::to_string(twoDdir[0]) + ", " + std::to_string(twoDdir[1]) + ", "
+                                      + std::to_string(twoDdir[2]) + ")");
+        if (!std::isfinite(unitWidth2D) || !(unitWidth2D > 0))
+          throw std::invalid_argument("Ig2_PB_PB_ScGeom.unitWidth2D must be finite and > 0, got "
+                                      + std::to_string(unitWidth2D));
+        if (!std::isfinite(accuracyTol) || !(accuracyTol > 0))
+          throw std::invalid_argument("Ig2_PB_PB_ScGeom.accuracyTol must be finite and > 0, got "
+                                      + std::to_string(accuracyTol));
+        s.bodies.blockContact =
+            BlockContactSettings{twoDimension, twoDdir.normalized(), unitWidth2D, exactDepth, accuracyTol};
+      },
+      py::arg("scene"), py::arg("twoDimension"), py::arg("twoDdir"), py::arg("unitWidth2D"), py::arg("exactDepth"),
+      py::arg("accuracyTol"));
   // Contact areas of the real contacts (same order as Scene.contacts()); 0 without extra state.
   m.def("contact_areas", [](const Scene& s) {
     std::vector<double> out;

@@ -219,17 +219,7 @@ PYBIND11_MODULE(_dem, m)
       .def("materialIds", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.material, self)); })
       .def("shapeKind", [](const Scene& s, BodyId id) {
         s.checkBody(id);
-        switch (s.bodies.shape[static_cast<std::size_t>(id)])
-        {
-        case ShapeKind::Sphere: return "Sphere";
-        case ShapeKind::Wall: return "Wall";
-        case ShapeKind::Facet: return "Facet";
-        case ShapeKind::Box: return "Box";
-        case ShapeKind::Clump: return "Clump";
-        case ShapeKind::PotentialBlock: return "PotentialBlock";
-        case ShapeKind::PotentialParticle: return "PotentialParticle";
-        }
-        return "?";
+        return shapeName(s.bodies.shape[static_cast<std::size_t>(id)]);
       })
       .def("ori", [](const Scene& s, BodyId id) {
         s.checkBody(id);

@@ -9,7 +9,7 @@ from talus import _dem
 from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
                        PotentialBlock, PotentialBlock2AABB, Scene, blockContact, blockShape, blockVertices,
-                       io, potentialBlock, wall, write_blocks)
+                       potentialBlock, wall, write_blocks)
 
 pytestmark = pytest.mark.skipif(not _dem.have_potential_blocks, reason="built without CLP")
 
@@ -121,13 +121,20 @@ def _mul(p, q):
             w1 * y2 - x1 * z2 + y1 * w2 + z1 * x2, w1 * z2 + x1 * y2 - y1 * x2 + z1 * w2)
 
 
-def test_edge_to_edge_crossing_gives_a_finite_unit_normal():
-    S, m = scene()
+def crossed_bars(S, m):
+    """Two bars turned 45 degrees about their axes, crossing at right angles, an edge of each
+    1e-3 m into the other; returns their ids."""
     bar = PotentialBlock.cuboid((1.0, 0.2, 0.2), r=0.02)
     a = S.bodies.append(potentialBlock(bar, pos=(0, 0, 0), orientation=quat((1, 0, 0), math.pi / 4), material=m))
     b = S.bodies.append(potentialBlock(bar, pos=(0, 0, 0.4 * math.sqrt(2) - 1e-3),
                                        orientation=_mul(quat((0, 0, 1), math.pi / 2), quat((1, 0, 0), math.pi / 4)),
                                        material=m))
+    return a, b
+
+
+def test_edge_to_edge_crossing_gives_a_finite_unit_normal():
+    S, m = scene()
+    a, b = crossed_bars(S, m)
     g = blockContact(S, a, b)
     assert g["touching"]
     assert np.linalg.norm(g["normal"]) == pytest.approx(1, abs=1e-12)
@@ -135,9 +142,9 @@ def test_edge_to_edge_crossing_gives_a_finite_unit_normal():
     assert g["penetrationDepth"] == pytest.approx(1e-3, rel=1e-2)
 
 
-def engines(S, Knormal=1e8, Kshear=1e7, damping=0.0, viscous=0.0, gravity=(0, 0, -9.81)):
+def engines(S, Knormal=1e8, Kshear=1e7, damping=0.0, viscous=0.0, gravity=(0, 0, -9.81), **geometry):
     S.engines = [ForceResetter(), InsertionSortCollider([PotentialBlock2AABB()], verletDist=0.01),
-                 InteractionLoop([Ig2_PB_PB_ScGeom(calContactArea=True)],
+                 InteractionLoop([Ig2_PB_PB_ScGeom(calContactArea=True, **geometry)],
                                  [Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=Knormal, Kshear=Kshear, kn_i=Knormal,
                                                                    ks_i=Kshear, viscousDamping=viscous)],
                                  [Law2_SCG_KnKsPBPhys_KnKsPBLaw()]),
@@ -167,13 +174,6 @@ def test_cube_resting_on_a_base_reaches_the_weight(base):
     assert S.bodies[c].state.pos[2] == pytest.approx(0.5 - weight / 1e8, rel=1e-6)
 
 
-def test_saving_a_scene_with_blocks_is_refused(tmp_path):
-    S, m = scene()
-    S.bodies.append(potentialBlock(PotentialBlock(**TETRA), material=m))
-    with pytest.raises(Exception, match="body 0 is a PotentialBlock"):
-        io.save(S, tmp_path / "blocks.h5")
-
-
 def test_vtk_output_has_the_true_faces(tmp_path):
     S, m = scene()
     S.bodies.append(potentialBlock(PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.01), material=m))
@@ -191,3 +191,95 @@ def test_a_block_body_shows_its_planes_as_yade_does():
     shape = S.bodies[i].shape
     assert isinstance(shape, PotentialBlock) and shape.r == 0.01 and len(shape.a) == 6
     np.testing.assert_allclose(sorted(shape.d), sorted([0.49, 0.49, 0.24, 0.24, 0.115, 0.115]), atol=1e-12)
+
+
+def test_2d_area_is_the_joint_length_times_the_unit_width():
+    """Yade's 2D mode: a cube on a plank along y (the out-of-plane direction twoDdir), 0.4 m of
+    their x extents overlapping: the joint is 0.4 m long, the area 0.4 unitWidth2D (in 3D the
+    section, 0.4 x 1)."""
+    S, m = scene()
+    plank = S.bodies.append(potentialBlock(PotentialBlock.cuboid((0.3, 3.0, 0.5), r=0.02), pos=(0, 0, 0), material=m))
+    cube = S.bodies.append(potentialBlock(PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.02), pos=(0.4, 0.2, 0.999),
+                                          material=m))
+    engines(S)
+    g3 = blockContact(S, plank, cube)
+    assert g3["contactArea"] == pytest.approx(0.4 * 1.0, rel=1e-12)
+    engines(S, twoDimension=True, unitWidth2D=0.7)
+    g2 = blockContact(S, plank, cube)
+    assert g2["contactArea"] == pytest.approx(0.4 * 0.7, rel=1e-12)
+    assert g2["penetrationDepth"] == g3["penetrationDepth"] and np.array_equal(g2["normal"], g3["normal"])
+    engines(S, twoDimension=True, unitWidth2D=0.7, twoDdir=(1, 0, 0))   # the joint then runs along y
+    assert blockContact(S, plank, cube)["contactArea"] == pytest.approx(1.0 * 0.7, rel=1e-12)
+    with pytest.raises(ValueError, match="unitWidth2D must be finite and > 0"):
+        engines(S, twoDimension=True, unitWidth2D=0)
+
+
+def test_2d_prism_resting_on_a_wall_carries_its_weight():
+    """A prism 1 m wide (x), 6 m long along twoDdir = y, in 2D mode with unitWidth2D = 1: the
+    contact area is the joint, 1 m x 1, so it settles at the overlap m g / (Knormal x 1)
+    (in 3D it would be six times smaller, the section being 6 m^2)."""
+    S, m = scene(density=1000)
+    S.bodies.append(wall(0, axis=2, sense=1, material=m))
+    c = S.bodies.append(potentialBlock(PotentialBlock.cuboid((0.5, 3.0, 0.5), r=0.02), pos=(0, 0, 0.5), material=m))
+    engines(S, Knormal=1e8, damping=0.3, viscous=0.5, twoDimension=True, unitWidth2D=1.0)
+    S.dt = 2e-4
+    S.run(3000, True)
+    weight = 1000 * 6.0 * 9.81
+    contacts = S._cpp.contacts()
+    assert len(contacts) == 1
+    assert contacts[0]["normalForce"][2] == pytest.approx(weight, rel=1e-6)
+    assert _dem.contact_areas(S._cpp)[0] == pytest.approx(1.0, rel=1e-12)
+    assert contacts[0]["penetrationDepth"] == pytest.approx(weight / 1e8, rel=1e-4)
+    assert S.bodies[c].state.pos[2] == pytest.approx(0.5 - weight / 1e8, rel=1e-6)
+
+
+def test_exact_depth_option_gives_the_penetration_depth():
+    """exactDepth: crossed bars (an edge-edge contact) 1e-3 m deep, a cube's corner 2e-3 m into
+    another's face and into a wall: the depth exactly (the seed's chord: within 1 % for the
+    bars, 4e-4 short for the corner into the face)."""
+    S, m = scene()
+    a, b = crossed_bars(S, m)
+    cube = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.05)
+    corner_down = quat(np.cross([1, 1, 1], [0, 0, 1]), math.acos(1 / math.sqrt(3)))
+    c = S.bodies.append(potentialBlock(cube, pos=(5, 0, 0), material=m))
+    d = S.bodies.append(potentialBlock(cube, pos=(5.1, 0.05, 0.5 + math.sqrt(3) / 2 - 2e-3), orientation=corner_down,
+                                       material=m))
+    w = S.bodies.append(wall(-3, axis=2, sense=1, material=m))
+    e = S.bodies.append(potentialBlock(cube, pos=(0, 5, -3 + math.sqrt(3) / 2 - 2e-3), orientation=corner_down,
+                                       material=m))
+    engines(S)
+    chord = blockContact(S, c, d)["penetrationDepth"]
+    assert chord == pytest.approx(2e-3, rel=1e-3) and abs(chord - 2e-3) > 1e-7
+    engines(S, exactDepth=True)
+    g = blockContact(S, a, b)
+    assert g["penetrationDepth"] == pytest.approx(1e-3, rel=1e-9)
+    assert np.allclose(g["normal"], [0, 0, 1], atol=1e-12)
+    g = blockContact(S, c, d)
+    assert g["penetrationDepth"] == pytest.approx(2e-3, rel=1e-9)
+    assert np.allclose(g["normal"], [0, 0, 1], atol=1e-12)
+    assert blockContact(S, w, e)["penetrationDepth"] == pytest.approx(2e-3, rel=1e-9)
+
+
+def test_accuracy_tolerance_of_the_geometry_functor_reaches_the_solver():
+    """Ig2_PB_PB_ScGeom(accuracyTol=...) sets the analytic centre's tolerance of every block
+    contact, in the simulation and in the probe (a loose one moves the seed's chord of a corner
+    into a face); 0 is refused."""
+    def corner_into_face(**geometry):
+        S, m = scene()
+        cube = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.05)
+        corner_down = quat(np.cross([1, 1, 1], [0, 0, 1]), math.acos(1 / math.sqrt(3)))
+        S.bodies.append(potentialBlock(cube, pos=(0, 0, 0), material=m, fixed=True))
+        S.bodies.append(potentialBlock(cube, pos=(0.1, 0.05, 0.5 + math.sqrt(3) / 2 - 2e-3), orientation=corner_down,
+                                       material=m, fixed=True))
+        engines(S, **geometry)
+        return S
+
+    tight, loose = corner_into_face(), corner_into_face(accuracyTol=0.1)
+    assert blockContact(tight, 0, 1)["penetrationDepth"] == blockContact(tight, 0, 1, accuracyTol=1e-10)["penetrationDepth"]
+    assert blockContact(loose, 0, 1)["penetrationDepth"] == blockContact(loose, 0, 1, accuracyTol=0.1)["penetrationDepth"]
+    for S in (tight, loose):
+        S.run(1, True)
+    depths = [S._cpp.contacts()[0]["penetrationDepth"] for S in (tight, loose)]
+    assert depths[0] == pytest.approx(2e-3, rel=1e-3) and depths[1] != depths[0]
+    with pytest.raises(ValueError, match="accuracyTol must be finite and > 0"):
+        engines(tight, accuracyTol=0)

@@ -95,10 +95,9 @@ def blockContact(scene: "Scene", id1: int, id2: int, repeats: int = 1, accuracyT
     """Contact geometry of a block pair (or wall id1, block id2) as it stands now, and the
     solver's mean time per call over ``repeats`` calls (``seconds`` cold, ``secondsWarm``
     starting from the contact point). ``accuracyTol``: the analytic centre's stopping Newton
-    decrement (None: the simulation's default, 1e-10)."""
-    if accuracyTol is None:
-        return _dem.block_contact(scene._cpp, int(id1), int(id2), int(repeats))
-    return _dem.block_contact(scene._cpp, int(id1), int(id2), int(repeats), float(accuracyTol))
+    decrement (None: the scene's, Ig2_PB_PB_ScGeom.accuracyTol, default 1e-10)."""
+    return _dem.block_contact(scene._cpp, int(id1), int(id2), int(repeats),
+                              None if accuracyTol is None else float(accuracyTol))
 
 
 def write_blocks(scene: "Scene", path: str) -> int:
@@ -131,14 +130,36 @@ class PotentialBlock2AABB(Functor):
 
 class Ig2_PB_PB_ScGeom(Functor):
     """Block-block and wall-block contact geometry. ``calContactArea`` False: area 1 (constant
-    stiffnesses). Yade's 2D mode (``twoDimension``) is not supported yet."""
-    _parameters = ("calContactArea", "twoDimension", "unitWidth2D")
+    stiffnesses). ``twoDimension`` (Yade's 2D mode): the blocks are prisms along ``twoDdir``
+    (default (0, 1, 0)) and the contact area is the joint length (the overlap region's chord
+    through the contact point along normal x twoDdir) times ``unitWidth2D`` (default 1).
+    ``exactDepth`` (Talus only, default False): the overlap is the polyhedra's penetration depth
+    and the normal its direction, instead of Yade's chord through the analytic centre.
+    ``accuracyTol``: the analytic centre's stopping Newton decrement (default 1e-10; Yade's is
+    its conic solver's tolerance)."""
+    _parameters = ("calContactArea", "twoDimension", "unitWidth2D", "twoDdir", "exactDepth", "accuracyTol")
 
-    def __init__(self, label: str = "", **params):
-        super().__init__(label, **params)
-        if self.twoDimension:
-            raise ValueError("Ig2_PB_PB_ScGeom: twoDimension=True (contact area = joint length x unitWidth2D) "
-                             "is not supported yet")
+    def _applyToScene(self, cpp):
+        """Set these settings for every block contact of the scene whose engines hold us."""
+        direction = (0.0, 1.0, 0.0) if self.twoDdir is None else tuple(float(x) for x in self.twoDdir)
+        if len(direction) != 3:
+            raise ValueError(f"Ig2_PB_PB_ScGeom.twoDdir must be a 3-vector, got {self.twoDdir!r}")
+        _dem.set_block_contact_settings(cpp, bool(self.twoDimension), np.asarray(direction, dtype=float),
+                                        1.0 if self.unitWidth2D is None else float(self.unitWidth2D),
+                                        bool(self.exactDepth),
+                                        _dem.default_block_accuracy_tol if self.accuracyTol is None
+                                        else float(self.accuracyTol))
+
+
+def _applyBlockContactSettings(cpp, engines):
+    """The block contacts' settings of a scene from its engines: those of the first
+    Ig2_PB_PB_ScGeom of an InteractionLoop, or the defaults."""
+    for engine in engines:
+        for g in getattr(engine, "geomFunctors", ()):
+            if isinstance(g, Ig2_PB_PB_ScGeom):
+                g._applyToScene(cpp)
+                return
+    Ig2_PB_PB_ScGeom()._applyToScene(cpp)
 
 
 class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
@@ -154,10 +175,13 @@ class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
     and ``traceEnergy`` are accepted (energies follow O.trackEnergy)."""
     _cpp_name = "Law2_SCG_KnKsPBPhys_KnKsPBLaw"
     _parameters = ("allowViscousAttraction", "neverErase", "traceEnergy")
-    _yade_only = ("neverErase", "traceEnergy", "useFaceProperties", "twoDimension", "unitWidth2D", "AabbMinMax")
+    # Accepted, but not the law's: Yade's options without effect here, and the geometry's
+    # settings that go to the scene (Ig2_PB_PB_ScGeom._applyToScene).
+    _not_the_laws = ("neverErase", "traceEnergy", "useFaceProperties", "twoDimension", "unitWidth2D", "twoDdir",
+                     "exactDepth", "accuracyTol", "AabbMinMax")
 
     def _set(self, name: str, value):
-        if name in self._yade_only:
+        if name in self._not_the_laws:
             if name == "useFaceProperties" and value:
                 raise ValueError("Ip2_FrictMat_FrictMat_KnKsPBPhys: useFaceProperties=True is not supported")
             return

@@ -6,6 +6,7 @@ import __main__
 from typing import Sequence
 
 from talus import _dem
+from talus.dem.blocks import _applyBlockContactSettings
 from talus.dem.bodies import BodyContainer
 from talus.dem.cell import Cell
 from talus.dem.energy import EnergyTracker
@@ -133,6 +134,7 @@ class Scene(CheckpointMethods):
                 raise TypeError(f"O.engines takes engines, got {e!r}")
         self._cpp.engines = [e._cpp for e in engines]
         self._engines = engines
+        _applyBlockContactSettings(self._cpp, engines)   # the geometry functors' settings of the scene
         # As in Yade, a labelled engine becomes a variable of the script.
         for e in engines:
             if e.label:
