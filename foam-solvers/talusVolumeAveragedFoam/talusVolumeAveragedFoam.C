@@ -55,8 +55,13 @@ static const char* const solverName = "talusVolumeAveragedFoam";
 
 namespace
 {
-// Per particle, the envelope's interpolation of: alphaf, U, grad p, nu lap U, DU/Dt.
-constexpr int kInterp = 13;
+// Per cell, what the envelope gathers to the particles (ParticleEnvelope::gather): V, and V
+// times alphaf, U, -grad p + nu lap U (the buoyancy's acceleration), DU/Dt. The first sum is
+// W_i, the others the interpolations times W_i. The 12th is 0: rows of whole vector registers.
+constexpr int kGathered = 12;
+// Per particle, what it spreads onto the cells besides its volume: V_p K, V_p K u_p (the
+// drag's implicit and explicit parts) and the added mass; the 8th is 0, as above.
+constexpr int kReactions = 8;
 }
 
 
@@ -100,10 +105,12 @@ int main(int argc, char *argv[])
     talusFoam::ParticleEnvelope envelope(mesh, envelopeType == "gaussian" ? envelopeWidth : 0);
     std::vector<double> particles;    // per particle x y z vx vy vz r index
     std::vector<double> reply;        // header (FoamProtocol.h), then per particle fx fy fz owned beta uf
-    std::vector<double> interp;       // kInterp per particle, summed over ranks
-    // The kInterp values per cell side by side: the envelope's loop reads one cache line or two
-    // per cell instead of five fields.
-    std::vector<double> cellValues(kInterp*mesh.nCells());
+    // The envelope's inputs and outputs, kept between exchanges (no allocation per exchange):
+    // per particle its volume, its gathered sums (kGathered, summed over the ranks) and its
+    // reactions (kReactions); per cell the solid fraction, what is gathered and the reactions.
+    std::vector<double> volumes, gathered, reactions;
+    std::vector<double> cellSolid, cellValues(kGathered*mesh.nCells()), cellReactions;
+    std::vector<bool> touches;        // per particle: its envelope reaches this rank's cells
     // By particle index, for du_p/dt: its velocity at the last exchange that had it on this
     // rank, and that exchange's number (-1: none; a vector, not a map: no allocation per
     // particle).
@@ -112,9 +119,6 @@ int main(int argc, char *argv[])
     label exchange = 0;
     scalarField alphaNew(mesh.nCells());
     const scalarField& V = mesh.V();
-    // Spreading a particle's volume and reactions multiplies by 1/V_c and 1/rho instead of
-    // dividing for every cell the envelope reaches.
-    const scalarField inverseV(1/V);
     const scalar inverseRho = 1/rhoF;
     bool first = true;
 
@@ -125,19 +129,19 @@ int main(int argc, char *argv[])
         #include "receiveParticles.H"
 
         locator.locate(particles, n, halo);
-        envelope.build(particles, n, locator, halo);
+        envelope.build(particles, n, locator);
 
         // Fluid fraction of the particles' new positions.
-        scalarField solid(mesh.nCells(), 0.0);
+        volumes.resize(n);
         for (label i = 0; i < n; ++i)
         {
-            const scalar Vp = 4.0/3.0*pi*pow3(particles[proto::kParticleDoubles*i + 6]);
-            envelope.forEachSpread(i, [&](label c, double w)
-            {
-                solid[c] += w*Vp*inverseV[c];
-            });
+            volumes[i] = 4.0/3.0*pi*pow3(particles[proto::kParticleDoubles*i + 6]);
         }
-        alphaNew = max(1 - solid, alphaMin);
+        envelope.spread<1>(volumes, cellSolid);
+        forAll(alphaNew, c)
+        {
+            alphaNew[c] = max(1 - cellSolid[c], alphaMin);
+        }
         if (alphaRelaxationTime > 0 && !first)
         {
             alphaNew =
@@ -152,62 +156,53 @@ int main(int argc, char *argv[])
         const volVectorField DUDt(fvc::ddt(U) + (U & fvc::grad(U)));
         forAll(alphaNew, c)
         {
-            double* v = &cellValues[kInterp*c];
-            v[0] = alphaNew[c];
+            double* v = &cellValues[kGathered*c];
+            v[0] = V[c];
+            v[1] = V[c]*alphaNew[c];
+            v[11] = 0;
             for (direction k = 0; k < 3; ++k)
             {
-                v[1 + k] = U[c][k];
-                v[4 + k] = gradp[c][k];
-                v[7 + k] = lapU[c][k];
-                v[10 + k] = DUDt[c][k];
+                v[2 + k] = V[c]*U[c][k];
+                v[5 + k] = V[c]*(lapU[c][k] - gradp[c][k]);
+                v[8 + k] = V[c]*DUDt[c][k];
             }
         }
-        interp.assign(kInterp*n, 0.0);
+        envelope.gather<kGathered>(cellValues, gathered);
+        touches.resize(n);
         for (label i = 0; i < n; ++i)
         {
-            // Summed in a local array, stored once: through interp's pointer the compiler
-            // must load and store all 13 sums at every cell (it may alias cellValues).
-            std::array<double, kInterp> sums{};
-            envelope.forEachInterpolation(i, [&](label c, double w)
-            {
-                const double* v = &cellValues[kInterp*c];
-                for (int k = 0; k < kInterp; ++k)
-                {
-                    sums[k] += w*v[k];
-                }
-            });
-            std::copy(sums.begin(), sums.end(), &interp[kInterp*i]);
+            touches[i] = gathered[kGathered*i] > 0;
         }
-        halo.combine(interp, kInterp);
+        halo.combine(gathered, kGathered);
 
         // Forces on the particles (every rank whose cells a particle touches computes it from
         // the same summed values; its owner returns it) and their reactions on the fluid.
-        Ksp.primitiveFieldRef() = 0;
-        KUp.primitiveFieldRef() = Zero;
-        Sexplicit.primitiveFieldRef() = Zero;
         reply.assign(proto::kReplyHeader + proto::kForceDoubles*n, 0.0);
+        reactions.assign(kReactions*n, 0.0);
         const scalar dt = runTime.deltaTValue();
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
         {
-            if (!envelope.touches(i) && !locator.owned(i))
+            if (!touches[i] && !locator.owned(i))
             {
                 continue;
             }
             const double* q = &particles[proto::kParticleDoubles*i];
-            const double* s = &interp[kInterp*i];
+            const double* s = &gathered[kGathered*i];
+            // W_i = 0: no cell of any rank within the cut-off of a particle in its cell (an
+            // envelope narrower than the cells): nothing interpolated, as with no pairs.
+            const scalar inverseW = s[0] > 0 ? 1/s[0] : 0;
             const vector up(q[3], q[4], q[5]);
             const scalar d = 2*q[6];
             const scalar Vp = pi*pow3(d)/6;
-            const scalar alpha = min(max(s[0], alphaMin), 1.0);
-            const vector uf(s[1], s[2], s[3]);
+            const scalar alpha = min(max(s[1]*inverseW, alphaMin), 1.0);
+            const vector uf = inverseW*vector(s[2], s[3], s[4]);
             const vector slip = uf - up;
             const scalar Re = mag(slip)*d/nuF;
             const scalar K = drag.K(alpha, mag(slip), d);
             const vector dragForce = Vp*K*slip;
             const vector buoyancy =
-                Vp*rhoF*(vector(-s[4], -s[5], -s[6]) + vector(s[7], s[8], s[9]))
-              - rhoF*Vp*gravity;
+                Vp*rhoF*inverseW*vector(s[5], s[6], s[7]) - rhoF*Vp*gravity;
             const std::size_t id = static_cast<std::size_t>(q[7]);
             if (id >= lastVelocity.size())
             {
@@ -219,15 +214,14 @@ int main(int argc, char *argv[])
             lastVelocity[id] = up;
             lastExchange[id] = exchange;
             const vector addedMass =
-                addedMassCoefficient*rhoF*Vp*(vector(s[10], s[11], s[12]) - dupdt);
-            envelope.forEachSpread(i, [&](label c, double w)
+                addedMassCoefficient*rhoF*Vp*(inverseW*vector(s[8], s[9], s[10]) - dupdt);
+            double* reaction = &reactions[kReactions*i];
+            reaction[0] = Vp*K;
+            for (direction k = 0; k < 3; ++k)
             {
-                const scalar wV = w*inverseV[c]*inverseRho;
-                const scalar share = wV*Vp;
-                Ksp[c] += share*K;
-                KUp[c] += share*K*up;
-                Sexplicit[c] -= wV*addedMass;
-            });
+                reaction[1 + k] = Vp*K*up[k];
+                reaction[4 + k] = addedMass[k];
+            }
             if (locator.owned(i))
             {
                 const vector f = dragForce + buoyancy + addedMass;
@@ -242,6 +236,14 @@ int main(int argc, char *argv[])
                 r[7] = uf.z();
                 maxRe = max(maxRe, Re);
             }
+        }
+        envelope.spread<kReactions>(reactions, cellReactions);
+        forAll(Ksp, c)
+        {
+            const double* r = &cellReactions[kReactions*c];
+            Ksp[c] = r[0]*inverseRho;
+            KUp[c] = inverseRho*vector(r[1], r[2], r[3]);
+            Sexplicit[c] = -inverseRho*vector(r[4], r[5], r[6]);
         }
         ++exchange;
         talusFoam::sendForces(link, reply, maxRe, halo, exchangeTimer);
