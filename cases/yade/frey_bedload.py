@@ -31,7 +31,13 @@ m = P["material"]
 O.materials.append(ViscElMat(kn=m["kn"], cn=m["cn"], ks=m["ks"], cs=m["cs"], density=m["density"],
                              frictionAngle=m["frictionAngle"]))
 for y in P["walls"]:
-    O.bodies.append(wall(y, axis=1))
+    if yade:
+        # As Yade's validMaurin2015.py: a flat box far wider than the cell (a Wall in a periodic
+        # cell sends Yade's collider into a crawl); the same plane contact as Talus's wall.
+        O.bodies.append(box(center=(P["cell"][0] / 2, y, P["cell"][2] / 2), extents=(2000, 0, 10 * P["cell"][2]),
+                            fixed=True))
+    else:
+        O.bodies.append(wall(y, axis=1))
 first = len(O.bodies)
 for (x, y, z), r, fixed in zip(P["pos"], P["radius"], P["fixed"]):
     O.bodies.append(sphere((x, y, z), r, fixed=fixed))
@@ -47,13 +53,14 @@ common = dict(densFluid=h["densFluid"], viscoDyn=h["viscoDyn"], zRef=h["zRef"], 
 if yade:
     # Yade's action skips a grain outside the grid; Talus says so explicitly (ignoreOutside).
     hydro = HydroForceEngine(**common)
-    collider = InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()], allowBiggerThanPeriod=True)
+    collider = InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Box_Aabb()], allowBiggerThanPeriod=True)
+    geometry = [Ig2_Sphere_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()]
 else:
     hydro = HydroForceEngine(ignoreOutside=True, **common)
     collider = InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()])
+    geometry = [Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()]
 O.engines = [ForceResetter(), collider,
-             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()], [Ip2_ViscElMat_ViscElMat_ViscElPhys()],
-                             [Law2_ScGeom_ViscElPhys_Basic()]),
+             InteractionLoop(geometry, [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]),
              hydro, NewtonIntegrator(damping=0.0, gravity=tuple(h["gravity"]))]
 O.dt = P["dt"]
 if yade:
