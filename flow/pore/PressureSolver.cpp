@@ -15,12 +15,12 @@ namespace talus::flow::pore
 {
 namespace
 {
-/// Below this many unknowns the factor is simplicial, above it supernodal. Measured (CPU time,
-/// loaded 2-core machine, bench packings, nested-dissection ordering below): at 2 600 unknowns
-/// a simplicial factorisation takes 0.005 s against 0.009 s and a solve 0.10 ms against 0.19 ms;
-/// at 6 100 the supernodal factorisation is already faster (0.022 s against 0.039 s), at 34 000
-/// five times faster.
-constexpr int kSupernodalFrom = 4000;
+/// Below this many unknowns the factor is simplicial, above it supernodal. Measured (CPU time of
+/// ordering + analysis + factorisation + solve, loaded 2-core machine, bench clouds, nested
+/// dissection below, the supernodal factor on one thread): 1 729 pores 2.9-3.2 ms simplicial
+/// against 3.3-3.5 ms supernodal, 2 981 pores 5.7-8.3 against 5.7-7.0 ms, 4 166 pores 12-16 against
+/// 9.4-10.7 ms, 6 102 pores 24-25 against 14 ms.
+constexpr int kSupernodalFrom = 2500;
 /// Nested dissection stops at this many unknowns (their order inside does not matter).
 constexpr std::size_t kDissectionLeaf = 16;
 
