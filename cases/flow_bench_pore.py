@@ -13,7 +13,11 @@ Set-up:   loose seeded clouds (makeCloud, rMean 0.035, rRelFuzz 0.3, side (n / 1
             analysis and factorisation, solve, forces), the median over REMESHES fresh scenes;
             "solve" = the median of 5 more steps on the same mesh (volume update, solve with the
             kept factor, forces).
-          - Talus: "remesh" = triangulate + solve + vertexForces, the median over REMESHES;
+          - Talus: "remesh" = triangulate + solve + vertexForces, the median over 2 x REMESHES,
+            half just before Yade's run of the same size and half just after (the load of the
+            shared machine drifts: the samples bracket Yade's in time); each side does one untimed
+            warm-up remesh first (in one run without it Talus's first 1k samples were up to 1.8x
+            its last ones);
             "solve" = the median of 5 of moveVertices (same positions) + solve + vertexForces.
           - Symbolic reuse (Talus only): a compressible fluid changes the matrix values every
             step but not its pattern; the time of such a step (numeric factorisation only)
@@ -69,7 +73,9 @@ class Timer:
         self.wall, self.cpu = time.perf_counter() - self.wall, time.process_time() - self.cpu
 
 
-def talus_times(centers, radii, remeshes):
+def talus_remeshes(centers, radii, remeshes):
+    """Wall and CPU times of `remeshes` fresh remeshes (triangulate + solve + forces), and the
+    last engine."""
     remesh_times, remesh_cpu = [], []
     for _ in range(remeshes):
         flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0])
@@ -79,6 +85,12 @@ def talus_times(centers, radii, remeshes):
             flow._flow.vertexForces()
         remesh_times.append(remesh.wall)
         remesh_cpu.append(remesh.cpu)
+    return remesh_times, remesh_cpu, flow
+
+
+def talus_times(centers, radii, remeshes):
+    talus_remeshes(centers, radii, 1)  # warm-up, untimed, as on Yade's side
+    remesh_times, remesh_cpu, flow = talus_remeshes(centers, radii, remeshes)
     solves, solves_cpu = [], []
     for _ in range(REPEATS):
         with Timer() as step:
@@ -96,7 +108,7 @@ def talus_times(centers, radii, remeshes):
         flow.solve()
     after = flow.solverStats()
     return dict(remesh_s=float(np.median(remesh_times)), remesh_cpu_s=float(np.median(remesh_cpu)),
-                remesh_cpu_all_s=remesh_cpu, solve_s=float(np.median(solves)),
+                remesh_all_s=remesh_times, remesh_cpu_all_s=remesh_cpu, solve_s=float(np.median(solves)),
                 solve_cpu_s=float(np.median(solves_cpu)), flux=flux, nCells=flow.nCells(),
                 analyse_s=first["analyseSeconds"], factorize_s=first["factorizeSeconds"],
                 compressible_step_s=refactor.wall, compressible_step_cpu_s=refactor.cpu, analyses_after=after["analyses"])
@@ -120,8 +132,8 @@ def main():
     case = results.Case("flow.bench", quick=args.quick, folder=args.results)
     sizes = [1000, 10000] if args.quick else [1000, 10000, 50000]
     rows = []
+    yade = []
     with tempfile.TemporaryDirectory() as tmp:
-        files = []
         for n in sizes:
             sp = cloud(n, seed=n)
             path = Path(tmp) / f"cloud-{n}.txt"
@@ -132,15 +144,20 @@ def main():
             radii = np.array([r for _, r in sp])
             row = dict(spheres=n, **talus_times(centers, radii, REMESHES[n]))
             rows.append(row)
-            files.append(str(path))
+            if twin.yade_available():
+                # Yade's remeshes, then as many of Talus's again: the load of the shared machine
+                # drifts, and Talus's samples now bracket Yade's in time (medians over both sets)
+                yade.append(twin.run(YADE_SCRIPT, {"packings": [str(path)], "axis": 1, "dp": 1.0, "solves": REPEATS,
+                                                   "remeshes": REMESHES[n]}, "yade")[0])
+                wall, cpu, _ = talus_remeshes(centers, radii, REMESHES[n])
+                row["remesh_all_s"] += wall
+                row["remesh_cpu_all_s"] += cpu
+                row["remesh_s"] = float(np.median(row["remesh_all_s"]))
+                row["remesh_cpu_s"] = float(np.median(row["remesh_cpu_all_s"]))
             print(f"Talus {n:6d} spheres, {row['nCells']} pores: remesh {row['remesh_cpu_s']:.3f} s CPU "
                   f"(wall {row['remesh_s']:.3f} s; CHOLMOD analyse {row['analyse_s']:.3f} s, factorise "
                   f"{row['factorize_s']:.3f} s), solve step {row['solve_cpu_s'] * 1e3:.2f} ms CPU, compressible step "
                   f"(numeric refactor) {row['compressible_step_cpu_s'] * 1e3:.1f} ms CPU")
-        yade = None
-        if twin.yade_available():
-            yade = [twin.run(YADE_SCRIPT, {"packings": [f], "axis": 1, "dp": 1.0, "solves": REPEATS,
-                                           "remeshes": REMESHES[n]}, "yade")[0] for f, n in zip(files, sizes)]
 
     big = rows[-1]
     share = big["analyse_s"] / (big["analyse_s"] + big["factorize_s"])
@@ -149,7 +166,7 @@ def main():
                 "Talus, compressible step with the analysis kept", 0.0, suffix="symbolic-reuse", comparison=">=",
                 analyse_s=big["analyse_s"], factorize_s=big["factorize_s"],
                 compressible_step_s=big["compressible_step_s"], analyses_after=big["analyses_after"], sizes=rows)
-    if yade is not None:
+    if yade:
         for row, y in zip(rows, yade):
             row["yade_remesh_s"] = float(np.median(y["remesh_s"]))
             row["yade_solve_s"] = float(np.median(y["solve_s"]))
@@ -181,7 +198,7 @@ def main():
     ax.loglog(n, [r["remesh_cpu_s"] for r in rows], "o-", color="C0", label="Talus remesh")
     ax.loglog(n, [r["solve_cpu_s"] for r in rows], "s-", color="C0", label="Talus solve step")
     ax.loglog(n, [r["compressible_step_cpu_s"] for r in rows], "^:", color="C0", label="Talus compressible step")
-    if yade is not None:
+    if yade:
         ax.loglog(n, [r["yade_remesh_cpu_s"] for r in rows], "o--", color="C1", label="Yade remesh")
         ax.loglog(n, [r["yade_solve_cpu_s"] for r in rows], "s--", color="C1", label="Yade solve step")
     ax.set_xlabel("spheres")

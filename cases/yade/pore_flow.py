@@ -7,7 +7,8 @@
 #   axis       flow direction 0, 1, 2: pressure `dp` on its lower boundary, 0 on the upper one
 #   dp, viscosity, permeabilityFactor
 #   solves     extra solves timed after the first step (0: none)
-#   remeshes   how many times the first step is timed, each on a fresh scene (default 1)
+#   remeshes   how many times the first step is timed, each on a fresh scene (default 1; when
+#              more than 1, after one untimed warm-up)
 # For each packing the spheres are put in the six walls of its box (boundaryUseMaxMin off) or of
 # their bounding box (boundaryUseMaxMin on), FlowEngine (CHOLMOD, useSolver=3) runs one step, and the case gets the
 # boundary fluxes, the cell count, the time of the first step (triangulation, geometry,
@@ -55,6 +56,8 @@ for n, path in enumerate(params["packings"]):
         lo = [min(s[k] - s[3] for s in spheres) for k in range(3)]
         hi = [max(s[k] + s[3] for s in spheres) for k in range(3)]
     remesh, remesh_cpu = [], []
+    if int(params.get("remeshes", 1)) > 1:
+        first_step(spheres, lo, hi)  # warm-up, untimed: the timed ones are those of a running process
     for _ in range(int(params.get("remeshes", 1))):
         first, first_cpu, flow = first_step(spheres, lo, hi)
         remesh.append(first)
