@@ -176,9 +176,16 @@ void FlowCoupling::step()
   for (int k = 0; k < kBoundaries; ++k)
     if (wallIds[static_cast<std::size_t>(k)] >= 0)
       forces_[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(k)])] += f[static_cast<std::size_t>(k)];
+  torques_.assign(nBodies, Vec3::Zero());
+  if (flow_->params.any())
+    addViscousForces();
   auto out = exchange_.stepForces();
+  auto outTorque = exchange_.stepTorques();
   for (std::size_t i = 0; i < nBodies; ++i)
+  {
     out[i] += forces_[i];
+    outTorque[i] += torques_[i];
+  }
   const bool inverted = flow_->invertedPores() > 0;
   const bool strained = inverted || (defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance);
   if (pending_ && inverted)
@@ -203,6 +210,27 @@ void FlowCoupling::step()
     }
     else
       rebuild();
+  }
+}
+
+void FlowCoupling::addViscousForces()
+{
+  const auto vel = exchange_.velocities();
+  const auto angVel = exchange_.angularVelocities();
+  std::vector<Vec3> v(sphereIds_.size());
+  std::vector<Vec3> w(sphereIds_.size());
+  for (std::size_t i = 0; i < sphereIds_.size(); ++i)
+  {
+    v[i] = vel[static_cast<std::size_t>(sphereIds_[i])];
+    w[i] = angVel[static_cast<std::size_t>(sphereIds_[i])];
+  }
+  flow_->computeViscousForces(v, w, exchange_.dt());
+  const SphereLubrication& lub = flow_->lubrication();
+  for (std::size_t i = 0; i < sphereIds_.size(); ++i)
+  {
+    const auto id = static_cast<std::size_t>(sphereIds_[i]);
+    forces_[id] += lub.shearForces()[i] + lub.normalForces()[i];
+    torques_[id] += lub.shearTorques()[i];
   }
 }
 

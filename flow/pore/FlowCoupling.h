@@ -42,7 +42,8 @@ public:
   int backgroundSteps = 10;
 
   /// One coupling step: move the network's spheres (volume changes), solve, add the fluid
-  /// forces to the step forces, then rebuild if due for the next step (interval, pore strain
+  /// forces (with the viscous options also the forces and torques between neighbouring spheres
+  /// from the bodies' velocities, as Yade after its solve) to the step forces, then rebuild if due for the next step (interval, pore strain
   /// above defTolerance, a pore turned inside out; at once, before the solve, when requested or
   /// when spheres were added or erased).
   /// Periodic scenes need a periodic flow model (params.periodic, Yade's PeriodicFlowEngine):
@@ -56,6 +57,8 @@ public:
   [[nodiscard]] const PoreFlow& flow() const { return *flow_; }
   /// The fluid forces of the last step, by body id (zero for bodies the flow does not see).
   [[nodiscard]] const std::vector<Vec3>& forces() const { return forces_; }
+  /// The fluid torques of the last step (viscous shear or shear lubrication; zero without).
+  [[nodiscard]] const std::vector<Vec3>& torques() const { return torques_; }
   [[nodiscard]] int rebuilds() const { return rebuilds_; }
   /// Rebuilds triggered by defTolerance or inverted pores (a subset of rebuilds()).
   [[nodiscard]] int strainRebuilds() const { return strainRebuilds_; }
@@ -76,6 +79,9 @@ private:
   void adoptRebuild();
   /// Drop a background rebuild (waits for its thread).
   void discardRebuild();
+  /// The viscous forces and torques between neighbouring spheres for the bodies' velocities,
+  /// added to forces_ and torques_ (params.viscousShear, shearLubrication, normalLubrication).
+  void addViscousForces();
   /// Move the network's spheres and the wall-following boundaries to the bodies' positions.
   void move();
   /// The bodies' positions of the network's spheres (sphereIds_) and the boundary positions of
@@ -92,6 +98,7 @@ private:
   std::shared_ptr<PoreFlow> flow_;
   std::vector<dem::BodyId> sphereIds_; ///< network vertex 6+i is body sphereIds_[i]
   std::vector<Vec3> forces_;
+  std::vector<Vec3> torques_;
   struct PendingRebuild
   {
     std::future<std::unique_ptr<PoreFlow>> mesh;

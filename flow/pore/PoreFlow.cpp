@@ -81,6 +81,7 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
   std::vector<double> p = carriedPressures(fresh);
   net_ = std::move(fresh);
   p_ = std::move(p);
+  lubricationMeshed_ = false;
   const PoreNetwork& net = *net_;
   dv_.assign(net.pores.size(), 0.0);
   voidsStale_ = false;
@@ -163,7 +164,25 @@ void PoreFlow::adopt(std::unique_ptr<PoreFlow> fresh, const std::vector<Vec3>& s
   // volume change source (that motion happened while the old mesh gave the sources)
   fresh->placeVertices(spherePositions, boundaryPositions);
   std::fill(fresh->dv_.begin(), fresh->dv_.end(), 0.0);
+  // the lubrication springs' loads go on to the new pairs
+  fresh->lubrication_ = std::move(lubrication_);
+  fresh->lubricationMeshed_ = false;
   *this = std::move(*fresh);
+}
+
+void PoreFlow::computeViscousForces(const std::vector<Vec3>& velocities, const std::vector<Vec3>& angularVelocities,
+                                    double dt)
+{
+  if (!params.any())
+    throw std::invalid_argument("FlowEngine: set viscousShear, shearLubrication or normalLubrication to compute "
+                                "viscous forces between the spheres");
+  const PoreNetwork& net = network();
+  if (!lubricationMeshed_)
+  {
+    lubrication_.setNetwork(net);
+    lubricationMeshed_ = true;
+  }
+  lubrication_.compute(net, params, params.viscosity, velocities, angularVelocities, dt);
 }
 
 void PoreFlow::updateVoidVolumes()

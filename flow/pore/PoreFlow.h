@@ -6,6 +6,7 @@
 #include "flow/pore/PoreGeometry.h"
 #include "flow/pore/PoreNetwork.h"
 #include "flow/pore/PressureSolver.h"
+#include "flow/pore/SphereLubrication.h"
 
 #include <array>
 #include <memory>
@@ -15,7 +16,7 @@
 namespace talus::flow::pore
 {
 /// FlowEngine's options, Yade's names and defaults.
-struct FlowParameters : ConductanceParameters
+struct FlowParameters : ConductanceParameters, ViscousParameters
 {
   std::array<bool, kBoundaries> bndCondIsPressure{};
   std::array<double, kBoundaries> bndCondValue{};
@@ -146,6 +147,13 @@ public:
   /// the pressure on the sphere sectors cut by the facet (pressure part) plus the pressure drop
   /// on the fluid area shared among the solids by their surface in the throat (viscous part).
   [[nodiscard]] std::vector<Vec3> vertexForces() const;
+  /// The viscous forces between neighbouring spheres (params.viscousShear, shearLubrication,
+  /// normalLubrication) for the spheres' velocities and angular velocities (same order as in
+  /// build) over the step dt; the sphere pairs are found at the first call after a build.
+  /// @throws std::invalid_argument see SphereLubrication::compute, or if no option is set
+  void computeViscousForces(const std::vector<Vec3>& velocities, const std::vector<Vec3>& angularVelocities, double dt);
+  /// The pairs and the forces of the last computeViscousForces.
+  [[nodiscard]] const SphereLubrication& lubrication() const { return lubrication_; }
   [[nodiscard]] int lastIterations() const { return solver_.lastIterations(); }
   [[nodiscard]] bool factorized() const { return solver_.factorized(); }
 
@@ -194,5 +202,7 @@ private:
   bool reference_ = false;
   PressureSolver solver_;
   double globalK_ = 0;
+  SphereLubrication lubrication_;
+  bool lubricationMeshed_ = false; ///< lubrication_ has the pairs of the current network
 };
 } // namespace talus::flow::pore

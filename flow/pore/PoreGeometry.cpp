@@ -30,6 +30,20 @@ double sectorVolume(const Vertex& v, const Vec3& a, const Vec3& b, const Vec3& c
   return kThird * v.radius * sphericalArea(v, a, b, c);
 }
 
+/// The spherical triangle of sphericalArea and the sector of sectorVolume together, from one
+/// solid angle (the throat formulas need both of the same cone: the solid angles, an arctangent
+/// each, are most of the geometry's cost).
+struct Sector
+{
+  double area;
+  double volume;
+};
+Sector sector(const Vertex& v, const Vec3& a, const Vec3& b, const Vec3& c)
+{
+  const double area = sphericalArea(v, a, b, c);
+  return {area, kThird * v.radius * area};
+}
+
 /// The point p with its coordinate along boundary b moved onto the boundary plane.
 Vec3 projected(const Vec3& p, const Boundary& b)
 {
@@ -184,10 +198,10 @@ void throatRegion(const PoreNetwork& net, Throat& t, const std::array<const Vert
     for (int i = 0; i < 3; ++i)
     {
       const Vertex& a = *w[static_cast<std::size_t>(i)];
-      const Vertex& b = *w[static_cast<std::size_t>((i + 1) % 3)];
-      const Vertex& c = *w[static_cast<std::size_t>((i + 2) % 3)];
-      vsolid += sectorVolume(a, b.pos, p1, p2) + sectorVolume(a, c.pos, p1, p2);
-      t.solidSurfaces[static_cast<std::size_t>(i)] = sphericalArea(a, b.pos, p1, p2) + sphericalArea(a, c.pos, p1, p2);
+      const Sector toB = sector(a, w[static_cast<std::size_t>((i + 1) % 3)]->pos, p1, p2);
+      const Sector toC = sector(a, w[static_cast<std::size_t>((i + 2) % 3)]->pos, p1, p2);
+      vsolid += toB.volume + toC.volume;
+      t.solidSurfaces[static_cast<std::size_t>(i)] = toB.area + toC.area;
     }
     vpore = vtot - vsolid;
     break;
@@ -205,14 +219,15 @@ void throatRegion(const PoreNetwork& net, Throat& t, const std::array<const Vert
     const double vtot = bipyramidVolume(s, p1, p2);
     const Vec3 a = projected(r1.pos, b);
     const Vec3 bb = projected(r2.pos, b);
-    const double vsolid = sectorVolume(r1, a, p1, p2) + sectorVolume(r1, r2.pos, p1, p2) +
-                          sectorVolume(r2, bb, p1, p2) + sectorVolume(r2, r1.pos, p1, p2);
+    const Sector r1r2 = sector(r1, r2.pos, p1, p2);
+    const Sector r2r1 = sector(r2, r1.pos, p1, p2);
+    const double vsolid = sectorVolume(r1, a, p1, p2) + r1r2.volume + sectorVolume(r2, bb, p1, p2) + r2r1.volume;
     vpore = vtot - vsolid;
     if (solidWall(b))
       t.solidSurfaces[slot(&f)] = std::abs(0.5 * (p1 - p2).cross(r1.pos - r2.pos)[c]);
     // As Yade: the sphere surfaces towards the wall use the fictitious sphere's centre.
-    t.solidSurfaces[slot(&r1)] = sphericalArea(r1, f.pos, p1, p2) + sphericalArea(r1, r2.pos, p1, p2);
-    t.solidSurfaces[slot(&r2)] = sphericalArea(r2, r1.pos, p1, p2) + sphericalArea(r2, f.pos, p1, p2);
+    t.solidSurfaces[slot(&r1)] = sphericalArea(r1, f.pos, p1, p2) + r1r2.area;
+    t.solidSurfaces[slot(&r2)] = r2r1.area + sphericalArea(r2, f.pos, p1, p2);
     break;
   }
   case 2:
@@ -224,8 +239,10 @@ void throatRegion(const PoreNetwork& net, Throat& t, const std::array<const Vert
     const Vec3 bb = projected(r.pos, b2);
     s = (r.pos - a).cross(r.pos - bb);
     const double vtot = bipyramidVolume(s, p1, p2);
-    vpore = vtot - sectorVolume(r, a, p1, p2) - sectorVolume(r, bb, p1, p2);
-    t.solidSurfaces[slot(&r)] = sphericalArea(r, a, p1, p2) + sphericalArea(r, bb, p1, p2);
+    const Sector toA = sector(r, a, p1, p2);
+    const Sector toB = sector(r, bb, p1, p2);
+    vpore = vtot - toA.volume - toB.volume;
+    t.solidSurfaces[slot(&r)] = toA.area + toB.area;
     const Vec3 side = 0.5 * (p1 - p2).cross(r.pos - p2);
     if (solidWall(b1))
       t.solidSurfaces[slot(fict[0])] = std::abs(side[b1.coordinate]);

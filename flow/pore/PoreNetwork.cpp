@@ -193,6 +193,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
     }
     p.centre = detail::weightedCentre(net, rt, c, insertion);
   }
+  net.throats.reserve(2 * net.pores.size()); // four facets per pore, each shared by two
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
     for (int k = 0; k < 4; ++k)
     {

@@ -1,6 +1,9 @@
 #include "flow/pore/PressureSolver.h"
 
 #include <cholmod.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 #include <algorithm>
 #include <chrono>
@@ -12,12 +15,12 @@ namespace talus::flow::pore
 {
 namespace
 {
-/// Below this many unknowns the factor is simplicial, above it supernodal. Measured (CPU time,
-/// loaded 2-core machine, bench packings, nested-dissection ordering below): at 2 600 unknowns
-/// a simplicial factorisation takes 0.005 s against 0.009 s and a solve 0.10 ms against 0.19 ms;
-/// at 6 100 the supernodal factorisation is already faster (0.022 s against 0.039 s), at 34 000
-/// five times faster.
-constexpr int kSupernodalFrom = 4000;
+/// Below this many unknowns the factor is simplicial, above it supernodal. Measured (CPU time of
+/// ordering + analysis + factorisation + solve, loaded 2-core machine, bench clouds, nested
+/// dissection below, the supernodal factor on one thread): 1 729 pores 2.9-3.2 ms simplicial
+/// against 3.3-3.5 ms supernodal, 2 981 pores 5.7-8.3 against 5.7-7.0 ms, 4 166 pores 12-16 against
+/// 9.4-10.7 ms, 6 102 pores 24-25 against 14 ms.
+constexpr int kSupernodalFrom = 2500;
 /// Nested dissection stops at this many unknowns (their order inside does not matter).
 constexpr std::size_t kDissectionLeaf = 16;
 
@@ -205,6 +208,32 @@ private:
 };
 } // namespace
 
+/// For its lifetime, OpenMP parallel regions of this thread run on one thread if the caller is
+/// set to one (omp_get_max_threads() == 1, e.g. OMP_NUM_THREADS=1). CHOLMOD's supernodal
+/// factorisation (SuiteSparse 5) opens teams with a fixed num_threads(4) clause, which overrides
+/// OMP_NUM_THREADS: a "single-threaded" run had three more threads spinning in every
+/// factorisation. Measured (CPU time, 2-core machine at load ~9, bench clouds): numeric
+/// factorisation of 1 000 spheres (5 758 unknowns) 18-26 ms -> 8.8 ms, of 10 000 (61 912)
+/// 0.41-0.57 s -> 0.29-0.30 s.
+class OneThreadIfAsked
+{
+public:
+#ifdef _OPENMP
+  OneThreadIfAsked() : levels_(omp_get_max_active_levels())
+  {
+    if (omp_get_max_threads() == 1)
+      omp_set_max_active_levels(0);
+  }
+  ~OneThreadIfAsked() { omp_set_max_active_levels(levels_); }
+
+private:
+  int levels_;
+#endif
+public:
+  OneThreadIfAsked(const OneThreadIfAsked&) = delete;
+  OneThreadIfAsked& operator=(const OneThreadIfAsked&) = delete;
+};
+
 /// CHOLMOD's workspace and the factor of the current matrix.
 struct PressureSolver::Cholmod
 {
@@ -321,28 +350,51 @@ void PressureSolver::factorize()
 {
   Cholmod& c = *cholmod_;
   const auto n = static_cast<std::size_t>(nUnknown_);
-  cholmod_triplet* t = cholmod_allocate_triplet(n, n, n + neighbour_.size(), -1 /* lower */, CHOLMOD_REAL, &c.common);
-  auto* ti = static_cast<int*>(t->i);
-  auto* tj = static_cast<int*>(t->j);
-  auto* tx = static_cast<double*>(t->x);
+  // The lower triangle in compressed columns, built directly (column j of the lower triangle is
+  // row j's couplings to the rows after it, by symmetry): the diagonal first, then the rows in
+  // increasing order, couplings to the same row (a periodic pore meeting another through two
+  // facets) summed, a coupling of a row to itself (its own periodic image) cancelling on the
+  // diagonal.
+  c.a = cholmod_allocate_sparse(n, n, n + neighbour_.size(), 1 /* sorted */, 1 /* packed */, -1 /* lower */,
+                                CHOLMOD_REAL, &c.common);
+  auto* ap = static_cast<int*>(c.a->p);
+  auto* ai = static_cast<int*>(c.a->i);
+  auto* ax = static_cast<double*>(c.a->x);
   std::size_t nz = 0;
-  for (std::size_t r = 0; r < n; ++r)
+  for (std::size_t j = 0; j < n; ++j)
   {
-    ti[nz] = tj[nz] = static_cast<int>(r);
-    tx[nz++] = diag_[r];
-    for (int e = start_[r]; e < start_[r + 1]; ++e)
+    ap[j] = static_cast<int>(nz);
+    const std::size_t diagonal = nz;
+    ai[nz] = static_cast<int>(j);
+    ax[nz++] = diag_[j];
+    for (int e = start_[j]; e < start_[j + 1]; ++e)
     {
-      const int col = rowOfPore_[static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)])];
-      if (col < 0 || col > static_cast<int>(r))
+      const int row = rowOfPore_[static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)])];
+      const double value = -k_[static_cast<std::size_t>(e)];
+      if (row == static_cast<int>(j))
+        ax[diagonal] += value;
+      if (row <= static_cast<int>(j))
         continue;
-      ti[nz] = static_cast<int>(r);
-      tj[nz] = col;
-      tx[nz++] = -k_[static_cast<std::size_t>(e)];
+      // insert in order among this column's few entries (at most four couplings)
+      std::size_t at = nz;
+      while (at > diagonal + 1 && ai[at - 1] > row)
+        --at;
+      if (at > diagonal + 1 && ai[at - 1] == row)
+      {
+        ax[at - 1] += value;
+        continue;
+      }
+      for (std::size_t m = nz; m > at; --m)
+      {
+        ai[m] = ai[m - 1];
+        ax[m] = ax[m - 1];
+      }
+      ai[at] = row;
+      ax[at] = value;
+      ++nz;
     }
   }
-  t->nnz = nz;
-  c.a = cholmod_triplet_to_sparse(t, nz, &c.common);
-  cholmod_free_triplet(&t, &c.common);
+  ap[n] = static_cast<int>(nz);
   using Clock = std::chrono::steady_clock;
   if (!c.factor)
   {
@@ -362,7 +414,10 @@ void PressureSolver::factorize()
                                std::to_string(c.common.status) + ")");
   }
   const auto start = Clock::now();
-  cholmod_factorize(c.a, c.factor, &c.common);
+  {
+    const OneThreadIfAsked oneThread;
+    cholmod_factorize(c.a, c.factor, &c.common);
+  }
   counters_.factorizeSeconds += std::chrono::duration<double>(Clock::now() - start).count();
   ++counters_.factorizations;
   if (c.common.status == CHOLMOD_NOT_POSDEF || c.factor->minor < c.factor->n)

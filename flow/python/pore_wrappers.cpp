@@ -11,6 +11,8 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <string>
+
 namespace py = pybind11;
 using namespace talus::flow::pore;
 
@@ -30,6 +32,28 @@ std::vector<PoreSphere> spheres(const Array& pos, const Array& radius, const IdA
   for (std::size_t i = 0; i < n; ++i)
     s[i] = PoreSphere{Vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2)), radius.at(i), ids.at(i)};
   return s;
+}
+
+/// An (n, 3) array as vectors.
+std::vector<Vec3> vectors(const Array& a, const char* what)
+{
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw py::value_error(std::string(what) + " must be an (n, 3) array");
+  std::vector<Vec3> v(static_cast<std::size_t>(a.shape(0)));
+  for (std::size_t i = 0; i < v.size(); ++i)
+    v[i] = Vec3(a.at(i, 0), a.at(i, 1), a.at(i, 2));
+  return v;
+}
+
+/// Vectors as an (n, 3) array.
+Array rows(const std::vector<Vec3>& v)
+{
+  Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+  auto out = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (py::ssize_t d = 0; d < 3; ++d)
+      out(static_cast<py::ssize_t>(i), d) = v[i][d];
+  return a;
 }
 
 /// Per-pore or per-throat values as a numpy array.
@@ -67,7 +91,12 @@ void registerPoreFlow(py::module_& m)
       .def_readwrite("duplicateThreshold", &FlowParameters::duplicateThreshold)
       .def_readwrite("gradP", &FlowParameters::gradP)
       .def_readwrite("hasBoundary", &FlowParameters::hasBoundary)
-      .def_readwrite("yadeInsertionOrder", &FlowParameters::yadeInsertionOrder);
+      .def_readwrite("yadeInsertionOrder", &FlowParameters::yadeInsertionOrder)
+      .def_readwrite("viscousShear", &FlowParameters::viscousShear)
+      .def_readwrite("shearLubrication", &FlowParameters::shearLubrication)
+      .def_readwrite("normalLubrication", &FlowParameters::normalLubrication)
+      .def_readwrite("eps", &FlowParameters::eps)
+      .def_readwrite("stiffness", &FlowParameters::stiffness);
 
   py::class_<PressureSolver::Counters>(m, "PoreSolverCounters")
       .def_readonly("analyses", &PressureSolver::Counters::analyses)
@@ -85,12 +114,7 @@ void registerPoreFlow(py::module_& m)
       .def(
           "moveVertices",
           [](PoreFlow& f, const Array& pos, const std::array<double, kBoundaries>& walls, double dt) {
-            if (pos.ndim() != 2 || pos.shape(1) != 3)
-              throw py::value_error("positions must be an (n, 3) array");
-            std::vector<Vec3> at(static_cast<std::size_t>(pos.shape(0)));
-            for (std::size_t i = 0; i < at.size(); ++i)
-              at[i] = Vec3(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
-            f.moveVertices(at, walls, dt);
+            f.moveVertices(vectors(pos, "positions"), walls, dt);
           },
           py::arg("positions"), py::arg("boundaryPositions"), py::arg("dt"))
       .def("setTimeStep", &PoreFlow::setTimeStep)
@@ -109,15 +133,7 @@ void registerPoreFlow(py::module_& m)
       .def("imposeFlux", &PoreFlow::imposeFlux)
       .def("clearImposedFlux", &PoreFlow::clearImposedFlux)
       .def("saveVtk", [](const PoreFlow& f, const std::string& base) { return saveVtk(f, base); })
-      .def("poreVelocities", [](const PoreFlow& f) {
-        const std::vector<Vec3> v = f.poreVelocities();
-        Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-        auto out = a.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < v.size(); ++i)
-          for (py::ssize_t d = 0; d < 3; ++d)
-            out(static_cast<py::ssize_t>(i), d) = v[i][d];
-        return a;
-      })
+      .def("poreVelocities", [](const PoreFlow& f) { return rows(f.poreVelocities()); })
       .def("clearImposedPressure", &PoreFlow::clearImposedPressure)
       .def("getCellFlux", &PoreFlow::getCellFlux)
       .def("solve", &PoreFlow::solve)
@@ -192,15 +208,29 @@ void registerPoreFlow(py::module_& m)
             out(static_cast<py::ssize_t>(i), k) = t[i].pores[static_cast<std::size_t>(k)];
         return a;
       })
-      .def("vertexForces", [](const PoreFlow& f) {
-        // rows as poreVertexIds numbers them: 0..5 the boundaries, then the spheres in input order
-        const std::vector<Vec3> v = f.vertexForces();
-        Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-        auto out = a.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < v.size(); ++i)
-          for (py::ssize_t d = 0; d < 3; ++d)
-            out(static_cast<py::ssize_t>(i), d) = v[i][d];
-        return a;
+      // rows as poreVertexIds numbers them: 0..5 the boundaries, then the spheres in input order
+      .def("vertexForces", [](const PoreFlow& f) { return rows(f.vertexForces()); })
+      .def(
+          "computeViscousForces",
+          [](PoreFlow& f, const Array& vel, const Array& angVel, double dt) {
+            f.computeViscousForces(vectors(vel, "velocities"), vectors(angVel, "angular velocities"), dt);
+          },
+          py::arg("velocities"), py::arg("angularVelocities"), py::arg("dt"))
+      // rows: the spheres in input order
+      .def("shearLubForces", [](const PoreFlow& f) { return rows(f.lubrication().shearForces()); })
+      .def("shearLubTorques", [](const PoreFlow& f) { return rows(f.lubrication().shearTorques()); })
+      .def("normalLubForces", [](const PoreFlow& f) { return rows(f.lubrication().normalForces()); })
+      .def("spherePairs", [](const PoreFlow& f) {
+        // body ids of each pair and the area of its power-diagram face
+        std::vector<std::array<std::int64_t, 2>> ids;
+        std::vector<double> areas;
+        const auto& net = f.network();
+        for (const SpherePair& p : f.lubrication().pairs())
+        {
+          ids.push_back({net.vertices[static_cast<std::size_t>(p.a)].id, net.vertices[static_cast<std::size_t>(p.b)].id});
+          areas.push_back(p.faceArea);
+        }
+        return py::make_tuple(ids, areas);
       })
       .def("vertexIds", [](const PoreFlow& f) {
         // boundaries and spheres (not the periodic images, which come after them)
@@ -232,5 +262,7 @@ void registerPoreFlow(py::module_& m)
       .def("strainRebuilds", &FlowCoupling::strainRebuilds)
       .def("step", &FlowCoupling::step)
       .def("requestRebuild", &FlowCoupling::requestRebuild)
-      .def("rebuilds", &FlowCoupling::rebuilds);
+      .def("rebuilds", &FlowCoupling::rebuilds)
+      .def("forces", [](const FlowCoupling& c) { return rows(c.forces()); })
+      .def("torques", [](const FlowCoupling& c) { return rows(c.torques()); });
 }

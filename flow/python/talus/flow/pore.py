@@ -42,7 +42,8 @@ _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wa
 # engine step counts and their smallest allowed values
 _ENGINE_COUNTS = {"meshUpdateInterval": 1, "backgroundSteps": 0}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
-            "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder")
+            "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
+            "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness")
 
 
 class HiddenSphereWarning(UserWarning):
@@ -77,6 +78,15 @@ class FlowEngine(Engine):
     later, waiting for the thread if needed, so results do not depend on thread timing; 0 gives the results of
     ``multithread`` False). Between remeshes the engine moves the network's spheres each step:
     the pores' volume changes drive the flow (consolidation), see ``moveVertices``.
+
+    Viscous forces between neighbouring spheres (pairs joined by an edge of the triangulation),
+    from their relative velocities, added by the engine after the solve (Yade's options, all off
+    by default): ``viscousShear`` (tangential force μ Δv_t A / R_h, A the power-diagram face of
+    the pair, R_h = gap + 0.45 min(r1, r2)), ``shearLubrication`` (tangential lubrication force
+    (π μ / 2)(−2R + L ln(L/h)) Δv_t instead), ``normalLubrication`` (3π R² μ Δv_n / (2h), in
+    series with a spring ``stiffness`` × R when ``stiffness`` > 0, default 10000), ``eps``
+    1e-5 (roughness: h = max(gap, 0) + 2 eps R). Standalone: ``computeViscousForces``. See
+    ``docs/flow.md``.
     """
 
     def __init__(self, scene=None, **attrs):
@@ -330,6 +340,32 @@ class FlowEngine(Engine):
         if not 0 <= boundary < 6:
             raise IndexError("boundary index must be 0..5")
         return tuple(self._flow.vertexForces()[boundary])
+
+    def computeViscousForces(self, velocities, angularVelocities, dt: float = 0.0):
+        """Viscous forces between neighbouring spheres for their velocities and angular
+        velocities ((n, 3), same order as in ``triangulate``) over the step ``dt`` (needed by the
+        normal lubrication spring); read them with shearLubForce, shearLubTorque, normalLubForce.
+        The engine calls it each step with the bodies' velocities."""
+        self._flow.computeViscousForces(np.asarray(velocities, dtype=float).reshape(-1, 3),
+                                        np.asarray(angularVelocities, dtype=float).reshape(-1, 3), float(dt))
+
+    def shearLubForce(self, id: int):
+        """Tangential viscous force on sphere ``id`` (body id; viscousShear or shearLubrication)."""
+        return tuple(self._flow.shearLubForces()[self._sphere_index(id)])
+
+    def shearLubTorque(self, id: int):
+        """Torque of the tangential viscous forces on sphere ``id`` (body id)."""
+        return tuple(self._flow.shearLubTorques()[self._sphere_index(id)])
+
+    def normalLubForce(self, id: int):
+        """Normal lubrication force on sphere ``id`` (body id)."""
+        return tuple(self._flow.normalLubForces()[self._sphere_index(id)])
+
+    def _sphere_index(self, id: int) -> int:
+        ids = self._vertex_index()
+        if id not in ids:
+            raise KeyError(f"body {id} is not a sphere of the pore network")
+        return ids[id] - 6
 
     def _vertex_index(self):
         return {int(v): k for k, v in enumerate(self._flow.vertexIds()) if k >= 6}
