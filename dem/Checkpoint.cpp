@@ -329,7 +329,12 @@ constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
 // The energy tracker's accumulated terms, attributes of /energy.
 constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
     {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},
-    {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp}};
+    {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp},
+    {"velGradWork", &EnergyTracker::velGradWork}, {"kinematicWork", &EnergyTracker::kinematicWork}};
+// The tracker's imposed displacements of the previous step, datasets of /energy (absent until tracked).
+constexpr std::pair<const char*, std::vector<Vec3> EnergyTracker::*> energyHistory[] = {
+    {"previousDisplacement", &EnergyTracker::previousDisplacement},
+    {"previousRotation", &EnergyTracker::previousRotation}};
 constexpr std::pair<const char*, BodyId Contact::*> contactIds[] = {{"id1", &Contact::id1}, {"id2", &Contact::id2}};
 constexpr std::pair<const char*, bool Contact::*> contactFlags[] = {{"real", &Contact::real}, {"fresh", &Contact::fresh}};
 constexpr std::pair<const char*, std::vector<Vec3> Bodies::*> bodyVectors[] = {
@@ -378,6 +383,9 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     w.attribute(g.get(), "enabled", std::int64_t{scene.energy.enabled ? 1 : 0});
     for (const auto& [name, field] : energyTerms)
       w.attribute(g.get(), name, scene.energy.*field);
+    for (const auto& [name, field] : energyHistory)
+      if (!(scene.energy.*field).empty())
+        w.vec3s(at("/energy/", name), scene.energy.*field);
   }
 
   // Periodic cell.
@@ -636,6 +644,10 @@ public:
     return ctx_.checkId(H5Oopen(file_, path.c_str(), H5P_DEFAULT), H5Oclose, "cannot open " + path);
   }
 
+  bool hasAttribute(const std::string& objPath, const char* name) const
+  {
+    return ctx_.check(H5Aexists(open(objPath).get(), name), "cannot read attributes of " + objPath) > 0;
+  }
   Id openAttribute(const std::string& objPath, const char* name) const
   {
     const Id obj = open(objPath);
@@ -843,8 +855,18 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
 
   in.maxOverlapRatio = r.real("/settings", "maxOverlapRatio");
   in.energy.enabled = r.integer("/energy", "enabled") != 0;
+  // Files written before a term existed lack it: nothing of it was accumulated.
   for (const auto& [name, field] : energyTerms)
-    in.energy.*field = r.real("/energy", name);
+    in.energy.*field = r.hasAttribute("/energy", name) ? r.real("/energy", name) : 0.0;
+  for (const auto& [name, field] : energyHistory)
+    if (r.exists(at("/energy/", name)))
+    {
+      const std::vector<hsize_t> d = r.dims(at("/energy/", name));
+      if (d.size() != 2 || d[1] != 3)
+        ctx.fail(at("/energy/", name) + " is not an (n, 3) array", false);
+      (in.energy.*field).assign(d[0], Vec3::Zero());
+      r.vec3s(at("/energy/", name), in.energy.*field);
+    }
   in.periodic = r.integer("/cell", "periodic") != 0;
   in.cell.homoDeform = r.integer("/cell", "homoDeform") != 0;
   in.cell.hSize = r.matrix("/cell/hSize");

@@ -158,6 +158,7 @@ PYBIND11_MODULE(_dem, m)
   });
   m.def("coordinationNumber", &coordinationNumber);
   m.def("fabricTensor", &fabricTensor);
+  m.def("bodyStressTensors", &bodyStressTensors);
   m.def("sphereVolume", &sphereVolume);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene")
