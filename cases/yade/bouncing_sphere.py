@@ -1,8 +1,8 @@
 """Scenario: the seed's bouncing-sphere tutorial (01-bouncing-sphere: a sphere falling on a fixed
 one, FrictMat defaults, damping 0.1), written so that the same file runs in Yade (`yade -n -x`)
 and in Talus (`talus run`); `steps` from $TALUS_SCENARIO (JSON, default 30001). Prints the height
-of the falling sphere after steps 1, 101, 201, ... (a PyRunner after the integrator) as one
-`RESULT {json}` line (see talus.dem.twin)."""
+of the falling sphere after 101, 201, 301, ... integrations (a PyRunner after the integrator, first
+run at iteration 100) as one `RESULT {json}` line (see talus.dem.twin)."""
 import json
 import os
 

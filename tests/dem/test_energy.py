@@ -177,3 +177,17 @@ def test_shaken_box_and_a_spinning_sphere_close_the_balance():
     e = dict(S.energy.items())
     assert e["kinematicWork"] < 0 and abs(e["kinematicWork"]) > .3 * abs(e["gravWork"])
     assert abs(imbalance(S, before)) < .01 * (abs(e["kinematicWork"]) + abs(e["gravWork"]))
+
+
+def test_restart_with_servo_walls_continues_the_energies_bit_identically(tmp_path):
+    # The tracker keeps the walls' previous displacements: they are in the checkpoint too.
+    S, _ = walled_cloud(n=80, internalCompaction=False)
+    S.trackEnergy = True
+    S.run(300)
+    S.save(tmp_path / "walls.h5")
+    S.run(200)
+    expected = list(S.energy.values())
+    assert S.energy["kinematicWork"] < 0
+    S.load(tmp_path / "walls.h5")
+    S.run(200)
+    assert list(S.energy.values()) == expected
