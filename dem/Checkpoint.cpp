@@ -375,6 +375,7 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
   {
     const Id g = w.group("/settings");
     w.attribute(g.get(), "maxOverlapRatio", scene.maxOverlapRatio);
+    w.attribute(g.get(), "maxEnergyGrowth", scene.maxEnergyGrowth);
   }
 
   // Energy tracker.
@@ -383,6 +384,7 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     w.attribute(g.get(), "enabled", std::int64_t{scene.energy.enabled ? 1 : 0});
     for (const auto& [name, field] : energyTerms)
       w.attribute(g.get(), name, scene.energy.*field);
+    w.attribute(g.get(), "growthReference", scene.energy.growthReference);
     for (const auto& [name, field] : energyHistory)
       if (!(scene.energy.*field).empty())
         w.vec3s(at("/energy/", name), scene.energy.*field);
@@ -611,6 +613,7 @@ struct Loaded
   double dt = 0, time = 0;
   std::int64_t iter = 0, bodiesVersion = 0, bodyPropertiesVersion = 0;
   double maxOverlapRatio = 0;
+  double maxEnergyGrowth = 0;
   bool periodic = false;
   Cell cell;
   std::vector<Material> materials;
@@ -854,6 +857,10 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
   in.bodyPropertiesVersion = r.integer("/clock", "bodyPropertiesVersion");
 
   in.maxOverlapRatio = r.real("/settings", "maxOverlapRatio");
+  // Files written before these existed lack them: the defaults then.
+  in.maxEnergyGrowth = r.hasAttribute("/settings", "maxEnergyGrowth") ? r.real("/settings", "maxEnergyGrowth") : 0.0;
+  in.energy.growthReference = r.hasAttribute("/energy", "growthReference") ? r.real("/energy", "growthReference")
+                                                                            : std::numeric_limits<double>::quiet_NaN();
   in.energy.enabled = r.integer("/energy", "enabled") != 0;
   // Files written before a term existed lack it: nothing of it was accumulated.
   for (const auto& [name, field] : energyTerms)
@@ -1118,6 +1125,8 @@ void validate(const Loaded& in, const Context& ctx)
     ctx.fail("the clock (time " + std::to_string(in.time) + ", iter " + std::to_string(in.iter) + ") is invalid", false);
   if (!(std::isfinite(in.maxOverlapRatio) && in.maxOverlapRatio >= 0))
     ctx.fail("maxOverlapRatio = " + std::to_string(in.maxOverlapRatio) + " is not a finite number >= 0", false);
+  if (!(std::isfinite(in.maxEnergyGrowth) && in.maxEnergyGrowth >= 0))
+    ctx.fail("maxEnergyGrowth = " + std::to_string(in.maxEnergyGrowth) + " is not a finite number >= 0", false);
   for (std::size_t i = 0; i < in.materials.size(); ++i)
     try
     {
@@ -1214,6 +1223,7 @@ void commit(Scene& scene, const Loaded& in)
   scene.iter = in.iter;
   scene.clearFailedStep();
   scene.maxOverlapRatio = in.maxOverlapRatio;
+  scene.maxEnergyGrowth = in.maxEnergyGrowth;
   scene.periodic = in.periodic;
   scene.cell = in.cell;
   // In place: Python holds references to the scene's materials (a deque, so appending keeps

@@ -4,7 +4,11 @@
 #include "dem/Scene.h"
 #include "dem/Threads.h"
 
+#include <cmath>
+#include <cstdio>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 
 namespace talus::dem
@@ -125,5 +129,48 @@ void addImposedMotionWork(Scene& scene)
   }
   tracker.velGradWork += cellWork * dt;
   tracker.kinematicWork += kinematicWork;
+}
+
+void checkEnergyGrowth(Scene& scene)
+{
+  EnergyTracker& e = scene.energy;
+  const double kinetic = kineticEnergy(scene), elastic = elasticPotential(scene);
+  const double terms[] = {kinetic, elastic, e.gravWork, e.nonviscDamp, e.plastDissip, e.viscDamp, e.velGradWork, e.kinematicWork};
+  double total = 0, flowed = 0;
+  for (double t : terms)
+  {
+    total += t;
+    flowed += std::abs(t);
+  }
+  if (std::isnan(e.growthReference))
+  {
+    e.growthReference = total;
+    return;
+  }
+  const double growth = total - e.growthReference;
+  if (!(growth > scene.maxEnergyGrowth * flowed))
+    return;
+  // the body that gained the most: the largest kinetic energy
+  const Bodies& b = scene.bodies;
+  std::size_t fastest = 0;
+  double most = -1;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b.alive[i] && b.dynamic[i])
+      if (const double k = b.mass[i] * b.vel[i].squaredNorm(); k > most)
+      {
+        most = k;
+        fastest = i;
+      }
+  char message[512];
+  std::snprintf(message, sizeof message,
+                "step %lld: the total energy grew by %.3g (%.1f%% of the %.3g that flowed, limit %.0f%%, "
+                "O.maxEnergyGrowth): the run is unstable; body %zu moves fastest (%.3g m/s). The time step %.3g "
+                "is too large: P-wave estimate %.3g",
+                static_cast<long long>(scene.iter), growth, 100 * growth / flowed, flowed, 100 * scene.maxEnergyGrowth,
+                fastest, b.vel[fastest].norm(), scene.dt, scene.pWaveTimeStep());
+  std::string text = message;
+  if (const double contact = scene.contactTimeStep(); std::isfinite(contact))
+    text += ", stiffest contact's critical step about " + std::to_string(contact);
+  throw std::runtime_error(text);
 }
 } // namespace talus::dem

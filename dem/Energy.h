@@ -3,6 +3,7 @@
 #include "dem/types.h"
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace talus::dem
@@ -44,9 +45,15 @@ struct EnergyTracker
   /// servo-controlled wall changes its velocity every step, and an adaptive step changes dt:
   /// the work over the current displacement alone is off by a few percent there).
   std::vector<Vec3> previousDisplacement, previousRotation;
+  /// total() when the growth check first ran since tracking started or was cleared (NaN: not yet).
+  double growthReference = std::numeric_limits<double>::quiet_NaN();
 
   /// Set every accumulated energy to zero (Yade's O.energy.clear()).
-  void clear() { gravWork = nonviscDamp = plastDissip = viscDamp = velGradWork = kinematicWork = 0; }
+  void clear()
+  {
+    gravWork = nonviscDamp = plastDissip = viscDamp = velGradWork = kinematicWork = 0;
+    growthReference = std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 /// Energies dissipated by contacts, accumulated over a block of contacts.
@@ -81,4 +88,15 @@ double elasticPotential(const Scene& scene);
 /// the mean velocity; a kinematic body's velocity as it is now (the previous one is not kept).
 /// Called by NewtonIntegrator while tracking energy.
 void addImposedMotionWork(Scene& scene);
+
+/// Steps between two checks of energy growth (kinetic and elastic energies cost a pass over
+/// bodies and contacts).
+inline constexpr std::int64_t energyGrowthCheckPeriod = 100;
+
+/// The instability check on energy (Scene::maxEnergyGrowth): the total of a tracked scene is
+/// conserved up to the dissipation's discretisation error, so a total grown beyond its first
+/// checked value by more than maxEnergyGrowth of the energy that flowed (the sum of the terms'
+/// magnitudes) means the step is unstable. Throws, naming the body with the largest kinetic
+/// energy, the step and the stable step estimates.
+void checkEnergyGrowth(Scene& scene);
 } // namespace talus::dem

@@ -84,8 +84,8 @@ def test_layout_is_covered():
     # Not stored: Bodies::blocks (saving a scene with Potential Blocks is refused) and
     # ContactExtra::contactArea (recomputed by the geometry every step before the law reads it).
     assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 600, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 1296, "ContactExtra": 256,
-                                   "EnergyTracker": 104}
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1312, "ContactExtra": 256,
+                                   "EnergyTracker": 112}
 
 
 @pytest.mark.parametrize("visco", [False, True, "hertz", "cohfrict"], ids=["FrictMat", "ViscElMat", "Hertz", "CohFrict"])
