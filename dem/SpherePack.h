@@ -29,9 +29,10 @@ struct SpherePack
   ///
   /// Periodic clouds fill the cell [minCorner, maxCorner), or, with a non-zero `cell`, the
   /// parallelepiped minCorner + cell u, u in [0, 1)^3, of a sheared cell (Yade's hSize argument;
-  /// maxCorner is then unused). No sphere overlaps another or its own images: the images are
-  /// searched exactly, whatever the shear (Yade's test for a sheared cell looks at one image per
-  /// pair, which can miss a closer one).
+  /// maxCorner is then unused). No sphere overlaps another or its own images: every image within
+  /// reach is tested, whatever the shear and the sizes (Yade's test for a sheared cell looks at
+  /// the nearest image in fractional coordinates only, which is exact while two radii stay below
+  /// half the distance between the cell's faces, and checks no sphere against its own image).
   /// @return the number of spheres created (may be below num when rMean is given)
   /// @throws std::invalid_argument naming the inconsistent parameter, or when the largest
   /// sphere asked for does not fit in the cell (its diameter reaches the shortest period)

@@ -162,7 +162,7 @@ def periodic_overlap(c, r, h):
     return worst
 
 
-# Strongly sheared: the nearest image of a pair is not always the one of its nearest fractional offsets.
+# A sheared cell (three shear terms), its shortest period (0.917) below its shortest edge (1).
 SHEARED = np.array([[1, .9, .3], [0, 1, -.6], [0, 0, .8]])
 
 
