@@ -4,6 +4,10 @@
 
 namespace talus::dem
 {
+/// Rotation rate (axial vector) of the antisymmetric part of a velocity gradient: the spin that
+/// homoDeform adds to the bodies' angular velocities.
+inline Vec3 spin(const Mat3& L) { return 0.5 * Vec3(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1)); }
+
 /// The periodic cell (Yade's Cell): a parallelepiped whose edges are the columns of `hSize`,
 /// repeated to fill space. Particles keep unwrapped positions; contacts across the boundary
 /// carry the integer cell offset of their second body.

@@ -329,7 +329,12 @@ constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
 // The energy tracker's accumulated terms, attributes of /energy.
 constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
     {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},
-    {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp}};
+    {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp},
+    {"velGradWork", &EnergyTracker::velGradWork}, {"kinematicWork", &EnergyTracker::kinematicWork}};
+// The tracker's imposed displacements of the previous step, datasets of /energy (absent until tracked).
+constexpr std::pair<const char*, std::vector<Vec3> EnergyTracker::*> energyHistory[] = {
+    {"previousDisplacement", &EnergyTracker::previousDisplacement},
+    {"previousRotation", &EnergyTracker::previousRotation}};
 constexpr std::pair<const char*, BodyId Contact::*> contactIds[] = {{"id1", &Contact::id1}, {"id2", &Contact::id2}};
 constexpr std::pair<const char*, bool Contact::*> contactFlags[] = {{"real", &Contact::real}, {"fresh", &Contact::fresh}};
 constexpr std::pair<const char*, std::vector<Vec3> Bodies::*> bodyVectors[] = {
@@ -469,6 +474,7 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
   {
     const Id g = w.group("/settings");
     w.attribute(g.get(), "maxOverlapRatio", scene.maxOverlapRatio);
+    w.attribute(g.get(), "maxEnergyGrowth", scene.maxEnergyGrowth);
   }
 
   // Energy tracker.
@@ -477,6 +483,10 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     w.attribute(g.get(), "enabled", std::int64_t{scene.energy.enabled ? 1 : 0});
     for (const auto& [name, field] : energyTerms)
       w.attribute(g.get(), name, scene.energy.*field);
+    w.attribute(g.get(), "growthReference", scene.energy.growthReference);
+    for (const auto& [name, field] : energyHistory)
+      if (!(scene.energy.*field).empty())
+        w.vec3s(at("/energy/", name), scene.energy.*field);
   }
 
   // Periodic cell.
@@ -703,6 +713,7 @@ struct Loaded
   double dt = 0, time = 0;
   std::int64_t iter = 0, bodiesVersion = 0, bodyPropertiesVersion = 0;
   double maxOverlapRatio = 0;
+  double maxEnergyGrowth = 0;
   bool periodic = false;
   Cell cell;
   std::vector<Material> materials;
@@ -736,6 +747,10 @@ public:
     return ctx_.checkId(H5Oopen(file_, path.c_str(), H5P_DEFAULT), H5Oclose, "cannot open " + path);
   }
 
+  bool hasAttribute(const std::string& objPath, const char* name) const
+  {
+    return ctx_.check(H5Aexists(open(objPath).get(), name), "cannot read attributes of " + objPath) > 0;
+  }
   Id openAttribute(const std::string& objPath, const char* name) const
   {
     const Id obj = open(objPath);
@@ -1071,9 +1086,23 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
   in.bodyPropertiesVersion = r.integer("/clock", "bodyPropertiesVersion");
 
   in.maxOverlapRatio = r.real("/settings", "maxOverlapRatio");
+  // Files written before these existed lack them: the defaults then.
+  in.maxEnergyGrowth = r.hasAttribute("/settings", "maxEnergyGrowth") ? r.real("/settings", "maxEnergyGrowth") : 0.0;
+  in.energy.growthReference = r.hasAttribute("/energy", "growthReference") ? r.real("/energy", "growthReference")
+                                                                            : std::numeric_limits<double>::quiet_NaN();
   in.energy.enabled = r.integer("/energy", "enabled") != 0;
+  // Files written before a term existed lack it: nothing of it was accumulated.
   for (const auto& [name, field] : energyTerms)
-    in.energy.*field = r.real("/energy", name);
+    in.energy.*field = r.hasAttribute("/energy", name) ? r.real("/energy", name) : 0.0;
+  for (const auto& [name, field] : energyHistory)
+    if (r.exists(at("/energy/", name)))
+    {
+      const std::vector<hsize_t> d = r.dims(at("/energy/", name));
+      if (d.size() != 2 || d[1] != 3)
+        ctx.fail(at("/energy/", name) + " is not an (n, 3) array", false);
+      (in.energy.*field).assign(d[0], Vec3::Zero());
+      r.vec3s(at("/energy/", name), in.energy.*field);
+    }
   in.periodic = r.integer("/cell", "periodic") != 0;
   in.cell.homoDeform = r.integer("/cell", "homoDeform") != 0;
   in.cell.hSize = r.matrix("/cell/hSize");
@@ -1344,6 +1373,8 @@ void validate(const Loaded& in, const Context& ctx)
     ctx.fail("the clock (time " + std::to_string(in.time) + ", iter " + std::to_string(in.iter) + ") is invalid", false);
   if (!(std::isfinite(in.maxOverlapRatio) && in.maxOverlapRatio >= 0))
     ctx.fail("maxOverlapRatio = " + std::to_string(in.maxOverlapRatio) + " is not a finite number >= 0", false);
+  if (!(std::isfinite(in.maxEnergyGrowth) && in.maxEnergyGrowth >= 0))
+    ctx.fail("maxEnergyGrowth = " + std::to_string(in.maxEnergyGrowth) + " is not a finite number >= 0", false);
   for (std::size_t i = 0; i < in.materials.size(); ++i)
     try
     {
@@ -1436,6 +1467,7 @@ void commit(Scene& scene, const Loaded& in)
   scene.iter = in.iter;
   scene.clearFailedStep();
   scene.maxOverlapRatio = in.maxOverlapRatio;
+  scene.maxEnergyGrowth = in.maxEnergyGrowth;
   scene.periodic = in.periodic;
   scene.cell = in.cell;
   // In place: Python holds references to the scene's materials (a deque, so appending keeps

@@ -1,6 +1,9 @@
 #pragma once
 
+#include "dem/types.h"
+
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace talus::dem
@@ -29,9 +32,28 @@ struct EnergyTracker
   double nonviscDamp = 0; ///< dissipated by Cundall's non-viscous damping (NewtonIntegrator)
   double plastDissip = 0; ///< dissipated by friction sliding and plastic moments of contacts
   double viscDamp = 0;    ///< dissipated by contact dashpots (visco-elastic, Hertz damping)
+  /// Minus the work of the periodic cell's deformation on the bodies (Yade's PeriTriaxController
+  /// key; booked here for any deforming cell, whoever sets velGrad).
+  double velGradWork = 0;
+  /// Minus the work of imposed motions: non-dynamic bodies moving with their velocity (walls
+  /// of a TriaxialStressController, bodies of kinematic engines) and blocked DOFs of dynamic
+  /// bodies. Not a Yade key: Yade does not book these.
+  double kinematicWork = 0;
+  /// Per body id, the imposed displacement and rotation (velocity times the step) it made in
+  /// the previous tracked step (NaN: none yet), so that kinematicWork is taken over the mean of
+  /// the previous and the current displacement, as gravity's work is over the mean velocity (a
+  /// servo-controlled wall changes its velocity every step, and an adaptive step changes dt:
+  /// the work over the current displacement alone is off by a few percent there).
+  std::vector<Vec3> previousDisplacement, previousRotation;
+  /// total() when the growth check first ran since tracking started or was cleared (NaN: not yet).
+  double growthReference = std::numeric_limits<double>::quiet_NaN();
 
   /// Set every accumulated energy to zero (Yade's O.energy.clear()).
-  void clear() { gravWork = nonviscDamp = plastDissip = viscDamp = 0; }
+  void clear()
+  {
+    gravWork = nonviscDamp = plastDissip = viscDamp = velGradWork = kinematicWork = 0;
+    growthReference = std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 /// Energies dissipated by contacts, accumulated over a block of contacts.
@@ -49,10 +71,32 @@ struct ContactEnergy
 /// Number of contacts or bodies summed together before the per-block sums are added in order.
 inline constexpr std::int64_t energyBlock = 256;
 
-/// Sum of 1/2 m v^2 + 1/2 w.I w over dynamic bodies (fluctuating velocities in a homogeneously
-/// deforming periodic cell).
+/// Sum of 1/2 m v^2 + 1/2 w.I w over dynamic bodies (clumps as one body, aspherical bodies in
+/// their principal frame; fluctuating velocities in a homogeneously deforming periodic cell).
 double kineticEnergy(const Scene& scene);
 /// Elastic energy stored in the contacts of the scene's InteractionLoop(s), as each law defines
 /// it (1/2 Fn^2/kn + 1/2 Fs^2/ks for linear springs, 2/5 Fn u for Hertz, moments as springs).
 double elasticPotential(const Scene& scene);
+
+/// Book the work that imposed motions do over the step about to be integrated (forces of this
+/// step, velocities the integrator is about to apply) into velGradWork and kinematicWork. For
+/// each body, the force and torque on it times the imposed part of its velocity: with
+/// homoDeform, the affine field L x and its spin of every dynamic body, plus L H c for a contact
+/// with a periodic image (the image moves with the cell); the whole velocity of a non-dynamic
+/// body; the blocked components of a dynamic body's (fluctuating) velocity. The cell's field is
+/// taken as the mean of the previous and the current step's, as gravity's work is taken over
+/// the mean velocity; a kinematic body's velocity as it is now (the previous one is not kept).
+/// Called by NewtonIntegrator while tracking energy.
+void addImposedMotionWork(Scene& scene);
+
+/// Steps between two checks of energy growth (kinetic and elastic energies cost a pass over
+/// bodies and contacts).
+inline constexpr std::int64_t energyGrowthCheckPeriod = 100;
+
+/// The instability check on energy (Scene::maxEnergyGrowth): the total of a tracked scene is
+/// conserved up to the dissipation's discretisation error, so a total grown beyond its first
+/// checked value by more than maxEnergyGrowth of the energy that flowed (the sum of the terms'
+/// magnitudes) means the step is unstable. Throws, naming the body with the largest kinetic
+/// energy, the step and the stable step estimates.
+void checkEnergyGrowth(Scene& scene);
 } // namespace talus::dem

@@ -192,6 +192,27 @@ Mat3 fabricTensor(const Scene& scene)
   return n > 0 ? Mat3(sum / n) : Mat3::Zero();
 }
 
+std::vector<Mat3> bodyStressTensors(const Scene& scene)
+{
+  const Bodies& b = scene.bodies;
+  std::vector<Mat3> stress(b.size(), Mat3::Zero());
+  auto add = [&](BodyId id, const Vec3& centre, const Contact& c, const Vec3& force) {
+    const auto i = static_cast<std::size_t>(id);
+    if (b.shape[i] == ShapeKind::Sphere)
+      stress[i] += force * (c.contactPoint - centre).transpose() / (4.0 / 3.0 * M_PI * std::pow(b.radius[i], 3));
+  };
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+    add(c.id1, b.pos[i1], c, -c.force);
+    // body 2 meets body 1 through its image shifted by the contact's period
+    add(c.id2, b.pos[i2] + (scene.periodic ? scene.cell.shift(c.cellDist) : Vec3::Zero()), c, c.force);
+  }
+  return stress;
+}
+
 double sphereVolume(const Scene& scene)
 {
   const Bodies& b = scene.bodies;

@@ -2,6 +2,8 @@
 
 #include "dem/types.h"
 
+#include <vector>
+
 namespace talus::dem
 {
 class Scene;
@@ -51,6 +53,14 @@ double coordinationNumber(const Scene& scene, bool skipFree = false);
 
 /// Fabric tensor (1/Nc) sum n (x) n over real sphere-sphere contacts.
 Mat3 fabricTensor(const Scene& scene);
+
+/// Yade's bodyStressTensors: per body, the mean stress in the solid sphere from its contact
+/// forces, (1/V) sum over its real contacts of f (x) a, with f the force on it, a the arm from
+/// its centre to the contact point and V = 4/3 pi r^3 (exact for a sphere in static
+/// equilibrium loaded at points, where it is symmetric; Yade's index order otherwise);
+/// compression is negative. Contact moments are not included, as in Yade. Zero for bodies that
+/// are not spheres. Indexed by body id.
+std::vector<Mat3> bodyStressTensors(const Scene& scene);
 
 /// Total volume of the live spheres.
 double sphereVolume(const Scene& scene);

@@ -81,12 +81,6 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
 
 namespace
 {
-/// Rotation rate (axial vector) of the antisymmetric part of a velocity gradient.
-Vec3 spin(const Mat3& L) { return 0.5 * Vec3(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1)); }
-} // namespace
-
-namespace
-{
 /// dQ/dt of orientation Q turning at angular velocity w given in the body frame (Yade's DotQ).
 Quat dotQ(const Vec3& w, const Quat& q)
 {
@@ -152,6 +146,8 @@ void NewtonIntegrator::run(Scene& scene)
 {
   if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_)
     refreshInverses(scene);
+  if (scene.energy.enabled)
+    addImposedMotionWork(scene);
   const std::int64_t firstBad = scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene);
   if (firstBad >= 0)
     throw std::runtime_error("step " + std::to_string(scene.iter) + ": body " + std::to_string(firstBad)

@@ -312,6 +312,8 @@ void Scene::step()
       engine->execTime += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
       ++engine->execCount;
     }
+    if (energy.enabled && maxEnergyGrowth > 0 && iter % energyGrowthCheckPeriod == 0)
+      checkEnergyGrowth(*this);
   }
   catch (const std::exception& e)
   {

@@ -39,6 +39,11 @@ public:
   /// A contact whose penetration exceeds this fraction of the smaller radius stops the run with
   /// an error (the time step is too large or the packing was set up overlapping); 0 disables.
   double maxOverlapRatio = 0.5;
+  /// While energy is tracked, a total energy grown by more than this fraction of the energy that
+  /// flowed (checked every energyGrowthCheckPeriod steps) stops the run with an error; 0 (the
+  /// default) disables: energy put in by what the tracker does not see (a coupling's external
+  /// forces, growing particles) would count as growth. Closed balances stay within about 1 %.
+  double maxEnergyGrowth = 0;
 
   double dt = 1e-8;       ///< time step
   double time = 0;        ///< simulated time

@@ -43,6 +43,53 @@ int pieceOf(double x, const std::vector<double>& cumm, double& fraction)
   return i;
 }
 
+/// The lattice of a sheared periodic cell H (edges as columns): which images of a sphere are
+/// within reach. |d + H k| <= R implies |(H^-1 d)_a + k_a| <= R |row a of H^-1| (the distance
+/// between the cell's faces across axis a is 1 / |row a|), so the few k in that box are all
+/// that can be that close, however sheared the cell.
+class PeriodicLattice
+{
+public:
+  explicit PeriodicLattice(const Mat3& h) : h_(h), inverse_(h.inverse()), rowNorms_(inverse_.rowwise().norm().transpose()) {}
+
+  /// Whether some image d + H k (k = 0 included unless excludeOrigin) is within R of the origin
+  /// (touching counts, as Yade's overlap test).
+  [[nodiscard]] bool within(const Vec3& d, double R, bool excludeOrigin = false) const
+  {
+    const Vec3 f = inverse_ * d;
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      lo[a] = static_cast<int>(std::ceil(-f[a] - R * rowNorms_[a]));
+      hi[a] = static_cast<int>(std::floor(-f[a] + R * rowNorms_[a]));
+    }
+    for (int i = lo[0]; i <= hi[0]; ++i)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int k = lo[2]; k <= hi[2]; ++k)
+          if (!(excludeOrigin && i == 0 && j == 0 && k == 0) && (d + h_ * Vec3(i, j, k)).squaredNorm() <= R * R)
+            return true;
+    return false;
+  }
+
+  /// Length of the shortest non-zero period |H k| (a sphere overlaps its own image from this
+  /// diameter on); searched within the shortest edge, an upper bound.
+  [[nodiscard]] double shortestPeriod() const
+  {
+    double best = h_.colwise().norm().minCoeff();
+    const Vec3 reach = best * rowNorms_;
+    for (int i = -static_cast<int>(reach[0]); i <= static_cast<int>(reach[0]); ++i)
+      for (int j = -static_cast<int>(reach[1]); j <= static_cast<int>(reach[1]); ++j)
+        for (int k = -static_cast<int>(reach[2]); k <= static_cast<int>(reach[2]); ++k)
+          if (i != 0 || j != 0 || k != 0)
+            best = std::min(best, (h_ * Vec3(i, j, k)).norm());
+    return best;
+  }
+
+private:
+  Mat3 h_, inverse_;
+  Vec3 rowNorms_;
+};
+
 enum class RadiusMode
 {
   Undefined,
@@ -54,16 +101,28 @@ enum class RadiusMode
 
 long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double rRelFuzz, int num, bool periodic,
                            double porosity, const std::vector<double>& psdSizes, const std::vector<double>& psdCumm,
-                           bool distributeMass, int seed)
+                           bool distributeMass, int seed, const Mat3& cell)
 {
-  if (!mn.allFinite() || !mx.allFinite() || ((mx - mn).array() < 0).any())
+  const bool sheared = cell != Mat3::Zero();
+  if (!mn.allFinite())
+    throw std::invalid_argument("makeCloud: minCorner must be finite");
+  if (sheared)
+  {
+    if (!periodic)
+      throw std::invalid_argument("makeCloud: hSize (a sheared cell) needs periodic=True");
+    if (!cell.allFinite() || !(cell.determinant() > 0))
+      throw std::invalid_argument("makeCloud: hSize must be finite with a positive determinant (three right-handed edges "
+                                  "spanning a volume), its determinant is "
+                                  + std::to_string(cell.determinant()));
+  }
+  else if (!mx.allFinite() || ((mx - mn).array() < 0).any())
     throw std::invalid_argument("makeCloud: maxCorner must be at or above minCorner in every direction");
   std::random_device device;
   std::mt19937 generator(seed >= 0 ? static_cast<std::mt19937::result_type>(seed) : device());
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
 
-  const Vec3 size = mx - mn;
-  const double volume = size[0] * size[1] * size[2];
+  const Vec3 size = sheared ? Vec3(cell.colwise().norm().transpose()) : Vec3(mx - mn);
+  const double volume = sheared ? cell.determinant() : size[0] * size[1] * size[2];
   // With one size zero two of these terms vanish and the third is the area of the 2D box.
   const double area = std::abs(size[0] * size[2] + size[0] * size[1] + size[1] * size[2]);
   if (porosity <= 0 && rMean <= 0)
@@ -150,8 +209,21 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
     throw std::invalid_argument("makeCloud: rRelFuzz must be in [0, 1), got " + std::to_string(rRelFuzz));
 
   const int maxTry = 1000;
-  if (periodic && volume != 0)
-    cellSize = size;
+  const bool cellular = periodic && volume != 0; // a flat periodic box makes no cell, as in Yade
+  if (cellular)
+    hSize = sheared ? cell : Mat3(size.asDiagonal());
+  // A sphere of a periodic cloud must not reach its own images. Radii that follow from the
+  // porosity shrink on a retry; radii asked for cannot.
+  const PeriodicLattice lattice(cellular ? hSize : Mat3::Identity()); // used only if cellular
+  if (cellular && mode != RadiusMode::FromPorosity)
+  {
+    const double rMax = mode == RadiusMode::Mean ? rMean * (1 + rRelFuzz) : psdRadii.back();
+    const double period = lattice.shortestPeriod();
+    if (2 * rMax > period)
+      throw std::invalid_argument("makeCloud: spheres of radius up to " + std::to_string(rMax)
+                                  + " do not fit in the periodic cell: its shortest period is " + std::to_string(period)
+                                  + " (a sphere would overlap its own image)");
+  }
   double r = 0;
   for (int i = 0; i < num || num < 0; ++i)
   {
@@ -192,15 +264,20 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
       {
         for (int a = 0; a < 3; ++a)
           c[a] = uniform(generator);
-        c = Vec3(size.cwiseProduct(c)) + mn;
+        c = sheared ? Vec3(mn + cell * c) : Vec3(Vec3(size.cwiseProduct(c)) + mn);
       }
-      bool overlap = false;
+      bool overlap = cellular && lattice.within(Vec3::Zero(), 2 * r, true);
       for (std::size_t j = 0; j < centers.size() && !overlap; ++j)
       {
+        if (sheared)
+        {
+          overlap = lattice.within(centers[j] - c, radii[j] + r);
+          continue;
+        }
         Vec3 d;
         if (!periodic)
           d = centers[j] - c;
-        else
+        else // Yade's arithmetic, so that seeded clouds are Yade's
           for (int a = 0; a < 3; ++a)
             d[a] = size[a] != 0 ? std::min(wrapRelative(c[a], centers[j][a], centers[j][a] + size[a]),
                                            wrapRelative(centers[j][a], c[a], c[a] + size[a]))
@@ -222,7 +299,7 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
         centers.clear();
         radii.clear();
         return makeCloud(mn, mx, -1., rRelFuzz, num, periodic, porosity + (1 - porosity) / 10., psdSizes, psdCumm,
-                         distributeMass, seed);
+                         distributeMass, seed, cell);
       }
       return i;
     }

@@ -7,12 +7,13 @@
 namespace talus::dem
 {
 /// A list of spheres (centres and radii) that is not a simulation yet: Yade's SpherePack.
-/// `cellSize` is non-zero for a periodic packing (the sizes of its axis-aligned cell).
+/// `hSize` is the cell of a periodic packing (edges as columns, as Cell::hSize; diagonal for
+/// an axis-aligned one, Yade's cellSize) and zero for a packing that is not periodic.
 struct SpherePack
 {
   std::vector<Vec3> centers;
   std::vector<double> radii;
-  Vec3 cellSize = Vec3::Zero();
+  Mat3 hSize = Mat3::Zero();
   /// Factor by which makeCloud scaled a size distribution down to fit `num` spheres (1: none).
   double appliedPsdScaling = 1;
 
@@ -25,10 +26,18 @@ struct SpherePack
   /// 1000 random tries. The random numbers are std::mt19937(seed) with
   /// std::uniform_real_distribution (random_device if seed < 0), drawn in Yade's order, so a
   /// seeded cloud is the same as Yade's.
+  ///
+  /// Periodic clouds fill the cell [minCorner, maxCorner), or, with a non-zero `cell`, the
+  /// parallelepiped minCorner + cell u, u in [0, 1)^3, of a sheared cell (Yade's hSize argument;
+  /// maxCorner is then unused). No sphere overlaps another or its own images: every image within
+  /// reach is tested, whatever the shear and the sizes (Yade's test for a sheared cell looks at
+  /// the nearest image in fractional coordinates only, which is exact while two radii stay below
+  /// half the distance between the cell's faces, and checks no sphere against its own image).
   /// @return the number of spheres created (may be below num when rMean is given)
-  /// @throws std::invalid_argument naming the inconsistent parameter
+  /// @throws std::invalid_argument naming the inconsistent parameter, or when the largest
+  /// sphere asked for does not fit in the cell (its diameter reaches the shortest period)
   long makeCloud(const Vec3& minCorner, const Vec3& maxCorner, double rMean, double rRelFuzz, int num, bool periodic,
                  double porosity, const std::vector<double>& psdSizes, const std::vector<double>& psdCumm,
-                 bool distributeMass, int seed);
+                 bool distributeMass, int seed, const Mat3& cell = Mat3::Zero());
 };
 } // namespace talus::dem

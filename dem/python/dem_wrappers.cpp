@@ -158,6 +158,7 @@ PYBIND11_MODULE(_dem, m)
   });
   m.def("coordinationNumber", &coordinationNumber);
   m.def("fabricTensor", &fabricTensor);
+  m.def("bodyStressTensors", &bodyStressTensors);
   m.def("sphereVolume", &sphereVolume);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene")
@@ -188,6 +189,7 @@ PYBIND11_MODULE(_dem, m)
       .def("pWaveTimeStep", &Scene::pWaveTimeStep)
       .def("contactTimeStep", &Scene::contactTimeStep)
       .def_readwrite("maxOverlapRatio", &Scene::maxOverlapRatio)
+      .def_readwrite("maxEnergyGrowth", &Scene::maxEnergyGrowth)
       .def_readwrite("timingEnabled", &Scene::timingEnabled)
       .def("step", &Scene::step, py::call_guard<py::gil_scoped_release>())
       .def(

@@ -34,6 +34,8 @@ void talus_wrap_laws(py::module_& m)
     d["nonviscDamp"] = s.energy.nonviscDamp;
     d["plastDissip"] = s.energy.plastDissip;
     d["viscDamp"] = s.energy.viscDamp;
+    d["velGradWork"] = s.energy.velGradWork;
+    d["kinematicWork"] = s.energy.kinematicWork;
     return d;
   });
   m.def("clear_energy", [](Scene& s) { s.energy.clear(); });

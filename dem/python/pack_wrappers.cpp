@@ -15,7 +15,7 @@ void talus_wrap_pack(py::module_& m)
       .def(py::init<>())
       .def_readwrite("centers", &SpherePack::centers)
       .def_readwrite("radii", &SpherePack::radii)
-      .def_readwrite("cellSize", &SpherePack::cellSize)
+      .def_readwrite("hSize", &SpherePack::hSize)
       .def_readwrite("appliedPsdScaling", &SpherePack::appliedPsdScaling)
       .def("makeCloud", &SpherePack::makeCloud, py::call_guard<py::gil_scoped_release>());
 }

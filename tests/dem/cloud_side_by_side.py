@@ -16,6 +16,9 @@ CALLS = {
     "psd-mass": dict(minCorner=(0, 0, 0), maxCorner=(1, 1, 1), psdSizes=[.05, .1, .2], psdCumm=[0, .3, 1],
                      distributeMass=True, num=100, seed=5),
     "flat": dict(minCorner=(0, 0, 0), maxCorner=(1, 1, 0), rMean=.05, rRelFuzz=.2, seed=2),
+    # a sheared cell (Yade's hSize), moderately: Yade's one-image overlap test is still exact
+    "sheared": dict(minCorner=(0.1, 0, 0.2), rMean=.09, rRelFuzz=.3, periodic=True, seed=4,
+                    hSize=Matrix3(1, .3, 0, 0, 1.2, -.2, 0, 0, .9)),
 }
 out = {}
 for name, kw in CALLS.items():

@@ -148,3 +148,75 @@ def test_compressed_cloud_to_porosity_and_to_stress():
     assert np.trace(getStress(scene=scene)) / 3 == pytest.approx(-2e4, rel=.02)
     with pytest.raises(ValueError, match="compression"):
         pack.compressedCloud((0, 0, 0), (1, 1, 1), rRelFuzz=.3, num=20, seed=3, stress=1e4)
+
+
+def periodic_overlap(c, r, h):
+    """Largest overlap between two spheres, or between a sphere and its own image, over the
+    periodic images of the lattice ``h`` (edges as columns), by brute force over offsets -3..3."""
+    worst = -np.inf
+    for k in itertools.product(range(-3, 4), repeat=3):
+        dist = np.linalg.norm(c[None, :, :] - c[:, None, :] + h @ np.array(k, dtype=float), axis=2)
+        if k == (0, 0, 0):
+            np.fill_diagonal(dist, np.inf)
+        worst = max(worst, np.max(r[:, None] + r[None, :] - dist))
+    return worst
+
+
+# A sheared cell (three shear terms), its shortest period (0.917) below its shortest edge (1).
+SHEARED = np.array([[1, .9, .3], [0, 1, -.6], [0, 0, .8]])
+
+
+def test_sheared_periodic_cloud_has_no_overlap_through_any_image():
+    sp = pack.SpherePack()
+    n = sp.makeCloud((.2, -.1, 0), rMean=.07, rRelFuzz=.3, periodic=True, seed=6, hSize=SHEARED)
+    c, r = arrays(sp)
+    assert n == len(sp) > 80 and sp.isPeriodic and sp.isSheared
+    assert np.array_equal(sp.hSize, SHEARED)
+    assert periodic_overlap(c, r, SHEARED) < 0
+    # centres fill the parallelepiped minCorner + hSize u, u in [0, 1)^3
+    u = np.linalg.solve(SHEARED, (c - (.2, -.1, 0)).T).T
+    assert np.all(u >= 0) and np.all(u < 1) and np.all(u.min(axis=0) < .1) and np.all(u.max(axis=0) > .9)
+    with pytest.raises(ValueError, match="sheared; use hSize"):
+        sp.cellSize
+
+
+def test_sheared_cloud_reaches_the_count_and_porosity_asked_for():
+    sp = pack.SpherePack()
+    assert sp.makeCloud(rRelFuzz=.2, num=150, porosity=.75, periodic=True, seed=2, hSize=SHEARED) == 150
+    c, r = arrays(sp)
+    solid = np.sum(4 / 3 * np.pi * r ** 3) / np.linalg.det(SHEARED)
+    assert 1 - solid == pytest.approx(.75, abs=.02)    # rMean follows from the cell's volume det(hSize)
+    assert periodic_overlap(c, r, SHEARED) < 0
+
+
+def test_sheared_cloud_to_simulation_keeps_the_cell_and_makes_no_contact(tmp_path):
+    sp = pack.SpherePack()
+    sp.makeCloud(rMean=.08, rRelFuzz=.2, periodic=True, seed=3, hSize=SHEARED)
+    scene = Scene()
+    scene.materials.append(FrictMat())
+    ids = sp.toSimulation(scene)
+    assert scene.periodic and np.array_equal(scene.cell.hSize, SHEARED) and len(ids) == len(sp)
+    scene.engines = [ForceResetter(), InsertionSortCollider(),
+                     InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                     NewtonIntegrator()]
+    scene.dt = 1e-5
+    scene.step()
+    assert scene._cpp.realContactCount() == 0      # the collider agrees: nothing touches through the boundary
+    sp.save(tmp_path / "sheared.txt")
+    back = pack.SpherePack()
+    back.load(tmp_path / "sheared.txt")
+    assert np.array_equal(back.hSize, SHEARED) and len(back) == len(sp)
+
+
+def test_impossible_sheared_clouds_are_refused_with_the_reason():
+    sp = pack.SpherePack()
+    # the shortest period is |(0.2, 0.4, 0.8)| = 0.917 (edge 3 + edge 2 - edge 1): a 0.5-radius sphere meets its own image
+    with pytest.raises(ValueError, match=r"radius up to 0.50* .* shortest period is 0.9165.*own image"):
+        sp.makeCloud(rMean=.5, periodic=True, hSize=SHEARED)
+    with pytest.raises(ValueError, match="positive determinant"):
+        sp.makeCloud(rMean=.1, periodic=True, hSize=[[1, 1, 0], [1, 1, 0], [0, 0, 1]])
+    with pytest.raises(ValueError, match="needs periodic=True"):
+        sp.makeCloud(rMean=.1, hSize=SHEARED)
+    with pytest.raises(ValueError, match="hSize is zero"):
+        sp.makeCloud(rMean=.1, periodic=True, hSize=np.zeros((3, 3)))
+    assert len(sp) == 0

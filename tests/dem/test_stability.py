@@ -1,5 +1,6 @@
-"""A time step past the stability limit, an overlapping start or a non-finite force stop the
-run with an error that names the bodies and the stable step, instead of going on silently."""
+"""A time step past the stability limit, an overlapping start, a non-finite force or a growing
+total energy stop the run with an error that names the bodies and the stable step, instead of
+going on silently."""
 import math
 
 import numpy as np
@@ -75,3 +76,20 @@ def test_a_failed_step_is_not_silently_repeated():
     S.dt = 0.3 * PWaveTimeStep(S)
     S.run(100)
     assert S.iter == 100
+
+
+def test_energy_growth_is_detected_and_named():
+    # With the overlap check off, an unstable step shows as energy created from nothing.
+    S = column(3.0)
+    S.maxOverlapRatio = 0
+    S.trackEnergy = True
+    S.maxEnergyGrowth = 0.1
+    with pytest.raises(RuntimeError, match=r"step \d+00: the total energy grew by .*% of the .* that flowed, limit 10%"
+                                           r".*unstable; body \d+ moves fastest.*time step .* is too large: P-wave"):
+        S.run(20000)
+    stable = column(0.3)
+    stable.trackEnergy = True
+    stable.maxEnergyGrowth = 0.1
+    stable.run(3000)                 # a stable column bouncing on the wall is not stopped
+    with pytest.raises(ValueError, match="maxEnergyGrowth"):
+        stable.maxEnergyGrowth = -1

@@ -33,15 +33,16 @@ from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.kinematic import HarmonicMotionEngine, KinematicEngine, RotationEngine, TranslationEngine
 from talus.dem.io import CheckpointError
 from talus.dem.materials import CohFrictMat, FrictMat, Material, ViscElMat
-from talus.dem.measure import (avgNumInteractions, fabricTensor, getStress, getStressAndTangent, porosity,
-                               unbalancedForce)
+from talus.dem.measure import (avgNumInteractions, bodyStressTensors, fabricTensor, getStress, getStressAndTangent,
+                               porosity, unbalancedForce)
 from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "timing", "ymport", "Material",
            "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "Quaternion",
-           "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "porosity",
+           "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "bodyStressTensors",
+           "porosity",
            "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",

@@ -3,9 +3,12 @@
 Keys, as in Yade: ``kinetic`` (translational and rotational, computed when read),
 ``elastPotential`` (stored in the contacts' springs, computed when read), ``gravWork`` (minus the
 work of gravity), ``nonviscDamp`` (dissipated by NewtonIntegrator's damping), ``plastDissip``
-(friction sliding and plastic moments) and ``viscDamp`` (contact dashpots). Dissipations are
-positive; ``O.energy.total()`` is conserved in a closed system (it starts at the initial kinetic
-plus elastic energy). The accumulated terms count from when tracking was switched on (or from
+(friction sliding and plastic moments), ``viscDamp`` (contact dashpots), ``velGradWork`` (minus the
+work of the periodic cell's deformation, Yade's PeriTriaxController key, booked for any deforming
+cell) and ``kinematicWork`` (minus the work of imposed motions: non-dynamic bodies moved by their
+velocity, as the walls of TriaxialStressController or the bodies of kinematic engines, and blocked
+DOFs; not in Yade, which does not book it). Dissipations are positive; ``O.energy.total()`` is
+conserved (it starts at the initial kinetic plus elastic energy). The accumulated terms count from when tracking was switched on (or from
 ``O.energy.clear()``); they are deterministic and independent of the number of threads.
 """
 
@@ -15,7 +18,8 @@ from collections.abc import Mapping
 
 from talus import _dem
 
-KEYS = ("kinetic", "elastPotential", "gravWork", "nonviscDamp", "plastDissip", "viscDamp")
+KEYS = ("kinetic", "elastPotential", "gravWork", "nonviscDamp", "plastDissip", "viscDamp", "velGradWork",
+        "kinematicWork")
 
 
 class EnergyTracker(Mapping):
@@ -47,11 +51,11 @@ class EnergyTracker(Mapping):
         return [(k, values[k]) for k in KEYS]
 
     def total(self) -> float:
-        """Sum of every energy (kinetic + elastic + gravWork + dissipations)."""
+        """Sum of every energy (kinetic + elastic + the works + dissipations)."""
         return sum(self._values().values())
 
     def clear(self):
-        """Set the accumulated energies (gravWork and the dissipations) to zero."""
+        """Set the accumulated energies (the works and the dissipations) to zero."""
         _dem.clear_energy(self._scene._cpp)
 
     def __repr__(self):

@@ -1,5 +1,5 @@
 """Measurements with Yade's names: unbalancedForce, getStress, avgNumInteractions,
-fabricTensor, porosity, getStressAndTangent."""
+fabricTensor, bodyStressTensors, porosity, getStressAndTangent."""
 
 from __future__ import annotations
 
@@ -61,6 +61,14 @@ def avgNumInteractions(skipFree: bool = False, scene=None) -> float:
 def fabricTensor(scene=None) -> np.ndarray:
     """(1/Nc) sum of n (x) n over sphere-sphere contacts."""
     return np.array(_dem.fabricTensor(_scene(scene)._cpp))
+
+
+def bodyStressTensors(revertSign: bool = False, scene=None) -> list[np.ndarray]:
+    """Per body id, the mean stress in the solid sphere from its contact forces,
+    (1/V) sum of force (x) arm over its contacts (Yade's bodyStressTensors: compression negative,
+    the opposite with ``revertSign``); zero for bodies that are not spheres."""
+    sign = -1.0 if revertSign else 1.0
+    return [sign * np.array(s) for s in _dem.bodyStressTensors(_scene(scene)._cpp)]
 
 
 def porosity(volume: float = -1, scene=None) -> float:

@@ -93,7 +93,8 @@ def regularOrtho(predicate, radius: float, gap: float, **kw) -> list[BodySpec]:
 class SpherePack:
     """Spheres that are not a simulation yet (Yade's ``pack.SpherePack``): iterate it as
     ``(center, radius)`` pairs, fill it with :meth:`makeCloud`, put it in a scene with
-    :meth:`toSimulation`. ``cellSize`` is non-zero for a periodic packing."""
+    :meth:`toSimulation`. A periodic packing has a cell: ``hSize`` (edges as columns, possibly
+    sheared) or, for an axis-aligned one, ``cellSize`` (Yade's); both are zero otherwise."""
 
     def __init__(self, spheres=None):
         self._cpp = _dem.SpherePack()
@@ -130,16 +131,36 @@ class SpherePack:
         return np.array(self._cpp.centers[i]), self._cpp.radii[i]
 
     @property
+    def hSize(self) -> np.ndarray:
+        """The periodic cell, edges as columns (as ``O.cell.hSize``); zero if not periodic."""
+        return np.array(self._cpp.hSize)
+
+    @hSize.setter
+    def hSize(self, value):
+        self._cpp.hSize = np.asarray(value, dtype=float).reshape(3, 3)
+
+    @property
     def cellSize(self) -> np.ndarray:
-        return np.array(self._cpp.cellSize)
+        """Sizes of the axis-aligned periodic cell (zero if not periodic). A sheared cell has no
+        such sizes: use ``hSize``."""
+        h = self.hSize
+        if np.any(h != np.diag(np.diag(h))):
+            raise ValueError("SpherePack.cellSize: the packing's cell is sheared; use hSize")
+        return np.diag(h).copy()
 
     @cellSize.setter
     def cellSize(self, value):
-        self._cpp.cellSize = np.asarray(value, dtype=float).reshape(3)
+        self.hSize = np.diag(np.asarray(value, dtype=float).reshape(3))
 
     @property
     def isPeriodic(self) -> bool:
-        return bool(np.any(self.cellSize != 0))
+        return bool(np.any(self.hSize != 0))
+
+    @property
+    def isSheared(self) -> bool:
+        """Whether the periodic cell is not axis-aligned."""
+        h = self.hSize
+        return bool(np.any(h != np.diag(np.diag(h))))
 
     appliedPsdScaling = property(lambda self: self._cpp.appliedPsdScaling,
                                  doc="factor by which makeCloud scaled the size distribution down (1: none)")
@@ -154,19 +175,28 @@ class SpherePack:
     # -- generation ------------------------------------------------------------------------------
     def makeCloud(self, minCorner=(0, 0, 0), maxCorner=(0, 0, 0), rMean: float = -1, rRelFuzz: float = 0,
                   num: int = -1, periodic: bool = False, porosity: float = 0.65, psdSizes=(), psdCumm=(),
-                  distributeMass: bool = False, seed: int = -1) -> int:
+                  distributeMass: bool = False, seed: int = -1, hSize=None) -> int:
         """Random loose cloud of non-overlapping spheres in the box [minCorner, maxCorner], added to
         the packing (Yade's makeCloud, with its parameters and defaults). Radii: uniform in
         rMean (1 +- rRelFuzz); or num spheres sized for ``porosity`` (rMean < 0); or a size
         distribution ``psdSizes`` (diameters) / ``psdCumm`` (cumulative fractions, by mass with
         ``distributeMass``). With ``seed`` >= 0 the cloud is deterministic and identical to
-        Yade's for the same arguments. Returns the number of spheres created."""
-        if periodic and len(self) == 0 and np.any(np.asarray(maxCorner, float) <= np.asarray(minCorner, float)):
+        Yade's for the same arguments. ``hSize`` (with ``periodic``): a sheared cell, edges as
+        columns, filled from ``minCorner`` (``maxCorner`` unused), as Yade's; unlike Yade's, no
+        sphere overlaps any periodic image of another, however sheared the cell, and the packing
+        keeps the cell (``toSimulation`` sets ``O.cell.hSize``). A periodic sphere never
+        reaches its own image: radii asked for (rMean, psdSizes) that cannot fit raise
+        ValueError. Returns the number of spheres created."""
+        cell = np.zeros((3, 3)) if hSize is None else np.asarray(hSize, dtype=float).reshape(3, 3)
+        if (periodic and hSize is None and len(self) == 0
+                and np.any(np.asarray(maxCorner, float) <= np.asarray(minCorner, float))):
             raise ValueError("makeCloud: a periodic cloud needs maxCorner above minCorner in every direction")
+        if hSize is not None and not np.any(cell != 0):
+            raise ValueError("makeCloud: hSize is zero; give the cell's edges as columns, or leave hSize out")
         return self._cpp.makeCloud(np.asarray(minCorner, dtype=float), np.asarray(maxCorner, dtype=float), float(rMean),
                                    float(rRelFuzz), int(num), bool(periodic), float(porosity),
                                    [float(x) for x in psdSizes], [float(x) for x in psdCumm], bool(distributeMass),
-                                   int(seed))
+                                   int(seed), cell)
 
     @property
     def clumpIds(self) -> np.ndarray:
@@ -275,7 +305,7 @@ class SpherePack:
             from talus.dem import O as scene
         if self.isPeriodic:
             scene.periodic = True
-            scene.cell.setBox(self.cellSize)
+            scene.cell.hSize = self.hSize
             scene.cell.trsf = np.eye(3)
         ids = self.clumpIds
         if np.all(ids < 0):
@@ -304,26 +334,29 @@ class SpherePack:
         r = np.asarray(scene.radii())
         keep = alive & (r > 0)
         self.fromList(list(zip(np.asarray(scene.positions())[keep], r[keep])))
-        self.cellSize = scene.cell.size if scene.periodic else np.zeros(3)
+        self.hSize = scene.cell.hSize if scene.periodic else np.zeros((3, 3))
 
     def save(self, fileName: str):
         """Write the spheres as text, one ``x y z r`` line each (full precision), with Yade's
-        ``##PERIODIC:: sx sy sz`` first line for a periodic packing (readable by Yade's
-        SpherePack.load)."""
+        ``##PERIODIC:: sx sy sz`` first line for an axis-aligned periodic packing (readable by
+        Yade's SpherePack.load); a sheared cell is a ``##HSIZE::`` line of its nine entries, row
+        by row (Talus only: Yade reads such a file as not periodic)."""
         with open(fileName, "w") as f:
-            if self.isPeriodic:
+            if self.isSheared:
+                f.write("##HSIZE:: " + " ".join(repr(float(x)) for x in self.hSize.ravel()) + "\n")
+            elif self.isPeriodic:
                 f.write("##PERIODIC:: " + " ".join(repr(float(x)) for x in self.cellSize) + "\n")
             for c, r in self:
                 f.write(" ".join(repr(float(x)) for x in c) + f" {float(r)!r} -1\n")
 
     def load(self, fileName: str):
         """Read a file written by :meth:`save` (or Yade's SpherePack.save)."""
-        spheres, cell = [], np.zeros(3)
+        spheres, cell = [], np.zeros((3, 3))
         with open(fileName) as f:
             for n, line in enumerate(f, 1):
                 line = line.strip()
-                if line.startswith("##PERIODIC::"):
-                    cell = np.array([float(x) for x in line.split()[1:4]])
+                if line.startswith(("##PERIODIC::", "##HSIZE::")):
+                    cell = _cell_line(line, f"{fileName}:{n}")
                     continue
                 if not line or line.startswith("#"):
                     continue
@@ -332,7 +365,20 @@ class SpherePack:
                     raise ValueError(f"{fileName}:{n}: expected 'x y z r', got {line!r}")
                 spheres.append(([float(x) for x in items[:3]], float(items[3])))
         self.fromList(spheres)
-        self.cellSize = cell
+        self.hSize = cell
+
+
+def _cell_line(line: str, where: str) -> np.ndarray:
+    """The cell of a ``##PERIODIC:: sx sy sz`` or ``##HSIZE:: h00 h01 ... h22`` line."""
+    tag, *items = line.split()
+    count = 3 if tag == "##PERIODIC::" else 9
+    try:
+        values = [float(x) for x in items]
+    except ValueError:
+        values = []
+    if len(values) != count:
+        raise ValueError(f"{where}: {tag} needs {count} numbers, got {line!r}")
+    return np.diag(values) if count == 3 else np.reshape(values, (3, 3))
 
 
 def compressedCloud(minCorner, maxCorner, rMean: float = -1, rRelFuzz: float = 0, num: int = -1, seed: int = -1,
@@ -398,5 +444,5 @@ def compressedCloud(minCorner, maxCorner, rMean: float = -1, rRelFuzz: float = 0
     packed.fromSimulation(scene)
     centers = [scene.cell.wrap(c) for c, _ in packed]
     packed.fromList(list(zip(centers, [r for _, r in packed])))
-    packed.cellSize = scene.cell.size
+    packed.hSize = scene.cell.hSize
     return packed

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import __main__
+import math
 from typing import Sequence
 
 from talus import _dem
@@ -107,6 +108,20 @@ class Scene(CheckpointMethods):
         if not value >= 0:
             raise ValueError(f"O.maxOverlapRatio must be >= 0, got {value}")
         self._cpp.maxOverlapRatio = float(value)
+
+    @property
+    def maxEnergyGrowth(self) -> float:
+        """With O.trackEnergy, a total energy grown by more than this fraction of the energy that
+        flowed (checked every 100 steps) stops the run with an error naming the fastest body and
+        the stable time step. 0 (default) disables: energy put in by what the tracker does not see
+        (a coupling's external forces, growing particles) would count as growth."""
+        return self._cpp.maxEnergyGrowth
+
+    @maxEnergyGrowth.setter
+    def maxEnergyGrowth(self, value: float):
+        if not (math.isfinite(value) and value >= 0):
+            raise ValueError(f"O.maxEnergyGrowth must be a finite number >= 0, got {value}")
+        self._cpp.maxEnergyGrowth = float(value)
 
     @property
     def timingEnabled(self) -> bool:
