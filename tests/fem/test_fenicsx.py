@@ -145,6 +145,26 @@ def test_mesh_and_rves_must_match(rve_file):
         MultiscaleSolver(msh, MultiscaleRVEs(str(rve_file[0]), numPoints=4))
 
 
+def test_gauss_point_coordinates_follow_the_rve_numbering(rve_file):
+    # The positions by which a heterogeneous sample gives each Gauss point its RVE must be in the
+    # solver's numbering: the gradient of u = (x y, 0) (bilinear, exact on Q1) read at the solver's
+    # Gauss points is (y, x) at the coordinates returned for them.
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+
+    from talus.fem import MultiscaleRVEs
+    from talus.fem.fenicsx import MultiscaleSolver, gaussPointCoordinates
+    msh = dmesh.create_rectangle(MPI.COMM_SELF, [np.zeros(2), np.array([2.0, 1.0])], [2, 1],
+                                 dmesh.CellType.quadrilateral)
+    x = gaussPointCoordinates(msh)
+    assert x.shape == (8, 2)
+    # 2 x 2 Gauss points per unit cell, at 1/(2 sqrt 3) from its centre lines
+    assert np.abs(x % 1.0 - 0.5) == pytest.approx(np.full((8, 2), 0.5 / np.sqrt(3)))
+    solver = MultiscaleSolver(msh, MultiscaleRVEs(str(rve_file[0]), numPoints=8))
+    solver.du.interpolate(lambda p: np.stack([p[0] * p[1], np.zeros_like(p[0])]))
+    assert solver.gaussGradients()[:, 0, :] == pytest.approx(x[:, ::-1], abs=1e-12)
+
+
 @pytest.mark.skipif(shutil.which("run-escript") is None, reason="escript is not installed")
 def test_escript_client_gives_the_same_path(rve_file, solved):
     # Both drivers solve the same discrete problem with the same Newton rules (talus.fem.newton):
