@@ -53,8 +53,8 @@ def main():
               f"tangent {tangent:.2e} relative to Yade's", flush=True)
         case.record(f"largest relative difference of the Gauss-point stress and tangent from Yade's "
                     f"getStressAndTangent, {name} RVE (stress {stress:.1e}, tangent {tangent:.1e})",
-                    max(stress, tangent), "Yade 2023.02a getStressAndTangent(volume, symmetry=True) on the same packing",
-                    1e-6, suffix=name, peer="yade 2023.02a", stress=stress, tangent=tangent, spheres=info["spheres"],
+                    max(stress, tangent),
+                    "Yade 2023.02a getStressAndTangent(volume, symmetry=True) on the same packing", 1e-6, suffix=name, peer="yade 2023.02a", stress=stress, tangent=tangent, spheres=info["spheres"],
                     shearing_contacts=ours["shearing"], yade_stress_max=float(np.abs(sy).max()))
         ax.plot(cy.ravel(), c.ravel(), "o", ms=4, label="tangent entries (Pa)")
         ax.plot(sy.ravel(), s.ravel(), "s", ms=4, mfc="none", label="stress entries (Pa)")
