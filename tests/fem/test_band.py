@@ -49,6 +49,21 @@ def test_a_band_is_found_at_its_angle(mesh, degrees, through):
     assert band.contrast > 2.0 and 0.03 < band.width < 0.15
 
 
+@pytest.mark.parametrize("degrees", [48, 58, 125])
+def test_a_band_is_found_on_an_irregular_mesh(degrees):
+    # The shear-band case fits unstructured quadrilaterals: here the 8 x 16 grid with every
+    # interior node moved at random by up to 0.3 of a cell, so that no cell edge or diagonal
+    # runs at one angle.
+    cells = grid(8, 16)
+    corners = cells.reshape(-1, 2)
+    nodes, index = np.unique(np.round(corners, 12), axis=0, return_inverse=True)
+    interior = (nodes[:, 0] > 0) & (nodes[:, 0] < 1) & (nodes[:, 1] > 0) & (nodes[:, 1] < 2)
+    nodes[interior] += 0.3 * 0.125 * np.random.default_rng(5).uniform(-1, 1, (interior.sum(), 2))
+    cells = nodes[index.ravel()].reshape(cells.shape)
+    band = fitBand(cells, band_field(cells, degrees, (0.5, 1.0)))
+    assert band.inclination == pytest.approx(min(degrees, 180 - degrees), abs=1.5)
+
+
 def test_corner_clusters_off_the_band_do_not_tilt_it():
     cells = grid(6, 12, skew=0.05)
     _, c = polygonAreasAndCentroids(cells)
