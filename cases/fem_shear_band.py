@@ -2,28 +2,33 @@
 
 Run:      build/bin/talus run cases/fem_shear_band.py [--quick] [--results DIR]
 Set-up:   a W x H = 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Gauss points) on two
-          meshes, coarse 4 x 8 and refined 8 x 16 (both modes; the quick mode's RVEs are smaller). Every
-          Gauss point carries a copy of one dense planar RVE (talus.fem.prepareRVE planar=True, a
-          layer of disks of rMean 0.03 compacted to -100 kPa with friction 0.1, then friction 0.5;
-          quick: cell edge 0.5, 63 disks, seed 2; full: edge 0.7, 111 disks, seed 3). Such small
-          RVEs are anisotropic: under a biaxial strain they carry a shear stress, which shears the
-          whole sample between its smooth platens; the seeds are those of the least anisotropic of
-          three packings (|s_xy / s_yy| < 0.03 against up to 0.15). The imperfection (Yade's FEMxDEM
-          biaxial example loads 0.yade.gz everywhere, or one file per Gauss point from initLoad's
-          other branch; here a weak region): the Gauss points inside one square of the coarse cell size,
-          left of the centre (the same region on both meshes), get a looser, weaker RVE (compacted
-          with friction 0.5, then friction 0.3). Smooth platens: bottom uy = 0 (and ux = 0 at the
-          bottom-left corner), top lowered to 10 % axial strain in 20 (quick) or 50 load steps, left
-          and right edges under a 100 kPa traction; 40 (quick) or 100 DEM steps per call;
-          finite-difference consistent tangent; Newton tolerance 1e-3 (quick) or 1e-5, a step is cut
-          after 6 iterations without progress (down to 1/16), a failing correction halved
-          (backtracking); updated Lagrangian. A load step that still fails (small RVEs in the band
-          lose their contacts or are crushed) ends that mesh's run with the solver's report; the
-          records use the converged steps. When the fd tangent fails a step (near collapse it is
-          nearly singular), the run goes on with the contact-stiffness tangent. Quick mode is
-          sized for a shared 2-core machine (640 RVEs of 63 disks); the full mode (640 RVEs of 111
-          disks, 2.5 times the load steps and DEM steps per call) is hours on one core. A 3 x 6
-          coarse mesh (cells a third of the sample wide, as wide as the band) did not localise.
+          unstructured meshes (gmsh, frontal-Delaunay recombined: no mesh line or element diagonal at
+          one angle), element size h = 0.25 (43 cells) and 0.125 (152 cells) in both modes (the quick
+          mode's RVEs are smaller). (Structured meshes of square cells, whose diagonals run at 45
+          degrees, gave 39.7 to 42.6 degrees on 8 x 16 with one packing everywhere; docs/fem.md.)
+          Every Gauss point outside the imperfection carries one of four dense planar RVEs, drawn at
+          random (numpy generator seed 7): talus.fem.prepareRVE planar=True, a layer of disks of rMean
+          0.03 compacted to -100 kPa with friction 0.1, then friction 0.5; quick: cell edge 0.5, 55 to
+          63 disks, packing seeds 2 to 5; full: edge 0.7, seeds 3 to 6. Such small RVEs are
+          anisotropic: under a biaxial strain they carry a shear stress (up to 15 % of the axial
+          stress). One packing copied to every Gauss point (Yade's FEMxDEM biaxial example loads one
+          0.yade.gz everywhere) makes the whole sample anisotropic, and its band followed the fabric:
+          27 degrees on the coarse mesh, against 49.5 for the mix (docs/fem.md). The imperfection (one
+          file per Gauss point, as the other branch of that example's initLoad): the Gauss points
+          inside a square of side 0.25 at the centre of the sample (placed by position: 4 and 22
+          points) get a looser, weaker RVE (the first seed, compacted with friction 0.5, then friction
+          0.3). At the centre, a band at any inclination up to the sample's diagonal (63 degrees) can
+          leave through both free sides. Smooth platens: bottom uy = 0 (and ux = 0 at the bottom-left
+          corner), top lowered to 10 % axial strain in 20 (quick) or 50 load steps, left and right
+          edges under a 100 kPa traction; 40 (quick) or 100 DEM steps per call; finite-difference
+          consistent tangent; Newton tolerance 1e-3 (quick) or 1e-5, a step is cut after 6 iterations
+          without progress (down to 1/16), a failing correction halved (backtracking); updated
+          Lagrangian. A load step that still fails (small RVEs in the band lose their contacts or are
+          crushed) ends that mesh's run with the solver's report; the records use the converged steps.
+          When the fd tangent fails a step (near collapse it is nearly singular), the run goes on with
+          the contact-stiffness tangent. Quick mode is sized for a shared 2-core machine (780 RVEs of
+          55 to 63 disks); the full mode (780 RVEs of ~110 disks, 2.5 times the load steps and DEM
+          steps per call) is hours on one core.
 Measured: friction angle phi from the peak stress ratio, sin phi = (s1 - s3) / (s1 + s3); dilatancy
           angle psi from the volumetric curve, the largest dilatancy rate
           sin psi = -d eps_v / d(eps_1 - eps_3) (compression positive) between consecutive load
@@ -32,9 +37,9 @@ Measured: friction angle phi from the peak stress ratio, sin phi = (s1 - s3) / (
           straight band (talus.fem.band.fitBand: a Radon scan for the line along which the excess
           strain integrates to the most, then a least-squares Gaussian band profile across it);
           its inclination to the horizontal (the minor principal stress), width and contrast.
-Checked:  The rule: "a band forms" is checked on the finest mesh of the study (8 x 16, the one
-          whose cells are narrower than the band; a 4 x 8 cell is about as wide as the band, which
-          it can only smear); the refinement study is checked by the meshes agreeing before
+Checked:  The rule: "a band forms" is checked on the finest mesh of the study (h = 0.125, the one
+          whose cells are narrower than the band; a cell of 0.25 is about as wide as the band,
+          which it can only smear); the refinement study is checked by the meshes agreeing before
           localisation and by the band not getting less sharp as the cells shrink (a local
           continuum's band narrows with the cells: the expected mesh dependence). The coarse
           mesh's localisation and inclination are measured the same way and written into the
@@ -54,7 +59,7 @@ Checked:  The rule: "a band forms" is checked on the finest mesh of the study (8
           fem.shear-band.converged: fraction of the load steps that converged on both meshes (= 1).
 Produces: the records; chart fem.shear-band.png (stress ratio and volumetric strain against axial
           strain, both meshes); fem.shear-band.field.png (accumulated shear strain per cell over the
-          whole test and after the peak, each mesh, with the band axis); shear_band_<nx>x<ny>.xdmf
+          whole test and after the peak, each mesh, with the band axis); shear_band_h<size>.xdmf
           (ParaView: displacement, stress, void ratio, shear strain of the last increment, every
           load step); fem.shear-band.fields.npz (the cells and post-peak fields, to re-measure).
 """
@@ -69,32 +74,61 @@ from talus import results
 P_CONF, W, H, STRAIN = 1e5, 1.0, 2.0, 0.10
 
 
-def run_mesh(nx, ny, strong, weak, region, steps, nSteps, tol, folder):
-    """The biaxial test on an nx x ny mesh; returns its curves, cells and per-increment shear."""
-    from dolfinx import mesh as dmesh
-    from dolfinx.io import XDMFFile
+def unstructured_mesh(h):
+    """An unstructured quadrilateral mesh of the W x H sample, element size h: gmsh's
+    frontal-Delaunay triangles recombined into quadrilaterals (Blossom), so that no mesh line or
+    element diagonal runs through the sample at one angle."""
+    from dolfinx.io import gmshio            # dolfinx before gmsh (the other order crashes here)
     from mpi4py import MPI
+    import gmsh
+    gmsh.initialize()
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        geo = gmsh.model.geo
+        corners = [geo.addPoint(x, y, 0, h) for x, y in ((0, 0), (W, 0), (W, H), (0, H))]
+        sides = [geo.addLine(corners[i], corners[(i + 1) % 4]) for i in range(4)]
+        surface = geo.addPlaneSurface([geo.addCurveLoop(sides)])
+        geo.synchronize()
+        gmsh.model.addPhysicalGroup(2, [surface], 1)
+        gmsh.option.setNumber("Mesh.Algorithm", 6)               # frontal-Delaunay
+        gmsh.option.setNumber("Mesh.RecombinationAlgorithm", 1)  # Blossom: all quadrilaterals
+        gmsh.option.setNumber("Mesh.RecombineAll", 1)
+        gmsh.model.mesh.generate(2)
+        msh, _, _ = gmshio.model_to_mesh(gmsh.model, MPI.COMM_SELF, 0, gdim=2)
+    finally:
+        gmsh.finalize()
+    return msh
+
+
+def run_mesh(label, h, strong, weak, region, steps, nSteps, tol, folder):
+    """The biaxial test on the unstructured mesh of size h; returns its curves, cells and
+    per-increment shear."""
+    from dolfinx.io import XDMFFile
 
     from talus.fem import MultiscaleRVEs
-    from talus.fem.fenicsx import Dirichlet, MultiscaleSolver, NewtonDivergence, Traction, shearStrain
+    from talus.fem.fenicsx import (Dirichlet, MultiscaleSolver, NewtonDivergence, Traction, gaussPointCoordinates,
+                                   shearStrain)
 
-    msh = dmesh.create_rectangle(MPI.COMM_SELF, [np.zeros(2), np.array([W, H])], [nx, ny],
-                                 dmesh.CellType.quadrilateral)
-    centres = dmesh.compute_midpoints(msh, 2, np.arange(nx * ny, dtype=np.int32))[:, :2]
+    msh = unstructured_mesh(h)
     (x0, y0), (x1, y1) = region
-    inside = (centres[:, 0] > x0) & (centres[:, 0] < x1) & (centres[:, 1] > y0) & (centres[:, 1] < y1)
-    rves = MultiscaleRVEs([str(weak) if inside[c] else str(strong) for c in range(nx * ny) for _ in range(4)],
-                          nSteps=nSteps, form="fd")
-    dx, dy = W / nx / 2, H / ny / 2            # edges are found by their side of these lines
+    p = gaussPointCoordinates(msh)
+    inside = (p[:, 0] > x0) & (p[:, 0] < x1) & (p[:, 1] > y0) & (p[:, 1] < y1)
+    # every point outside the weak square one of the strong packings, drawn at random
+    pick = np.random.default_rng(7).integers(len(strong), size=len(inside))
+    rves = MultiscaleRVEs([str(weak) if k else str(strong[q]) for k, q in zip(inside, pick)], nSteps=nSteps,
+                          form="fd")
+    # Prescribed nodes are those on the bottom and on the current top (the platens stay flat; the
+    # nearest interior node is 0.8 h away); the traction sides are found among the boundary facets
+    # by their side of x = h / 2 and W - h / 2 (the sides bulge by less).
+    dx, flat = h / 2, 1e-6 * H
     solver = MultiscaleSolver(
         msh, rves, tol=tol, stall=6, minStepFraction=1 / 16,
-        dirichlet=[Dirichlet(lambda x: x[1] < dy, 1), Dirichlet(lambda x: (x[1] < dy) & (x[0] < dx), 0),
-                   # the top platen: the nodes near the current top (its height drops by 10 %)
-                   Dirichlet(lambda x: x[1] > x[1].max() - dy, 1, lambda t: -STRAIN * H * t)],
+        dirichlet=[Dirichlet(lambda x: x[1] < flat, 1), Dirichlet(lambda x: (x[1] < flat) & (x[0] < flat), 0),
+                   Dirichlet(lambda x: x[1] > x[1].max() - flat, 1, lambda t: -STRAIN * H * t)],
         tractions=[Traction(lambda x: x[0] < dx, lambda t: (P_CONF, 0.0)),
                    Traction(lambda x: x[0] > W - dx, lambda t: (-P_CONF, 0.0))])
     rows, shear, converged, start = [], [], 0, time.perf_counter()
-    with XDMFFile(msh.comm, str(folder / f"shear_band_{nx}x{ny}.xdmf"), "w") as xdmf:
+    with XDMFFile(msh.comm, str(folder / f"shear_band_{label}.xdmf"), "w") as xdmf:
         xdmf.write_mesh(msh)
         n, fallback = 1, None
         while n <= steps:
@@ -103,11 +137,11 @@ def run_mesh(nx, ny, strong, weak, region, steps, nSteps, tol, folder):
                 report = solver.step(n / steps)
             except NewtonDivergence as e:
                 if rves.form != "fd":
-                    print(f"{nx}x{ny} step {n}: {str(e)[:400]}", flush=True)
+                    print(f"{label} step {n}: {str(e)[:400]}", flush=True)
                     break
                 # Near collapse the fd tangent is nearly singular and its corrections crush RVEs:
                 # go on with the contact-stiffness tangent (an upper bound: slower, no overshoot).
-                print(f"{nx}x{ny} step {n}: fd tangent failed, contact-stiffness tangent from here", flush=True)
+                print(f"{label} step {n}: fd tangent failed, contact-stiffness tangent from here", flush=True)
                 rves.form, solver.stall, solver.maxIter, fallback = "full", 10, 80, n
                 continue
             converged += 1
@@ -117,17 +151,17 @@ def run_mesh(nx, ny, strong, weak, region, steps, nSteps, tol, folder):
             # area, the axial stress the top reaction over the top edge's length.
             x = msh.geometry.x
             height = H * (1 - solver.t * STRAIN)
-            onTop = x[:, 1] > height - dy
-            top = -solver.reactions(lambda y: y[1] > height - dy, 1) / np.ptp(x[onTop, 0])   # compressive, Pa
+            onTop = x[:, 1] > height - flat
+            top = -solver.reactions(lambda y: y[1] > height - flat, 1) / np.ptp(x[onTop, 0])   # compressive, Pa
             rows.append((solver.t * STRAIN, top, 1 - area(msh) / (W * H)))
-            print(f"{nx}x{ny} step {n}: axial strain {rows[-1][0]:.4f}, stress ratio "
+            print(f"{label} step {n}: axial strain {rows[-1][0]:.4f}, stress ratio "
                   f"{(top - P_CONF) / (top + P_CONF):.3f}, volumetric strain {rows[-1][2]:.5f}, Newton "
                   f"{report.iterations}{' (cut)' if report.cut else ''}, {time.perf_counter() - start:.0f} s",
                   flush=True)
             solver.write(xdmf, solver.t)
             n += 1
     return {"rows": np.array(rows), "shear": np.array(shear), "polygons": polygons(msh), "converged": converged,
-            "inside": inside, "newton": solver.newtonIterations, "wall": time.perf_counter() - start,
+            "weakPoints": int(inside.sum()), "newton": solver.newtonIterations, "wall": time.perf_counter() - start,
             "fallback": fallback}
 
 
@@ -170,35 +204,45 @@ def main():
     from talus.fem.band import fitBand
 
     case = results.Case("fem.shear-band", quick=args.quick, folder=args.results)
-    meshes = [(4, 8), (8, 16)]                  # coarsest first, finest last (the checks use both ends)
-    steps, nSteps, tol, size, seed = (20, 40, 1e-3, 0.5, 2) if args.quick else (50, 100, 1e-5, 0.7, 3)
+    # unstructured quadrilaterals of size h, coarsest first, finest last (the checks use both ends)
+    meshes = [("h0.25", 0.25), ("h0.125", 0.125)]
+    steps, nSteps, tol, size, seeds = (20, 40, 1e-3, 0.5, (2, 3, 4, 5)) if args.quick else (50, 100, 1e-5, 0.7,
+                                                                                             (3, 4, 5, 6))
     folder = Path(case.folder)
     folder.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix="fem_shear_band_"))
-    strong, weak = work / "strong.h5", work / "weak.h5"
-    infos = {name: prepareRVE(path, size=size, rMean=0.03, seed=seed, sigma=-P_CONF, young=1e8, planar=True,
-                              friction=phi, compactionFriction=phi0)
-             for name, path, phi, phi0 in (("strong", strong, 0.5, 0.1), ("weak", weak, 0.3, 0.5))}
+    # A sample of one small packing copied everywhere has that packing's anisotropy everywhere
+    # (its shear stress under a biaxial strain): the band then follows the fabric (27 degrees on
+    # the coarse mesh). Four packings mixed at random are a statistically isotropic sample.
+    strong, weak = [work / f"strong{seed}.h5" for seed in seeds], work / "weak.h5"
+    infos = {f"strong (seed {seed})": prepareRVE(path, size=size, rMean=0.03, seed=seed, sigma=-P_CONF, young=1e8,
+                                                 planar=True, friction=0.5, compactionFriction=0.1)
+             for seed, path in zip(seeds, strong)}
+    infos["weak"] = prepareRVE(weak, size=size, rMean=0.03, seed=seeds[0], sigma=-P_CONF, young=1e8, planar=True,
+                               friction=0.3, compactionFriction=0.5)
     for name, info in infos.items():
         print(f"{name} RVE: {info['spheres']} disks, porosity {info['porosity']:.3f}, "
               f"coordination {info['coordination']:.2f}", flush=True)
-    side = W / meshes[0][0]                     # the imperfection: one coarse cell, left of the centre
-    cx, cy = side * (int(0.3 * W / side) + 0.5), side * (int(0.5 * H / side) + 0.5)
-    region = ((cx - side / 2, cy - side / 2), (cx + side / 2, cy + side / 2))
+    # The imperfection: a square of the coarse cell's size at the centre of the sample, the Gauss
+    # points inside it weak (the same area on both meshes). At the centre, a band at any inclination
+    # up to the sample's diagonal (63 degrees) leaves through the two free sides and splits the
+    # sample into two blocks; a band through a point higher up (it was at (0.375, 1.125)) that
+    # is steeper than about 50 degrees runs into the top platen instead, and the flatter band wins.
+    side = meshes[0][1]
+    region = ((W / 2 - side / 2, H / 2 - side / 2), (W / 2 + side / 2, H / 2 + side / 2))
     runs = {}
-    for nx, ny in meshes:
-        runs[(nx, ny)] = run_mesh(nx, ny, strong, weak, region, steps, nSteps, tol, folder)
+    for label, h in meshes:
+        runs[label] = run_mesh(label, h, strong, weak, region, steps, nSteps, tol, folder)
     np.savez(folder / "fem.shear-band.fields.npz",
-             **{f"{key}_{nx}x{ny}": r[key] for (nx, ny), r in runs.items() for key in ("polygons", "shear", "rows")})
+             **{f"{key}_{label}": r[key] for label, r in runs.items() for key in ("polygons", "shear", "rows")})
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     fieldFig, fieldAxes = plt.subplots(2, len(meshes), figsize=(4 * len(meshes), 10))
     peaks, measured = [], {}
-    for k, ((nx, ny), r) in enumerate(runs.items()):
-        label = f"{nx}x{ny}"
+    for k, ((label, h), r) in enumerate(zip(meshes, runs.values())):
         rows = r["rows"]
         ratio = (rows[:, 1] - P_CONF) / (rows[:, 1] + P_CONF)
-        axes[0].plot(100 * rows[:, 0], ratio, "o-", ms=3, label=f"{label} ({4 * nx * ny} RVEs)")
+        axes[0].plot(100 * rows[:, 0], ratio, "o-", ms=3, label=f"{label} ({4 * len(r['polygons'])} RVEs)")
         axes[1].plot(100 * rows[:, 0], 100 * rows[:, 2], "o-", ms=3, label=label)
         phi, psi, peak = angles(rows)
         peaks.append(ratio[peak])
@@ -213,18 +257,19 @@ def main():
               f"band max/mean {loc:.2f}, inclination {incl:.1f} (Roscoe {roscoe:.1f}, Mohr-Coulomb {mc:.1f}), "
               f"width {fitted.width:.3f}, contrast {fitted.contrast:.2f}, Newton iterations {r['newton']}, "
               f"contact tangent from step {r['fallback']}, {r['wall']:.0f} s", flush=True)
-        measured[(nx, ny)] = dict(
+        measured[label] = dict(
             label=label, localisation=loc, outside=outside, inclination=incl, phi=phi, psi=psi, roscoe=roscoe,
-            mohr_coulomb=mc, band_width=fitted.width, band_contrast=fitted.contrast, cell_width=W / nx,
-            peak_strain=float(rows[peak, 0]), cells=nx * ny, gauss_points=4 * nx * ny, steps=steps, nSteps=nSteps,
-            wall_mesh_s=r["wall"], final_strain=float(rows[-1, 0]), contact_tangent_from_step=r["fallback"])
+            mohr_coulomb=mc, band_width=fitted.width, band_contrast=fitted.contrast, cell_width=h,
+            peak_strain=float(rows[peak, 0]), cells=len(r["polygons"]), gauss_points=4 * len(r["polygons"]),
+            steps=steps, nSteps=nSteps,
+            weak_gauss_points=r["weakPoints"], wall_mesh_s=r["wall"], final_strain=float(rows[-1, 0]),
+            contact_tangent_from_step=r["fallback"])
         # the fields: accumulated shear strain of the whole test and after the peak, per cell
         for row, (field, what) in enumerate(((r["shear"].sum(axis=0), "whole test"), (post, "after the peak"))):
             ax = fieldAxes[row, k]
             patches = PolyCollection(r["polygons"], array=field, cmap="viridis", edgecolor="face")
             ax.add_collection(patches)
-            for poly in r["polygons"][r["inside"]]:
-                ax.add_patch(plt.Polygon(poly, fill=False, edgecolor="w", lw=0.8, ls=":"))
+            ax.add_patch(plt.Rectangle(region[0], side, side, fill=False, edgecolor="w", lw=0.8, ls=":"))
             ax.plot(*np.array([fitted.point - 1.2 * fitted.direction, fitted.point + 1.2 * fitted.direction]).T,
                     "r--", lw=1.2)
             ax.set_xlim(r["polygons"][..., 0].min() - 0.05, r["polygons"][..., 0].max() + 0.05)
@@ -235,7 +280,7 @@ def main():
                          f"{100 * rows[-1, 0]:.1f} %)", fontsize=9)
             fieldFig.colorbar(patches, ax=ax, shrink=0.8)
     # "A band forms" on the finest mesh; the coarsest mesh's figures ride along (coarse_*), unchecked.
-    fine, coarse = measured[meshes[-1]], measured[meshes[0]]
+    fine, coarse = measured[meshes[-1][0]], measured[meshes[0][0]]
     label = fine["label"]
     given = lambda m: {k: v for k, v in m.items() if k != "label"}            # noqa: E731
     aside = {f"coarse_{k}": v for k, v in given(coarse).items()}
@@ -269,10 +314,11 @@ def main():
     axes[1].set_xlabel("axial strain (%)")
     axes[1].set_ylabel("volumetric strain (%, compression +)")
     axes[1].legend()
-    fig.suptitle(f"FEM x DEM drained biaxial, 100 kPa, planar RVEs of {infos['strong']['spheres']} disks "
-                 f"(weak: {infos['weak']['spheres']})")
+    fig.suptitle(f"FEM x DEM drained biaxial, 100 kPa, planar RVEs of "
+                 f"{', '.join(str(i['spheres']) for i in infos.values())} disks (the last: weak)")
     case.save_chart(fig)
-    fieldFig.suptitle("accumulated shear strain per cell (dotted: the weak RVEs; dashed: band axis)", fontsize=9)
+    fieldFig.suptitle("accumulated shear strain per cell (dotted: the weak region, initial position; dashed: "
+                      "band axis)", fontsize=9)
     case.save_chart(fieldFig, "field")
 
 

@@ -1,6 +1,6 @@
 """Scenario: the Gauss-point call on one RVE packing, timed, in Yade and in Talus (talus.dem.twin).
 Parameters ($TALUS_SCENARIO): `packing` (JSON of talus.fem.exportRVE), `points`, `calls`, `nSteps`,
-`rveSceneDir` (talus.fem.rve_scene.FOLDER: the scene builder shared with tests/fem/rve_yade.py).
+`rveSceneDir` (talus.fem.rve_scene.FOLDER: the scene builder shared with cases/yade/fem_rve_tangent.py).
 
 Each call deforms every Gauss point's RVE from its committed state by a small gradient over
 nSteps DEM steps and reads the stress and tangent; then the trial is rejected (rollback), as in a

@@ -50,7 +50,8 @@ def test_one_element_equals_direct_dem(rve_file, solved):
     assert min(r.iterations for r in solver.history) >= 2   # Newton iterated: RVEs rolled back between
     for p in (0, 3):    # every converged increment (a cut step has several), each point on its own path
         ours = np.array([r.stress[p] for r in solver.history])
-        direct = replay(rve_file[0], [r.gradients[p] for r in solver.history], N_STEPS)[1][:, :2, :2]
+        direct = replay(rve_file[0], [r.gradients[p] for r in solver.history],
+                        [r.nSteps for r in solver.history])[1][:, :2, :2]
         assert np.abs(ours - direct).max() < 1e-8 * np.abs(direct).max()
     assert stresses[-1][1, 1] < 1.2 * stresses[-1][0, 0]                 # loaded axially
     # The confinement holds the right edge (equilibrium is solved on the configuration at the start
@@ -93,7 +94,7 @@ def test_paraview_output(solved, tmp_path):
 def test_too_large_step_stops_with_the_last_converged_state(rve_file):
     from talus.fem.fenicsx import NewtonDivergence
     solver, _ = one_element(rve_file[0], tol=1e-4)      # converged to t = 1 (axial strain 0.6 %)
-    solver.minStepFraction = 0.25
+    solver.minStepFraction = 0.5     # one cut allowed; the half step (40 %) crushes the RVEs too
     before = solver.rves.getStressAndTangent()[0]
     x = solver.mesh.geometry.x.copy()
     solver.dirichlet[2].value = lambda t: -STRAIN - 0.8 * (t - 1)    # 80 % more in one step: crushes the RVEs
@@ -105,12 +106,16 @@ def test_too_large_step_stops_with_the_last_converged_state(rve_file):
 
 def test_too_large_step_is_cut_and_converges(rve_file):
     # 10 % more axial strain in one load step (17 times the previous steps): Newton fails at the
-    # full step, the step is halved and both halves converge (31 and 45 iterations).
+    # full step, the step is halved and both halves converge, each over half the DEM steps (the
+    # RVEs' loading rate of an uncut step).
     solver, _ = one_element(rve_file[0], tol=1e-4)
     solver.dirichlet[2].value = lambda t: -STRAIN - 0.1 * (t - 1)
     report = solver.step(2.0)
     assert report.cut and solver.t == 2.0
     assert [r.t for r in solver.history[STEPS:]] == [1.5, 2.0] and all(r.cut for r in solver.history[STEPS:])
+    assert [r.nSteps for r in solver.history] == [N_STEPS] * STEPS + [N_STEPS // 2] * 2
+    assert solver.rves.nSteps == N_STEPS
+    print("iterations of the halves:", [r.iterations for r in solver.history[STEPS:]])
     top = solver.mesh.geometry.x[solver.mesh.geometry.x[:, 1] > 0.5, 1]
     assert top == pytest.approx(1 - STRAIN - 0.1, abs=1e-12)
 
@@ -143,6 +148,26 @@ def test_mesh_and_rves_must_match(rve_file):
     msh = dmesh.create_rectangle(MPI.COMM_SELF, [np.zeros(2), np.ones(2)], [2, 1], dmesh.CellType.quadrilateral)
     with pytest.raises(ValueError, match="2 cells x 4 quadrature points = 8 Gauss points, but 4 RVEs"):
         MultiscaleSolver(msh, MultiscaleRVEs(str(rve_file[0]), numPoints=4))
+
+
+def test_gauss_point_coordinates_follow_the_rve_numbering(rve_file):
+    # The positions by which a heterogeneous sample gives each Gauss point its RVE must be in the
+    # solver's numbering: the gradient of u = (x y, 0) (bilinear, exact on Q1) read at the solver's
+    # Gauss points is (y, x) at the coordinates returned for them.
+    from dolfinx import mesh as dmesh
+    from mpi4py import MPI
+
+    from talus.fem import MultiscaleRVEs
+    from talus.fem.fenicsx import MultiscaleSolver, gaussPointCoordinates
+    msh = dmesh.create_rectangle(MPI.COMM_SELF, [np.zeros(2), np.array([2.0, 1.0])], [2, 1],
+                                 dmesh.CellType.quadrilateral)
+    x = gaussPointCoordinates(msh)
+    assert x.shape == (8, 2)
+    # 2 x 2 Gauss points per unit cell, at 1/(2 sqrt 3) from its centre lines
+    assert np.abs(x % 1.0 - 0.5) == pytest.approx(np.full((8, 2), 0.5 / np.sqrt(3)))
+    solver = MultiscaleSolver(msh, MultiscaleRVEs(str(rve_file[0]), numPoints=8))
+    solver.du.interpolate(lambda p: np.stack([p[0] * p[1], np.zeros_like(p[0])]))
+    assert solver.gaussGradients()[:, 0, :] == pytest.approx(x[:, ::-1], abs=1e-12)
 
 
 @pytest.mark.skipif(shutil.which("run-escript") is None, reason="escript is not installed")

@@ -129,12 +129,18 @@ def test_bad_input(rve_file, tmp_path):
         MultiscaleRVEs(str(tmp_path / "junk.h5"), numPoints=1)
 
 
-def test_planar_rve(tmp_path):
+@pytest.fixture(scope="module")
+def planar_rve(tmp_path_factory):
+    from talus.fem import prepareRVE
+    path = tmp_path_factory.mktemp("planar") / "rve2d.h5"
+    return path, prepareRVE(path, size=0.8, rMean=0.03, planar=True, sigma=-1e5, young=1e8)
+
+
+def test_planar_rve(planar_rve):
     """The seed's 2D-like RVE: one layer of spheres moving in a plane, compacted in x and y."""
-    from talus.fem import MultiscaleRVEs, prepareRVE
+    from talus.fem import MultiscaleRVEs
     from talus.fem.direct import replay
-    path = tmp_path / "rve2d.h5"
-    info = prepareRVE(path, size=0.8, rMean=0.03, planar=True, sigma=-1e5, young=1e8)
+    path, info = planar_rve
     assert np.abs(np.array(info["stress"][:2]) / -1e5 - 1).max() < 1e-3 and info["stress"][2] == 0
     S = Scene()
     S.load(str(path))
@@ -147,3 +153,21 @@ def test_planar_rve(tmp_path):
     S, ref = replay(path, [g], 20)
     assert rel(stress[0], ref[0][:2, :2]) < 1e-10
     assert np.ptp(S.positions()[:, 2]) == 0                                  # still in the plane
+
+
+def test_a_heterogeneous_sample_keeps_each_points_packing(rve_file, planar_rve):
+    # One RVE file per Gauss point (here a 3D packing and a planar one): each point follows its own
+    # packing, as a direct DEM run of that file under the same gradient.
+    from talus.fem import MultiscaleRVEs
+    from talus.fem.direct import replay
+    files = [rve_file[0], planar_rve[0]]
+    g = np.array([[1e-3, 2e-4], [0, -2e-3]])
+    mixed = MultiscaleRVEs([str(f) for f in files], nSteps=20)
+    mixed.run(np.array([g, g]))
+    stress, _ = mixed.getStressAndTangent()
+    voids = mixed.getVoidRatio()
+    for k, path in enumerate(files):
+        S, ref = replay(path, [g], 20)
+        assert rel(stress[k], ref[0][:2, :2]) < 1e-10
+        np.testing.assert_allclose(voids[k], porosity(scene=S) / (1 - porosity(scene=S)), rtol=1e-12)
+    assert abs(voids[1] / voids[0] - 1) > 0.1                              # two different packings

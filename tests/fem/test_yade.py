@@ -1,22 +1,23 @@
 """Against Yade: on the same exported RVE packing (one step of deterministic particle velocities, as
-tests/dem/test_tangent.py), the Gauss-point stress and tangent (form="yade") equal Yade's
+tests/dem/test_tangent.py; the scenario cases/yade/fem_rve_tangent.py, also run by
+cases/fem_vs_yade.py), the Gauss-point stress and tangent (form="yade") equal Yade's
 getStressAndTangent within 1e-6."""
-import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from talus.dem import twin
 
+SCENARIO = Path(__file__).resolve().parents[2] / "cases" / "yade" / "fem_rve_tangent.py"
+
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
 def test_rve_stress_and_tangent_equal_yades(rve_file, tmp_path):
-    from pathlib import Path
-
     from talus.fem import exportRVE, rve_scene
     exportRVE(rve_file[0], tmp_path / "rve_packing.json")
-    shutil.copy(Path(__file__).with_name("rve_yade.py"), tmp_path / "rve_yade.py")
-    ours, yade = (twin.run(tmp_path / "rve_yade.py", {"rveSceneDir": rve_scene.FOLDER}, program, timeout=300) for program in ("talus", "yade"))
+    params = {"packing": str(tmp_path / "rve_packing.json"), "rveSceneDir": rve_scene.FOLDER}
+    ours, yade = (twin.run(SCENARIO, params, program, timeout=300) for program in ("talus", "yade"))
     assert ours["shearing"] > 50                       # contacts with a shear force: Yade's shear term is used
     s, sy = np.array(ours["stress"]), np.array(yade["stress"])
     c, cy = np.array(ours["tangent"]), np.array(yade["tangent"])

@@ -17,11 +17,12 @@ def subStepVelGrad(G: np.ndarray, k: int, nSteps: int, dt: float) -> np.ndarray:
     return np.array(_fem.subStepVelocityGradient(np.asarray(G, dtype=float), int(k), int(nSteps), float(dt)))
 
 
-def replay(path: str | os.PathLike, grads, nSteps: int, law: str = "Law2_ScGeom_FrictPhys_CundallStrack",
+def replay(path: str | os.PathLike, grads, nSteps, law: str = "Law2_ScGeom_FrictPhys_CundallStrack",
            damping: float = 0.2):
     """Load the RVE file into a talus.dem Scene with the engines the calls use and apply the
     displacement gradients `grads` (each 2x2 or 3x3, relative to the previous configuration)
-    one after the other; returns the Scene and the Love-Weber stress (3x3) after each."""
+    one after the other, each over `nSteps` DEM steps (one count, or one per gradient: a
+    driver's StepReport.nSteps); returns the Scene and the Love-Weber stress (3x3) after each."""
     from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
                            Matrix3, NewtonIntegrator, Scene, engines, getStress)
     S = Scene()
@@ -30,12 +31,13 @@ def replay(path: str | os.PathLike, grads, nSteps: int, law: str = "Law2_ScGeom_
                  InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [getattr(engines, law)()]),
                  NewtonIntegrator(damping=damping)]
     stresses = []
-    for g in grads:
+    counts = [nSteps] * len(grads) if np.isscalar(nSteps) else list(nSteps)
+    for g, n in zip(grads, counts, strict=True):
         G = np.zeros((3, 3))
         g = np.asarray(g, dtype=float)
         G[:len(g), :len(g)] = g
-        for k in range(nSteps):
-            S.cell.velGrad = Matrix3(*subStepVelGrad(G, k, nSteps, S.dt).ravel())
+        for k in range(n):
+            S.cell.velGrad = Matrix3(*subStepVelGrad(G, k, n, S.dt).ravel())
             S.step()
         S.cell.velGrad = Matrix3.Zero
         stresses.append(getStress(scene=S))

@@ -24,7 +24,8 @@ import numpy as np
 
 from talus.fem.newton import NewtonDivergence, NewtonLoadStepping, StepReport
 
-__all__ = ["Dirichlet", "MultiscaleSolver", "NewtonDivergence", "StepReport", "Traction", "shearStrain"]
+__all__ = ["Dirichlet", "MultiscaleSolver", "NewtonDivergence", "StepReport", "Traction", "gaussPointCoordinates",
+           "shearStrain"]
 
 
 @dataclass
@@ -53,6 +54,18 @@ def shearStrain(grads: np.ndarray) -> np.ndarray:
     eps[:, :d, :d] = 0.5 * (grads + grads.transpose(0, 2, 1))
     dev = eps - np.trace(eps, axis1=1, axis2=2)[:, None, None] * np.eye(3) / 3
     return np.sqrt(2 / 3 * np.einsum("pij,pij->p", dev, dev))
+
+
+def gaussPointCoordinates(mesh, quadratureDegree: int = 2) -> np.ndarray:
+    """The coordinates (numPoints, d) of the quadrature points of the mesh's local cells, numbered
+    as :class:`MultiscaleSolver` numbers the RVEs (cell c, point q -> c * nq + q): to give each
+    Gauss point its RVE by position (a heterogeneous sample) before the solver exists."""
+    import basix
+    import ufl
+    from dolfinx import fem
+    points, _ = basix.make_quadrature(basix.cell.string_to_type(mesh.topology.cell_type.name), quadratureDegree)
+    cells = np.arange(mesh.topology.index_map(mesh.topology.dim).size_local, dtype=np.int32)
+    return fem.Expression(ufl.SpatialCoordinate(mesh), points).eval(cells).reshape(-1, mesh.geometry.dim)
 
 
 def _voigt_pairs(d: int):

@@ -1,5 +1,5 @@
 """An exported RVE packing (:func:`talus.fem.exportRVE` JSON) built as a periodic scene, the same
-way in Yade and in Talus, for the side-by-side scenarios (tests/fem/rve_yade.py,
+way in Yade and in Talus, for the side-by-side scenarios (cases/yade/fem_rve_tangent.py,
 cases/yade/fem_rve_call.py).
 
 This file imports nothing from talus: the scenario passes its own namespace (Yade's builtins or

@@ -1,5 +1,6 @@
-"""Scenario (talus.dem.twin): an exported RVE packing (rve_packing.json, written by the test) built
-as a periodic scene in Yade and in Talus, each sphere given a deterministic velocity, one step
+"""Scenario (talus.dem.twin): an exported RVE packing (parameter `packing`: the JSON of
+talus.fem.exportRVE; `rveSceneDir`: talus.fem.rve_scene.FOLDER) built as a periodic scene in Yade
+and in Talus, each sphere given a deterministic velocity, one step
 (fresh contacts get a first shear increment, so Yade's shear term is exercised; the method of
 tests/dem/packing_tangent.py on a periodic RVE). Yade prints its getStressAndTangent; Talus hands
 the scene to talus.fem.MultiscaleRVEs (a C++ RVE holding a copy of it) and prints the Gauss-point
@@ -21,7 +22,7 @@ P = json.loads(os.environ.get("TALUS_SCENARIO", "{}"))
 sys.path.append(P["rveSceneDir"])
 from rve_scene import buildRVEScene  # noqa: E402  (the shared builder, talus/fem/rve_scene.py)
 
-data = buildRVEScene(globals(), "rve_packing.json", dt=1e-5)
+data = buildRVEScene(globals(), P["packing"], dt=1e-5)
 velocities = np.sin(np.arange(3 * len(data["pos"])).reshape(-1, 3) * 1.7) * 0.05
 for b, v in zip(O.bodies, velocities):
     b.state.vel = Vector3(*v) if not talus else v
