@@ -158,10 +158,12 @@ def build(length_d: int, hs_d: float, depth: float, seed: int = 1, fluctuations:
     return s, hydro, newton, mobile
 
 
-def start_transport(s, hydro, newton, fluctuations: str = "turnover"):
-    """After the deposition: the fluid on (no damping, the 1 s start-up resolution from the
-    deposited bed), the two-way coupling every PERIOD and the chosen fluctuations; returns the
-    coupling and the turnover refresher (None for zdep)."""
+def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int,
+                   fluctuations: str = "turnover") -> dict:
+    hs_d, depth = EXPERIMENTS[exp]
+    s, hydro, newton, mobile = build(length_d, hs_d, depth, seed, fluctuations)
+    start = time.perf_counter()
+    s.run(round(deposition / s.dt))
     newton.damping = 0.0
     hydro.dead = False
     hydro.ReynoldStresses = np.full(N_CELL, 1e-4)
@@ -173,16 +175,6 @@ def start_transport(s, hydro, newton, fluctuations: str = "turnover"):
     if fluctuations == "turnover":
         refresh = TurnoverFluctuations(hydro, s)
         s.engines = list(s.engines) + [PyRunner(refresh, iterPeriod=max(1, round(1e-3 / s.dt)))]
-    return coupling, refresh
-
-
-def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int,
-                   fluctuations: str = "turnover") -> dict:
-    hs_d, depth = EXPERIMENTS[exp]
-    s, hydro, newton, mobile = build(length_d, hs_d, depth, seed, fluctuations)
-    start = time.perf_counter()
-    s.run(round(deposition / s.dt))
-    coupling, refresh = start_transport(s, hydro, newton, fluctuations)
     chunk = round(PERIOD / s.dt)
     t0 = s.time
     phi, phivx = [], []
@@ -200,7 +192,7 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     return {"z": zc, "phi": phi_mean, "phivx": phivx_mean, "wall_s": wall_s, "grains": len(mobile),
             "qs_star": float(np.mean(qs[t > transport / 2])),
             "shields": float(np.mean(np.array(coupling.series["shieldsNumber"])[t > transport / 2])),
-            "refreshes": refresh.refreshes if refresh else None, "t": t, "qs": qs}
+            "refreshes": refresh.refreshes if refresh else None}
 
 
 def compare(sim: dict, data: dict) -> dict:
