@@ -25,7 +25,10 @@ PairKey key(BodyId a, BodyId b) { return (static_cast<PairKey>(a) << 32) | stati
 bool byKey(const Candidate& a, const Candidate& b) { return a.key < b.key; }
 
 /// Candidate sphere-sphere pairs (i < j, centres closer than ri + rj + skin), appended to
-/// `pairs`; `perThread` is scratch space kept between calls.
+/// `pairs` in key order; `perThread` is scratch space kept between calls. `spheres` is in
+/// ascending id order and each thread takes one contiguous run of it (static schedule), so the
+/// threads' outputs, each sphere's pairs sorted by the partner's id, concatenate in key order:
+/// no sort of the whole list (it was a serial quarter of a re-detection's cost).
 void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const CellGrid& grid, double skin,
                  std::vector<std::vector<Candidate>>& perThread, std::vector<Candidate>& pairs)
 {
@@ -40,12 +43,13 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
     std::vector<Candidate>& out = perThread[0];
 #endif
     out.clear();
-#pragma omp for schedule(dynamic, 256)
+#pragma omp for schedule(static)
     for (std::int64_t s = 0; s < static_cast<std::int64_t>(spheres.size()); ++s)
     {
       const BodyId id = spheres[static_cast<std::size_t>(s)];
       const auto i = static_cast<std::size_t>(id);
       const Vec3 reach = Vec3::Constant(grid.width());
+      const std::size_t first = out.size();
       grid.forEachInBox(b.pos[i] - reach, b.pos[i] + reach, [&](BodyId other) {
         if (other <= id)
           return;
@@ -56,6 +60,7 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
         if ((b.pos[j] - b.pos[i]).squaredNorm() < range * range)
           out.push_back({key(id, other), Eigen::Vector3i::Zero()});
       });
+      std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(), byKey);
     }
   }
   for (const auto& part : perThread)
@@ -242,6 +247,125 @@ void convexPairs(const Bodies& b, const std::vector<BodyId>& convex, const std::
     }
   }
 }
+
+/// A new candidate's contact record: ids and the geometry kind of its shapes.
+Contact newContact(const Bodies& b, const Candidate& candidate)
+{
+  Contact c;
+  c.cellDist = candidate.cellDist;
+  c.id1 = static_cast<BodyId>(candidate.key >> 32);
+  c.id2 = static_cast<BodyId>(candidate.key & 0xffffffffu);
+  const ShapeKind second = b.shape[static_cast<std::size_t>(c.id2)];
+  switch (b.shape[static_cast<std::size_t>(c.id1)])
+  {
+  case ShapeKind::Wall:
+    c.kind = second == ShapeKind::PotentialBlock      ? ContactGeometryKind::WallBlock
+             : second == ShapeKind::PotentialParticle ? ContactGeometryKind::WallParticle
+                                                      : ContactGeometryKind::WallSphere;
+    break;
+  case ShapeKind::PotentialBlock: c.kind = ContactGeometryKind::BlockBlock; break;
+  case ShapeKind::PotentialParticle: c.kind = ContactGeometryKind::ParticleParticle; break;
+  case ShapeKind::Facet: c.kind = ContactGeometryKind::FacetSphere; break;
+  case ShapeKind::Box: c.kind = ContactGeometryKind::BoxSphere; break;
+  case ShapeKind::Sphere:
+  case ShapeKind::Clump: c.kind = ContactGeometryKind::SphereSphere; break;
+  }
+  return c;
+}
+
+/// The contact list after a re-detection, into `merged` (and `mergedExtra`): the candidates in
+/// key order, each keeping the record (and richer state) of the same pair through the same image
+/// in the previous list `old` (sorted by key too), plus the previous list's contacts held by an
+/// unbroken bond that are no longer candidates (the law decides when a bond breaks).
+///
+/// In parallel over runs of candidates, each with the share of the old list from its first key:
+/// a first pass counts each run's records, a second writes them at their offsets, so the list is
+/// the same for every thread count. (Serial, this copy of the records was the largest serial
+/// part of a re-detection.)
+void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const std::vector<Contact>& old,
+                   const std::vector<ContactExtra>& oldExtra, std::vector<Contact>& merged,
+                   std::vector<ContactExtra>& mergedExtra)
+{
+  const bool withExtra = !oldExtra.empty();
+  const std::size_t n = pairs.size();
+  int runs = 1;
+#ifdef _OPENMP
+  if (static_cast<std::int64_t>(n) >= parallelLoopMinimum)
+    runs = omp_get_max_threads();
+#endif
+  auto oldKey = [&](std::size_t i) { return key(old[i].id1, old[i].id2); };
+  // Run r: candidates [pairStart[r], pairStart[r+1]), old records [oldStart[r], oldStart[r+1]);
+  // a run never starts inside a group of equal keys (a pair seen through several images).
+  std::vector<std::size_t> pairStart(static_cast<std::size_t>(runs) + 1, n), oldStart(pairStart.size(), old.size());
+  for (std::size_t r = 0; r < static_cast<std::size_t>(runs); ++r)
+  {
+    std::size_t p = n * r / static_cast<std::size_t>(runs);
+    while (p > 0 && p < n && pairs[p].key == pairs[p - 1].key)
+      ++p;
+    pairStart[r] = p;
+    if (r == 0)
+      oldStart[r] = 0;
+    else if (p < n)
+      oldStart[r] = static_cast<std::size_t>(
+          std::lower_bound(old.begin(), old.end(), pairs[p].key,
+                           [](const Contact& c, PairKey k) { return key(c.id1, c.id2) < k; })
+          - old.begin());
+  }
+  auto bonded = [&](std::size_t i) { return withExtra && old[i].real && !oldExtra[i].cohesionBroken; };
+  // The merge of run r: keep(o) for an old record that stays, fresh(p) for a new candidate.
+  auto walk = [&](std::size_t r, auto&& keep, auto&& fresh) {
+    std::size_t o = oldStart[r];
+    const std::size_t oldEnd = oldStart[r + 1];
+    for (std::size_t p = pairStart[r]; p < pairStart[r + 1]; ++p)
+    {
+      const PairKey k = pairs[p].key;
+      for (; o < oldEnd && oldKey(o) < k; ++o)
+        if (bonded(o))
+          keep(o);
+      // The same pair through the same periodic image keeps its history.
+      if (o < oldEnd && oldKey(o) == k && old[o].cellDist == pairs[p].cellDist)
+        keep(o++);
+      else
+        fresh(p);
+    }
+    for (; o < oldEnd; ++o)
+      if (bonded(o))
+        keep(o);
+  };
+  std::vector<std::size_t> offset(static_cast<std::size_t>(runs) + 1, 0);
+#pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1)
+  for (int r = 0; r < runs; ++r)
+  {
+    std::size_t count = 0;
+    auto one = [&](std::size_t) { ++count; };
+    walk(static_cast<std::size_t>(r), one, one);
+    offset[static_cast<std::size_t>(r) + 1] = count;
+  }
+  for (std::size_t r = 0; r < static_cast<std::size_t>(runs); ++r)
+    offset[r + 1] += offset[r];
+  const std::size_t total = offset.back();
+  if (merged.capacity() < total) // with room to grow: a reallocation faults in fresh pages
+    merged.reserve(total + total / 4);
+  merged.resize(total);
+  mergedExtra.resize(withExtra ? total : 0);
+#pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1)
+  for (int r = 0; r < runs; ++r)
+  {
+    std::size_t at = offset[static_cast<std::size_t>(r)];
+    walk(
+        static_cast<std::size_t>(r),
+        [&](std::size_t o) {
+          if (withExtra)
+            mergedExtra[at] = oldExtra[o];
+          merged[at++] = old[o];
+        },
+        [&](std::size_t p) {
+          if (withExtra)
+            mergedExtra[at] = ContactExtra{};
+          merged[at++] = newContact(b, pairs[p]);
+        });
+  }
+}
 } // namespace
 
 bool Collider::needsRebuild(const Scene& scene) const
@@ -341,12 +465,15 @@ void Collider::rebuild(Scene& scene)
     spherePairs(b, spheres, grid_, skin_, perThread_, pairs);
   }
   timingDeltas.checkpoint("re-detection: sphere pairs");
+  // The other shapes' pairs, few, sorted on their own and merged in.
+  std::vector<Candidate>& others = boundaryPairs_;
+  others.clear();
   for (BodyId f : facets)
-    facetPairs(b, f, grid_, rmax, skin_, pairs);
+    facetPairs(b, f, grid_, rmax, skin_, others);
   for (BodyId k : boxes_)
-    boxPairs(b, k, grid_, rmax, skin_, pairs);
+    boxPairs(b, k, grid_, rmax, skin_, others);
   if (!convex_.empty())
-    convexPairs(b, convex_, walls, skin_, pairs);
+    convexPairs(b, convex_, walls, skin_, others);
   for (BodyId w : walls)
   {
     const auto wi = static_cast<std::size_t>(w);
@@ -357,74 +484,32 @@ void Collider::rebuild(Scene& scene)
       const double d = b.pos[si][wall.axis] - b.pos[wi][wall.axis];
       const bool side = wall.sense == 0 || (wall.sense > 0 ? d > -b.radius[si] : d < b.radius[si]);
       if (side && std::abs(d) < b.radius[si] + skin_)
-        pairs.push_back({key(w, s), Eigen::Vector3i::Zero()});
+        others.push_back({key(w, s), Eigen::Vector3i::Zero()});
     }
   }
   timingDeltas.checkpoint("re-detection: boundary pairs");
-  std::sort(pairs.begin(), pairs.end(), byKey);
+  if (scene.periodic)
+  {
+    // The periodic search finds pairs out of order (and a pair may come through two images).
+    pairs.insert(pairs.end(), others.begin(), others.end());
+    std::sort(pairs.begin(), pairs.end(), byKey);
+  }
+  else
+  {
+    std::sort(others.begin(), others.end(), byKey);
+    sortedPairs_.resize(pairs.size() + others.size());
+    std::merge(pairs.begin(), pairs.end(), others.begin(), others.end(), sortedPairs_.begin(), byKey);
+    pairs.swap(sortedPairs_);
+  }
   timingDeltas.checkpoint("re-detection: sort");
 
-  // Merge with the existing list (also sorted by key): surviving pairs keep their history.
   std::vector<Contact>& old = scene.contacts.list;
-  std::vector<Contact>& merged = spare_;
-  merged.clear();
-  if (merged.capacity() < pairs.size()) // with room to grow: a reallocation faults in fresh pages
-    merged.reserve(pairs.size() + pairs.size() / 4);
-  // The richer models' state (if any) follows its contact.
   std::vector<ContactExtra>& oldExtra = scene.contacts.extra;
   const bool withExtra = !oldExtra.empty();
-  std::vector<ContactExtra>& mergedExtra = spareExtra_;
-  mergedExtra.clear();
-  // A real contact held by an unbroken bond survives even when its bodies are no longer within
-  // the skin (the law decides when it breaks).
-  auto keepBonded = [&](std::size_t i) {
-    if (withExtra && old[i].real && !oldExtra[i].cohesionBroken)
-    {
-      merged.push_back(old[i]);
-      mergedExtra.push_back(oldExtra[i]);
-    }
-  };
-  std::size_t o = 0;
-  for (const Candidate& candidate : pairs)
-  {
-    const PairKey k = candidate.key;
-    while (o < old.size() && key(old[o].id1, old[o].id2) < k)
-      keepBonded(o++);
-    // The same pair through the same periodic image keeps its history.
-    if (o < old.size() && key(old[o].id1, old[o].id2) == k && old[o].cellDist == candidate.cellDist)
-    {
-      if (withExtra)
-        mergedExtra.push_back(oldExtra[o]);
-      merged.push_back(old[o++]);
-      continue;
-    }
-    if (withExtra)
-      mergedExtra.emplace_back();
-    Contact c;
-    c.cellDist = candidate.cellDist;
-    c.id1 = static_cast<BodyId>(k >> 32);
-    c.id2 = static_cast<BodyId>(k & 0xffffffffu);
-    switch (b.shape[static_cast<std::size_t>(c.id1)])
-    {
-    case ShapeKind::Wall:
-      c.kind = b.shape[static_cast<std::size_t>(c.id2)] == ShapeKind::PotentialBlock      ? ContactGeometryKind::WallBlock
-               : b.shape[static_cast<std::size_t>(c.id2)] == ShapeKind::PotentialParticle ? ContactGeometryKind::WallParticle
-                                                                                            : ContactGeometryKind::WallSphere;
-      break;
-    case ShapeKind::PotentialBlock: c.kind = ContactGeometryKind::BlockBlock; break;
-    case ShapeKind::PotentialParticle: c.kind = ContactGeometryKind::ParticleParticle; break;
-    case ShapeKind::Facet: c.kind = ContactGeometryKind::FacetSphere; break;
-    case ShapeKind::Box: c.kind = ContactGeometryKind::BoxSphere; break;
-    case ShapeKind::Sphere:
-    case ShapeKind::Clump: c.kind = ContactGeometryKind::SphereSphere; break;
-    }
-    merged.push_back(c);
-  }
-  while (o < old.size())
-    keepBonded(o++);
-  old.swap(merged);
+  mergeContacts(b, pairs, old, oldExtra, spare_, spareExtra_);
+  old.swap(spare_);
   if (withExtra)
-    oldExtra.swap(mergedExtra);
+    oldExtra.swap(spareExtra_);
   timingDeltas.checkpoint("re-detection: merge");
   scene.contacts.index(b.size());
   timingDeltas.checkpoint("re-detection: index");

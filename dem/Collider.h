@@ -45,7 +45,7 @@ private:
   std::vector<Contact> spare_; ///< the previous contact list's storage
   std::vector<ContactExtra> spareExtra_;
   CellGrid grid_;
-  std::vector<Candidate> pairs_;
+  std::vector<Candidate> pairs_, boundaryPairs_, sortedPairs_;
   std::vector<std::vector<Candidate>> perThread_;
   Mat3 referenceCellInverse_ = Mat3::Identity();
   double referenceRange_ = 0;
