@@ -60,7 +60,10 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
         if ((b.pos[j] - b.pos[i]).squaredNorm() < range * range)
           out.push_back({key(id, other), Eigen::Vector3i::Zero()});
       });
-      std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(), byKey);
+      // A handful of pairs, in runs ascending cell by cell: insertion sort.
+      for (std::size_t k = first + 1; k < out.size(); ++k)
+        for (std::size_t m = k; m > first && out[m].key < out[m - 1].key; --m)
+          std::swap(out[m], out[m - 1]);
     }
   }
   for (const auto& part : perThread)
@@ -278,9 +281,8 @@ Contact newContact(const Bodies& b, const Candidate& candidate)
 /// in the previous list `old` (sorted by key too), plus the previous list's contacts held by an
 /// unbroken bond that are no longer candidates (the law decides when a bond breaks).
 ///
-/// In parallel over runs of candidates, each with the share of the old list from its first key:
-/// a first pass counts each run's records, a second writes them at their offsets, so the list is
-/// the same for every thread count. (Serial, this copy of the records was the largest serial
+/// In parallel over runs of candidates, each with the share of the old list from its first key,
+/// each writing its records at its offset, so the list is the same for every thread count. (Serial, this copy of the records was the largest serial
 /// part of a re-detection.)
 void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const std::vector<Contact>& old,
                    const std::vector<ContactExtra>& oldExtra, std::vector<Contact>& merged,
@@ -332,14 +334,21 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const s
       if (bonded(o))
         keep(o);
   };
+  // Each run's record count: its candidates, plus, with bonds, the bonded records it keeps (the
+  // counting pass reads every old record: without bonds it would cost as much as the merge).
   std::vector<std::size_t> offset(static_cast<std::size_t>(runs) + 1, 0);
-#pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1)
-  for (int r = 0; r < runs; ++r)
+  for (std::size_t r = 0; r < static_cast<std::size_t>(runs); ++r)
+    offset[r + 1] = pairStart[r + 1] - pairStart[r];
+  if (withExtra)
   {
-    std::size_t count = 0;
-    auto one = [&](std::size_t) { ++count; };
-    walk(static_cast<std::size_t>(r), one, one);
-    offset[static_cast<std::size_t>(r) + 1] = count;
+#pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1)
+    for (int r = 0; r < runs; ++r)
+    {
+      std::size_t count = 0;
+      auto one = [&](std::size_t) { ++count; };
+      walk(static_cast<std::size_t>(r), one, one);
+      offset[static_cast<std::size_t>(r) + 1] = count;
+    }
   }
   for (std::size_t r = 0; r < static_cast<std::size_t>(runs); ++r)
     offset[r + 1] += offset[r];
