@@ -1515,10 +1515,13 @@ void commit(Scene& scene, const Loaded& in)
   scene.materials.resize(kept);
   scene.materials.insert(scene.materials.end(), in.materials.begin() + static_cast<std::ptrdiff_t>(kept),
                          in.materials.end());
-  // The block contacts' settings belong to the engines (Ig2_PB_PB_ScGeom), not to the file.
+  // The block and particle contacts' settings belong to the engines (Ig2_PB_PB_ScGeom,
+  // Ig2_PP_PP_ScGeom), not to the file.
   const BlockContactSettings blockContact = scene.bodies.blockContact;
+  const ParticleContactSettings particleContact = scene.bodies.particleContact;
   scene.bodies = in.bodies;
   scene.bodies.blockContact = blockContact;
+  scene.bodies.particleContact = particleContact;
   scene.contacts.list = in.contacts;
   scene.contacts.extra = in.contactExtra;
   scene.contacts.index(scene.bodies.size());

@@ -112,13 +112,7 @@ void talus_wrap_blocks(py::module_& m)
   m.def(
       "set_block_contact_settings",
       [](Scene& s, bool twoDimension, const Vec3& twoDdir, double unitWidth2D, bool exactDepth, double accuracyTol) {
-        if (!twoDdir.allFinite() || !(twoDdir.norm() > 0))
-          throw std::invalid_argument("Ig2_PB_PB_ScGeom.twoDdir must be a finite non-zero vector, got ("
-                                      + std::to_string(twoDdir[0]) + ", " + std::to_string(twoDdir[1]) + ", "
-                                      + std::to_string(twoDdir[2]) + ")");
-        if (!std::isfinite(unitWidth2D) || !(unitWidth2D > 0))
-          throw std::invalid_argument("Ig2_PB_PB_ScGeom.unitWidth2D must be finite and > 0, got "
-                                      + std::to_string(unitWidth2D));
+        checkTwoDimension("Ig2_PB_PB_ScGeom", twoDdir, unitWidth2D);
         if (!std::isfinite(accuracyTol) || !(accuracyTol > 0))
           throw std::invalid_argument("Ig2_PB_PB_ScGeom.accuracyTol must be finite and > 0, got "
                                       + std::to_string(accuracyTol));

@@ -159,17 +159,6 @@ class Ig2_PB_PB_ScGeom(Functor):
                                         else float(self.accuracyTol))
 
 
-def _applyBlockContactSettings(cpp, engines):
-    """The block contacts' settings of a scene from its engines: those of the first
-    Ig2_PB_PB_ScGeom of an InteractionLoop, or the defaults."""
-    for engine in engines:
-        for g in getattr(engine, "geomFunctors", ()):
-            if isinstance(g, Ig2_PB_PB_ScGeom):
-                g._applyToScene(cpp)
-                return
-    Ig2_PB_PB_ScGeom()._applyToScene(cpp)
-
-
 class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
     """Stiffnesses per unit contact area: ``Knormal``, ``Kshear`` between blocks, ``kn_i``,
     ``ks_i`` with a boundary block; ``viscousDamping``: fraction of the critical damping
@@ -211,11 +200,6 @@ class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
     breaks. ``initialOverlapDistance``: the overlap at zero normal force. ``neverErase`` and
     ``traceEnergy`` are accepted (energies follow O.trackEnergy)."""
     _cpp_name = "Law2_SCG_KnKsPBPhys_KnKsPBLaw"
-    def _configure(self, phys: Functor):
-        super()._configure(phys)
-        if isinstance(phys, Ip2_FrictMat_FrictMat_KnKsPBPhys):
-            phys._laws.append(self)   # for cohesionBroken, tensionBroken set mid-run
-
     _parameters = ("allowViscousAttraction", "allowBreakage", "initialOverlapDistance", "neverErase", "traceEnergy")
     # Accepted, but not the law's: Yade's options without effect here, and the geometry's
     # settings that go to the scene (Ig2_PB_PB_ScGeom._applyToScene).
@@ -226,6 +210,11 @@ class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
         if name in self._not_the_laws:
             return
         super()._set(name, value)
+
+    def _configure(self, phys: Functor):
+        super()._configure(phys)
+        if isinstance(phys, Ip2_FrictMat_FrictMat_KnKsPBPhys):
+            phys._laws.append(self)   # for cohesionBroken, tensionBroken set mid-run
 
     def _configureGeometry(self, geomFunctors):
         """Take calContactArea from Ig2_PB_PB_ScGeom."""
