@@ -13,7 +13,7 @@ import pytest
 from talus import _dem
 from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, JointFileError, Law2_SCG_KnKsPBPhys_KnKsPBLaw,
-                       NewtonIntegrator, PotentialBlock, PotentialBlock2AABB, Scene, blockShape, generateBlocks,
+                       NewtonIntegrator, PotentialBlock, PotentialBlock2AABB, Scene, blockShape, generateBlocks, io,
                        potentialBlock, readJoints)
 
 pytestmark = pytest.mark.skipif(not _dem.have_potential_blocks, reason="built without CLP")
@@ -143,3 +143,22 @@ def test_the_bridge_pulls_until_its_tensile_strength(tmp_path, factor):
 def test_malformed_strength_columns_are_named(tmp_path, body, message):
     with pytest.raises(JointFileError, match=f"joints.csv {message}"):
         joints(tmp_path, body)
+
+
+def test_bonds_and_face_strengths_survive_a_checkpoint(tmp_path):
+    """Saved while the bridge holds, reloaded: the faces' strengths, the bond (its strengths and
+    state) and the Ip2's bond settings come back, and the run continues bit-identically."""
+    if not io.available():
+        pytest.skip("built without HDF5")
+    A, upper = bridged_scene(tmp_path, 1.3 * C_CRITICAL)
+    path = tmp_path / "bridge.h5"
+    io.save(A, path)
+    A.run(300, True)
+    B = Scene()
+    io.load(B, path)
+    assert blockShape(B, upper)["cohesion"] == blockShape(A, upper)["cohesion"]
+    assert B.engines[2].physFunctors[0].cohesionBroken   # new contacts stay frictional
+    B.run(300, True)
+    for a, b in zip(_dem.contact_extra(A._cpp), _dem.contact_extra(B._cpp), strict=True):
+        assert a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
+    assert np.array_equal(B._cpp.pos(), A._cpp.pos()) and _dem.contact_extra(B._cpp)[0]["intactRock"]
