@@ -142,7 +142,10 @@ public:
       c.normalForce -= c.cn * vn * c.normal;
       if constexpr (Track)
         e.viscDamp += c.cn * vn * vn * step.dt;
-      if (!allowViscousAttraction && c.normalForce.dot(c.normal) < 0)
+      // The dashpot never turns the spring's force around: no pull from a pressed contact (unless
+      // allowViscousAttraction), no push from a bond that pulls.
+      const double total = c.normalForce.dot(c.normal);
+      if (!allowViscousAttraction && (fn >= 0 ? total < 0 : total > 0))
         c.normalForce.setZero();
     }
     c.shearForce -= c.ks * c.shearIncrement;
