@@ -63,12 +63,12 @@ def test_a_non_persistent_joint_cuts_through_and_marks_the_bridge(tmp_path):
 
 
 def bridged_scene(tmp_path, rockCohesion, rockTension=0.0, gravity=(G * math.sin(THETA), 0, -G * math.cos(THETA)),
-                  overlap=0.0, blockedDOFs=""):
+                  overlap=0.0, blockedDOFs="", viscous=0.0):
     """The cube cut by HALF, lower piece fixed, the cut bonded at the first steps; gravity turned
     by THETA (or `gravity`), ramped up over 0.2 s with Cundall damping (a sudden load would
     overshoot the static one twice), then undamped. `overlap`: the upper piece starts that much
     into the lower one, the law's initialOverlapDistance (so the bond can pull); `blockedDOFs`:
-    the upper piece's.
+    the upper piece's; `viscous`: the Ip2's viscousDamping.
     Returns the scene and the upper piece's id."""
     blocks = generateBlocks(PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.01), joints(tmp_path, HALF),
                             rockCohesion=rockCohesion, rockTension=rockTension)
@@ -81,7 +81,7 @@ def bridged_scene(tmp_path, rockCohesion, rockTension=0.0, gravity=(G * math.sin
     S.bodies[upper].state.pos = S.bodies[upper].state.pos - np.array([0, 0, overlap])
     S.bodies[upper].state.blockedDOFs = blockedDOFs
     ip2 = Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=1e9, Kshear=1e8, useFaceProperties=True, cohesionBroken=False,
-                                           tensionBroken=False)
+                                           tensionBroken=False, viscousDamping=viscous)
     S.engines = [ForceResetter(), InsertionSortCollider([PotentialBlock2AABB()], verletDist=0.01),
                  InteractionLoop([Ig2_PB_PB_ScGeom()], [ip2],
                                  [Law2_SCG_KnKsPBPhys_KnKsPBLaw(allowBreakage=True, initialOverlapDistance=overlap)]),
@@ -115,17 +115,18 @@ def test_the_bridge_breaks_above_its_strength_then_the_block_slides_by_friction(
     assert a == pytest.approx(expected, rel=0.01)
 
 
-@pytest.mark.parametrize("factor", [1.3, 0.7])
-def test_the_bridge_pulls_until_its_tensile_strength(tmp_path, factor):
+@pytest.mark.parametrize("factor, viscous", [(1.3, 0.0), (1.3, 0.2), (0.7, 0.0)])
+def test_the_bridge_pulls_until_its_tensile_strength(tmp_path, factor, viscous):
     """Gravity turned upwards pulls the upper piece off: the bridge (tension t over A_B, the
     pieces overlapping by initialOverlapDistance 1e-5 m, more than the stretch W / (Knormal A)
     = 4.9e-6 m) holds it at 1.3 t* = 1.3 W / A_B, lets it go at 0.7 t*. (Its cohesion keeps a
     shear strength under the pull: with none, Mohr-Coulomb under tension has none, and the
     rounding's shear breaks the bond.) The piece may not turn: one contact point pulling has no
     rotational stiffness (pressed, the overlap region shifts to resist a tilt; pulled, it shrinks
-    on the side that lifts), so a free piece peels off at 0.5 of the load (docs/blocks.md)."""
+    on the side that lifts), so a free piece peels off at 0.5 of the load (docs/blocks.md).
+    With viscous damping, the dashpot must not cancel the pull."""
     S, upper = bridged_scene(tmp_path, 1e5, rockTension=factor * W / BRIDGE, gravity=(0, 0, G), overlap=1e-5,
-                             blockedDOFs="XYZ")
+                             blockedDOFs="XYZ", viscous=viscous)
     z0 = S.bodies[upper].state.pos[2]
     S.run(1000, True)
     if factor > 1:
