@@ -15,7 +15,13 @@ Set-up:   unit cubes (edge 1 m, r = 0.02 m, density 1000 kg/m^3) with the KnKsPB
           4. plane failure: a 4 x 2 x 2 m block cut by one persistent joint dipping 35 deg
              (generateBlocks), the lower piece fixed, friction angle phi = 31 ... 39 deg, Knormal
              1e9 N/m^3, Kshear 1e8 N/m^3; gravity
-             ramped up over 0.25 s with Cundall damping, then 0.5 s undamped.
+             ramped up over 0.25 s with Cundall damping, then 0.5 s undamped;
+          5. rock bridge: the same block and joint dip, phi = 30 deg, but the joint's trace
+             (half-length 0.872 m along its dip line from the block's centre) covers half of the
+             section (6.97 m^2): the rest is a rock bridge of cohesion c (generateBlocks'
+             rockCohesion), bonded by Ip2_FrictMat_FrictMat_KnKsPBPhys(useFaceProperties=True)
+             with allowBreakage; c = 0.8 and 1.25 times the hand-computed critical cohesion
+             c* = W (sin psi - cos psi tan phi) / A_bridge (W the upper piece's weight).
           Yade's Debian build has no PotentialBlock (its ENABLE_POTENTIAL_BLOCKS is off), so no
           side-by-side run: references are analytic.
 Checked:  dem.potential-blocks.pressing: worst relative error of the normal force against
@@ -31,8 +37,11 @@ Checked:  dem.potential-blocks.pressing: worst relative error of the normal forc
           along the slope below it (elastic shear only, ~0.5 mm) <= 1 mm;
           dem.potential-blocks.plane-failure: worst relative error of the upper piece's
           acceleration for FS = tan phi / tan psi < 1, plus the number of wrong slide/stick
-          outcomes (displacement > 1 mm), <= 1e-2.
-Produces: the six records and chart dem.potential-blocks.png (force against analytic, the
+          outcomes (displacement > 1 mm), <= 1e-2;
+          dem.potential-blocks.rock-bridge: the same measure for the bridged joint (holds at
+          1.25 c*, breaks and slides by friction at 0.8 c*, acceleration against
+          g (sin psi - cos psi tan phi)), <= 1e-2.
+Produces: the seven records and chart dem.potential-blocks.png (force against analytic, the
           resting cube's contact force over time, sliding acceleration against theta and against
           the factor of safety of the plane failure).
 """
@@ -51,14 +60,17 @@ CUBE = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.02)
 MASS = RHO * 1.0
 
 
-def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G), kn=KN, ks=KS, **geometry):
+def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G), kn=KN, ks=KS, bonds=False, **geometry):
+    """A scene with the KnKsPB law; `bonds`: intact-rock faces are bonded (useFaceProperties)
+    by the contacts made until the Ip2's cohesionBroken is set back to True, and break."""
     S = Scene()
     m = S.materials.append(FrictMat(density=RHO, frictionAngle=friction))
+    bond = dict(useFaceProperties=True, cohesionBroken=False, tensionBroken=False) if bonds else {}
     S.engines = [ForceResetter(), InsertionSortCollider([PotentialBlock2AABB()], verletDist=0.01),
                  InteractionLoop([Ig2_PB_PB_ScGeom(calContactArea=True, **geometry)],
                                  [Ip2_FrictMat_FrictMat_KnKsPBPhys(Knormal=kn, Kshear=ks, kn_i=kn, ks_i=ks,
-                                                                   viscousDamping=viscous)],
-                                 [Law2_SCG_KnKsPBPhys_KnKsPBLaw()]),
+                                                                   viscousDamping=viscous, **bond)],
+                                 [Law2_SCG_KnKsPBPhys_KnKsPBLaw(allowBreakage=bonds)]),
                  NewtonIntegrator(gravity=gravity, damping=damping)]
     S.dt = 5e-4
     return S, m
@@ -139,16 +151,26 @@ def incline(theta, seconds):
 PSI = math.radians(35)   # dip of the joint of the plane-failure test
 
 
-def plane_failure(phi_deg, seconds):
-    """A 4 x 2 x 2 m rock block cut by one persistent joint dipping at PSI (generateBlocks); the
-    piece below is fixed, the one above rests on the joint. Gravity ramped up over 0.25 s with
-    Cundall damping (the joint's shear spring loads quasi-statically), then `seconds` undamped.
+# The rock-bridge variant: the joint's trace, half-length BRIDGE_TRACE along its dip line from
+# the block's centre, covers half of the section (2 m x 2 / sin psi), the rest is rock bridge.
+SECTION = 2.0 * 2.0 / math.sin(PSI)
+BRIDGE_TRACE = 0.5 / math.sin(PSI)
+BRIDGE_AREA = 0.5 * SECTION
+
+
+def plane_failure(phi_deg, seconds, trace=math.inf, rockCohesion=0.0):
+    """A 4 x 2 x 2 m rock block cut by one joint dipping at PSI (generateBlocks; `trace`: its
+    half-length along the dip line, the rest of the cut being a rock bridge of cohesion
+    `rockCohesion`, bonded); the piece below is fixed, the one above rests on the joint. Gravity
+    ramped up over 0.25 s with Cundall damping (the joint's shear spring loads quasi-statically),
+    then `seconds` undamped.
     Returns (displacement down the dip since the ramp, acceleration fitted to its second half)."""
-    blocks = generateBlocks(PotentialBlock.cuboid((2, 1, 1), r=0.02), [Joint(dipNormal(35, 0), np.zeros(3))])
+    joint = Joint(dipNormal(35, 0), np.zeros(3), traceY=trace)
+    blocks = generateBlocks(PotentialBlock.cuboid((2, 1, 1), r=0.02), [joint], rockCohesion=rockCohesion)
     # Stiffer joint (1e9 N/m^3): the acceleration's error is first order in the contact's
     # compliance (1.8 %, 0.3 %, 0.09 % at Knormal 1e8, 1e9, 1e10 for phi = 33 deg).
     S, m = make_scene(friction=math.radians(phi_deg), damping=0.3, viscous=0.5, gravity=(0, 0, 0), kn=10 * KN,
-                      ks=10 * KS)
+                      ks=10 * KS, bonds=rockCohesion > 0)
     ids = S.bodies.append([potentialBlock(b, material=m) for b in blocks])
     low, up = sorted(ids, key=lambda i: S.bodies[i].state.pos[2])
     S.bodies[low].dynamic = False
@@ -156,6 +178,8 @@ def plane_failure(phi_deg, seconds):
     for k in range(1, 21):
         newton.gravity = (0.0, 0.0, -G * k / 20)
         S.run(int(round(0.25 / 20 / S.dt)), True)
+    phys = S.engines[2].physFunctors[0]
+    phys.cohesionBroken = phys.tensionBroken = True   # only the cut is bonded; later contacts are frictional
     newton.damping = 0.0
     start = np.array(S.bodies[up].state.pos)
     down = np.array([-math.cos(PSI), 0.0, -math.sin(PSI)])
@@ -240,6 +264,27 @@ def main():
                 "g (sin psi - cos psi tan phi), psi = 35 deg; FS = tan phi / tan psi", 1e-2, suffix="plane-failure",
                 phis_deg=phis, factor_of_safety=fs, moved=pf_moved, accelerations=pf_acc, analytic=pf_ref,
                 wrong_outcomes=wrong)
+
+    bridge_phi = math.radians(30)
+    weight = RHO * 8.0 * G   # the upper half of the 4 x 2 x 2 m block
+    slide = G * (math.sin(PSI) - math.cos(PSI) * math.tan(bridge_phi))
+    c_critical = weight * (math.sin(PSI) - math.cos(PSI) * math.tan(bridge_phi)) / BRIDGE_AREA
+    bridge_factors, bridge_moved, bridge_acc = [0.8, 1.25], [], []
+    for factor in bridge_factors:
+        s, a = plane_failure(30, 0.5, trace=BRIDGE_TRACE, rockCohesion=factor * c_critical)
+        bridge_moved.append(s)
+        bridge_acc.append(a)
+        print(f"rock bridge, cohesion {factor} c* = {factor * c_critical:.1f} Pa: moved {s:.6f} m, acceleration "
+              f"{a:.5f} m/s^2 (sliding by friction: {slide:.5f})")
+    bridge_wrong = sum((f < 1) != (abs(s) > 1e-3) for f, s in zip(bridge_factors, bridge_moved))
+    bridge_error = abs(bridge_acc[0] - slide) / slide
+    case.record("relative error of the sliding acceleration once a rock bridge below its strength broke, plus the "
+                "number of wrong hold/break outcomes", bridge_error + bridge_wrong,
+                "c* = W (sin psi - cos psi tan phi) / A_bridge (hand-computed); after breaking "
+                "g (sin psi - cos psi tan phi), psi = 35 deg, phi = 30 deg", 1e-2, suffix="rock-bridge",
+                critical_cohesion=c_critical, bridge_area=BRIDGE_AREA, section_area=SECTION, weight=weight,
+                cohesion_factors=bridge_factors, moved=bridge_moved, accelerations=bridge_acc, analytic=slide,
+                wrong_outcomes=bridge_wrong)
 
     fig, (ax1, ax2, ax3, ax4) = plt.subplots(1, 4, figsize=(20, 4.2))
     ref = np.array([r[3] for r in rows])

@@ -6,7 +6,8 @@ Set-up:   cube particles with Yade's cubePPscaled.py planes (half-size 0.5 m: d 
           r = 0.05 m, k = 0.2, R = sqrt(3) 0.5 m), density 1000 kg/m^3, the KnKs law (Knormal
           1e8 N/m^3, Kshear 1e7 N/m^3):
           1. pressing: two fixed cubes face to face, overlaps 1e-5 ... 1e-2 m, aligned and
-             twisted 45 deg about the normal; one step;
+             twisted 45 deg about the normal; one step; again in 2D mode
+             (Ig2_PP_PP_ScGeom(twoDimension=True, unitWidth2D=0.5), twoDdir y);
           2. resting: a cube dropped 0.1 mm onto a wall under gravity (viscous damping 0.5,
              Cundall damping 0.3), 1 s;
           3. incline: a flat block (half-sizes 0.5, 0.5, 0.25 m, friction angle 30 deg) resting
@@ -21,6 +22,8 @@ Checked:  dem.potential-particles.pressing: worst relative error of the overlap 
           2 s - D (s the face centre's distance, root of the potential on the axis) <= 1e-8,
           and of the normal force against Knormal A u_n with A the section of the overlap by
           the mid-plane integrated independently (numpy, 720 rays) <= 2e-3;
+          dem.potential-particles.pressing-2d: the same in 2D mode against Knormal L w u_n, L the
+          overlap's chord along x through the contact point (numpy bisection), <= 1e-6;
           dem.potential-particles.resting: relative error of the contact force against m g <= 1e-6;
           dem.potential-particles.incline-slip: worst relative error of the sliding acceleration
           above the friction angle against g (sin theta - cos theta tan phi) <= 1e-2;
@@ -28,6 +31,8 @@ Checked:  dem.potential-particles.pressing: worst relative error of the overlap 
           <= 5 mm (the undamped oscillation of the shear spring, Kshear A ~ 1.4e6 N/m);
           dem.potential-particles.yade-pressing / yade-resting: relative difference of overlap
           and force from Yade's (reported; tolerance 5 %, Yade's area is a heuristic);
+          dem.potential-particles.yade-pressing-2d: relative difference of the 2D area from
+          Yade's (<= 1e-6);
           dem.potential-particles.yade-packing: porosity difference (absolute, <= 0.05) and
           coordination difference (relative, reported);
           dem.potential-particles.yade-cost: Yade's step time per contact over Talus's (>= 3).
@@ -66,23 +71,34 @@ def potential(shape, p, rot=np.eye(3)):
     return (1 - shape.k) * ((g * g).sum(-1) / shape.r**2 - 1) + shape.k * ((p * p).sum(-1) / shape.R**2 - 1)
 
 
-def section_area(f, z, n=720):
-    """Area of {(x, y) : f(x, y, z) <= 0} (f convex, (0, 0, z) inside) by polar bisection."""
-    th = 2 * np.pi * np.arange(n) / n
-    u = np.stack([np.cos(th), np.sin(th), np.zeros(n)], axis=1)
-    lo, hi = np.zeros(n), np.full(n, 3.0)
+def ray_lengths(f, z, u):
+    """Distances from (0, 0, z) (inside the convex f <= 0) to f = 0 along the unit rows of u, by
+    bisection."""
+    lo, hi = np.zeros(len(u)), np.full(len(u), 3.0)
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         inside = f(np.array([0, 0, z]) + mid[:, None] * u) <= 0
         lo, hi = np.where(inside, mid, lo), np.where(inside, hi, mid)
-    return 0.5 * np.sum(lo**2) * 2 * np.pi / n
+    return lo
 
 
-def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G)):
+def section_area(f, z, n=720):
+    """Area of {(x, y) : f(x, y, z) <= 0} (f convex, (0, 0, z) inside) by polar bisection."""
+    th = 2 * np.pi * np.arange(n) / n
+    rho = ray_lengths(f, z, np.stack([np.cos(th), np.sin(th), np.zeros(n)], axis=1))
+    return 0.5 * np.sum(rho**2) * 2 * np.pi / n
+
+
+def section_chord(f, z):
+    """Length of {x : f(x, 0, z) <= 0}: the 2D mode's joint length for twoDdir y."""
+    return float(ray_lengths(f, z, np.array([[1.0, 0, 0], [-1.0, 0, 0]])).sum())
+
+
+def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G), **geometry):
     S = Scene()
     m = S.materials.append(FrictMat(density=RHO, frictionAngle=friction))
     S.engines = [ForceResetter(), InsertionSortCollider([PotentialParticle2AABB()], verletDist=0.01),
-                 InteractionLoop([Ig2_PP_PP_ScGeom(calContactArea=True)],
+                 InteractionLoop([Ig2_PP_PP_ScGeom(calContactArea=True, **geometry)],
                                  [Ip2_FrictMat_FrictMat_KnKsPhys(Knormal=KN, Kshear=KS, viscousDamping=viscous)],
                                  [Law2_SCG_KnKsPhys_KnKsLaw()]),
                  NewtonIntegrator(gravity=gravity, damping=damping)]
@@ -90,15 +106,18 @@ def make_scene(friction=PHI, damping=0.0, viscous=0.0, gravity=(0, 0, -G)):
     return S, m
 
 
-def pressing(overlaps):
-    """Rows (twist, overlap, overlap found, force, analytic force, area, reference area)."""
+def pressing(overlaps, width=None):
+    """Rows (twist, overlap, overlap found, force, analytic force, area, reference area); with
+    `width`, in 2D mode (unitWidth2D = width, twoDdir y): the reference area is width times
+    the overlap's chord along x through the contact point."""
+    geometry = {} if width is None else dict(twoDimension=True, unitWidth2D=width, twoDdir=(0, 1, 0))
     s = face_centre(CUBE)
     rows = []
     for twist in (0.0, math.pi / 4):
         c, sn = math.cos(twist), math.sin(twist)
         rot = np.array([[c, -sn, 0], [sn, c, 0], [0, 0, 1]])
         for u in overlaps:
-            S, m = make_scene(gravity=(0, 0, 0))
+            S, m = make_scene(gravity=(0, 0, 0), **geometry)
             S.bodies.append(potentialParticle(CUBE, pos=(0, 0, 0), material=m, fixed=True))
             S.bodies.append(potentialParticle(CUBE, pos=(0, 0, 2 * s - u), orientation=(math.cos(twist / 2), 0, 0,
                                                                                          math.sin(twist / 2)),
@@ -107,8 +126,8 @@ def pressing(overlaps):
             c0 = S._cpp.contacts()[0]
             area = _dem.contact_areas(S._cpp)[0]
             zc = s - u / 2
-            ref = section_area(lambda p: np.maximum(potential(CUBE, p),
-                                                    potential(CUBE, p - np.array([0, 0, 2 * s - u]), rot)), zc)
+            both = lambda p: np.maximum(potential(CUBE, p), potential(CUBE, p - np.array([0, 0, 2 * s - u]), rot))
+            ref = section_area(both, zc) if width is None else width * section_chord(both, zc)
             rows.append((twist, u, float(c0["penetrationDepth"]), float(c0["normalForce"][2]), KN * ref * u, area, ref))
     return rows
 
@@ -189,6 +208,15 @@ def main():
                 "Knormal A u_n, A the overlap's mid-plane section integrated in numpy (720 rays)", 2e-3,
                 suffix="pressing", forces=[r[3] for r in rows], analytic=[r[4] for r in rows],
                 areas=[r[5] for r in rows], reference_areas=[r[6] for r in rows], twists=[r[0] for r in rows])
+
+    rows2d = pressing(overlaps, width=0.5)
+    force_2d_error = max(abs(f - ref) / ref for *_, f, ref, _, _ in rows2d)
+    print(f"pressing 2D: worst force error {force_2d_error:.2e} against Knormal L w u_n")
+    case.record("worst relative error of the normal force of two cubes pressed face to face in 2D mode", force_2d_error,
+                "Knormal L unitWidth2D u_n, L the overlap's chord along x through the contact point (numpy bisection)",
+                1e-6, suffix="pressing-2d", forces=[r[3] for r in rows2d], analytic=[r[4] for r in rows2d],
+                areas=[r[5] for r in rows2d], reference_areas=[r[6] for r in rows2d], unitWidth2D=0.5,
+                twists=[r[0] for r in rows2d])
 
     S, i, times, forces = resting(1.0)
     weight = float(S._cpp.mass()[i]) * G
@@ -286,6 +314,19 @@ def side_by_side(case, quick):
     case.record("largest relative difference of the contact force of two pressed cubes from Yade's", max(diffs_f),
                 "Yade's Ig2_PP_PP_ScGeom + KnKsLaw on the same input", 0.05, suffix="yade-pressing",
                 overlap_differences=diffs_u, force_differences=diffs_f, overlaps=overlaps)
+
+    # 2D mode: both programs' contact area is the joint length times unitWidth2D.
+    diffs_a = []
+    for u in overlaps:
+        params = dict(mode="pressing", D=2 * s - u, shapes=shapes, Knormal=KN, Kshear=KS, twoDimension=True,
+                      unitWidth2D=0.5)
+        a, b = twin.run(SCENARIO, params, "talus")["contacts"][0], twin.run(SCENARIO, params, "yade")["contacts"][0]
+        diffs_a.append(abs(a["contactArea"] - b["contactArea"]) / b["contactArea"])
+        print(f"Yade pressing 2D u={u:.0e}: area (joint length x 0.5) Talus {a['contactArea']:.12e} "
+              f"Yade {b['contactArea']:.12e}")
+    case.record("largest relative difference of the 2D contact area (joint length x unitWidth2D) of two pressed "
+                "cubes from Yade's", max(diffs_a), "Yade's Ig2_PP_PP_ScGeom(twoDimension=True) on the same input",
+                1e-6, suffix="yade-pressing-2d", area_differences=diffs_a, overlaps=overlaps, unitWidth2D=0.5)
 
     steps = 5000 if quick else 10000
     params = dict(mode="resting", shapes=shapes, steps=steps, dt=2e-4, Knormal=KN, Kshear=KS)

@@ -89,6 +89,8 @@ struct Bodies
   std::vector<PotentialParticleShape> particles;
   /// How Potential Blocks touch (Ig2_PB_PB_ScGeom's settings, from the engines).
   BlockContactSettings blockContact;
+  /// How Potential Particles touch (Ig2_PP_PP_ScGeom's settings, from the engines).
+  ParticleContactSettings particleContact;
 
   /// Number of slots, erased bodies included.
   [[nodiscard]] std::size_t size() const { return pos.size(); }

@@ -325,7 +325,8 @@ constexpr std::pair<const char*, Quat ContactExtra::*> extraQuats[] = {
 constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
     {"cohesionBroken", &ContactExtra::cohesionBroken}, {"fragile", &ContactExtra::fragile},
     {"momentRotationLaw", &ContactExtra::momentRotationLaw},
-    {"cohesionDisablesFriction", &ContactExtra::cohesionDisablesFriction}};
+    {"cohesionDisablesFriction", &ContactExtra::cohesionDisablesFriction}, {"intactRock", &ContactExtra::intactRock},
+    {"tensionBroken", &ContactExtra::tensionBroken}};
 // The energy tracker's accumulated terms, attributes of /energy.
 constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
     {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},
@@ -428,6 +429,21 @@ void writePlaneShapes(const Writer& w, const Bodies& b)
     w.int32s("/bodies/blocks/facePlane", facePlane.data(), facePlane.size());
     w.int32s("/bodies/blocks/faceVerticesStart", faceVertexStart.data(), faceVertexStart.size());
     w.int32s("/bodies/blocks/faceVertices", faceVertices.data(), faceVertices.size());
+    // The faces' rock-joint properties, one entry per plane as d.
+    std::vector<double> cohesion, tension;
+    std::vector<std::uint8_t> intactRock;
+    std::vector<std::int32_t> jointType;
+    for (const PotentialBlockShape& s : b.blocks)
+    {
+      cohesion.insert(cohesion.end(), s.cohesion.begin(), s.cohesion.end());
+      tension.insert(tension.end(), s.tension.begin(), s.tension.end());
+      intactRock.insert(intactRock.end(), s.intactRock.begin(), s.intactRock.end());
+      jointType.insert(jointType.end(), s.jointType.begin(), s.jointType.end());
+    }
+    w.doubles("/bodies/blocks/cohesion", {cohesion.size()}, cohesion.data());
+    w.doubles("/bodies/blocks/tension", {tension.size()}, tension.data());
+    w.uint8s("/bodies/blocks/intactRock", intactRock.data(), intactRock.size());
+    w.int32s("/bodies/blocks/jointType", jointType.data(), jointType.size());
   }
   {
     const Id g = w.group("/bodies/particles");
@@ -1010,6 +1026,26 @@ void readPlaneShapes(const Reader& r, Bodies& b, const Context& ctx)
     for (auto f = static_cast<std::size_t>(faceStart[k]); f < static_cast<std::size_t>(faceStart[k + 1]); ++f)
       s.faces.emplace_back(faceVertices.begin() + vertexStart[f], faceVertices.begin() + vertexStart[f + 1]);
   }
+  std::size_t planes = 0;
+  for (const PotentialBlockShape& s : b.blocks)
+    planes += s.normals.size();
+  std::vector<double> cohesion(planes), tension(planes);
+  std::vector<std::uint8_t> intactRock(planes);
+  std::vector<std::int32_t> jointType(planes);
+  r.doubles("/bodies/blocks/cohesion", {planes}, cohesion.data());
+  r.doubles("/bodies/blocks/tension", {planes}, tension.data());
+  r.uint8s("/bodies/blocks/intactRock", intactRock);
+  r.int32s("/bodies/blocks/jointType", jointType);
+  std::size_t next = 0;
+  for (PotentialBlockShape& s : b.blocks)
+  {
+    const auto from = static_cast<std::ptrdiff_t>(next), to = static_cast<std::ptrdiff_t>(next + s.normals.size());
+    s.cohesion.assign(cohesion.begin() + from, cohesion.begin() + to);
+    s.tension.assign(tension.begin() + from, tension.begin() + to);
+    s.intactRock.assign(intactRock.begin() + from, intactRock.begin() + to);
+    s.jointType.assign(jointType.begin() + from, jointType.begin() + to);
+    next += s.normals.size();
+  }
 
   readShapeColumns(r, "/bodies/particles/", b.particles, particleScalars, particleVectorLists, ctx);
   const std::size_t n = b.particles.size();
@@ -1043,13 +1079,15 @@ void validatePlaneShapes(const Bodies& b, const Context& ctx)
   {
     const PotentialBlockShape& s = b.blocks[k];
     bool ok = finite(s) && s.r >= 0 && s.R > 0 && s.vertices.size() >= 4 && s.faces.size() == s.facePlane.size();
+    for (std::size_t i = 0; ok && i < s.cohesion.size(); ++i)
+      ok = std::isfinite(s.cohesion[i]) && s.cohesion[i] >= 0 && std::isfinite(s.tension[i]) && s.tension[i] >= 0;
     for (std::size_t f = 0; ok && f < s.faces.size(); ++f)
       ok = s.facePlane[f] >= 0 && static_cast<std::size_t>(s.facePlane[f]) < s.normals.size() && s.faces[f].size() >= 3
            && std::all_of(s.faces[f].begin(), s.faces[f].end(),
                           [&](int v) { return v >= 0 && static_cast<std::size_t>(v) < s.vertices.size(); });
     if (!ok)
       ctx.fail("Potential Block shape " + std::to_string(k)
-                   + " is invalid (planes, rounding, volume or faces out of range)",
+                   + " is invalid (planes, rounding, volume, faces or face strengths out of range)",
                false);
   }
   for (std::size_t k = 0; k < b.particles.size(); ++k)
@@ -1477,10 +1515,13 @@ void commit(Scene& scene, const Loaded& in)
   scene.materials.resize(kept);
   scene.materials.insert(scene.materials.end(), in.materials.begin() + static_cast<std::ptrdiff_t>(kept),
                          in.materials.end());
-  // The block contacts' settings belong to the engines (Ig2_PB_PB_ScGeom), not to the file.
+  // The block and particle contacts' settings belong to the engines (Ig2_PB_PB_ScGeom,
+  // Ig2_PP_PP_ScGeom), not to the file.
   const BlockContactSettings blockContact = scene.bodies.blockContact;
+  const ParticleContactSettings particleContact = scene.bodies.particleContact;
   scene.bodies = in.bodies;
   scene.bodies.blockContact = blockContact;
+  scene.bodies.particleContact = particleContact;
   scene.contacts.list = in.contacts;
   scene.contacts.extra = in.contactExtra;
   scene.contacts.index(scene.bodies.size());

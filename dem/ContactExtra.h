@@ -37,5 +37,11 @@ struct ContactExtra
 
   // KnKsPBPhys: area of the overlap region's section (Potential Block contacts).
   double contactArea = 0;
+  // KnKsPBPhys with useFaceProperties: a bond across two intact-rock faces (a rock bridge or a
+  // cemented joint); its strengths, the faces' cohesion and tension times the contact area when
+  // it formed, are shearAdhesion and normalAdhesion above; broken flags as Yade's (1: no
+  // cohesion, resp. no tension, any more).
+  std::uint8_t intactRock = 0;
+  std::uint8_t tensionBroken = 1;
 };
 } // namespace talus::dem

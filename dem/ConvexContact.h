@@ -40,4 +40,16 @@ struct BlockContactSettings
   /// the tolerance of its conic solver).
   double accuracyTol = defaultBlockAccuracyTol;
 };
+
+/// Settings of the Potential Particles' contact geometry (Yade's Ig2_PP_PP_ScGeom), from the
+/// engines as the blocks' are.
+struct ParticleContactSettings
+{
+  /// 2D mode, as the blocks' (the seed's contactArea = jointLength x unitWidth2D): the contact
+  /// area is the overlap region's chord through the contact point along normal x twoDdir,
+  /// times `unitWidth2D`.
+  bool twoDimension = false;
+  Vec3 twoDdir = Vec3::UnitY();
+  double unitWidth2D = 1;
+};
 } // namespace talus::dem

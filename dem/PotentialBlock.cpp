@@ -113,6 +113,11 @@ PotentialBlockShape makePotentialBlock(const std::vector<double>& a, const std::
   s.volume = volume;
   s.normals.resize(m);
   s.d.resize(m);
+  // Frictional faces unless the caller (BlockGen) says otherwise.
+  s.cohesion.assign(m, 0.0);
+  s.tension.assign(m, 0.0);
+  s.intactRock.assign(m, 0);
+  s.jointType.assign(m, 0);
   for (std::size_t i = 0; i < m; ++i)
   {
     s.normals[i] = Q.transpose() * n[i];
@@ -162,5 +167,33 @@ Vec3 potentialBlockNormal(const PotentialBlockShape& s, const Vec3& y, int* acti
     *active = count;
   const double norm = g.norm();
   return norm > 0 ? Vec3(g / norm) : s.normals[nearest];
+}
+void setBlockFaceProperties(PotentialBlockShape& s, const std::vector<double>& cohesion,
+                            const std::vector<double>& tension, const std::vector<bool>& intactRock,
+                            const std::vector<int>& jointType, const std::string& which)
+{
+  const std::size_t m = s.normals.size();
+  auto check = [&](std::size_t size, const char* name) {
+    if (size != 0 && size != m)
+      throw std::invalid_argument(which + ": " + name + " has " + std::to_string(size) + " entries for "
+                                  + std::to_string(m) + " planes");
+  };
+  check(cohesion.size(), "cohesion");
+  check(tension.size(), "tension");
+  check(intactRock.size(), "intactRock");
+  check(jointType.size(), "jointType");
+  for (const auto* list : {&cohesion, &tension})
+    for (std::size_t i = 0; i < list->size(); ++i)
+      if (!std::isfinite((*list)[i]) || (*list)[i] < 0)
+        throw std::invalid_argument(which + ": " + (list == &cohesion ? "cohesion" : "tension") + " of plane "
+                                    + std::to_string(i) + " must be finite and >= 0, got " + std::to_string((*list)[i]));
+  if (!cohesion.empty())
+    s.cohesion = cohesion;
+  if (!tension.empty())
+    s.tension = tension;
+  if (!intactRock.empty())
+    s.intactRock.assign(intactRock.begin(), intactRock.end());
+  if (!jointType.empty())
+    s.jointType.assign(jointType.begin(), jointType.end());
 }
 } // namespace talus::dem

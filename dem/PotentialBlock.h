@@ -2,6 +2,7 @@
 
 #include "dem/types.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,12 @@ struct PotentialBlockShape
   std::vector<Vec3> edgeDirections;      ///< unit directions of the edges, parallel ones once (separating-axis tests)
   double volume = 0;
   double boundingRadius = 0; ///< largest distance of a vertex from the centroid (for the collider's skin check)
+  // Rock-joint properties of each plane's face (Yade's PotentialBlock cohesion, tension,
+  // intactRock, jointType, which BlockGen fills from the joint file); one entry per plane.
+  // Read by the KnKsPB law with useFaceProperties when a contact forms.
+  std::vector<double> cohesion, tension; ///< strengths (stresses) of the face
+  std::vector<std::uint8_t> intactRock;  ///< the face is intact rock (bonded to its neighbour)
+  std::vector<std::int32_t> jointType;
 };
 
 /// What makePotentialBlock derives from the user's planes besides the shape.
@@ -47,6 +54,13 @@ PotentialBlockShape makePotentialBlock(const std::vector<double>& a, const std::
                                        const std::vector<double>& c, const std::vector<double>& d, double r,
                                        double R, bool isBoundary, const std::string& which,
                                        PotentialBlockPlacement* placement);
+
+/// Give the faces of s their rock-joint properties, one entry per plane (empty: keep them).
+/// @throws std::invalid_argument starting with `which` if a list has not one entry per plane or
+///         a strength is negative or not finite
+void setBlockFaceProperties(PotentialBlockShape& s, const std::vector<double>& cohesion,
+                            const std::vector<double>& tension, const std::vector<bool>& intactRock,
+                            const std::vector<int>& jointType, const std::string& which);
 
 /// Gradient of the inner potential at y (body frame), and the number of planes active there;
 /// if y is inside the inner potential (gradient zero), the normal of the nearest plane with

@@ -46,6 +46,25 @@ double sectionArea(const PlacedPotential& f1, const PlacedPotential* f2, const V
   }
   return 0.5 * sum * (2 * M_PI / areaRays);
 }
+
+/// The contact area: the section's area, or in 2D mode (b.particleContact) the joint length,
+/// the section's chord through x along n x twoDdir, times unitWidth2D. A normal along twoDdir
+/// (no chord in the plane of motion) falls back to the section.
+double contactArea(const Bodies& b, const PlacedPotential& f1, const PlacedPotential* f2, const Vec3& x, const Vec3& n,
+                   double scale, double tol)
+{
+  const ParticleContactSettings& settings = b.particleContact;
+  if (settings.twoDimension)
+  {
+    const Vec3 along = n.cross(settings.twoDdir);
+    if (along.norm() > 1e-9)
+    {
+      const Vec3 d = along.normalized();
+      return settings.unitWidth2D * (rayExit(f1, f2, x, d, 0, scale, tol) + rayExit(f1, f2, x, -d, 0, scale, tol));
+    }
+  }
+  return sectionArea(f1, f2, x, n, scale, tol);
+}
 } // namespace
 
 /// Support point of particle i along the unit world direction e, relative to b.pos[i], from the
@@ -107,7 +126,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
     out.penetration = depth;
     const Vec3 mid = x + 0.5 * depth * n;
     out.contactPoint = mid + origin;
-    out.area = sectionArea(f, nullptr, mid, n, s2.R, stepTol);
+    out.area = contactArea(b, f, nullptr, mid, n, s2.R, stepTol);
     return true;
   }
 
@@ -169,7 +188,7 @@ bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, c
   out.penetration = chord;
   const Vec3 mid = x + 0.5 * (tPlus - tMinus) * n;
   out.contactPoint = mid + origin;
-  out.area = sectionArea(f1, &f2, mid, n, scale, stepTol);
+  out.area = contactArea(b, f1, &f2, mid, n, scale, stepTol);
   return true;
 }
 } // namespace talus::dem

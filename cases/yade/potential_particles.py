@@ -2,7 +2,7 @@
 talus.dem.twin): parameters from the JSON in TALUS_SCENARIO, one line `RESULT {json}` out.
 
 mode "pressing": two fixed cubes face to face at centre distance `D`, one step: contact normal,
-    overlap, area and normal force.
+    overlap, area and normal force (`twoDimension`, `unitWidth2D`: Ig2_PP_PP_ScGeom's 2D mode).
 mode "resting": a cube dropped on a fixed boundary plate under gravity: contact force, overlap.
 mode "packing": `n` cubes at jittered grid points with random orientations (random.Random(seed),
     the same numbers in both programs) settle under gravity in a box of five boundary plates
@@ -63,7 +63,8 @@ def add(kind, pos, axis=(0, 0, 1), angle=0.0, fixed=False, boundary=False):
 
 
 def engines(gravity, damping, viscous):
-    geom = Ig2_PP_PP_ScGeom(twoDimension=False, calContactArea=True, areaStep=5)
+    geom = Ig2_PP_PP_ScGeom(twoDimension=P.get("twoDimension", False), unitWidth2D=P.get("unitWidth2D", 1.0),
+                            calContactArea=True, areaStep=5)
     phys = Ip2_FrictMat_FrictMat_KnKsPhys(Knormal=KN, Kshear=KS, kn_i=KN, ks_i=KS, useFaceProperties=False,
                                           viscousDamping=viscous)
     law = Law2_SCG_KnKsPhys_KnKsLaw(neverErase=False)

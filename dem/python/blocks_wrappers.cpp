@@ -42,12 +42,22 @@ void talus_wrap_blocks(py::module_& m)
       "add_potential_block",
       [](Scene& s, const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c,
          const std::vector<double>& d, double r, double R, bool isBoundary, std::optional<Vec3> center,
-         const Eigen::Vector4d& wxyz, int material, bool fixed) {
-        return s.addPotentialBlock(a, b, c, d, r, R, isBoundary, center ? &*center : nullptr,
-                                   Quat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]), material, fixed);
+         const Eigen::Vector4d& wxyz, int material, bool fixed, const std::vector<double>& cohesion,
+         const std::vector<double>& tension, const std::vector<bool>& intactRock, const std::vector<int>& jointType) {
+        // Checked before the body is added, so a bad list leaves the scene as it was.
+        PotentialBlockShape probe;
+        probe.normals.resize(a.size());
+        const std::string which = "PotentialBlock #" + std::to_string(s.bodies.size());
+        setBlockFaceProperties(probe, cohesion, tension, intactRock, jointType, which);
+        const BodyId id = s.addPotentialBlock(a, b, c, d, r, R, isBoundary, center ? &*center : nullptr,
+                                              Quat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]), material, fixed);
+        setBlockFaceProperties(s.bodies.blocks.back(), cohesion, tension, intactRock, jointType, which);
+        return id;
       },
       py::arg("scene"), py::arg("a"), py::arg("b"), py::arg("c"), py::arg("d"), py::arg("r"), py::arg("R"),
-      py::arg("isBoundary"), py::arg("center"), py::arg("orientation"), py::arg("material"), py::arg("fixed"));
+      py::arg("isBoundary"), py::arg("center"), py::arg("orientation"), py::arg("material"), py::arg("fixed"),
+      py::arg("cohesion") = std::vector<double>{}, py::arg("tension") = std::vector<double>{},
+      py::arg("intactRock") = std::vector<bool>{}, py::arg("jointType") = std::vector<int>{});
   // Volume, centroid and corners (in the planes' frame) of the block the planes bound, without
   // adding a body (block generation); raises as addPotentialBlock does on bad planes.
   m.def("potential_block_geometry", [](const std::vector<double>& a, const std::vector<double>& b,
@@ -76,6 +86,10 @@ void talus_wrap_blocks(py::module_& m)
     out["vertices"] = b.vertices;
     out["faces"] = b.faces;
     out["volume"] = b.volume;
+    out["cohesion"] = b.cohesion;
+    out["tension"] = b.tension;
+    out["intactRock"] = std::vector<bool>(b.intactRock.begin(), b.intactRock.end());
+    out["jointType"] = b.jointType;
     return out;
   });
   m.def("block_aabb", [](const Scene& s, BodyId id) {
@@ -98,13 +112,7 @@ void talus_wrap_blocks(py::module_& m)
   m.def(
       "set_block_contact_settings",
       [](Scene& s, bool twoDimension, const Vec3& twoDdir, double unitWidth2D, bool exactDepth, double accuracyTol) {
-        if (!twoDdir.allFinite() || !(twoDdir.norm() > 0))
-          throw std::invalid_argument("Ig2_PB_PB_ScGeom.twoDdir must be a finite non-zero vector, got ("
-                                      + std::to_string(twoDdir[0]) + ", " + std::to_string(twoDdir[1]) + ", "
-                                      + std::to_string(twoDdir[2]) + ")");
-        if (!std::isfinite(unitWidth2D) || !(unitWidth2D > 0))
-          throw std::invalid_argument("Ig2_PB_PB_ScGeom.unitWidth2D must be finite and > 0, got "
-                                      + std::to_string(unitWidth2D));
+        checkTwoDimension("Ig2_PB_PB_ScGeom", twoDdir, unitWidth2D);
         if (!std::isfinite(accuracyTol) || !(accuracyTol > 0))
           throw std::invalid_argument("Ig2_PB_PB_ScGeom.accuracyTol must be finite and > 0, got "
                                       + std::to_string(accuracyTol));

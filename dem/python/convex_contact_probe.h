@@ -1,7 +1,7 @@
 #pragma once
 
-// The contact probe that the Potential Block and Potential Particle bindings share
-// (blocks_wrappers.cpp, particles_wrappers.cpp).
+// The contact probe and the 2D-mode check that the Potential Block and Potential Particle
+// bindings share (blocks_wrappers.cpp, particles_wrappers.cpp).
 #include "dem/ConvexContact.h"
 #include "dem/Scene.h"
 
@@ -16,6 +16,18 @@
 
 namespace talus::dem
 {
+/// The 2D mode's settings of a geometry functor (`functor`, e.g. "Ig2_PP_PP_ScGeom"): twoDdir a
+/// finite non-zero vector, unitWidth2D finite and > 0.
+/// @throws std::invalid_argument naming the functor's attribute otherwise
+inline void checkTwoDimension(const std::string& functor, const Vec3& twoDdir, double unitWidth2D)
+{
+  if (!twoDdir.allFinite() || !(twoDdir.norm() > 0))
+    throw std::invalid_argument(functor + ".twoDdir must be a finite non-zero vector, got (" + std::to_string(twoDdir[0])
+                                + ", " + std::to_string(twoDdir[1]) + ", " + std::to_string(twoDdir[2]) + ")");
+  if (!std::isfinite(unitWidth2D) || !(unitWidth2D > 0))
+    throw std::invalid_argument(functor + ".unitWidth2D must be finite and > 0, got " + std::to_string(unitWidth2D));
+}
+
 /// The contact geometry of a pair as it stands (no history), with the solver's mean wall time over
 /// `repeats` calls: `seconds` from a cold start (a new contact's cost), `secondsWarm` starting from
 /// the contact point found (a persistent contact's cost). `check(scene, id)` throws unless the body

@@ -70,6 +70,8 @@ void talus_wrap_laws(py::module_& m)
         d["moment_twist"] = x.momentTwist;
         d["cohesionBroken"] = static_cast<bool>(x.cohesionBroken);
         d["fragile"] = static_cast<bool>(x.fragile);
+        d["intactRock"] = static_cast<bool>(x.intactRock);
+        d["tensionBroken"] = static_cast<bool>(x.tensionBroken);
       }
       out.append(d);
     }

@@ -110,6 +110,14 @@ void talus_wrap_particles(py::module_& m)
       }
     return out;
   });
+  // Ig2_PP_PP_ScGeom's settings for every particle contact of the scene (set from O.engines).
+  m.def(
+      "set_particle_contact_settings",
+      [](Scene& s, bool twoDimension, const Vec3& twoDdir, double unitWidth2D) {
+        checkTwoDimension("Ig2_PP_PP_ScGeom", twoDdir, unitWidth2D);
+        s.bodies.particleContact = ParticleContactSettings{twoDimension, twoDdir.normalized(), unitWidth2D};
+      },
+      py::arg("scene"), py::arg("twoDimension"), py::arg("twoDdir"), py::arg("unitWidth2D"));
   // The contact geometry of a pair as it stands, timed (convex_contact_probe.h).
   m.def(
       "particle_contact",

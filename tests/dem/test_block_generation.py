@@ -44,9 +44,11 @@ def test_three_persistent_joints_cut_a_cube_in_eight(tmp_path):
     assert np.allclose(np.sort(np.abs(centres), axis=0), 0.5)   # the octants' centres
 
 
-def test_a_joint_ending_inside_the_block_does_not_split_it(tmp_path):
+def test_a_joint_ending_inside_the_block_cuts_it_and_a_distant_one_does_not(tmp_path):
+    # Yade's BlockGen: a joint whose trace meets the block cuts it through (the rest of the cut is
+    # rock bridge, test_block_rock_bridges.py); one beside it does not.
     short = "90;180;0;0;0;0.5;0.5;40;40;0;0;0;0;0;0;1;joint;\n"
-    assert len(generateBlocks(PotentialBlock.cuboid((1, 1, 1), r=0.05), joints(tmp_path, short))) == 1
+    assert len(generateBlocks(PotentialBlock.cuboid((1, 1, 1), r=0.05), joints(tmp_path, short))) == 2
     off = "90;180;5;0;0;10000;10000;40;40;0;0;0;0;0;0;1;joint;\n"   # outside the block
     assert len(generateBlocks(PotentialBlock.cuboid((1, 1, 1), r=0.05), joints(tmp_path, off))) == 1
 

@@ -82,10 +82,11 @@ def test_layout_is_covered():
     engines and the transient pauseRequested_ and failedStep_). When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
     is transient, then update this table."""
-    # Not stored: Bodies::blockContact (Ig2_PB_PB_ScGeom's settings, restored with the engines)
-    # and ContactExtra::contactArea (recomputed by the geometry every step before the law reads it).
-    assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 656, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 1368, "ContactExtra": 256,
+    # Not stored: Bodies::blockContact and particleContact (Ig2_PB_PB_ScGeom's and
+    # Ig2_PP_PP_ScGeom's settings, restored with the engines) and ContactExtra::contactArea
+    # (recomputed by the geometry every step before the law reads it).
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 696, "WallShape": 8,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1408, "ContactExtra": 272,
                                    "EnergyTracker": 112}
 
 

@@ -121,9 +121,9 @@ def test_bad_input_is_refused_naming_the_particle_and_parameter(kwargs, message)
         S.bodies.append(potentialParticle(PotentialParticle(**kwargs), material=m))
 
 
-def midplane_area(shape, x0, n=720):
-    """Area of {(y, z) : f(x0, y, z) <= 0} of a particle at the origin (polar bisection in numpy,
-    independent of the C++ solvers)."""
+def midplane_rays(shape, x0, u):
+    """Distances from (x0, 0, 0) to the surface of a particle at the origin along the unit rows
+    of u (bisection in numpy, independent of the C++ solvers)."""
     a, b, c = (np.asarray(v, float) for v in (shape.a, shape.b, shape.c))
     N = np.stack([a, b, c], axis=1)
     d = np.asarray(shape.d)
@@ -132,14 +132,19 @@ def midplane_area(shape, x0, n=720):
         g = np.maximum(p @ N.T - d, 0)
         return (1 - shape.k) * ((g * g).sum(-1) / shape.r**2 - 1) + shape.k * ((p * p).sum(-1) / shape.R**2 - 1)
 
-    th = 2 * np.pi * np.arange(n) / n
-    u = np.stack([np.zeros(n), np.cos(th), np.sin(th)], axis=1)
-    lo, hi = np.zeros(n), np.full(n, 2 * shape.R)
+    lo, hi = np.zeros(len(u)), np.full(len(u), 2 * shape.R)
     for _ in range(60):
         mid = 0.5 * (lo + hi)
         inside = f(np.array([x0, 0, 0]) + mid[:, None] * u) <= 0
         lo, hi = np.where(inside, mid, lo), np.where(inside, hi, mid)
-    return 0.5 * np.sum(lo**2) * 2 * np.pi / n
+    return lo
+
+
+def midplane_area(shape, x0, n=720):
+    """Area of {(y, z) : f(x0, y, z) <= 0} of a particle at the origin."""
+    th = 2 * np.pi * np.arange(n) / n
+    rho = midplane_rays(shape, x0, np.stack([np.zeros(n), np.cos(th), np.sin(th)], axis=1))
+    return 0.5 * np.sum(rho**2) * 2 * np.pi / n
 
 
 @pytest.mark.parametrize("overlap", [1e-5, 1e-3, 2e-2])
@@ -158,6 +163,39 @@ def test_face_to_face_overlap_normal_point_and_area(overlap):
     # apart by 1e-9: no contact
     S.bodies[b].state.pos = (2 * s + 1e-9, 0, 0)
     assert not particleContact(S, a, b)["touching"]
+
+
+def test_2d_area_is_the_joint_length_times_the_unit_width():
+    """2D mode (as the blocks'): two cubes face to face along x, the prisms' axis twoDdir = y:
+    the area is the overlap's chord along n x twoDdir = z through the contact point times
+    unitWidth2D; a wall contact's chord runs along x; twoDdir along the normal leaves the
+    section's area."""
+    shape = cube()
+    s = face_centre(0.45, 0.05, 0.2, math.sqrt(3) * 0.5)
+    overlap = 1e-3
+    S, m = scene()
+    a = S.bodies.append(potentialParticle(shape, pos=(0, 0, 0), material=m))
+    b = S.bodies.append(potentialParticle(shape, pos=(2 * s - overlap, 0, 0), material=m))
+    w = S.bodies.append(wall(-3, axis=2, sense=1, material=m))
+    p = S.bodies.append(potentialParticle(shape, pos=(0.3, -0.2, -3 + s - 1e-3), material=m))
+
+    def engines(**geometry):
+        S.engines = [ForceResetter(), InsertionSortCollider([PotentialParticle2AABB()]),
+                     InteractionLoop([Ig2_PP_PP_ScGeom(**geometry)], [Ip2_FrictMat_FrictMat_KnKsPhys(Knormal=1e8)],
+                                     [Law2_SCG_KnKsPhys_KnKsLaw()])]
+
+    g3 = particleContact(S, a, b)
+    engines(twoDimension=True, unitWidth2D=0.7)
+    g2 = particleContact(S, a, b)
+    joint = 2 * midplane_rays(shape, s - overlap / 2, np.array([[0.0, 0, 1]]))[0]
+    assert g2["contactArea"] == pytest.approx(0.7 * joint, rel=1e-8)
+    assert g2["penetrationDepth"] == g3["penetrationDepth"] and np.array_equal(g2["normal"], g3["normal"])
+    wall_joint = 2 * midplane_rays(shape, s - 5e-4, np.array([[0.0, 1, 0]]))[0]   # the cube's section is square
+    assert particleContact(S, w, p)["contactArea"] == pytest.approx(0.7 * wall_joint, rel=1e-8)
+    engines(twoDimension=True, unitWidth2D=0.7, twoDdir=(1, 0, 0))   # along the normal: no chord in the plane
+    assert particleContact(S, a, b)["contactArea"] == pytest.approx(g3["contactArea"], rel=1e-12)
+    with pytest.raises(ValueError, match="unitWidth2D must be finite and > 0"):
+        engines(twoDimension=True, unitWidth2D=0)
 
 
 def test_wall_contact_is_the_support_depth():

@@ -9,6 +9,13 @@ Sequential subdivision: each joint splits every current block it crosses into th
 either side (the block's planes plus the joint plane, one way and the other). Planes are in world
 coordinates throughout, so the generated blocks sit where they were cut (``potentialBlock(b)``
 with ``pos=None``).
+
+Non-persistent joints (finite traces), as Yade's BlockGen: a joint whose rectangle meets a block
+cuts it along its whole plane (the seed's "more constraints": the joint's persistence planes in
+the linear program that finds whether it touches the block). The part of the cut the joint does
+not cover is a rock bridge: the new faces carry the strength of both parts, weighted by area,
+as intact rock, and the contact law (Ip2_FrictMat_FrictMat_KnKsPBPhys(useFaceProperties=True))
+bonds them until the bridge breaks.
 """
 
 from __future__ import annotations
@@ -22,6 +29,10 @@ from talus import _dem
 from talus.dem.blocks import PotentialBlock
 
 _REQUIRED = ("dip", "dipDir", "centreX", "centreY", "centreZ")
+# Optional columns: the trace half-lengths and the strengths Yade's BlockGen reads (Yade's
+# spelling; phi_b, phi_r, JRC, JSC, asperity and simgaC are read and checked, not used).
+_OPTIONAL = ("traceX", "traceY", "phi_b", "phi_r", "JRC", "JSC", "asperity", "simgaC", "cohesion", "tension",
+             "jointType")
 
 
 class JointFileError(ValueError):
@@ -30,13 +41,18 @@ class JointFileError(ValueError):
 
 @dataclass
 class Joint:
-    """A discontinuity plane: unit normal, a point on it, and its extent along two directions in
-    the plane (``traceX``, ``traceY``; large values: persistent). ``line``: where it was read."""
+    """A discontinuity plane: unit normal, a point on it, and its half-extents from the centre
+    along its strike and dip line in the plane (``traceX``, ``traceY``, as Yade's persistence
+    planes; large values: persistent). ``cohesion``, ``tension``: the joint's strengths
+    (stresses); ``jointType``: Yade's joint class. ``line``: where it was read."""
     normal: np.ndarray
     centre: np.ndarray
     traceX: float = math.inf
     traceY: float = math.inf
     line: int = 0
+    cohesion: float = 0.0
+    tension: float = 0.0
+    jointType: int = 0
 
 
 def dipNormal(dip: float, dipDir: float) -> np.ndarray:
@@ -49,10 +65,11 @@ def dipNormal(dip: float, dipDir: float) -> np.ndarray:
 
 def readJoints(path: str) -> list[Joint]:
     """Joints from Yade's semicolon-separated CSV (header line naming the columns; dip, dipDir,
-    centreX, centreY, centreZ required, traceX, traceY optional; other columns, such as joint
-    strengths, are read by Yade's BlockGen and ignored here).
+    centreX, centreY, centreZ required; traceX, traceY, cohesion, tension, jointType and Yade's
+    other strength columns optional, an empty value taking the default).
     @raises JointFileError naming the file and line for a missing column, a short line or a value
-    that is not a finite number (dip in [0, 90], dipDir in [0, 360])."""
+    that is not a finite number (dip in [0, 90], dipDir in [0, 360], traces > 0, cohesion and
+    tension >= 0, jointType an integer)."""
     with open(path, encoding="utf-8") as f:
         lines = f.read().splitlines()
     if not lines:
@@ -68,7 +85,7 @@ def readJoints(path: str) -> list[Joint]:
             continue
         fields = [x.strip() for x in text.split(";")]
         values = {}
-        for name in _REQUIRED + ("traceX", "traceY"):
+        for name in _REQUIRED + _OPTIONAL:
             if name not in column:
                 continue
             k = column[name]
@@ -89,9 +106,15 @@ def readJoints(path: str) -> list[Joint]:
         for name in ("traceX", "traceY"):
             if name in values and not values[name] > 0:
                 raise JointFileError(f"{path} line {number}: {name} must be > 0, got {values[name]}")
+        for name in ("cohesion", "tension"):
+            if name in values and values[name] < 0:
+                raise JointFileError(f"{path} line {number}: {name} must be >= 0, got {values[name]}")
+        if "jointType" in values and values["jointType"] != int(values["jointType"]):
+            raise JointFileError(f"{path} line {number}: jointType must be an integer, got {values['jointType']}")
         joints.append(Joint(dipNormal(values["dip"], values["dipDir"]),
                             np.array([values["centreX"], values["centreY"], values["centreZ"]]),
-                            values.get("traceX", math.inf), values.get("traceY", math.inf), number))
+                            values.get("traceX", math.inf), values.get("traceY", math.inf), number,
+                            values.get("cohesion", 0.0), values.get("tension", 0.0), int(values.get("jointType", 0))))
     return joints
 
 
@@ -105,56 +128,126 @@ def _geometry(normals, h, r, which):
                                          list(h - r), r, which)
 
 
-def _crosses(joint: Joint, corners: np.ndarray, tol: float) -> bool:
-    """The joint cuts the block: corners on both sides, and (for a finite joint) the block's
-    section lies within the joint's rectangle (centred on its centre, traceX along the plane's
-    strike, traceY along its dip line). A joint ending inside a block leaves it intact."""
-    side = (corners - joint.centre) @ joint.normal
-    if not (side.max() > tol and side.min() < -tol):
-        return False
-    if math.isinf(joint.traceX) and math.isinf(joint.traceY):
-        return True
+def _planeAxes(joint: Joint) -> tuple[np.ndarray, np.ndarray]:
+    """Unit strike and dip-line directions in the joint's plane (the axes of its trace)."""
     n = joint.normal
     strike = np.cross(n, [0.0, 0.0, 1.0])
     strike = strike / np.linalg.norm(strike) if np.linalg.norm(strike) > 1e-12 else np.array([1.0, 0, 0])
-    dipLine = np.cross(n, strike)
-    rel = corners - joint.centre
-    return bool(np.all(np.abs(rel @ strike) <= 0.5 * joint.traceX) and np.all(np.abs(rel @ dipLine) <= 0.5 * joint.traceY))
+    return strike, np.cross(n, strike)
 
 
-def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None = None,
-                   minVolume: float = 0.0) -> list[PotentialBlock]:
+def _clip(polygon: np.ndarray, g: np.ndarray, limit: float) -> np.ndarray:
+    """The part of a convex polygon (k, 2) where g . p <= limit (Sutherland-Hodgman)."""
+    out = []
+    for k in range(len(polygon)):
+        p, q = polygon[k], polygon[(k + 1) % len(polygon)]
+        fp, fq = g @ p - limit, g @ q - limit
+        if fp <= 0:
+            out.append(p)
+        if fp * fq < 0:
+            out.append(p + fp / (fp - fq) * (q - p))
+    return np.array(out).reshape(-1, 2)
+
+
+def _area(polygon: np.ndarray) -> float:
+    if len(polygon) < 3:
+        return 0.0
+    x, y = polygon[:, 0], polygon[:, 1]
+    return 0.5 * abs(float(x @ np.roll(y, -1) - y @ np.roll(x, -1)))
+
+
+def _section(joint: Joint, normals: np.ndarray, h: np.ndarray, size: float) -> tuple[float, float]:
+    """Areas of the block's section by the joint's plane and of its part inside the joint's
+    rectangle (the joint's trace): the block's planes, then the trace's four persistence
+    planes, clip a square of side 4 size on the plane (coordinates along strike and dip line
+    from the joint's centre)."""
+    strike, dipLine = _planeAxes(joint)
+    poly = 2 * size * np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])
+    for n, hk in zip(normals, h):
+        poly = _clip(poly, np.array([n @ strike, n @ dipLine]), hk - n @ joint.centre)
+        if not len(poly):
+            return 0.0, 0.0
+    section = _area(poly)
+    for g, limit in (((1.0, 0.0), joint.traceX), ((-1.0, 0.0), joint.traceX), ((0.0, 1.0), joint.traceY),
+                     ((0.0, -1.0), joint.traceY)):
+        if math.isfinite(limit):
+            poly = _clip(poly, np.array(g), limit)
+    return section, _area(poly)
+
+
+@dataclass
+class _Piece:
+    """A block being cut: its planes (normals, face offsets h = d + r), corners, and per plane
+    the face's strengths, intact-rock flag and joint type."""
+    normals: np.ndarray
+    h: np.ndarray
+    corners: np.ndarray
+    cohesion: list
+    tension: list
+    intactRock: list
+    jointType: list
+
+
+def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None = None, minVolume: float = 0.0,
+                   rockCohesion: float = 0.0, rockTension: float = 0.0,
+                   intactRockDegradation: bool = False) -> list[PotentialBlock]:
     """Split ``intact`` (planes in world coordinates) by ``joints`` in turn; returns the blocks
     (rounding ``r``, default the intact block's), dropping pieces of volume <= ``minVolume``
     (slivers, which Yade's BlockGen drops with minSize). Planes bounding a piece only at an edge
-    or a vertex are removed, so each block keeps only its faces."""
+    or a vertex are removed, so each block keeps only its faces.
+
+    A joint cuts every block whose interior its rectangle meets (Yade's BlockGen), along the
+    whole section. Strengths of the faces it makes, with k the fraction of the section the
+    joint covers: cohesion = k c_joint + (1 - k) ``rockCohesion``, tension likewise with
+    ``rockTension`` (the rock bridge is intact rock), where the joint's own c and t (the
+    file's columns) count only with ``intactRockDegradation`` (Yade's BlockGen option); faces
+    with a strength are intact rock. The intact block's own faces are frictional."""
     r = intact.r if r is None else float(r)
+    for name, value in (("rockCohesion", rockCohesion), ("rockTension", rockTension)):
+        if not (math.isfinite(value) and value >= 0):
+            raise ValueError(f"generateBlocks: {name} must be finite and >= 0, got {value}")
     normals, h = _faces(intact)
     geometry = _geometry(normals, h, r, "intact block")
-    scale = float(np.ptp(np.asarray(geometry["vertices"]), axis=0).max())
+    corners = np.asarray(geometry["vertices"])
+    scale = float(np.ptp(corners, axis=0).max())
     tol = 1e-9 * scale
-    pieces = [(normals, h, np.asarray(geometry["vertices"]))]
+    m = len(h)
+    pieces = [_Piece(normals, h, corners, [0.0] * m, [0.0] * m, [False] * m, [0] * m)]
     for joint in joints:
         offset = float(joint.normal @ joint.centre)
         split = []
-        for n, hh, corners in pieces:
-            if not _crosses(joint, corners, tol):
-                split.append((n, hh, corners))
+        for piece in pieces:
+            side = (piece.corners - joint.centre) @ joint.normal
+            if not (side.max() > tol and side.min() < -tol):
+                split.append(piece)
                 continue
+            size = float(np.abs(piece.corners - joint.centre).max())
+            section, covered = _section(joint, piece.normals, piece.h, size)
+            if covered <= tol * scale:
+                split.append(piece)   # the joint's trace ends before this block
+                continue
+            k = min(covered / section, 1.0)
+            c = k * (joint.cohesion if intactRockDegradation else 0.0) + (1 - k) * rockCohesion
+            t = k * (joint.tension if intactRockDegradation else 0.0) + (1 - k) * rockTension
             for sign in (1.0, -1.0):
-                n2 = np.vstack([n, sign * joint.normal])
-                h2 = np.append(hh, sign * offset)
+                n2 = np.vstack([piece.normals, sign * joint.normal])
+                h2 = np.append(piece.h, sign * offset)
                 try:
                     g = _geometry(n2, h2, r, f"piece cut by the joint of line {joint.line}")
                 except ValueError:
                     continue   # no volume on this side after all (the joint only grazes the block)
                 if g["volume"] > minVolume:
-                    split.append((n2, h2, np.asarray(g["vertices"])))
+                    split.append(_Piece(n2, h2, np.asarray(g["vertices"]), piece.cohesion + [c], piece.tension + [t],
+                                        piece.intactRock + [c > 0 or t > 0], piece.jointType + [joint.jointType]))
         pieces = split
     blocks = []
-    for n, hh, corners in pieces:
-        keep = [k for k in range(len(hh)) if np.sum(np.abs(corners @ n[k] - hh[k]) <= 10 * tol) >= 3]
-        blocks.append(PotentialBlock(a=n[keep, 0], b=n[keep, 1], c=n[keep, 2], d=hh[keep] - r, r=r))
+    for p in pieces:
+        keep = [k for k in range(len(p.h)) if np.sum(np.abs(p.corners @ p.normals[k] - p.h[k]) <= 10 * tol) >= 3]
+        blocks.append(PotentialBlock(a=p.normals[keep, 0], b=p.normals[keep, 1], c=p.normals[keep, 2],
+                                     d=p.h[keep] - r, r=r, cohesion=[p.cohesion[k] for k in keep],
+                                     tension=[p.tension[k] for k in keep],
+                                     intactRock=[p.intactRock[k] for k in keep],
+                                     jointType=[p.jointType[k] for k in keep]))
     return blocks
 
 

@@ -36,12 +36,18 @@ class PotentialBlock:
     """The shape of a block, with Yade's argument names. ``R`` = 0: half the largest distance
     between vertices. ``k`` is accepted as Yade's (must be 0: blocks have no spherical term);
     Yade's display and Aabb options (color, wire, minAabb, AabbMinMax, ...) are accepted and
-    ignored: Talus always bounds blocks tightly from their turned vertices."""
-    def __init__(self, a, b, c, d, r=0.0, R=0.0, isBoundary=False, k=0.0, **yadeOptions):
+    ignored: Talus always bounds blocks tightly from their turned vertices. ``cohesion``,
+    ``tension`` (stresses), ``intactRock``, ``jointType``: the faces' rock-joint properties, one
+    entry per plane (empty: frictional faces), read by the contact law with
+    ``useFaceProperties`` (``generateBlocks`` fills them from the joint file)."""
+    def __init__(self, a, b, c, d, r=0.0, R=0.0, isBoundary=False, k=0.0, cohesion=(), tension=(), intactRock=(),
+                 jointType=(), **yadeOptions):
         self.a, self.b, self.c, self.d = (list(map(float, v)) for v in (a, b, c, d))
         self.r, self.R, self.isBoundary, self.k = float(r), float(R), bool(isBoundary), float(k)
         if self.k != 0:
             raise ValueError(f"PotentialBlock: k must be 0 (blocks have no spherical term), got {k}")
+        self.cohesion, self.tension = list(map(float, cohesion)), list(map(float, tension))
+        self.intactRock, self.jointType = list(map(bool, intactRock)), list(map(int, jointType))
         self.extra = yadeOptions
 
     def __repr__(self):
@@ -76,11 +82,13 @@ def _add(scene: "Scene", spec: BodySpec, material: int) -> int:
     s = spec.block
     center = None if spec.center is None else np.asarray(spec.center, dtype=float)
     return _dem.add_potential_block(scene._cpp, s.a, s.b, s.c, s.d, s.r, s.R, s.isBoundary, center,
-                                    np.asarray(spec.orientation, dtype=float), material, bool(spec.fixed))
+                                    np.asarray(spec.orientation, dtype=float), material, bool(spec.fixed),
+                                    s.cohesion, s.tension, s.intactRock, s.jointType)
 
 
 def blockShape(scene: "Scene", id: int) -> dict:
-    """The block's planes, vertices and faces in its principal frame, volume, r, R."""
+    """The block's planes, vertices and faces in its principal frame, volume, r, R, and the
+    faces' rock-joint properties (cohesion, tension, intactRock, jointType per plane)."""
     return _dem.block_shape(scene._cpp, int(id))
 
 
@@ -151,41 +159,62 @@ class Ig2_PB_PB_ScGeom(Functor):
                                         else float(self.accuracyTol))
 
 
-def _applyBlockContactSettings(cpp, engines):
-    """The block contacts' settings of a scene from its engines: those of the first
-    Ig2_PB_PB_ScGeom of an InteractionLoop, or the defaults."""
-    for engine in engines:
-        for g in getattr(engine, "geomFunctors", ()):
-            if isinstance(g, Ig2_PB_PB_ScGeom):
-                g._applyToScene(cpp)
-                return
-    Ig2_PB_PB_ScGeom()._applyToScene(cpp)
-
-
 class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
     """Stiffnesses per unit contact area: ``Knormal``, ``Kshear`` between blocks, ``kn_i``,
     ``ks_i`` with a boundary block; ``viscousDamping``: fraction of the critical damping
-    2 sqrt(m kn) of the normal spring. Friction from the FrictMat's frictionAngle."""
-    _parameters = ("Knormal", "Kshear", "kn_i", "ks_i", "viscousDamping", "useFaceProperties")
+    2 sqrt(m kn) of the normal spring. Friction from the FrictMat's frictionAngle.
+    ``useFaceProperties``: a new contact between two intact-rock faces (``PotentialBlock``'s
+    ``intactRock``) is a bond with the smaller of the faces' ``cohesion`` and ``tension``, its
+    state ``cohesionBroken``, ``tensionBroken`` (Yade's defaults True: no bond). A scene of
+    generated blocks sets both False for its first step and True afterwards (Yade scripts set
+    them on the functor mid-run), so that only the faces that were cut are bonded."""
+    _parameters = ("Knormal", "Kshear", "kn_i", "ks_i", "viscousDamping", "useFaceProperties", "cohesionBroken",
+                   "tensionBroken")
+
+    def __init__(self, label: str = "", **params):
+        self._laws = []
+        self._state = {}
+        super().__init__(label, **params)
+
+    def _bondState(name):   # noqa: N805 (a property factory used in the class body)
+        def get(self):
+            return self._state.get(name)
+
+        def set(self, value):
+            self._state[name] = value
+            for law in self._laws:
+                law._set(name, bool(value))
+        return property(get, set)
+
+    cohesionBroken = _bondState("cohesionBroken")
+    tensionBroken = _bondState("tensionBroken")
+    del _bondState
 
 
 class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
     """F_n = Knormal A u_n n, incremental F_s with Kshear A, Coulomb friction, optional viscous
-    damping (``allowViscousAttraction``: the damped normal force may pull). ``neverErase``
-    and ``traceEnergy`` are accepted (energies follow O.trackEnergy)."""
+    damping (``allowViscousAttraction``: the damped normal force may pull). Bonds (see
+    Ip2_FrictMat_FrictMat_KnKsPBPhys.useFaceProperties) pull down to -tension A and add
+    cohesion A to the shear strength; ``allowBreakage``: a bond whose shear strength is
+    exceeded breaks (else it yields at its strength); a bond pulled beyond its tension always
+    breaks. ``initialOverlapDistance``: the overlap at zero normal force. ``neverErase`` and
+    ``traceEnergy`` are accepted (energies follow O.trackEnergy)."""
     _cpp_name = "Law2_SCG_KnKsPBPhys_KnKsPBLaw"
-    _parameters = ("allowViscousAttraction", "neverErase", "traceEnergy")
+    _parameters = ("allowViscousAttraction", "allowBreakage", "initialOverlapDistance", "neverErase", "traceEnergy")
     # Accepted, but not the law's: Yade's options without effect here, and the geometry's
     # settings that go to the scene (Ig2_PB_PB_ScGeom._applyToScene).
-    _not_the_laws = ("neverErase", "traceEnergy", "useFaceProperties", "twoDimension", "unitWidth2D", "twoDdir",
+    _not_the_laws = ("neverErase", "traceEnergy", "twoDimension", "unitWidth2D", "twoDdir",
                      "exactDepth", "accuracyTol", "AabbMinMax")
 
     def _set(self, name: str, value):
         if name in self._not_the_laws:
-            if name == "useFaceProperties" and value:
-                raise ValueError("Ip2_FrictMat_FrictMat_KnKsPBPhys: useFaceProperties=True is not supported")
             return
         super()._set(name, value)
+
+    def _configure(self, phys: Functor):
+        super()._configure(phys)
+        if isinstance(phys, Ip2_FrictMat_FrictMat_KnKsPBPhys):
+            phys._laws.append(self)   # for cohesionBroken, tensionBroken set mid-run
 
     def _configureGeometry(self, geomFunctors):
         """Take calContactArea from Ig2_PB_PB_ScGeom."""

@@ -142,15 +142,19 @@ class Ig2_PP_PP_ScGeom(Functor):
     (constant stiffnesses). ``areaStep`` and ``accuracyTol`` are accepted for Yade's scripts
     but not used: Talus integrates the section with 72 rays (Yade's default 5 degrees) and
     solves every contact to its own tolerance, 1e-8 on |f1 - f2| (``particleContact`` takes
-    another for a probe; docs/blocks.md charts error against cost). 2D mode
-    (``twoDimension``) is not supported yet."""
+    another for a probe; docs/blocks.md charts error against cost). ``twoDimension`` (2D mode,
+    as the blocks'): the particles are prisms along ``twoDdir`` (default (0, 1, 0)) and the
+    contact area is the joint length (the overlap region's chord through the contact point
+    along normal x twoDdir) times ``unitWidth2D`` (default 1)."""
     _parameters = ("calContactArea", "twoDimension", "unitWidth2D", "areaStep", "accuracyTol", "twoDdir")
 
-    def __init__(self, label: str = "", **params):
-        super().__init__(label, **params)
-        if self.twoDimension:
-            raise ValueError("Ig2_PP_PP_ScGeom: twoDimension=True (contact area = joint length x unitWidth2D) "
-                             "is not supported yet")
+    def _applyToScene(self, cpp):
+        """Set the 2D settings for every particle contact of the scene whose engines hold us."""
+        direction = (0.0, 1.0, 0.0) if self.twoDdir is None else tuple(float(x) for x in self.twoDdir)
+        if len(direction) != 3:
+            raise ValueError(f"Ig2_PP_PP_ScGeom.twoDdir must be a 3-vector, got {self.twoDdir!r}")
+        _dem.set_particle_contact_settings(cpp, bool(self.twoDimension), np.asarray(direction, dtype=float),
+                                           1.0 if self.unitWidth2D is None else float(self.unitWidth2D))
 
 
 class Ip2_FrictMat_FrictMat_KnKsPhys(Functor):

@@ -7,13 +7,22 @@ import math
 from typing import Sequence
 
 from talus import _dem
-from talus.dem.blocks import _applyBlockContactSettings
+from talus.dem.blocks import Ig2_PB_PB_ScGeom
 from talus.dem.bodies import BodyContainer
 from talus.dem.cell import Cell
 from talus.dem.energy import EnergyTracker
 from talus.dem.engines import Engine
 from talus.dem.io import CheckpointMethods
 from talus.dem.materials import Material, default_material
+from talus.dem.particles import Ig2_PP_PP_ScGeom
+
+
+def _applyGeometrySettings(cpp, engines):
+    """The block and particle contacts' settings of a scene from its engines: those of the
+    first Ig2_PB_PB_ScGeom (resp. Ig2_PP_PP_ScGeom) of an InteractionLoop, or the defaults."""
+    for kind in (Ig2_PB_PB_ScGeom, Ig2_PP_PP_ScGeom):
+        functors = (g for e in engines for g in getattr(e, "geomFunctors", ()) if isinstance(g, kind))
+        next(functors, kind())._applyToScene(cpp)
 
 
 class MaterialContainer:
@@ -149,7 +158,7 @@ class Scene(CheckpointMethods):
                 raise TypeError(f"O.engines takes engines, got {e!r}")
         self._cpp.engines = [e._cpp for e in engines]
         self._engines = engines
-        _applyBlockContactSettings(self._cpp, engines)   # the geometry functors' settings of the scene
+        _applyGeometrySettings(self._cpp, engines)   # the geometry functors' settings of the scene
         # As in Yade, a labelled engine becomes a variable of the script.
         for e in engines:
             if e.label:
