@@ -26,6 +26,7 @@ Description
     optionally constant/couplingProperties:
         envelope             gaussian | cell      (default gaussian)
         envelopeWidth        delta [m]            (default 3 x the mean cell size)
+        envelopeCutoff       c: the envelope is cut at c delta (default 1.274: 3 sigma)
         dragModel            SchillerNaumann | DiFelice | ErgunWenYu (default SchillerNaumann)
         hindranceExponent    h                    (default 2.65; SchillerNaumann only)
         addedMassCoefficient C_m                  (default 0.5; 0 switches it off)
@@ -91,8 +92,7 @@ int main(int argc, char *argv[])
     #include "createFields.H"
 
     // A particle concerns every rank with cells within its envelope's cut-off.
-    const scalar couplingMargin =
-        envelopeType == "gaussian" ? talusFoam::ParticleEnvelope::cutoffOf(envelopeWidth) : 0;
+    const scalar couplingMargin = envelopeType == "gaussian" ? envelopeCutoff*envelopeWidth : 0;
     #include "answerDemHandshake.H"
 
     const scalar rhoF = rho.value();
@@ -102,7 +102,10 @@ int main(int argc, char *argv[])
 
     talusFoam::ParticleLocator locator(mesh);
     talusFoam::ExchangeTimer exchangeTimer;
-    talusFoam::ParticleEnvelope envelope(mesh, envelopeType == "gaussian" ? envelopeWidth : 0);
+    talusFoam::ParticleEnvelope envelope
+    (
+        mesh, envelopeType == "gaussian" ? envelopeWidth : 0, envelopeCutoff*envelopeWidth
+    );
     std::vector<double> particles;    // per particle x y z vx vy vz r index
     std::vector<double> reply;        // header (FoamProtocol.h), then per particle fx fy fz owned beta uf
     // The envelope's inputs and outputs, kept between exchanges (no allocation per exchange):

@@ -8,7 +8,9 @@ plus the buoyancy (1e-12 relative), and with dragModel ErgunWenYu or DiFelice th
 ranks (the envelopes cross the processor boundary) gives the serial forces, to 1e-12 on the
 first exchange and 1e-6 of the largest force over 3 exchanges (the pressure solver's tolerance); a sphere settling at Re_p ~ 5 reaches the Schiller-Naumann terminal velocity
 within 2 %; an unknown envelope stops the run before the first step with OpenFOAM's message; a
-fluid step below the Stokes relaxation time but above m/beta with the hindered drag warns."""
+fluid step below the Stokes relaxation time but above m/beta with the hindered drag warns; envelopeCutoff
+3 sigma / delta gives the default's forces (1e-12), 1 (a cut at delta) others, 0 stops the run before the first
+step."""
 import importlib.util
 import json
 import math
@@ -26,10 +28,12 @@ RHO, NU, G = 1000.0, 1e-3, np.array([0.0, 0.0, -9.81])
 pytestmark = needs_solver("talusVolumeAveragedFoam")
 
 
-def case(tmp_path: Path, envelope: str, procs: int = 1, drag: str | None = None) -> Path:
+def case(tmp_path: Path, envelope: str, procs: int = 1, drag: str | None = None, cutoff: float | None = None) -> Path:
     properties = ("FoamFile { version 2.0; format ascii; class dictionary; object couplingProperties; }\n"
-                  f"envelope {envelope};\n" + ("" if drag is None else f"dragModel {drag};\n"))
-    return meshed_box(tmp_path / f"case_{envelope}_{procs}_{drag}", procs, {"constant/couplingProperties": properties})
+                  f"envelope {envelope};\n" + ("" if drag is None else f"dragModel {drag};\n")
+                  + ("" if cutoff is None else f"envelopeCutoff {cutoff!r};\n"))
+    return meshed_box(tmp_path / f"case_{envelope}_{procs}_{drag}_{cutoff}", procs,
+                      {"constant/couplingProperties": properties})
 
 
 def drive(work: Path, *extra: str):
@@ -103,6 +107,18 @@ def test_unknown_envelope_stops_before_the_first_step(tmp_path):
     text = run.stdout + run.stderr
     assert "envelope tophat unknown: use gaussian or cell" in text
     assert "has died while the DEM waited for the fluid side's handshake" in text
+
+
+def test_envelope_cutoff_defaults_to_three_sigma_and_is_read(tmp_path):
+    _, default = drive(case(tmp_path, "gaussian"), "--exchanges", "3")
+    _, three_sigma = drive(case(tmp_path, "gaussian", cutoff=3 / (2 * math.sqrt(2 * math.log(2)))), "--exchanges", "3")
+    _, delta = drive(case(tmp_path, "gaussian", cutoff=1.0), "--exchanges", "3")
+    f0, f3, f1 = (np.array(r["forces"]) for r in (default, three_sigma, delta))
+    np.testing.assert_allclose(f3, f0, rtol=1e-12, atol=1e-12 * np.abs(f0).max())
+    assert np.abs(f1 - f0).max() > 1e-6 * np.abs(f0).max()  # cut at delta: fewer cells, other weights
+    run, record = drive(case(tmp_path, "gaussian", cutoff=0.0))
+    assert run.returncode != 0 and record is None
+    assert "envelopeWidth and envelopeCutoff must be positive" in run.stdout + run.stderr
 
 
 def test_settling_sphere_reaches_schiller_naumann_terminal_velocity(tmp_path):
