@@ -36,10 +36,10 @@ constexpr std::size_t kDissectionLeaf = 16;
 /// METIS's 0.21 s + 0.19 s (2.5 M, 0.9 Gflop) and AMD's 0.03 s + 0.28 s (4.6 M, 3.5 Gflop); the
 /// one-sided separator (the lower half's rows coupled to the upper half) gave 3.6 M, 1.5 Gflop.
 /// On 5 758 unknowns (1 000 spheres; CPU, loaded, ms, min of 12): ours 1.1 ordering + 1.6
-/// CHOLMOD analysis, nnz(L) 264 k, 32.9 Mflop, factorisation 8.3 (6.8 with the nrelax below);
+/// CHOLMOD analysis, nnz(L) 264 k, 32.9 Mflop, factorisation 8.3;
 /// METIS 27 in all for 208 k, 22.8 Mflop and a factorisation no faster (9.9); CHOLMOD's NESDIS
-/// alike (25, 23.3 Mflop, 7.6); AMD 4.2 in all, 294 k, 57.9 Mflop, 9.2 (all but the 6.8 with
-/// CHOLMOD's default amalgamation): at this size the factorisation is overhead-bound. Kept out,
+/// alike (25, 23.3 Mflop, 7.6); AMD 4.2 in all, 294 k, 57.9 Mflop, 9.2 (all with CHOLMOD's
+/// default amalgamation): at this size the factorisation is overhead-bound. Kept out,
 /// measured there: the cut axis chosen among the three by the smallest separator (3.6 % fewer
 /// flops, +5.4 ms of ordering) and CAMD on the leaves and separators as constraint sets
 /// (leaves of 16 to 200 rows: 4.1-4.7 % fewer flops, +2.5 ms of CAMD).
@@ -286,17 +286,6 @@ struct PressureSolver::Cholmod
     // the ordering is ours (NestedDissection), given to CHOLMOD, which then only postorders
     common.nmethods = 1;
     common.method[0].ordering = CHOLMOD_GIVEN;
-    // Coarser supernodes than CHOLMOD's default amalgamation (nrelax 4, 16, 48). Each supernode
-    // costs CHOLMOD a few OpenMP parallel regions (a team of one still costs 0.4 us and a futex
-    // call on this machine) and small BLAS calls; on the nested-dissection orders of the bench
-    // clouds the factor time was overhead-bound at 1 000 spheres: METIS's order, 31 % fewer
-    // flops, factorised no faster. Measured (CPU, loaded machine, min/median of 10 remeshes in
-    // one process, same flux to 4e-14): 1 000 spheres (5 758 unknowns) 783 -> 504 supernodes,
-    // factorisation 7.7/10.0 -> 6.8/7.4 ms; 10 000 (61 912) 7 707 -> 5 361, 287/296 -> 263 ms
-    // (min); 8, 32, 256 or 16, 64, 256 with zrelax 0.2, 0.1 were no better.
-    common.nrelax[0] = 8;
-    common.nrelax[1] = 32;
-    common.nrelax[2] = 128;
   }
   ~Cholmod()
   {
