@@ -36,13 +36,17 @@ constexpr std::size_t kDissectionLeaf = 16;
 /// METIS's 0.21 s + 0.19 s (2.5 M, 0.9 Gflop) and AMD's 0.03 s + 0.28 s (4.6 M, 3.5 Gflop); the
 /// one-sided separator (the lower half's rows coupled to the upper half) gave 3.6 M, 1.5 Gflop.
 /// On 5 758 unknowns (1 000 spheres; CPU, loaded, ms, min of 12): ours 1.1 ordering + 1.6
-/// CHOLMOD analysis, nnz(L) 264 k, 32.9 Mflop, factorisation 8.3;
-/// METIS 27 in all for 208 k, 22.8 Mflop and a factorisation no faster (9.9); CHOLMOD's NESDIS
-/// alike (25, 23.3 Mflop, 7.6); AMD 4.2 in all, 294 k, 57.9 Mflop, 9.2 (all with CHOLMOD's
-/// default amalgamation): at this size the factorisation is overhead-bound. Kept out,
-/// measured there: the cut axis chosen among the three by the smallest separator (3.6 % fewer
-/// flops, +5.4 ms of ordering) and CAMD on the leaves and separators as constraint sets
-/// (leaves of 16 to 200 rows: 4.1-4.7 % fewer flops, +2.5 ms of CAMD).
+/// CHOLMOD analysis, nnz(L) 264 k, 32.9 Mflop, factorisation 8.3; METIS 27 in all for 208 k,
+/// 22.8 Mflop and a factorisation no faster (9.9); CHOLMOD's NESDIS alike (25, 23.3 Mflop, 7.6);
+/// AMD 4.2 in all, 294 k, 57.9 Mflop, 9.2: at this size the factorisation is overhead-bound
+/// (783 supernodes, each a few OpenMP parallel regions of CHOLMOD's, 0.4 us and a futex call
+/// each even for a team of one, and small BLAS calls). Kept out, measured there: the cut axis
+/// chosen among the three by the smallest separator (3.6 % fewer flops, +5.4 ms of ordering);
+/// CAMD on the leaves and separators as constraint sets (leaves of 16 to 200 rows: 4.1-4.7 %
+/// fewer flops, +2.5 ms of CAMD); coarser supernodal amalgamation (nrelax 8, 32, 128 instead of
+/// 4, 16, 48: 504 supernodes, factorisation 7.7 -> 6.8 ms at best but alike in the median of a
+/// loaded machine, the stored factor 28 % larger at 1k and 13 % at 10k, where the solve step
+/// went from 22 to 27 ms, min of 8).
 class NestedDissection
 {
 public:
