@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -34,177 +35,213 @@ constexpr std::size_t kDissectionLeaf = 16;
 /// ordering + symbolic analysis 0.02 s, factorisation 0.20 s (nnz(L) 3.1 M, 1.2 Gflop) against
 /// METIS's 0.21 s + 0.19 s (2.5 M, 0.9 Gflop) and AMD's 0.03 s + 0.28 s (4.6 M, 3.5 Gflop); the
 /// one-sided separator (the lower half's rows coupled to the upper half) gave 3.6 M, 1.5 Gflop.
+/// On 5 758 unknowns (1 000 spheres; CPU, loaded, ms, min of 12): ours 1.1 ordering + 1.6
+/// CHOLMOD analysis, nnz(L) 264 k, 32.9 Mflop, factorisation 8.3; METIS 27 in all for 208 k,
+/// 22.8 Mflop and a factorisation no faster (9.9); CHOLMOD's NESDIS alike (25, 23.3 Mflop, 7.6);
+/// AMD 4.2 in all, 294 k, 57.9 Mflop, 9.2: at this size the factorisation is overhead-bound
+/// (783 supernodes, each a few OpenMP parallel regions of CHOLMOD's, 0.4 us and a futex call
+/// each even for a team of one, and small BLAS calls). Kept out, measured there: the cut axis
+/// chosen among the three by the smallest separator (3.6 % fewer flops, +5.4 ms of ordering);
+/// CAMD on the leaves and separators as constraint sets (leaves of 16 to 200 rows: 4.1-4.7 %
+/// fewer flops, +2.5 ms of CAMD); coarser supernodal amalgamation (nrelax 8, 32, 128 instead of
+/// 4, 16, 48: 504 supernodes, factorisation 7.7 -> 6.8 ms at best but alike in the median of a
+/// loaded machine, the stored factor 28 % larger at 1k and 13 % at 10k, where the solve step
+/// went from 22 to 27 ms, min of 8).
 class NestedDissection
 {
 public:
-  NestedDissection(const std::vector<Vec3>& centres, const std::vector<std::vector<int>>& coupled)
-      : centres_(centres), coupled_(coupled), label_(centres.size(), 0), slot_(centres.size(), -1)
+  /// `start`, `adjacent`: the couplings of each row to the other rows, in compressed rows.
+  NestedDissection(const std::vector<Vec3>& centres, const std::vector<int>& start, const std::vector<int>& adjacent)
+      : start_(start), adjacent_(adjacent), items_(centres.size()), label_(centres.size(), 0), slot_(centres.size(), -1)
   {
+    for (std::size_t r = 0; r < centres.size(); ++r)
+      items_[r] = {centres[r], static_cast<int>(r)};
   }
   std::vector<int> order()
   {
-    std::vector<int> rows(centres_.size());
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      rows[r] = static_cast<int>(r);
     perm_.clear();
-    perm_.reserve(rows.size());
-    dissect(rows, 0, rows.size());
+    perm_.reserve(items_.size());
+    dissect(0, items_.size());
     return std::move(perm_);
   }
 
 private:
-  void dissect(std::vector<int>& rows, std::size_t begin, std::size_t end)
+  /// A row with its centre beside it: the splits reorder these in place, reading the centres
+  /// in sequence (ordering 1 000 spheres' 5 758 rows took 1.7 ms CPU with the rows as indices
+  /// into the centres, whose reads missed the cache at every split).
+  struct Item
+  {
+    Vec3 centre;
+    int row;
+  };
+
+  void dissect(std::size_t begin, std::size_t end)
   {
     if (end - begin <= kDissectionLeaf)
     {
-      perm_.insert(perm_.end(), rows.begin() + static_cast<std::ptrdiff_t>(begin), rows.begin() + static_cast<std::ptrdiff_t>(end));
+      for (std::size_t i = begin; i < end; ++i)
+        perm_.push_back(items_[i].row);
       return;
     }
-    Vec3 lo = centres_[static_cast<std::size_t>(rows[begin])];
+    Vec3 lo = items_[begin].centre;
     Vec3 hi = lo;
     for (std::size_t i = begin; i < end; ++i)
     {
-      lo = lo.cwiseMin(centres_[static_cast<std::size_t>(rows[i])]);
-      hi = hi.cwiseMax(centres_[static_cast<std::size_t>(rows[i])]);
+      lo = lo.cwiseMin(items_[i].centre);
+      hi = hi.cwiseMax(items_[i].centre);
     }
     int axis = 0;
     (hi - lo).maxCoeff(&axis);
     const std::size_t mid = begin + (end - begin) / 2;
-    std::nth_element(rows.begin() + static_cast<std::ptrdiff_t>(begin), rows.begin() + static_cast<std::ptrdiff_t>(mid),
-                     rows.begin() + static_cast<std::ptrdiff_t>(end),
-                     [&](int a, int b) { return centres_[static_cast<std::size_t>(a)][axis] < centres_[static_cast<std::size_t>(b)][axis]; });
+    const auto first = items_.begin();
+    std::nth_element(first + static_cast<std::ptrdiff_t>(begin), first + static_cast<std::ptrdiff_t>(mid),
+                     first + static_cast<std::ptrdiff_t>(end),
+                     [axis](const Item& a, const Item& b) { return a.centre[axis] < b.centre[axis]; });
     const int lower = ++labels_;
     const int upper = ++labels_;
     for (std::size_t i = begin; i < end; ++i)
-      label_[static_cast<std::size_t>(rows[i])] = i < mid ? lower : upper;
-    const std::vector<int> separator = cover(rows, begin, mid, end, lower, upper);
-    for (int r : separator)
-      label_[static_cast<std::size_t>(r)] = 0; // out of both halves
-    // pack the two halves without the separator from `begin`, stably
-    std::vector<int> kept;
-    kept.reserve(end - begin);
-    for (const int side : {lower, upper})
-      for (std::size_t i = begin; i < end; ++i)
-        if (label_[static_cast<std::size_t>(rows[i])] == side)
-          kept.push_back(rows[i]);
+      label_[static_cast<std::size_t>(items_[i].row)] = i < mid ? lower : upper;
+    // the separator waits on `pending_` (above the ones of the enclosing splits) until both
+    // halves are ordered
+    const std::size_t separator = pending_.size();
+    cover(begin, mid, end, lower, upper);
+    for (std::size_t k = separator; k < pending_.size(); ++k)
+      label_[static_cast<std::size_t>(pending_[k])] = 0; // out of both halves
+    // pack the two halves without the separator from `begin`, stably, in place
+    std::size_t kept = begin;
+    for (std::size_t i = begin; i < end; ++i)
+      if (label_[static_cast<std::size_t>(items_[i].row)] != 0)
+        items_[kept++] = items_[i];
     std::size_t split = begin;
-    for (std::size_t i = begin; i < mid; ++i)
-      split += label_[static_cast<std::size_t>(rows[i])] == lower ? 1 : 0;
-    std::copy(kept.begin(), kept.end(), rows.begin() + static_cast<std::ptrdiff_t>(begin));
-    const std::size_t stop = begin + kept.size();
-    dissect(rows, begin, split);
-    dissect(rows, split, stop);
-    perm_.insert(perm_.end(), separator.begin(), separator.end());
+    while (split < kept && label_[static_cast<std::size_t>(items_[split].row)] == lower)
+      ++split;
+    dissect(begin, split);
+    dissect(split, kept);
+    perm_.insert(perm_.end(), pending_.begin() + static_cast<std::ptrdiff_t>(separator), pending_.end());
+    pending_.resize(separator);
   }
 
-  /// Minimum vertex cover of the couplings between rows labelled `lower` (rows[begin, mid)) and
-  /// `upper` (rows[mid, end)).
-  std::vector<int> cover(const std::vector<int>& rows, std::size_t begin, std::size_t mid, std::size_t end, int lower,
-                         int upper)
+  /// Appends to pending_ a minimum vertex cover of the couplings between rows labelled `lower`
+  /// (items_[begin, mid)) and `upper` (items_[mid, end)). The work lists are members: kept
+  /// from split to split, they are allocated once.
+  void cover(std::size_t begin, std::size_t mid, std::size_t end, int lower, int upper)
   {
-    const auto touches = [&](int r, int side) {
-      const auto& around = coupled_[static_cast<std::size_t>(r)];
-      return std::any_of(around.begin(), around.end(), [&](int q) { return label_[static_cast<std::size_t>(q)] == side; });
+    const auto around = [&](int r) {
+      return std::span<const int>(adjacent_.data() + start_[static_cast<std::size_t>(r)],
+                                  adjacent_.data() + start_[static_cast<std::size_t>(r) + 1]);
     };
-    std::vector<int> left;  // lower rows with a coupling across
-    std::vector<int> right; // upper rows with a coupling across
+    const auto touches = [&](int r, int side) {
+      const auto a = around(r);
+      return std::any_of(a.begin(), a.end(), [&](int q) { return label_[static_cast<std::size_t>(q)] == side; });
+    };
+    left_.clear();  // lower rows with a coupling across
+    right_.clear(); // upper rows with a coupling across
     for (std::size_t i = begin; i < mid; ++i)
-      if (touches(rows[i], upper))
-        left.push_back(rows[i]);
+      if (touches(items_[i].row, upper))
+        left_.push_back(items_[i].row);
     for (std::size_t i = mid; i < end; ++i)
-      if (touches(rows[i], lower))
+      if (touches(items_[i].row, lower))
       {
-        slot_[static_cast<std::size_t>(rows[i])] = static_cast<int>(right.size());
-        right.push_back(rows[i]);
+        slot_[static_cast<std::size_t>(items_[i].row)] = static_cast<int>(right_.size());
+        right_.push_back(items_[i].row);
       }
     // maximum matching by augmenting paths (depth-first, iterative)
-    std::vector<int> matchLeft(left.size(), -1);
-    std::vector<int> matchRight(right.size(), -1);
-    std::vector<int> seen(right.size(), -1);
-    std::vector<std::pair<int, std::size_t>> path; // (left vertex, next coupling to try)
-    std::vector<int> via;                          // right vertex taken at each depth
-    for (std::size_t root = 0; root < left.size(); ++root)
+    matchLeft_.assign(left_.size(), -1);
+    matchRight_.assign(right_.size(), -1);
+    seen_.assign(right_.size(), -1);
+    for (std::size_t root = 0; root < left_.size(); ++root)
     {
-      path.assign(1, {static_cast<int>(root), 0});
-      via.assign(1, -1);
-      while (!path.empty())
+      path_.assign(1, {static_cast<int>(root), 0});
+      via_.assign(1, -1);
+      while (!path_.empty())
       {
-        auto& [l, next] = path.back();
-        const auto& around = coupled_[static_cast<std::size_t>(left[static_cast<std::size_t>(l)])];
-        if (next == around.size())
+        auto& [l, next] = path_.back();
+        const auto a = around(left_[static_cast<std::size_t>(l)]);
+        if (next == a.size())
         {
-          path.pop_back();
-          via.pop_back();
+          path_.pop_back();
+          via_.pop_back();
           continue;
         }
-        const int q = around[next++];
+        const int q = a[next++];
         if (label_[static_cast<std::size_t>(q)] != upper)
           continue;
         const int r = slot_[static_cast<std::size_t>(q)];
-        if (seen[static_cast<std::size_t>(r)] == static_cast<int>(root))
+        if (seen_[static_cast<std::size_t>(r)] == static_cast<int>(root))
           continue;
-        seen[static_cast<std::size_t>(r)] = static_cast<int>(root);
-        via.back() = r;
-        if (matchRight[static_cast<std::size_t>(r)] < 0)
+        seen_[static_cast<std::size_t>(r)] = static_cast<int>(root);
+        via_.back() = r;
+        if (matchRight_[static_cast<std::size_t>(r)] < 0)
         {
-          for (std::size_t d = 0; d < path.size(); ++d)
+          for (std::size_t d = 0; d < path_.size(); ++d)
           {
-            matchLeft[static_cast<std::size_t>(path[d].first)] = via[d];
-            matchRight[static_cast<std::size_t>(via[d])] = path[d].first;
+            matchLeft_[static_cast<std::size_t>(path_[d].first)] = via_[d];
+            matchRight_[static_cast<std::size_t>(via_[d])] = path_[d].first;
           }
           break;
         }
-        path.emplace_back(matchRight[static_cast<std::size_t>(r)], 0);
-        via.push_back(-1);
+        path_.emplace_back(matchRight_[static_cast<std::size_t>(r)], 0);
+        via_.push_back(-1);
       }
     }
     // König: Z = rows reachable from unmatched left rows by alternating paths; the cover is the
     // left rows outside Z and the right rows inside it
-    std::vector<char> inLeft(left.size(), 0);
-    std::vector<char> inRight(right.size(), 0);
-    std::vector<int> stack;
-    for (std::size_t l = 0; l < left.size(); ++l)
-      if (matchLeft[l] < 0)
+    inLeft_.assign(left_.size(), 0);
+    inRight_.assign(right_.size(), 0);
+    stack_.clear();
+    for (std::size_t l = 0; l < left_.size(); ++l)
+      if (matchLeft_[l] < 0)
       {
-        inLeft[l] = 1;
-        stack.push_back(static_cast<int>(l));
+        inLeft_[l] = 1;
+        stack_.push_back(static_cast<int>(l));
       }
-    while (!stack.empty())
+    while (!stack_.empty())
     {
-      const int l = stack.back();
-      stack.pop_back();
-      for (const int q : coupled_[static_cast<std::size_t>(left[static_cast<std::size_t>(l)])])
+      const int l = stack_.back();
+      stack_.pop_back();
+      for (const int q : around(left_[static_cast<std::size_t>(l)]))
       {
         if (label_[static_cast<std::size_t>(q)] != upper)
           continue;
         const int r = slot_[static_cast<std::size_t>(q)];
-        if (inRight[static_cast<std::size_t>(r)] || matchLeft[static_cast<std::size_t>(l)] == r)
+        if (inRight_[static_cast<std::size_t>(r)] || matchLeft_[static_cast<std::size_t>(l)] == r)
           continue;
-        inRight[static_cast<std::size_t>(r)] = 1;
-        const int back = matchRight[static_cast<std::size_t>(r)];
-        if (back >= 0 && !inLeft[static_cast<std::size_t>(back)])
+        inRight_[static_cast<std::size_t>(r)] = 1;
+        const int back = matchRight_[static_cast<std::size_t>(r)];
+        if (back >= 0 && !inLeft_[static_cast<std::size_t>(back)])
         {
-          inLeft[static_cast<std::size_t>(back)] = 1;
-          stack.push_back(back);
+          inLeft_[static_cast<std::size_t>(back)] = 1;
+          stack_.push_back(back);
         }
       }
     }
-    std::vector<int> separator;
-    for (std::size_t l = 0; l < left.size(); ++l)
-      if (!inLeft[l])
-        separator.push_back(left[l]);
-    for (std::size_t r = 0; r < right.size(); ++r)
-      if (inRight[r])
-        separator.push_back(right[r]);
-    return separator;
+    for (std::size_t l = 0; l < left_.size(); ++l)
+      if (!inLeft_[l])
+        pending_.push_back(left_[l]);
+    for (std::size_t r = 0; r < right_.size(); ++r)
+      if (inRight_[r])
+        pending_.push_back(right_[r]);
   }
 
-  const std::vector<Vec3>& centres_;
-  const std::vector<std::vector<int>>& coupled_;
+  const std::vector<int>& start_;
+  const std::vector<int>& adjacent_;
+  std::vector<Item> items_;
   std::vector<int> label_; ///< which half of the current split a row is in (0: neither)
   std::vector<int> slot_;  ///< index of an upper row among the rows coupled across the cut
   int labels_ = 0;
   std::vector<int> perm_;
+  std::vector<int> pending_; ///< separators of the splits in progress, outermost first
+  // cover's work lists
+  std::vector<int> left_;
+  std::vector<int> right_;
+  std::vector<int> matchLeft_;
+  std::vector<int> matchRight_;
+  std::vector<int> seen_;
+  std::vector<std::pair<int, std::size_t>> path_; ///< (left vertex, next coupling to try)
+  std::vector<int> via_;                          ///< right vertex taken at each depth
+  std::vector<char> inLeft_;
+  std::vector<char> inRight_;
+  std::vector<int> stack_;
 };
 } // namespace
 
@@ -399,12 +436,18 @@ void PressureSolver::factorize()
   if (!c.factor)
   {
     const auto start = Clock::now();
-    std::vector<std::vector<int>> coupled(n);
+    // the couplings between unknown rows, in compressed rows (one allocation, not one a row)
+    std::vector<int> coupledStart(n + 1, 0);
+    std::vector<int> coupled;
+    coupled.reserve(neighbour_.size());
     for (std::size_t r = 0; r < n; ++r)
+    {
       for (int e = start_[r]; e < start_[r + 1]; ++e)
         if (const int col = rowOfPore_[static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)])]; col >= 0)
-          coupled[r].push_back(col);
-    std::vector<int> perm = NestedDissection(centreOfRow_, coupled).order();
+          coupled.push_back(col);
+      coupledStart[r + 1] = static_cast<int>(coupled.size());
+    }
+    std::vector<int> perm = NestedDissection(centreOfRow_, coupledStart, coupled).order();
     c.common.supernodal = nUnknown_ < kSupernodalFrom ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
     c.factor = cholmod_analyze_p(c.a, perm.data(), nullptr, 0, &c.common);
     counters_.analyseSeconds += std::chrono::duration<double>(Clock::now() - start).count();

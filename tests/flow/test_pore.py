@@ -182,6 +182,26 @@ def test_viscosity_and_factor_scale_the_flux():
     assert y_flow(permeabilityFactor=3.0).getBoundaryFlux(2) == pytest.approx(3 * q0, rel=1e-10)
 
 
+def test_continuum_option_and_clamping_of_the_conductances():
+    # permeabilityFactor < 0: Yade's continuum option, k = -permeabilityFactor * A / L (facets of
+    # three walls, which have no fluid region, get 0 without the clamping)
+    flow = y_flow(permeabilityFactor=-2.0, clampKValues=False)
+    k, area, length = flow.throatConductances, flow._flow.throatAreas(), flow.throatLengths
+    fluid = k != 0
+    assert fluid.mean() > 0.9
+    assert np.allclose(k[fluid], 2.0 * area[fluid] / length[fluid], rtol=1e-12, atol=0)
+    # clampKValues: every k within [minKdivKmean, maxKdivKmean] x the global reference, the
+    # others unchanged; the bounds here are tight enough to clamp on both sides
+    raw = y_flow(clampKValues=False).throatConductances
+    clamped_flow = y_flow(minKdivKmean=0.1, maxKdivKmean=2.0)
+    clamped, g = clamped_flow.throatConductances, clamped_flow._flow.globalConductance()
+    lo, hi = 0.1 * g, 2.0 * g
+    assert np.any(raw[raw > 0] < lo) and np.any(raw > hi)
+    assert np.all(clamped >= lo * (1 - 1e-12)) and np.all(clamped <= hi * (1 + 1e-12))
+    inside = (raw >= lo) & (raw <= hi)
+    assert np.array_equal(clamped[inside], raw[inside])
+
+
 def test_bad_input():
     pos, rad, ids = packing()
     flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0])
