@@ -330,7 +330,8 @@ constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
 constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
     {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},
     {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp},
-    {"velGradWork", &EnergyTracker::velGradWork}, {"kinematicWork", &EnergyTracker::kinematicWork}};
+    {"velGradWork", &EnergyTracker::velGradWork}, {"kinematicWork", &EnergyTracker::kinematicWork},
+    {"growthWork", &EnergyTracker::growthWork}};
 // The tracker's imposed displacements of the previous step, datasets of /energy (absent until tracked).
 constexpr std::pair<const char*, std::vector<Vec3> EnergyTracker::*> energyHistory[] = {
     {"previousDisplacement", &EnergyTracker::previousDisplacement},

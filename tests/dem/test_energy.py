@@ -57,7 +57,7 @@ def test_tracking_does_not_change_the_physics():
     A.run(800)
     B.run(800)
     assert np.array_equal(A.positions(), B.positions()) and np.array_equal(A.velocities(), B.velocities())
-    assert [v for k, v in A.energy.items() if k not in ("kinetic", "elastPotential")] == [0.0] * 6
+    assert [v for k, v in A.energy.items() if k not in ("kinetic", "elastPotential")] == [0.0] * 7
 
 
 @pytest.mark.skipif(not talus.build_info()["features"]["openmp"][0], reason="built without OpenMP")
@@ -87,7 +87,7 @@ def test_mapping_interface_as_yade():
     S.dt = 1e-3
     S.run(10)
     assert S.energy.keys() == ["kinetic", "elastPotential", "gravWork", "nonviscDamp", "plastDissip", "viscDamp",
-                               "velGradWork", "kinematicWork"]
+                               "velGradWork", "kinematicWork", "growthWork"]
     assert dict(**S.energy)["gravWork"] == S.energy["gravWork"] < 0
     assert S.energy.total() == pytest.approx(0, abs=1e-15)
     with pytest.raises(KeyError, match="no energy 'potential'"):
