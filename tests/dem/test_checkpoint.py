@@ -85,8 +85,8 @@ def test_layout_is_covered():
     # Not stored: Bodies::blockContact (Ig2_PB_PB_ScGeom's settings, restored with the engines)
     # and ContactExtra::contactArea (recomputed by the geometry every step before the law reads it).
     assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 656, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 1368, "ContactExtra": 256,
-                                   "EnergyTracker": 112}
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1400, "ContactExtra": 256,
+                                   "EnergyTracker": 144}
 
 
 @pytest.mark.parametrize("visco", [False, True, "hertz", "cohfrict"], ids=["FrictMat", "ViscElMat", "Hertz", "CohFrict"])
