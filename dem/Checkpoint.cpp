@@ -331,7 +331,8 @@ constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
 constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
     {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},
     {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp},
-    {"velGradWork", &EnergyTracker::velGradWork}, {"kinematicWork", &EnergyTracker::kinematicWork}};
+    {"velGradWork", &EnergyTracker::velGradWork}, {"kinematicWork", &EnergyTracker::kinematicWork},
+    {"growthWork", &EnergyTracker::growthWork}};
 // The tracker's imposed displacements of the previous step, datasets of /energy (absent until tracked).
 constexpr std::pair<const char*, std::vector<Vec3> EnergyTracker::*> energyHistory[] = {
     {"previousDisplacement", &EnergyTracker::previousDisplacement},
@@ -503,6 +504,8 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     for (const auto& [name, field] : energyHistory)
       if (!(scene.energy.*field).empty())
         w.vec3s(at("/energy/", name), scene.energy.*field);
+    if (const std::vector<double>& grown = scene.energy.grownBy; !grown.empty())
+      w.doubles("/energy/grownBy", {grown.size()}, grown.data());
   }
 
   // Periodic cell.
@@ -1141,6 +1144,14 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
       (in.energy.*field).assign(d[0], Vec3::Zero());
       r.vec3s(at("/energy/", name), in.energy.*field);
     }
+  if (r.exists("/energy/grownBy")) // a growth not yet seen by the contacts
+  {
+    const std::vector<hsize_t> d = r.dims("/energy/grownBy");
+    if (d.size() != 1)
+      ctx.fail("/energy/grownBy is not one-dimensional", false);
+    in.energy.grownBy.resize(d[0]);
+    r.doubles("/energy/grownBy", {d[0]}, in.energy.grownBy.data());
+  }
   in.periodic = r.integer("/cell", "periodic") != 0;
   in.cell.homoDeform = r.integer("/cell", "homoDeform") != 0;
   in.cell.hSize = r.matrix("/cell/hSize");

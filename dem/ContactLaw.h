@@ -59,6 +59,11 @@ public:
   virtual std::int64_t computeAll(Scene& scene) = 0;
   /// Elastic energy stored in the real contacts whose c.law == lawIndex.
   [[nodiscard]] virtual double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const = 0;
+  /// Of the contacts of this law that became real this step, the part of their elastic energy
+  /// that the growth of their bodies' radii (grownBy, per body id) put in: E(u) - E(max(u - g, 0)),
+  /// u the penetration and g the growth of the pair (see addGrownContactsEnergy).
+  [[nodiscard]] virtual double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
+                                                  const std::vector<double>& grownBy) const = 0;
 
   /// Parameters of the law and of its physics functor (Yade's Ip2/Law2 attributes), by name.
   /// @throws std::invalid_argument naming the law and the parameter if it has no such one or
@@ -84,10 +89,12 @@ struct StepContext
   ContactExtra* extra; ///< Contacts::extra (index = contact index), null unless the law needs it
 };
 
-/// 1/2 Fn^2/kn + 1/2 Fs^2/ks: the energy of a contact's linear springs.
-inline double springEnergy(const Contact& c)
+/// 1/2 kn u^2 + 1/2 Fs^2/ks: the energy of a contact's linear springs, the normal one compressed
+/// by u. Taken from the compression rather than from the last normal force (the same after a force
+/// pass) so that it follows radii changed at fixed positions (growParticles) at once.
+inline double springEnergy(const Contact& c, double compression)
 {
-  return (c.kn > 0 ? 0.5 * c.normalForce.squaredNorm() / c.kn : 0.0) + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
+  return 0.5 * c.kn * compression * compression + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
 }
 
 /// True if a real contact overlaps more than `ratio` (> 0) of its smaller reference radius.
@@ -110,6 +117,8 @@ public:
   void computeForces(Scene& scene, std::uint8_t lawIndex) override;
   std::int64_t computeAll(Scene& scene) override;
   [[nodiscard]] double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const override;
+  [[nodiscard]] double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
+                                          const std::vector<double>& grownBy) const override;
 
 private:
   template <bool Track>

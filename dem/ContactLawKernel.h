@@ -145,4 +145,28 @@ double ContactLawKernel<Law>::elasticEnergy(const Scene& scene, std::uint8_t law
       sum += law.elastic(list[k], extra ? &scene.contacts.extra[k] : nullptr);
   return sum;
 }
+
+template <class Law>
+double ContactLawKernel<Law>::grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
+                                                 const std::vector<double>& grownBy) const
+{
+  const Law& law = static_cast<const Law&>(*this);
+  const std::vector<Contact>& list = scene.contacts.list;
+  const bool extra = Law::usesExtra && scene.contacts.extra.size() == list.size();
+  double sum = 0;
+  for (std::size_t k = 0; k < list.size(); ++k)
+  {
+    const Contact& c = list[k];
+    if (!c.real || !c.fresh || c.law != lawIndex)
+      continue;
+    const double growth = grownBy[static_cast<std::size_t>(c.id1)] + grownBy[static_cast<std::size_t>(c.id2)];
+    if (growth <= 0)
+      continue;
+    Contact ungrown = c; // as it would be without the growth
+    ungrown.penetration = std::max(c.penetration - growth, 0.0);
+    const ContactExtra* x = extra ? &scene.contacts.extra[k] : nullptr;
+    sum += law.elastic(c, x) - law.elastic(ungrown, x);
+  }
+  return sum;
+}
 } // namespace talus::dem

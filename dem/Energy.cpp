@@ -60,6 +60,15 @@ double elasticPotential(const Scene& scene)
   return total;
 }
 
+void addGrownContactsEnergy(Scene& scene, const InteractionLoop& loop)
+{
+  EnergyTracker& e = scene.energy;
+  e.grownBy.resize(scene.bodies.size(), 0.0); // bodies added since the growth did not grow
+  for (std::size_t k = 0; k < loop.laws.size(); ++k)
+    e.growthWork -= loop.laws[k]->grownElasticEnergy(scene, static_cast<std::uint8_t>(k), e.grownBy);
+  e.grownBy.clear();
+}
+
 void addImposedMotionWork(Scene& scene)
 {
   const Bodies& b = scene.bodies;
@@ -135,7 +144,7 @@ void checkEnergyGrowth(Scene& scene)
 {
   EnergyTracker& e = scene.energy;
   const double kinetic = kineticEnergy(scene), elastic = elasticPotential(scene);
-  const double terms[] = {kinetic, elastic, e.gravWork, e.nonviscDamp, e.plastDissip, e.viscDamp, e.velGradWork, e.kinematicWork};
+  const double terms[] = {kinetic, elastic, e.gravWork, e.nonviscDamp, e.plastDissip, e.viscDamp, e.velGradWork, e.kinematicWork, e.growthWork};
   double total = 0, flowed = 0;
   for (double t : terms)
   {

@@ -39,6 +39,13 @@ struct EnergyTracker
   /// of a TriaxialStressController, bodies of kinematic engines) and blocked DOFs of dynamic
   /// bodies. Not a Yade key: Yade does not book these.
   double kinematicWork = 0;
+  /// Minus the energy that changing radii at fixed positions puts in (growParticles: the contacts'
+  /// compressions and stiffnesses, the bodies' masses at their velocities change). Not a Yade key:
+  /// Yade's growParticles books nothing, so its balance does not close under internal compaction.
+  double growthWork = 0;
+  /// Per body id, how much growParticles increased its radius since the last contact pass (empty:
+  /// no growth since): the contacts that pass finds new overlap by it (addGrownContactsEnergy).
+  std::vector<double> grownBy;
   /// Per body id, the imposed displacement and rotation (velocity times the step) it made in
   /// the previous tracked step (NaN: none yet), so that kinematicWork is taken over the mean of
   /// the previous and the current displacement, as gravity's work is over the mean velocity (a
@@ -51,7 +58,7 @@ struct EnergyTracker
   /// Set every accumulated energy to zero (Yade's O.energy.clear()).
   void clear()
   {
-    gravWork = nonviscDamp = plastDissip = viscDamp = velGradWork = kinematicWork = 0;
+    gravWork = nonviscDamp = plastDissip = viscDamp = velGradWork = kinematicWork = growthWork = 0;
     growthReference = std::numeric_limits<double>::quiet_NaN();
   }
 };
@@ -77,6 +84,14 @@ double kineticEnergy(const Scene& scene);
 /// Elastic energy stored in the contacts of the scene's InteractionLoop(s), as each law defines
 /// it (1/2 Fn^2/kn + 1/2 Fs^2/ks for linear springs, 2/5 Fn u for Hertz, moments as springs).
 double elasticPotential(const Scene& scene);
+
+class InteractionLoop;
+/// Book into growthWork the part of the elastic energy of the contacts that became real in this
+/// pass of `loop` that the radii's growth since the last pass (EnergyTracker::grownBy) made:
+/// spheres grown into each other overlap by the growth at once, the energy of that overlap is the
+/// growth's work, not the dynamics' (a contact that motion alone would have made real keeps the
+/// energy of its overlap without the growth, as any new contact). Clears grownBy.
+void addGrownContactsEnergy(Scene& scene, const InteractionLoop& loop);
 
 /// Book the work that imposed motions do over the step about to be integrated (forces of this
 /// step, velocities the integrator is about to apply) into velGradWork and kinematicWork. For

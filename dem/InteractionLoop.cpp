@@ -105,6 +105,8 @@ void InteractionLoop::run(Scene& scene)
       if (list[k].real && overlapsTooMuch(list[k], scene.maxOverlapRatio))
         bad = static_cast<std::int64_t>(k);
   }
+  if (scene.energy.enabled && !scene.energy.grownBy.empty())
+    addGrownContactsEnergy(scene, *this);
   timingDeltas.checkpoint("geometry, physics, law");
   if (bad >= 0)
     throw std::runtime_error(overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(bad)]));

@@ -89,37 +89,63 @@ Quat dotQ(const Vec3& w, const Quat& q)
 }
 
 Quat plus(const Quat& a, double s, const Quat& b) { return Quat(a.coeffs() + s * b.coeffs()); }
+
+/// Gravity's work and the damping's dissipation of one translation step from velocity vOld to
+/// vNew: the forces' work over the mean velocity, which is exactly the change of 1/2 m v^2 that
+/// they cause in the leap-frog scheme. a and undamped: the acceleration with and without damping.
+inline void bookTranslation(double mass, const Vec3& g, const Vec3& a, const Vec3& undamped, const Vec3& vOld,
+                            const Vec3& vNew, double dt, double& gravWork, double& damp)
+{
+  const Vec3 vMean = 0.5 * (vOld + vNew);
+  gravWork -= mass * g.dot(vMean) * dt;
+  damp -= mass * (a - undamped).dot(vMean) * dt;
+}
+
+/// The damping's dissipation of one rotation step about principal axes (diagonal inertia):
+/// the work of the damping's part of the angular acceleration over the mean angular velocity.
+inline double rotationDamping(const Vec3& inertia, const Vec3& alpha, const Vec3& undamped, const Vec3& omegaOld,
+                              const Vec3& omegaNew, double dt)
+{
+  return -(alpha - undamped).cwiseProduct(inertia).dot(0.5 * (omegaOld + omegaNew)) * dt;
+}
 } // namespace
 
-void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& force, const Vec3& torque, double dt) const
+template <bool Track>
+void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& force, const Vec3& torque, double dt,
+                                      double& gravWork, double& damp) const
 {
   if (b.dynamic[i])
   {
     const std::uint8_t blocked = b.blockedDofs[i];
-    Vec3 a = force.cwiseProduct(invMass_[i]);
+    Vec3 g = Vec3::Zero();
     for (int d = 0; d < 3; ++d)
-    {
       if (!(blocked & (1u << d)))
-        a[d] += gravity[d];
-      if (damping != 0)
+        g[d] = gravity[d];
+    Vec3 a = force.cwiseProduct(invMass_[i]) + g;
+    const Vec3 undamped = a;
+    if (damping != 0)
+      for (int d = 0; d < 3; ++d)
         a[d] = damped(a[d], b.vel[i][d], dt, damping);
-    }
+    const Vec3 vOld = b.vel[i];
     b.vel[i] += a * dt;
+    if constexpr (Track)
+      bookTranslation(b.mass[i], g, a, undamped, vOld, b.vel[i], dt, gravWork, damp);
     if (mode_[i] & Aspherical)
     {
       // Torque with blocked axes removed and Cundall's damping on the current angular velocity
       // (Yade's cundallDamp1st), then Yade's leapfrogAsphericalRotate.
       Vec3 M = torque;
       for (int d = 0; d < 3; ++d)
-      {
         if (blocked & (8u << d))
           M[d] = 0;
-        else if (damping != 0)
+      const Vec3 undampedM = M;
+      if (damping != 0)
+        for (int d = 0; d < 3; ++d)
         {
           const double s = M[d] * b.angVel[i][d];
           M[d] *= 1 - damping * (static_cast<double>(s > 0) - static_cast<double>(s < 0));
         }
-      }
+      const Vec3 omegaOld = b.angVel[i];
       Quat& q = b.ori[i];
       const Mat3 A = q.conjugate().toRotationMatrix(); // world to body frame
       const Vec3 wn = (A * (b.angMom[i] + dt / 2 * M)).cwiseQuotient(b.inertia[i]);
@@ -129,14 +155,22 @@ void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& forc
       q = plus(q, dt, dotQ(wHalf, qHalf));
       b.angVel[i] = q * wHalf; // as Yade: with the quaternion before normalisation
       q.normalize();
+      // 1/2 L.w changes by w.dL = w.M dt: the damping's part of M over the mean (world) angular
+      // velocity. Not exact as for translation: the scheme itself conserves the rotational energy
+      // of a body tumbling off its principal axes only to first order in dt.
+      if constexpr (Track)
+        damp -= (M - undampedM).dot(0.5 * (omegaOld + b.angVel[i])) * dt;
       b.pos[i] += b.vel[i] * dt;
       return;
     }
     Vec3 alpha = torque.cwiseProduct(invInertia_[i]);
+    const Vec3 undampedAlpha = alpha, omegaOld = b.angVel[i];
     if (damping != 0)
       for (int d = 0; d < 3; ++d)
         alpha[d] = damped(alpha[d], b.angVel[i][d], dt, damping);
     b.angVel[i] += alpha * dt;
+    if constexpr (Track)
+      damp += rotationDamping(b.inertia[i], alpha, undampedAlpha, omegaOld, b.angVel[i], dt);
   }
   b.pos[i] += b.vel[i] * dt;
   b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
@@ -179,7 +213,7 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
       return true;
     if (mode_[i] != 0)
     {
-      // Clumps and aspherical bodies: the rare path (not in the energy balance yet).
+      // Clumps and aspherical bodies: the rare path.
       if (mode_[i] & Member)
         return true;
       Vec3 f = b.force[i], t = b.torque[i];
@@ -197,7 +231,7 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
         b.angVel[i] -= previousW;
         field = L * b.pos[i];
       }
-      integrateRigid(b, i, f, t, dt);
+      integrateRigid<Track>(b, i, f, t, dt, gravWork, damp);
       if (affine)
       {
         b.vel[i] += field;
@@ -240,9 +274,8 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
       omega += alpha * dt;
       if constexpr (Track)
       {
-        const Vec3 vMean = 0.5 * (vOld + v), omegaMean = 0.5 * (omegaOld + omega);
-        gravWork -= b.mass[i] * g.dot(vMean) * dt;
-        damp -= (b.mass[i] * (a - undamped).dot(vMean) + (alpha - undampedAlpha).cwiseProduct(b.inertia[i]).dot(omegaMean)) * dt;
+        bookTranslation(b.mass[i], g, a, undamped, vOld, v, dt, gravWork, damp);
+        damp += rotationDamping(b.inertia[i], alpha, undampedAlpha, omegaOld, omega, dt);
       }
       if (homogeneous)
       {

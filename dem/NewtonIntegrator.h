@@ -39,8 +39,11 @@ private:
   /// @return the first body with a non-finite force or torque, or -1
   template <bool Track>
   std::int64_t integrate(Scene& scene) const;
-  /// One clump or aspherical body (the rare path, out of the sphere loop).
-  void integrateRigid(Bodies& b, std::size_t i, const Vec3& force, const Vec3& torque, double dt) const;
+  /// One clump or aspherical body (the rare path, out of the sphere loop); Track: add gravity's
+  /// work and the damping's dissipation to gravWork and damp.
+  template <bool Track>
+  void integrateRigid(Bodies& b, std::size_t i, const Vec3& force, const Vec3& torque, double dt, double& gravWork,
+                      double& damp) const;
   std::vector<Vec3> invMass_, invInertia_;
   /// Per body: 0 for the plain path, else Mode bits.
   enum Mode : std::uint8_t

@@ -1,5 +1,6 @@
 #include "dem/SampleOperations.h"
 
+#include "dem/Energy.h"
 #include "dem/Scene.h"
 
 #include <algorithm>
@@ -15,9 +16,12 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
   if (!(multiplier > 0 && std::isfinite(multiplier)))
     throw std::invalid_argument("growParticles: the multiplier must be positive and finite, got " + std::to_string(multiplier));
   Bodies& b = scene.bodies;
+  const bool track = scene.energy.enabled;
+  const double before = track ? kineticEnergy(scene) + elasticPotential(scene) : 0.0;
+  auto grows = [&](std::size_t i) { return b.shape[i] == ShapeKind::Sphere && (!dynamicOnly || b.dynamic[i]); };
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || b.shape[i] != ShapeKind::Sphere || (dynamicOnly && !b.dynamic[i]))
+    if (!b.alive[i] || !grows(i))
       continue;
     if (updateMass)
     {
@@ -31,15 +35,34 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
     if (!c.real)
       continue;
     const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
-    if (b.shape[i1] == ShapeKind::Sphere && (!dynamicOnly || b.dynamic[i1]))
+    // Every contact geometry's penetration is a radius minus a distance (or a sum of radii minus
+    // the distance of the centres): at fixed positions it grows by the growth of the radii, as
+    // the next geometry update will find, so the elastic energy is the new state's at once.
+    if (grows(i1))
+    {
+      c.penetration += b.radius[i1] * (1 - 1 / multiplier);
       c.refR1 = b.radius[i1];
-    if (b.shape[i2] == ShapeKind::Sphere && (!dynamicOnly || b.dynamic[i2]))
+    }
+    if (grows(i2))
+    {
+      c.penetration += b.radius[i2] * (1 - 1 / multiplier);
       c.refR2 = b.radius[i2];
+    }
     c.kn *= multiplier;
     c.ks *= multiplier;
   }
   ++scene.bodyPropertiesVersion;
   ++scene.bodiesVersion; // the radii changed: re-detect contacts with the new sizes
+  // The energy the growth put in: nothing moved, the state functions jumped.
+  if (track)
+  {
+    scene.energy.growthWork += before - (kineticEnergy(scene) + elasticPotential(scene));
+    std::vector<double>& grownBy = scene.energy.grownBy;
+    grownBy.resize(b.size(), 0.0);
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (b.alive[i] && grows(i))
+        grownBy[i] += b.radius[i] * (1 - 1 / multiplier);
+  }
 }
 void setContactFriction(Scene& scene, double angle)
 {

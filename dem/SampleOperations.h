@@ -7,7 +7,8 @@ class Scene;
 /// Yade's growParticles: multiply the radii of the spheres (only dynamic ones if dynamicOnly)
 /// by `multiplier`, their mass by its cube and inertia by its fifth power (updateMass), and
 /// scale the stiffness and reference radii of their current contacts accordingly (internal
-/// compaction of a sample).
+/// compaction of a sample). The contacts' penetrations follow the radii at once. While energy
+/// is tracked, the jump of the kinetic and elastic energies is booked as growthWork.
 /// @throws std::invalid_argument if the multiplier is not positive and finite
 void growParticles(Scene& scene, double multiplier, bool updateMass = true, bool dynamicOnly = true);
 

@@ -162,10 +162,10 @@ public:
     limit<Track>(x.momentTwist, x.maxTwistPl, normal, x.ktw, energy);
   }
 
-  /// 1/2 Fn^2/kn + 1/2 Fs^2/ks + the moment springs' 1/2 M^2/k.
+  /// 1/2 kn (u_n - unp)^2 + 1/2 Fs^2/ks + the moment springs' 1/2 M^2/k.
   double elastic(const Contact& c, const ContactExtra* x) const
   {
-    double e = springEnergy(c);
+    double e = springEnergy(c, c.penetration - (x ? x->unp : 0.0));
     if (x && x->kr > 0)
       e += 0.5 * x->momentBending.squaredNorm() / x->kr;
     if (x && x->ktw > 0)

@@ -168,7 +168,8 @@ public:
     c.force = c.normalForce + c.shearForce;
   }
 
-  double elastic(const Contact& c, const ContactExtra* /*x*/) const { return springEnergy(c); }
+  /// 1/2 kn u_n^2 + 1/2 Fs^2 / ks (the dashpot's part of the normal force stores nothing).
+  double elastic(const Contact& c, const ContactExtra* /*x*/) const { return springEnergy(c, c.penetration); }
 
 private:
   bool* flag(const std::string& name)

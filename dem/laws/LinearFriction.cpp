@@ -52,8 +52,8 @@ public:
     c.force = c.normalForce + c.shearForce;
   }
 
-  /// 1/2 Fn^2 / kn + 1/2 Fs^2 / ks.
-  double elastic(const Contact& c, const ContactExtra* /*x*/) const { return springEnergy(c); }
+  /// 1/2 kn u_n^2 + 1/2 Fs^2 / ks.
+  double elastic(const Contact& c, const ContactExtra* /*x*/) const { return springEnergy(c, c.penetration); }
 };
 
 TALUS_REGISTER_CONTACT_LAW(LinearFriction, "Law2_ScGeom_FrictPhys_CundallStrack", "linear")

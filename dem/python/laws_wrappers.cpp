@@ -36,6 +36,7 @@ void talus_wrap_laws(py::module_& m)
     d["viscDamp"] = s.energy.viscDamp;
     d["velGradWork"] = s.energy.velGradWork;
     d["kinematicWork"] = s.energy.kinematicWork;
+    d["growthWork"] = s.energy.growthWork;
     return d;
   });
   m.def("clear_energy", [](Scene& s) { s.energy.clear(); });

@@ -86,8 +86,8 @@ def test_layout_is_covered():
     # Ig2_PP_PP_ScGeom's settings, restored with the engines) and ContactExtra::contactArea
     # (recomputed by the geometry every step before the law reads it).
     assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 696, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 1408, "ContactExtra": 272,
-                                   "EnergyTracker": 112}
+                                   "FacetShape": 96, "Cell": 296, "Scene": 1440, "ContactExtra": 272,
+                                   "EnergyTracker": 144}
 
 
 @pytest.mark.parametrize("visco", [False, True, "hertz", "cohfrict"], ids=["FrictMat", "ViscElMat", "Hertz", "CohFrict"])

@@ -7,7 +7,9 @@ work of gravity), ``nonviscDamp`` (dissipated by NewtonIntegrator's damping), ``
 work of the periodic cell's deformation, Yade's PeriTriaxController key, booked for any deforming
 cell) and ``kinematicWork`` (minus the work of imposed motions: non-dynamic bodies moved by their
 velocity, as the walls of TriaxialStressController or the bodies of kinematic engines, and blocked
-DOFs; not in Yade, which does not book it). Dissipations are positive; ``O.energy.total()`` is
+DOFs; not in Yade, which does not book it) and ``growthWork`` (minus the energy put in by
+``growParticles``, which changes the radii at fixed positions: the contacts' compressions and
+stiffnesses and the masses at fixed velocities; not in Yade either). Dissipations are positive; ``O.energy.total()`` is
 conserved (it starts at the initial kinetic plus elastic energy). The accumulated terms count from when tracking was switched on (or from
 ``O.energy.clear()``); they are deterministic and independent of the number of threads.
 """
@@ -19,7 +21,7 @@ from collections.abc import Mapping
 from talus import _dem
 
 KEYS = ("kinetic", "elastPotential", "gravWork", "nonviscDamp", "plastDissip", "viscDamp", "velGradWork",
-        "kinematicWork")
+        "kinematicWork", "growthWork")
 
 
 class EnergyTracker(Mapping):
