@@ -7,7 +7,9 @@ Scene:    Yade's `--quickperformance` test reproduced exactly: 4416 spheres (rad
           en = et = 0.003), gravity -9.81 along y, no damping, dt = 0.1 tc; one step to
           initialise, then 2000 timed steps.
 Compared: `yade -n -j1 --quickperformance` (Yade 2023.02a from Debian), run in the same
-          invocation, alternately with ours; medians of the iterations per second.
+          invocation: each round runs Talus at 1 and 2 threads, then Yade alike; medians of the
+          iterations per second, and thread speed-ups as medians of each round's ratio (ours
+          over 9 pairs of neighbouring runs, 3 in quick mode).
 Produces: dem.bench.yade-quickperf (ratio, target >= 5 at one thread) and
           dem.bench.yade-quickperf.threads (our 2-thread over 1-thread speed-up, target >= 1.7;
           Yade's own speed-up, `yade -j2`, and the ratio at two threads as extras).
@@ -15,6 +17,7 @@ Produces: dem.bench.yade-quickperf (ratio, target >= 5 at one thread) and
 import math
 import os
 import shutil
+import statistics
 import sys
 import tempfile
 import time
@@ -22,6 +25,7 @@ import time
 from talus import bench, results
 
 STEPS = 2000
+THREAD_PAIRS = 9  # pairs of 1- and 2-thread runs of ours behind the speed-up (3 in quick mode)
 
 
 def run_scene(steps: int) -> float:
@@ -61,30 +65,40 @@ def main():
     if shutil.which("yade") is None:
         print("yade is not installed (apt-get install yade): no comparison recorded")
         return
-    ours = bench.Side("talus -j1", me, pattern)
-    os.environ["OMP_NUM_THREADS"] = "1"
+    # One round runs Talus at one thread and at two, then Yade alike: a thread speed-up is the
+    # median of each round's ratio of neighbouring runs, which the host's drift over the whole
+    # benchmark (it has moved rates by 30 % between minutes here) does not enter.
+    one, two = {"OMP_NUM_THREADS": "1"}, {"OMP_NUM_THREADS": "2"}
     # Yade's speed test writes a summary file where it runs: give it a scratch folder.
     with tempfile.TemporaryDirectory(prefix="talus-bench-") as scratch:
-        yade = bench.Side("yade -j1", ["yade", "-n", "-j1", "--quickperformance"],
-                          r"calculation velocity=\s*([0-9.]+)", cwd=scratch)
-        c = bench.compare(ours, yade, repeat=repeat, unit="it/s", higher_is_better=True)
-    case.record("iterations per second, Talus over Yade, 1 thread", c.ratio,
+        sides = [bench.Side("talus -j1", me, pattern, env=one),
+                 bench.Side("talus -j2", me, pattern, env=two),
+                 bench.Side("yade -j1", ["yade", "-n", "-j1", "--quickperformance"],
+                            r"calculation velocity=\s*([0-9.]+)", cwd=scratch, env=one),
+                 bench.Side("yade -j2", ["yade", "-n", "-j2", "--quickperformance"],
+                            r"calculation velocity=\s*([0-9.]+)", cwd=scratch, env=two)]
+        bench.run_rounds(sides, repeat=repeat, unit="it/s")
+    ours, ours2, yade, yade2 = sides
+    # More pairs of our own runs (a few seconds each) for the speed-up, whose round-to-round
+    # scatter here (1.05-1.9 in one invocation) is far wider than the 1-thread ratio's.
+    threads = [bench.Side("talus -j1", me, pattern, env=one), bench.Side("talus -j2", me, pattern, env=two)]
+    bench.run_rounds(threads, repeat=THREAD_PAIRS - repeat if not args.quick else 2, unit="it/s")
+    pairs = list(zip(ours.samples + threads[0].samples, ours2.samples + threads[1].samples))
+    ratio, ratio2 = ours.median / yade.median, ours2.median / yade2.median
+    case.record("iterations per second, Talus over Yade, 1 thread", ratio,
                 "yade 2023.02a --quickperformance, same machine, same invocation", 5.0, comparison=">=",
-                peer="yade 2023.02a, 1 thread", ours=c.ours, theirs=c.theirs, unit="it/s", ratio=c.ratio)
+                peer="yade 2023.02a, 1 thread", ours=ours.median, theirs=yade.median, unit="it/s", ratio=ratio,
+                ours_samples=ours.samples, theirs_samples=yade.samples)
     # Two threads, ours and Yade's own (the peer's speed-up on the same machine tells how much
     # of a shortfall is the machine's: two vCPUs need not give two cores' worth of throughput).
-    os.environ["OMP_NUM_THREADS"] = "2"
-    two = bench.Side("talus -j2", me, pattern)
-    with tempfile.TemporaryDirectory(prefix="talus-bench-") as scratch:
-        yade_two = bench.Side("yade -j2", ["yade", "-n", "-j2", "--quickperformance"],
-                              r"calculation velocity=\s*([0-9.]+)", cwd=scratch)
-        c2 = bench.compare(two, yade_two, repeat=repeat, unit="it/s", higher_is_better=True)
-    speedup, yade_speedup = c2.ours / c.ours, c2.theirs / c.theirs
-    case.record("speed-up from 1 to 2 OpenMP threads", speedup, "Talus at 1 thread, same scene", 1.7,
-                suffix="threads", comparison=">=", yade_speedup=yade_speedup, ours_2_threads=c2.ours,
-                yade_2_threads=c2.theirs, ratio_2_threads=c2.ratio)
-    print(f"Talus {c.ours:.0f} it/s, Yade {c.theirs:.0f} it/s: {c.ratio:.2f}x; 2 threads: Talus {speedup:.2f}x, "
-          f"Yade {yade_speedup:.2f}x (Talus over Yade at 2 threads {c2.ratio:.2f}x)")
+    speedup = statistics.median(t2 / t1 for t1, t2 in pairs)
+    yade_speedup = statistics.median(t2 / t1 for t1, t2 in zip(yade.samples, yade2.samples))
+    case.record("speed-up from 1 to 2 OpenMP threads (median over rounds of neighbouring runs)", speedup,
+                "Talus at 1 thread, same scene", 1.7, suffix="threads", comparison=">=", yade_speedup=yade_speedup,
+                ours_2_threads=ours2.median, yade_2_threads=yade2.median, ratio_2_threads=ratio2,
+                pairs=pairs)
+    print(f"Talus {ours.median:.0f} it/s, Yade {yade.median:.0f} it/s: {ratio:.2f}x; 2 threads: Talus {speedup:.2f}x, "
+          f"Yade {yade_speedup:.2f}x (Talus over Yade at 2 threads {ratio2:.2f}x)")
 
 
 main()

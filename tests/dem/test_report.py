@@ -32,6 +32,22 @@ def test_page_has_cases_benchmarks_and_charts(tmp_path):
     assert (tmp_path / "docs" / "validation" / "vans.poiseuille.profile.png").is_file()
 
 
+def test_a_cases_chart_goes_with_its_suffixed_records(tmp_path):
+    folder = tmp_path / "results"
+    case = results.Case("fem.shear-band", quick=True, folder=folder)
+    case.record("peak", 0.03, "coarse mesh", 0.05, suffix="peak")
+    case.record("angle", 0.0, "Mohr-Coulomb", 1.0, suffix="inclination")
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [0, 1])
+    case.save_chart(fig)
+    plt.close(fig)
+    # another case whose name merely starts alike gets no chart of this one
+    results.Case("fem.shear", quick=True, folder=folder).record("e", 0.0, "x", 1.0, suffix="other")
+    text = report.render(folder, tmp_path / "docs" / "validation.md")
+    assert text.count("![fem.shear-band](validation/fem.shear-band.png)") == 1
+    assert "### fem.shear\n" not in text
+
+
 def test_cli_report(talus_cmd, tmp_path):
     folder = tmp_path / "results"
     results.Case("demo.one", quick=True, folder=folder).record("e", 0.0, "x", 1.0)

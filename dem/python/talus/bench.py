@@ -10,6 +10,7 @@ out by a regular expression with one group (e.g. ``r"([0-9.]+) iter/sec"``).
 
 from __future__ import annotations
 
+import os
 import re
 import shlex
 import shutil
@@ -35,6 +36,7 @@ class Side:
     command: Sequence[str]
     pattern: str | None = None  # regex with one group; None: the figure is the wall time
     cwd: str | None = None      # where to run (peers such as Yade write files where they run)
+    env: dict[str, str] = field(default_factory=dict)  # set in the command's environment (e.g. OMP_NUM_THREADS)
     samples: list[float] = field(default_factory=list)
 
     @property
@@ -84,7 +86,8 @@ def run_once(side: Side, timeout: float) -> float:
     """Run one side once and return its figure."""
     started = time.perf_counter()
     try:
-        done = subprocess.run(side.command, capture_output=True, text=True, timeout=timeout, cwd=side.cwd)
+        done = subprocess.run(side.command, capture_output=True, text=True, timeout=timeout, cwd=side.cwd,
+                              env={**os.environ, **side.env} if side.env else None)
     except subprocess.TimeoutExpired:
         raise CommandFailed(f"{side.label}: {shlex.join(side.command)} took longer than {timeout} s") from None
     wall = time.perf_counter() - started
@@ -102,6 +105,20 @@ def run_once(side: Side, timeout: float) -> float:
     return float(matches[-1])
 
 
+def run_rounds(sides: Sequence[Side], *, repeat: int = 3, unit: str = "s", timeout: float = 3600.0,
+               progress=print) -> None:
+    """Run every side once per round, in the given order, ``repeat`` rounds; each run's figure is
+    appended to its side's samples. Runs that are neighbours in time see the same machine: ratios
+    of the same round's samples cancel the drift of a shared host over the benchmark."""
+    if repeat < 1:
+        raise ValueError(f"repeat must be at least 1, got {repeat}")
+    for i in range(repeat):
+        for side in sides:
+            side.samples.append(run_once(side, timeout))
+            if progress:
+                progress(f"[bench] run {i + 1}/{repeat} {side.label}: {side.samples[-1]:.6g} {unit}")
+
+
 def compare(ours: Side, theirs: Side, *, repeat: int = 3, unit: str = "s",
             higher_is_better: bool = False, timeout: float = 3600.0,
             progress=print) -> Comparison:
@@ -114,11 +131,7 @@ def compare(ours: Side, theirs: Side, *, repeat: int = 3, unit: str = "s",
         raise ValueError(f"repeat must be at least 1, got {repeat}")
     require_program(ours.command, ours.label)
     require_program(theirs.command, theirs.label, hint="e.g. apt-get install yade")
-    for i in range(repeat):
-        for side in (ours, theirs):
-            side.samples.append(run_once(side, timeout))
-            if progress:
-                progress(f"[bench] run {i + 1}/{repeat} {side.label}: {side.samples[-1]:.6g} {unit}")
+    run_rounds((ours, theirs), repeat=repeat, unit=unit, timeout=timeout, progress=progress)
     ratio = ours.median / theirs.median if higher_is_better else theirs.median / ours.median
     return Comparison(ours.median, theirs.median, unit, ratio, list(ours.samples),
                       list(theirs.samples))

@@ -22,9 +22,13 @@ def _cell(text: object) -> str:
 
 
 def _charts_of(name: str, folder: Path) -> list[Path]:
-    """PNG charts belonging to a record: ``<name>.png`` and ``<name>.<suffix>.png``."""
-    return sorted([p for p in folder.glob(f"{name}*.png")
-                   if p.stem == name or p.stem.startswith(name + ".")])
+    """PNG charts belonging to a record: ``<name>.png``, ``<name>.<suffix>.png``, and its case's
+    chart: a record ``case.what`` (``Case.record(suffix=...)``) belongs to the chart ``case.png``
+    that ``Case.save_chart`` writes, the case name being at least two dotted parts."""
+    parts = name.split(".")
+    cases = {".".join(parts[:k]) for k in range(2, len(parts))}
+    return sorted([p for p in folder.glob("*.png")
+                   if p.stem == name or p.stem.startswith(name + ".") or p.stem in cases])
 
 
 def render(results: Path | str, output: Path | str) -> str:
