@@ -1,6 +1,7 @@
 """ymport: STL (ASCII and binary) and OpenFOAM polyMesh boundaries as facets, with errors naming
 the file and the line."""
 import struct
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -122,3 +123,67 @@ def test_polymesh_errors_name_file_and_line(tmp_path):
         ymport.polyMesh(str(tmp_path / "b"))
     with pytest.raises(ymport.MeshError, match="cannot read"):
         ymport.polyMesh(str(tmp_path / "nowhere"))
+
+
+CASES = Path(__file__).resolve().parents[2] / "cases"
+
+
+def outward(triangles, centre):
+    normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
+    return np.einsum("ij,ij->i", normals, triangles.mean(axis=1) - centre)
+
+
+def test_blockmeshdict_of_a_shipped_case():
+    """The settling-sphere box: 6 block faces, two triangles each, normals out of the fluid."""
+    triangles, groups = ymport.read_blockmeshdict(str(CASES / "cfd_settling_sphere"))
+    assert len(triangles) == 12 and list(groups) == ["walls"]
+    assert np.allclose(triangles.reshape(-1, 3).min(axis=0), [-0.0225, -0.0225, 0])
+    assert np.allclose(triangles.reshape(-1, 3).max(axis=0), [0.0225, 0.0225, 0.09])
+    assert np.all(outward(triangles, [0, 0, 0.045]) > 0)
+    area = 0.5 * np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
+    assert area.sum() == pytest.approx(2 * 0.045 * 0.045 + 4 * 0.045 * 0.09, rel=1e-12)
+
+
+BLOCKS = HEADER.format(cls="dictionary", obj="blockMeshDict") + """
+convertToMeters 0.001;
+vertices ( (0 0 0) (100 0 0) (100 100 0) (0 100 0) (0 0 100) (100 0 100) (100 100 100) (0 100 100)
+           (0 0 200) (100 0 200) (100 100 200) (0 100 200) );
+blocks ( hex (0 1 2 3 4 5 6 7) (4 4 4) simpleGrading (1 1 1)
+         hex (4 5 6 7 8 9 10 11) lower (4 4 4) simpleGrading (1 1 ((0.5 0.5 2) (0.5 0.5 0.5))) );
+edges ( );
+boundary
+(
+    sides { type wall; faces ( (2 3 6 7) (0 1 5 4) (4 7 3 0) (5 1 2 6) (6 7 11 10) (4 5 9 8) (7 4 8 11) (5 6 10 9) ); }
+    bottom { type patch; faces ( (0 1 2 3) ); }
+    top { type patch; faces ( (8 9 10 11) ); }
+);
+mergePatchPairs ( );
+"""
+
+
+def test_blockmeshdict_faces_in_any_order_come_out_outward(tmp_path):
+    """Faces listed with their vertices in any order (as Yade's OpenFOAM example does, and as
+    blockMesh accepts) take the block's outward order; two blocks, convertToMeters."""
+    path = tmp_path / "blockMeshDict"
+    path.write_text(BLOCKS)
+    triangles, groups = ymport.read_blockmeshdict(str(path))
+    assert [len(groups[p]) for p in ("sides", "bottom", "top")] == [16, 2, 2]
+    assert np.all(outward(triangles, [0.05, 0.05, 0.1]) > 0)
+    specs = ymport.blockMeshDict(str(path), patches=["top"])
+    assert len(specs) == 2 and np.allclose(np.array([s.vertices for s in specs])[:, :, 2], 0.2)
+
+
+def test_blockmeshdict_errors_name_file_and_line(tmp_path):
+    path = tmp_path / "blockMeshDict"
+    path.write_text(BLOCKS.replace("(8 9 10 11)", "(8 9 10 2)"))
+    with pytest.raises(ymport.MeshError, match=r"blockMeshDict, line 20: face \(8, 9, 10, 2\) of patch 'top' is not a face of any block"):
+        ymport.read_blockmeshdict(str(path))
+    path.write_text(BLOCKS.replace("convertToMeters 0.001;", "convertToMeters $scale;"))
+    with pytest.raises(ymport.MeshError, match=r"line 10: '\$scale': macros are not supported"):
+        ymport.read_blockmeshdict(str(path))
+    path.write_text(BLOCKS.replace("edges ( );", "edges ( arc 0 1 (50 -10 0) );"))
+    with pytest.raises(ymport.MeshError, match=r"line 15: curved edges are not supported"):
+        ymport.read_blockmeshdict(str(path))
+    path.write_text(BLOCKS)
+    with pytest.raises(ymport.MeshError, match="no patch 'inlet' \\(patches: sides, bottom, top\\)"):
+        ymport.blockMeshDict(str(path), patches=["inlet"])

@@ -1,9 +1,10 @@
-"""Import of triangle meshes as facets (Yade's ``ymport``): STL files and OpenFOAM polyMesh
-boundaries, the walls of a CFD-DEM coupling.
+"""Import of triangle meshes as facets (Yade's ``ymport``): STL files and OpenFOAM boundaries
+(a polyMesh, or the blocks of a blockMeshDict), the walls of a CFD-DEM coupling.
 
     from talus.dem import ymport
     O.bodies.append(ymport.stl("hopper.stl", scale=1e-3))
     O.bodies.append(ymport.polyMesh("case", patches=["walls", "inlet"]))
+    O.bodies.append(ymport.blockMeshDict("case/system/blockMeshDict", patches=["walls"]))
 
 A malformed file raises ``MeshError`` naming the file and the line. Degenerate triangles
 (collinear vertices, as left by CAD exporters) are skipped with a ``MeshWarning``.
@@ -22,7 +23,8 @@ import numpy as np
 
 from talus.dem.bodies import BodySpec, facet
 
-__all__ = ["MeshError", "MeshWarning", "stl", "polyMesh", "read_stl", "read_polymesh"]
+__all__ = ["MeshError", "MeshWarning", "stl", "polyMesh", "blockMeshDict", "read_stl", "read_polymesh",
+           "read_blockmeshdict"]
 
 
 class MeshError(ValueError):
@@ -304,3 +306,180 @@ def polyMesh(case: str, patches: Sequence[str] | None = None, material=-1, scale
     folder, scaled then shifted; their normals point out of the fluid domain."""
     triangles, _ = read_polymesh(case, patches)
     return _facets(_transform(triangles, scale, shift), case, material)
+
+
+# ------------------------------------------------------------------------------------------------
+# OpenFOAM blockMeshDict
+
+# The faces of OpenFOAM's hex block in its local vertex numbering, each ordered so that its normal
+# (right-hand rule) points out of the block: x-min, x-max, y-min, y-max, z-min, z-max.
+_HEX_FACES = ((0, 4, 7, 3), (1, 2, 6, 5), (0, 1, 5, 4), (3, 7, 6, 2), (0, 3, 2, 1), (4, 5, 6, 7))
+
+
+def _skip_entry(tokens: _Tokens):
+    """Skip the value of a top-level entry: tokens up to the ';' outside any bracket, or one
+    braced dictionary."""
+    if tokens.peek() == "{":
+        tokens.dictionary()
+        return
+    depth = 0
+    while True:
+        t = tokens.next("';'")
+        depth += t in "({" and len(t) == 1
+        depth -= t in ")}" and len(t) == 1
+        if t == ";" and depth == 0:
+            return
+
+
+def _labels(tokens: _Tokens, what: str) -> tuple[list[int], int]:
+    line = tokens.items[tokens.k][1] if tokens.k < len(tokens.items) else tokens.last_line
+    tokens.expect("(")
+    out = []
+    while tokens.peek() != ")":
+        out.append(tokens.number(int, f"a vertex label of {what}"))
+    tokens.expect(")")
+    return out, line
+
+
+def _block(tokens: _Tokens) -> tuple[list[int], int]:
+    """``hex (8 labels) [zone] (nx ny nz) grading (...)``: the 8 vertex labels."""
+    line = tokens.items[tokens.k][1] if tokens.k < len(tokens.items) else tokens.last_line
+    shape = tokens.next("a block shape")
+    if shape != "hex":
+        raise tokens.error(f"block shape {shape!r} is not supported (hex only)", line)
+    labels, _ = _labels(tokens, "a hex block")
+    if len(labels) != 8:
+        raise tokens.error(f"a hex block has 8 vertices, this one {len(labels)}", line)
+    if tokens.peek() != "(":
+        tokens.next("a cell zone name")
+    _labels(tokens, "the cell counts")
+    tokens.next("a grading keyword")
+    depth = 0
+    while True:   # the grading: one list, possibly with nested lists (multi-grading)
+        t = tokens.next("the grading")
+        depth += t == "("
+        depth -= t == ")"
+        if depth == 0:
+            return labels, line
+
+
+def _patch_dictionary(tokens: _Tokens) -> tuple[str, list, int]:
+    """``name { type ...; faces ( (a b c d) ... ); }``"""
+    name = tokens.next("a patch name")
+    line = tokens.items[tokens.k - 1][1]
+    tokens.expect("{")
+    faces = None
+    while tokens.peek() != "}":
+        key = tokens.next("a key or '}'")
+        if key == "faces":
+            faces = _list(tokens, lambda t: _labels(t, f"a face of patch {name!r}"))
+            tokens.expect(";")
+        else:
+            _skip_entry(tokens)
+    tokens.expect("}")
+    if faces is None:
+        raise tokens.error(f"patch {name!r} has no faces", line)
+    return name, faces, line
+
+
+def _patch_list(tokens: _Tokens) -> tuple[str, list, int]:
+    """The older ``patches`` syntax: ``type name ( (a b c d) ... )``."""
+    tokens.next("a patch type")
+    name = tokens.next("a patch name")
+    line = tokens.items[tokens.k - 1][1]
+    return name, _list(tokens, lambda t: _labels(t, f"a face of patch {name!r}")), line
+
+
+def read_blockmeshdict(path: str, patches: Iterable[str] | None = None) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Triangles (n, 3, 3) of the chosen boundary patches of a blockMeshDict (a file, or a case
+    folder with system/blockMeshDict), in metres (``convertToMeters`` or ``scale`` applied), and
+    the triangle indices of each patch. Each patch face must be a face of one of the hex blocks;
+    it is taken in the block's own order, so its normals point out of the fluid domain as
+    blockMesh's (which also accepts the face's vertices in any order), and split into two
+    triangles. Curved edges and the ``#include``/``$variable`` macros are refused with an error
+    naming the line: run blockMesh and read the polyMesh instead."""
+    if os.path.isdir(path):
+        path = os.path.join(path, "system", "blockMeshDict")
+    tokens = _open_foam(path)
+    for t, line in tokens.items:
+        if t.startswith("#") or t.startswith("$"):
+            raise tokens.error(f"{t!r}: macros are not supported here (run blockMesh, then ymport.polyMesh)", line)
+    scale, vertices, blocks, boundary = 1.0, None, [], None
+    while tokens.peek() is not None:
+        key = tokens.next("an entry")
+        line = tokens.items[tokens.k - 1][1]
+        if key in ("convertToMeters", "scale"):
+            scale = tokens.number(float, key)
+            tokens.expect(";")
+        elif key == "vertices":
+            vertices = np.array(_list(tokens, _point), dtype=np.float64).reshape(-1, 3)
+            tokens.expect(";")
+        elif key == "blocks":
+            blocks = _list(tokens, _block)
+            tokens.expect(";")
+        elif key == "edges":
+            curved = _list(tokens, lambda t: (t.next("an edge"), _skip_entry_until_edge(t)))
+            if curved:
+                raise tokens.error("curved edges are not supported here (run blockMesh, then ymport.polyMesh)", line)
+            tokens.expect(";")
+        elif key == "boundary":
+            boundary = _list(tokens, _patch_dictionary)
+            tokens.expect(";")
+        elif key == "patches":
+            boundary = _list(tokens, _patch_list)
+            tokens.expect(";")
+        else:
+            _skip_entry(tokens)
+    if vertices is None:
+        raise MeshError(f"{path}: no vertices")
+    if boundary is None:
+        raise MeshError(f"{path}: no boundary (or patches) entry")
+    for labels, line in blocks:
+        if max(labels) >= len(vertices) or min(labels) < 0:
+            raise tokens.error(f"a block refers to vertex {max(labels)} but there are {len(vertices)}", line)
+    known = [name for name, _, _ in boundary]
+    wanted = list(known if patches is None else patches)
+    missing = [p for p in wanted if p not in known]
+    if missing:
+        raise MeshError(f"{path}: no patch {missing[0]!r} (patches: {', '.join(known)})")
+    oriented = {}
+    for labels, _ in blocks:
+        for face in _HEX_FACES:
+            ordered = tuple(labels[i] for i in face)
+            oriented.setdefault(frozenset(ordered), ordered)
+    triangles, groups = [], {}
+    for name, faces, _ in boundary:
+        if name not in wanted:
+            continue
+        first = len(triangles)
+        for labels, line in faces:
+            ordered = oriented.get(frozenset(labels)) if len(labels) == 4 else None
+            if ordered is None:
+                raise tokens.error(f"face {tuple(labels)} of patch {name!r} is not a face of any block", line)
+            quad = vertices[list(ordered)] * scale
+            triangles += [quad[[0, 1, 2]], quad[[0, 2, 3]]]
+        groups[name] = np.arange(first, len(triangles))
+    return np.array(triangles, dtype=np.float64).reshape(-1, 3, 3), groups
+
+
+def _skip_entry_until_edge(tokens: _Tokens):
+    """The rest of an edge entry (``arc 1 5 (x y z)``, ``spline 1 2 ((...) ...)``): two labels and
+    one point or list of points."""
+    tokens.number(int, "an edge's first vertex")
+    tokens.number(int, "an edge's second vertex")
+    depth = 0
+    while True:
+        t = tokens.next("an edge's points")
+        depth += t == "("
+        depth -= t == ")"
+        if depth == 0:
+            return None
+
+
+def blockMeshDict(path: str, patches: Sequence[str] | None = None, material=-1, scale: float = 1.0,
+                  shift=(0.0, 0.0, 0.0), **kw) -> list[BodySpec]:
+    """Facets of the boundary patches ``patches`` (default: all) of a blockMeshDict (or a case
+    folder), two per block face, scaled then shifted; their normals point out of the fluid
+    domain."""
+    triangles, _ = read_blockmeshdict(path, patches)
+    return _facets(_transform(triangles, scale, shift), path, material)
