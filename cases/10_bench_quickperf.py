@@ -82,7 +82,7 @@ def main():
     # More pairs of our own runs (a few seconds each) for the speed-up, whose round-to-round
     # scatter here (1.05-1.9 in one invocation) is far wider than the 1-thread ratio's.
     threads = [bench.Side("talus -j1", me, pattern, env=one), bench.Side("talus -j2", me, pattern, env=two)]
-    bench.run_rounds(threads, repeat=THREAD_PAIRS - repeat if not args.quick else 2, unit="it/s")
+    bench.run_rounds(threads, repeat=(3 if args.quick else THREAD_PAIRS) - repeat, unit="it/s")
     pairs = list(zip(ours.samples + threads[0].samples, ours2.samples + threads[1].samples))
     ratio, ratio2 = ours.median / yade.median, ours2.median / yade2.median
     case.record("iterations per second, Talus over Yade, 1 thread", ratio,

@@ -28,7 +28,7 @@ bool byKey(const Candidate& a, const Candidate& b) { return a.key < b.key; }
 /// `pairs` in key order; `perThread` is scratch space kept between calls. `spheres` is in
 /// ascending id order and each thread takes one contiguous run of it (static schedule), so the
 /// threads' outputs, each sphere's pairs sorted by the partner's id, concatenate in key order:
-/// no sort of the whole list (it was a serial quarter of a re-detection's cost).
+/// no sort of the whole list (it was about a quarter of a re-detection's serial time).
 void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const CellGrid& grid, double skin,
                  std::vector<std::vector<Candidate>>& perThread, std::vector<Candidate>& pairs)
 {

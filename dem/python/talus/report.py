@@ -21,14 +21,13 @@ def _cell(text: object) -> str:
     return str(text).replace("|", "\\|").replace("\n", " ")
 
 
-def _charts_of(name: str, folder: Path) -> list[Path]:
-    """PNG charts belonging to a record: ``<name>.png``, ``<name>.<suffix>.png``, and its case's
-    chart: a record ``case.what`` (``Case.record(suffix=...)``) belongs to the chart ``case.png``
-    that ``Case.save_chart`` writes, the case name being at least two dotted parts."""
+def _charts_of(name: str, charts: list[Path]) -> list[Path]:
+    """The PNG charts (sorted) belonging to a record: ``<name>.png``, ``<name>.<suffix>.png``, and
+    its case's chart: a record ``case.what`` (``Case.record(suffix=...)``) belongs to the chart
+    ``case.png`` that ``Case.save_chart`` writes, the case name being at least two dotted parts."""
     parts = name.split(".")
     cases = {".".join(parts[:k]) for k in range(2, len(parts))}
-    return sorted([p for p in folder.glob("*.png")
-                   if p.stem == name or p.stem.startswith(name + ".") or p.stem in cases])
+    return [p for p in charts if p.stem == name or p.stem.startswith(name + ".") or p.stem in cases]
 
 
 def render(results: Path | str, output: Path | str) -> str:
@@ -73,7 +72,8 @@ def render(results: Path | str, output: Path | str) -> str:
                 f"{'yes' if r['pass'] else '**NO**'} | {'quick' if r['quick'] else 'full'} |")
         lines.append("")
 
-    charts = [(r["name"], chart) for r in records for chart in _charts_of(r["name"], results)]
+    pngs = sorted(results.glob("*.png"))
+    charts = [(r["name"], chart) for r in records for chart in _charts_of(r["name"], pngs)]
     if charts:
         chart_dir.mkdir(parents=True, exist_ok=True)
         lines += ["## Charts", ""]

@@ -136,6 +136,16 @@ class PotentialBlock2AABB(Functor):
     _parameters = ("AabbMinMax",)
 
 
+def _twoDimension(geometry: Functor) -> tuple[bool, np.ndarray, float]:
+    """The 2D mode of a convex shapes' geometry functor (Ig2_PB_PB_ScGeom, Ig2_PP_PP_ScGeom):
+    twoDimension, the prisms' direction twoDdir (default (0, 1, 0)) and unitWidth2D (default 1)."""
+    direction = (0.0, 1.0, 0.0) if geometry.twoDdir is None else tuple(float(x) for x in geometry.twoDdir)
+    if len(direction) != 3:
+        raise ValueError(f"{type(geometry).__name__}.twoDdir must be a 3-vector, got {geometry.twoDdir!r}")
+    return (bool(geometry.twoDimension), np.asarray(direction, dtype=float),
+            1.0 if geometry.unitWidth2D is None else float(geometry.unitWidth2D))
+
+
 class Ig2_PB_PB_ScGeom(Functor):
     """Block-block and wall-block contact geometry. ``calContactArea`` False: area 1 (constant
     stiffnesses). ``twoDimension`` (Yade's 2D mode): the blocks are prisms along ``twoDdir``
@@ -149,12 +159,7 @@ class Ig2_PB_PB_ScGeom(Functor):
 
     def _applyToScene(self, cpp):
         """Set these settings for every block contact of the scene whose engines hold us."""
-        direction = (0.0, 1.0, 0.0) if self.twoDdir is None else tuple(float(x) for x in self.twoDdir)
-        if len(direction) != 3:
-            raise ValueError(f"Ig2_PB_PB_ScGeom.twoDdir must be a 3-vector, got {self.twoDdir!r}")
-        _dem.set_block_contact_settings(cpp, bool(self.twoDimension), np.asarray(direction, dtype=float),
-                                        1.0 if self.unitWidth2D is None else float(self.unitWidth2D),
-                                        bool(self.exactDepth),
+        _dem.set_block_contact_settings(cpp, *_twoDimension(self), bool(self.exactDepth),
                                         _dem.default_block_accuracy_tol if self.accuracyTol is None
                                         else float(self.accuracyTol))
 

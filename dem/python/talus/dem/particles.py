@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from talus import _dem
+from talus.dem.blocks import _twoDimension
 from talus.dem.bodies import BodySpec
 from talus.dem.engines import Functor, _Law
 from talus.dem.export import _atomic_write, vtu_bytes
@@ -150,11 +151,7 @@ class Ig2_PP_PP_ScGeom(Functor):
 
     def _applyToScene(self, cpp):
         """Set the 2D settings for every particle contact of the scene whose engines hold us."""
-        direction = (0.0, 1.0, 0.0) if self.twoDdir is None else tuple(float(x) for x in self.twoDdir)
-        if len(direction) != 3:
-            raise ValueError(f"Ig2_PP_PP_ScGeom.twoDdir must be a 3-vector, got {self.twoDdir!r}")
-        _dem.set_particle_contact_settings(cpp, bool(self.twoDimension), np.asarray(direction, dtype=float),
-                                           1.0 if self.unitWidth2D is None else float(self.unitWidth2D))
+        _dem.set_particle_contact_settings(cpp, *_twoDimension(self))
 
 
 class Ip2_FrictMat_FrictMat_KnKsPhys(Functor):

@@ -354,13 +354,27 @@ def _block(tokens: _Tokens) -> tuple[list[int], int]:
         tokens.next("a cell zone name")
     _labels(tokens, "the cell counts")
     tokens.next("a grading keyword")
+    _skip_group(tokens, "the grading")   # one list, possibly of lists (multi-grading)
+    return labels, line
+
+
+def _skip_group(tokens: _Tokens, what: str):
+    """Skip one parenthesised group, nested groups included."""
     depth = 0
-    while True:   # the grading: one list, possibly with nested lists (multi-grading)
-        t = tokens.next("the grading")
+    while True:
+        t = tokens.next(what)
         depth += t == "("
         depth -= t == ")"
         if depth == 0:
-            return labels, line
+            return
+
+
+def _edge(tokens: _Tokens):
+    """A curved edge (``arc 1 5 (x y z)``, ``spline 1 2 ((...) ...)``), read only to refuse it."""
+    tokens.next("an edge type")
+    tokens.number(int, "an edge's first vertex")
+    tokens.number(int, "an edge's second vertex")
+    _skip_group(tokens, "an edge's points")
 
 
 def _patch_dictionary(tokens: _Tokens) -> tuple[str, list, int]:
@@ -418,8 +432,7 @@ def read_blockmeshdict(path: str, patches: Iterable[str] | None = None) -> tuple
             blocks = _list(tokens, _block)
             tokens.expect(";")
         elif key == "edges":
-            curved = _list(tokens, lambda t: (t.next("an edge"), _skip_entry_until_edge(t)))
-            if curved:
+            if _list(tokens, _edge):
                 raise tokens.error("curved edges are not supported here (run blockMesh, then ymport.polyMesh)", line)
             tokens.expect(";")
         elif key == "boundary":
@@ -460,20 +473,6 @@ def read_blockmeshdict(path: str, patches: Iterable[str] | None = None) -> tuple
             triangles += [quad[[0, 1, 2]], quad[[0, 2, 3]]]
         groups[name] = np.arange(first, len(triangles))
     return np.array(triangles, dtype=np.float64).reshape(-1, 3, 3), groups
-
-
-def _skip_entry_until_edge(tokens: _Tokens):
-    """The rest of an edge entry (``arc 1 5 (x y z)``, ``spline 1 2 ((...) ...)``): two labels and
-    one point or list of points."""
-    tokens.number(int, "an edge's first vertex")
-    tokens.number(int, "an edge's second vertex")
-    depth = 0
-    while True:
-        t = tokens.next("an edge's points")
-        depth += t == "("
-        depth -= t == ")"
-        if depth == 0:
-            return None
 
 
 def blockMeshDict(path: str, patches: Sequence[str] | None = None, material=-1, scale: float = 1.0,
