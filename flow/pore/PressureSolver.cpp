@@ -16,12 +16,11 @@ namespace talus::flow::pore
 {
 namespace
 {
-/// Below this many unknowns the factor is simplicial, above it supernodal. Measured (CPU time of
-/// ordering + analysis + factorisation + solve, loaded 2-core machine, bench clouds, nested
-/// dissection below, the supernodal factor on one thread): 1 729 pores 2.9-3.2 ms simplicial
-/// against 3.3-3.5 ms supernodal, 2 981 pores 5.7-8.3 against 5.7-7.0 ms, 4 166 pores 12-16 against
-/// 9.4-10.7 ms, 6 102 pores 24-25 against 14 ms.
-constexpr int kSupernodalFrom = 2500;
+// The factor is simplicial below PressureSolver::supernodalFrom (2 500) unknowns, supernodal
+// above. Measured (CPU time of ordering + analysis + factorisation + solve, loaded 2-core
+// machine, bench clouds, nested dissection below, the supernodal factor on one thread): 1 729
+// pores 2.9-3.2 ms simplicial against 3.3-3.5 ms supernodal, 2 981 pores 5.7-8.3 against 5.7-7.0
+// ms, 4 166 pores 12-16 against 9.4-10.7 ms, 6 102 pores 24-25 against 14 ms.
 /// Nested dissection stops at this many unknowns (their order inside does not matter).
 constexpr std::size_t kDissectionLeaf = 16;
 
@@ -350,7 +349,9 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
     cholmod_free_sparse(&cholmod_->a, &cholmod_->common);
   rowOfPore_.assign(n, -1);
   poreOfRow_.clear();
+  poreOfRow_.reserve(n);
   centreOfRow_.clear();
+  centreOfRow_.reserve(n);
   for (std::size_t i = 0; i < n; ++i)
     if (!imposed[i])
     {
@@ -361,8 +362,13 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
   nUnknown_ = static_cast<int>(poreOfRow_.size());
   diag_.assign(poreOfRow_.size(), 0.0);
   start_.assign(1, 0);
+  start_.reserve(poreOfRow_.size() + 1);
+  // the old arrays were moved out above: without the reservation every push_back below grows
+  // them again from nothing (copies and fresh pages; 9 % of a 1 000-sphere remesh's page faults)
   neighbour_.clear();
+  neighbour_.reserve(4 * poreOfRow_.size());
   k_.clear();
+  k_.reserve(4 * poreOfRow_.size());
   for (std::size_t r = 0; r < poreOfRow_.size(); ++r)
   {
     const Pore& p = net.pores[static_cast<std::size_t>(poreOfRow_[r])];
@@ -387,12 +393,18 @@ void PressureSolver::factorize()
 {
   Cholmod& c = *cholmod_;
   const auto n = static_cast<std::size_t>(nUnknown_);
-  // The lower triangle in compressed columns, built directly (column j of the lower triangle is
-  // row j's couplings to the rows after it, by symmetry): the diagonal first, then the rows in
-  // increasing order, couplings to the same row (a periodic pore meeting another through two
-  // facets) summed, a coupling of a row to itself (its own periodic image) cancelling on the
-  // diagonal.
-  c.a = cholmod_allocate_sparse(n, n, n + neighbour_.size(), 1 /* sorted */, 1 /* packed */, -1 /* lower */,
+  // CHOLMOD permutes the matrix before factorising it; it takes one transpose for the upper
+  // triangle of a supernodal factor and for the lower one of a simplicial factor, two otherwise
+  // (cholmod_factorize). Measured on the 1 000-sphere bench cloud (5 758 unknowns): with the lower
+  // triangle given to the supernodal factor, cholmod_transpose_sym took 3 % of the remesh.
+  // the kind is decided with the analysis and kept with it (the triangle must match the factor's)
+  const bool supernodal = c.factor ? c.factor->is_super != 0 : nUnknown_ >= supernodalFrom;
+  // That triangle in compressed columns, built directly: column j holds row j's couplings to the
+  // rows after it (lower) or before it (upper), by symmetry, in increasing row order, with the
+  // diagonal first (lower) or last (upper); couplings to the same row (a periodic pore meeting
+  // another through two facets) summed, a coupling of a row to itself (its own periodic image)
+  // cancelling on the diagonal.
+  c.a = cholmod_allocate_sparse(n, n, n + neighbour_.size(), 1 /* sorted */, 1 /* packed */, supernodal ? 1 : -1,
                                 CHOLMOD_REAL, &c.common);
   auto* ap = static_cast<int*>(c.a->p);
   auto* ai = static_cast<int*>(c.a->i);
@@ -400,23 +412,26 @@ void PressureSolver::factorize()
   std::size_t nz = 0;
   for (std::size_t j = 0; j < n; ++j)
   {
+    const int column = static_cast<int>(j);
     ap[j] = static_cast<int>(nz);
     const std::size_t diagonal = nz;
-    ai[nz] = static_cast<int>(j);
-    ax[nz++] = diag_[j];
+    if (!supernodal)
+      ++nz; // the diagonal's slot
+    const std::size_t offDiagonal = nz;
+    double pivot = diag_[j];
     for (int e = start_[j]; e < start_[j + 1]; ++e)
     {
       const int row = rowOfPore_[static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)])];
       const double value = -k_[static_cast<std::size_t>(e)];
-      if (row == static_cast<int>(j))
-        ax[diagonal] += value;
-      if (row <= static_cast<int>(j))
+      if (row == column)
+        pivot += value;
+      if (row < 0 || row == column || (supernodal ? row > column : row < column))
         continue;
       // insert in order among this column's few entries (at most four couplings)
       std::size_t at = nz;
-      while (at > diagonal + 1 && ai[at - 1] > row)
+      while (at > offDiagonal && ai[at - 1] > row)
         --at;
-      if (at > diagonal + 1 && ai[at - 1] == row)
+      if (at > offDiagonal && ai[at - 1] == row)
       {
         ax[at - 1] += value;
         continue;
@@ -430,6 +445,9 @@ void PressureSolver::factorize()
       ax[at] = value;
       ++nz;
     }
+    const std::size_t at = supernodal ? nz++ : diagonal;
+    ai[at] = column;
+    ax[at] = pivot;
   }
   ap[n] = static_cast<int>(nz);
   using Clock = std::chrono::steady_clock;
@@ -448,7 +466,7 @@ void PressureSolver::factorize()
       coupledStart[r + 1] = static_cast<int>(coupled.size());
     }
     std::vector<int> perm = NestedDissection(centreOfRow_, coupledStart, coupled).order();
-    c.common.supernodal = nUnknown_ < kSupernodalFrom ? CHOLMOD_SIMPLICIAL : CHOLMOD_SUPERNODAL;
+    c.common.supernodal = supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
     c.factor = cholmod_analyze_p(c.a, perm.data(), nullptr, 0, &c.common);
     counters_.analyseSeconds += std::chrono::duration<double>(Clock::now() - start).count();
     ++counters_.analyses;

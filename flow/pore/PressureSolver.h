@@ -42,6 +42,10 @@ public:
   ///         or when Gauss-Seidel does not converge
   void solve(SolverKind kind, std::vector<double>& p, const std::vector<double>& source = {});
 
+  /// CHOLMOD's factor is simplicial below this many unknowns, supernodal from it (the default
+  /// from measurements, see PressureSolver.cpp; tests set it to compare both kinds). Read at the
+  /// symbolic analysis.
+  int supernodalFrom = 2500;
   double tolerance = 1e-7; ///< Gauss-Seidel: relative change of the pressure field
   double relax = 1.9;      ///< Gauss-Seidel over-relaxation (Yade's relax)
   int maxIterations = 100000;
