@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,18 @@ namespace
 // machine, bench clouds, nested dissection below, the supernodal factor on one thread): 1 729
 // pores 2.9-3.2 ms simplicial against 3.3-3.5 ms supernodal, 2 981 pores 5.7-8.3 against 5.7-7.0
 // ms, 4 166 pores 12-16 against 9.4-10.7 ms, 6 102 pores 24-25 against 14 ms.
+/// Supernodal factors of fewer unknowns amalgamate more columns into each supernode (CHOLMOD's
+/// nrelax 8, 32, 128 instead of its 4, 16, 48): fewer, larger supernodes, at the price of more
+/// explicit zeros. A small factorisation is bound by the per-supernode overhead (each supernode
+/// and each update opens CHOLMOD OpenMP regions, ~1 us and a futex call each even on one
+/// thread, and makes small BLAS calls), not by its flops: at 1 000 spheres (5 758 unknowns) 783
+/// supernodes become 504. Measured (CPU ms, min of 20-40 compressible steps, i.e. numeric
+/// factorisation + solve, alternating, load 2-4; bench clouds and their first 2 000 / 4 000
+/// spheres): 1 000 spheres 7.9-8.4 -> 6.6-7.2 over five pairs, 2 000 21.8-26.1 -> 20.4-23.9,
+/// 4 000 61.4-72.6 -> 54.4-61.0; the back-substitution with the kept factor 0.34 -> 0.36-0.47
+/// at 1 000. At 10 000 spheres (62 000 unknowns) the two were alike (compressible step
+/// 227-260 against 231-239 ms, solve 21-23 against 19-20 ms), and the default is kept there.
+constexpr int kCoarseBelow = 20000;
 /// Nested dissection stops at this many unknowns (their order inside does not matter).
 constexpr std::size_t kDissectionLeaf = 16;
 
@@ -42,10 +55,8 @@ constexpr std::size_t kDissectionLeaf = 16;
 /// each even for a team of one, and small BLAS calls). Kept out, measured there: the cut axis
 /// chosen among the three by the smallest separator (3.6 % fewer flops, +5.4 ms of ordering);
 /// CAMD on the leaves and separators as constraint sets (leaves of 16 to 200 rows: 4.1-4.7 %
-/// fewer flops, +2.5 ms of CAMD); coarser supernodal amalgamation (nrelax 8, 32, 128 instead of
-/// 4, 16, 48: 504 supernodes, factorisation 7.7 -> 6.8 ms at best but alike in the median of a
-/// loaded machine, the stored factor 28 % larger at 1k and 13 % at 10k, where the solve step
-/// went from 22 to 27 ms, min of 8).
+/// fewer flops, +2.5 ms of CAMD). The coarser supernodal amalgamation first measured here (7.7 ->
+/// 6.8 ms at best, alike in the median of a loaded machine) is now used below kCoarseBelow.
 class NestedDissection
 {
 public:
@@ -467,6 +478,9 @@ void PressureSolver::factorize()
     }
     std::vector<int> perm = NestedDissection(centreOfRow_, coupledStart, coupled).order();
     c.common.supernodal = supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
+    const bool coarse = nUnknown_ < kCoarseBelow;
+    const std::size_t nrelax[3] = {coarse ? 8U : 4U, coarse ? 32U : 16U, coarse ? 128U : 48U}; // CHOLMOD's: 4, 16, 48
+    std::copy(std::begin(nrelax), std::end(nrelax), c.common.nrelax);
     c.factor = cholmod_analyze_p(c.a, perm.data(), nullptr, 0, &c.common);
     counters_.analyseSeconds += std::chrono::duration<double>(Clock::now() - start).count();
     ++counters_.analyses;
