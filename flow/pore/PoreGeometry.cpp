@@ -18,31 +18,60 @@ const double kMultSym2 = 1 / std::pow(4.0, 0.25);
 /// Yade's minimal throat length, relative to the throat diameter (coincident pore centres).
 constexpr double kMinPermLength = 1e-6;
 
-/// Area of the spherical triangle cut on sphere v by the cone (v; a, b, c).
-double sphericalArea(const Vertex& v, const Vec3& a, const Vec3& b, const Vec3& c)
+/// Solid angles at apex s of the cones (s; x, b, c) for several x with b and c fixed: what
+/// depends on s, b, c only is computed once. A throat asks for two or three cones at each of its
+/// spheres, all towards the two pore centres (b, c); the solid angles, an arctangent each, are
+/// most of the geometry's cost. The arithmetic is the formula of solidAngle, term for term.
+class ConesAt
 {
-  return v.radius == 0 ? 0.0 : v.radius * v.radius * solidAngle(v.pos, a, b, c);
-}
+public:
+  ConesAt(const Vec3& s, const Vec3& b, const Vec3& c)
+      : apex_(s), v_(b - s), w_(c - s), vw_(v_.cross(w_)), nv_(v_.norm()), nw_(w_.norm()), dotVW_(v_.dot(w_))
+  {
+  }
+  /// Solid angle of the triangle (x, b, c) seen from the apex (Van Oosterom & Strackee; as Yade,
+  /// the absolute value of 2 atan(ratio)).
+  [[nodiscard]] double towards(const Vec3& x) const
+  {
+    const Vec3 u = x - apex_;
+    const double nu = u.norm();
+    const double ratio = u.dot(vw_) / (nu * nv_ * nw_ + u.dot(v_) * nw_ + u.dot(w_) * nv_ + dotVW_ * nu);
+    return std::abs(2 * std::atan(ratio));
+  }
 
-/// Volume of the sphere sector of v in the cone (v; a, b, c).
-double sectorVolume(const Vertex& v, const Vec3& a, const Vec3& b, const Vec3& c)
-{
-  return kThird * v.radius * sphericalArea(v, a, b, c);
-}
+private:
+  Vec3 apex_;
+  Vec3 v_;
+  Vec3 w_;
+  Vec3 vw_;
+  double nv_;
+  double nw_;
+  double dotVW_;
+};
 
-/// The spherical triangle of sphericalArea and the sector of sectorVolume together, from one
-/// solid angle (the throat formulas need both of the same cone: the solid angles, an arctangent
-/// each, are most of the geometry's cost).
+/// The spherical triangle cut on a sphere by a cone at its centre and the sphere sector inside
+/// it (the throat formulas need both of the same cone).
 struct Sector
 {
   double area;
   double volume;
 };
-Sector sector(const Vertex& v, const Vec3& a, const Vec3& b, const Vec3& c)
+
+/// The sectors of sphere v in the cones (v; x, p1, p2) towards the two pore centres of a throat.
+class SectorsTowards
 {
-  const double area = sphericalArea(v, a, b, c);
-  return {area, kThird * v.radius * area};
-}
+public:
+  SectorsTowards(const Vertex& v, const Vec3& p1, const Vec3& p2) : v_(v), cones_(v.pos, p1, p2) {}
+  [[nodiscard]] Sector of(const Vec3& x) const
+  {
+    const double area = v_.radius == 0 ? 0.0 : v_.radius * v_.radius * cones_.towards(x);
+    return {area, kThird * v_.radius * area};
+  }
+
+private:
+  const Vertex& v_;
+  ConesAt cones_;
+};
 
 /// The point p with its coordinate along boundary b moved onto the boundary plane.
 Vec3 projected(const Vec3& p, const Boundary& b)
@@ -156,9 +185,9 @@ double solidVolume(const PoreNetwork& net, const Pore& p)
     const Vertex& s = net.vertices[static_cast<std::size_t>(p.vertices[perm[0]])];
     if (s.fictitious)
       continue;
-    v += sectorVolume(s, net.vertices[static_cast<std::size_t>(p.vertices[perm[1]])].pos,
-                      net.vertices[static_cast<std::size_t>(p.vertices[perm[2]])].pos,
-                      net.vertices[static_cast<std::size_t>(p.vertices[perm[3]])].pos);
+    const Vec3& b = net.vertices[static_cast<std::size_t>(p.vertices[perm[2]])].pos;
+    const Vec3& c = net.vertices[static_cast<std::size_t>(p.vertices[perm[3]])].pos;
+    v += SectorsTowards(s, b, c).of(net.vertices[static_cast<std::size_t>(p.vertices[perm[1]])].pos).volume;
   }
   return v;
 }
@@ -197,9 +226,9 @@ void throatRegion(const PoreNetwork& net, Throat& t, const std::array<const Vert
     double vsolid = 0;
     for (int i = 0; i < 3; ++i)
     {
-      const Vertex& a = *w[static_cast<std::size_t>(i)];
-      const Sector toB = sector(a, w[static_cast<std::size_t>((i + 1) % 3)]->pos, p1, p2);
-      const Sector toC = sector(a, w[static_cast<std::size_t>((i + 2) % 3)]->pos, p1, p2);
+      const SectorsTowards at(*w[static_cast<std::size_t>(i)], p1, p2);
+      const Sector toB = at.of(w[static_cast<std::size_t>((i + 1) % 3)]->pos);
+      const Sector toC = at.of(w[static_cast<std::size_t>((i + 2) % 3)]->pos);
       vsolid += toB.volume + toC.volume;
       t.solidSurfaces[static_cast<std::size_t>(i)] = toB.area + toC.area;
     }
@@ -219,15 +248,17 @@ void throatRegion(const PoreNetwork& net, Throat& t, const std::array<const Vert
     const double vtot = bipyramidVolume(s, p1, p2);
     const Vec3 a = projected(r1.pos, b);
     const Vec3 bb = projected(r2.pos, b);
-    const Sector r1r2 = sector(r1, r2.pos, p1, p2);
-    const Sector r2r1 = sector(r2, r1.pos, p1, p2);
-    const double vsolid = sectorVolume(r1, a, p1, p2) + r1r2.volume + sectorVolume(r2, bb, p1, p2) + r2r1.volume;
+    const SectorsTowards at1(r1, p1, p2);
+    const SectorsTowards at2(r2, p1, p2);
+    const Sector r1r2 = at1.of(r2.pos);
+    const Sector r2r1 = at2.of(r1.pos);
+    const double vsolid = at1.of(a).volume + r1r2.volume + at2.of(bb).volume + r2r1.volume;
     vpore = vtot - vsolid;
     if (solidWall(b))
       t.solidSurfaces[slot(&f)] = std::abs(0.5 * (p1 - p2).cross(r1.pos - r2.pos)[c]);
     // As Yade: the sphere surfaces towards the wall use the fictitious sphere's centre.
-    t.solidSurfaces[slot(&r1)] = sphericalArea(r1, f.pos, p1, p2) + r1r2.area;
-    t.solidSurfaces[slot(&r2)] = r2r1.area + sphericalArea(r2, f.pos, p1, p2);
+    t.solidSurfaces[slot(&r1)] = at1.of(f.pos).area + r1r2.area;
+    t.solidSurfaces[slot(&r2)] = r2r1.area + at2.of(f.pos).area;
     break;
   }
   case 2:
@@ -239,8 +270,9 @@ void throatRegion(const PoreNetwork& net, Throat& t, const std::array<const Vert
     const Vec3 bb = projected(r.pos, b2);
     s = (r.pos - a).cross(r.pos - bb);
     const double vtot = bipyramidVolume(s, p1, p2);
-    const Sector toA = sector(r, a, p1, p2);
-    const Sector toB = sector(r, bb, p1, p2);
+    const SectorsTowards at(r, p1, p2);
+    const Sector toA = at.of(a);
+    const Sector toB = at.of(bb);
     vpore = vtot - toA.volume - toB.volume;
     t.solidSurfaces[slot(&r)] = toA.area + toB.area;
     const Vec3 side = 0.5 * (p1 - p2).cross(r.pos - p2);
@@ -275,18 +307,7 @@ void throatRegion(const PoreNetwork& net, Throat& t, const std::array<const Vert
 }
 } // namespace
 
-double solidAngle(const Vec3& s, const Vec3& a, const Vec3& b, const Vec3& c)
-{
-  const Vec3 u = a - s;
-  const Vec3 v = b - s;
-  const Vec3 w = c - s;
-  const double det = u.dot(v.cross(w));
-  const double nu = u.norm();
-  const double nv = v.norm();
-  const double nw = w.norm();
-  const double ratio = det / (nu * nv * nw + u.dot(v) * nw + u.dot(w) * nv + v.dot(w) * nu);
-  return std::abs(2 * std::atan(ratio));
-}
+double solidAngle(const Vec3& s, const Vec3& a, const Vec3& b, const Vec3& c) { return ConesAt(s, b, c).towards(a); }
 
 void updatePoreVolumes(PoreNetwork& net, bool voids)
 {
