@@ -160,6 +160,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
   auto owner = std::make_shared<Triangulation>();
   Regular& rt = owner->rt;
   detail::insertVertices(net, rt, order, insertion);
+  const std::vector<int> rank = detail::canonicalRanks(net.vertices, insertion);
 
   // Group the cells by periodic translation. Each group's representative point (the centroid of
   // its sphere vertices, from the key so that every image computes the same number) falls in the
@@ -263,7 +264,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       p.neighbours[k] = owner->poreOf[ni];
       p.neighbourPeriod[k] = owner->periodOf[ni];
     }
-    p.centre = detail::weightedCentre(net, rt, c, insertion);
+    p.centre = detail::weightedCentre(rt, c, rank);
   }
   // One throat per facet up to translation, made from the side of the smaller pore index (or
   // towards the positive shift between a pore and its own image), linked to the mirror facet.
@@ -291,7 +292,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       for (int y = 0, m = 0; y < 4; ++y)
         if (y != k)
           t.mirrorLocal[static_cast<std::size_t>(m++)] = inOther(c->vertex(y)->info());
-      detail::setFacetVertices(t, net.pores[pi].vertices, net.vertices, insertion);
+      detail::setFacetVertices(t, net.pores[pi].vertices, rank);
       const int mirror = inOther(n->vertex(rt.mirror_index(c, k))->info());
       if (mirror < 0 || std::find(t.mirrorLocal.begin(), t.mirrorLocal.end(), -1) != t.mirrorLocal.end() ||
           net.pores[static_cast<std::size_t>(j)].throats[mirror] >= 0)

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <stdexcept>
 #include <tuple>
 
@@ -86,25 +87,33 @@ void insertVertices(PoreNetwork& net, Regular& rt, const std::vector<int>& order
       net.hiddenSpheres.push_back(net.vertices[i].id);
 }
 
-std::tuple<bool, std::int64_t, int> canonicalKey(const std::vector<Vertex>& vertices, int index)
+std::vector<int> canonicalRanks(const std::vector<Vertex>& vertices, InsertionOrder insertion)
 {
-  const Vertex& v = vertices[static_cast<std::size_t>(index)];
-  return {!v.fictitious, v.id, index};
+  if (insertion == InsertionOrder::Yade)
+    return {};
+  std::vector<int> order(vertices.size());
+  std::iota(order.begin(), order.end(), 0);
+  const auto key = [&](int i) {
+    const Vertex& v = vertices[static_cast<std::size_t>(i)];
+    return std::tuple<bool, std::int64_t, int>{!v.fictitious, v.id, i};
+  };
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  std::vector<int> rank(vertices.size());
+  for (std::size_t r = 0; r < order.size(); ++r)
+    rank[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
+  return rank;
 }
 
-void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const std::vector<Vertex>& vertices,
-                      InsertionOrder insertion)
+void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const std::vector<int>& rank)
 {
   constexpr int kFacetVertices[4][3] = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   std::array<std::array<int, 2>, 3> facet{}; // (vertex, its local index in the other pore)
   for (std::size_t k = 0; k < 3; ++k)
     facet[k] = {poreVertices[static_cast<std::size_t>(kFacetVertices[t.facet][k])], t.mirrorLocal[k]};
-  if (insertion == InsertionOrder::Sorted)
-  {
+  if (!rank.empty())
     std::sort(facet.begin(), facet.end(), [&](const auto& a, const auto& b) {
-      return canonicalKey(vertices, a[0]) < canonicalKey(vertices, b[0]);
+      return rank[static_cast<std::size_t>(a[0])] < rank[static_cast<std::size_t>(b[0])];
     });
-  }
   for (std::size_t k = 0; k < 3; ++k)
   {
     t.vertices[k] = facet[k][0];
@@ -112,12 +121,12 @@ void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const s
   }
 }
 
-Vec3 weightedCentre(const PoreNetwork& net, const Regular& rt, Regular::Cell_handle c, InsertionOrder insertion)
+Vec3 weightedCentre(const Regular& rt, Regular::Cell_handle c, const std::vector<int>& rank)
 {
   std::array<Regular::Vertex_handle, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};
-  if (insertion == InsertionOrder::Sorted)
+  if (!rank.empty())
     std::sort(v.begin(), v.end(), [&](Regular::Vertex_handle a, Regular::Vertex_handle b) {
-      return canonicalKey(net.vertices, a->info()) < canonicalKey(net.vertices, b->info());
+      return rank[static_cast<std::size_t>(a->info())] < rank[static_cast<std::size_t>(b->info())];
     });
   const auto centre = rt.geom_traits().construct_weighted_circumcenter_3_object();
   const Point q = centre(v[0]->point(), v[1]->point(), v[2]->point(), v[3]->point());
@@ -176,6 +185,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   for (std::size_t i = 0; i < order.size(); ++i)
     order[i] = static_cast<int>(i);
   detail::insertVertices(net, rt, order, insertion);
+  const std::vector<int> rank = detail::canonicalRanks(net.vertices, insertion);
 
   int n = 0;
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
@@ -191,7 +201,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
       p.throats[k] = -1;
       p.nFictitious += net.vertices[static_cast<std::size_t>(p.vertices[k])].fictitious ? 1 : 0;
     }
-    p.centre = detail::weightedCentre(net, rt, c, insertion);
+    p.centre = detail::weightedCentre(rt, c, rank);
   }
   net.throats.reserve(2 * net.pores.size()); // four facets per pore, each shared by two
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
@@ -207,7 +217,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
       for (int y = 0, m = 0; y < 4; ++y)
         if (y != k)
           t.mirrorLocal[static_cast<std::size_t>(m++)] = c->neighbor(k)->index(c->vertex(y));
-      detail::setFacetVertices(t, net.pores[static_cast<std::size_t>(c->info())].vertices, net.vertices, insertion);
+      detail::setFacetVertices(t, net.pores[static_cast<std::size_t>(c->info())].vertices, rank);
       net.pores[static_cast<std::size_t>(c->info())].throats[k] = static_cast<int>(net.throats.size());
       net.pores[static_cast<std::size_t>(other)].throats[mirror] = static_cast<int>(net.throats.size());
       net.throats.push_back(t);
