@@ -25,11 +25,12 @@ namespace
 /// Supernodal factors of fewer unknowns amalgamate more columns into each supernode (CHOLMOD's
 /// nrelax 8, 32, 128 instead of its 4, 16, 48): fewer, larger supernodes, at the price of more
 /// explicit zeros. A small factorisation is bound by the per-supernode overhead (each supernode
-/// and each update opens CHOLMOD OpenMP regions, ~1 us and a futex call each even on one
-/// thread, and makes small BLAS calls), not by its flops: at 1 000 spheres (5 758 unknowns) 783
-/// supernodes become 504. Measured (CPU ms, min of 20-40 compressible steps, i.e. numeric
-/// factorisation + solve, alternating, load 2-4; bench clouds and their first 2 000 / 4 000
-/// spheres): 1 000 spheres 7.9-8.4 -> 6.6-7.2 over five pairs, 2 000 21.8-26.1 -> 20.4-23.9,
+/// and each update opens CHOLMOD OpenMP regions, a team allocation and a futex call each even
+/// on one thread, and makes small BLAS calls), not by its flops: at 1 000 spheres (5 758
+/// unknowns) 783 supernodes become 504 (counted in round 5). Measured (CPU ms, min of 20-40
+/// compressible steps, i.e. numeric factorisation + solve, alternating, load 2-4; bench clouds
+/// and the first 2 000 / 4 000 spheres of the 10k one): 1 000 spheres 7.9-8.9 -> 6.6-8.0 over
+/// eight pairs (each pair lower), 2 000 21.8-26.1 -> 20.4-23.9,
 /// 4 000 61.4-72.6 -> 54.4-61.0; the back-substitution with the kept factor 0.34 -> 0.36-0.47
 /// at 1 000. At 10 000 spheres (62 000 unknowns) the two were alike (compressible step
 /// 227-260 against 231-239 ms, solve 21-23 against 19-20 ms), and the default is kept there.

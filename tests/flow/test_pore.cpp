@@ -21,12 +21,13 @@ using namespace talus::flow::pore;
 
 namespace
 {
-std::vector<PoreSphere> loadPacking()
+/// The spheres of a file of tests/flow/data ("x y z r" lines), numbered from `id` (6 by default:
+/// as in Yade, after the six walls).
+std::vector<PoreSphere> loadPacking(const std::string& file = "pore_packing.txt", std::int64_t id = 6)
 {
-  std::ifstream in(std::string(TALUS_FLOW_TEST_DATA) + "/pore_packing.txt");
+  std::ifstream in(std::string(TALUS_FLOW_TEST_DATA) + "/" + file);
   std::vector<PoreSphere> s;
   std::string line;
-  std::int64_t id = 6; // as in Yade, after the six walls
   while (std::getline(in, line))
   {
     if (line.empty() || line[0] == '#')
@@ -38,6 +39,16 @@ std::vector<PoreSphere> loadPacking()
     s.push_back(p);
   }
   return s;
+}
+
+/// The pores touching ymin or ymax (the imposed pressures of yFlow).
+std::vector<char> yImposed(const PoreNetwork& net)
+{
+  std::vector<char> imposed(net.pores.size(), 0);
+  for (int k : {2, 3})
+    for (int pi : net.boundaryPores[static_cast<std::size_t>(k)])
+      imposed[static_cast<std::size_t>(pi)] = 1;
+  return imposed;
 }
 
 /// Pressure 1 at ymin, 0 at ymax, no flux elsewhere.
@@ -133,10 +144,7 @@ TEST(PressureSolver, SymbolicAnalysisIsKeptWhileThePatternIsUnchanged)
   PoreFlow f = yFlow();
   f.build(loadPacking());
   const PoreNetwork& net = f.network();
-  std::vector<char> imposed(net.pores.size(), 0);
-  for (int k : {2, 3})
-    for (int pi : net.boundaryPores[static_cast<std::size_t>(k)])
-      imposed[static_cast<std::size_t>(pi)] = 1;
+  std::vector<char> imposed = yImposed(net);
   PressureSolver solver;
   std::vector<double> p(net.pores.size(), 0.0);
   for (int pi : net.boundaryPores[2])
@@ -211,10 +219,7 @@ TEST(PressureSolver, SupernodalAndSimplicialFactorsGiveTheSamePressures)
   PoreFlow box = yFlow();
   box.build(loadPacking());
   const PoreNetwork& net = box.network();
-  std::vector<char> imposed(net.pores.size(), 0);
-  for (int k : {2, 3})
-    for (int pi : net.boundaryPores[static_cast<std::size_t>(k)])
-      imposed[static_cast<std::size_t>(pi)] = 1;
+  const std::vector<char> imposed = yImposed(net);
   const std::vector<double> none;
   const std::vector<double> simplicial = choleskyPressures(net, imposed, none, 1 << 30);
   const std::vector<double> supernodal = choleskyPressures(net, imposed, none, 0);
@@ -227,18 +232,7 @@ TEST(PressureSolver, SupernodalAndSimplicialFactorsGiveTheSamePressures)
   cell.params.hasBoundary = {false, false, false, false, false, false};
   cell.params.cellSize = Vec3::Ones();
   cell.params.duplicateThreshold = 0.25;
-  std::vector<PoreSphere> spheres;
-  std::ifstream in(std::string(TALUS_FLOW_TEST_DATA) + "/pore_periodic_packing.txt");
-  std::string line;
-  while (std::getline(in, line))
-    if (!line.empty() && line[0] != '#')
-    {
-      std::istringstream ls(line);
-      PoreSphere sp;
-      ls >> sp.pos.x() >> sp.pos.y() >> sp.pos.z() >> sp.radius;
-      sp.id = static_cast<std::int64_t>(spheres.size());
-      spheres.push_back(sp);
-    }
+  const std::vector<PoreSphere> spheres = loadPacking("pore_periodic_packing.txt", 0);
   ASSERT_EQ(spheres.size(), 300U);
   cell.build(spheres);
   const PoreNetwork& periodic = cell.network();
