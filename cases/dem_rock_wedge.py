@@ -181,7 +181,7 @@ def run_key_blocks(blocks, phi_deg, free, seconds, ramp_seconds=2.0):
     S.dt = 1e-4
     newton.gravity = (0, 0, G / 20)
     S.run(3, True)
-    S.dt = time_step(S, set(ids)) * 0.5   # the smallest 0.15 sqrt(m / kn) grows as the blocks settle
+    S.dt = time_step(S, set(ids))
     for k in range(1, 21):
         newton.gravity = (0, 0, G * k / 20)
         S.run(int(round(ramp_seconds / 20 / S.dt)), True)
@@ -312,7 +312,7 @@ def main():
             ax1.plot(times, moved[:, n], color="0.7", lw=0.6)
     ax1.set_xlabel("time since the excavation (s)")
     ax1.set_ylabel("displacement (m)")
-    ax1.set_title(f"WedgeYADE.py's run, phi = {PHI:.0f} deg (grey: blocks not free on fixed neighbours)")
+    ax1.set_title(f"WedgeYADE.py's run at {PHI:.0f} deg (grey: not free on fixed neighbours)", fontsize=10)
     ax1.legend(fontsize=7)
     for n, k in enumerate(free):
         ax2.semilogy(phis, [max(ends[p][n], 1e-6) for p in phis], "o-", label=f"block {k}")
@@ -320,7 +320,8 @@ def main():
     ax2.axhline(SLID, color="k", lw=0.6, ls="--")
     ax2.set_xlabel("rock friction angle (deg); dotted: limit-equilibrium phi_c")
     ax2.set_ylabel(f"displacement after the loading, {seconds:.0f} s (m)")
-    ax2.set_title(f"friction reduction: FS at 50 deg DEM {fs_dem:.3f}, limit equilibrium {fs_analytic:.3f}")
+    ax2.set_title(f"friction reduction: FS at 50 deg DEM {fs_dem:.3f}, limit equilibrium {fs_analytic:.3f}",
+                  fontsize=10)
     ax2.legend(fontsize=8)
     fig.tight_layout()
     case.save_chart(fig)
