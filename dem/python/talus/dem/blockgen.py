@@ -210,7 +210,7 @@ def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None 
                    maxRatio: float = math.inf) -> list[PotentialBlock]:
     """Split ``intact`` (planes in world coordinates) by ``joints`` in turn; returns the blocks
     (rounding ``r``, default the intact block's), dropping pieces of volume <= ``minVolume``
-    (slivers, which Yade's BlockGen drops with minSize). Planes bounding a piece only at an edge
+    (slivers; Yade's BlockGen avoids them instead, see minSize). Planes bounding a piece only at an edge
     or a vertex are removed, so each block keeps only its faces.
 
     A joint cuts every block whose interior its rectangle meets (Yade's BlockGen), along the
