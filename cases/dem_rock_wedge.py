@@ -22,7 +22,7 @@ Set-up:   as WedgeYADE.py (x north, y east, z down, gravity (0, 0, 9.81) m/s^2):
             facing 135 deg; then 20000 steps (quick: 6000);
           - limit equilibrium's setting for the friction search: the same blocks, the excavated
             ones left out, every block fixed but the freed ones (below), gravity ramped up over
-            2 s with Cundall damping 0.3, then 1 s (full: 2 s) with the dashpot only, at rock
+            2 s (full: 6 s) with Cundall damping 0.3, then 1 s (full: 2 s) with the dashpot only, at rock
             friction 3 deg below and above each freed block's limit phi_c (full mode also
             50 deg); and a bisection (4 steps, full 7) on the friction below which the most
             critical block moves more than 5 cm (the strength reduction tan phi = tan 50 / F).
@@ -163,7 +163,7 @@ def run_script(blocks, steps_after, record_every=200):
     return S, left, np.array(moved), np.array(times)
 
 
-def run_key_blocks(blocks, phi_deg, free, seconds, ramp_seconds=2.0):
+def run_key_blocks(blocks, phi_deg, free, seconds, ramp_seconds):
     """Limit equilibrium's setting: the rock mass already excavated, every block but those of
     ``free`` fixed; gravity ramped up over ``ramp_seconds`` with Cundall damping 0.3, then
     ``seconds`` with the script's dashpot (0.5) only. A faster load makes the shear springs
@@ -193,7 +193,8 @@ def run_key_blocks(blocks, phi_deg, free, seconds, ramp_seconds=2.0):
 
 
 def _corners(b):
-    return np.asarray(_dem.potential_block_geometry(list(b.a), list(b.b), list(b.c), list(b.d), b.r, "block")["vertices"])
+    g = _dem.potential_block_geometry(list(b.a), list(b.b), list(b.c), list(b.d), b.r, "block")
+    return np.asarray(g["vertices"])
 
 
 def limit_equilibrium(blocks, volumes, keep):
@@ -215,8 +216,10 @@ def limit_equilibrium(blocks, volumes, keep):
         weight = np.array([0, 0, RHO * volumes[k] * G])
         # FS per unit tan(phi): rock faces tan phi = 1, plates 0.
         unit = block_sliding_mode(weight, [n for n, _ in faces], [0.0 if on(n, h, outer) else 1.0 for n, h in faces])
-        phi_c = 90.0 if unit["FS"] == 0 else (0.0 if math.isinf(unit["FS"]) else math.degrees(math.atan(1 / unit["FS"])))
-        out[k] = dict(mode=unit["mode"], phi_c=phi_c, volume=volumes[k], direction=[float(x) for x in unit["direction"]])
+        fs = unit["FS"]
+        phi_c = 90.0 if fs == 0 else (0.0 if math.isinf(fs) else math.degrees(math.atan(1 / fs)))
+        out[k] = dict(mode=unit["mode"], phi_c=phi_c, volume=volumes[k],
+                      direction=[float(x) for x in unit["direction"]])
     return out
 
 
@@ -262,24 +265,29 @@ def main():
     # Limit equilibrium's setting, friction 3 deg below and above each block's limit (and the
     # script's 50 deg in full mode): blocks below their limit slide, the others hold.
     seconds = 1.0 if args.quick else 2.0
+    ramp_seconds = 2.0 if args.quick else 6.0   # the slower, the closer to the static limit
     limits_c = sorted({round(limits[k]["phi_c"], 2) for k in free})
-    phis = sorted({round(c + sign * 3.0, 2) for c in limits_c for sign in (-1, 1)} | ({PHI} if not args.quick else set()))
+    phis = sorted({round(c + sign * 3.0, 2) for c in limits_c for sign in (-1, 1)}
+                  | ({PHI} if not args.quick else set()))
     ends, wrong = {}, []
     for phi in phis:
-        ramp, after = run_key_blocks(blocks, phi, free, seconds)
+        ramp, after = run_key_blocks(blocks, phi, free, seconds, ramp_seconds)
         ends[phi] = after
         for n, k in enumerate(free):
             slides = limits[k]["phi_c"] > phi
             if (slides and after[n] < SLID) or (not slides and after[n] > HELD):
                 wrong.append((phi, k, float(after[n]), limits[k]["phi_c"]))
-        print(f"phi {phi} deg: " + ", ".join(f"block {k} {after[n]:.4f} m (ramp {ramp[n]:.4f})" for n, k in enumerate(free)))
+        print(f"phi {phi} deg: "
+              + ", ".join(f"block {k} {after[n]:.4f} m (ramp {ramp[n]:.4f})" for n, k in enumerate(free)))
     print(f"outcomes against limit equilibrium: {len(wrong)} wrong {wrong}")
-    case.record(f"number of freed blocks whose outcome {seconds:.0f} s after the loading (slid > {SLID} m below its limit, "
-                f"held < {HELD} m above) contradicts limit equilibrium, friction 3 deg off each limit", len(wrong),
+    case.record(f"number of freed blocks whose outcome {seconds:.0f} s after the loading (slid > {SLID} m below "
+                f"its limit, held < {HELD} m above) contradicts limit equilibrium, friction 3 deg off each limit",
+                len(wrong),
                 "Goodman & Shi sliding mode, Hoek & Bray limit equilibrium (friction only) of each block on fixed "
                 "neighbours", 0, suffix="stability", phis_deg=phis, free_blocks=free, wrong=wrong,
                 phi_c={str(k): limits[k]["phi_c"] for k in free}, modes={str(k): limits[k]["mode"] for k in free},
-                moved={str(p): [float(x) for x in e] for p, e in ends.items()}, seconds=seconds)
+                moved={str(p): [float(x) for x in e] for p, e in ends.items()}, seconds=seconds,
+                ramp_seconds=ramp_seconds)
 
     # Friction reduction: bisection on the friction at which the most critical block starts to
     # slide (moves more than ONSET after the loading), from [50, 85] deg.
@@ -288,7 +296,7 @@ def main():
     low, high = PHI, 85.0
     for _ in range(4 if args.quick else 7):
         mid = 0.5 * (low + high)
-        moved_mid = run_key_blocks(blocks, mid, [worst], seconds)[1][0]
+        moved_mid = run_key_blocks(blocks, mid, [worst], seconds, ramp_seconds)[1][0]
         print(f"bisection: phi {mid:.3f} deg, block {worst} moved {moved_mid:.4f} m")
         low, high = (mid, high) if moved_mid > ONSET else (low, mid)
     phi_star = 0.5 * (low + high)
@@ -302,7 +310,8 @@ def main():
                 "tan 50 / tan phi*, phi* bisected)", fs_error,
                 "tan(phi) / tan(phi_c) of limit equilibrium for the most critical block", 0.05,
                 suffix="factor-of-safety", fs_dem=fs_dem, fs_analytic=fs_analytic, phi_star=phi_star,
-                bracket=[low, high], phi_c=critical, block=worst, mode=limits[worst]["mode"])
+                bracket=[low, high], phi_c=critical, block=worst, mode=limits[worst]["mode"],
+                ramp_seconds=ramp_seconds)
 
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.5))
     for n, k in enumerate(left):

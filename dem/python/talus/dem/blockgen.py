@@ -263,7 +263,8 @@ def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None 
                 except ValueError:
                     continue   # no volume on this side after all (the joint only grazes the block)
                 children.append((n2, h2, np.asarray(g["vertices"]), g["volume"]))
-            if prune and (len(children) < 2 or any(_tooSmall(n2, h2, v, minSize, maxRatio) for n2, h2, v, _ in children)):
+            if prune and (len(children) < 2
+                          or any(_tooSmall(n2, h2, v, minSize, maxRatio) for n2, h2, v, _ in children)):
                 split.append(piece)   # Yade's pruning: the joint stops before this block
                 continue
             for n2, h2, vertices, volume in children:
