@@ -38,3 +38,58 @@ def hertz_restitution(mass: float, kno: float, beta: float, v0: float) -> float:
 def hertz_contact_time(mass: float, kno: float, v0: float) -> float:
     """Duration of an elastic Hertz impact at speed v0: 2.87 (m^2 / (kno^2 v0))^(1/5)."""
     return 2.87 * (mass ** 2 / (kno ** 2 * v0)) ** 0.2
+
+
+def block_sliding_mode(weight, normals, tan_phi, tol: float = 1e-9) -> dict:
+    """Limit equilibrium of a rigid block on fixed neighbours under a force ``weight`` (its
+    weight), friction only (Goodman & Shi's block theory; for two faces the vector form of
+    Hoek & Bray's wedge). ``normals``: the block's outward unit normals of its contact faces
+    (pointing into what holds it), ``tan_phi``: each face's friction coefficient.
+
+    The sliding mode is the one of lift-off (every face opens), sliding on one face (the others
+    open or slide parallel) and sliding along the intersection line of two faces (both
+    pressed, the others open) whose direction d no other face blocks (d . m <= 0). Returns
+    ``mode`` ("lift", "plane", "wedge" or "none": no mode, the block is not removable),
+    ``faces`` (indices), ``direction`` d, the normal reactions ``N`` per face of the mode,
+    ``driving`` W . d and the factor of safety ``FS`` = sum(N tan phi) / (W . d) (0 for lift-off,
+    inf for "none"). Of several admissible modes (only on degenerate geometry) the smallest FS."""
+    W = np.asarray(weight, dtype=float)
+    m = np.asarray(normals, dtype=float).reshape(-1, 3)
+    mu = np.broadcast_to(np.asarray(tan_phi, dtype=float), (len(m),))
+    scale = float(np.linalg.norm(W))
+    w = W / scale
+
+    def free(d, skip):
+        return all(d @ m[k] <= tol for k in range(len(m)) if k not in skip)
+
+    best = {"mode": "none", "faces": (), "direction": np.zeros(3), "N": [], "driving": 0.0, "FS": math.inf}
+
+    def offer(mode, faces, d, N):
+        driving = float(W @ d)
+        FS = float(sum(n * mu[k] for n, k in zip(N, faces)) / driving) if faces else 0.0
+        if FS < best["FS"]:
+            best.update(mode=mode, faces=faces, direction=d, N=list(N), driving=driving, FS=FS)
+
+    if free(w, ()):
+        offer("lift", (), w, [])
+    for i in range(len(m)):
+        N = float(W @ m[i])
+        tangential = w - (w @ m[i]) * m[i]
+        if N > tol * scale and np.linalg.norm(tangential) > tol:
+            d = tangential / np.linalg.norm(tangential)
+            if free(d, (i,)):
+                offer("plane", (i,), d, [N])
+    for i in range(len(m)):
+        for j in range(i + 1, len(m)):
+            line = np.cross(m[i], m[j])
+            if np.linalg.norm(line) < 1e-6:
+                continue   # parallel faces: no intersection line
+            d = line / np.linalg.norm(line)
+            d = d if w @ d >= 0 else -d
+            if w @ d <= tol or not free(d, (i, j)):
+                continue
+            # The reactions -N_i m_i - N_j m_j balance the weight's part normal to d.
+            N = np.linalg.lstsq(np.column_stack([m[i], m[j]]), W - (W @ d) * d, rcond=None)[0]
+            if N.min() > tol * scale:
+                offer("wedge", (i, j), d, N)
+    return best

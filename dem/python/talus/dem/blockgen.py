@@ -188,12 +188,29 @@ class _Piece:
     jointType: list
 
 
+def _inscribedDiameter(normals: np.ndarray, h: np.ndarray) -> float:
+    """Diameter of the largest ball inside {x : n_i . x <= h_i} (unit normals; Chebyshev centre
+    by a linear program: maximise s subject to n_i . x + s <= h_i); 0 if the region is empty."""
+    from scipy.optimize import linprog
+    lp = linprog([0.0, 0.0, 0.0, -1.0], A_ub=np.column_stack([normals, np.ones(len(h))]), b_ub=h,
+                 bounds=[(None, None)] * 3 + [(0.0, None)], method="highs")
+    return 2.0 * float(lp.x[3]) if lp.status == 0 else 0.0
+
+
+def _tooSmall(normals: np.ndarray, h: np.ndarray, vertices: np.ndarray, minSize: float, maxRatio: float) -> bool:
+    """Yade's BlockGen test of a piece: inscribed diameter below minSize, or an extent along x, y
+    or z above maxRatio times it."""
+    diameter = _inscribedDiameter(normals, h)
+    return diameter < minSize or diameter <= 0 or float(np.ptp(vertices, axis=0).max()) > maxRatio * diameter
+
+
 def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None = None, minVolume: float = 0.0,
                    rockCohesion: float = 0.0, rockTension: float = 0.0,
-                   intactRockDegradation: bool = False) -> list[PotentialBlock]:
+                   intactRockDegradation: bool = False, minSize: float = 0.0,
+                   maxRatio: float = math.inf) -> list[PotentialBlock]:
     """Split ``intact`` (planes in world coordinates) by ``joints`` in turn; returns the blocks
     (rounding ``r``, default the intact block's), dropping pieces of volume <= ``minVolume``
-    (slivers, which Yade's BlockGen drops with minSize). Planes bounding a piece only at an edge
+    (slivers; Yade's BlockGen avoids them instead, see minSize). Planes bounding a piece only at an edge
     or a vertex are removed, so each block keeps only its faces.
 
     A joint cuts every block whose interior its rectangle meets (Yade's BlockGen), along the
@@ -201,11 +218,19 @@ def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None 
     joint covers: cohesion = k c_joint + (1 - k) ``rockCohesion``, tension likewise with
     ``rockTension`` (the rock bridge is intact rock), where the joint's own c and t (the
     file's columns) count only with ``intactRockDegradation`` (Yade's BlockGen option); faces
-    with a strength are intact rock. The intact block's own faces are frictional."""
+    with a strength are intact rock. The intact block's own faces are frictional.
+
+    ``minSize``, ``maxRatio``: Yade's BlockGen pruning. A joint leaves a block uncut when
+    either piece would have an inscribed ball of diameter D < ``minSize``, or an extent along
+    x, y or z above ``maxRatio`` D (so no block is thinner than minSize: the joint ends there,
+    as a joint does in the rock mass)."""
     r = intact.r if r is None else float(r)
-    for name, value in (("rockCohesion", rockCohesion), ("rockTension", rockTension)):
+    for name, value in (("rockCohesion", rockCohesion), ("rockTension", rockTension), ("minSize", minSize)):
         if not (math.isfinite(value) and value >= 0):
             raise ValueError(f"generateBlocks: {name} must be finite and >= 0, got {value}")
+    if not maxRatio > 0:
+        raise ValueError(f"generateBlocks: maxRatio must be > 0, got {maxRatio}")
+    prune = minSize > 0 or math.isfinite(maxRatio)
     normals, h = _faces(intact)
     geometry = _geometry(normals, h, r, "intact block")
     corners = np.asarray(geometry["vertices"])
@@ -229,6 +254,7 @@ def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None 
             k = min(covered / section, 1.0)
             c = k * (joint.cohesion if intactRockDegradation else 0.0) + (1 - k) * rockCohesion
             t = k * (joint.tension if intactRockDegradation else 0.0) + (1 - k) * rockTension
+            children = []
             for sign in (1.0, -1.0):
                 n2 = np.vstack([piece.normals, sign * joint.normal])
                 h2 = np.append(piece.h, sign * offset)
@@ -236,8 +262,14 @@ def generateBlocks(intact: PotentialBlock, joints: list[Joint], r: float | None 
                     g = _geometry(n2, h2, r, f"piece cut by the joint of line {joint.line}")
                 except ValueError:
                     continue   # no volume on this side after all (the joint only grazes the block)
-                if g["volume"] > minVolume:
-                    split.append(_Piece(n2, h2, np.asarray(g["vertices"]), piece.cohesion + [c], piece.tension + [t],
+                children.append((n2, h2, np.asarray(g["vertices"]), g["volume"]))
+            if prune and (len(children) < 2
+                          or any(_tooSmall(n2, h2, v, minSize, maxRatio) for n2, h2, v, _ in children)):
+                split.append(piece)   # Yade's pruning: the joint stops before this block
+                continue
+            for n2, h2, vertices, volume in children:
+                if volume > minVolume:
+                    split.append(_Piece(n2, h2, vertices, piece.cohesion + [c], piece.tension + [t],
                                         piece.intactRock + [c > 0 or t > 0], piece.jointType + [joint.jointType]))
         pieces = split
     blocks = []

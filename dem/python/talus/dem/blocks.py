@@ -172,7 +172,8 @@ class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
     ``intactRock``) is a bond with the smaller of the faces' ``cohesion`` and ``tension``, its
     state ``cohesionBroken``, ``tensionBroken`` (Yade's defaults True: no bond). A scene of
     generated blocks sets both False for its first step and True afterwards (Yade scripts set
-    them on the functor mid-run), so that only the faces that were cut are bonded."""
+    them on the functor mid-run), so that only the faces that were cut are bonded.
+    ``viscousDamping`` set mid-run applies to every contact from the next step."""
     _parameters = ("Knormal", "Kshear", "kn_i", "ks_i", "viscousDamping", "useFaceProperties", "cohesionBroken",
                    "tensionBroken")
 
@@ -181,19 +182,22 @@ class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
         self._state = {}
         super().__init__(label, **params)
 
-    def _bondState(name):   # noqa: N805 (a property factory used in the class body)
+    def _live(name, cast):   # noqa: N805 (a property factory used in the class body)
         def get(self):
             return self._state.get(name)
 
         def set(self, value):
             self._state[name] = value
             for law in self._laws:
-                law._set(name, bool(value))
+                law._set(name, cast(value))
         return property(get, set)
 
-    cohesionBroken = _bondState("cohesionBroken")
-    tensionBroken = _bondState("tensionBroken")
-    del _bondState
+    # Set mid-run as Yade scripts do: the bonds' state, and the dashpot (WedgeYADE.py switches
+    # viscousDamping from 0 to 0.5 after its first 500 steps, for every contact).
+    cohesionBroken = _live("cohesionBroken", bool)
+    tensionBroken = _live("tensionBroken", bool)
+    viscousDamping = _live("viscousDamping", float)
+    del _live
 
 
 class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
