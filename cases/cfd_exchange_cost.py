@@ -86,7 +86,7 @@ def exchange_phases(work: Path, solver: str) -> dict:
     lines = [l for l in log.read_text().splitlines() if l.startswith("Exchange phases")] if log.exists() else []
     if not lines:
         return {}
-    words = lines[-1].split(":", 1)[1].replace("(", " ").replace(")", " ").split()
+    words = lines[-1].rsplit(":", 1)[1].replace("(", " ").replace(")", " ").split()
     return {name: float(value) * 1e-3 for name, value in zip(words[::2], words[1::2])}
 
 
@@ -163,7 +163,7 @@ def measure_overhead(solver: str, envelope_method: str | None, steps: int, posit
     """Where the time of a coupled step goes with the particles at ``positions`` (in a periodic
     cube of side ``period``, inside the mesh) and the full DEM loop (on one thread, see main),
     as wall and as CPU time; with the volume-averaged solver also its exchange's phases (CPU,
-    averaged over the run's exchanges, warm-up included)."""
+    averaged over the run's exchanges after its first two)."""
     work = mesh(1, envelope_method)
     s = scene_of(positions, contacts=True, period=period)
     s.dt = 0.8 * PWaveTimeStep(s)
