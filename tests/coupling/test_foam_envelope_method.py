@@ -91,7 +91,8 @@ def kernel_1d(x: np.ndarray, k: int) -> np.ndarray:
     cells = np.arange(CELLS[k])
     out = np.zeros((len(x), CELLS[k]))
     for node, weight in ((below, 1 - t), (below + 1, t)):
-        d = cells[None, :] - node[:, None]
+        # Between a wall and the outermost centre: on the outermost node (the hat reflected).
+        d = cells[None, :] - np.clip(node, 0, CELLS[k] - 1)[:, None]
         out += weight[:, None] * np.where(np.abs(d) <= reach, np.exp(-(d * h) ** 2 / (2 * sigma2)), 0.0)
     return out
 
@@ -182,8 +183,9 @@ def test_convolution_close_to_pairwise(tmp_path):
     solid_max = np.abs(a_conv - a_pair).max() / np.abs(1 - a_pair).max()
     print(f"convolution against pairwise: drag relative L2 {l2:.3e}, max {largest:.3e}; solid fraction relative "
           f"L2 {solid_l2:.3e}, max {solid_max:.3e}")
-    assert 0 < l2 < 1e-3 and largest < 1e-3
-    assert 1e-6 < solid_l2 < 0.1 and solid_max < 0.2
+    # Measured: drag 3.7e-5 L2, 1.6e-4 largest; solid fraction 0.77 % L2, 2.4 % of the largest.
+    assert 0 < l2 < 1e-4 and largest < 5e-4
+    assert 1e-4 < solid_l2 < 0.02 and solid_max < 0.05
 
 
 def test_graded_mesh_falls_back_to_pairwise(tmp_path):
