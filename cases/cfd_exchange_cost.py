@@ -3,7 +3,7 @@ fluid ranks, and the coupling's share of a coupled step at 10 000 particles (iss
 data per rank, a bounded number of messages, overhead below 20 % of the step time).
 
 Run:      build/bin/talus run cases/cfd_exchange_cost.py [--quick] [--results DIR]
-          [--solver talusPointForceFoam|talusVolumeAveragedFoam]
+          [--solver talusPointForceFoam|talusVolumeAveragedFoam] [--envelope-method pairwise|convolution]
 Set-up:   the closed box of cases/cfd_settling_sphere/ (45 x 45 x 90 mm; rho = 1000 kg/m3,
           nu = 1e-3 m2/s) meshed 10 x 10 x 20 (cells 4.5 mm), decomposed along z for 2 ranks;
           fluid step 20 us; spheres r = 0.35 mm (d/dx = 0.16), rho_p = 2500 (relaxation time
@@ -40,7 +40,9 @@ Checked:  the messages do not depend on N (3 per fluid rank plus at most 1 per n
           exponent of the CPU time (1 rank) at most 1.2 (O(N)); overhead at most 0.2.
 Produces: records cfd.exchange_cost (largest share of the particles owned by one of 2 ranks),
           cfd.exchange_cost.growth, cfd.exchange_cost.overhead (cfd.exchange_cost_va.* with the
-          volume-averaged solver); chart cfd.exchange_cost.png (wall and CPU time per exchange
+          volume-averaged solver, cfd.exchange_cost_va_pairwise.* and _convolution.* with an
+          explicit --envelope-method; their overhead records carry the fluid side's phases from
+          the solver's log); chart cfd.exchange_cost.png (wall and CPU time per exchange
           against N for 1 and 2 fluid ranks, with the O(N) line).
 """
 import time
@@ -66,11 +68,26 @@ BED_SIDE = 22  # the dense bed's 22^3 = 10648 spheres
 MEASURED = 20  # exchanges measured per particle count (medians: the loaded machine's times scatter)
 
 
-def mesh(procs: int) -> Path:
+def mesh(procs: int, envelope_method: str | None) -> Path:
     def cells(work: Path):
         block = work / "system" / "blockMeshDict"
         block.write_text(block.read_text().replace("(9 9 18)", "(10 10 20)"))
+        if envelope_method is not None:
+            (work / "constant" / "couplingProperties").write_text(
+                "FoamFile { version 2.0; format ascii; class dictionary; object couplingProperties; }\n"
+                f"envelopeMethod {envelope_method};\n")
     return mesh_case(CASE, procs, edit=cells, prefix="talus_cfd_exchange_")
+
+
+def exchange_phases(work: Path, solver: str) -> dict:
+    """The volume-averaged solver's CPU time per exchange by phase [s], from the last line it
+    logs (empty for the point-force solver)."""
+    log = work / f"log.{solver}"
+    lines = [l for l in log.read_text().splitlines() if l.startswith("Exchange phases")] if log.exists() else []
+    if not lines:
+        return {}
+    words = lines[-1].rsplit(":", 1)[1].replace("(", " ").replace(")", " ").split()
+    return {name: float(value) * 1e-3 for name, value in zip(words[::2], words[1::2])}
 
 
 def scene_of(positions: np.ndarray, contacts: bool, period: float | None = None) -> Scene:
@@ -106,10 +123,10 @@ def bed(side: int) -> tuple[np.ndarray, float]:
     return (idx + 0.5) * pitch, side * pitch
 
 
-def measure_exchange(n: int, procs: int, solver: str) -> dict:
+def measure_exchange(n: int, procs: int, solver: str, envelope_method: str | None) -> dict:
     """Cost of one exchange with n particles on procs fluid ranks (one DEM step per fluid step),
     as wall and as CPU time."""
-    work = mesh(procs)
+    work = mesh(procs, envelope_method)
     x = np.random.default_rng(1).uniform(LOW, HIGH, size=(n, 3))
     s = scene_of(x, contacts=False)
     s.dt = DT_FLUID
@@ -141,11 +158,13 @@ def measure_exchange(n: int, procs: int, solver: str) -> dict:
                 particles_per_rank=owned, particles_sent_per_rank=sent)
 
 
-def measure_overhead(solver: str, steps: int, positions: np.ndarray, period: float | None = None) -> dict:
+def measure_overhead(solver: str, envelope_method: str | None, steps: int, positions: np.ndarray,
+                     period: float | None = None) -> dict:
     """Where the time of a coupled step goes with the particles at ``positions`` (in a periodic
     cube of side ``period``, inside the mesh) and the full DEM loop (on one thread, see main),
-    as wall and as CPU time."""
-    work = mesh(1)
+    as wall and as CPU time; with the volume-averaged solver also its exchange's phases (CPU,
+    averaged over the run's exchanges after its first two)."""
+    work = mesh(1, envelope_method)
     s = scene_of(positions, contacts=True, period=period)
     s.dt = 0.8 * PWaveTimeStep(s)
     coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=G, solver=solver).start()
@@ -173,7 +192,8 @@ def measure_overhead(solver: str, steps: int, positions: np.ndarray, period: flo
                 share=exchange_cpu / (fluid_step_cpu + dem_substeps_cpu + exchange_cpu),
                 exchange_s=exchange, dem_coupling_s=spent.dem / k, fluid_exchange_s=spent.fluidExchange / reports,
                 fluid_step_s=fluid_step, dem_substeps_s=dem_substeps, wall_per_step_s=wall / k,
-                share_wall=exchange / (fluid_step + dem_substeps + exchange), share_of_wall=exchange / (wall / k))
+                share_wall=exchange / (fluid_step + dem_substeps + exchange), share_of_wall=exchange / (wall / k),
+                fluid_exchange_phases_cpu_s=exchange_phases(work, solver))
 
 
 def growth_exponent(rows, key: str) -> float:
@@ -185,6 +205,8 @@ def growth_exponent(rows, key: str) -> float:
 def main():
     parser = results.case_arguments(__doc__)
     parser.add_argument("--solver", default="talusPointForceFoam")
+    parser.add_argument("--envelope-method", choices=["pairwise", "convolution"], default=None,
+                        help="talusVolumeAveragedFoam's envelopeMethod (default: the solver's)")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -194,13 +216,14 @@ def main():
     # machine two of them ran the overhead's sub-steps 50 times slower than one (320 ms against
     # 6.6 ms, measured), which made the coupling's share look 30 times smaller than it is.
     talus._dem.setThreadCount(1)
-    case = results.Case("cfd.exchange_cost" + ("" if args.solver == "talusPointForceFoam" else "_va"),
+    name = "cfd.exchange_cost" + ("" if args.solver == "talusPointForceFoam" else "_va")
+    case = results.Case(name + ("" if args.envelope_method is None else "_" + args.envelope_method),
                         quick=args.quick, folder=args.results)
     counts = [1000, 3000, 10000] if args.quick else [1000, 3000, 10000, 30000, 100000]
     rows = []
     for procs in (1, 2):
         for n in counts:
-            row = measure_exchange(n, procs, args.solver)
+            row = measure_exchange(n, procs, args.solver, args.envelope_method)
             rows.append(row)
             print(f"{args.solver}, {procs} fluid rank(s), {n} particles: {row['seconds'] * 1e3:.2f} ms per exchange "
                   f"(DEM side {row['dem_seconds'] * 1e3:.2f}, fluid side {row['fluid_seconds'] * 1e3:.2f}), CPU "
@@ -255,7 +278,7 @@ def main():
              lattice(OVERHEAD_N, np.random.default_rng(2)), None),
             ("overhead_bed", f"dense bed ({BED_SIDE}^3 touching spheres on a simple cubic lattice, periodic)",
              bed_positions, bed_period)):
-        o = measure_overhead(args.solver, steps, positions, period)
+        o = measure_overhead(args.solver, args.envelope_method, steps, positions, period)
         print(f"coupled step with {len(positions)} particles, {what}, {o['contacts']} contacts, {o['substeps']} DEM "
               f"sub-steps, CPU: exchange {o['exchange_cpu_s'] * 1e3:.2f} ms (DEM side {o['dem_coupling_cpu_s'] * 1e3:.2f}, "
               f"fluid side {o['fluid_exchange_cpu_s'] * 1e3:.2f}), fluid solution {o['fluid_step_cpu_s'] * 1e3:.2f} ms, "
@@ -263,7 +286,9 @@ def main():
               f"exchange {o['exchange_s'] * 1e3:.2f} ms ({o['dem_coupling_s'] * 1e3:.2f} + "
               f"{o['fluid_exchange_s'] * 1e3:.2f}), fluid solution {o['fluid_step_s'] * 1e3:.2f} ms, DEM sub-steps "
               f"{o['dem_substeps_s'] * 1e3:.2f} ms: share {o['share_wall']:.3f} ({o['share_of_wall']:.3f} of the wall "
-              f"time between exchanges, {o['wall_per_step_s'] * 1e3:.2f} ms)", flush=True)
+              f"time between exchanges, {o['wall_per_step_s'] * 1e3:.2f} ms)" + "".join(
+                  f"\n  fluid side's {phase}: {seconds * 1e3:.2f} ms CPU"
+                  for phase, seconds in o["fluid_exchange_phases_cpu_s"].items()), flush=True)
         case.record(f"coupling share of a coupled step at {len(positions)} particles in CPU time: exchange (DEM-side "
                     f"coupling work + the fluid rank's exchange) / (fluid step's solution + {o['substeps']} DEM "
                     f"sub-steps with collider and contact law, {what}, 1 DEM thread + exchange), 1 fluid rank",
