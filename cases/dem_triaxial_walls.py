@@ -13,8 +13,10 @@ Set-up:   cases/yade/triaxial_walls.py (Yade's triax tutorial, session 1), run u
 Checked:  dem.triaxial-walls.peak: relative difference of the peak stress ratio s1/s3 (mean over
           seeds) from Yade's: <= 3 % in the full run (measured 0.65 %); <= 8 % in the quick run,
           whose 500-sphere samples scatter by about 5 % each, so a 4-seed mean by about 3.5 %.
-          dem.triaxial-walls.steady: axial strain at the peak over the final strain (<= 0.9: a peak
-          is reached and followed by softening towards a steady state, not still rising).
+          dem.triaxial-walls.steady: axial strain at the peak of the seeds' mean stress ratio over
+          the final strain (<= 0.9: a peak is reached and followed by softening towards a steady
+          state, not still rising); the mean because one 500-sphere sample's ratio fluctuates at
+          large strain by as much as it softens.
           dem.triaxial-walls.confinement: worst relative deviation of the lateral wall stresses
           from -10 kPa during the compression (<= 5 %).
           dem.triaxial-walls.porosity: mean porosity after compaction against Yade's (<= 1 %).
@@ -46,6 +48,16 @@ def analyse(result: dict) -> dict:
             "porosity": result["compaction"]["porosity"], "spheres": result["spheres"]}
 
 
+def mean_peak(runs: list) -> tuple:
+    """Where the mean of the runs' stress ratios (on a common axial strain axis, up to the
+    smallest final strain) peaks, as a fraction of that strain, and its value."""
+    end = max(r["eyy"][-1] for r in runs)            # strains are negative: the least compressed end
+    strain = np.linspace(0, end, 400)
+    mean = np.mean([np.interp(-strain, -r["eyy"], r["ratio"]) for r in runs], axis=0)
+    k = int(np.argmax(mean))
+    return float(strain[k] / end), float(mean[k])
+
+
 def main():
     args = results.case_arguments(__doc__).parse_args()
     import matplotlib
@@ -68,9 +80,15 @@ def main():
                 print(f"seed {seed}: {label} porosity {r['porosity']:.4f}, peak s1/s3 {r['peak']:.4f} "
                       f"(phi {r['phi']:.2f} deg) at {r['peak_at']:.2f} of the final strain")
     peak_o = float(np.mean([o["peak"] for o in ours]))
-    case.record("axial strain at the peak stress ratio over the final axial strain", max(o["peak_at"] for o in ours),
+    # The peak and softening of the seeds' mean curve: a single sample's stress ratio fluctuates
+    # at large strain by as much as it softens (500 spheres: 2 of 4 Talus seeds have their largest
+    # value on a late fluctuation of a plateau), so its argmax says little; the mean, as for the
+    # peak record, is the sample's behaviour.
+    mean_at, _ = mean_peak(ours)
+    case.record("axial strain at the peak of the seeds' mean stress ratio over the final axial strain", mean_at,
                 "a peak followed by softening (not still rising at the end)", 0.9, suffix="steady",
-                peak_friction_angle_deg=[o["phi"] for o in ours])
+                peak_friction_angle_deg=[o["phi"] for o in ours], peak_at_each=[o["peak_at"] for o in ours],
+                yade_mean_peak_at=mean_peak(theirs)[0] if theirs else None)
     case.record("worst relative deviation of the lateral wall stresses from -10 kPa during the compression",
                 max(o["lateral"] for o in ours), "confinement goal1 = goal3 = -10 kPa", 0.05, suffix="confinement")
     if theirs:

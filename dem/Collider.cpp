@@ -403,15 +403,17 @@ bool Collider::needsRebuild(const Scene& scene) const
     const double angle = b.ori[i].angularDistance(referenceOri_[k]);
     moved = (b.pos[i] - referencePos_[i]).norm() + reach * angle > limit;
   }
-#pragma omp parallel for if (n >= parallelLoopMinimum) reduction(|| : moved) schedule(static)
-  for (std::int64_t k = 0; k < n; ++k)
-  {
-    const auto i = static_cast<std::size_t>(k);
-    const Vec3 reference = deformed ? Vec3(affine * referencePos_[i]) : referencePos_[i];
-    if (b.alive[i] && (b.pos[i] - reference).squaredNorm() > limit2)
-      moved = true;
-  }
-  return moved;
+  auto anyMoved = [&](std::int64_t first, std::int64_t last) {
+    bool any = false;
+    for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
+    {
+      const Vec3 reference = deformed ? Vec3(affine * referencePos_[i]) : referencePos_[i];
+      if (b.alive[i] && (b.pos[i] - reference).squaredNorm() > limit2)
+        any = true;
+    }
+    return any;
+  };
+  return moved || balancedFor(skinRanges_, n, false, anyMoved, [](bool a, bool c) { return a || c; });
 }
 
 void Collider::run(Scene& scene)

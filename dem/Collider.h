@@ -3,6 +3,7 @@
 #include "dem/CellGrid.h"
 #include "dem/Contacts.h"
 #include "dem/Engine.h"
+#include "dem/Threads.h"
 #include "dem/types.h"
 
 #include <cstdint>
@@ -55,5 +56,6 @@ private:
   std::vector<Quat> referenceOri_;
   std::int64_t seenBodiesVersion_ = -1;
   double skin_ = 0;
+  mutable BalancedRanges skinRanges_; ///< the skin check's bodies per thread (its timing only)
 };
 } // namespace talus::dem

@@ -4,6 +4,7 @@
 #include "dem/Contacts.h"
 #include "dem/Energy.h"
 #include "dem/Material.h"
+#include "dem/Threads.h"
 
 #include <algorithm>
 #include <deque>
@@ -125,6 +126,7 @@ private:
   std::int64_t loopAll(Scene& scene);
   template <bool Track>
   void loopForces(Scene& scene, std::uint8_t lawIndex);
+  BalancedRanges ranges_; ///< computeAll's contacts per thread
 };
 
 /// Make Contacts::extra as long as the contact list (allocating it on first use).

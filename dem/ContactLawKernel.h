@@ -124,10 +124,14 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
   }
   else
   {
-    ContactEnergy unused;
-#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused) if (n >= parallelLoopMinimum)
-    for (std::int64_t k = 0; k < n; ++k)
-      firstBad = std::min(firstBad, one(k, unused));
+    auto firstIn = [&](std::int64_t first, std::int64_t last) {
+      ContactEnergy unused;
+      std::int64_t bad = n;
+      for (std::int64_t k = first; k < last; ++k)
+        bad = std::min(bad, one(k, unused));
+      return bad;
+    };
+    firstBad = balancedFor(ranges_, n, n, firstIn, [](std::int64_t a, std::int64_t c) { return std::min(a, c); });
   }
   stepDone();
   return firstBad < n ? firstBad : -1;

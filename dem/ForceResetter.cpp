@@ -9,12 +9,12 @@ void ForceResetter::run(Scene& scene)
 {
   Bodies& b = scene.bodies;
   const auto n = static_cast<std::int64_t>(b.size());
-#pragma omp parallel for if (n >= parallelLoopMinimum) schedule(static)
-  for (std::int64_t k = 0; k < n; ++k)
-  {
-    const auto i = static_cast<std::size_t>(k);
-    b.force[i] = b.extForce[i];
-    b.torque[i] = b.extTorque[i];
-  }
+  balancedFor(ranges_, n, [&](std::int64_t first, std::int64_t last) {
+    for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
+    {
+      b.force[i] = b.extForce[i];
+      b.torque[i] = b.extTorque[i];
+    }
+  });
 }
 } // namespace talus::dem

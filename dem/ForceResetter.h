@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/Engine.h"
+#include "dem/Threads.h"
 
 namespace talus::dem
 {
@@ -11,5 +12,8 @@ class ForceResetter : public Engine
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "ForceResetter"; }
+
+private:
+  BalancedRanges ranges_; ///< bodies per thread
 };
 } // namespace talus::dem

@@ -163,7 +163,7 @@ namespace
 /// shift the geometry used this step: the cell does not change inside the InteractionLoop);
 /// otherwise no record is read beyond its first cache line (Contact's layout note).
 template <bool Periodic>
-void gatherForces(Scene& scene, const ContactExtra* extra)
+void gatherForces(Scene& scene, const ContactExtra* extra, BalancedRanges& ranges)
 {
   const std::vector<Contact>& list = scene.contacts.list;
   Bodies& b = scene.bodies;
@@ -172,51 +172,52 @@ void gatherForces(Scene& scene, const ContactExtra* extra)
   const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
   const auto entryCount = static_cast<std::int64_t>(contacts.entries.size());
   constexpr std::int64_t prefetchDistance = 16; // entries ahead: a few hundred nanoseconds of work
-#pragma omp parallel for if (bodyCount >= parallelLoopMinimum) schedule(static)
-  for (std::int64_t id = 0; id < bodyCount; ++id)
-  {
-    const auto i = static_cast<std::size_t>(id);
-    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-    for (std::int64_t e = contacts.start[i]; e < contacts.start[i + 1]; ++e)
+  balancedFor(ranges, bodyCount, [&](std::int64_t first, std::int64_t last) {
+    for (std::int64_t id = first; id < last; ++id)
     {
-      const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
-      const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
-      // The records come in a few interleaved runs (a body's contacts with its lower and higher
-      // neighbours), one cache line each: the hardware prefetchers miss that pattern, and
-      // without this hint that layout made the gather about three times slower than the old
-      // three-lines-per-record one on a 16k-sphere bed; with it, 1.4 times faster there and 2.2
-      // times on a 65k bed.
-      if (e + prefetchDistance < entryCount)
-        __builtin_prefetch(&list[static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1)]);
-      // No test of c.real and no branch on the side: a contact that is not real carries a zero
-      // force (Contact::reset), and whether a body is a contact's first or second is as
-      // unpredictable as whether a candidate pair touches. The sign is computed, not selected
-      // (for `second ? 1.0 : -1.0` GCC 12 emits a branch). The force on this body and its moment
-      // about the centre, applied at the contact point.
-      const std::int64_t second = entry & 1;
-      const Vec3 force = static_cast<double>(2 * second - 1) * c.force;
-      f += force;
-      if constexpr (Periodic)
+      const auto i = static_cast<std::size_t>(id);
+      Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+      for (std::int64_t e = contacts.start[i]; e < contacts.start[i + 1]; ++e)
       {
-        // Only contacts across the boundary have an image to shift to, and they are few: a
-        // predictable test spares the others the shift's matrix product.
-        Vec3 centre = b.pos[i];
-        if (c.cellDist != Eigen::Vector3i::Zero())
-          centre += static_cast<double>(second) * cell.shift(c.cellDist);
-        t += (c.contactPoint - centre).cross(force);
+        const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
+        const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
+        // The records come in a few interleaved runs (a body's contacts with its lower and higher
+        // neighbours), one cache line each: the hardware prefetchers miss that pattern, and
+        // without this hint that layout made the gather about three times slower than the old
+        // three-lines-per-record one on a 16k-sphere bed; with it, 1.4 times faster there and 2.2
+        // times on a 65k bed.
+        if (e + prefetchDistance < entryCount)
+          __builtin_prefetch(&list[static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1)]);
+        // No test of c.real and no branch on the side: a contact that is not real carries a zero
+        // force (Contact::reset), and whether a body is a contact's first or second is as
+        // unpredictable as whether a candidate pair touches. The sign is computed, not selected
+        // (for `second ? 1.0 : -1.0` GCC 12 emits a branch). The force on this body and its moment
+        // about the centre, applied at the contact point.
+        const std::int64_t second = entry & 1;
+        const Vec3 force = static_cast<double>(2 * second - 1) * c.force;
+        f += force;
+        if constexpr (Periodic)
+        {
+          // Only contacts across the boundary have an image to shift to, and they are few: a
+          // predictable test spares the others the shift's matrix product.
+          Vec3 centre = b.pos[i];
+          if (c.cellDist != Eigen::Vector3i::Zero())
+            centre += static_cast<double>(second) * cell.shift(c.cellDist);
+          t += (c.contactPoint - centre).cross(force);
+        }
+        else
+          t += (c.contactPoint - b.pos[i]).cross(force);
+        if (extra && c.real)
+        {
+          const ContactExtra& x = extra[entry >> 1];
+          const Vec3 moment = x.momentBending + x.momentTwist;
+          t += static_cast<double>(2 * second - 1) * moment;
+        }
       }
-      else
-        t += (c.contactPoint - b.pos[i]).cross(force);
-      if (extra && c.real)
-      {
-        const ContactExtra& x = extra[entry >> 1];
-        const Vec3 moment = x.momentBending + x.momentTwist;
-        t += static_cast<double>(2 * second - 1) * moment;
-      }
+      b.force[i] += f;
+      b.torque[i] += t;
     }
-    b.force[i] += f;
-    b.torque[i] += t;
-  }
+  });
 }
 } // namespace
 
@@ -226,8 +227,8 @@ void InteractionLoop::sumForcesPerBody(Scene& scene)
   const auto& contacts = scene.contacts;
   const ContactExtra* extra = contacts.extra.size() == contacts.list.size() ? contacts.extra.data() : nullptr;
   if (scene.periodic)
-    gatherForces<true>(scene, extra);
+    gatherForces<true>(scene, extra, gatherRanges_);
   else
-    gatherForces<false>(scene, extra);
+    gatherForces<false>(scene, extra, gatherRanges_);
 }
 } // namespace talus::dem

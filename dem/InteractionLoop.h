@@ -31,10 +31,11 @@ private:
   void computeWithSeveralLaws(Scene& scene) const;
   /// Add every contact's force and moment to its two bodies, body by body in a fixed order,
   /// so the sums do not depend on the number of threads.
-  static void sumForcesPerBody(Scene& scene);
+  void sumForcesPerBody(Scene& scene);
   /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
   static std::string overlapReport(const Scene& scene, const Contact& c);
   std::size_t checkedMaterials_ = 0;
   std::int64_t checkedBodiesVersion_ = -1;
+  BalancedRanges gatherRanges_; ///< the gather's bodies per thread
 };
 } // namespace talus::dem

@@ -308,11 +308,15 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
   }
   else
   {
-    double unused = 0;
-#pragma omp parallel for schedule(static) reduction(min : firstBad) firstprivate(unused) if (n >= parallelLoopMinimum)
-    for (std::int64_t k = 0; k < n; ++k)
-      if (!one(static_cast<std::size_t>(k), unused, unused))
-        firstBad = std::min(firstBad, k);
+    auto firstIn = [&](std::int64_t first, std::int64_t last) {
+      double unused = 0;
+      std::int64_t bad = n;
+      for (std::int64_t k = first; k < last; ++k)
+        if (!one(static_cast<std::size_t>(k), unused, unused))
+          bad = std::min(bad, k);
+      return bad;
+    };
+    firstBad = balancedFor(ranges_, n, n, firstIn, [](std::int64_t a, std::int64_t c) { return std::min(a, c); });
   }
   return firstBad < n ? firstBad : -1;
 }

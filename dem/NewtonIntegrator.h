@@ -2,6 +2,7 @@
 
 #include "dem/Bodies.h"
 #include "dem/Engine.h"
+#include "dem/Threads.h"
 #include "dem/types.h"
 
 #include <cstdint>
@@ -54,5 +55,6 @@ private:
   };
   std::vector<std::uint8_t> mode_;
   std::int64_t seenBodiesVersion_ = -1, seenPropertiesVersion_ = -1;
+  mutable BalancedRanges ranges_; ///< bodies per thread (their timing only)
 };
 } // namespace talus::dem

@@ -1,5 +1,6 @@
 #include "dem/SampleOperations.h"
 
+#include "dem/Clump.h"
 #include "dem/Energy.h"
 #include "dem/Scene.h"
 
@@ -18,10 +19,37 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
   Bodies& b = scene.bodies;
   const bool track = scene.energy.enabled;
   const double before = track ? kineticEnergy(scene) + elasticPotential(scene) : 0.0;
-  auto grows = [&](std::size_t i) { return b.shape[i] == ShapeKind::Sphere && (!dynamicOnly || b.dynamic[i]); };
+  // A clump grows as one rigid body, homothetically about its centroid, when the clump itself
+  // passes the dynamic test; its members follow it whatever their own flags (Yade tests each
+  // member and the clump separately, which can grow the members of a clump whose mass it keeps).
+  auto passes = [&](std::size_t i) { return b.alive[i] && (!dynamicOnly || b.dynamic[i]); };
+  auto grows = [&](std::size_t i) {
+    return b.shape[i] == ShapeKind::Sphere && (b.clumpId[i] >= 0 ? passes(static_cast<std::size_t>(b.clumpId[i])) : passes(i));
+  };
+  // How far each member's centre moves: (multiplier - 1) times its offset from the centroid.
+  std::vector<Vec3> moved(b.size(), Vec3::Zero());
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || !grows(i))
+    if (b.shape[i] == ShapeKind::Clump && passes(i))
+    {
+      ClumpShape& clump = b.clumps[static_cast<std::size_t>(b.shapeIndex[i])];
+      for (std::size_t k = 0; k < clump.members.size(); ++k)
+      {
+        clump.relPos[k] *= multiplier;
+        const auto m = static_cast<std::size_t>(clump.members[k]);
+        moved[m] = b.pos[i] + b.ori[i] * clump.relPos[k] - b.pos[m];
+      }
+      // Its mass and principal moments as a homothetic body's (the principal axes stay); the
+      // members' own are only the sum's parts, scaled below like any sphere's.
+      if (updateMass)
+      {
+        b.mass[i] *= std::pow(multiplier, 3);
+        b.inertia[i] *= std::pow(multiplier, 5);
+      }
+      moveClumpMembers(b, i);
+      continue;
+    }
+    if (!grows(i))
       continue;
     if (updateMass)
     {
@@ -48,6 +76,20 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
       c.penetration += b.radius[i2] * (1 - 1 / multiplier);
       c.refR2 = b.radius[i2];
     }
+    // Clump members also move apart. Between two spheres the normal is the line of centres, so
+    // the new distance is exact; against a plane (wall, facet face, box face) the moved distance
+    // along the normal is exact, elsewhere (edges, corners) to first order in the displacement.
+    const Vec3 approach = moved[i2] - moved[i1];
+    if (approach != Vec3::Zero())
+    {
+      if (c.kind == ContactGeometryKind::SphereSphere)
+      {
+        const double distance = b.radius[i1] + b.radius[i2] - c.penetration; // of the centres, grown radii
+        c.penetration = b.radius[i1] + b.radius[i2] - (distance * c.normal + approach).norm();
+      }
+      else
+        c.penetration -= approach.dot(c.normal);
+    }
     c.kn *= multiplier;
     c.ks *= multiplier;
   }
@@ -64,6 +106,7 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
         grownBy[i] += b.radius[i] * (1 - 1 / multiplier);
   }
 }
+
 void setContactFriction(Scene& scene, double angle)
 {
   if (!(angle >= 0 && angle < M_PI / 2))

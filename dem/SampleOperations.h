@@ -7,8 +7,11 @@ class Scene;
 /// Yade's growParticles: multiply the radii of the spheres (only dynamic ones if dynamicOnly)
 /// by `multiplier`, their mass by its cube and inertia by its fifth power (updateMass), and
 /// scale the stiffness and reference radii of their current contacts accordingly (internal
-/// compaction of a sample). The contacts' penetrations follow the radii at once. While energy
-/// is tracked, the jump of the kinetic and elastic energies is booked as growthWork.
+/// compaction of a sample). A clump (a dynamic one if dynamicOnly) grows homothetically about
+/// its centroid: its members' offsets and radii by `multiplier`, its mass and principal moments
+/// as above (updateMass), its position, orientation and velocities kept. The contacts'
+/// penetrations follow the radii and the members' new places at once. While energy is
+/// tracked, the jump of the kinetic and elastic energies is booked as growthWork.
 /// @throws std::invalid_argument if the multiplier is not positive and finite
 void growParticles(Scene& scene, double multiplier, bool updateMass = true, bool dynamicOnly = true);
 

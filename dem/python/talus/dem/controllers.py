@@ -289,7 +289,8 @@ def RayleighWaveTimeStep(scene=None) -> float:
 
 def growParticles(multiplier: float, updateMass: bool = True, dynamicOnly: bool = True, scene=None):
     """Multiply the spheres' radii by ``multiplier`` (Yade's growParticles): masses and inertias
-    follow (``updateMass``), current contacts keep their overlap history with scaled stiffness."""
+    follow (``updateMass``), current contacts keep their overlap history with scaled stiffness;
+    a clump grows about its centroid (members' offsets and radii, mass and moments)."""
     from talus.dem import O
     _dem.growParticles((scene or O)._cpp, float(multiplier), bool(updateMass), bool(dynamicOnly))
 
