@@ -201,57 +201,6 @@ void addContained(const HalfSpaces& hs, std::size_t first, std::size_t count, co
   }
 }
 
-#ifdef TALUS_HAVE_CLP
-/// Deepest point of the half-spaces: maximise s subject to n_j . x + s <= h_j (CLP). Returns
-/// the depth s (<= 0: the region is empty or flat).
-double deepestPoint(const HalfSpaces& hs, double bound, Vec3& x)
-{
-  const int rows = static_cast<int>(hs.n.size());
-  std::vector<double> value(static_cast<std::size_t>(4 * rows));
-  std::vector<int> index(static_cast<std::size_t>(4 * rows));
-  std::array<CoinBigIndex, 5> start{};
-  for (int col = 0; col < 4; ++col)
-  {
-    start[static_cast<std::size_t>(col)] = col * rows;
-    for (int j = 0; j < rows; ++j)
-    {
-      const auto e = static_cast<std::size_t>(col * rows + j);
-      index[e] = j;
-      value[e] = col < 3 ? hs.n[static_cast<std::size_t>(j)][col] : 1.0;
-    }
-  }
-  start[4] = 4 * rows;
-  const double inf = COIN_DBL_MAX;
-  // The region lies within the blocks: bounding x by `bound` only keeps the LP well posed.
-  const std::array<double, 4> collb{-bound, -bound, -bound, -inf}, colub{bound, bound, bound, bound};
-  const std::array<double, 4> objective{0, 0, 0, -1};
-  std::vector<double> rowlb(static_cast<std::size_t>(rows), -inf);
-  // No scaling and a dense factorisation: CLP's defaults suit large problems; on these 4-column
-  // ones they were slower in every back-to-back measurement (by 15 % to 15x, with the load).
-  ClpSimplex model;
-  model.setLogLevel(0);
-  model.scaling(0);
-  model.setSparseFactorization(false);
-  // CLP's default feasibility tolerances (1e-7) let it call shallow overlaps (a vertex on a
-  // vertex 5e-8 m deep) empty: these problems are small and well scaled (unit normals).
-  model.setPrimalTolerance(1e-11);
-  model.setDualTolerance(1e-11);
-  model.loadProblem(4, rows, start.data(), index.data(), value.data(), collb.data(), colub.data(), objective.data(),
-                    rowlb.data(), hs.h.data());
-  model.dual(0);
-  if (model.status() != 0)
-    return -1;
-  const double* sol = model.getColSolution();
-  x = Vec3(sol[0], sol[1], sol[2]);
-  return sol[3];
-}
-#else
-// Without CLP no block can be added (Scene::addPotentialBlock refuses), so this is unreachable.
-[[noreturn]] double deepestPoint(const HalfSpaces& /*hs*/, double /*bound*/, Vec3& /*x*/)
-{
-  throw std::logic_error("Potential Blocks need CLP, which this build of Talus does not have");
-}
-#endif
 
 /// Analytic centre of the half-spaces (minimum of -sum log(h_j - n_j . x)) by damped Newton
 /// steps from the strictly interior point x: steps of 1 / (1 + lambda) keep every slack
@@ -332,6 +281,56 @@ double sectionArea(const HalfSpaces& hs, const Vec3& x, const Vec3& n, double ha
 }
 } // namespace
 
+#ifdef TALUS_HAVE_CLP
+double deepestPoint(const std::vector<Vec3>& normals, const std::vector<double>& h, double bound, Vec3& x)
+{
+  const int rows = static_cast<int>(normals.size());
+  std::vector<double> value(static_cast<std::size_t>(4 * rows));
+  std::vector<int> index(static_cast<std::size_t>(4 * rows));
+  std::array<CoinBigIndex, 5> start{};
+  for (int col = 0; col < 4; ++col)
+  {
+    start[static_cast<std::size_t>(col)] = col * rows;
+    for (int j = 0; j < rows; ++j)
+    {
+      const auto e = static_cast<std::size_t>(col * rows + j);
+      index[e] = j;
+      value[e] = col < 3 ? normals[static_cast<std::size_t>(j)][col] : 1.0;
+    }
+  }
+  start[4] = 4 * rows;
+  const double inf = COIN_DBL_MAX;
+  // The region lies within the blocks: bounding x by `bound` only keeps the LP well posed.
+  const std::array<double, 4> collb{-bound, -bound, -bound, -inf}, colub{bound, bound, bound, bound};
+  const std::array<double, 4> objective{0, 0, 0, -1};
+  std::vector<double> rowlb(static_cast<std::size_t>(rows), -inf);
+  // No scaling and a dense factorisation: CLP's defaults suit large problems; on these 4-column
+  // ones they were slower in every back-to-back measurement (by 15 % to 15x, with the load).
+  ClpSimplex model;
+  model.setLogLevel(0);
+  model.scaling(0);
+  model.setSparseFactorization(false);
+  // CLP's default feasibility tolerances (1e-7) let it call shallow overlaps (a vertex on a
+  // vertex 5e-8 m deep) empty: these problems are small and well scaled (unit normals).
+  model.setPrimalTolerance(1e-11);
+  model.setDualTolerance(1e-11);
+  model.loadProblem(4, rows, start.data(), index.data(), value.data(), collb.data(), colub.data(), objective.data(),
+                    rowlb.data(), h.data());
+  model.dual(0);
+  if (model.status() != 0)
+    return -1;
+  const double* sol = model.getColSolution();
+  x = Vec3(sol[0], sol[1], sol[2]);
+  return sol[3];
+}
+#else
+// Without CLP no block can be added (Scene::addPotentialBlock refuses), nor pruned by size.
+double deepestPoint(const std::vector<Vec3>& /*normals*/, const std::vector<double>& /*h*/, double /*bound*/, Vec3& /*x*/)
+{
+  throw std::logic_error("Potential Blocks need CLP, which this build of Talus does not have");
+}
+#endif
+
 void potentialBlockAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi)
 {
   const std::vector<Vec3> v = worldVertices(b, i, Vec3::Zero());
@@ -403,7 +402,7 @@ bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, cons
   else
   {
     out.lpSolves = 1;
-    if (deepestPoint(hs, 2 * reach, x) <= tiny)
+    if (deepestPoint(hs.n, hs.h, 2 * reach, x) <= tiny)
       return false;
   }
   analyticCentre(hs, accuracyTol, x);

@@ -28,6 +28,12 @@ namespace talus::dem
 bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                            ConvexContactGeometry& out, double accuracyTol = defaultBlockAccuracyTol);
 
+/// Deepest point x of the half-spaces normals_j . x <= h_j (unit normals), the centre of the
+/// largest ball inside them: maximise s subject to normals_j . x + s <= h_j (CLP), with x
+/// bounded by `bound` in each coordinate to keep the program well posed. Returns the depth s
+/// (the ball's radius; <= 0: the region is empty or flat).
+double deepestPoint(const std::vector<Vec3>& normals, const std::vector<double>& h, double bound, Vec3& x);
+
 /// World-frame axis-aligned bounding box of block i, from its turned vertices.
 void potentialBlockAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi);
 } // namespace talus::dem

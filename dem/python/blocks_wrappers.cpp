@@ -74,6 +74,15 @@ void talus_wrap_blocks(py::module_& m)
     out["vertices"] = corners;
     return out;
   });
+  // Centre and radius of the largest ball inside normals . x <= h (BlockGen's minSize pruning).
+  m.def("deepest_point", [](const std::vector<Vec3>& normals, const std::vector<double>& h, double bound) {
+    if (normals.size() != h.size())
+      throw std::invalid_argument("deepest_point: " + std::to_string(normals.size()) + " normals but " +
+                                  std::to_string(h.size()) + " offsets");
+    Vec3 x = Vec3::Zero();
+    const double depth = deepestPoint(normals, h, bound, x);
+    return std::make_pair(depth, x);
+  });
   // The shape in the body's (principal) frame.
   m.def("block_shape", [](const Scene& s, BodyId id) {
     const PotentialBlockShape& b = blockOf(s, id);

@@ -188,19 +188,19 @@ class _Piece:
     jointType: list
 
 
-def _inscribedDiameter(normals: np.ndarray, h: np.ndarray) -> float:
-    """Diameter of the largest ball inside {x : n_i . x <= h_i} (unit normals; Chebyshev centre
-    by a linear program: maximise s subject to n_i . x + s <= h_i); 0 if the region is empty."""
-    from scipy.optimize import linprog
-    lp = linprog([0.0, 0.0, 0.0, -1.0], A_ub=np.column_stack([normals, np.ones(len(h))]), b_ub=h,
-                 bounds=[(None, None)] * 3 + [(0.0, None)], method="highs")
-    return 2.0 * float(lp.x[3]) if lp.status == 0 else 0.0
+def _inscribedDiameter(normals: np.ndarray, h: np.ndarray, vertices: np.ndarray) -> float:
+    """Diameter of the largest ball inside {x : n_i . x <= h_i} (unit normals; the Chebyshev
+    centre, by the linear program block contacts solve); 0 if the region is empty. The piece's
+    corners bound the program."""
+    bound = 2.0 * float(np.abs(vertices).max()) + 1.0
+    depth, _ = _dem.deepest_point(list(normals), list(h), bound)
+    return 2.0 * max(depth, 0.0)
 
 
 def _tooSmall(normals: np.ndarray, h: np.ndarray, vertices: np.ndarray, minSize: float, maxRatio: float) -> bool:
     """Yade's BlockGen test of a piece: inscribed diameter below minSize, or an extent along x, y
     or z above maxRatio times it."""
-    diameter = _inscribedDiameter(normals, h)
+    diameter = _inscribedDiameter(normals, h, vertices)
     return diameter < minSize or diameter <= 0 or float(np.ptp(vertices, axis=0).max()) > maxRatio * diameter
 
 
