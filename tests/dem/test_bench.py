@@ -72,3 +72,21 @@ def test_cli_says_when_the_peer_is_missing(talus_cmd, tmp_path):
     assert done.returncode == 3
     assert "not installed" in done.stderr
     assert not list(tmp_path.glob("*.json"))
+
+
+@pytest.mark.parametrize("allowed", ["1", "0"])
+def test_realtime_sides_run_under_fifo_only_where_allowed(monkeypatch, allowed):
+    import os
+    import shutil
+    monkeypatch.setenv("TALUS_BENCH_REALTIME", allowed)
+    monkeypatch.setattr(bench, "_realtime", None)  # probe again under this setting
+    policy = [PY, "-c", "import os; print('policy', os.sched_getscheduler(0))"]
+    fifo = bench.Side("fifo", policy, r"policy ([0-9]+)", realtime=True)
+    plain = bench.Side("plain", policy, r"policy ([0-9]+)")
+    bench.run_rounds([fifo, plain], repeat=1, progress=None)
+    if allowed == "0":
+        assert bench.realtime_prefix() == []
+    elif os.geteuid() == 0 and shutil.which("chrt"):
+        assert bench.realtime_prefix() == ["chrt", "-f", "10"]
+    expected = os.SCHED_FIFO if bench.realtime_prefix() else os.SCHED_OTHER
+    assert (fifo.samples, plain.samples) == ([expected], [os.SCHED_OTHER])

@@ -37,6 +37,7 @@ class Side:
     pattern: str | None = None  # regex with one group; None: the figure is the wall time
     cwd: str | None = None      # where to run (peers such as Yade write files where they run)
     env: dict[str, str] = field(default_factory=dict)  # set in the command's environment (e.g. OMP_NUM_THREADS)
+    realtime: bool = False      # run under SCHED_FIFO where allowed (see realtime_prefix)
     samples: list[float] = field(default_factory=list)
 
     @property
@@ -82,11 +83,34 @@ def require_program(command: Sequence[str], label: str, hint: str = "") -> None:
             "the benchmark runner installs nothing")
 
 
+_realtime: list[str] | None = None
+
+
+def realtime_prefix() -> list[str]:
+    """``chrt -f 10`` if this process may give its children real-time (SCHED_FIFO) priority
+    (root, or CAP_SYS_NICE) and TALUS_BENCH_REALTIME is not 0, else nothing. On a quiet machine
+    the guest's own kernel threads (kdamond, rcu) and daemons still take a vCPU for a moment now
+    and then; a thread of a 2-thread run that loses its vCPU holds the other at the next barrier,
+    so those moments scatter thread speed-ups far more than one-thread rates. Only for
+    programs with no more threads than cores and no busy-polling (OpenMP runs, not MPI ranks):
+    FIFO threads are not time-sliced among themselves. The kernel's real-time throttling
+    (sched_rt_runtime_us) still leaves the rest of the machine 5 % of each second."""
+    global _realtime
+    if _realtime is None:
+        _realtime = []
+        if os.environ.get("TALUS_BENCH_REALTIME", "1") != "0" and shutil.which("chrt"):
+            probe = subprocess.run(["chrt", "-f", "10", "true"], capture_output=True)
+            if probe.returncode == 0:
+                _realtime = ["chrt", "-f", "10"]
+    return list(_realtime)
+
+
 def run_once(side: Side, timeout: float) -> float:
     """Run one side once and return its figure."""
+    command = [*realtime_prefix(), *side.command] if side.realtime else list(side.command)
     started = time.perf_counter()
     try:
-        done = subprocess.run(side.command, capture_output=True, text=True, timeout=timeout, cwd=side.cwd,
+        done = subprocess.run(command, capture_output=True, text=True, timeout=timeout, cwd=side.cwd,
                               env={**os.environ, **side.env} if side.env else None)
     except subprocess.TimeoutExpired:
         raise CommandFailed(f"{side.label}: {shlex.join(side.command)} took longer than {timeout} s") from None
