@@ -54,6 +54,7 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortC
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, Joint, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
                        PotentialBlock, PotentialBlock2AABB, Scene, generateBlocks, potentialBlock)
 from talus.dem.blockgen import dipNormal
+from talus.dem.sliding import coulombAcceleration, fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity, slide, tilted
 
 KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
 CUBE = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.02)
@@ -133,19 +134,10 @@ def incline(theta, seconds):
     S, _, _ = resting(0.5)
     start = float(S.bodies[1].state.pos[0])
     newton = S.engines[-1]
-    ramp = 20
-    for k in range(1, ramp + 1):
-        th = theta * k / ramp
-        newton.gravity = (G * math.sin(th), 0.0, -G * math.cos(th))
-        S.run(int(round(0.25 / ramp / S.dt)), True)
+    rampGravity(S, newton, lambda f: tilted(G, f * theta), 0.25)
     newton.damping = 0.0
-    times, xs = [], []
-    for _ in range(int(round(seconds / S.dt / 20))):
-        S.run(20, True)
-        times.append(S.time)
-        xs.append(float(S.bodies[1].state.pos[0]))
-    acceleration = 2 * float(np.polyfit(times, xs, 2)[0])
-    return xs[-1] - start, acceleration
+    times, moved = slide(S, 1, seconds)
+    return float(S.bodies[1].state.pos[0]) - start, fittedAcceleration(times, moved)
 
 
 PSI = math.radians(35)   # dip of the joint of the plane-failure test
@@ -175,21 +167,13 @@ def plane_failure(phi_deg, seconds, trace=math.inf, rockCohesion=0.0):
     low, up = sorted(ids, key=lambda i: S.bodies[i].state.pos[2])
     S.bodies[low].dynamic = False
     newton = S.engines[-1]
-    for k in range(1, 21):
-        newton.gravity = (0.0, 0.0, -G * k / 20)
-        S.run(int(round(0.25 / 20 / S.dt)), True)
+    rampGravity(S, newton, lambda f: (0.0, 0.0, -G * f), 0.25)
     phys = S.engines[2].physFunctors[0]
     phys.cohesionBroken = phys.tensionBroken = True   # only the cut is bonded; later contacts are frictional
     newton.damping = 0.0
-    start = np.array(S.bodies[up].state.pos)
-    down = np.array([-math.cos(PSI), 0.0, -math.sin(PSI)])
-    times, moved = [], []
-    for _ in range(int(round(seconds / S.dt / 20))):
-        S.run(20, True)
-        times.append(S.time)
-        moved.append(float((np.array(S.bodies[up].state.pos) - start) @ down))
+    times, moved = slide(S, up, seconds, direction=(-math.cos(PSI), 0.0, -math.sin(PSI)))
     half = len(times) // 2   # after the release transient (the block slid during the ramp already)
-    return moved[-1], 2 * float(np.polyfit(times[half:], moved[half:], 2)[0])
+    return float(moved[-1]), fittedAcceleration(times[half:], moved[half:])
 
 
 def main():
@@ -227,22 +211,14 @@ def main():
 
     T = 0.5 if args.quick else 1.0
     thetas = [20, 25, 28, 29, 31, 32, 35, 40] if not args.quick else [25, 29, 31, 35]
-    moved, accelerations, analytic = [], [], []
-    for deg in thetas:
-        th = math.radians(deg)
-        s, a = incline(th, T)
-        moved.append(s)
-        accelerations.append(a)
-        analytic.append(max(G * (math.sin(th) - math.cos(th) * math.tan(PHI)), 0.0))
-        print(f"incline {deg:4.1f} deg: moved {s:.6f} m, acceleration {a:.5f} m/s^2, analytic {analytic[-1]:.5f}")
-    slip = max(abs(a - ref) / ref for a, ref in zip(accelerations, analytic) if ref > 0)
-    stick = max(abs(s) for s, ref in zip(moved, analytic) if ref == 0)
+    sweep = inclineSweep(incline, thetas, T, G, PHI)
     case.record(f"worst relative error of the sliding acceleration above the friction angle ({math.degrees(PHI):.0f} deg)",
-                slip, "g (sin theta - cos theta tan phi)", 1e-2, suffix="incline-slip",
-                thetas_deg=thetas, accelerations=accelerations, analytic=analytic, moved=moved, T=T)
-    case.record("largest displacement (m) along the slope below the friction angle", stick,
+                sweep["slip"], "g (sin theta - cos theta tan phi)", 1e-2, suffix="incline-slip",
+                thetas_deg=thetas, accelerations=sweep["accelerations"], analytic=sweep["analytic"],
+                moved=sweep["moved"], T=T)
+    case.record("largest displacement (m) along the slope below the friction angle", sweep["stick"],
                 "no sliding: elastic shear only, m g sin theta / (Kshear A) ~ 5e-4 m", 1e-3, suffix="incline-stick",
-                thetas_deg=thetas, moved=moved)
+                thetas_deg=thetas, moved=sweep["moved"])
 
     phis = [31, 33, 34, 36, 37, 39] if not args.quick else [33, 34, 36, 37]
     fs, pf_moved, pf_acc, pf_ref = [], [], [], []
@@ -254,7 +230,7 @@ def main():
         fs.append(math.tan(math.radians(deg)) / math.tan(PSI))
         pf_moved.append(s)
         pf_acc.append(a)
-        pf_ref.append(max(G * (math.sin(PSI) - math.cos(PSI) * math.tan(math.radians(deg))), 0.0))
+        pf_ref.append(coulombAcceleration(G, PSI, math.radians(deg)))
         print(f"plane failure, joint dip 35 deg, phi {deg} deg (FS {fs[-1]:.3f}): moved {s:.6f} m, "
               f"acceleration {a:.5f} m/s^2, analytic {pf_ref[-1]:.5f}")
     wrong = sum((ref > 0) != (abs(s) > 1e-3) for s, ref in zip(pf_moved, pf_ref))
@@ -300,15 +276,7 @@ def main():
     ax2.set_ylabel("normal force (N)")
     ax2.set_title("cube resting on a boundary plate")
     ax2.legend(fontsize=8)
-    fine = np.linspace(min(thetas), max(thetas), 200)
-    ax3.plot(fine, [max(G * (math.sin(math.radians(t)) - math.cos(math.radians(t)) * math.tan(PHI)), 0) for t in fine],
-             "k-", lw=0.8, label="g (sin theta - cos theta tan phi)")
-    ax3.plot(thetas, accelerations, "bo", label="Talus (fit of the free phase)")
-    ax3.axvline(math.degrees(PHI), color="r", ls=":", label="friction angle")
-    ax3.set_xlabel("slope angle theta (deg)")
-    ax3.set_ylabel("sliding acceleration (m/s^2)")
-    ax3.set_title("block on an inclined plane")
-    ax3.legend(fontsize=8)
+    plotInclineSweep(ax3, thetas, sweep, G, PHI, "Talus (fit of the free phase)", "block on an inclined plane")
     ax4.plot(fs, pf_ref, "k-", lw=0.8, label="g (sin psi - cos psi tan phi)")
     ax4.plot(fs, pf_acc, "bo", label="Talus")
     ax4.axvline(1.0, color="r", ls=":", label="FS = 1")

@@ -48,6 +48,7 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PP_PP_ScGeom, InsertionSortC
                        Ip2_FrictMat_FrictMat_KnKsPhys, Law2_SCG_KnKsPhys_KnKsLaw, NewtonIntegrator,
                        PotentialParticle, PotentialParticle2AABB, Scene, potentialParticle, twin, wall)
 from talus import _dem
+from talus.dem.sliding import fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity, slide, tilted
 
 KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
 HALF, R_ROUND, K_SPH = 0.5, 0.05, 0.2
@@ -155,21 +156,12 @@ def incline(theta, seconds):
     i = S.bodies.append(potentialParticle(block, pos=(0, 0, face_centre(block) + 1e-4), material=m))
     S.run(2500, True)
     newton = S.engines[-1]
-    ramp = 20
-    for k in range(1, ramp + 1):
-        th = theta * k / ramp
-        newton.gravity = (G * math.sin(th), 0.0, -G * math.cos(th))
-        S.run(int(round(0.25 / ramp / S.dt)), True)
+    rampGravity(S, newton, lambda f: tilted(G, f * theta), 0.25)
     newton.damping = 0.0
     # Displacement counted from the end of the ramp: the shear spring (and the small rocking of
     # the bulged face) loads during the ramp, a few mm at Kshear A ~ 1e6 N/m.
-    start = float(S.bodies[i].state.pos[0])
-    times, xs = [], []
-    for _ in range(int(round(seconds / S.dt / 20))):
-        S.run(20, True)
-        times.append(S.time)
-        xs.append(float(S.bodies[i].state.pos[0]))
-    return xs[-1] - start, 2 * float(np.polyfit(times, xs, 2)[0])
+    times, moved = slide(S, i, seconds)
+    return float(moved[-1]), fittedAcceleration(times, moved)
 
 
 def shapes_for_yade(box, height):
@@ -227,22 +219,14 @@ def main():
 
     T = 0.5 if args.quick else 1.0
     thetas = [25, 29, 31, 35] if args.quick else [20, 25, 28, 29, 31, 32, 35, 40]
-    moved, accelerations, analytic = [], [], []
-    for deg in thetas:
-        th = math.radians(deg)
-        s, a = incline(th, T)
-        moved.append(s)
-        accelerations.append(a)
-        analytic.append(max(G * (math.sin(th) - math.cos(th) * math.tan(PHI)), 0.0))
-        print(f"incline {deg} deg: moved {s:.6f} m, acceleration {a:.5f}, analytic {analytic[-1]:.5f}")
-    slip = max(abs(a - ref) / ref for a, ref in zip(accelerations, analytic) if ref > 0)
-    stick = max(abs(s) for s, ref in zip(moved, analytic) if ref == 0)
-    case.record("worst relative error of the sliding acceleration above the friction angle (30 deg)", slip,
+    sweep = inclineSweep(incline, thetas, T, G, PHI)
+    case.record("worst relative error of the sliding acceleration above the friction angle (30 deg)", sweep["slip"],
                 "g (sin theta - cos theta tan phi)", 1e-2, suffix="incline-slip", thetas_deg=thetas,
-                accelerations=accelerations, analytic=analytic, moved=moved, T=T)
-    case.record("largest displacement (m) along the slope below the friction angle, after the ramp", stick,
+                accelerations=sweep["accelerations"], analytic=sweep["analytic"], moved=sweep["moved"], T=T)
+    case.record("largest displacement (m) along the slope below the friction angle, after the ramp", sweep["stick"],
                 "no sliding: the undamped elastic oscillation only (m g sin theta / (Kshear A) ~ 2.5 mm, "
-                "A ~ 0.14 m^2 on the bulged face)", 5e-3, suffix="incline-stick", thetas_deg=thetas, moved=moved)
+                "A ~ 0.14 m^2 on the bulged face)", 5e-3, suffix="incline-stick", thetas_deg=thetas,
+                moved=sweep["moved"])
 
     yade = None
     if twin.yade_available():
@@ -271,15 +255,7 @@ def main():
     ax2.set_ylabel("normal force (N)")
     ax2.set_title("cube resting under gravity")
     ax2.legend(fontsize=8)
-    fine = np.linspace(min(thetas), max(thetas), 200)
-    ax3.plot(fine, [max(G * (math.sin(math.radians(t)) - math.cos(math.radians(t)) * math.tan(PHI)), 0) for t in fine],
-             "k-", lw=0.8, label="g (sin theta - cos theta tan phi)")
-    ax3.plot(thetas, accelerations, "bo", label="Talus")
-    ax3.axvline(30, color="r", ls=":", label="friction angle")
-    ax3.set_xlabel("slope angle theta (deg)")
-    ax3.set_ylabel("sliding acceleration (m/s^2)")
-    ax3.set_title("PP block on an inclined wall")
-    ax3.legend(fontsize=8)
+    plotInclineSweep(ax3, thetas, sweep, G, PHI, "Talus", "PP block on an inclined wall")
     if yade:
         labels = ["porosity", "coordination", "us per contact-step"]
         x = np.arange(3)

@@ -61,6 +61,7 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortC
                        readJoints, write_blocks)
 from talus.dem.analytic import block_sliding_mode
 from talus.dem.blockgen import dipNormal
+from talus.dem.sliding import rampGravity
 
 JOINTS = "/usr/share/doc/yade/examples/PotentialBlocks/joints/jointC.csv"
 HALF, DEPTH, R = 20.0, 40.0, 0.2            # boundarySizeX/Y 20 m each way, Z 0 ... 40 m; rForPP
@@ -182,9 +183,7 @@ def run_key_blocks(blocks, phi_deg, free, seconds, ramp_seconds):
     newton.gravity = (0, 0, G / 20)
     S.run(3, True)
     S.dt = time_step(S, set(ids))
-    for k in range(1, 21):
-        newton.gravity = (0, 0, G * k / 20)
-        S.run(int(round(ramp_seconds / 20 / S.dt)), True)
+    rampGravity(S, newton, lambda f: (0, 0, G * f), ramp_seconds)
     newton.damping = 0.0
     loaded = np.array([S.bodies[i].state.pos for i in ids])
     ramp = displacements(S, ids, start)
