@@ -59,6 +59,7 @@ void TriaxialStressController::updateStiffness(const Scene& scene)
 
 void TriaxialStressController::computeStressStrain(const Scene& scene)
 {
+  checkWalls(scene); // also called from Python, with wall ids that may not be the scene's
   const Bodies& b = scene.bodies;
   auto at = [&](int w) { return b.pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(w)])][wallAxis[w]]; };
   const double t = std::max(thickness, 0.0);

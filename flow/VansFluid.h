@@ -106,8 +106,6 @@ public:
   void fluidResolution(double tfin, double dt);
 
 private:
-  void checkProfiles() const;
-
   VansParameters m_parameters;
   std::vector<double> m_phiPart, m_vxPart, m_averageDrag, m_vxFluid;
   std::vector<double> m_reynoldStresses, m_turbulentViscosity, m_taufsi, m_mixingLength;

@@ -48,6 +48,17 @@ A readOnly(A array)
   py::detail::array_proxy(array.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return array;
 }
+
+/// A list of engines or laws set from Python, refused if an item is None (an empty pointer the
+/// step would dereference).
+template <class T>
+std::vector<std::shared_ptr<T>> noneRefused(const std::vector<std::shared_ptr<T>>& items, const char* what)
+{
+  for (std::size_t k = 0; k < items.size(); ++k)
+    if (!items[k])
+      throw py::type_error(std::string(what) + ": item " + std::to_string(k) + " is None");
+  return items;
+}
 } // namespace
 
 PYBIND11_MODULE(_dem, m)
@@ -127,7 +138,9 @@ PYBIND11_MODULE(_dem, m)
   m.def("make_contact_law", [](const std::string& name) { return std::shared_ptr<ContactLaw>(makeContactLaw(name)); });
   py::class_<InteractionLoop, Engine, std::shared_ptr<InteractionLoop>>(m, "InteractionLoop")
       .def(py::init<>())
-      .def_readwrite("laws", &InteractionLoop::laws);
+      .def_property(
+          "laws", [](const InteractionLoop& l) { return l.laws; },
+          [](InteractionLoop& l, const std::vector<std::shared_ptr<ContactLaw>>& laws) { l.laws = noneRefused(laws, "InteractionLoop.laws"); });
   py::class_<NewtonIntegrator, Engine, std::shared_ptr<NewtonIntegrator>>(m, "NewtonIntegrator")
       .def(py::init<>())
       .def_readwrite("gravity", &NewtonIntegrator::gravity)
@@ -166,7 +179,9 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("dt", &Scene::dt)
       .def_readwrite("time", &Scene::time)
       .def_readwrite("iter", &Scene::iter)
-      .def_readwrite("engines", &Scene::engines)
+      .def_property(
+          "engines", [](const Scene& s) { return s.engines; },
+          [](Scene& s, const std::vector<std::shared_ptr<Engine>>& engines) { s.engines = noneRefused(engines, "Scene.engines"); })
       .def_readonly("periodic", &Scene::periodic)
       .def("setPeriodic", &Scene::setPeriodic)
       .def("setCellSize", &Scene::setCellSize)

@@ -34,8 +34,10 @@ std::unique_ptr<GaussPointRVEs> make(const std::vector<Source>& sources, const s
     {
       if (const auto* path = std::get_if<std::string>(&sources[p]))
         rves[p] = std::make_unique<RVE>(RVE::load(*path, engines));
+      else if (const auto& scene = std::get<1>(sources[p]))
+        rves[p] = std::make_unique<RVE>(*scene, engines, "of Gauss point " + std::to_string(p));
       else
-        rves[p] = std::make_unique<RVE>(*std::get<1>(sources[p]), engines, "of Gauss point " + std::to_string(p));
+        throw std::invalid_argument("no scene (None) and no checkpoint path");
     }
     catch (const std::exception& e)
     {

@@ -249,6 +249,8 @@ void registerPoreFlow(py::module_& m)
   // The scene type is registered by talus._dem (imported first by the talus package).
   py::class_<FlowCoupling, std::shared_ptr<FlowCoupling>>(m, "PoreFlowCoupling")
       .def(py::init([](const std::shared_ptr<talus::dem::Scene>& scene, const std::shared_ptr<PoreFlow>& flow) {
+             if (!scene || !flow)
+               throw std::invalid_argument(std::string("PoreFlowCoupling: ") + (scene ? "flow" : "scene") + " is None");
              return std::make_shared<FlowCoupling>(talus::dem::ParticleExchange(*scene), flow);
            }),
            py::arg("scene"), py::arg("flow"), py::keep_alive<1, 2>())

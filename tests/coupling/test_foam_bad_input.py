@@ -70,3 +70,24 @@ def test_malformed_case_file_stops_every_process_within_seconds(tmp_path):
     field.write_text(field.read_text().replace("internalField", "internalField uniform (0 0;", 1))
     text = refused(work, limit=15)
     assert "FOAM FATAL" in text and "has died while the DEM waited for the fluid side's handshake" in text
+
+
+def test_coupled_ids_that_are_not_live_spheres_are_refused_before_any_process_starts(tmp_path):
+    import pytest
+
+    from talus.coupling import FoamCoupling
+    from talus.dem import FrictMat, NewtonIntegrator, Scene, sphere, wall
+    S = Scene()
+    m = S.materials.append(FrictMat())
+    S.bodies.append([wall(0, axis=2, material=m), sphere((0, 0, 0.01), 1e-3, material=m),
+                     sphere((0, 0, 0.02), 1e-3, material=m)])
+    S.engines = [NewtonIntegrator(gravity=(0, 0, -9.81))]
+    S.dt = 1e-5
+    for ids, message in [([1, 5], "ids: 5 is not a body id of the scene (0 ... 2)"),
+                         ([-1, 2], "ids: -1 is not a body id of the scene"),
+                         ([1, 2, 1], "ids: body 1 is listed twice"),
+                         ([0, 1], "ids: body 0 is a Wall, not a sphere")]:
+        coupling = FoamCoupling(S, tmp_path / "no-case", rhoFluid=1000.0, nu=1e-6, ids=ids)
+        with pytest.raises(ValueError, match=message.replace("(", r"\(").replace(")", r"\)").replace(".", r"\.")):
+            coupling.start()
+        assert coupling.link is None

@@ -30,6 +30,7 @@ def test_mass_properties_and_members():
     c = S.bodies[cid]
     m1 = 2000 * 4 / 3 * math.pi * r ** 3
     assert c.isClump and c.shape.members == ids and all(S.bodies[i].clumpId == cid for i in ids)
+    assert not c.isClumpMember and all(S.bodies[i].isClumpMember and not S.bodies[i].isClump for i in ids)
     assert c.state.mass == pytest.approx(2 * m1, rel=1e-14)
     np.testing.assert_allclose(c.state.pos, (0.15, 0, 0), atol=1e-15)
     # principal moments: two spheres, axis through both centres, and two equal transverse ones

@@ -194,3 +194,18 @@ def test_physics_parameters_equal_yades():
         assert got[pair]["tangensOfFrictionAngle"] == pytest.approx(tan_phi, rel=1e-12)
     assert got[(3, 4)]["cn"] == pytest.approx(5806.896240809606, rel=1e-12)
     assert got[(3, 4)]["cs"] == pytest.approx(1222.7093538199315, rel=1e-12)
+
+
+def test_persistent_torque_spins_a_free_sphere_at_torque_over_inertia():
+    """The exchange interface's persistent torques stay applied step after step, as the
+    persistent forces do (forces() and torques() are this step's and reset every step)."""
+    S = Scene()
+    S.materials.append(FrictMat(density=1000))
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+    S.engines = engines(LINEAR)
+    S.dt = 1e-3
+    S.persistent_torques()[0] = (0, 0, 2e-3)
+    S.run(100)
+    inertia = 0.4 * S.masses()[0] * 0.1 ** 2
+    assert S.angular_velocities()[0][2] == pytest.approx(2e-3 / inertia * 0.1, rel=1e-12)
+    assert tuple(S.torques()[0]) == (0, 0, 2e-3)

@@ -202,6 +202,10 @@ def test_vtk_exporter(tmp_path, scene):
     assert vtk.exportSpheres().endswith("snap-spheres-1.vtu")
     assert vtk.exportInteractions().endswith("snap-intrs-0.vtu")
     read_vtu(vtk.exportFacets(numLabel=7))
+    walls = read_vtu(vtk.exportWalls(size=3.0))
+    assert walls["points_count"] == 8 and np.all(walls["types"] == export.VTK_QUAD)
+    assert vtk.exportBoxes().endswith("snap-boxes-0.vtu")   # the scene has none: a valid, empty file
+    assert read_vtu(str(tmp_path / "snap-boxes-0.vtu"))["cells_count"] == 0
 
 
 def test_failed_write_leaves_no_temporary(tmp_path, scene):

@@ -104,3 +104,22 @@ def test_material_edits_after_append_reach_the_scene_and_are_checked():
     assert mat.young == 2e7                           # the invalid value was not kept
     with pytest.raises(ValueError, match="already in a scene"):
         Scene().materials.append(mat)
+
+
+def test_none_engines_and_laws_and_missing_walls_are_refused_by_the_core_too():
+    """The raw bindings (which the couplings use) refuse what would crash the step."""
+    from talus import _dem
+    from talus.dem import TriaxialStressController
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+    with pytest.raises(TypeError, match="Scene.engines: item 1 is None"):
+        S._cpp.engines = [ForceResetter()._cpp, None]
+    loop = _dem.InteractionLoop()
+    with pytest.raises(TypeError, match="InteractionLoop.laws: item 0 is None"):
+        loop.laws = [None]
+    S.run(2)  # the scene was left as it was
+    assert S.iter == 2
+    # Six wall ids by default (0 ... 5) on a scene of one sphere: refused, not read past the end.
+    triax = TriaxialStressController()
+    with pytest.raises(ValueError, match="TriaxialStressController: .* = 0 must be a wall normal to axis 0"):
+        triax._cpp.computeStressStrain(S._cpp)

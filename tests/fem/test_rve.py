@@ -127,6 +127,9 @@ def test_bad_input(rve_file, tmp_path):
     (tmp_path / "junk.h5").write_text("not hdf5")
     with pytest.raises(ValueError, match="junk.h5' is not a readable Talus checkpoint"):
         MultiscaleRVEs(str(tmp_path / "junk.h5"), numPoints=1)
+    from talus import _fem
+    with pytest.raises(ValueError, match="Gauss point 1: no scene \\(None\\) and no checkpoint path"):   # the raw binding
+        _fem.GaussPointRVEs([str(rve_file[0]), None], "Law2_ScGeom_FrictPhys_CundallStrack", 0.2)
 
 
 @pytest.fixture(scope="module")

@@ -650,3 +650,9 @@ def test_engine_remeshes_at_once_when_a_pore_inverts_even_in_the_background():
         assert flow.remeshCount() == (2, 1), multithread
         assert not flow._coupling.rebuildPending()
         assert flow.maxVolumetricStrain() == 0   # the new mesh is of the moved packing
+
+
+def test_the_raw_coupling_refuses_a_missing_scene():
+    from talus import _flow
+    with pytest.raises(ValueError, match="PoreFlowCoupling: scene is None"):
+        _flow.PoreFlowCoupling(None, _flow.PoreFlow())

@@ -177,8 +177,28 @@ class FoamCoupling:
     # -- start ---------------------------------------------------------------------------------
     def _coupled_ids(self) -> np.ndarray:
         if self.ids is not None:
+            self._check_ids(self.ids)
             return self.ids
         return np.array([b.id for b in self.scene.bodies if isinstance(b.shape, Sphere)], dtype=np.int64)
+
+    def _check_ids(self, ids: np.ndarray):
+        """Before any process starts: every id a live sphere of the scene, none twice (a negative
+        id would otherwise wrap around to another body in the per-body arrays)."""
+        count = len(self.scene.bodies)
+        outside = ids[(ids < 0) | (ids >= count)]
+        if len(outside):
+            raise ValueError(f"FoamCoupling: ids: {int(outside[0])} is not a body id of the scene "
+                             f"(0 ... {count - 1})")
+        unique, seen = np.unique(ids, return_counts=True)
+        if np.any(seen > 1):
+            raise ValueError(f"FoamCoupling: ids: body {int(unique[seen > 1][0])} is listed twice")
+        for i in ids:
+            try:
+                shape = self.scene.bodies[int(i)].shape
+            except IndexError as e:
+                raise ValueError(f"FoamCoupling: ids: body {int(i)}: {e}") from None
+            if not isinstance(shape, Sphere):
+                raise ValueError(f"FoamCoupling: ids: body {int(i)} is a {type(shape).__name__}, not a sphere")
 
     def _check_gravity(self):
         from talus.dem.engines import NewtonIntegrator
