@@ -14,13 +14,12 @@ Place the controllers after the InteractionLoop and before the NewtonIntegrator,
 
 from __future__ import annotations
 
-import __main__
 from typing import Callable
 
 import numpy as np
 
 from talus import _dem
-from talus.dem.engines import Engine
+from talus.dem.engines import Engine, asCallback
 
 
 def _forward(name: str, doc: str = "", kind=None):
@@ -39,16 +38,6 @@ def _vector(value) -> np.ndarray:
     if v.shape != (3,) or not np.all(np.isfinite(v)):
         raise ValueError(f"expected 3 finite numbers, got {value!r}")
     return v
-
-
-def _hook(command: str | Callable[[], None] | None):
-    """A doneHook as a C++ callback: a string is run in the script's namespace, as in Yade."""
-    if not command:
-        return None
-    if callable(command):
-        return command
-    code = compile(command, f"<doneHook {command!r}>", "exec")
-    return lambda: exec(code, vars(__main__))
 
 
 class GlobalStiffnessTimeStepper(Engine):
@@ -135,7 +124,7 @@ class PeriTriaxController(Engine):
     @doneHook.setter
     def doneHook(self, command):
         self._doneHook = command
-        self._cpp.doneHook = _hook(command)
+        self._cpp.doneHook = asCallback(command, "doneHook")
 
     def _io_state(self):
         c = self._cpp

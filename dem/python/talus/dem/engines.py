@@ -299,6 +299,17 @@ class NewtonIntegrator(Engine):
     damping = property(lambda self: self._cpp.damping, lambda self, d: setattr(self._cpp, "damping", float(d)))
 
 
+def asCallback(command: str | Callable[[], None] | None, what: str = "command") -> Callable[[], None] | None:
+    """A command as a Python callable (None for none): a callable as it is, a string run in the
+    script's namespace, as Yade runs its PyRunner commands and hooks."""
+    if not command:
+        return None
+    if callable(command):
+        return command
+    code = compile(command, f"<{what} {command!r}>", "exec")
+    return lambda: exec(code, vars(__main__))
+
+
 class PyRunner(Engine):
     """Runs ``command`` every ``iterPeriod`` steps and/or every ``realPeriod`` seconds of wall
     time: a string executed in the script's namespace (as in Yade) or a Python callable."""
@@ -324,11 +335,7 @@ class PyRunner(Engine):
     @command.setter
     def command(self, command):
         self._command = command
-        if callable(command):
-            self._cpp.callback = command
-        else:
-            code = compile(command, f"<PyRunner {command!r}>", "exec")
-            self._cpp.callback = lambda: exec(code, vars(__main__))
+        self._cpp.callback = asCallback(command, "PyRunner") or (lambda: None)
 
     iterPeriod = property(lambda self: self._cpp.iterPeriod, lambda self, v: setattr(self._cpp, "iterPeriod", v))
     nDone = property(lambda self: self._cpp.nDone)
@@ -336,7 +343,7 @@ class PyRunner(Engine):
 
 __all__ = [
     "Functor", "Engine", "ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator",
-    "PyRunner", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
+    "PyRunner", "asCallback", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
     "Ig2_Box_Sphere_ScGeom",
     "Ig2_Wall_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom",
     "Ip2_FrictMat_FrictMat_FrictPhys", "Ip2_ViscElMat_ViscElMat_ViscElPhys",

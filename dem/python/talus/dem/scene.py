@@ -6,6 +6,8 @@ import __main__
 import math
 from typing import Sequence
 
+import numpy as np
+
 from talus import _dem
 from talus.dem.blocks import Ig2_PB_PB_ScGeom
 from talus.dem.bodies import BodyContainer
@@ -226,6 +228,11 @@ class Scene(CheckpointMethods):
 
     def radii(self):
         return self._cpp.radius()
+
+    def sphere_ids(self) -> np.ndarray:
+        """Ids of the live spheres (the particles couplings act on), ascending."""
+        spheres = (_dem.shape_codes(self._cpp) == 0) & (self._cpp.alive() != 0)
+        return np.flatnonzero(spheres).astype(np.int64)
 
     def masses(self):
         return self._cpp.mass()

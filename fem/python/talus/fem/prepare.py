@@ -103,9 +103,8 @@ def exportRVE(path: str | os.PathLike, jsonPath: str | os.PathLike | None = None
     if not S.periodic:
         raise ValueError(f"exportRVE: '{path}' is not periodic")
     h = np.array(S.cell.hSize)
-    alive = np.asarray(S._cpp.alive(), dtype=bool)
     radii = S.radii()
-    spheres = alive & (radii > 0)
+    spheres = S.sphere_ids()
     frac = np.linalg.solve(h, S.positions()[spheres].T).T
     pos = (h @ (frac - np.floor(frac)).T).T
     m = S.materials[0]

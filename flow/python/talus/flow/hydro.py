@@ -25,8 +25,8 @@ from typing import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from talus import _dem, _flow
-from talus.dem.engines import Engine
+from talus import _flow
+from talus.dem.engines import Engine, PyRunner
 from talus.flow.vans import VansFluid
 
 __all__ = ["HydroForceEngine", "averageProfile"]
@@ -130,11 +130,7 @@ class HydroForceEngine(Engine):
         self.ids = ids
         self._vy = np.zeros(self.nCell)
         self._vz = np.zeros(self.nCell)
-        self._spheres: tuple[int, np.ndarray] | None = None
-        self._cpp = _dem.CallbackEngine()
-        self._cpp.iterPeriod = 1
-        self._cpp.initRun = True   # every step, the first one included
-        self._cpp.callback = self.action
+        self._cpp = PyRunner(self.action, iterPeriod=1, initRun=True)._cpp   # every step, the first one included
         self.label = label
         self.dead = dead
 
@@ -147,18 +143,8 @@ class HydroForceEngine(Engine):
         return self._scene
 
     def _arrays(self):
-        c = self.scene._cpp
-        return c.pos(), c.vel(), c.radius()
-
-    def _sphere_ids(self) -> np.ndarray:
-        """Live spheres of the scene (cached until bodies change)."""
-        c = self.scene._cpp
-        version = c.bodiesVersion
-        if self._spheres is None or self._spheres[0] != version:
-            alive = c.alive()
-            ids = [i for i in range(len(alive)) if alive[i] and c.shapeKind(i) == "Sphere"]
-            self._spheres = (version, np.asarray(ids, dtype=np.int64))
-        return self._spheres[1]
+        s = self.scene
+        return s.positions(), s.velocities(), s.radii()
 
     def _sync_cell(self) -> None:
         """Period along z and default layer volume from a periodic cell."""
@@ -329,8 +315,8 @@ class HydroForceEngine(Engine):
         """Add this step's fluid forces to the particles of ``ids`` (called every step as an engine)."""
         if self._core.parameters().periodZ == 0 and self.scene.periodic:
             self._sync_cell()
-        c = self.scene._cpp
-        self._core.action(c.pos(), c.vel(), c.radius(), c.force(), self._ids, c.dt)
+        s = self.scene
+        self._core.action(s.positions(), s.velocities(), s.radii(), s.forces(), self._ids, s.dt)
 
     def force(self, id: int) -> np.ndarray:
         """The fluid force ``action`` applies to body ``id`` now (without advancing fluctuations)."""
@@ -345,7 +331,7 @@ class HydroForceEngine(Engine):
         p = self._core.parameters()
         p.vCell = self._layer_volume()
         self._core.setParameters(p)
-        chosen = self._sphere_ids() if ids is None else np.asarray(list(ids), dtype=np.int64)
+        chosen = self.scene.sphere_ids() if ids is None else np.asarray(list(ids), dtype=np.int64)
         return self._core.averageProfile(*self._arrays(), chosen)
 
     def averageProfile(self, ids: Sequence[int] | None = None) -> dict:

@@ -33,10 +33,8 @@ from typing import Sequence
 
 import numpy as np
 
-from talus import _dem, _flow
-from talus.dem.controllers import _hook
-from talus.dem.engines import Engine
-from talus.dem.shapes import Sphere
+from talus import _flow
+from talus.dem.engines import Engine, PyRunner, asCallback
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
 # engine step counts and their smallest allowed values
@@ -102,10 +100,7 @@ class FlowEngine(Engine):
         self._multithread = False
         self._backgroundSteps = 10
         self._rebuild = False
-        self._cpp = _dem.CallbackEngine()
-        self._cpp.iterPeriod = 1
-        self._cpp.initRun = True  # act from the first step on, as Yade's FlowEngine
-        self._cpp.callback = self._step
+        self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp  # from the first step on, as Yade's FlowEngine
         for name, value in attrs.items():
             setattr(self, name, value)
 
@@ -184,7 +179,7 @@ class FlowEngine(Engine):
 
     def triangulateScene(self, scene):
         """Build the network of the live spheres of a talus.dem scene (ids = body ids)."""
-        ids = [b.id for b in scene.bodies if isinstance(b.shape, Sphere)]
+        ids = scene.sphere_ids()
         pos = np.asarray(scene.positions())[ids]
         rad = np.asarray(scene.radii())[ids]
         self.triangulate(pos, rad, ids)
@@ -199,7 +194,7 @@ class FlowEngine(Engine):
         self._coupling.defTolerance = self._defTolerance
         self._coupling.multithread = self._multithread
         self._coupling.backgroundSteps = self._backgroundSteps
-        self._coupling.blockHook = _hook(self._blockHook)
+        self._coupling.blockHook = asCallback(self._blockHook, "blockHook")
         if self._rebuild:
             self._coupling.requestRebuild()
             self._rebuild = False
