@@ -124,7 +124,9 @@ int main(int argc, char *argv[])
     // reactions (kReactions); per cell the solid fraction, what is gathered and the reactions.
     std::vector<double> volumes, gathered, reactions;
     std::vector<double> cellSolid, cellValues(kGathered*mesh.nCells()), cellReactions;
-    std::vector<bool> touches;        // per particle: its envelope reaches this rank's cells
+    // Per particle: its envelope reaches this rank's cells, or this rank owns it (chars, not
+    // the bits of a vector<bool>: read once per particle in the forces' loop).
+    std::vector<char> touches;
     // By particle index, for du_p/dt: its velocity at the last exchange that had it on this
     // rank, and that exchange's number (-1: none; a vector, not a map: no allocation per
     // particle).
@@ -198,7 +200,7 @@ int main(int argc, char *argv[])
         touches.resize(n);
         for (label i = 0; i < n; ++i)
         {
-            touches[i] = gathered[kGathered*i] > 0;
+            touches[i] = gathered[kGathered*i] > 0 || locator.owned(i);
         }
         halo.combine(gathered, kGathered);
         phases.done(4);
@@ -211,7 +213,7 @@ int main(int argc, char *argv[])
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
         {
-            if (!touches[i] && !locator.owned(i))
+            if (!touches[i])
             {
                 continue;
             }
@@ -226,8 +228,9 @@ int main(int argc, char *argv[])
             const scalar alpha = min(max(s[1]*inverseW, alphaMin), 1.0);
             const vector uf = inverseW*vector(s[2], s[3], s[4]);
             const vector slip = uf - up;
-            const scalar Re = mag(slip)*d/nuF;
-            const scalar K = drag.K(alpha, mag(slip), d);
+            const scalar w = mag(slip);
+            const scalar Re = w*d/nuF;
+            const scalar K = drag.K(alpha, w, d);
             const vector dragForce = Vp*K*slip;
             const vector buoyancy =
                 Vp*rhoF*inverseW*vector(s[5], s[6], s[7]) - rhoF*Vp*gravity;
