@@ -139,6 +139,31 @@ int main(int argc, char *argv[])
     bool first = true;
     double convolutionBefore = 0;
 
+    // What the envelope gathers from the fluid state of this time besides the fluid fraction
+    // (kGathered): computed at the start and at the end of each fluid step, from the state the
+    // next exchange sees (nothing changes U and p in between), so that the exchange, which the
+    // DEM process waits for, does not include it (0.5 ms of CPU on 2000 cells, a sixth of the
+    // exchange of 10 000 particles); the DEM sub-steps run meanwhile.
+    const auto storeFluidValues = [&]()
+    {
+        const volVectorField gradp(fvc::grad(p));
+        const volVectorField lapU(fvc::laplacian(nu, U));
+        const volVectorField DUDt(fvc::ddt(U) + (U & fvc::grad(U)));
+        forAll(V, c)
+        {
+            double* v = &cellValues[kGathered*c];
+            v[0] = V[c];
+            v[11] = 0;
+            for (direction k = 0; k < 3; ++k)
+            {
+                v[2 + k] = V[c]*U[c][k];
+                v[5 + k] = V[c]*(lapU[c][k] - gradp[c][k]);
+                v[8 + k] = V[c]*DUDt[c][k];
+            }
+        }
+    };
+    storeFluidValues();
+
     Info<< "\nStarting the coupled time loop\n" << endl;
 
     while (true)
@@ -178,22 +203,10 @@ int main(int argc, char *argv[])
                *(alphaNew - alphaf.primitiveField());
         }
 
-        // The fluid quantities the particles feel, from the fluid state of this time.
-        const volVectorField gradp(fvc::grad(p));
-        const volVectorField lapU(fvc::laplacian(nu, U));
-        const volVectorField DUDt(fvc::ddt(U) + (U & fvc::grad(U)));
+        // The fluid's own values are in cellValues already (storeFluidValues).
         forAll(alphaNew, c)
         {
-            double* v = &cellValues[kGathered*c];
-            v[0] = V[c];
-            v[1] = V[c]*alphaNew[c];
-            v[11] = 0;
-            for (direction k = 0; k < 3; ++k)
-            {
-                v[2 + k] = V[c]*U[c][k];
-                v[5 + k] = V[c]*(lapU[c][k] - gradp[c][k]);
-                v[8 + k] = V[c]*DUDt[c][k];
-            }
+            cellValues[kGathered*c + 1] = V[c]*alphaNew[c];
         }
         phases.done(3);
         envelope.gather<kGathered>(cellValues, gathered);
@@ -207,14 +220,20 @@ int main(int argc, char *argv[])
 
         // Forces on the particles (every rank whose cells a particle touches computes it from
         // the same summed values; its owner returns it) and their reactions on the fluid.
-        reply.assign(proto::kReplyHeader + proto::kForceDoubles*n, 0.0);
-        reactions.assign(kReactions*n, 0.0);
+        // Every value written below (zeros included) rather than the arrays zeroed first: the
+        // two fills took 0.1 ms of 10 000 particles' exchange.
+        reply.resize(proto::kReplyHeader + proto::kForceDoubles*n);
+        reactions.resize(kReactions*n);
         const scalar dt = runTime.deltaTValue();
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
         {
+            double* reaction = &reactions[kReactions*i];
+            double* r = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
             if (!touches[i])
             {
+                std::fill_n(reaction, kReactions, 0.0);
+                std::fill_n(r, proto::kForceDoubles, 0.0);
                 continue;
             }
             const double* q = &particles[proto::kParticleDoubles*i];
@@ -246,17 +265,20 @@ int main(int argc, char *argv[])
             lastExchange[id] = exchange;
             const vector addedMass =
                 addedMassCoefficient*rhoF*Vp*(inverseW*vector(s[8], s[9], s[10]) - dupdt);
-            double* reaction = &reactions[kReactions*i];
             reaction[0] = Vp*K;
             for (direction k = 0; k < 3; ++k)
             {
                 reaction[1 + k] = Vp*K*up[k];
                 reaction[4 + k] = addedMass[k];
             }
-            if (locator.owned(i))
+            reaction[7] = 0;
+            if (!locator.owned(i))
+            {
+                std::fill_n(r, proto::kForceDoubles, 0.0);
+            }
+            else
             {
                 const vector f = dragForce + buoyancy + addedMass;
-                double* r = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
                 r[0] = f.x();
                 r[1] = f.y();
                 r[2] = f.z();
@@ -308,6 +330,7 @@ int main(int argc, char *argv[])
             }
         }
 
+        storeFluidValues();
         runTime.write();
         runTime.printExecutionTime(Info);
         exchangeTimer.stepDone();
