@@ -166,6 +166,7 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   replies_.assign(static_cast<std::size_t>(fluidProcs_), {});
   sent_.assign(static_cast<std::size_t>(fluidProcs_), {});
   members_.assign(static_cast<std::size_t>(fluidProcs_), {});
+  memberCount_.assign(static_cast<std::size_t>(fluidProcs_), 0);
 }
 
 FoamLink::~FoamLink()
@@ -241,25 +242,30 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
                              std::to_string(nParticles_) + " particles of the handshake");
   const auto start = std::chrono::steady_clock::now();
   // Each fluid rank gets the particles inside its widened box only (FoamProtocol.h, inBox).
+  // The arrays keep room for every particle (no allocation, no capacity test per value: with
+  // push_back the packing took 0.25 ms of 10 000 particles' exchange, perf).
   for (int p = 0; p < fluidProcs_; ++p)
   {
     const double* box = &boxes_[proto::kBoxDoubles * static_cast<std::size_t>(p)];
     auto& members = members_[static_cast<std::size_t>(p)];
     auto& data = sent_[static_cast<std::size_t>(p)];
-    members.clear();
-    data.clear();
+    members.resize(n);
+    data.resize(proto::kParticleDoubles * n);
+    std::size_t count = 0;
     for (std::size_t i = 0; i < n; ++i)
     {
-      if (!proto::inBox(box, positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]))
+      const double* x = &positions[3 * i];
+      if (!proto::inBox(box, x[0], x[1], x[2]))
         continue;
-      members.push_back(i);
-      for (std::size_t k = 0; k < 3; ++k)
-        data.push_back(positions[3 * i + k]);
-      for (std::size_t k = 0; k < 3; ++k)
-        data.push_back(velocities[3 * i + k]);
-      data.push_back(radii[i]);
-      data.push_back(static_cast<double>(i));
+      double* d = &data[proto::kParticleDoubles * count];
+      const double* v = &velocities[3 * i];
+      d[0] = x[0], d[1] = x[1], d[2] = x[2];
+      d[3] = v[0], d[4] = v[1], d[5] = v[2];
+      d[6] = radii[i];
+      d[7] = static_cast<double>(i);
+      members[count++] = i;
     }
+    memberCount_[static_cast<std::size_t>(p)] = count;
   }
   std::vector<MPI_Request> rq(static_cast<std::size_t>(3 * fluidProcs_));
   std::vector<std::array<int, 2>> commands(static_cast<std::size_t>(fluidProcs_));
@@ -267,16 +273,17 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   for (int p = 0; p < fluidProcs_; ++p)
   {
     const auto q = static_cast<std::size_t>(p);
-    const auto count = members_[q].size();
+    const auto count = memberCount_[q];
     commands[q] = {proto::kCommandStep, static_cast<int>(count)};
     auto& reply = replies_[q];
     reply.resize(proto::kReplyHeader + proto::kForceDoubles * count);
     MPI_Irecv(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, p, proto::kTagForces, inter_,
               &rq[2 * q + static_cast<std::size_t>(fluidProcs_)]);
     MPI_Isend(commands[q].data(), 2, MPI_INT, p, proto::kTagCommand, inter_, &rq[q]);
-    MPI_Isend(sent_[q].data(), static_cast<int>(sent_[q].size()), MPI_DOUBLE, p, proto::kTagParticles, inter_,
+    const auto sentDoubles = static_cast<int>(proto::kParticleDoubles * count);
+    MPI_Isend(sent_[q].data(), sentDoubles, MPI_DOUBLE, p, proto::kTagParticles, inter_,
               &rq[2 * q + 1 + static_cast<std::size_t>(fluidProcs_)]);
-    doubles += static_cast<long>(sent_[q].size() + reply.size());
+    doubles += static_cast<long>(sentDoubles + reply.size());
   }
   const auto sent = std::chrono::steady_clock::now();
   const double sentCpu = threadCpuSeconds();
@@ -291,18 +298,19 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   long fluidMessages = 0;
   stats_.fluidExchangeSeconds = stats_.fluidStepSeconds = 0;
   stats_.fluidExchangeCpuSeconds = stats_.fluidStepCpuSeconds = 0;
-  std::vector<double> owned(n, 0.0);
+  owned_.assign(n, 0.0);
   for (int p = 0; p < fluidProcs_; ++p)
   {
     const auto& reply = replies_[static_cast<std::size_t>(p)];
     const auto& members = members_[static_cast<std::size_t>(p)];
+    const auto count = memberCount_[static_cast<std::size_t>(p)];
     maxRe = std::max(maxRe, reply[1]);
     fluidMessages += std::lround(reply[2]);
     stats_.fluidExchangeSeconds = std::max(stats_.fluidExchangeSeconds, reply[3]);
     stats_.fluidStepSeconds = std::max(stats_.fluidStepSeconds, reply[4]);
     stats_.fluidExchangeCpuSeconds = std::max(stats_.fluidExchangeCpuSeconds, reply[5]);
     stats_.fluidStepCpuSeconds = std::max(stats_.fluidStepCpuSeconds, reply[6]);
-    for (std::size_t j = 0; j < members.size(); ++j)
+    for (std::size_t j = 0; j < count; ++j)
     {
       const double* f = &reply[proto::kReplyHeader + proto::kForceDoubles * j];
       for (std::size_t k = 0; k < 3; ++k)
@@ -310,7 +318,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
         forces[3 * members[j] + k] += f[k];
         fluidVelocities[3 * members[j] + k] += f[5 + k];
       }
-      owned[members[j]] += f[3];
+      owned_[members[j]] += f[3];
       beta[members[j]] += f[4];
     }
   }
@@ -319,7 +327,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_.waitSeconds = std::chrono::duration<double>(received - sent).count();
   for (std::size_t i = 0; i < n; ++i)
-    if (owned[i] < 0.5)
+    if (owned_[i] < 0.5)
     {
       std::ostringstream s;
       s << "FoamCoupling: particle " << i << " at (" << positions[3 * i] << ", "

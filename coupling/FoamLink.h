@@ -88,6 +88,8 @@ private:
   std::vector<double> boxes_;
   std::vector<std::vector<double>> sent_;                ///< per fluid rank: its particles
   std::vector<std::vector<std::size_t>> members_;        ///< per fluid rank: their indices
+  std::vector<std::size_t> memberCount_;                 ///< per fluid rank: how many (the arrays hold room for all)
+  std::vector<double> owned_;                            ///< per particle: how many ranks own it
   std::vector<std::vector<double>> replies_;
   ExchangeStats stats_;
   struct Peer

@@ -124,7 +124,9 @@ int main(int argc, char *argv[])
     // reactions (kReactions); per cell the solid fraction, what is gathered and the reactions.
     std::vector<double> volumes, gathered, reactions;
     std::vector<double> cellSolid, cellValues(kGathered*mesh.nCells()), cellReactions;
-    std::vector<bool> touches;        // per particle: its envelope reaches this rank's cells
+    // Per particle: its envelope reaches this rank's cells, or this rank owns it (chars, not
+    // the bits of a vector<bool>: read once per particle in the forces' loop).
+    std::vector<char> touches;
     // By particle index, for du_p/dt: its velocity at the last exchange that had it on this
     // rank, and that exchange's number (-1: none; a vector, not a map: no allocation per
     // particle).
@@ -136,6 +138,31 @@ int main(int argc, char *argv[])
     const scalar inverseRho = 1/rhoF;
     bool first = true;
     double convolutionBefore = 0;
+
+    // What the envelope gathers from the fluid state of this time besides the fluid fraction
+    // (kGathered): computed at the start and at the end of each fluid step, from the state the
+    // next exchange sees (nothing changes U and p in between), so that the exchange, which the
+    // DEM process waits for, does not include it (0.5 ms of CPU on 2000 cells, a sixth of the
+    // exchange of 10 000 particles); the DEM sub-steps run meanwhile.
+    const auto storeFluidValues = [&]()
+    {
+        const volVectorField gradp(fvc::grad(p));
+        const volVectorField lapU(fvc::laplacian(nu, U));
+        const volVectorField DUDt(fvc::ddt(U) + (U & fvc::grad(U)));
+        forAll(V, c)
+        {
+            double* v = &cellValues[kGathered*c];
+            v[0] = V[c];
+            v[11] = 0;
+            for (direction k = 0; k < 3; ++k)
+            {
+                v[2 + k] = V[c]*U[c][k];
+                v[5 + k] = V[c]*(lapU[c][k] - gradp[c][k]);
+                v[8 + k] = V[c]*DUDt[c][k];
+            }
+        }
+    };
+    storeFluidValues();
 
     Info<< "\nStarting the coupled time loop\n" << endl;
 
@@ -176,43 +203,37 @@ int main(int argc, char *argv[])
                *(alphaNew - alphaf.primitiveField());
         }
 
-        // The fluid quantities the particles feel, from the fluid state of this time.
-        const volVectorField gradp(fvc::grad(p));
-        const volVectorField lapU(fvc::laplacian(nu, U));
-        const volVectorField DUDt(fvc::ddt(U) + (U & fvc::grad(U)));
+        // The fluid's own values are in cellValues already (storeFluidValues).
         forAll(alphaNew, c)
         {
-            double* v = &cellValues[kGathered*c];
-            v[0] = V[c];
-            v[1] = V[c]*alphaNew[c];
-            v[11] = 0;
-            for (direction k = 0; k < 3; ++k)
-            {
-                v[2 + k] = V[c]*U[c][k];
-                v[5 + k] = V[c]*(lapU[c][k] - gradp[c][k]);
-                v[8 + k] = V[c]*DUDt[c][k];
-            }
+            cellValues[kGathered*c + 1] = V[c]*alphaNew[c];
         }
         phases.done(3);
         envelope.gather<kGathered>(cellValues, gathered);
         touches.resize(n);
         for (label i = 0; i < n; ++i)
         {
-            touches[i] = gathered[kGathered*i] > 0;
+            touches[i] = gathered[kGathered*i] > 0 || locator.owned(i);
         }
         halo.combine(gathered, kGathered);
         phases.done(4);
 
         // Forces on the particles (every rank whose cells a particle touches computes it from
         // the same summed values; its owner returns it) and their reactions on the fluid.
-        reply.assign(proto::kReplyHeader + proto::kForceDoubles*n, 0.0);
-        reactions.assign(kReactions*n, 0.0);
+        // Every value written below (zeros included) rather than the arrays zeroed first: the
+        // two fills took 0.1 ms of 10 000 particles' exchange.
+        reply.resize(proto::kReplyHeader + proto::kForceDoubles*n);
+        reactions.resize(kReactions*n);
         const scalar dt = runTime.deltaTValue();
         scalar maxRe = 0;
         for (label i = 0; i < n; ++i)
         {
-            if (!touches[i] && !locator.owned(i))
+            double* reaction = &reactions[kReactions*i];
+            double* r = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
+            if (!touches[i])
             {
+                std::fill_n(reaction, kReactions, 0.0);
+                std::fill_n(r, proto::kForceDoubles, 0.0);
                 continue;
             }
             const double* q = &particles[proto::kParticleDoubles*i];
@@ -226,8 +247,9 @@ int main(int argc, char *argv[])
             const scalar alpha = min(max(s[1]*inverseW, alphaMin), 1.0);
             const vector uf = inverseW*vector(s[2], s[3], s[4]);
             const vector slip = uf - up;
-            const scalar Re = mag(slip)*d/nuF;
-            const scalar K = drag.K(alpha, mag(slip), d);
+            const scalar w = mag(slip);
+            const scalar Re = w*d/nuF;
+            const scalar K = drag.K(alpha, w, d);
             const vector dragForce = Vp*K*slip;
             const vector buoyancy =
                 Vp*rhoF*inverseW*vector(s[5], s[6], s[7]) - rhoF*Vp*gravity;
@@ -243,17 +265,20 @@ int main(int argc, char *argv[])
             lastExchange[id] = exchange;
             const vector addedMass =
                 addedMassCoefficient*rhoF*Vp*(inverseW*vector(s[8], s[9], s[10]) - dupdt);
-            double* reaction = &reactions[kReactions*i];
             reaction[0] = Vp*K;
             for (direction k = 0; k < 3; ++k)
             {
                 reaction[1 + k] = Vp*K*up[k];
                 reaction[4 + k] = addedMass[k];
             }
-            if (locator.owned(i))
+            reaction[7] = 0;
+            if (!locator.owned(i))
+            {
+                std::fill_n(r, proto::kForceDoubles, 0.0);
+            }
+            else
             {
                 const vector f = dragForce + buoyancy + addedMass;
-                double* r = &reply[proto::kReplyHeader + proto::kForceDoubles*i];
                 r[0] = f.x();
                 r[1] = f.y();
                 r[2] = f.z();
@@ -305,6 +330,7 @@ int main(int argc, char *argv[])
             }
         }
 
+        storeFluidValues();
         runTime.write();
         runTime.printExecutionTime(Info);
         exchangeTimer.stepDone();

@@ -172,7 +172,7 @@ class FoamCoupling:
         self.maxReynolds = 0.0
         self.exchanges = 0
         self.times = CouplingTimes()
-        self._applied = None
+        self._applied = self._change = None
 
     # -- start ---------------------------------------------------------------------------------
     def _coupled_ids(self) -> np.ndarray:
@@ -241,6 +241,7 @@ class FoamCoupling:
         self.scene.dt = dt_fluid / self.substeps
         self._warn_relaxation(dt_fluid, ids)
         self._applied = np.zeros((len(ids), 3))
+        self._change = np.empty_like(self._applied)
         self.hook = self.scene.add_hook("before_forces", self.exchange, self.substeps)
         if self.implicitDrag:
             self._drag_hook = self.scene.add_hook("after_forces", self._update_drag, 1)
@@ -309,15 +310,17 @@ class FoamCoupling:
         """One fluid step: send the particles, replace last step's forces by the new ones."""
         start, start_cpu = time.perf_counter(), time.thread_time()
         ids, rows = self.ids, self._rows
-        velocities = np.array(self.scene.velocities()[rows])  # a copy: kept for implicitDrag
+        velocities = self.scene.velocities()[rows]  # a view when rows is a slice: no copy sent
         forces, re, self._beta, self._fluid_velocity = self.link.exchange(self._positions(rows), velocities,
                                                                           self.scene.radii()[rows])
-        self._sent_velocity = velocities
+        if self.implicitDrag:
+            self._sent_velocity = np.array(velocities)  # a copy: the sub-steps change the view
         if self.exchanges == 0:
             self._warn_drag_relaxation(ids)
         # The persistent forces carry the force over the sub-steps; this step's accumulator was
-        # already filled from them by the ForceResetter, so it gets the change too.
-        change = forces - self._applied
+        # already filled from them by the ForceResetter, so it gets the change too (into a kept
+        # array: no new array of 3 N doubles per exchange).
+        change = np.subtract(forces, self._applied, out=self._change)
         self.scene.persistent_forces()[rows] += change
         self.scene.forces()[rows] += change
         self._applied = forces
