@@ -1,6 +1,6 @@
 #pragma once
 
-#include "fem/RVE.h"
+#include "dem/RVE.h"
 
 #include <cstddef>
 #include <memory>
@@ -9,6 +9,13 @@
 
 namespace talus::fem
 {
+using dem::Mat3;
+using dem::Mat6;
+using dem::RVE;
+using dem::RVEEngines;
+using dem::RVEState;
+using dem::Vec3;
+
 /// The RVEs of a set of Gauss points, called together (the seed's escript-side calls, batched
 /// in C++): every call loops over the RVEs with OpenMP, one RVE per thread at a time (the DEM
 /// loops inside an RVE then run on one thread).

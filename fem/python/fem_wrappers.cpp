@@ -63,7 +63,7 @@ PYBIND11_MODULE(_fem, m)
   m.doc() = "Talus FEMxDEM: periodic DEM RVEs at Gauss points (C++ core of talus.fem)";
   py::module_::import("talus._dem"); // the Scene type, for RVEs built from live scenes
 
-  m.def("subStepVelocityGradient", &talus::fem::subStepVelocityGradient, py::arg("grad"), py::arg("k"),
+  m.def("subStepVelocityGradient", &talus::dem::subStepVelocityGradient, py::arg("grad"), py::arg("k"),
         py::arg("nSteps"), py::arg("dt"));
 
   py::class_<GaussPointRVEs>(m, "GaussPointRVEs")

@@ -1,4 +1,4 @@
-#include "fem/RVE.h"
+#include "dem/RVE.h"
 
 #include "dem/Checkpoint.h"
 #include "dem/Collider.h"
@@ -12,11 +12,11 @@
 #include <numbers>
 #include <stdexcept>
 
-namespace talus::fem
+namespace talus::dem
 {
 namespace
 {
-bool isSphere(const dem::Bodies& b, std::size_t i) { return b.alive[i] && b.shape[i] == dem::ShapeKind::Sphere; }
+bool isSphere(const Bodies& b, std::size_t i) { return b.alive[i] && b.shape[i] == ShapeKind::Sphere; }
 } // namespace
 
 Mat3 subStepVelocityGradient(const Mat3& grad, int k, int nSteps, double dt)
@@ -25,7 +25,7 @@ Mat3 subStepVelocityGradient(const Mat3& grad, int k, int nSteps, double dt)
   return (grad / n) * (Mat3::Identity() + (k / n) * grad).inverse() / dt;
 }
 
-RVE::RVE(const dem::Scene& source, const RVEEngines& engines, const std::string& name) : name_(name)
+RVE::RVE(const Scene& source, const RVEEngines& engines, const std::string& name) : name_(name)
 {
   scene_.materials = source.materials;
   scene_.bodies = source.bodies;
@@ -33,6 +33,9 @@ RVE::RVE(const dem::Scene& source, const RVEEngines& engines, const std::string&
   scene_.periodic = source.periodic;
   scene_.cell = source.cell;
   scene_.maxOverlapRatio = source.maxOverlapRatio;
+  scene_.maxEnergyGrowth = source.maxEnergyGrowth;
+  scene_.energy = source.energy;
+  scene_.timingEnabled = source.timingEnabled;
   scene_.dt = source.dt;
   scene_.time = source.time;
   scene_.iter = source.iter;
@@ -43,14 +46,14 @@ RVE RVE::load(const std::string& path, const RVEEngines& engines)
 {
   if (!std::filesystem::exists(path))
     throw std::invalid_argument("RVE file '" + path + "' does not exist");
-  if constexpr (!dem::haveCheckpoints)
+  if constexpr (!haveCheckpoints)
     throw std::invalid_argument("RVE file '" + path + "': this Talus was built without HDF5 and cannot read checkpoints");
   RVE rve(path);
   try
   {
-    dem::loadCheckpoint(rve.scene_, path);
+    loadCheckpoint(rve.scene_, path);
   }
-  catch (const dem::CheckpointError& e)
+  catch (const CheckpointError& e)
   {
     throw std::invalid_argument("RVE file '" + path + "' is not a readable Talus checkpoint: " + e.what());
   }
@@ -67,12 +70,12 @@ void RVE::setUp(const RVEEngines& engines)
     spheres += isSphere(scene_.bodies, i) ? 1 : 0;
   if (spheres == 0)
     throw std::invalid_argument("RVE " + name_ + " has no sphere");
-  auto loop = std::make_shared<dem::InteractionLoop>();
-  loop->laws.push_back(dem::makeContactLaw(engines.law));
-  auto integrator = std::make_shared<dem::NewtonIntegrator>();
+  auto loop = std::make_shared<InteractionLoop>();
+  loop->laws.push_back(makeContactLaw(engines.law));
+  auto integrator = std::make_shared<NewtonIntegrator>();
   integrator->damping = engines.damping;
-  collider_ = std::make_shared<dem::Collider>();
-  scene_.engines = {std::make_shared<dem::ForceResetter>(), collider_, loop, integrator};
+  collider_ = std::make_shared<Collider>();
+  scene_.engines = {std::make_shared<ForceResetter>(), collider_, loop, integrator};
   // The state came from elsewhere: engines must not trust any cache (as after loading a checkpoint).
   ++scene_.bodiesVersion;
   ++scene_.bodyPropertiesVersion;
@@ -139,19 +142,19 @@ void RVE::rollback()
     restore();
 }
 
-Mat3 RVE::stress() const { return dem::loveWeberStress(scene_); }
+Mat3 RVE::stress() const { return loveWeberStress(scene_); }
 
-Mat6 RVE::tangent(dem::TangentForm form) const { return dem::contactStiffnessTangent(scene_, -1, form); }
+Mat6 RVE::tangent(TangentForm form) const { return contactStiffnessTangent(scene_, -1, form); }
 
 RVEState RVE::state() const
 {
   RVEState s;
   const double volume = scene_.cell.volume();
-  s.porosity = 1 - dem::sphereVolume(scene_) / volume;
+  s.porosity = 1 - sphereVolume(scene_) / volume;
   s.voidRatio = s.porosity / (1 - s.porosity);
-  s.coordination = dem::coordinationNumber(scene_);
-  s.fabric = dem::fabricTensor(scene_);
-  const dem::Bodies& b = scene_.bodies;
+  s.coordination = coordinationNumber(scene_);
+  s.fabric = fabricTensor(scene_);
+  const Bodies& b = scene_.bodies;
   std::size_t count = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
@@ -166,4 +169,4 @@ RVEState RVE::state() const
   s.meanRotation /= static_cast<double>(count);
   return s;
 }
-} // namespace talus::fem
+} // namespace talus::dem

@@ -11,12 +11,6 @@
 namespace talus::dem
 {
 class Collider;
-}
-
-namespace talus::fem
-{
-using dem::Mat3;
-using dem::Vec3;
 using Mat6 = Eigen::Matrix<double, 6, 6>;
 
 /// How an RVE's DEM scene is stepped: the contact law of its only InteractionLoop (Yade's Law2
@@ -46,7 +40,9 @@ struct RVEState
 [[nodiscard]] Mat3 subStepVelocityGradient(const Mat3& grad, int k, int nSteps, double dt);
 
 /// A representative volume element: one periodic DEM scene owned here, with a committed state
-/// (the last converged one of the finite-element Newton iterations) and a trial state.
+/// (the last converged one of the finite-element Newton iterations) and a trial state. This
+/// is the DEM core's interface to a continuum (FEM x DEM, fem/): a displacement gradient in,
+/// stress, tangent and micro-structure out; fem/ uses the DEM through it only.
 ///
 /// `deform(G, n)` always starts from the committed state and imposes the displacement gradient
 /// G = du/dX (relative to the committed configuration) on the periodic cell over n DEM steps,
@@ -58,10 +54,11 @@ struct RVEState
 class RVE
 {
 public:
-  /// Take a copy of the state of a periodic scene (materials, bodies, contacts, cell, clock);
+  /// Take a copy of the state of a periodic scene (materials, bodies, contacts, cell, clock and
+  /// the scene's settings: overlap and energy checks, energy tracking, timing);
   /// its engines are not shared, the RVE builds its own from `engines`.
   /// @throws std::invalid_argument naming `name` if the scene is not periodic or has no sphere
-  RVE(const dem::Scene& source, const RVEEngines& engines, const std::string& name = "scene");
+  RVE(const Scene& source, const RVEEngines& engines, const std::string& name = "scene");
   /// Load an RVE from a Talus checkpoint file (O.save).
   /// @throws std::invalid_argument naming the file when it does not exist, is not a checkpoint
   ///         or is not periodic
@@ -79,10 +76,10 @@ public:
   /// Love-Weber stress (compression negative) and the contact-stiffness tangent of the current
   /// (trial or committed) state, by dem's loveWeberStress and contactStiffnessTangent.
   [[nodiscard]] Mat3 stress() const;
-  [[nodiscard]] Mat6 tangent(dem::TangentForm form = dem::TangentForm::Full) const;
+  [[nodiscard]] Mat6 tangent(TangentForm form = TangentForm::Full) const;
   [[nodiscard]] RVEState state() const;
 
-  [[nodiscard]] const dem::Scene& scene() const { return scene_; }
+  [[nodiscard]] const Scene& scene() const { return scene_; }
   [[nodiscard]] const std::string& name() const { return name_; }
 
 private:
@@ -92,21 +89,21 @@ private:
 
   struct Snapshot
   {
-    dem::Bodies bodies;
-    dem::Contacts contacts;
-    dem::Cell cell;
+    Bodies bodies;
+    Contacts contacts;
+    Cell cell;
     double time = 0;
     std::int64_t iter = 0;
   };
   std::string name_;
-  dem::Scene scene_;
+  Scene scene_;
   Snapshot committed_;
   /// The RVE's collider and its rebuild count at the last commit: a rollback forces a new
   /// contact detection only if the collider rebuilt its candidate list during the trial
   /// (otherwise the committed list still matches the collider's reference positions).
-  std::shared_ptr<dem::Collider> collider_;
+  std::shared_ptr<Collider> collider_;
   std::int64_t committedRebuilds_ = -1;
-  std::vector<dem::Quat> initialOri_;
+  std::vector<Quat> initialOri_;
   bool trial_ = false;
 };
-} // namespace talus::fem
+} // namespace talus::dem
