@@ -25,7 +25,6 @@ from pathlib import Path
 
 import numpy as np
 
-from talus.dem.shapes import Sphere
 
 __all__ = ["CouplingTimes", "FoamCoupling", "find_solver"]
 
@@ -179,7 +178,7 @@ class FoamCoupling:
         if self.ids is not None:
             self._check_ids(self.ids)
             return self.ids
-        return np.array([b.id for b in self.scene.bodies if isinstance(b.shape, Sphere)], dtype=np.int64)
+        return self.scene.sphere_ids()
 
     def _check_ids(self, ids: np.ndarray):
         """Before any process starts: every id a live sphere of the scene, none twice (a negative
@@ -192,13 +191,14 @@ class FoamCoupling:
         unique, seen = np.unique(ids, return_counts=True)
         if np.any(seen > 1):
             raise ValueError(f"FoamCoupling: ids: body {int(unique[seen > 1][0])} is listed twice")
-        for i in ids:
+        others = ids[~np.isin(ids, self.scene.sphere_ids())]
+        if len(others):
+            i = int(others[0])
             try:
-                shape = self.scene.bodies[int(i)].shape
-            except IndexError as e:
-                raise ValueError(f"FoamCoupling: ids: body {int(i)}: {e}") from None
-            if not isinstance(shape, Sphere):
-                raise ValueError(f"FoamCoupling: ids: body {int(i)} is a {type(shape).__name__}, not a sphere")
+                what = f"a {type(self.scene.bodies[i].shape).__name__}"
+            except IndexError:
+                what = "erased"
+            raise ValueError(f"FoamCoupling: ids: body {i} is {what}, not a sphere")
 
     def _check_gravity(self):
         from talus.dem.engines import NewtonIntegrator
