@@ -1,0 +1,477 @@
+// HDF5 plumbing of the checkpoints (dem/Checkpoint.cpp and dem/checkpoint/*.cpp; internal, not
+// installed): owned identifiers, errors with HDF5's innermost message, quiet error printing,
+// and the Writer and Reader of datasets and attributes.
+#pragma once
+
+#include "dem/Checkpoint.h"
+#include "dem/Scene.h"
+#include "dem/build_config.h"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace talus::dem::checkpoint
+{
+static_assert(sizeof(Vec3) == 3 * sizeof(double), "Vec3 arrays are written as (n, 3) doubles");
+
+// ----------------------------------------------------------------------------------------------
+// HDF5 plumbing: owned identifiers, errors, quiet error printing.
+
+/// An HDF5 identifier closed on destruction (unless released or already closed).
+class Id
+{
+public:
+  using Closer = herr_t (*)(hid_t);
+  Id() = default;
+  Id(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Id(const Id&) = delete;
+  Id& operator=(const Id&) = delete;
+  Id(Id&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)), closer_(other.closer_) {}
+  Id& operator=(Id&& other) noexcept
+  {
+    if (this != &other)
+    {
+      close();
+      id_ = std::exchange(other.id_, H5I_INVALID_HID);
+      closer_ = other.closer_;
+    }
+    return *this;
+  }
+  ~Id() { close(); }
+
+  [[nodiscard]] hid_t get() const { return id_; }
+  [[nodiscard]] bool valid() const { return id_ >= 0; }
+  /// Close now; returns HDF5's status (negative on failure).
+  herr_t close()
+  {
+    herr_t status = 0;
+    if (id_ >= 0 && closer_)
+      status = closer_(id_);
+    id_ = H5I_INVALID_HID;
+    return status;
+  }
+
+private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer closer_ = nullptr;
+};
+
+/// Skip HDF5's exit handler, when we are the first to use HDF5 in the process. HDF5 1.10 leaks
+/// internal free-list blocks on some error paths (a checksum failure while reading a damaged
+/// file), and its exit handler then prints "infinite loop closing library" and a line of
+/// garbage. Checkpoint files are always closed before our functions return, so the handler has
+/// nothing to do for us.
+inline void skipExitHandler()
+{
+  static const bool done = [] {
+    H5dont_atexit();
+    return true;
+  }();
+  (void)done;
+}
+
+/// Switches off HDF5's printing of its error stack for the guard's lifetime (restored after).
+class QuietErrors
+{
+public:
+  QuietErrors()
+  {
+    skipExitHandler();
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+
+private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+/// The most specific message of HDF5's current error stack, or "" if it is empty.
+inline std::string hdf5Detail()
+{
+  std::string detail;
+  auto walk = [](unsigned n, const H5E_error2_t* err, void* out) -> herr_t {
+    if (n == 0 && err != nullptr && err->desc != nullptr)
+    {
+      auto& text = *static_cast<std::string*>(out);
+      text = err->desc;
+      char minor[256] = {};
+      if (H5Eget_msg(err->min_num, nullptr, minor, sizeof(minor)) > 0 && text.find(minor) == std::string::npos)
+        text += std::string(" [") + minor + "]";
+    }
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, walk, &detail);
+  H5Eclear2(H5E_DEFAULT);
+  return detail;
+}
+
+/// Where a checkpoint lives, for messages: "checkpoint 'run.h5'" or "saveTmp slot 'init'".
+class Context
+{
+public:
+  explicit Context(std::string what) : what_(std::move(what)) {}
+
+  /// Throw CheckpointError with our message and, if any, HDF5's innermost one.
+  [[noreturn]] void fail(const std::string& message, bool withHdf5 = true) const
+  {
+    std::string text = what_ + ": " + message;
+    if (withHdf5)
+    {
+      const std::string detail = hdf5Detail();
+      if (!detail.empty())
+        text += " (HDF5: " + detail + ")";
+    }
+    throw CheckpointError(text);
+  }
+  /// Fail unless an HDF5 status or identifier is non-negative.
+  template <class T>
+  T check(T status, const std::string& doing) const
+  {
+    if (status < 0)
+      fail(doing);
+    return status;
+  }
+  Id checkId(hid_t id, Id::Closer closer, const std::string& doing) const
+  {
+    if (id < 0)
+      fail(doing);
+    return Id(id, closer);
+  }
+  [[nodiscard]] const std::string& what() const { return what_; }
+
+private:
+  std::string what_;
+};
+
+inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+// ----------------------------------------------------------------------------------------------
+// Writing.
+
+class Writer
+{
+public:
+  /// `checksums`: numeric datasets chunked with a Fletcher-32 checksum (files), or contiguous
+  /// (in-memory images, which nothing can damage).
+  Writer(hid_t file, const Context& ctx, bool checksums) : file_(file), ctx_(ctx), checksums_(checksums) {}
+
+  Id group(const std::string& path) const
+  {
+    return ctx_.checkId(H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                        "cannot create group " + path);
+  }
+
+  void attribute(hid_t obj, const char* name, hid_t fileType, hid_t memType, const void* value) const
+  {
+    const Id space = ctx_.checkId(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
+    const Id attr = ctx_.checkId(H5Acreate2(obj, name, fileType, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+                                 std::string("cannot create attribute ") + name);
+    ctx_.check(H5Awrite(attr.get(), memType, value), std::string("cannot write attribute ") + name);
+  }
+  void attribute(hid_t obj, const char* name, double value) const
+  {
+    attribute(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
+  }
+  void attribute(hid_t obj, const char* name, std::int64_t value) const
+  {
+    attribute(obj, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
+  }
+  void attribute(hid_t obj, const char* name, const std::string& value) const
+  {
+    const Id type = stringType(value.size());
+    std::string padded = value;
+    padded.resize(std::max<std::size_t>(1, value.size()), '\0');
+    attribute(obj, name, type.get(), type.get(), padded.data());
+  }
+
+  /// A 1-D dataset of fixed-length UTF-8 strings (as long as the longest, NUL-padded), so that
+  /// text is checksummed like numbers. One string of any length holds a text record.
+  void strings(const std::string& path, const std::vector<std::string>& values) const
+  {
+    std::size_t width = 1;
+    for (const std::string& v : values)
+      width = std::max(width, v.size());
+    const Id type = stringType(width);
+    std::string buffer(width * values.size(), '\0');
+    for (std::size_t i = 0; i < values.size(); ++i)
+      std::copy(values[i].begin(), values[i].end(), buffer.begin() + static_cast<std::ptrdiff_t>(i * width));
+    array(path, type.get(), type.get(), {values.size()}, buffer.data());
+  }
+
+  /// A numeric dataset of shape `dims`, chunked with a Fletcher-32 checksum when not empty
+  /// (and checksums are on).
+  void array(const std::string& path, hid_t fileType, hid_t memType, std::vector<hsize_t> dims, const void* data) const
+  {
+    const int rank = static_cast<int>(dims.size());
+    const Id space = ctx_.checkId(H5Screate_simple(rank, dims.data(), nullptr), H5Sclose, "cannot create a dataspace");
+    const Id plist = ctx_.checkId(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create a property list");
+    hsize_t total = 1;
+    for (hsize_t d : dims)
+      total *= d;
+    if (total > 0 && checksums_)
+    {
+      // Chunks of at most ~4 MiB along the first axis, each with its checksum.
+      const hsize_t rowBytes = H5Tget_size(memType) * (total / dims[0]);
+      std::vector<hsize_t> chunk = dims;
+      chunk[0] = std::clamp<hsize_t>((hsize_t{4} << 20) / std::max<hsize_t>(rowBytes, 1), 1, dims[0]);
+      ctx_.check(H5Pset_chunk(plist.get(), rank, chunk.data()), "cannot set the chunks of " + path);
+      ctx_.check(H5Pset_fletcher32(plist.get()), "cannot set the checksum of " + path);
+    }
+    const Id set = ctx_.checkId(
+        H5Dcreate2(file_, path.c_str(), fileType, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Dclose,
+        "cannot create dataset " + path);
+    if (total > 0)
+      ctx_.check(H5Dwrite(set.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + path);
+  }
+  void doubles(const std::string& path, std::vector<hsize_t> dims, const double* data) const
+  {
+    array(path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, std::move(dims), data);
+  }
+  void int32s(const std::string& path, const std::int32_t* data, std::size_t n) const
+  {
+    array(path, H5T_STD_I32LE, H5T_NATIVE_INT32, {n}, data);
+  }
+  void uint8s(const std::string& path, const std::uint8_t* data, std::size_t n) const
+  {
+    array(path, H5T_STD_U8LE, H5T_NATIVE_UINT8, {n}, data);
+  }
+  void vec3s(const std::string& path, const std::vector<Vec3>& v) const
+  {
+    doubles(path, {v.size(), 3}, v.empty() ? nullptr : v.front().data());
+  }
+
+private:
+  Id stringType(std::size_t length) const
+  {
+    Id type = ctx_.checkId(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create a string type");
+    ctx_.check(H5Tset_size(type.get(), std::max<std::size_t>(1, length)), "cannot create a string type");
+    ctx_.check(H5Tset_strpad(type.get(), H5T_STR_NULLPAD), "cannot create a string type");
+    ctx_.check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "cannot create a string type");
+    return type;
+  }
+
+  hid_t file_;
+  const Context& ctx_;
+  bool checksums_;
+};
+
+class Reader
+{
+public:
+  Reader(hid_t file, const Context& ctx) : file_(file), ctx_(ctx) {}
+
+  /// True if the object at `path` exists (every parent group checked first).
+  [[nodiscard]] bool exists(const std::string& path) const
+  {
+    if (path == "/")
+      return true;
+    std::size_t at = 0;
+    while ((at = path.find('/', at + 1)) != std::string::npos)
+      if (ctx_.check(H5Lexists(file_, path.substr(0, at).c_str(), H5P_DEFAULT), "cannot read " + path) == 0)
+        return false;
+    return ctx_.check(H5Lexists(file_, path.c_str(), H5P_DEFAULT), "cannot read " + path) > 0;
+  }
+  Id open(const std::string& path) const
+  {
+    if (!exists(path))
+      ctx_.fail("missing " + path + " (not a complete Talus checkpoint)", false);
+    return ctx_.checkId(H5Oopen(file_, path.c_str(), H5P_DEFAULT), H5Oclose, "cannot open " + path);
+  }
+
+  bool hasAttribute(const std::string& objPath, const char* name) const
+  {
+    return ctx_.check(H5Aexists(open(objPath).get(), name), "cannot read attributes of " + objPath) > 0;
+  }
+  Id openAttribute(const std::string& objPath, const char* name) const
+  {
+    const Id obj = open(objPath);
+    const htri_t has = ctx_.check(H5Aexists(obj.get(), name), "cannot read attributes of " + objPath);
+    if (has == 0)
+      ctx_.fail("missing attribute " + std::string(name) + " of " + objPath + " (not a complete Talus checkpoint)",
+                false);
+    return ctx_.checkId(H5Aopen(obj.get(), name, H5P_DEFAULT), H5Aclose,
+                        "cannot open attribute " + std::string(name) + " of " + objPath);
+  }
+
+  /// A scalar numeric attribute, of class `cls`, converted to the memory type.
+  template <class T>
+  T number(const std::string& objPath, const char* name, H5T_class_t cls, hid_t memType) const
+  {
+    const std::string what = "attribute " + std::string(name) + " of " + objPath;
+    const Id attr = openAttribute(objPath, name);
+    const Id type = ctx_.checkId(H5Aget_type(attr.get()), H5Tclose, "cannot read " + what);
+    const Id space = ctx_.checkId(H5Aget_space(attr.get()), H5Sclose, "cannot read " + what);
+    if (H5Tget_class(type.get()) != cls || H5Sget_simple_extent_npoints(space.get()) != 1)
+      ctx_.fail(what + " has the wrong type", false);
+    T value{};
+    ctx_.check(H5Aread(attr.get(), memType, &value), "cannot read " + what);
+    return value;
+  }
+  double real(const std::string& objPath, const char* name) const
+  {
+    return number<double>(objPath, name, H5T_FLOAT, H5T_NATIVE_DOUBLE);
+  }
+  std::int64_t integer(const std::string& objPath, const char* name) const
+  {
+    return number<std::int64_t>(objPath, name, H5T_INTEGER, H5T_NATIVE_INT64);
+  }
+
+  /// A string attribute (fixed or variable length).
+  std::string stringAttribute(const std::string& objPath, const char* name) const
+  {
+    const std::string what = "attribute " + std::string(name) + " of " + objPath;
+    const Id attr = openAttribute(objPath, name);
+    const Id type = ctx_.checkId(H5Aget_type(attr.get()), H5Tclose, "cannot read " + what);
+    if (H5Tget_class(type.get()) != H5T_STRING)
+      ctx_.fail(what + " is not a string", false);
+    const Id space = ctx_.checkId(H5Aget_space(attr.get()), H5Sclose, "cannot read " + what);
+    if (H5Sget_simple_extent_npoints(space.get()) != 1)
+      ctx_.fail(what + " is not a single string", false);
+    if (H5Tis_variable_str(type.get()) > 0)
+    {
+      const Id mem = variableStringType(type.get());
+      char* p = nullptr;
+      ctx_.check(H5Aread(attr.get(), mem.get(), &p), "cannot read " + what);
+      std::string out = p ? p : "";
+      H5free_memory(p);
+      return out;
+    }
+    std::string buffer(H5Tget_size(type.get()), '\0');
+    ctx_.check(H5Aread(attr.get(), type.get(), buffer.data()), "cannot read " + what);
+    return buffer.substr(0, std::strlen(buffer.c_str()));
+  }
+
+  /// Strings of a 1-D dataset of fixed-length strings (as Writer::strings writes them).
+  std::vector<std::string> strings(const std::string& path) const
+  {
+    const std::vector<hsize_t> d = dims(path);
+    const Id set = open(path);
+    const Id type = ctx_.checkId(H5Dget_type(set.get()), H5Tclose, "cannot read " + path);
+    if (d.size() != 1 || H5Tget_class(type.get()) != H5T_STRING || H5Tis_variable_str(type.get()) != 0)
+      ctx_.fail(path + " is not a list of fixed-length strings", false);
+    const std::size_t size = H5Tget_size(type.get());
+    std::string buffer(size * d[0], '\0');
+    if (d[0] > 0)
+      ctx_.check(H5Dread(set.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, buffer.data()),
+                 "cannot read " + path + " (corrupted data)");
+    std::vector<std::string> out(d[0]);
+    for (std::size_t i = 0; i < out.size(); ++i)
+      out[i] = std::string(buffer.data() + i * size, strnlen(buffer.data() + i * size, size));
+    return out;
+  }
+
+  /// Shape of a dataset.
+  std::vector<hsize_t> dims(const std::string& path) const
+  {
+    const Id set = open(path);
+    const Id space = ctx_.checkId(H5Dget_space(set.get()), H5Sclose, "cannot read " + path);
+    const int rank = ctx_.check(H5Sget_simple_extent_ndims(space.get()), "cannot read " + path);
+    std::vector<hsize_t> out(static_cast<std::size_t>(rank));
+    ctx_.check(H5Sget_simple_extent_dims(space.get(), out.data(), nullptr), "cannot read " + path);
+    return out;
+  }
+
+  /// A numeric dataset that must have shape `expect` and type class `cls`, read into `out`.
+  void array(const std::string& path, H5T_class_t cls, hid_t memType, const std::vector<hsize_t>& expect, void* out) const
+  {
+    const std::vector<hsize_t> found = dims(path);
+    if (found != expect)
+      ctx_.fail(path + " has shape " + shape(found) + ", expected " + shape(expect), false);
+    const Id set = open(path);
+    const Id type = ctx_.checkId(H5Dget_type(set.get()), H5Tclose, "cannot read " + path);
+    if (H5Tget_class(type.get()) != cls)
+      ctx_.fail(path + " has the wrong element type", false);
+    hsize_t total = 1;
+    for (hsize_t d : expect)
+      total *= d;
+    if (total > 0)
+      ctx_.check(H5Dread(set.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, out),
+                 "cannot read " + path + " (corrupted data)");
+  }
+  void doubles(const std::string& path, const std::vector<hsize_t>& expect, double* out) const
+  {
+    array(path, H5T_FLOAT, H5T_NATIVE_DOUBLE, expect, out);
+  }
+  template <class T>
+  void int32s(const std::string& path, std::vector<T>& out) const
+  {
+    static_assert(sizeof(T) == 4);
+    array(path, H5T_INTEGER, H5T_NATIVE_INT32, {out.size()}, out.data());
+  }
+  template <class T>
+  void uint8s(const std::string& path, std::vector<T>& out) const
+  {
+    static_assert(sizeof(T) == 1);
+    array(path, H5T_INTEGER, H5T_NATIVE_UINT8, {out.size()}, out.data());
+  }
+  void vec3s(const std::string& path, std::vector<Vec3>& out) const
+  {
+    doubles(path, {out.size(), 3}, out.empty() ? nullptr : out.front().data());
+  }
+  Mat3 matrix(const std::string& path) const
+  {
+    std::array<double, 9> a{};
+    doubles(path, {3, 3}, a.data());
+    Mat3 m;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        m(i, j) = a[static_cast<std::size_t>(3 * i + j)];
+    return m;
+  }
+
+  /// Names of the members of a group.
+  std::vector<std::string> members(const std::string& path) const
+  {
+    const Id group = ctx_.checkId(H5Gopen2(file_, path.c_str(), H5P_DEFAULT), H5Gclose, "cannot open " + path);
+    H5G_info_t info;
+    ctx_.check(H5Gget_info(group.get(), &info), "cannot read " + path);
+    std::vector<std::string> names;
+    for (hsize_t i = 0; i < info.nlinks; ++i)
+    {
+      const ssize_t size =
+          ctx_.check(H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT),
+                     "cannot list " + path);
+      std::string name(static_cast<std::size_t>(size) + 1, '\0');
+      ctx_.check(H5Lget_name_by_idx(group.get(), ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                                    H5P_DEFAULT),
+                 "cannot list " + path);
+      name.resize(static_cast<std::size_t>(size));
+      names.push_back(name);
+    }
+    return names;
+  }
+
+private:
+  static std::string shape(const std::vector<hsize_t>& d)
+  {
+    std::string s = "(";
+    for (std::size_t i = 0; i < d.size(); ++i)
+      s += (i ? ", " : "") + std::to_string(d[i]);
+    return s + ")";
+  }
+  /// Memory type for variable-length strings of the file type `like` (same character set:
+  /// HDF5 does not convert between ASCII and UTF-8).
+  Id variableStringType(hid_t like) const
+  {
+    Id type = ctx_.checkId(H5Tcopy(H5T_C_S1), H5Tclose, "cannot create a string type");
+    ctx_.check(H5Tset_size(type.get(), H5T_VARIABLE), "cannot create a string type");
+    ctx_.check(H5Tset_cset(type.get(), H5Tget_cset(like)), "cannot create a string type");
+    return type;
+  }
+
+  hid_t file_;
+  const Context& ctx_;
+};
+} // namespace talus::dem::checkpoint

@@ -1,0 +1,132 @@
+// What a checkpoint file holds, shared by its writer and reader (internal, not installed): the
+// fields stored column by column, the scene as read before it is checked, and the three steps
+// (write, read, check).
+#pragma once
+
+#include "dem/checkpoint/Hdf5.h"
+
+namespace talus::dem::checkpoint
+{
+/// Row-major copy of 3x3 matrices (Eigen stores them by column).
+inline std::array<double, 9> rowMajor(const Mat3& m)
+{
+  std::array<double, 9> out{};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      out[static_cast<std::size_t>(3 * i + j)] = m(i, j);
+  return out;
+}
+
+inline bool validExtraName(const std::string& name)
+{
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '-';
+  });
+}
+
+/// The fields stored column by column: one dataset per field, named as the field.
+inline constexpr std::pair<const char*, double Material::*> materialScalars[] = {
+    {"density", &Material::density}, {"young", &Material::young}, {"poisson", &Material::poisson},
+    {"frictionAngle", &Material::frictionAngle}, {"tc", &Material::tc}, {"en", &Material::en}, {"et", &Material::et},
+    {"kn", &Material::kn}, {"cn", &Material::cn}, {"ks", &Material::ks}, {"cs", &Material::cs},
+    {"normalCohesion", &Material::normalCohesion}, {"shearCohesion", &Material::shearCohesion},
+    {"alphaKr", &Material::alphaKr}, {"alphaKtw", &Material::alphaKtw}, {"etaRoll", &Material::etaRoll},
+    {"etaTwist", &Material::etaTwist}};
+inline constexpr std::pair<const char*, bool Material::*> materialFlags[] = {
+    {"isCohesive", &Material::isCohesive}, {"momentRotationLaw", &Material::momentRotationLaw},
+    {"fragile", &Material::fragile}};
+inline constexpr std::pair<const char*, Vec3 Contact::*> contactVectors[] = {
+    {"normal", &Contact::normal}, {"contactPoint", &Contact::contactPoint},
+    {"shearIncrement", &Contact::shearIncrement}, {"normalForce", &Contact::normalForce},
+    {"shearForce", &Contact::shearForce}, {"force", &Contact::force}};
+inline constexpr std::pair<const char*, double Contact::*> contactScalars[] = {
+    {"penetration", &Contact::penetration}, {"refR1", &Contact::refR1}, {"refR2", &Contact::refR2},
+    {"kn", &Contact::kn}, {"ks", &Contact::ks}, {"cn", &Contact::cn}, {"cs", &Contact::cs}, {"tanPhi", &Contact::tanPhi}};
+// Contacts::extra (the richer contact models' state), one dataset per field under /contacts/extra.
+inline constexpr std::pair<const char*, double ContactExtra::*> extraScalars[] = {
+    {"kno", &ContactExtra::kno}, {"kso", &ContactExtra::kso}, {"betan", &ContactExtra::betan},
+    {"betas", &ContactExtra::betas}, {"twist", &ContactExtra::twist}, {"normalAdhesion", &ContactExtra::normalAdhesion},
+    {"shearAdhesion", &ContactExtra::shearAdhesion}, {"kr", &ContactExtra::kr}, {"ktw", &ContactExtra::ktw},
+    {"maxRollPl", &ContactExtra::maxRollPl}, {"maxTwistPl", &ContactExtra::maxTwistPl}, {"unp", &ContactExtra::unp},
+    {"unpMax", &ContactExtra::unpMax}};
+inline constexpr std::pair<const char*, Vec3 ContactExtra::*> extraVectors[] = {
+    {"bending", &ContactExtra::bending}, {"momentBending", &ContactExtra::momentBending},
+    {"momentTwist", &ContactExtra::momentTwist}};
+inline constexpr std::pair<const char*, Quat ContactExtra::*> extraQuats[] = {
+    {"initialOrientation1", &ContactExtra::initialOrientation1}, {"initialOrientation2", &ContactExtra::initialOrientation2}};
+inline constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
+    {"cohesionBroken", &ContactExtra::cohesionBroken}, {"fragile", &ContactExtra::fragile},
+    {"momentRotationLaw", &ContactExtra::momentRotationLaw},
+    {"cohesionDisablesFriction", &ContactExtra::cohesionDisablesFriction}, {"intactRock", &ContactExtra::intactRock},
+    {"tensionBroken", &ContactExtra::tensionBroken}};
+// The energy tracker's accumulated terms, attributes of /energy.
+inline constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
+    {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},
+    {"plastDissip", &EnergyTracker::plastDissip}, {"viscDamp", &EnergyTracker::viscDamp},
+    {"velGradWork", &EnergyTracker::velGradWork}, {"kinematicWork", &EnergyTracker::kinematicWork},
+    {"growthWork", &EnergyTracker::growthWork}};
+// The tracker's imposed displacements of the previous step, datasets of /energy (absent until tracked).
+inline constexpr std::pair<const char*, std::vector<Vec3> EnergyTracker::*> energyHistory[] = {
+    {"previousDisplacement", &EnergyTracker::previousDisplacement},
+    {"previousRotation", &EnergyTracker::previousRotation}};
+inline constexpr std::pair<const char*, BodyId Contact::*> contactIds[] = {{"id1", &Contact::id1}, {"id2", &Contact::id2}};
+inline constexpr std::pair<const char*, bool Contact::*> contactFlags[] = {{"real", &Contact::real}, {"fresh", &Contact::fresh}};
+inline constexpr std::pair<const char*, std::vector<Vec3> Bodies::*> bodyVectors[] = {
+    {"pos", &Bodies::pos},           {"vel", &Bodies::vel},       {"angVel", &Bodies::angVel},
+    {"force", &Bodies::force},       {"torque", &Bodies::torque}, {"extForce", &Bodies::extForce},
+    {"extTorque", &Bodies::extTorque}, {"inertia", &Bodies::inertia}, {"angMom", &Bodies::angMom}};
+inline constexpr std::pair<const char*, std::vector<double> Bodies::*> bodyScalars[] = {{"mass", &Bodies::mass},
+                                                                                  {"radius", &Bodies::radius}};
+inline constexpr std::pair<const char*, std::vector<int> Bodies::*> bodyInts[] = {
+    {"shapeIndex", &Bodies::shapeIndex}, {"material", &Bodies::material}, {"clumpId", &Bodies::clumpId}};
+inline constexpr std::pair<const char*, std::vector<std::uint8_t> Bodies::*> bodyBytes[] = {
+    {"blockedDofs", &Bodies::blockedDofs}, {"dynamic", &Bodies::dynamic}, {"alive", &Bodies::alive}};
+static_assert(sizeof(int) == 4 && sizeof(BodyId) == 4, "int arrays are written as 32-bit integers");
+
+inline std::string at(const char* group, const char* name) { return std::string(group) + name; }
+
+// Potential Blocks and Particles: every field of their shapes, derived ones included (vertices,
+// faces, principal frame, surface samples), so that a restored scene computes the same bits
+// as the saved one (recomputing them from the planes would round differently). Lists of
+// varying length (planes, vertices, ...) are concatenated over the shapes: shape k owns entries
+// [start[k], start[k + 1]) of `<name>` with `<name>Start` (n + 1 entries).
+inline constexpr std::pair<const char*, double PotentialBlockShape::*> blockScalars[] = {
+    {"r", &PotentialBlockShape::r}, {"R", &PotentialBlockShape::R}, {"volume", &PotentialBlockShape::volume},
+    {"boundingRadius", &PotentialBlockShape::boundingRadius}};
+inline constexpr std::pair<const char*, std::vector<Vec3> PotentialBlockShape::*> blockVectorLists[] = {
+    {"normals", &PotentialBlockShape::normals}, {"vertices", &PotentialBlockShape::vertices},
+    {"edgeDirections", &PotentialBlockShape::edgeDirections}};
+inline constexpr std::pair<const char*, double PotentialParticleShape::*> particleScalars[] = {
+    {"r", &PotentialParticleShape::r}, {"k", &PotentialParticleShape::k}, {"R", &PotentialParticleShape::R},
+    {"volume", &PotentialParticleShape::volume}, {"boundingRadius", &PotentialParticleShape::boundingRadius}};
+inline constexpr std::pair<const char*, Vec3 PotentialParticleShape::*> particleVectors[] = {
+    {"centroid", &PotentialParticleShape::centroid}, {"inertiaPerDensity", &PotentialParticleShape::inertiaPerDensity}};
+inline constexpr std::pair<const char*, std::vector<Vec3> PotentialParticleShape::*> particleVectorLists[] = {
+    {"normals", &PotentialParticleShape::normals}, {"samples", &PotentialParticleShape::samples}};
+
+/// Everything a checkpoint holds, read and checked before the scene is touched.
+struct Loaded
+{
+  double dt = 0, time = 0;
+  std::int64_t iter = 0, bodiesVersion = 0, bodyPropertiesVersion = 0;
+  double maxOverlapRatio = 0;
+  double maxEnergyGrowth = 0;
+  bool periodic = false;
+  Cell cell;
+  std::vector<Material> materials;
+  Bodies bodies;
+  std::vector<Contact> contacts;
+  std::vector<ContactExtra> contactExtra;
+  EnergyTracker energy;
+  CheckpointExtras extras;
+};
+
+/// Write every part of the scene (bodies, shapes, materials, contacts, cell, clock, energy,
+/// extras) into the open file; `checksums`: numeric datasets checksummed (files, not images).
+void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx, bool checksums);
+/// Read every part into `in` (shapes and lists checked as they are read).
+void readScene(hid_t file, Loaded& in, const Context& ctx);
+/// Consistency of what was read: every index in range, the contact list sorted, the
+/// materials valid. Catches damage that checksums cannot (a file edited by hand).
+void validate(const Loaded& in, const Context& ctx);
+} // namespace talus::dem::checkpoint
