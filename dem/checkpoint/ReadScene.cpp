@@ -156,6 +156,233 @@ void validatePlaneShapes(const Bodies& b, const Context& ctx)
 }
 
 /// Read and check the header; then everything else, into `in`.
+/// Materials, each checked as it is read.
+void readMaterials(const Reader& r, Loaded& in, const Context& ctx)
+{
+  const std::vector<hsize_t> d = r.dims("/materials/density");
+  if (d.size() != 1)
+    ctx.fail("/materials/density is not one-dimensional", false);
+  const std::size_t m = d[0];
+  std::vector<std::uint8_t> kind(m);
+  r.uint8s("/materials/kind", kind);
+  const std::vector<std::string> label = r.strings("/materials/label");
+  if (label.size() != m)
+    ctx.fail("/materials/label has " + std::to_string(label.size()) + " entries, expected " + std::to_string(m),
+             false);
+  in.materials.resize(m);
+  std::vector<double> column(m);
+  for (const auto& [name, field] : materialScalars)
+  {
+    r.doubles(at("/materials/", name), {m}, column.data());
+    for (std::size_t i = 0; i < m; ++i)
+      in.materials[i].*field = column[i];
+  }
+  std::vector<std::uint8_t> flag(m);
+  for (const auto& [name, field] : materialFlags)
+  {
+    r.uint8s(at("/materials/", name), flag);
+    for (std::size_t i = 0; i < m; ++i)
+      in.materials[i].*field = flag[i] != 0;
+  }
+  for (std::size_t i = 0; i < m; ++i)
+  {
+    if (kind[i] > static_cast<std::uint8_t>(MaterialKind::CohFrict))
+      ctx.fail("material " + std::to_string(i) + " has unknown kind " + std::to_string(kind[i]), false);
+    in.materials[i].kind = static_cast<MaterialKind>(kind[i]);
+    in.materials[i].label = label[i];
+  }
+}
+
+/// Bodies: every array and shape, checked against each other.
+void readBodies(const Reader& r, Loaded& in, const Context& ctx)
+{
+  const std::vector<hsize_t> d = r.dims("/bodies/pos");
+  if (d.size() != 2 || d[1] != 3)
+    ctx.fail("/bodies/pos is not an (n, 3) array", false);
+  const std::size_t n = d[0];
+  Bodies& b = in.bodies;
+  for (const auto& [name, field] : bodyVectors)
+  {
+    (b.*field).assign(n, Vec3::Zero());
+    r.vec3s(at("/bodies/", name), b.*field);
+  }
+  for (const auto& [name, field] : bodyScalars)
+  {
+    (b.*field).resize(n);
+    r.doubles(at("/bodies/", name), {n}, (b.*field).data());
+  }
+  for (const auto& [name, field] : bodyInts)
+  {
+    (b.*field).resize(n);
+    r.int32s(at("/bodies/", name), b.*field);
+  }
+  for (const auto& [name, field] : bodyBytes)
+  {
+    (b.*field).resize(n);
+    r.uint8s(at("/bodies/", name), b.*field);
+  }
+  std::vector<double> ori(4 * n);
+  r.doubles("/bodies/ori", {n, 4}, ori.data());
+  b.ori.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    b.ori[i] = Quat(ori[4 * i], ori[4 * i + 1], ori[4 * i + 2], ori[4 * i + 3]);
+  std::vector<std::uint8_t> shape(n);
+  r.uint8s("/bodies/shape", shape);
+  b.shape.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (shape[i] > static_cast<std::uint8_t>(ShapeKind::PotentialParticle))
+      ctx.fail("body " + std::to_string(i) + " has unknown shape kind " + std::to_string(shape[i]), false);
+    b.shape[i] = static_cast<ShapeKind>(shape[i]);
+  }
+
+  const std::vector<hsize_t> dw = r.dims("/bodies/walls/axis");
+  if (dw.size() != 1)
+    ctx.fail("/bodies/walls/axis is not one-dimensional", false);
+  std::vector<std::int32_t> axis(dw[0]), sense(dw[0]);
+  r.int32s("/bodies/walls/axis", axis);
+  r.int32s("/bodies/walls/sense", sense);
+  for (std::size_t k = 0; k < axis.size(); ++k)
+    b.walls.push_back({axis[k], sense[k]});
+
+  const std::vector<hsize_t> df = r.dims("/bodies/facets/normal");
+  if (df.size() != 2 || df[1] != 3)
+    ctx.fail("/bodies/facets/normal is not an (n, 3) array", false);
+  const std::size_t nf = df[0];
+  std::vector<double> vertices(9 * nf), normal(3 * nf);
+  r.doubles("/bodies/facets/vertices", {nf, 3, 3}, vertices.data());
+  r.doubles("/bodies/facets/normal", {nf, 3}, normal.data());
+  b.facets.resize(nf);
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    for (std::size_t k = 0; k < 3; ++k)
+      b.facets[f].vertices[k] = Vec3(vertices[9 * f + 3 * k], vertices[9 * f + 3 * k + 1], vertices[9 * f + 3 * k + 2]);
+    b.facets[f].normal = Vec3(normal[3 * f], normal[3 * f + 1], normal[3 * f + 2]);
+  }
+
+  const std::vector<hsize_t> db = r.dims("/bodies/boxes/extents");
+  if (db.size() != 2 || db[1] != 3)
+    ctx.fail("/bodies/boxes/extents is not an (n, 3) array", false);
+  std::vector<Vec3> extents(db[0]);
+  r.vec3s("/bodies/boxes/extents", extents);
+  for (const Vec3& e : extents)
+    b.boxes.push_back({e});
+
+  const std::vector<hsize_t> ds = r.dims("/bodies/clumps/start"), dm = r.dims("/bodies/clumps/members");
+  if (ds.size() != 1 || ds[0] < 1 || dm.size() != 1)
+    ctx.fail("/bodies/clumps/start or /bodies/clumps/members is not a one-dimensional array", false);
+  std::vector<std::int32_t> start(ds[0]), members(dm[0]);
+  r.int32s("/bodies/clumps/start", start);
+  r.int32s("/bodies/clumps/members", members);
+  std::vector<Vec3> relPos(dm[0]);
+  std::vector<double> relOri(4 * dm[0]);
+  r.vec3s("/bodies/clumps/relPos", relPos);
+  r.doubles("/bodies/clumps/relOri", {dm[0], 4}, relOri.data());
+  if (start.front() != 0 || start.back() != static_cast<std::int32_t>(members.size())
+      || !std::is_sorted(start.begin(), start.end()))
+    ctx.fail("/bodies/clumps/start does not partition the members", false);
+  for (std::size_t k = 0; k + 1 < start.size(); ++k)
+  {
+    ClumpShape clump;
+    for (auto e = static_cast<std::size_t>(start[k]); e < static_cast<std::size_t>(start[k + 1]); ++e)
+    {
+      clump.members.push_back(members[e]);
+      clump.relPos.push_back(relPos[e]);
+      clump.relOri.emplace_back(relOri[4 * e], relOri[4 * e + 1], relOri[4 * e + 2], relOri[4 * e + 3]);
+    }
+    b.clumps.push_back(std::move(clump));
+  }
+  readPlaneShapes(r, b, ctx);
+}
+
+/// Contacts: the list and the richer models' state beside it.
+void readContacts(const Reader& r, Loaded& in, const Context& ctx)
+{
+  const std::vector<hsize_t> d = r.dims("/contacts/id1");
+  if (d.size() != 1)
+    ctx.fail("/contacts/id1 is not one-dimensional", false);
+  const std::size_t c = d[0];
+  std::vector<Contact>& list = in.contacts;
+  list.resize(c);
+  std::vector<std::int32_t> ints(c), cellDist(3 * c);
+  for (const auto& [name, field] : contactIds)
+  {
+    r.int32s(at("/contacts/", name), ints);
+    for (std::size_t k = 0; k < c; ++k)
+      list[k].*field = ints[k];
+  }
+  r.array("/contacts/cellDist", H5T_INTEGER, H5T_NATIVE_INT32, {c, 3}, cellDist.data());
+  for (std::size_t k = 0; k < c; ++k)
+    list[k].cellDist = Eigen::Vector3i(cellDist[3 * k], cellDist[3 * k + 1], cellDist[3 * k + 2]);
+  std::vector<std::uint8_t> bytes(c);
+  for (const auto& [name, field] : contactFlags)
+  {
+    r.uint8s(at("/contacts/", name), bytes);
+    for (std::size_t k = 0; k < c; ++k)
+      list[k].*field = bytes[k] != 0;
+  }
+  r.uint8s("/contacts/law", bytes);
+  for (std::size_t k = 0; k < c; ++k)
+    list[k].law = bytes[k];
+  r.uint8s("/contacts/kind", bytes);
+  for (std::size_t k = 0; k < c; ++k)
+  {
+    if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::WallParticle))
+      ctx.fail("contact " + std::to_string(k) + " has unknown kind " + std::to_string(bytes[k]), false);
+    list[k].kind = static_cast<ContactGeometryKind>(bytes[k]);
+  }
+  std::vector<Vec3> column3(c);
+  for (const auto& [name, field] : contactVectors)
+  {
+    r.vec3s(at("/contacts/", name), column3);
+    for (std::size_t k = 0; k < c; ++k)
+      list[k].*field = column3[k];
+  }
+  std::vector<double> column(c);
+  for (const auto& [name, field] : contactScalars)
+  {
+    r.doubles(at("/contacts/", name), {c}, column.data());
+    for (std::size_t k = 0; k < c; ++k)
+      list[k].*field = column[k];
+  }
+  const std::vector<hsize_t> de = r.dims("/contacts/extra/kno");
+  if (de.size() != 1 || (de[0] != 0 && de[0] != c))
+    ctx.fail("/contacts/extra has " + std::to_string(de.empty() ? 0 : de[0]) + " rows for " + std::to_string(c)
+                 + " contacts (expected 0 or as many)",
+             false);
+  const std::size_t e = de[0];
+  std::vector<ContactExtra>& extra = in.contactExtra;
+  extra.resize(e);
+  column.resize(e);
+  for (const auto& [name, field] : extraScalars)
+  {
+    r.doubles(at("/contacts/extra/", name), {e}, column.data());
+    for (std::size_t k = 0; k < e; ++k)
+      extra[k].*field = column[k];
+  }
+  column3.resize(e);
+  for (const auto& [name, field] : extraVectors)
+  {
+    r.vec3s(at("/contacts/extra/", name), column3);
+    for (std::size_t k = 0; k < e; ++k)
+      extra[k].*field = column3[k];
+  }
+  std::vector<double> quats(4 * e);
+  for (const auto& [name, field] : extraQuats)
+  {
+    r.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
+    for (std::size_t k = 0; k < e; ++k)
+      extra[k].*field = Quat(quats[4 * k], quats[4 * k + 1], quats[4 * k + 2], quats[4 * k + 3]);
+  }
+  bytes.resize(e);
+  for (const auto& [name, field] : extraBytes)
+  {
+    r.uint8s(at("/contacts/extra/", name), bytes);
+    for (std::size_t k = 0; k < e; ++k)
+      extra[k].*field = bytes[k];
+  }
+}
+
 void readScene(hid_t file, Loaded& in, const Context& ctx)
 {
   const Reader r(file, ctx);
@@ -212,230 +439,9 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
   in.cell.prevVelGrad = r.matrix("/cell/prevVelGrad");
   in.cell.trsf = r.matrix("/cell/trsf");
 
-  // Materials.
-  {
-    const std::vector<hsize_t> d = r.dims("/materials/density");
-    if (d.size() != 1)
-      ctx.fail("/materials/density is not one-dimensional", false);
-    const std::size_t m = d[0];
-    std::vector<std::uint8_t> kind(m);
-    r.uint8s("/materials/kind", kind);
-    const std::vector<std::string> label = r.strings("/materials/label");
-    if (label.size() != m)
-      ctx.fail("/materials/label has " + std::to_string(label.size()) + " entries, expected " + std::to_string(m),
-               false);
-    in.materials.resize(m);
-    std::vector<double> column(m);
-    for (const auto& [name, field] : materialScalars)
-    {
-      r.doubles(at("/materials/", name), {m}, column.data());
-      for (std::size_t i = 0; i < m; ++i)
-        in.materials[i].*field = column[i];
-    }
-    std::vector<std::uint8_t> flag(m);
-    for (const auto& [name, field] : materialFlags)
-    {
-      r.uint8s(at("/materials/", name), flag);
-      for (std::size_t i = 0; i < m; ++i)
-        in.materials[i].*field = flag[i] != 0;
-    }
-    for (std::size_t i = 0; i < m; ++i)
-    {
-      if (kind[i] > static_cast<std::uint8_t>(MaterialKind::CohFrict))
-        ctx.fail("material " + std::to_string(i) + " has unknown kind " + std::to_string(kind[i]), false);
-      in.materials[i].kind = static_cast<MaterialKind>(kind[i]);
-      in.materials[i].label = label[i];
-    }
-  }
-
-  // Bodies.
-  {
-    const std::vector<hsize_t> d = r.dims("/bodies/pos");
-    if (d.size() != 2 || d[1] != 3)
-      ctx.fail("/bodies/pos is not an (n, 3) array", false);
-    const std::size_t n = d[0];
-    Bodies& b = in.bodies;
-    for (const auto& [name, field] : bodyVectors)
-    {
-      (b.*field).assign(n, Vec3::Zero());
-      r.vec3s(at("/bodies/", name), b.*field);
-    }
-    for (const auto& [name, field] : bodyScalars)
-    {
-      (b.*field).resize(n);
-      r.doubles(at("/bodies/", name), {n}, (b.*field).data());
-    }
-    for (const auto& [name, field] : bodyInts)
-    {
-      (b.*field).resize(n);
-      r.int32s(at("/bodies/", name), b.*field);
-    }
-    for (const auto& [name, field] : bodyBytes)
-    {
-      (b.*field).resize(n);
-      r.uint8s(at("/bodies/", name), b.*field);
-    }
-    std::vector<double> ori(4 * n);
-    r.doubles("/bodies/ori", {n, 4}, ori.data());
-    b.ori.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-      b.ori[i] = Quat(ori[4 * i], ori[4 * i + 1], ori[4 * i + 2], ori[4 * i + 3]);
-    std::vector<std::uint8_t> shape(n);
-    r.uint8s("/bodies/shape", shape);
-    b.shape.resize(n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      if (shape[i] > static_cast<std::uint8_t>(ShapeKind::PotentialParticle))
-        ctx.fail("body " + std::to_string(i) + " has unknown shape kind " + std::to_string(shape[i]), false);
-      b.shape[i] = static_cast<ShapeKind>(shape[i]);
-    }
-
-    const std::vector<hsize_t> dw = r.dims("/bodies/walls/axis");
-    if (dw.size() != 1)
-      ctx.fail("/bodies/walls/axis is not one-dimensional", false);
-    std::vector<std::int32_t> axis(dw[0]), sense(dw[0]);
-    r.int32s("/bodies/walls/axis", axis);
-    r.int32s("/bodies/walls/sense", sense);
-    for (std::size_t k = 0; k < axis.size(); ++k)
-      b.walls.push_back({axis[k], sense[k]});
-
-    const std::vector<hsize_t> df = r.dims("/bodies/facets/normal");
-    if (df.size() != 2 || df[1] != 3)
-      ctx.fail("/bodies/facets/normal is not an (n, 3) array", false);
-    const std::size_t nf = df[0];
-    std::vector<double> vertices(9 * nf), normal(3 * nf);
-    r.doubles("/bodies/facets/vertices", {nf, 3, 3}, vertices.data());
-    r.doubles("/bodies/facets/normal", {nf, 3}, normal.data());
-    b.facets.resize(nf);
-    for (std::size_t f = 0; f < nf; ++f)
-    {
-      for (std::size_t k = 0; k < 3; ++k)
-        b.facets[f].vertices[k] = Vec3(vertices[9 * f + 3 * k], vertices[9 * f + 3 * k + 1], vertices[9 * f + 3 * k + 2]);
-      b.facets[f].normal = Vec3(normal[3 * f], normal[3 * f + 1], normal[3 * f + 2]);
-    }
-
-    const std::vector<hsize_t> db = r.dims("/bodies/boxes/extents");
-    if (db.size() != 2 || db[1] != 3)
-      ctx.fail("/bodies/boxes/extents is not an (n, 3) array", false);
-    std::vector<Vec3> extents(db[0]);
-    r.vec3s("/bodies/boxes/extents", extents);
-    for (const Vec3& e : extents)
-      b.boxes.push_back({e});
-
-    const std::vector<hsize_t> ds = r.dims("/bodies/clumps/start"), dm = r.dims("/bodies/clumps/members");
-    if (ds.size() != 1 || ds[0] < 1 || dm.size() != 1)
-      ctx.fail("/bodies/clumps/start or /bodies/clumps/members is not a one-dimensional array", false);
-    std::vector<std::int32_t> start(ds[0]), members(dm[0]);
-    r.int32s("/bodies/clumps/start", start);
-    r.int32s("/bodies/clumps/members", members);
-    std::vector<Vec3> relPos(dm[0]);
-    std::vector<double> relOri(4 * dm[0]);
-    r.vec3s("/bodies/clumps/relPos", relPos);
-    r.doubles("/bodies/clumps/relOri", {dm[0], 4}, relOri.data());
-    if (start.front() != 0 || start.back() != static_cast<std::int32_t>(members.size())
-        || !std::is_sorted(start.begin(), start.end()))
-      ctx.fail("/bodies/clumps/start does not partition the members", false);
-    for (std::size_t k = 0; k + 1 < start.size(); ++k)
-    {
-      ClumpShape clump;
-      for (auto e = static_cast<std::size_t>(start[k]); e < static_cast<std::size_t>(start[k + 1]); ++e)
-      {
-        clump.members.push_back(members[e]);
-        clump.relPos.push_back(relPos[e]);
-        clump.relOri.emplace_back(relOri[4 * e], relOri[4 * e + 1], relOri[4 * e + 2], relOri[4 * e + 3]);
-      }
-      b.clumps.push_back(std::move(clump));
-    }
-    readPlaneShapes(r, b, ctx);
-  }
-
-  // Contacts.
-  {
-    const std::vector<hsize_t> d = r.dims("/contacts/id1");
-    if (d.size() != 1)
-      ctx.fail("/contacts/id1 is not one-dimensional", false);
-    const std::size_t c = d[0];
-    std::vector<Contact>& list = in.contacts;
-    list.resize(c);
-    std::vector<std::int32_t> ints(c), cellDist(3 * c);
-    for (const auto& [name, field] : contactIds)
-    {
-      r.int32s(at("/contacts/", name), ints);
-      for (std::size_t k = 0; k < c; ++k)
-        list[k].*field = ints[k];
-    }
-    r.array("/contacts/cellDist", H5T_INTEGER, H5T_NATIVE_INT32, {c, 3}, cellDist.data());
-    for (std::size_t k = 0; k < c; ++k)
-      list[k].cellDist = Eigen::Vector3i(cellDist[3 * k], cellDist[3 * k + 1], cellDist[3 * k + 2]);
-    std::vector<std::uint8_t> bytes(c);
-    for (const auto& [name, field] : contactFlags)
-    {
-      r.uint8s(at("/contacts/", name), bytes);
-      for (std::size_t k = 0; k < c; ++k)
-        list[k].*field = bytes[k] != 0;
-    }
-    r.uint8s("/contacts/law", bytes);
-    for (std::size_t k = 0; k < c; ++k)
-      list[k].law = bytes[k];
-    r.uint8s("/contacts/kind", bytes);
-    for (std::size_t k = 0; k < c; ++k)
-    {
-      if (bytes[k] > static_cast<std::uint8_t>(ContactGeometryKind::WallParticle))
-        ctx.fail("contact " + std::to_string(k) + " has unknown kind " + std::to_string(bytes[k]), false);
-      list[k].kind = static_cast<ContactGeometryKind>(bytes[k]);
-    }
-    std::vector<Vec3> column3(c);
-    for (const auto& [name, field] : contactVectors)
-    {
-      r.vec3s(at("/contacts/", name), column3);
-      for (std::size_t k = 0; k < c; ++k)
-        list[k].*field = column3[k];
-    }
-    std::vector<double> column(c);
-    for (const auto& [name, field] : contactScalars)
-    {
-      r.doubles(at("/contacts/", name), {c}, column.data());
-      for (std::size_t k = 0; k < c; ++k)
-        list[k].*field = column[k];
-    }
-    const std::vector<hsize_t> de = r.dims("/contacts/extra/kno");
-    if (de.size() != 1 || (de[0] != 0 && de[0] != c))
-      ctx.fail("/contacts/extra has " + std::to_string(de.empty() ? 0 : de[0]) + " rows for " + std::to_string(c)
-                   + " contacts (expected 0 or as many)",
-               false);
-    const std::size_t e = de[0];
-    std::vector<ContactExtra>& extra = in.contactExtra;
-    extra.resize(e);
-    column.resize(e);
-    for (const auto& [name, field] : extraScalars)
-    {
-      r.doubles(at("/contacts/extra/", name), {e}, column.data());
-      for (std::size_t k = 0; k < e; ++k)
-        extra[k].*field = column[k];
-    }
-    column3.resize(e);
-    for (const auto& [name, field] : extraVectors)
-    {
-      r.vec3s(at("/contacts/extra/", name), column3);
-      for (std::size_t k = 0; k < e; ++k)
-        extra[k].*field = column3[k];
-    }
-    std::vector<double> quats(4 * e);
-    for (const auto& [name, field] : extraQuats)
-    {
-      r.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
-      for (std::size_t k = 0; k < e; ++k)
-        extra[k].*field = Quat(quats[4 * k], quats[4 * k + 1], quats[4 * k + 2], quats[4 * k + 3]);
-    }
-    bytes.resize(e);
-    for (const auto& [name, field] : extraBytes)
-    {
-      r.uint8s(at("/contacts/extra/", name), bytes);
-      for (std::size_t k = 0; k < e; ++k)
-        extra[k].*field = bytes[k];
-    }
-  }
-
+  readMaterials(r, in, ctx);
+  readBodies(r, in, ctx);
+  readContacts(r, in, ctx);
   // Extras.
   if (r.exists("/extras"))
     for (const std::string& name : r.members("/extras"))

@@ -98,6 +98,196 @@ void writePlaneShapes(const Writer& w, const Bodies& b)
   }
 }
 
+/// Materials: one entry per material, in index order.
+void writeMaterials(const Writer& w, const Scene& scene)
+{
+  const auto& mats = scene.materials;
+  const Id g = w.group("/materials");
+  std::vector<std::uint8_t> kind;
+  std::vector<std::string> label;
+  for (const Material& m : mats)
+  {
+    kind.push_back(static_cast<std::uint8_t>(m.kind));
+    label.push_back(m.label);
+  }
+  w.uint8s("/materials/kind", kind.data(), kind.size());
+  w.strings("/materials/label", label);
+  std::vector<double> column(mats.size());
+  for (const auto& [name, field] : materialScalars)
+  {
+    for (std::size_t i = 0; i < mats.size(); ++i)
+      column[i] = mats[i].*field;
+    w.doubles(at("/materials/", name), {mats.size()}, column.data());
+  }
+  std::vector<std::uint8_t> flag(mats.size());
+  for (const auto& [name, field] : materialFlags)
+  {
+    for (std::size_t i = 0; i < mats.size(); ++i)
+      flag[i] = mats[i].*field ? 1 : 0;
+    w.uint8s(at("/materials/", name), flag.data(), flag.size());
+  }
+}
+
+/// Bodies: every array, erased slots included (ids are indices).
+void writeBodies(const Writer& w, const Scene& scene)
+{
+  const Bodies& b = scene.bodies;
+  const std::size_t n = b.size();
+  const Id g = w.group("/bodies");
+  for (const auto& [name, field] : bodyVectors)
+    w.vec3s(at("/bodies/", name), b.*field);
+  for (const auto& [name, field] : bodyScalars)
+    w.doubles(at("/bodies/", name), {n}, (b.*field).data());
+  for (const auto& [name, field] : bodyInts)
+    w.int32s(at("/bodies/", name), (b.*field).data(), n);
+  for (const auto& [name, field] : bodyBytes)
+    w.uint8s(at("/bodies/", name), (b.*field).data(), n);
+  std::vector<double> ori(4 * n);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const Quat& q = b.ori[i];
+    std::copy_n(std::array<double, 4>{q.w(), q.x(), q.y(), q.z()}.begin(), 4, ori.begin() + static_cast<std::ptrdiff_t>(4 * i));
+  }
+  w.doubles("/bodies/ori", {n, 4}, ori.data());
+  std::vector<std::uint8_t> shape(n);
+  for (std::size_t i = 0; i < n; ++i)
+    shape[i] = static_cast<std::uint8_t>(b.shape[i]);
+  w.uint8s("/bodies/shape", shape.data(), n);
+
+  const Id walls = w.group("/bodies/walls");
+  std::vector<std::int32_t> axis, sense;
+  for (const WallShape& s : b.walls)
+  {
+    axis.push_back(s.axis);
+    sense.push_back(s.sense);
+  }
+  w.int32s("/bodies/walls/axis", axis.data(), axis.size());
+  w.int32s("/bodies/walls/sense", sense.data(), sense.size());
+
+  const Id facets = w.group("/bodies/facets");
+  const std::size_t nf = b.facets.size();
+  std::vector<double> vertices(9 * nf), normal(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f)
+  {
+    for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t d = 0; d < 3; ++d)
+        vertices[9 * f + 3 * k + d] = b.facets[f].vertices[k][static_cast<int>(d)];
+    for (std::size_t d = 0; d < 3; ++d)
+      normal[3 * f + d] = b.facets[f].normal[static_cast<int>(d)];
+  }
+  w.doubles("/bodies/facets/vertices", {nf, 3, 3}, vertices.data());
+  w.doubles("/bodies/facets/normal", {nf, 3}, normal.data());
+
+  const Id boxes = w.group("/bodies/boxes");
+  std::vector<Vec3> extents;
+  for (const BoxShape& box : b.boxes)
+    extents.push_back(box.extents);
+  w.vec3s("/bodies/boxes/extents", extents);
+
+  // Clumps: members of all clumps concatenated; clump k owns entries [start[k], start[k+1]).
+  const Id clumps = w.group("/bodies/clumps");
+  std::vector<std::int32_t> start{0}, members;
+  std::vector<Vec3> relPos;
+  std::vector<double> relOri;
+  for (const ClumpShape& clump : b.clumps)
+  {
+    for (std::size_t k = 0; k < clump.members.size(); ++k)
+    {
+      members.push_back(clump.members[k]);
+      relPos.push_back(clump.relPos[k]);
+      const Quat& q = clump.relOri[k];
+      relOri.insert(relOri.end(), {q.w(), q.x(), q.y(), q.z()});
+    }
+    start.push_back(static_cast<std::int32_t>(members.size()));
+  }
+  w.int32s("/bodies/clumps/start", start.data(), start.size());
+  w.int32s("/bodies/clumps/members", members.data(), members.size());
+  w.vec3s("/bodies/clumps/relPos", relPos);
+  w.doubles("/bodies/clumps/relOri", {members.size(), 4}, relOri.data());
+  writePlaneShapes(w, b);
+}
+
+/// Contacts: the list in its order, every field of Contact.
+void writeContacts(const Writer& w, const Scene& scene)
+{
+  const std::vector<Contact>& list = scene.contacts.list;
+  const std::size_t c = list.size();
+  const Id g = w.group("/contacts");
+  std::vector<std::int32_t> ids(c), cellDist(3 * c);
+  for (const auto& [name, field] : contactIds)
+  {
+    for (std::size_t k = 0; k < c; ++k)
+      ids[k] = list[k].*field;
+    w.int32s(at("/contacts/", name), ids.data(), c);
+  }
+  for (std::size_t k = 0; k < c; ++k)
+    for (std::size_t d = 0; d < 3; ++d)
+      cellDist[3 * k + d] = list[k].cellDist[static_cast<int>(d)];
+  w.array("/contacts/cellDist", H5T_STD_I32LE, H5T_NATIVE_INT32, {c, 3}, cellDist.data());
+  std::vector<std::uint8_t> bytes(c);
+  for (const auto& [name, field] : contactFlags)
+  {
+    for (std::size_t k = 0; k < c; ++k)
+      bytes[k] = list[k].*field ? 1 : 0;
+    w.uint8s(at("/contacts/", name), bytes.data(), c);
+  }
+  for (std::size_t k = 0; k < c; ++k)
+    bytes[k] = static_cast<std::uint8_t>(list[k].kind);
+  w.uint8s("/contacts/kind", bytes.data(), c);
+  for (std::size_t k = 0; k < c; ++k)
+    bytes[k] = list[k].law;
+  w.uint8s("/contacts/law", bytes.data(), c);
+  std::vector<Vec3> column3(c);
+  for (const auto& [name, field] : contactVectors)
+  {
+    for (std::size_t k = 0; k < c; ++k)
+      column3[k] = list[k].*field;
+    w.vec3s(at("/contacts/", name), column3);
+  }
+  std::vector<double> column(c);
+  for (const auto& [name, field] : contactScalars)
+  {
+    for (std::size_t k = 0; k < c; ++k)
+      column[k] = list[k].*field;
+    w.doubles(at("/contacts/", name), {c}, column.data());
+  }
+  // The richer models' state: as many rows as contacts, or none.
+  const std::vector<ContactExtra>& extra = scene.contacts.extra;
+  const std::size_t e = extra.size();
+  const Id ge = w.group("/contacts/extra");
+  column.resize(e);
+  for (const auto& [name, field] : extraScalars)
+  {
+    for (std::size_t k = 0; k < e; ++k)
+      column[k] = extra[k].*field;
+    w.doubles(at("/contacts/extra/", name), {e}, column.data());
+  }
+  column3.resize(e);
+  for (const auto& [name, field] : extraVectors)
+  {
+    for (std::size_t k = 0; k < e; ++k)
+      column3[k] = extra[k].*field;
+    w.vec3s(at("/contacts/extra/", name), column3);
+  }
+  std::vector<double> quats(4 * e);
+  for (const auto& [name, field] : extraQuats)
+  {
+    for (std::size_t k = 0; k < e; ++k)
+    {
+      const Quat& q = extra[k].*field;
+      quats[4 * k] = q.w(), quats[4 * k + 1] = q.x(), quats[4 * k + 2] = q.y(), quats[4 * k + 3] = q.z();
+    }
+    w.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
+  }
+  bytes.resize(e);
+  for (const auto& [name, field] : extraBytes)
+  {
+    for (std::size_t k = 0; k < e; ++k)
+      bytes[k] = extra[k].*field;
+    w.uint8s(at("/contacts/extra/", name), bytes.data(), e);
+  }
+}
+
 void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx, bool checksums)
 {
   const Writer w(file, ctx, checksums);
@@ -155,193 +345,9 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     }
   }
 
-  // Materials: one entry per material, in index order.
-  {
-    const auto& mats = scene.materials;
-    const Id g = w.group("/materials");
-    std::vector<std::uint8_t> kind;
-    std::vector<std::string> label;
-    for (const Material& m : mats)
-    {
-      kind.push_back(static_cast<std::uint8_t>(m.kind));
-      label.push_back(m.label);
-    }
-    w.uint8s("/materials/kind", kind.data(), kind.size());
-    w.strings("/materials/label", label);
-    std::vector<double> column(mats.size());
-    for (const auto& [name, field] : materialScalars)
-    {
-      for (std::size_t i = 0; i < mats.size(); ++i)
-        column[i] = mats[i].*field;
-      w.doubles(at("/materials/", name), {mats.size()}, column.data());
-    }
-    std::vector<std::uint8_t> flag(mats.size());
-    for (const auto& [name, field] : materialFlags)
-    {
-      for (std::size_t i = 0; i < mats.size(); ++i)
-        flag[i] = mats[i].*field ? 1 : 0;
-      w.uint8s(at("/materials/", name), flag.data(), flag.size());
-    }
-  }
-
-  // Bodies: every array, erased slots included (ids are indices).
-  {
-    const Bodies& b = scene.bodies;
-    const std::size_t n = b.size();
-    const Id g = w.group("/bodies");
-    for (const auto& [name, field] : bodyVectors)
-      w.vec3s(at("/bodies/", name), b.*field);
-    for (const auto& [name, field] : bodyScalars)
-      w.doubles(at("/bodies/", name), {n}, (b.*field).data());
-    for (const auto& [name, field] : bodyInts)
-      w.int32s(at("/bodies/", name), (b.*field).data(), n);
-    for (const auto& [name, field] : bodyBytes)
-      w.uint8s(at("/bodies/", name), (b.*field).data(), n);
-    std::vector<double> ori(4 * n);
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const Quat& q = b.ori[i];
-      std::copy_n(std::array<double, 4>{q.w(), q.x(), q.y(), q.z()}.begin(), 4, ori.begin() + static_cast<std::ptrdiff_t>(4 * i));
-    }
-    w.doubles("/bodies/ori", {n, 4}, ori.data());
-    std::vector<std::uint8_t> shape(n);
-    for (std::size_t i = 0; i < n; ++i)
-      shape[i] = static_cast<std::uint8_t>(b.shape[i]);
-    w.uint8s("/bodies/shape", shape.data(), n);
-
-    const Id walls = w.group("/bodies/walls");
-    std::vector<std::int32_t> axis, sense;
-    for (const WallShape& s : b.walls)
-    {
-      axis.push_back(s.axis);
-      sense.push_back(s.sense);
-    }
-    w.int32s("/bodies/walls/axis", axis.data(), axis.size());
-    w.int32s("/bodies/walls/sense", sense.data(), sense.size());
-
-    const Id facets = w.group("/bodies/facets");
-    const std::size_t nf = b.facets.size();
-    std::vector<double> vertices(9 * nf), normal(3 * nf);
-    for (std::size_t f = 0; f < nf; ++f)
-    {
-      for (std::size_t k = 0; k < 3; ++k)
-        for (std::size_t d = 0; d < 3; ++d)
-          vertices[9 * f + 3 * k + d] = b.facets[f].vertices[k][static_cast<int>(d)];
-      for (std::size_t d = 0; d < 3; ++d)
-        normal[3 * f + d] = b.facets[f].normal[static_cast<int>(d)];
-    }
-    w.doubles("/bodies/facets/vertices", {nf, 3, 3}, vertices.data());
-    w.doubles("/bodies/facets/normal", {nf, 3}, normal.data());
-
-    const Id boxes = w.group("/bodies/boxes");
-    std::vector<Vec3> extents;
-    for (const BoxShape& box : b.boxes)
-      extents.push_back(box.extents);
-    w.vec3s("/bodies/boxes/extents", extents);
-
-    // Clumps: members of all clumps concatenated; clump k owns entries [start[k], start[k+1]).
-    const Id clumps = w.group("/bodies/clumps");
-    std::vector<std::int32_t> start{0}, members;
-    std::vector<Vec3> relPos;
-    std::vector<double> relOri;
-    for (const ClumpShape& clump : b.clumps)
-    {
-      for (std::size_t k = 0; k < clump.members.size(); ++k)
-      {
-        members.push_back(clump.members[k]);
-        relPos.push_back(clump.relPos[k]);
-        const Quat& q = clump.relOri[k];
-        relOri.insert(relOri.end(), {q.w(), q.x(), q.y(), q.z()});
-      }
-      start.push_back(static_cast<std::int32_t>(members.size()));
-    }
-    w.int32s("/bodies/clumps/start", start.data(), start.size());
-    w.int32s("/bodies/clumps/members", members.data(), members.size());
-    w.vec3s("/bodies/clumps/relPos", relPos);
-    w.doubles("/bodies/clumps/relOri", {members.size(), 4}, relOri.data());
-    writePlaneShapes(w, b);
-  }
-
-  // Contacts: the list in its order, every field of Contact.
-  {
-    const std::vector<Contact>& list = scene.contacts.list;
-    const std::size_t c = list.size();
-    const Id g = w.group("/contacts");
-    std::vector<std::int32_t> ids(c), cellDist(3 * c);
-    for (const auto& [name, field] : contactIds)
-    {
-      for (std::size_t k = 0; k < c; ++k)
-        ids[k] = list[k].*field;
-      w.int32s(at("/contacts/", name), ids.data(), c);
-    }
-    for (std::size_t k = 0; k < c; ++k)
-      for (std::size_t d = 0; d < 3; ++d)
-        cellDist[3 * k + d] = list[k].cellDist[static_cast<int>(d)];
-    w.array("/contacts/cellDist", H5T_STD_I32LE, H5T_NATIVE_INT32, {c, 3}, cellDist.data());
-    std::vector<std::uint8_t> bytes(c);
-    for (const auto& [name, field] : contactFlags)
-    {
-      for (std::size_t k = 0; k < c; ++k)
-        bytes[k] = list[k].*field ? 1 : 0;
-      w.uint8s(at("/contacts/", name), bytes.data(), c);
-    }
-    for (std::size_t k = 0; k < c; ++k)
-      bytes[k] = static_cast<std::uint8_t>(list[k].kind);
-    w.uint8s("/contacts/kind", bytes.data(), c);
-    for (std::size_t k = 0; k < c; ++k)
-      bytes[k] = list[k].law;
-    w.uint8s("/contacts/law", bytes.data(), c);
-    std::vector<Vec3> column3(c);
-    for (const auto& [name, field] : contactVectors)
-    {
-      for (std::size_t k = 0; k < c; ++k)
-        column3[k] = list[k].*field;
-      w.vec3s(at("/contacts/", name), column3);
-    }
-    std::vector<double> column(c);
-    for (const auto& [name, field] : contactScalars)
-    {
-      for (std::size_t k = 0; k < c; ++k)
-        column[k] = list[k].*field;
-      w.doubles(at("/contacts/", name), {c}, column.data());
-    }
-    // The richer models' state: as many rows as contacts, or none.
-    const std::vector<ContactExtra>& extra = scene.contacts.extra;
-    const std::size_t e = extra.size();
-    const Id ge = w.group("/contacts/extra");
-    column.resize(e);
-    for (const auto& [name, field] : extraScalars)
-    {
-      for (std::size_t k = 0; k < e; ++k)
-        column[k] = extra[k].*field;
-      w.doubles(at("/contacts/extra/", name), {e}, column.data());
-    }
-    column3.resize(e);
-    for (const auto& [name, field] : extraVectors)
-    {
-      for (std::size_t k = 0; k < e; ++k)
-        column3[k] = extra[k].*field;
-      w.vec3s(at("/contacts/extra/", name), column3);
-    }
-    std::vector<double> quats(4 * e);
-    for (const auto& [name, field] : extraQuats)
-    {
-      for (std::size_t k = 0; k < e; ++k)
-      {
-        const Quat& q = extra[k].*field;
-        quats[4 * k] = q.w(), quats[4 * k + 1] = q.x(), quats[4 * k + 2] = q.y(), quats[4 * k + 3] = q.z();
-      }
-      w.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
-    }
-    bytes.resize(e);
-    for (const auto& [name, field] : extraBytes)
-    {
-      for (std::size_t k = 0; k < e; ++k)
-        bytes[k] = extra[k].*field;
-      w.uint8s(at("/contacts/extra/", name), bytes.data(), e);
-    }
-  }
-
+  writeMaterials(w, scene);
+  writeBodies(w, scene);
+  writeContacts(w, scene);
   // Extras: text records of the Python layer.
   {
     const Id g = w.group("/extras");
