@@ -442,6 +442,7 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
   readMaterials(r, in, ctx);
   readBodies(r, in, ctx);
   readContacts(r, in, ctx);
+
   // Extras.
   if (r.exists("/extras"))
     for (const std::string& name : r.members("/extras"))

@@ -348,6 +348,7 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
   writeMaterials(w, scene);
   writeBodies(w, scene);
   writeContacts(w, scene);
+
   // Extras: text records of the Python layer.
   {
     const Id g = w.group("/extras");
