@@ -97,6 +97,68 @@ enum class RadiusMode
   FromPorosity, ///< rMean from num and porosity
   Distribution, ///< psdSizes and psdCumm
 };
+/// The radii (half the sizes) of a size distribution given as sizes and cumulated fractions,
+/// checked, and with `distributeMass` the cumulated fractions by number (massCumm,
+/// normalised); sizes scaled down (`scaling` < 1) if `num` > 1 spheres of them cannot fit in
+/// `spread` (the box's volume, or area x largest size) at `porosity`, as Yade does.
+void sizeDistribution(const std::vector<double>& psdSizes, const std::vector<double>& psdCumm, bool distributeMass,
+                      int num, double porosity, double spread, std::vector<double>& psdRadii,
+                      std::vector<double>& massCumm, double& scaling)
+{
+  if (psdSizes.size() != psdCumm.size())
+    throw std::invalid_argument("makeCloud: psdSizes and psdCumm must have the same length (" + std::to_string(psdSizes.size())
+                                + " != " + std::to_string(psdCumm.size()) + ")");
+  if (psdSizes.size() < 2)
+    throw std::invalid_argument("makeCloud: psdSizes needs at least 2 sizes");
+  if (psdCumm.front() != 0 || psdCumm.back() != 1)
+    throw std::invalid_argument("makeCloud: psdCumm must start at exactly 0 and end at exactly 1");
+  const std::size_t n = psdSizes.size();
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!(psdSizes[i] > 0))
+      throw std::invalid_argument("makeCloud: psdSizes[" + std::to_string(i) + "] must be positive");
+    if (i > 0 && (psdSizes[i - 1] > psdSizes[i] || psdCumm[i - 1] > psdCumm[i]))
+      throw std::invalid_argument("makeCloud: psdSizes and psdCumm must both be non-decreasing (item " + std::to_string(i) + ")");
+    psdRadii.push_back(0.5 * psdSizes[i]);
+    // By mass: the number of spheres per size interval, dN = V (1 - n) dP / (4/3 pi r^3),
+    // integrated over each interval; normalised below.
+    if (distributeMass)
+      massCumm.push_back(i == 0 ? 0.0
+                                : massCumm[i - 1]
+                                      + 3.0 * spread * (1 - porosity) / M_PI * (psdCumm[i] - psdCumm[i - 1])
+                                            / (psdSizes[i] - psdSizes[i - 1])
+                                            * (std::pow(psdSizes[i - 1], -2) - std::pow(psdSizes[i], -2)));
+  }
+  if (num > 1)
+  {
+    // Scale the sizes down if `num` spheres of this distribution cannot fit at `porosity`.
+    scaling = 1;
+    if (distributeMass)
+    {
+      if (massCumm.back() < num)
+        scaling = std::pow(massCumm.back() / num, 1. / 3.);
+    }
+    else
+    {
+      double solid = 0;
+      // Yade evaluates 4 / 3 in integer arithmetic (= 1) here; kept, so that the same arguments
+      // give the same scaling as in Yade.
+      for (std::size_t i = 1; i < n; ++i)
+        solid += 4 / 3 * M_PI * (psdCumm[i] - psdCumm[i - 1]) * num * std::pow(0.5 * (psdSizes[i] + psdSizes[i - 1]), 3)
+                 * (1 + std::pow(0.5 * (psdSizes[i] - psdSizes[i - 1]), 2));
+      const double ratio = solid / ((1 - porosity) * spread);
+      if (ratio > 1)
+        scaling = std::pow(ratio, -1. / 3.);
+    }
+    if (scaling < 1)
+      for (double& r : psdRadii)
+        r *= scaling;
+  }
+  if (distributeMass)
+    for (std::size_t i = 1; i < n; ++i)
+      massCumm[i] /= massCumm.back();
+}
+
 } // namespace
 
 long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double rRelFuzz, int num, bool periodic,
@@ -149,59 +211,8 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
     if (mode != RadiusMode::Undefined)
       throw std::invalid_argument("makeCloud: rMean cannot be combined with psdSizes");
     mode = RadiusMode::Distribution;
-    if (psdSizes.size() != psdCumm.size())
-      throw std::invalid_argument("makeCloud: psdSizes and psdCumm must have the same length (" + std::to_string(psdSizes.size())
-                                  + " != " + std::to_string(psdCumm.size()) + ")");
-    if (psdSizes.size() < 2)
-      throw std::invalid_argument("makeCloud: psdSizes needs at least 2 sizes");
-    if (psdCumm.front() != 0 || psdCumm.back() != 1)
-      throw std::invalid_argument("makeCloud: psdCumm must start at exactly 0 and end at exactly 1");
-    const std::size_t n = psdSizes.size();
-    const double spread = volume != 0 ? volume : area * psdSizes.back();
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      if (!(psdSizes[i] > 0))
-        throw std::invalid_argument("makeCloud: psdSizes[" + std::to_string(i) + "] must be positive");
-      if (i > 0 && (psdSizes[i - 1] > psdSizes[i] || psdCumm[i - 1] > psdCumm[i]))
-        throw std::invalid_argument("makeCloud: psdSizes and psdCumm must both be non-decreasing (item " + std::to_string(i) + ")");
-      psdRadii.push_back(0.5 * psdSizes[i]);
-      // By mass: the number of spheres per size interval, dN = V (1 - n) dP / (4/3 pi r^3),
-      // integrated over each interval; normalised below.
-      if (distributeMass)
-        massCumm.push_back(i == 0 ? 0.0
-                                  : massCumm[i - 1]
-                                        + 3.0 * spread * (1 - porosity) / M_PI * (psdCumm[i] - psdCumm[i - 1])
-                                              / (psdSizes[i] - psdSizes[i - 1])
-                                              * (std::pow(psdSizes[i - 1], -2) - std::pow(psdSizes[i], -2)));
-    }
-    if (num > 1)
-    {
-      // Scale the sizes down if `num` spheres of this distribution cannot fit at `porosity`.
-      appliedPsdScaling = 1;
-      if (distributeMass)
-      {
-        if (massCumm.back() < num)
-          appliedPsdScaling = std::pow(massCumm.back() / num, 1. / 3.);
-      }
-      else
-      {
-        double solid = 0;
-        // Yade evaluates 4 / 3 in integer arithmetic (= 1) here; kept, so that the same arguments
-        // give the same scaling as in Yade.
-        for (std::size_t i = 1; i < n; ++i)
-          solid += 4 / 3 * M_PI * (psdCumm[i] - psdCumm[i - 1]) * num * std::pow(0.5 * (psdSizes[i] + psdSizes[i - 1]), 3)
-                   * (1 + std::pow(0.5 * (psdSizes[i] - psdSizes[i - 1]), 2));
-        const double ratio = solid / ((1 - porosity) * spread);
-        if (ratio > 1)
-          appliedPsdScaling = std::pow(ratio, -1. / 3.);
-      }
-      if (appliedPsdScaling < 1)
-        for (double& r : psdRadii)
-          r *= appliedPsdScaling;
-    }
-    if (distributeMass)
-      for (std::size_t i = 1; i < n; ++i)
-        massCumm[i] /= massCumm.back();
+    sizeDistribution(psdSizes, psdCumm, distributeMass, num, porosity, volume != 0 ? volume : area * psdSizes.back(),
+                     psdRadii, massCumm, appliedPsdScaling);
   }
   if (mode == RadiusMode::Undefined)
     throw std::invalid_argument("makeCloud: give rMean, or num (with porosity), or psdSizes and psdCumm");
