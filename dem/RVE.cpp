@@ -25,20 +25,11 @@ Mat3 subStepVelocityGradient(const Mat3& grad, int k, int nSteps, double dt)
   return (grad / n) * (Mat3::Identity() + (k / n) * grad).inverse() / dt;
 }
 
-RVE::RVE(const Scene& source, const RVEEngines& engines, const std::string& name) : name_(name)
+RVE::RVE(const Scene& source, const RVEEngines& engines, const std::string& name) : name_(name), scene_(source)
 {
-  scene_.materials = source.materials;
-  scene_.bodies = source.bodies;
-  scene_.contacts = source.contacts;
-  scene_.periodic = source.periodic;
-  scene_.cell = source.cell;
-  scene_.maxOverlapRatio = source.maxOverlapRatio;
-  scene_.maxEnergyGrowth = source.maxEnergyGrowth;
-  scene_.energy = source.energy;
-  scene_.timingEnabled = source.timingEnabled;
-  scene_.dt = source.dt;
-  scene_.time = source.time;
-  scene_.iter = source.iter;
+  // Everything of the scene (a field added to Scene is copied too), but not its engines: the
+  // source's are shared objects, the RVE builds its own.
+  scene_.engines.clear();
   setUp(engines);
 }
 
