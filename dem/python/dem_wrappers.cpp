@@ -230,6 +230,17 @@ PYBIND11_MODULE(_dem, m)
       .def("inertia", [](py::object self) { return readOnly(view3(self.cast<Scene&>().bodies.inertia, self)); })
       .def("mass", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.mass, self)); })
       .def("radius", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.radius, self)); })
+      // Bodies the per-body arrays hold room for before their storage moves (and views go stale).
+      .def("bodySpareCapacity",
+           [](const Scene& s) {
+             const Bodies& b = s.bodies;
+             std::size_t spare = b.pos.capacity() - b.pos.size();
+             for (const std::vector<Vec3>* v : {&b.vel, &b.angVel, &b.force, &b.torque, &b.extForce, &b.extTorque})
+               spare = std::min(spare, v->capacity() - v->size());
+             for (const std::vector<double>* v : {&b.mass, &b.radius})
+               spare = std::min(spare, v->capacity() - v->size());
+             return spare;
+           })
       .def("blockedDofs", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.blockedDofs, self)); })
       .def("dynamic", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.dynamic, self)); })
       .def("alive", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.alive, self)); })

@@ -123,3 +123,27 @@ def test_none_engines_and_laws_and_missing_walls_are_refused_by_the_core_too():
     triax = TriaxialStressController()
     with pytest.raises(ValueError, match="TriaxialStressController: .* = 0 must be a wall normal to axis 0"):
         triax._cpp.computeStressStrain(S._cpp)
+
+
+def test_adding_bodies_warns_when_it_moves_arrays_still_held():
+    """A view from positions() points at the old storage once an append moves the arrays:
+    the append says so (no warning when no earlier view is alive, or the arrays had room)."""
+    import warnings
+    S = Scene()
+    S.bodies.append(sphere((0, 0, 0), 0.1))
+    held = S.positions()
+    with pytest.warns(RuntimeWarning, match="adding bodies moves the per-body arrays"):
+        for k in range(1, 64):
+            S.bodies.append(sphere((k, 0, 0), 0.1))
+    assert held.shape == (1, 3)
+    del held
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        S.positions()[0]                  # a temporary view, gone at once
+        for k in range(64, 200):
+            S.bodies.append(sphere((k, 0, 0), 0.1))
+        spare = S._cpp.bodySpareCapacity()
+        kept = S.velocities()
+        for k in range(spare):            # room enough: nothing moves
+            S.bodies.append(sphere((200 + k, 0, 0), 0.1))
+        assert kept.shape == (200, 3)

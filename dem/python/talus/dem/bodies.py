@@ -220,6 +220,7 @@ class BodyContainer:
 
     def _add(self, spec: BodySpec) -> int:
         scene = self._scene
+        scene._warn_if_views_move()
         material = scene.materials.resolve(spec.material)
         if spec.shape == "Sphere":
             id = scene._cpp.addSphere(np.asarray(spec.center, dtype=float), spec.radius, material)
@@ -275,6 +276,7 @@ class BodyContainer:
 
     def clump(self, ids: Iterable[int], discretization: int = 0) -> int:
         """Make existing free spheres one clump (Yade's O.bodies.clump); returns its id."""
+        self._scene._warn_if_views_move()
         return int(_dem.add_clump(self._scene._cpp, [int(i) for i in ids], int(discretization)))
 
     def erase(self, id: int, eraseClumpMembers: bool = False):

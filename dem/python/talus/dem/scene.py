@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import __main__
 import math
+import warnings
+import weakref
 from typing import Sequence
 
 import numpy as np
@@ -84,6 +86,7 @@ class Scene(CheckpointMethods):
         self.cell = Cell(self)
         self.energy = EnergyTracker(self)
         self._engines: list[Engine] = []
+        self._views: list[weakref.ref] = []  # arrays handed out by the exchange interface
 
     dt = property(lambda s: s._cpp.dt, lambda s, v: s._set_dt(v), doc="time step (s)")
     time = property(lambda s: s._cpp.time, doc="simulated time (s)")
@@ -184,28 +187,42 @@ class Scene(CheckpointMethods):
         self._cpp.pause()
 
     # Array views of all bodies (index = body id): the particle exchange interface in Python.
-    # Views stay valid until bodies are appended.
+    # Views stay valid until bodies are appended: an append that moves the arrays' storage
+    # while an earlier view is alive warns (see _warn_if_views_move).
+    def _view(self, array):
+        self._views = [r for r in self._views if r() is not None]
+        self._views.append(weakref.ref(array))
+        return array
+
+    def _warn_if_views_move(self, adding: int = 1):
+        """Before adding bodies: a view still alive would point at freed storage after it."""
+        if any(r() is not None for r in self._views) and self._cpp.bodySpareCapacity() < adding:
+            self._views = []  # said once for these views
+            warnings.warn("adding bodies moves the per-body arrays: arrays taken before from positions(), "
+                          "velocities(), forces(), persistent_forces(), radii(), ... no longer follow the bodies "
+                          "(do not use them; take them again after adding)", RuntimeWarning, stacklevel=4)
+
     def positions(self):
-        return self._cpp.pos()
+        return self._view(self._cpp.pos())
 
     def velocities(self):
-        return self._cpp.vel()
+        return self._view(self._cpp.vel())
 
     def angular_velocities(self):
-        return self._cpp.angVel()
+        return self._view(self._cpp.angVel())
 
     def forces(self):
-        return self._cpp.force()
+        return self._view(self._cpp.force())
 
     def torques(self):
-        return self._cpp.torque()
+        return self._view(self._cpp.torque())
 
     def persistent_forces(self):
         """Forces that stay applied until changed (Yade's permanent forces), by body id."""
-        return self._cpp.extForce()
+        return self._view(self._cpp.extForce())
 
     def persistent_torques(self):
-        return self._cpp.extTorque()
+        return self._view(self._cpp.extTorque())
 
     def add_hook(self, where: str, function, period: int = 1):
         """Call ``function()`` every ``period`` steps at a point of the step: "before_forces"
@@ -227,7 +244,7 @@ class Scene(CheckpointMethods):
         return hook
 
     def radii(self):
-        return self._cpp.radius()
+        return self._view(self._cpp.radius())
 
     def sphere_ids(self) -> np.ndarray:
         """Ids of the live spheres (the particles couplings act on), ascending."""
@@ -235,7 +252,7 @@ class Scene(CheckpointMethods):
         return np.flatnonzero(spheres).astype(np.int64)
 
     def masses(self):
-        return self._cpp.mass()
+        return self._view(self._cpp.mass())
 
     def contacts(self) -> list[dict]:
         """A copy of the real contacts (ids, geometry, stiffness, forces), for inspection."""
