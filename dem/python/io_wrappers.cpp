@@ -130,6 +130,25 @@ void talus_wrap_io(py::module_& m)
   m.def("shape_codes", [](const Scene& s) {
     return column<std::uint8_t>(s.bodies.size(), [&](std::size_t i) { return static_cast<std::uint8_t>(s.bodies.shape[i]); });
   });
+  // The ids of the live bodies of one shape (Yade's class name), ascending: the one place the
+  // Python layer picks bodies by shape (couplings take the spheres, the exporters each shape).
+  m.def("live_ids", [](const Scene& s, const std::string& shape) {
+    std::vector<std::int64_t> ids;
+    bool known = false;
+    for (auto kind : {ShapeKind::Sphere, ShapeKind::Wall, ShapeKind::Facet, ShapeKind::Box, ShapeKind::Clump,
+                      ShapeKind::PotentialBlock, ShapeKind::PotentialParticle})
+    {
+      if (shape != shapeName(kind))
+        continue;
+      known = true;
+      for (std::size_t i = 0; i < s.bodies.size(); ++i)
+        if (s.bodies.shape[i] == kind && s.bodies.alive[i])
+          ids.push_back(static_cast<std::int64_t>(i));
+    }
+    if (!known)
+      throw py::value_error("live_ids: unknown shape '" + shape + "'");
+    return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
+  });
   m.def("contact_arrays", &contactArrays);
   m.def("facet_arrays", &facetArrays);
   m.def("wall_arrays", &wallArrays);

@@ -90,6 +90,15 @@ def sphere_ids(S):
     return np.flatnonzero((_dem.shape_codes(S._cpp) == 0) & (S._cpp.alive() != 0))
 
 
+def test_live_ids_pick_one_shape_and_skip_erased_bodies(scene):
+    codes, alive = _dem.shape_codes(scene._cpp), scene._cpp.alive()
+    for code, shape in enumerate(("Sphere", "Wall", "Facet")):
+        assert np.array_equal(_dem.live_ids(scene._cpp, shape), np.flatnonzero((codes == code) & (alive != 0)))
+    assert np.array_equal(scene.sphere_ids(), sphere_ids(scene)) and 10 not in scene.sphere_ids()
+    with pytest.raises(ValueError, match="unknown shape 'Sphrere'"):
+        _dem.live_ids(scene._cpp, "Sphrere")
+
+
 def test_spheres(tmp_path, scene):
     n = export.write_spheres(scene, tmp_path / "s.vtu")
     v = read_vtu(tmp_path / "s.vtu")

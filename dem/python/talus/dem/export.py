@@ -46,7 +46,6 @@ __all__ = ["VTKWarning", "write_spheres", "write_facets", "write_walls", "write_
 
 # VTK cell types.
 VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, VTK_HEXAHEDRON = 1, 3, 5, 9, 12
-_SPHERE, _WALL, _FACET, _BOX = 0, 1, 2, 3
 # Corners of a box in VTK's hexahedron order, as signs of the extents.
 _HEX_CORNERS = np.array([(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
                          (-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)], dtype=float)
@@ -144,14 +143,10 @@ def _flag_nonfinite(what: str, ids: np.ndarray, arrays: Iterable[np.ndarray]) ->
     return bad.astype(np.uint8)
 
 
-def _live(scene: "Scene", code: int) -> np.ndarray:
-    return np.flatnonzero((_dem.shape_codes(scene._cpp) == code) & (scene._cpp.alive() != 0))
-
-
 def write_spheres(scene: "Scene", path: str, extra: dict | None = None) -> int:
     """Write the live spheres of ``scene`` to ``path`` (.vtu); returns their number. ``extra``:
     more point arrays (name -> array over the written spheres, in id order)."""
-    ids = _live(scene, _SPHERE)
+    ids = scene.sphere_ids()
     cpp = scene._cpp
     data = {
         "radius": cpp.radius()[ids], "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids],
@@ -178,7 +173,7 @@ def write_facets(scene: "Scene", path: str) -> int:
 
 def write_boxes(scene: "Scene", path: str) -> int:
     """Write the live boxes of ``scene`` to ``path`` as hexahedra; returns their number."""
-    ids = _live(scene, _BOX)
+    ids = _dem.live_ids(scene._cpp, "Box")
     cpp = scene._cpp
     corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ Quaternion(cpp.ori(int(i))).toRotationMatrix().T
                for i in ids]
@@ -190,7 +185,7 @@ def write_boxes(scene: "Scene", path: str) -> int:
 
 
 def _sphere_box(scene: "Scene"):
-    ids = _live(scene, _SPHERE)
+    ids = scene.sphere_ids()
     if not len(ids):
         return np.zeros(3), np.ones(3)
     pos, r = scene._cpp.pos()[ids], scene._cpp.radius()[ids]
@@ -354,7 +349,7 @@ class VTKExporter:
         scene = self.scene
         extra = {}
         if what:
-            bodies = [scene.bodies[int(i)] for i in _live(scene, _SPHERE)]
+            bodies = [scene.bodies[int(i)] for i in scene.sphere_ids()]
             for name, expression in what.items():
                 extra[name] = np.array([eval(expression, {"np": np}, {"b": b}) for b in bodies], dtype=float)
         path = self._path("spheres", numLabel)

@@ -248,8 +248,7 @@ class Scene(CheckpointMethods):
 
     def sphere_ids(self) -> np.ndarray:
         """Ids of the live spheres (the particles couplings act on), ascending."""
-        spheres = (_dem.shape_codes(self._cpp) == 0) & (self._cpp.alive() != 0)
-        return np.flatnonzero(spheres).astype(np.int64)
+        return _dem.live_ids(self._cpp, "Sphere")
 
     def masses(self):
         return self._view(self._cpp.mass())
