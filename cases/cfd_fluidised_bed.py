@@ -2,6 +2,7 @@
 talusVolumeAveragedFoam; case folder cases/cfd_fluidised_bed/).
 
 Run:      build/bin/talus run cases/cfd_fluidised_bed.py [--quick] [--results DIR] [--procs 2] [--fixed]
+          [--envelope-method pairwise|convolution]
 Set-up:   a packing deposited like cfd_packed_bed.py's periodic one (900 spheres d = 1 mm,
           rho_p = 2500, quick; 1500 full; column 8 x 8 mm periodic across x and y, in the DEM and
           in the mesh) but with the visco-elastic contacts of the coupled run (ViscElMat
@@ -25,7 +26,7 @@ Checked:  the plateau (mean over the held phase) against the buoyant bed weight 
           line fitted to the pressure drop below 0.6 of the plateau meets the plateau) against
           the Ergun estimate within 15 % (issue #6).
 Produces: records cfd.fluidised_bed.plateau and .umf (cfd.fluidised_bed_fixed.umf with
-          --fixed); chart cfd.fluidised_bed.png (pressure drop against the superficial velocity).
+          --fixed; cfd.fluidised_bed_convolution.* with an explicit --envelope-method); chart cfd.fluidised_bed.png (pressure drop against the superficial velocity).
 Result:   quick (porosity 0.3677, Ergun U_mf 0.770 mm/s, buoyant weight 108.35 Pa): plateau
           106.68 Pa (-1.5 %; the fluid's own drop at the end 102.7 Pa), U_mf 0.872 mm/s
           (+13.2 %: the loose top layers and the envelope at the bed's top carry less drag than
@@ -90,10 +91,13 @@ def ergun_umf(eps):
     return 0.5 * (lo + hi)
 
 
-def prepare_case(procs: int, height: float, u_max: float, ramp: float) -> Path:
+def prepare_case(procs: int, height: float, u_max: float, ramp: float, envelope_method: str | None) -> Path:
     """The column from the floor (the inlet: no clear fluid below the bed for the envelope to
     smear the bed's fluid fraction into) up to ``height``."""
     def configure(work: Path):
+        if envelope_method is not None:
+            with open(work / "constant" / "couplingProperties", "a") as properties:
+                properties.write(f"envelopeMethod {envelope_method};\n")
         nz = round((height - FLOOR) / DX)
         mesh = work / "system" / "blockMeshDict"
         head, tail = mesh.read_text().split("vertices", 1)
@@ -109,12 +113,15 @@ def main():
     parser = results.case_arguments(__doc__)
     parser.add_argument("--procs", type=int, default=1, help="fluid ranks (decomposed case)")
     parser.add_argument("--fixed", action="store_true", help="every particle held: the fixed-bed check")
+    parser.add_argument("--envelope-method", choices=["pairwise", "convolution"], default=None,
+                        help="talusVolumeAveragedFoam's envelopeMethod (default: the solver's)")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    case = results.Case("cfd.fluidised_bed" + ("_fixed" if args.fixed else ""), quick=args.quick,
+    case = results.Case("cfd.fluidised_bed" + ("_fixed" if args.fixed else "") +
+                        ("" if args.envelope_method is None else "_" + args.envelope_method), quick=args.quick,
                         folder=args.results)
     n = 900 if args.quick else 1500
     ramp = 0.5 if args.quick else 1.5
@@ -127,7 +134,7 @@ def main():
     weight = (RHO_P - RHO) * G * volume / (L * L)
     print(f"{n} spheres, porosity {eps:.4f}, Ergun U_mf {u_mf:.4e} m/s, buoyant weight / area {weight:.3f} Pa")
 
-    work = prepare_case(args.procs, bed_top + 12e-3, 2 * u_mf, ramp)
+    work = prepare_case(args.procs, bed_top + 12e-3, 2 * u_mf, ramp, args.envelope_method)
     # Visco-elastic contacts (spring-dashpot, Yade's ViscElMat as Yade users fluidise beds): the
     # dashpot acts on the relative velocity at the contact only, so it quiets the contact
     # vibrations without touching the fluid-particle balance (Cundall's numerical damping acts
