@@ -71,23 +71,15 @@ int localIndex(const PoreNetwork& net, Cell c, const VertexKey& key)
       return y;
   return -1;
 }
-} // namespace
 
-PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
-                                const std::array<bool, kBoundaries>& hasBoundary, const Vec3& cellSize,
-                                double duplicateThreshold, InsertionOrder insertion)
+void checkPeriodicInput(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
+                        const std::array<bool, kBoundaries>& hasBoundary, const Vec3& cellSize, double duplicateThreshold)
 {
   detail::checkSpheres(spheres);
   if (!cellSize.allFinite() || !(cellSize.minCoeff() > 0))
     throw std::invalid_argument("periodic pore network: the cell size must be positive and finite");
   if (!(duplicateThreshold >= 0) || !std::isfinite(duplicateThreshold))
     throw std::invalid_argument("PeriodicFlowEngine.duplicateThreshold must be >= 0");
-  PoreNetwork net;
-  net.periodic = true;
-  net.cellSize = cellSize;
-  net.hasBoundary = hasBoundary;
-  net.boundaries = boundaries;
-  net.nSpheres = spheres.size();
   for (int k = 0; k < kBoundaries; ++k)
   {
     const Boundary& b = boundaries[static_cast<std::size_t>(k)];
@@ -98,26 +90,31 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
         throw std::invalid_argument("periodic pore network: the centre of body " + std::to_string(s.id) +
                                     " is outside the boundary at " + "xyz"[b.coordinate] + " = " + std::to_string(b.position));
   }
+}
+
+/// The boundary vertices, then the spheres wrapped into the cell, each followed by its images
+/// within radius + duplicateThreshold of the cell (Yade's order). Returns the insertion order.
+std::vector<int> addVertices(PoreNetwork& net, const std::vector<PoreSphere>& spheres, double duplicateThreshold)
+{
+  const Vec3& cellSize = net.cellSize;
   // The box the boundary spheres are placed around: the walls on walled axes, the cell otherwise.
   Vec3 lo = Vec3::Zero();
   Vec3 hi = cellSize;
   for (int a = 0; a < 3; ++a)
     if (!net.periodicAxis(a))
     {
-      if (hasBoundary[static_cast<std::size_t>(2 * a)])
-        lo[a] = boundaries[static_cast<std::size_t>(2 * a)].position;
-      if (hasBoundary[static_cast<std::size_t>(2 * a + 1)])
-        hi[a] = boundaries[static_cast<std::size_t>(2 * a + 1)].position;
+      if (net.hasBoundary[static_cast<std::size_t>(2 * a)])
+        lo[a] = net.boundaries[static_cast<std::size_t>(2 * a)].position;
+      if (net.hasBoundary[static_cast<std::size_t>(2 * a + 1)])
+        hi[a] = net.boundaries[static_cast<std::size_t>(2 * a + 1)].position;
     }
   std::vector<int> order;
   for (int k = 0; k < kBoundaries; ++k)
   {
-    net.vertices.push_back(detail::boundaryVertex(boundaries, k, lo, hi));
-    if (hasBoundary[static_cast<std::size_t>(k)])
+    net.vertices.push_back(detail::boundaryVertex(net.boundaries, k, lo, hi));
+    if (net.hasBoundary[static_cast<std::size_t>(k)])
       order.push_back(k);
   }
-  // The spheres wrapped into the cell, then their images within radius + duplicateThreshold of
-  // the cell, inserted right after each sphere as Yade does.
   net.wrap.resize(spheres.size(), Vec3i::Zero());
   for (std::size_t i = 0; i < spheres.size(); ++i)
   {
@@ -127,13 +124,12 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
         net.wrap[i][a] = static_cast<int>(std::floor(s.pos[a] / cellSize[a]));
     net.vertices.push_back(Vertex{s.pos - net.shift(net.wrap[i]), s.radius, false, s.id});
   }
-  const double reach = duplicateThreshold;
   for (std::size_t i = 0; i < spheres.size(); ++i)
   {
     const int real = static_cast<int>(kBoundaries + i);
     order.push_back(real);
     const Vec3 at = net.vertices[static_cast<std::size_t>(real)].pos;
-    const double half = spheres[i].radius + reach;
+    const double half = spheres[i].radius + duplicateThreshold;
     Vec3i c;
     for (c[0] = -1; c[0] <= 1; ++c[0])
       for (c[1] = -1; c[1] <= 1; ++c[1])
@@ -157,14 +153,16 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
           net.vertices.push_back(image);
         }
   }
-  auto owner = std::make_shared<Triangulation>();
-  Regular& rt = owner->rt;
-  detail::insertVertices(net, rt, order, insertion);
-  const std::vector<int> rank = detail::canonicalRanks(net.vertices, insertion);
+  return order;
+}
 
-  // Group the cells by periodic translation. Each group's representative point (the centroid of
-  // its sphere vertices, from the key so that every image computes the same number) falls in the
-  // cell for exactly one translate: that one is the pore, the others its images.
+/// Numbers the finite cells and groups them by periodic translation. Each group's
+/// representative point (the centroid of its sphere vertices, from the key so that every image
+/// computes the same number) falls in the cell for exactly one translate: that one is the pore,
+/// the others its images. Fills owner.poreOf and owner.periodOf; returns the pores' cells.
+std::vector<Cell> groupCellsByTranslation(const PoreNetwork& net, Triangulation& owner)
+{
+  Regular& rt = owner.rt;
   int nCells = 0;
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
     c->info() = nCells++;
@@ -206,7 +204,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       centroid /= n;
       for (int a = 0; a < 3; ++a)
         if (net.periodicAxis(a))
-          w[a] = -static_cast<int>(std::floor(centroid[a] / cellSize[a]));
+          w[a] = -static_cast<int>(std::floor(centroid[a] / net.cellSize[a]));
     }
     keys[ci] = key;
     shiftOf[ci] = s;
@@ -221,25 +219,35 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       poreOfKey.emplace(keys[static_cast<std::size_t>(c->info())], static_cast<int>(poreCell.size()));
       poreCell.push_back(c);
     }
-  owner->poreOf.assign(static_cast<std::size_t>(nCells), -1);
-  owner->periodOf.assign(static_cast<std::size_t>(nCells), Vec3i::Zero());
+  owner.poreOf.assign(static_cast<std::size_t>(nCells), -1);
+  owner.periodOf.assign(static_cast<std::size_t>(nCells), Vec3i::Zero());
   for (std::size_t ci = 0; ci < keys.size(); ++ci)
   {
     const auto found = poreOfKey.find(keys[ci]);
     if (found == poreOfKey.end())
       continue;
-    owner->poreOf[ci] = found->second;
-    owner->periodOf[ci] = shiftOf[ci] - realShift[ci];
+    owner.poreOf[ci] = found->second;
+    owner.periodOf[ci] = shiftOf[ci] - realShift[ci];
   }
+  return poreCell;
+}
 
+/// The error for a pore whose neighbour has no periodic counterpart (too few images).
+std::runtime_error tooThin(int pore, double duplicateThreshold)
+{
+  return std::runtime_error("periodic pore network: pore " + std::to_string(pore) +
+                            " of the cell has a neighbour with no periodic counterpart; increase "
+                            "duplicateThreshold (now " + std::to_string(duplicateThreshold) + ")");
+}
+
+/// The pores: vertices, neighbours (up to translation) and centres.
+void addPores(PoreNetwork& net, const Triangulation& owner, const std::vector<Cell>& poreCell,
+              const std::vector<int>& rank, double duplicateThreshold)
+{
+  const Regular& rt = owner.rt;
   bool open = false; // an axis with a single boundary leaves the packing open on one side
   for (int a = 0; a < 3; ++a)
-    open = open || (hasBoundary[static_cast<std::size_t>(2 * a)] != hasBoundary[static_cast<std::size_t>(2 * a + 1)]);
-  const auto tooThin = [&](int pore) {
-    return std::runtime_error("periodic pore network: pore " + std::to_string(pore) +
-                              " of the cell has a neighbour with no periodic counterpart; increase "
-                              "duplicateThreshold (now " + std::to_string(duplicateThreshold) + ")");
-  };
+    open = open || (net.hasBoundary[static_cast<std::size_t>(2 * a)] != net.hasBoundary[static_cast<std::size_t>(2 * a + 1)]);
   net.pores.resize(poreCell.size());
   for (std::size_t pi = 0; pi < poreCell.size(); ++pi)
   {
@@ -254,20 +262,25 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       if (rt.is_infinite(n))
       {
         if (!open)
-          throw tooThin(static_cast<int>(pi));
+          throw tooThin(static_cast<int>(pi), duplicateThreshold);
         p.neighbours[k] = -1;
         continue;
       }
       const auto ni = static_cast<std::size_t>(n->info());
-      if (owner->poreOf[ni] < 0)
-        throw tooThin(static_cast<int>(pi));
-      p.neighbours[k] = owner->poreOf[ni];
-      p.neighbourPeriod[k] = owner->periodOf[ni];
+      if (owner.poreOf[ni] < 0)
+        throw tooThin(static_cast<int>(pi), duplicateThreshold);
+      p.neighbours[k] = owner.poreOf[ni];
+      p.neighbourPeriod[k] = owner.periodOf[ni];
     }
     p.centre = detail::weightedCentre(rt, c, rank);
   }
-  // One throat per facet up to translation, made from the side of the smaller pore index (or
-  // towards the positive shift between a pore and its own image), linked to the mirror facet.
+}
+
+/// One throat per facet up to translation, made from the side of the smaller pore index (or
+/// towards the positive shift between a pore and its own image), linked to the mirror facet.
+void addThroats(PoreNetwork& net, const Regular& rt, const std::vector<Cell>& poreCell, const std::vector<int>& rank,
+                double duplicateThreshold)
+{
   for (std::size_t pi = 0; pi < poreCell.size(); ++pi)
   {
     const Cell c = poreCell[pi];
@@ -296,7 +309,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
       const int mirror = inOther(n->vertex(rt.mirror_index(c, k))->info());
       if (mirror < 0 || std::find(t.mirrorLocal.begin(), t.mirrorLocal.end(), -1) != t.mirrorLocal.end() ||
           net.pores[static_cast<std::size_t>(j)].throats[mirror] >= 0)
-        throw tooThin(static_cast<int>(pi));
+        throw tooThin(static_cast<int>(pi), duplicateThreshold);
       const int ti = static_cast<int>(net.throats.size());
       net.pores[pi].throats[k] = ti;
       net.pores[static_cast<std::size_t>(j)].throats[mirror] = ti;
@@ -308,11 +321,32 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
     const Pore& p = net.pores[pi];
     for (int k = 0; k < 4; ++k)
       if (p.neighbours[k] >= 0 && p.throats[k] < 0)
-        throw tooThin(static_cast<int>(pi));
+        throw tooThin(static_cast<int>(pi), duplicateThreshold);
     for (int v : p.vertices)
       if (v < kBoundaries)
         net.boundaryPores[static_cast<std::size_t>(v)].push_back(static_cast<int>(pi));
   }
+}
+} // namespace
+
+PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
+                                const std::array<bool, kBoundaries>& hasBoundary, const Vec3& cellSize,
+                                double duplicateThreshold, InsertionOrder insertion)
+{
+  checkPeriodicInput(spheres, boundaries, hasBoundary, cellSize, duplicateThreshold);
+  PoreNetwork net;
+  net.periodic = true;
+  net.cellSize = cellSize;
+  net.hasBoundary = hasBoundary;
+  net.boundaries = boundaries;
+  net.nSpheres = spheres.size();
+  const std::vector<int> order = addVertices(net, spheres, duplicateThreshold);
+  auto owner = std::make_shared<Triangulation>();
+  detail::insertVertices(net, owner->rt, order, insertion);
+  const std::vector<int> rank = detail::canonicalRanks(net.vertices, insertion);
+  const std::vector<Cell> poreCell = groupCellsByTranslation(net, *owner);
+  addPores(net, *owner, poreCell, rank, duplicateThreshold);
+  addThroats(net, owner->rt, poreCell, rank, duplicateThreshold);
   net.triangulation = std::move(owner);
   return net;
 }
