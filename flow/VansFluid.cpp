@@ -29,6 +29,145 @@ void requireTime(bool ok, const char* name, double value, const char* what)
     throw std::invalid_argument(std::string("VansFluid.fluidResolution: ") + name + " " + what + ", got "
                                 + str(value));
 }
+/// The staggered grid. Mesh nodes z_j (stresses, viscosities) are accumulated as Yade does so
+/// that threshold tests on z (viscous sub-layer) fall on the same nodes; velocity nodes sit at
+/// the wall, half-way between mesh nodes, and at the top. spacing[j] is the distance between the
+/// two velocity nodes around mesh node j (half a cell at the ends); epsNode the fluid fraction at
+/// the mesh nodes, the mean of the cells around them.
+struct Grid
+{
+  std::vector<double> z, eps, epsNode, spacing;
+};
+
+Grid staggeredGrid(const VansParameters& p, const std::vector<double>& phi)
+{
+  const auto n = static_cast<std::size_t>(p.nCell);
+  const double dz = p.deltaZ;
+  Grid g{std::vector<double>(n), std::vector<double>(n), std::vector<double>(n), std::vector<double>(n, dz)};
+  g.z[0] = 0.0;
+  for (std::size_t j = 1; j < n; ++j)
+    g.z[j] = g.z[j - 1] + dz;
+  g.spacing[0] = 0.5 * dz;
+  g.spacing[n - 1] = 0.5 * dz;
+  for (std::size_t j = 0; j < n; ++j)
+    g.eps[j] = 1.0 - phi[j];
+  g.epsNode[0] = g.eps[0];
+  for (std::size_t j = 1; j + 1 < n; ++j)
+    g.epsNode[j] = 0.5 * (g.eps[j - 1] + g.eps[j]);
+  g.epsNode[n - 1] = g.eps[n - 2];
+  return g;
+}
+
+/// Drag exchange coefficient taufsi = n <f_D> / (rho |u - v_p|) from the current profiles,
+/// frozen for a whole fluidResolution call. |u - v_p| is bounded below to avoid dividing by
+/// zero, and taufsi capped at 1/(10 dt) (Yade's choice): `clipped` counts the capped cells.
+std::vector<double> dragCoefficients(const VansParameters& p, const std::vector<double>& phi, const std::vector<double>& vp,
+                                     const std::vector<double>& averageDrag, const std::vector<double>& vxFluid, double dt,
+                                     std::size_t& clipped)
+{
+  const auto n = static_cast<std::size_t>(p.nCell);
+  std::vector<double> taufsi(n, 0.0);
+  clipped = 0;
+  const double particleVolume = 4. / 3. * std::numbers::pi * std::pow(p.radiusPart, 3);
+  const double cap = 1.0 / (10.0 * dt);
+  for (std::size_t i = 1; i < n; ++i)
+  {
+    if (phi[i] == 0.0 || averageDrag[i] == 0.0)
+      continue;
+    // vxFluid[i + 1] is the velocity node at the centre of cell i.
+    const double relative = std::max(std::fabs(vxFluid[i + 1] - vp[i]), 1e-5);
+    const double t = phi[i] / particleVolume * averageDrag[i] / relative / p.densFluid;
+    if (t > cap)
+      ++clipped;
+    taufsi[i] = std::max(0.0, std::min(t, cap));
+  }
+  return taufsi;
+}
+
+/// Where the eddy viscosity acts and its factor: nu_t = lm^2 |du/dz| enters row j as
+/// dt/dz epsNode nu_t / spacing, so each step only needs factor[j] |u_{j+1} - u_j|.
+/// Viscous sub-layer: no eddy viscosity below z+ = 11.3, with the friction velocity of a
+/// clear-water gravity-driven flow u* = sqrt(|g_x| h) (Yade's choice, valid without a bed).
+struct Turbulence
+{
+  std::vector<char> node;
+  std::vector<double> factor;
+};
+
+Turbulence turbulence(const VansParameters& p, const Grid& g, const std::vector<double>& lm, double nu, double dt)
+{
+  const auto n = static_cast<std::size_t>(p.nCell);
+  const double ustar = std::sqrt(std::fabs(p.gravityX) * g.z[n - 1]);
+  Turbulence t{std::vector<char>(n, p.turbulence ? 1 : 0), std::vector<double>(n, 0.0)};
+  if (p.turbulence && p.viscousSubLayer)
+    for (std::size_t j = 1; j < n; ++j)
+      t.node[j] = g.z[j] * ustar / nu < 11.3 ? 0 : 1;
+  for (std::size_t j = 0; j < n; ++j)
+    if (t.node[j])
+      t.factor[j] = dt / p.deltaZ * g.epsNode[j] * lm[j] * lm[j] / g.spacing[j] / g.spacing[j];
+  return t;
+}
+
+/// The parts of rows 1 .. n-1 of the tridiagonal system that stay constant during a call. Row
+/// r = j + 1 is the balance of the velocity node at the centre of cell j:
+/// a u_{r-1} + b u_r + c u_{r+1} = s. The viscous flux acts on the mixture velocity
+/// eps u + phi v_p; its particle part goes to the right-hand side.
+struct Rows
+{
+  std::vector<double> a, b, c, s, wall;
+};
+
+Rows constantRows(const VansParameters& p, const Grid& g, const std::vector<double>& nuEff, const std::vector<double>& phi,
+                  const std::vector<double>& vp, const std::vector<double>& taufsi, double dt)
+{
+  const auto n = static_cast<std::size_t>(p.nCell);
+  const std::vector<double>& eps = g.eps;
+  const std::vector<double>& spacing = g.spacing;
+  const double dz = p.deltaZ;
+  Rows rows;
+  for (std::vector<double>* row : {&rows.a, &rows.b, &rows.c, &rows.s, &rows.wall})
+    row->assign(n + 1, 0.0);
+  const double gx = std::fabs(p.gravityX);
+  for (std::size_t j = 0; j + 1 < n; ++j)
+  {
+    const std::size_t jm = j == 0 ? 0 : j - 1;  // below the first cell: the first cell again
+    const double viscousBelow = dt * eps[j] / dz * nuEff[j] / spacing[j];
+    const double viscousAbove = dt * eps[j] / dz * nuEff[j + 1] / spacing[j + 1];
+    const double solidFlux = dt * eps[j] / dz
+                             * (nuEff[j + 1] / spacing[j + 1] * (phi[j + 1] * vp[j + 1] - phi[j] * vp[j])
+                                - nuEff[j] / spacing[j] * (phi[j] * vp[j] - phi[jm] * vp[jm]));
+    rows.a[j + 1] = -viscousBelow * eps[jm];
+    rows.b[j + 1] = viscousAbove * eps[j] + viscousBelow * eps[j] + eps[j] + dt * taufsi[j];
+    rows.c[j + 1] = -viscousAbove * eps[j + 1];
+    rows.s[j + 1] = eps[j] * dt * gx + dt * taufsi[j] * vp[j] + solidFlux - eps[j] * p.dpdx / p.densFluid * dt;
+    rows.wall[j + 1] = dt * eps[j] * 2. / p.channelWidth * 0.125 * p.fluidFrictionCoef;
+  }
+  return rows;
+}
+
+/// Flip-flop detection. With the eddy viscosity lagged, a step much longer than the turbulent
+/// time scale overshoots, and the profile settles into a period-2 oscillation around the steady
+/// state instead of reaching it: the last two changes then point in opposite directions.
+/// Returns the last change relative to the profile's scale; sets `oscillating`.
+double lastChange(const std::vector<double>& u, const std::vector<double>& previous, const std::vector<double>& beforePrevious,
+                  std::size_t steps, bool& oscillating)
+{
+  double change = 0, changeDot = 0, lastNorm = 0, beforeNorm = 0, scale = 0;
+  for (std::size_t i = 0; i < u.size(); ++i)
+  {
+    const double d1 = u[i] - previous[i];
+    const double d0 = previous[i] - beforePrevious[i];
+    change = std::max(change, std::fabs(d1));
+    scale = std::max(scale, std::fabs(u[i]));
+    changeDot += d1 * d0;
+    lastNorm += d1 * d1;
+    beforeNorm += d0 * d0;
+  }
+  const double relativeChange = scale > 0 ? change / scale : change;
+  oscillating = steps >= 2 && relativeChange > VansFluid::oscillationThreshold
+                && changeDot < -0.5 * std::sqrt(lastNorm * beforeNorm);
+  return relativeChange;
+}
 } // namespace
 
 VansFluid::VansFluid(const VansParameters& parameters) : m_parameters(parameters)
@@ -115,90 +254,23 @@ void VansFluid::fluidResolution(double tfin, double dt)
       if (phi[i] != 0.0 && m_averageDrag[i] != 0.0)
         throw std::invalid_argument("VansFluid: radiusPart must be positive when averageDrag is non-zero (cell "
                                     + std::to_string(i) + ")");
-
   const double nu = p.viscoDyn / p.densFluid;
-  const double dz = p.deltaZ;
 
-  // 1. The staggered grid. Mesh nodes z_j (stresses, viscosities) are accumulated as Yade does
-  //    so that threshold tests on z (viscous sub-layer) fall on the same nodes; velocity nodes
-  //    sit at the wall, half-way between mesh nodes, and at the top. spacing[j] is the distance
-  //    between the two velocity nodes around mesh node j (half a cell at the ends).
-  std::vector<double> z(n), eps(n), epsNode(n), spacing(n, dz);
-  z[0] = 0.0;
-  for (std::size_t j = 1; j < n; ++j)
-    z[j] = z[j - 1] + dz;
-  spacing[0] = 0.5 * dz;
-  spacing[n - 1] = 0.5 * dz;
-  for (std::size_t j = 0; j < n; ++j)
-    eps[j] = 1.0 - phi[j];
-  epsNode[0] = eps[0];  // fluid fraction at the mesh nodes: the mean of the cells around them
-  for (std::size_t j = 1; j + 1 < n; ++j)
-    epsNode[j] = 0.5 * (eps[j - 1] + eps[j]);
-  epsNode[n - 1] = eps[n - 2];
-
-  // 2. Drag exchange coefficient taufsi = n <f_D> / (rho |u - v_p|) from the current profiles,
-  //    frozen for the whole call. |u - v_p| is bounded below to avoid dividing by zero, and
-  //    taufsi capped at 1/(10 dt) (Yade's choice): the count of capped cells is reported.
-  std::vector<double> taufsi(n, 0.0);
+  // What stays constant during the call: the grid, the drag coefficients, the closures that do
+  // not depend on the velocity (effective viscosity, mixing length) and the rows built on them.
+  const Grid grid = staggeredGrid(p, phi);
   std::size_t clipped = 0;
-  const double particleVolume = 4. / 3. * std::numbers::pi * std::pow(p.radiusPart, 3);
-  const double cap = 1.0 / (10.0 * dt);
-  for (std::size_t i = 1; i < n; ++i)
-  {
-    if (phi[i] == 0.0 || m_averageDrag[i] == 0.0)
-      continue;
-    // vxFluid[i + 1] is the velocity node at the centre of cell i.
-    const double relative = std::max(std::fabs(m_vxFluid[i + 1] - vp[i]), 1e-5);
-    const double t = phi[i] / particleVolume * m_averageDrag[i] / relative / p.densFluid;
-    if (t > cap)
-      ++clipped;
-    taufsi[i] = std::max(0.0, std::min(t, cap));
-  }
-
-  // 3. Closures that do not depend on the velocity: effective viscosity, mixing length.
+  std::vector<double> taufsi = dragCoefficients(p, phi, vp, m_averageDrag, m_vxFluid, dt, clipped);
   std::vector<double> nuEff(n), lm(n);
   flow::effectiveViscosity(p.effectiveViscosity, nu, phi, nuEff);
-  flow::mixingLength(p.mixingLength, p.kappa, p.phiMax, z, dz, phi, lm);
-  // Eddy viscosity nu_t = lm^2 |du/dz| enters row j as dt/dz epsNode nu_t / spacing, so each
-  // step only needs turbulentFactor[j] |u_{j+1} - u_j|.
-  // Viscous sub-layer: no eddy viscosity below z+ = 11.3, with the friction velocity of a
-  // clear-water gravity-driven flow u* = sqrt(|g_x| h) (Yade's choice, valid without a bed).
-  const double ustar = std::sqrt(std::fabs(p.gravityX) * z[n - 1]);
-  std::vector<char> turbulentNode(n, p.turbulence ? 1 : 0);
-  if (p.turbulence && p.viscousSubLayer)
-    for (std::size_t j = 1; j < n; ++j)
-      turbulentNode[j] = z[j] * ustar / nu < 11.3 ? 0 : 1;
-  std::vector<double> turbulentFactor(n, 0.0);
-  for (std::size_t j = 0; j < n; ++j)
-    if (turbulentNode[j])
-      turbulentFactor[j] = dt / dz * epsNode[j] * lm[j] * lm[j] / spacing[j] / spacing[j];
+  flow::mixingLength(p.mixingLength, p.kappa, p.phiMax, grid.z, p.deltaZ, phi, lm);
+  const Turbulence eddy = turbulence(p, grid, lm, nu, dt);
+  const Rows rows = constantRows(p, grid, nuEff, phi, vp, taufsi, dt);
 
-  // 4. The parts of rows 1 .. n-1 of the tridiagonal system that stay constant during the call.
-  //    Row r = j + 1 is the balance of the velocity node at the centre of cell j:
-  //    a u_{r-1} + b u_r + c u_{r+1} = s. The viscous flux acts on the mixture velocity
-  //    eps u + phi v_p; its particle part goes to the right-hand side.
-  std::vector<double> aConst(n + 1, 0.0), bConst(n + 1, 0.0), cConst(n + 1, 0.0), sConst(n + 1, 0.0);
-  std::vector<double> wallConst(n + 1, 0.0);
-  const double gx = std::fabs(p.gravityX);
-  for (std::size_t j = 0; j + 1 < n; ++j)
-  {
-    const std::size_t jm = j == 0 ? 0 : j - 1;  // below the first cell: the first cell again
-    const double viscousBelow = dt * eps[j] / dz * nuEff[j] / spacing[j];
-    const double viscousAbove = dt * eps[j] / dz * nuEff[j + 1] / spacing[j + 1];
-    const double solidFlux = dt * eps[j] / dz
-                             * (nuEff[j + 1] / spacing[j + 1] * (phi[j + 1] * vp[j + 1] - phi[j] * vp[j])
-                                - nuEff[j] / spacing[j] * (phi[j] * vp[j] - phi[jm] * vp[jm]));
-    aConst[j + 1] = -viscousBelow * eps[jm];
-    bConst[j + 1] = viscousAbove * eps[j] + viscousBelow * eps[j] + eps[j] + dt * taufsi[j];
-    cConst[j + 1] = -viscousAbove * eps[j + 1];
-    sConst[j + 1] = eps[j] * dt * gx + dt * taufsi[j] * vp[j] + solidFlux - eps[j] * p.dpdx / p.densFluid * dt;
-    wallConst[j + 1] = dt * eps[j] * 2. / p.channelWidth * 0.125 * p.fluidFrictionCoef;
-  }
-
-  // 5. Time loop: lagged eddy viscosity, then one tridiagonal solve (Thomas algorithm) whose
-  //    rows are assembled inside the forward sweep, so each step is a single pass up and down.
-  // Three profiles rotate: `u` (current), `previous` (one step back) and `next` (the solve's
-  // output, afterwards two steps back), so the last two changes can be compared at the end.
+  // Time loop: lagged eddy viscosity, then one tridiagonal solve (Thomas algorithm) whose rows
+  // are assembled inside the forward sweep, so each step is a single pass up and down. Three
+  // profiles rotate: `u` (current), `previous` (one step back) and `next` (the solve's output,
+  // afterwards two steps back), so the last two changes can be compared at the end.
   std::vector<double> u = m_vxFluid, previous = m_vxFluid, next = m_vxFluid;
   std::vector<double> turbulent(n), cp(n + 1), dp(n + 1);
   const bool freeSurface = p.topBoundary == TopBoundary::FreeSurface;
@@ -215,21 +287,21 @@ void VansFluid::fluidResolution(double tfin, double dt)
     time = advanced;
     ++steps;
     for (std::size_t j = 0; j < n; ++j)
-      turbulent[j] = turbulentFactor[j] * std::fabs(u[j + 1] - u[j]);
+      turbulent[j] = eddy.factor[j] * std::fabs(u[j + 1] - u[j]);
 
     cp[0] = 0.0;  // row 0: u_0 = 0, no-slip bottom wall
     dp[0] = 0.0;
     for (std::size_t r = 1; r < n; ++r)
     {
       const std::size_t j = r - 1;
-      const double a = aConst[r] - turbulent[j];
-      const double c = cConst[r] - turbulent[j + 1];
-      double b = bConst[r] + turbulent[j] + turbulent[j + 1];
-      double s = sConst[r] + u[r] * eps[j];
+      const double a = rows.a[r] - turbulent[j];
+      const double c = rows.c[r] - turbulent[j + 1];
+      double b = rows.b[r] + turbulent[j] + turbulent[j + 1];
+      double s = rows.s[r] + u[r] * grid.eps[j];
       if (p.fluidWallFriction)
       {
         const double f = wallFrictionFactor(std::fabs(u[r]) * p.channelWidth / nu);
-        const double w = wallConst[r] * f * u[r] * u[r];
+        const double w = rows.wall[r] * f * u[r] * u[r];
         b += 0.5 * w;  // half implicit, half explicit, as in Yade
         s -= 0.5 * w;
       }
@@ -249,34 +321,18 @@ void VansFluid::fluidResolution(double tfin, double dt)
     std::swap(previous, u);
     std::swap(u, next);
   }
+  bool oscillating = false;
+  const double relativeChange = lastChange(u, previous, next, steps, oscillating);
 
-  // 6. Flip-flop detection. With the eddy viscosity lagged, a step much longer than the turbulent
-  //    time scale overshoots, and the profile settles into a period-2 oscillation around the
-  //    steady state instead of reaching it: the last two changes then point in opposite directions.
-  double lastChange = 0, changeDot = 0, lastNorm = 0, beforeNorm = 0, scale = 0;
-  for (std::size_t i = 0; i <= n; ++i)
-  {
-    const double d1 = u[i] - previous[i];
-    const double d0 = previous[i] - next[i];
-    lastChange = std::max(lastChange, std::fabs(d1));
-    scale = std::max(scale, std::fabs(u[i]));
-    changeDot += d1 * d0;
-    lastNorm += d1 * d1;
-    beforeNorm += d0 * d0;
-  }
-  const double relativeChange = scale > 0 ? lastChange / scale : lastChange;
-  const bool oscillating = steps >= 2 && relativeChange > oscillationThreshold
-                           && changeDot < -0.5 * std::sqrt(lastNorm * beforeNorm);
-
-  // 7. Outputs: eddy viscosity of the last step (from the profile it started with, now in
-  //    `previous`), and the Reynolds stress it gives with the final profile.
+  // Outputs: eddy viscosity of the last step (from the profile it started with, now in
+  // `previous`), and the Reynolds stress it gives with the final profile.
   std::vector<double> viscoft(n, 0.0), stress(n, 0.0);
   if (steps > 0)
     for (std::size_t j = 0; j < n; ++j)
-      if (turbulentNode[j])
-        viscoft[j] = lm[j] * lm[j] * std::fabs((previous[j + 1] - previous[j]) / spacing[j]);
+      if (eddy.node[j])
+        viscoft[j] = lm[j] * lm[j] * std::fabs((previous[j + 1] - previous[j]) / grid.spacing[j]);
   for (std::size_t j = 0; j < n; ++j)
-    stress[j] = p.densFluid * epsNode[j] * viscoft[j] * (u[j + 1] - u[j]) / spacing[j];
+    stress[j] = p.densFluid * grid.epsNode[j] * viscoft[j] * (u[j + 1] - u[j]) / grid.spacing[j];
 
   m_vxFluid = std::move(u);
   m_taufsi = std::move(taufsi);
