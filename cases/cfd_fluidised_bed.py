@@ -26,7 +26,8 @@ Checked:  the plateau (mean over the held phase) against the buoyant bed weight 
           line fitted to the pressure drop below 0.6 of the plateau meets the plateau) against
           the Ergun estimate within 15 % (issue #6).
 Produces: records cfd.fluidised_bed.plateau and .umf (cfd.fluidised_bed_fixed.umf with
-          --fixed; cfd.fluidised_bed_convolution.* with an explicit --envelope-method); chart cfd.fluidised_bed.png (pressure drop against the superficial velocity).
+          --fixed; cfd.fluidised_bed_convolution.* with an explicit --envelope-method); chart
+          cfd.fluidised_bed.png (pressure drop against the superficial velocity).
 Result:   quick (porosity 0.3677, Ergun U_mf 0.770 mm/s, buoyant weight 108.35 Pa): plateau
           106.68 Pa (-1.5 %; the fluid's own drop at the end 102.7 Pa), U_mf 0.872 mm/s
           (+13.2 %: the loose top layers and the envelope at the bed's top carry less drag than

@@ -17,6 +17,15 @@ const char* shapeName(ShapeKind kind)
   return "?";
 }
 
+std::optional<ShapeKind> shapeKindNamed(std::string_view name)
+{
+  // Every kind from the first to the last enumerator (PotentialParticle: keep it the last).
+  for (int k = 0; k <= static_cast<int>(ShapeKind::PotentialParticle); ++k)
+    if (name == shapeName(static_cast<ShapeKind>(k)))
+      return static_cast<ShapeKind>(k);
+  return std::nullopt;
+}
+
 BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
 {
   const auto id = static_cast<BodyId>(pos.size());

@@ -6,6 +6,8 @@
 #include "dem/types.h"
 
 #include <array>
+#include <optional>
+#include <string_view>
 #include <vector>
 
 namespace talus::dem
@@ -24,6 +26,9 @@ enum class ShapeKind : std::uint8_t
 
 /// Yade's class name of a shape kind ("Sphere", "PotentialBlock", ...), for messages.
 const char* shapeName(ShapeKind kind);
+
+/// The shape kind of a Yade class name (shapeName's inverse); none for an unknown name.
+std::optional<ShapeKind> shapeKindNamed(std::string_view name);
 
 /// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
 /// (-1 negative side, +1 positive side, 0 both), as Yade's Wall.sense.

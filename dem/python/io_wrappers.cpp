@@ -133,20 +133,13 @@ void talus_wrap_io(py::module_& m)
   // The ids of the live bodies of one shape (Yade's class name), ascending: the one place the
   // Python layer picks bodies by shape (couplings take the spheres, the exporters each shape).
   m.def("live_ids", [](const Scene& s, const std::string& shape) {
-    std::vector<std::int64_t> ids;
-    bool known = false;
-    for (auto kind : {ShapeKind::Sphere, ShapeKind::Wall, ShapeKind::Facet, ShapeKind::Box, ShapeKind::Clump,
-                      ShapeKind::PotentialBlock, ShapeKind::PotentialParticle})
-    {
-      if (shape != shapeName(kind))
-        continue;
-      known = true;
-      for (std::size_t i = 0; i < s.bodies.size(); ++i)
-        if (s.bodies.shape[i] == kind && s.bodies.alive[i])
-          ids.push_back(static_cast<std::int64_t>(i));
-    }
-    if (!known)
+    const std::optional<ShapeKind> kind = shapeKindNamed(shape);
+    if (!kind)
       throw py::value_error("live_ids: unknown shape '" + shape + "'");
+    std::vector<std::int64_t> ids;
+    for (std::size_t i = 0; i < s.bodies.size(); ++i)
+      if (s.bodies.shape[i] == *kind && s.bodies.alive[i])
+        ids.push_back(static_cast<std::int64_t>(i));
     return py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data());
   });
   m.def("contact_arrays", &contactArrays);
