@@ -377,43 +377,61 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const s
 }
 } // namespace
 
-bool Collider::needsRebuild(const Scene& scene) const
+Collider::SkinCheck Collider::skinCheck(const Scene& scene) const
 {
+  SkinCheck check;
   if (scene.bodiesVersion != seenBodiesVersion_ || referencePos_.size() != scene.bodies.size())
-    return true;
+  {
+    check.rebuild = true;
+    return check;
+  }
   // A pair's distance changes by at most the two bodies' displacements beyond the cell's
   // homogeneous deformation A = H H_ref^-1, plus (A - I) applied to its old distance (at most
   // the interaction range): re-detect before that can exceed the skin.
   const Bodies& b = scene.bodies;
-  const Mat3 affine = scene.periodic ? Mat3(scene.cell.hSize * referenceCellInverse_) : Mat3::Identity();
-  const double strainReach = (affine - Mat3::Identity()).norm() * referenceRange_;
+  check.affine = scene.periodic ? Mat3(scene.cell.hSize * referenceCellInverse_) : Mat3::Identity();
+  const double strainReach = (check.affine - Mat3::Identity()).norm() * referenceRange_;
   if (strainReach >= skin_)
-    return true;
+  {
+    check.rebuild = true;
+    return check;
+  }
   const double limit = 0.5 * (skin_ - strainReach);
-  const double limit2 = limit * limit;
-  const auto n = static_cast<std::int64_t>(b.size());
-  bool moved = false;
-  const bool deformed = scene.periodic && affine != Mat3::Identity();
+  check.limit2 = limit * limit;
+  check.deformed = scene.periodic && check.affine != Mat3::Identity();
   // A block's or particle's surface also moves by its rotation: at most its bounding radius
   // times the angle.
-  for (std::size_t k = 0; k < convex_.size() && !moved; ++k)
+  for (std::size_t k = 0; k < convex_.size() && !check.rebuild; ++k)
   {
     const auto i = static_cast<std::size_t>(convex_[k]);
     const double reach = boundingRadius(b, i);
     const double angle = b.ori[i].angularDistance(referenceOri_[k]);
-    moved = (b.pos[i] - referencePos_[i]).norm() + reach * angle > limit;
+    check.rebuild = (b.pos[i] - referencePos_[i]).norm() + reach * angle > limit;
   }
-  auto anyMoved = [&](std::int64_t first, std::int64_t last) {
-    bool any = false;
-    for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
-    {
-      const Vec3 reference = deformed ? Vec3(affine * referencePos_[i]) : referencePos_[i];
-      if (b.alive[i] && (b.pos[i] - reference).squaredNorm() > limit2)
-        any = true;
-    }
-    return any;
-  };
-  return moved || balancedFor(skinRanges_, n, false, anyMoved, [](bool a, bool c) { return a || c; });
+  return check;
+}
+
+bool Collider::movedIn(const Scene& scene, const SkinCheck& check, std::int64_t first, std::int64_t last) const
+{
+  const Bodies& b = scene.bodies;
+  bool any = false;
+  for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
+  {
+    const Vec3 reference = check.deformed ? Vec3(check.affine * referencePos_[i]) : referencePos_[i];
+    if (b.alive[i] && (b.pos[i] - reference).squaredNorm() > check.limit2)
+      any = true;
+  }
+  return any;
+}
+
+bool Collider::needsRebuild(const Scene& scene) const
+{
+  const SkinCheck check = skinCheck(scene);
+  if (check.rebuild)
+    return true;
+  auto moved = [&](std::int64_t first, std::int64_t last) { return movedIn(scene, check, first, last); };
+  return balancedFor(skinRanges_, static_cast<std::int64_t>(scene.bodies.size()), false, moved,
+                     [](bool a, bool c) { return a || c; });
 }
 
 void Collider::run(Scene& scene)

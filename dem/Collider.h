@@ -37,9 +37,24 @@ public:
   /// Number of rebuilds so far (diagnostics).
   std::int64_t rebuilds = 0;
 
+  /// The skin check's verdict before the per-body test: `rebuild` when it is already known
+  /// (bodies changed, the cell deformed past the skin, a block or particle moved or turned too
+  /// far); otherwise what movedIn needs.
+  struct SkinCheck
+  {
+    bool rebuild = false;
+    bool deformed = false; ///< a deforming periodic cell: references follow the affine map
+    Mat3 affine = Mat3::Identity();
+    double limit2 = 0; ///< squared displacement allowed since the last rebuild
+  };
+  [[nodiscard]] SkinCheck skinCheck(const Scene& scene) const;
+  /// Whether a body of [first, last) moved beyond the check's limit (check.rebuild false).
+  [[nodiscard]] bool movedIn(const Scene& scene, const SkinCheck& check, std::int64_t first, std::int64_t last) const;
+  /// Re-detect the candidate pairs now.
+  void rebuild(Scene& scene);
+
 private:
   [[nodiscard]] bool needsRebuild(const Scene& scene) const;
-  void rebuild(Scene& scene);
 
   std::vector<Vec3> referencePos_;
   // Scratch space kept between rebuilds, so re-detection does not allocate (and fault in) memory.

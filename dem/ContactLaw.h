@@ -58,6 +58,14 @@ public:
   /// @return the index of the first contact overlapping more than scene.maxOverlapRatio of its
   /// smaller radius, or -1
   virtual std::int64_t computeAll(Scene& scene) = 0;
+  /// computeAll's work on the contacts [first, last) only, without energy tracking, for a caller
+  /// that runs the loop in its own parallel region (the fused step) and calls stepDone() after
+  /// the last range; Contacts::extra must already be aligned when needsExtra().
+  /// @return the index of the first contact of the range overlapping too much, or the number
+  /// of contacts
+  virtual std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last) = 0;
+  /// Called once per step after the law's contacts were processed (one-shot settings reset).
+  virtual void stepDone() {}
   /// Elastic energy stored in the real contacts whose c.law == lawIndex.
   [[nodiscard]] virtual double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const = 0;
   /// Of the contacts of this law that became real this step, the part of their elastic energy
@@ -76,8 +84,6 @@ public:
 
 protected:
   [[noreturn]] void unknownParameter(const std::string& name) const;
-  /// Called once per step after the law's contacts were processed (one-shot settings reset).
-  virtual void stepDone() {}
 };
 
 /// What a law's per-contact force function may read besides the contact.
@@ -117,6 +123,7 @@ public:
   [[nodiscard]] bool needsExtra() const override { return Law::usesExtra; }
   void computeForces(Scene& scene, std::uint8_t lawIndex) override;
   std::int64_t computeAll(Scene& scene) override;
+  std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last) override;
   [[nodiscard]] double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const override;
   [[nodiscard]] double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
                                           const std::vector<double>& grownBy) const override;
@@ -124,6 +131,9 @@ public:
 private:
   template <bool Track>
   std::int64_t loopAll(Scene& scene);
+  template <bool Track>
+  std::int64_t firstBadIn(Scene& scene, const StepContext& step, std::int64_t first, std::int64_t last,
+                          ContactEnergy& energy) const;
   template <bool Track>
   void loopForces(Scene& scene, std::uint8_t lawIndex);
   BalancedRanges ranges_; ///< computeAll's contacts per thread

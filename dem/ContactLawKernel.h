@@ -87,29 +87,40 @@ std::int64_t ContactLawKernel<Law>::computeAll(Scene& scene)
 
 template <class Law>
 template <bool Track>
-std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
+std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& step, std::int64_t first,
+                                               std::int64_t last, ContactEnergy& energy) const
 {
   const Law& law = static_cast<const Law&>(*this);
   std::vector<Contact>& list = scene.contacts.list;
-  const StepContext step = detail::stepContext<Law>(scene);
   const auto n = static_cast<std::int64_t>(list.size());
   const double ratio = scene.maxOverlapRatio;
-  // The index of the first contact overlapping too much, or n.
-  auto one = [&](std::int64_t k, ContactEnergy& e) -> std::int64_t {
+  std::int64_t bad = n;
+  for (std::int64_t k = first; k < last; ++k)
+  {
     Contact& c = list[static_cast<std::size_t>(k)];
     ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
     const bool sphereFastPath = !Law::usesExtra && c.kind == ContactGeometryKind::SphereSphere;
     if (!(sphereFastPath ? contactGeometry<true>(c, step.bodies, step.cell, step.dt, nullptr)
                          : updateContactGeometry(c, step.bodies, step.cell, step.dt, x)))
-      return n;
+      continue;
     if (c.fresh)
     {
       c.law = 0;
       law.initialize(c, x, scene);
     }
-    law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
-    return overlapsTooMuch(c, ratio) ? k : n;
-  };
+    law.template force<Track>(c, static_cast<std::size_t>(k), step, energy);
+    if (overlapsTooMuch(c, ratio))
+      bad = std::min(bad, k);
+  }
+  return bad;
+}
+
+template <class Law>
+template <bool Track>
+std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
+{
+  const StepContext step = detail::stepContext<Law>(scene);
+  const auto n = static_cast<std::int64_t>(scene.contacts.list.size());
   std::int64_t firstBad = n;
   if constexpr (Track)
   {
@@ -118,23 +129,27 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
     std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
 #pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelLoopMinimum)
     for (std::int64_t blk = 0; blk < blocks; ++blk)
-      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
-        firstBad = std::min(firstBad, one(k, energy[static_cast<std::size_t>(blk)]));
+      firstBad = std::min(firstBad, firstBadIn<true>(scene, step, blk * energyBlock, std::min(n, (blk + 1) * energyBlock),
+                                                     energy[static_cast<std::size_t>(blk)]));
     detail::addContactEnergy(scene, energy);
   }
   else
   {
     auto firstIn = [&](std::int64_t first, std::int64_t last) {
       ContactEnergy unused;
-      std::int64_t bad = n;
-      for (std::int64_t k = first; k < last; ++k)
-        bad = std::min(bad, one(k, unused));
-      return bad;
+      return firstBadIn<false>(scene, step, first, last, unused);
     };
     firstBad = balancedFor(ranges_, n, n, firstIn, [](std::int64_t a, std::int64_t c) { return std::min(a, c); });
   }
   stepDone();
   return firstBad < n ? firstBad : -1;
+}
+
+template <class Law>
+std::int64_t ContactLawKernel<Law>::computeAllIn(Scene& scene, std::int64_t first, std::int64_t last)
+{
+  ContactEnergy unused;
+  return firstBadIn<false>(scene, detail::stepContext<Law>(scene), first, last, unused);
 }
 
 template <class Law>

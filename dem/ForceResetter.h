@@ -5,6 +5,8 @@
 
 namespace talus::dem
 {
+struct Bodies;
+
 /// Starts a step: every body's force and torque become its persistent external force and
 /// torque (zero unless a coupling or the user set them), ready for contacts to add to.
 class ForceResetter : public Engine
@@ -12,6 +14,8 @@ class ForceResetter : public Engine
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "ForceResetter"; }
+  /// run()'s work on the bodies [first, last) (for the fused step's parallel region).
+  static void resetIn(Bodies& bodies, std::int64_t first, std::int64_t last);
 
 private:
   BalancedRanges ranges_; ///< bodies per thread

@@ -82,21 +82,26 @@ std::string InteractionLoop::overlapReport(const Scene& scene, const Contact& c)
   return text;
 }
 
-void InteractionLoop::run(Scene& scene)
+void InteractionLoop::prepare(const Scene& scene)
 {
   if (laws.empty())
     throw std::runtime_error("InteractionLoop has no contact law");
   if (laws.size() > 255)
     throw std::runtime_error("InteractionLoop supports at most 255 contact laws");
+  if (laws.size() == 1)
+  {
+    checkMaterials(scene);
+    checkShapes(scene);
+  }
+}
+
+void InteractionLoop::run(Scene& scene)
+{
+  prepare(scene);
   timingDeltas.start(scene.timingEnabled);
   std::int64_t bad = -1;
   if (laws.size() == 1)
-  {
-    // The usual case: geometry, physics and forces in one pass over the contacts.
-    checkMaterials(scene);
-    checkShapes(scene);
-    bad = laws[0]->computeAll(scene);
-  }
+    bad = laws[0]->computeAll(scene); // the usual case: geometry, physics and forces in one pass
   else
   {
     computeWithSeveralLaws(scene);
@@ -158,77 +163,85 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
 
 namespace
 {
-/// The force-and-torque gather of sumForcesPerBody for one kind of scene: `Periodic` takes
+/// The force-and-torque gather of bodies [first, last) for one kind of scene: `Periodic` takes
 /// body 2's lever arm from its periodic image (Cell::shift of the contact's cellDist, the
 /// shift the geometry used this step: the cell does not change inside the InteractionLoop);
 /// otherwise no record is read beyond its first cache line (Contact's layout note).
 template <bool Periodic>
-void gatherForces(Scene& scene, const ContactExtra* extra, BalancedRanges& ranges)
+void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, std::int64_t last)
 {
   const std::vector<Contact>& list = scene.contacts.list;
   Bodies& b = scene.bodies;
   const Contacts& contacts = scene.contacts;
   const Cell& cell = scene.cell;
-  const auto bodyCount = static_cast<std::int64_t>(contacts.start.empty() ? 0 : contacts.start.size() - 1);
   const auto entryCount = static_cast<std::int64_t>(contacts.entries.size());
   constexpr std::int64_t prefetchDistance = 16; // entries ahead: a few hundred nanoseconds of work
-  balancedFor(ranges, bodyCount, [&](std::int64_t first, std::int64_t last) {
-    for (std::int64_t id = first; id < last; ++id)
+  for (std::int64_t id = first; id < last; ++id)
+  {
+    const auto i = static_cast<std::size_t>(id);
+    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+    for (std::int64_t e = contacts.start[i]; e < contacts.start[i + 1]; ++e)
     {
-      const auto i = static_cast<std::size_t>(id);
-      Vec3 f = Vec3::Zero(), t = Vec3::Zero();
-      for (std::int64_t e = contacts.start[i]; e < contacts.start[i + 1]; ++e)
+      const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
+      const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
+      // The records come in a few interleaved runs (a body's contacts with its lower and higher
+      // neighbours), one cache line each: the hardware prefetchers miss that pattern, and
+      // without this hint that layout made the gather about three times slower than the old
+      // three-lines-per-record one on a 16k-sphere bed; with it, 1.4 times faster there and 2.2
+      // times on a 65k bed.
+      if (e + prefetchDistance < entryCount)
+        __builtin_prefetch(&list[static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1)]);
+      // No test of c.real and no branch on the side: a contact that is not real carries a zero
+      // force (Contact::reset), and whether a body is a contact's first or second is as
+      // unpredictable as whether a candidate pair touches. The sign is computed, not selected
+      // (for `second ? 1.0 : -1.0` GCC 12 emits a branch). The force on this body and its moment
+      // about the centre, applied at the contact point.
+      const std::int64_t second = entry & 1;
+      const Vec3 force = static_cast<double>(2 * second - 1) * c.force;
+      f += force;
+      if constexpr (Periodic)
       {
-        const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
-        const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
-        // The records come in a few interleaved runs (a body's contacts with its lower and higher
-        // neighbours), one cache line each: the hardware prefetchers miss that pattern, and
-        // without this hint that layout made the gather about three times slower than the old
-        // three-lines-per-record one on a 16k-sphere bed; with it, 1.4 times faster there and 2.2
-        // times on a 65k bed.
-        if (e + prefetchDistance < entryCount)
-          __builtin_prefetch(&list[static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1)]);
-        // No test of c.real and no branch on the side: a contact that is not real carries a zero
-        // force (Contact::reset), and whether a body is a contact's first or second is as
-        // unpredictable as whether a candidate pair touches. The sign is computed, not selected
-        // (for `second ? 1.0 : -1.0` GCC 12 emits a branch). The force on this body and its moment
-        // about the centre, applied at the contact point.
-        const std::int64_t second = entry & 1;
-        const Vec3 force = static_cast<double>(2 * second - 1) * c.force;
-        f += force;
-        if constexpr (Periodic)
-        {
-          // Only contacts across the boundary have an image to shift to, and they are few: a
-          // predictable test spares the others the shift's matrix product.
-          Vec3 centre = b.pos[i];
-          if (c.cellDist != Eigen::Vector3i::Zero())
-            centre += static_cast<double>(second) * cell.shift(c.cellDist);
-          t += (c.contactPoint - centre).cross(force);
-        }
-        else
-          t += (c.contactPoint - b.pos[i]).cross(force);
-        if (extra && c.real)
-        {
-          const ContactExtra& x = extra[entry >> 1];
-          const Vec3 moment = x.momentBending + x.momentTwist;
-          t += static_cast<double>(2 * second - 1) * moment;
-        }
+        // Only contacts across the boundary have an image to shift to, and they are few: a
+        // predictable test spares the others the shift's matrix product.
+        Vec3 centre = b.pos[i];
+        if (c.cellDist != Eigen::Vector3i::Zero())
+          centre += static_cast<double>(second) * cell.shift(c.cellDist);
+        t += (c.contactPoint - centre).cross(force);
       }
-      b.force[i] += f;
-      b.torque[i] += t;
+      else
+        t += (c.contactPoint - b.pos[i]).cross(force);
+      if (extra && c.real)
+      {
+        const ContactExtra& x = extra[entry >> 1];
+        const Vec3 moment = x.momentBending + x.momentTwist;
+        t += static_cast<double>(2 * second - 1) * moment;
+      }
     }
-  });
+    b.force[i] += f;
+    b.torque[i] += t;
+  }
+}
+
+/// Contact moments (rolling and twisting resistance) of the richer models, if any.
+const ContactExtra* contactMoments(const Contacts& contacts)
+{
+  return contacts.extra.size() == contacts.list.size() ? contacts.extra.data() : nullptr;
 }
 } // namespace
 
+void InteractionLoop::gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const
+{
+  // Bodies added since the last re-detection have no contacts (nor entries in the index) yet.
+  last = std::min(last, static_cast<std::int64_t>(scene.contacts.start.empty() ? 0 : scene.contacts.start.size() - 1));
+  if (scene.periodic)
+    gatherRange<true>(scene, contactMoments(scene.contacts), first, last);
+  else
+    gatherRange<false>(scene, contactMoments(scene.contacts), first, last);
+}
+
 void InteractionLoop::sumForcesPerBody(Scene& scene)
 {
-  // Contact moments (rolling and twisting resistance) of the richer models, if any.
-  const auto& contacts = scene.contacts;
-  const ContactExtra* extra = contacts.extra.size() == contacts.list.size() ? contacts.extra.data() : nullptr;
-  if (scene.periodic)
-    gatherForces<true>(scene, extra, gatherRanges_);
-  else
-    gatherForces<false>(scene, extra, gatherRanges_);
+  const auto bodyCount = static_cast<std::int64_t>(scene.contacts.start.empty() ? 0 : scene.contacts.start.size() - 1);
+  balancedFor(gatherRanges_, bodyCount, [&](std::int64_t first, std::int64_t last) { gatherIn(scene, first, last); });
 }
 } // namespace talus::dem

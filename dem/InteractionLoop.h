@@ -19,6 +19,16 @@ public:
 
   std::vector<std::shared_ptr<ContactLaw>> laws;
 
+  // The pieces of run() for the fused step, which runs the loops in its own parallel region.
+  /// The checks run() makes before touching the contacts.
+  /// @throws std::runtime_error without laws, with more than 255, or (single law) with
+  ///         materials or shapes the law cannot handle
+  void prepare(const Scene& scene);
+  /// Add the forces and moments of the contacts of bodies [first, last) to those bodies.
+  void gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const;
+  /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
+  static std::string overlapReport(const Scene& scene, const Contact& c);
+
 private:
   void assignLaw(Contact& c, ContactExtra* x, const Scene& scene) const;
   /// With a single law: check once per material count that it handles every material pair.
@@ -32,8 +42,6 @@ private:
   /// Add every contact's force and moment to its two bodies, body by body in a fixed order,
   /// so the sums do not depend on the number of threads.
   void sumForcesPerBody(Scene& scene);
-  /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
-  static std::string overlapReport(const Scene& scene, const Contact& c);
   std::size_t checkedMaterials_ = 0;
   std::int64_t checkedBodiesVersion_ = -1;
   BalancedRanges gatherRanges_; ///< the gather's bodies per thread

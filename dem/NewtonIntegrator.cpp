@@ -54,6 +54,7 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
   invMass_.assign(b.size(), Vec3::Zero());
   invInertia_.assign(b.size(), Vec3::Zero());
   mode_.assign(b.size(), 0);
+  hasClumps_ = false;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
     if (!b.alive[i])
@@ -61,7 +62,10 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
     if (b.clumpId[i] >= 0)
       mode_[i] = Member;
     else if (b.shape[i] == ShapeKind::Clump)
+    {
       mode_[i] = ClumpBody;
+      hasClumps_ = true;
+    }
     // Fully blocked rotations keep their angular velocity: the spherical path does that.
     if (b.aspherical(i) && b.dynamic[i] && (b.blockedDofs[i] & (DofRX | DofRY | DofRZ)) != (DofRX | DofRY | DofRZ))
       mode_[i] |= Aspherical;
@@ -176,13 +180,29 @@ void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& forc
   b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
 }
 
-void NewtonIntegrator::run(Scene& scene)
+void NewtonIntegrator::prepare(Scene& scene)
 {
   if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_)
     refreshInverses(scene);
+}
+
+void NewtonIntegrator::run(Scene& scene)
+{
+  prepare(scene);
   if (scene.energy.enabled)
     addImposedMotionWork(scene);
-  const std::int64_t firstBad = scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene);
+  finish(scene, scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene));
+}
+
+std::int64_t NewtonIntegrator::integrateIn(Scene& scene, std::int64_t first, std::int64_t last) const
+{
+  double unused = 0;
+  const std::int64_t bad = integrateRange<false>(scene, first, last, unused, unused);
+  return bad < static_cast<std::int64_t>(scene.bodies.size()) ? bad : -1;
+}
+
+void NewtonIntegrator::finish(Scene& scene, std::int64_t firstBad)
+{
   if (firstBad >= 0)
     throw std::runtime_error("step " + std::to_string(scene.iter) + ": body " + std::to_string(firstBad)
                              + " has a non-finite force or torque; the run diverged (time step "
@@ -193,7 +213,8 @@ void NewtonIntegrator::run(Scene& scene)
 }
 
 template <bool Track>
-std::int64_t NewtonIntegrator::integrate(Scene& scene) const
+std::int64_t NewtonIntegrator::integrateRange(Scene& scene, std::int64_t first, std::int64_t last,
+                                              double& gravWorkSum, double& dampSum) const
 {
   Bodies& b = scene.bodies;
   const double dt = scene.dt;
@@ -289,6 +310,17 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
     b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
     return true;
   };
+  std::int64_t bad = n;
+  for (std::int64_t k = first; k < last; ++k)
+    if (!one(static_cast<std::size_t>(k), gravWorkSum, dampSum))
+      bad = std::min(bad, k);
+  return bad;
+}
+
+template <bool Track>
+std::int64_t NewtonIntegrator::integrate(Scene& scene) const
+{
+  const auto n = static_cast<std::int64_t>(scene.bodies.size());
   std::int64_t firstBad = n;
   if constexpr (Track)
   {
@@ -297,9 +329,11 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
     std::vector<std::array<double, 2>> energy(static_cast<std::size_t>(blocks), {0.0, 0.0}); // gravWork, damping
 #pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelLoopMinimum)
     for (std::int64_t blk = 0; blk < blocks; ++blk)
-      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
-        if (!one(static_cast<std::size_t>(k), energy[static_cast<std::size_t>(blk)][0], energy[static_cast<std::size_t>(blk)][1]))
-          firstBad = std::min(firstBad, k);
+    {
+      auto& [gravWork, damp] = energy[static_cast<std::size_t>(blk)];
+      firstBad = std::min(firstBad, integrateRange<true>(scene, blk * energyBlock, std::min(n, (blk + 1) * energyBlock),
+                                                         gravWork, damp));
+    }
     for (const auto& [gravWork, damp] : energy)
     {
       scene.energy.gravWork += gravWork;
@@ -310,11 +344,7 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
   {
     auto firstIn = [&](std::int64_t first, std::int64_t last) {
       double unused = 0;
-      std::int64_t bad = n;
-      for (std::int64_t k = first; k < last; ++k)
-        if (!one(static_cast<std::size_t>(k), unused, unused))
-          bad = std::min(bad, k);
-      return bad;
+      return integrateRange<false>(scene, first, last, unused, unused);
     };
     firstBad = balancedFor(ranges_, n, n, firstIn, [](std::int64_t a, std::int64_t c) { return std::min(a, c); });
   }

@@ -32,6 +32,19 @@ public:
   Vec3 gravity = Vec3::Zero();
   double damping = 0.2; ///< Yade's default
 
+  // The pieces of run() for the fused step, which runs the loop in its own parallel region
+  // (energy tracking takes run()).
+  /// Refresh what the step reads of the bodies if they changed.
+  void prepare(Scene& scene);
+  /// Integrate the bodies [first, last); the first of them with a non-finite force or torque, or -1.
+  std::int64_t integrateIn(Scene& scene, std::int64_t first, std::int64_t last) const;
+  /// After every range: stop the run if a body had a non-finite force (firstBad >= 0), else move
+  /// the periodic cell.
+  /// @throws std::runtime_error naming the body, the time step and the P-wave estimate
+  void finish(Scene& scene, std::int64_t firstBad);
+  /// A clump sums its members' forces and moves them: bodies other than its own (after prepare).
+  [[nodiscard]] bool hasClumps() const { return hasClumps_; }
+
 private:
   // 1/m and 1/I of every body (0 where blocked or not dynamic), refreshed when bodies change,
   // so the step multiplies instead of dividing.
@@ -40,6 +53,10 @@ private:
   /// @return the first body with a non-finite force or torque, or -1
   template <bool Track>
   std::int64_t integrate(Scene& scene) const;
+  /// The bodies [first, last); the first with a non-finite force or torque, or the body count.
+  template <bool Track>
+  std::int64_t integrateRange(Scene& scene, std::int64_t first, std::int64_t last, double& gravWorkSum,
+                              double& dampSum) const;
   /// One clump or aspherical body (the rare path, out of the sphere loop); Track: add gravity's
   /// work and the damping's dissipation to gravWork and damp.
   template <bool Track>
@@ -54,6 +71,7 @@ private:
     Aspherical = 4, ///< exact rotation of an aspherical body
   };
   std::vector<std::uint8_t> mode_;
+  bool hasClumps_ = false;
   std::int64_t seenBodiesVersion_ = -1, seenPropertiesVersion_ = -1;
   mutable BalancedRanges ranges_; ///< bodies per thread (their timing only)
 };

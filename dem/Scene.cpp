@@ -291,6 +291,24 @@ void Scene::erase(BodyId id, bool eraseClumpMembers)
   ++bodyPropertiesVersion;
 }
 
+void Scene::runEngines()
+{
+  for (const std::shared_ptr<Engine>& engine : engines)
+  {
+    if (engine->dead)
+      continue;
+    if (!timingEnabled)
+    {
+      engine->run(*this);
+      continue;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    engine->run(*this);
+    engine->execTime += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+    ++engine->execCount;
+  }
+}
+
 void Scene::step()
 {
   if (!failedStep_.empty())
@@ -298,20 +316,8 @@ void Scene::step()
                              + failedStep_ + "); load a checkpoint (O.load, O.loadTmp) to go on from a saved state");
   try
   {
-    for (const std::shared_ptr<Engine>& engine : engines)
-    {
-      if (engine->dead)
-        continue;
-      if (!timingEnabled)
-      {
-        engine->run(*this);
-        continue;
-      }
-      const auto start = std::chrono::steady_clock::now();
-      engine->run(*this);
-      engine->execTime += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
-      ++engine->execCount;
-    }
+    if (!fused.run(*this))
+      runEngines();
     if (energy.enabled && maxEnergyGrowth > 0 && iter % energyGrowthCheckPeriod == 0)
       checkEnergyGrowth(*this);
   }

@@ -5,6 +5,7 @@
 #include "dem/Contacts.h"
 #include "dem/Energy.h"
 #include "dem/Engine.h"
+#include "dem/FusedStep.h"
 #include "dem/Material.h"
 
 #include <cstdint>
@@ -133,8 +134,13 @@ public:
   /// @throws std::out_of_range naming the id if it is not a live body
   void checkBody(BodyId id) const;
 
+  /// Runs the usual engines' step in one parallel region when it can (see FusedStep).
+  FusedStep fused;
+
 private:
   bool pauseRequested_ = false;
+  /// The engines one by one (timed when timingEnabled).
+  void runEngines();
   std::string failedStep_; ///< message of the step that threw (transient), empty if none
   void checkInsideCell(const std::string& which, const Vec3& x) const;
 };

@@ -1,5 +1,7 @@
 """Settle a small random packing in a box of walls and print a hash of the final state
-(run by test_threads.py with different OMP_NUM_THREADS)."""
+(run by test_threads.py with different OMP_NUM_THREADS). Options: --clumps (every other
+sphere in a clump with its neighbour), --engines-one-by-one (timing on: the engines' own
+path instead of the fused step)."""
 import hashlib
 import sys
 
@@ -9,7 +11,9 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
                        NewtonIntegrator, O, PWaveTimeStep, sphere, wall)
 
-steps = int(sys.argv[1]) if len(sys.argv) > 1 else 3000
+options = [a for a in sys.argv[1:] if a.startswith("--")]
+numbers = [a for a in sys.argv[1:] if not a.startswith("--")]
+steps = int(numbers[0]) if numbers else 3000
 rng = np.random.default_rng(7)
 O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
 O.bodies.append([wall(0, axis=2, sense=1), wall(0, axis=0, sense=1), wall(1, axis=0, sense=-1),
@@ -17,12 +21,20 @@ O.bodies.append([wall(0, axis=2, sense=1), wall(0, axis=0, sense=1), wall(1, axi
 grid = np.stack(np.meshgrid(np.arange(12), np.arange(12), np.arange(8), indexing="ij"), -1).reshape(-1, 3)
 centres = (grid + 0.5) / 12 + rng.uniform(-0.005, 0.005, grid.shape)
 radii = rng.uniform(0.025, 0.04, len(grid))
-O.bodies.append([sphere(c, r) for c, r in zip(centres, radii)])
+if "--clumps" in options:
+    # neighbours along z: each pair one rigid body
+    for k in range(0, len(grid) - 1, 2):
+        r = min(radii[k], radii[k + 1], 0.5 * np.linalg.norm(centres[k + 1] - centres[k]))
+        O.bodies.appendClumped([sphere(centres[k], r), sphere(centres[k + 1], r)])
+else:
+    O.bodies.append([sphere(c, r) for c, r in zip(centres, radii)])
 O.engines = [ForceResetter(), InsertionSortCollider(),
              InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
              NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.3)]
 O.dt = 0.5 * PWaveTimeStep()
+O.timingEnabled = "--engines-one-by-one" in options
 O.run(steps)
 state = np.concatenate([O.positions().ravel(), O.velocities().ravel(), O.angular_velocities().ravel()])
 print("contacts", O._cpp.realContactCount())
 print("hash", hashlib.sha256(state.tobytes()).hexdigest())
+print("fused", O.fusedSteps)
