@@ -284,9 +284,9 @@ Contact newContact(const Bodies& b, const Candidate& candidate)
 /// In parallel over runs of candidates, each with the share of the old list from its first key,
 /// each writing its records at its offset, so the list is the same for every thread count. (Serial, this copy of the records was the largest serial
 /// part of a re-detection.)
-void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const std::vector<Contact>& old,
-                   const std::vector<ContactExtra>& oldExtra, std::vector<Contact>& merged,
-                   std::vector<ContactExtra>& mergedExtra)
+void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const ContactList& old,
+                   const ContactExtraList& oldExtra, ContactList& merged,
+                   ContactExtraList& mergedExtra)
 {
   const bool withExtra = !oldExtra.empty();
   const std::size_t n = pairs.size();
@@ -543,8 +543,8 @@ void Collider::rebuild(Scene& scene)
   }
   timingDeltas.checkpoint("re-detection: sort");
 
-  std::vector<Contact>& old = scene.contacts.list;
-  std::vector<ContactExtra>& oldExtra = scene.contacts.extra;
+  ContactList& old = scene.contacts.list;
+  ContactExtraList& oldExtra = scene.contacts.extra;
   const bool withExtra = !oldExtra.empty();
   mergeContacts(b, pairs, old, oldExtra, spare_, spareExtra_);
   old.swap(spare_);

@@ -58,8 +58,8 @@ private:
 
   std::vector<Vec3> referencePos_;
   // Scratch space kept between rebuilds, so re-detection does not allocate (and fault in) memory.
-  std::vector<Contact> spare_; ///< the previous contact list's storage
-  std::vector<ContactExtra> spareExtra_;
+  ContactList spare_; ///< the previous contact list's storage
+  ContactExtraList spareExtra_;
   CellGrid grid_;
   std::vector<Candidate> pairs_, boundaryPairs_, sortedPairs_;
   std::vector<std::vector<Candidate>> perThread_;

@@ -49,7 +49,7 @@ template <bool Track>
 void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
 {
   const Law& law = static_cast<const Law&>(*this);
-  std::vector<Contact>& list = scene.contacts.list;
+  ContactList& list = scene.contacts.list;
   const StepContext step = detail::stepContext<Law>(scene);
   const auto n = static_cast<std::int64_t>(list.size());
   // Tracking energy: contacts in fixed blocks, each block's energies summed in order.
@@ -91,7 +91,7 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
                                                std::int64_t last, ContactEnergy& energy) const
 {
   const Law& law = static_cast<const Law&>(*this);
-  std::vector<Contact>& list = scene.contacts.list;
+  ContactList& list = scene.contacts.list;
   const auto n = static_cast<std::int64_t>(list.size());
   const double ratio = scene.maxOverlapRatio;
   std::int64_t bad = n;
@@ -156,7 +156,7 @@ template <class Law>
 double ContactLawKernel<Law>::elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const
 {
   const Law& law = static_cast<const Law&>(*this);
-  const std::vector<Contact>& list = scene.contacts.list;
+  const ContactList& list = scene.contacts.list;
   const bool extra = Law::usesExtra && scene.contacts.extra.size() == list.size();
   double sum = 0;
   for (std::size_t k = 0; k < list.size(); ++k)
@@ -170,7 +170,7 @@ double ContactLawKernel<Law>::grownElasticEnergy(const Scene& scene, std::uint8_
                                                  const std::vector<double>& grownBy) const
 {
   const Law& law = static_cast<const Law&>(*this);
-  const std::vector<Contact>& list = scene.contacts.list;
+  const ContactList& list = scene.contacts.list;
   const bool extra = Law::usesExtra && scene.contacts.extra.size() == list.size();
   double sum = 0;
   for (std::size_t k = 0; k < list.size(); ++k)

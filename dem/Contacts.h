@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/ContactExtra.h"
+#include "dem/HugePageAllocator.h"
 #include "dem/types.h"
 
 #include <cstdint>
@@ -72,20 +73,25 @@ struct alignas(64) Contact
 };
 static_assert(sizeof(Contact) == 256, "a contact record is four cache lines (see the layout note)");
 
+/// Storage of the contact records and of their richer state: rebuilt at re-detections, so
+/// backed by huge pages where the kernel allows (HugePageAllocator).
+using ContactList = std::vector<Contact, HugePageAllocator<Contact>>;
+using ContactExtraList = std::vector<ContactExtra, HugePageAllocator<ContactExtra>>;
+
 /// The contact list, kept sorted by (id1, id2), plus a per-body index to gather forces.
 ///
 /// Forces are summed per body in a fixed order (body by body, over its contacts in list order),
 /// never with atomics, so results do not depend on the number of threads.
 struct Contacts
 {
-  std::vector<Contact> list;
+  ContactList list;
   /// CSR: contacts of body b are entries [start[b], start[b+1]) of `entries`; an entry is
   /// (contact index << 1) | side, side 0 for id1 and 1 for id2.
   std::vector<std::int64_t> start;
   std::vector<std::int64_t> entries;
   /// State of the richer contact models (ContactExtra), entry k for contact k: empty unless a
   /// law that needs it runs (it sizes it on first use, the collider then keeps it aligned).
-  std::vector<ContactExtra> extra;
+  ContactExtraList extra;
 
   /// Rebuild the per-body index after the list changed.
   void index(std::size_t bodyCount);

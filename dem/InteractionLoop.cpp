@@ -121,7 +121,7 @@ void InteractionLoop::run(Scene& scene)
 
 void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
 {
-  std::vector<Contact>& list = scene.contacts.list;
+  ContactList& list = scene.contacts.list;
   const Bodies& bodies = scene.bodies;
   const auto n = static_cast<std::int64_t>(list.size());
   if (std::any_of(laws.begin(), laws.end(), [](const auto& law) { return law->needsExtra(); }))
@@ -170,7 +170,7 @@ namespace
 template <bool Periodic>
 void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, std::int64_t last)
 {
-  const std::vector<Contact>& list = scene.contacts.list;
+  const ContactList& list = scene.contacts.list;
   Bodies& b = scene.bodies;
   const Contacts& contacts = scene.contacts;
   const Cell& cell = scene.cell;

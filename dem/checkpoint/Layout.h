@@ -115,8 +115,8 @@ struct Loaded
   Cell cell;
   std::vector<Material> materials;
   Bodies bodies;
-  std::vector<Contact> contacts;
-  std::vector<ContactExtra> contactExtra;
+  ContactList contacts;
+  ContactExtraList contactExtra;
   EnergyTracker energy;
   CheckpointExtras extras;
 };

@@ -302,7 +302,7 @@ void readContacts(const Reader& r, Loaded& in, const Context& ctx)
   if (d.size() != 1)
     ctx.fail("/contacts/id1 is not one-dimensional", false);
   const std::size_t c = d[0];
-  std::vector<Contact>& list = in.contacts;
+  ContactList& list = in.contacts;
   list.resize(c);
   std::vector<std::int32_t> ints(c), cellDist(3 * c);
   for (const auto& [name, field] : contactIds)
@@ -351,7 +351,7 @@ void readContacts(const Reader& r, Loaded& in, const Context& ctx)
                  + " contacts (expected 0 or as many)",
              false);
   const std::size_t e = de[0];
-  std::vector<ContactExtra>& extra = in.contactExtra;
+  ContactExtraList& extra = in.contactExtra;
   extra.resize(e);
   column.resize(e);
   for (const auto& [name, field] : extraScalars)

@@ -210,7 +210,7 @@ void writeBodies(const Writer& w, const Scene& scene)
 /// Contacts: the list in its order, every field of Contact.
 void writeContacts(const Writer& w, const Scene& scene)
 {
-  const std::vector<Contact>& list = scene.contacts.list;
+  const ContactList& list = scene.contacts.list;
   const std::size_t c = list.size();
   const Id g = w.group("/contacts");
   std::vector<std::int32_t> ids(c), cellDist(3 * c);
@@ -252,7 +252,7 @@ void writeContacts(const Writer& w, const Scene& scene)
     w.doubles(at("/contacts/", name), {c}, column.data());
   }
   // The richer models' state: as many rows as contacts, or none.
-  const std::vector<ContactExtra>& extra = scene.contacts.extra;
+  const ContactExtraList& extra = scene.contacts.extra;
   const std::size_t e = extra.size();
   const Id ge = w.group("/contacts/extra");
   column.resize(e);
