@@ -349,6 +349,27 @@ void FoamLink::stop()
   MPI_Comm_disconnect(&inter_);
 }
 
+void addForceChange(std::span<const double> forces, std::span<const double> applied,
+                    std::span<const std::int64_t> ids, std::span<double> persistent, std::span<double> step)
+{
+  if (forces.size() != 3 * ids.size() || applied.size() != forces.size() || step.size() != persistent.size())
+    throw std::invalid_argument("addForceChange: the forces, the applied forces and the ids differ in size, or "
+                                "the persistent and the step forces do");
+  const auto bodies = static_cast<std::int64_t>(persistent.size() / 3);
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    if (ids[i] < 0 || ids[i] >= bodies)
+      throw std::invalid_argument("addForceChange: id " + std::to_string(ids[i]) + " is not a body");
+    const auto row = 3 * static_cast<std::size_t>(ids[i]);
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      const double change = forces[3 * i + k] - applied[3 * i + k];
+      persistent[row + k] += change;
+      step[row + k] += change;
+    }
+  }
+}
+
 void finalizeMpi()
 {
   int finalised = 0;
