@@ -364,11 +364,13 @@ void addForceChange(std::span<const double> forces, std::span<const double> appl
   if (forces.size() != 3 * ids.size() || applied.size() != forces.size() || step.size() != persistent.size())
     throw std::invalid_argument("addForceChange: the forces, the applied forces and the ids differ in size, or "
                                 "the persistent and the step forces do");
+  // Every id checked before anything changes.
   const auto bodies = static_cast<std::int64_t>(persistent.size() / 3);
+  for (const std::int64_t id : ids)
+    if (id < 0 || id >= bodies)
+      throw std::invalid_argument("addForceChange: id " + std::to_string(id) + " is not a body");
   for (std::size_t i = 0; i < ids.size(); ++i)
   {
-    if (ids[i] < 0 || ids[i] >= bodies)
-      throw std::invalid_argument("addForceChange: id " + std::to_string(ids[i]) + " is not a body");
     const auto row = 3 * static_cast<std::size_t>(ids[i]);
     for (std::size_t k = 0; k < 3; ++k)
     {
