@@ -291,14 +291,24 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   const auto received = std::chrono::steady_clock::now();
   stats_.waitCpuSeconds = threadCpuSeconds() - sentCpu;
 
-  std::fill(forces.begin(), forces.end(), 0.0);
-  std::fill(beta.begin(), beta.end(), 0.0);
-  std::fill(fluidVelocities.begin(), fluidVelocities.end(), 0.0);
   double maxRe = 0;
   long fluidMessages = 0;
   stats_.fluidExchangeSeconds = stats_.fluidStepSeconds = 0;
   stats_.fluidExchangeCpuSeconds = stats_.fluidStepCpuSeconds = 0;
-  owned_.assign(n, 0.0);
+  owned_.resize(n);
+  // The first rank's values are written over every particle (zeros where it was sent none),
+  // the other ranks' added to them: no pass zeroing the 8 N doubles first (with it the sums took
+  // 0.11 ms at 10 000 particles, one fluid rank).
+  static constexpr std::array<double, proto::kForceDoubles> nothing{};
+  const auto put = [&](std::size_t i, const double* f, bool add) {
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      forces[3 * i + k] = (add ? forces[3 * i + k] : 0.0) + f[k];
+      fluidVelocities[3 * i + k] = (add ? fluidVelocities[3 * i + k] : 0.0) + f[5 + k];
+    }
+    owned_[i] = (add ? owned_[i] : 0.0) + f[3];
+    beta[i] = (add ? beta[i] : 0.0) + f[4];
+  };
   for (int p = 0; p < fluidProcs_; ++p)
   {
     const auto& reply = replies_[static_cast<std::size_t>(p)];
@@ -310,17 +320,16 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     stats_.fluidStepSeconds = std::max(stats_.fluidStepSeconds, reply[4]);
     stats_.fluidExchangeCpuSeconds = std::max(stats_.fluidExchangeCpuSeconds, reply[5]);
     stats_.fluidStepCpuSeconds = std::max(stats_.fluidStepCpuSeconds, reply[6]);
-    for (std::size_t j = 0; j < count; ++j)
-    {
-      const double* f = &reply[proto::kReplyHeader + proto::kForceDoubles * j];
-      for (std::size_t k = 0; k < 3; ++k)
+    const double* values = &reply[proto::kReplyHeader];
+    if (p == 0)
+      for (std::size_t i = 0, j = 0; i < n; ++i)
       {
-        forces[3 * members[j] + k] += f[k];
-        fluidVelocities[3 * members[j] + k] += f[5 + k];
+        const bool given = j < count && members[j] == i;
+        put(i, given ? values + proto::kForceDoubles * j++ : nothing.data(), false);
       }
-      owned_[members[j]] += f[3];
-      beta[members[j]] += f[4];
-    }
+    else
+      for (std::size_t j = 0; j < count; ++j)
+        put(members[j], values + proto::kForceDoubles * j, true);
   }
   stats_.messages = 3L * fluidProcs_ + fluidMessages;
   stats_.demDoubles = doubles;
@@ -347,6 +356,29 @@ void FoamLink::stop()
   const int command[2] = {proto::kCommandStop, 0};
   sendAll(command, 2, MPI_INT, proto::kTagCommand, "the stop command");
   MPI_Comm_disconnect(&inter_);
+}
+
+void addForceChange(std::span<const double> forces, std::span<const double> applied,
+                    std::span<const std::int64_t> ids, std::span<double> persistent, std::span<double> step)
+{
+  if (forces.size() != 3 * ids.size() || applied.size() != forces.size() || step.size() != persistent.size())
+    throw std::invalid_argument("addForceChange: the forces, the applied forces and the ids differ in size, or "
+                                "the persistent and the step forces do");
+  // Every id checked before anything changes.
+  const auto bodies = static_cast<std::int64_t>(persistent.size() / 3);
+  for (const std::int64_t id : ids)
+    if (id < 0 || id >= bodies)
+      throw std::invalid_argument("addForceChange: id " + std::to_string(id) + " is not a body");
+  for (std::size_t i = 0; i < ids.size(); ++i)
+  {
+    const auto row = 3 * static_cast<std::size_t>(ids[i]);
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      const double change = forces[3 * i + k] - applied[3 * i + k];
+      persistent[row + k] += change;
+      step[row + k] += change;
+    }
+  }
 }
 
 void finalizeMpi()

@@ -73,5 +73,17 @@ PYBIND11_MODULE(_coupling, m)
                            [](const FoamLink& l) { return l.lastExchange().fluidStepCpuSeconds; })
     .def("stop", &FoamLink::stop);
 
+  // noconvert: the per-body arrays are the scene's own storage, never a converted copy.
+  m.def(
+    "add_force_change",
+    [](const Array& forces, const Array& applied, const py::array_t<std::int64_t, py::array::c_style>& ids,
+       py::array_t<double, py::array::c_style>& persistent, py::array_t<double, py::array::c_style>& step) {
+      addForceChange(values(forces, 3, "forces"), values(applied, 3, "applied"),
+                     {ids.data(), static_cast<std::size_t>(ids.size())},
+                     {persistent.mutable_data(), static_cast<std::size_t>(persistent.size())},
+                     {step.mutable_data(), static_cast<std::size_t>(step.size())});
+    },
+    py::arg("forces"), py::arg("applied"), py::arg("ids").noconvert(), py::arg("persistent").noconvert(),
+    py::arg("step").noconvert());
   m.def("finalize_mpi", &finalizeMpi);
 }

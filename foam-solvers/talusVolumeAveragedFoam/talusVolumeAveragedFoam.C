@@ -124,6 +124,8 @@ int main(int argc, char *argv[])
     // reactions (kReactions); per cell the solid fraction, what is gathered and the reactions.
     std::vector<double> volumes, gathered, reactions;
     std::vector<double> cellSolid, cellValues(kGathered*mesh.nCells()), cellReactions;
+    // Per particle the drag closure's inputs (fluid fraction, slip speed, diameter) and its K.
+    std::vector<double> dragAlpha, dragSlip, dragDiameter, dragK;
     // Per particle: its envelope reaches this rank's cells, or this rank owns it (chars, not
     // the bits of a vector<bool>: read once per particle in the forces' loop).
     std::vector<char> touches;
@@ -226,6 +228,22 @@ int main(int argc, char *argv[])
         reactions.resize(kReactions*n);
         const scalar dt = runTime.deltaTValue();
         scalar maxRe = 0;
+        // The drag's K of every particle first, in one call (its powers in vector registers,
+        // dragClosure.H), from its fluid fraction, slip speed and diameter.
+        dragAlpha.resize(n);
+        dragSlip.resize(n);
+        dragDiameter.resize(n);
+        dragK.resize(n);
+        for (label i = 0; i < n; ++i)
+        {
+            const double* q = &particles[proto::kParticleDoubles*i];
+            const double* s = &gathered[kGathered*i];
+            const scalar inverseW = s[0] > 0 ? 1/s[0] : 0;
+            dragAlpha[i] = min(max(s[1]*inverseW, alphaMin), 1.0);
+            dragSlip[i] = mag(inverseW*vector(s[2], s[3], s[4]) - vector(q[3], q[4], q[5]));
+            dragDiameter[i] = 2*q[6];
+        }
+        drag.K(n, dragAlpha.data(), dragSlip.data(), dragDiameter.data(), dragK.data());
         for (label i = 0; i < n; ++i)
         {
             double* reaction = &reactions[kReactions*i];
@@ -242,14 +260,12 @@ int main(int argc, char *argv[])
             // envelope narrower than the cells): nothing interpolated, as with no pairs.
             const scalar inverseW = s[0] > 0 ? 1/s[0] : 0;
             const vector up(q[3], q[4], q[5]);
-            const scalar d = 2*q[6];
+            const scalar d = dragDiameter[i];
             const scalar Vp = pi*pow3(d)/6;
-            const scalar alpha = min(max(s[1]*inverseW, alphaMin), 1.0);
             const vector uf = inverseW*vector(s[2], s[3], s[4]);
             const vector slip = uf - up;
-            const scalar w = mag(slip);
-            const scalar Re = w*d/nuF;
-            const scalar K = drag.K(alpha, w, d);
+            const scalar Re = dragSlip[i]*d/nuF;
+            const scalar K = dragK[i];
             const vector dragForce = Vp*K*slip;
             const vector buoyancy =
                 Vp*rhoF*inverseW*vector(s[5], s[6], s[7]) - rhoF*Vp*gravity;

@@ -171,7 +171,7 @@ class FoamCoupling:
         self.maxReynolds = 0.0
         self.exchanges = 0
         self.times = CouplingTimes()
-        self._applied = self._change = None
+        self._applied = None
 
     # -- start ---------------------------------------------------------------------------------
     def _coupled_ids(self) -> np.ndarray:
@@ -215,7 +215,7 @@ class FoamCoupling:
         ids = self._coupled_ids()
         if len(ids) == 0:
             raise ValueError("FoamCoupling: no sphere to couple")
-        self.ids = ids
+        self.ids = np.ascontiguousarray(ids, dtype=np.int64)  # as add_force_change takes them
         # The rows of the coupled bodies in the per-body arrays: a slice when they are one run of
         # ids (every sphere of a scene that has its walls first, say), so that the per-exchange
         # gathers and updates are views instead of copies (100 000 particles: 40 ms of DEM-side
@@ -241,7 +241,7 @@ class FoamCoupling:
         self.scene.dt = dt_fluid / self.substeps
         self._warn_relaxation(dt_fluid, ids)
         self._applied = np.zeros((len(ids), 3))
-        self._change = np.empty_like(self._applied)
+        self._add_force_change = m.add_force_change
         self.hook = self.scene.add_hook("before_forces", self.exchange, self.substeps)
         if self.implicitDrag:
             self._drag_hook = self.scene.add_hook("after_forces", self._update_drag, 1)
@@ -318,11 +318,8 @@ class FoamCoupling:
         if self.exchanges == 0:
             self._warn_drag_relaxation(ids)
         # The persistent forces carry the force over the sub-steps; this step's accumulator was
-        # already filled from them by the ForceResetter, so it gets the change too (into a kept
-        # array: no new array of 3 N doubles per exchange).
-        change = np.subtract(forces, self._applied, out=self._change)
-        self.scene.persistent_forces()[rows] += change
-        self.scene.forces()[rows] += change
+        # already filled from them by the ForceResetter, so it gets the change too.
+        self._add_force_change(forces, self._applied, ids, self.scene.persistent_forces(), self.scene.forces())
         self._applied = forces
         self.lastForces = forces
         self.exchanges += 1
