@@ -354,9 +354,9 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const C
     offset[r + 1] += offset[r];
   const std::size_t total = offset.back();
   // The spare list's old records are dead: grow it with room to spare, every record of the new
-  // storage constructed at once, so that its pages are faulted in here and not a few at a time
-  // by the later re-detections that lengthen the list (a page fault costs about 10 µs on this
-  // project's guest; growing into untouched capacity took 50-400 µs a re-detection).
+  // storage constructed at once, so that its (huge, see HugePageAllocator) pages are faulted in
+  // here and not a few at a time by the later re-detections that lengthen the list (growing
+  // into untouched 4 KiB pages took 50-400 µs a re-detection on this project's guest).
   auto reserveTouched = [total](auto& records) {
     if (records.capacity() >= total)
       return;
