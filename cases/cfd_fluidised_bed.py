@@ -28,7 +28,11 @@ Checked:  the plateau (mean over the held phase) against the buoyant bed weight 
 Produces: records cfd.fluidised_bed.plateau and .umf (cfd.fluidised_bed_fixed.umf with
           --fixed; cfd.fluidised_bed_convolution.* with an explicit --envelope-method); chart
           cfd.fluidised_bed.png (pressure drop against the superficial velocity).
-Result:   quick (porosity 0.3677, Ergun U_mf 0.770 mm/s, buoyant weight 108.35 Pa): plateau
+Result:   full, the default convolution envelope (2026-12-06): plateau -0.92 %, U_mf +12.47 % of
+          Ergun, 16500 fluid steps x 14 DEM steps in 323 s; quick with it U_mf +19.9 % (the
+          12-layer bed's loose top and layered floor weigh more, the faster ramp adds its lag).
+          Pairwise (--envelope-method pairwise), quick (porosity 0.3677, Ergun U_mf 0.770 mm/s,
+          buoyant weight 108.35 Pa): plateau
           106.68 Pa (-1.5 %; the fluid's own drop at the end 102.7 Pa), U_mf 0.872 mm/s
           (+13.2 %: the loose top layers and the envelope at the bed's top carry less drag than
           Ergun at the interior porosity); bed top rose 0.15 mm at 2 U_mf; 5800 fluid steps x

@@ -27,10 +27,10 @@ Description
         envelope             gaussian | cell      (default gaussian)
         envelopeWidth        delta [m]            (default 3 x the mean cell size)
         envelopeCutoff       c: the envelope is cut at c delta (default 1.274: 3 sigma)
-        envelopeMethod       pairwise | convolution (default pairwise): the Gaussian's sums
-                             over every particle-cell pair, or by convolution on the lattice
-                             of the cell centres (latticeConvolution.H; pairwise where the
-                             centres form no equally spaced lattice)
+        envelopeMethod       convolution | pairwise (default convolution): the Gaussian by
+                             convolution on the lattice of the cell centres
+                             (latticeConvolution.H; pairwise where the centres form no equally
+                             spaced lattice), or its sums over every particle-cell pair
         dragModel            SchillerNaumann | DiFelice | ErgunWenYu (default SchillerNaumann)
         hindranceExponent    h                    (default 2.65; SchillerNaumann only)
         addedMassCoefficient C_m                  (default 0.5; 0 switches it off)
