@@ -11,12 +11,14 @@ import pytest
 import talus
 
 SCRIPT = Path(__file__).with_name("deposition_hash.py")
+PERIODIC = Path(__file__).with_name("periodic_compression_hash.py")
 STEPS = 3000
 
 
-def run(threads, build_dir, *options):
+def run(threads, build_dir, *options, script=SCRIPT):
     env = {**os.environ, "OMP_NUM_THREADS": str(threads), "PYTHONPATH": str(build_dir / "python")}
-    done = subprocess.run([sys.executable, str(SCRIPT), str(STEPS), *options], capture_output=True, text=True,
+    arguments = [str(STEPS)] if script == SCRIPT else []
+    done = subprocess.run([sys.executable, str(script), *arguments, *options], capture_output=True, text=True,
                           env=env, timeout=300)
     assert done.returncode == 0, done.stderr
     lines = dict(line.split(" ", 1) for line in done.stdout.strip().splitlines())
@@ -43,4 +45,15 @@ def test_fused_step_equals_the_engines_one_by_one(build_dir, clumps):
     contacts_engines, hash_engines, fused_engines = run(2, build_dir, "--engines-one-by-one", *extra)
     assert (fused, fused_engines) == (STEPS, 0)
     assert contacts_fused > 300     # contact-rich in both variants (433 with clumps)
+    assert (contacts_fused, hash_fused) == (contacts_engines, hash_engines)
+
+
+@needs_openmp
+def test_fused_step_equals_the_engines_one_by_one_in_a_deforming_periodic_cell(build_dir):
+    """The periodic gather (images across the boundary), the skin check against the cell's
+    affine map and the cell's own motion, fused and one by one."""
+    contacts_fused, hash_fused, fused = run(2, build_dir, script=PERIODIC)
+    contacts_engines, hash_engines, fused_engines = run(2, build_dir, "--engines-one-by-one", script=PERIODIC)
+    assert (fused, fused_engines) == (2000, 0)
+    assert contacts_fused > 1000
     assert (contacts_fused, hash_fused) == (contacts_engines, hash_engines)
