@@ -97,5 +97,10 @@ struct Contacts
   void index(std::size_t bodyCount);
   /// Number of real contacts.
   [[nodiscard]] std::size_t countReal() const;
+  /// Number of bodies the per-body index covers (those present at the last index()).
+  [[nodiscard]] std::int64_t indexedBodies() const
+  {
+    return start.empty() ? 0 : static_cast<std::int64_t>(start.size()) - 1;
+  }
 };
 } // namespace talus::dem

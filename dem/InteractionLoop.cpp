@@ -232,7 +232,7 @@ const ContactExtra* contactMoments(const Contacts& contacts)
 void InteractionLoop::gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const
 {
   // Bodies added since the last re-detection have no contacts (nor entries in the index) yet.
-  last = std::min(last, static_cast<std::int64_t>(scene.contacts.start.empty() ? 0 : scene.contacts.start.size() - 1));
+  last = std::min(last, scene.contacts.indexedBodies());
   if (scene.periodic)
     gatherRange<true>(scene, contactMoments(scene.contacts), first, last);
   else
@@ -241,7 +241,7 @@ void InteractionLoop::gatherIn(Scene& scene, std::int64_t first, std::int64_t la
 
 void InteractionLoop::sumForcesPerBody(Scene& scene)
 {
-  const auto bodyCount = static_cast<std::int64_t>(scene.contacts.start.empty() ? 0 : scene.contacts.start.size() - 1);
-  balancedFor(gatherRanges_, bodyCount, [&](std::int64_t first, std::int64_t last) { gatherIn(scene, first, last); });
+  balancedFor(gatherRanges_, scene.contacts.indexedBodies(),
+              [&](std::int64_t first, std::int64_t last) { gatherIn(scene, first, last); });
 }
 } // namespace talus::dem
