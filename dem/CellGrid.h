@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/Bodies.h"
+#include "dem/CountingSort.h"
 
 #include <algorithm>
 #include <array>
@@ -22,6 +23,7 @@ public:
   /// Bin `spheres` (ids into `b`); `range` is the largest centre distance that can interact.
   void build(const Bodies& b, const std::vector<BodyId>& spheres, double range)
   {
+    const auto n = static_cast<std::int64_t>(spheres.size());
     Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
     lo_ = -hi;
     for (BodyId id : spheres)
@@ -39,22 +41,48 @@ public:
     for (int d = 0; d < 3; ++d)
       dims_[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(extent[d] / h_)) + 1;
 
-    start_.assign(static_cast<std::size_t>(dims_[0]) * static_cast<std::size_t>(dims_[1])
-                      * static_cast<std::size_t>(dims_[2]) + 1,
-                  0);
     cellOfSphere_.resize(spheres.size());
-    for (std::size_t s = 0; s < spheres.size(); ++s)
-    {
-      cellOfSphere_[s] = flat(cellOf(b.pos[static_cast<std::size_t>(spheres[s])]));
-      ++start_[static_cast<std::size_t>(cellOfSphere_[s]) + 1];
-    }
-    for (std::size_t k = 1; k < start_.size(); ++k)
-      start_[k] += start_[k - 1];
+#pragma omp parallel for schedule(static) if (n >= parallelLoopMinimum)
+    for (std::int64_t s = 0; s < n; ++s)
+      cellOfSphere_[static_cast<std::size_t>(s)] = flat(cellOf(b.pos[static_cast<std::size_t>(spheres[static_cast<std::size_t>(s)])]));
     sorted_.resize(spheres.size());
-    fill_.assign(start_.begin(), start_.end() - 1);
-    for (std::size_t s = 0; s < spheres.size(); ++s)
-      sorted_[static_cast<std::size_t>(fill_[static_cast<std::size_t>(cellOfSphere_[s])]++)] = spheres[s];
+    packed_.resize(spheres.size());
+    stableCountingSort(
+        n, static_cast<std::int64_t>(dims_[0]) * dims_[1] * dims_[2], start_,
+        [this](std::int64_t s, auto&& emit) { emit(cellOfSphere_[static_cast<std::size_t>(s)], 0); },
+        [&](std::int64_t s, int, std::int64_t slot) {
+          const BodyId id = spheres[static_cast<std::size_t>(s)];
+          const auto i = static_cast<std::size_t>(id), e = static_cast<std::size_t>(slot);
+          sorted_[e] = id;
+          packed_[e] = {b.pos[i][0], b.pos[i][1], b.pos[i][2], b.radius[i]};
+        });
   }
+
+  /// A binned sphere's centre and radius, stored in cell order next to its cell's neighbours, so
+  /// that a neighbour search reads them in runs instead of one body at a time.
+  struct Packed
+  {
+    double x, y, z, radius;
+  };
+
+  /// Call f(first, last) for each run [first, last) of binned entries (see entry(), packed())
+  /// in the 3x3x3 cells around the cell of the s-th sphere given to build(): one run per row of
+  /// three cells along x, which lie next to each other in cell order. Runs come in the order
+  /// of forEachInBox over the same cells.
+  template <class F>
+  void forEachRunAround(std::size_t s, F&& f) const
+  {
+    const std::int64_t k = cellOfSphere_[s];
+    const int cx = static_cast<int>(k % dims_[0]);
+    const int cy = static_cast<int>((k / dims_[0]) % dims_[1]);
+    const int cz = static_cast<int>(k / (static_cast<std::int64_t>(dims_[0]) * dims_[1]));
+    const int x0 = std::max(cx - 1, 0), x1 = std::min(cx + 1, dims_[0] - 1);
+    for (int z = std::max(cz - 1, 0); z <= std::min(cz + 1, dims_[2] - 1); ++z)
+      for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, dims_[1] - 1); ++y)
+        f(start_[static_cast<std::size_t>(flat({x0, y, z}))], start_[static_cast<std::size_t>(flat({x1, y, z})) + 1]);
+  }
+  [[nodiscard]] BodyId entry(std::int64_t e) const { return sorted_[static_cast<std::size_t>(e)]; }
+  [[nodiscard]] const Packed& packed(std::int64_t e) const { return packed_[static_cast<std::size_t>(e)]; }
 
   /// Cell width.
   [[nodiscard]] double width() const { return h_; }
@@ -90,6 +118,7 @@ private:
   Cell dims_{1, 1, 1};
   std::vector<std::int64_t> start_; ///< spheres of cell k: sorted_[start_[k] .. start_[k+1])
   std::vector<BodyId> sorted_;
-  std::vector<std::int64_t> cellOfSphere_, fill_;
+  std::vector<Packed> packed_; ///< centre and radius of sorted_[e]
+  std::vector<std::int64_t> cellOfSphere_;
 };
 } // namespace talus::dem

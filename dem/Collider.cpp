@@ -24,13 +24,14 @@ PairKey key(BodyId a, BodyId b) { return (static_cast<PairKey>(a) << 32) | stati
 
 bool byKey(const Candidate& a, const Candidate& b) { return a.key < b.key; }
 
-/// Candidate sphere-sphere pairs (i < j, centres closer than ri + rj + skin), appended to
-/// `pairs` in key order; `perThread` is scratch space kept between calls. `spheres` is in
-/// ascending id order and each thread takes one contiguous run of it (static schedule), so the
-/// threads' outputs, each sphere's pairs sorted by the partner's id, concatenate in key order:
-/// no sort of the whole list (it was about a quarter of a re-detection's serial time).
+/// Candidate sphere-sphere pairs (i < j, centres closer than ri + rj + skin), into `perThread`:
+/// `spheres` is in ascending id order and thread t takes the t-th contiguous run of it (static
+/// schedule), so perThread[t] holds the pairs whose first id lies in that run, each sphere's pairs
+/// sorted by the partner's id, and the parts concatenate in key order (no sort of the whole list).
+/// Partners are read from the grid's packed copy of centres and radii, in runs of neighbouring
+/// cells: reading them body by body through their ids took three times as long.
 void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const CellGrid& grid, double skin,
-                 std::vector<std::vector<Candidate>>& perThread, std::vector<Candidate>& pairs)
+                 std::vector<std::vector<Candidate>>& perThread)
 {
   perThread.resize(1);
 #pragma omp parallel if (static_cast<std::int64_t>(spheres.size()) >= parallelLoopMinimum)
@@ -38,36 +39,81 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
 #ifdef _OPENMP
 #pragma omp single
     perThread.resize(static_cast<std::size_t>(omp_get_num_threads()));
-    std::vector<Candidate>& out = perThread[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<Candidate>& part = perThread[static_cast<std::size_t>(omp_get_thread_num())];
 #else
-    std::vector<Candidate>& out = perThread[0];
+    std::vector<Candidate>& part = perThread[0];
 #endif
+    // Filled through a vector of this thread's own: the parts' vectors lie side by side, and
+    // each push_back onto them stored into a cache line the other threads were storing into.
+    std::vector<Candidate> out;
+    out.swap(part);
     out.clear();
 #pragma omp for schedule(static)
     for (std::int64_t s = 0; s < static_cast<std::int64_t>(spheres.size()); ++s)
     {
       const BodyId id = spheres[static_cast<std::size_t>(s)];
       const auto i = static_cast<std::size_t>(id);
-      const Vec3 reach = Vec3::Constant(grid.width());
+      const Vec3 center = b.pos[i];
+      const double reach = b.radius[i] + skin;
+      const bool inClump = b.clumpId[i] >= 0;
       const std::size_t first = out.size();
-      grid.forEachInBox(b.pos[i] - reach, b.pos[i] + reach, [&](BodyId other) {
-        if (other <= id)
-          return;
-        const auto j = static_cast<std::size_t>(other);
-        if (b.clumpId[i] >= 0 && b.clumpId[i] == b.clumpId[j]) // members of a clump never touch
-          return;
-        const double range = b.radius[i] + b.radius[j] + skin;
-        if ((b.pos[j] - b.pos[i]).squaredNorm() < range * range)
+      grid.forEachRunAround(static_cast<std::size_t>(s), [&](std::int64_t begin, std::int64_t end) {
+        for (std::int64_t e = begin; e < end; ++e)
+        {
+          // (Testing the id together with the distance, without its own branch, was slower.)
+          const BodyId other = grid.entry(e);
+          if (other <= id)
+            continue;
+          const CellGrid::Packed& p = grid.packed(e);
+          const double dx = p.x - center[0], dy = p.y - center[1], dz = p.z - center[2];
+          const double range = reach + p.radius;
+          if (dx * dx + dy * dy + dz * dz >= range * range)
+            continue;
+          if (inClump && b.clumpId[i] == b.clumpId[static_cast<std::size_t>(other)]) // members of a clump never touch
+            continue;
           out.push_back({key(id, other), Eigen::Vector3i::Zero()});
+        }
       });
       // A handful of pairs, in runs ascending cell by cell: insertion sort.
       for (std::size_t k = first + 1; k < out.size(); ++k)
         for (std::size_t m = k; m > first && out[m].key < out[m - 1].key; --m)
           std::swap(out[m], out[m - 1]);
     }
+    out.swap(part);
   }
-  for (const auto& part : perThread)
-    pairs.insert(pairs.end(), part.begin(), part.end());
+}
+
+/// The candidates of `parts` (each sorted, each part's keys below the next part's) and of
+/// `others` (sorted), merged into `pairs` in key order. In parallel, part by part: part t's
+/// share of `others` is found by its key range, so the output is the same for every thread count.
+void mergeCandidates(const std::vector<std::vector<Candidate>>& parts, const std::vector<Candidate>& others,
+                     std::vector<Candidate>& pairs)
+{
+  const std::size_t count = parts.size();
+  std::vector<std::size_t> partStart(count + 1, 0), otherStart(count + 1, others.size());
+  otherStart[0] = 0;
+  for (std::size_t t = 0; t < count; ++t)
+  {
+    partStart[t + 1] = partStart[t] + parts[t].size();
+    // Part t takes the others below the first key of the next non-empty part (an empty part
+    // thus takes none, and the last part takes the rest).
+    for (std::size_t u = t + 1; u < count; ++u)
+      if (!parts[u].empty())
+      {
+        otherStart[t + 1] = static_cast<std::size_t>(
+            std::lower_bound(others.begin(), others.end(), parts[u].front(), byKey) - others.begin());
+        break;
+      }
+  }
+  pairs.resize(partStart[count] + others.size());
+#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(count)) if (count > 1 && pairs.size() >= static_cast<std::size_t>(parallelLoopMinimum))
+  for (std::int64_t t = 0; t < static_cast<std::int64_t>(count); ++t)
+  {
+    const auto u = static_cast<std::size_t>(t);
+    std::merge(parts[u].begin(), parts[u].end(), others.begin() + static_cast<std::ptrdiff_t>(otherStart[u]),
+               others.begin() + static_cast<std::ptrdiff_t>(otherStart[u + 1]),
+               pairs.begin() + static_cast<std::ptrdiff_t>(partStart[u] + otherStart[u]), byKey);
+  }
 }
 
 /// Candidate sphere pairs in a periodic cell: for each pair, the nearest periodic image of the
@@ -494,15 +540,19 @@ void Collider::rebuild(Scene& scene)
   const double smallest = spheres.empty() ? blockRmin : rmin;
   skin_ = verletDist >= 0 ? verletDist : (std::isfinite(smallest) ? -verletDist * smallest : 0.0);
 
+  // Not cleared for the open scene: its merge overwrites every entry, and resizing a cleared
+  // list would first zero the whole of it, on one thread.
   std::vector<Candidate>& pairs = pairs_;
-  pairs.clear();
   if (scene.periodic)
+  {
+    pairs.clear();
     periodicSpherePairs(b, spheres, scene.cell, rmax, skin_, pairs);
+  }
   else
   {
     grid_.build(b, spheres, 2 * rmax + skin_);
     timingDeltas.checkpoint("re-detection: binning");
-    spherePairs(b, spheres, grid_, skin_, perThread_, pairs);
+    spherePairs(b, spheres, grid_, skin_, perThread_);
   }
   timingDeltas.checkpoint("re-detection: sphere pairs");
   // The other shapes' pairs, few, sorted on their own and merged in.
@@ -537,9 +587,7 @@ void Collider::rebuild(Scene& scene)
   else
   {
     std::sort(others.begin(), others.end(), byKey);
-    sortedPairs_.resize(pairs.size() + others.size());
-    std::merge(pairs.begin(), pairs.end(), others.begin(), others.end(), sortedPairs_.begin(), byKey);
-    pairs.swap(sortedPairs_);
+    mergeCandidates(perThread_, others, pairs);
   }
   timingDeltas.checkpoint("re-detection: sort");
 

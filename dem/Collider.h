@@ -61,7 +61,7 @@ private:
   ContactList spare_; ///< the previous contact list's storage
   ContactExtraList spareExtra_;
   CellGrid grid_;
-  std::vector<Candidate> pairs_, boundaryPairs_, sortedPairs_;
+  std::vector<Candidate> pairs_, boundaryPairs_;
   std::vector<std::vector<Candidate>> perThread_;
   Mat3 referenceCellInverse_ = Mat3::Identity();
   double referenceRange_ = 0;

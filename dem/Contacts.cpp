@@ -1,27 +1,21 @@
 #include "dem/Contacts.h"
 
+#include "dem/CountingSort.h"
+
 #include <algorithm>
 
 namespace talus::dem
 {
 void Contacts::index(std::size_t bodyCount)
 {
-  start.assign(bodyCount + 1, 0);
-  for (const Contact& c : list)
-  {
-    ++start[static_cast<std::size_t>(c.id1) + 1];
-    ++start[static_cast<std::size_t>(c.id2) + 1];
-  }
-  for (std::size_t b = 0; b < bodyCount; ++b)
-    start[b + 1] += start[b];
   entries.resize(2 * list.size());
-  std::vector<std::int64_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t k = 0; k < list.size(); ++k)
-  {
-    const auto ck = static_cast<std::int64_t>(k);
-    entries[static_cast<std::size_t>(fill[static_cast<std::size_t>(list[k].id1)]++)] = ck << 1;
-    entries[static_cast<std::size_t>(fill[static_cast<std::size_t>(list[k].id2)]++)] = (ck << 1) | 1;
-  }
+  stableCountingSort(
+      static_cast<std::int64_t>(list.size()), static_cast<std::int64_t>(bodyCount), start,
+      [this](std::int64_t k, auto&& emit) {
+        emit(list[static_cast<std::size_t>(k)].id1, 0);
+        emit(list[static_cast<std::size_t>(k)].id2, 1);
+      },
+      [this](std::int64_t k, int side, std::int64_t slot) { entries[static_cast<std::size_t>(slot)] = (k << 1) | side; });
 }
 
 std::size_t Contacts::countReal() const
