@@ -278,10 +278,10 @@ std::int64_t NewtonIntegrator::integrateRange(Scene& scene, std::int64_t first, 
       const std::uint8_t blocked = b.blockedDofs[i];
       Vec3 a = b.force[i].cwiseProduct(invMass_[i]);
       Vec3 alpha = b.torque[i].cwiseProduct(invInertia_[i]);
-      Vec3 g = Vec3::Zero();
-      for (int d = 0; d < 3; ++d)
-        if (!(blocked & (1u << d)))
-          g[d] = gravity[d];
+      // Built whole, not component by component: a vector stored in parts and then loaded
+      // whole misses the store-to-load forwarding, which took a quarter of the integration.
+      const Vec3 g((blocked & 1u) != 0 ? 0.0 : gravity[0], (blocked & 2u) != 0 ? 0.0 : gravity[1],
+                   (blocked & 4u) != 0 ? 0.0 : gravity[2]);
       a += g;
       const Vec3 undamped = a, undampedAlpha = alpha;
       if (damping != 0)
