@@ -88,34 +88,51 @@ bool FusedStep::run(Scene& scene)
   ContactLaw& law = *loop.laws[0];
   loop.prepare(scene);
   newton.prepare(scene);
-  const Collider::SkinCheck skin = collider.skinCheck(scene);
+  Collider::SkinCheck skin = collider.skinCheck(scene);
   const bool clumps = newton.hasClumps();
+  // In an open scene the skin check depends on the positions only, so each thread checks its
+  // bodies right after moving them, for the next step: the step then needs no barrier between
+  // the check and the contacts, and re-detects, when it must, before its one parallel region.
+  // (Not with clumps: a clump moves its members, which may be another thread's bodies.)
+  const bool checkAhead = !scene.periodic && !clumps;
+  const bool knownAhead = checkAhead && aheadFor_ == scene.iter;
+  aheadFor_ = -1;
+  const bool redetectFirst = skin.rebuild || (knownAhead && movedAhead_);
+  if (redetectFirst)
+  {
+    collider.rebuild(scene);
+    skin = collider.skinCheck(scene); // the next step's, around the new references
+  }
+  const bool checkNow = !redetectFirst && !knownAhead;
 
-  constexpr int most = BalancedRanges::maxThreads;
-  std::array<bool, most> moved{};
-  std::array<std::int64_t, most> badContact{}, badBody{};
-  std::array<double, most> bodySeconds{}, contactSeconds{};
-  badContact.fill(-1);
-  badBody.fill(-1);
+  // Each thread's flags and times, a cache line apiece (they are written during the step).
+  struct alignas(64) PerThread
+  {
+    bool moved = false, movedAhead = false;
+    std::int64_t badContact = -1, badBody = -1;
+    double bodySeconds = 0, contactSeconds = 0;
+  };
+  std::array<PerThread, BalancedRanges::maxThreads> mine{};
   int used = 1;
-  bool redetect = skin.rebuild;
+  bool redetect = false;
 
-  // Contacts, a barrier, then this thread's bodies: gather and integrate. Called by every thread
-  // of the team (it holds a barrier). A contact overlapping too much stops the step before any
-  // body moves, as the engines do.
+  // Contacts, a barrier, then this thread's bodies: gather, integrate, and check ahead. Called
+  // by every thread of the team (it holds a barrier). A contact overlapping too much stops the
+  // step before any body moves, as the engines do.
   auto contactsThenBodies = [&](int thread, int threads, bool working) {
+    PerThread& my = mine[static_cast<std::size_t>(working ? thread : 0)];
     const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
     if (working)
     {
       const auto [first, last] = contactRanges_.range(contacts, thread, threads);
       const double start = now();
       const std::int64_t bad = law.computeAllIn(scene, first, last);
-      badContact[static_cast<std::size_t>(thread)] = bad < contacts ? bad : -1;
-      contactSeconds[static_cast<std::size_t>(thread)] = now() - start;
+      my.badContact = bad < contacts ? bad : -1;
+      my.contactSeconds = now() - start;
     }
 #pragma omp barrier
     for (int t = 0; t < threads; ++t)
-      if (badContact[static_cast<std::size_t>(t)] >= 0)
+      if (mine[static_cast<std::size_t>(t)].badContact >= 0)
         return;
     const auto [first, last] = working ? bodyRanges_.range(bodies, thread, threads) : std::pair<std::int64_t, std::int64_t>{0, 0};
     const double start = now();
@@ -128,8 +145,10 @@ bool FusedStep::run(Scene& scene)
     const std::int64_t bad = newton.integrateIn(scene, first, last);
     if (working)
     {
-      badBody[static_cast<std::size_t>(thread)] = bad;
-      bodySeconds[static_cast<std::size_t>(thread)] += now() - start;
+      my.badBody = bad;
+      if (checkAhead)
+        my.movedAhead = collider.movedIn(scene, skin, first, last);
+      my.bodySeconds += now() - start;
     }
   };
 
@@ -141,17 +160,21 @@ bool FusedStep::run(Scene& scene)
     const bool working = thread < threads;
     if (working)
     {
+      PerThread& my = mine[static_cast<std::size_t>(thread)];
       const auto [first, last] = bodyRanges_.range(bodies, thread, threads);
       const double start = now();
       ForceResetter::resetIn(scene.bodies, first, last);
-      if (!skin.rebuild)
-        moved[static_cast<std::size_t>(thread)] = collider.movedIn(scene, skin, first, last);
-      bodySeconds[static_cast<std::size_t>(thread)] = now() - start;
+      if (checkNow)
+        my.moved = collider.movedIn(scene, skin, first, last);
+      my.bodySeconds = now() - start;
     }
+    bool anyMoved = false;
+    if (checkNow)
+    {
 #pragma omp barrier
-    bool anyMoved = skin.rebuild;
-    for (int t = 0; t < threads; ++t)
-      anyMoved = anyMoved || moved[static_cast<std::size_t>(t)];
+      for (int t = 0; t < threads; ++t)
+        anyMoved = anyMoved || mine[static_cast<std::size_t>(t)].moved;
+    }
     if (!anyMoved)
       contactsThenBodies(thread, threads, working);
     if (thread == 0)
@@ -163,6 +186,7 @@ bool FusedStep::run(Scene& scene)
   if (redetect)
   {
     collider.rebuild(scene);
+    skin = collider.skinCheck(scene);
     if (law.needsExtra())
       alignContactExtra(scene.contacts);
 #pragma omp parallel
@@ -174,25 +198,32 @@ bool FusedStep::run(Scene& scene)
   law.stepDone();
   for (int t = 0; t < used; ++t)
   {
-    bodyRanges_.record(t, bodySeconds[static_cast<std::size_t>(t)]);
-    contactRanges_.record(t, contactSeconds[static_cast<std::size_t>(t)]);
+    bodyRanges_.record(t, mine[static_cast<std::size_t>(t)].bodySeconds);
+    contactRanges_.record(t, mine[static_cast<std::size_t>(t)].contactSeconds);
   }
   bodyRanges_.rebalance(used);
   contactRanges_.rebalance(used);
   ++steps;
 
   std::int64_t badContactIndex = -1, badBodyIndex = -1;
+  bool movedAhead = false;
   for (int t = 0; t < used; ++t)
   {
-    const std::int64_t c = badContact[static_cast<std::size_t>(t)], b = badBody[static_cast<std::size_t>(t)];
-    if (c >= 0 && (badContactIndex < 0 || c < badContactIndex))
-      badContactIndex = c;
-    if (b >= 0 && (badBodyIndex < 0 || b < badBodyIndex))
-      badBodyIndex = b;
+    const PerThread& their = mine[static_cast<std::size_t>(t)];
+    if (their.badContact >= 0 && (badContactIndex < 0 || their.badContact < badContactIndex))
+      badContactIndex = their.badContact;
+    if (their.badBody >= 0 && (badBodyIndex < 0 || their.badBody < badBodyIndex))
+      badBodyIndex = their.badBody;
+    movedAhead = movedAhead || their.movedAhead;
   }
   if (badContactIndex >= 0)
     throw std::runtime_error(InteractionLoop::overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(badContactIndex)]));
   newton.finish(scene, badBodyIndex);
+  if (checkAhead)
+  {
+    movedAhead_ = movedAhead;
+    aheadFor_ = scene.iter + 1;
+  }
   return true;
 }
 } // namespace talus::dem

@@ -2,6 +2,8 @@
 
 #include "dem/Threads.h"
 
+#include <cstdint>
+
 namespace talus::dem
 {
 class Scene;
@@ -12,8 +14,11 @@ class Scene;
 /// Why: on the project's 2-vCPU guest a parallel region costs 3.5 µs at two threads and a barrier
 /// inside one 2 µs, about 8 % of a 4 400-sphere step (docs/dem.md, Speed). Here each thread keeps
 /// one range of bodies for the reset, the skin check, the force gather and the integration, so
-/// those need no barrier between them; a step has two barriers (after the skin check, after the
-/// contact loop) and, when the collider re-detects, a second region after the re-detection.
+/// those need no barrier between them. In an open scene without clumps, each thread checks the
+/// skin of its bodies right after moving them, for the next step of the same run(): such a step
+/// re-detects (when it must) before its one region, which has one barrier, after the contact
+/// loop. Otherwise the skin check is made in the step, with a barrier after it and, when the
+/// collider re-detects, a second region after the re-detection.
 ///
 /// The engines' own range functions do the work, item by item as their run() does, so a fused
 /// step gives the same bits as the engines one by one (tests/dem/test_threads.py). Scenes with
@@ -27,7 +32,12 @@ public:
 
   std::int64_t steps = 0; ///< steps run fused (diagnostics: Scene.fusedSteps)
 
+  /// Forget the skin check made ahead for the next step: the caller may move bodies before it.
+  void forgetAhead() { aheadFor_ = -1; }
+
 private:
+  std::int64_t aheadFor_ = -1; ///< the scene.iter whose step the ahead check is for, or -1
+  bool movedAhead_ = false;    ///< the ahead check: a body moved beyond half the skin
   BalancedRanges bodyRanges_;    ///< bodies per thread: reset, skin check, gather, integration
   BalancedRanges contactRanges_; ///< contacts per thread
 };

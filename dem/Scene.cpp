@@ -311,6 +311,12 @@ void Scene::runEngines()
 
 void Scene::step()
 {
+  fused.forgetAhead(); // the caller may have moved bodies since the last step
+  advance();
+}
+
+void Scene::advance()
+{
   if (!failedStep_.empty())
     throw std::runtime_error("cannot continue: step " + std::to_string(iter) + " failed and left the scene half updated ("
                              + failedStep_ + "); load a checkpoint (O.load, O.loadTmp) to go on from a saved state");
@@ -333,13 +339,17 @@ void Scene::step()
 void Scene::run(std::int64_t steps, const std::function<void()>& poll)
 {
   pauseRequested_ = false;
+  fused.forgetAhead(); // the caller may have moved bodies since the last step
   for (std::int64_t k = 0; steps < 0 || k < steps; ++k)
   {
-    step();
+    advance();
     if (pauseRequested_)
       break;
     if (poll && k % 64 == 63)
+    {
       poll();
+      fused.forgetAhead(); // a signal handler may have run Python
+    }
   }
   pauseRequested_ = false;
 }

@@ -139,6 +139,9 @@ public:
 
 private:
   bool pauseRequested_ = false;
+  /// step() without forgetting what the fused step knows of the previous one (run()'s steps,
+  /// between which nothing else touches the scene).
+  void advance();
   /// The engines one by one (timed when timingEnabled).
   void runEngines();
   std::string failedStep_; ///< message of the step that threw (transient), empty if none

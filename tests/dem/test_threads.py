@@ -57,3 +57,29 @@ def test_fused_step_equals_the_engines_one_by_one_in_a_deforming_periodic_cell(b
     assert (fused, fused_engines) == (2000, 0)
     assert contacts_fused > 1000
     assert (contacts_fused, hash_fused) == (contacts_engines, hash_engines)
+
+
+@pytest.mark.parametrize("advance", ["run", "step"])
+def test_fused_step_sees_bodies_moved_between_runs(advance):
+    """The fused step checks the skin ahead, for the next step of the same run(): a body moved
+    from Python between runs (or single steps) must still trigger a re-detection."""
+    from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                           Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
+                           NewtonIntegrator, Scene, sphere)
+    S = Scene()
+    mat = S.materials.append(FrictMat(young=1e7, density=2600))
+    # 32 x 32 spheres of radius 0.01, 0.05 apart: none within the skin of another
+    ids = [S.bodies.append(sphere((0.05 * i, 0.05 * j, 0), 0.01, material=mat)) for i in range(32) for j in range(32)]
+    S.engines = [ForceResetter(), InsertionSortCollider(),
+                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator(damping=0.2, gravity=(0, 0, 0))]
+    S.dt = 1e-6
+    S.run(5, True)
+    assert len(S.contacts()) == 0
+    S.positions()[ids[0]] = S.positions()[ids[1]] + (0.019, 0, 0)   # onto its neighbour, overlapping by 5 %
+    if advance == "run":
+        S.run(1, True)
+    else:
+        S.step()
+    assert S.fusedSteps == 6
+    assert [(c["id1"], c["id2"]) for c in S.contacts()] == [(ids[0], ids[1])]
