@@ -455,6 +455,7 @@ Collider::SkinCheck Collider::skinCheck(const Scene& scene) const
   }
   const double limit = 0.5 * (skin_ - strainReach);
   check.limit2 = limit * limit;
+  check.common = common_;
   check.deformed = scene.periodic && check.affine != Mat3::Identity();
   // A block's or particle's surface also moves by its rotation: at most its bounding radius
   // times the angle.
@@ -468,27 +469,70 @@ Collider::SkinCheck Collider::skinCheck(const Scene& scene) const
   return check;
 }
 
-bool Collider::movedIn(const Scene& scene, const SkinCheck& check, std::int64_t first, std::int64_t last) const
+void Collider::Displacements::add(const Displacements& d)
 {
-  const Bodies& b = scene.bodies;
-  bool any = false;
-  for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
-  {
-    const Vec3 reference = check.deformed ? Vec3(check.affine * referencePos_[i]) : referencePos_[i];
-    if (b.alive[i] && (b.pos[i] - reference).squaredNorm() > check.limit2)
-      any = true;
-  }
-  return any;
+  sphere2 = std::max(sphere2, d.sphere2);
+  sphereSpread2 = std::max(sphereSpread2, d.sphereSpread2);
+  other2 = std::max(other2, d.other2);
+  low = low.cwiseMin(d.low);
+  high = high.cwiseMax(d.high);
 }
 
-bool Collider::needsRebuild(const Scene& scene) const
+Collider::Displacements Collider::displacementsIn(const Scene& scene, const SkinCheck& check, std::int64_t first,
+                                                  std::int64_t last) const
+{
+  const Bodies& b = scene.bodies;
+  Displacements d;
+  for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
+  {
+    if (!b.alive[i] || b.shape[i] == ShapeKind::Clump) // a clump's members have its surface
+      continue;
+    const Vec3 reference = check.deformed ? Vec3(check.affine * referencePos_[i]) : referencePos_[i];
+    const Vec3 moved = b.pos[i] - reference;
+    if (b.shape[i] == ShapeKind::Sphere)
+    {
+      d.sphere2 = std::max(d.sphere2, moved.squaredNorm());
+      d.sphereSpread2 = std::max(d.sphereSpread2, (moved - check.common).squaredNorm());
+      d.low = d.low.cwiseMin(moved);
+      d.high = d.high.cwiseMax(moved);
+    }
+    else
+      d.other2 = std::max(d.other2, moved.squaredNorm());
+  }
+  return d;
+}
+
+bool Collider::mustRebuild(const SkinCheck& check, const Displacements& all)
+{
+  const double limit2 = check.limit2;
+  // Pairs of two other bodies (blocks, a wall and a block): each within half the skin.
+  if (all.other2 > limit2)
+    return true;
+  // A sphere and another body: the two displacements within the skin.
+  if (all.other2 >= 0 && std::sqrt(all.sphere2) + std::sqrt(all.other2) > 2 * std::sqrt(limit2))
+    return true;
+  // Two spheres: each within half the skin of the common displacement, or of none.
+  return all.sphereSpread2 > limit2 && all.sphere2 > limit2;
+}
+
+Vec3 Collider::commonOf(const Displacements& all)
+{
+  return (all.low.array() <= all.high.array()).all() ? Vec3(0.5 * (all.low + all.high)) : Vec3::Zero();
+}
+
+bool Collider::needsRebuild(const Scene& scene)
 {
   const SkinCheck check = skinCheck(scene);
   if (check.rebuild)
     return true;
-  auto moved = [&](std::int64_t first, std::int64_t last) { return movedIn(scene, check, first, last); };
-  return balancedFor(skinRanges_, static_cast<std::int64_t>(scene.bodies.size()), false, moved,
-                     [](bool a, bool c) { return a || c; });
+  auto measure = [&](std::int64_t first, std::int64_t last) { return displacementsIn(scene, check, first, last); };
+  const Displacements all = balancedFor(skinRanges_, static_cast<std::int64_t>(scene.bodies.size()), Displacements{},
+                                        measure, [](Displacements a, const Displacements& c) {
+                                          a.add(c);
+                                          return a;
+                                        });
+  noteDisplacements(all);
+  return mustRebuild(check, all);
 }
 
 void Collider::run(Scene& scene)
@@ -608,6 +652,7 @@ void Collider::rebuild(Scene& scene)
   referenceCellInverse_ = scene.cell.hSize.inverse();
   referenceRange_ = 2 * rmax + skin_;
   seenBodiesVersion_ = scene.bodiesVersion;
+  common_ = Vec3::Zero();
   ++rebuilds;
 }
 } // namespace talus::dem

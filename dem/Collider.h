@@ -7,6 +7,7 @@
 #include "dem/types.h"
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace talus::dem
@@ -39,22 +40,49 @@ public:
 
   /// The skin check's verdict before the per-body test: `rebuild` when it is already known
   /// (bodies changed, the cell deformed past the skin, a block or particle moved or turned too
-  /// far); otherwise what movedIn needs.
+  /// far); otherwise what displacementsIn needs.
+  ///
+  /// A candidate pair stays valid while the two bodies' displacements since the re-detection,
+  /// d1 and d2, change its distance by no more than the skin: |d1 - d2| <= |d1 - c| + |d2 - c|
+  /// for any vector c common to all bodies. Spheres moving together (a falling or sliding
+  /// packing) thus need no re-detection: the check subtracts `common`, the middle of the
+  /// spheres' displacements at the previous check, for sphere pairs, and allows half the skin
+  /// to a sphere and to another body each for their pairs (all of the skin to a sphere if the
+  /// others have not moved). Re-detections only become rarer than with c = 0, which is also tried.
   struct SkinCheck
   {
     bool rebuild = false;
     bool deformed = false; ///< a deforming periodic cell: references follow the affine map
     Mat3 affine = Mat3::Identity();
-    double limit2 = 0; ///< squared displacement allowed since the last rebuild
+    double limit2 = 0; ///< square of half the skin left (the displacement allowed each body)
+    Vec3 common = Vec3::Zero(); ///< displacement subtracted for sphere pairs
   };
   [[nodiscard]] SkinCheck skinCheck(const Scene& scene) const;
-  /// Whether a body of [first, last) moved beyond the check's limit (check.rebuild false).
-  [[nodiscard]] bool movedIn(const Scene& scene, const SkinCheck& check, std::int64_t first, std::int64_t last) const;
+  /// Displacements since the last re-detection, summarised for the skin check; combined over
+  /// ranges of bodies with add() (maxima and minima: the same for every thread count).
+  struct Displacements
+  {
+    double sphere2 = 0;       ///< largest squared displacement of a sphere
+    double sphereSpread2 = 0; ///< largest squared distance of a sphere's displacement from the common one
+    double other2 = -1;       ///< largest squared displacement of another body with a surface (-1: none)
+    Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());   ///< spheres' smallest displacement, per axis
+    Vec3 high = Vec3::Constant(-std::numeric_limits<double>::infinity()); ///< and largest
+    void add(const Displacements& d);
+  };
+  /// The displacements of the bodies of [first, last) (check.rebuild false).
+  [[nodiscard]] Displacements displacementsIn(const Scene& scene, const SkinCheck& check, std::int64_t first,
+                                              std::int64_t last) const;
+  /// Whether the displacements of all bodies call for a re-detection.
+  [[nodiscard]] static bool mustRebuild(const SkinCheck& check, const Displacements& all);
+  /// The common displacement a check after the one that measured `all` subtracts.
+  [[nodiscard]] static Vec3 commonOf(const Displacements& all);
+  /// Keep commonOf(all) for the next check.
+  void noteDisplacements(const Displacements& all) { common_ = commonOf(all); }
   /// Re-detect the candidate pairs now.
   void rebuild(Scene& scene);
 
 private:
-  [[nodiscard]] bool needsRebuild(const Scene& scene) const;
+  [[nodiscard]] bool needsRebuild(const Scene& scene);
 
   std::vector<Vec3> referencePos_;
   // Scratch space kept between rebuilds, so re-detection does not allocate (and fault in) memory.
@@ -71,6 +99,7 @@ private:
   std::vector<Quat> referenceOri_;
   std::int64_t seenBodiesVersion_ = -1;
   double skin_ = 0;
+  Vec3 common_ = Vec3::Zero(); ///< SkinCheck::common of the next check (zero after a re-detection)
   mutable BalancedRanges skinRanges_; ///< the skin check's bodies per thread (its timing only)
 };
 } // namespace talus::dem

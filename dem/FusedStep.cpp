@@ -108,7 +108,7 @@ bool FusedStep::run(Scene& scene)
   // Each thread's flags and times, a cache line apiece (they are written during the step).
   struct alignas(64) PerThread
   {
-    bool moved = false, movedAhead = false;
+    Collider::Displacements moved, movedAhead;
     std::int64_t badContact = -1, badBody = -1;
     double bodySeconds = 0, contactSeconds = 0;
   };
@@ -116,10 +116,10 @@ bool FusedStep::run(Scene& scene)
   int used = 1;
   bool redetect = false;
 
-  // Contacts, a barrier, then this thread's bodies: gather, integrate, and check ahead. Called
-  // by every thread of the team (it holds a barrier). A contact overlapping too much stops the
-  // step before any body moves, as the engines do.
-  auto contactsThenBodies = [&](int thread, int threads, bool working) {
+  // Contacts, a barrier, then this thread's bodies: gather, integrate, and check ahead (with
+  // `ahead`, the next step's check). Called by every thread of the team (it holds a barrier). A
+  // contact overlapping too much stops the step before any body moves, as the engines do.
+  auto contactsThenBodies = [&](int thread, int threads, bool working, const Collider::SkinCheck& ahead) {
     PerThread& my = mine[static_cast<std::size_t>(working ? thread : 0)];
     const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
     if (working)
@@ -147,7 +147,7 @@ bool FusedStep::run(Scene& scene)
     {
       my.badBody = bad;
       if (checkAhead)
-        my.movedAhead = collider.movedIn(scene, skin, first, last);
+        my.movedAhead = collider.displacementsIn(scene, ahead, first, last);
       my.bodySeconds += now() - start;
     }
   };
@@ -165,23 +165,34 @@ bool FusedStep::run(Scene& scene)
       const double start = now();
       ForceResetter::resetIn(scene.bodies, first, last);
       if (checkNow)
-        my.moved = collider.movedIn(scene, skin, first, last);
+        my.moved = collider.displacementsIn(scene, skin, first, last);
       my.bodySeconds = now() - start;
     }
     bool anyMoved = false;
+    Collider::SkinCheck ahead = skin;
     if (checkNow)
     {
 #pragma omp barrier
+      Collider::Displacements all;
       for (int t = 0; t < threads; ++t)
-        anyMoved = anyMoved || mine[static_cast<std::size_t>(t)].moved;
+        all.add(mine[static_cast<std::size_t>(t)].moved);
+      anyMoved = Collider::mustRebuild(skin, all);
+      ahead.common = Collider::commonOf(all); // what the collider keeps after this check
     }
     if (!anyMoved)
-      contactsThenBodies(thread, threads, working);
+      contactsThenBodies(thread, threads, working, ahead);
     if (thread == 0)
     {
       used = threads;
       redetect = anyMoved;
     }
+  }
+  if (checkNow && !redetect)
+  {
+    Collider::Displacements all;
+    for (int t = 0; t < used; ++t)
+      all.add(mine[static_cast<std::size_t>(t)].moved);
+    collider.noteDisplacements(all);
   }
   if (redetect)
   {
@@ -192,7 +203,7 @@ bool FusedStep::run(Scene& scene)
 #pragma omp parallel
     {
       const int thread = threadNumber(), threads = teamSize();
-      contactsThenBodies(thread, threads, thread < threads);
+      contactsThenBodies(thread, threads, thread < threads, skin);
     }
   }
   law.stepDone();
@@ -206,7 +217,7 @@ bool FusedStep::run(Scene& scene)
   ++steps;
 
   std::int64_t badContactIndex = -1, badBodyIndex = -1;
-  bool movedAhead = false;
+  Collider::Displacements movedAhead;
   for (int t = 0; t < used; ++t)
   {
     const PerThread& their = mine[static_cast<std::size_t>(t)];
@@ -214,14 +225,15 @@ bool FusedStep::run(Scene& scene)
       badContactIndex = their.badContact;
     if (their.badBody >= 0 && (badBodyIndex < 0 || their.badBody < badBodyIndex))
       badBodyIndex = their.badBody;
-    movedAhead = movedAhead || their.movedAhead;
+    movedAhead.add(their.movedAhead);
   }
   if (badContactIndex >= 0)
     throw std::runtime_error(InteractionLoop::overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(badContactIndex)]));
   newton.finish(scene, badBodyIndex);
   if (checkAhead)
   {
-    movedAhead_ = movedAhead;
+    movedAhead_ = Collider::mustRebuild(skin, movedAhead);
+    collider.noteDisplacements(movedAhead);
     aheadFor_ = scene.iter + 1;
   }
   return true;

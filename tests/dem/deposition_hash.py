@@ -1,7 +1,8 @@
 """Settle a small random packing in a box of walls and print a hash of the final state
 (run by test_threads.py with different OMP_NUM_THREADS). Options: --clumps (every other
 sphere in a clump with its neighbour), --engines-one-by-one (timing on: the engines' own
-path instead of the fused step)."""
+path instead of the fused step), --verlet=D (the collider's verletDist; 0 re-detects at every
+step)."""
 import hashlib
 import sys
 
@@ -28,7 +29,9 @@ if "--clumps" in options:
         O.bodies.appendClumped([sphere(centres[k], r), sphere(centres[k + 1], r)])
 else:
     O.bodies.append([sphere(c, r) for c, r in zip(centres, radii)])
-O.engines = [ForceResetter(), InsertionSortCollider(),
+verlet = [float(a.split("=")[1]) for a in options if a.startswith("--verlet=")]
+collider = InsertionSortCollider(verletDist=verlet[0]) if verlet else InsertionSortCollider()
+O.engines = [ForceResetter(), collider,
              InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
              NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.3)]
 O.dt = 0.5 * PWaveTimeStep()
@@ -38,3 +41,4 @@ state = np.concatenate([O.positions().ravel(), O.velocities().ravel(), O.angular
 print("contacts", O._cpp.realContactCount())
 print("hash", hashlib.sha256(state.tobytes()).hexdigest())
 print("fused", O.fusedSteps)
+print("rebuilds", collider.rebuilds)

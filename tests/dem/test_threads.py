@@ -15,13 +15,18 @@ PERIODIC = Path(__file__).with_name("periodic_compression_hash.py")
 STEPS = 3000
 
 
-def run(threads, build_dir, *options, script=SCRIPT):
+def outputs(threads, build_dir, *options, script=SCRIPT):
+    """The script's printed lines, as a dict."""
     env = {**os.environ, "OMP_NUM_THREADS": str(threads), "PYTHONPATH": str(build_dir / "python")}
     arguments = [str(STEPS)] if script == SCRIPT else []
     done = subprocess.run([sys.executable, str(script), *arguments, *options], capture_output=True, text=True,
                           env=env, timeout=300)
     assert done.returncode == 0, done.stderr
-    lines = dict(line.split(" ", 1) for line in done.stdout.strip().splitlines())
+    return dict(line.split(" ", 1) for line in done.stdout.strip().splitlines())
+
+
+def run(threads, build_dir, *options, script=SCRIPT):
+    lines = outputs(threads, build_dir, *options, script=script)
     return int(lines["contacts"]), lines["hash"], int(lines["fused"])
 
 
@@ -46,6 +51,20 @@ def test_fused_step_equals_the_engines_one_by_one(build_dir, clumps):
     assert (fused, fused_engines) == (STEPS, 0)
     assert contacts_fused > 300     # contact-rich in both variants (433 with clumps)
     assert (contacts_fused, hash_fused) == (contacts_engines, hash_engines)
+
+
+@pytest.mark.parametrize("clumps", [False, True], ids=["spheres", "clumps"])
+def test_skin_check_misses_no_contact(build_dir, clumps):
+    """The collider re-detects only when displacements could bring a new pair into contact:
+    the spheres falling together at first need none (the skin check subtracts their common
+    displacement). The same run re-detecting at every step (verletDist 0) gives the same bits,
+    so no contact came late."""
+    extra = ["--clumps"] if clumps else []
+    skin = outputs(2, build_dir, *extra)
+    every_step = outputs(2, build_dir, "--verlet=0", *extra)
+    assert int(every_step["rebuilds"]) > 0.9 * STEPS
+    assert int(skin["rebuilds"]) < 0.05 * STEPS
+    assert (skin["contacts"], skin["hash"]) == (every_step["contacts"], every_step["hash"])
 
 
 @needs_openmp
