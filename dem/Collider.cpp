@@ -456,6 +456,7 @@ Collider::SkinCheck Collider::skinCheck(const Scene& scene) const
   const double limit = 0.5 * (skin_ - strainReach);
   check.limit2 = limit * limit;
   check.common = common_;
+  check.otherPairs = !convex_.empty();
   check.deformed = scene.periodic && check.affine != Mat3::Identity();
   // A block's or particle's surface also moves by its rotation: at most its bounding radius
   // times the angle.
@@ -506,7 +507,7 @@ bool Collider::mustRebuild(const SkinCheck& check, const Displacements& all)
 {
   const double limit2 = check.limit2;
   // Pairs of two other bodies (blocks, a wall and a block): each within half the skin.
-  if (all.other2 > limit2)
+  if (check.otherPairs && all.other2 > limit2)
     return true;
   // A sphere and another body: the two displacements within the skin.
   if (all.other2 >= 0 && std::sqrt(all.sphere2) + std::sqrt(all.other2) > 2 * std::sqrt(limit2))

@@ -46,9 +46,10 @@ public:
   /// d1 and d2, change its distance by no more than the skin: |d1 - d2| <= |d1 - c| + |d2 - c|
   /// for any vector c common to all bodies. Spheres moving together (a falling or sliding
   /// packing) thus need no re-detection: the check subtracts `common`, the middle of the
-  /// spheres' displacements at the previous check, for sphere pairs, and allows half the skin
-  /// to a sphere and to another body each for their pairs (all of the skin to a sphere if the
-  /// others have not moved). Re-detections only become rarer than with c = 0, which is also tried.
+  /// spheres' displacements at the previous check, for sphere pairs, and allows a sphere and a
+  /// wall, facet or box the skin between them (all of it to the sphere if the others have not
+  /// moved; half each to two blocks or particles). Re-detections only become rarer than with
+  /// c = 0, which is also tried.
   struct SkinCheck
   {
     bool rebuild = false;
@@ -56,6 +57,7 @@ public:
     Mat3 affine = Mat3::Identity();
     double limit2 = 0; ///< square of half the skin left (the displacement allowed each body)
     Vec3 common = Vec3::Zero(); ///< displacement subtracted for sphere pairs
+    bool otherPairs = false;    ///< pairs of two bodies other than spheres exist (blocks, particles)
   };
   [[nodiscard]] SkinCheck skinCheck(const Scene& scene) const;
   /// Displacements since the last re-detection, summarised for the skin check; combined over

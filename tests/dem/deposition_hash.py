@@ -2,7 +2,8 @@
 (run by test_threads.py with different OMP_NUM_THREADS). Options: --clumps (every other
 sphere in a clump with its neighbour), --engines-one-by-one (timing on: the engines' own
 path instead of the fused step), --verlet=D (the collider's verletDist; 0 re-detects at every
-step)."""
+step), --moving-wall (the wall at x = 1 moves inwards at 5 cm/s), --lifted (the packing starts
+0.1 above the floor)."""
 import hashlib
 import sys
 
@@ -21,6 +22,8 @@ O.bodies.append([wall(0, axis=2, sense=1), wall(0, axis=0, sense=1), wall(1, axi
                  wall(0, axis=1, sense=1), wall(1, axis=1, sense=-1)])
 grid = np.stack(np.meshgrid(np.arange(12), np.arange(12), np.arange(8), indexing="ij"), -1).reshape(-1, 3)
 centres = (grid + 0.5) / 12 + rng.uniform(-0.005, 0.005, grid.shape)
+if "--lifted" in options:
+    centres[:, 2] += 0.1  # the cloud falls 0.1 (eight skins) onto the floor
 radii = rng.uniform(0.025, 0.04, len(grid))
 if "--clumps" in options:
     # neighbours along z: each pair one rigid body
@@ -35,6 +38,8 @@ O.engines = [ForceResetter(), collider,
              InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
              NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.3)]
 O.dt = 0.5 * PWaveTimeStep()
+if "--moving-wall" in options:
+    O.velocities()[2] = (-0.05, 0, 0)  # the wall at x = 1 pushes into the packing
 O.timingEnabled = "--engines-one-by-one" in options
 O.run(steps)
 state = np.concatenate([O.positions().ravel(), O.velocities().ravel(), O.angular_velocities().ravel()])

@@ -53,13 +53,14 @@ def test_fused_step_equals_the_engines_one_by_one(build_dir, clumps):
     assert (contacts_fused, hash_fused) == (contacts_engines, hash_engines)
 
 
-@pytest.mark.parametrize("clumps", [False, True], ids=["spheres", "clumps"])
-def test_skin_check_misses_no_contact(build_dir, clumps):
+@pytest.mark.parametrize("extra", [[], ["--clumps"], ["--moving-wall"], ["--lifted"]],
+                         ids=["spheres", "clumps", "moving-wall", "falling-onto-the-floor"])
+def test_skin_check_misses_no_contact(build_dir, extra):
     """The collider re-detects only when displacements could bring a new pair into contact:
     the spheres falling together at first need none (the skin check subtracts their common
-    displacement). The same run re-detecting at every step (verletDist 0) gives the same bits,
-    so no contact came late."""
-    extra = ["--clumps"] if clumps else []
+    displacement) until the floor is within the skin, and a wall that moves shares the skin
+    with the spheres. The same run
+    re-detecting at every step (verletDist 0) gives the same bits, so no contact came late."""
     skin = outputs(2, build_dir, *extra)
     every_step = outputs(2, build_dir, "--verlet=0", *extra)
     assert int(every_step["rebuilds"]) > 0.9 * STEPS
