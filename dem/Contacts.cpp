@@ -3,11 +3,18 @@
 #include "dem/CountingSort.h"
 
 #include <algorithm>
+#include <atomic>
 
 namespace talus::dem
 {
+namespace
+{
+std::atomic<std::uint64_t> lastVersion{0}; ///< the last Contacts::version handed out
+} // namespace
+
 void Contacts::index(std::size_t bodyCount)
 {
+  version = lastVersion.fetch_add(1) + 1;
   entries.resize(2 * list.size());
   stableCountingSort(
       static_cast<std::int64_t>(list.size()), static_cast<std::int64_t>(bodyCount), start,

@@ -93,8 +93,12 @@ struct Contacts
   /// law that needs it runs (it sizes it on first use, the collider then keeps it aligned).
   ContactExtraList extra;
 
-  /// Rebuild the per-body index after the list changed.
+  /// Rebuild the per-body index after the list changed, and give the list a new `version`.
   void index(std::size_t bodyCount);
+  /// A number no other list state has had, in any Contacts (a copy keeps it with the list it
+  /// copies): what is derived from the list stays valid while it is unchanged. 0 before the
+  /// first index().
+  std::uint64_t version = 0;
   /// Number of real contacts.
   [[nodiscard]] std::size_t countReal() const;
   /// Number of bodies the per-body index covers (those present at the last index()).

@@ -72,6 +72,82 @@ double now()
 }
 } // namespace
 
+void FusedStep::findBoundaryRuns(const Contacts& contacts)
+{
+  if (runsVersion_ == contacts.version)
+    return;
+  runsVersion_ = contacts.version;
+  const ContactList& list = contacts.list;
+  boundaryRuns_.clear();
+  boundaryContacts_ = 0;
+  for (std::size_t k = 0; k < list.size();)
+  {
+    const ContactGeometryKind kind = list[k].kind;
+    const bool boundary = kind == ContactGeometryKind::WallSphere || kind == ContactGeometryKind::FacetSphere
+                          || kind == ContactGeometryKind::BoxSphere;
+    std::size_t end = k + 1;
+    while (end < list.size() && list[end].id1 == list[k].id1)
+      ++end;
+    if (boundary)
+    {
+      if (boundaryRuns_.size() == maxBoundaryRuns)
+      {
+        boundaryRuns_.clear(); // too many to split each one: contiguous ranges for all
+        boundaryContacts_ = 0;
+        break;
+      }
+      boundaryRuns_.emplace_back(static_cast<std::int64_t>(k), static_cast<std::int64_t>(end));
+      boundaryContacts_ += static_cast<std::int64_t>(end - k);
+    }
+    k = end;
+  }
+}
+
+std::int64_t FusedStep::computeContacts(Scene& scene, ContactLaw& law, int thread, int threads)
+{
+  const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
+  std::int64_t bad = contacts;
+  auto compute = [&](std::int64_t first, std::int64_t last) {
+    if (first < last)
+      bad = std::min(bad, law.computeAllIn(scene, first, last));
+  };
+  if (boundaryRuns_.empty())
+  {
+    const auto [first, last] = contactRanges_.range(contacts, thread, threads);
+    compute(first, last);
+    return bad;
+  }
+  // This thread's share of the other contacts, counted over the gaps between the runs.
+  const auto [from, to] = contactRanges_.range(contacts - boundaryContacts_, thread, threads);
+  std::int64_t gapStart = 0, counted = 0;
+  auto gap = [&](std::int64_t gapEnd) {
+    const std::int64_t length = gapEnd - gapStart;
+    compute(gapStart + std::clamp(from - counted, std::int64_t{0}, length),
+            gapStart + std::clamp(to - counted, std::int64_t{0}, length));
+    counted += length;
+  };
+  for (const auto& [begin, end] : boundaryRuns_)
+  {
+    gap(begin);
+    gapStart = end;
+  }
+  gap(contacts);
+  // Its share of each wall's, facet's or box's contacts: those of the spheres it integrates (a
+  // run is sorted by the sphere's id).
+  const auto bodies = static_cast<std::int64_t>(scene.bodies.size());
+  const auto [firstBody, lastBody] = bodyRanges_.range(bodies, thread, threads);
+  const ContactList& list = scene.contacts.list;
+  auto firstOf = [&](std::int64_t begin, std::int64_t end, std::int64_t body) {
+    return static_cast<std::int64_t>(
+        std::lower_bound(list.begin() + begin, list.begin() + end, body,
+                         [](const Contact& c, std::int64_t id) { return c.id2 < id; })
+        - list.begin());
+  };
+  for (const auto& [begin, end] : boundaryRuns_)
+    compute(thread == 0 ? begin : firstOf(begin, end, firstBody), thread + 1 == threads ? end : firstOf(begin, end, lastBody));
+  return bad;
+}
+
 bool FusedStep::run(Scene& scene)
 {
   if (scene.timingEnabled || scene.energy.enabled)
@@ -124,9 +200,8 @@ bool FusedStep::run(Scene& scene)
     const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
     if (working)
     {
-      const auto [first, last] = contactRanges_.range(contacts, thread, threads);
       const double start = now();
-      const std::int64_t bad = law.computeAllIn(scene, first, last);
+      const std::int64_t bad = computeContacts(scene, law, thread, threads);
       my.badContact = bad < contacts ? bad : -1;
       my.contactSeconds = now() - start;
     }
@@ -154,6 +229,7 @@ bool FusedStep::run(Scene& scene)
 
   if (law.needsExtra())
     alignContactExtra(scene.contacts);
+  findBoundaryRuns(scene.contacts);
 #pragma omp parallel
   {
     const int thread = threadNumber(), threads = teamSize();
@@ -200,6 +276,7 @@ bool FusedStep::run(Scene& scene)
     skin = collider.skinCheck(scene);
     if (law.needsExtra())
       alignContactExtra(scene.contacts);
+    findBoundaryRuns(scene.contacts);
 #pragma omp parallel
     {
       const int thread = threadNumber(), threads = teamSize();

@@ -80,15 +80,17 @@ def assert_identical(a: dict, b: dict):
 def test_layout_is_covered():
     """Every field of these structures is written by dem/Checkpoint.cpp (Scene: all but its
     engines and the transient pauseRequested_, failedStep_ and fused: the fused step's
-    per-thread ranges, its step count and its skin check made ahead, forgotten at every run(),
-    which change speed and diagnostics only). When one changes size, a field was added: store
+    per-thread ranges, its step count, its skin check made ahead, forgotten at every run(), and
+    its runs of boundary contacts, found again for every new contact list; and the contact list's
+    version, renewed by the index built on loading), which change speed and diagnostics only).
+    When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
     is transient, then update this table."""
     # Not stored: Bodies::blockContact and particleContact (Ig2_PB_PB_ScGeom's and
     # Ig2_PP_PP_ScGeom's settings, restored with the engines) and ContactExtra::contactArea
     # (recomputed by the geometry every step before the law reads it).
     assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 696, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 2536, "ContactExtra": 272,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 2584, "ContactExtra": 272,
                                    "EnergyTracker": 144}
 
 
