@@ -102,6 +102,6 @@ private:
   std::int64_t seenBodiesVersion_ = -1;
   double skin_ = 0;
   Vec3 common_ = Vec3::Zero(); ///< SkinCheck::common of the next check (zero after a re-detection)
-  mutable BalancedRanges skinRanges_; ///< the skin check's bodies per thread (its timing only)
+  BalancedRanges skinRanges_; ///< the skin check's bodies per thread (its timing only)
 };
 } // namespace talus::dem

@@ -173,12 +173,20 @@ bool FusedStep::run(Scene& scene)
   const bool checkAhead = !scene.periodic && !clumps;
   const bool knownAhead = checkAhead && aheadFor_ == scene.iter;
   aheadFor_ = -1;
-  const bool redetectFirst = skin.rebuild || (knownAhead && movedAhead_);
-  if (redetectFirst)
-  {
+  // A new contact list: the check's references are new, the richer state and the boundary runs
+  // follow the list.
+  auto redetectNow = [&] {
     collider.rebuild(scene);
     skin = collider.skinCheck(scene); // the next step's, around the new references
-  }
+  };
+  auto listChanged = [&] {
+    if (law.needsExtra())
+      alignContactExtra(scene.contacts);
+    findBoundaryRuns(scene.contacts);
+  };
+  const bool redetectFirst = skin.rebuild || (knownAhead && movedAhead_);
+  if (redetectFirst)
+    redetectNow();
   const bool checkNow = !redetectFirst && !knownAhead;
 
   // Each thread's flags and times, a cache line apiece (they are written during the step).
@@ -191,6 +199,7 @@ bool FusedStep::run(Scene& scene)
   std::array<PerThread, BalancedRanges::maxThreads> mine{};
   int used = 1;
   bool redetect = false;
+  Collider::Displacements measured; // this step's check (checkNow), all threads together
 
   // Contacts, a barrier, then this thread's bodies: gather, integrate, and check ahead (with
   // `ahead`, the next step's check). Called by every thread of the team (it holds a barrier). A
@@ -227,9 +236,7 @@ bool FusedStep::run(Scene& scene)
     }
   };
 
-  if (law.needsExtra())
-    alignContactExtra(scene.contacts);
-  findBoundaryRuns(scene.contacts);
+  listChanged();
 #pragma omp parallel
   {
     const int thread = threadNumber(), threads = teamSize();
@@ -246,10 +253,10 @@ bool FusedStep::run(Scene& scene)
     }
     bool anyMoved = false;
     Collider::SkinCheck ahead = skin;
+    Collider::Displacements all;
     if (checkNow)
     {
 #pragma omp barrier
-      Collider::Displacements all;
       for (int t = 0; t < threads; ++t)
         all.add(mine[static_cast<std::size_t>(t)].moved);
       anyMoved = Collider::mustRebuild(skin, all);
@@ -261,22 +268,15 @@ bool FusedStep::run(Scene& scene)
     {
       used = threads;
       redetect = anyMoved;
+      measured = all;
     }
   }
   if (checkNow && !redetect)
-  {
-    Collider::Displacements all;
-    for (int t = 0; t < used; ++t)
-      all.add(mine[static_cast<std::size_t>(t)].moved);
-    collider.noteDisplacements(all);
-  }
+    collider.noteDisplacements(measured);
   if (redetect)
   {
-    collider.rebuild(scene);
-    skin = collider.skinCheck(scene);
-    if (law.needsExtra())
-      alignContactExtra(scene.contacts);
-    findBoundaryRuns(scene.contacts);
+    redetectNow();
+    listChanged();
 #pragma omp parallel
     {
       const int thread = threadNumber(), threads = teamSize();
