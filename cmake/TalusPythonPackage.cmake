@@ -26,17 +26,19 @@ function(talus_python_module name source)
   install(TARGETS ${name} LIBRARY DESTINATION ${TALUS_PYTHON_INSTALL_DIR}/talus)
 endfunction()
 
-## talus_assemble_python_package(): copy the pure-Python files and write the launchers.
+## talus_assemble_python_package(): copy the pure-Python files and write the launchers. Each
+## component's python/ folder holds the package `talus` (its sub-package) and may hold
+## drop-in packages with a peer's names (dem/python/yade: Yade's scripting interface).
 function(talus_assemble_python_package)
   set(outputs)
   foreach(component dem flow coupling fem)
-    set(root ${PROJECT_SOURCE_DIR}/${component}/python/talus)
+    set(root ${PROJECT_SOURCE_DIR}/${component}/python)
     if(NOT TALUS_COMPONENT_${component} OR NOT EXISTS ${root})
       continue()
     endif()
     file(GLOB_RECURSE sources CONFIGURE_DEPENDS RELATIVE ${root} ${root}/*.py)
     foreach(rel IN LISTS sources)
-      set(out ${TALUS_PYTHON_BUILD_DIR}/talus/${rel})
+      set(out ${TALUS_PYTHON_BUILD_DIR}/${rel})
       add_custom_command(OUTPUT ${out}
         COMMAND ${CMAKE_COMMAND} -E copy_if_different ${root}/${rel} ${out}
         DEPENDS ${root}/${rel} COMMENT "" VERBATIM)
@@ -61,7 +63,7 @@ function(talus_assemble_python_package)
   configure_file(${PROJECT_SOURCE_DIR}/cmake/talus-launcher.in
                  ${PROJECT_BINARY_DIR}/generated/talus-installed @ONLY)
 
-  install(DIRECTORY ${TALUS_PYTHON_BUILD_DIR}/talus DESTINATION ${TALUS_PYTHON_INSTALL_DIR}
+  install(DIRECTORY ${TALUS_PYTHON_BUILD_DIR}/ DESTINATION ${TALUS_PYTHON_INSTALL_DIR}
           FILES_MATCHING PATTERN "*.py" PATTERN "__pycache__" EXCLUDE)
   install(PROGRAMS ${PROJECT_BINARY_DIR}/generated/talus-installed
           DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME talus)

@@ -17,7 +17,8 @@ void require(bool ok, const Material& m, const std::string& what)
 
 void Material::validate() const
 {
-  require(std::isfinite(density) && density > 0, *this, "density must be positive and finite");
+  // Zero is allowed, as in Yade (walls and fixed bodies); a dynamic body needs a mass (NewtonIntegrator).
+  require(std::isfinite(density) && density >= 0, *this, "density must be finite and >= 0");
   require(std::isfinite(frictionAngle) && frictionAngle >= 0 && frictionAngle < M_PI / 2, *this,
           "frictionAngle must be in [0, pi/2) radians");
   if (kind == MaterialKind::CohFrict)

@@ -46,6 +46,19 @@ inline Quat rotated(const Quat& q, const Vec3& w)
   }
   return (Quat(c, s * w[0], s * w[1], s * w[2]) * q).normalized();
 }
+
+/// A body moved by forces along a free DOF needs a positive mass (inertia) there: a zero one, from a
+/// material of density 0 as Yade's scripts give walls, would make the step divide by zero.
+void requirePositive(const Scene& scene, std::size_t i, const char* what, double value)
+{
+  if (std::isfinite(value) && value > 0)
+    return;
+  const Material& m = scene.materials[static_cast<std::size_t>(scene.bodies.material[i])];
+  throw std::invalid_argument("body " + std::to_string(i) + " is dynamic but its " + what + " is " + std::to_string(value)
+                              + " (material '" + m.label + "', density " + std::to_string(m.density)
+                              + "): give the material a positive density, or make the body non-dynamic "
+                                "(b.dynamic = False) or block its free DOFs (b.state.blockedDOFs)");
+}
 } // namespace
 
 void NewtonIntegrator::refreshInverses(const Scene& scene)
@@ -71,12 +84,21 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
       mode_[i] |= Aspherical;
     if (!b.dynamic[i])
       continue;
+    const bool integrated = b.clumpId[i] < 0; // members move with their clump
     for (int d = 0; d < 3; ++d)
     {
       if (!(b.blockedDofs[i] & (1u << d)))
+      {
+        if (integrated)
+          requirePositive(scene, i, "mass", b.mass[i]);
         invMass_[i][d] = 1.0 / b.mass[i];
+      }
       if (!(b.blockedDofs[i] & (8u << d)))
+      {
+        if (integrated)
+          requirePositive(scene, i, "inertia", b.inertia[i][d]);
         invInertia_[i][d] = 1.0 / b.inertia[i][d];
+      }
     }
   }
   seenBodiesVersion_ = scene.bodiesVersion;

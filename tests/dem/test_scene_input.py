@@ -32,7 +32,7 @@ def test_nan_position_and_unknown_material():
 
 @pytest.mark.parametrize("params, message", [
     (dict(young=-1.0), "young must be positive"),
-    (dict(density=0.0), "density must be positive"),
+    (dict(density=-1.0), "density must be finite and >= 0"),
     (dict(frictionAngle=2.0), "frictionAngle must be in"),
 ])
 def test_bad_material_parameters(params, message):

@@ -1,6 +1,6 @@
 """The ``talus`` command.
 
-    talus run SCRIPT [ARGS...]    run a case script (as ``yade -x SCRIPT``)
+    talus run SCRIPT [ARGS...]    run a script (as ``yade -x SCRIPT``, with the same namespace)
     talus info                    version, components and features of this build
     talus report                  write docs/validation.md from a results folder
     talus bench                   time a command of ours against a peer's, side by side
@@ -44,8 +44,9 @@ def _run(args: argparse.Namespace) -> int:
     _warn_if_oversubscribed(talus._dem.threadCount())
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))
+    import yade   # the namespace `yade -x` gives a script: Yade's classes, utils, pack, math
     try:
-        runpy.run_path(str(script), run_name="__main__")
+        runpy.run_path(str(script), init_globals=yade.script_namespace(), run_name="__main__")
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
     except KeyboardInterrupt:

@@ -33,11 +33,18 @@ from typing import Callable, Iterable
 
 import numpy as np
 
-__all__ = ["data", "plots", "addData", "reset", "resetData", "plot", "savePlot", "saveDataTxt",
-           "saveDataHdf5", "loadDataTxt"]
+__all__ = ["data", "plots", "labels", "addData", "reset", "resetData", "plot", "savePlot", "saveDataTxt",
+           "saveDataHdf5", "loadDataTxt", "saveGnuplot"]
 
 data: dict[str, list[float]] = {}
 plots: dict[str, Iterable] = {}
+labels: dict[str, str] = {}  # axis and legend text of a name, when it should read otherwise
+
+# Yade's settings of its live plot window. Talus draws on demand (plot, savePlot), so they are
+# kept for scripts that set them and change nothing.
+live = True
+liveInterval = 1
+autozoom = True
 
 
 def _rows() -> int:
@@ -112,6 +119,9 @@ def plot(noShow: bool = False, subPlots: bool = True):
 
     if not plots:
         raise ValueError("plot.plot: plot.plots is empty; set e.g. plot.plots = {'i': ('unbalanced',)}")
+    # Yade's scripts open the (live) plot before the run: with no rows yet the axes come out
+    # empty, and the names are checked once there is data.
+    empty = _rows() == 0
     n = len(plots)
     figures = []
     if subPlots:
@@ -125,14 +135,15 @@ def plot(noShow: bool = False, subPlots: bool = True):
             figures.append(figure)
             axes_list.append(ax)
     for ax, (x_name, y_spec) in zip(axes_list, plots.items()):
-        x = _column(x_name)
+        x = None if empty else _column(x_name)
         target, lines = ax, []
         for name, fmt in _y_entries(y_spec):
             if name is None:
                 target = ax.twinx()
                 continue
-            lines += target.plot(x, _column(name), fmt or "-", label=name.strip())
-        ax.set_xlabel(x_name.strip())
+            if not empty:
+                lines += target.plot(x, _column(name), fmt or "-", label=labels.get(name.strip(), name.strip()))
+        ax.set_xlabel(labels.get(x_name.strip(), x_name.strip()))
         ax.grid(True, alpha=0.3)
         if lines:
             ax.legend(lines, [line.get_label() for line in lines], loc="best", fontsize="small")
@@ -218,3 +229,45 @@ def saveDataHdf5(fileName: str | os.PathLike) -> None:
                 out.create_dataset(column, data=_column(column))
 
     _atomic(fileName, write)
+
+
+def saveGnuplot(baseName: str, term: str = "wxt", extension: str | None = None, timestamp: bool = False,
+                comment: str | None = None, title: str | None = None, varData: bool = False) -> str:
+    """Yade's saveGnuplot: ``data`` to ``baseName.data.bz2`` and a gnuplot script
+    ``baseName.gnuplot`` drawing ``plots`` (one plot per x name; ``None`` in a y list puts the
+    names after it on the right-hand axis). ``term`` and ``extension`` choose gnuplot's terminal
+    and, for a file terminal, the images' suffix. Returns the script's name."""
+    import time as _time
+    base = baseName + (_time.strftime("_%Y%m%d_%H%M") if timestamp else "")
+    data_file = base + ".data.bz2"
+    saveDataTxt(data_file)
+    names = sorted(data)
+    lines = [f"# gnuplot script written by Talus for {base}" + (f": {comment}" if comment else ""),
+             f"set term {term}", "set grid", "set datafile missing 'nan'"]
+    for k, (x_name, y_spec) in enumerate(plots.items()):
+        x = x_name.strip()
+        _column(x)   # an unknown name is an error naming it
+        if extension:
+            lines.append(f"set output '{base}.{x}.{k}.{extension}'")
+        if title:
+            lines.append(f"set title '{title}'")
+        lines += ["set xlabel '" + labels.get(x, x) + "'", "set y2tics", "set ytics nomirror"]
+        curves, axis = [], "x1y1"
+        for name, _fmt in _y_entries(y_spec):
+            if name is None:
+                axis = "x1y2"
+                continue
+            _column(name)
+            curves.append(f"'< bzcat {data_file}' using {names.index(x) + 1}:{names.index(name.strip()) + 1} "
+                          f"title '{labels.get(name.strip(), name.strip())}' with lines axes {axis}")
+        lines.append("plot " + ", ".join(curves))
+        if not extension:
+            lines.append("pause -1")
+    script = base + ".gnuplot"
+
+    def write(tmp: str):
+        with open(tmp, "w", encoding="utf-8") as out:
+            out.write("\n".join(lines) + "\n")
+
+    _atomic(script, write)
+    return script

@@ -8,6 +8,8 @@ import numpy as np
 
 from talus.dem.bodies import BodySpec, facet
 
+__all__ = ["facetBox", "facetCylinder"]
+
 # The corners of a box, indexed by (x, y, z) bits, and its faces as two triangles each, in the
 # order Yade's facetBox uses (-x, +x, -y, +y, -z, +z), so the diagonals match Yade's.
 _FACE_TRIANGLES = [

@@ -15,6 +15,8 @@ import numpy as np
 from talus import _dem
 from talus.dem.bodies import BodySpec, sphere
 
+__all__ = ["inSphere", "inAlignedBox", "regularHexa", "regularOrtho", "SpherePack", "compressedCloud"]
+
 
 class inSphere:
     """The ball of ``radius`` around ``center``."""

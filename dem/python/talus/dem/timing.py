@@ -14,6 +14,8 @@ show them below their own line, as Yade's timingDeltas.
 
 from __future__ import annotations
 
+__all__ = ["rows", "stats", "reset"]
+
 
 def _scene(scene):
     if scene is None:

@@ -1,0 +1,216 @@
+"""Yade's own example scripts, run unchanged under Talus and under Yade.
+
+Run:      build/bin/talus run cases/yade_examples.py [--quick] [--results DIR] [--only PATTERN]
+Set-up:   the population is every script of these folders of Yade 2023.02a's installed examples
+          (/usr/share/doc/yade/examples): the top-level scripts, simple-scene, clumps,
+          PeriodicBoundaries, triax-tutorial, packs, test, FluidCouplingPFV, FluidCouplingVANS1D,
+          FEMxDEM and openfoam. A script is out of scope only when it needs physics Talus does not
+          have or input from the network; OUT_OF_SCOPE gives the reason for each (the first
+          matching rule), and modules that other scripts import are not scripts.
+          Each in-scope script is copied with its folder into a fresh temporary folder and run
+          there by `talus run SCRIPT` and by `yade -n -x SCRIPT`, with a wall-time limit. Scripts
+          are patched only where they need the GUI or never stop; PATCHES lists every patch and
+          both programs get the same patched file.
+Checked:  yade-examples.completion: the fraction of in-scope scripts that finish under Talus
+          (exit status 0, no traceback) (>= 0.9); its fields list every script with its status
+          under both programs and the first error line, and the out-of-scope scripts with reasons.
+          --quick runs the fixed subset QUICK (a few seconds each) under Talus only.
+Produces: the record, results/yade-examples.json (the per-script table) and
+          yade-examples.png (status by folder).
+"""
+from __future__ import annotations
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import talus
+from talus import results
+
+EXAMPLES = Path("/usr/share/doc/yade/examples")
+FOLDERS = [".", "simple-scene", "clumps", "PeriodicBoundaries", "triax-tutorial", "packs", "test",
+           "FluidCouplingPFV", "FluidCouplingVANS1D", "FEMxDEM", "openfoam"]
+
+# (regular expression searched in the script's text, reason): physics Talus does not have.
+OUT_OF_SCOPE = [
+    (r"\bPolyhedra\b|Ig2_Polyhedra", "polyhedra"),
+    (r"\bLBM|LBMnode", "lattice Boltzmann fluid"),
+    (r"\bSPH\b|SPHEngine", "smoothed-particle hydrodynamics"),
+    (r"LevelSet", "level-set shapes"),
+    (r"Tetra\b|Lin4NodeTetra|TetraVolumetricLaw", "tetrahedra and deformable elements"),
+    (r"ThermalEngine", "thermal coupling (open issue: ThermalEngine)"),
+    (r"TwoPhaseFlowEngine|UnsaturatedEngine", "two-phase pore flow (open issue: TwoPhaseFlowEngine)"),
+    (r"CpmMat|Law2_ScGeom_CpmPhys", "concrete (CPM) model"),
+    (r"WireMat", "wire mesh model"),
+    (r"L6Geom|L3Geom", "local-coordinates contact geometry (L3Geom/L6Geom)"),
+    (r"BubbleMat|BubblePhys", "bubble model"),
+    (r"CapillaryPhys|Law2_ScGeom_CapillaryPhys", "capillary bridges"),
+    (r"GridNode|GridConnection|PFacet", "grid and PFacet elements"),
+    (r"ChainedCylinder|\bCylinder\(|\bcylinder\(", "cylinders"),
+    (r"Tori|Torus", "tori"),
+    (r"JCFpm", "jointed cohesive-frictional model"),
+    (r"LudingMat|LudingPhys", "Luding's model"),
+    (r"MortarMat", "mortar model"),
+    (r"\bmpy\b|SubdomainBalancer|Subdomain", "MPI subdomains (open issue: distributed DEM)"),
+    (r"hdaps", "laptop accelerometer input (/sys/devices/platform/hdaps)"),
+    (r"LubricationPhys|Law2_ScGeom_ImplicitLubricationPhys", "lubrication contact law"),
+    (r"HertzMindlinExtended|Law2_ScGeom_MindlinPhys_HertzWithLinearShear", "extended Hertz-Mindlin laws"),
+    (r"Clump.*[Bb]reak|clumps-breakage", "breakable clumps"),
+    (r"https?://", "input from the network"),
+]
+# Files that are modules or inputs of other scripts, not scripts a user runs (path: why).
+NOT_SCRIPTS = {
+    "FEMxDEM/biaxialSmooth.py": "run-escript driver (runs under run-escript, see the FEM x DEM case)",
+    "FEMxDEM/triaxialRough.py": "run-escript driver",
+    "FEMxDEM/footing.py": "run-escript driver",
+    "FEMxDEM/retainingSmooth.py": "run-escript driver",
+    "FEMxDEM/undrain.py": "run-escript driver",
+    "openfoam/example_icoFoamYade/scriptMPI.py": "run by mpiexec with OpenFOAM (the OpenFOAM case)",
+    "openfoam/example_pimpleFoamYade/scriptMPI.py": "run by mpiexec with OpenFOAM",
+    "openfoam/example_icoFoamYade/scriptYade.py": "run by mpiexec with OpenFOAM",
+    "openfoam/example_pimpleFoamYade/scriptYade.py": "run by mpiexec with OpenFOAM",
+}
+NOT_SCRIPT_NAMES = re.compile(r"(^|/)(params|defaultParams|measures|simulationDefinition|frameworkCreationUtils)\.py$")
+
+# Patches applied identically for both programs: (path, old text, new text, why).
+PATCHES: list[tuple[str, str, str, str]] = []
+
+QUICK = ["billiard.py", "simple-scene/simple-scene.py", "PeriodicBoundaries/periodic-simple.py",
+         "clumps/clump-viscoelastic.py", "test/facet-sphere.py"]
+
+
+def population() -> list[str]:
+    scripts = []
+    for folder in FOLDERS:
+        base = EXAMPLES / folder
+        found = base.glob("*.py") if folder == "." else base.rglob("*.py")
+        scripts += sorted(str(p.relative_to(EXAMPLES)) for p in found)
+    return scripts
+
+
+def scope(script: str) -> str | None:
+    """None when the script is in scope, else the reason it is not."""
+    if script in NOT_SCRIPTS:
+        return NOT_SCRIPTS[script]
+    if NOT_SCRIPT_NAMES.search(script):
+        return "module imported by other scripts"
+    text = (EXAMPLES / script).read_text(errors="replace")
+    for pattern, reason in OUT_OF_SCOPE:
+        if re.search(pattern, text):
+            return reason
+    return None
+
+
+def prepare(script: str, work: Path) -> Path:
+    """A copy of the script's folder in ``work``, with the patches applied; returns the script."""
+    source = (EXAMPLES / script).parent
+    target = work / source.name
+    shutil.copytree(source, target, symlinks=True)
+    path = target / Path(script).name
+    text = path.read_text(errors="replace")
+    for patched, old, new, _why in PATCHES:
+        if patched == script:
+            if old not in text:
+                raise RuntimeError(f"yade_examples: patch for {script} no longer applies: {old!r}")
+            text = text.replace(old, new)
+    path.write_text(text)
+    return path
+
+
+def first_error(output: str) -> str:
+    """The line naming the error: the last line of the last traceback, else the last line."""
+    lines = [line for line in output.strip().splitlines() if line.strip()]
+    if "Traceback" in output:
+        tail = output[output.rindex("Traceback"):].strip().splitlines()
+        for line in reversed(tail):
+            if re.match(r"^[A-Za-z_.]*(Error|Exception|Interrupt|Exit)\b", line):
+                return line.strip()[:300]
+        return tail[-1].strip()[:300]
+    return lines[-1][:300] if lines else ""
+
+
+def run_one(command: list[str], script: Path, timeout: float, env: dict) -> dict:
+    t0 = time.perf_counter()
+    try:
+        p = subprocess.run([*command, script.name], cwd=script.parent, capture_output=True, text=True,
+                           timeout=timeout, env=env, stdin=subprocess.DEVNULL)
+    except subprocess.TimeoutExpired as e:
+        out = (e.stdout or b"").decode(errors="replace") if isinstance(e.stdout, bytes) else (e.stdout or "")
+        return {"status": "timeout", "wall_s": timeout, "error": f"still running after {timeout:g} s",
+                "tail": out[-400:]}
+    output = p.stdout + p.stderr
+    ok = p.returncode == 0 and "Traceback (most recent call last)" not in output
+    return {"status": "ok" if ok else "error", "wall_s": round(time.perf_counter() - t0, 2),
+            "error": "" if ok else first_error(output), "returncode": p.returncode}
+
+
+def main():
+    parser = results.case_arguments(__doc__)
+    parser.add_argument("--only", default=None, help="regular expression: run only matching scripts")
+    parser.add_argument("--timeout", type=float, default=None, help="seconds per script and program")
+    parser.add_argument("--programs", default=None,
+                        help="comma-separated: talus, yade (default: both; talus only with --quick)")
+    args = parser.parse_args()
+    if not EXAMPLES.is_dir():
+        raise SystemExit(f"yade_examples: {EXAMPLES} not found (./setup.sh installs Debian's yade package)")
+    case = results.Case("yade-examples.completion", quick=args.quick, folder=args.results)
+    # This very Talus: its package first on the path of `python -m talus run`.
+    talus_cmd = [sys.executable, "-m", "talus", "run"]
+    env_talus = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(Path(talus.__file__).resolve().parents[1]), os.environ.get("PYTHONPATH", "")]))
+    yade_cmd = ["yade", "-n", "-x"]
+    timeout = args.timeout or (60.0 if args.quick else 120.0)
+    programs = (args.programs or ("talus" if args.quick else "talus,yade")).split(",")
+    if "yade" in programs and not shutil.which("yade"):
+        raise SystemExit("yade_examples: yade is not installed (./setup.sh installs the Debian package)")
+
+    table, out_of_scope = {}, {}
+    scripts = QUICK if args.quick else population()
+    if args.only:
+        scripts = [s for s in scripts if re.search(args.only, s)]
+    env_yade = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    for script in scripts:
+        reason = scope(script)
+        if reason:
+            out_of_scope[script] = reason
+            continue
+        row = {}
+        for name, command, env in [("talus", talus_cmd, env_talus), ("yade", yade_cmd, env_yade)]:
+            if name not in programs:
+                continue
+            with tempfile.TemporaryDirectory(prefix="yade_example_") as work:
+                row[name] = run_one(command, prepare(script, Path(work)), timeout, env)
+        table[script] = row
+        print(f"{script:70s} " + " ".join(f"{name} {r['status']:7s}" for name, r in row.items())
+              + "".join(f"  {name}: {r['error']}" for name, r in row.items() if r["status"] != "ok"), flush=True)
+
+    case.folder.mkdir(parents=True, exist_ok=True)
+    if "talus" not in programs:
+        (case.folder / "yade-examples.yade-only.json").write_text(json.dumps(table, indent=1))
+        return
+    finished = sum(r["talus"]["status"] == "ok" for r in table.values())
+    completion = finished / max(1, len(table))
+    errors: dict[str, int] = {}
+    for r in table.values():
+        if r["talus"]["status"] != "ok":
+            errors[r["talus"]["error"]] = errors.get(r["talus"]["error"], 0) + 1
+    (case.folder / "yade-examples.json").write_text(json.dumps(
+        {"in_scope": table, "out_of_scope": out_of_scope, "patches": PATCHES}, indent=1))
+    case.record("fraction of in-scope scripts that finish under talus run (unchanged but for PATCHES)",
+                completion, "Yade 2023.02a's examples (the same scripts under yade -n -x)", 0.9,
+                comparison=">=", scripts=len(table), finished=finished,
+                yade_finished=sum(r.get("yade", {}).get("status") == "ok" for r in table.values()),
+                out_of_scope=len(out_of_scope),
+                errors=dict(sorted(errors.items(), key=lambda kv: -kv[1])))
+    print(f"yade-examples: {finished} of {len(table)} in-scope scripts finish under Talus "
+          f"({len(out_of_scope)} out of scope)")
+
+
+if __name__ == "__main__":
+    main()

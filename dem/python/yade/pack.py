@@ -1,0 +1,4 @@
+"""``yade.pack``: packings and predicates (talus.dem.pack)."""
+
+from talus.dem.pack import *  # noqa: F401,F403
+from talus.dem.pack import __all__  # noqa: F401
