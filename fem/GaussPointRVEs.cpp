@@ -30,7 +30,18 @@ GaussPointRVEs::GaussPointRVEs(std::vector<std::unique_ptr<RVE>> rves) : rves_(s
 
 void GaussPointRVEs::deform(std::span<const double> grads, int dim, int nSteps)
 {
+  deform(grads, dim, std::span<const int>(&nSteps, 1));
+}
+
+void GaussPointRVEs::deform(std::span<const double> grads, int dim, std::span<const int> nSteps)
+{
   checkDim(dim);
+  if (nSteps.size() != 1 && nSteps.size() != rves_.size())
+    throw std::invalid_argument("got " + std::to_string(nSteps.size()) + " step counts for " + std::to_string(rves_.size())
+                                + " Gauss points (give one, or one per point)");
+  for (std::size_t p = 0; p < nSteps.size(); ++p)
+    if (nSteps[p] < 1)
+      throw std::invalid_argument("Gauss point " + std::to_string(p) + ": nSteps must be >= 1, got " + std::to_string(nSteps[p]));
   const std::size_t per = static_cast<std::size_t>(dim * dim);
   if (grads.size() != rves_.size() * per)
     throw std::invalid_argument("got displacement gradients for " + std::to_string(grads.size() / per)
@@ -51,7 +62,8 @@ void GaussPointRVEs::deform(std::span<const double> grads, int dim, int nSteps)
   {
     try
     {
-      rves_[static_cast<std::size_t>(p)]->deform(g[static_cast<std::size_t>(p)], nSteps);
+      const auto i = static_cast<std::size_t>(p);
+      rves_[i]->deform(g[i], nSteps.size() == 1 ? nSteps[0] : nSteps[i]);
     }
     catch (const std::exception& e)
     {

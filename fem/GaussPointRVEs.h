@@ -32,12 +32,14 @@ public:
   [[nodiscard]] RVE& rve(std::size_t i) { return *rves_.at(i); }
 
   /// Deform every RVE from its committed state by its displacement gradient (`grads`: points x
-  /// dim x dim, row-major) over nSteps DEM steps each.
+  /// dim x dim, row-major) over nSteps DEM steps each (one count for every point, or one per
+  /// point: Yade's FEMxDEM scales the steps of each point with the size of its own increment).
   /// @throws std::invalid_argument on a count mismatch or a non-finite gradient, naming the
   ///         Gauss point, before any RVE moves
   /// @throws std::runtime_error naming the Gauss points whose DEM run failed (those RVEs are
   ///         back at their committed state; the others hold their trial state)
   void deform(std::span<const double> grads, int dim, int nSteps);
+  void deform(std::span<const double> grads, int dim, std::span<const int> nSteps);
   /// Stress (points x dim x dim) and tangent (points x v x v, v = 6 or 3) of every RVE.
   void getStressAndTangent(std::span<double> stress, std::span<double> tangent, int dim,
                            dem::TangentForm form = dem::TangentForm::Full) const;

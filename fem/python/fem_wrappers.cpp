@@ -1,5 +1,6 @@
 // Python bindings of fem/ (talus._fem): mapping only. The Python-side API is talus.fem.
 #include "fem/GaussPointRVEs.h"
+#include "dem/Checkpoint.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -7,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <memory>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
@@ -71,10 +73,11 @@ PYBIND11_MODULE(_fem, m)
       .def("__len__", &GaussPointRVEs::size)
       .def(
           "deform",
-          [](GaussPointRVEs& self, const Array& grads, int nSteps) {
+          [](GaussPointRVEs& self, const Array& grads, const py::array_t<int, py::array::c_style | py::array::forcecast>& nSteps) {
             const int dim = dimensionOf(grads, self.size());
             py::gil_scoped_release release;
-            self.deform({grads.data(), static_cast<std::size_t>(grads.size())}, dim, nSteps);
+            self.deform({grads.data(), static_cast<std::size_t>(grads.size())}, dim,
+                        std::span<const int>(nSteps.data(), static_cast<std::size_t>(nSteps.size())));
           },
           py::arg("grads"), py::arg("nSteps"))
       .def(
@@ -124,5 +127,11 @@ PYBIND11_MODULE(_fem, m)
       .def("hasTrial", [](GaussPointRVEs& self, std::size_t p) { return self.rve(p).hasTrial(); })
       .def("iter", [](GaussPointRVEs& self, std::size_t p) { return self.rve(p).scene().iter; })
       .def("cellSize", [](GaussPointRVEs& self, std::size_t p) { return talus::dem::Mat3(self.rve(p).scene().cell.hSize); })
-      .def("dt", [](GaussPointRVEs& self, std::size_t p) { return self.rve(p).scene().dt; });
+      .def("dt", [](GaussPointRVEs& self, std::size_t p) { return self.rve(p).scene().dt; })
+      .def(
+          "save",
+          [](GaussPointRVEs& self, std::size_t p, const std::string& path) {
+            talus::dem::saveCheckpoint(self.rve(p).scene(), path);
+          },
+          py::arg("point"), py::arg("path"));
 }

@@ -12,10 +12,11 @@ C++ call over all points (OpenMP), optionally spread over MPI ranks::
     stress, tangent = rves.getStressAndTangent()
     rves.commit()                                   # or rves.rollback()
 
-The FEniCSx driver is :mod:`talus.fem.fenicsx`.
+The FEniCSx driver is :mod:`talus.fem.fenicsx`, the escript client :mod:`talus.fem.escript`, Yade's
+FEMxDEM ``MultiScale`` :mod:`talus.fem.msfem` (drop-in modules: ``yade_femxdem/``).
 """
 
-from talus.fem.prepare import exportRVE, prepareRVE
-from talus.fem.rves import MultiscaleRVEs, tangentToTensor
+from talus.fem.prepare import exportRVE, prepareRVE, rveFromJSON
+from talus.fem.rves import MultiscaleRVEs, isPlanarRVE, tangentToTensor
 
-__all__ = ["MultiscaleRVEs", "exportRVE", "prepareRVE", "tangentToTensor"]
+__all__ = ["MultiscaleRVEs", "exportRVE", "isPlanarRVE", "prepareRVE", "rveFromJSON", "tangentToTensor"]

@@ -19,7 +19,42 @@ import numpy as np
 from talus.fem.newton import NewtonDivergence, NewtonLoadStepping, StepReport
 from talus.fem.rves import tangentToTensor
 
-__all__ = ["MultiscaleEscript2D", "NewtonDivergence", "StepReport"]
+__all__ = ["MultiscaleEscript2D", "NewtonDivergence", "StepReport", "fromData", "gaussPointCoordinates", "toData"]
+
+
+def toData(values, where, shape=None):
+    """numpy -> escript: ``values`` (numPoints, *shape), one value per data point, as expanded
+    escript Data on ``where`` (a function space, or a domain: then ``Function(domain)``, the
+    Gauss points). Point p is escript's data point p of that space: sample (element) by sample
+    in escript's sample order, and within a sample quadrature point by quadrature point, i.e.
+    p = e * nq + q, the order of ``toListOfTuples()``, of ``fromData`` and of
+    :func:`gaussPointCoordinates` (the positions of the points). ``shape`` defaults to
+    ``values.shape[1:]``."""
+    from esys.escript import Data, Function
+    fs = where if hasattr(where, "getDomain") else Function(where)
+    values = np.asarray(values, dtype=float)
+    n = fs.getX().getNumberOfDataPoints()
+    if len(values) != n:
+        raise ValueError(f"toData: {len(values)} values for {n} data points")
+    shape = tuple(values.shape[1:]) if shape is None else tuple(shape)
+    d = Data(0, shape, fs, True)        # expanded: one value per data point
+    for p in range(n):
+        d.setValueOfDataPoint(p, values[p] if shape else float(values[p]))
+    return d
+
+
+def fromData(data) -> np.ndarray:
+    """escript -> numpy: the values of ``data`` per data point, shape (numPoints, *data.getShape()),
+    in the order of :func:`toData` (p = e * nq + q)."""
+    n = data.getNumberOfDataPoints()
+    return np.array(data.toListOfTuples(), dtype=float).reshape((n,) + tuple(data.getShape()))
+
+
+def gaussPointCoordinates(domain) -> np.ndarray:
+    """The positions (numPoints, d) of the Gauss points of ``Function(domain)`` in the order of
+    :func:`toData` (e.g. to give each Gauss point its RVE by position)."""
+    from esys.escript import Function
+    return fromData(Function(domain).getX())
 
 
 class MultiscaleEscript2D(NewtonLoadStepping):
@@ -45,11 +80,7 @@ class MultiscaleEscript2D(NewtonLoadStepping):
         self.internal = LinearPDE(domain, numEquations=2, numSolutions=2)   # its right-hand side: int sigma : grad v
 
     def _tensor(self, values, shape):
-        from esys.escript import Data, Function
-        d = Data(0, shape, Function(self.domain), True)   # expanded: one value per point
-        for p in range(self.n):
-            d.setValueOfDataPoint(p, values[p])
-        return d
+        return toData(values, self.domain, shape)
 
     # -- the hooks of NewtonLoadStepping ------------------------------------------------------
     def _start(self, t0: float, t1: float):

@@ -51,7 +51,7 @@ class MultiscaleRVEs:
 
     def __init__(self, rves, numPoints: int | None = None, nSteps: int = 100,
                  law: str = "Law2_ScGeom_FrictPhys_CundallStrack", damping: float = 0.2, form: str = "full",
-                 comm=None, fdStep: float = 1e-5):
+                 comm=None, fdStep: float = 1e-5, dim: int | None = None):
         single = isinstance(rves, (str, os.PathLike)) or hasattr(rves, "_cpp")
         if single:
             if numPoints is None or numPoints < 1:
@@ -75,16 +75,23 @@ class MultiscaleRVEs:
             self._cpp = _fem.GaussPointRVEs(mine, law, float(damping))
         except ValueError as e:     # the C++ side numbers this rank's points from 0
             raise ValueError(self._renumber(str(e))) from None
-        self.dim = None
+        if dim not in (None, 2, 3):
+            raise ValueError(f"MultiscaleRVEs: dim must be 2 (plane strain), 3 or None, got {dim!r}")
+        # The dimension of the answers before the first run (afterwards that of the gradients):
+        # given, or 2 when every RVE is planar (all its spheres blocked in z: prepareRVE(planar=True),
+        # Yade's FEMxDEM prepareRVE.py), else 3.
+        self.dim = dim if dim is not None else (2 if all(isPlanarRVE(r) for r in _distinct(rves)) else 3)
 
     @property
     def localPoints(self) -> range:
         """The Gauss points whose RVEs live on this rank."""
         return range(self._start, self._stop)
 
-    def run(self, dispGrads) -> None:
+    def run(self, dispGrads, nSteps=None) -> None:
         """Deform every RVE from its committed state by its displacement gradient (shape
-        (numPoints, d, d), d = 2 for plane strain or 3); the result is the trial state."""
+        (numPoints, d, d), d = 2 for plane strain or 3); the result is the trial state.
+        ``nSteps``: the DEM steps of this call, one count or one per Gauss point (default: the
+        constructor's; Yade's FEMxDEM takes max(1e5 max|G|, 2) per point)."""
         g = np.ascontiguousarray(dispGrads, dtype=float)
         if g.ndim != 3 or g.shape[0] != self.numPoints:
             raise ValueError(f"MultiscaleRVEs.run: expected displacement gradients of shape ({self.numPoints}, d, d), "
@@ -97,7 +104,7 @@ class MultiscaleRVEs:
         self._grads = g
         error = None
         try:
-            self._cpp.deform(g[self._start:self._stop], self.nSteps)
+            self._cpp.deform(g[self._start:self._stop], self._steps(nSteps))
         except (RuntimeError, ValueError) as e:   # DEM failure or bad gradient: renumber the local points
             error = (type(e), self._renumber(str(e)))
         if self.comm is not None:     # every rank raises, so none is left waiting in a collective call
@@ -106,14 +113,33 @@ class MultiscaleRVEs:
         if error:
             raise error[0](error[1])
 
+    def _steps(self, nSteps):
+        if nSteps is None:
+            return self.nSteps
+        n = np.atleast_1d(np.asarray(nSteps, dtype=np.int64))
+        if n.size == 1:
+            return int(n[0])
+        if n.size != self.numPoints:
+            raise ValueError(f"MultiscaleRVEs.run: {n.size} step counts for {self.numPoints} Gauss points")
+        return np.ascontiguousarray(n[self._start:self._stop], dtype=np.intc)
+
+    def save(self, point: int, path) -> None:
+        """Write the current state of the RVE of Gauss point ``point`` (one of this rank's
+        :attr:`localPoints`) to a checkpoint (state only; its engines are those of this object)."""
+        if point not in self.localPoints:
+            raise ValueError(f"MultiscaleRVEs.save: Gauss point {point} does not live on this rank")
+        self._cpp.save(point - self._start, os.fspath(path))
+
     def _renumber(self, message: str) -> str:
         import re
         return re.sub(r"Gauss point (\d+)", lambda m: f"Gauss point {int(m.group(1)) + self._start}", message)
 
     def getStressAndTangent(self):
         """Cauchy stress (numPoints, d, d; compression negative) and tangent (numPoints, v, v) in
-        Voigt order (3D: xx, yy, zz, yz, xz, xy; 2D: xx, yy, xy) with engineering shear strains."""
-        dim = self.dim or 3
+        Voigt order (3D: xx, yy, zz, yz, xz, xy; 2D: xx, yy, xy) with engineering shear strains.
+        d is that of the last run's gradients; before the first run, the constructor's ``dim``,
+        or 2 if every RVE is planar (:func:`isPlanarRVE`), else 3."""
+        dim = self.dim
         stress, tangent = self._cpp.getStressAndTangent(dim, self.form == "yade")
         stress, tangent = self._gather(stress), self._gather(tangent)
         if self.form == "fd" and self._grads is not None:
@@ -181,6 +207,33 @@ class MultiscaleRVEs:
         """Every RVE returns to its last committed state."""
         self._cpp.rollback()
         self._grads = None
+
+
+def _distinct(rves):
+    seen, out = set(), []
+    for r in rves:
+        key = os.fspath(r) if isinstance(r, (str, os.PathLike)) else id(r)
+        if key not in seen:
+            seen.add(key)
+            out.append(r)
+    return out
+
+
+def isPlanarRVE(rve) -> bool:
+    """True if every sphere of the RVE (a checkpoint file or a talus.dem Scene) is blocked in z:
+    a one-layer packing for plane-strain Gauss points (prepareRVE(planar=True), Yade's
+    FEMxDEM prepareRVE.py with blockedDOFs 'zXY')."""
+    from talus.dem import Scene
+    if isinstance(rve, (str, os.PathLike)):
+        scene = Scene()
+        try:
+            scene.load(os.fspath(rve), engines="current")
+        except Exception:   # not loadable here: the C++ side names the file and the point
+            return False
+    else:
+        scene = rve
+    ids = scene.sphere_ids()
+    return len(ids) > 0 and all("z" in scene.bodies[int(i)].state.blockedDOFs for i in ids)
 
 
 def _mpi_double():

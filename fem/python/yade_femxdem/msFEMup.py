@@ -1,0 +1,7 @@
+"""Drop-in for Yade's FEMxDEM msFEMup (u-p hydromechanical coupling, fixed-stress split), on
+Talus's Gauss-point RVEs (see msFEM2D.py)."""
+import _compat  # noqa: F401
+from talus.fem.msfem import MultiScaleUP as MultiScale  # noqa: F401
+from simDEM import *  # noqa: F401,F403
+
+__all__ = ["MultiScale"]
