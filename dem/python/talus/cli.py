@@ -4,6 +4,7 @@
     talus info                    version, components and features of this build
     talus report                  write docs/validation.md from a results folder
     talus bench                   time a command of ours against a peer's, side by side
+    talus batch TABLE SCRIPT      run a script once per line of a parameter table (as ``yade-batch``)
 """
 
 from __future__ import annotations
@@ -104,6 +105,11 @@ def _bench(args: argparse.Namespace) -> int:
     return 0
 
 
+def _batch(args: argparse.Namespace) -> int:
+    from talus import batch
+    return batch.main(args)
+
+
 def parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="talus", description=__doc__,
                                 formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -139,6 +145,12 @@ def parser() -> argparse.ArgumentParser:
     b.add_argument("--quick", action="store_true")
     b.add_argument("--results", type=Path, default=None)
     b.set_defaults(func=_bench)
+
+    from talus import batch
+    bt = sub.add_parser("batch", help="run a script once per line of a parameter table (yade-batch)",
+                        description=batch.__doc__.split("\n\n")[0] + " See docs/dem.md, 'Parameter studies'.")
+    batch.add_arguments(bt)
+    bt.set_defaults(func=_batch)
     return p
 
 
