@@ -25,6 +25,7 @@
 #include "argList.H"
 #include "Time.H"
 #include "polyMesh.H"
+#include "SubField.H"
 #include "globalMeshData.H"
 #include "globalIndex.H"
 #include "foamVersion.H"
@@ -82,10 +83,16 @@ int main(int argc, char *argv[])
     {
         const polyPatch& pp = patches[patchi];
         const label nFaces = returnReduce(pp.size(), sumOp<label>());
+        // The patch's mean unit normal (area-weighted; its length is below 1 on a curved patch).
+        const vectorField areas(pp.faceAreas());
+        const vector area = returnReduce(Foam::sum(areas), sumOp<vector>());
+        const scalar magArea = returnReduce(Foam::sum(Foam::mag(areas)), sumOp<scalar>());
+        const vector normal = magArea > 0 ? area/magArea : vector::zero;
         // Patch names and types are OpenFOAM words: no quotes or backslashes to escape.
         patchJson += std::string(patchi ? ", " : "")
             + "{\"name\": \"" + pp.name() + "\", \"type\": \"" + pp.type()
-            + "\", \"nFaces\": " + std::to_string(nFaces) + "}";
+            + "\", \"nFaces\": " + std::to_string(nFaces)
+            + ", \"normal\": " + vectorJson(normal) + "}";
     }
 
     if (Pstream::master())

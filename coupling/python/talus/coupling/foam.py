@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 
-__all__ = ["CouplingTimes", "FoamCoupling", "find_solver"]
+__all__ = ["CouplingTimes", "FoamCoupling", "find_solver", "initMPI"]
 
 _links = []  # every started link, stopped at interpreter exit so no fluid rank is orphaned
 
@@ -55,6 +55,13 @@ def _shutdown():
             link.stop()
     if _links:
         _module().finalize_mpi()
+
+
+def initMPI():
+    """Yade's ``initMPI()`` (yade.utils), which its OpenFOAM examples call before creating the
+    engine. Talus starts MPI when the fluid ranks are started (the engine's first step), so
+    there is nothing left to do here; kept so that those scripts run unchanged."""
+    return None
 
 
 def find_solver(name: str) -> str:
@@ -114,8 +121,17 @@ class CouplingTimes:
 _REYNOLDS_LIMITS = {"talusPointForceFoam": 0.5, "talusVolumeAveragedFoam": 1000.0}
 
 
-class FoamCoupling:
+from talus.dem.engines import Engine as _Engine  # noqa: E402
+
+
+class FoamCoupling(_Engine):
     """DEM side of the CFD-DEM coupling (point-force or volume-averaged solver).
+
+    Two interfaces. Talus's: ``FoamCoupling(O, case, rhoFluid=..., nu=...)`` then ``start()``
+    (below). Yade's (its examples/openfoam scripts run unchanged): ``FoamCoupling()`` without
+    arguments, ``setNumParticles``, ``setIdList``, ``isGaussianInterp``, ``getRank()``, the
+    engine put in ``O.engines`` after the time stepper, ``killMPI()`` at the end; see
+    :meth:`setIdList` and the section "Running Yade's OpenFOAM examples" of docs/coupling.md.
 
     A periodic scene (``O.periodic``) is coupled with a mesh whose cyclic patches span the cell:
     the particles' positions are sent wrapped into the cell (origin 0).
@@ -144,13 +160,34 @@ class FoamCoupling:
             (a particle leaves the mesh, a fluid rank dies) the last one written is intact.
     """
 
-    def __init__(self, scene, case, *, rhoFluid: float, nu: float, gravity=(0.0, 0.0, -9.81), ids=None,
+    def __init__(self, scene=None, case=None, *, rhoFluid: float | None = None, nu: float | None = None,
+                 gravity=(0.0, 0.0, -9.81), ids=None,
                  solver: str = "talusPointForceFoam", nProcs: int = 1, couplingInterval: float | None = None,
                  timeout: float = 60.0, reynoldsLimit: float | None = None, checkpoint=None,
-                 checkpointInterval: int = 100, implicitDrag: bool = False):
+                 checkpointInterval: int = 100, implicitDrag: bool = False, label: str = ""):
+        # The engine Yade's scripts put in O.engines (a callback every step, see _engine_step).
+        from talus.dem.engines import PyRunner
+        import weakref
+        me = weakref.ref(self)  # no cycle through the C++ engine's callback
+
+        def step():
+            coupling = me()
+            if coupling is not None:
+                coupling._engine_step()
+        self._runner = PyRunner(step, iterPeriod=1)
+        self._cpp = self._runner._cpp
+        self.label = label
+        self._yade = scene is None and case is None  # Yade's interface: FoamCoupling()
+        if scene is None:
+            from talus.dem import O as scene
+        if not self._yade and (case is None or rhoFluid is None or nu is None):
+            raise TypeError("FoamCoupling(scene, case, rhoFluid=..., nu=...): give the case and the fluid's "
+                            "properties, or no argument at all (Yade's interface: the case is the working "
+                            "directory, see docs/coupling.md)")
         self.scene = scene
-        self.case = str(Path(case).resolve())
-        self.rhoFluid, self.nu = float(rhoFluid), float(nu)
+        self.case = str(Path(case if case is not None else os.getcwd()).resolve())
+        self.rhoFluid = None if rhoFluid is None else float(rhoFluid)
+        self.nu = None if nu is None else float(nu)
         self.gravity = tuple(float(g) for g in gravity)
         self.ids = None if ids is None else np.asarray(ids, dtype=np.int64)
         self.solver, self.nProcs = solver, int(nProcs)
@@ -172,6 +209,205 @@ class FoamCoupling:
         self.exchanges = 0
         self.times = CouplingTimes()
         self._applied = None
+        # Yade's interface (FoamCoupling()): see _engine_step.
+        self.isGaussianInterp = False
+        self.couplingModeParallel = False
+        self.numParticles = 1            # Yade's default
+        self.fluidDensity = 1.0          # Yade's attributes; the case's values are used
+        self.particleDensity = 1.0
+        self.dataExchangeInterval = 0
+        self.foamDeltaT = 0.0
+        self.fluidSteps = None           # fluid steps before the case's endTime (Yade's solver stops there)
+        self._id_list = None
+        self._since_exchange = 0
+        self._force = None
+        self._finished = False
+
+    # -- Yade's interface ----------------------------------------------------------------------
+    def getRank(self):
+        """Yade: initialises the coupling's MPI communicator. Talus starts MPI with the fluid
+        ranks at the engine's first step; returns None as Yade's."""
+        return None
+
+    def setNumParticles(self, numparticles: int):
+        """Yade: the number of coupled particles (must equal the length of :meth:`setIdList`'s)."""
+        self.numParticles = int(numparticles)
+
+    def setIdList(self, bodyIdList):
+        """Yade: the bodies (spheres) coupled with the fluid."""
+        self._id_list = [int(i) for i in bodyIdList]
+
+    def getIdList(self) -> list[int]:
+        """Yade: the ids of the coupled bodies."""
+        if self._id_list is None:
+            return [int(i) for i in (self.ids if self.ids is not None else self.scene.sphere_ids())]
+        return list(self._id_list)
+
+    def getNumBodies(self) -> int:
+        """Yade: the number of coupled bodies."""
+        return len(self.getIdList())
+
+    def insertBodyId(self, newId: int):
+        """Yade: couple one more body (before the first step: the fluid ranks are told the
+        particle count at the handshake)."""
+        self._before_start("insertBodyId")
+        self._id_list = self.getIdList() + [int(newId)]
+        self.numParticles = len(self._id_list)
+
+    def eraseId(self, idToErase: int):
+        """Yade: stop coupling a body (before the first step, as insertBodyId)."""
+        self._before_start("eraseId")
+        ids = self.getIdList()
+        if int(idToErase) not in ids:
+            raise ValueError(f"FoamCoupling.eraseId: body {idToErase} is not coupled")
+        ids.remove(int(idToErase))
+        self._id_list = ids
+        self.numParticles = len(ids)
+
+    def getFluidDomainBbox(self):
+        """Yade: the fluid ranks' sub-mesh boxes (known after the handshake): one
+        ((xmin, ymin, zmin), (xmax, ymax, zmax)) per fluid rank."""
+        if self.link is None:
+            return []
+        boxes = np.array(self.link.boxes).reshape(-1, 7)
+        return [(tuple(b[:3]), tuple(b[3:6])) for b in boxes]
+
+    def killMPI(self):
+        """Yade: end of the coupled run: the fluid ranks write their fields and exit."""
+        self.stop()
+
+    @property
+    def fluidDomains(self):
+        return []
+
+    def _before_start(self, what: str):
+        if self.link is not None:
+            raise RuntimeError(f"FoamCoupling.{what}: the coupling has started (the fluid ranks were told "
+                               f"{self.link.nParticles} particles); change the coupled bodies before O.run")
+
+    def _engine_step(self):
+        """The engine's work each DEM step (Yade's interface: the engine in O.engines, after the
+        time stepper, before the NewtonIntegrator). First step: start the fluid ranks in the
+        working directory (solver from controlDict's application: icoFoamYade = point force,
+        pimpleFoamYade = volume averaged; ranks from the decomposition), as Yade's run.sh does
+        with mpiexec. Then, as Yade: an exchange every dataExchangeInterval = foamDeltaT / O.dt
+        steps (recomputed at each exchange with the current O.dt, which a time stepper changes),
+        the last exchange's hydrodynamic forces added to the coupled bodies at every step. When
+        the fluid reaches the case's endTime (where Yade's solvers leave their time loop) the
+        fluid ranks stop and the DEM run is paused."""
+        if not self._yade or self._finished:
+            return
+        if self.link is None:
+            self._yade_start()
+            self._since_exchange = self.dataExchangeInterval  # exchange at once
+        if self._since_exchange >= self.dataExchangeInterval:
+            if self.fluidSteps is not None and self.exchanges >= self.fluidSteps:
+                self._finish()
+                return
+            self.exchange_yade()
+            self.dataExchangeInterval = max(1, int(self.foamDeltaT / self.scene.dt * (1 + 1e-9)))
+            self._since_exchange = 0
+        self.scene.forces()[self._rows] += self._force
+        self._since_exchange += 1
+
+    def _yade_start(self):
+        from talus.coupling.foam_case import YADE_SOLVERS, case_settings
+        if self.couplingModeParallel:
+            raise NotImplementedError("FoamCoupling.couplingModeParallel (Yade-MPI's parallel DEM) is not "
+                                      "supported: Talus's DEM is one process")
+        case = case_settings(self.case)
+        application = case["application"]
+        if application in YADE_SOLVERS or application in YADE_SOLVERS.values():
+            self.solver = application
+        else:
+            self.solver = "pimpleFoamYade" if self.isGaussianInterp else "icoFoamYade"
+        talus_solver = YADE_SOLVERS.get(self.solver, self.solver)
+        if self.isGaussianInterp != (talus_solver == "talusVolumeAveragedFoam"):
+            warnings.warn(f"FoamCoupling: isGaussianInterp={self.isGaussianInterp} but the case's solver is "
+                          f"{self.solver}: the solver decides (Gaussian envelope with pimpleFoamYade only)",
+                          RuntimeWarning, stacklevel=3)
+        self.reynoldsLimit = _REYNOLDS_LIMITS[talus_solver]
+        self.rhoFluid, self.nu, self.nProcs = case["rhoFluid"], case["nu"], case["nProcs"]
+        self.gravity = tuple(case["gravity"])
+        from talus.dem.engines import NewtonIntegrator
+        for e in self.scene.engines:
+            if isinstance(e, NewtonIntegrator) and not np.allclose(e.gravity, self.gravity, rtol=1e-12, atol=0):
+                warnings.warn(f"FoamCoupling: the NewtonIntegrator's gravity {tuple(e.gravity)} differs from the "
+                              f"case's constant/g {self.gravity} (the fluid's buoyancy uses constant/g)",
+                              RuntimeWarning, stacklevel=3)
+        if self._id_list is not None:
+            if self.numParticles != len(self._id_list):
+                raise ValueError(f"FoamCoupling: setNumParticles({self.numParticles}) but setIdList got "
+                                 f"{len(self._id_list)} ids")
+            self.ids = np.asarray(self._id_list, dtype=np.int64)
+        ids = self._coupled_ids()
+        if len(ids) == 0:
+            raise ValueError("FoamCoupling: no sphere to couple")
+        self.ids = np.ascontiguousarray(ids, dtype=np.int64)
+        contiguous = np.array_equal(ids, np.arange(ids[0], ids[0] + len(ids)))
+        self._rows = slice(int(ids[0]), int(ids[0]) + len(ids)) if contiguous else self.ids
+        self._start_link(self.ids)
+        self.foamDeltaT = self.link.fluidDt
+        if case["endTime"] is not None and self.foamDeltaT > 0:
+            self.fluidSteps = max(0, int(round((case["endTime"] - case["startTime"]) / self.foamDeltaT)))
+        if not self.scene.dt > 0:
+            raise ValueError("FoamCoupling: O.dt must be positive at the first step")
+        self.dataExchangeInterval = max(1, int(self.foamDeltaT / self.scene.dt * (1 + 1e-9)))
+        self.substeps = self.dataExchangeInterval
+        self._warn_relaxation(self.foamDeltaT, self.ids)
+        self._force = np.zeros((len(self.ids), 3))
+        print(f"FoamCoupling: {self.link.fluidProcs} rank(s) of {Path(find_solver(self.solver)).name} "
+              f"({talus_solver}) on {self.case}, {len(self.ids)} particles, fluid deltaT {self.foamDeltaT:g} s, "
+              f"exchange every {self.dataExchangeInterval} DEM steps"
+              + (f", {self.fluidSteps} fluid steps to endTime" if self.fluidSteps is not None else ""), flush=True)
+
+    def exchange_yade(self):
+        """One fluid step with Yade's interface: the forces are kept and added every step."""
+        start, start_cpu = time.perf_counter(), time.thread_time()
+        rows = self._rows
+        forces, re, self._beta, self._fluid_velocity = self.link.exchange(
+            self._positions(rows), self.scene.velocities()[rows], self.scene.radii()[rows])
+        if not np.all(np.isfinite(forces)):
+            raise FloatingPointError("FoamCoupling: the fluid returned non-finite forces")
+        self._force = forces
+        self.lastForces = forces
+        self.exchanges += 1
+        if re > self.reynoldsLimit and self.maxReynolds <= self.reynoldsLimit:
+            warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
+                          f"the drag law of {self.solver} is no longer accurate", RuntimeWarning, stacklevel=2)
+        self.maxReynolds = max(self.maxReynolds, re)
+        self._count_times(time.perf_counter() - start, time.thread_time() - start_cpu)
+
+    def _write_summary(self, path):
+        """A JSON summary of the coupled run (Yade's interface; written at stop() when
+        TALUS_FOAM_SUMMARY names a file): what cases/cfd_yade_openfoam_examples.py checks."""
+        import json
+        rows = self._rows
+        r = np.array(self.scene.radii()[rows])
+        beta = np.zeros(len(r)) if self._beta is None else np.asarray(self._beta)
+        stokes = 3 * math.pi * self.rhoFluid * self.nu * 2 * r
+        forces = np.asarray(self._force if self._force is not None else np.zeros((len(r), 3)))
+        summary = dict(solver=self.solver, fluidProcs=self.link.fluidProcs, nCells=self.link.nCells,
+                       particles=len(r), exchanges=self.exchanges, fluidSteps=self.fluidSteps,
+                       foamDeltaT=self.foamDeltaT, dataExchangeInterval=self.dataExchangeInterval,
+                       iter=self.scene.iter, time=self.scene.time, maxReynolds=self.maxReynolds,
+                       rhoFluid=self.rhoFluid, nu=self.nu,
+                       beta_over_stokes=(beta / stokes).tolist(),
+                       finite=bool(np.all(np.isfinite(forces)) and np.all(np.isfinite(self.scene.velocities()[rows]))),
+                       positions=self._positions(rows).tolist(),
+                       velocities=np.asarray(self.scene.velocities()[rows]).tolist(),
+                       forces=forces.tolist(),
+                       fluid_velocities=np.asarray(self._fluid_velocity if self._fluid_velocity is not None
+                                                   else np.zeros((len(r), 3))).tolist())
+        Path(path).write_text(json.dumps(summary))
+
+    def _finish(self):
+        """The fluid reached the case's endTime: stop it and pause the DEM run."""
+        self._finished = True
+        print(f"FoamCoupling: the fluid reached endTime after {self.exchanges} fluid steps; "
+              f"fluid stopped, DEM run paused at iteration {self.scene.iter}", flush=True)
+        self.stop()
+        self.scene.pause()
 
     # -- start ---------------------------------------------------------------------------------
     def _coupled_ids(self) -> np.ndarray:
@@ -209,6 +445,9 @@ class FoamCoupling:
 
     def start(self):
         """Spawn the solver, check the case and the time steps, set O.dt and add the hook."""
+        if self._yade:
+            raise RuntimeError("FoamCoupling.start: with Yade's interface (FoamCoupling() without arguments) "
+                               "the engine starts the fluid at its first step in O.engines")
         if self.link is not None:
             raise RuntimeError("FoamCoupling.start: already started")
         self._check_gravity()
@@ -222,18 +461,8 @@ class FoamCoupling:
         # work per exchange with index arrays).
         contiguous = np.array_equal(ids, np.arange(ids[0], ids[0] + len(ids)))
         self._rows = slice(int(ids[0]), int(ids[0]) + len(ids)) if contiguous else ids
-        os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # OpenFOAM's etc/ files
-        # The DEM process plus the fluid ranks usually outnumber the cores; Open MPI refuses to
-        # spawn more processes than slots unless told (read when MPI starts, below).
-        os.environ.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        self._start_link(ids)
         m = _module()
-        s = m.FoamSettings()
-        s.solver, s.caseDir, s.nProcs = find_solver(self.solver), self.case, self.nProcs
-        s.rhoFluid, s.nu, s.gravity = self.rhoFluid, self.nu, self.gravity
-        s.couplingInterval, s.timeout = float(self.couplingInterval or 0.0), self.timeout
-        self.link = m.FoamLink(s, len(ids))
-        _links.append(self.link)
-        self._check_inside_mesh(ids)
         dt_fluid = self.link.fluidDt
         if not self.scene.dt > 0:
             raise ValueError("FoamCoupling: set O.dt (the DEM time step) before start()")
@@ -250,6 +479,21 @@ class FoamCoupling:
             self._checkpoint_hook = self.scene.add_hook("after_step", self.save_checkpoint,
                                                         self.substeps * self.checkpointInterval)
         return self
+
+    def _start_link(self, ids):
+        """Start the fluid ranks (handshake), refuse particles outside the mesh."""
+        os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # OpenFOAM's etc/ files
+        # The DEM process plus the fluid ranks usually outnumber the cores; Open MPI refuses to
+        # spawn more processes than slots unless told (read when MPI starts, below).
+        os.environ.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        m = _module()
+        s = m.FoamSettings()
+        s.solver, s.caseDir, s.nProcs = find_solver(self.solver), self.case, self.nProcs
+        s.rhoFluid, s.nu, s.gravity = self.rhoFluid, self.nu, self.gravity
+        s.couplingInterval, s.timeout = float(self.couplingInterval or 0.0), self.timeout
+        self.link = m.FoamLink(s, len(ids))
+        _links.append(self.link)
+        self._check_inside_mesh(ids)
 
     def _check_inside_mesh(self, ids):
         """Refuse (before the first step) a particle outside the bounding box of the fluid mesh,
@@ -364,6 +608,10 @@ class FoamCoupling:
 
     def stop(self):
         """Let the fluid write its last fields and exit; remove the hooks."""
+        if self._yade and self.link is not None:
+            self._finished = True  # the engine does nothing more (Yade's killMPI)
+            if os.environ.get("TALUS_FOAM_SUMMARY") and self.link.running:
+                self._write_summary(os.environ["TALUS_FOAM_SUMMARY"])
         for hook in (self.hook, self._checkpoint_hook, self._drag_hook):
             if hook is not None:
                 hook.dead = True
