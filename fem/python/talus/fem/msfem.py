@@ -22,7 +22,7 @@ import numpy as np
 from talus.fem.escript import fromData, toData
 from talus.fem.rves import MultiscaleRVEs, isPlanarRVE, tangentToTensor
 
-__all__ = ["MultiScale", "MultiScaleUP", "rveSettings", "yadeSteps"]
+__all__ = ["MultiScale", "rveSettings", "yadeSteps"]
 
 
 def yadeSteps(grads, perStrain: float = 1e5, minimum: int = 2) -> np.ndarray:
@@ -52,11 +52,16 @@ def _checkRVEFile(path: str, point: int) -> None:
 def rveSettings(path) -> dict:
     """What a Talus RVE checkpoint says about how to step it: the Law2 of its InteractionLoop
     and its NewtonIntegrator's damping (from the engine list ``O.save`` stored), and whether it
-    is planar. Defaults when the file has no engine list: CundallStrack, damping 0.2."""
+    is planar. When the file has no engine list (or one that cannot be rebuilt): CundallStrack
+    and damping None (MultiScale then takes 0.2 and warns)."""
+    import warnings
+
     from talus.dem import Scene
     S = Scene()
-    S.load(os.fspath(path))
-    law, damping = "Law2_ScGeom_FrictPhys_CundallStrack", 0.2
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        S.load(os.fspath(path))
+    law, damping = "Law2_ScGeom_FrictPhys_CundallStrack", None
     for e in S.engines:
         name = type(e).__name__
         if name == "NewtonIntegrator":
@@ -70,6 +75,27 @@ def rveSettings(path) -> dict:
             if laws:
                 law = type(laws[0]).__name__
     return {"law": law, "damping": damping, "planar": isPlanarRVE(S)}
+
+
+ENVIRONMENT = "TALUS_MSFEM"
+_KEYWORDS = ("dim", "rve", "form", "stepsPerStrain", "minSteps", "damping", "law")
+
+
+def _environmentOptions() -> dict:
+    """Talus-only keywords for scripts run unchanged: a JSON object in $TALUS_MSFEM, e.g.
+    TALUS_MSFEM='{"damping": 0.1, "form": "fd"}' (they override the script's)."""
+    import json
+    text = os.environ.get(ENVIRONMENT, "").strip()
+    if not text:
+        return {}
+    try:
+        options = json.loads(text)
+    except ValueError as e:
+        raise ValueError(f"${ENVIRONMENT} is not a JSON object: {e}") from None
+    bad = set(options) - set(_KEYWORDS) if isinstance(options, dict) else {"(not an object)"}
+    if bad:
+        raise ValueError(f"${ENVIRONMENT}: unknown keys {sorted(bad)}; known: {list(_KEYWORDS)}")
+    return options
 
 
 class MultiScale:
@@ -87,7 +113,8 @@ class MultiScale:
     step |pert|), ``stepsPerStrain`` and ``minSteps`` (Yade's 1e5 and 2), ``damping`` and
     ``law`` (default from the file). ``np`` is accepted and ignored: the RVE calls run on the
     OpenMP threads (OMP_NUM_THREADS); ``useMPI=True`` spreads the RVEs over the ranks of
-    mpi4py's COMM_WORLD when there are several (every rank runs the script).
+    mpi4py's COMM_WORLD when there are several (every rank runs the script). For scripts run
+    unchanged, the Talus-only keywords can be given in $TALUS_MSFEM as a JSON object.
     """
 
     def __init__(self, domain, ng=1, useMPI=False, np=1, random=False, rtol=1.e-2, usePert=False, pert=-2.e-6,
@@ -95,6 +122,10 @@ class MultiScale:
                  law=None):
         from esys.escript import Function
         from esys.escript.linearPDEs import LinearPDE, SolverOptions
+        options = _environmentOptions()
+        dim, rve, form = options.get("dim", dim), options.get("rve", rve), options.get("form", form)
+        stepsPerStrain, minSteps = options.get("stepsPerStrain", stepsPerStrain), options.get("minSteps", minSteps)
+        damping, law = options.get("damping", damping), options.get("law", law)
         self._domain = domain
         self.dim = domain.getDim() if dim is None else int(dim)
         n = Function(domain).getX().getNumberOfDataPoints()
@@ -122,9 +153,16 @@ class MultiScale:
                 comm = None
         if usePert:
             form = "fd"
+        if damping is None:
+            damping = settings["damping"]
+        if damping is None:
+            import warnings
+            warnings.warn(f"MultiScale: '{self._files[0]}' stores no NewtonIntegrator damping; using 0.2 "
+                          f"(set it with ${ENVIRONMENT}='{{\"damping\": ...}}')", RuntimeWarning, stacklevel=2)
+            damping = 0.2
         self.rves = MultiscaleRVEs([os.fspath(f) for f in files], nSteps=minSteps,
                                    law=law or settings["law"],
-                                   damping=settings["damping"] if damping is None else damping, form=form,
+                                   damping=damping, form=form,
                                    comm=comm, fdStep=abs(pert) if usePert else 1e-5, dim=self.dim)
         self._pde = LinearPDE(domain, numEquations=self.dim, numSolutions=self.dim)
         try:
