@@ -65,7 +65,8 @@ CORNERS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (
 def configurations(n_random):
     """(name, orientation of body 1, of body 2, lateral offset of body 2)."""
     diag = np.array([1, 1, 1]) / math.sqrt(3)
-    vertex_down = Quaternion(np.cross(diag, [0, 0, -1]), math.acos(-diag[2]))
+    axis = np.cross(diag, [0, 0, -1])
+    vertex_down = Quaternion(axis / np.linalg.norm(axis), math.acos(-diag[2]))   # a unit axis, as Yade's Quaternion wants
     out = [("faces twisted 30 deg", Quaternion((0, 0, 1), 0), Quaternion((0, 0, 1), math.pi / 6), (0.1, 0.05)),
            ("nearly parallel faces", Quaternion((0, 0, 1), 0), Quaternion((1, 0.3, 0), 1e-3), (0.1, 0.05)),
            ("vertex into a face", Quaternion((0, 0, 1), 0), vertex_down, (0.1, 0.05)),

@@ -247,6 +247,24 @@ void Scene::setBlockedDofs(BodyId id, std::uint8_t mask)
   ++bodyPropertiesVersion;
 }
 
+void Scene::setMass(BodyId id, double mass)
+{
+  checkBody(id);
+  if (!(std::isfinite(mass) && mass >= 0))
+    throw std::invalid_argument("body " + std::to_string(id) + ": mass must be finite and >= 0, got " + std::to_string(mass));
+  bodies.mass[static_cast<std::size_t>(id)] = mass;
+  ++bodyPropertiesVersion;
+}
+
+void Scene::setInertia(BodyId id, const Vec3& inertia)
+{
+  checkBody(id);
+  if (!(inertia.allFinite() && inertia.minCoeff() >= 0))
+    throw std::invalid_argument("body " + std::to_string(id) + ": inertia must be 3 finite numbers >= 0");
+  bodies.inertia[static_cast<std::size_t>(id)] = inertia;
+  ++bodyPropertiesVersion;
+}
+
 void Scene::setDynamic(BodyId id, bool dynamic)
 {
   checkBody(id);
@@ -282,13 +300,43 @@ void Scene::erase(BodyId id, bool eraseClumpMembers)
   }
   // Its contacts go now, not at the next collider run: an engine between the collider and
   // the interaction loop would otherwise still see them.
-  auto& list = contacts.list;
-  list.erase(std::remove_if(list.begin(), list.end(), [id](const Contact& c) { return c.id1 == id || c.id2 == id; }),
-             list.end());
-  contacts.index(bodies.size());
+  removeContacts([id](const Contact& c) { return c.id1 == id || c.id2 == id; });
   bodies.alive[i] = 0;
   ++bodiesVersion;
   ++bodyPropertiesVersion;
+}
+
+bool Scene::eraseContact(BodyId id1, BodyId id2)
+{
+  const std::size_t before = contacts.list.size();
+  removeContacts([id1, id2](const Contact& c) { return (c.id1 == id1 && c.id2 == id2) || (c.id1 == id2 && c.id2 == id1); });
+  return contacts.list.size() != before;
+}
+
+void Scene::removeContacts(const std::function<bool(const Contact&)>& doomed)
+{
+  // The richer state (contacts.extra) is aligned entry for entry with the list: both are
+  // compacted together, or a law with contact state would read another pair's state.
+  ContactList& list = contacts.list;
+  ContactExtraList& extra = contacts.extra;
+  const bool withExtra = extra.size() == list.size();
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < list.size(); ++k)
+  {
+    if (doomed(list[k]))
+      continue;
+    if (kept != k)
+    {
+      list[kept] = list[k];
+      if (withExtra)
+        extra[kept] = extra[k];
+    }
+    ++kept;
+  }
+  list.resize(kept);
+  if (withExtra)
+    extra.resize(kept);
+  contacts.index(bodies.size());
 }
 
 void Scene::runEngines()

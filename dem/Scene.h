@@ -108,10 +108,18 @@ public:
   void setBlockedDofs(BodyId id, std::uint8_t mask);
   /// Make a body dynamic (moved by forces) or not (moved only by its imposed velocity).
   void setDynamic(BodyId id, bool dynamic);
+  /// Replace a body's mass (kg) and principal inertia (kg m^2), as Yade's `state.mass = ...`.
+  /// @throws std::invalid_argument for a dead id, a negative or non-finite value.
+  void setMass(BodyId id, double mass);
+  void setInertia(BodyId id, const Vec3& inertia);
   /// Remove a body and its contacts; its id is not reused (Yade's O.bodies.erase). Erasing a
   /// clump frees its members (or erases them too with `eraseClumpMembers`); erasing a member
   /// removes it from its clump, whose properties are recomputed.
   void erase(BodyId id, bool eraseClumpMembers = false);
+  /// Remove the contact of a pair (either order) with its state, as Yade's
+  /// O.interactions.erase; the collider finds the pair again if it is still in the skin.
+  /// @return whether there was one
+  bool eraseContact(BodyId id1, BodyId id2);
 
   /// Run all engines once and advance the clock. If an engine throws, the step is left half
   /// done (contact histories updated, some bodies moved), so the scene refuses further steps,
@@ -146,5 +154,7 @@ private:
   void runEngines();
   std::string failedStep_; ///< message of the step that threw (transient), empty if none
   void checkInsideCell(const std::string& which, const Vec3& x) const;
+  /// Remove the contacts `doomed` picks, with their aligned state, and re-index.
+  void removeContacts(const std::function<bool(const Contact&)>& doomed);
 };
 } // namespace talus::dem

@@ -17,6 +17,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -59,6 +60,31 @@ std::vector<std::shared_ptr<T>> noneRefused(const std::vector<std::shared_ptr<T>
       throw py::type_error(std::string(what) + ": item " + std::to_string(k) + " is None");
   return items;
 }
+/// One contact as a dict of Yade's geometry and physics names (a copy, for scripts).
+py::dict contactDict(const Contact& c)
+{
+  py::dict d;
+  d["id1"] = c.id1;
+  d["id2"] = c.id2;
+  d["isReal"] = c.real;
+  d["normal"] = c.normal;
+  d["contactPoint"] = c.contactPoint;
+  d["penetrationDepth"] = c.penetration;
+  d["refR1"] = c.refR1;
+  d["refR2"] = c.refR2;
+  d["shearInc"] = c.shearIncrement;
+  d["cellDist"] = c.cellDist;
+  d["kn"] = c.kn;
+  d["ks"] = c.ks;
+  d["cn"] = c.cn;
+  d["cs"] = c.cs;
+  d["tangensOfFrictionAngle"] = c.tanPhi;
+  d["normalForce"] = c.normalForce;
+  d["shearForce"] = c.shearForce;
+  d["force"] = c.force;
+  return d;
+}
+
 } // namespace
 
 PYBIND11_MODULE(_dem, m)
@@ -199,6 +225,8 @@ PYBIND11_MODULE(_dem, m)
       .def("erase", &Scene::erase)
       .def("setBlockedDofs", &Scene::setBlockedDofs)
       .def("setDynamic", &Scene::setDynamic)
+      .def("setMass", &Scene::setMass)
+      .def("setInertia", &Scene::setInertia)
       .def("checkBody", &Scene::checkBody)
       .def("bodyCount", [](const Scene& s) { return s.bodies.size(); })
       .def("pWaveTimeStep", &Scene::pWaveTimeStep)
@@ -257,30 +285,40 @@ PYBIND11_MODULE(_dem, m)
       })
       .def("contactCount", [](const Scene& s) { return s.contacts.list.size(); })
       .def("realContactCount", [](const Scene& s) { return s.contacts.countReal(); })
-      .def("contacts", [](const Scene& s) {
-        // A copy of the real contacts, for inspection (not for hot loops).
+      .def(
+          "contacts",
+          [](const Scene& s, bool realOnly) {
+            // A copy of the contacts (the real ones, or all pairs), for inspection, not hot loops.
+            py::list out;
+            for (const Contact& c : s.contacts.list)
+              if (c.real || !realOnly)
+                out.append(contactDict(c));
+            return out;
+          },
+          py::arg("realOnly") = true)
+      .def("contact", [](const Scene& s, BodyId id1, BodyId id2) -> py::object {
+        // Yade's O.interactions[id1, id2]: the pair in either order, real or only within the skin.
+        const ContactList& list = s.contacts.list;
+        for (const auto& [a, b] : {std::pair{id1, id2}, std::pair{id2, id1}})
+        {
+          auto it = std::lower_bound(list.begin(), list.end(), std::pair{a, b}, [](const Contact& c, const std::pair<BodyId, BodyId>& key) {
+            return std::pair{c.id1, c.id2} < key;
+          });
+          if (it != list.end() && it->id1 == a && it->id2 == b)
+            return contactDict(*it);
+        }
+        return py::none();
+      })
+      .def("contactsOf", [](const Scene& s, BodyId id) {
+        // The pairs of one body (real or not), in list order: Yade's O.interactions.withBody.
         py::list out;
-        for (const Contact& c : s.contacts.list)
-          if (c.real)
-          {
-            py::dict d;
-            d["id1"] = c.id1;
-            d["id2"] = c.id2;
-            d["normal"] = c.normal;
-            d["contactPoint"] = c.contactPoint;
-            d["penetrationDepth"] = c.penetration;
-            d["kn"] = c.kn;
-            d["ks"] = c.ks;
-            d["cn"] = c.cn;
-            d["cs"] = c.cs;
-            d["tangensOfFrictionAngle"] = c.tanPhi;
-            d["normalForce"] = c.normalForce;
-            d["shearForce"] = c.shearForce;
-            d["force"] = c.force;
-            out.append(d);
-          }
+        if (id >= 0 && id < s.contacts.indexedBodies())
+          for (std::int64_t e = s.contacts.start[static_cast<std::size_t>(id)]; e < s.contacts.start[static_cast<std::size_t>(id) + 1]; ++e)
+            out.append(contactDict(s.contacts.list[static_cast<std::size_t>(s.contacts.entries[static_cast<std::size_t>(e)] >> 1)]));
         return out;
-      });
+      })
+      .def("contactCount", [](const Scene& s, bool realOnly) { return realOnly ? s.contacts.countReal() : s.contacts.list.size(); })
+      .def("eraseContact", &Scene::eraseContact);
   void talus_wrap_bodies(py::module_&); talus_wrap_bodies(m); // after Engine, Scene: kinematics, clumps, boxes: bodies_wrappers.cpp
   void talus_wrap_blocks(py::module_&); talus_wrap_blocks(m); // Potential Blocks: blocks_wrappers.cpp
   void talus_wrap_particles(py::module_&); talus_wrap_particles(m); // Potential Particles: particles_wrappers.cpp

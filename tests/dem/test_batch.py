@@ -199,16 +199,16 @@ def test_save_data_txt_in_yades_format(tmp_path):
     plot.reset()
     plot.addData(a=1, b=2.5)
     plot.addData(a=2, b=3.0)
-    batch.saveDataTxt(tmp_path / "d.txt", headers={"radius": 0.1, "n": 5})
+    plot.saveDataTxt(tmp_path / "d.txt", headers={"radius": 0.1, "n": 5})
     # Yade 2023.02a writes exactly this for the same data (ints given as floats).
     assert (tmp_path / "d.txt").read_text() == "# radius=\t0.1\n# n=\t5\n# a\t\tb\n1.0\t2.5\n2.0\t3.0\n"
-    batch.saveDataTxt(tmp_path / "d.txt.gz", vars=["b"])
+    plot.saveDataTxt(tmp_path / "d.txt.gz", vars=["b"])
     import gzip
     assert gzip.open(tmp_path / "d.txt.gz", "rt").read() == "# b\n2.5\n3.0\n"
     import numpy as np
     assert list(np.genfromtxt(tmp_path / "d.txt", names=True, skip_header=2)["b"]) == [2.5, 3.0]
     with pytest.raises(KeyError, match="'zz'"):
-        batch.saveDataTxt(tmp_path / "x.txt", vars=["zz"])
+        plot.saveDataTxt(tmp_path / "x.txt", vars=["zz"])
     plot.reset()
 
 
@@ -261,7 +261,7 @@ def test_reader_matches_yade(tmp_path):
     plot.reset()
     plot.addData(a=1.0, b=2.5)
     plot.addData(a=2.0, b=3.0)
-    batch.saveDataTxt(tmp_path / "ours.txt", headers={"radius": 0.1, "n": 5})
+    plot.saveDataTxt(tmp_path / "ours.txt", headers={"radius": 0.1, "n": 5})
     assert (tmp_path / "ours.txt").read_text() == (tmp_path / "yade_data.txt").read_text()
     plot.reset()
 

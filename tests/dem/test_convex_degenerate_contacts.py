@@ -47,8 +47,9 @@ def configurations():
     """(name, orientation 1, orientation 2, direction from 1 to 2, exact normal or None)."""
     z = (0, 0, 1)
     diag = np.array([1, 1, 1]) / math.sqrt(3)
-    # turn the cube's diagonal onto -z (a vertex pointing down)
+    # turn the cube's diagonal onto -z (a vertex pointing down); a unit axis, as Yade's Quaternion wants
     axis = np.cross(diag, [0, 0, -1])
+    axis /= np.linalg.norm(axis)
     vertex_down = Quaternion(axis, math.acos(np.dot(diag, [0, 0, -1])))
     return [
         ("parallel faces", (1, 0, 0, 0), (1, 0, 0, 0), z, z),
@@ -68,7 +69,8 @@ def configurations():
 def test_near_degenerate_contacts_never_give_nan_nor_a_wrong_normal(kind, name, q1, q2, direction, expected, tilt):
     shape, make_body, probe, S, m = scene_of(kind)
     # the tilt turns body 2 about an axis across the normal, away from the exact configuration
-    q2 = tuple(Quaternion((1, 0.3, 0), tilt) * Quaternion(q2)) if tilt else q2
+    if tilt:    # the (w, x, y, z) tuples as a Quaternion, whose own order is minieigen's (x, y, z, w)
+        q2 = Quaternion((1, 0.3, 0), tilt) * (q2 if isinstance(q2, Quaternion) else Quaternion(*q2))
     a = S.bodies.append(make_body(shape, pos=(0, 0, 0), orientation=q1, material=m))
     b = S.bodies.append(make_body(shape, pos=(0, 0, 3), orientation=q2, material=m))
     direction = np.asarray(direction, float)
@@ -108,7 +110,8 @@ def test_accuracy_tolerance_is_checked_and_trades_accuracy(kind):
     a = S.bodies.append(make_body(shape, pos=(0, 0, 0), material=m))
     # a vertex of body 2 into a face of body 1, off-centre
     diag = np.array([1, 1, 1]) / math.sqrt(3)
-    b = S.bodies.append(make_body(shape, pos=(0.1, 0.05, 3), orientation=Quaternion(np.cross(diag, [0, 0, -1]),
+    axis = np.cross(diag, [0, 0, -1])
+    b = S.bodies.append(make_body(shape, pos=(0.1, 0.05, 3), orientation=Quaternion(axis / np.linalg.norm(axis),
                                                                               math.acos(-diag[2])), material=m))
     touch = first_touch(S, a, b, probe, lambda s: (0.1, 0.05, s))
     S.bodies[b].state.pos = (0.1, 0.05, touch - 1e-3)

@@ -17,7 +17,7 @@ def falling():
 def test_run_until_pause_stops_after_the_pausing_step():
     S = falling()
     S.engines = S.engines + [PyRunner(command=lambda: S.iter == 1233 and S.pause(), iterPeriod=1)]
-    S.run()
+    S.run(wait=True)
     assert S.iter == 1234           # the runner sees iter before the clock advances
     S.run(10)                       # a pause does not carry over to the next run
     assert S.iter == 1244
@@ -26,7 +26,7 @@ def test_run_until_pause_stops_after_the_pausing_step():
 def test_run_without_a_runner_is_refused():
     S = falling()
     with pytest.raises(ValueError, match="O.pause"):
-        S.run()
+        S.run(wait=True)
     with pytest.raises(ValueError, match="nSteps"):
         S.run(-5)
 
@@ -61,3 +61,30 @@ def test_default_period_is_every_step():
     S.engines = S.engines + [PyRunner(command=lambda: calls.append(S.iter))]
     S.run(5)
     assert calls == [1, 2, 3, 4]     # as Yade: the first call when iter reaches iterPeriod
+
+
+def test_open_ended_run_without_wait_runs_at_wait_as_in_yade():
+    """Yade's O.run() returns at once and runs in the background; Talus keeps it for O.wait()
+    (a script ending before that stops it, as yade -x does)."""
+    S = falling()
+    S.engines = S.engines + [PyRunner(command=lambda: S.iter == 99 and S.pause(), iterPeriod=1)]
+    S.run()
+    assert S.iter == 0 and S.running
+    S.wait()
+    assert S.iter == 100 and not S.running
+
+
+def test_stop_at_iter_and_time():
+    S = falling()
+    S.stopAtIter = 50
+    S.run(wait=True)
+    assert S.iter == 50
+    S.run(20)                       # a limit already reached does not hold later runs
+    assert S.iter == 70
+    S.stopAtTime = S.time + 0.0105  # 1e-4 steps: the first step at or past it
+    S.run(wait=True)
+    assert S.iter == 176
+    S.run(1000.0)                   # a whole number given as a float, as Yade's scripts do
+    assert S.iter == 1176
+    with pytest.raises(ValueError, match="whole number"):
+        S.run(10.5)

@@ -55,7 +55,7 @@ from pathlib import Path
 from typing import Iterable, TextIO
 
 __all__ = ["readParamsFromTable", "TableParamReader", "readTable", "Table", "TableError",
-           "TableWarning", "saveDataTxt", "saveVars", "loadVars", "waitIfBatch", "runningInBatch", "params", "tags",
+           "TableWarning", "saveVars", "loadVars", "waitIfBatch", "runningInBatch", "params", "tags",
            "parseLines", "BATCH_ENV"]
 
 BATCH_ENV = "YADE_BATCH"            # "TABLE:LINE" in a job of a batch, as yade-batch sets it
@@ -368,45 +368,6 @@ def readParamsFromTable(tableFileLine: str | None = None, noTableOk: bool = True
     _set_tags(params=",".join(from_table), defaultParams=",".join(f"{k}={v}" for k, v in remaining.items()))
     saveVars("table", loadNow=True, **values)
     return len(from_table)
-
-
-def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None, headers: dict | None = None) -> None:
-    """Yade's ``plot.saveDataTxt``: ``talus.plot.data`` as text columns, Yade's format exactly::
-
-        # radius=<TAB>0.1          one line per entry of ``headers`` (e.g. params.table)
-        # i<TAB><TAB>z             the names (all, sorted, or ``vars`` in their order)
-        0.0<TAB>0.5                the values, one row per addData
-
-    Compressed when the name ends in ``.bz2`` or ``.gz``. ``numpy.genfromtxt(f, names=True)``
-    reads it when there are no headers (``skip_header=len(headers)`` otherwise)."""
-    import bz2
-    import gzip
-
-    from talus import plot
-    names = list(vars) if vars else sorted(plot.data)
-    missing = [n for n in names if n not in plot.data]
-    if missing:
-        raise KeyError(f"saveDataTxt: no data named {', '.join(map(repr, missing))} "
-                       f"(plot.data has {', '.join(sorted(plot.data)) or 'nothing'})")
-    if isinstance(headers, types.ModuleType):
-        headers = {k: getattr(headers, k) for k in getattr(headers, "__all__", ())}
-    text = [f"# {k}=\t{v}\n" for k, v in (headers or {}).items()]
-    text.append("# " + "\t\t".join(names) + "\n")
-    columns = [plot.data[n] for n in names]
-    rows = max((len(c) for c in columns), default=0)
-    for i in range(rows):
-        text.append("\t".join(str(c[i]) if i < len(c) else "nan" for c in columns) + "\n")
-    name = os.fspath(fileName)
-    opener = bz2.open if name.endswith(".bz2") else gzip.open if name.endswith(".gz") else open
-    tmp = os.path.join(os.path.dirname(os.path.abspath(name)), f".{os.path.basename(name)}.tmp-{os.getpid()}")
-    try:
-        with opener(tmp, "wt") as out:
-            out.write("".join(text))
-        os.replace(tmp, name)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
 
 
 # --------------------------------------------------------------------------------------------

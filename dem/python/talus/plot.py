@@ -29,6 +29,7 @@ import bz2
 import gzip
 import math
 import os
+import types
 from typing import Callable, Iterable
 
 import numpy as np
@@ -182,12 +183,20 @@ def _open_text(path: str, mode: str):
     return open(path, mode, encoding="utf-8")
 
 
-def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None) -> None:
-    """Write ``data`` as columns with a header line of names (Yade's format: ``# a b c`` and
-    tab-separated values; comma-separated with a plain header when the name ends in ``.csv``;
-    compressed when it ends in ``.bz2`` or ``.gz``). ``vars`` chooses and orders the columns."""
+def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None, headers=None) -> None:
+    """Write ``data`` as text columns in Yade's format::
+
+        # radius=<TAB>0.1          one line per entry of ``headers`` (a dict, or a module such as
+                                   yade.params.table), if given
+        # i<TAB><TAB>z             the names (all, sorted, or ``vars`` in their order)
+        0.0<TAB>0.5                one row per addData
+
+    comma-separated with a plain header when the name ends in ``.csv``; compressed when it ends
+    in ``.bz2`` or ``.gz``."""
     names = list(vars) if vars is not None else sorted(data)
     columns = [_column(name) for name in names]
+    if isinstance(headers, types.ModuleType):
+        headers = {k: getattr(headers, k) for k in getattr(headers, "__all__", ())}
     name = os.fspath(fileName)
     csv = name.removesuffix(".bz2").removesuffix(".gz").endswith(".csv")
 
@@ -195,18 +204,23 @@ def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None) 
         # The compression is chosen from the real name, not the temporary one.
         opener = bz2.open if name.endswith(".bz2") else gzip.open if name.endswith(".gz") else None
         with (opener(tmp, "wt") if opener else open(tmp, "w", encoding="utf-8")) as out:
-            out.write((",".join(names) if csv else "# " + "\t".join(names)) + "\n")
+            for key, value in (headers or {}).items():
+                out.write(f"# {key}=\t{value}\n")
+            out.write((",".join(names) if csv else "# " + "\t\t".join(names)) + "\n")
             for row in zip(*columns):
-                out.write((",".join if csv else "\t".join)(repr(float(v)) for v in row) + "\n")
+                out.write((",".join if csv else "\t".join)(str(float(v)) for v in row) + "\n")
 
     _atomic(name, write)
 
 
 def loadDataTxt(fileName: str | os.PathLike) -> dict[str, list[float]]:
-    """Read a file written by ``saveDataTxt`` into ``data`` (replacing it) and return it."""
+    """Read a file written by ``saveDataTxt`` into ``data`` (replacing it) and return it; the
+    header lines (``# name=<TAB>value``) are skipped."""
     name = os.fspath(fileName)
     with _open_text(name, "r") as source:
         header = source.readline()
+        while header.startswith("#") and "=" in header:
+            header = source.readline()
         csv = not header.startswith("#")
         names = header.lstrip("#").strip().split("," if csv else None)
         rows = [line.split("," if csv else None) for line in source if line.strip()]

@@ -26,6 +26,8 @@ import sys
 from talus.dem import *          # noqa: F401,F403  (the DEM core under Yade's names)
 from talus.dem import O, __all__ as _dem_names
 from yade import _components
+from yade._gui import *          # noqa: F401,F403  (the 3D view's classes: accepted, inert)
+from yade._gui import __all__ as _gui_names
 from yade.wrapper import Omega
 
 _component_names = _components.export(globals())
@@ -33,10 +35,10 @@ _component_names = _components.export(globals())
 builtins.O = O
 builtins.Omega = Omega
 
-from yade import utils, pack, plot, ymport, export, timing, geom, qt  # noqa: E402  (need O above)
+from yade import utils, pack, plot, ymport, export, timing, geom, qt, params  # noqa: E402  (need O above)
 
-__all__ = [*_dem_names, *_component_names, "O", "Omega",
-           "utils", "pack", "plot", "ymport", "export", "timing", "geom", "qt"]
+__all__ = [*_dem_names, *_gui_names, *_component_names, "O", "Omega",
+           "utils", "pack", "plot", "ymport", "export", "timing", "geom", "qt", "params"]
 
 
 def execfile(path, globals=None, locals=None):

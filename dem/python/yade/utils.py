@@ -5,8 +5,37 @@
 from talus.dem import (PWaveTimeStep, RayleighWaveTimeStep, aabbWalls, avgNumInteractions, bodyStressTensors, box,
                        facet, fabricTensor, getStress, getStressAndTangent, growParticles, porosity,
                        setContactFriction, sphere, unbalancedForce, wall)
+from talus.dem import O
 from talus.dem.geom import facetBox, facetCylinder
+from talus.dem.linalg import Quaternion
+from talus.dem.measure import aabbDim, aabbExtrema, angularMomentum, kineticEnergy, momentum, sumForces
+from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,
+                         waitIfBatch)
 
 __all__ = ["sphere", "wall", "facet", "box", "aabbWalls", "facetBox", "facetCylinder", "PWaveTimeStep",
            "RayleighWaveTimeStep", "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions",
-           "fabricTensor", "bodyStressTensors", "porosity", "growParticles", "setContactFriction"]
+           "fabricTensor", "bodyStressTensors", "porosity", "growParticles", "setContactFriction",
+           "typedEngine", "kineticEnergy", "momentum", "angularMomentum", "sumForces", "aabbExtrema", "aabbDim",
+           "randomOrientation", "randomColor",
+           "readParamsFromTable", "TableParamReader", "saveVars", "loadVars", "waitIfBatch", "runningInBatch"]
+
+
+def typedEngine(name: str):
+    """The first engine of the class ``name`` in O.engines."""
+    return O.typedEngine(name)
+
+
+def randomOrientation() -> Quaternion:
+    """A uniformly distributed random orientation (Python's ``random``, as Yade)."""
+    import math
+    import random
+    u1, u2, u3 = random.random(), random.random(), random.random()
+    a, b = math.sqrt(1 - u1), math.sqrt(u1)
+    return Quaternion(a * math.sin(2 * math.pi * u2), a * math.cos(2 * math.pi * u2),
+                      b * math.sin(2 * math.pi * u3), b * math.cos(2 * math.pi * u3))
+
+
+def randomColor() -> tuple[float, float, float]:
+    """A random RGB colour (Python's ``random``)."""
+    import random
+    return (random.random(), random.random(), random.random())

@@ -16,7 +16,6 @@
 from talus import plot
 from talus.dem import geom, pack, progress, timing, ymport
 from talus.dem.bodies import Body, BodySpec, aabbWalls, box, facet, sphere, wall
-from talus.dem.quaternion import Quaternion
 from talus.dem.shapes import Box, Clump, Facet, Shape, Sphere, Wall
 from talus.dem.blocks import *  # noqa: F401,F403  (Potential Blocks, Yade's names)
 from talus.dem.blocks import __all__ as _block_names
@@ -25,7 +24,8 @@ from talus.dem.particles import __all__ as _particle_names
 from talus.dem.blockgen import Joint, JointFileError, generateBlocks, readJoints
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
-from talus.dem.cell import Matrix3, Vector3
+from talus.dem.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector6,
+                              Vector6i)
 from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
                                    TriaxialStressController, growParticles, setContactFriction)
 from talus.dem.energy import EnergyTracker
@@ -40,7 +40,8 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "timing", "ymport", "Material",
-           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector3", "Matrix3", "Quaternion",
+           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector2", "Vector2i", "Vector3", "Vector3i", "Vector6",
+           "Vector6i", "Matrix3", "Matrix6", "Quaternion",
            "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "bodyStressTensors",
            "porosity",
            "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",

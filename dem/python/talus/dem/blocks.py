@@ -24,7 +24,7 @@ from talus import _dem
 from talus.dem.bodies import BodySpec
 from talus.dem.engines import Functor, _Law
 from talus.dem.export import _atomic_write, vtu_bytes
-from talus.dem.quaternion import Quaternion
+from talus.dem.linalg import Quaternion
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -96,7 +96,7 @@ def blockVertices(scene: "Scene", id: int) -> np.ndarray:
     """World coordinates of the block's corners."""
     cpp = scene._cpp
     v = np.asarray(_dem.block_shape(cpp, int(id))["vertices"], dtype=float)
-    return cpp.pos()[int(id)] + v @ Quaternion(cpp.ori(int(id))).toRotationMatrix().T
+    return cpp.pos()[int(id)] + v @ Quaternion(*cpp.ori(int(id))).toRotationMatrix().T
 
 
 def blockContact(scene: "Scene", id1: int, id2: int, repeats: int = 1, accuracyTol: float | None = None) -> dict:
@@ -117,7 +117,7 @@ def write_blocks(scene: "Scene", path: str) -> int:
     for i in ids:
         shape = _dem.block_shape(cpp, i)
         base = sum(len(p) for p in points)
-        points.append(cpp.pos()[i] + np.asarray(shape["vertices"]) @ Quaternion(cpp.ori(i)).toRotationMatrix().T)
+        points.append(cpp.pos()[i] + np.asarray(shape["vertices"]) @ Quaternion(*cpp.ori(i)).toRotationMatrix().T)
         for face in shape["faces"]:
             conn.extend(base + k for k in face)
             offsets.append(len(conn))

@@ -8,7 +8,8 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 import numpy as np
 
 from talus import _dem
-from talus.dem.quaternion import Quaternion
+from talus.dem.linalg import Quaternion, Vector3
+from talus.dem.appearance import DEFAULT_COLOR, check_color
 from talus.dem.shapes import Shape, shape_of
 
 if TYPE_CHECKING:
@@ -17,11 +18,13 @@ if TYPE_CHECKING:
 _DOF_LETTERS = "xyzXYZ"
 
 
-@dataclass
+@dataclass(eq=False)
 class BodySpec:
-    """A body not yet in a scene (what Yade's ``utils.sphere`` returns); append it to
-    ``O.bodies`` to create it."""
-    shape: str
+    """A body made by ``sphere``, ``wall``, ``facet``, ``box`` (what Yade's ``utils.sphere``
+    returns). As in Yade, a script may set its ``state``, ``shape.color`` or ``dynamic`` before
+    appending it to ``O.bodies``; once appended it stands for the body in the scene (``id``,
+    ``state``, ``shape`` read and write the scene)."""
+    kind: str
     center: tuple
     radius: float = 0.0
     axis: int = 2
@@ -31,14 +34,134 @@ class BodySpec:
     vertices: tuple = ()
     extents: tuple = ()
     orientation: tuple = (1.0, 0.0, 0.0, 0.0)
-    color: tuple = field(default=(0.5, 0.5, 0.5))
+    color: tuple = field(default=DEFAULT_COLOR)
     block: object = None  # the PotentialBlock or PotentialParticle shape (talus.dem.blocks, .particles)
+    # State set before the append (velocities, mass, inertia, blocked DOFs), applied by it.
+    initial: dict = field(default_factory=dict)
+    id: int = -1          # the body's id once appended
+    _scene: object = field(default=None, repr=False)
+
+    def _body(self) -> "Body | None":
+        return Body(self._scene, self.id) if self._scene is not None else None
+
+    @property
+    def state(self):
+        body = self._body()
+        return body.state if body else _DetachedState(self)
+
+    @property
+    def shape(self):
+        body = self._body()
+        return body.shape if body else _DetachedShape(self)
+
+    @property
+    def dynamic(self) -> bool:
+        body = self._body()
+        return body.dynamic if body else not self.fixed
+
+    @dynamic.setter
+    def dynamic(self, value: bool):
+        body = self._body()
+        if body:
+            body.dynamic = value
+        else:
+            self.fixed = not value
+
+    def __getattr__(self, name):
+        # Any other Body attribute (isClump, clumpId, ...) once appended.
+        if name.startswith("_") or self._scene is None:
+            raise AttributeError(f"{type(self).__name__} has no attribute {name!r}"
+                                 + ("" if self._scene is not None else " (before it is appended to O.bodies)"))
+        return getattr(self._body(), name)
+
+
+class _DetachedState:
+    """``state`` of a body not yet appended: position and orientation are the spec's, the rest
+    is kept and applied when the body is appended."""
+
+    __slots__ = ("_spec",)
+    _KEPT = ("vel", "angVel", "mass", "inertia", "blockedDOFs")
+
+    def __init__(self, spec: BodySpec):
+        object.__setattr__(self, "_spec", spec)
+
+    @property
+    def pos(self) -> Vector3:
+        return Vector3(self._spec.center)
+
+    @pos.setter
+    def pos(self, value):
+        self._spec.center = tuple(Vector3(value))
+
+    @property
+    def ori(self) -> Quaternion:
+        return Quaternion(*self._spec.orientation)
+
+    @ori.setter
+    def ori(self, value):
+        q = value if isinstance(value, Quaternion) else Quaternion(*value)
+        self._spec.orientation = (q.w, q.x, q.y, q.z)
+
+    def __getattr__(self, name):
+        if name in ("vel", "angVel"):
+            return Vector3(self._spec.initial.get(name, (0.0, 0.0, 0.0)))
+        if name == "blockedDOFs":
+            return self._spec.initial.get(name, "xyzXYZ" if self._spec.fixed else "")
+        if name in self._spec.initial:
+            return self._spec.initial[name]
+        raise AttributeError(f"state.{name} of a body not yet appended: it is known once the body is in O.bodies")
+
+    def __setattr__(self, name, value):
+        if name in ("pos", "ori"):
+            object.__setattr__(self, name, value)      # the properties
+        elif name in self._KEPT:
+            self._spec.initial[name] = value
+        else:
+            raise AttributeError(f"State has no attribute {name!r}")
+
+
+class _DetachedShape:
+    """``shape`` of a body not yet appended: its look (colour, highlight, wire) and radius."""
+
+    __slots__ = ("_spec",)
+
+    def __init__(self, spec: BodySpec):
+        object.__setattr__(self, "_spec", spec)
+
+    @property
+    def radius(self) -> float:
+        return self._spec.radius
+
+    @property
+    def color(self) -> Vector3:
+        return Vector3(self._spec.color)
+
+    @color.setter
+    def color(self, value):
+        self._spec.color = check_color(value)
+
+    def __getattr__(self, name):
+        if name in ("highlight", "wire"):
+            return bool(self._spec.initial.get(name, False))
+        raise AttributeError(f"{self._spec.kind} has no attribute {name!r} before it is appended")
+
+    def __setattr__(self, name, value):
+        if name == "color":
+            object.__setattr__(self, name, value)      # the property
+        elif name in ("highlight", "wire"):
+            self._spec.initial[name] = bool(value)
+        else:
+            raise AttributeError(f"{self._spec.kind}.{name} cannot be set here")
+
+    def __str__(self):
+        return self._spec.kind
 
 
 def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, **_ignored) -> BodySpec:
     """A sphere of the given centre and radius; ``material`` is an index, a label or a
     Material (default: the last material added, or Yade's default FrictMat)."""
-    return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=material, fixed=fixed)
+    return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=material, fixed=fixed,
+                    color=DEFAULT_COLOR if color is None else check_color(color))
 
 
 def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySpec:
@@ -55,10 +178,14 @@ def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySp
     return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True)
 
 
-def aabbWalls(extrema, thickness: float = 0, material=-1, **_ignored) -> list[BodySpec]:
-    """Six walls on the faces of the box ``extrema = (minCorner, maxCorner)``, in the order a
-    TriaxialStressController expects by default (x-, x+, y-, y+, z-, z+). Talus walls are planes:
-    ``thickness`` is accepted for Yade scripts and ignored."""
+def aabbWalls(extrema=None, thickness: float = 0, material=-1, **_ignored) -> list[BodySpec]:
+    """Six walls on the faces of the box ``extrema = (minCorner, maxCorner)`` (default: the
+    box of the default scene's spheres, as Yade), in the order a TriaxialStressController
+    expects by default (x-, x+, y-, y+, z-, z+). Talus walls are planes: ``thickness`` is
+    accepted for Yade scripts and ignored."""
+    if extrema is None:
+        from talus.dem.measure import aabbExtrema
+        extrema = aabbExtrema()
     lo, hi = (np.asarray(x, dtype=float).reshape(3) for x in extrema)
     if np.any(hi <= lo):
         raise ValueError(f"aabbWalls: the upper corner must exceed the lower one, got {lo}, {hi}")
@@ -121,15 +248,21 @@ class State:
             raise ValueError(f"body {self._id}: {name} must be 3 finite numbers, got {value}")
         getattr(self._scene._cpp, name)()[self._id] = value
 
-    pos = property(lambda s: s._row("pos").copy(), lambda s, v: s._set("pos", v))
-    vel = property(lambda s: s._row("vel").copy(), lambda s, v: s._set("vel", v))
-    inertia = property(lambda s: s._row("inertia").copy())
-    mass = property(lambda s: float(s._row("mass")))
-    ori = property(lambda s: Quaternion(s._scene._cpp.ori(s._id)), doc="orientation (Quaternion: w, x, y, z; ``ori * v`` rotates v)")
+    # Copies as Yade's value types: changing the Vector3 one got does not move the body (as in
+    # Yade); assigning it does.
+    pos = property(lambda s: Vector3(s._row("pos")), lambda s, v: s._set("pos", v))
+    vel = property(lambda s: Vector3(s._row("vel")), lambda s, v: s._set("vel", v))
+    inertia = property(lambda s: Vector3(s._row("inertia")),
+                       lambda s, v: s._scene._cpp.setInertia(s._id, np.asarray(v, dtype=float).reshape(3)),
+                       doc="principal inertia (kg m^2); settable, as in Yade")
+    mass = property(lambda s: float(s._row("mass")), lambda s, v: s._scene._cpp.setMass(s._id, float(v)),
+                    doc="mass (kg); settable, as in Yade")
+    # The C++ core hands (w, x, y, z).
+    ori = property(lambda s: Quaternion(*s._scene._cpp.ori(s._id)), doc="orientation (``ori * v`` rotates v)")
 
     @property
     def angVel(self):
-        return self._row("angVel").copy()
+        return Vector3(self._row("angVel"))
 
     @angVel.setter
     def angVel(self, value):
@@ -142,7 +275,7 @@ class State:
     @property
     def angMom(self):
         """Angular momentum (world frame) integrated for aspherical bodies (clumps, boxes)."""
-        return np.array(_dem.ang_mom(self._scene._cpp, self._id))
+        return Vector3(_dem.ang_mom(self._scene._cpp, self._id))
 
     @property
     def blockedDOFs(self) -> str:
@@ -219,26 +352,46 @@ class BodyContainer:
         return [self._add(s) for s in spec]
 
     def _add(self, spec: BodySpec) -> int:
+        if spec._scene is not None:
+            raise ValueError(f"this body is already body {spec.id} of a scene; make another one to append")
         scene = self._scene
         scene._warn_if_views_move()
-        material = scene.materials.resolve(spec.material)
-        if spec.shape == "Sphere":
-            id = scene._cpp.addSphere(np.asarray(spec.center, dtype=float), spec.radius, material)
+        id = self._create(spec, scene.materials.resolve(spec.material))
+        state = scene.bodies[id].state
+        for name, value in spec.initial.items():
+            if name in ("highlight", "wire"):
+                continue
+            setattr(state, name, value)
+        look = scene._appearance
+        look.ensure(scene._cpp.bodyCount())
+        look.color[id] = spec.color
+        look.highlight[id] = spec.initial.get("highlight", False)
+        look.wire[id] = spec.initial.get("wire", False)
+        spec.id, spec._scene = id, scene
+        return id
+
+    def _create(self, spec: BodySpec, material: int) -> int:
+        scene = self._scene
+        if spec.kind == "Sphere":
+            center = np.asarray(spec.center, dtype=float)
+            if scene.periodic:   # as Yade: a sphere given outside the cell is put in by whole periods
+                center = scene.cell.wrap(center)
+            id = scene._cpp.addSphere(center, spec.radius, material)
             if spec.fixed:
                 scene._cpp.setDynamic(id, False)
                 scene._cpp.setBlockedDofs(id, 63)
             return id
-        if spec.shape == "Box":
+        if spec.kind == "Box":
             return _dem.add_box(scene._cpp, np.asarray(spec.center, dtype=float),
                                 np.asarray(spec.extents, dtype=float), np.asarray(spec.orientation, dtype=float),
                                 material, bool(spec.fixed))
-        if spec.shape == "PotentialBlock":
+        if spec.kind == "PotentialBlock":
             from talus.dem import blocks
             return blocks._add(scene, spec, material)
-        if spec.shape == "PotentialParticle":
+        if spec.kind == "PotentialParticle":
             from talus.dem import particles
             return particles._add(scene, spec, material)
-        if spec.shape == "Facet":
+        if spec.kind == "Facet":
             return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material)
         return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
 
@@ -248,7 +401,7 @@ class BodyContainer:
         of rmin / discretization for the mass and inertia (Yade's option); otherwise each member
         counts as a whole sphere."""
         specs = list(specs)
-        if any(s.shape != "Sphere" for s in specs):
+        if any(s.kind != "Sphere" for s in specs):
             raise ValueError("appendClumped: clumps are made of spheres")
         scene = self._scene
         if not scene.periodic:

@@ -1,4 +1,5 @@
-"""The periodic cell (Yade's ``O.cell``), and Yade's Vector3/Matrix3 constructors as numpy."""
+"""The periodic cell (Yade's ``O.cell``): its edges, velocity gradient and transformation as
+Matrix3, its size as a Vector3."""
 
 from __future__ import annotations
 
@@ -6,28 +7,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from talus.dem.linalg import Matrix3, Vector3
+
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
-
-
-class Vector3(np.ndarray):
-    """``Vector3(x, y, z)`` as in Yade scripts; a numpy array of shape (3,)."""
-
-    def __new__(cls, *xyz):
-        return np.array(xyz[0] if len(xyz) == 1 else xyz, dtype=float).reshape(3)
-
-
-class Matrix3(np.ndarray):
-    """``Matrix3(a, b, c, d, e, f, g, h, i)`` (row by row) or ``Matrix3(rows)``, as in Yade
-    scripts; a numpy array of shape (3, 3). ``Matrix3.Identity``, ``Matrix3.Zero``."""
-
-    def __new__(cls, *values):
-        return np.array(values[0] if len(values) == 1 else values, dtype=float).reshape(3, 3)
-
-
-Vector3.Zero = np.zeros(3)
-Matrix3.Identity = np.eye(3)
-Matrix3.Zero = np.zeros((3, 3))
 
 
 def _matrix(name: str, value) -> np.ndarray:
@@ -51,8 +34,8 @@ class Cell:
         return self._scene._cpp.cell
 
     @property
-    def hSize(self) -> np.ndarray:
-        return np.array(self._cpp.hSize)
+    def hSize(self) -> Matrix3:
+        return Matrix3(self._cpp.hSize)
 
     @hSize.setter
     def hSize(self, value):
@@ -64,25 +47,41 @@ class Cell:
         self.hSize = np.diag(size)
 
     @property
-    def size(self) -> np.ndarray:
+    def refHSize(self) -> Matrix3:
+        """The cell before the accumulated transformation: ``hSize = trsf @ refHSize`` (Yade)."""
+        return Matrix3(np.linalg.solve(self.trsf, self.hSize))
+
+    @property
+    def refSize(self) -> Vector3:
+        """Edge lengths of ``refHSize``; setting it makes a new box cell of these sizes with no
+        accumulated transformation (Yade's deprecated ``O.cell.refSize = ...``)."""
+        return Vector3(np.linalg.norm(self.refHSize, axis=0))
+
+    @refSize.setter
+    def refSize(self, value):
+        self.setBox(value)
+        self.trsf = np.eye(3)
+
+    @property
+    def size(self) -> Vector3:
         """Lengths of the cell's edges."""
-        return np.linalg.norm(self.hSize, axis=0)
+        return Vector3(np.linalg.norm(self.hSize, axis=0))
 
     @size.setter
     def size(self, value):
         self.setBox(value)
 
     @property
-    def velGrad(self) -> np.ndarray:
-        return np.array(self._cpp.velGrad)
+    def velGrad(self) -> Matrix3:
+        return Matrix3(self._cpp.velGrad)
 
     @velGrad.setter
     def velGrad(self, value):
         self._cpp.velGrad = _matrix("velGrad", value)
 
     @property
-    def trsf(self) -> np.ndarray:
-        return np.array(self._cpp.trsf)
+    def trsf(self) -> Matrix3:
+        return Matrix3(self._cpp.trsf)
 
     @trsf.setter
     def trsf(self, value):
@@ -91,7 +90,8 @@ class Cell:
     homoDeform = property(lambda s: s._cpp.homoDeform, lambda s, v: setattr(s._cpp, "homoDeform", bool(v)))
     volume = property(lambda s: s._cpp.volume)
 
-    def wrap(self, point) -> np.ndarray:
+    def wrap(self, point) -> Vector3:
         """The point moved into the cell by whole periods."""
-        frac = np.linalg.solve(self.hSize, np.asarray(point, dtype=float))
-        return self.hSize @ (frac - np.floor(frac))
+        h = np.asarray(self.hSize)
+        frac = np.linalg.solve(h, np.asarray(point, dtype=float))
+        return Vector3(h @ (frac - np.floor(frac)))

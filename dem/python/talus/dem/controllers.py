@@ -20,13 +20,15 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.engines import Engine, asCallback
+from talus.dem.linalg import Vector3, as_value
 
 
 def _forward(name: str, doc: str = "", kind=None):
-    """A property reading and writing the C++ engine's attribute ``name`` (``kind`` converts)."""
+    """A property reading and writing the C++ engine's attribute ``name`` (``kind`` converts);
+    vectors and matrices are read as Yade's value types (a copy)."""
     def get(self):
         value = getattr(self._cpp, name)
-        return np.array(value) if isinstance(value, np.ndarray) else value
+        return as_value(value) if isinstance(value, np.ndarray) else value
 
     def set(self, value):
         setattr(self._cpp, name, kind(value) if kind else value)
@@ -233,24 +235,24 @@ class TriaxialStressController(Engine):
     wall_bottom_activated, wall_top_activated = _wall_active(2), _wall_active(3)
     wall_back_activated, wall_front_activated = _wall_active(4), _wall_active(5)
 
-    def stress(self, id: int) -> np.ndarray:
+    def stress(self, id: int) -> Vector3:
         """Mean stress vector on wall ``id`` = 0..5 (left, right, bottom, top, back, front; Yade's
         internal numbering), tension positive."""
         if not 0 <= id <= 5:
             raise ValueError(f"TriaxialStressController.stress: wall index must be 0..5, got {id}")
-        return np.array(self._cpp.stressVectors[id])
+        return Vector3(self._cpp.stressVectors[id])
 
-    def force(self, id: int) -> np.ndarray:
+    def force(self, id: int) -> Vector3:
         """Force of the spheres on wall ``id`` = 0..5 at the last stress update."""
-        return np.array(self._cpp.force[id])
+        return Vector3(self._cpp.force[id])
 
     @property
-    def strainRate(self) -> np.ndarray:
+    def strainRate(self) -> Vector3:
         """d/dt of (exx, eyy, ezz) from the walls' velocities."""
         from talus.dem.io import owner_scene
         v = owner_scene(self).velocities()
         ids = self._cpp.wallIds
-        return np.array([(v[ids[1]][0] - v[ids[0]][0]) / self.width, (v[ids[3]][1] - v[ids[2]][1]) / self.height,
+        return Vector3([(v[ids[1]][0] - v[ids[0]][0]) / self.width, (v[ids[3]][1] - v[ids[2]][1]) / self.height,
                          (v[ids[5]][2] - v[ids[4]][2]) / self.depth])
 
     def _io_state(self):

@@ -19,10 +19,11 @@ each Law2 needs its Ip2 in the list, as in Yade.
 
 from __future__ import annotations
 
-import __main__
+import sys
 from typing import Callable, Sequence
 
 from talus import _dem
+from talus.dem.linalg import Vector3
 
 
 class Functor:
@@ -245,14 +246,61 @@ class ForceResetter(Engine):
         self.label = label
 
 
+class Dispatcher:
+    """Yade's functor dispatchers (``BoundDispatcher``, ``IGeomDispatcher``, ``IPhysDispatcher``,
+    ``LawDispatcher``): a list of functors, as engines hold them (``loop.lawDispatcher.functors``)
+    and as old scripts list them in O.engines (three in a row stand for one InteractionLoop)."""
+
+    def __init__(self, functors: Sequence[Functor] = (), label: str = ""):
+        self.functors = list(functors)
+        self.label = label
+
+    def __repr__(self):
+        return f"{type(self).__name__}({self.functors!r})"
+
+
+class BoundDispatcher(Dispatcher):
+    pass
+
+
+class IGeomDispatcher(Dispatcher):
+    pass
+
+
+class IPhysDispatcher(Dispatcher):
+    pass
+
+
+class LawDispatcher(Dispatcher):
+    pass
+
+
+def _functors(given) -> list:
+    return list(given.functors) if isinstance(given, Dispatcher) else list(given)
+
+
 class InsertionSortCollider(Engine):
     """Contact detection with a Verlet skin ``verletDist`` (negative: a fraction of the smallest
-    radius, Yade's default -0.5). Implemented with linked cells; Yade's name is kept."""
+    radius, Yade's default -0.5). Implemented with linked cells; Yade's name is kept.
 
-    def __init__(self, boundDispatcher: Sequence[Functor] = (), verletDist: float = -0.5, label: str = ""):
+    Yade's settings of its sweep-and-prune (``allowBiggerThanPeriod``, ``nBins``,
+    ``sweepLength``, ``binCoeff``, ``targetInterv``, ``updatingDispFactor``, ``sortThenCollide``,
+    ``keepListsShort``, ``doSort``, ``ompThreads``, ``fastestBodyMaxDist``) tune its speed, not the
+    contacts it finds: they are accepted and kept, and Talus's linked cells do not need them."""
+
+    _SPEED_SETTINGS = ("allowBiggerThanPeriod", "nBins", "sweepLength", "binCoeff", "targetInterv",
+                       "updatingDispFactor", "sortThenCollide", "keepListsShort", "doSort", "ompThreads",
+                       "fastestBodyMaxDist", "minSweepDistFactor", "periodic", "dumpBounds")
+
+    def __init__(self, boundDispatcher=(), verletDist: float = -0.5, label: str = "", **settings):
+        unknown = set(settings) - set(self._SPEED_SETTINGS)
+        if unknown:
+            raise TypeError(f"InsertionSortCollider has no parameter(s) {', '.join(sorted(unknown))}")
         self._cpp = _dem.Collider()
         self._cpp.verletDist = verletDist
         self.label = label
+        self.boundDispatcher = BoundDispatcher(_functors(boundDispatcher))
+        self.settings = settings
 
     verletDist = property(lambda self: self._cpp.verletDist,
                           lambda self, v: setattr(self._cpp, "verletDist", v))
@@ -264,6 +312,7 @@ class InteractionLoop(Engine):
 
     def __init__(self, geomFunctors: Sequence[Functor] = (), physFunctors: Sequence[Functor] = (),
                  lawFunctors: Sequence[Functor] = (), label: str = ""):
+        geomFunctors, physFunctors, lawFunctors = (_functors(f) for f in (geomFunctors, physFunctors, lawFunctors))
         laws = [f for f in lawFunctors if isinstance(f, _Law)]
         unknown = [f for f in lawFunctors if not isinstance(f, _Law)]
         if unknown:
@@ -284,17 +333,31 @@ class InteractionLoop(Engine):
         self.geomFunctors, self.physFunctors, self.lawFunctors = list(geomFunctors), list(physFunctors), laws
         self.label = label
 
+    # Yade's names for the three functor lists.
+    geomDispatcher = property(lambda self: IGeomDispatcher(self.geomFunctors))
+    physDispatcher = property(lambda self: IPhysDispatcher(self.physFunctors))
+    lawDispatcher = property(lambda self: LawDispatcher(self.lawFunctors))
+
 
 class NewtonIntegrator(Engine):
-    """Leap-frog integration with ``gravity`` and Cundall's non-viscous ``damping``."""
+    """Leap-frog integration with ``gravity`` and Cundall's non-viscous ``damping``.
 
-    def __init__(self, gravity=(0.0, 0.0, 0.0), damping: float = 0.2, label: str = ""):
+    Aspherical bodies (clumps, boxes) always rotate by Yade's exact scheme
+    (``exactAsphericalRot=True``, Yade's default); ``kinSplit`` and ``warnNoForceReset`` are
+    accepted and change nothing in the integration."""
+
+    def __init__(self, gravity=(0.0, 0.0, 0.0), damping: float = 0.2, label: str = "",
+                 exactAsphericalRot: bool = True, kinSplit: bool = False, warnNoForceReset: bool = True):
+        if not exactAsphericalRot:
+            raise ValueError("NewtonIntegrator: exactAsphericalRot=False (Yade's approximate rotation of aspherical "
+                             "bodies) is not implemented; Talus always integrates their rotation exactly")
+        self.exactAsphericalRot, self.kinSplit, self.warnNoForceReset = True, bool(kinSplit), bool(warnNoForceReset)
         self._cpp = _dem.NewtonIntegrator()
         self.gravity = gravity
         self.damping = damping
         self.label = label
 
-    gravity = property(lambda self: tuple(self._cpp.gravity),
+    gravity = property(lambda self: Vector3(self._cpp.gravity),
                        lambda self, g: setattr(self._cpp, "gravity", [float(x) for x in g]))
     damping = property(lambda self: self._cpp.damping, lambda self, d: setattr(self._cpp, "damping", float(d)))
 
@@ -307,7 +370,9 @@ def asCallback(command: str | Callable[[], None] | None, what: str = "command") 
     if callable(command):
         return command
     code = compile(command, f"<{what} {command!r}>", "exec")
-    return lambda: exec(code, vars(__main__))
+    # The script's namespace is looked up at each call: `talus run` runs the script as a fresh
+    # __main__ module, which is not the one this module saw when it was imported.
+    return lambda: exec(code, vars(sys.modules["__main__"]))
 
 
 class PyRunner(Engine):
@@ -342,7 +407,7 @@ class PyRunner(Engine):
 
 
 __all__ = [
-    "Functor", "Engine", "ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator",
+    "Functor", "Engine", "collapseDispatchers", "Dispatcher", "BoundDispatcher", "IGeomDispatcher", "IPhysDispatcher", "LawDispatcher", "ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator",
     "PyRunner", "asCallback", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
     "Ig2_Box_Sphere_ScGeom",
     "Ig2_Wall_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom",
@@ -352,3 +417,21 @@ __all__ = [
     "Ip2_CohFrictMat_CohFrictMat_CohFrictPhys", "Law2_ScGeom6D_CohFrictPhys_CohesionMoment", "Ig2_Sphere_Sphere_ScGeom6D",
     "Ig2_Wall_Sphere_ScGeom6D",
 ]
+
+
+def collapseDispatchers(engines: Sequence) -> list:
+    """An engine list with each IGeomDispatcher, IPhysDispatcher, LawDispatcher triple (Yade's
+    older spelling of an InteractionLoop) replaced by the InteractionLoop it stands for."""
+    out, k = [], 0
+    while k < len(engines):
+        trio = engines[k:k + 3]
+        if [type(e) for e in trio] == [IGeomDispatcher, IPhysDispatcher, LawDispatcher]:
+            out.append(InteractionLoop(*trio))
+            k += 3
+            continue
+        if isinstance(engines[k], Dispatcher):
+            raise TypeError(f"O.engines: {type(engines[k]).__name__} must come as IGeomDispatcher, IPhysDispatcher, "
+                            "LawDispatcher in a row (or use InteractionLoop)")
+        out.append(engines[k])
+        k += 1
+    return out

@@ -36,7 +36,7 @@ import numpy as np
 from talus import _dem
 from talus.dem.engines import PyRunner
 from talus.dem.io import owner_scene
-from talus.dem.quaternion import Quaternion
+from talus.dem.linalg import Quaternion
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -175,7 +175,7 @@ def write_boxes(scene: "Scene", path: str) -> int:
     """Write the live boxes of ``scene`` to ``path`` as hexahedra; returns their number."""
     ids = _dem.live_ids(scene._cpp, "Box")
     cpp = scene._cpp
-    corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ Quaternion(cpp.ori(int(i))).toRotationMatrix().T
+    corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ Quaternion(*cpp.ori(int(i))).toRotationMatrix().T
                for i in ids]
     data = {"id": ids.astype(np.int32), "materialId": cpp.materialIds()[ids].astype(np.int32),
             "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids], "force": cpp.force()[ids]}

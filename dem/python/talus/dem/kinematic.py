@@ -21,6 +21,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.engines import Engine
+from talus.dem.linalg import Vector3
 
 
 def _vector(value, what: str) -> list[float]:
@@ -56,7 +57,7 @@ class TranslationEngine(KinematicEngine):
         self.translationAxis = translationAxis
         self.velocity = velocity
 
-    translationAxis = property(lambda s: tuple(s._cpp.translationAxis),
+    translationAxis = property(lambda s: Vector3(s._cpp.translationAxis),
                                lambda s, v: setattr(s._cpp, "translationAxis", _vector(v, "translationAxis")))
     velocity = property(lambda s: s._cpp.velocity, lambda s, v: setattr(s._cpp, "velocity", float(v)))
 
@@ -75,11 +76,11 @@ class RotationEngine(KinematicEngine):
 
     angularVelocity = property(lambda s: s._cpp.angularVelocity,
                                lambda s, v: setattr(s._cpp, "angularVelocity", float(v)))
-    rotationAxis = property(lambda s: tuple(s._cpp.rotationAxis),
+    rotationAxis = property(lambda s: Vector3(s._cpp.rotationAxis),
                             lambda s, v: setattr(s._cpp, "rotationAxis", _vector(v, "rotationAxis")))
     rotateAroundZero = property(lambda s: s._cpp.rotateAroundZero,
                                 lambda s, v: setattr(s._cpp, "rotateAroundZero", bool(v)))
-    zeroPoint = property(lambda s: tuple(s._cpp.zeroPoint),
+    zeroPoint = property(lambda s: Vector3(s._cpp.zeroPoint),
                          lambda s, v: setattr(s._cpp, "zeroPoint", _vector(v, "zeroPoint")))
 
 
@@ -92,9 +93,9 @@ class HarmonicMotionEngine(KinematicEngine):
         self._init(_dem.HarmonicMotionEngine(), ids, label)
         self.A, self.f, self.fi = A, f, fi
 
-    A = property(lambda s: tuple(s._cpp.A), lambda s, v: setattr(s._cpp, "A", _vector(v, "A")))
-    f = property(lambda s: tuple(s._cpp.f), lambda s, v: setattr(s._cpp, "f", _vector(v, "f")))
-    fi = property(lambda s: tuple(s._cpp.fi), lambda s, v: setattr(s._cpp, "fi", _vector(v, "fi")))
+    A = property(lambda s: Vector3(s._cpp.A), lambda s, v: setattr(s._cpp, "A", _vector(v, "A")))
+    f = property(lambda s: Vector3(s._cpp.f), lambda s, v: setattr(s._cpp, "f", _vector(v, "f")))
+    fi = property(lambda s: Vector3(s._cpp.fi), lambda s, v: setattr(s._cpp, "fi", _vector(v, "fi")))
 
 
 __all__ = ["KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine"]

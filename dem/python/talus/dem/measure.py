@@ -1,11 +1,13 @@
 """Measurements with Yade's names: unbalancedForce, getStress, avgNumInteractions,
-fabricTensor, bodyStressTensors, porosity, getStressAndTangent."""
+fabricTensor, bodyStressTensors, porosity, getStressAndTangent. Tensors come as Yade's
+Matrix3 (the tangent as a Matrix6)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 from talus import _dem
+from talus.dem.linalg import Matrix3, Matrix6, Vector3
 
 
 def _scene(scene):
@@ -30,15 +32,15 @@ def unbalancedForce(useMaxForce: bool = False, scene=None) -> float:
     return _dem.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)
 
 
-def getStress(volume: float = -1, scene=None) -> np.ndarray:
+def getStress(volume: float = -1, scene=None) -> Matrix3:
     """Love-Weber stress -(1/V) sum f (x) l (compression negative, as Yade); `volume` defaults
     to the periodic cell's."""
     scene = _scene(scene)
-    return np.array(_dem.loveWeberStress(scene._cpp, float(volume)))
+    return Matrix3(_dem.loveWeberStress(scene._cpp, float(volume)))
 
 
 def getStressAndTangent(volume: float = -1, symmetry: bool = True, form: str = "full",
-                        scene=None) -> tuple[np.ndarray, np.ndarray]:
+                        scene=None) -> tuple[Matrix3, Matrix6]:
     """Love-Weber stress (as getStress) and the 6x6 contact-stiffness tangent operator in Voigt
     order xx, yy, zz, yz, xz, xy with engineering shear strains: d(stress) ~ tangent @ d(strain)
     for an affine strain increment without sliding (docs/dem.md gives the formula).
@@ -49,8 +51,8 @@ def getStressAndTangent(volume: float = -1, symmetry: bool = True, form: str = "
     if form not in ("full", "yade"):
         raise ValueError(f"getStressAndTangent: form must be 'full' or 'yade', got {form!r}")
     scene = _scene(scene)
-    return (np.array(_dem.loveWeberStress(scene._cpp, float(volume))),
-            np.array(_dem.contactStiffnessTangent(scene._cpp, float(volume), form == "yade")))
+    return (Matrix3(_dem.loveWeberStress(scene._cpp, float(volume))),
+            Matrix6(_dem.contactStiffnessTangent(scene._cpp, float(volume), form == "yade")))
 
 
 def avgNumInteractions(skipFree: bool = False, scene=None) -> float:
@@ -58,17 +60,17 @@ def avgNumInteractions(skipFree: bool = False, scene=None) -> float:
     return _dem.coordinationNumber(_scene(scene)._cpp, skipFree)
 
 
-def fabricTensor(scene=None) -> np.ndarray:
+def fabricTensor(scene=None) -> Matrix3:
     """(1/Nc) sum of n (x) n over sphere-sphere contacts."""
-    return np.array(_dem.fabricTensor(_scene(scene)._cpp))
+    return Matrix3(_dem.fabricTensor(_scene(scene)._cpp))
 
 
-def bodyStressTensors(revertSign: bool = False, scene=None) -> list[np.ndarray]:
+def bodyStressTensors(revertSign: bool = False, scene=None) -> list[Matrix3]:
     """Per body id, the mean stress in the solid sphere from its contact forces,
     (1/V) sum of force (x) arm over its contacts (Yade's bodyStressTensors: compression negative,
     the opposite with ``revertSign``); zero for bodies that are not spheres."""
     sign = -1.0 if revertSign else 1.0
-    return [sign * np.array(s) for s in _dem.bodyStressTensors(_scene(scene)._cpp)]
+    return [sign * Matrix3(s) for s in _dem.bodyStressTensors(_scene(scene)._cpp)]
 
 
 def porosity(volume: float = -1, scene=None) -> float:
@@ -88,3 +90,72 @@ def porosity(volume: float = -1, scene=None) -> float:
             lo, hi = (pos - r[spheres, None]).min(axis=0), (pos + r[spheres, None]).max(axis=0)
             volume = float(np.prod(hi - lo))
     return 1.0 - _dem.sphereVolume(scene._cpp) / volume
+
+
+def _moving(scene) -> np.ndarray:
+    """Ids of the bodies that carry momentum: alive, dynamic, not clump members (their clump does)."""
+    cpp = scene._cpp
+    ids = np.flatnonzero(np.asarray(cpp.alive(), dtype=bool) & np.asarray(cpp.dynamic(), dtype=bool))
+    return np.array([i for i in ids if not scene.bodies[int(i)].isClumpMember], dtype=int)
+
+
+def kineticEnergy(findMaxId: bool = False, scene=None):
+    """Total kinetic energy of the dynamic bodies, 1/2 m v^2 + 1/2 sum I_k w_k^2 (principal
+    inertia with the world-frame angular velocity: exact for spheres). With ``findMaxId``,
+    ``(energy, id of the body with the most)`` as Yade's utils.kineticEnergy."""
+    scene = _scene(scene)
+    ids = _moving(scene)
+    cpp = scene._cpp
+    per_body = 0.5 * (np.asarray(cpp.mass())[ids] * np.sum(np.asarray(cpp.vel())[ids] ** 2, axis=1)
+                      + np.sum(np.asarray(cpp.inertia())[ids] * np.asarray(cpp.angVel())[ids] ** 2, axis=1))
+    total = float(per_body.sum())
+    if findMaxId:
+        return total, (int(ids[np.argmax(per_body)]) if len(ids) else -1)
+    return total
+
+
+def momentum(scene=None) -> Vector3:
+    """Total linear momentum of the dynamic bodies."""
+    scene = _scene(scene)
+    ids = _moving(scene)
+    cpp = scene._cpp
+    return Vector3((np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]).sum(axis=0))
+
+
+def angularMomentum(origin=(0.0, 0.0, 0.0), scene=None) -> Vector3:
+    """Total angular momentum of the dynamic bodies about ``origin`` (spin with principal inertia
+    and world-frame angular velocity: exact for spheres)."""
+    scene = _scene(scene)
+    ids = _moving(scene)
+    cpp = scene._cpp
+    r = np.asarray(cpp.pos())[ids] - np.asarray(origin, dtype=float)
+    p = np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]
+    spin = np.asarray(cpp.inertia())[ids] * np.asarray(cpp.angVel())[ids]
+    return Vector3((np.cross(r, p) + spin).sum(axis=0))
+
+
+def sumForces(ids, direction, scene=None) -> float:
+    """Sum over ``ids`` of the force on each body projected on ``direction``."""
+    scene = _scene(scene)
+    f = np.asarray(scene._cpp.force())[np.asarray(list(ids), dtype=int)]
+    return float((f @ np.asarray(direction, dtype=float)).sum())
+
+
+def aabbExtrema(cutoff: float = 0.0, centers: bool = False, scene=None) -> tuple[Vector3, Vector3]:
+    """Corners of the box enclosing the spheres (their centres only with ``centers``), shrunk
+    by the fraction ``cutoff`` of its size on each side, as Yade's utils.aabbExtrema."""
+    scene = _scene(scene)
+    ids = scene.sphere_ids()
+    if not len(ids):
+        raise ValueError("aabbExtrema: the scene has no spheres")
+    pos = np.asarray(scene._cpp.pos())[ids]
+    r = np.zeros(len(ids)) if centers else np.asarray(scene._cpp.radius())[ids]
+    lo, hi = (pos - r[:, None]).min(axis=0), (pos + r[:, None]).max(axis=0)
+    shrink = cutoff * (hi - lo)
+    return Vector3(lo + shrink), Vector3(hi - shrink)
+
+
+def aabbDim(cutoff: float = 0.0, centers: bool = False, scene=None) -> Vector3:
+    """Size of the box of ``aabbExtrema``."""
+    lo, hi = aabbExtrema(cutoff, centers, scene)
+    return Vector3(hi - lo)

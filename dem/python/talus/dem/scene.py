@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-import __main__
 import math
+import sys
+import time
 import warnings
 import weakref
 from typing import Sequence
@@ -12,10 +13,13 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.blocks import Ig2_PB_PB_ScGeom
+from talus.dem.appearance import Appearance
 from talus.dem.bodies import BodyContainer
 from talus.dem.cell import Cell
 from talus.dem.energy import EnergyTracker
-from talus.dem.engines import Engine
+from talus.dem.engines import Engine, collapseDispatchers
+from talus.dem.forces import ForceContainer
+from talus.dem.interactions import InteractionContainer
 from talus.dem.io import CheckpointMethods
 from talus.dem.materials import Material, default_material
 from talus.dem.particles import Ig2_PP_PP_ScGeom
@@ -36,7 +40,10 @@ class MaterialContainer:
         self._scene = scene
         self._materials: list[Material] = []
 
-    def append(self, material: Material) -> int:
+    def append(self, material: Material | Sequence[Material]):
+        """Add a material (returns its index) or a list of them (returns their indices)."""
+        if isinstance(material, (list, tuple)):
+            return [self.append(m) for m in material]
         if not isinstance(material, Material):
             raise TypeError(f"O.materials.append takes a material (FrictMat, ViscElMat, ...), got {material!r}")
         if material._scene is not None:
@@ -85,8 +92,35 @@ class Scene(CheckpointMethods):
         self.bodies = BodyContainer(self)
         self.cell = Cell(self)
         self.energy = EnergyTracker(self)
+        self.interactions = InteractionContainer(self)
+        self._appearance = Appearance()
+        self.forces = ForceContainer(self)
+        self.tags: dict[str, str] = {}          # Yade's O.tags: free-form labels of the run
+        self.stopAtIter = 0                     # a run stops when the step count reaches it (0: never)
+        self.stopAtTime = 0.0                   # ... or when the time reaches it (0: never)
         self._engines: list[Engine] = []
         self._views: list[weakref.ref] = []  # arrays handed out by the exchange interface
+        self._openRunPending = False         # O.run() without count and without wait (see run)
+        self._created = time.monotonic()
+
+    def reset(self):
+        """Forget everything: bodies, materials, engines, contacts, clock (Yade's O.reset)."""
+        self.__init__()
+
+    def resetTime(self):
+        """Set the step count and the time back to zero (Yade's O.resetTime)."""
+        self._cpp.iter = 0
+        self._cpp.time = 0.0
+
+    @property
+    def realtime(self) -> float:
+        """Wall-clock seconds since the scene was created (Yade's O.realtime)."""
+        return time.monotonic() - self._created
+
+    @property
+    def numThreads(self) -> int:
+        """OpenMP threads the step uses (``talus run -j N``)."""
+        return _dem.threadCount()
 
     dt = property(lambda s: s._cpp.dt, lambda s, v: s._set_dt(v), doc="time step (s)")
     time = property(lambda s: s._cpp.time, doc="simulated time (s)")
@@ -163,7 +197,7 @@ class Scene(CheckpointMethods):
 
     @engines.setter
     def engines(self, engines: Sequence[Engine]):
-        engines = list(engines)
+        engines = collapseDispatchers(list(engines))
         for e in engines:
             if not isinstance(e, Engine):
                 raise TypeError(f"O.engines takes engines, got {e!r}")
@@ -173,23 +207,82 @@ class Scene(CheckpointMethods):
         # As in Yade, a labelled engine becomes a variable of the script.
         for e in engines:
             if e.label:
-                setattr(__main__, e.label, e)
+                setattr(sys.modules["__main__"], e.label, e)
+
+    def typedEngine(self, name: str) -> Engine:
+        """The first engine of the class ``name`` in O.engines (Yade's utils.typedEngine)."""
+        for e in self._engines:
+            if type(e).__name__ == name:
+                return e
+        raise ValueError(f"typedEngine: no {name} in O.engines ({', '.join(type(e).__name__ for e in self._engines)})")
 
     def step(self):
         """Run one time step."""
+        self._openRunPending = False
         self._cpp.step()
 
-    def run(self, nSteps: int = -1, wait: bool = True):
-        """Run ``nSteps`` steps, or until ``O.pause()`` if ``nSteps`` is -1 (Yade's
-        ``O.run(n, True)``; Talus always waits for the run to end)."""
+    @property
+    def running(self) -> bool:
+        """An open-ended run (``O.run()`` without a step count) was started without waiting
+        and has not run yet: it runs at ``O.wait()``."""
+        return self._openRunPending
+
+    def run(self, nSteps: int = -1, wait: bool = False):
+        """Run ``nSteps`` steps, or with no count until ``O.pause()`` (from a PyRunner),
+        ``O.stopAtIter`` or ``O.stopAtTime``.
+
+        Yade runs in the background unless ``wait``. Talus runs a counted run to its end before
+        returning (what a Yade script sees after ``O.wait()``). An open-ended run without
+        ``wait`` is kept for ``O.wait()``; a script that ends with it still pending stops
+        there, as under ``yade -x``."""
+        if nSteps != int(nSteps):
+            raise ValueError(f"O.run: nSteps must be a whole number of steps, got {nSteps}")
+        nSteps = int(nSteps)
         if nSteps < -1:
             raise ValueError(f"O.run: nSteps must be >= 0 (or -1: until O.pause()), got {nSteps}")
-        if nSteps == -1 and not any(type(e).__name__ == "PyRunner" for e in self._engines):
-            raise ValueError("O.run() without a step count runs until O.pause(), but no PyRunner could call it")
-        self._cpp.run(int(nSteps))
+        self._openRunPending = False
+        if nSteps == -1 and not wait:
+            self._openRunPending = True
+            return
+        self._run(nSteps)
+
+    def wait(self):
+        """Run the open-ended run started by ``O.run()`` (Yade: wait for the background run)."""
+        if self._openRunPending:
+            self._openRunPending = False
+            self._run(-1)
+
+    def _run(self, nSteps: int):
+        stopIter = self.stopAtIter if self.stopAtIter > self.iter else None
+        stopTime = self.stopAtTime if self.stopAtTime > self.time else None
+        if nSteps < 0 and stopIter is None and stopTime is None and \
+                not any(type(e).__name__ == "PyRunner" for e in self._engines):
+            raise ValueError("O.run() without a step count runs until O.pause(), but no PyRunner could call it "
+                             "(or set O.stopAtIter / O.stopAtTime)")
+        remaining = nSteps
+        while True:
+            limits = [remaining] if remaining >= 0 else []
+            if stopIter is not None:
+                limits.append(stopIter - self.iter)
+            if stopTime is not None:
+                # Whole steps to reach stopAtTime at the current dt; again if a time stepper
+                # changed dt meanwhile.
+                limits.append(max(1, math.ceil((stopTime - self.time) / self.dt - 1e-9)))
+            steps = min(limits) if limits else -1
+            before = self.iter
+            self._cpp.run(steps)
+            done = self.iter - before
+            if steps < 0 or done < steps:                      # paused
+                return
+            remaining = remaining - done if remaining >= 0 else -1
+            if remaining == 0 or (stopIter is not None and self.iter >= stopIter) or \
+                    (stopTime is not None and self.time >= stopTime):
+                return
 
     def pause(self):
-        """Stop the current run after this step (call it from a PyRunner, as in Yade)."""
+        """Stop the current run after this step (call it from a PyRunner, as in Yade); a
+        pending open-ended run is dropped."""
+        self._openRunPending = False
         self._cpp.pause()
 
     # Array views of all bodies (index = body id): the particle exchange interface in Python.
@@ -216,9 +309,6 @@ class Scene(CheckpointMethods):
 
     def angular_velocities(self):
         return self._view(self._cpp.angVel())
-
-    def forces(self):
-        return self._view(self._cpp.force())
 
     def torques(self):
         return self._view(self._cpp.torque())

@@ -7,6 +7,8 @@ from __future__ import annotations
 import numpy as np
 
 from talus import _dem
+from talus.dem.appearance import check_color
+from talus.dem.linalg import Vector3
 
 
 class Shape:
@@ -19,6 +21,27 @@ class Shape:
 
     def _data(self) -> dict:
         return _dem.shape_data(self._scene._cpp, self._id)
+
+    def _look(self):
+        look = self._scene._appearance
+        look.ensure(self._scene._cpp.bodyCount())
+        return look
+
+    @property
+    def color(self) -> Vector3:
+        """RGB colour in [0, 1], written to ParaView output (Yade's ``shape.color``)."""
+        return Vector3(self._look().color[self._id])
+
+    @color.setter
+    def color(self, value):
+        self._look().color[self._id] = check_color(value)
+
+    highlight = property(lambda s: bool(s._look().highlight[s._id]),
+                         lambda s, v: s._look().highlight.__setitem__(s._id, bool(v)),
+                         doc="Yade's highlight flag: kept and written to ParaView output")
+    wire = property(lambda s: bool(s._look().wire[s._id]),
+                    lambda s, v: s._look().wire.__setitem__(s._id, bool(v)),
+                    doc="Yade's wire-frame flag: kept and written to ParaView output")
 
     def __str__(self):
         return type(self).__name__
@@ -62,21 +85,21 @@ class Facet(Shape):
     __slots__ = ()
 
     @property
-    def vertices(self) -> list[np.ndarray]:
-        return [np.array(v) for v in self._data()["vertices"]]
+    def vertices(self) -> list[Vector3]:
+        return [Vector3(v) for v in self._data()["vertices"]]
 
     @property
-    def normal(self) -> np.ndarray:
-        return np.array(self._data()["normal"])
+    def normal(self) -> Vector3:
+        return Vector3(self._data()["normal"])
 
 
 class Box(Shape):
     __slots__ = ()
 
     @property
-    def extents(self) -> np.ndarray:
+    def extents(self) -> Vector3:
         """Half-sizes along the body's axes."""
-        return np.array(_dem.box_extents(self._scene._cpp, self._id))
+        return Vector3(_dem.box_extents(self._scene._cpp, self._id))
 
 
 class Clump(Shape):
