@@ -56,8 +56,8 @@ def add(kind, pos, axis=(0, 0, 1), angle=0.0, fixed=False, boundary=False):
         b.state.ori = Quaternion(Vector3(*axis), angle)
         b.shape.volume = s["volume"]
         return O.bodies.append(b)
-    n = math.sqrt(sum(a * a for a in axis))
-    q = (math.cos(angle / 2), *(math.sin(angle / 2) * a / n for a in axis))
+    # Quaternion(axis, angle) as in Yade's branch: the same orientation for the non-unit random axes
+    q = Quaternion(axis, angle)
     return O.bodies.append(potentialParticle(PotentialParticle(isBoundary=boundary, **args), pos=pos, orientation=q,
                                              material=MAT, fixed=fixed))
 

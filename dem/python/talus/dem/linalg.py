@@ -5,8 +5,10 @@ scene accessors (``b.state.pos``, ``b.state.ori``, ``O.cell.hSize``, ``getStress
 The vectors and matrices are numpy arrays of a fixed shape (float64, int64 for the ``i``
 types), so numpy code keeps working on them, with minieigen's constructors, methods and class
 attributes on top (``Vector3(1, 2, 3)``, ``Vector3.UnitX``, ``v.norm()``, ``m.inverse()``,
-``repr`` ``Vector3(1,2,3)``). Where minieigen and numpy read an operator differently and numpy
-would silently give another answer, minieigen's meaning is kept:
+``repr`` ``Vector3(1,2,3)``, numbers in their shortest exact form where Yade 2023 prints 19
+digits). ``Vector3()``, ``Matrix3()``... are zero (minieigen leaves them uninitialised). Where
+minieigen and numpy read an operator differently and numpy would silently give another answer,
+minieigen's meaning is kept:
 
 * ``Matrix * Vector`` and ``Matrix * Matrix`` are matrix products (``m *= m2`` too);
   ``Vector * Matrix`` is, as in minieigen, the same product ``Matrix * Vector``;
@@ -25,9 +27,11 @@ numpy array or a number they compare element-wise, as numpy does (minieigen itse
 numpy array to numpy's element-wise comparison; against a number it answers False, Talus gives
 numpy's array so that ``v == 0`` keeps its numpy meaning). Value types are not hashable.
 
-Quaternion follows minieigen: built from ``(axis, angle)``, ``(angle, axis)`` (the axis is not
-normalised first, as in Yade: give a unit axis), ``(w, x, y, z)``,
-a rotation Matrix3, two vectors (the rotation from one to the other) or another Quaternion;
+Quaternion follows minieigen: built from ``(axis, angle)``, ``(angle, axis)``, ``(w, x, y, z)``,
+a rotation Matrix3, two vectors (the rotation from one to the other) or another Quaternion.
+With an axis that is not of unit length, minieigen normalises (cos a/2, sin a/2 axis), which
+turns by another angle than ``a``: Talus does the same, so that a script gets Yade's
+orientation (give a unit axis for the rotation by ``a``). It is
 indexed ``q[0..3] = x, y, z, w`` (Eigen's storage order, so ``list(q)`` and ``np.array(q)`` are
 ``[x, y, z, w]``); ``repr`` in axis-angle form. It also has ``.w .x .y .z`` (minieigen has not)
 and ``Quaternion()`` is the identity (minieigen leaves it uninitialised). The C++ core hands
