@@ -60,6 +60,7 @@ std::vector<std::shared_ptr<T>> noneRefused(const std::vector<std::shared_ptr<T>
       throw py::type_error(std::string(what) + ": item " + std::to_string(k) + " is None");
   return items;
 }
+
 /// One contact as a dict of Yade's geometry and physics names (a copy, for scripts).
 py::dict contactDict(const Contact& c)
 {

@@ -370,12 +370,7 @@ class FoamCoupling(_Engine):
         if not np.all(np.isfinite(forces)):
             raise FloatingPointError("FoamCoupling: the fluid returned non-finite forces")
         self._force = forces
-        self.lastForces = forces
-        self.exchanges += 1
-        if re > self.reynoldsLimit and self.maxReynolds <= self.reynoldsLimit:
-            warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
-                          f"the drag law of {self.solver} is no longer accurate", RuntimeWarning, stacklevel=2)
-        self.maxReynolds = max(self.maxReynolds, re)
+        self._received(forces, re)
         self._count_times(time.perf_counter() - start, time.thread_time() - start_cpu)
 
     def _write_summary(self, path):
@@ -565,13 +560,18 @@ class FoamCoupling(_Engine):
         # already filled from them by the ForceResetter, so it gets the change too.
         self._add_force_change(forces, self._applied, ids, self.scene.persistent_forces(), self.scene.forces())
         self._applied = forces
+        self._received(forces, re)
+        self._count_times(time.perf_counter() - start, time.thread_time() - start_cpu)
+
+    def _received(self, forces, re: float):
+        """Book one exchange's forces and largest particle Reynolds number (warned once past
+        the solver's drag law's limit)."""
         self.lastForces = forces
         self.exchanges += 1
         if re > self.reynoldsLimit and self.maxReynolds <= self.reynoldsLimit:
             warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
-                          f"the drag law of {Path(self.solver).name} is no longer accurate", RuntimeWarning, stacklevel=2)
+                          f"the drag law of {Path(self.solver).name} is no longer accurate", RuntimeWarning, stacklevel=3)
         self.maxReynolds = max(self.maxReynolds, re)
-        self._count_times(time.perf_counter() - start, time.thread_time() - start_cpu)
 
     def _count_times(self, hook_seconds: float, hook_cpu: float):
         link, times = self.link, self.times
