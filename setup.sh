@@ -33,7 +33,8 @@ jobs=${JOBS:-$(nproc)}
 openfoam_src=${TALUS_OPENFOAM_SRC:-/opt/talus/openfoam-v1912}
 
 # Every Debian package the components use; cases and benchmarks also use the peers yade and
-# liggghts, installed here so a fresh machine can run them.
+# liggghts, installed here so a fresh machine can run them (xvfb: Yade's examples import its Qt
+# GUI, which needs a display even under -x).
 packages=(
   g++ make cmake git pkg-config ca-certificates
   libgtest-dev googletest
@@ -42,7 +43,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy python3-scipy python3-matplotlib python3-pytest python3-h5py python3-mpi4py
   openfoam flex libfl-dev bzip2 zlib1g-dev
   python3-dolfinx python3-escript gmsh python3-gmsh
-  yade liggghts
+  yade liggghts xvfb xauth
 )
 
 step() { printf '\n== %s\n' "$*"; }

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import runpy
 import sys
 import traceback
@@ -29,6 +30,23 @@ def _warn_if_oversubscribed(threads: int) -> None:
         print(f"talus run: warning: {threads} OpenMP threads on {cores} cores with a load average of {busy:.1f}: "
               f"threads waiting for busy cores can make the run many times slower; use -j "
               f"{max(1, min(threads, int(cores - busy)))} or fewer", file=sys.stderr)
+
+
+def _note_missing_yade_name(exc: BaseException) -> None:
+    """A NameError or ImportError on one of Yade's own names says that Talus lacks it and whether
+    it is out of scope, instead of looking like a typo in the script."""
+    from yade import _scope
+    note = None
+    if isinstance(exc, NameError) and exc.name:
+        note = _scope.missing_name_note(exc.name)
+    elif isinstance(exc, ImportError) and (exc.name or "").startswith("yade"):
+        missing = re.match(r"cannot import name '(\w+)'", str(exc))
+        if missing:
+            note = _scope.missing_name_note(missing[1], exc.name)
+        elif exc.name != "yade":        # import yade.mpy
+            note = _scope.missing_name_note(exc.name.rpartition(".")[2], "yade")
+    if note:
+        exc.add_note(note)
 
 
 def _run(args: argparse.Namespace) -> int:
@@ -62,6 +80,7 @@ def _run(args: argparse.Namespace) -> int:
         exc_type, exc, tb = sys.exc_info()
         while tb is not None and tb.tb_frame.f_code.co_filename != str(script):
             tb = tb.tb_next
+        _note_missing_yade_name(exc)
         traceback.print_exception(exc_type, exc, tb)
         return 1
     return 0

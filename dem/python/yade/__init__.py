@@ -25,7 +25,7 @@ import sys
 
 from talus.dem import *          # noqa: F401,F403  (the DEM core under Yade's names)
 from talus.dem import O, __all__ as _dem_names
-from yade import _components
+from yade import _components, _scope
 from yade._gui import *          # noqa: F401,F403  (the 3D view's classes: accepted, inert)
 from yade._gui import __all__ as _gui_names
 from yade.wrapper import Omega
@@ -35,10 +35,24 @@ _component_names = _components.export(globals())
 builtins.O = O
 builtins.Omega = Omega
 
-from yade import utils, pack, plot, ymport, export, timing, geom, qt, params  # noqa: E402  (need O above)
+# Yade's modules under their names. `from talus.dem import *` above bound pack, geom, ymport and
+# timing to talus.dem's modules, which `from yade import pack` would then keep: `import yade.x`
+# loads the yade.x namespace module and rebinds the name to it.
+import yade.utils as utils          # noqa: E402  (these need O above)
+import yade.pack as pack            # noqa: E402
+import yade.plot as plot            # noqa: E402
+import yade.ymport as ymport        # noqa: E402
+import yade.export as export        # noqa: E402
+import yade.timing as timing        # noqa: E402
+import yade.geom as geom            # noqa: E402
+import yade.qt as qt                # noqa: E402
+import yade.params as params        # noqa: E402
 
 __all__ = [*_dem_names, *_gui_names, *_component_names, "O", "Omega",
            "utils", "pack", "plot", "ymport", "export", "timing", "geom", "qt", "params"]
+
+
+__getattr__ = _scope.module_getattr("yade")
 
 
 def execfile(path, globals=None, locals=None):
@@ -55,13 +69,23 @@ def script_namespace() -> dict:
     """The globals ``yade -x script.py`` runs a script with: every class and function of
     ``yade``, ``from yade.utils import *``, ``from yade.pack import *``, ``from math import *``,
     the modules ``yade``, ``utils``, ``pack``, ``geom``, and what Yade's launcher itself imports
-    (``os``, ``sys``, ``time``, ``execfile``)."""
+    (``os``, ``sys``, ``time``, ``math``, ``numpy``, ``random``, ``itertools``, ``warnings``,
+    ``argparse``, ``doctest``, ``execfile``), as listed by a script under ``yade -x``."""
+    import argparse
+    import doctest
+    import itertools
     import os
+    import random
     import time
+    import warnings
+
+    import numpy
     import yade
     namespace = {name: getattr(yade, name) for name in __all__}
     namespace.update({name: getattr(pack, name) for name in pack.__all__})
     namespace.update({name: getattr(utils, name) for name in utils.__all__})
     namespace.update({name: getattr(math, name) for name in dir(math) if not name.startswith("_")})
-    namespace.update(yade=yade, utils=utils, pack=pack, geom=geom, os=os, sys=sys, time=time, execfile=execfile)
+    namespace.update(yade=yade, utils=utils, pack=pack, geom=geom, os=os, sys=sys, time=time, math=math,
+                     numpy=numpy, random=random, itertools=itertools, warnings=warnings, argparse=argparse,
+                     doctest=doctest, execfile=execfile)
     return namespace

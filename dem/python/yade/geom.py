@@ -1,3 +1,7 @@
 """``yade.geom``: facet boxes and cylinders (talus.dem.geom)."""
 
 from talus.dem.geom import *  # noqa: F401,F403
+
+from yade._scope import module_getattr  # noqa: E402
+
+__getattr__ = module_getattr("yade.geom")

@@ -39,3 +39,7 @@ def randomColor() -> tuple[float, float, float]:
     """A random RGB colour (Python's ``random``)."""
     import random
     return (random.random(), random.random(), random.random())
+
+from yade._scope import module_getattr  # noqa: E402
+
+__getattr__ = module_getattr("yade.utils")
