@@ -20,7 +20,6 @@ This package never shadows a real Yade: Yade's own launcher puts its modules ahe
 from __future__ import annotations
 
 import builtins
-import math
 import sys
 
 from talus.dem import *          # noqa: F401,F403  (the DEM core under Yade's names)
@@ -47,6 +46,9 @@ import yade.timing as timing        # noqa: E402
 import yade.geom as geom            # noqa: E402
 import yade.qt as qt                # noqa: E402
 import yade.params as params        # noqa: E402
+import yade.config as config        # noqa: E402  (Yade's yade.config and yade.math come with yade)
+import yade.math as math            # noqa: E402
+import yade.libVersions as libVersions  # noqa: E402
 
 __all__ = [*_dem_names, *_gui_names, *_component_names, "O", "Omega",
            "utils", "pack", "plot", "ymport", "export", "timing", "geom", "qt", "params"]
@@ -74,6 +76,7 @@ def script_namespace() -> dict:
     import argparse
     import doctest
     import itertools
+    import math
     import os
     import random
     import time

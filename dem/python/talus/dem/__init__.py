@@ -24,8 +24,8 @@ from talus.dem.particles import __all__ as _particle_names
 from talus.dem.blockgen import Joint, JointFileError, generateBlocks, readJoints
 from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.engines import __all__ as _engine_names
-from talus.dem.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector6,
-                              Vector6i)
+from talus.dem.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
+                              Vector6, Vector6i)
 from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
                                    TriaxialStressController, growParticles, setContactFriction)
 from talus.dem.energy import EnergyTracker
@@ -40,7 +40,7 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "timing", "ymport", "Material",
-           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector2", "Vector2i", "Vector3", "Vector3i", "Vector6",
+           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector2", "Vector2i", "Vector3", "Vector3i", "Vector4", "Vector6",
            "Vector6i", "Matrix3", "Matrix6", "Quaternion",
            "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "bodyStressTensors",
            "porosity",

@@ -1,4 +1,4 @@
-"""Yade's value types (minieigen's): ``Vector2, Vector3, Vector6`` (and the integer ``Vector2i,
+"""Yade's value types (minieigen's): ``Vector2, Vector3, Vector4, Vector6`` (and the integer ``Vector2i,
 Vector3i, Vector6i``), ``Matrix3, Matrix6`` and ``Quaternion``, returned by the per-body and
 scene accessors (``b.state.pos``, ``b.state.ori``, ``O.cell.hSize``, ``getStress()``, ...).
 
@@ -46,7 +46,7 @@ from numbers import Number
 
 import numpy as np
 
-__all__ = ["Vector2", "Vector2i", "Vector3", "Vector3i", "Vector6", "Vector6i", "Matrix3", "Matrix6", "Quaternion"]
+__all__ = ["Vector2", "Vector2i", "Vector3", "Vector3i", "Vector4", "Vector6", "Vector6i", "Matrix3", "Matrix6", "Quaternion"]
 
 # Eigen's default precision for isApprox with doubles.
 _DEFAULT_PRECISION = 1e-12
@@ -342,6 +342,12 @@ class Vector3(_Vector3Methods, _Real):
 
 class Vector3i(_Vector3Methods):
     _shape, _dtype = (3,), np.dtype(np.int64)
+
+
+class Vector4(_Vector, _Real):
+    # Not among the types accessors make of a bare 4-array (_TYPES): orientations come from the
+    # core as (w, x, y, z) arrays, which must not turn into vectors.
+    _shape = (4,)
 
 
 class Vector6(_Vector6Methods, _Real):
