@@ -65,7 +65,7 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
       penetration = r + depth[axis];
     }
     contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
-    r1 = 2 * r;
+    r1 = r; // Yade's Ig2_Box_Sphere_ScGeom gives both sides the sphere's radius (a facet, 2r)
     r2 = r;
     return true;
   }

@@ -65,3 +65,15 @@ def test_body_stress_tensors_match_yade():
     off_wall = [i for i in range(1, len(a)) if i not in ours["onWall"]]
     assert len(off_wall) == 48 and ours["onWall"] == theirs["onWall"]
     assert np.max(np.abs(a[off_wall] - b[off_wall])) < 1e-9 * np.max(np.abs(b[off_wall]))
+
+
+@yade_missing
+def test_spheres_on_boxes_match_yade():
+    # A sphere on a box's face (Yade's simple-scene), one on an edge, one rolling down a tilted
+    # box: both sides of a box-sphere contact take the sphere's radius, as Yade's Ig2_Box_Sphere.
+    ours, theirs = both("box_bounce.py")
+    a, b = np.array(ours["x"]), np.array(theirs["x"])
+    assert a.shape == b.shape == (119, 3, 6)
+    assert np.abs(b[-1, :, :3] - b[0, :, :3]).max() > 0.1      # they did fall, bounce and roll
+    assert np.abs(a[..., :3] - b[..., :3]).max() < 1e-8
+    assert np.abs(a[..., 3:] - b[..., 3:]).max() < 1e-6 * np.abs(b[..., 3:]).max()
