@@ -62,10 +62,9 @@ void TriaxialStressController::computeStressStrain(const Scene& scene)
   checkWalls(scene); // also called from Python, with wall ids that may not be the scene's
   const Bodies& b = scene.bodies;
   auto at = [&](int w) { return b.pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(w)])][wallAxis[w]]; };
-  const double t = std::max(thickness, 0.0);
-  height = at(Top) - at(Bottom) - t;
-  width = at(Right) - at(Left) - t;
-  depth = at(Front) - at(Back) - t;
+  height = at(Top) - at(Bottom);
+  width = at(Right) - at(Left);
+  depth = at(Front) - at(Back);
   if (height0 == 0)
     height0 = height;
   if (width0 == 0)
@@ -111,12 +110,14 @@ void TriaxialStressController::run(Scene& scene)
 {
   checkWalls(scene);
   if (thickness < 0)
-    thickness = 0; // Talus walls are planes
+    thickness = 0; // Yade reads it from its box walls; Talus's walls are planes
   Bodies& b = scene.bodies;
+  // The planes stand where Yade's boxes have their inner faces: the distance between two
+  // planes is Yade's distance between box centres minus the thickness.
   auto position = [&](int w) { return b.pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(w)])][wallAxis[w]]; };
-  height = position(Top) - position(Bottom) - thickness;
-  width = position(Right) - position(Left) - thickness;
-  depth = position(Front) - position(Back) - thickness;
+  height = position(Top) - position(Bottom);
+  width = position(Right) - position(Left);
+  depth = position(Front) - position(Back);
   if (!(height > 0 && width > 0 && depth > 0))
     throw std::runtime_error("TriaxialStressController: the walls do not enclose a box (width " + std::to_string(width)
                              + ", height " + std::to_string(height) + ", depth " + std::to_string(depth) + ")");

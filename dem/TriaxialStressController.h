@@ -14,8 +14,10 @@ class Scene;
 /// Yade's TriaxialStressController: six walls around a box of spheres, each axis servo-controlled
 /// to a stress or a strain rate (stressMask bit 1, 2, 4 for x, y, z; goal1..3; tension positive).
 /// Walls are Talus's infinite planes (wall(pos, axis)) by id, in Yade's order: left/right (x),
-/// bottom/top (y), back/front (z); `thickness` (default 0 for planes) is subtracted from the
-/// distances between walls as for Yade's box walls. Run it after the InteractionLoop, before
+/// bottom/top (y), back/front (z), standing where Yade's box walls have their inner faces (as
+/// aabbWalls puts them): the distances between planes are the sample's sizes, and `thickness`
+/// (Yade's box thickness, subtracted there from the distances between box centres) is only
+/// kept for scripts that read it. Run it after the InteractionLoop, before
 /// the NewtonIntegrator (which moves the walls at the velocities set here).
 ///
 /// Stress control: each wall moves by (force gap) / (sum of its contact stiffnesses), capped

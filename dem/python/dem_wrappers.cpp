@@ -182,6 +182,7 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("nDone", &CallbackEngine::nDone);
 
   void talus_wrap_controllers(py::module_&); talus_wrap_controllers(m); // engines: controllers_wrappers.cpp
+  void talus_wrap_triaxial(py::module_&); talus_wrap_triaxial(m); // triaxial tests: triaxial_wrappers.cpp
 
   py::class_<Cell>(m, "Cell")
       .def_readonly("hSize", &Cell::hSize)

@@ -29,6 +29,7 @@ from talus.dem.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, V
 from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
                                    TriaxialStressController, growParticles, setContactFriction)
 from talus.dem.energy import EnergyTracker
+from talus.dem.triaxial import ThreeDTriaxialEngine, TriaxialCompressionEngine, TriaxialStateRecorder
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.kinematic import HarmonicMotionEngine, KinematicEngine, RotationEngine, TranslationEngine
 from talus.dem.io import CheckpointError
@@ -47,5 +48,6 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",
+           "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder",
            "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",
            *_engine_names, *_block_names, *_particle_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]

@@ -176,6 +176,8 @@ class TriaxialStressController(Engine):
     initial size), ``volumetricStrain``, ``meanStress``, ``porosity``, ``width``/``height``/``depth``,
     ``strainRate``, ``externalWork``."""
 
+    _cpp_type = _dem.TriaxialStressController   # subclasses (talus.dem.triaxial) drive their own
+
     _PARAMS = ("goal1", "goal2", "goal3", "stressMask", "internalCompaction", "maxMultiplier", "finalMaxMultiplier",
                "max_vel", "stressDamping", "strainDamping", "thickness", "stiffnessUpdateInterval",
                "radiusControlInterval", "computeStressStrainInterval")
@@ -189,7 +191,7 @@ class TriaxialStressController(Engine):
                  wall_left_activated: bool = True, wall_right_activated: bool = True,
                  wall_bottom_activated: bool = True, wall_top_activated: bool = True,
                  wall_back_activated: bool = True, wall_front_activated: bool = True, label: str = ""):
-        self._cpp = _dem.TriaxialStressController()
+        self._cpp = self._cpp_type()
         values = locals()
         for name in self._PARAMS:
             setattr(self, name, values[name])
