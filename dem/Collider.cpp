@@ -226,6 +226,84 @@ void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax
       out.push_back({key(facet, s), Eigen::Vector3i::Zero()});
   });
 }
+/// Whether two bodies are members of one clump (which never touch, as in Yade).
+bool sameClump(const Bodies& b, BodyId p, BodyId q)
+{
+  const BodyId c = b.clumpId[static_cast<std::size_t>(p)];
+  return c >= 0 && c == b.clumpId[static_cast<std::size_t>(q)];
+}
+
+/// Square of the distance from `point` to facet or box `body` (zero inside a box).
+double squaredDistanceTo(const Bodies& b, std::size_t body, const Vec3& point)
+{
+  if (b.shape[body] == ShapeKind::Facet)
+  {
+    const std::array<Vec3, 3> v = facetVertices(b, body);
+    return (point - closestPointOnTriangle(point, v[0], v[1], v[2])).squaredNorm();
+  }
+  const Vec3 extents = b.boxes[static_cast<std::size_t>(b.shapeIndex[body])].extents;
+  const Vec3 local = b.ori[body].conjugate() * (point - b.pos[body]);
+  return (local - local.cwiseMax(-extents).cwiseMin(extents)).squaredNorm();
+}
+
+/// Half the size of facet or box `body`'s Aabb along each axis.
+Vec3 halfAabb(const Bodies& b, std::size_t body)
+{
+  if (b.shape[body] == ShapeKind::Facet)
+  {
+    const std::array<Vec3, 3> v = facetVertices(b, body);
+    return 0.5 * (v[0].cwiseMax(v[1]).cwiseMax(v[2]) - v[0].cwiseMin(v[1]).cwiseMin(v[2]));
+  }
+  return b.ori[body].toRotationMatrix().cwiseAbs() * b.boxes[static_cast<std::size_t>(b.shapeIndex[body])].extents;
+}
+
+/// Candidate pairs of facet or box `body` and the spheres of a periodic cell: the periodic
+/// images of each sphere within r + skin of the body (the nearest one, or its neighbours too
+/// where the reach exceeds half the cell). A body whose Aabb grown by the skin spans more than
+/// half the cell along an axis has no nearest image there: with `allowBiggerThanPeriod` the
+/// sphere is taken where it is along that axis, as Yade's collider does (a floor across the
+/// cell), else it is an error, as in Yade.
+void periodicBoundaryPairs(const Bodies& b, BodyId body, const std::vector<BodyId>& spheres, const Cell& cell,
+                           double rmax, double skin, bool allowBiggerThanPeriod, std::vector<Candidate>& out)
+{
+  const auto k = static_cast<std::size_t>(body);
+  const Mat3 inv = cell.hSize.inverse();
+  const Vec3 half = halfAabb(b, k);
+  Eigen::Vector3i follows = Eigen::Vector3i::Ones(); // 1: images along that axis
+  Eigen::Vector3i spread = Eigen::Vector3i::Zero();  // 1: the nearest image's neighbours too
+  for (int d = 0; d < 3; ++d)
+  {
+    const Vec3 row = inv.row(d).cwiseAbs();
+    if (2 * row.dot(half + Vec3::Constant(skin)) > 0.5)
+    {
+      if (!allowBiggerThanPeriod)
+        throw std::runtime_error("body " + std::to_string(body) + " (" + shapeName(b.shape[k])
+                                 + ") spans more than half of the periodic cell along axis " + std::to_string(d)
+                                 + " (set InsertionSortCollider.allowBiggerThanPeriod=True for a body across the cell)");
+      follows[d] = 0;
+    }
+    else if (row.dot(half + Vec3::Constant(rmax + skin)) > 0.5)
+      spread[d] = 1;
+  }
+  const Vec3 centre = inv * b.pos[k];
+  for (BodyId s : spheres)
+  {
+    if (sameClump(b, body, s))
+      continue;
+    const auto i = static_cast<std::size_t>(s);
+    const Eigen::Vector3i nearest = Vec3((centre - inv * b.pos[i]).array().round()).cast<int>().cwiseProduct(follows);
+    const double range = b.radius[i] + skin;
+    for (int x = -spread[0]; x <= spread[0]; ++x)
+      for (int y = -spread[1]; y <= spread[1]; ++y)
+        for (int z = -spread[2]; z <= spread[2]; ++z)
+        {
+          const Eigen::Vector3i image = nearest + Eigen::Vector3i(x, y, z);
+          if (squaredDistanceTo(b, k, b.pos[i] + cell.shift(image)) < range * range)
+            out.push_back({key(body, s), image});
+        }
+  }
+}
+
 /// Potential Blocks and Particles: shapes given by planes, bounded by exact Aabbs.
 bool isBoundary(const Bodies& b, BodyId id)
 {
@@ -603,10 +681,18 @@ void Collider::rebuild(Scene& scene)
   // The other shapes' pairs, few, sorted on their own and merged in.
   std::vector<Candidate>& others = boundaryPairs_;
   others.clear();
-  for (BodyId f : facets)
-    facetPairs(b, f, grid_, rmax, skin_, others);
-  for (BodyId k : boxes_)
-    boxPairs(b, k, grid_, rmax, skin_, others);
+  if (scene.periodic)
+    // Every sphere against each facet or box: periodic scenes with many of them are rare.
+    for (const std::vector<BodyId>* kind : {&facets, &boxes_})
+      for (BodyId k : *kind)
+        periodicBoundaryPairs(b, k, spheres, scene.cell, rmax, skin_, allowBiggerThanPeriod, others);
+  else
+  {
+    for (BodyId f : facets)
+      facetPairs(b, f, grid_, rmax, skin_, others);
+    for (BodyId k : boxes_)
+      boxPairs(b, k, grid_, rmax, skin_, others);
+  }
   if (!convex_.empty())
     convexPairs(b, convex_, walls, skin_, others);
   for (BodyId w : walls)

@@ -35,6 +35,10 @@ public:
 
   /// Skin width; negative: that fraction of the smallest sphere radius (Yade's default -0.5).
   double verletDist = -0.5;
+  /// In a periodic cell, a facet or box spanning more than half the cell along an axis (with
+  /// the interaction range) meets the spheres where they are along it (Yade's
+  /// InsertionSortCollider.allowBiggerThanPeriod); without it such a body is an error.
+  bool allowBiggerThanPeriod = false;
   /// Number of rebuilds so far (diagnostics).
   std::int64_t rebuilds = 0;
 

@@ -2,8 +2,8 @@
 
 namespace talus::dem
 {
-bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtra* x, Vec3& normal, double& penetration,
-                      Vec3& contactPoint, double& r1, double& r2)
+bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtra* x, const Vec3& shift2, Vec3& normal,
+                      double& penetration, Vec3& contactPoint, double& r1, double& r2)
 {
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
@@ -16,8 +16,9 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
     // is Yade's.
     const std::array<Vec3, 3> v = facetVertices(b, i1);
     const double r = b.radius[i2];
+    const Vec3 centre = b.pos[i2] + shift2;
     bool inFace = false;
-    const Vec3 d = b.pos[i2] - closestPointOnTriangle(b.pos[i2], v[0], v[1], v[2], &inFace);
+    const Vec3 d = centre - closestPointOnTriangle(centre, v[0], v[1], v[2], &inFace);
     const double dist2 = d.squaredNorm();
     if (dist2 > r * r && !holds)
       return false;
@@ -30,7 +31,7 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
     else // centre exactly on an edge or a vertex: take the face's normal
       normal = faceNormal;
     penetration = r - dist;
-    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
+    contactPoint = centre - (r - 0.5 * penetration) * normal;
     r1 = 2 * r;
     r2 = r;
     return true;
@@ -42,7 +43,8 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
     // the centre inside, from the nearest face, penetration r + depth below that face.
     const double r = b.radius[i2];
     const Vec3 extents = b.boxes[static_cast<std::size_t>(b.shapeIndex[i1])].extents;
-    const Vec3 local = b.ori[i1].conjugate() * (b.pos[i2] - b.pos[i1]);
+    const Vec3 centre = b.pos[i2] + shift2;
+    const Vec3 local = b.ori[i1].conjugate() * (centre - b.pos[i1]);
     const Vec3 clamped = local.cwiseMax(-extents).cwiseMin(extents);
     if (clamped != local)
     {
@@ -64,7 +66,7 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
       normal = b.ori[i1] * n;
       penetration = r + depth[axis];
     }
-    contactPoint = b.pos[i2] - (r - 0.5 * penetration) * normal;
+    contactPoint = centre - (r - 0.5 * penetration) * normal;
     r1 = r; // Yade's Ig2_Box_Sphere_ScGeom gives both sides the sphere's radius (a facet, 2r)
     r2 = r;
     return true;

@@ -53,27 +53,30 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 }
 
 /// Velocity of body 2 relative to body 1 at the contact (geometry already set: c.refR1,
-/// c.refR2, c.contactPoint; `normal` the current normal, `shiftVel` the velocity of body 2's
-/// periodic image relative to body 2). As Yade's ScGeom::getIncidentVel: sphere-sphere and
-/// wall-sphere contacts use the lever arms refR1 n and -refR2 n (avoidGranularRatcheting, and
-/// a wall's noRatch); facet- and box-sphere contacts the true arms to the contact point, so a
-/// boundary turned by a kinematic engine shears its contacts with its velocity there.
-inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& normal, const Vec3& shiftVel)
+/// c.refR2, c.contactPoint; `normal` the current normal; `shift2` and `shiftVel` the position
+/// and velocity of body 2's periodic image relative to body 2). As Yade's
+/// ScGeom::getIncidentVel: sphere-sphere and wall-sphere contacts use the lever arms refR1 n
+/// and -refR2 n (avoidGranularRatcheting, and a wall's noRatch); facet- and box-sphere contacts
+/// the true arms to the contact point, so a boundary turned by a kinematic engine shears its
+/// contacts with its velocity there.
+inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& normal, const Vec3& shift2, const Vec3& shiftVel)
 {
   const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
   if (c.kind == ContactGeometryKind::SphereSphere || c.kind == ContactGeometryKind::WallSphere)
     return (b.vel[i2] + shiftVel + b.angVel[i2].cross(-c.refR2 * normal)) - (b.vel[i1] + b.angVel[i1].cross(c.refR1 * normal));
-  return (b.vel[i2] + b.angVel[i2].cross(c.contactPoint - b.pos[i2]))
+  return (b.vel[i2] + shiftVel + b.angVel[i2].cross(c.contactPoint - (b.pos[i2] + shift2)))
          - (b.vel[i1] + b.angVel[i1].cross(c.contactPoint - b.pos[i1]));
 }
 
 /// Overlap of a pair whose body 1 is not a sphere (wall, facet, box, Potential Block or Particle; the
 /// routines of Yade's Ig2 functors, out of line: they are the rarer pairs). Sets the normal
 /// (from body 1 to body 2), penetration depth, contact point and reference radii; false if the
-/// shapes are apart and `holds` (an unbroken bond) does not keep the contact. The overlap
-/// section's area of Potential Blocks and Particles goes to `x` when given.
-bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtra* x, Vec3& normal, double& penetration,
-                      Vec3& contactPoint, double& r1, double& r2);
+/// shapes are apart and `holds` (an unbroken bond) does not keep the contact. `shift2`: where
+/// body 2's periodic image is relative to body 2 (a sphere meeting a facet or box across the
+/// boundary of a periodic cell; zero otherwise). The overlap section's area of Potential
+/// Blocks and Particles goes to `x` when given.
+bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtra* x, const Vec3& shift2, Vec3& normal,
+                      double& penetration, Vec3& contactPoint, double& r1, double& r2);
 
 /// Contact kinematics of Yade's ScGeom, for one candidate pair.
 ///
@@ -130,7 +133,7 @@ template <bool SpheresOnly = false>
     normal = d / dist;
     contactPoint = b.pos[i1] + (r1 - 0.5 * penetration) * normal;
   }
-  else if (!nonSphereOverlap(c, b, holds, x, normal, penetration, contactPoint, r1, r2))
+  else if (!nonSphereOverlap(c, b, holds, x, shift2, normal, penetration, contactPoint, r1, r2))
   {
     if (c.real)
       c.reset();
@@ -173,7 +176,7 @@ template <bool SpheresOnly = false>
     incident = alpha * (b.vel[i2] + shiftVel - b.vel[i1]) + b.angVel[i2].cross(-r2 * normal) - b.angVel[i1].cross(r1 * normal);
   }
   else
-    incident = incidentVelocity(c, b, normal, shiftVel);
+    incident = incidentVelocity(c, b, normal, shift2, shiftVel);
   c.shearIncrement = (incident - normal.dot(incident) * normal) * dt;
   return true;
 }
@@ -184,10 +187,12 @@ inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell,
   return contactGeometry<false>(c, b, cell, dt, x);
 }
 
-/// The same for a contact whose geometry is up to date.
-inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& shiftVel)
+/// The same for a contact whose geometry is up to date (`cell`: the periodic cell, or null).
+inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Cell* cell)
 {
-  return incidentVelocity(c, b, c.normal, shiftVel);
+  if (cell && c.cellDist != Eigen::Vector3i::Zero())
+    return incidentVelocity(c, b, c.normal, cell->shift(c.cellDist), cell->shiftVelocity(c.cellDist));
+  return incidentVelocity(c, b, c.normal, Vec3::Zero(), Vec3::Zero());
 }
 
 } // namespace talus::dem

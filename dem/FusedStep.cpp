@@ -39,7 +39,7 @@ UsualEngines usualEngines(const Scene& scene)
     return {};
   UsualEngines usual{dynamic_cast<Collider*>(live[1]), dynamic_cast<InteractionLoop*>(live[2]),
                      dynamic_cast<NewtonIntegrator*>(live[3])};
-  if (!usual.collider || !usual.loop || usual.loop->laws.size() != 1 || !usual.newton)
+  if (!usual.collider || !usual.loop || usual.loop->laws.size() != 1 || !usual.loop->callbacks.empty() || !usual.newton)
     return {};
   return usual;
 }

@@ -101,6 +101,8 @@ void InteractionLoop::run(Scene& scene)
   timingDeltas.start(scene.timingEnabled);
   std::int64_t bad = -1;
   if (laws.size() == 1)
+  for (const auto& callback : callbacks)
+    callback->stepInit();
     bad = laws[0]->computeAll(scene); // the usual case: geometry, physics and forces in one pass
   else
   {
@@ -117,6 +119,10 @@ void InteractionLoop::run(Scene& scene)
     throw std::runtime_error(overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(bad)]));
   sumForcesPerBody(scene);
   timingDeltas.checkpoint("forces per body");
+  for (const auto& callback : callbacks)
+    for (const Contact& c : scene.contacts.list)
+      if (c.real)
+        callback->go(c);
 }
 
 void InteractionLoop::computeWithSeveralLaws(Scene& scene) const

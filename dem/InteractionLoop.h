@@ -2,6 +2,7 @@
 
 #include "dem/ContactLaw.h"
 #include "dem/Engine.h"
+#include "dem/IntrCallback.h"
 
 #include <memory>
 #include <vector>
@@ -18,6 +19,8 @@ public:
   [[nodiscard]] std::string typeName() const override { return "InteractionLoop"; }
 
   std::vector<std::shared_ptr<ContactLaw>> laws;
+  /// Yade's InteractionLoop.callbacks (a loop with callbacks is not fused, see FusedStep).
+  std::vector<std::shared_ptr<IntrCallback>> callbacks;
 
   // The pieces of run() for the fused step, which runs the loops in its own parallel region.
   /// The checks run() makes before touching the contacts.

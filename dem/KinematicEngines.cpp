@@ -1,5 +1,6 @@
 #include "dem/KinematicEngines.h"
 
+#include "dem/Interpolation.h"
 #include "dem/Scene.h"
 
 #include <cmath>
@@ -29,23 +30,30 @@ void KinematicEngine::run(Scene& scene)
     scene.bodies.vel[static_cast<std::size_t>(id)].setZero();
     scene.bodies.angVel[static_cast<std::size_t>(id)].setZero();
   }
-  apply(scene);
+  apply(scene, ids);
 }
 
-void TranslationEngine::apply(Scene& scene)
+void CombinedKinematicEngine::apply(Scene& scene, const std::vector<BodyId>& bodies)
+{
+  for (const auto& engine : comb)
+    if (!engine->dead)
+      engine->apply(scene, bodies);
+}
+
+void TranslationEngine::apply(Scene& scene, const std::vector<BodyId>& bodies)
 {
   const Vec3 v = velocity * unit(translationAxis, typeName(), "translationAxis");
-  for (BodyId id : ids)
+  for (BodyId id : bodies)
     scene.bodies.vel[static_cast<std::size_t>(id)] += v;
 }
 
-void RotationEngine::apply(Scene& scene)
+void RotationEngine::apply(Scene& scene, const std::vector<BodyId>& bodies)
 {
   const Vec3 axis = unit(rotationAxis, typeName(), "rotationAxis");
   const double dt = scene.dt;
   const Quat q(Eigen::AngleAxisd(angularVelocity * dt, axis));
   Bodies& b = scene.bodies;
-  for (BodyId id : ids)
+  for (BodyId id : bodies)
   {
     const auto i = static_cast<std::size_t>(id);
     b.angVel[i] += axis * angularVelocity;
@@ -57,11 +65,28 @@ void RotationEngine::apply(Scene& scene)
   }
 }
 
-void HarmonicMotionEngine::apply(Scene& scene)
+void HarmonicMotionEngine::apply(Scene& scene, const std::vector<BodyId>& bodies)
 {
   const Vec3 w = 2 * M_PI * f;
   const Vec3 v = -((w * scene.time + fi).array().sin() * A.array() * w.array()).matrix();
-  for (BodyId id : ids)
+  for (BodyId id : bodies)
     scene.bodies.vel[static_cast<std::size_t>(id)] += v;
+}
+
+void HelixEngine::apply(Scene& scene, const std::vector<BodyId>& bodies)
+{
+  angleTurned += angularVelocity * scene.dt;
+  const Vec3 v = linearVelocity * unit(rotationAxis, typeName(), "rotationAxis");
+  for (BodyId id : bodies)
+    scene.bodies.vel[static_cast<std::size_t>(id)] += v;
+  rotateAroundZero = true; // as Yade: a helix always orbits its axis
+  RotationEngine::apply(scene, bodies);
+}
+
+void InterpolatingHelixEngine::apply(Scene& scene, const std::vector<BodyId>& bodies)
+{
+  angularVelocity = interpolate(times, angularVelocities, scene.time, wrap, typeName());
+  linearVelocity = angularVelocity * slope;
+  HelixEngine::apply(scene, bodies);
 }
 } // namespace talus::dem

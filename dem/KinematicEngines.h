@@ -3,6 +3,7 @@
 #include "dem/Engine.h"
 #include "dem/types.h"
 
+#include <memory>
 #include <vector>
 
 namespace talus::dem
@@ -18,9 +19,20 @@ public:
 
   std::vector<BodyId> ids;
 
-protected:
-  /// Add this engine's velocities to the (zeroed) velocities of `ids`.
-  virtual void apply(Scene& scene) = 0;
+  /// Add this engine's velocities to the (zeroed) velocities of `bodies` (its own ids, or those
+  /// of a CombinedKinematicEngine it is part of).
+  virtual void apply(Scene& scene, const std::vector<BodyId>& bodies) = 0;
+};
+
+/// Several kinematic engines moving the same bodies (Yade's CombinedKinematicEngine, made by
+/// `engine + engine` in Python): the velocities are zeroed once, then each engine of `comb`
+/// that is not dead adds its motion to `ids`, in order.
+class CombinedKinematicEngine : public KinematicEngine
+{
+public:
+  [[nodiscard]] std::string typeName() const override { return "CombinedKinematicEngine"; }
+  std::vector<std::shared_ptr<KinematicEngine>> comb;
+  void apply(Scene& scene, const std::vector<BodyId>& bodies) override;
 };
 
 /// Translation at `velocity` along `translationAxis` (normalised when run, as in Yade).
@@ -31,8 +43,7 @@ public:
   Vec3 translationAxis = Vec3::UnitX();
   double velocity = 0;
 
-protected:
-  void apply(Scene& scene) override;
+  void apply(Scene& scene, const std::vector<BodyId>& bodies) override;
 };
 
 /// Rotation at `angularVelocity` (rad/s) about `rotationAxis`; with `rotateAroundZero` the
@@ -47,8 +58,7 @@ public:
   bool rotateAroundZero = false;
   Vec3 zeroPoint = Vec3::Zero();
 
-protected:
-  void apply(Scene& scene) override;
+  void apply(Scene& scene, const std::vector<BodyId>& bodies) override;
 };
 
 /// Harmonic oscillation x = A cos(2 pi f t + fi) per axis, imposed as its velocity
@@ -61,7 +71,30 @@ public:
   Vec3 f = Vec3::Zero();
   Vec3 fi = Vec3::Constant(M_PI / 2);
 
-protected:
-  void apply(Scene& scene) override;
+  void apply(Scene& scene, const std::vector<BodyId>& bodies) override;
+};
+/// A screw motion (Yade's HelixEngine): the rotation of RotationEngine about the axis through
+/// `zeroPoint` (always orbiting it) plus `linearVelocity` along the axis; `angleTurned` adds up
+/// the angle.
+class HelixEngine : public RotationEngine
+{
+public:
+  [[nodiscard]] std::string typeName() const override { return "HelixEngine"; }
+  double linearVelocity = 0;
+  double angleTurned = 0;
+  void apply(Scene& scene, const std::vector<BodyId>& bodies) override;
+};
+
+/// HelixEngine whose angular velocity is read from the table (`times`, `angularVelocities`)
+/// at the current time (linear between readings; `wrap`: the table repeats), with
+/// linearVelocity = slope x angularVelocity (Yade's InterpolatingHelixEngine).
+class InterpolatingHelixEngine : public HelixEngine
+{
+public:
+  [[nodiscard]] std::string typeName() const override { return "InterpolatingHelixEngine"; }
+  std::vector<double> times, angularVelocities;
+  bool wrap = false;
+  double slope = 0;
+  void apply(Scene& scene, const std::vector<BodyId>& bodies) override;
 };
 } // namespace talus::dem

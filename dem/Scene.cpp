@@ -36,8 +36,6 @@ BodyId Scene::addSphere(const Vec3& center, double radius, int material)
   if (material < 0 || material >= static_cast<int>(materials.size()))
     throw std::invalid_argument(which + ": unknown material index " + std::to_string(material) + " (the scene has "
                                 + std::to_string(materials.size()) + " materials)");
-  if (periodic)
-    checkInsideCell(which, center);
   const BodyId id = bodies.append(ShapeKind::Sphere, -1, material);
   const auto i = static_cast<std::size_t>(id);
   bodies.pos[i] = center;
@@ -72,8 +70,6 @@ BodyId Scene::addWall(double position, int axis, int sense, int material)
 BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material)
 {
   const std::string which = "facet #" + std::to_string(bodies.size());
-  if (periodic)
-    throw std::invalid_argument(which + ": facets are not supported in a periodic scene");
   if (!a.allFinite() || !b.allFinite() || !c.allFinite())
     throw std::invalid_argument(which + ": vertices must be finite");
   const Vec3 n = (b - a).cross(c - a);
@@ -97,8 +93,6 @@ BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material
 BodyId Scene::addBox(const Vec3& center, const Vec3& extents, const Quat& orientation, int material, bool fixed)
 {
   const std::string which = "box #" + std::to_string(bodies.size());
-  if (periodic)
-    throw std::invalid_argument(which + ": boxes are not supported in a periodic scene");
   if (!center.allFinite())
     throw std::invalid_argument(which + ": centre is not finite " + str(center));
   if (!extents.allFinite() || !(extents.minCoeff() > 0))
@@ -201,30 +195,15 @@ void Scene::checkBody(BodyId id) const
     throw std::out_of_range("no body with id " + std::to_string(id));
 }
 
-void Scene::checkInsideCell(const std::string& which, const Vec3& x) const
-{
-  const Vec3 s = cell.hSize.inverse() * x;
-  if ((s.array() < 0).any() || (s.array() >= 1).any())
-    throw std::invalid_argument(which + ": centre " + str(x) + " is outside the periodic cell (fractional coordinates "
-                                + str(s) + ")");
-}
-
 void Scene::setPeriodic(bool on)
 {
+  // Positions are not wrapped, as in Yade: bodies may lie anywhere, the collider finds the
+  // periodic images that touch.
   if (on)
     for (std::size_t i = 0; i < bodies.size(); ++i)
-    {
-      if (!bodies.alive[i])
-        continue;
-      const std::string which = "body " + std::to_string(i);
-      if (bodies.shape[i] == ShapeKind::Wall)
-        continue; // an infinite plane: no periodic image of it is needed (see addWall)
-      if (bodies.shape[i] != ShapeKind::Sphere && bodies.shape[i] != ShapeKind::Clump)
-        throw std::invalid_argument(which + ": only spheres, clumps of spheres and walls are supported in a periodic scene");
-      // A clump member may stick out of the cell: its clump's centre is what is kept inside.
-      if (bodies.clumpId[i] < 0)
-        checkInsideCell(which, bodies.pos[i]);
-    }
+      if (bodies.alive[i] && (bodies.shape[i] == ShapeKind::PotentialBlock || bodies.shape[i] == ShapeKind::PotentialParticle))
+        throw std::invalid_argument("body " + std::to_string(i) + ": Potential Blocks and Particles are not supported "
+                                    "in a periodic scene");
   periodic = on;
   ++bodiesVersion;
 }

@@ -98,8 +98,9 @@ public:
   /// Recompute a clump's centroid, mass, principal inertia and member placement from its
   /// members' current state (the clump is left at rest).
   void updateClump(BodyId clump, int discretization = 0);
-  /// Make space periodic (or not). Every body must then be a sphere inside the cell.
-  /// @throws std::invalid_argument naming the first body that is not
+  /// Make space periodic (or not). Positions stay as they are (the cell need not hold them,
+  /// as in Yade); spheres, clumps, walls, facets and boxes can be periodic.
+  /// @throws std::invalid_argument naming a Potential Block or Particle
   void setPeriodic(bool on);
   /// Set the cell's edges (columns of h); the cell must be non-degenerate with positive volume.
   void setCellSize(const Mat3& h);
@@ -153,7 +154,6 @@ private:
   /// The engines one by one (timed when timingEnabled).
   void runEngines();
   std::string failedStep_; ///< message of the step that threw (transient), empty if none
-  void checkInsideCell(const std::string& which, const Vec3& x) const;
   /// Remove the contacts `doomed` picks, with their aligned state, and re-index.
   void removeContacts(const std::function<bool(const Contact&)>& doomed);
 };

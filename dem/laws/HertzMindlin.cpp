@@ -131,7 +131,7 @@ public:
     // As Yade's Mindlin law: the shear increment from the geometry; the normal velocity of the
     // bodies' centres (Yade's incident velocity at the contact point, whose rotational part
     // has no normal component between spheres).
-    const Vec3 v = incidentVelocity(c, b, step.cell ? step.cell->shiftVelocity(c.cellDist) : Vec3::Zero());
+    const Vec3 v = incidentVelocity(c, b, step.cell);
     const double vn = c.normal.dot(v);
     const Vec3 vs = c.shearIncrement / step.dt;
     double fn = fnElastic;

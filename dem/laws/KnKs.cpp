@@ -138,7 +138,7 @@ public:
     {
       const double m = reducedMass(b, i1, i2);
       c.cn = viscousDamping * 2 * std::sqrt(m * c.kn);
-      const double vn = incidentVelocity(c, b, Vec3::Zero()).dot(c.normal);
+      const double vn = incidentVelocity(c, b, nullptr).dot(c.normal);
       c.normalForce -= c.cn * vn * c.normal;
       if constexpr (Track)
         e.viscDamp += c.cn * vn * vn * step.dt;

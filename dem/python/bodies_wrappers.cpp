@@ -33,6 +33,19 @@ void talus_wrap_bodies(py::module_& m)
       .def_readwrite("A", &HarmonicMotionEngine::A)
       .def_readwrite("f", &HarmonicMotionEngine::f)
       .def_readwrite("fi", &HarmonicMotionEngine::fi);
+  py::class_<CombinedKinematicEngine, KinematicEngine, std::shared_ptr<CombinedKinematicEngine>>(m, "CombinedKinematicEngine")
+      .def(py::init<>())
+      .def_readwrite("comb", &CombinedKinematicEngine::comb);
+  py::class_<HelixEngine, RotationEngine, std::shared_ptr<HelixEngine>>(m, "HelixEngine")
+      .def(py::init<>())
+      .def_readwrite("linearVelocity", &HelixEngine::linearVelocity)
+      .def_readwrite("angleTurned", &HelixEngine::angleTurned);
+  py::class_<InterpolatingHelixEngine, HelixEngine, std::shared_ptr<InterpolatingHelixEngine>>(m, "InterpolatingHelixEngine")
+      .def(py::init<>())
+      .def_readwrite("times", &InterpolatingHelixEngine::times)
+      .def_readwrite("angularVelocities", &InterpolatingHelixEngine::angularVelocities)
+      .def_readwrite("wrap", &InterpolatingHelixEngine::wrap)
+      .def_readwrite("slope", &InterpolatingHelixEngine::slope);
 
   m.def("add_box", [](Scene& s, const Vec3& center, const Vec3& extents, const Eigen::Vector4d& wxyz, int material, bool fixed) {
     return s.addBox(center, extents, Quat(wxyz[0], wxyz[1], wxyz[2], wxyz[3]), material, fixed);

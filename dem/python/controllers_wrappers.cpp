@@ -2,6 +2,7 @@
 // talus._dem; `talus_wrap_controllers(m)` is called from dem_wrappers.cpp. The Python API
 // (Yade's names, defaults, doneHook strings) is talus.dem.controllers.
 #include "dem/GlobalStiffnessTimeStepper.h"
+#include "dem/PeriIsoCompressor.h"
 #include "dem/PeriTriaxController.h"
 #include "dem/SampleOperations.h"
 #include "dem/Scene.h"
@@ -53,6 +54,21 @@ void talus_wrap_controllers(py::module_& m)
       .def_readwrite("maxBodySpan", &PeriTriaxController::maxBodySpan)
       .def_readwrite("currUnbalanced", &PeriTriaxController::currUnbalanced)
       .def_readwrite("externalWork", &PeriTriaxController::externalWork);
+
+  py::class_<PeriIsoCompressor, Engine, std::shared_ptr<PeriIsoCompressor>>(m, "PeriIsoCompressor")
+      .def(py::init<>())
+      .def_readwrite("stresses", &PeriIsoCompressor::stresses)
+      .def_readwrite("charLen", &PeriIsoCompressor::charLen)
+      .def_readwrite("maxSpan", &PeriIsoCompressor::maxSpan)
+      .def_readwrite("maxUnbalanced", &PeriIsoCompressor::maxUnbalanced)
+      .def_readwrite("globalUpdateInt", &PeriIsoCompressor::globalUpdateInt)
+      .def_readwrite("maxDisplPerStep", &PeriIsoCompressor::maxDisplPerStep)
+      .def_readwrite("keepProportions", &PeriIsoCompressor::keepProportions)
+      .def_readwrite("doneHook", &PeriIsoCompressor::doneHook)
+      .def_readwrite("state", &PeriIsoCompressor::state)
+      .def_readwrite("sigma", &PeriIsoCompressor::sigma)
+      .def_readwrite("avgStiffness", &PeriIsoCompressor::avgStiffness)
+      .def_readwrite("currUnbalanced", &PeriIsoCompressor::currUnbalanced);
 
   using T = TriaxialStressController;
   py::class_<T, Engine, std::shared_ptr<T>>(m, "TriaxialStressController")

@@ -163,6 +163,7 @@ PYBIND11_MODULE(_dem, m)
       .def_property_readonly("typeName", &ContactLaw::typeName)
       .def_property_readonly("physicsName", &ContactLaw::physicsName);
   m.def("make_contact_law", [](const std::string& name) { return std::shared_ptr<ContactLaw>(makeContactLaw(name)); });
+      .def_readwrite("allowBiggerThanPeriod", &Collider::allowBiggerThanPeriod)
   py::class_<InteractionLoop, Engine, std::shared_ptr<InteractionLoop>>(m, "InteractionLoop")
       .def(py::init<>())
       .def_property(
@@ -325,3 +326,4 @@ PYBIND11_MODULE(_dem, m)
   void talus_wrap_blocks(py::module_&); talus_wrap_blocks(m); // Potential Blocks: blocks_wrappers.cpp
   void talus_wrap_particles(py::module_&); talus_wrap_particles(m); // Potential Particles: particles_wrappers.cpp
 }
+  void talus_wrap_force_engines(py::module_&); talus_wrap_force_engines(m); // force engines, loop callbacks: force_engines_wrappers.cpp

@@ -62,4 +62,6 @@ def test_regular_hexa_equals_yades_packing():
 
 def test_regular_ortho_fills_a_box():
     spheres = pack.regularOrtho(pack.inAlignedBox((0, 0, 0), (1, 1, 1)), radius=0.1, gap=0.0)
-    assert len(spheres) == 125
+    # Yade's grid is arange(0.1, 0.9, 0.2) per axis: 0.9 (touching the face) is left out, 4^3
+    assert len(spheres) == 64
+    assert sorted({s.center[0] for s in spheres}) == pytest.approx([.1, .3, .5, .7])

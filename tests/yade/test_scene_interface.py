@@ -90,12 +90,12 @@ def test_a_body_set_up_before_it_is_appended():
         S.bodies.append(b)
 
 
-def test_spheres_given_outside_a_periodic_cell_are_wrapped_in():
+def test_spheres_given_outside_a_periodic_cell_stay_there():
     S = Scene()
     S.periodic = True
     S.cell.setBox(1, 1, 1)
     i = S.bodies.append(sphere((-0.25, 2.5, 0.5), 0.05))
-    assert S.bodies[i].state.pos == pytest.approx([0.75, 0.5, 0.5])
+    assert S.bodies[i].state.pos == pytest.approx([-0.25, 2.5, 0.5])   # as in Yade: never wrapped
     assert S.cell.refSize == pytest.approx([1, 1, 1])
     S.cell.refSize = (2, 2, 2)
     assert S.cell.hSize == pytest.approx(2 * np.eye(3))

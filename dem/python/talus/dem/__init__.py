@@ -26,6 +26,7 @@ from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor n
 from talus.dem.engines import __all__ as _engine_names
 from talus.dem.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
                               Vector6, Vector6i)
+from talus.dem.controllers import PeriIsoCompressor
 from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
                                    TriaxialStressController, growParticles, setContactFriction)
 from talus.dem.energy import EnergyTracker
@@ -46,7 +47,7 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "bodyStressTensors",
            "porosity",
            "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",
-           "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
+           "GlobalStiffnessTimeStepper", "PeriTriaxController", "PeriIsoCompressor", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",
            "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder",
            "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",

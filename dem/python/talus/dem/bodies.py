@@ -373,9 +373,7 @@ class BodyContainer:
     def _create(self, spec: BodySpec, material: int) -> int:
         scene = self._scene
         if spec.kind == "Sphere":
-            center = np.asarray(spec.center, dtype=float)
-            if scene.periodic:   # as Yade: a sphere given outside the cell is put in by whole periods
-                center = scene.cell.wrap(center)
+            center = np.asarray(spec.center, dtype=float)   # as Yade, not wrapped into a periodic cell
             id = scene._cpp.addSphere(center, spec.radius, material)
             if spec.fixed:
                 scene._cpp.setDynamic(id, False)

@@ -139,6 +139,55 @@ class PeriTriaxController(Engine):
             setattr(self._cpp, k, v)
 
 
+class PeriIsoCompressor(Engine):
+    """Compression of the periodic cell to ``stresses`` in turn (Yade's PeriIsoCompressor, which
+    randomDensePack and randomPeriPack use): the stress is Yade's own measure, the sum of the
+    contact forces' components over the cell's face area (larger than the mean stress); the
+    cell grows by 1e-4 (goal - stress) area / stiffness per step, at most ``maxDisplPerStep``
+    (default 1e-2 ``charLen``). Once the last stress is reached (0.5 %) with the unbalanced force
+    below ``maxUnbalanced``, ``doneHook`` runs. ``keepProportions``: homothetic. Read-outs:
+    ``state`` (index of the stress being reached), ``sigma``, ``avgStiffness``, ``currUnbalanced``."""
+
+    def __init__(self, stresses=(), charLen: float = -1, maxSpan: float = -1, maxUnbalanced: float = 1e-4,
+                 globalUpdateInt: int = 20, maxDisplPerStep: float = -1, keepProportions: bool = True,
+                 doneHook: str | Callable[[], None] = "", label: str = ""):
+        self._cpp = _dem.PeriIsoCompressor()
+        self.stresses, self.charLen, self.maxSpan = stresses, charLen, maxSpan
+        self.maxUnbalanced, self.globalUpdateInt, self.maxDisplPerStep = maxUnbalanced, globalUpdateInt, maxDisplPerStep
+        self.keepProportions, self.doneHook, self.label = keepProportions, doneHook, label
+
+    @property
+    def stresses(self) -> list:
+        return list(self._cpp.stresses)
+
+    @stresses.setter
+    def stresses(self, values):
+        values = [float(s) for s in values]
+        if not all(s < 0 for s in values):
+            raise ValueError(f"PeriIsoCompressor: stresses must be negative (compression), got {values}")
+        self._cpp.stresses = values
+
+    charLen = _forward("charLen", kind=float)
+    maxSpan = _forward("maxSpan", kind=float)
+    maxUnbalanced = _forward("maxUnbalanced", kind=float)
+    globalUpdateInt = _forward("globalUpdateInt", kind=int)
+    maxDisplPerStep = _forward("maxDisplPerStep", kind=float)
+    keepProportions = _forward("keepProportions", kind=bool)
+    state = _forward("state", kind=int)
+    sigma = _forward("sigma")
+    avgStiffness = _forward("avgStiffness")
+    currUnbalanced = _forward("currUnbalanced")
+
+    @property
+    def doneHook(self):
+        return self._doneHook
+
+    @doneHook.setter
+    def doneHook(self, command):
+        self._doneHook = command
+        self._cpp.doneHook = asCallback(command, "doneHook")
+
+
 _WALLS = ("left", "right", "bottom", "top", "back", "front")
 
 
@@ -296,5 +345,6 @@ def setContactFriction(angleRad: float, scene=None):
     _dem.setContactFriction(scene._cpp, float(angleRad))
 
 
-__all__ = ["GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController", "RayleighWaveTimeStep",
+__all__ = ["GlobalStiffnessTimeStepper", "PeriTriaxController", "PeriIsoCompressor", "TriaxialStressController",
+           "RayleighWaveTimeStep",
            "growParticles", "setContactFriction"]

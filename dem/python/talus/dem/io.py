@@ -400,6 +400,7 @@ def loadTmp(scene: "Scene", slot: str = "", *, engines: str = "auto") -> None:
     ``engines`` as for :func:`load`."""
     _require()
     if engines not in _ENGINE_MODES:
+    _scene_memory(scene)["last"] = _Slot(slot)
         raise ValueError(f"O.loadTmp: engines must be one of {_ENGINE_MODES}, got {engines!r}")
     slots = _scene_memory(scene)["slots"]
     if str(slot) not in slots:
@@ -416,6 +417,7 @@ def lsTmp(scene: "Scene") -> list[str]:
     return list(_scene_memory(scene)["slots"])
 
 
+    _scene_memory(scene)["last"] = _Slot(slot)
 class CheckpointMethods:
     """Yade's ``O.save``/``O.load``/``O.saveTmp``/``O.loadTmp``/``O.reload``/``O.lsTmp`` as
     methods: a base class of ``Scene``."""

@@ -56,6 +56,14 @@ class TranslationEngine(KinematicEngine):
         self._init(_dem.TranslationEngine(), ids, label)
         self.translationAxis = translationAxis
         self.velocity = velocity
+    def __add__(self, other: "KinematicEngine") -> "CombinedKinematicEngine":
+        """Yade's ``engine + engine``: a CombinedKinematicEngine moving this engine's ids by both."""
+        if not isinstance(other, KinematicEngine):
+            return NotImplemented
+        combined = CombinedKinematicEngine(ids=self.ids)
+        combined.comb = [self, other]
+        return combined
+
 
     translationAxis = property(lambda s: Vector3(s._cpp.translationAxis),
                                lambda s, v: setattr(s._cpp, "translationAxis", _vector(v, "translationAxis")))
@@ -98,4 +106,80 @@ class HarmonicMotionEngine(KinematicEngine):
     fi = property(lambda s: Vector3(s._cpp.fi), lambda s, v: setattr(s._cpp, "fi", _vector(v, "fi")))
 
 
-__all__ = ["KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine"]
+class CombinedKinematicEngine(KinematicEngine):
+    """Kinematic engines moving the same bodies ``ids`` together (Yade's CombinedKinematicEngine):
+    the velocities are zeroed once, then each engine of ``comb`` that is not dead adds its
+    motion. ``a + b`` makes one from two engines; ``combined + c`` appends ``c`` (as Yade's
+    ``__add__``, it returns the same engine). The engines of ``comb`` keep their own parameters
+    (``combined.comb[0].velocity = ...`` changes the motion); their own ids are not used."""
+
+    def __init__(self, ids: Sequence[int] = (), comb: Sequence[KinematicEngine] = (), label: str = ""):
+        self._init(_dem.CombinedKinematicEngine(), ids, label)
+        self.comb = comb
+
+    @property
+    def comb(self) -> list[KinematicEngine]:
+        return list(self._comb)
+
+    @comb.setter
+    def comb(self, engines: Sequence[KinematicEngine]):
+        engines = list(engines)
+        for e in engines:
+            if not isinstance(e, KinematicEngine):
+                raise TypeError(f"CombinedKinematicEngine.comb takes kinematic engines, got {e!r}")
+        self._comb = engines
+        self._cpp.comb = [e._cpp for e in engines]
+
+    def __add__(self, other: KinematicEngine) -> "CombinedKinematicEngine":
+        if not isinstance(other, KinematicEngine):
+            return NotImplemented
+        self.comb = self._comb + [other]
+        return self
+
+
+class HelixEngine(RotationEngine):
+    """A screw motion (Yade's HelixEngine): RotationEngine's rotation about ``rotationAxis``
+    through ``zeroPoint`` (the bodies always orbit it) plus ``linearVelocity`` along the axis;
+    ``angleTurned`` adds up the angle."""
+
+    def __init__(self, linearVelocity: float = 0.0, angularVelocity: float = 0.0, rotationAxis=(1.0, 0.0, 0.0),
+                 zeroPoint=(0.0, 0.0, 0.0), angleTurned: float = 0.0, rotateAroundZero: bool = True,
+                 ids: Sequence[int] = (), label: str = ""):
+        self._init(self._make(), ids, label)
+        self.angularVelocity, self.rotationAxis, self.zeroPoint = angularVelocity, rotationAxis, zeroPoint
+        self.rotateAroundZero = rotateAroundZero
+        self.linearVelocity, self.angleTurned = linearVelocity, angleTurned
+
+    @staticmethod
+    def _make():
+        return _dem.HelixEngine()
+
+    linearVelocity = property(lambda s: s._cpp.linearVelocity,
+                              lambda s, v: setattr(s._cpp, "linearVelocity", float(v)))
+    angleTurned = property(lambda s: s._cpp.angleTurned, lambda s, v: setattr(s._cpp, "angleTurned", float(v)))
+
+
+class InterpolatingHelixEngine(HelixEngine):
+    """HelixEngine whose angular velocity is read from ``times`` and ``angularVelocities`` at
+    the current time (linear between readings, the first before them and the last after them;
+    with ``wrap`` the table repeats), with linearVelocity = ``slope`` x angularVelocity (Yade's
+    InterpolatingHelixEngine)."""
+
+    def __init__(self, times: Sequence[float] = (), angularVelocities: Sequence[float] = (), wrap: bool = False,
+                 slope: float = 0.0, **helix):
+        super().__init__(**helix)
+        self.times, self.angularVelocities, self.wrap, self.slope = times, angularVelocities, wrap, slope
+
+    @staticmethod
+    def _make():
+        return _dem.InterpolatingHelixEngine()
+
+    times = property(lambda s: list(s._cpp.times), lambda s, v: setattr(s._cpp, "times", [float(x) for x in v]))
+    angularVelocities = property(lambda s: list(s._cpp.angularVelocities),
+                                 lambda s, v: setattr(s._cpp, "angularVelocities", [float(x) for x in v]))
+    wrap = property(lambda s: s._cpp.wrap, lambda s, v: setattr(s._cpp, "wrap", bool(v)))
+    slope = property(lambda s: s._cpp.slope, lambda s, v: setattr(s._cpp, "slope", float(v)))
+
+
+__all__ = ["KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine", "CombinedKinematicEngine",
+           "HelixEngine", "InterpolatingHelixEngine"]

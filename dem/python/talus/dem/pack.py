@@ -1,95 +1,93 @@
 """Packings (Yade's ``pack`` module): regular lattices clipped by a predicate, random clouds
-(``SpherePack.makeCloud``) and dense packings by compression (``compressedCloud``).
+(``SpherePack.makeCloud``), dense packings by compression (``compressedCloud``; Yade's
+``randomDensePack`` and ``randomPeriPack`` are in talus.dem.densepack) and surfaces made of
+facets (``sweptPolylines2gtsSurface``, ``gtsSurface2Facets``).
 
 A predicate is a solid: ``pred(point, pad)`` says whether a sphere of radius ``pad`` centred at
-``point`` lies inside, and ``pred.aabb()`` bounds it.
+``point`` lies inside, and ``pred.aabb()`` bounds it (talus.dem.predicates, re-exported here).
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Sequence
 
 import numpy as np
 
 from talus import _dem
-from talus.dem.bodies import BodySpec, sphere
+from talus.dem import predicates
+from talus.dem.bodies import BodySpec, facet, sphere
+from talus.dem.linalg import Vector3
+from talus.dem.predicates import *  # noqa: F401,F403  (Yade's pack module holds the predicates)
 
-__all__ = ["inSphere", "inAlignedBox", "regularHexa", "regularOrtho", "SpherePack", "compressedCloud"]
-
-
-class inSphere:
-    """The ball of ``radius`` around ``center``."""
-
-    def __init__(self, center: Sequence[float], radius: float):
-        if not radius > 0:
-            raise ValueError(f"inSphere: radius must be positive, got {radius}")
-        self.center, self.radius = np.asarray(center, dtype=float), float(radius)
-
-    def __call__(self, point, pad: float = 0.0) -> bool:
-        return float(np.linalg.norm(np.asarray(point) - self.center)) <= self.radius - pad
-
-    def aabb(self):
-        return self.center - self.radius, self.center + self.radius
+__all__ = [*predicates.__all__, "regularHexa", "regularOrtho", "filterSpherePack", "SpherePack", "compressedCloud",
+           "sweptPolylines2gtsSurface", "gtsSurface2Facets", "revolutionSurfaceMeridians"]
 
 
-class inAlignedBox:
-    """The axis-aligned box between corners ``minAabb`` and ``maxAabb``."""
-
-    def __init__(self, minAabb: Sequence[float], maxAabb: Sequence[float]):
-        self.lo, self.hi = np.asarray(minAabb, dtype=float), np.asarray(maxAabb, dtype=float)
-        if np.any(self.hi <= self.lo):
-            raise ValueError(f"inAlignedBox: maxAabb must exceed minAabb, got {minAabb}, {maxAabb}")
-
-    def __call__(self, point, pad: float = 0.0) -> bool:
-        p = np.asarray(point)
-        return bool(np.all(p - pad >= self.lo) and np.all(p + pad <= self.hi))
-
-    def aabb(self):
-        return self.lo, self.hi
-
-
-def _lattice(predicate, radius: float, gap: float, kind: str, **kw) -> list[BodySpec]:
-    if not radius > 0 or gap < 0:
+def _lattice_points(predicate, radius: float, gap: float, kind: str) -> np.ndarray:
+    """The lattice points of Yade's regularHexa / regularOrtho over the predicate's box, in
+    Yade's order (x slowest)."""
+    if not radius > 0 or not gap >= 0:
         raise ValueError(f"regular packing: radius must be positive and gap >= 0, got {radius}, {gap}")
     a = 2 * radius + gap
     lo, hi = (np.asarray(x, dtype=float) for x in predicate.aabb())
     dim = hi - lo
     if not np.all(np.isfinite(dim)):
-        raise ValueError("regular packing: the predicate's bounding box must be finite")
-    spheres = []
+        raise ValueError("regular packing: the predicate's bounding box is infinite (intersect an unbounded "
+                         "predicate such as notInNotch with a bounded one: & rather than |)")
     if kind == "hexa":
-        # Simple hcp lattice: layers k at heights 2 sqrt(6)/3 k (a/2), rows j shifted by half a
-        # sphere on odd (j + k), odd layers shifted by a third of a row.
+        # Simple hcp lattice: rows j shifted by half a sphere on odd (j + k), layers k at
+        # heights 2 sqrt(6)/3 k (a/2), odd layers shifted by a third of a row.
         hy, hz = a * math.sqrt(3) / 2, a * math.sqrt(6) / 3
-        counts = (int(dim[0] / a) + 1, int(dim[1] / hy) + 1, int(dim[2] / hz) + 1)
-        for i in range(counts[0]):
-            for j in range(counts[1]):
-                for k in range(counts[2]):
-                    p = np.array([2 * i + (j + k) % 2, math.sqrt(3.0) * (j + (k % 2) / 3.0),
-                                  2.0 * math.sqrt(6.0) / 3.0 * k]) * (a / 2.0) + lo
-                    if predicate(p, radius):
-                        spheres.append(sphere(p, radius, **kw))
-    else:
-        counts = tuple(int(d / a) + 1 for d in dim)
-        for i in range(counts[0]):
-            for j in range(counts[1]):
-                for k in range(counts[2]):
-                    p = lo + radius + a * np.array([i, j, k])
-                    if predicate(p, radius):
-                        spheres.append(sphere(p, radius, **kw))
+        i, j, k = np.meshgrid(np.arange(int(dim[0] / a) + 1), np.arange(int(dim[1] / hy) + 1),
+                              np.arange(int(dim[2] / hz) + 1), indexing="ij")
+        i, j, k = i.ravel(), j.ravel(), k.ravel()
+        unit = np.c_[2 * i + (j + k) % 2, math.sqrt(3.0) * (j + (k % 2) / 3.0), 2.0 * math.sqrt(6.0) / 3.0 * k]
+        return unit * (a / 2.0) + lo
+    axes = [np.arange(lo[d] + radius, hi[d] - radius, a) for d in range(3)]
+    return np.array(np.meshgrid(*axes, indexing="ij")).reshape(3, -1).T
+
+
+def _lattice(predicate, radius: float, gap: float, kind: str, **kw) -> list[BodySpec]:
+    spheres = [sphere(p, radius, **kw) for p in _lattice_points(predicate, radius, gap, kind) if predicate(p, radius)]
+    if not spheres:
+        warnings.warn(f"no spheres are produced by regular{kind.capitalize()}", RuntimeWarning, stacklevel=3)
     return spheres
 
 
 def regularHexa(predicate, radius: float, gap: float, **kw) -> list[BodySpec]:
     """Spheres of ``radius`` on a hexagonal close-packed lattice with ``gap`` between
-    neighbours, kept where ``predicate`` holds (Yade's pack.regularHexa)."""
+    neighbours, from the corner of the predicate's box, kept where ``predicate`` holds with the
+    radius as pad (Yade's pack.regularHexa: the same spheres in the same order)."""
     return _lattice(predicate, radius, gap, "hexa", **kw)
 
 
 def regularOrtho(predicate, radius: float, gap: float, **kw) -> list[BodySpec]:
-    """Spheres on a simple cubic lattice of spacing 2 radius + gap (Yade's pack.regularOrtho)."""
+    """Spheres on a simple cubic lattice of spacing 2 radius + gap starting a radius inside the
+    predicate's box (Yade's pack.regularOrtho)."""
     return _lattice(predicate, radius, gap, "ortho", **kw)
+
+
+def filterSpherePack(predicate, spherePack, returnSpherePack=None, **kw):
+    """The spheres of ``spherePack`` inside ``predicate`` (each with its radius as pad), after
+    moving the packing so that its box and the predicate's have the same centre (Yade's
+    filterSpherePack; the packing passed is moved). A :class:`SpherePack` with
+    ``returnSpherePack``, else a list of bodies (``kw`` go to :func:`sphere`); left out, it is
+    the list, with Yade's FutureWarning. Warns when the predicate's box is larger than the
+    packing's."""
+    if returnSpherePack is None:
+        warnings.warn("filterSpherePack/randomDensePack: the default behaviour will change; give "
+                      "returnSpherePack=True for a SpherePack, False for a list of bodies", FutureWarning, stacklevel=2)
+        returnSpherePack = False
+    dimP, dimS = np.asarray(predicate.dim(), float), np.asarray(spherePack.dim(), float)
+    if np.any(dimP > dimS):
+        warnings.warn(f"the packing's size {tuple(dimS)} does not contain the predicate's {tuple(dimP)}", stacklevel=2)
+    spherePack.translate(np.asarray(predicate.center(), float) - np.asarray(spherePack.center(), float))
+    kept = [(c, r) for c, r in spherePack if predicate(c, r)]
+    if returnSpherePack:
+        return SpherePack(kept)
+    return [sphere(c, r, **kw) for c, r in kept]
 
 
 class SpherePack:
@@ -101,6 +99,7 @@ class SpherePack:
     def __init__(self, spheres=None):
         self._cpp = _dem.SpherePack()
         self._clumpIds: list[int] = []  # per sphere, -1 for a free one; shorter lists end in free spheres
+        self._periodicFlag = False      # periodic without a cell: a flat (2D) periodic cloud, as Yade's
         if spheres is not None:
             self.fromList(spheres)
 
@@ -122,6 +121,9 @@ class SpherePack:
 
     def add(self, center, radius: float):
         self.fromList(self.toList() + [(center, radius)])
+
+    def hasClumps(self) -> bool:
+        return bool(np.any(self.clumpIds >= 0))
 
     def __len__(self) -> int:
         return len(self._cpp.radii)
@@ -156,6 +158,19 @@ class SpherePack:
 
     @property
     def isPeriodic(self) -> bool:
+        """Whether the packing is periodic: it has a cell, or (Yade's flat periodic cloud, or set
+        by hand) it is marked periodic without one; ``toSimulation`` then makes the scene
+        periodic and leaves its cell to the script."""
+        return self._hasCell or self._periodicFlag
+
+    @isPeriodic.setter
+    def isPeriodic(self, value: bool):
+        self._periodicFlag = bool(value)
+        if not value:
+            self.hSize = np.zeros((3, 3))
+
+    @property
+    def _hasCell(self) -> bool:
         return bool(np.any(self.hSize != 0))
 
     @property
@@ -174,6 +189,71 @@ class SpherePack:
         c, r = np.array(self._cpp.centers), np.array(self._cpp.radii)
         return (c - r[:, None]).min(axis=0), (c + r[:, None]).max(axis=0)
 
+    def dim(self):
+        """Sizes of the box bounding the spheres."""
+        lo, hi = self.aabb()
+        return Vector3(*(hi - lo))
+
+    def center(self):
+        """Centre of the box bounding the spheres."""
+        lo, hi = self.aabb()
+        return Vector3(*(.5 * (lo + hi)))
+
+    def relDensity(self) -> float:
+        """Volume of the spheres over the volume of the cell (periodic) or of their box."""
+        volume = abs(np.linalg.det(self.hSize)) if self._hasCell else float(np.prod(self.dim()))
+        return float(4 / 3 * np.pi * np.sum(np.array(self._cpp.radii) ** 3) / volume)
+
+    def _moved(self, centers: np.ndarray, scaleRadii: float = 1.0):
+        self._cpp.centers = list(centers)
+        if scaleRadii != 1.0:
+            self._cpp.radii = list(np.array(self._cpp.radii) * scaleRadii)
+
+    def translate(self, shift):
+        """Move every sphere by ``shift``."""
+        self._moved(np.array(self._cpp.centers).reshape(-1, 3) + np.asarray(shift, float).reshape(3))
+
+    def rotate(self, axis, angle: float):
+        """Rotate the spheres by ``angle`` about ``axis`` through the centre of their box. A
+        periodic packing loses its cell, as in Yade (with Yade's warning)."""
+        from talus.dem.linalg import Quaternion
+        if self._hasCell:
+            warnings.warn(f"SpherePack.rotate: the periodic cell {tuple(np.diag(self.hSize))} is dropped by the rotation",
+                          stacklevel=2)
+            self.hSize = np.zeros((3, 3))
+        R = np.asarray(Quaternion(Vector3(*axis), float(angle)).toRotationMatrix(), float).reshape(3, 3)
+        mid = np.asarray(self.center(), float)
+        self._moved((np.array(self._cpp.centers).reshape(-1, 3) - mid) @ R.T + mid)
+
+    def scale(self, factor: float):
+        """Scale positions about the centre of the spheres' box, radii and cell by ``factor``."""
+        mid = np.asarray(self.center(), float)
+        self.hSize = self.hSize * factor
+        self._moved((np.array(self._cpp.centers).reshape(-1, 3) - mid) * factor + mid, abs(factor))
+
+    def cellRepeat(self, count):
+        """Repeat a periodic packing ``count`` (3 positive integers) times along the cell's axes;
+        the cell grows accordingly (Yade's cellRepeat)."""
+        count = [int(n) for n in count]
+        if not self._hasCell or self.isSheared:
+            raise ValueError("SpherePack.cellRepeat: needs a periodic packing with an axis-aligned cell")
+        if min(count) <= 0:
+            raise ValueError(f"SpherePack.cellRepeat: the counts must be positive, got {count}")
+        size = self.cellSize
+        c, r = np.array(self._cpp.centers).reshape(-1, 3), np.array(self._cpp.radii)
+        # Yade's order: the original cell first, then the copies with the z offset fastest
+        offsets = [size * (i, j, k) for i in range(count[0]) for j in range(count[1]) for k in range(count[2])]
+        self._cpp.centers = list(np.concatenate([c + o for o in offsets]))
+        self._cpp.radii = list(np.tile(r, len(offsets)))
+        self._clumpIds = []
+        self.cellSize = size * count
+
+    def cellFill(self, vol):
+        """Repeat a periodic packing until its cell covers the sizes ``vol`` (Yade's cellFill)."""
+        if not self._hasCell:
+            raise ValueError("SpherePack.cellFill: needs a periodic packing")
+        self.cellRepeat(np.ceil(np.asarray(vol, float).reshape(3) / self.cellSize).astype(int))
+
     # -- generation ------------------------------------------------------------------------------
     def makeCloud(self, minCorner=(0, 0, 0), maxCorner=(0, 0, 0), rMean: float = -1, rRelFuzz: float = 0,
                   num: int = -1, periodic: bool = False, porosity: float = 0.65, psdSizes=(), psdCumm=(),
@@ -188,17 +268,19 @@ class SpherePack:
         sphere overlaps any periodic image of another, however sheared the cell, and the packing
         keeps the cell (``toSimulation`` sets ``O.cell.hSize``). A periodic sphere never
         reaches its own image: radii asked for (rMean, psdSizes) that cannot fit raise
-        ValueError. Returns the number of spheres created."""
+        ValueError. A flat box (one size zero) with ``periodic`` makes a 2D cloud that is
+        periodic without a cell (as Yade's: ``isPeriodic`` true, ``cellSize`` zero): the script
+        sets ``O.cell.hSize`` after ``toSimulation``. Returns the number of spheres created."""
         cell = np.zeros((3, 3)) if hSize is None else np.asarray(hSize, dtype=float).reshape(3, 3)
-        if (periodic and hSize is None and len(self) == 0
-                and np.any(np.asarray(maxCorner, float) <= np.asarray(minCorner, float))):
-            raise ValueError("makeCloud: a periodic cloud needs maxCorner above minCorner in every direction")
         if hSize is not None and not np.any(cell != 0):
             raise ValueError("makeCloud: hSize is zero; give the cell's edges as columns, or leave hSize out")
-        return self._cpp.makeCloud(np.asarray(minCorner, dtype=float), np.asarray(maxCorner, dtype=float), float(rMean),
+        made = self._cpp.makeCloud(np.asarray(minCorner, dtype=float), np.asarray(maxCorner, dtype=float), float(rMean),
                                    float(rRelFuzz), int(num), bool(periodic), float(porosity),
                                    [float(x) for x in psdSizes], [float(x) for x in psdCumm], bool(distributeMass),
                                    int(seed), cell)
+        if periodic:
+            self._periodicFlag = True   # a flat box: a periodic 2D cloud without a cell, as Yade's
+        return made
 
     @property
     def clumpIds(self) -> np.ndarray:
@@ -241,7 +323,7 @@ class SpherePack:
         if not templates:
             raise ValueError("makeClumpCloud: no clump templates given")
         if periodic:
-            if len(self) and self.isPeriodic and np.any(self.cellSize != size):
+            if len(self) and self._hasCell and np.any(self.cellSize != size):
                 raise ValueError(f"makeClumpCloud: the packing's cell {self.cellSize} differs from the box {size}")
         rng = np.random.default_rng(seed if seed >= 0 else None)
         centers = np.array(self._cpp.centers, dtype=float).reshape(-1, 3)
@@ -296,30 +378,36 @@ class SpherePack:
         return edges, cumm
 
     # -- simulation and files --------------------------------------------------------------------
-    def toSimulation(self, scene=None, **kw) -> list:
+    def toSimulation(self, scene=None, rot=None, **kw) -> list:
         """Append the spheres to the scene (``O`` by default); a periodic packing also makes the
-        scene periodic with its cell (centres wrapped into it). Spheres of a clump (see
+        scene periodic with its cell (centres wrapped into it). ``rot`` (a Matrix3 or a
+        Quaternion) rotates the spheres and the cell (Yade's). Spheres of a clump (see
         :meth:`makeClumpCloud`) become a clump (appendClumped), moved together so that the
         clump's centre is in the cell (members may stick out of it). Keyword arguments go to
         :func:`sphere` (material, fixed, ...). Returns the new ids: an id per free sphere, a
         ``(clump id, member ids)`` pair per clump (as Yade)."""
         if scene is None:
             from talus.dem import O as scene
+        R = np.eye(3)
+        if rot is not None:
+            R = np.asarray(rot.toRotationMatrix() if hasattr(rot, "toRotationMatrix") else rot, float).reshape(3, 3)
         if self.isPeriodic:
             scene.periodic = True
-            scene.cell.hSize = self.hSize
+        if self._hasCell:
+            scene.cell.hSize = R @ self.hSize
             scene.cell.trsf = np.eye(3)
+        centers, radii = np.array(self._cpp.centers).reshape(-1, 3) @ R.T, np.array(self._cpp.radii)
         ids = self.clumpIds
         if np.all(ids < 0):
-            spheres = [(scene.cell.wrap(c), r) for c, r in self] if self.isPeriodic else list(self)
-            return scene.bodies.append([sphere(c, r, **kw) for c, r in spheres])
-        centers, radii = np.array(self._cpp.centers).reshape(-1, 3), np.array(self._cpp.radii)
+            if self._hasCell:
+                centers = [scene.cell.wrap(c) for c in centers]
+            return scene.bodies.append([sphere(c, r, **kw) for c, r in zip(centers, radii)])
         standalone, clumps = self.getClumps()
         groups = sorted([[k] for k in standalone] + clumps, key=lambda g: g[0])
         made = []
         for g in groups:
             x, r = centers[g], radii[g]
-            if self.isPeriodic:
+            if self._hasCell:
                 mid = (r[:, None] ** 3 * x).sum(axis=0) / (r ** 3).sum()
                 x = x + (scene.cell.wrap(mid) - mid)
             if ids[g[0]] < 0:
@@ -337,6 +425,7 @@ class SpherePack:
         keep = alive & (r > 0)
         self.fromList(list(zip(np.asarray(scene.positions())[keep], r[keep])))
         self.hSize = scene.cell.hSize if scene.periodic else np.zeros((3, 3))
+        self._periodicFlag = bool(scene.periodic)
 
     def save(self, fileName: str):
         """Write the spheres as text, one ``x y z r`` line each (full precision), with Yade's
@@ -346,7 +435,7 @@ class SpherePack:
         with open(fileName, "w") as f:
             if self.isSheared:
                 f.write("##HSIZE:: " + " ".join(repr(float(x)) for x in self.hSize.ravel()) + "\n")
-            elif self.isPeriodic:
+            elif self._hasCell:
                 f.write("##PERIODIC:: " + " ".join(repr(float(x)) for x in self.cellSize) + "\n")
             for c, r in self:
                 f.write(" ".join(repr(float(x)) for x in c) + f" {float(r)!r} -1\n")
@@ -448,3 +537,63 @@ def compressedCloud(minCorner, maxCorner, rMean: float = -1, rRelFuzz: float = 0
     packed.fromList(list(zip(centers, [r for _, r in packed])))
     packed.hSize = scene.cell.hSize
     return packed
+
+
+# ------------------------------------------------------------------------------------------------
+# Surfaces (Yade's pack functions over gts surfaces)
+
+def gtsSurface2Facets(surf, **kw) -> list[BodySpec]:
+    """A facet per face of the gts surface ``surf``, its vertices in the face's order; ``kw`` go
+    to :func:`facet` (material, color, ...)."""
+    return [facet([v.coords() for v in face.vertices()], **kw) for face in surf.faces()]
+
+
+def sweptPolylines2gtsSurface(pts, threshold: float = 0.0, capStart: bool = False, capEnd: bool = False):
+    """The gts surface swept through the polylines ``pts`` (sequences of the same number of
+    points): between polylines i and i+1, segment j (points a = P[i][j], b = P[i][j+1],
+    c = P[i+1][j], d = P[i+1][j+1]) gives the triangles (a, d, c) and (a, b, d). ``capStart`` /
+    ``capEnd`` close the first / last polyline with a fan from its first point (fine for convex
+    sections). With ``threshold`` > 0, triangles with an edge shorter than it are left out and
+    vertices closer than it are merged. The triangles and their vertex order are Yade's."""
+    from talus.dem import gts
+    if len({len(line) for line in pts}) != 1:
+        raise ValueError("sweptPolylines2gtsSurface: the polylines must all have the same number of points")
+    V = [[gts.Vertex(*(float(x) for x in p)) for p in line] for line in pts]
+
+    def short(u, v):
+        return threshold > 0 and math.dist(u.coords(), v.coords()) < threshold
+
+    def keep(a, b, c):
+        return not (short(a, b) or short(b, c) or short(c, a))
+
+    surf = gts.Surface()
+    for i in range(len(V) - 1):
+        for j in range(len(V[i]) - 1):
+            a, b, c, d = V[i][j], V[i][j + 1], V[i + 1][j], V[i + 1][j + 1]
+            for tri in ((a, d, c), (a, b, d)):
+                if keep(*tri):
+                    surf.add(gts.Face(*tri))
+    # fans: (v1, v0, v2), (v_k, v0, v_k+1) ... at the start; (v0, v_k, v_k+1) at the end
+    if capStart:
+        line = V[0]
+        for k in range(1, len(line) - 1):
+            surf.add(gts.Face(line[k], line[0], line[k + 1]))
+    if capEnd:
+        line = V[-1]
+        for k in range(1, len(line) - 1):
+            surf.add(gts.Face(line[0], line[k], line[k + 1]))
+    if threshold > 0:
+        surf.cleanup(threshold)
+    return surf
+
+
+def revolutionSurfaceMeridians(sects, angles, origin=(0.0, 0.0, 0.0), orientation=(1.0, 0.0, 0.0, 0.0)):
+    """Meridians of a surface of revolution about z: section i (2D points (r, z)) turned by
+    ``angles[i]``, then rotated by ``orientation`` (a quaternion) and moved to ``origin``; the
+    result feeds :func:`sweptPolylines2gtsSurface`."""
+    from talus.dem.linalg import Quaternion
+    q = orientation if isinstance(orientation, Quaternion) else Quaternion(*orientation)
+    R = np.asarray(q.toRotationMatrix(), float).reshape(3, 3)
+    o = np.asarray(origin, float).reshape(3)
+    return [[tuple(o + R @ (x * math.cos(angles[i]), x * math.sin(angles[i]), y)) for x, y in sects[i]]
+            for i in range(len(sects))]

@@ -204,7 +204,7 @@ class Scene(CheckpointMethods):
         self._cpp.engines = [e._cpp for e in engines]
         self._engines = engines
         _applyGeometrySettings(self._cpp, engines)   # the geometry functors' settings of the scene
-        # As in Yade, a labelled engine becomes a variable of the script.
+        # As in Yade, a labelled engine or functor becomes a variable of the script.
         for e in engines:
             if e.label:
                 setattr(sys.modules["__main__"], e.label, e)
@@ -256,9 +256,9 @@ class Scene(CheckpointMethods):
         stopIter = self.stopAtIter if self.stopAtIter > self.iter else None
         stopTime = self.stopAtTime if self.stopAtTime > self.time else None
         if nSteps < 0 and stopIter is None and stopTime is None and \
-                not any(type(e).__name__ == "PyRunner" for e in self._engines):
-            raise ValueError("O.run() without a step count runs until O.pause(), but no PyRunner could call it "
-                             "(or set O.stopAtIter / O.stopAtTime)")
+                not any(type(e).__name__ == "PyRunner" or getattr(e, "doneHook", None) for e in self._engines):
+            raise ValueError("O.run() without a step count runs until O.pause(), but no PyRunner or doneHook could "
+                             "call it (or set O.stopAtIter / O.stopAtTime)")
         remaining = nSteps
         while True:
             limits = [remaining] if remaining >= 0 else []
