@@ -32,7 +32,10 @@ from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxControll
 from talus.dem.energy import EnergyTracker
 from talus.dem.triaxial import ThreeDTriaxialEngine, TriaxialCompressionEngine, TriaxialStateRecorder
 from talus.dem.export import VTKExporter, VTKRecorder
-from talus.dem.kinematic import HarmonicMotionEngine, KinematicEngine, RotationEngine, TranslationEngine
+from talus.dem.kinematic import *  # noqa: F401,F403  (Yade's kinematic engines)
+from talus.dem.kinematic import __all__ as _kinematic_names
+from talus.dem.force_engines import *  # noqa: F401,F403  (Yade's force engines, interaction callbacks)
+from talus.dem.force_engines import __all__ as _force_engine_names
 from talus.dem.io import CheckpointError
 from talus.dem.materials import CohFrictMat, FrictMat, Material, ViscElMat
 from talus.dem.measure import (avgNumInteractions, bodyStressTensors, fabricTensor, getStress, getStressAndTangent,
@@ -50,5 +53,5 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "PeriIsoCompressor", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",
            "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder",
-           "KinematicEngine", "TranslationEngine", "RotationEngine", "HarmonicMotionEngine",
+           *_kinematic_names, *_force_engine_names,
            *_engine_names, *_block_names, *_particle_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]

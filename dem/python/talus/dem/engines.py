@@ -22,6 +22,8 @@ from __future__ import annotations
 import sys
 from typing import Callable, Sequence
 
+import numpy as np
+
 from talus import _dem
 from talus.dem.linalg import Vector3
 
@@ -40,6 +42,14 @@ class Functor:
                             + (f"; known: {', '.join(self._parameters)}" if self._parameters else ""))
         for name in self._parameters:
             setattr(self, name, params.get(name))
+
+    def __setattr__(self, name, value):
+        super().__setattr__(name, value)
+        # A parameter set after the InteractionLoop was made (Yade scripts set them on labelled
+        # functors) reaches the laws that took the functor's parameters.
+        if name in self._parameters and value is not None and not isinstance(getattr(type(self), name, None), property):
+            for law in self.__dict__.get("_configuredLaws", ()):
+                law._set(name, value)
 
     def _io_params(self) -> dict:
         """The parameters that were given, to rebuild the functor (checkpoints)."""
@@ -88,6 +98,7 @@ Ig2_Wall_Sphere_ScGeom = _functor("Ig2_Wall_Sphere_ScGeom", "Wall-sphere contact
 Ig2_Sphere_Sphere_ScGeom6D = _functor("Ig2_Sphere_Sphere_ScGeom6D",
                                       "Sphere-sphere contact geometry with relative rotations (the law asks for them).")
 Ig2_Wall_Sphere_ScGeom6D = _functor("Ig2_Wall_Sphere_ScGeom6D", "Wall-sphere contact geometry with relative rotations.")
+Ig2_Box_Sphere_ScGeom6D = _functor("Ig2_Box_Sphere_ScGeom6D", "Box-sphere contact geometry with relative rotations.")
 Ip2_FrictMat_FrictMat_FrictPhys = _functor(
     "Ip2_FrictMat_FrictMat_FrictPhys", "Stiffness and friction of linear contacts from FrictMat parameters.")
 Ip2_ViscElMat_ViscElMat_ViscElPhys = _functor(
@@ -115,9 +126,11 @@ class _Law(Functor):
         _dem.law_set_parameter(self._cpp, name, _number(self, name, value))
 
     def _configure(self, phys: Functor):
-        """Take the parameters of the physics functor that goes with this law."""
+        """Take the parameters of the physics functor that goes with this law, now and when they
+        are set later."""
         for name, value in phys._io_params().items():
             self._set(name, value)
+        phys.__dict__.setdefault("_configuredLaws", []).append(self)
 
 
 class Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(Functor):
@@ -251,16 +264,48 @@ class Dispatcher:
     ``LawDispatcher``): a list of functors, as engines hold them (``loop.lawDispatcher.functors``)
     and as old scripts list them in O.engines (three in a row stand for one InteractionLoop)."""
 
+    _arity = 2   # a functor serves a pair of classes (Bo1 functors: one)
+    _prefix: str | tuple = ""  # the functors' kind, from Yade's names: Bo1_, Ig2_, Ip2_, Law2_
+
     def __init__(self, functors: Sequence[Functor] = (), label: str = ""):
-        self.functors = list(functors)
+        # As in Yade: a functor of another kind is refused, and one of the same class as an
+        # earlier one replaces it (each pair of classes has one functor).
+        kept: dict[type, Functor] = {}
+        for functor in functors:
+            if not type(functor).__name__.startswith(self._prefix):
+                raise TypeError(f"{type(self).__name__} takes {'/'.join(self._prefix) if isinstance(self._prefix, tuple) else self._prefix}* functors, got "
+                                f"{type(functor).__name__}")
+            kept.pop(type(functor), None)
+            kept[type(functor)] = functor
+        self.functors = list(kept.values())
         self.label = label
 
     def __repr__(self):
         return f"{type(self).__name__}({self.functors!r})"
 
+    def dispMatrix(self, names: bool = True) -> dict:
+        """Which functor serves which classes, as Yade's ``dispMatrix()``: {('Sphere', 'Facet'):
+        'Ig2_Facet_Sphere_ScGeom', ...} (both orders of a pair), {('ScGeom', 'FrictPhys'):
+        'Law2_...'}, {'Sphere': 'Bo1_Sphere_Aabb'} for bounds. The classes are read from the
+        functors' names; Yade's class indices (``names=False``) do not exist in Talus."""
+        if not names:
+            raise ValueError(f"{type(self).__name__}.dispMatrix(names=False): Yade's class indices do not exist "
+                             "in Talus; use dispMatrix() (class names)")
+        matrix = {}
+        for functor in self.functors:
+            name = type(functor).__name__
+            classes = name.split("_")[1:1 + self._arity]
+            if self._arity == 1:
+                matrix[classes[0]] = name
+                continue
+            matrix[tuple(classes)] = name
+            if isinstance(self, IGeomDispatcher | IPhysDispatcher):   # Yade dispatches these symmetrically
+                matrix[tuple(reversed(classes))] = name
+        return matrix
+
 
 class BoundDispatcher(Dispatcher):
-    pass
+    _arity = 1
 
 
 class IGeomDispatcher(Dispatcher):
@@ -283,28 +328,56 @@ class InsertionSortCollider(Engine):
     """Contact detection with a Verlet skin ``verletDist`` (negative: a fraction of the smallest
     radius, Yade's default -0.5). Implemented with linked cells; Yade's name is kept.
 
-    Yade's settings of its sweep-and-prune (``allowBiggerThanPeriod``, ``nBins``,
+    ``allowBiggerThanPeriod``: in a periodic cell, a facet or box spanning more than half the
+    cell (a floor across it) meets the spheres where they are along that axis, as in Yade;
+    without it such a body is an error.
+
+    Yade's settings of its sweep-and-prune (``nBins``,
     ``sweepLength``, ``binCoeff``, ``targetInterv``, ``updatingDispFactor``, ``sortThenCollide``,
     ``keepListsShort``, ``doSort``, ``ompThreads``, ``fastestBodyMaxDist``) tune its speed, not the
     contacts it finds: they are accepted and kept, and Talus's linked cells do not need them."""
 
-    _SPEED_SETTINGS = ("allowBiggerThanPeriod", "nBins", "sweepLength", "binCoeff", "targetInterv",
+    _SPEED_SETTINGS = ("nBins", "sweepLength", "binCoeff", "targetInterv",
                        "updatingDispFactor", "sortThenCollide", "keepListsShort", "doSort", "ompThreads",
                        "fastestBodyMaxDist", "minSweepDistFactor", "periodic", "dumpBounds")
 
-    def __init__(self, boundDispatcher=(), verletDist: float = -0.5, label: str = "", **settings):
+    def __init__(self, boundDispatcher=(), verletDist: float = -0.5, label: str = "",
+                 allowBiggerThanPeriod: bool = False, **settings):
         unknown = set(settings) - set(self._SPEED_SETTINGS)
         if unknown:
             raise TypeError(f"InsertionSortCollider has no parameter(s) {', '.join(sorted(unknown))}")
         self._cpp = _dem.Collider()
         self._cpp.verletDist = verletDist
+        self._cpp.allowBiggerThanPeriod = bool(allowBiggerThanPeriod)
         self.label = label
         self.boundDispatcher = BoundDispatcher(_functors(boundDispatcher))
         self.settings = settings
 
     verletDist = property(lambda self: self._cpp.verletDist,
                           lambda self, v: setattr(self._cpp, "verletDist", v))
+    allowBiggerThanPeriod = property(lambda self: self._cpp.allowBiggerThanPeriod,
+                                     lambda self, v: setattr(self._cpp, "allowBiggerThanPeriod", bool(v)))
     rebuilds = property(lambda self: self._cpp.rebuilds, doc="number of re-detections so far")
+
+
+class FlatGridCollider(InsertionSortCollider):
+    """Yade's FlatGridCollider: contact detection for spheres on a regular grid of cells of size
+    ``step`` spanning ``aabbMin``..``aabbMax`` (spheres outside it fall into its border cells), with
+    skin ``verletDist`` (Yade's default 0: re-detection at every step). The grid only tunes Yade's
+    search: the contacts found are those of any exact detection with the same skin, so Talus
+    runs its own collider with that skin; ``step`` and the box are checked as Yade checks them."""
+
+    def __init__(self, step: float = 0.0, aabbMin=(0.0, 0.0, 0.0), aabbMax=(0.0, 0.0, 0.0),
+                 verletDist: float = 0.0, label: str = ""):
+        if not step > 0:
+            raise ValueError(f"FlatGridCollider: step must be positive, got {step}")
+        size = np.asarray(aabbMax, dtype=float) - np.asarray(aabbMin, dtype=float)
+        if size.shape != (3,) or not np.all(size > 0):
+            raise ValueError(f"FlatGridCollider: aabbMin {aabbMin} and aabbMax {aabbMax} must give a positive volume")
+        if verletDist < 0:
+            raise ValueError(f"FlatGridCollider: verletDist must be >= 0 (an absolute length), got {verletDist}")
+        super().__init__(verletDist=verletDist, label=label)
+        self.step, self.aabbMin, self.aabbMax = float(step), Vector3(aabbMin), Vector3(aabbMax)
 
 
 class InteractionLoop(Engine):
@@ -332,6 +405,21 @@ class InteractionLoop(Engine):
         self._cpp.laws = [law._cpp for law in laws]
         self.geomFunctors, self.physFunctors, self.lawFunctors = list(geomFunctors), list(physFunctors), laws
         self.label = label
+
+    @property
+    def callbacks(self) -> list:
+        """Yade's InteractionLoop.callbacks (e.g. ``[SumIntrForcesCb()]``), told of every step's
+        contacts; an InteractionLoop with callbacks is not run fused with the other engines."""
+        return list(getattr(self, "_callbacks", []))
+
+    @callbacks.setter
+    def callbacks(self, callbacks):
+        callbacks = list(callbacks)
+        for c in callbacks:
+            if not isinstance(getattr(c, "_cpp", None), _dem.IntrCallback):
+                raise TypeError(f"InteractionLoop.callbacks takes interaction callbacks (SumIntrForcesCb()), got {c!r}")
+        _dem.set_loop_callbacks(self._cpp, [c._cpp for c in callbacks])
+        self._callbacks = callbacks
 
     # Yade's names for the three functor lists.
     geomDispatcher = property(lambda self: IGeomDispatcher(self.geomFunctors))
@@ -408,7 +496,7 @@ class PyRunner(Engine):
 
 __all__ = [
     "Functor", "Engine", "collapseDispatchers", "Dispatcher", "BoundDispatcher", "IGeomDispatcher", "IPhysDispatcher", "LawDispatcher", "ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator",
-    "PyRunner", "asCallback", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
+    "PyRunner", "asCallback", "FlatGridCollider", "Ig2_Box_Sphere_ScGeom6D", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
     "Ig2_Box_Sphere_ScGeom",
     "Ig2_Wall_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom",
     "Ip2_FrictMat_FrictMat_FrictPhys", "Ip2_ViscElMat_ViscElMat_ViscElPhys",
