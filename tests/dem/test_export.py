@@ -104,7 +104,7 @@ def test_spheres(tmp_path, scene):
     v = read_vtu(tmp_path / "s.vtu")
     ids = sphere_ids(scene)
     assert n == v["points_count"] == v["cells_count"] == len(ids) == 63       # the erased one is left out
-    assert set(v["point"]) == {"radius", "velocity", "angVel", "force", "torque", "id", "materialId", "mass", "nonfinite"}
+    assert set(v["point"]) == {"radius", "velocity", "angVel", "force", "torque", "id", "materialId", "mass", "color", "nonfinite"}
     assert np.array_equal(v["points"], scene.positions()[ids])
     assert np.array_equal(v["point"]["velocity"], scene.velocities()[ids])
     assert np.array_equal(v["point"]["id"], ids) and np.all(v["point"]["radius"] == 0.09)

@@ -89,13 +89,13 @@ def test_save_gnuplot_writes_data_and_script(tmp_path):
 
 
 @pytest.mark.parametrize("line, says", [
-    ("O.engines = [PeriIsoCompressor()]", "PeriIsoCompressor is a name of Yade 2023.02a that Talus does not "
+    ("O.engines = [MicroMacroAnalyser()]", "MicroMacroAnalyser is a name of Yade 2023.02a that Talus does not "
                                           "implement yet; it is within Talus's scope"),
     ("b = Bo1_Polyhedra_Aabb()", "it belongs to polyhedra, which is outside Talus's scope"),
     ("from yade import polyhedra_utils", "polyhedra_utils is a name of Yade 2023.02a"),
     ("import yade.mpy", "MPI subdomains (open issue #26"),
     ("from yade import pack\npack.inTorus", None),                     # not Yade's: Python's own error
-    ("O.engines = [PeriIsoCompresor()]", None),                        # a typo stays a plain NameError
+    ("O.engines = [MicroMacroAnalyzer()]", None),                       # a typo stays a plain NameError
 ])
 def test_a_yade_name_talus_lacks_is_named_with_its_scope(talus_cmd, tmp_path, line, says):
     script = tmp_path / "missing.py"

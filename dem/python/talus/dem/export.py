@@ -152,6 +152,7 @@ def write_spheres(scene: "Scene", path: str, extra: dict | None = None) -> int:
         "radius": cpp.radius()[ids], "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids],
         "force": cpp.force()[ids], "torque": cpp.torque()[ids], "id": ids.astype(np.int32),
         "materialId": cpp.materialIds()[ids].astype(np.int32), "mass": cpp.mass()[ids],
+        "color": scene._appearance.of(ids, cpp.bodyCount()),
     }
     data.update(extra or {})
     positions = cpp.pos()[ids]
@@ -165,7 +166,8 @@ def write_facets(scene: "Scene", path: str) -> int:
     f = _dem.facet_arrays(scene._cpp)
     ids = f["id"]
     data = {"id": ids, "materialId": f["material"], "normal": f["normal"],
-            "force": scene._cpp.force()[ids], "velocity": scene._cpp.vel()[ids]}
+            "force": scene._cpp.force()[ids], "velocity": scene._cpp.vel()[ids],
+            "color": scene._appearance.of(ids, scene._cpp.bodyCount())}
     _atomic_write(path, vtu_bytes(f["vertices"].reshape(-1, 3), *_cells(len(ids), 3, VTK_TRIANGLE),
                                   cell_data=data, time=scene._cpp.time))
     return len(ids)
@@ -178,7 +180,8 @@ def write_boxes(scene: "Scene", path: str) -> int:
     corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ Quaternion(*cpp.ori(int(i))).toRotationMatrix().T
                for i in ids]
     data = {"id": ids.astype(np.int32), "materialId": cpp.materialIds()[ids].astype(np.int32),
-            "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids], "force": cpp.force()[ids]}
+            "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids], "force": cpp.force()[ids],
+            "color": scene._appearance.of(ids, cpp.bodyCount())}
     _atomic_write(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 8, VTK_HEXAHEDRON),
                                   cell_data=data, time=cpp.time))
     return len(ids)
