@@ -136,11 +136,11 @@ def run_module(command: list[str], what: str, work: Path, timeout: float, env: d
     lines = [json.loads(line) for line in out.read_text().splitlines()] if out.exists() else []
     name = f"doctest.yade.{what.split(':')[1]}" if what.startswith("doctest:") else what
     if not lines:
-        return {name: {"status": "error", "error": "no result: " + ended,
+        return {name: {"status": "error", "error": "no result: " + ended, "import_failed": True,
                        "wall_s": round(time.perf_counter() - t0, 2)}}
     if "collect_error" in lines[0]:
         return {name: {"status": "error", "error": "import failed: " + last_error_line(lines[0]["collect_error"]),
-                       "message": lines[0]["collect_error"][-2000:]}}
+                       "message": lines[0]["collect_error"][-2000:], "import_failed": True}}
     rows = {}
     for row in lines[1:]:
         rows[row["id"]] = {"status": row["status"], "wall_s": row["wall_s"],
@@ -150,6 +150,10 @@ def run_module(command: list[str], what: str, work: Path, timeout: float, env: d
         # the first unfinished test was running when the process ended; the rest never started
         rows[test_id] = {"status": "error", "error": ended if n == 0 else "not run: " + ended}
     return rows
+
+
+def _import_failed(rows: dict) -> bool:
+    return len(rows) == 1 and next(iter(rows.values())).get("import_failed", False)
 
 
 def main():
@@ -182,13 +186,19 @@ def main():
         if args.only:
             whats = [w for w in whats if re.search(args.only, w)]
         for what in whats:
-            counts = []
+            counts, by_program = [], {}
             for program in programs:
                 command, env = runners[program]
-                rows = run_module(command, what, work, timeout, env)
+                by_program[program] = rows = run_module(command, what, work, timeout, env)
+                counts.append(f"{program} {sum(r['status'] == 'ok' for r in rows.values())}/{len(rows)}")
+            # A module one program could not import: its error stands for each test the other
+            # collected (the module is one row only when no program collected a test).
+            collected = {t for rows in by_program.values() if not _import_failed(rows) for t in rows}
+            for program, rows in by_program.items():
+                if _import_failed(rows) and collected:
+                    rows = dict.fromkeys(collected, next(iter(rows.values())))
                 for test_id, row in rows.items():
                     table.setdefault(test_id, {})[program] = row
-                counts.append(f"{program} {sum(r['status'] == 'ok' for r in rows.values())}/{len(rows)}")
             label = what.split(":")[1] if what.startswith("doctest:") else what
             print(f"{label:20s} " + "  ".join(counts), flush=True)
 

@@ -95,9 +95,15 @@ def collect_doctests(name: str, source: str) -> list:
     if not found:
         return []
     module = importlib.import_module(f"yade.{name}")
+    # Yade's modules start with `from yade.wrapper import *`, so their globals (which
+    # DocTestSuite gives the examples) hold every class; a thin module may not: the same names
+    # first, then the module's own.
+    wrapper = importlib.import_module("yade.wrapper")
+    exported = getattr(wrapper, "__all__", [n for n in dir(wrapper) if not n.startswith("_")])
+    namespace = {n: getattr(wrapper, n) for n in exported}
     cases = []
     for qualname, doc, line in found:
-        test = parser.get_doctest(doc, dict(module.__dict__), f"yade.{name}.{qualname}".rstrip("."),
+        test = parser.get_doctest(doc, {**namespace, **module.__dict__}, f"yade.{name}.{qualname}".rstrip("."),
                                   source, line)
         cases.append((f"doctest.{test.name}", DocTestCase(test)))
     return cases

@@ -7,12 +7,14 @@ from talus.dem import (PWaveTimeStep, RayleighWaveTimeStep, aabbWalls, avgNumInt
                        setContactFriction, sphere, unbalancedForce, wall)
 from talus.dem import O
 from talus.dem.geom import facetBox, facetCylinder
+from talus.dem.scene import SpherePWaveTimeStep
+from talus.dem.clumps import clumpTemplate
 from talus.dem.linalg import Quaternion
 from talus.dem.measure import aabbDim, aabbExtrema, angularMomentum, kineticEnergy, momentum, sumForces
 from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,
                          waitIfBatch)
 
-__all__ = ["sphere", "wall", "facet", "box", "aabbWalls", "facetBox", "facetCylinder", "PWaveTimeStep",
+__all__ = ["sphere", "wall", "facet", "box", "aabbWalls", "facetBox", "facetCylinder", "PWaveTimeStep", "SpherePWaveTimeStep",
            "RayleighWaveTimeStep", "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions",
            "fabricTensor", "bodyStressTensors", "porosity", "growParticles", "setContactFriction",
            "typedEngine", "kineticEnergy", "momentum", "angularMomentum", "sumForces", "aabbExtrema", "aabbDim",

@@ -37,7 +37,7 @@ from talus.dem.kinematic import __all__ as _kinematic_names
 from talus.dem.force_engines import *  # noqa: F401,F403  (Yade's force engines, interaction callbacks)
 from talus.dem.force_engines import __all__ as _force_engine_names
 from talus.dem.io import CheckpointError
-from talus.dem.materials import CohFrictMat, FrictMat, Material, ViscElMat
+from talus.dem.materials import CohFrictMat, ElastMat, FrictMat, Material, ViscElMat
 from talus.dem.measure import (avgNumInteractions, bodyStressTensors, fabricTensor, getStress, getStressAndTangent,
                                porosity, unbalancedForce)
 from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
@@ -45,7 +45,7 @@ from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
 O = Scene()
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "timing", "ymport", "Material",
-           "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector2", "Vector2i", "Vector3", "Vector3i", "Vector4", "Vector6",
+           "ElastMat", "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector2", "Vector2i", "Vector3", "Vector3i", "Vector4", "Vector6",
            "Vector6i", "Matrix3", "Matrix6", "Quaternion",
            "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "bodyStressTensors",
            "porosity",

@@ -67,6 +67,19 @@ class BodySpec:
         else:
             self.fixed = not value
 
+    @property
+    def mat(self):
+        """The body's material (Yade's ``b.mat``); before the append, the one ``material`` names
+        (an index or a label in the default scene), as Yade resolves it when the body is made."""
+        body = self._body()
+        if body:
+            return body.material
+        from talus.dem.materials import Material
+        if isinstance(self.material, Material):
+            return self.material
+        from talus.dem import O
+        return O.materials[O.materials.resolve(self.material)]
+
     def __getattr__(self, name):
         # Any other Body attribute (isClump, clumpId, ...) once appended.
         if name.startswith("_") or self._scene is None:
@@ -157,21 +170,14 @@ class _DetachedShape:
         return self._spec.kind
 
 
-def _look(color, wire: bool, highlight: bool) -> dict:
-    """The BodySpec fields of Yade's display arguments (kept as data, see talus.dem.appearance)."""
-    return {"color": DEFAULT_COLOR if color is None else check_color(color),
-            "initial": {"wire": bool(wire), "highlight": bool(highlight)}}
-
-
-def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, wire=False,
-           highlight=False, **_ignored) -> BodySpec:
+def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, **_ignored) -> BodySpec:
     """A sphere of the given centre and radius; ``material`` is an index, a label or a
     Material (default: the last material added, or Yade's default FrictMat)."""
     return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=material, fixed=fixed,
-                    **_look(color, wire, highlight))
+                    color=DEFAULT_COLOR if color is None else check_color(color))
 
 
-def wall(position, axis: int, sense: int = 0, material=-1, color=None, **_ignored) -> BodySpec:
+def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySpec:
     """An infinite wall normal to ``axis`` through ``position`` (a number or a point, as in Yade);
     ``sense`` -1/+1 makes only that side interact, 0 both. Walls are fixed."""
     if axis not in (0, 1, 2):
@@ -182,8 +188,7 @@ def wall(position, axis: int, sense: int = 0, material=-1, color=None, **_ignore
         coord = float(tuple(position)[axis])
     center = [0.0, 0.0, 0.0]
     center[axis] = coord
-    return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True,
-                    **_look(color, False, False))
+    return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True)
 
 
 def aabbWalls(extrema=None, thickness: float = 0, material=-1, **_ignored) -> list[BodySpec]:
@@ -200,18 +205,16 @@ def aabbWalls(extrema=None, thickness: float = 0, material=-1, **_ignored) -> li
     return [wall(corner[axis], axis, material=material) for axis in range(3) for corner in (lo, hi)]
 
 
-def facet(vertices: Sequence[Sequence[float]], material=-1, color=None, wire=True, highlight=False,
-          **_ignored) -> BodySpec:
-    """A fixed triangle with the three given vertices (its position is the incentre, as in Yade;
-    drawn as wire frame by default, as Yade's)."""
+def facet(vertices: Sequence[Sequence[float]], material=-1, **_ignored) -> BodySpec:
+    """A fixed triangle with the three given vertices (its position is the incentre, as in Yade)."""
     verts = tuple(tuple(float(x) for x in v) for v in vertices)
     if len(verts) != 3 or any(len(v) != 3 for v in verts):
         raise ValueError(f"facet: needs three 3D vertices, got {vertices!r}")
-    return BodySpec("Facet", verts[0], material=material, fixed=True, vertices=verts, **_look(color, wire, highlight))
+    return BodySpec("Facet", verts[0], material=material, fixed=True, vertices=verts)
 
 
 def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0, 0.0, 0.0), fixed: bool = False,
-        material=-1, dynamic=None, color=None, wire=False, highlight=False, **_ignored) -> BodySpec:
+        material=-1, dynamic=None, **_ignored) -> BodySpec:
     """A box of half-sizes ``extents`` (Yade's utils.box); ``orientation`` is a quaternion
     (w, x, y, z) or anything with w, x, y, z attributes. Dynamic unless ``fixed`` (or
     ``dynamic=False``); its mass and inertia come from the material's density. Boxes interact
@@ -228,8 +231,7 @@ def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0
         raise ValueError(f"box: orientation must be a quaternion (w, x, y, z), got {orientation!r}")
     if dynamic is not None:
         fixed = not dynamic
-    return BodySpec("Box", c, material=material, fixed=fixed, extents=e, orientation=q,
-                    **_look(color, wire, highlight))
+    return BodySpec("Box", c, material=material, fixed=fixed, extents=e, orientation=q)
 
 
 def _dofs_to_mask(letters: str) -> int:
@@ -345,6 +347,21 @@ class Body:
     @property
     def material(self):
         return self._scene.materials[int(self._scene._cpp.materialIds()[self.id])]
+
+    mat = material   # Yade's short name
+
+    @property
+    def bounded(self) -> bool:
+        """Whether the collider bounds the body: all but clumps, whose members are bounded."""
+        return not self.isClump
+
+    # Body objects are views made on each access: two views of one body are equal, as Yade's
+    # shared pointers to the same body are.
+    def __eq__(self, other):
+        return isinstance(other, Body) and other._scene is self._scene and other.id == self.id
+
+    def __hash__(self):
+        return hash((id(self._scene), self.id))
 
     def __repr__(self):
         return f"<Body {self.id} {self.shape}>"

@@ -22,6 +22,10 @@ def _matrix(name: str, value) -> np.ndarray:
     return m
 
 
+class CellError(ValueError, RuntimeError):
+    """A cell that cannot be (degenerate, left-handed): a ValueError, and Yade's RuntimeError."""
+
+
 class Cell:
     """Edges ``hSize`` (columns), velocity gradient ``velGrad``, accumulated transformation
     ``trsf``, ``homoDeform`` (particles follow the homogeneous deformation), ``volume``."""
@@ -39,7 +43,10 @@ class Cell:
 
     @hSize.setter
     def hSize(self, value):
-        self._scene._cpp.setCellSize(_matrix("hSize", value))
+        try:
+            self._scene._cpp.setCellSize(_matrix("hSize", value))
+        except ValueError as e:   # Yade raises RuntimeError for a degenerate cell: both catch it
+            raise CellError(str(e)) from None
 
     def setBox(self, *size):
         """An axis-aligned box cell of the given sizes."""
@@ -50,6 +57,8 @@ class Cell:
     def refHSize(self) -> Matrix3:
         """The cell before the accumulated transformation: ``hSize = trsf @ refHSize`` (Yade)."""
         return Matrix3(np.linalg.solve(self.trsf, self.hSize))
+
+    hSize0 = refHSize   # Yade's other name: trsf^-1 hSize
 
     @property
     def refSize(self) -> Vector3:

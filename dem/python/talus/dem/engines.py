@@ -306,18 +306,19 @@ class Dispatcher:
 
 class BoundDispatcher(Dispatcher):
     _arity = 1
+    _prefix = ("Bo1_", "Potential")   # PotentialBlock2AABB, PotentialParticle2AABB are Yade's too
 
 
 class IGeomDispatcher(Dispatcher):
-    pass
+    _prefix = "Ig2_"
 
 
 class IPhysDispatcher(Dispatcher):
-    pass
+    _prefix = "Ip2_"
 
 
 class LawDispatcher(Dispatcher):
-    pass
+    _prefix = "Law2_"
 
 
 def _functors(given) -> list:
@@ -463,12 +464,30 @@ def asCallback(command: str | Callable[[], None] | None, what: str = "command") 
     return lambda: exec(code, vars(sys.modules["__main__"]))
 
 
+def _yade_command(command: str) -> Callable[[], None]:
+    """A PyRunner's command string as a callable that runs it in the script's namespace and
+    reports an error in it as Yade does: a RuntimeError whose text is "PyRunner error.", the
+    command, the error and the command's own traceback."""
+    code = compile(command, "<string>", "exec")
+
+    def run():
+        try:
+            exec(code, vars(sys.modules["__main__"]))
+        except Exception as e:
+            import traceback
+            # The traceback from the command's own frame on (this function's is not Yade's).
+            trace = traceback.format_exception(type(e), e, e.__traceback__.tb_next)
+            raise RuntimeError(f"PyRunner error.\n\nCOMMAND: {command!r}\n\nERROR:\n{e}\n\nSTACK TRACE:\n"
+                               + "\n".join(trace)) from e
+    return run
+
+
 class PyRunner(Engine):
     """Runs ``command`` every ``iterPeriod`` steps and/or every ``realPeriod`` seconds of wall
     time: a string executed in the script's namespace (as in Yade) or a Python callable."""
 
     def __init__(self, command: str | Callable[[], None] = "", iterPeriod: int = 0, realPeriod: float = 0,
-                 initRun: bool = False, label: str = ""):
+                 initRun: bool = False, label: str = "", dead: bool = False):
         if iterPeriod < 0 or realPeriod < 0 or (iterPeriod == 0 and realPeriod == 0):
             if iterPeriod == 0 and realPeriod == 0:
                 iterPeriod = 1          # Yade's default: every step
@@ -480,6 +499,7 @@ class PyRunner(Engine):
         self._cpp.initRun = initRun
         self.command = command
         self.label = label
+        self.dead = dead
 
     @property
     def command(self):
@@ -488,7 +508,10 @@ class PyRunner(Engine):
     @command.setter
     def command(self, command):
         self._command = command
-        self._cpp.callback = asCallback(command, "PyRunner") or (lambda: None)
+        if isinstance(command, str) and command:
+            self._cpp.callback = _yade_command(command)
+        else:
+            self._cpp.callback = asCallback(command, "PyRunner") or (lambda: None)
 
     iterPeriod = property(lambda self: self._cpp.iterPeriod, lambda self, v: setattr(self._cpp, "iterPeriod", v))
     nDone = property(lambda self: self._cpp.nDone)

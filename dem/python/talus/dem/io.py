@@ -32,7 +32,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from talus import _dem
-from talus.dem.appearance import Appearance
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -280,7 +279,8 @@ def _attach_materials(scene: "Scene", objects: list):
     for i in range(count):
         cpp = scene._cpp.material(i)
         cls = _material_class(cpp.kind)
-        obj = objects[i] if i < len(objects) and type(objects[i]) is cls else cls()
+        # (kinds, not classes: an ElastMat is stored as a frictionless FrictMat)
+        obj = objects[i] if i < len(objects) and getattr(objects[i], "_kind", None) == cpp.kind else cls()
         obj._bind(scene, cpp)
         bound.append(obj)
     for obj in objects[count:]:
@@ -294,7 +294,6 @@ def _load_state(scene: "Scene", loader) -> dict:
         extras = loader()
     finally:
         _attach_materials(scene, objects)
-    scene._appearance = Appearance.from_json(extras.get("appearance"))
     return extras
 
 
@@ -345,9 +344,6 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
             warnings.warn(f"O.save({path!r}): " + "; ".join(f"{s['describe']}: {s['reason']}" for s in bad)
                           + "; O.load will keep the engines the scene has then", CheckpointWarning, stacklevel=2)
         extras["engines"] = json.dumps({"format": _ENGINES_FORMAT, "engines": specs})
-    look = scene._appearance.to_json()
-    if look:
-        extras["appearance"] = look
     _dem.save_checkpoint(scene._cpp, path, extras)
     _scene_memory(scene)["last"] = path
 
@@ -390,15 +386,26 @@ def reload(scene: "Scene", *, engines: str = "auto") -> None:
     last = _scene_memory(scene)["last"]
     if last is None:
         raise CheckpointError("O.reload: this scene has not been saved or loaded yet")
-    load(scene, last, engines=engines)
+    if isinstance(last, _Slot):
+        loadTmp(scene, last.name, engines=engines)
+    else:
+        load(scene, last, engines=engines)
+
+
+class _Slot(str):
+    """The memory slot last saved or loaded, for reload (as Yade's ``:memory:`` file names)."""
+
+    @property
+    def name(self) -> str:
+        return str(self)
 
 
 def saveTmp(scene: "Scene", slot: str = "") -> None:
     """Keep the scene's state and engines in memory slot ``slot`` (Yade's ``O.saveTmp``)."""
     _require()
-    look = scene._appearance.to_json()
-    image = _dem.save_checkpoint_image(scene._cpp, {"appearance": look} if look else {})
+    image = _dem.save_checkpoint_image(scene._cpp, {})
     _scene_memory(scene)["slots"][str(slot)] = (image, _engine_specs(scene, to_file=False))
+    _scene_memory(scene)["last"] = _Slot(slot)
 
 
 def loadTmp(scene: "Scene", slot: str = "", *, engines: str = "auto") -> None:
@@ -406,7 +413,6 @@ def loadTmp(scene: "Scene", slot: str = "", *, engines: str = "auto") -> None:
     ``engines`` as for :func:`load`."""
     _require()
     if engines not in _ENGINE_MODES:
-    _scene_memory(scene)["last"] = _Slot(slot)
         raise ValueError(f"O.loadTmp: engines must be one of {_ENGINE_MODES}, got {engines!r}")
     slots = _scene_memory(scene)["slots"]
     if str(slot) not in slots:
@@ -416,6 +422,7 @@ def loadTmp(scene: "Scene", slot: str = "", *, engines: str = "auto") -> None:
     where = f"saveTmp slot {str(slot)!r}"
     _load_state(scene, lambda: _dem.load_checkpoint_image(scene._cpp, image, where))
     _restore_engines(scene, specs, engines, where)
+    _scene_memory(scene)["last"] = _Slot(slot)
 
 
 def lsTmp(scene: "Scene") -> list[str]:
@@ -423,28 +430,28 @@ def lsTmp(scene: "Scene") -> list[str]:
     return list(_scene_memory(scene)["slots"])
 
 
-    _scene_memory(scene)["last"] = _Slot(slot)
 class CheckpointMethods:
     """Yade's ``O.save``/``O.load``/``O.saveTmp``/``O.loadTmp``/``O.reload``/``O.lsTmp`` as
     methods: a base class of ``Scene``."""
 
-    def save(self, path: str | os.PathLike, *, engines: bool = True) -> None:
+    # ``quiet`` (Yade's: no "Loading..." message) is accepted; Talus prints none anyway.
+    def save(self, path: str | os.PathLike, quiet: bool = False, *, engines: bool = True) -> None:
         """Write a checkpoint (HDF5, atomic); see :func:`talus.dem.io.save`."""
         save(self, path, engines=engines)
 
-    def load(self, path: str | os.PathLike, *, engines: str = "auto") -> None:
+    def load(self, path: str | os.PathLike, quiet: bool = False, *, engines: str = "auto") -> None:
         """Restore a checkpoint written by ``save``; see :func:`talus.dem.io.load`."""
         load(self, path, engines=engines)
 
-    def reload(self, *, engines: str = "auto") -> None:
+    def reload(self, quiet: bool = False, *, engines: str = "auto") -> None:
         """Load again the file last saved or loaded; see :func:`talus.dem.io.reload`."""
         reload(self, engines=engines)
 
-    def saveTmp(self, slot: str = "") -> None:
+    def saveTmp(self, slot: str = "", quiet: bool = False) -> None:
         """Keep the state in a memory slot; see :func:`talus.dem.io.saveTmp`."""
         saveTmp(self, slot)
 
-    def loadTmp(self, slot: str = "", *, engines: str = "auto") -> None:
+    def loadTmp(self, slot: str = "", quiet: bool = False, *, engines: str = "auto") -> None:
         """Restore a memory slot; see :func:`talus.dem.io.loadTmp`."""
         loadTmp(self, slot, engines=engines)
 

@@ -31,6 +31,15 @@ def _vector(value, what: str) -> list[float]:
     return v.tolist()
 
 
+def _unit(value, what: str) -> list[float]:
+    """The direction of ``value``, normalised when set (as Yade's postLoad does)."""
+    v = np.asarray(_vector(value, what))
+    length = np.linalg.norm(v)
+    if length == 0:
+        raise ValueError(f"{what} must not be zero")
+    return (v / length).tolist()
+
+
 class KinematicEngine(Engine):
     """Base of the kinematic engines: the bodies ``ids`` it moves."""
 
@@ -66,7 +75,7 @@ class TranslationEngine(KinematicEngine):
 
 
     translationAxis = property(lambda s: Vector3(s._cpp.translationAxis),
-                               lambda s, v: setattr(s._cpp, "translationAxis", _vector(v, "translationAxis")))
+                               lambda s, v: setattr(s._cpp, "translationAxis", _unit(v, "translationAxis")))
     velocity = property(lambda s: s._cpp.velocity, lambda s, v: setattr(s._cpp, "velocity", float(v)))
 
 

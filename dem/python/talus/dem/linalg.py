@@ -502,7 +502,13 @@ class Quaternion:
     __array_ufunc__ = None   # numpy must not turn ``v * q`` into element-wise arithmetic
     __hash__ = None
 
-    def __init__(self, *args):
+    def __init__(self, *args, axis=None, angle=None):
+        if axis is not None or angle is not None:            # minieigen's keywords
+            if args or axis is None or angle is None:
+                raise TypeError("Quaternion: give both axis= and angle=, and nothing else")
+            args = (axis, angle)
+        if len(args) == 1 and isinstance(args[0], tuple) and len(args[0]) == 2:
+            args = args[0]                                     # ((axis, angle)) or ((angle, axis))
         if not args:
             w, x, y, z = 1.0, 0.0, 0.0, 0.0
         elif len(args) == 4:

@@ -53,6 +53,24 @@ class FrictMat(Material):
     _kind = _dem.MaterialKind.Frict
 
 
+class ElastMat(Material):
+    """Yade's purely elastic material: ``young``, ``poisson``, ``density`` (the base of FrictMat).
+    Talus stores it as a FrictMat without friction (frictionAngle 0, not settable); Yade itself has
+    no FrictPhys functor for it, Talus's linear law treats it as frictionless."""
+
+    _kind = _dem.MaterialKind.Frict
+
+    def __init__(self, **params):
+        if "frictionAngle" in params:
+            raise TypeError("ElastMat has no parameter 'frictionAngle' (FrictMat has)")
+        super().__init__(frictionAngle=0.0, **params)
+
+    def __setattr__(self, name, value):
+        if name == "frictionAngle":
+            raise AttributeError("ElastMat has no attribute 'frictionAngle' (FrictMat has)")
+        super().__setattr__(name, value)
+
+
 class ViscElMat(Material):
     """Linear visco-elastic material: contact duration ``tc`` with restitution coefficients
     ``en``, ``et``, or directly ``kn``, ``cn``, ``ks``, ``cs``; plus ``frictionAngle``,
@@ -82,4 +100,4 @@ def default_material() -> FrictMat:
     """Yade's defaultMaterial: FrictMat(density=1e3, young=1e7, poisson=.3, frictionAngle=.5)."""
     return FrictMat(density=1e3, young=1e7, poisson=0.3, frictionAngle=0.5, label="defaultMat")
 
-__all__ = ["Material", "FrictMat", "ViscElMat", "CohFrictMat", "default_material"]
+__all__ = ["Material", "ElastMat", "FrictMat", "ViscElMat", "CohFrictMat", "default_material"]

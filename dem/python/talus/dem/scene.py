@@ -76,8 +76,17 @@ class MaterialContainer:
             raise ValueError(f"unknown material index {material} (the scene has {len(self._materials)} materials)")
         return int(material)
 
-    def __getitem__(self, i: int) -> Material:
+    def __getitem__(self, i: int | str) -> Material:
+        """By index (negative counts from the end) or by label (KeyError if none has it)."""
+        if isinstance(i, str):
+            for m in self._materials:
+                if m.label == i:
+                    return m
+            raise KeyError(f"no material labelled {i!r} in O.materials")
         return self._materials[i]
+
+    def __iter__(self):
+        return iter(self._materials)
 
     def __len__(self) -> int:
         return len(self._materials)
@@ -187,8 +196,10 @@ class Scene(CheckpointMethods):
         return self._cpp.fusedSteps
 
     def _set_dt(self, value: float):
-        if not (value > 0 and value < float("inf")):
-            raise ValueError(f"O.dt must be positive and finite, got {value}")
+        # Zero is Yade's way to apply what acts on velocities (a cell's velGrad, a clump's
+        # velocity to its members) without moving anything.
+        if not (value >= 0 and value < float("inf")):
+            raise ValueError(f"O.dt must be zero or positive and finite, got {value}")
         self._cpp.dt = float(value)
 
     @property
@@ -358,6 +369,11 @@ def contactTimeStep(scene: Scene | None = None) -> float:
     """Critical step of the stiffest current contact alone, 2 sqrt(m / kn)."""
     from talus.dem import O
     return (scene or O)._cpp.contactTimeStep()
+
+
+def SpherePWaveTimeStep(radius: float, density: float, young: float) -> float:
+    """The P-wave critical time step of one sphere, r / sqrt(E / rho) (Yade's utils)."""
+    return radius / math.sqrt(young / density)
 
 
 def PWaveTimeStep(scene: Scene | None = None) -> float:
