@@ -170,14 +170,21 @@ class _DetachedShape:
         return self._spec.kind
 
 
-def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, **_ignored) -> BodySpec:
+def _look(color, wire: bool, highlight: bool) -> dict:
+    """The BodySpec fields of Yade's display arguments (kept as data, see talus.dem.appearance)."""
+    return {"color": DEFAULT_COLOR if color is None else check_color(color),
+            "initial": {"wire": bool(wire), "highlight": bool(highlight)}}
+
+
+def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, wire=False,
+           highlight=False, **_ignored) -> BodySpec:
     """A sphere of the given centre and radius; ``material`` is an index, a label or a
     Material (default: the last material added, or Yade's default FrictMat)."""
     return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=material, fixed=fixed,
-                    color=DEFAULT_COLOR if color is None else check_color(color))
+                    **_look(color, wire, highlight))
 
 
-def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySpec:
+def wall(position, axis: int, sense: int = 0, material=-1, color=None, **_ignored) -> BodySpec:
     """An infinite wall normal to ``axis`` through ``position`` (a number or a point, as in Yade);
     ``sense`` -1/+1 makes only that side interact, 0 both. Walls are fixed."""
     if axis not in (0, 1, 2):
@@ -188,7 +195,8 @@ def wall(position, axis: int, sense: int = 0, material=-1, **_ignored) -> BodySp
         coord = float(tuple(position)[axis])
     center = [0.0, 0.0, 0.0]
     center[axis] = coord
-    return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True)
+    return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True,
+                    **_look(color, False, False))
 
 
 def aabbWalls(extrema=None, thickness: float = 0, material=-1, **_ignored) -> list[BodySpec]:
@@ -205,16 +213,18 @@ def aabbWalls(extrema=None, thickness: float = 0, material=-1, **_ignored) -> li
     return [wall(corner[axis], axis, material=material) for axis in range(3) for corner in (lo, hi)]
 
 
-def facet(vertices: Sequence[Sequence[float]], material=-1, **_ignored) -> BodySpec:
-    """A fixed triangle with the three given vertices (its position is the incentre, as in Yade)."""
+def facet(vertices: Sequence[Sequence[float]], material=-1, color=None, wire=True, highlight=False,
+          **_ignored) -> BodySpec:
+    """A fixed triangle with the three given vertices (its position is the incentre, as in Yade;
+    drawn as wire frame by default, as Yade's)."""
     verts = tuple(tuple(float(x) for x in v) for v in vertices)
     if len(verts) != 3 or any(len(v) != 3 for v in verts):
         raise ValueError(f"facet: needs three 3D vertices, got {vertices!r}")
-    return BodySpec("Facet", verts[0], material=material, fixed=True, vertices=verts)
+    return BodySpec("Facet", verts[0], material=material, fixed=True, vertices=verts, **_look(color, wire, highlight))
 
 
 def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0, 0.0, 0.0), fixed: bool = False,
-        material=-1, dynamic=None, **_ignored) -> BodySpec:
+        material=-1, dynamic=None, color=None, wire=False, highlight=False, **_ignored) -> BodySpec:
     """A box of half-sizes ``extents`` (Yade's utils.box); ``orientation`` is a quaternion
     (w, x, y, z) or anything with w, x, y, z attributes. Dynamic unless ``fixed`` (or
     ``dynamic=False``); its mass and inertia come from the material's density. Boxes interact
@@ -231,7 +241,8 @@ def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0
         raise ValueError(f"box: orientation must be a quaternion (w, x, y, z), got {orientation!r}")
     if dynamic is not None:
         fixed = not dynamic
-    return BodySpec("Box", c, material=material, fixed=fixed, extents=e, orientation=q)
+    return BodySpec("Box", c, material=material, fixed=fixed, extents=e, orientation=q,
+                    **_look(color, wire, highlight))
 
 
 def _dofs_to_mask(letters: str) -> int:

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from talus import _dem
+from talus.dem.appearance import Appearance
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -294,6 +295,7 @@ def _load_state(scene: "Scene", loader) -> dict:
         extras = loader()
     finally:
         _attach_materials(scene, objects)
+    scene._appearance = Appearance.from_json(extras.get("appearance"))
     return extras
 
 
@@ -344,6 +346,9 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
             warnings.warn(f"O.save({path!r}): " + "; ".join(f"{s['describe']}: {s['reason']}" for s in bad)
                           + "; O.load will keep the engines the scene has then", CheckpointWarning, stacklevel=2)
         extras["engines"] = json.dumps({"format": _ENGINES_FORMAT, "engines": specs})
+    look = scene._appearance.to_json()
+    if look:
+        extras["appearance"] = look
     _dem.save_checkpoint(scene._cpp, path, extras)
     _scene_memory(scene)["last"] = path
 
@@ -403,7 +408,8 @@ class _Slot(str):
 def saveTmp(scene: "Scene", slot: str = "") -> None:
     """Keep the scene's state and engines in memory slot ``slot`` (Yade's ``O.saveTmp``)."""
     _require()
-    image = _dem.save_checkpoint_image(scene._cpp, {})
+    look = scene._appearance.to_json()
+    image = _dem.save_checkpoint_image(scene._cpp, {"appearance": look} if look else {})
     _scene_memory(scene)["slots"][str(slot)] = (image, _engine_specs(scene, to_file=False))
     _scene_memory(scene)["last"] = _Slot(slot)
 
