@@ -10,8 +10,8 @@ namespace talus::dem
 /// `Contacts::extra`) only while a law that needs it is in use: plain sphere contacts (linear,
 /// visco-elastic) neither store nor copy it.
 ///
-/// Three groups, named as Yade's classes: the constants of MindlinPhys, the relative rotation of
-/// ScGeom6D, and the bond and moment state of CohFrictPhys.
+/// Groups named as Yade's classes: the constants of MindlinPhys, the relative rotation of
+/// ScGeom6D, the bond and moment state of CohFrictPhys, the rolling resistance of ViscElPhys.
 struct ContactExtra
 {
   // MindlinPhys: F_n = kno u^1.5, k_s = kso u^0.5; betan, betas: damping ratios (fractions of
@@ -34,6 +34,11 @@ struct ContactExtra
   std::uint8_t fragile = 1;        ///< the bond breaks for good at its first failure
   std::uint8_t momentRotationLaw = 0;
   std::uint8_t cohesionDisablesFriction = 0;
+
+  // ViscElPhys with rolling resistance: its coefficient and type (Yade's mR, mRtype); the
+  // moment itself, recomputed every step, is momentBending above.
+  double mR = 0;
+  std::uint8_t mRtype = 1;
 
   // KnKsPBPhys: area of the overlap region's section (Potential Block contacts).
   double contactArea = 0;

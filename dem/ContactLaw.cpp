@@ -47,6 +47,8 @@ void ContactLaw::setParameter(const std::string& name, double /*value*/) { unkno
 
 double ContactLaw::parameter(const std::string& name) const { unknownParameter(name); }
 
+void ContactLaw::setPairParameter(const std::string& name, const PairParameter& /*value*/) { unknownParameter(name); }
+
 void alignContactExtra(Contacts& contacts)
 {
   if (contacts.extra.empty())

@@ -4,6 +4,7 @@
 #include "dem/Contacts.h"
 #include "dem/Energy.h"
 #include "dem/Material.h"
+#include "dem/PairParameter.h"
 #include "dem/Threads.h"
 
 #include <algorithm>
@@ -64,6 +65,9 @@ public:
   /// @return the index of the first contact of the range overlapping too much, or the number
   /// of contacts
   virtual std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last) = 0;
+  /// Called once per step before any contact is processed (the law may look at the scene's
+  /// materials and align Contacts::extra).
+  virtual void prepare(Scene& /*scene*/) {}
   /// Called once per step after the law's contacts were processed (one-shot settings reset).
   virtual void stepDone() {}
   /// Elastic energy stored in the real contacts whose c.law == lawIndex.
@@ -79,6 +83,9 @@ public:
   ///         the value is out of range
   virtual void setParameter(const std::string& name, double value);
   [[nodiscard]] virtual double parameter(const std::string& name) const;
+  /// A parameter of the physics functor given per pair of materials (Yade's MatchMaker).
+  /// @throws std::invalid_argument naming the law and the parameter if it takes none such
+  virtual void setPairParameter(const std::string& name, const PairParameter& value);
   /// Names accepted by setParameter.
   [[nodiscard]] virtual std::vector<std::string> parameterNames() const { return {}; }
 
@@ -105,9 +112,11 @@ inline double springEnergy(const Contact& c, double compression)
 }
 
 /// True if a real contact overlaps more than `ratio` (> 0) of its smaller reference radius.
+/// A contact without force at that overlap (no stiffness: a material of young 0, which Yade's
+/// scripts give to bodies that only show something) cannot blow up and is let through.
 inline bool overlapsTooMuch(const Contact& c, double ratio)
 {
-  return ratio > 0 && c.penetration > ratio * std::min(c.refR1, c.refR2);
+  return ratio > 0 && c.penetration > ratio * std::min(c.refR1, c.refR2) && c.force != Vec3::Zero();
 }
 
 /// Base of the concrete laws: the loops over contacts, calling the law's inline

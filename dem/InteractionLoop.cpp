@@ -82,12 +82,14 @@ std::string InteractionLoop::overlapReport(const Scene& scene, const Contact& c)
   return text;
 }
 
-void InteractionLoop::prepare(const Scene& scene)
+void InteractionLoop::prepare(Scene& scene)
 {
   if (laws.empty())
     throw std::runtime_error("InteractionLoop has no contact law");
   if (laws.size() > 255)
     throw std::runtime_error("InteractionLoop supports at most 255 contact laws");
+  for (const auto& law : laws)
+    law->prepare(scene);
   if (laws.size() == 1)
   {
     checkMaterials(scene);
@@ -99,10 +101,10 @@ void InteractionLoop::run(Scene& scene)
 {
   prepare(scene);
   timingDeltas.start(scene.timingEnabled);
-  std::int64_t bad = -1;
-  if (laws.size() == 1)
   for (const auto& callback : callbacks)
     callback->stepInit();
+  std::int64_t bad = -1;
+  if (laws.size() == 1)
     bad = laws[0]->computeAll(scene); // the usual case: geometry, physics and forces in one pass
   else
   {
@@ -117,12 +119,12 @@ void InteractionLoop::run(Scene& scene)
   timingDeltas.checkpoint("geometry, physics, law");
   if (bad >= 0)
     throw std::runtime_error(overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(bad)]));
-  sumForcesPerBody(scene);
-  timingDeltas.checkpoint("forces per body");
   for (const auto& callback : callbacks)
     for (const Contact& c : scene.contacts.list)
       if (c.real)
         callback->go(c);
+  sumForcesPerBody(scene);
+  timingDeltas.checkpoint("forces per body");
 }
 
 void InteractionLoop::computeWithSeveralLaws(Scene& scene) const

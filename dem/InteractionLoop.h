@@ -26,7 +26,7 @@ public:
   /// The checks run() makes before touching the contacts.
   /// @throws std::runtime_error without laws, with more than 255, or (single law) with
   ///         materials or shapes the law cannot handle
-  void prepare(const Scene& scene);
+  void prepare(Scene& scene);
   /// Add the forces and moments of the contacts of bodies [first, last) to those bodies.
   void gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const;
   /// The error message for a contact overlapping beyond scene.maxOverlapRatio.

@@ -9,7 +9,7 @@ namespace talus::dem
 enum class MaterialKind
 {
   Frict,   ///< FrictMat: elastic-frictional (young, poisson, frictionAngle, density)
-  ViscEl,  ///< ViscElMat: linear visco-elastic, from (tc, en, et) or (kn, cn, ks, cs)
+  ViscEl,  ///< ViscElMat: linear visco-elastic, from (tc, en, et), (kn, cn, ks, cs) or (young, poisson, en)
   CohFrict, ///< CohFrictMat: FrictMat with cohesive bonds and rolling/twisting resistance
 };
 
@@ -34,6 +34,14 @@ struct Material
   double cn = std::numeric_limits<double>::quiet_NaN();
   double ks = std::numeric_limits<double>::quiet_NaN();
   double cs = std::numeric_limits<double>::quiet_NaN();
+  // ViscElMat: rolling resistance (Yade's mR: a moment mR |Fn| times the relative angular
+  // velocity, mRtype 1; mRtype 2 also times the relative velocity of the surfaces), and the
+  // lubrication of the young/en form (the restitution of a contact lowered by the Stokes number
+  // of its approach: fluid viscosity viscoDyn, surface roughness roughnessScale).
+  double mR = 0;
+  int mRtype = 1;
+  bool lubrication = false;
+  double viscoDyn = 1e-3, roughnessScale = 1e-3;
   // CohFrictMat (Yade's defaults): bond strengths as stresses (Pa, times the smaller radius
   // squared gives the bond's forces; negative: no bond strength), rolling and twisting
   // stiffnesses relative to ks r1 r2 (alphaKr, alphaKtw), plastic rolling/twisting moments per

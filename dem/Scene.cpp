@@ -40,8 +40,10 @@ BodyId Scene::addSphere(const Vec3& center, double radius, int material)
   const auto i = static_cast<std::size_t>(id);
   bodies.pos[i] = center;
   bodies.radius[i] = radius;
-  bodies.mass[i] = materials[static_cast<std::size_t>(material)].density * 4.0 / 3.0 * M_PI * radius * radius * radius;
-  bodies.inertia[i] = Vec3::Constant(0.4 * bodies.mass[i] * radius * radius);
+  // Yade's order of operations (utils.sphere), so that masses are Yade's to the last bit.
+  const double volume = (4.0 / 3.0) * M_PI * std::pow(radius, 3), density = materials[static_cast<std::size_t>(material)].density;
+  bodies.mass[i] = volume * density;
+  bodies.inertia[i] = Vec3::Constant((2.0 / 5.0) * volume * std::pow(radius, 2) * density);
   ++bodiesVersion;
   return id;
 }
@@ -267,16 +269,7 @@ void Scene::erase(BodyId id, bool eraseClumpMembers)
     members.clear();
   }
   else if (bodies.clumpId[i] >= 0)
-  {
-    const BodyId clump = bodies.clumpId[i];
-    std::vector<BodyId>& members = bodies.clumps[static_cast<std::size_t>(bodies.shapeIndex[static_cast<std::size_t>(clump)])].members;
-    members.erase(std::find(members.begin(), members.end(), id));
-    bodies.clumpId[i] = -1;
-    if (members.empty())
-      erase(clump);
-    else
-      updateClump(clump);
-  }
+    eraseClumpMember(id);
   // Its contacts go now, not at the next collider run: an engine between the collider and
   // the interaction loop would otherwise still see them.
   removeContacts([id](const Contact& c) { return c.id1 == id || c.id2 == id; });

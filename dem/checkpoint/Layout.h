@@ -31,10 +31,12 @@ inline constexpr std::pair<const char*, double Material::*> materialScalars[] = 
     {"kn", &Material::kn}, {"cn", &Material::cn}, {"ks", &Material::ks}, {"cs", &Material::cs},
     {"normalCohesion", &Material::normalCohesion}, {"shearCohesion", &Material::shearCohesion},
     {"alphaKr", &Material::alphaKr}, {"alphaKtw", &Material::alphaKtw}, {"etaRoll", &Material::etaRoll},
-    {"etaTwist", &Material::etaTwist}};
+    {"etaTwist", &Material::etaTwist}, {"mR", &Material::mR}, {"viscoDyn", &Material::viscoDyn},
+    {"roughnessScale", &Material::roughnessScale}};
 inline constexpr std::pair<const char*, bool Material::*> materialFlags[] = {
     {"isCohesive", &Material::isCohesive}, {"momentRotationLaw", &Material::momentRotationLaw},
-    {"fragile", &Material::fragile}};
+    {"fragile", &Material::fragile}, {"lubrication", &Material::lubrication}};
+inline constexpr std::pair<const char*, int Material::*> materialInts[] = {{"mRtype", &Material::mRtype}};
 inline constexpr std::pair<const char*, Vec3 Contact::*> contactVectors[] = {
     {"normal", &Contact::normal}, {"contactPoint", &Contact::contactPoint},
     {"shearIncrement", &Contact::shearIncrement}, {"normalForce", &Contact::normalForce},
@@ -48,7 +50,7 @@ inline constexpr std::pair<const char*, double ContactExtra::*> extraScalars[] =
     {"betas", &ContactExtra::betas}, {"twist", &ContactExtra::twist}, {"normalAdhesion", &ContactExtra::normalAdhesion},
     {"shearAdhesion", &ContactExtra::shearAdhesion}, {"kr", &ContactExtra::kr}, {"ktw", &ContactExtra::ktw},
     {"maxRollPl", &ContactExtra::maxRollPl}, {"maxTwistPl", &ContactExtra::maxTwistPl}, {"unp", &ContactExtra::unp},
-    {"unpMax", &ContactExtra::unpMax}};
+    {"unpMax", &ContactExtra::unpMax}, {"mR", &ContactExtra::mR}};
 inline constexpr std::pair<const char*, Vec3 ContactExtra::*> extraVectors[] = {
     {"bending", &ContactExtra::bending}, {"momentBending", &ContactExtra::momentBending},
     {"momentTwist", &ContactExtra::momentTwist}};
@@ -58,7 +60,7 @@ inline constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes
     {"cohesionBroken", &ContactExtra::cohesionBroken}, {"fragile", &ContactExtra::fragile},
     {"momentRotationLaw", &ContactExtra::momentRotationLaw},
     {"cohesionDisablesFriction", &ContactExtra::cohesionDisablesFriction}, {"intactRock", &ContactExtra::intactRock},
-    {"tensionBroken", &ContactExtra::tensionBroken}};
+    {"tensionBroken", &ContactExtra::tensionBroken}, {"mRtype", &ContactExtra::mRtype}};
 // The energy tracker's accumulated terms, attributes of /energy.
 inline constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
     {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},

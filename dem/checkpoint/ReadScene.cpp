@@ -184,6 +184,13 @@ void readMaterials(const Reader& r, Loaded& in, const Context& ctx)
     for (std::size_t i = 0; i < m; ++i)
       in.materials[i].*field = flag[i] != 0;
   }
+  std::vector<std::int32_t> integer(m);
+  for (const auto& [name, field] : materialInts)
+  {
+    r.int32s(at("/materials/", name), integer);
+    for (std::size_t i = 0; i < m; ++i)
+      in.materials[i].*field = integer[i];
+  }
   for (std::size_t i = 0; i < m; ++i)
   {
     if (kind[i] > static_cast<std::uint8_t>(MaterialKind::CohFrict))

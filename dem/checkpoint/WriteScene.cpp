@@ -126,6 +126,13 @@ void writeMaterials(const Writer& w, const Scene& scene)
       flag[i] = mats[i].*field ? 1 : 0;
     w.uint8s(at("/materials/", name), flag.data(), flag.size());
   }
+  std::vector<std::int32_t> integer(mats.size());
+  for (const auto& [name, field] : materialInts)
+  {
+    for (std::size_t i = 0; i < mats.size(); ++i)
+      integer[i] = mats[i].*field;
+    w.int32s(at("/materials/", name), integer.data(), integer.size());
+  }
 }
 
 /// Bodies: every array, erased slots included (ids are indices).

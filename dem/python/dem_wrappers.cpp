@@ -137,6 +137,11 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("isCohesive", &Material::isCohesive)
       .def_readwrite("momentRotationLaw", &Material::momentRotationLaw)
       .def_readwrite("fragile", &Material::fragile)
+      .def_readwrite("mR", &Material::mR)
+      .def_readwrite("mRtype", &Material::mRtype)
+      .def_readwrite("lubrication", &Material::lubrication)
+      .def_readwrite("viscoDyn", &Material::viscoDyn)
+      .def_readwrite("roughnessScale", &Material::roughnessScale)
       .def("validate", &Material::validate);
 
   py::class_<Engine, std::shared_ptr<Engine>>(m, "Engine")
@@ -158,12 +163,12 @@ PYBIND11_MODULE(_dem, m)
   py::class_<Collider, Engine, std::shared_ptr<Collider>>(m, "Collider")
       .def(py::init<>())
       .def_readwrite("verletDist", &Collider::verletDist)
+      .def_readwrite("allowBiggerThanPeriod", &Collider::allowBiggerThanPeriod)
       .def_readonly("rebuilds", &Collider::rebuilds);
   py::class_<ContactLaw, std::shared_ptr<ContactLaw>>(m, "ContactLaw")
       .def_property_readonly("typeName", &ContactLaw::typeName)
       .def_property_readonly("physicsName", &ContactLaw::physicsName);
   m.def("make_contact_law", [](const std::string& name) { return std::shared_ptr<ContactLaw>(makeContactLaw(name)); });
-      .def_readwrite("allowBiggerThanPeriod", &Collider::allowBiggerThanPeriod)
   py::class_<InteractionLoop, Engine, std::shared_ptr<InteractionLoop>>(m, "InteractionLoop")
       .def(py::init<>())
       .def_property(
@@ -323,7 +328,7 @@ PYBIND11_MODULE(_dem, m)
       .def("contactCount", [](const Scene& s, bool realOnly) { return realOnly ? s.contacts.countReal() : s.contacts.list.size(); })
       .def("eraseContact", &Scene::eraseContact);
   void talus_wrap_bodies(py::module_&); talus_wrap_bodies(m); // after Engine, Scene: kinematics, clumps, boxes: bodies_wrappers.cpp
+  void talus_wrap_force_engines(py::module_&); talus_wrap_force_engines(m); // force engines, loop callbacks: force_engines_wrappers.cpp
   void talus_wrap_blocks(py::module_&); talus_wrap_blocks(m); // Potential Blocks: blocks_wrappers.cpp
   void talus_wrap_particles(py::module_&); talus_wrap_particles(m); // Potential Particles: particles_wrappers.cpp
 }
-  void talus_wrap_force_engines(py::module_&); talus_wrap_force_engines(m); // force engines, loop callbacks: force_engines_wrappers.cpp

@@ -9,7 +9,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <optional>
 #include <string>
+#include <tuple>
 
 namespace py = pybind11;
 using namespace talus::dem;
@@ -21,6 +24,16 @@ void talus_wrap_laws(py::module_& m)
 {
   m.def("law_set_parameter", [](ContactLaw& law, const std::string& name, double value) { law.setParameter(name, value); });
   m.def("law_parameter", [](const ContactLaw& law, const std::string& name) { return law.parameter(name); });
+  // A MatchMaker resolved: (material id 1, id 2, value) triples and the value of other pairs
+  // (None: such a pair is an error).
+  m.def("law_set_pair_parameter", [](ContactLaw& law, const std::string& name,
+                                     const std::vector<std::tuple<int, int, double>>& matches, std::optional<double> fallback) {
+    PairParameter p;
+    for (const auto& [a, b, value] : matches)
+      p.matches[{std::min(a, b), std::max(a, b)}] = value;
+    p.fallback = fallback;
+    law.setPairParameter(name, p);
+  });
   m.def("law_parameter_names", [](const ContactLaw& law) { return law.parameterNames(); });
 
   m.def("track_energy", [](const Scene& s) { return s.energy.enabled; });
@@ -73,6 +86,8 @@ void talus_wrap_laws(py::module_& m)
         d["fragile"] = static_cast<bool>(x.fragile);
         d["intactRock"] = static_cast<bool>(x.intactRock);
         d["tensionBroken"] = static_cast<bool>(x.tensionBroken);
+        d["mR"] = x.mR;
+        d["mRtype"] = static_cast<int>(x.mRtype);
       }
       out.append(d);
     }

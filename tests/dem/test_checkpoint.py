@@ -89,8 +89,8 @@ def test_layout_is_covered():
     # Not stored: Bodies::blockContact and particleContact (Ig2_PB_PB_ScGeom's and
     # Ig2_PP_PP_ScGeom's settings, restored with the engines) and ContactExtra::contactArea
     # (recomputed by the geometry every step before the law reads it).
-    assert _dem.layout_sizes() == {"Contact": 256, "Material": 184, "Bodies": 696, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 2584, "ContactExtra": 272,
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 216, "Bodies": 696, "WallShape": 8,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 2584, "ContactExtra": 288,
                                    "EnergyTracker": 144}
 
 

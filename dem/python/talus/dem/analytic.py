@@ -35,6 +35,21 @@ def hertz_restitution(mass: float, kno: float, beta: float, v0: float) -> float:
     return -sol.y_events[0][0][1] / v0
 
 
+def spring_dashpot_restitution(mass: float, kn: float, cn: float) -> float:
+    """Restitution of the linear spring-dashpot m u'' = -max(0, kn u + cn u'): the collision
+    ends when the force would pull (Schwager and Poeschel 2007); under-, over- and critically
+    damped. With beta = cn / 2m, omega0^2 = kn / m, below critical damping the force vanishes
+    at omega t = pi - atan2(2 beta omega, omega^2 - beta^2)."""
+    beta, omega0 = cn / (2 * mass), math.sqrt(kn / mass)
+    if beta < omega0:
+        omega = math.sqrt(omega0 ** 2 - beta ** 2)
+        return math.exp(-beta / omega * (math.pi - math.atan2(2 * beta * omega, omega ** 2 - beta ** 2)))
+    if beta > omega0:
+        big = math.sqrt(beta ** 2 - omega0 ** 2)
+        return math.exp(-beta / big * math.log((beta + big) / (beta - big)))
+    return math.exp(-2.0)   # critical: the force vanishes at omega0 t = 2
+
+
 def hertz_contact_time(mass: float, kno: float, v0: float) -> float:
     """Duration of an elastic Hertz impact at speed v0: 2.87 (m^2 / (kno^2 v0))^(1/5)."""
     return 2.87 * (mass ** 2 / (kno ** 2 * v0)) ** 0.2

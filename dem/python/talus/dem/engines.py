@@ -61,19 +61,64 @@ class Functor:
 
 
 class MatchMaker:
-    """Yade's MatchMaker, for the single case Talus supports: one value for every material pair
-    (``MatchMaker(algo='val', val=x)``); anywhere a MatchMaker is accepted a number is too."""
+    """Yade's MatchMaker: a contact parameter per pair of materials. ``matches``: (id1, id2,
+    value) items for pairs of material ids (either order); any other pair by ``algo``: 'val'
+    (``val``), 'zero', or from the two materials' own values 'avg' (Yade's default), 'min',
+    'max', 'harmAvg'. Where a MatchMaker is accepted a number is too (one value for all pairs)."""
 
-    def __init__(self, algo: str = "val", val: float = float("nan"), matches=()):
-        if algo != "val" or matches:
-            raise ValueError("MatchMaker: only algo='val' (one value for all material pairs) is supported")
+    _FALLBACKS = {
+        "val": None, "zero": None,
+        "avg": lambda a, b: (a + b) / 2.0, "min": min, "max": max,
+        "harmAvg": lambda a, b: 2 * a * b / (a + b),
+    }
+
+    def __init__(self, algo: str = "avg", val: float = float("nan"), matches=()):
+        if algo not in self._FALLBACKS:
+            raise ValueError(f"MatchMaker: algo {algo!r} not recognized (possible values: {', '.join(self._FALLBACKS)})")
         self.algo, self.val = algo, float(val)
+        self._matches = {}
+        for item in matches:
+            if len(item) != 3:
+                raise ValueError(f"MatchMaker: each of matches is (id1, id2, value), got {item!r}")
+            id1, id2, value = int(item[0]), int(item[1]), float(item[2])
+            self._matches[(min(id1, id2), max(id1, id2))] = value
+
+    @property
+    def matches(self) -> list:
+        """The (id1, id2, value) items, as Yade's Vector3 list."""
+        return [Vector3(a, b, v) for (a, b), v in self._matches.items()]
+
+    def computeFallback(self, val1: float, val2: float) -> float:
+        """The value of a pair without a match, from the materials' values by ``algo``."""
+        if self.algo == "val":
+            return self.val
+        if self.algo == "zero":
+            return 0.0
+        return float(self._FALLBACKS[self.algo](float(val1), float(val2)))
+
+    def __call__(self, id1: int, id2: int, val1: float = float("nan"), val2: float = float("nan")) -> float:
+        key = (min(int(id1), int(id2)), max(int(id1), int(id2)))
+        if key in self._matches:
+            return self._matches[key]
+        if self.algo not in ("val", "zero") and (val1 != val1 or val2 != val2):
+            raise ValueError(f"MatchMaker: no match for ({id1},{id2}), and values required for algo computation "
+                             f"'{self.algo}' not specified.")
+        return self.computeFallback(val1, val2)
+
+    def pairTable(self) -> tuple[list, float | None]:
+        """The matches as (id1, id2, value) and the value of any other pair, for a functor that
+        does not pass the materials' values (None: such a pair is an error)."""
+        fallback = self.val if self.algo == "val" else 0.0 if self.algo == "zero" else None
+        return [(a, b, v) for (a, b), v in self._matches.items()], fallback
 
     def __float__(self):
-        return self.val
+        if self._matches or self.algo not in ("val", "zero"):
+            raise TypeError(f"{self!r} gives a value per pair of materials; this parameter takes one value for all "
+                            "pairs (a number, or MatchMaker(algo='val', val=x))")
+        return self.val if self.algo == "val" else 0.0
 
     def __repr__(self):
-        return f"MatchMaker(algo='val', val={self.val!r})"
+        return f"MatchMaker(algo={self.algo!r}, val={self.val!r}, matches={list(self._matches.items())!r})"
 
 
 def _number(functor: Functor, name: str, value) -> float:
@@ -101,8 +146,14 @@ Ig2_Wall_Sphere_ScGeom6D = _functor("Ig2_Wall_Sphere_ScGeom6D", "Wall-sphere con
 Ig2_Box_Sphere_ScGeom6D = _functor("Ig2_Box_Sphere_ScGeom6D", "Box-sphere contact geometry with relative rotations.")
 Ip2_FrictMat_FrictMat_FrictPhys = _functor(
     "Ip2_FrictMat_FrictMat_FrictPhys", "Stiffness and friction of linear contacts from FrictMat parameters.")
-Ip2_ViscElMat_ViscElMat_ViscElPhys = _functor(
-    "Ip2_ViscElMat_ViscElMat_ViscElPhys", "Spring-dashpot parameters from ViscElMat (tc, en, et or kn, cn, ks, cs).")
+
+
+class Ip2_ViscElMat_ViscElMat_ViscElPhys(Functor):
+    """Spring-dashpot parameters from ViscElMat (tc, en, et; kn, cn, ks, cs; or young, poisson
+    with en or cn, cs). ``tc``, ``en``, ``et``, ``frictAngle``: per pair of materials (a
+    MatchMaker, or a number for all pairs) instead of the materials' means (frictAngle: their
+    smaller angle); tc, en, et given together select the tc form for every pair."""
+    _parameters = ("tc", "en", "et", "frictAngle")
 
 
 class Ip2_FrictMat_FrictMat_MindlinPhys(Functor):
@@ -174,8 +225,17 @@ class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
 
 class Law2_ScGeom_MindlinPhys_Mindlin(_Law):
     """Hertz normal force kno u^1.5, incremental Mindlin shear stiffness kso u^0.5 with Coulomb
-    friction, viscous damping from Ip2_FrictMat_FrictMat_MindlinPhys (never attractive)."""
+    friction, viscous damping from Ip2_FrictMat_FrictMat_MindlinPhys (never attractive).
+    ``neverErase`` only at Yade's default False: a contact ends when its bodies part."""
     _cpp_name = "Law2_ScGeom_MindlinPhys_Mindlin"
+    _parameters = ("neverErase",)
+
+    def _set(self, name: str, value):
+        if name != "neverErase":
+            super()._set(name, value)
+        elif value:
+            raise ValueError("Law2_ScGeom_MindlinPhys_Mindlin: neverErase=True is not supported "
+                             "(Talus ends a contact when its bodies part)")
 
 
 class Law2_ScGeom_FrictPhys_CundallStrack(_Law):
@@ -184,8 +244,15 @@ class Law2_ScGeom_FrictPhys_CundallStrack(_Law):
 
 
 class Law2_ScGeom_ViscElPhys_Basic(_Law):
-    """Linear spring-dashpot normal and shear forces with Coulomb friction."""
+    """Linear spring-dashpot normal and shear forces (never attractive) with Coulomb friction,
+    and rolling resistance for materials with ``mR`` > 0."""
     _cpp_name = "Law2_ScGeom_ViscElPhys_Basic"
+
+    def _configure(self, phys: Functor):
+        for name, value in phys._io_params().items():
+            if not isinstance(value, MatchMaker):
+                value = MatchMaker(algo="val", val=_number(phys, name, value))
+            _dem.law_set_pair_parameter(self._cpp, name, *value.pairTable())
 
 
 class TimingDeltas:
@@ -532,14 +599,18 @@ __all__ = [
 
 def collapseDispatchers(engines: Sequence) -> list:
     """An engine list with each IGeomDispatcher, IPhysDispatcher, LawDispatcher triple (Yade's
-    older spelling of an InteractionLoop) replaced by the InteractionLoop it stands for."""
+    older spelling of an InteractionLoop) replaced by the InteractionLoop it stands for. The law
+    (a LawDispatcher, or Yade's ElasticContactLaw) may come after other engines, which then run
+    after the loop: the forces come from the geometry of the loop's place."""
     out, k = [], 0
     while k < len(engines):
-        trio = engines[k:k + 3]
-        if [type(e) for e in trio] == [IGeomDispatcher, IPhysDispatcher, LawDispatcher]:
-            out.append(InteractionLoop(*trio))
-            k += 3
-            continue
+        if [type(e) for e in engines[k:k + 2]] == [IGeomDispatcher, IPhysDispatcher]:
+            law = next((j for j in range(k + 2, len(engines)) if isinstance(engines[j], Dispatcher)), None)
+            if law is not None and isinstance(engines[law], LawDispatcher):
+                out.append(InteractionLoop(engines[k], engines[k + 1], engines[law], label=engines[law].label))
+                out.extend(engines[k + 2:law])
+                k = law + 1
+                continue
         if isinstance(engines[k], Dispatcher):
             raise TypeError(f"O.engines: {type(engines[k]).__name__} must come as IGeomDispatcher, IPhysDispatcher, "
                             "LawDispatcher in a row (or use InteractionLoop)")

@@ -1,0 +1,30 @@
+#pragma once
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <utility>
+
+namespace talus::dem
+{
+/// A contact-physics parameter given per pair of materials, as Yade's MatchMaker reaches a
+/// physics functor: values for listed pairs of material ids (in either order), and for the
+/// other pairs a fallback (Yade's algo 'val' or 'zero') or none (Yade's 'avg', 'min', 'max',
+/// 'harmAvg' need the materials' own values, which its ViscElPhys functor does not pass: such
+/// a pair is an error).
+struct PairParameter
+{
+  bool given = false; ///< the functor was given this parameter
+  std::map<std::pair<int, int>, double> matches;
+  std::optional<double> fallback;
+
+  /// The value for materials a and b; empty if the pair has none.
+  [[nodiscard]] std::optional<double> at(int a, int b) const
+  {
+    const auto it = matches.find({std::min(a, b), std::max(a, b)});
+    if (it != matches.end())
+      return it->second;
+    return fallback;
+  }
+};
+} // namespace talus::dem
