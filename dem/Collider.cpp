@@ -197,6 +197,13 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
   }
 }
 
+/// Whether two bodies are members of one clump (which never touch, as in Yade).
+bool sameClump(const Bodies& b, BodyId p, BodyId q)
+{
+  const BodyId c = b.clumpId[static_cast<std::size_t>(p)];
+  return c >= 0 && c == b.clumpId[static_cast<std::size_t>(q)];
+}
+
 /// Candidate box-sphere pairs: spheres whose centre is within r + skin of the box.
 void boxPairs(const Bodies& b, BodyId box, const CellGrid& grid, double rmax, double skin, std::vector<Candidate>& out)
 {
@@ -208,7 +215,7 @@ void boxPairs(const Bodies& b, BodyId box, const CellGrid& grid, double rmax, do
     const auto i = static_cast<std::size_t>(s);
     const Vec3 local = R.transpose() * (b.pos[i] - b.pos[k]);
     const double range = b.radius[i] + skin;
-    if ((local - local.cwiseMax(-extents).cwiseMin(extents)).squaredNorm() < range * range)
+    if (!sameClump(b, box, s) && (local - local.cwiseMax(-extents).cwiseMin(extents)).squaredNorm() < range * range)
       out.push_back({key(box, s), Eigen::Vector3i::Zero()});
   });
 }
@@ -222,17 +229,10 @@ void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax
   grid.forEachInBox(lo, hi, [&](BodyId s) {
     const auto i = static_cast<std::size_t>(s);
     const double range = b.radius[i] + skin;
-    if ((b.pos[i] - closestPointOnTriangle(b.pos[i], v[0], v[1], v[2])).squaredNorm() < range * range)
+    if (!sameClump(b, facet, s) && (b.pos[i] - closestPointOnTriangle(b.pos[i], v[0], v[1], v[2])).squaredNorm() < range * range)
       out.push_back({key(facet, s), Eigen::Vector3i::Zero()});
   });
 }
-/// Whether two bodies are members of one clump (which never touch, as in Yade).
-bool sameClump(const Bodies& b, BodyId p, BodyId q)
-{
-  const BodyId c = b.clumpId[static_cast<std::size_t>(p)];
-  return c >= 0 && c == b.clumpId[static_cast<std::size_t>(q)];
-}
-
 /// Square of the distance from `point` to facet or box `body` (zero inside a box).
 double squaredDistanceTo(const Bodies& b, std::size_t body, const Vec3& point)
 {
@@ -536,14 +536,12 @@ Collider::SkinCheck Collider::skinCheck(const Scene& scene) const
   check.common = common_;
   check.otherPairs = !convex_.empty();
   check.deformed = scene.periodic && check.affine != Mat3::Identity();
-  // A block's or particle's surface also moves by its rotation: at most its bounding radius
-  // times the angle.
-  for (std::size_t k = 0; k < convex_.size() && !check.rebuild; ++k)
+  // A turning body's surface also moves by its rotation: at most its reach times the angle.
+  for (std::size_t k = 0; k < turning_.size() && !check.rebuild; ++k)
   {
-    const auto i = static_cast<std::size_t>(convex_[k]);
-    const double reach = boundingRadius(b, i);
-    const double angle = b.ori[i].angularDistance(referenceOri_[k]);
-    check.rebuild = (b.pos[i] - referencePos_[i]).norm() + reach * angle > limit;
+    const Turning& t = turning_[k];
+    const auto i = static_cast<std::size_t>(t.id);
+    check.rebuild = (b.pos[i] - referencePos_[i]).norm() + t.reach * b.ori[i].angularDistance(t.ori) > limit;
   }
   return check;
 }
@@ -733,9 +731,21 @@ void Collider::rebuild(Scene& scene)
   scene.contacts.index(b.size());
   timingDeltas.checkpoint("re-detection: index");
   referencePos_ = b.pos;
-  referenceOri_.resize(convex_.size());
-  for (std::size_t k = 0; k < convex_.size(); ++k)
-    referenceOri_[k] = b.ori[static_cast<std::size_t>(convex_[k])];
+  turning_.clear();
+  for (BodyId id : convex_)
+    turning_.push_back({id, boundingRadius(b, static_cast<std::size_t>(id)), b.ori[static_cast<std::size_t>(id)]});
+  for (const std::vector<BodyId>* kind : {&facets_, &boxes_})
+    for (BodyId id : *kind)
+    {
+      const auto i = static_cast<std::size_t>(id);
+      if (b.clumpId[i] < 0)
+        continue;
+      const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+      const double reach = b.shape[i] == ShapeKind::Box ? b.boxes[s].extents.norm()
+                                                        : std::max({b.facets[s].vertices[0].norm(), b.facets[s].vertices[1].norm(),
+                                                                    b.facets[s].vertices[2].norm()});
+      turning_.push_back({id, reach, b.ori[i]});
+    }
   referenceCellInverse_ = scene.cell.hSize.inverse();
   referenceRange_ = 2 * rmax + skin_;
   seenBodiesVersion_ = scene.bodiesVersion;

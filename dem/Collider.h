@@ -100,9 +100,16 @@ private:
   Mat3 referenceCellInverse_ = Mat3::Identity();
   double referenceRange_ = 0;
   std::vector<BodyId> spheres_, walls_, facets_, boxes_, convex_; ///< convex_: Potential Blocks and Particles
-  /// Potential Blocks turn their corners about the centre: their orientations at the last
-  /// rebuild, to bound how far a corner moved.
-  std::vector<Quat> referenceOri_;
+  /// Bodies whose surface turns about their position: Potential Blocks and Particles, and the
+  /// facets and boxes of clumps. Each with the farthest reach of its surface from its position
+  /// and its orientation at the last rebuild, to bound how far a corner moved.
+  struct Turning
+  {
+    BodyId id;
+    double reach;
+    Quat ori;
+  };
+  std::vector<Turning> turning_;
   std::int64_t seenBodiesVersion_ = -1;
   double skin_ = 0;
   Vec3 common_ = Vec3::Zero(); ///< SkinCheck::common of the next check (zero after a re-detection)

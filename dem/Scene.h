@@ -89,15 +89,27 @@ public:
   BodyId addPotentialParticle(const std::vector<double>& a, const std::vector<double>& b, const std::vector<double>& c,
                               const std::vector<double>& d, double r, double k, double R, bool isBoundary,
                               const Vec3& position, const Quat& orientation, int material, bool fixed);
-  /// Make the spheres `members` a clump (Yade's O.bodies.clump): a rigid body at their centroid
-  /// with principal axes and moments of their union; returns the clump's id. Members are summed
-  /// as whole spheres (Yade's default), or, with `discretization` > 0 and overlapping members,
-  /// their union is integrated on a grid of rmin / discretization (Yade's discretization).
-  /// @throws std::invalid_argument naming a member that is not a free sphere
+  /// Make the bodies `members` (spheres, facets, boxes) a clump (Yade's O.bodies.clump): a rigid
+  /// body at their centroid with principal axes and moments of their union; returns the
+  /// clump's id. Members are summed whole (Yade's default), or, with `discretization` > 0 and
+  /// overlapping spheres, the spheres' union is integrated on a grid whose cell is the shortest
+  /// side of their bounding box / discretization (Yade's discretization). A member of another
+  /// clump leaves it, as in Yade.
+  /// @throws std::invalid_argument naming a member of another shape
   BodyId addClump(std::vector<BodyId> members, int discretization = 0);
+  /// Yade's addToClump: `ids` join `clump`; a clump among them (or the clump of a member among
+  /// them) joins with all its members and is erased. The clump's properties are recomputed.
+  /// @throws std::invalid_argument for a body already in `clump` or of another shape
+  void addToClump(BodyId clump, const std::vector<BodyId>& ids, int discretization = 0);
+  /// Yade's releaseFromClump: `member` leaves `clump` (which keeps at least 2 members) and
+  /// moves on its own; the clump's properties are recomputed.
+  void releaseFromClump(BodyId member, BodyId clump, int discretization = 0);
   /// Recompute a clump's centroid, mass, principal inertia and member placement from its
   /// members' current state (the clump is left at rest).
   void updateClump(BodyId clump, int discretization = 0);
+  /// The members and their placement of a live clump.
+  /// @throws std::invalid_argument if `clump` is not one
+  ClumpShape& clumpShape(BodyId clump);
   /// Make space periodic (or not). Positions stay as they are (the cell need not hold them,
   /// as in Yade); spheres, clumps, walls, facets and boxes can be periodic.
   /// @throws std::invalid_argument naming a Potential Block or Particle
@@ -115,7 +127,8 @@ public:
   void setInertia(BodyId id, const Vec3& inertia);
   /// Remove a body and its contacts; its id is not reused (Yade's O.bodies.erase). Erasing a
   /// clump frees its members (or erases them too with `eraseClumpMembers`); erasing a member
-  /// removes it from its clump, whose properties are recomputed.
+  /// removes it from its clump, which keeps its mass, inertia and the other members' placement
+  /// (as in Yade) and goes with its last member.
   void erase(BodyId id, bool eraseClumpMembers = false);
   /// Remove the contact of a pair (either order) with its state, as Yade's
   /// O.interactions.erase; the collider finds the pair again if it is still in the skin.
@@ -154,6 +167,11 @@ private:
   /// The engines one by one (timed when timingEnabled).
   void runEngines();
   std::string failedStep_; ///< message of the step that threw (transient), empty if none
+  /// @throws std::invalid_argument (starting with `which`) unless `id` can be a clump member
+  void checkClumpable(const std::string& which, BodyId id) const;
+  /// Take an erased member out of its clump, which keeps its mass properties (Yade's erase);
+  /// a clump left without members is erased too.
+  void eraseClumpMember(BodyId member);
   /// Remove the contacts `doomed` picks, with their aligned state, and re-index.
   void removeContacts(const std::function<bool(const Contact&)>& doomed);
 };

@@ -55,12 +55,17 @@ void talus_wrap_bodies(py::module_& m)
     s.checkBody(id);
     return s.bodies.clumpId[static_cast<std::size_t>(id)];
   });
-  m.def("clump_members", [](const Scene& s, BodyId id) {
-    s.checkBody(id);
-    const auto i = static_cast<std::size_t>(id);
-    if (s.bodies.shape[i] != ShapeKind::Clump)
-      throw std::invalid_argument("body " + std::to_string(id) + " is not a clump");
-    return s.bodies.clumps[static_cast<std::size_t>(s.bodies.shapeIndex[i])].members;
+  m.def("add_to_clump", &Scene::addToClump, py::arg("scene"), py::arg("clump"), py::arg("ids"),
+        py::arg("discretization") = 0);
+  m.def("release_from_clump", &Scene::releaseFromClump, py::arg("scene"), py::arg("member"), py::arg("clump"),
+        py::arg("discretization") = 0);
+  // A clump's members with their placement in its frame: (ids, relPos, relOri as w, x, y, z).
+  m.def("clump_members", [](Scene& s, BodyId id) {
+    const ClumpShape& clump = s.clumpShape(id);
+    std::vector<Eigen::Vector4d> ori;
+    for (const Quat& q : clump.relOri)
+      ori.emplace_back(q.w(), q.x(), q.y(), q.z());
+    return py::make_tuple(clump.members, clump.relPos, ori);
   });
   // What a script reads as `b.shape.<attribute>` (talus.dem.shapes): the per-kind geometry.
   m.def("shape_data", [](const Scene& s, BodyId id) {

@@ -24,7 +24,7 @@ def test_each_kind_exposes_its_geometry():
     np.testing.assert_allclose(shape.normal, (0, 0, 1))
     np.testing.assert_allclose(S.bodies[b].shape.extents, (0.1, 0.2, 0.3))
     clump = S.bodies[cid]
-    assert isinstance(clump.shape, Clump) and clump.shape.members == members
+    assert isinstance(clump.shape, Clump) and list(clump.shape.members) == members
     assert not isinstance(S.bodies[b].shape, (Sphere, Wall, Facet)) and isinstance(S.bodies[b].shape, Box)
     with pytest.raises(AttributeError):
         S.bodies[s].shape.extents

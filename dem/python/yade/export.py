@@ -1,6 +1,7 @@
 """``yade.export``: ParaView output and text exports (talus.dem.export)."""
 
 from talus.dem.export import *  # noqa: F401,F403
+from talus.dem.clumps import exportTextClumps as textClumps  # noqa: F401
 
 from yade._scope import module_getattr  # noqa: E402
 

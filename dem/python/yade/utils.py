@@ -9,6 +9,7 @@ from talus.dem import O
 from talus.dem.geom import facetBox, facetCylinder
 from talus.dem.scene import SpherePWaveTimeStep
 from talus.dem.clumps import clumpTemplate
+from talus.dem.clumps import clumpTemplate
 from talus.dem.linalg import Quaternion
 from talus.dem.measure import aabbDim, aabbExtrema, angularMomentum, kineticEnergy, momentum, sumForces
 from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,
@@ -18,7 +19,7 @@ __all__ = ["sphere", "wall", "facet", "box", "aabbWalls", "facetBox", "facetCyli
            "RayleighWaveTimeStep", "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions",
            "fabricTensor", "bodyStressTensors", "porosity", "growParticles", "setContactFriction",
            "typedEngine", "kineticEnergy", "momentum", "angularMomentum", "sumForces", "aabbExtrema", "aabbDim",
-           "randomOrientation", "randomColor",
+           "randomOrientation", "randomColor", "clumpTemplate", "calm",
            "readParamsFromTable", "TableParamReader", "saveVars", "loadVars", "waitIfBatch", "runningInBatch"]
 
 
@@ -35,6 +36,16 @@ def randomOrientation() -> Quaternion:
     a, b = math.sqrt(1 - u1), math.sqrt(u1)
     return Quaternion(a * math.sin(2 * math.pi * u2), a * math.cos(2 * math.pi * u2),
                       b * math.sin(2 * math.pi * u3), b * math.cos(2 * math.pi * u3))
+
+
+def calm(mask: int = -1) -> None:
+    """Stop every body: velocity, angular velocity and angular momentum set to zero (Yade's calm).
+    Talus has no group masks: only ``mask=-1`` (all bodies)."""
+    if mask != -1:
+        raise ValueError(f"calm: mask={mask!r} is not supported (Talus bodies have no groupMask); use mask=-1")
+    for b in O.bodies:
+        b.state.vel = (0.0, 0.0, 0.0)
+        b.state.angVel = (0.0, 0.0, 0.0)
 
 
 def randomColor() -> tuple[float, float, float]:

@@ -1,6 +1,7 @@
 """``yade.ymport``: bodies from mesh and sphere files (talus.dem.ymport)."""
 
 from talus.dem.ymport import *  # noqa: F401,F403
+from talus.dem.clumps import importTextClumps as textClumps  # noqa: F401
 
 from yade._scope import module_getattr  # noqa: E402
 

@@ -361,6 +361,8 @@ class Body:
 
     mat = material   # Yade's short name
 
+    mat = material   # Yade's short name
+
     @property
     def bounded(self) -> bool:
         """Whether the collider bounds the body: all but clumps, whose members are bounded."""
@@ -433,13 +435,9 @@ class BodyContainer:
         return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
 
     def appendClumped(self, specs: Iterable[BodySpec], discretization: int = 0) -> tuple[int, list[int]]:
-        """Add spheres and make them one clump (Yade's appendClumped); returns (clump id,
-        member ids). With ``discretization`` > 0, overlapping members are integrated on a grid
-        of rmin / discretization for the mass and inertia (Yade's option); otherwise each member
-        counts as a whole sphere."""
+        """Add bodies (spheres, facets, boxes) and make them one clump (Yade's appendClumped);
+        returns (clump id, member ids). Mass and inertia as :meth:`clump`."""
         specs = list(specs)
-        if any(s.kind != "Sphere" for s in specs):
-            raise ValueError("appendClumped: clumps are made of spheres")
         scene = self._scene
         if not scene.periodic:
             ids = self.append(specs)
@@ -465,22 +463,55 @@ class BodyContainer:
         return clump, ids
 
     def clump(self, ids: Iterable[int], discretization: int = 0) -> int:
-        """Make existing free spheres one clump (Yade's O.bodies.clump); returns its id."""
+        """Make existing bodies (spheres, facets, boxes) one clump (Yade's O.bodies.clump);
+        returns its id. A member of another clump leaves it. Mass and inertia as Yade's: the
+        members summed whole (a sphere from its material's density), or, with
+        ``discretization`` > 0 and overlapping spheres, the spheres' union integrated on a grid
+        of cubes of edge (shortest side of their bounding box) / discretization."""
         self._scene._warn_if_views_move()
         return int(_dem.add_clump(self._scene._cpp, [int(i) for i in ids], int(discretization)))
 
-    def erase(self, id: int, eraseClumpMembers: bool = False):
-        """Remove a body and its contacts (its id is not reused). Erasing a clump frees its
-        members unless ``eraseClumpMembers``; erasing a member shrinks its clump."""
-        _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))
+    def addToClump(self, bids, cid: int, discretization: int = 0) -> None:
+        """Yade's addToClump (talus.dem.clumps.addToClump)."""
+        from talus.dem import clumps
+        clumps.addToClump(self, bids, cid, discretization)
 
-    def __getitem__(self, id: int) -> Body:
+    def releaseFromClump(self, bid: int, cid: int, discretization: int = 0) -> None:
+        """Yade's releaseFromClump (talus.dem.clumps.releaseFromClump)."""
+        from talus.dem import clumps
+        clumps.releaseFromClump(self, bid, cid, discretization)
+
+    def replaceByClumps(self, ctList, amounts, discretization: int = 0, seed: int | None = None) -> list:
+        """Yade's replaceByClumps (talus.dem.clumps.replaceByClumps)."""
+        from talus.dem import clumps
+        return clumps.replaceByClumps(self, ctList, amounts, discretization, seed)
+
+    def getRoundness(self, excludeList=()) -> float:
+        """Yade's roundness coefficient (talus.dem.clumps.getRoundness)."""
+        from talus.dem import clumps
+        return clumps.getRoundness(self, excludeList)
+
+    def erase(self, id: int, eraseClumpMembers: bool = False) -> bool:
+        """Remove a body and its contacts (its id is not reused); False if it was already
+        erased (Yade's). Erasing a clump frees its members unless ``eraseClumpMembers``; erasing
+        a member takes it out of its clump, which keeps its mass and inertia (as in Yade) and
+        goes with its last member."""
+        if self[id] is None:
+            return False
+        _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))
+        return True
+
+    def __getitem__(self, id: int) -> Body | None:
+        """Body ``id`` (negative: counted from the end), None if it was erased (Yade's)."""
         if not isinstance(id, (int, np.integer)):
             raise TypeError(f"body ids are integers, got {id!r}")
-        try:
-            return Body(self._scene, int(id))
-        except (IndexError, ValueError) as e:
-            raise IndexError(str(e)) from None
+        n = len(self)
+        i = int(id) + n if id < 0 else int(id)
+        if not 0 <= i < n:
+            raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
+        if not self._scene._cpp.alive()[i]:
+            return None
+        return Body(self._scene, i)
 
     def __len__(self) -> int:
         return self._scene._cpp.bodyCount()

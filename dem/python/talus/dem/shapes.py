@@ -8,7 +8,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.appearance import check_color
-from talus.dem.linalg import Vector3
+from talus.dem.linalg import Quaternion, Vector3
 
 
 class Shape:
@@ -106,9 +106,11 @@ class Clump(Shape):
     __slots__ = ()
 
     @property
-    def members(self) -> list[int]:
-        """Ids of the member bodies."""
-        return list(_dem.clump_members(self._scene._cpp, self._id))
+    def members(self) -> dict:
+        """``{memberId: (relPos, relOri)}`` in ascending ids: each member's position and
+        orientation in the clump's principal frame (Yade's Clump.members)."""
+        ids, relPos, relOri = _dem.clump_members(self._scene._cpp, self._id)
+        return {int(i): (Vector3(p), Quaternion(*q)) for i, p, q in zip(ids, relPos, relOri)}
 
 
 _BY_KIND = {cls.__name__: cls for cls in (Sphere, Wall, Facet, Box, Clump)}
