@@ -50,6 +50,7 @@ NOT_SCRIPTS = {
     "openfoam/example_pimpleFoamYade/scriptMPI.py": "run by mpiexec with OpenFOAM",
     "openfoam/example_icoFoamYade/scriptYade.py": "run by mpiexec with OpenFOAM",
     "openfoam/example_pimpleFoamYade/scriptYade.py": "run by mpiexec with OpenFOAM",
+    "test/batch/sim.py": "a yade-batch job: `talus batch params.table sim.py` runs it, as yade-batch does",
 }
 # Post-processing scripts that read what a long simulation script wrote (path: what they need).
 NOT_STANDALONE = {
