@@ -40,8 +40,12 @@ def test_facet_box_has_yades_triangles():
     ids = S.bodies.append(geom.facetBox((0, 0, 0), (1, 2, 3)))
     assert len(ids) == 12
     assert len(S.bodies.append(geom.facetBox((0, 0, 0), (1, 1, 1), wallMask=16))) == 2   # -z only
-    with pytest.raises(ValueError, match="positive extents"):
+    with pytest.raises(ValueError, match="extents"):
         geom.facetBox((0, 0, 0), (1, -1, 1))
+    # a flat box is Yade's one rectangle, whatever the mask; two zero extents are refused
+    assert len(S.bodies.append(geom.facetBox((0, 0, 0), (1, 1, 0), wallMask=32))) == 2
+    with pytest.raises(ValueError, match="two extents"):
+        geom.facetBox((0, 0, 0), (1, 0, 0))
 
 
 def test_degenerate_facet_is_refused():

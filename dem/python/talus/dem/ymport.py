@@ -1,5 +1,6 @@
-"""Import of triangle meshes as facets (Yade's ``ymport``): STL files and OpenFOAM boundaries
-(a polyMesh, or the blocks of a blockMeshDict), the walls of a CFD-DEM coupling.
+"""Import of triangle meshes as facets (Yade's ``ymport``): STL files, I-DEAS universal files
+(``unv``, from Salome and FEM codes) and OpenFOAM boundaries (a polyMesh, or the blocks of a
+blockMeshDict), the walls of a CFD-DEM coupling.
 
     from talus.dem import ymport
     O.bodies.append(ymport.stl("hopper.stl", scale=1e-3))
@@ -23,8 +24,8 @@ import numpy as np
 
 from talus.dem.bodies import BodySpec, facet
 
-__all__ = ["MeshError", "MeshWarning", "stl", "polyMesh", "blockMeshDict", "read_stl", "read_polymesh",
-           "read_blockmeshdict"]
+__all__ = ["MeshError", "MeshWarning", "stl", "polyMesh", "blockMeshDict", "unv", "read_stl", "read_polymesh",
+           "read_blockmeshdict", "read_unv"]
 
 
 class MeshError(ValueError):
@@ -482,3 +483,70 @@ def blockMeshDict(path: str, patches: Sequence[str] | None = None, material=-1, 
     domain."""
     triangles, _ = read_blockmeshdict(path, patches)
     return _facets(_transform(triangles, scale, shift), path, material)
+
+
+# ------------------------------------------------------------------------------------------------
+# I-DEAS universal file (.unv)
+
+# FE descriptors of the linear triangles (plane stress, plane strain, axisymmetric, thin shell...)
+_UNV_TRIANGLES = {41, 51, 61, 74, 81, 91}
+# beam elements have an extra record (orientation) before their nodes
+_UNV_BEAMS = {11, 21, 22, 23, 24}
+
+
+def read_unv(file: str) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes (n, 3) and triangles (m, 3, indices into the nodes) of a universal file: dataset
+    2411 (nodes: a record line, then x y z) and the linear triangles of dataset 2412 (elements:
+    a record line ending with the node count, then the node labels); other elements and datasets
+    are skipped."""
+    with open(file) as f:
+        lines = f.read().splitlines()
+    labels: dict[int, int] = {}
+    nodes: list[tuple] = []
+    triangles: list[tuple] = []
+    n, dataset = 0, None
+    try:
+        while n < len(lines):
+            items = lines[n].split()
+            if items == ["-1"]:                      # delimits a dataset
+                dataset = None if dataset is not None else "header"
+                n += 1
+                continue
+            if dataset == "header":
+                dataset = int(items[0])
+                n += 1
+                continue
+            if dataset == 2411:
+                labels[int(items[0])] = len(nodes)
+                # Fortran writes double-precision exponents with D
+                nodes.append(tuple(float(x.replace("D", "E")) for x in lines[n + 1].split()[:3]))
+                n += 2
+            elif dataset == 2412:
+                kind, count = int(items[1]), int(items[-1])
+                n += 2 if kind in _UNV_BEAMS else 1
+                ids: list[int] = []
+                while len(ids) < count:
+                    ids += [int(x) for x in lines[n].split()]
+                    n += 1
+                if kind in _UNV_TRIANGLES:
+                    triangles.append(tuple(labels[i] for i in ids[:3]))
+            else:
+                n += 1
+    except (ValueError, IndexError, KeyError) as e:
+        raise MeshError(f"{file}:{n + 1}: unreadable universal-file record ({type(e).__name__}: {e})") from None
+    if dataset is not None:
+        raise MeshError(f"{file}: the last dataset ({dataset}) is not closed by -1")
+    return np.array(nodes, dtype=float).reshape(-1, 3), np.array(triangles, dtype=int).reshape(-1, 3)
+
+
+def unv(fileName: str, shift=(0.0, 0.0, 0.0), scale: float = 1.0, returnConnectivityTable: bool = False, **kw):
+    """Facets of the triangles of a universal file (Yade's ymport.unv), points scaled by
+    ``scale`` then shifted by ``shift``; ``kw`` go to :func:`facet`. With
+    ``returnConnectivityTable``: ``(facets, nodes, elements)``, the nodes as (x, y, z) and the
+    triangles as node indices (from 0), as Yade returns them."""
+    nodes, elements = read_unv(fileName)
+    nodes = _transform(nodes, scale, shift)
+    facets = [facet(nodes[e], **kw) for e in elements]
+    if returnConnectivityTable:
+        return facets, [tuple(p) for p in nodes], [tuple(int(i) for i in e) for e in elements]
+    return facets
