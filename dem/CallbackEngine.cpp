@@ -8,15 +8,17 @@ namespace talus::dem
 {
 void CallbackEngine::run(Scene& scene)
 {
-  if (iterPeriod < 0 || realPeriod < 0 || (iterPeriod == 0 && realPeriod == 0))
-    throw std::invalid_argument("PyRunner '" + label + "': set iterPeriod >= 1 or realPeriod > 0");
+  if (iterPeriod < 0 || realPeriod < 0 || virtPeriod < 0 || (iterPeriod == 0 && realPeriod == 0 && virtPeriod == 0))
+    throw std::invalid_argument("PyRunner '" + label + "': set iterPeriod >= 1, virtPeriod > 0 or realPeriod > 0");
   const auto now = std::chrono::steady_clock::now();
   const bool first = initRun && nDone == 0;
   const bool byIter = iterPeriod > 0 && scene.iter - iterLast >= iterPeriod;
   const bool byTime = realPeriod > 0 && std::chrono::duration<double>(now - realLast_).count() >= realPeriod;
-  if (!first && !byIter && !byTime)
+  const bool byVirt = virtPeriod > 0 && scene.time - virtLast >= virtPeriod;
+  if (!first && !byIter && !byTime && !byVirt)
     return;
   iterLast = scene.iter;
+  virtLast = scene.time;
   realLast_ = now;
   ++nDone;
   if (callback)

@@ -10,8 +10,9 @@ namespace talus::dem
 {
 /// Calls a function every `iterPeriod` steps (Yade's PyRunner when the function is Python; a
 /// coupling's step hook when it is C++). As Yade's PeriodicEngine: called when `iterPeriod`
-/// steps or `realPeriod` seconds have passed since the last call (whichever is set and comes
-/// first), and at the first step with `initRun`.
+/// steps, `virtPeriod` seconds of simulated time or `realPeriod` seconds of wall time have
+/// passed since the last call (whichever is set and comes first), and at the first step with
+/// `initRun`.
 class CallbackEngine : public Engine
 {
 public:
@@ -21,8 +22,10 @@ public:
   std::function<void()> callback;
   std::int64_t iterPeriod = 1; ///< steps between calls (0: not by steps)
   double realPeriod = 0;       ///< wall-clock seconds between calls (0: not by time)
+  double virtPeriod = 0;       ///< simulated seconds between calls (0: not by simulated time)
   bool initRun = false;
   std::int64_t iterLast = 0; ///< iteration of the last call
+  double virtLast = 0;       ///< simulated time of the last call
   std::int64_t nDone = 0;    ///< number of calls so far
 
 private:

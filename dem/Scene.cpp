@@ -97,8 +97,10 @@ BodyId Scene::addBox(const Vec3& center, const Vec3& extents, const Quat& orient
   const std::string which = "box #" + std::to_string(bodies.size());
   if (!center.allFinite())
     throw std::invalid_argument(which + ": centre is not finite " + str(center));
-  if (!extents.allFinite() || !(extents.minCoeff() > 0))
-    throw std::invalid_argument(which + ": extents (half-sizes) must be positive and finite, got " + str(extents));
+  // A zero half-size is a flat box, as Yade allows (a plane bounded in the other directions;
+  // massless, so fixed).
+  if (!extents.allFinite() || !(extents.minCoeff() >= 0))
+    throw std::invalid_argument(which + ": extents (half-sizes) must be finite and >= 0, got " + str(extents));
   if (!orientation.coeffs().allFinite() || !(orientation.norm() > 0))
     throw std::invalid_argument(which + ": orientation is not a finite non-zero quaternion");
   if (material < 0 || material >= static_cast<int>(materials.size()))

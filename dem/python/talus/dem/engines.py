@@ -550,19 +550,21 @@ def _yade_command(command: str) -> Callable[[], None]:
 
 
 class PyRunner(Engine):
-    """Runs ``command`` every ``iterPeriod`` steps and/or every ``realPeriod`` seconds of wall
-    time: a string executed in the script's namespace (as in Yade) or a Python callable."""
+    """Runs ``command`` every ``iterPeriod`` steps, ``virtPeriod`` seconds of simulated time
+    and/or ``realPeriod`` seconds of wall time: a string executed in the script's namespace (as
+    in Yade) or a Python callable."""
 
     def __init__(self, command: str | Callable[[], None] = "", iterPeriod: int = 0, realPeriod: float = 0,
-                 initRun: bool = False, label: str = "", dead: bool = False):
-        if iterPeriod < 0 or realPeriod < 0 or (iterPeriod == 0 and realPeriod == 0):
-            if iterPeriod == 0 and realPeriod == 0:
-                iterPeriod = 1          # Yade's default: every step
-            else:
-                raise ValueError(f"PyRunner: iterPeriod and realPeriod must be >= 0, got {iterPeriod}, {realPeriod}")
+                 initRun: bool = False, label: str = "", dead: bool = False, virtPeriod: float = 0):
+        if min(iterPeriod, realPeriod, virtPeriod) < 0:
+            raise ValueError(f"PyRunner: iterPeriod, realPeriod and virtPeriod must be >= 0, got {iterPeriod}, "
+                             f"{realPeriod}, {virtPeriod}")
+        if iterPeriod == 0 and realPeriod == 0 and virtPeriod == 0:
+            iterPeriod = 1          # Yade's default: every step
         self._cpp = _dem.CallbackEngine()
         self._cpp.iterPeriod = iterPeriod
         self._cpp.realPeriod = float(realPeriod)
+        self._cpp.virtPeriod = float(virtPeriod)
         self._cpp.initRun = initRun
         self.command = command
         self.label = label
@@ -581,6 +583,7 @@ class PyRunner(Engine):
             self._cpp.callback = asCallback(command, "PyRunner") or (lambda: None)
 
     iterPeriod = property(lambda self: self._cpp.iterPeriod, lambda self, v: setattr(self._cpp, "iterPeriod", v))
+    virtPeriod = property(lambda self: self._cpp.virtPeriod, lambda self, v: setattr(self._cpp, "virtPeriod", float(v)))
     nDone = property(lambda self: self._cpp.nDone)
 
 

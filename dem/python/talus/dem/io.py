@@ -185,9 +185,9 @@ def _engine_spec(engine, to_file: bool) -> dict:
         spec["dead"] = bool(getattr(engine, "dead", False))
         state = {}
         cpp = getattr(engine, "_cpp", None)
-        for counter in ("iterLast", "nDone"):   # periodic engines (PyRunner): when they run next
+        for counter in ("iterLast", "virtLast", "nDone"):   # periodic engines (PyRunner): when they run next
             if cpp is not None and hasattr(cpp, counter):
-                state[counter] = int(getattr(cpp, counter))
+                state[counter] = getattr(cpp, counter)
         if hasattr(engine, "_io_state"):
             state["custom"] = _encode(engine._io_state(), to_file)
         spec["state"] = state
@@ -209,7 +209,7 @@ def _rebuild(spec: dict):
         engine.dead = True
     state = spec.get("state", {})
     cpp = getattr(engine, "_cpp", None)
-    for counter in ("iterLast", "nDone"):
+    for counter in ("iterLast", "virtLast", "nDone"):
         if counter in state and cpp is not None:
             setattr(cpp, counter, state[counter])
     if "custom" in state and hasattr(engine, "_io_restore"):
@@ -387,7 +387,8 @@ def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto") -> N
 
 
 def reload(scene: "Scene", *, engines: str = "auto") -> None:
-    """Load again the file last saved or loaded by this scene (Yade's ``O.reload()``)."""
+    """Load again the file or memory slot last saved or loaded by this scene (Yade's
+    ``O.reload()``)."""
     last = _scene_memory(scene)["last"]
     if last is None:
         raise CheckpointError("O.reload: this scene has not been saved or loaded yet")
