@@ -26,16 +26,19 @@ half-written file in place of a good one.
 from __future__ import annotations
 
 import bz2
+import functools
 import gzip
 import math
+import numbers
 import os
+import sys
 import types
 from typing import Callable, Iterable
 
 import numpy as np
 
-__all__ = ["data", "plots", "labels", "addData", "reset", "resetData", "plot", "savePlot", "saveDataTxt",
-           "saveDataHdf5", "loadDataTxt", "saveGnuplot"]
+__all__ = ["data", "plots", "labels", "addData", "addAutoData", "reset", "resetData", "plot", "savePlot",
+           "saveDataTxt", "saveDataHdf5", "loadDataTxt", "saveGnuplot"]
 
 data: dict[str, list[float]] = {}
 plots: dict[str, Iterable] = {}
@@ -54,21 +57,80 @@ def _rows() -> int:
 
 def addData(*dicts: dict, **values) -> None:
     """Append one row: ``addData(i=O.iter, unbalanced=..., **O.energy)``. Positional arguments
-    are dicts merged into the row (later ones win, keywords last)."""
+    are dicts merged into the row (later ones win, keywords last). Numbers are kept as given
+    (an int stays an int, as in Yade); a Vector2, Vector3 or Matrix3 gives one column per
+    component, named with Yade's suffixes (``f=Vector3(...)``: ``f_x``, ``f_y``, ``f_z``;
+    Matrix3: ``_xx``, ``_xy``, ...)."""
     row: dict[str, float] = {}
     for d in dicts:
         row.update(d)
     row.update(values)
     before = _rows()
-    for name, value in row.items():
-        try:
-            number = float(value)
-        except (TypeError, ValueError):
-            raise TypeError(f"plot.addData: value of {name!r} is not a number: {value!r}") from None
-        data.setdefault(name, [math.nan] * before).append(number)
+    for name, value in _components(row).items():
+        data.setdefault(name, [math.nan] * before).append(value)
     for column in data.values():
         if len(column) == before:
             column.append(math.nan)
+
+
+def _components(row: dict) -> dict:
+    """The row with each vector or matrix value split into its components' columns (Yade's
+    componentSuffixes), each value checked to be a number."""
+    from talus.dem.linalg import Matrix3, Vector2, Vector3
+    suffixes = {Vector2: "xy", Vector3: "xyz"}
+    out = {}
+    for name, value in row.items():
+        if type(value) in suffixes:
+            out.update((f"{name}_{s}", value[k]) for k, s in enumerate(suffixes[type(value)]))
+        elif type(value) is Matrix3:
+            out.update((f"{name}_{'xyz'[i]}{'xyz'[j]}", value[i, j]) for i in range(3) for j in range(3))
+        elif isinstance(value, numbers.Number) and not isinstance(value, complex):
+            out[name] = value
+        else:
+            try:
+                out[name] = float(value)   # numpy 0-d arrays and other numbers that convert
+            except (TypeError, ValueError):
+                raise TypeError(f"plot.addData: value of {name!r} is not a number, Vector2, Vector3 or Matrix3: "
+                                f"{value!r}") from None
+    return out
+
+
+def addAutoData() -> None:
+    """Append one row evaluated from ``plots`` (Yade's addAutoData): each x name and each y
+    entry is an expression or ``"name=expression"`` evaluated in the script's namespace, or a
+    mapping (``O.energy``) whose items are added; ``None`` (the axis switch) is skipped and a
+    ``(entry, format)`` pair gives its entry. An expression that raises adds nothing and prints
+    Yade's warning, as Yade does."""
+    namespace = {**_script_names(), **vars(sys.modules["__main__"])}
+    row = {}
+
+    def evaluate(entry: str):
+        name, expr = entry.split("=", 1) if "=" in entry else (entry, entry)
+        try:
+            row[name] = eval(expr, namespace)
+        except Exception:
+            print(f"WARN: ignoring exception raised while evaluating auto-column `{expr}'"
+                  + ("" if name == expr else f" ({name})") + ".")
+
+    for x, ys in plots.items():
+        evaluate(x.strip())
+        for y in ys if isinstance(ys, (tuple, list)) else (ys,):
+            if isinstance(y, (tuple, list)):
+                y = y[0]
+            if y is None:
+                continue
+            if hasattr(y, "keys"):
+                row.update(dict(y))
+            else:
+                evaluate(y)
+    addData(row)
+
+
+@functools.cache
+def _script_names() -> dict:
+    """Yade's names, which addAutoData's expressions see as those of Yade's plot module do."""
+    import yade
+    return yade.script_namespace()
 
 
 def resetData() -> None:
@@ -82,12 +144,21 @@ def reset() -> None:
     plots.clear()
 
 
-def _column(name: str) -> np.ndarray:
+def _recorded(name: str) -> list:
     key = name.strip()
     if key not in data:
         known = ", ".join(sorted(data)) or "none yet"
         raise KeyError(f"plot: no data named {key!r} (recorded: {known})")
-    return np.asarray(data[key], dtype=float)
+    return data[key]
+
+
+def _column(name: str) -> np.ndarray:
+    return np.asarray(_recorded(name), dtype=float)
+
+
+def _text(value) -> str:
+    """A value as saveDataTxt writes it: an int as an int (Yade's str), any other number as a float."""
+    return str(value) if isinstance(value, numbers.Integral) else str(float(value))
 
 
 def _y_entries(spec) -> list[tuple[str | None, str]]:
@@ -194,7 +265,7 @@ def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None, 
     comma-separated with a plain header when the name ends in ``.csv``; compressed when it ends
     in ``.bz2`` or ``.gz``."""
     names = list(vars) if vars is not None else sorted(data)
-    columns = [_column(name) for name in names]
+    columns = [_recorded(name) for name in names]
     if isinstance(headers, types.ModuleType):
         headers = {k: getattr(headers, k) for k in getattr(headers, "__all__", ())}
     name = os.fspath(fileName)
@@ -208,7 +279,7 @@ def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None, 
                 out.write(f"# {key}=\t{value}\n")
             out.write((",".join(names) if csv else "# " + "\t\t".join(names)) + "\n")
             for row in zip(*columns):
-                out.write((",".join if csv else "\t".join)(str(float(v)) for v in row) + "\n")
+                out.write((",".join if csv else "\t".join)(_text(v) for v in row) + "\n")
 
     _atomic(name, write)
 
