@@ -147,3 +147,33 @@ def test_wall_ids_are_checked():
     triax.wall_top_id = 0   # a sphere
     with pytest.raises(ValueError, match="wall_top_id = 0"):
         scene.run(1)
+
+
+@yade_missing
+def test_triaxial_test_preprocessor_matches_yade():
+    # Yade's TriaxialTest on the stored packing (importFilename): the same scene (walls 0-5,
+    # engines, first step, masses from `density`), then 200 steps of its compaction.
+    ours, theirs = (twin.run(HERE / "triaxial_test_side_by_side.py", {"steps": 200}, p) for p in ("talus", "yade"))
+    for key in ("engines", "walls", "state", "mass"):
+        assert ours[key] == theirs[key], key
+    assert ours["dt0"] == pytest.approx(theirs["dt0"], rel=1e-14)
+    assert ours["dt"] == pytest.approx(theirs["dt"], rel=1e-12)
+    a, b = np.array(ours["stress"]), np.array(theirs["stress"])
+    assert np.max(np.abs(a - b)) < 1e-9 * np.max(np.abs(b)) and np.max(np.abs(b)) > 5e4
+    assert np.max(np.abs(np.array(ours["pos"]) - theirs["pos"])) < 1e-10
+    assert np.max(np.abs(np.array(ours["strain"]) - theirs["strain"])) < 1e-12
+
+
+def test_triaxial_test_generates_a_file_that_loads(tmp_path):
+    path = tmp_path / "triax.xml"
+    TriaxialTest(numberOfGrains=100, noFiles=True, radiusMean=0.05, seed=3).generate(str(path))
+    scene = Scene()
+    scene.load(str(path))
+    assert len(scene.bodies) == 106 and type(scene.engines[4]).__name__ == "TriaxialCompressionEngine"
+    assert scene.bodies[6].state.mass == pytest.approx(4 / 3 * math.pi * scene.bodies[6].shape.radius ** 3 * 2600)
+    scene.run(50)
+    assert scene.engines[4].currentState == 1
+    with pytest.raises(TypeError, match="numberOfGrain"):
+        TriaxialTest(numberOfGrain=10)
+    with pytest.raises(ValueError, match="facetWalls"):
+        TriaxialTest(facetWalls=True, numberOfGrains=10).load()

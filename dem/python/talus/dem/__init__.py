@@ -33,6 +33,7 @@ from talus.dem.energy import EnergyTracker
 from talus.dem.triaxial import ThreeDTriaxialEngine, TriaxialCompressionEngine, TriaxialStateRecorder
 from talus.dem.legacy import *  # noqa: F401,F403  (Yade's older names of the interaction loop)
 from talus.dem.legacy import __all__ as _legacy_names
+from talus.dem.preprocessors import TriaxialTest
 from talus.dem.export import VTKExporter, VTKRecorder
 from talus.dem.kinematic import *  # noqa: F401,F403  (Yade's kinematic engines)
 from talus.dem.kinematic import __all__ as _kinematic_names
@@ -54,6 +55,6 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "PeriIsoCompressor", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",
-           "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder", *_legacy_names,
+           "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder", *_legacy_names, "TriaxialTest",
            *_kinematic_names, *_force_engine_names,
            *_engine_names, *_block_names, *_particle_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]
