@@ -305,7 +305,7 @@ bool FusedStep::run(Scene& scene)
     movedAhead.add(their.movedAhead);
   }
   if (badContactIndex >= 0)
-    throw std::runtime_error(InteractionLoop::overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(badContactIndex)]));
+    InteractionLoop::overlapFound(scene, scene.contacts.list[static_cast<std::size_t>(badContactIndex)]);
   newton.finish(scene, badBodyIndex);
   if (checkAhead)
   {

@@ -82,6 +82,14 @@ std::string InteractionLoop::overlapReport(const Scene& scene, const Contact& c)
   return text;
 }
 
+void InteractionLoop::overlapFound(Scene& scene, const Contact& c)
+{
+  if (scene.overlapStops)
+    throw std::runtime_error(overlapReport(scene, c));
+  if (scene.overlapSteps++ == 0)
+    scene.firstOverlap = overlapReport(scene, c);
+}
+
 void InteractionLoop::prepare(Scene& scene)
 {
   if (laws.empty())
@@ -118,7 +126,7 @@ void InteractionLoop::run(Scene& scene)
     addGrownContactsEnergy(scene, *this);
   timingDeltas.checkpoint("geometry, physics, law");
   if (bad >= 0)
-    throw std::runtime_error(overlapReport(scene, scene.contacts.list[static_cast<std::size_t>(bad)]));
+    overlapFound(scene, scene.contacts.list[static_cast<std::size_t>(bad)]);
   for (const auto& callback : callbacks)
     for (const Contact& c : scene.contacts.list)
       if (c.real)

@@ -31,6 +31,9 @@ public:
   void gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const;
   /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
   static std::string overlapReport(const Scene& scene, const Contact& c);
+  /// A step had contact c overlapping beyond scene.maxOverlapRatio: throw its report, or, when
+  /// scene.overlapStops is false, count the step and keep the first report.
+  static void overlapFound(Scene& scene, const Contact& c);
 
 private:
   void assignLaw(Contact& c, ContactExtra* x, const Scene& scene) const;

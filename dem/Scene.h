@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <string>
 #include <memory>
 #include <string>
 #include <vector>
@@ -40,6 +41,12 @@ public:
   /// A contact whose penetration exceeds this fraction of the smaller radius stops the run with
   /// an error (the time step is too large or the packing was set up overlapping); 0 disables.
   double maxOverlapRatio = 0.5;
+  /// What such a contact does: stop the run with an error (Talus's default), or, as Yade does
+  /// (which has no such check), let it go on, counted in overlapSteps and described by
+  /// firstOverlap (the first one), which the Python layer turns into a warning.
+  bool overlapStops = true;
+  std::int64_t overlapSteps = 0; ///< steps that had such a contact while overlapStops was false
+  std::string firstOverlap;      ///< the report of the first of them
   /// While energy is tracked, a total energy grown by more than this fraction of the energy that
   /// flowed (checked every energyGrowthCheckPeriod steps) stops the run with an error; 0 (the
   /// default) disables: energy put in by what the tracker does not see (a coupling's external

@@ -93,3 +93,45 @@ def test_energy_growth_is_detected_and_named():
     stable.run(3000)                 # a stable column bouncing on the wall is not stopped
     with pytest.raises(ValueError, match="maxEnergyGrowth"):
         stable.maxEnergyGrowth = -1
+
+
+def test_overlap_beyond_the_limit_goes_on_with_a_warning_when_asked_as_yade(tmp_path):
+    # Yade has no overlap check: with overlapStops False (talus run's default, Yade's behaviour)
+    # the same scene runs on, warned once, and the steps are counted; True stops with the error.
+    from talus.dem import (Bo1_Sphere_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom, InsertionSortCollider,
+                           InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
+                           NewtonIntegrator, Scene, sphere)
+
+    def overlapping():
+        S = Scene()
+        S.bodies.append([sphere((0, 0, 0), 1), sphere((0, 0, 0.5), 1)])
+        S.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                     InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                     [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator()]
+        S.dt = 1e-5
+        return S
+
+    strict = overlapping()
+    assert strict.overlapStops
+    with pytest.raises(RuntimeError, match="bodies 0 and 1 overlap by 1.5, 150% of the smaller radius"):
+        strict.run(5, True)
+    yade_like = overlapping()
+    yade_like.overlapStops = False
+    with pytest.warns(RuntimeWarning, match="150% of the smaller radius.*the run goes on, as in Yade") as said:
+        yade_like.run(5, True)
+        yade_like.run(5, True)
+    assert len(said) == 1 and yade_like.iter == 10 and yade_like.overlapSteps == 10
+    assert yade_like.bodies[1].state.vel[2] > 0          # it is being pushed out
+
+
+def test_talus_run_reports_overlaps_as_yade_would_run_on(talus_cmd, tmp_path):
+    script = tmp_path / "grow.py"
+    script.write_text(
+        "O.bodies.append([sphere((0, 0, 0), 1), sphere((0, 0, 0.5), 1)])\n"
+        "O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),\n"
+        "             InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],\n"
+        "                             [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator()]\n"
+        "O.dt = 1e-5\n"
+        "O.run(3, True)\n")
+    done = talus_cmd("run", script)
+    assert "talus run: 3 steps had a contact overlapping beyond O.maxOverlapRatio" in done.stderr

@@ -64,12 +64,17 @@ def _run(args: argparse.Namespace) -> int:
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))
     import yade   # the namespace `yade -x` gives a script: Yade's classes, utils, pack, math
+    yade.yade_run_defaults()
     try:
         runpy.run_path(str(script), init_globals=yade.script_namespace(), run_name="__main__")
         if yade.O.running:
             print("talus run: the script ended with O.run() still open-ended (no step count, not waited "
                   "for): it stops here, as under yade -x; call O.wait() in the script to run it until "
                   "O.pause(), or give O.run a step count", file=sys.stderr)
+        if yade.O.overlapSteps:
+            print(f"talus run: {yade.O.overlapSteps} steps had a contact overlapping beyond O.maxOverlapRatio "
+                  f"({yade.O.maxOverlapRatio:g} of the smaller radius); the first: {yade.O._cpp.firstOverlap}",
+                  file=sys.stderr)
     except SystemExit as e:
         return e.code if isinstance(e.code, int) else (0 if e.code is None else 1)
     except KeyboardInterrupt:

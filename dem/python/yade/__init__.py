@@ -57,6 +57,16 @@ __all__ = [*_dem_names, *_gui_names, *_component_names, "O", "Omega",
 __getattr__ = _scope.module_getattr("yade")
 
 
+def yade_run_defaults():
+    """Where a run started as ``yade -x`` behaves otherwise than Talus's defaults, behave as Yade,
+    for the scenes made from now on and for O: a contact overlapping beyond O.maxOverlapRatio
+    does not stop the run (Yade has no such check) but is reported once as a warning
+    (Scene.overlapStops). ``talus run`` and ``yadeimport`` call it."""
+    from talus.dem import scene
+    scene.OVERLAP_STOPS = False
+    O.overlapStops = False
+
+
 def execfile(path, globals=None, locals=None):
     """Python 2's execfile, which Yade's launcher gives scripts: run the file in ``globals``
     (default: the caller's)."""

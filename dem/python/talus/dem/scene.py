@@ -24,6 +24,11 @@ from talus.dem.io import CheckpointMethods
 from talus.dem.materials import Material, default_material
 from talus.dem.particles import Ig2_PP_PP_ScGeom
 
+# Whether a contact overlapping beyond maxOverlapRatio stops the run in a new scene (see
+# Scene.overlapStops). Yade has no such check: a run started as `yade -x` would start it sets
+# False (yade.yade_run_defaults).
+OVERLAP_STOPS = True
+
 
 def _applyGeometrySettings(cpp, engines):
     """The block and particle contacts' settings of a scene from its engines: those of the
@@ -111,6 +116,8 @@ class Scene(CheckpointMethods):
         self._views: list[weakref.ref] = []  # arrays handed out by the exchange interface
         self._openRunPending = False         # O.run() without count and without wait (see run)
         self._created = time.monotonic()
+        self._cpp.overlapStops = OVERLAP_STOPS
+        self._overlapWarned = False
 
     def reset(self):
         """Forget everything: bodies, materials, engines, contacts, clock (Yade's O.reset)."""
@@ -167,6 +174,28 @@ class Scene(CheckpointMethods):
         self._cpp.maxOverlapRatio = float(value)
 
     @property
+    def overlapStops(self) -> bool:
+        """True (Talus's default): a contact overlapping beyond maxOverlapRatio stops the run with
+        its error. False (Yade's behaviour, the default of `talus run`): the run goes on, with one
+        warning giving the first such contact, and ``overlapSteps`` counts the steps that had one."""
+        return self._cpp.overlapStops
+
+    @overlapStops.setter
+    def overlapStops(self, value: bool):
+        self._cpp.overlapStops = bool(value)
+
+    @property
+    def overlapSteps(self) -> int:
+        """Steps that had a contact overlapping beyond maxOverlapRatio while overlapStops was False."""
+        return self._cpp.overlapSteps
+
+    def _warn_of_overlaps(self):
+        if self._cpp.overlapSteps and not self._overlapWarned:
+            self._overlapWarned = True
+            warnings.warn(f"{self._cpp.firstOverlap}; the run goes on, as in Yade (O.overlapStops = True "
+                          "would stop it)", RuntimeWarning, stacklevel=3)
+
+    @property
     def maxEnergyGrowth(self) -> float:
         """With O.trackEnergy, a total energy grown by more than this fraction of the energy that
         flowed (checked every 100 steps) stops the run with an error naming the fastest body and
@@ -217,8 +246,11 @@ class Scene(CheckpointMethods):
         _applyGeometrySettings(self._cpp, engines)   # the geometry functors' settings of the scene
         # As in Yade, a labelled engine or functor becomes a variable of the script.
         for e in engines:
-            if e.label:
-                setattr(sys.modules["__main__"], e.label, e)
+            functors = [*getattr(e, "geomFunctors", ()), *getattr(e, "physFunctors", ()),
+                        *getattr(e, "lawFunctors", ())]
+            for labelled in [e, *functors]:
+                if getattr(labelled, "label", ""):
+                    setattr(sys.modules["__main__"], labelled.label, labelled)
 
     def typedEngine(self, name: str) -> Engine:
         """The first engine of the class ``name`` in O.engines (Yade's utils.typedEngine)."""
@@ -230,7 +262,10 @@ class Scene(CheckpointMethods):
     def step(self):
         """Run one time step."""
         self._openRunPending = False
-        self._cpp.step()
+        try:
+            self._cpp.step()
+        finally:
+            self._warn_of_overlaps()
 
     @property
     def running(self) -> bool:
@@ -281,7 +316,10 @@ class Scene(CheckpointMethods):
                 limits.append(max(1, math.ceil((stopTime - self.time) / self.dt - 1e-9)))
             steps = min(limits) if limits else -1
             before = self.iter
-            self._cpp.run(steps)
+            try:
+                self._cpp.run(steps)
+            finally:
+                self._warn_of_overlaps()
             done = self.iter - before
             if steps < 0 or done < steps:                      # paused
                 return
