@@ -399,8 +399,11 @@ double Scene::pWaveTimeStep() const
   for (std::size_t i = 0; i < bodies.size(); ++i)
     if (bodies.alive[i] && bodies.shape[i] == ShapeKind::Sphere)
     {
+      // As Yade's Shop::PWaveTimeStep: the density from the body's mass (a script may change
+      // a body's mass: a lighter one needs a smaller step), Yade's order of operations.
       const Material& m = materials[static_cast<std::size_t>(bodies.material[i])];
-      best = std::min(best, bodies.radius[i] * std::sqrt(m.density / m.young));
+      const double r = bodies.radius[i], density = bodies.mass[i] / ((4.0 / 3.0) * M_PI * std::pow(r, 3));
+      best = std::min(best, r / std::sqrt(m.young / density));
     }
   return best;
 }
