@@ -106,3 +106,22 @@ def test_a_yade_name_talus_lacks_is_named_with_its_scope(talus_cmd, tmp_path, li
         assert says in done.stderr
     else:
         assert "a name of Yade" not in done.stderr and ("Error" in done.stderr)
+
+
+def test_a_script_starts_with_yades_default_engines(talus_cmd, tmp_path):
+    # Yade's examples/simple-scene/simple-scene-default-engines.py: no O.engines of its own.
+    script = tmp_path / "defaults.py"
+    script.write_text(
+        "print([type(e).__name__ for e in O.engines])\n"
+        "newton.gravity = (0, 0, -9.81)\n"
+        "O.bodies.append([box(center=[0, 0, 0], extents=[.5, .5, .5], fixed=True), sphere([0, 0, 2], 1)])\n"
+        "O.run(2000, True)\n"
+        "print('z %.15f dt %.15g' % (O.bodies[1].state.pos[2], O.dt))\n"
+        "O.reset()\n"
+        "print('after reset', len(O.engines))\n")
+    out = talus_cmd("run", script).stdout
+    assert ("['ForceResetter', 'InsertionSortCollider', 'InteractionLoop', 'GlobalStiffnessTimeStepper', "
+            "'NewtonIntegrator']") in out
+    # Yade 2023.02a on the same script (damping 0.2, time step from the global stiffness).
+    assert "z 1.49589079680910" in out and "dt 0.0230934547512967" in out
+    assert "after reset 0" in out

@@ -57,14 +57,33 @@ __all__ = [*_dem_names, *_gui_names, *_component_names, "O", "Omega",
 __getattr__ = _scope.module_getattr("yade")
 
 
-def yade_run_defaults():
-    """Where a run started as ``yade -x`` behaves otherwise than Talus's defaults, behave as Yade,
-    for the scenes made from now on and for O: a contact overlapping beyond O.maxOverlapRatio
-    does not stop the run (Yade has no such check) but is reported once as a warning
-    (Scene.overlapStops). ``talus run`` and ``yadeimport`` call it."""
+def yade_run_defaults() -> dict:
+    """Where a run started as ``yade -x`` behaves otherwise than Talus's defaults, behave as Yade;
+    returns the labelled engines, for the script's namespace. ``talus run`` and ``yadeimport``
+    call it.
+
+    - A contact overlapping beyond O.maxOverlapRatio does not stop the run (Yade has no such
+      check) but is reported once as a warning (Scene.overlapStops), in O and in the scenes made
+      from now on.
+    - An empty O gets Yade's default engines (O.reset() empties them, as in Yade)."""
     from talus.dem import scene
     scene.OVERLAP_STOPS = False
     O.overlapStops = False
+    if not O.engines and not len(O.bodies):
+        O.engines = default_engines()
+    return {e.label: e for e in O.engines if e.label}
+
+
+def default_engines() -> list:
+    """The engines Yade 2023.02a gives its first scene: spheres, facets and boxes with linear
+    frictional contacts, the time step from the global stiffness every 10 steps, damping 0.2."""
+    return [ForceResetter(),
+            InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb(), Bo1_Box_Aabb()], label="collider"),
+            InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()],
+                            [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()],
+                            label="interactionLoop"),
+            GlobalStiffnessTimeStepper(timeStepUpdateInterval=10, label="timeStepper"),
+            NewtonIntegrator(damping=0.2, label="newton")]
 
 
 def execfile(path, globals=None, locals=None):
