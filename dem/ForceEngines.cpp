@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <regex>
 #include <stdexcept>
 #include <string>
@@ -42,6 +43,28 @@ void HarmonicForceEngine::run(Scene& scene)
   const Vec3 w = 2 * M_PI * f;
   force = ((w * scene.time + fi).array().sin() * A.array()).matrix();
   addToBodies(scene, force);
+}
+
+void GravityEngine::run(Scene& scene)
+{
+  if (warnOnce)
+  {
+    warnOnce = false;
+    std::cerr << typeName() << " is deprecated, consider using Newton::gravity instead (unless gravitational energy "
+              << "has to be tracked - not implemented with the newton attribute).\n";
+  }
+  Bodies& b = scene.bodies;
+  const bool track = scene.energy.enabled;
+  double work = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    if (!b.alive[i] || b.shape[i] == ShapeKind::Clump)
+      continue;
+    b.force[i] += gravity * b.mass[i];
+    if (track) // the energy comes in from outside: its work counts negative, as Yade books it
+      work -= gravity.dot(b.vel[i]) * b.mass[i] * scene.dt;
+  }
+  scene.energy.gravWork += work;
 }
 
 namespace
@@ -80,9 +103,6 @@ void HdapsGravityEngine::run(Scene& scene)
                       * Quat(Eigen::AngleAxisd(0.5 * accel[1] * M_PI / 180, -Vec3::UnitX()));
     gravity = tilt * zeroGravity;
   }
-  Bodies& b = scene.bodies;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    if (b.alive[i] && b.shape[i] != ShapeKind::Clump)
-      b.force[i] += gravity * b.mass[i];
+  GravityEngine::run(scene);
 }
 } // namespace talus::dem

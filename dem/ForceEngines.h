@@ -53,13 +53,28 @@ public:
   Vec3 fi = Vec3::Zero();
 };
 
+/// A homogeneous gravity field as an engine (Yade's GravityEngine, which Yade calls deprecated in
+/// favour of NewtonIntegrator.gravity): adds gravity x mass to every body but clumps (whose
+/// members get theirs). With energy tracking it books gravWork as Yade does, -m g.v dt with the
+/// velocity the body has when the engine runs. Yade's `mask` selects bodies by group mask, which
+/// Talus bodies do not have: only 0 (all bodies) is accepted (checked in Python).
+class GravityEngine : public Engine
+{
+public:
+  void run(Scene& scene) override;
+  [[nodiscard]] std::string typeName() const override { return "GravityEngine"; }
+
+  Vec3 gravity = Vec3::Zero();
+  bool warnOnce = true; ///< print Yade's deprecation notice at the first run
+};
+
 /// Gravity that follows a laptop's tilt (Yade's HdapsGravityEngine): reads the accelerometer's
-/// "(x,y)" from `hdapsDir`/position (and `hdapsDir`/calibrate unless `calibrated`) at most every
-/// `msecUpdate` ms of wall time, follows a reading that moved more than `updateThreshold` from
-/// the last one it took, and turns `zeroGravity` by half the readings in degrees about -y and -x.
-/// Adds gravity x mass to every body but clumps (whose members get theirs), as Yade's
-/// GravityEngine. As in Yade, a missing or unreadable file stops the run with an error naming it.
-class HdapsGravityEngine : public Engine
+/// sysfs files `hdapsDir`/calibrate (once, unless `calibrated`) and `hdapsDir`/position (at most
+/// every `msecUpdate` ms; a component that moved more than `updateThreshold` from the last
+/// reading is followed), and turns `zeroGravity` by half the readings in degrees about -y and -x
+/// into `gravity`, applied as GravityEngine applies it. As in Yade, a missing or unreadable file
+/// stops the run with an error naming it.
+class HdapsGravityEngine : public GravityEngine
 {
 public:
   void run(Scene& scene) override;
@@ -71,7 +86,6 @@ public:
   Eigen::Vector2i calibrate = Eigen::Vector2i::Zero();
   bool calibrated = false;
   Vec3 zeroGravity = Vec3(0, 0, -1);
-  Vec3 gravity = Vec3::Zero();          ///< the gravity applied (last reading)
   Eigen::Vector2i accel = Eigen::Vector2i::Zero(); ///< the reading followed, less the calibration
 
 private:

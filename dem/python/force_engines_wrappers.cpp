@@ -32,7 +32,11 @@ void talus_wrap_force_engines(py::module_& m)
       .def_readwrite("A", &HarmonicForceEngine::A)
       .def_readwrite("f", &HarmonicForceEngine::f)
       .def_readwrite("fi", &HarmonicForceEngine::fi);
-  py::class_<HdapsGravityEngine, Engine, std::shared_ptr<HdapsGravityEngine>>(m, "HdapsGravityEngine")
+  py::class_<GravityEngine, Engine, std::shared_ptr<GravityEngine>>(m, "GravityEngine")
+      .def(py::init<>())
+      .def_readwrite("gravity", &GravityEngine::gravity)
+      .def_readwrite("warnOnce", &GravityEngine::warnOnce);
+  py::class_<HdapsGravityEngine, GravityEngine, std::shared_ptr<HdapsGravityEngine>>(m, "HdapsGravityEngine")
       .def(py::init<>())
       .def_readwrite("hdapsDir", &HdapsGravityEngine::hdapsDir)
       .def_readwrite("msecUpdate", &HdapsGravityEngine::msecUpdate)
@@ -40,7 +44,6 @@ void talus_wrap_force_engines(py::module_& m)
       .def_readwrite("calibrate", &HdapsGravityEngine::calibrate)
       .def_readwrite("calibrated", &HdapsGravityEngine::calibrated)
       .def_readwrite("zeroGravity", &HdapsGravityEngine::zeroGravity)
-      .def_readwrite("gravity", &HdapsGravityEngine::gravity)
       .def_readwrite("accel", &HdapsGravityEngine::accel);
 
   py::class_<IntrCallback, std::shared_ptr<IntrCallback>>(m, "IntrCallback");

@@ -89,6 +89,27 @@ class HarmonicForceEngine(ForceEngine):
     fi = property(lambda s: Vector3(s._cpp.fi), lambda s, v: setattr(s._cpp, "fi", _vector(v, "fi")))
 
 
+class GravityEngine(Engine):
+    """Adds ``gravity`` x mass to every body (clumps through their members) each step (Yade's
+    GravityEngine, which Yade deprecates in favour of ``NewtonIntegrator(gravity=...)``); with
+    ``O.trackEnergy`` it books ``gravWork`` as Yade, -m g.v dt with the velocity of the step's
+    start. Yade's notice that it is deprecated is printed at the first step unless ``warnOnce``
+    is False. Yade's ``mask`` (bodies by group mask) is not supported: Talus bodies have none."""
+
+    def __init__(self, gravity=(0.0, 0.0, 0.0), warnOnce: bool = True, mask: int = 0, label: str = "",
+                 dead: bool = False):
+        if mask != 0:
+            raise ValueError(f"GravityEngine: mask={mask!r} is not supported (Talus bodies have no group mask); "
+                             "use mask=0 (all bodies)")
+        self._cpp = _dem.GravityEngine()
+        self.gravity, self.warnOnce, self.label, self.dead = gravity, warnOnce, label, dead
+
+    gravity = property(lambda s: Vector3(s._cpp.gravity),
+                       lambda s, v: setattr(s._cpp, "gravity", _vector(v, "gravity")))
+    warnOnce = property(lambda s: s._cpp.warnOnce, lambda s, v: setattr(s._cpp, "warnOnce", bool(v)))
+    mask = property(lambda s: 0)
+
+
 class HdapsGravityEngine(Engine):
     """Gravity following a laptop's tilt, read from its hdaps accelerometer (Yade's
     HdapsGravityEngine): ``hdapsDir``/position (and ``hdapsDir``/calibrate unless
@@ -133,5 +154,5 @@ class SumIntrForcesCb:
         return "SumIntrForcesCb()"
 
 
-__all__ = ["ForceEngine", "InterpolatingDirectedForceEngine", "HarmonicForceEngine", "HdapsGravityEngine",
-           "SumIntrForcesCb"]
+__all__ = ["ForceEngine", "InterpolatingDirectedForceEngine", "HarmonicForceEngine", "GravityEngine",
+           "HdapsGravityEngine", "SumIntrForcesCb"]
