@@ -49,9 +49,10 @@ MassMoments sumOfMembers(const Bodies& b, const std::vector<BodyId>& members, co
     Mat3 I;
     if (isSphere(b, id))
     {
+      // Yade's order of operations, for its bits.
       const double r = b.radius[i];
-      m = materials[static_cast<std::size_t>(b.material[i])].density * 4.0 / 3.0 * std::numbers::pi * r * r * r;
-      I = Mat3::Identity() * (0.4 * m * r * r);
+      m = materials[static_cast<std::size_t>(b.material[i])].density * ((4.0 / 3.0) * std::numbers::pi * std::pow(r, 3));
+      I = Mat3(Vec3::Constant((2 / 5.0) * m * std::pow(r, 2)).asDiagonal());
     }
     else
     {
@@ -305,11 +306,11 @@ void Scene::updateClump(BodyId id, int discretization)
     shape.relPos.push_back(b.ori[c].conjugate() * (b.pos[m] - b.pos[c]));
     shape.relOri.push_back(b.ori[c].conjugate() * b.ori[m]);
   }
-  // Members at rest with the clump, as Yade's Clump::updateProperties.
+  // The clump at rest, as Yade's Clump::updateProperties; the members stay where they are (the
+  // first step places them from relPos, to the same point up to rounding).
   b.vel[c].setZero();
   b.angVel[c].setZero();
   b.angMom[c].setZero();
-  moveClumpMembers(b, c);
   ++bodyPropertiesVersion;
 }
 } // namespace talus::dem
