@@ -11,4 +11,4 @@ It is the namespace ``yade -x`` (``talus run``) gives a script: Yade's classes a
 import yade as _yade
 
 globals().update(_yade.script_namespace())
-globals().update(_yade.yade_run_defaults())
+_yade.yade_run_defaults()

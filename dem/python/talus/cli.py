@@ -64,9 +64,9 @@ def _run(args: argparse.Namespace) -> int:
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))
     import yade   # the namespace `yade -x` gives a script: Yade's classes, utils, pack, math
-    labelled = yade.yade_run_defaults()
+    yade.yade_run_defaults()
     try:
-        runpy.run_path(str(script), init_globals={**yade.script_namespace(), **labelled}, run_name="__main__")
+        runpy.run_path(str(script), init_globals=yade.script_namespace(), run_name="__main__")
         if yade.O.running:
             print("talus run: the script ended with O.run() still open-ended (no step count, not waited "
                   "for): it stops here, as under yade -x; call O.wait() in the script to run it until "

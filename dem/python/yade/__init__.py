@@ -57,10 +57,10 @@ __all__ = [*_dem_names, *_gui_names, *_component_names, "O", "Omega",
 __getattr__ = _scope.module_getattr("yade")
 
 
-def yade_run_defaults() -> dict:
-    """Where a run started as ``yade -x`` behaves otherwise than Talus's defaults, behave as Yade;
-    returns the labelled engines, for the script's namespace. ``talus run`` and ``yadeimport``
-    call it.
+def yade_run_defaults() -> None:
+    """Where a run started as ``yade -x`` behaves otherwise than Talus's defaults, behave as Yade
+    (``talus run`` and ``yadeimport`` call it; the default engines' labels, as any, are names of
+    Python's builtins).
 
     - A contact overlapping beyond O.maxOverlapRatio does not stop the run (Yade has no such
       check) but is reported once as a warning (Scene.overlapStops), in O and in the scenes made
@@ -71,7 +71,6 @@ def yade_run_defaults() -> dict:
     O.overlapStops = False
     if not O.engines and not len(O.bodies):
         O.engines = default_engines()
-    return {e.label: e for e in O.engines if e.label}
 
 
 def default_engines() -> list:

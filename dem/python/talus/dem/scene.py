@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
+import builtins
 import math
-import sys
 import time
 import warnings
 import weakref
@@ -95,6 +95,21 @@ class MaterialContainer:
 
     def __len__(self) -> int:
         return len(self._materials)
+
+
+def _labelled(engines):
+    """The labelled objects of an engine list: the engines, their functors (an InteractionLoop's,
+    a collider's bound functors), the parts of a combined engine and a ParallelEngine's slaves."""
+    for e in engines:
+        if isinstance(e, (list, tuple)):      # a group of a ParallelEngine's slaves
+            yield from _labelled(e)
+            continue
+        if getattr(e, "label", ""):
+            yield e
+        bound = getattr(e, "boundDispatcher", None)
+        yield from _labelled([*getattr(e, "geomFunctors", ()), *getattr(e, "physFunctors", ()),
+                              *getattr(e, "lawFunctors", ()), *getattr(bound, "functors", ()),
+                              *getattr(e, "comb", ()), *getattr(e, "slaves", ())])
 
 
 class Scene(CheckpointMethods):
@@ -244,13 +259,10 @@ class Scene(CheckpointMethods):
         self._cpp.engines = [e._cpp for e in engines]
         self._engines = engines
         _applyGeometrySettings(self._cpp, engines)   # the geometry functors' settings of the scene
-        # As in Yade, a labelled engine or functor becomes a variable of the script.
-        for e in engines:
-            functors = [*getattr(e, "geomFunctors", ()), *getattr(e, "physFunctors", ()),
-                        *getattr(e, "lawFunctors", ())]
-            for labelled in [e, *functors]:
-                if getattr(labelled, "label", ""):
-                    setattr(sys.modules["__main__"], labelled.label, labelled)
+        # As in Yade, a labelled engine, functor or sub-engine becomes a name of Python's
+        # builtins, which the script and every module see (and which stays after O.reset()).
+        for labelled in _labelled(engines):
+            setattr(builtins, labelled.label, labelled)
 
     def typedEngine(self, name: str) -> Engine:
         """The first engine of the class ``name`` in O.engines (Yade's utils.typedEngine)."""
