@@ -9,7 +9,6 @@ from talus.dem import O
 from talus.dem.geom import facetBox, facetCylinder
 from talus.dem.scene import SpherePWaveTimeStep
 from talus.dem.clumps import clumpTemplate
-from talus.dem.clumps import clumpTemplate
 from talus.dem.linalg import Quaternion
 from talus.dem.measure import aabbDim, aabbExtrema, angularMomentum, kineticEnergy, momentum, sumForces
 from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,

@@ -361,8 +361,6 @@ class Body:
 
     mat = material   # Yade's short name
 
-    mat = material   # Yade's short name
-
     @property
     def bounded(self) -> bool:
         """Whether the collider bounds the body: all but clumps, whose members are bounded."""
