@@ -9,34 +9,70 @@
 
 namespace talus::dem
 {
+namespace
+{
+/// Diagonal of a contact's translational and rotational (per unit lever arm squared) matrices
+/// for a normal coefficient `normal` and a shear one `shear` (springs kn, ks or dashpots cn, cs).
+struct ContactDiagonal
+{
+  Vec3 translational, rotational;
+  ContactDiagonal(const Vec3& n, double normal, double shear)
+  {
+    const Vec3 nn = n.cwiseProduct(n);
+    translational = nn * (normal - shear) + Vec3::Constant(shear);
+    rotational = Vec3(nn[1] + nn[2], nn[0] + nn[2], nn[0] + nn[1]) * shear;
+  }
+};
+
+/// Per body, the sums of its contacts' diagonals.
+struct BodyDiagonals
+{
+  std::vector<Vec3> translational, rotational;
+  explicit BodyDiagonals(std::size_t n) : translational(n, Vec3::Zero()), rotational(n, Vec3::Zero()) {}
+  void add(const Contact& c, const ContactDiagonal& d)
+  {
+    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+    translational[i1] += d.translational;
+    translational[i2] += d.translational;
+    rotational[i1] += d.rotational * (c.refR1 * c.refR1);
+    rotational[i2] += d.rotational * (c.refR2 * c.refR2);
+  }
+  /// min(m / max_i T_i, min_i I_i / R_i) over the non-zero sums; `huge` if all are zero.
+  [[nodiscard]] double ratio(const Bodies& b, std::size_t i, double huge) const
+  {
+    const double tmax = translational[i].maxCoeff();
+    double best = tmax != 0 ? b.mass[i] / tmax : huge;
+    for (int d = 0; d < 3; ++d)
+      if (rotational[i][d] != 0)
+        best = std::min(best, b.inertia[i][d] / rotational[i][d]);
+    return best;
+  }
+};
+} // namespace
+
 double GlobalStiffnessTimeStepper::stiffnessTimeStep(const Scene& scene) const
 {
   const Bodies& b = scene.bodies;
-  std::vector<Vec3> translational(b.size(), Vec3::Zero()), rotational(b.size(), Vec3::Zero());
+  BodyDiagonals stiffness(b.size()), viscosity(viscEl ? b.size() : 0);
   for (const Contact& c : scene.contacts.list)
   {
     if (!c.real || c.normalForce.squaredNorm() == 0)
       continue;
-    const Vec3 nn = c.normal.cwiseProduct(c.normal);
-    const Vec3 k = nn * (c.kn - c.ks) + Vec3::Constant(c.ks);
-    const Vec3 kr = Vec3(nn[1] + nn[2], nn[0] + nn[2], nn[0] + nn[1]) * c.ks;
-    translational[static_cast<std::size_t>(c.id1)] += k;
-    translational[static_cast<std::size_t>(c.id2)] += k;
-    rotational[static_cast<std::size_t>(c.id1)] += kr * (c.refR1 * c.refR1);
-    rotational[static_cast<std::size_t>(c.id2)] += kr * (c.refR2 * c.refR2);
+    stiffness.add(c, ContactDiagonal(c.normal, c.kn, c.ks));
+    if (viscEl)
+      viscosity.add(c, ContactDiagonal(c.normal, c.cn, c.cs));
   }
   const double huge = std::numeric_limits<double>::max();
   double best = huge;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || !b.dynamic[i] || translational[i].isZero(0))
+    if (!b.alive[i] || !b.dynamic[i] || stiffness.translational[i].isZero(0))
       continue;
-    const double kmax = translational[i].maxCoeff();
-    double period2 = kmax != 0 ? b.mass[i] / kmax : huge; // squared eigen-period, translation
-    for (int d = 0; d < 3; ++d)
-      if (rotational[i][d] != 0)
-        period2 = std::min(period2, b.inertia[i][d] / rotational[i][d]);
-    best = std::min(best, 1.41044 * timestepSafetyCoefficient * std::sqrt(period2));
+    // The squared eigen-period of the springs; a dashpot's limit is linear in m / c.
+    double dt = 1.41044 * timestepSafetyCoefficient * std::sqrt(stiffness.ratio(b, i, huge));
+    if (viscEl)
+      dt = std::min(dt, 2 * timestepSafetyCoefficient * viscosity.ratio(b, i, huge));
+    best = std::min(best, dt);
   }
   return best == huge ? std::numeric_limits<double>::infinity() : best;
 }

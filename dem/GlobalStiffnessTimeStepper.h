@@ -19,6 +19,11 @@ class Scene;
 /// timestepSafetyCoefficient times the smallest, capped at maxDt and at 1.05 times the previous
 /// one. Contacts with no normal force are skipped; before any contact the step is `defaultDt`
 /// (timestepSafetyCoefficient x P-wave estimate if negative).
+///
+/// With `viscEl` (Yade's option for dashpot contacts), the contacts' dashpots cn, cs are summed
+/// the same way into a translational and a rotational viscosity per body, and the body's step is
+/// also at most 2 timestepSafetyCoefficient min(m / max_i C_i, min_i I_i / Cr_i): the explicit
+/// scheme's limit for a dashpot (not a square root: m / C is a time).
 class GlobalStiffnessTimeStepper : public Engine
 {
 public:
@@ -30,6 +35,7 @@ public:
   [[nodiscard]] double stiffnessTimeStep(const Scene& scene) const;
 
   bool active = true;
+  bool viscEl = false;
   double timestepSafetyCoefficient = 0.8;
   double defaultDt = -1;
   double maxDt = std::numeric_limits<double>::max();

@@ -92,3 +92,36 @@ def test_time_steps_equal_yades():
     assert np.allclose(ours["dt"], theirs["dt"], rtol=1e-12, atol=0)
     assert ours["rayleigh"] == pytest.approx(theirs["rayleigh"], rel=1e-14)
     assert ours["pwave"] == pytest.approx(theirs["pwave"], rel=1e-14)
+
+
+def test_viscel_bounds_the_step_by_the_dashpot():
+    scene = Scene()
+    scene.materials.append(ViscElMat(en=0.01, et=0., young=1e7, poisson=0.5, density=2000))
+    scene.bodies.append([box((0, 0, 0), (1, 1, 0), fixed=True), sphere((0, 0, 0.099), 0.1)])
+    stepper = GlobalStiffnessTimeStepper(timestepSafetyCoefficient=0.5, viscEl=True)
+    scene.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Box_Aabb()]),
+                     InteractionLoop([Ig2_Box_Sphere_ScGeom()], [Ip2_ViscElMat_ViscElMat_ViscElPhys()],
+                                     [Law2_ScGeom_ViscElPhys_Basic()]),
+                     stepper, NewtonIntegrator()]
+    scene.step()
+    (c,) = scene.contacts()
+    m, inertia = scene.bodies[1].state.mass, scene.bodies[1].state.inertia[0]
+    elastic = 1.41044 * 0.5 * math.sqrt(min(m / c["kn"], inertia / (c["ks"] * 0.1 ** 2)))
+    viscous = 2 * 0.5 * m / c["cn"]     # cs = 0 for the young/poisson/en form: no rotational dashpot
+    assert c["cs"] == 0 and viscous < elastic
+    assert scene.dt == pytest.approx(viscous, rel=1e-15)
+    stepper.viscEl = False
+    assert stepper.stiffnessTimeStep(scene) == pytest.approx(elastic, rel=1e-15)
+
+
+@pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed")
+@pytest.mark.parametrize("en", [0.5, 0.05])
+def test_viscel_time_steps_equal_yades(en):
+    """en = 0.5: the springs govern; en = 0.05: the dashpots do (the step then differs from
+    viscEl=False's from the first step on)."""
+    script = HERE / "timestepper_viscel_side_by_side.py"
+    ours, theirs = (twin.run(script, {"en": en, "viscEl": True}, who) for who in ("talus", "yade"))
+    assert ours["n"] == theirs["n"] and ours["contacts"] == theirs["contacts"]
+    assert np.allclose(ours["dt"], theirs["dt"], rtol=1e-14, atol=0)
+    elastic_only = twin.run(script, {"en": en, "viscEl": False}, "talus")
+    assert (elastic_only["dt"][0] > 1.5 * ours["dt"][0]) == (en == 0.05)

@@ -47,10 +47,13 @@ class GlobalStiffnessTimeStepper(Engine):
     bodies on their contact stiffnesses (translational kn, ks and rotational ks r^2), every
     ``timeStepUpdateInterval`` steps; ``defaultDt`` (default: timestepSafetyCoefficient x P-wave)
     before any contact; at most 5 % growth per update; ``maxDt`` caps it. Put it after the
-    InteractionLoop. As in Yade 2023, it overrides a step set by hand while ``active``."""
+    InteractionLoop. As in Yade 2023, it overrides a step set by hand while ``active``.
+    ``viscEl``: also bound the step by the contacts' dashpots (cn, cs), Yade's
+    2 timestepSafetyCoefficient m / c per body (its option for ViscElPhys contacts)."""
 
     def __init__(self, active: bool = True, timestepSafetyCoefficient: float = 0.8, defaultDt: float = -1,
-                 maxDt: float = 1.7976931348623157e308, timeStepUpdateInterval: int = 1, label: str = ""):
+                 maxDt: float = 1.7976931348623157e308, timeStepUpdateInterval: int = 1, viscEl: bool = False,
+                 label: str = ""):
         if not 0 < timestepSafetyCoefficient:
             raise ValueError(f"GlobalStiffnessTimeStepper: timestepSafetyCoefficient must be positive, got "
                              f"{timestepSafetyCoefficient}")
@@ -58,9 +61,10 @@ class GlobalStiffnessTimeStepper(Engine):
             raise ValueError(f"GlobalStiffnessTimeStepper: timeStepUpdateInterval must be >= 1, got {timeStepUpdateInterval}")
         self._cpp = _dem.GlobalStiffnessTimeStepper()
         self.active, self.timestepSafetyCoefficient, self.defaultDt = active, timestepSafetyCoefficient, defaultDt
-        self.maxDt, self.timeStepUpdateInterval, self.label = maxDt, timeStepUpdateInterval, label
+        self.maxDt, self.timeStepUpdateInterval, self.viscEl, self.label = maxDt, timeStepUpdateInterval, viscEl, label
 
     active = _forward("active", kind=bool)
+    viscEl = _forward("viscEl", kind=bool)
     timestepSafetyCoefficient = _forward("timestepSafetyCoefficient", kind=float)
     defaultDt = _forward("defaultDt", kind=float)
     maxDt = _forward("maxDt", kind=float)
