@@ -1,8 +1,12 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <map>
+#include <mutex>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace talus::dem
@@ -25,6 +29,28 @@ struct PairParameter
     if (it != matches.end())
       return it->second;
     return fallback;
+  }
+};
+
+/// The first error met while setting up contacts, reported when the step's contacts are done
+/// (the set-up runs in parallel loops that must not throw): a pair a MatchMaker has no value
+/// for, materials that do not go together.
+struct DeferredFailure
+{
+  std::atomic<bool> failed{false};
+  std::mutex failureLock;
+  std::string failure;
+
+  void fail(const std::string& what)
+  {
+    std::lock_guard<std::mutex> lock(failureLock);
+    if (!failed.exchange(true))
+      failure = what;
+  }
+  void throwIfFailed()
+  {
+    if (failed.exchange(false))
+      throw std::runtime_error(failure);
   }
 };
 } // namespace talus::dem

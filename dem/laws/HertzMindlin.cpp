@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 namespace talus::dem
@@ -40,39 +41,67 @@ public:
   /// Any pair of elastic materials (FrictMat and its kin), as the linear law.
   [[nodiscard]] int handles(const Material&, const Material&) const override { return 1; }
 
-  // Ip2 parameters: restitution coefficients (normal, shear) or damping ratios; NaN: not given.
-  double en = notGiven, es = notGiven, betan = notGiven, betas = notGiven;
+  // Ip2 parameters: restitution coefficients (normal, shear) or damping ratios, one value for
+  // all pairs of materials or per pair (Yade's MatchMaker); not given: `given` false.
+  PairParameter en, es, betan, betas;
+  mutable DeferredFailure setupFailure; ///< a pair without a value, reported after the step
+  void stepDone() override { setupFailure.throwIfFailed(); }
+  /// The parameter of that name (HertzMindlin or const HertzMindlin).
+  template <class Self> // HertzMindlin or const HertzMindlin
+  static auto& named(Self& self, const std::string& name)
+  {
+    if (name == "en")
+      return self.en;
+    if (name == "es")
+      return self.es;
+    if (name == "betan")
+      return self.betan;
+    if (name == "betas")
+      return self.betas;
+    self.unknownParameter(name);
+  }
+
   [[nodiscard]] std::vector<std::string> parameterNames() const override
   {
     return {"en", "es", "betan", "betas"};
   }
+  /// One value for every pair; NaN: not given.
   void setParameter(const std::string& name, double value) override
   {
-
-    double* slot = name == "en" ? &en : name == "es" ? &es : name == "betan" ? &betan : name == "betas" ? &betas : nullptr;
-    if (!slot)
-      unknownParameter(name);
+    if (std::isnan(value))
+      named(*this, name) = PairParameter{};
+    else
+    {
+      PairParameter p;
+      p.fallback = value;
+      setPairParameter(name, p);
+    }
+  }
+  void setPairParameter(const std::string& name, const PairParameter& value) override
+  {
+    PairParameter& slot = named(*this, name);
     const bool restitution = name[0] == 'e';
-    if (!std::isnan(value) && !(restitution ? (value > 0 && value <= 1) : (value >= 0 && std::isfinite(value))))
-      throw std::invalid_argument(physicsName() + "." + name + " must be "
-                                  + (restitution ? "in (0, 1]" : "finite and >= 0") + ", got " + std::to_string(value));
-    const double other = name == "en" ? betan : name == "betan" ? en : name == "es" ? betas : es;
-    if (!std::isnan(value) && !std::isnan(other))
+    auto check = [&](double v) {
+      if (!(restitution ? (v > 0 && v <= 1) : (v >= 0 && std::isfinite(v))))
+        throw std::invalid_argument(physicsName() + "." + name + " must be " + (restitution ? "in (0, 1]" : "finite and >= 0")
+                                    + ", got " + std::to_string(v));
+    };
+    for (const auto& match : value.matches)
+      check(match.second);
+    if (value.fallback)
+      check(*value.fallback);
+    const PairParameter& other = named(*this, name == "en" ? "betan" : name == "betan" ? "en" : name == "es" ? "betas" : "es");
+    if (other.given)
       throw std::invalid_argument(physicsName() + ": only one of " + (name.back() == 'n' ? "en, betan" : "es, betas")
                                   + " can be specified");
-    *slot = value;
+    slot = value;
+    slot.given = true;
   }
+  /// The value for all pairs (NaN: not given, or given per pair).
   [[nodiscard]] double parameter(const std::string& name) const override
   {
-    if (name == "en")
-      return en;
-    if (name == "es")
-      return es;
-    if (name == "betan")
-      return betan;
-    if (name == "betas")
-      return betas;
-    unknownParameter(name);
+    const PairParameter& p = named(*this, name);
+    return p.given && p.matches.empty() && p.fallback ? *p.fallback : notGiven;
   }
 
   /// Effective moduli of the two materials: E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2),
@@ -92,16 +121,30 @@ public:
     x->kno = 4.0 / 3.0 * e * std::sqrt(r);
     x->kso = 8.0 * std::sqrt(r) * g;
     c.tanPhi = std::tan(std::min(m1.frictionAngle, m2.frictionAngle));
-    if (!std::isnan(en) || !std::isnan(es))
+    // As Yade: en or es (one alone stands for both) gives both ratios by Thornton's fit; else
+    // betan (default 0) and betas (default betan).
+    const int id1 = scene.bodies.material[static_cast<std::size_t>(c.id1)];
+    const int id2 = scene.bodies.material[static_cast<std::size_t>(c.id2)];
+    bool missing = false;
+    auto value = [&](const PairParameter& p) {
+      const std::optional<double> v = p.at(id1, id2);
+      missing = missing || !v;
+      return v.value_or(0.0);
+    };
+    if (en.given || es.given)
     {
-      x->betan = thorntonDampingRatio(std::isnan(en) ? es : en);
-      x->betas = thorntonDampingRatio(std::isnan(es) ? en : es);
+      x->betan = thorntonDampingRatio(value(en.given ? en : es));
+      x->betas = thorntonDampingRatio(value(es.given ? es : en));
     }
     else
     {
-      x->betan = std::isnan(betan) ? 0.0 : betan;
-      x->betas = std::isnan(betas) ? x->betan : betas;
+      x->betan = betan.given ? value(betan) : 0.0;
+      x->betas = betas.given ? value(betas) : x->betan;
     }
+    if (missing)
+      setupFailure.fail(physicsName() + ": a MatchMaker (en, es, betan or betas) has no value for materials '" + m1.label
+                        + "' and '" + m2.label + "' (bodies " + std::to_string(c.id1) + " and " + std::to_string(c.id2)
+                        + "): list the pair in its matches, or give algo='val' with val");
     c.kn = c.ks = c.cn = c.cs = 0;
   }
 

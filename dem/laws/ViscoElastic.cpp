@@ -103,26 +103,10 @@ struct RelativeMotion
 };
 
 /// The functor's per-pair parameters (Yade's MatchMakers tc, en, et, frictAngle) and the first
-/// error met while setting up a contact (reported when the step's contacts are done: the
-/// set-up runs in parallel loops that must not throw).
-struct ViscElSettings
+/// error met while setting up a contact.
+struct ViscElSettings : DeferredFailure
 {
   PairParameter tc, en, et, frictAngle;
-  std::atomic<bool> failed{false};
-  std::mutex failureLock;
-  std::string failure;
-
-  void fail(const std::string& what)
-  {
-    std::lock_guard<std::mutex> lock(failureLock);
-    if (!failed.exchange(true))
-      failure = what;
-  }
-  void throwIfFailed()
-  {
-    if (failed.exchange(false))
-      throw std::runtime_error(failure);
-  }
 };
 
 /// The law's loops, without (Rolling false) or with rolling resistance, whose moments live in
