@@ -18,12 +18,16 @@ class CallbackEngine : public Engine
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "PyRunner"; }
+  [[nodiscard]] bool resumableAfterError() const override { return resumable; }
 
   std::function<void()> callback;
   std::int64_t iterPeriod = 1; ///< steps between calls (0: not by steps)
   double realPeriod = 0;       ///< wall-clock seconds between calls (0: not by time)
   double virtPeriod = 0;       ///< simulated seconds between calls (0: not by simulated time)
   bool initRun = false;
+  /// The callback is a script's Python code (a PyRunner): when it raises, the scene is as the
+  /// engines before it left it, and the step may go on (a coupling's C++ hook may stop halfway).
+  bool resumable = false;
   std::int64_t iterLast = 0; ///< iteration of the last call
   double virtLast = 0;       ///< simulated time of the last call
   std::int64_t nDone = 0;    ///< number of calls so far

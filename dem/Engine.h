@@ -24,6 +24,9 @@ public:
   virtual void run(Scene& scene) = 0;
   /// Yade's class name of the engine, for messages and for Python.
   [[nodiscard]] virtual std::string typeName() const = 0;
+  /// Whether an exception from run() leaves the scene as the engines before this one left it
+  /// (true for a Python callback), so that the step can go on with the next engine.
+  [[nodiscard]] virtual bool resumableAfterError() const { return false; }
 
   std::string label; ///< optional user label
   bool dead = false; ///< skipped when true

@@ -313,22 +313,58 @@ void Scene::removeContacts(const std::function<bool(const Contact&)>& doomed)
   contacts.index(bodies.size());
 }
 
-void Scene::runEngines()
+void Scene::runEngine(std::size_t k)
 {
-  for (const std::shared_ptr<Engine>& engine : engines)
+  Engine& engine = *engines[k];
+  if (engine.dead)
+    return;
+  try
   {
-    if (engine->dead)
-      continue;
     if (!timingEnabled)
     {
-      engine->run(*this);
-      continue;
+      engine.run(*this);
+      return;
     }
     const auto start = std::chrono::steady_clock::now();
-    engine->run(*this);
-    engine->execTime += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
-    ++engine->execCount;
+    engine.run(*this);
+    engine.execTime += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
+    ++engine.execCount;
   }
+  catch (const std::exception& e)
+  {
+    if (engine.resumableAfterError())
+      subStep = static_cast<int>(k) + 1; // the next step() runs the engines after it, then ends the step
+    else
+      failedStep_ = e.what();
+    throw;
+  }
+}
+
+void Scene::endStep()
+{
+  try
+  {
+    if (energy.enabled && maxEnergyGrowth > 0 && iter % energyGrowthCheckPeriod == 0)
+      checkEnergyGrowth(*this);
+  }
+  catch (const std::exception& e)
+  {
+    failedStep_ = e.what();
+    throw;
+  }
+  time += dt;
+  ++iter;
+}
+
+void Scene::setEngines(std::vector<std::shared_ptr<Engine>> list)
+{
+  if (subStep < 0)
+  {
+    engines = std::move(list);
+    nextEngines.reset(); // engines set during the last step are replaced too
+  }
+  else
+    nextEngines = std::move(list);
 }
 
 void Scene::step()
@@ -342,20 +378,59 @@ void Scene::advance()
   if (!failedStep_.empty())
     throw std::runtime_error("cannot continue: step " + std::to_string(iter) + " failed and left the scene half updated ("
                              + failedStep_ + "); load a checkpoint (O.load, O.loadTmp) to go on from a saved state");
-  try
+  if (stepping_) // an engine (a PyRunner's command) asked for a step inside this one
+    throw std::runtime_error("Called O.step() while simulation is running.");
+  struct Stepping
   {
-    if (!fused.run(*this))
-      runEngines();
-    if (energy.enabled && maxEnergyGrowth > 0 && iter % energyGrowthCheckPeriod == 0)
-      checkEnergyGrowth(*this);
-  }
-  catch (const std::exception& e)
+    bool& flag;
+    explicit Stepping(bool& f) : flag(f) { flag = true; }
+    ~Stepping() { flag = false; }
+    Stepping(const Stepping&) = delete;
+    Stepping& operator=(const Stepping&) = delete;
+  } stepping(stepping_);
+  // As Yade: engines set during a step take over when the next one starts.
+  if (nextEngines && (subStep < 0 || (subStep <= 0 && !subStepping)))
   {
-    failedStep_ = e.what();
-    throw;
+    engines = std::move(*nextEngines);
+    nextEngines.reset();
+    subStep = -1;
   }
-  time += dt;
-  ++iter;
+  const int n = static_cast<int>(engines.size());
+  if (!subStepping && subStep < 0)
+  {
+    subStep = 0;
+    bool fusedRan = false;
+    try
+    {
+      fusedRan = fused.run(*this);
+    }
+    catch (const std::exception& e)
+    {
+      failedStep_ = e.what();
+      throw;
+    }
+    if (!fusedRan)
+      for (int k = 0; k < n; ++k)
+        runEngine(static_cast<std::size_t>(k));
+    endStep();
+    subStep = -1;
+    return;
+  }
+  // Sub-steps: the one due, or with subStepping off all the rest of the step.
+  if (subStep < -1 || subStep > n)
+    subStep = -1;
+  const int last = subStepping ? subStep : n;
+  for (int k = subStep; k <= last; ++k)
+  {
+    if (k >= 0 && k < n)
+      runEngine(static_cast<std::size_t>(k));
+    else if (k == n)
+    {
+      endStep();
+      subStep = -2; // -1 with the increment below: between steps
+    }
+  }
+  ++subStep;
 }
 
 void Scene::run(std::int64_t steps, const std::function<void()>& poll)

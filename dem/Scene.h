@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <optional>
 #include <string>
 #include <memory>
 #include <string>
@@ -142,12 +143,32 @@ public:
   /// @return whether there was one
   bool eraseContact(BodyId id1, BodyId id2);
 
-  /// Run all engines once and advance the clock. If an engine throws, the step is left half
-  /// done (contact histories updated, some bodies moved), so the scene refuses further steps,
+  /// Run all engines once and advance the clock (with subStepping: one sub-step, see subStep).
+  /// If an engine throws, the step is left half done. After an engine that leaves the scene
+  /// whole (Engine::resumableAfterError: a PyRunner's Python error) the next step() or run()
+  /// finishes that step from the engine after it, as the sub-steps of Yade's loop. After any
+  /// other (contact histories updated, some bodies moved) the scene refuses further steps,
   /// naming the failure, until a checkpoint is loaded (which calls clearFailedStep()).
   void step();
-  /// Forget a failed step: the scene's state was replaced (a checkpoint was loaded).
-  void clearFailedStep() { failedStep_.clear(); }
+  /// Forget a failed or unfinished step: the scene's state was replaced (a checkpoint was loaded).
+  void clearFailedStep()
+  {
+    failedStep_.clear();
+    subStep = -1;
+  }
+
+  /// Yade's sub-stepping (O.subStepping, O.subStep): with subStepping each step() runs one
+  /// sub-step: -1 the step's start, then each engine, then (subStep == engines.size()) the end,
+  /// which advances the clock. subStep is the sub-step to run next, -1 between steps; a step
+  /// run whole has subStep 0 while its engines run. Turning subStepping off mid-step makes the
+  /// next step() finish that step.
+  int subStep = -1;
+  bool subStepping = false;
+  /// Engines set while a step runs (Yade's O._nextEngines): they replace `engines` when the
+  /// next step starts, so that the running list is never changed under its loop.
+  std::optional<std::vector<std::shared_ptr<Engine>>> nextEngines;
+  /// Set the engines: at once between steps, else (subStep >= 0) as nextEngines.
+  void setEngines(std::vector<std::shared_ptr<Engine>> list);
   /// Run `steps` steps (all steps until pause() if negative), stopping early after a step in
   /// which pause() was called. `poll` (optional) runs every 64 steps, e.g. to notice Ctrl-C.
   void run(std::int64_t steps, const std::function<void()>& poll = {});
@@ -168,11 +189,15 @@ public:
 
 private:
   bool pauseRequested_ = false;
+  bool stepping_ = false; ///< a step is running (its engines may not start another)
   /// step() without forgetting what the fused step knows of the previous one (run()'s steps,
   /// between which nothing else touches the scene).
   void advance();
-  /// The engines one by one (timed when timingEnabled).
-  void runEngines();
+  /// Engine k (skipped if dead; timed when timingEnabled). If it throws, the step is marked
+  /// for finishing from engine k + 1 or as failed (see step()).
+  void runEngine(std::size_t k);
+  /// The rest of a step: the energy check, then the clock.
+  void endStep();
   std::string failedStep_; ///< message of the step that threw (transient), empty if none
   /// @throws std::invalid_argument (starting with `which`) unless `id` can be a clump member
   void checkClumpable(const std::string& which, BodyId id) const;

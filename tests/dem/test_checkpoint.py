@@ -79,7 +79,8 @@ def assert_identical(a: dict, b: dict):
 
 def test_layout_is_covered():
     """Every field of these structures is written by dem/Checkpoint.cpp (Scene: all but its
-    engines and the transient pauseRequested_, failedStep_ and fused: the fused step's
+    engines and the transient pauseRequested_, failedStep_, the sub-stepping state (subStep,
+    subStepping, nextEngines, stepping_: how the steps are run, reset by loading) and fused: the fused step's
     per-thread ranges, its step count, its skin check made ahead, forgotten at every run(), and
     its runs of boundary contacts, found again for every new contact list; and the contact list's
     version, renewed by the index built on loading), which change speed and diagnostics only).
@@ -90,7 +91,7 @@ def test_layout_is_covered():
     # Ig2_PP_PP_ScGeom's settings, restored with the engines) and ContactExtra::contactArea
     # (recomputed by the geometry every step before the law reads it).
     assert _dem.layout_sizes() == {"Contact": 256, "Material": 216, "Bodies": 696, "WallShape": 8,
-                                   "FacetShape": 96, "Cell": 296, "Scene": 2584, "ContactExtra": 288,
+                                   "FacetShape": 96, "Cell": 296, "Scene": 2672, "ContactExtra": 288,
                                    "EnergyTracker": 144}
 
 

@@ -128,6 +128,7 @@ class Scene(CheckpointMethods):
         self.stopAtIter = 0                     # a run stops when the step count reaches it (0: never)
         self.stopAtTime = 0.0                   # ... or when the time reaches it (0: never)
         self._engines: list[Engine] = []
+        self._pending: list[Engine] | None = None   # engines set during a step (see engines)
         self._views: list[weakref.ref] = []  # arrays handed out by the exchange interface
         self._openRunPending = False         # O.run() without count and without wait (see run)
         self._created = time.monotonic()
@@ -248,7 +249,10 @@ class Scene(CheckpointMethods):
 
     @property
     def engines(self) -> list[Engine]:
-        return list(self._engines)
+        """The engines; set during a step (from a PyRunner), the new list is what this gives at
+        once, and it runs from the next step on (Yade's O._nextEngines)."""
+        running = self._running()
+        return list(running if self._pending is None else self._pending)
 
     @engines.setter
     def engines(self, engines: Sequence[Engine]):
@@ -256,20 +260,57 @@ class Scene(CheckpointMethods):
         for e in engines:
             if not isinstance(e, Engine):
                 raise TypeError(f"O.engines takes engines, got {e!r}")
-        self._cpp.engines = [e._cpp for e in engines]
-        self._engines = engines
+        self._cpp.engines = [e._cpp for e in engines]     # the C++ scene defers them inside a step
+        if self._cpp.subStep >= 0:
+            self._pending = engines
+        else:
+            self._engines, self._pending = engines, None
         _applyGeometrySettings(self._cpp, engines)   # the geometry functors' settings of the scene
         # As in Yade, a labelled engine, functor or sub-engine becomes a name of Python's
         # builtins, which the script and every module see (and which stays after O.reset()).
         for labelled in _labelled(engines):
             setattr(builtins, labelled.label, labelled)
 
+    def _running(self) -> list[Engine]:
+        """The engines the current step runs, once the C++ scene took those set during a step."""
+        if self._pending is not None and self._cpp.nextEngines is None:
+            self._engines, self._pending = self._pending, None
+        return self._engines
+
+    @property
+    def _currEngines(self) -> list[Engine]:
+        """The engines the current step runs (Yade's O._currEngines)."""
+        return list(self._running())
+
+    @property
+    def _nextEngines(self) -> list[Engine]:
+        """Engines set during a step, waiting for the next one (Yade's O._nextEngines); empty if none."""
+        self._running()
+        return list(self._pending or [])
+
+    @property
+    def subStep(self) -> int:
+        """Yade's O.subStep: -1 between steps, 0 while a whole step runs; with ``subStepping``
+        the sub-step the next O.step() runs (-1 the step's start, k engine k, len(engines) its end)."""
+        return self._cpp.subStep
+
+    @property
+    def subStepping(self) -> bool:
+        """Yade's O.subStepping: each O.step() runs one sub-step (see subStep); turned off
+        mid-step, the next O.step() finishes the step."""
+        return self._cpp.subStepping
+
+    @subStepping.setter
+    def subStepping(self, value: bool):
+        self._cpp.subStepping = bool(value)
+
     def typedEngine(self, name: str) -> Engine:
         """The first engine of the class ``name`` in O.engines (Yade's utils.typedEngine)."""
-        for e in self._engines:
+        engines = self.engines
+        for e in engines:
             if type(e).__name__ == name:
                 return e
-        raise ValueError(f"typedEngine: no {name} in O.engines ({', '.join(type(e).__name__ for e in self._engines)})")
+        raise ValueError(f"typedEngine: no {name} in O.engines ({', '.join(type(e).__name__ for e in engines)})")
 
     def step(self):
         """Run one time step."""
@@ -314,7 +355,7 @@ class Scene(CheckpointMethods):
         stopIter = self.stopAtIter if self.stopAtIter > self.iter else None
         stopTime = self.stopAtTime if self.stopAtTime > self.time else None
         if nSteps < 0 and stopIter is None and stopTime is None and \
-                not any(type(e).__name__ == "PyRunner" or getattr(e, "doneHook", None) for e in self._engines):
+                not any(type(e).__name__ == "PyRunner" or getattr(e, "doneHook", None) for e in self.engines):
             raise ValueError("O.run() without a step count runs until O.pause(), but no PyRunner or doneHook could "
                              "call it (or set O.stopAtIter / O.stopAtTime)")
         remaining = nSteps
@@ -391,11 +432,11 @@ class Scene(CheckpointMethods):
         if where not in anchors:
             raise ValueError(f"add_hook: where must be one of {sorted(anchors)}, got {where!r}")
         anchor, offset = anchors[where]
-        positions = [k for k, e in enumerate(self._engines) if isinstance(e, anchor)]
+        engines = self.engines
+        positions = [k for k, e in enumerate(engines) if isinstance(e, anchor)]
         if not positions:
             raise ValueError(f"add_hook: the engine list has no {anchor.__name__}")
         hook = PyRunner(function, iterPeriod=period, initRun=True)
-        engines = list(self._engines)
         engines.insert(positions[0] + offset, hook)
         self.engines = engines
         return hook
