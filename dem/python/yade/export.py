@@ -2,6 +2,7 @@
 
 from talus.dem.export import *  # noqa: F401,F403
 from talus.dem.clumps import exportTextClumps as textClumps  # noqa: F401
+from talus.dem.text_export import text, text2vtk, text2vtkSection, textExt  # noqa: F401
 
 from yade._scope import module_getattr  # noqa: E402
 

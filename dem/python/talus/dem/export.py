@@ -10,6 +10,8 @@ Files (arrays in brackets; vectors have 3 components):
 - facets: one triangle per live facet [id, materialId, normal, force, velocity].
 - walls: one square of side ``wallSize`` per wall, centred on the spheres [id, materialId, axis,
   sense, force].
+- periodic cell (Yade's ``pericell``): one hexahedron, the cell's corners ``hSize @ (i, j, k)`` in
+  Yade's order (top face z=1 first).
 - contacts (Yade's ``intrs``): one line per real contact, between the two sphere centres (the
   periodic image of the second sphere when across the cell) or, for walls and facets, from the
   contact point to the sphere centre [forceN (normal force magnitude), normalForce, shearForce,
@@ -42,13 +44,16 @@ if TYPE_CHECKING:
     from talus.dem.scene import Scene
 
 __all__ = ["VTKWarning", "write_spheres", "write_facets", "write_walls", "write_boxes", "write_contacts", "PvdCollection",
-           "VTKRecorder", "VTKExporter"]
+           "write_periodic_cell", "VTKRecorder", "VTKExporter"]
 
 # VTK cell types.
 VTK_VERTEX, VTK_LINE, VTK_TRIANGLE, VTK_QUAD, VTK_HEXAHEDRON = 1, 3, 5, 9, 12
 # Corners of a box in VTK's hexahedron order, as signs of the extents.
 _HEX_CORNERS = np.array([(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
                          (-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)], dtype=float)
+# Corners of the periodic cell as fractions of its edges, in the order Yade's files list them.
+_CELL_CORNERS = np.array([(0, 0, 1), (0, 1, 1), (1, 1, 1), (1, 0, 1),
+                          (0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)], dtype=float)
 _VTK_TYPES = {np.dtype(np.float64): "Float64", np.dtype(np.float32): "Float32", np.dtype(np.int64): "Int64",
               np.dtype(np.int32): "Int32", np.dtype(np.uint8): "UInt8"}
 
@@ -220,6 +225,15 @@ def write_walls(scene: "Scene", path: str, size: float | None = None) -> int:
     return len(ids)
 
 
+def write_periodic_cell(scene: "Scene", path: str) -> int:
+    """Write the periodic cell of ``scene`` to ``path`` as one hexahedron; returns 1."""
+    if not scene.periodic:
+        raise ValueError("write_periodic_cell: the scene is not periodic (O.periodic is False)")
+    corners = _CELL_CORNERS @ np.asarray(scene.cell.hSize, dtype=float).T
+    _atomic_write(path, vtu_bytes(corners, *_cells(1, 8, VTK_HEXAHEDRON), time=scene._cpp.time))
+    return 1
+
+
 def write_contacts(scene: "Scene", path: str, real_only: bool = True) -> int:
     """Write the contact-force network of ``scene`` to ``path``: one line per contact (only the
     real ones unless ``real_only`` is false); returns the number of lines."""
@@ -262,9 +276,9 @@ class PvdCollection:
 # Yade's VTKRecorder engine and export.VTKExporter.
 
 _WRITERS = {"spheres": write_spheres, "facets": write_facets, "walls": write_walls, "boxes": write_boxes,
-            "intrs": write_contacts}
+            "intrs": write_contacts, "pericell": write_periodic_cell}
 _RECORDERS = {"spheres": ("spheres",), "facets": ("facets",), "walls": ("walls",), "boxes": ("walls", "boxes"),
-              "intr": ("intrs",), "all": ("spheres", "facets", "walls", "boxes", "intrs")}
+              "intr": ("intrs",), "pericell": ("pericell",), "all": ("spheres", "facets", "walls", "boxes", "intrs")}
 # Yade recorders whose data the sphere file always holds.
 _INCLUDED = {"velocity", "id", "ids", "materialId", "mass", "force"}
 
@@ -275,7 +289,9 @@ class VTKRecorder(PyRunner):
     ``fileName`` is a prefix: files are ``{fileName}spheres.{iter}.vtu``, ``...facets...``,
     ``...walls...`` and ``...intrs...`` (the contact network), each series listed in
     ``{fileName}spheres.pvd`` etc. for ParaView. ``recorders``: any of ``spheres``, ``facets``,
-    ``walls``, ``boxes`` (Box bodies as hexahedra, and walls as Yade's ``boxes`` does), ``intr``, or ``all``; Yade's ``velocity``, ``ids``,
+    ``walls``, ``boxes`` (Box bodies as hexahedra, and walls as Yade's ``boxes`` does), ``intr``,
+    ``pericell`` (the periodic cell; nothing in a scene that is not periodic), or ``all`` (all but
+    ``pericell``, as Yade's); Yade's ``velocity``, ``ids``,
     ``materialId``, ``mass``, ``force`` are accepted (the sphere file always has them).
     ``wallSize``: side of the squares drawn for walls (default: from the spheres' extent).
     Folders in ``fileName`` are created. Usable in ``O.engines`` and saved by ``O.save``.
@@ -305,14 +321,27 @@ class VTKRecorder(PyRunner):
         return self._series[kind]
 
     def _record(self):
-        scene = owner_scene(self)
+        scene = self._scene()
         for kind in self._kinds:
+            if kind == "pericell" and not scene.periodic:   # as Yade: no cell, no file
+                continue
             path = f"{self.fileName}{kind}.{scene.iter}.vtu"
             if kind == "walls":
                 write_walls(scene, path, self.wallSize)
             else:
                 _WRITERS[kind](scene, path)
             self._collection(kind).add(scene.time, path)
+
+    def _scene(self) -> "Scene":
+        """The scene whose engine list holds this recorder; O for one called by hand outside any
+        engine list (``VTKRecorder(...)()``, as in Yade)."""
+        from talus.dem import O
+        if any(e is self for e in O.engines):
+            return O
+        try:
+            return owner_scene(self)
+        except RuntimeError:
+            return O
 
     # Saved with the engine by O.save, so that the series go on after O.load.
     def _io_state(self):
@@ -350,18 +379,51 @@ class VTKExporter:
 
     def exportSpheres(self, what: dict | None = None, numLabel: int | None = None) -> str:
         scene = self.scene
-        extra = {}
-        if what:
-            bodies = [scene.bodies[int(i)] for i in scene.sphere_ids()]
-            for name, expression in what.items():
-                extra[name] = np.array([eval(expression, {"np": np}, {"b": b}) for b in bodies], dtype=float)
         path = self._path("spheres", numLabel)
-        write_spheres(scene, path, extra)
+        write_spheres(scene, path, _evaluate(what, [scene.bodies[int(i)] for i in scene.sphere_ids()]))
         return path
 
     def exportFacets(self, numLabel: int | None = None) -> str:
         path = self._path("facets", numLabel)
         write_facets(self.scene, path)
+        return path
+
+    def exportFacetsAsMesh(self, ids="all", connectivityTable=None, what: dict | None = None,
+                           numLabel: int | None = None) -> str:
+        """The facets (all, or those of ``ids``) as one mesh whose triangles share their nodes:
+        ``connectivityTable`` gives the three node numbers of each facet, in the order of the
+        facets (as ``ymport.unv(..., returnConnectivityTable=True)`` returns it). Cell arrays:
+        ``id`` and the expressions of ``what`` (see :meth:`exportSpheres`)."""
+        scene = self.scene
+        facets = _dem.facet_arrays(scene._cpp)
+        chosen = _chosen_ids(facets["id"], ids, "Facet")
+        if connectivityTable is None:
+            raise ValueError("exportFacetsAsMesh: connectivityTable is required (the node numbers of each facet)")
+        table = np.asarray(connectivityTable, dtype=np.int64).reshape(-1, 3)
+        if len(table) != len(chosen):
+            raise ValueError(f"exportFacetsAsMesh: connectivityTable has {len(table)} rows for {len(chosen)} facets")
+        if len(table) and table.min() < 0:
+            raise ValueError("exportFacetsAsMesh: connectivityTable has a negative node number")
+        # Each node takes the position of the last facet naming it, as in Yade.
+        nodes = np.zeros((int(table.max()) + 1 if len(table) else 0, 3))
+        row = {int(i): k for k, i in enumerate(facets["id"])}
+        for triangle, i in zip(table, chosen):
+            nodes[triangle] = facets["vertices"][row[int(i)]]
+        data = {"id": chosen.astype(np.int32), **_evaluate(what, [scene.bodies[int(i)] for i in chosen])}
+        path = self._path("facets", numLabel)
+        _atomic_write(path, vtu_bytes(nodes, table.reshape(-1), 3 * np.arange(1, len(table) + 1),
+                                      np.full(len(table), VTK_TRIANGLE, dtype=np.uint8), cell_data=data,
+                                      time=scene._cpp.time))
+        return path
+
+    def exportPeriodicCell(self, numLabel: int | None = None) -> str | None:
+        """The periodic cell as one hexahedron (``{baseName}-periCell-{n}.vtu``); a scene that
+        is not periodic gives a warning and no file, as in Yade."""
+        if not self.scene.periodic:
+            warnings.warn("exportPeriodicCell: the scene is not periodic, nothing exported", VTKWarning, stacklevel=2)
+            return None
+        path = self._path("periCell", numLabel)
+        write_periodic_cell(self.scene, path)
         return path
 
     def exportWalls(self, size: float | None = None, numLabel: int | None = None) -> str:
@@ -378,3 +440,22 @@ class VTKExporter:
         path = self._path("intrs", numLabel)
         write_contacts(self.scene, path)
         return path
+
+
+def _chosen_ids(available: np.ndarray, ids, kind: str) -> np.ndarray:
+    """The ids of ``ids`` ("all": every one of ``available``), each checked to be a live ``kind``."""
+    if isinstance(ids, str) and ids.lower() == "all":
+        return np.asarray(available, dtype=np.int64)
+    chosen = np.asarray(list(ids), dtype=np.int64)
+    missing = np.setdiff1d(chosen, available)
+    if len(missing):
+        raise ValueError(f"body {int(missing[0])} is not a live {kind}")
+    return chosen
+
+
+def _evaluate(what: dict | None, bodies: list) -> dict:
+    """Yade's ``what`` of the exporter: name -> expression of ``b`` (the Body), evaluated per body
+    into a point or cell array (scalars, vectors or 3x3 matrices)."""
+    return {name: np.array([np.asarray(eval(expression, {"np": np}, {"b": b}), dtype=float) for b in bodies],
+                           dtype=float)
+            for name, expression in (what or {}).items()}
