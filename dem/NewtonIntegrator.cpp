@@ -56,7 +56,8 @@ void requirePositive(const Scene& scene, std::size_t i, const char* what, double
   const Material& m = scene.materials[static_cast<std::size_t>(scene.bodies.material[i])];
   throw std::invalid_argument("body " + std::to_string(i) + " is dynamic but its " + what + " is " + std::to_string(value)
                               + " (material '" + m.label + "', density " + std::to_string(m.density)
-                              + "): give the material a positive density, or make the body non-dynamic "
+                              + "): give the material a positive density (or the body its own: b.state.mass, "
+                                "b.state.inertia), or make the body non-dynamic "
                                 "(b.dynamic = False) or block its free DOFs (b.state.blockedDOFs)");
 }
 } // namespace

@@ -10,7 +10,8 @@ import numpy as np
 from talus import _dem
 from talus.dem.linalg import Quaternion, Vector3
 from talus.dem.appearance import DEFAULT_COLOR, check_color
-from talus.dem.shapes import Shape, shape_of
+from talus.dem.serializable import Serializable
+from talus.dem.shapes import Box, Shape, Sphere, Wall, shape_of, shape_of_spec
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -21,10 +22,12 @@ _DOF_LETTERS = "xyzXYZ"
 @dataclass(eq=False)
 class BodySpec:
     """A body made by ``sphere``, ``wall``, ``facet``, ``box`` (what Yade's ``utils.sphere``
-    returns). As in Yade, a script may set its ``state``, ``shape.color`` or ``dynamic`` before
-    appending it to ``O.bodies``; once appended it stands for the body in the scene (``id``,
-    ``state``, ``shape`` read and write the scene)."""
-    kind: str
+    returns), or by ``Body()`` (Yade's: no shape yet, mass and inertia 0; the script gives it
+    ``b.shape = Sphere(radius=r)``, ``b.state.pos``, ``b.state.mass``, ``b.mat``). As in Yade, a
+    script may set its ``state``, ``shape.color`` or ``dynamic`` before appending it to
+    ``O.bodies``; once appended it stands for the body in the scene (``id``, ``state``,
+    ``shape`` read and write the scene)."""
+    kind: str | None      # None: made by Body(), no shape yet
     center: tuple
     radius: float = 0.0
     axis: int = 2
@@ -41,6 +44,21 @@ class BodySpec:
     id: int = -1          # the body's id once appended
     _scene: object = field(default=None, repr=False)
 
+    # What Body() accepts as attributes, as Yade's Body(shape=..., material=...).
+    _YADE_ATTRIBUTES = ("shape", "material", "mat", "dynamic")
+
+    @classmethod
+    def blank(cls, **attributes) -> "BodySpec":
+        """Yade's ``Body()``: no shape, mass and inertia 0 (as Yade, a script sets them: a
+        dynamic body without mass is refused at the step), the last material unless given."""
+        spec = cls(None, (0.0, 0.0, 0.0), material=None, initial={"mass": 0.0, "inertia": (0.0, 0.0, 0.0)})
+        for name, value in attributes.items():
+            if name not in cls._YADE_ATTRIBUTES:
+                raise AttributeError(f"Body has no attribute {name!r} that Talus sets before the body is appended "
+                                     f"(it takes {', '.join(cls._YADE_ATTRIBUTES)}; set state.* on b.state)")
+            setattr(spec, name, value)
+        return spec
+
     def _body(self) -> "Body | None":
         return Body(self._scene, self.id) if self._scene is not None else None
 
@@ -49,10 +67,35 @@ class BodySpec:
         body = self._body()
         return body.state if body else _DetachedState(self)
 
+    @state.setter
+    def state(self, value):
+        raise AttributeError("b.state = ... is not supported in Talus (a body's state lives in its scene's arrays): "
+                             "set its attributes instead (b.state.pos = ..., b.state.mass = ...)")
+
     @property
     def shape(self):
         body = self._body()
-        return body.shape if body else _DetachedShape(self)
+        return body.shape if body else shape_of_spec(self)
+
+    @shape.setter
+    def shape(self, shape: Shape):
+        """Yade's ``b.shape = Sphere(radius=r)`` for a body of no scene yet (a Sphere, Box or
+        Wall made by the script); ``shape`` is a view of this body from then on."""
+        if self._scene is not None:
+            raise AttributeError(f"body {self.id} is in a scene: its shape cannot be replaced in Talus "
+                                 "(erase it and append another)")
+        if not isinstance(shape, Shape) or shape._spec is None or shape._spec._scene is not None:
+            raise TypeError(f"b.shape takes a shape made by the script (Sphere(radius=r), Box(extents=...), "
+                            f"Wall(axis=..)), got {shape!r}")
+        if type(shape) not in (Sphere, Box, Wall):
+            raise ValueError(f"b.shape = {type(shape).__name__}(): Talus makes a body of that shape only with "
+                             "utils.facet, utils.sphere ... (Body() takes a Sphere, Box or Wall)")
+        own = shape._spec
+        self.kind, self.radius, self.extents, self.axis, self.sense = own.kind, own.radius, own.extents, own.axis, \
+            own.sense
+        self.color = own.color
+        self.initial.update((k, own.initial[k]) for k in ("wire", "highlight") if k in own.initial)
+        shape._spec = self
 
     @property
     def dynamic(self) -> bool:
@@ -75,13 +118,26 @@ class BodySpec:
         if body:
             return body.material
         from talus.dem.materials import Material
+        if self.material is None:      # Body() before a material is given (the last one when appended)
+            return None
         if isinstance(self.material, Material):
             return self.material
         from talus.dem import O
         return O.materials[O.materials.resolve(self.material)]
 
+    @mat.setter
+    def mat(self, material):
+        if self._scene is not None:
+            raise AttributeError(f"body {self.id} is in a scene: its material cannot be replaced in Talus")
+        self.material = material
+
+    # A body not yet appended is alone and bounded, as Yade's.
+    _UNAPPENDED = {"isClump": False, "isClumpMember": False, "isStandalone": True, "clumpId": -1, "bounded": True}
+
     def __getattr__(self, name):
         # Any other Body attribute (isClump, clumpId, ...) once appended.
+        if self._scene is None and name in self._UNAPPENDED:
+            return self._UNAPPENDED[name]
         if name.startswith("_") or self._scene is None:
             raise AttributeError(f"{type(self).__name__} has no attribute {name!r}"
                                  + ("" if self._scene is not None else " (before it is appended to O.bodies)"))
@@ -93,7 +149,7 @@ class _DetachedState:
     is kept and applied when the body is appended."""
 
     __slots__ = ("_spec",)
-    _KEPT = ("vel", "angVel", "mass", "inertia", "blockedDOFs")
+    _KEPT = ("vel", "angVel", "mass", "inertia", "blockedDOFs", "refPos", "refOri")
 
     def __init__(self, spec: BodySpec):
         object.__setattr__(self, "_spec", spec)
@@ -120,6 +176,8 @@ class _DetachedState:
             return Vector3(self._spec.initial.get(name, (0.0, 0.0, 0.0)))
         if name == "blockedDOFs":
             return self._spec.initial.get(name, "xyzXYZ" if self._spec.fixed else "")
+        if name in ("refPos", "refOri") and name not in self._spec.initial:   # as Yade: where it is made
+            return self.pos if name == "refPos" else self.ori
         if name in self._spec.initial:
             return self._spec.initial[name]
         raise AttributeError(f"state.{name} of a body not yet appended: it is known once the body is in O.bodies")
@@ -133,41 +191,15 @@ class _DetachedState:
             raise AttributeError(f"State has no attribute {name!r}")
 
 
-class _DetachedShape:
-    """``shape`` of a body not yet appended: its look (colour, highlight, wire) and radius."""
-
-    __slots__ = ("_spec",)
-
-    def __init__(self, spec: BodySpec):
-        object.__setattr__(self, "_spec", spec)
-
-    @property
-    def radius(self) -> float:
-        return self._spec.radius
-
-    @property
-    def color(self) -> Vector3:
-        return Vector3(self._spec.color)
-
-    @color.setter
-    def color(self, value):
-        self._spec.color = check_color(value)
-
-    def __getattr__(self, name):
-        if name in ("highlight", "wire"):
-            return bool(self._spec.initial.get(name, False))
-        raise AttributeError(f"{self._spec.kind} has no attribute {name!r} before it is appended")
-
-    def __setattr__(self, name, value):
-        if name == "color":
-            object.__setattr__(self, name, value)      # the property
-        elif name in ("highlight", "wire"):
-            self._spec.initial[name] = bool(value)
-        else:
-            raise AttributeError(f"{self._spec.kind}.{name} cannot be set here")
-
-    def __str__(self):
-        return self._spec.kind
+def _yade_material(material):
+    """``material`` as Yade's utils take it when they make a body: the default (-1) while O has
+    no material yet makes Yade's default FrictMat there and then (len(O.materials) is 1 after
+    the first utils.sphere); it is resolved when the body is appended."""
+    if isinstance(material, int) and material < 0:
+        from talus.dem import O
+        if len(O.materials) == 0:
+            O.materials.resolve(-1)
+    return material
 
 
 def _look(color, wire: bool, highlight: bool) -> dict:
@@ -180,7 +212,8 @@ def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = Fa
            highlight=False, **_ignored) -> BodySpec:
     """A sphere of the given centre and radius; ``material`` is an index, a label or a
     Material (default: the last material added, or Yade's default FrictMat)."""
-    return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=material, fixed=fixed,
+    return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=_yade_material(material),
+                    fixed=fixed,
                     **_look(color, wire, highlight))
 
 
@@ -195,7 +228,7 @@ def wall(position, axis: int, sense: int = 0, material=-1, color=None, **_ignore
         coord = float(tuple(position)[axis])
     center = [0.0, 0.0, 0.0]
     center[axis] = coord
-    return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=material, fixed=True,
+    return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=_yade_material(material), fixed=True,
                     **_look(color, False, False))
 
 
@@ -220,7 +253,8 @@ def facet(vertices: Sequence[Sequence[float]], material=-1, color=None, wire=Tru
     verts = tuple(tuple(float(x) for x in v) for v in vertices)
     if len(verts) != 3 or any(len(v) != 3 for v in verts):
         raise ValueError(f"facet: needs three 3D vertices, got {vertices!r}")
-    return BodySpec("Facet", verts[0], material=material, fixed=True, vertices=verts, **_look(color, wire, highlight))
+    return BodySpec("Facet", verts[0], material=_yade_material(material), fixed=True, vertices=verts,
+                    **_look(color, wire, highlight))
 
 
 def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0, 0.0, 0.0), fixed: bool = False,
@@ -241,7 +275,7 @@ def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0
         raise ValueError(f"box: orientation must be a quaternion (w, x, y, z), got {orientation!r}")
     if dynamic is not None:
         fixed = not dynamic
-    return BodySpec("Box", c, material=material, fixed=fixed, extents=e, orientation=q,
+    return BodySpec("Box", c, material=_yade_material(material), fixed=fixed, extents=e, orientation=q,
                     **_look(color, wire, highlight))
 
 
@@ -252,12 +286,14 @@ def _dofs_to_mask(letters: str) -> int:
     return sum(1 << _DOF_LETTERS.index(c) for c in set(letters))
 
 
-class State:
+class State(Serializable):
     """Position, velocity and other state of one body, read and written through the arrays."""
 
     # No other attributes: a misspelt one (or a Yade attribute Talus lacks) is an error, not a
     # silently ignored assignment.
     __slots__ = ("_scene", "_id")
+    _attributes = ("se3", "vel", "mass", "angVel", "angMom", "inertia", "refPos", "refOri", "blockedDOFs",
+                   "isDamped", "densityScaling")
 
     def __init__(self, scene: "Scene", id: int):
         object.__setattr__(self, "_scene", scene)
@@ -283,6 +319,7 @@ class State:
                     doc="mass (kg); settable, as in Yade")
     # The C++ core hands (w, x, y, z).
     ori = property(lambda s: Quaternion(*s._scene._cpp.ori(s._id)), doc="orientation (``ori * v`` rotates v)")
+    se3 = property(lambda s: (s.pos, s.ori), doc="(pos, ori), as Yade's")
 
     @property
     def angVel(self):
@@ -301,6 +338,34 @@ class State:
         """Angular momentum (world frame) integrated for aspherical bodies (clumps, boxes)."""
         return Vector3(_dem.ang_mom(self._scene._cpp, self._id))
 
+    # Yade's reference configuration (talus.dem.reference): data the physics never reads.
+    @property
+    def refPos(self) -> Vector3:
+        """Reference position: where the body was made (a clump: the origin) unless set."""
+        return Vector3(self._reference().pos[self._id])
+
+    @refPos.setter
+    def refPos(self, value):
+        value = np.asarray(value, dtype=float)
+        if value.shape != (3,) or not np.all(np.isfinite(value)):
+            raise ValueError(f"body {self._id}: refPos must be 3 finite numbers, got {value}")
+        self._reference().pos[self._id] = value
+
+    @property
+    def refOri(self) -> Quaternion:
+        """Reference orientation: the one the body was made with (a clump: none) unless set."""
+        return Quaternion(*self._reference().ori[self._id])
+
+    @refOri.setter
+    def refOri(self, value):
+        q = value if isinstance(value, Quaternion) else Quaternion(*value)
+        self._reference().ori[self._id] = (q.w, q.x, q.y, q.z)
+
+    def _reference(self):
+        states = self._scene._reference
+        states.ensure(self._scene._cpp.bodyCount())
+        return states
+
     @property
     def blockedDOFs(self) -> str:
         mask = int(self._row("blockedDofs"))
@@ -315,6 +380,10 @@ class Body:
     """One body of a scene (Yade's Body): ``id``, ``state``, ``shape``, ``material``, ``dynamic``."""
 
     __slots__ = ("_scene", "id", "state")   # unknown attributes are errors (see State)
+
+    def __new__(cls, *view, **attributes):
+        # Body(scene, id) is a view; Yade's Body(**attributes) a body of no scene yet.
+        return super().__new__(cls) if view else BodySpec.blank(**attributes)
 
     def __init__(self, scene: "Scene", id: int):
         scene._cpp.checkBody(id)
@@ -357,6 +426,9 @@ class Body:
 
     @property
     def material(self):
+        """The body's material; None for a clump (Yade's: its members have theirs)."""
+        if self.isClump:
+            return None
         return self._scene.materials[int(self._scene._cpp.materialIds()[self.id])]
 
     mat = material   # Yade's short name
@@ -395,8 +467,9 @@ class BodyContainer:
             raise ValueError(f"this body is already body {spec.id} of a scene; make another one to append")
         scene = self._scene
         scene._warn_if_views_move()
-        id = self._create(spec, scene.materials.resolve(spec.material))
+        id = self._create(spec, scene.materials.resolve(-1 if spec.material is None else spec.material))
         state = scene.bodies[id].state
+        state.refPos, state.refOri = state.pos, state.ori     # Yade's reference: as made
         for name, value in spec.initial.items():
             if name in ("highlight", "wire"):
                 continue
@@ -430,7 +503,10 @@ class BodyContainer:
             return particles._add(scene, spec, material)
         if spec.kind == "Facet":
             return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material)
-        return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
+        if spec.kind == "Wall":
+            return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
+        raise ValueError(f"O.bodies.append: a body without a shape Talus can add ({spec.kind or 'none'}): give it "
+                         "one (b.shape = Sphere(radius=r)), or make it with utils.sphere, facet, box, wall")
 
     def appendClumped(self, specs: Iterable[BodySpec], discretization: int = 0) -> tuple[int, list[int]]:
         """Add bodies (spheres, facets, boxes) and make them one clump (Yade's appendClumped);

@@ -64,11 +64,16 @@ def _vector(value):
 
 
 class Interaction:
-    """One pair: ``id1``, ``id2``, ``isReal``, ``geom``, ``phys``, ``cellDist``."""
+    """One pair: ``id1``, ``id2``, ``isReal``, ``geom``, ``phys``, ``cellDist``. ``Interaction()``
+    is Yade's blank one (ids 0, not real, no geometry or physics)."""
 
     __slots__ = ("id1", "id2", "isReal", "cellDist", "geom", "phys")
 
-    def __init__(self, values: dict):
+    def __init__(self, values: dict | None = None):
+        if values is None:
+            self.id1 = self.id2 = 0
+            self.isReal, self.cellDist, self.geom, self.phys = False, (0, 0, 0), None, None
+            return
         for name in ("normal", "contactPoint", "shearInc", "normalForce", "shearForce"):
             values[name] = _vector(values[name])
         self.id1, self.id2 = int(values["id1"]), int(values["id2"])
