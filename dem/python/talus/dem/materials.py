@@ -3,14 +3,22 @@
 from __future__ import annotations
 
 from talus import _dem
+from talus.dem.serializable import Serializable
+
+# Yade's ElastMat attributes (and their defaults), which FrictMat, ViscElMat and CohFrictMat have.
+_ELASTIC = ("young", "poisson")
+_FRICTIONAL = ("frictionAngle", *_ELASTIC)
 
 
-class Material:
+class Material(Serializable):
     """Base of the material classes: a thin typed wrapper of the C++ material record."""
 
     _kind = _dem.MaterialKind.Frict
+    _attributes = ("id", "label", "density")
 
     def __init__(self, **params):
+        params.setdefault("young", 1e9)      # Yade's ElastMat defaults
+        params.setdefault("poisson", 0.25)
         self._scene = None
         self._cpp = _dem.Material()
         self._cpp.kind = self._kind
@@ -37,6 +45,13 @@ class Material:
                 setattr(self._cpp, name, old)
                 raise
 
+    @property
+    def id(self) -> int:
+        """Index in the scene's ``O.materials`` (Yade's), -1 before it is appended."""
+        if self._scene is None:
+            return -1
+        return next(i for i, m in enumerate(self._scene.materials) if m is self)
+
     def _bind(self, scene, cpp):
         """Edit the scene's copy of this material from now on."""
         self._scene = scene
@@ -48,9 +63,10 @@ class Material:
 
 class FrictMat(Material):
     """Elastic-frictional material: ``young`` (Pa), ``poisson`` (shear/normal stiffness ratio),
-    ``frictionAngle`` (radians), ``density``; defaults 1e7, 0.3, 0.5, 1000 as in Yade."""
+    ``frictionAngle`` (radians), ``density``; defaults 1e9, 0.25, 0.5, 1000 as in Yade."""
 
     _kind = _dem.MaterialKind.Frict
+    _attributes = _FRICTIONAL
 
 
 class ElastMat(Material):
@@ -59,6 +75,7 @@ class ElastMat(Material):
     no FrictPhys functor for it, Talus's linear law treats it as frictionless."""
 
     _kind = _dem.MaterialKind.Frict
+    _attributes = _ELASTIC
 
     def __init__(self, **params):
         if "frictionAngle" in params:
@@ -78,11 +95,8 @@ class ViscElMat(Material):
     against FrictMat bodies and in the time-step estimate."""
 
     _kind = _dem.MaterialKind.ViscEl
-
-    def __init__(self, **params):
-        params.setdefault("young", 1e9)
-        params.setdefault("poisson", 0.25)
-        super().__init__(**params)
+    _attributes = ("tc", "en", "et", "kn", "cn", "ks", "cs", "mR", "lubrication", "viscoDyn", "roughnessScale",
+                   "mRtype", *_FRICTIONAL)
 
 
 class CohFrictMat(Material):
@@ -94,6 +108,8 @@ class CohFrictMat(Material):
     Defaults are Yade's."""
 
     _kind = _dem.MaterialKind.CohFrict
+    _attributes = ("isCohesive", "alphaKr", "alphaKtw", "etaRoll", "etaTwist", "normalCohesion", "shearCohesion",
+                   "fragile", "momentRotationLaw", *_FRICTIONAL)
 
 
 def default_material() -> FrictMat:
