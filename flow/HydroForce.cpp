@@ -29,18 +29,18 @@ int layerOf(double height, double deltaZ)
   return p < -1.0 ? -1 : (p > 2e9 ? 2000000000 : static_cast<int>(p));
 }
 
-/// Whether a particle centred in `layer` is in the fluid: the fluid profile ends at its top node,
-/// the free surface (nCell - 1) deltaZ, so the top layer of the grid lies above the water.
-bool inFluid(int layer, int nCell)
+/// Whether a particle centred in `layer` gets fluid forces: the grid's nCell layers, as in Yade
+/// (whose fluid resolution ends at the top velocity node, (nCell - 1) deltaZ: the top layer sees
+/// that surface velocity).
+bool inGrid(int layer, int nCell)
 {
-  return layer >= 0 && layer < nCell - 1;
+  return layer >= 0 && layer < nCell;
 }
 } // namespace
 
 void HydroForceParameters::validate() const
 {
-  require(nCell >= 2, "nCell", "must be at least 2 (the free surface is at (nCell - 1) deltaZ), got "
-                                   + std::to_string(nCell));
+  require(nCell >= 1, "nCell", "must be at least 1, got " + std::to_string(nCell));
   requireFinite(deltaZ, "deltaZ");
   require(deltaZ > 0, "deltaZ", "must be positive, got " + str(deltaZ));
   requireFinite(zRef, "zRef");
@@ -161,7 +161,7 @@ std::array<double, 3> HydroForce::force(const ParticleArrays& particles, std::in
   checkId(particles, id, "force");
   const auto i = static_cast<std::size_t>(id);
   const int layer = layerOf(elevation(particles.positions[3 * i + 2]), m_parameters.deltaZ);
-  if (!inFluid(layer, m_parameters.nCell))
+  if (!inGrid(layer, m_parameters.nCell))
     return {0.0, 0.0, 0.0};
   return forceInLayer(particles, i, layer);
 }
@@ -209,7 +209,7 @@ void HydroForce::drawFluctuation(std::size_t id, double height)
   double* u = &m_fluct[3 * id];
   u[0] = u[1] = u[2] = 0.0;
   m_life[id] = 0.0;
-  if (!inFluid(layer, p.nCell) || height <= p.bedElevation)
+  if (!inGrid(layer, p.nCell) || height <= p.bedElevation)
     return;
   const double stress = m_reynoldStresses[static_cast<std::size_t>(layer)];
   if (!(stress > 0))
@@ -254,12 +254,12 @@ void HydroForce::action(const ParticleArrays& particles, std::span<const std::in
     checkId(particles, id, "action");
     const double z = particles.positions[3 * static_cast<std::size_t>(id) + 2];
     const int layer = layerOf(elevation(z), p.deltaZ);
-    const bool outside = !std::isfinite(z) || !inFluid(layer, p.nCell);
+    const bool outside = !std::isfinite(z) || !inGrid(layer, p.nCell);
     if (outside && !p.ignoreOutside)
       throw std::invalid_argument("HydroForceEngine.action: body " + std::to_string(id) + " at z = " + str(z)
-                                  + " is outside the fluid grid [zRef, zRef + (nCell - 1) deltaZ) = [" + str(p.zRef)
-                                  + ", " + str(p.zRef + (p.nCell - 1) * p.deltaZ) + ")"
-                                  + (layer >= p.nCell - 1 ? ", above the free surface" : "")
+                                  + " is outside the fluid grid [zRef, zRef + nCell deltaZ) = [" + str(p.zRef)
+                                  + ", " + str(p.zRef + p.nCell * p.deltaZ) + ")"
+                                  + (layer >= p.nCell ? ", above its top" : ", below zRef")
                                   + "; extend the grid, or set ignoreOutside to leave such particles without "
                                     "fluid force");
     m_layers[k] = outside ? -1 : layer;
@@ -306,7 +306,7 @@ SolidProfile HydroForce::averageProfile(const ParticleArrays& particles, std::sp
     const double height = elevation(particles.positions[3 * i + 2]);
     const int layer = layerOf(height, p.deltaZ);
     // The drag is the one action() applies (fluctuations included), zero outside the grid.
-    const double drag = inFluid(layer, p.nCell) ? dragForce(r, layer, vel, i)[0] : 0.0;
+    const double drag = inGrid(layer, p.nCell) ? dragForce(r, layer, vel, i)[0] : 0.0;
     const int first = std::max(0, layerOf(height - r, p.deltaZ));
     const int last = std::min(p.nCell - 1, layerOf(height + r, p.deltaZ));
     for (int k = first; k <= last; ++k)

@@ -12,7 +12,7 @@ namespace talus::flow
 /// defaults are Yade 2023.02a's.
 struct HydroForceParameters
 {
-  int nCell = 0;              ///< number of layers of the 1D grid; >= 2 (free surface at (nCell - 1) deltaZ)
+  int nCell = 0;              ///< number of layers of the 1D grid [zRef, zRef + nCell deltaZ); >= 1
   double deltaZ = 0;          ///< layer height [m]; > 0
   double zRef = 0;            ///< elevation of the bottom of the grid [m]
   double densFluid = 1000.0;  ///< fluid density [kg/m^3]; > 0
@@ -29,9 +29,8 @@ struct HydroForceParameters
   /// Period of space along z [m] in a periodic cell (0: not periodic along z); elevations are
   /// wrapped into [zRef, zRef + periodZ) before they are located in the grid.
   double periodZ = 0;
-  /// Particles in `ids` outside the fluid (below zRef, or centred above the free surface
-  /// zRef + (nCell - 1) deltaZ): an error (false) or no fluid force (true). Yade gives no force
-  /// below zRef or above zRef + nCell deltaZ, but applies the surface velocity in the top layer.
+  /// Particles in `ids` centred outside the grid (below zRef, or above zRef + nCell deltaZ): an
+  /// error (false) or no fluid force (true, Yade's behaviour).
   bool ignoreOutside = false;
   // Turbulent velocity fluctuations (discrete random walk, Yade's turbulentFluctuationZDep).
   bool velFluct = false;          ///< apply the fluctuations in action()
@@ -64,9 +63,9 @@ struct SolidProfile
 /// solid-phase averaging that feeds the fluid resolution (Yade's HydroForceEngine.action and
 /// averageProfile; seed chapter 15.2-15.3).
 ///
-/// A particle at elevation z lies in layer p = floor((z - zRef)/deltaZ); the fluid velocity it
-/// sees is vxFluid[p + 1] (the velocity node at the centre of layer p, as in VansFluid), the
-/// solid fraction phiPart[p]. Forces:
+/// A particle at elevation z lies in layer p = floor((z - zRef)/deltaZ), 0 <= p < nCell; the
+/// fluid velocity it sees is vxFluid[p + 1] (the velocity node at the centre of layer p, as in
+/// VansFluid; for the top layer, the surface node), the solid fraction phiPart[p]. Forces:
 /// - drag f_D = 1/2 rho pi r^2 (0.44 |u_r| + 24.4 nu / (2 r)) (1 - phi)^-expoRZ u_r, with
 ///   u_r = (vxFluid + u'_x, u'_y, u'_z) - v (Dallavalle's drag coefficient 0.44 + 24.4/Re_p
 ///   with Yade's constants, Richardson-Zaki hindrance);

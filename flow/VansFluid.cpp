@@ -246,6 +246,9 @@ void VansFluid::fluidResolution(double tfin, double dt)
   requireTime(std::isfinite(tfin) && tfin >= 0, "tfin", tfin, "must be finite and >= 0");
   requireTime(std::isfinite(dt) && dt > 0, "dt", dt, "must be finite and positive");
   const VansParameters& p = m_parameters;
+  if (p.nCell < 2)
+    throw std::invalid_argument("VansFluid.fluidResolution: nCell must be at least 2 (the fluid column is (nCell - 1) "
+                                "deltaZ high), got " + std::to_string(p.nCell));
   const auto n = static_cast<std::size_t>(p.nCell);
   const std::vector<double>& phi = m_phiPart;
   const std::vector<double>& vp = m_vxPart;

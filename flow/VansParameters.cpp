@@ -19,7 +19,7 @@ void requireFinite(double value, const char* name) { checks::requireFinite(value
 
 void VansParameters::validate() const
 {
-  require(nCell >= 2, "nCell", "must be at least 2, got " + std::to_string(nCell));
+  require(nCell >= 1, "nCell", "must be at least 1, got " + std::to_string(nCell));
   requireFinite(deltaZ, "deltaZ");
   require(deltaZ > 0, "deltaZ", "must be positive, got " + str(deltaZ));
   requireFinite(densFluid, "densFluid");

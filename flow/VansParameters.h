@@ -35,7 +35,9 @@ enum class TopBoundary
 /// z = 0 (no-slip wall), the cell centres (j + 1/2) deltaZ for j = 0 .. nCell - 2, and z = h.
 struct VansParameters
 {
-  int nCell = 0;               ///< number of cells (Yade's nCell, "ndimz" in its scripts); >= 2
+  /// Number of cells (Yade's nCell, "ndimz" in its scripts); >= 1, and >= 2 to resolve the
+  /// fluid (one cell has no fluid column: the forces on particles only need the grid).
+  int nCell = 0;
   double deltaZ = 0;           ///< cell height [m]; > 0
   double densFluid = 1000.0;   ///< fluid density [kg/m^3]; > 0
   double viscoDyn = 1e-3;      ///< fluid dynamic viscosity [Pa s]; >= 0

@@ -26,10 +26,10 @@ def lcg(seed):
         yield state / 2 ** 31
 
 
-def profiles():
-    z = [(j + 0.5) * DZ for j in range(N_CELL - 1)]
-    vx = [0.0] + [0.8 * math.tanh(zj / 0.015) for zj in z] + [0.8 * math.tanh((N_CELL - 1) * DZ / 0.015)]
-    phi = [0.55 * 0.5 * (1 - math.tanh((j * DZ - 0.02) / 0.004)) for j in range(N_CELL)]
+def profiles(n=N_CELL, dz=DZ):
+    z = [(j + 0.5) * dz for j in range(n - 1)]
+    vx = [0.0] + [0.8 * math.tanh(zj / 0.015) for zj in z] + [0.8 * math.tanh((n - 1) * dz / 0.015)]
+    phi = [0.55 * 0.5 * (1 - math.tanh((j * dz - 0.02) / 0.004)) for j in range(n)]
     return vx, phi
 
 
@@ -39,9 +39,9 @@ def build():
     ids = []
     for k in range(40):
         r = radii[k % 3]
-        # Anywhere in the fluid, below the free surface at (N_CELL - 1) DZ (Talus refuses a sphere
-        # centred in the top layer, above the water; Yade gives it the surface velocity).
-        z = Z_REF + r + ((N_CELL - 1) * DZ - 2 * r) * next(rnd)
+        # Anywhere in the grid, the top layer (above the fluid resolution's surface node, whose
+        # velocity it sees) included.
+        z = Z_REF + r + (N_CELL * DZ - 2 * r) * next(rnd)
         b = O.bodies.append(sphere((0.01 * next(rnd), 0.01 * next(rnd), z), r))
         O.bodies[b].state.vel = (0.5 * next(rnd) - 0.1, 0.2 * next(rnd) - 0.1, 0.2 * next(rnd) - 0.1)
         ids.append(b)
@@ -49,8 +49,12 @@ def build():
 
 
 def forces(ids, options):
-    vx, phi = profiles()
-    e = HydroForceEngine(densFluid=1000.0, viscoDyn=1.1e-3, zRef=Z_REF, deltaZ=DZ, nCell=N_CELL,
+    options = dict(options)
+    n, dz = options.pop("nCell", N_CELL), options.pop("deltaZ", DZ)
+    if TALUS and n * dz < N_CELL * DZ:
+        options["ignoreOutside"] = True      # Yade's behaviour (talus run's default)
+    vx, phi = profiles(n, dz)
+    e = HydroForceEngine(densFluid=1000.0, viscoDyn=1.1e-3, zRef=Z_REF, deltaZ=dz, nCell=n,
                          gravity=(9.81 * math.sin(0.05), 0.0, -9.81 * math.cos(0.05)), ids=ids, **options)
     e.initialization()
     e.vxFluid = vx
@@ -99,6 +103,9 @@ OPTION_SETS = {
     "default": {},
     "rest": {"steadyFlow": False, "expoRZ": 2.4},
     "lift": {"lift": True, "Cl": 0.3},
+    # Coarse grids covering the lower part of the column: the spheres above get no force.
+    "one layer": {"nCell": 1, "deltaZ": N_CELL * DZ / 2},
+    "two layers": {"nCell": 2, "deltaZ": N_CELL * DZ / 3, "steadyFlow": False},
 }
 ids = build()
 out = {name: forces(ids, options) for name, options in OPTION_SETS.items()}

@@ -110,7 +110,7 @@ def test_parity_with_yade_hydroforceengine(repo_dir):
     (dict(iturbu=2), "iturbu"),
     (dict(channelWidth=0.0), "channelWidth"),
     (dict(radiusPart=-1.0), "radiusPart"),
-    (dict(nCell=1), "nCell"),
+    (dict(nCell=0), "nCell"),
 ])
 def test_bad_parameters_are_refused_by_name(kwargs, word):
     with pytest.raises(ValueError, match=word):

@@ -65,10 +65,12 @@ def yade_run_defaults() -> None:
     - A contact overlapping beyond O.maxOverlapRatio does not stop the run (Yade has no such
       check) but is reported once as a warning (Scene.overlapStops), in O and in the scenes made
       from now on.
-    - An empty O gets Yade's default engines (O.reset() empties them, as in Yade)."""
+    - An empty O gets Yade's default engines (O.reset() empties them, as in Yade).
+    - The other components' own differences (their ``yade_run_defaults``)."""
     from talus.dem import scene
     scene.OVERLAP_STOPS = False
     O.overlapStops = False
+    _components.run_defaults()
     if not O.engines and not len(O.bodies):
         O.engines = default_engines()
 

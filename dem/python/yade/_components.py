@@ -12,14 +12,24 @@ import talus
 _PACKAGES = {"flow": "talus.flow", "coupling": "talus.coupling", "fem": "talus.fem"}
 
 
+def _enabled_packages():
+    enabled = talus.components()
+    return [importlib.import_module(package) for component, package in _PACKAGES.items() if enabled.get(component)]
+
+
+def run_defaults() -> None:
+    """Call each enabled component's ``yade_run_defaults()`` (if it has one): where its defaults
+    differ from Yade's, a script run as Yade's gets Yade's (yade.yade_run_defaults)."""
+    for module in _enabled_packages():
+        hook = getattr(module, "yade_run_defaults", None)
+        if hook is not None:
+            hook()
+
+
 def export(namespace: dict) -> list[str]:
     """Put every enabled component's public names into ``namespace``; returns the names."""
     names = []
-    enabled = talus.components()
-    for component, package in _PACKAGES.items():
-        if not enabled.get(component):
-            continue
-        module = importlib.import_module(package)
+    for module in _enabled_packages():
         for name in module.__all__:
             namespace[name] = getattr(module, name)
             names.append(name)

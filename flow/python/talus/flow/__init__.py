@@ -12,7 +12,7 @@ the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
 """
 
 from talus.flow.coupling import VansCoupling
-from talus.flow.hydro import HydroForceEngine, averageProfile
+from talus.flow.hydro import HydroForceEngine, averageProfile, yade_run_defaults
 from talus.flow.pore import FlowEngine, HiddenSphereWarning
 from talus.flow.periodic import PeriodicFlowEngine
 from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansFluid, slope_gravity

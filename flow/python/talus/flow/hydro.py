@@ -20,6 +20,7 @@ Names and defaults are Yade 2023.02a's. The forces are added every step to the p
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Sequence
 
 import numpy as np
@@ -30,6 +31,28 @@ from talus.dem.engines import Engine, PyRunner
 from talus.flow.vans import VansFluid
 
 __all__ = ["HydroForceEngine", "averageProfile"]
+
+# Whether a particle of ids centred outside the grid is an error in a new engine (see
+# HydroForceEngine's ignoreOutside). Yade gives it no fluid force: a run started as `yade -x`
+# would start it sets False (yade_run_defaults below, called through yade.yade_run_defaults).
+OUTSIDE_IS_ERROR = True
+
+
+def yade_run_defaults() -> None:
+    """Behave as Yade 2023.02a where Talus's defaults differ: particles leaving the grid (grains
+    leaping out of the water) get no fluid force instead of stopping the run."""
+    global OUTSIDE_IS_ERROR
+    OUTSIDE_IS_ERROR = False
+
+
+# Yade 2023.02a's attributes of HydroForceEngine that Talus lacks: setting one is an error, not
+# a new Python attribute that changes nothing.
+_YADE_UNIMPLEMENTED = frozenset((
+    "enableMultiClassAverage", "twoSize", "radiusParts", "radiusPart1", "radiusPart2", "multiPhiPart", "multiVxPart",
+    "multiVyPart", "multiVzPart", "multiDragPart", "phiPart1", "phiPart2", "vxPart1", "vxPart2", "vyPart1",
+    "vyPart2", "vzPart1", "vzPart2", "averageDrag1", "averageDrag2", "pointParticleAverage", "lubrication",
+    "roughnessPartScale", "convAccOption", "convAcc", "compatibilityOldVersion", "nbAverageT", "phiBed", "dtFluct",
+    "fluctTime", "vFluctX", "vFluctY", "vFluctZ", "ompThreads"))
 
 # Options of the fluid resolution that belong to the VansFluid alone.
 _FLUID_ONLY = ("radiusPart", "iturbu", "ilm", "phiMax", "viscousSubLayer", "irheolf", "iusl", "uTop",
@@ -81,7 +104,9 @@ class HydroForceEngine(Engine):
     from ``zRef`` (Yade's HydroForceEngine). Put it in ``O.engines`` after the InteractionLoop.
 
     Args (Yade's names and defaults; all are attributes too):
-        nCell (or ndimz), deltaZ: the grid; zRef its bottom elevation.
+        nCell (or ndimz), deltaZ: the grid, nCell >= 1 layers [zRef, zRef + nCell deltaZ); the
+            fluid resolution needs nCell >= 2 (its column is (nCell - 1) deltaZ high, so the top
+            layer sees the surface velocity vxFluid[nCell], as in Yade).
         densFluid, viscoDyn: fluid density [kg/m^3] and dynamic viscosity [Pa s].
         gravity: gravity vector (buoyancy; |gravity[0]| drives the fluid resolution).
         expoRZ: Richardson-Zaki exponent of the hindrance (1 - phi)^-expoRZ.
@@ -94,9 +119,9 @@ class HydroForceEngine(Engine):
         velFluct: turbulent velocity fluctuations (discrete random walk on an eddy time scale
             0.33 kappa z / u*, u* = sqrt(ReynoldStresses / rho)), reproducible with ``seed``;
             bedElevation (above zRef) and unCorrelatedFluctuations as in Yade.
-        ignoreOutside: particles of ids outside the fluid (below zRef, or centred above the free
-            surface zRef + (nCell - 1) deltaZ) get no fluid force instead of an error (Yade gives
-            the top layer, above the free surface, the surface velocity).
+        ignoreOutside: particles of ids centred outside the grid [zRef, zRef + nCell deltaZ) get
+            no fluid force (Yade's behaviour) instead of an error. Default: False, except in
+            scripts run as Yade's (``talus run``, ``yadeimport``), where it is True.
         scene: the scene (default ``talus.dem.O``).
         Other keywords are the fluid resolution's (VansFluid): radiusPart, iturbu, ilm, kappa,
             phiMax, viscousSubLayer, irheolf, iusl, uTop, dpdx, fluidWallFriction, channelWidth,
@@ -108,7 +133,7 @@ class HydroForceEngine(Engine):
                  gravity: Sequence[float] = (0.0, 0.0, -9.81), expoRZ: float = 3.1, lift: bool = False,
                  Cl: float = 0.2, steadyFlow: bool = True, ids: Sequence[int] = (), vCell: float = 0.0,
                  velFluct: bool = False, bedElevation: float = 0.0, unCorrelatedFluctuations: bool = False,
-                 kappa: float = 0.41, seed: int = 0, ignoreOutside: bool = False, scene=None,
+                 kappa: float = 0.41, seed: int = 0, ignoreOutside: bool | None = None, scene=None,
                  label: str = "", dead: bool = False, **fluid_options):
         unknown = set(fluid_options) - set(_FLUID_ONLY)
         if unknown:
@@ -121,8 +146,8 @@ class HydroForceEngine(Engine):
         p.lift, p.Cl, p.steadyFlow = bool(lift), float(Cl), bool(steadyFlow)
         p.gravity = list(self.fluid.gravity)
         p.velFluct, p.bedElevation = bool(velFluct), float(bedElevation)
-        p.unCorrelatedFluctuations, p.kappa, p.ignoreOutside = bool(unCorrelatedFluctuations), float(kappa), \
-            bool(ignoreOutside)
+        p.unCorrelatedFluctuations, p.kappa = bool(unCorrelatedFluctuations), float(kappa)
+        p.ignoreOutside = not OUTSIDE_IS_ERROR if ignoreOutside is None else bool(ignoreOutside)
         self._core = _flow.HydroForce(p)
         self._core.seed(int(seed))
         self._scene = scene
@@ -133,6 +158,13 @@ class HydroForceEngine(Engine):
         self._cpp = PyRunner(self.action, iterPeriod=1, initRun=True)._cpp   # every step, the first one included
         self.label = label
         self.dead = dead
+
+    def __setattr__(self, name: str, value) -> None:
+        if not name.startswith("_") and name != "fluid" and not hasattr(type(self), name):
+            detail = ("a Yade 2023.02a attribute that Talus does not implement" if name in _YADE_UNIMPLEMENTED
+                      else "no such attribute")
+            raise AttributeError(f"HydroForceEngine.{name}: {detail}")
+        super().__setattr__(name, value)
 
     # -- the scene and its arrays (the particle exchange interface) -----------------------------
     @property
@@ -215,7 +247,7 @@ class HydroForceEngine(Engine):
                                                        "fluctuations [m].")
     unCorrelatedFluctuations = _particle_parameter("unCorrelatedFluctuations",
                                                    "Streamwise and wall-normal fluctuations independent.", bool)
-    ignoreOutside = _particle_parameter("ignoreOutside", "Particles below zRef or above the free surface get no "
+    ignoreOutside = _particle_parameter("ignoreOutside", "Particles centred below zRef or above the grid get no "
                                                          "fluid force (instead of an error).", bool)
     for _name in _FLUID_ONLY:
         locals()[_name] = _fluid_parameter(_name)
@@ -250,12 +282,19 @@ class HydroForceEngine(Engine):
     # -- profiles ---------------------------------------------------------------------------------
     @property
     def vxFluid(self) -> np.ndarray:
-        """Fluid velocity at the nCell + 1 velocity nodes (zFluid + zRef) [m/s]."""
+        """Fluid velocity at the nCell + 1 velocity nodes (zFluid + zRef) [m/s]. Also settable
+        with nCell values (as Yade's scripts impose profiles): the top node, the velocity of the
+        top layer's particles and the fluid resolution's start at the surface, is then 0, which
+        is what Yade 2023.02a reads past the end of such a profile (a RuntimeWarning says so)."""
         return self.fluid.vxFluid
 
     @vxFluid.setter
     def vxFluid(self, values: ArrayLike):
         a = _array(values, "vxFluid")
+        if len(a) == self.nCell:
+            warnings.warn(f"HydroForceEngine: vxFluid has nCell = {self.nCell} values; its top node vxFluid[nCell] "
+                          "(the top layer's fluid velocity) is taken as 0, as Yade does", RuntimeWarning, stacklevel=2)
+            a = np.append(a, 0.0)
         self.fluid.vxFluid = a
         self._core.setVxFluid(a)
 
