@@ -10,6 +10,8 @@ void CallbackEngine::run(Scene& scene)
 {
   if (iterPeriod < 0 || realPeriod < 0 || virtPeriod < 0 || (iterPeriod == 0 && realPeriod == 0 && virtPeriod == 0))
     throw std::invalid_argument("PyRunner '" + label + "': set iterPeriod >= 1, virtPeriod > 0 or realPeriod > 0");
+  if (nDo >= 0 && nDone >= nDo)
+    return;
   const auto now = std::chrono::steady_clock::now();
   const bool first = initRun && nDone == 0;
   const bool byIter = iterPeriod > 0 && scene.iter - iterLast >= iterPeriod;

@@ -12,7 +12,7 @@ namespace talus::dem
 /// coupling's step hook when it is C++). As Yade's PeriodicEngine: called when `iterPeriod`
 /// steps, `virtPeriod` seconds of simulated time or `realPeriod` seconds of wall time have
 /// passed since the last call (whichever is set and comes first), and at the first step with
-/// `initRun`.
+/// `initRun`; at most `nDo` times.
 class CallbackEngine : public Engine
 {
 public:
@@ -25,6 +25,7 @@ public:
   double realPeriod = 0;       ///< wall-clock seconds between calls (0: not by time)
   double virtPeriod = 0;       ///< simulated seconds between calls (0: not by simulated time)
   bool initRun = false;
+  std::int64_t nDo = -1;       ///< calls after which it is not called any more (-1: no limit)
   /// The callback is a script's Python code (a PyRunner): when it raises, the scene is as the
   /// engines before it left it, and the step may go on (a coupling's C++ hook may stop halfway).
   bool resumable = false;

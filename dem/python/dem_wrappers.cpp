@@ -7,6 +7,7 @@
 #include "dem/InteractionLoop.h"
 #include "dem/Measurements.h"
 #include "dem/NewtonIntegrator.h"
+#include "dem/Probe.h"
 #include "dem/Scene.h"
 #include "dem/Threads.h"
 #include "dem/build_config.h"
@@ -188,7 +189,8 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("virtLast", &CallbackEngine::virtLast)
       .def_readwrite("initRun", &CallbackEngine::initRun)
       .def_readwrite("iterLast", &CallbackEngine::iterLast)
-      .def_readwrite("nDone", &CallbackEngine::nDone);
+      .def_readwrite("nDone", &CallbackEngine::nDone)
+      .def_readwrite("nDo", &CallbackEngine::nDo);
 
   void talus_wrap_controllers(py::module_&); talus_wrap_controllers(m); // engines: controllers_wrappers.cpp
   void talus_wrap_triaxial(py::module_&); talus_wrap_triaxial(m); // triaxial tests: triaxial_wrappers.cpp
@@ -209,6 +211,7 @@ PYBIND11_MODULE(_dem, m)
   m.def("coordinationNumber", &coordinationNumber);
   m.def("fabricTensor", &fabricTensor);
   m.def("bodyStressTensors", &bodyStressTensors);
+  m.def("bodies_in_box", &bodiesInBox, py::arg("scene"), py::arg("lo"), py::arg("hi"), py::arg("grow") = 0.0);
   m.def("sphereVolume", &sphereVolume);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene")

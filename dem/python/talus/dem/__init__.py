@@ -39,6 +39,9 @@ from talus.dem.kinematic import *  # noqa: F401,F403  (Yade's kinematic engines)
 from talus.dem.kinematic import __all__ as _kinematic_names
 from talus.dem.force_engines import *  # noqa: F401,F403  (Yade's force engines, interaction callbacks)
 from talus.dem.force_engines import __all__ as _force_engine_names
+from talus.dem.factories import BoxFactory, CircularFactory, SpheresFactory
+from talus.dem.domain_limiter import DomainLimiter
+from talus.dem.interactions import Interaction
 from talus.dem.io import CheckpointError
 from talus.dem.materials import CohFrictMat, ElastMat, FrictMat, Material, ViscElMat
 from talus.dem.measure import (avgNumInteractions, bodyStressTensors, fabricTensor, getStress, getStressAndTangent,
@@ -52,9 +55,9 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "Vector6i", "Matrix3", "Matrix6", "Quaternion",
            "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions", "fabricTensor", "bodyStressTensors",
            "porosity",
-           "VTKRecorder", "VTKExporter", "CheckpointError", "progress", "plot", "EnergyTracker",
+           "VTKRecorder", "VTKExporter", "CheckpointError", "Interaction", "progress", "plot", "EnergyTracker",
            "GlobalStiffnessTimeStepper", "PeriTriaxController", "PeriIsoCompressor", "TriaxialStressController", "RayleighWaveTimeStep",
            "growParticles", "setContactFriction", "aabbWalls",
            "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder", *_legacy_names, "TriaxialTest",
-           *_kinematic_names, *_force_engine_names,
+           *_kinematic_names, *_force_engine_names, "SpheresFactory", "BoxFactory", "CircularFactory", "DomainLimiter",
            *_engine_names, *_block_names, *_particle_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]

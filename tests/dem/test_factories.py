@@ -1,0 +1,136 @@
+"""Yade's particle factories (BoxFactory, CircularFactory) and DomainLimiter: against Yade
+2023.02a (factories_side_by_side.py; Yade's factories draw from a clock-seeded generator, so
+what is random is compared as statistics), and their regions, limits, seeds and errors."""
+import math
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from talus.dem import (BoxFactory, CircularFactory, DomainLimiter, ForceResetter, FrictMat, InsertionSortCollider,
+                       InteractionLoop, NewtonIntegrator, O, SpheresFactory, sphere, twin)
+
+HERE = Path(__file__).parent
+
+
+@pytest.fixture(scope="module")
+def runs():
+    if not twin.yade_available():
+        pytest.skip("yade is not installed")
+    script = HERE / "factories_side_by_side.py"
+    return twin.run(script, {}, "talus"), twin.run(script, {}, "yade")
+
+
+def test_exact_diameters_from_a_distribution_are_yades(runs):
+    ours, theirs = (r["exact"] for r in runs)
+    assert ours["counts"] == theirs["counts"] and ours["radii"] == theirs["radii"]
+    assert set(ours["radii"]) == {0.01, 0.015, 0.025}
+
+
+def test_random_sizes_and_velocities_have_yades_statistics(runs):
+    ours, theirs = runs
+    for name, (rmin, rmax), (vmin, vmax), direction in [
+            ("binned", (0.01, 0.025), (1, 2), (math.sqrt(0.5), math.sqrt(0.5), 0)),
+            ("disc", (0.01, 0.03), (2, 3), (1, 0, 0))]:
+        a, b = ours[name], theirs[name]
+        assert a["counts"][2] == b["counts"][2] == 9.0                        # goal mass: 3000 kg/s x 30 steps
+        largest = 4 / 3 * math.pi * rmax ** 3 * 2000
+        assert 0 <= a["counts"][1] - a["counts"][2] < largest                # inserted up to the goal mass
+        assert abs(a["counts"][0] - b["counts"][0]) < 0.15 * b["counts"][0]
+        assert rmin <= min(a["radii"]) and max(a["radii"]) <= rmax
+        assert abs(np.mean(a["radii"]) - np.mean(b["radii"])) < 0.06 * np.mean(b["radii"])
+        assert vmin <= min(a["speeds"]) and max(a["speeds"]) <= vmax
+        assert np.allclose(a["directions"], direction)
+    # by number: half of the spheres in each bin, as Yade
+    radii = np.array(ours["binned"]["radii"])
+    assert abs(np.sum(radii < 0.015) - np.sum(radii >= 0.015)) <= 1
+
+
+def test_domain_limiter_is_yades(runs):
+    ours, theirs = runs
+    assert ours["limiter"] == theirs["limiter"]
+    assert ours["limiter"][-1][0] == 5                                       # 4 spheres and a clump
+
+
+def factory_scene(factory, steps=20):
+    O.reset()
+    O.materials.append(FrictMat(young=1e7, density=1000))
+    O.engines = [ForceResetter(), InsertionSortCollider(verletDist=0), NewtonIntegrator(damping=0), factory]
+    O.dt = 1e-3
+    O.run(steps, True)
+    ids = factory.ids
+    return np.array([O.bodies[i].state.pos for i in ids]), np.array([O.bodies[i].shape.radius for i in ids])
+
+
+def test_places_in_the_regions_without_overlaps():
+    # velocities 0: the spheres stay where they were put
+    pos, r = factory_scene(BoxFactory(center=(1, 2, 3), extents=(0.3, 0.2, 0), normal=(1, 0, 0), massFlowRate=50,
+                                      rMin=0.01, rMax=0.02, vMin=0, vMax=0, maxParticles=-1))
+    assert len(pos) > 50
+    assert np.allclose(pos[:, 0], 1) and np.all(np.abs(pos[:, 1] - 2) <= 0.2) and np.all(np.abs(pos[:, 2] - 3) <= 0.3)
+    gaps = np.linalg.norm(pos[:, None] - pos[None], axis=2) - (r[:, None] + r[None]) + 3 * np.eye(len(r))
+    assert gaps.min() >= 0
+    pos, r = factory_scene(CircularFactory(center=(0, 0, 1), radius=0.5, length=0.2, normal=(0, 0, 1), massFlowRate=50,
+                                           rMin=0.01, rMax=0.02, vMin=0, vMax=0, maxParticles=-1))
+    assert np.all(np.hypot(pos[:, 0], pos[:, 1]) <= 0.5 - r) and np.all(np.abs(pos[:, 2] - 1) <= 0.1)
+
+
+def test_seeds_repeat_and_differ():
+    make = lambda seed: BoxFactory(center=(0, 0, 0), extents=(1, 1, 1), normal=(0, 0, 1), massFlowRate=20, rMin=0.01,
+                                   rMax=0.02, vMin=0, vMax=0, seed=seed)
+    first, again, other = (factory_scene(make(s))[0] for s in (7, 7, 8))
+    assert np.array_equal(first, again) and not np.array_equal(first[:len(other)], other[:len(first)])
+
+
+def test_limits_stop_the_flow():
+    f = BoxFactory(center=(0, 0, 0), extents=(1, 1, 1), normal=(0, 0, 1), massFlowRate=50, rMin=0.01, rMax=0.02,
+                   vMin=0, vMax=0, maxParticles=7)
+    factory_scene(f)
+    assert f.numParticles == 7 and len(O.bodies) == 7 and f.goalMass == pytest.approx(50 * 20e-3)
+    # a region too small for the next sphere: Yade's warning, and the factory stops
+    f = BoxFactory(center=(0, 0, 0), extents=(0.01, 0.01, 0.01), normal=(0, 0, 1), massFlowRate=50, rMin=0.01,
+                   rMax=0.01, vMin=0, vMax=0, maxAttempt=50)
+    with pytest.warns(RuntimeWarning, match="unable to place new sphere after 50 attempts"):
+        factory_scene(f)
+    assert f.numParticles == 1 and f.massFlowRate == 0 and f.goalMass == f.totalMass
+
+
+def test_checkpoint_keeps_the_generator():
+    f = BoxFactory(center=(0, 0, 0), extents=(1, 1, 1), normal=(0, 0, 1), massFlowRate=20, rMin=0.01, rMax=0.02,
+                   vMin=0, vMax=0, maxParticles=-1, label="f")
+    factory_scene(f, 5)
+    O.saveTmp("factory")
+    O.run(10, True)
+    later = [tuple(O.bodies[i].state.pos) for i in O.engines[-1].ids]
+    O.loadTmp("factory")
+    O.run(10, True)
+    assert [tuple(O.bodies[i].state.pos) for i in O.engines[-1].ids] == later
+
+
+def test_unset_or_unsupported_parameters_are_errors():
+    with pytest.raises(ValueError, match=r"BoxFactory.rMin must be set"):
+        factory_scene(BoxFactory(center=(0, 0, 0), extents=(1, 1, 1), normal=(0, 0, 1), massFlowRate=1, vMin=0, vMax=0))
+    with pytest.raises(ValueError, match=r"CircularFactory.radius must be set"):
+        factory_scene(CircularFactory(center=(0, 0, 0), normal=(0, 0, 1), massFlowRate=1, rMin=1, rMax=1, vMin=0, vMax=0))
+    with pytest.raises(RuntimeError, match="SpheresFactory has no region"):
+        factory_scene(SpheresFactory(massFlowRate=1))
+    with pytest.raises(ValueError, match="PSDsizes should have a number of elements on 1 more"):
+        factory_scene(BoxFactory(center=(0, 0, 0), extents=(1, 1, 1), normal=(0, 0, 1), massFlowRate=1, vMin=0, vMax=0,
+                                 PSDsizes=[1, 2], PSDcum=[0.5, 1], exactDiam=False))
+    for engine in (BoxFactory, DomainLimiter):
+        with pytest.raises(ValueError, match="groupMask"):
+            engine(mask=2)
+
+
+def test_domain_limiter_without_period_never_runs():
+    O.reset()
+    O.bodies.append(sphere((5, 0, 0), 0.1))
+    limiter = DomainLimiter(lo=(-1, -1, -1), hi=(1, 1, 1))
+    O.engines = [limiter]
+    O.dt = 1
+    O.run(3, True)
+    assert len(O.bodies) == 1 and limiter.nDeleted == 0                     # as Yade: no period, no run
+    limiter.iterPeriod, limiter.nDo = 1, 1
+    O.run(3, True)
+    assert O.bodies[0] is None and limiter.nDeleted == 1 and limiter.nDone == 1
