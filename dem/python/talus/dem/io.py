@@ -33,6 +33,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.appearance import Appearance
+from talus.dem.reference import ReferenceStates
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -99,7 +100,7 @@ def _import_class(path: str) -> type:
 
 def _encode(value, to_file: bool):
     """Plain data (JSON-ready when ``to_file``) for a constructor argument."""
-    from talus.dem.engines import Functor
+    from talus.dem.engines import Functor, MatchMaker
     if value is None or isinstance(value, (bool, int, str)):
         return value
     if isinstance(value, float):
@@ -115,11 +116,14 @@ def _encode(value, to_file: bool):
     if isinstance(value, dict) and all(isinstance(k, str) for k in value):
         return {"__dict__": {k: _encode(v, to_file) for k, v in value.items()}}
     if isinstance(value, Functor):
-        params = {k: _encode(float(v), to_file) for k, v in value._io_params().items()}
+        params = {k: _encode(v if isinstance(v, MatchMaker) else float(v), to_file) for k, v in value._io_params().items()}
         if not to_file:
             return {"__functor__": _class_path(type(value)), "label": value.label, "params": params,
                     "class_object": type(value)}
         return {"__functor__": _class_path(type(value)), "label": value.label, "params": params}
+    if isinstance(value, MatchMaker):
+        return {"__matchmaker__": {"algo": value.algo, "val": _encode(value.val, to_file),
+                                   "matches": [[int(a), int(b), _encode(float(v), to_file)] for a, b, v in value.matches]}}
     if not to_file:
         return {"__object__": value}   # kept by reference in memory slots
     if callable(value):
@@ -143,6 +147,10 @@ def _decode(value):
         return tuple(_decode(v) for v in value["__tuple__"])
     if "__dict__" in value:
         return {k: _decode(v) for k, v in value["__dict__"].items()}
+    if "__matchmaker__" in value:
+        from talus.dem.engines import MatchMaker
+        made = value["__matchmaker__"]
+        return MatchMaker(made["algo"], _decode(made["val"]), [[a, b, _decode(v)] for a, b, v in made["matches"]])
     if "__functor__" in value:
         cls = value.get("class_object") or _import_class(value["__functor__"])
         return cls(label=value.get("label", ""), **{k: _decode(v) for k, v in value.get("params", {}).items()})
@@ -289,6 +297,13 @@ def _attach_materials(scene: "Scene", objects: list):
     scene.materials._materials = bound
 
 
+def _body_data(scene: "Scene") -> dict:
+    """The per-body data kept beside the C++ state: the look and the reference configuration
+    (each only when there is something to keep)."""
+    data = {"appearance": scene._appearance.to_json(), "reference": scene._reference.to_json()}
+    return {name: text for name, text in data.items() if text}
+
+
 def _load_state(scene: "Scene", loader) -> dict:
     objects = _detach_materials(scene)
     try:
@@ -296,6 +311,7 @@ def _load_state(scene: "Scene", loader) -> dict:
     finally:
         _attach_materials(scene, objects)
     scene._appearance = Appearance.from_json(extras.get("appearance"))
+    scene._reference = ReferenceStates.from_json(extras.get("reference"))
     return extras
 
 
@@ -346,9 +362,7 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
             warnings.warn(f"O.save({path!r}): " + "; ".join(f"{s['describe']}: {s['reason']}" for s in bad)
                           + "; O.load will keep the engines the scene has then", CheckpointWarning, stacklevel=2)
         extras["engines"] = json.dumps({"format": _ENGINES_FORMAT, "engines": specs})
-    look = scene._appearance.to_json()
-    if look:
-        extras["appearance"] = look
+    extras.update(_body_data(scene))
     _dem.save_checkpoint(scene._cpp, path, extras)
     _scene_memory(scene)["last"] = path
 
@@ -409,8 +423,7 @@ class _Slot(str):
 def saveTmp(scene: "Scene", slot: str = "") -> None:
     """Keep the scene's state and engines in memory slot ``slot`` (Yade's ``O.saveTmp``)."""
     _require()
-    look = scene._appearance.to_json()
-    image = _dem.save_checkpoint_image(scene._cpp, {"appearance": look} if look else {})
+    image = _dem.save_checkpoint_image(scene._cpp, _body_data(scene))
     _scene_memory(scene)["slots"][str(slot)] = (image, _engine_specs(scene, to_file=False))
     _scene_memory(scene)["last"] = _Slot(slot)
 

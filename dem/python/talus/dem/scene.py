@@ -14,6 +14,7 @@ import numpy as np
 from talus import _dem
 from talus.dem.blocks import Ig2_PB_PB_ScGeom
 from talus.dem.appearance import Appearance
+from talus.dem.reference import ReferenceStates
 from talus.dem.bodies import BodyContainer
 from talus.dem.cell import Cell
 from talus.dem.energy import EnergyTracker
@@ -123,8 +124,10 @@ class Scene(CheckpointMethods):
         self.energy = EnergyTracker(self)
         self.interactions = InteractionContainer(self)
         self._appearance = Appearance()
+        self._reference = ReferenceStates()
         self.forces = ForceContainer(self)
         self.tags: dict[str, str] = {}          # Yade's O.tags: free-form labels of the run
+        self._runLimitsMoved: bool | None = None   # a run is going on: whether a stop limit was set since
         self.stopAtIter = 0                     # a run stops when the step count reaches it (0: never)
         self.stopAtTime = 0.0                   # ... or when the time reaches it (0: never)
         self._engines: list[Engine] = []
@@ -351,7 +354,22 @@ class Scene(CheckpointMethods):
             self._openRunPending = False
             self._run(-1)
 
+    def __setattr__(self, name, value):
+        super().__setattr__(name, value)
+        # Set by an engine during a run (Yade scripts do so from a PyRunner): the run pauses
+        # after this step and goes on to the new limits, as Yade checks them at every step.
+        if name in ("stopAtIter", "stopAtTime") and self.__dict__.get("_runLimitsMoved") is False:
+            self._runLimitsMoved = True
+            self._cpp.pause()
+
     def _run(self, nSteps: int):
+        self._runLimitsMoved = False
+        try:
+            self._runSteps(nSteps)
+        finally:
+            self._runLimitsMoved = None
+
+    def _runSteps(self, nSteps: int):
         stopIter = self.stopAtIter if self.stopAtIter > self.iter else None
         stopTime = self.stopAtTime if self.stopAtTime > self.time else None
         if nSteps < 0 and stopIter is None and stopTime is None and \
@@ -374,9 +392,13 @@ class Scene(CheckpointMethods):
             finally:
                 self._warn_of_overlaps()
             done = self.iter - before
-            if steps < 0 or done < steps:                      # paused
-                return
             remaining = remaining - done if remaining >= 0 else -1
+            if self._runLimitsMoved:
+                self._runLimitsMoved = False
+                stopIter = self.stopAtIter if self.stopAtIter >= self.iter else None
+                stopTime = self.stopAtTime if self.stopAtTime >= self.time else None
+            elif steps < 0 or done < steps:                    # paused
+                return
             if remaining == 0 or (stopIter is not None and self.iter >= stopIter) or \
                     (stopTime is not None and self.time >= stopTime):
                 return
