@@ -379,14 +379,15 @@ def test_an_imposed_profile_of_ncell_values_has_a_zero_top_node():
     assert len(e.vxFluid) == 21 and e.vxFluid[20] > 18
 
 
-def test_an_attribute_it_lacks_is_refused_not_added():
+def test_a_yade_attribute_it_lacks_is_refused_and_an_unknown_one_is_kept_with_a_warning():
     s = scene_with([((0, 0, 0.0105), 3e-4, (0, 0, 0))])
     e = engine(s)
     with pytest.raises(AttributeError, match="enableMultiClassAverage: a Yade 2023.02a attribute that Talus does "
                                              "not implement"):
         e.enableMultiClassAverage = True
-    with pytest.raises(AttributeError, match="expoRz: no such attribute"):
-        e.expoRz = 3.0
+    with pytest.warns(RuntimeWarning, match="expoRz is not an attribute of HydroForceEngine"):
+        e.expoRz = 3.0           # Yade too keeps it as a plain attribute
+    assert e.expoRz == 3.0 and e.expoRZ == 3.1
     e.expoRZ, e.label, e.dead = 2.0, "h", True
     assert (e.expoRZ, e.label, e.dead) == (2.0, "h", True)
 

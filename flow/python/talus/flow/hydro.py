@@ -161,9 +161,13 @@ class HydroForceEngine(Engine):
 
     def __setattr__(self, name: str, value) -> None:
         if not name.startswith("_") and name != "fluid" and not hasattr(type(self), name):
-            detail = ("a Yade 2023.02a attribute that Talus does not implement" if name in _YADE_UNIMPLEMENTED
-                      else "no such attribute")
-            raise AttributeError(f"HydroForceEngine.{name}: {detail}")
+            if name in _YADE_UNIMPLEMENTED:
+                raise AttributeError(f"HydroForceEngine.{name}: a Yade 2023.02a attribute that Talus does not implement")
+            # Yade keeps such a name as a plain Python attribute (its examples set some that
+            # HydroForceEngine no longer has, e.g. simplifiedReynoldStresses): so does Talus, saying so.
+            warnings.warn(f"HydroForceEngine.{name} is not an attribute of HydroForceEngine (Yade 2023.02a's or "
+                          "Talus's): kept as a plain Python attribute, it changes nothing", RuntimeWarning,
+                          stacklevel=2)
         super().__setattr__(name, value)
 
     # -- the scene and its arrays (the particle exchange interface) -----------------------------
