@@ -13,17 +13,43 @@
 
 namespace talus::dem
 {
-double kineticEnergy(const Scene& scene)
+namespace
+{
+/// {1/2 m v^2, 1/2 w.I w} of body i; zero for a body whose energy is not counted.
+std::pair<double, double> bodyKinetic(const Scene& scene, std::size_t i)
 {
   const Bodies& b = scene.bodies;
+  // clump members move with their clump, whose energy is the rigid body's
+  if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0)
+    return {0.0, 0.0};
   // With homoDeform the velocities carry the field of the step just made (prevVelGrad once the
   // cell has moved) at the positions it was applied to, x - v dt: the fluctuation is what is
   // left, exactly as the integrator recovers it.
   const bool homogeneous = scene.periodic && scene.cell.homoDeform;
   const Mat3& L = scene.cell.prevVelGrad;
-  const Vec3 w = spin(L);
-  const double dt = scene.dt;
-  const auto n = static_cast<std::int64_t>(b.size());
+  const Vec3 v = homogeneous ? Vec3(b.vel[i] - L * (b.pos[i] - scene.dt * b.vel[i])) : b.vel[i];
+  const Vec3 omega = homogeneous ? Vec3(b.angVel[i] - spin(L)) : b.angVel[i];
+  // principal moments: the angular velocity in the principal (body) frame
+  const Vec3 bodyOmega = b.aspherical(i) ? Vec3(b.ori[i].conjugate() * omega) : omega;
+  return {0.5 * b.mass[i] * v.squaredNorm(), 0.5 * bodyOmega.dot(b.inertia[i].cwiseProduct(bodyOmega))};
+}
+} // namespace
+
+std::pair<double, double> kineticEnergyParts(const Scene& scene)
+{
+  std::pair<double, double> total{0.0, 0.0};
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+  {
+    const auto [translational, rotational] = bodyKinetic(scene, i);
+    total.first += translational;
+    total.second += rotational;
+  }
+  return total;
+}
+
+double kineticEnergy(const Scene& scene)
+{
+  const auto n = static_cast<std::int64_t>(scene.bodies.size());
   const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
   std::vector<double> sums(static_cast<std::size_t>(blocks), 0.0);
 #pragma omp parallel for schedule(static) if (n >= parallelLoopMinimum)
@@ -32,15 +58,8 @@ double kineticEnergy(const Scene& scene)
     double sum = 0;
     for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
     {
-      const auto i = static_cast<std::size_t>(k);
-      // clump members move with their clump, whose energy is the rigid body's
-      if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0)
-        continue;
-      const Vec3 v = homogeneous ? Vec3(b.vel[i] - L * (b.pos[i] - dt * b.vel[i])) : b.vel[i];
-      const Vec3 omega = homogeneous ? Vec3(b.angVel[i] - w) : b.angVel[i];
-      // principal moments: the angular velocity in the principal (body) frame
-      const Vec3 bodyOmega = b.aspherical(i) ? Vec3(b.ori[i].conjugate() * omega) : omega;
-      sum += 0.5 * b.mass[i] * v.squaredNorm() + 0.5 * bodyOmega.dot(b.inertia[i].cwiseProduct(bodyOmega));
+      const auto [translational, rotational] = bodyKinetic(scene, static_cast<std::size_t>(k));
+      sum += translational + rotational;
     }
     sums[static_cast<std::size_t>(blk)] = sum;
   }

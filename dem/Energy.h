@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace talus::dem
@@ -81,6 +82,9 @@ inline constexpr std::int64_t energyBlock = 256;
 /// Sum of 1/2 m v^2 + 1/2 w.I w over dynamic bodies (clumps as one body, aspherical bodies in
 /// their principal frame; fluctuating velocities in a homogeneously deforming periodic cell).
 double kineticEnergy(const Scene& scene);
+/// The two parts of kineticEnergy, summed body by body in id order: {translational, rotational}
+/// (Yade's kinTrans and kinRot, which NewtonIntegrator's kinSplit books instead of kinetic).
+std::pair<double, double> kineticEnergyParts(const Scene& scene);
 /// Elastic energy stored in the contacts of the scene's InteractionLoop(s), as each law defines
 /// it (1/2 Fn^2/kn + 1/2 Fs^2/ks for linear springs, 2/5 Fn u for Hertz, moments as springs).
 double elasticPotential(const Scene& scene);

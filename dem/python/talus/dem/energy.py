@@ -1,6 +1,7 @@
 """Yade's energy tracker: ``O.trackEnergy = True``, then ``O.energy`` (a read-only mapping).
 
-Keys, as in Yade: ``kinetic`` (translational and rotational, computed when read),
+Keys, as in Yade: ``kinetic`` (translational and rotational, computed when read; with
+``NewtonIntegrator(kinSplit=True)`` the two parts ``kinTrans`` and ``kinRot`` instead),
 ``elastPotential`` (stored in the contacts' springs, computed when read), ``gravWork`` (minus the
 work of gravity), ``nonviscDamp`` (dissipated by NewtonIntegrator's damping), ``plastDissip``
 (friction sliding and plastic moments), ``viscDamp`` (contact dashpots), ``velGradWork`` (minus the
@@ -22,6 +23,8 @@ from talus import _dem
 
 KEYS = ("kinetic", "elastPotential", "gravWork", "nonviscDamp", "plastDissip", "viscDamp", "velGradWork",
         "kinematicWork", "growthWork")
+# With NewtonIntegrator(kinSplit=True), as in Yade: the translational and rotational parts instead.
+SPLIT_KEYS = ("kinTrans", "kinRot", *KEYS[1:])
 
 
 class EnergyTracker(Mapping):
@@ -31,26 +34,34 @@ class EnergyTracker(Mapping):
     def __init__(self, scene):
         self._scene = scene
 
+    def _keys(self) -> tuple[str, ...]:
+        return SPLIT_KEYS if any(getattr(e, "kinSplit", False) for e in self._scene.engines) else KEYS
+
     def _values(self) -> dict:
-        return _dem.energy(self._scene._cpp)
+        values = _dem.energy(self._scene._cpp)
+        if self._keys() is SPLIT_KEYS:
+            del values["kinetic"]
+            values["kinTrans"], values["kinRot"] = _dem.kinetic_energy_parts(self._scene._cpp)
+        return values
 
     def __getitem__(self, key: str) -> float:
-        if key not in KEYS:
-            raise KeyError(f"no energy {key!r}; the energies are {', '.join(KEYS)}")
-        return self._values()[key]
+        values = self._values()
+        if key not in values:
+            raise KeyError(f"no energy {key!r}; the energies are {', '.join(self._keys())}")
+        return values[key]
 
     def __iter__(self):
-        return iter(KEYS)
+        return iter(self._keys())
 
     def __len__(self) -> int:
-        return len(KEYS)
+        return len(self._keys())
 
     def keys(self):
-        return list(KEYS)
+        return list(self._keys())
 
     def items(self):
         values = self._values()
-        return [(k, values[k]) for k in KEYS]
+        return [(k, values[k]) for k in self._keys()]
 
     def total(self) -> float:
         """Sum of every energy (kinetic + elastic + the works + dissipations)."""

@@ -19,6 +19,8 @@ each Law2 needs its Ip2 in the list, as in Yade.
 
 from __future__ import annotations
 
+import functools
+import inspect
 import sys
 from typing import Callable, Sequence
 
@@ -160,7 +162,10 @@ class Ip2_FrictMat_FrictMat_MindlinPhys(Functor):
     """Hertz-Mindlin physics from FrictMat (young, poisson, frictionAngle): kno = 4/3 E* sqrt(R*),
     kso = 8 G* sqrt(R*). Damping from the restitution coefficients ``en``, ``es`` (Thornton's
     fit, as Yade; one alone stands for both) or directly the damping ratios ``betan``,
-    ``betas``; none: elastic. Yade's krot, ktwist, eta and gamma are not supported."""
+    ``betas``; none: elastic. Each a number or a MatchMaker (per pair of materials; a pair
+    without a match takes ``val`` with algo 'val' and is an error with the averaging algos, as
+    in Yade, whose functor passes no material values). Yade's krot, ktwist, eta and gamma are
+    not supported."""
     _parameters = ("en", "es", "betan", "betas")
 
 
@@ -222,6 +227,32 @@ class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
         super()._configure(phys)
         phys._laws.append(self)
 
+    # Yade's elastic energies of the springs of O's cohesive-frictional contacts (those between
+    # two CohFrictMat bodies), each a sum of |F|^2 / (2 k) over the real contacts.
+    def normElastEnergy(self) -> float:
+        return self._elasticEnergy("normalForce", "kn")
+
+    def shearElastEnergy(self) -> float:
+        return self._elasticEnergy("shearForce", "ks")
+
+    def bendingElastEnergy(self) -> float:
+        return self._elasticEnergy("moment_bending", "kr")
+
+    def twistElastEnergy(self) -> float:
+        return self._elasticEnergy("moment_twist", "ktw")
+
+    def _elasticEnergy(self, force: str, stiffness: str) -> float:
+        from talus.dem import O
+        from talus.dem.materials import CohFrictMat
+        cohesive = np.array([isinstance(m, CohFrictMat) for m in O.materials], dtype=bool)
+        material = O._cpp.materialIds()
+        energy = 0.0
+        for contact, extra in zip(O._cpp.contacts(True), _dem.contact_extra(O._cpp)):
+            if cohesive[material[contact["id1"]]] and cohesive[material[contact["id2"]]]:
+                values = {**contact, **extra}
+                energy += 0.5 * float(np.dot(values[force], values[force])) / values[stiffness]
+        return energy
+
 
 class Law2_ScGeom_MindlinPhys_Mindlin(_Law):
     """Hertz normal force kno u^1.5, incremental Mindlin shear stiffness kso u^0.5 with Coulomb
@@ -231,7 +262,9 @@ class Law2_ScGeom_MindlinPhys_Mindlin(_Law):
     _parameters = ("neverErase",)
 
     def _set(self, name: str, value):
-        if name != "neverErase":
+        if isinstance(value, MatchMaker):   # a value per pair of materials
+            _dem.law_set_pair_parameter(self._cpp, name, *value.pairTable())
+        elif name != "neverErase":
             super()._set(name, value)
         elif value:
             raise ValueError("Law2_ScGeom_MindlinPhys_Mindlin: neverErase=True is not supported "
@@ -270,9 +303,25 @@ class TimingDeltas:
 
 
 class Engine:
-    """Base of the engines: holds the C++ engine and forwards its parameters."""
+    """Base of the engines: holds the C++ engine and forwards its parameters. Every engine takes
+    Yade's ``dead=`` (a dead engine is skipped by the step, and by a CombinedKinematicEngine)."""
 
     _cpp: object
+
+    def __init_subclass__(cls, **kwargs):
+        # Yade's ``dead`` is an attribute of every engine: each constructor that does not name it
+        # takes it as a keyword (its signature, which checkpoints read, stays the constructor's).
+        super().__init_subclass__(**kwargs)
+        init = cls.__dict__.get("__init__")
+        if init is None or "dead" in inspect.signature(init).parameters:
+            return
+
+        @functools.wraps(init)
+        def __init__(self, *args, dead: bool = False, **kw):
+            init(self, *args, **kw)
+            if dead:
+                self.dead = True
+        cls.__init__ = __init__
 
     @property
     def label(self) -> str:
@@ -371,9 +420,16 @@ class Dispatcher:
         return matrix
 
 
-class BoundDispatcher(Dispatcher):
+class BoundDispatcher(Dispatcher, Engine):
+    """The bound functors of a collider; also an engine of O.engines by itself, as Yade allows.
+    There it does nothing: Talus's collider bounds the bodies itself and Talus keeps no bounds
+    between steps (Yade's ``b.bound``) for it to update."""
     _arity = 1
     _prefix = ("Bo1_", "Potential")   # PotentialBlock2AABB, PotentialParticle2AABB are Yade's too
+
+    def __init__(self, functors: Sequence[Functor] = (), label: str = ""):
+        self._cpp = _dem.CallbackEngine()    # without a callback: a step through it does nothing
+        super().__init__(functors, label)
 
 
 class IGeomDispatcher(Dispatcher):
@@ -499,8 +555,9 @@ class NewtonIntegrator(Engine):
     """Leap-frog integration with ``gravity`` and Cundall's non-viscous ``damping``.
 
     Aspherical bodies (clumps, boxes) always rotate by Yade's exact scheme
-    (``exactAsphericalRot=True``, Yade's default); ``kinSplit`` and ``warnNoForceReset`` are
-    accepted and change nothing in the integration."""
+    (``exactAsphericalRot=True``, Yade's default); ``kinSplit``: O.energy gives the kinetic
+    energy as its translational and rotational parts (``kinTrans``, ``kinRot``), as Yade's;
+    ``warnNoForceReset`` is accepted and changes nothing."""
 
     def __init__(self, gravity=(0.0, 0.0, 0.0), damping: float = 0.2, label: str = "",
                  exactAsphericalRot: bool = True, kinSplit: bool = False, warnNoForceReset: bool = True):
@@ -552,20 +609,22 @@ def _yade_command(command: str) -> Callable[[], None]:
 class PyRunner(Engine):
     """Runs ``command`` every ``iterPeriod`` steps, ``virtPeriod`` seconds of simulated time
     and/or ``realPeriod`` seconds of wall time: a string executed in the script's namespace (as
-    in Yade) or a Python callable."""
+    in Yade) or a Python callable; at most ``nDo`` times (-1: no limit)."""
 
     def __init__(self, command: str | Callable[[], None] = "", iterPeriod: int = 0, realPeriod: float = 0,
-                 initRun: bool = False, label: str = "", dead: bool = False, virtPeriod: float = 0):
+                 initRun: bool = False, label: str = "", dead: bool = False, virtPeriod: float = 0, nDo: int = -1):
         if min(iterPeriod, realPeriod, virtPeriod) < 0:
             raise ValueError(f"PyRunner: iterPeriod, realPeriod and virtPeriod must be >= 0, got {iterPeriod}, "
                              f"{realPeriod}, {virtPeriod}")
         if iterPeriod == 0 and realPeriod == 0 and virtPeriod == 0:
             iterPeriod = 1          # Yade's default: every step
         self._cpp = _dem.CallbackEngine()
+        self._cpp.resumable = True    # its error leaves the scene whole: the step can be finished
         self._cpp.iterPeriod = iterPeriod
         self._cpp.realPeriod = float(realPeriod)
         self._cpp.virtPeriod = float(virtPeriod)
         self._cpp.initRun = initRun
+        self._cpp.nDo = int(nDo)
         self.command = command
         self.label = label
         self.dead = dead
@@ -582,9 +641,15 @@ class PyRunner(Engine):
         else:
             self._cpp.callback = asCallback(command, "PyRunner") or (lambda: None)
 
+    def __call__(self):
+        """Run the command once, now: Yade's ``engine()`` (whatever the periods, even when dead)."""
+        self._cpp.callback()
+
     iterPeriod = property(lambda self: self._cpp.iterPeriod, lambda self, v: setattr(self._cpp, "iterPeriod", v))
     virtPeriod = property(lambda self: self._cpp.virtPeriod, lambda self, v: setattr(self._cpp, "virtPeriod", float(v)))
     nDone = property(lambda self: self._cpp.nDone)
+    nDo = property(lambda self: self._cpp.nDo, lambda self, v: setattr(self._cpp, "nDo", int(v)),
+                   doc="calls after which it is not called any more (-1: no limit)")
 
 
 __all__ = [
@@ -608,13 +673,14 @@ def collapseDispatchers(engines: Sequence) -> list:
     out, k = [], 0
     while k < len(engines):
         if [type(e) for e in engines[k:k + 2]] == [IGeomDispatcher, IPhysDispatcher]:
-            law = next((j for j in range(k + 2, len(engines)) if isinstance(engines[j], Dispatcher)), None)
+            law = next((j for j in range(k + 2, len(engines))
+                        if isinstance(engines[j], Dispatcher) and not isinstance(engines[j], Engine)), None)
             if law is not None and isinstance(engines[law], LawDispatcher):
                 out.append(InteractionLoop(engines[k], engines[k + 1], engines[law], label=engines[law].label))
                 out.extend(engines[k + 2:law])
                 k = law + 1
                 continue
-        if isinstance(engines[k], Dispatcher):
+        if isinstance(engines[k], Dispatcher) and not isinstance(engines[k], Engine):
             raise TypeError(f"O.engines: {type(engines[k]).__name__} must come as IGeomDispatcher, IPhysDispatcher, "
                             "LawDispatcher in a row (or use InteractionLoop)")
         out.append(engines[k])
