@@ -113,10 +113,12 @@ inline double springEnergy(const Contact& c, double compression)
 
 /// True if a real contact overlaps more than `ratio` (> 0) of its smaller reference radius.
 /// A contact without force at that overlap (no stiffness: a material of young 0, which Yade's
-/// scripts give to bodies that only show something) cannot blow up and is let through.
-inline bool overlapsTooMuch(const Contact& c, double ratio)
+/// scripts give to bodies that only show something) cannot blow up and is let through, as is one
+/// between two bodies that forces do not move (a fixed floor box in fixed bed spheres).
+inline bool overlapsTooMuch(const Contact& c, double ratio, const Bodies& b)
 {
-  return ratio > 0 && c.penetration > ratio * std::min(c.refR1, c.refR2) && c.force != Vec3::Zero();
+  return ratio > 0 && c.penetration > ratio * std::min(c.refR1, c.refR2) && c.force != Vec3::Zero()
+         && (b.dynamic[static_cast<std::size_t>(c.id1)] || b.dynamic[static_cast<std::size_t>(c.id2)]);
 }
 
 /// Base of the concrete laws: the loops over contacts, calling the law's inline

@@ -109,7 +109,7 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
       law.initialize(c, x, scene);
     }
     law.template force<Track>(c, static_cast<std::size_t>(k), step, energy);
-    if (overlapsTooMuch(c, ratio))
+    if (overlapsTooMuch(c, ratio, step.bodies))
       bad = std::min(bad, k);
   }
   return bad;

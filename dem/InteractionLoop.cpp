@@ -119,7 +119,7 @@ void InteractionLoop::run(Scene& scene)
     computeWithSeveralLaws(scene);
     const auto& list = scene.contacts.list;
     for (std::size_t k = 0; k < list.size() && bad < 0; ++k)
-      if (list[k].real && overlapsTooMuch(list[k], scene.maxOverlapRatio))
+      if (list[k].real && overlapsTooMuch(list[k], scene.maxOverlapRatio, scene.bodies))
         bad = static_cast<std::int64_t>(k);
   }
   if (scene.energy.enabled && !scene.energy.grownBy.empty())

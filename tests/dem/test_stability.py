@@ -135,3 +135,22 @@ def test_talus_run_reports_overlaps_as_yade_would_run_on(talus_cmd, tmp_path):
         "O.run(3, True)\n")
     done = talus_cmd("run", script)
     assert "talus run: 3 steps had a contact overlapping beyond O.maxOverlapRatio" in done.stderr
+
+
+def test_overlapping_fixed_bodies_are_not_an_overlap_error():
+    # Two fixed spheres (a rough bed) overlapping by far more than the limit move under no force:
+    # they cannot blow up, so the check passes them over; a free sphere in such overlap does not.
+    from talus.dem import (Bo1_Sphere_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom, InsertionSortCollider,
+                           InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
+                           NewtonIntegrator, Scene, sphere)
+    S = Scene()
+    S.bodies.append([sphere((0, 0, 0), 1, fixed=True), sphere((0, 0, 0.5), 1, fixed=True), sphere((5, 0, 0), 1)])
+    S.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                                 [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator()]
+    S.dt = 1e-5
+    S.run(3, True)
+    assert S.interactions.countReal() == 1 and S.overlapSteps == 0
+    S.bodies[1].dynamic = True
+    with pytest.raises(RuntimeError, match="bodies 0 and 1 overlap"):
+        S.run(1, True)
