@@ -177,8 +177,12 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
                                   "spanning a volume), its determinant is "
                                   + std::to_string(cell.determinant()));
   }
-  else if (!mx.allFinite() || ((mx - mn).array() < 0).any())
-    throw std::invalid_argument("makeCloud: maxCorner must be at or above minCorner in every direction");
+  else if (!mx.allFinite())
+    throw std::invalid_argument("makeCloud: maxCorner must be finite");
+  // As Yade, a box whose maxCorner is below minCorner along an axis is filled between the two
+  // (its spheres then reach up to a radius beyond the corners); a cell cannot be inverted.
+  else if (periodic && ((mx - mn).array() < 0).any())
+    throw std::invalid_argument("makeCloud: a periodic cloud needs maxCorner at or above minCorner in every direction");
   std::random_device device;
   std::mt19937 generator(seed >= 0 ? static_cast<std::mt19937::result_type>(seed) : device());
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
@@ -195,6 +199,9 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
   else if (num > 0 && psdSizes.empty())
   {
     mode = RadiusMode::FromPorosity;
+    if (volume < 0) // Yade takes the cube root of the negative volume: a NaN radius
+      throw std::invalid_argument("makeCloud: num without rMean needs maxCorner at or above minCorner in every "
+                                  "direction (the radius comes from the box's volume)");
     // mean volume of radii uniform in rMean (1 +- z): 4/3 pi rMean^3 (1 + z^2)
     if (volume != 0)
       rMean = std::pow(volume * (1 - porosity) / (M_PI * (4 / 3.) * (1 + rRelFuzz * rRelFuzz) * num), 1 / 3.);

@@ -279,8 +279,8 @@ _WRITERS = {"spheres": write_spheres, "facets": write_facets, "walls": write_wal
             "intrs": write_contacts, "pericell": write_periodic_cell}
 _RECORDERS = {"spheres": ("spheres",), "facets": ("facets",), "walls": ("walls",), "boxes": ("walls", "boxes"),
               "intr": ("intrs",), "pericell": ("pericell",), "all": ("spheres", "facets", "walls", "boxes", "intrs")}
-# Yade recorders whose data the sphere file always holds.
-_INCLUDED = {"velocity", "id", "ids", "materialId", "mass", "force"}
+# Yade recorders whose data the sphere file always holds (colours: the facet and box files too).
+_INCLUDED = {"velocity", "id", "ids", "materialId", "mass", "force", "color", "colors"}
 
 
 class VTKRecorder(PyRunner):
@@ -291,7 +291,7 @@ class VTKRecorder(PyRunner):
     ``{fileName}spheres.pvd`` etc. for ParaView. ``recorders``: any of ``spheres``, ``facets``,
     ``walls``, ``boxes`` (Box bodies as hexahedra, and walls as Yade's ``boxes`` does), ``intr``,
     ``pericell`` (the periodic cell; nothing in a scene that is not periodic), or ``all`` (all but
-    ``pericell``, as Yade's); Yade's ``velocity``, ``ids``,
+    ``pericell``, as Yade's); Yade's ``velocity``, ``ids``, ``colors``,
     ``materialId``, ``mass``, ``force`` are accepted (the sphere file always has them).
     ``wallSize``: side of the squares drawn for walls (default: from the spheres' extent).
     Folders in ``fileName`` are created. Usable in ``O.engines`` and saved by ``O.save``.

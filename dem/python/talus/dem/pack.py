@@ -270,7 +270,9 @@ class SpherePack:
         reaches its own image: radii asked for (rMean, psdSizes) that cannot fit raise
         ValueError. A flat box (one size zero) with ``periodic`` makes a 2D cloud that is
         periodic without a cell (as Yade's: ``isPeriodic`` true, ``cellSize`` zero): the script
-        sets ``O.cell.hSize`` after ``toSimulation``. Returns the number of spheres created."""
+        sets ``O.cell.hSize`` after ``toSimulation``. A box whose maxCorner is below minCorner
+        along an axis (not periodic, rMean given) is filled between the two as Yade fills it,
+        its spheres reaching up to one radius beyond them. Returns the number of spheres created."""
         cell = np.zeros((3, 3)) if hSize is None else np.asarray(hSize, dtype=float).reshape(3, 3)
         if hSize is not None and not np.any(cell != 0):
             raise ValueError("makeCloud: hSize is zero; give the cell's edges as columns, or leave hSize out")
