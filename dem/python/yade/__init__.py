@@ -49,6 +49,7 @@ import yade.params as params        # noqa: E402
 import yade.config as config        # noqa: E402  (Yade's yade.config and yade.math come with yade)
 import yade.math as math            # noqa: E402
 import yade.libVersions as libVersions  # noqa: E402
+import yade.runtime as runtime      # noqa: E402  (Yade's yade.runtime too: the command-line options)
 
 __all__ = [*_dem_names, *_gui_names, *_component_names, "O", "Omega",
            "utils", "pack", "plot", "ymport", "export", "timing", "geom", "qt", "params"]

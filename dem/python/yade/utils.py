@@ -10,7 +10,8 @@ from talus.dem.geom import facetBox, facetCylinder
 from talus.dem.scene import SpherePWaveTimeStep
 from talus.dem.clumps import clumpTemplate
 from talus.dem.linalg import Quaternion
-from talus.dem.measure import aabbDim, aabbExtrema, angularMomentum, kineticEnergy, momentum, sumForces
+from talus.dem.measure import (aabbDim, aabbExtrema, angularMomentum, getSpheresMass, getSpheresVolume,
+                               kineticEnergy, momentum, sumForces)
 from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,
                          waitIfBatch)
 
@@ -18,6 +19,7 @@ __all__ = ["sphere", "wall", "facet", "box", "aabbWalls", "facetBox", "facetCyli
            "RayleighWaveTimeStep", "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions",
            "fabricTensor", "bodyStressTensors", "porosity", "growParticles", "setContactFriction",
            "typedEngine", "kineticEnergy", "momentum", "angularMomentum", "sumForces", "aabbExtrema", "aabbDim",
+           "getSpheresVolume", "getSpheresMass",
            "randomOrientation", "randomColor", "clumpTemplate", "calm",
            "readParamsFromTable", "TableParamReader", "saveVars", "loadVars", "waitIfBatch", "runningInBatch"]
 

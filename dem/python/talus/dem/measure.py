@@ -159,3 +159,22 @@ def aabbDim(cutoff: float = 0.0, centers: bool = False, scene=None) -> Vector3:
     """Size of the box of ``aabbExtrema``."""
     lo, hi = aabbExtrema(cutoff, centers, scene)
     return Vector3(hi - lo)
+
+
+def _spheres(mask: int, function: str, scene) -> tuple:
+    if mask != -1:
+        raise ValueError(f"{function}: mask={mask!r} is not supported (Talus bodies have no mask); use mask=-1")
+    scene = _scene(scene)
+    return scene, scene.sphere_ids()
+
+
+def getSpheresVolume(mask: int = -1, scene=None) -> float:
+    """Total volume of the spheres (clump members included), as Yade's."""
+    scene, ids = _spheres(mask, "getSpheresVolume", scene)
+    return float(_dem.sphereVolume(scene._cpp))
+
+
+def getSpheresMass(mask: int = -1, scene=None) -> float:
+    """Total mass of the spheres (clump members included), as Yade's."""
+    scene, ids = _spheres(mask, "getSpheresMass", scene)
+    return float(np.sum(scene._cpp.mass()[ids]))

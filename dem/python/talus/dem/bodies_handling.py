@@ -1,0 +1,118 @@
+"""Yade's ``bodiesHandling``: the extent of a group of spheres or facets, moving and scaling
+spheres, copying one. Bodies are given as ids or as Body objects of ``O``; erased ids are
+skipped, and so are bodies of another shape (as in Yade).
+
+Talus bodies have no ``mask``: a ``mask`` other than -1 is an error. A sphere in a scene keeps
+its radius in Talus, so ``spheresModify`` scales only copies (``copy=True``) or with scale 1.
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Integral
+from typing import Iterable
+
+from talus.dem.bodies import sphere
+from talus.dem.linalg import Quaternion, Vector3
+from talus.dem.shapes import Facet, Sphere
+
+
+def _bodies(ids: Iterable, mask: int, function: str) -> list:
+    """The live bodies named by ``ids`` (ids or Body objects), in order."""
+    if mask != -1:
+        raise ValueError(f"{function}: mask={mask!r} is not supported (Talus bodies have no mask); use mask=-1")
+    from talus.dem import O
+    bodies = []
+    for item in ids:
+        if isinstance(item, Integral):
+            bodies.append(O.bodies[int(item)])
+        elif hasattr(item, "state") and hasattr(item, "id"):
+            bodies.append(item)
+        else:
+            raise TypeError(f"{function}: expected body ids or bodies, got {item!r}")
+    return [b for b in bodies if b is not None]
+
+
+def _extent(boxes: list[tuple[int, Vector3, Vector3]]) -> dict:
+    """Yade's dictionary for the bounding boxes (id, low corner, high corner) of some bodies:
+    min, max, the ids reaching them per axis, center, extends, number."""
+    low, high = Vector3.Zero, Vector3.Zero
+    lowId, highId = Vector3.Zero, Vector3.Zero
+    for k, (id, lo, hi) in enumerate(boxes):
+        for axis in range(3):
+            if k == 0 or hi[axis] > high[axis]:
+                high[axis], highId[axis] = hi[axis], id
+            if k == 0 or lo[axis] < low[axis]:
+                low[axis], lowId[axis] = lo[axis], id
+    return {"max": high, "min": low, "maxId": highId, "minId": lowId, "center": (high - low) / 2.0 + low,
+            "extends": high - low, "number": len(boxes)}
+
+
+def spheresPackDimensions(idSpheres=(), mask: int = -1) -> dict:
+    """Extent of the spheres among ``idSpheres``: ``min``, ``max`` (corners of their bounding
+    box), ``minId``, ``maxId`` (per axis, the sphere reaching it), ``center``, ``extends``,
+    ``volume`` (of the spheres), ``mass``, ``number``."""
+    if len(idSpheres) < 1:
+        raise RuntimeWarning("Only a list of particles with length > 1 can be analyzed")
+    spheres = [b for b in _bodies(idSpheres, mask, "spheresPackDimensions") if isinstance(b.shape, Sphere)]
+    boxes = []
+    for b in spheres:
+        r = b.shape.radius
+        boxes.append((b.id, b.state.pos - Vector3(r, r, r), b.state.pos + Vector3(r, r, r)))
+    dimensions = _extent(boxes)
+    dimensions["volume"] = sum(4.0 / 3.0 * math.pi * b.shape.radius ** 3 for b in spheres)
+    dimensions["mass"] = sum(b.state.mass for b in spheres)
+    return dimensions
+
+
+def facetsDimensions(idFacets=(), mask: int = -1) -> dict:
+    """Extent of the facets among ``idFacets`` (from their vertices): ``min``, ``max``,
+    ``minId``, ``maxId``, ``center``, ``extends``, ``number``."""
+    if len(idFacets) < 1:
+        raise RuntimeWarning("Only a list of particles with length > 1 can be analyzed")
+    boxes = []
+    for b in _bodies(idFacets, mask, "facetsDimensions"):
+        if not isinstance(b.shape, Facet):
+            continue
+        corners = [b.state.pos + b.state.ori * v for v in b.shape.vertices]
+        boxes.append((b.id, Vector3(*(min(c[a] for c in corners) for a in range(3))),
+                      Vector3(*(max(c[a] for c in corners) for a in range(3)))))
+    return _extent(boxes)
+
+
+def spheresModify(idSpheres=(), mask: int = -1, shift=Vector3.Zero, scale: float = 1.0,
+                  orientation=Quaternion((0, 1, 0), 0.0), copy: bool = False):
+    """Turn the spheres of ``idSpheres`` by ``orientation`` and scale them by ``scale`` about
+    the centre of their extent, then move them by ``shift``; with ``copy``, their copies
+    instead (returned, to append). Returns True without ``copy``."""
+    if len(idSpheres) == 0:
+        raise RuntimeWarning("No bodies to modify")
+    centre = spheresPackDimensions(idSpheres, mask)["center"]
+    copies = []
+    for b in _bodies(idSpheres, mask, "spheresModify"):
+        if not isinstance(b.shape, Sphere):
+            continue
+        if copy:
+            b = sphereDuplicate(b)
+        pos = orientation * (b.state.pos - centre) + centre
+        if scale != 1.0:
+            # A copy not yet appended gets its mass and inertia from the new radius, as Yade's
+            # scaled ones (by scale^3 and scale^5, from the material's density).
+            b.shape.radius *= scale
+        b.state.pos = (pos - centre) * scale + centre + Vector3(shift)
+        if copy:
+            copies.append(b)
+    return copies if copy else True
+
+
+def sphereDuplicate(idSphere):
+    """A copy of a sphere (its position, radius, material, dynamic flag and look) to append;
+    False for a body that is not a sphere."""
+    (b,) = _bodies([idSphere], -1, "sphereDuplicate") or (None,)
+    if b is None or not isinstance(b.shape, Sphere):
+        return False
+    return sphere(b.state.pos, b.shape.radius, material=b.material, fixed=not b.dynamic, wire=b.shape.wire,
+                  color=b.shape.color, highlight=b.shape.highlight)
+
+
+__all__ = ["spheresPackDimensions", "facetsDimensions", "spheresModify", "sphereDuplicate"]

@@ -1,0 +1,8 @@
+"""``yade.bodiesHandling``: extents of spheres and facets, moving, scaling and copying spheres
+(talus.dem.bodies_handling)."""
+
+from talus.dem.bodies_handling import *  # noqa: F401,F403
+
+from yade._scope import module_getattr  # noqa: E402
+
+__getattr__ = module_getattr("yade.bodiesHandling")
