@@ -44,3 +44,18 @@ def test_fallback_value_and_conflicts():
         two_spheres(lambda a, b: Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(algo="val", val=0.5), betan=0.1))
     with pytest.raises(ValueError, match=r"en must be in \(0, 1\], got 1.5"):
         two_spheres(lambda a, b: Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(matches=((a, b, 1.5),))))
+
+
+def test_matchmakers_are_kept_by_checkpoints(tmp_path):
+    from talus.dem import O
+    O.reset()
+    a = O.materials.append(FrictMat(young=1e9, poisson=0.3, density=3000))
+    O.bodies.append([sphere((0, 0, 0), 0.01, material=a), sphere((0, 0, 0.0199), 0.01, material=a)])
+    physics = Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(matches=((a, a, 0.3),)))
+    O.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop([], [physics], [Law2_ScGeom_MindlinPhys_Mindlin()]),
+                 NewtonIntegrator(damping=0)]
+    O.dt = 1e-7
+    O.save(str(tmp_path / "s.h5"))
+    O.load(str(tmp_path / "s.h5"))
+    en = O.engines[2].physFunctors[0].en
+    assert isinstance(en, MatchMaker) and en(a, a) == 0.3

@@ -88,3 +88,18 @@ def test_stop_at_iter_and_time():
     assert S.iter == 1176
     with pytest.raises(ValueError, match="whole number"):
         S.run(10.5)
+
+
+def test_stop_limits_set_during_a_run_are_kept():
+    # Yade checks O.stopAtIter at every step: a PyRunner setting it ends an open-ended run there
+    # (spheresFactory.py stops its run so).
+    from talus.dem import O, PyRunner
+    O.reset()
+    O.engines = [PyRunner(iterPeriod=10, command=lambda: setattr(O, "stopAtIter", O.iter + 5))]
+    O.dt = 1.0
+    O.run(); O.wait()
+    assert O.iter == 15
+    O.stopAtIter = 0
+    O.engines = [PyRunner(iterPeriod=3, command=lambda: setattr(O, "stopAtTime", O.time + 2.5))]
+    O.run(); O.wait()
+    assert O.iter == 18
