@@ -33,7 +33,7 @@ import numpy as np
 from talus import _dem
 from talus.dem.bodies import sphere
 from talus.dem.linalg import Quaternion, Vector3
-from talus.dem.python_engines import PythonEngine
+from talus.dem.python_engines import PythonEngine, colliderSkin
 
 _ranks = itertools.count()   # default seeds
 
@@ -109,9 +109,7 @@ class SpheresFactory(PythonEngine):
         if not self.PSDcum:
             self._require("rMin", "rMax")
         self._require("vMin", "vMax")
-        colliders = [e for e in scene.engines if type(e).__name__ in ("InsertionSortCollider", "FlatGridCollider")]
-        if not colliders:
-            raise RuntimeError(f"{type(self).__name__}: no collider in O.engines (needed to find free places)")
+        grow = colliderSkin(scene, type(self).__name__)
         self.goalMass += self.massFlowRate * scene.dt
         self.normal = np.asarray(self.normal) / np.linalg.norm(self.normal)
         if self.maxMass > 0 and self.maxParticles > 0:
@@ -124,7 +122,6 @@ class SpheresFactory(PythonEngine):
         material = self.materialId if self.materialId >= 0 else len(scene.materials) + self.materialId
         if not 0 <= material < len(scene.materials):
             raise ValueError(f"{type(self).__name__}: invalid material id {self.materialId}")
-        grow = self._skin(scene, colliders[0])
         placed: list[tuple[np.ndarray, float]] = []   # this step's spheres, which have no bounds yet
         while (self.totalMass < self.goalMass and (self.maxParticles < 0 or self.numParticles < self.maxParticles)
                and (self.maxMass < 0 or self.totalMass < self.maxMass)):
@@ -158,15 +155,6 @@ class SpheresFactory(PythonEngine):
         self.numParticles += 1
         if bin is not None:
             self._bins[bin][1] += mass if self.PSDcalculateMass else 1
-
-    @staticmethod
-    def _skin(scene, collider) -> float:
-        """The distance the collider grows bounding boxes by (a negative verletDist: that
-        fraction of the smallest sphere's radius)."""
-        if collider.verletDist >= 0:
-            return collider.verletDist
-        radii = np.asarray(scene._cpp.radius())[scene.sphere_ids()]
-        return -collider.verletDist * radii.min() if len(radii) else 0.0
 
     # -- sizes ---------------------------------------------------------------------------------
     def _check_distribution(self) -> list[list[float]]:

@@ -9,10 +9,25 @@ Such an engine works on O, the scene of the script (talus.dem.O)."""
 
 from __future__ import annotations
 
+import numpy as np
+
 from talus import _dem
 from talus.dem.engines import Engine
 
 _NEVER = 2 ** 62   # an iteration period no run reaches
+
+
+def colliderSkin(scene, engine: str) -> float:
+    """The distance the scene's collider grows bounding boxes by (its verletDist; negative:
+    that fraction of the smallest sphere's radius), for engines that look for free places."""
+    colliders = [e for e in scene.engines if type(e).__name__ in ("InsertionSortCollider", "FlatGridCollider")]
+    if not colliders:
+        raise RuntimeError(f"{engine}: no collider in O.engines (needed to find free places)")
+    verletDist = colliders[0].verletDist
+    if verletDist >= 0:
+        return verletDist
+    radii = np.asarray(scene._cpp.radius())[scene.sphere_ids()]
+    return -verletDist * radii.min() if len(radii) else 0.0
 
 
 class PythonEngine(Engine):
