@@ -29,22 +29,30 @@ def test_exact_diameters_from_a_distribution_are_yades(runs):
 
 
 def test_random_sizes_and_velocities_have_yades_statistics(runs):
+    # Yade's draws come from the clock: each run (ours with its seed, Yade's) is held to the
+    # expected number and mean radius of the spheres within 4 standard deviations.
     ours, theirs = runs
-    for name, (rmin, rmax), (vmin, vmax), direction in [
-            ("binned", (0.01, 0.025), (1, 2), (math.sqrt(0.5), math.sqrt(0.5), 0)),
-            ("disc", (0.01, 0.03), (2, 3), (1, 0, 0))]:
-        a, b = ours[name], theirs[name]
-        assert a["counts"][2] == b["counts"][2] == 9.0                        # goal mass: 3000 kg/s x 30 steps
-        largest = 4 / 3 * math.pi * rmax ** 3 * 2000
-        assert 0 <= a["counts"][1] - a["counts"][2] < largest                # inserted up to the goal mass
-        assert abs(a["counts"][0] - b["counts"][0]) < 0.15 * b["counts"][0]
-        assert rmin <= min(a["radii"]) and max(a["radii"]) <= rmax
-        assert abs(np.mean(a["radii"]) - np.mean(b["radii"])) < 0.06 * np.mean(b["radii"])
-        assert vmin <= min(a["speeds"]) and max(a["speeds"]) <= vmax
-        assert np.allclose(a["directions"], direction)
+    for name, bins, (vmin, vmax), direction in [
+            ("binned", [(0.01, 0.015), (0.015, 0.025)], (1, 2), (math.sqrt(0.5), math.sqrt(0.5), 0)),
+            ("disc", [(0.01, 0.03)], (2, 3), (1, 0, 0))]:
+        # radii uniform in one of the bins, each bin as often
+        moment = lambda k: np.mean([(b ** (k + 1) - a ** (k + 1)) / ((k + 1) * (b - a)) for a, b in bins])
+        mass = lambda k: (4 / 3 * math.pi * 2000) ** k * moment(3 * k)        # k-th moment of a sphere's mass
+        expected = 9.0 / mass(1)
+        spread = math.sqrt(expected * (mass(2) - mass(1) ** 2)) / mass(1)
+        radiusSpread = math.sqrt((moment(2) - moment(1) ** 2) / expected)
+        for run in (ours[name], theirs[name]):
+            assert run["counts"][2] == 9.0                                  # goal mass: 3000 kg/s x 30 steps
+            assert 0 <= run["counts"][1] - 9.0 < 4 / 3 * math.pi * bins[-1][1] ** 3 * 2000   # up to the goal
+            assert abs(run["counts"][0] - expected) < 4 * spread
+            assert abs(np.mean(run["radii"]) - moment(1)) < 4 * radiusSpread
+            assert bins[0][0] <= min(run["radii"]) and max(run["radii"]) <= bins[-1][1]
+            assert vmin <= min(run["speeds"]) and max(run["speeds"]) <= vmax
+            assert np.allclose(run["directions"], direction)
     # by number: half of the spheres in each bin, as Yade
-    radii = np.array(ours["binned"]["radii"])
-    assert abs(np.sum(radii < 0.015) - np.sum(radii >= 0.015)) <= 1
+    for run in runs:
+        radii = np.array(run["binned"]["radii"])
+        assert abs(np.sum(radii < 0.015) - np.sum(radii >= 0.015)) <= 1
 
 
 def test_domain_limiter_is_yades(runs):
