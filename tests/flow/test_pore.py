@@ -656,3 +656,18 @@ def test_the_raw_coupling_refuses_a_missing_scene():
     from talus import _flow
     with pytest.raises(ValueError, match="PoreFlowCoupling: scene is None"):
         _flow.PoreFlowCoupling(None, _flow.PoreFlow())
+
+
+def test_default_wall_ids_are_yades_when_bodies_0_to_5_are_walls():
+    # Yade's FlowEngine.wallIds is [0..5] (aabbWalls appended before the spheres); where bodies
+    # 0..5 are not walls Talus gives the boundary forces to no body, and says so.
+    from talus.dem import Scene, aabbWalls, sphere
+    assert FlowEngine().wallIds == [0, 1, 2, 3, 4, 5]
+    walled = Scene()
+    walled.bodies.append(aabbWalls([(0, 0, 0), (1, 1, 1)]))
+    walled.bodies.append(sphere((0.5, 0.5, 0.5), 0.1))
+    assert FlowEngine(scene=walled)._wall_ids(walled) == [0, 1, 2, 3, 4, 5]
+    spheres = Scene()
+    spheres.bodies.append([sphere((x, 0, 0), 0.1) for x in range(6)])
+    with pytest.warns(RuntimeWarning, match="bodies 0..5 are not six walls"):
+        assert FlowEngine(scene=spheres)._wall_ids(spheres) == [-1] * 6

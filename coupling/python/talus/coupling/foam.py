@@ -175,6 +175,7 @@ class FoamCoupling(_Engine):
             if coupling is not None:
                 coupling._engine_step()
         self._runner = PyRunner(step, iterPeriod=1)
+        self._runner._cpp.resumable = False   # a failed exchange leaves the step without the fluid's forces
         self._cpp = self._runner._cpp
         self.label = label
         self._yade = scene is None and case is None  # Yade's interface: FoamCoupling()

@@ -67,6 +67,7 @@ class VansCoupling:
             raise ValueError("VansCoupling.attach: the HydroForceEngine is not in the scene's engines")
         steps = max(1, round(self.period / scene.dt))
         self.runner = PyRunner(self.couple, iterPeriod=steps)
+        self.runner._cpp.resumable = False   # a failed exchange leaves the step without its forces
         engines.insert(next(k for k, e in enumerate(engines) if e is self.hydro) + 1, self.runner)
         scene.engines = engines
         return self.runner

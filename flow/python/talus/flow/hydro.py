@@ -156,6 +156,7 @@ class HydroForceEngine(Engine):
         self._vy = np.zeros(self.nCell)
         self._vz = np.zeros(self.nCell)
         self._cpp = PyRunner(self.action, iterPeriod=1, initRun=True)._cpp   # every step, the first one included
+        self._cpp.resumable = False   # a failure leaves the step without its hydrodynamic forces
         self.label = label
         self.dead = dead
 

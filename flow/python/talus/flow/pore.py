@@ -93,7 +93,7 @@ class FlowEngine(Engine):
         self._scene = scene
         self._flow = _flow.PoreFlow()
         self._coupling = None
-        self._wallIds = [-1] * 6
+        self._wallIds = None        # Yade's default, bodies 0..5 (see _wall_ids)
         self._meshUpdateInterval = 1000
         self._defTolerance = 0.0
         self._blockHook = None
@@ -101,6 +101,7 @@ class FlowEngine(Engine):
         self._backgroundSteps = 10
         self._rebuild = False
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp  # from the first step on, as Yade's FlowEngine
+        self._cpp.resumable = False   # a failed solve leaves the step without its fluid forces
         for name, value in attrs.items():
             setattr(self, name, value)
 
@@ -150,9 +151,11 @@ class FlowEngine(Engine):
         self._flow.params = params
 
     def __getattr__(self, name):
-        if name in ("wallIds", "meshUpdateInterval"):
-            value = object.__getattribute__(self, "_" + name)
-            return list(value) if name == "wallIds" else value
+        if name == "wallIds":
+            ids = object.__getattribute__(self, "_wallIds")
+            return list(range(6)) if ids is None else list(ids)
+        if name == "meshUpdateInterval":
+            return self._meshUpdateInterval
         if name == "updateTriangulation":
             return self._rebuild
         if name in ("defTolerance", "blockHook", "multithread", "backgroundSteps"):
@@ -184,12 +187,29 @@ class FlowEngine(Engine):
         rad = np.asarray(scene.radii())[ids]
         self.triangulate(pos, rad, ids)
 
+    def _wall_ids(self, scene) -> list[int]:
+        """The wall bodies of the boundaries: those set, else Yade's default 0..5 (aabbWalls
+        appended before the spheres) when bodies 0..5 are walls or boxes; otherwise none, with a
+        warning: Yade would give the boundary forces to whatever bodies 0..5 are."""
+        if self._wallIds is not None:
+            return self._wallIds
+        kinds = [type(scene.bodies[i].shape).__name__ if i < len(scene.bodies) and scene.bodies[i] is not None
+                 else None for i in range(6)]
+        if all(kind in ("Wall", "Box") for kind in kinds):
+            return list(range(6))
+        if not getattr(self, "_warnedNoWalls", False):
+            self._warnedNoWalls = True
+            warnings.warn("FlowEngine: bodies 0..5 are not six walls or boxes (" + ", ".join(map(str, kinds))
+                          + "), as Yade's default wallIds assume: no body receives the boundary forces "
+                          "(set FlowEngine.wallIds)", RuntimeWarning, stacklevel=2)
+        return [-1] * 6
+
     def _step(self):
         """The engine's action: the C++ coupling on the running scene (talus.dem.O)."""
+        from talus.dem import O
         if self._coupling is None:
-            from talus.dem import O
             self._coupling = _flow.PoreFlowCoupling((self._scene or O)._cpp, self._flow)
-        self._coupling.wallIds = self._wallIds
+        self._coupling.wallIds = self._wall_ids(self._scene or O)
         self._coupling.meshUpdateInterval = self._meshUpdateInterval
         self._coupling.defTolerance = self._defTolerance
         self._coupling.multithread = self._multithread
