@@ -11,14 +11,14 @@ from talus.dem.scene import SpherePWaveTimeStep
 from talus.dem.clumps import clumpTemplate
 from talus.dem.linalg import Quaternion
 from talus.dem.measure import (aabbDim, aabbExtrema, angularMomentum, getSpheresMass, getSpheresVolume,
-                               kineticEnergy, momentum, sumForces)
+                               kineticEnergy, momentum, sumForces, totalForceInVolume)
 from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,
                          waitIfBatch)
 
 __all__ = ["sphere", "wall", "facet", "box", "aabbWalls", "facetBox", "facetCylinder", "PWaveTimeStep", "SpherePWaveTimeStep",
            "RayleighWaveTimeStep", "unbalancedForce", "getStress", "getStressAndTangent", "avgNumInteractions",
            "fabricTensor", "bodyStressTensors", "porosity", "growParticles", "setContactFriction",
-           "typedEngine", "kineticEnergy", "momentum", "angularMomentum", "sumForces", "aabbExtrema", "aabbDim",
+           "typedEngine", "kineticEnergy", "momentum", "angularMomentum", "sumForces", "totalForceInVolume", "aabbExtrema", "aabbDim",
            "getSpheresVolume", "getSpheresMass",
            "randomOrientation", "randomColor", "clumpTemplate", "calm",
            "readParamsFromTable", "TableParamReader", "saveVars", "loadVars", "waitIfBatch", "runningInBatch"]

@@ -134,6 +134,19 @@ def angularMomentum(origin=(0.0, 0.0, 0.0), scene=None) -> Vector3:
     return Vector3((np.cross(r, p) + spin).sum(axis=0))
 
 
+def totalForceInVolume(scene=None) -> tuple[Vector3, float]:
+    """Yade's totalForceInVolume: the sum over real contacts of the absolute components of each
+    contact's force (normal + shear), and the contacts' mean isotropic stiffness kn/3 + 2 ks/3
+    (-1 without contacts)."""
+    scene = _scene(scene)
+    total, stiffness, count = np.zeros(3), 0.0, 0
+    for i in scene.interactions:
+        total += np.abs(np.asarray(i.phys.normalForce) + np.asarray(i.phys.shearForce))
+        stiffness += i.phys.kn / 3 + 2 * i.phys.ks / 3
+        count += 1
+    return Vector3(total), (stiffness / count if count else -1.0)
+
+
 def sumForces(ids, direction, scene=None) -> float:
     """Sum over ``ids`` of the force on each body projected on ``direction``."""
     scene = _scene(scene)

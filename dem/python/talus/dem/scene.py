@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import atexit
 import builtins
 import math
+import shutil
+import tempfile
 import time
 import warnings
 import weakref
@@ -29,6 +32,8 @@ from talus.dem.particles import Ig2_PP_PP_ScGeom
 # Scene.overlapStops). Yade has no such check: a run started as `yade -x` would start it sets
 # False (yade.yade_run_defaults).
 OVERLAP_STOPS = True
+
+_TMP_FOLDER = None   # O.tmpFilename's folder, made at its first call
 
 
 def _applyGeometrySettings(cpp, engines):
@@ -141,6 +146,14 @@ class Scene(CheckpointMethods):
     def reset(self):
         """Forget everything: bodies, materials, engines, contacts, clock (Yade's O.reset)."""
         self.__init__()
+
+    def tmpFilename(self) -> str:
+        """A new file name in a folder that is removed when Python exits (Yade's O.tmpFilename)."""
+        global _TMP_FOLDER
+        if _TMP_FOLDER is None:
+            _TMP_FOLDER = tempfile.mkdtemp(prefix="talus-")
+            atexit.register(shutil.rmtree, _TMP_FOLDER, True)
+        return tempfile.mktemp(dir=_TMP_FOLDER)
 
     def resetTime(self):
         """Set the step count and the time back to zero (Yade's O.resetTime)."""

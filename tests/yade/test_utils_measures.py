@@ -1,0 +1,31 @@
+"""yade.utils measurements and O helpers scripts use, against numbers Yade 2023.02a printed for
+the same scene (tf2 below run by `yade -n -x`)."""
+import os
+
+import pytest
+
+SCENE = """
+O.bodies.append([sphere((0, 0, 0), 1), sphere((1.9, 0.3, 0.1), 1), sphere((0, 1.95, 0), 1)])
+O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]),
+             InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                             [Law2_ScGeom_FrictPhys_CundallStrack()]), NewtonIntegrator()]
+O.dt = 1e-5
+O.bodies[1].state.vel = (0, 0.3, 0.2)
+O.run(3, True)
+F, stiffness = totalForceInVolume()
+print('F %.10g %.10g %.10g k %.10g' % (F[0], F[1], F[2], stiffness))
+name = O.tmpFilename()
+open(name, 'w').write('x')
+print('tmp', name, os.path.isfile(name), name != O.tmpFilename())
+"""
+
+
+def test_total_force_in_volume_and_tmp_filename(talus_cmd, tmp_path):
+    script = tmp_path / "measures.py"
+    script.write_text(SCENE)
+    out = talus_cmd("run", script).stdout
+    # Yade: (Vector3(728609.8191607212648,615017.1854291777126,38330.72887373413687), 5333333.333333333)
+    assert "F 728609.8192 615017.1854 38330.72887 k 5333333.333" in out
+    name, exists, fresh = out.split("tmp ")[1].split()
+    assert exists == "True" and fresh == "True"
+    assert not os.path.exists(name)          # the folder went when the run's Python exited
