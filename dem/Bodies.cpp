@@ -48,6 +48,7 @@ BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
   dynamic.push_back(1);
   alive.push_back(1);
   clumpId.push_back(-1);
+  groupMask.push_back(1);
   return id;
 }
 

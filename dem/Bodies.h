@@ -44,6 +44,7 @@ struct FacetShape
 {
   std::array<Vec3, 3> vertices;
   Vec3 normal; ///< unit normal, (v1 - v0) x (v2 - v0) normalised, in the body frame
+  bool bounded = true; ///< false: Yade's noBound, the collider never pairs it (a factory's surface)
 };
 
 /// A box of half-sizes `extents` along the axes of the body's frame (Yade's Box.extents).
@@ -86,6 +87,9 @@ struct Bodies
   std::vector<std::uint8_t> dynamic;     ///< 1: moved by forces; 0: moved only by its velocity
   std::vector<std::uint8_t> alive;
   std::vector<BodyId> clumpId; ///< the clump this body is a member of, -1 if none
+  /// Yade's Body.groupMask (b.mask): two bodies may touch only if their masks share a bit
+  /// (see mayCollide); engines with a `mask` act on the bodies sharing a bit with it. Default 1.
+  std::vector<int> groupMask;
   std::vector<WallShape> walls;
   std::vector<FacetShape> facets;
   std::vector<BoxShape> boxes;
@@ -106,6 +110,19 @@ struct Bodies
   void setAngularVelocity(std::size_t i, const Vec3& w);
   /// True for bodies whose rotation integrates the angular momentum in the principal frame
   /// (clumps, boxes, blocks and potential particles with unequal principal moments, as Yade's isAspherical).
+  /// Whether the collider may pair bodies i and j, for other than spatial reasons (Yade's
+  /// Collider::mayCollide): not members of one clump, masks sharing a bit, and not two bodies of
+  /// one mask that shares a bit with the collider's avoidSelfInteractionMask.
+  [[nodiscard]] bool mayCollide(std::size_t i, std::size_t j, int avoidSelfInteractionMask) const
+  {
+    return (clumpId[i] < 0 || clumpId[i] != clumpId[j]) && masksAllow(i, j, avoidSelfInteractionMask);
+  }
+  /// The masks' part of mayCollide.
+  [[nodiscard]] bool masksAllow(std::size_t i, std::size_t j, int avoidSelfInteractionMask) const
+  {
+    const int mi = groupMask[i], mj = groupMask[j];
+    return (mi & mj) != 0 && !(mi == mj && (mi & avoidSelfInteractionMask) != 0);
+  }
   [[nodiscard]] bool aspherical(std::size_t i) const
   {
     return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box || shape[i] == ShapeKind::PotentialBlock

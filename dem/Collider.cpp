@@ -31,7 +31,7 @@ bool byKey(const Candidate& a, const Candidate& b) { return a.key < b.key; }
 /// Partners are read from the grid's packed copy of centres and radii, in runs of neighbouring
 /// cells: reading them body by body through their ids took three times as long.
 void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const CellGrid& grid, double skin,
-                 std::vector<std::vector<Candidate>>& perThread)
+                 const Collider::PairFilter& filter, std::vector<std::vector<Candidate>>& perThread)
 {
   perThread.resize(1);
 #pragma omp parallel if (static_cast<std::int64_t>(spheres.size()) >= parallelLoopMinimum)
@@ -55,7 +55,8 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
       const auto i = static_cast<std::size_t>(id);
       const Vec3 center = b.pos[i];
       const double reach = b.radius[i] + skin;
-      const bool inClump = b.clumpId[i] >= 0;
+      // Only members of a clump, or any sphere when masks are in play, may be refused a partner.
+      const bool filtered = b.clumpId[i] >= 0 || filter.masks;
       const std::size_t first = out.size();
       grid.forEachRunAround(static_cast<std::size_t>(s), [&](std::int64_t begin, std::int64_t end) {
         for (std::int64_t e = begin; e < end; ++e)
@@ -69,7 +70,7 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
           const double range = reach + p.radius;
           if (dx * dx + dy * dy + dz * dz >= range * range)
             continue;
-          if (inClump && b.clumpId[i] == b.clumpId[static_cast<std::size_t>(other)]) // members of a clump never touch
+          if (filtered && !filter(b, i, static_cast<std::size_t>(other)))
             continue;
           out.push_back({key(id, other), Eigen::Vector3i::Zero()});
         }
@@ -121,7 +122,7 @@ void mergeCandidates(const std::vector<std::vector<Candidate>>& parts, const std
 /// coordinates wrapped into the cell; with fewer than 3 bins along an axis (a cell not much
 /// larger than the interaction range) every pair is tested.
 void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell& cell, double rmax,
-                         double skin, std::vector<Candidate>& pairs)
+                         double skin, const Collider::PairFilter& filter, std::vector<Candidate>& pairs)
 {
   const Mat3 inv = cell.hSize.inverse();
   const std::size_t n = spheres.size();
@@ -141,8 +142,8 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
     bins[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(1.0 / (range * inv.row(d).norm())));
   auto consider = [&](std::size_t s, std::size_t t) {
     const BodyId a = spheres[s], c = spheres[t];
-    if (b.clumpId[static_cast<std::size_t>(a)] >= 0 && b.clumpId[static_cast<std::size_t>(a)] == b.clumpId[static_cast<std::size_t>(c)])
-      return; // members of a clump never touch, not even through an image
+    if (!filter(b, static_cast<std::size_t>(a), static_cast<std::size_t>(c)))
+      return; // not even through an image
     const std::size_t first = a < c ? s : t, second = a < c ? t : s;
     const Vec3 delta = wrapped[second] - wrapped[first];
     const Eigen::Vector3i image = -(delta.array().round().cast<int>()).matrix();
@@ -197,15 +198,9 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
   }
 }
 
-/// Whether two bodies are members of one clump (which never touch, as in Yade).
-bool sameClump(const Bodies& b, BodyId p, BodyId q)
-{
-  const BodyId c = b.clumpId[static_cast<std::size_t>(p)];
-  return c >= 0 && c == b.clumpId[static_cast<std::size_t>(q)];
-}
-
 /// Candidate box-sphere pairs: spheres whose centre is within r + skin of the box.
-void boxPairs(const Bodies& b, BodyId box, const CellGrid& grid, double rmax, double skin, std::vector<Candidate>& out)
+void boxPairs(const Bodies& b, BodyId box, const CellGrid& grid, double rmax, double skin,
+              const Collider::PairFilter& filter, std::vector<Candidate>& out)
 {
   const auto k = static_cast<std::size_t>(box);
   const Vec3 extents = b.boxes[static_cast<std::size_t>(b.shapeIndex[k])].extents;
@@ -215,13 +210,14 @@ void boxPairs(const Bodies& b, BodyId box, const CellGrid& grid, double rmax, do
     const auto i = static_cast<std::size_t>(s);
     const Vec3 local = R.transpose() * (b.pos[i] - b.pos[k]);
     const double range = b.radius[i] + skin;
-    if (!sameClump(b, box, s) && (local - local.cwiseMax(-extents).cwiseMin(extents)).squaredNorm() < range * range)
+    if (filter(b, k, i) && (local - local.cwiseMax(-extents).cwiseMin(extents)).squaredNorm() < range * range)
       out.push_back({key(box, s), Eigen::Vector3i::Zero()});
   });
 }
 
 /// Candidate facet-sphere pairs: spheres whose centre is within r + skin of the triangle.
-void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax, double skin, std::vector<Candidate>& out)
+void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax, double skin,
+                const Collider::PairFilter& filter, std::vector<Candidate>& out)
 {
   const std::array<Vec3, 3> v = facetVertices(b, static_cast<std::size_t>(facet));
   const Vec3 grow = Vec3::Constant(rmax + skin);
@@ -229,7 +225,7 @@ void facetPairs(const Bodies& b, BodyId facet, const CellGrid& grid, double rmax
   grid.forEachInBox(lo, hi, [&](BodyId s) {
     const auto i = static_cast<std::size_t>(s);
     const double range = b.radius[i] + skin;
-    if (!sameClump(b, facet, s) && (b.pos[i] - closestPointOnTriangle(b.pos[i], v[0], v[1], v[2])).squaredNorm() < range * range)
+    if (filter(b, static_cast<std::size_t>(facet), i) && (b.pos[i] - closestPointOnTriangle(b.pos[i], v[0], v[1], v[2])).squaredNorm() < range * range)
       out.push_back({key(facet, s), Eigen::Vector3i::Zero()});
   });
 }
@@ -264,7 +260,8 @@ Vec3 halfAabb(const Bodies& b, std::size_t body)
 /// sphere is taken where it is along that axis, as Yade's collider does (a floor across the
 /// cell), else it is an error, as in Yade.
 void periodicBoundaryPairs(const Bodies& b, BodyId body, const std::vector<BodyId>& spheres, const Cell& cell,
-                           double rmax, double skin, bool allowBiggerThanPeriod, std::vector<Candidate>& out)
+                           double rmax, double skin, bool allowBiggerThanPeriod, const Collider::PairFilter& filter,
+                           std::vector<Candidate>& out)
 {
   const auto k = static_cast<std::size_t>(body);
   const Mat3 inv = cell.hSize.inverse();
@@ -288,7 +285,7 @@ void periodicBoundaryPairs(const Bodies& b, BodyId body, const std::vector<BodyI
   const Vec3 centre = inv * b.pos[k];
   for (BodyId s : spheres)
   {
-    if (sameClump(b, body, s))
+    if (!filter(b, k, static_cast<std::size_t>(s)))
       continue;
     const auto i = static_cast<std::size_t>(s);
     const Eigen::Vector3i nearest = Vec3((centre - inv * b.pos[i]).array().round()).cast<int>().cwiseProduct(follows);
@@ -328,7 +325,7 @@ double referenceLength(const Bodies& b, std::size_t i)
 /// bodies never interact, nor a block with a particle, as in Yade) and of walls with them
 /// (Aabb within the skin of the plane, on its side).
 void convexPairs(const Bodies& b, const std::vector<BodyId>& convex, const std::vector<BodyId>& walls, double skin,
-                 std::vector<Candidate>& out)
+                 const Collider::PairFilter& filter, std::vector<Candidate>& out)
 {
   const std::size_t n = convex.size();
   std::vector<Vec3> lo(n), hi(n);
@@ -353,7 +350,8 @@ void convexPairs(const Bodies& b, const std::vector<BodyId>& convex, const std::
         continue;
       const BodyId i = convex[p], j = convex[q];
       if ((isBoundary(b, i) && isBoundary(b, j))
-          || b.shape[static_cast<std::size_t>(i)] != b.shape[static_cast<std::size_t>(j)])
+          || b.shape[static_cast<std::size_t>(i)] != b.shape[static_cast<std::size_t>(j)]
+          || !filter(b, static_cast<std::size_t>(i), static_cast<std::size_t>(j)))
         continue;
       out.push_back({key(std::min(i, j), std::max(i, j)), Eigen::Vector3i::Zero()});
     }
@@ -369,7 +367,7 @@ void convexPairs(const Bodies& b, const std::vector<BodyId>& convex, const std::
       const bool reaches = wall.sense > 0   ? below < skin
                            : wall.sense < 0 ? above > -skin
                                             : below < skin && above > -skin;
-      if (reaches)
+      if (reaches && filter(b, wi, static_cast<std::size_t>(convex[k])))
         out.push_back({key(w, convex[k]), Eigen::Vector3i::Zero()});
     }
   }
@@ -409,7 +407,7 @@ Contact newContact(const Bodies& b, const Candidate& candidate)
 /// each writing its records at its offset, so the list is the same for every thread count. (Serial, this copy of the records was the largest serial
 /// part of a re-detection.)
 void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const ContactList& old,
-                   const ContactExtraList& oldExtra, ContactList& merged,
+                   const ContactExtraList& oldExtra, const Collider::PairFilter& filter, ContactList& merged,
                    ContactExtraList& mergedExtra)
 {
   const bool withExtra = !oldExtra.empty();
@@ -437,7 +435,15 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const C
                            [](const Contact& c, PairKey k) { return key(c.id1, c.id2) < k; })
           - old.begin());
   }
-  auto bonded = [&](std::size_t i) { return withExtra && old[i].real && !oldExtra[i].cohesionBroken; };
+  // Kept when no longer a candidate: a contact held by a bond, or one the masks refuse now (a
+  // mask changed during it): as in Yade, masks decide which contacts begin, not which end.
+  auto kept = [&](std::size_t i) {
+    return old[i].real
+           && ((withExtra && !oldExtra[i].cohesionBroken)
+               || (filter.masks
+                   && !b.masksAllow(static_cast<std::size_t>(old[i].id1), static_cast<std::size_t>(old[i].id2),
+                                    filter.avoidSelfInteractionMask)));
+  };
   // The merge of run r: keep(o) for an old record that stays, fresh(p) for a new candidate.
   auto walk = [&](std::size_t r, auto&& keep, auto&& fresh) {
     std::size_t o = oldStart[r];
@@ -446,7 +452,7 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const C
     {
       const PairKey k = pairs[p].key;
       for (; o < oldEnd && oldKey(o) < k; ++o)
-        if (bonded(o))
+        if (kept(o))
           keep(o);
       // The same pair through the same periodic image keeps its history.
       if (o < oldEnd && oldKey(o) == k && old[o].cellDist == pairs[p].cellDist)
@@ -455,15 +461,15 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const C
         fresh(p);
     }
     for (; o < oldEnd; ++o)
-      if (bonded(o))
+      if (kept(o))
         keep(o);
   };
-  // Each run's record count: its candidates, plus, with bonds, the bonded records it keeps (the
-  // counting pass reads every old record: without bonds it would cost as much as the merge).
+  // Each run's record count: its candidates, plus, with bonds or masks, the records kept (the
+  // counting pass reads every old record: without them it would cost as much as the merge).
   std::vector<std::size_t> offset(static_cast<std::size_t>(runs) + 1, 0);
   for (std::size_t r = 0; r < static_cast<std::size_t>(runs); ++r)
     offset[r + 1] = pairStart[r + 1] - pairStart[r];
-  if (withExtra)
+  if (withExtra || filter.masks)
   {
 #pragma omp parallel for schedule(static, 1) num_threads(runs) if (runs > 1)
     for (int r = 0; r < runs; ++r)
@@ -646,7 +652,7 @@ void Collider::rebuild(Scene& scene)
     }
     else if (b.shape[i] == ShapeKind::Wall)
       walls.push_back(static_cast<BodyId>(i));
-    else if (b.shape[i] == ShapeKind::Facet)
+    else if (b.shape[i] == ShapeKind::Facet && b.facets[static_cast<std::size_t>(b.shapeIndex[i])].bounded)
       facets.push_back(static_cast<BodyId>(i));
     else if (b.shape[i] == ShapeKind::Box)
       boxes_.push_back(static_cast<BodyId>(i));
@@ -657,6 +663,9 @@ void Collider::rebuild(Scene& scene)
     }
     // a clump has no surface: its members interact
   }
+  Collider::PairFilter filter{avoidSelfInteractionMask, (avoidSelfInteractionMask & 1) != 0};
+  for (std::size_t i = 0; i < b.size() && !filter.masks; ++i)
+    filter.masks = b.alive[i] && b.groupMask[i] != 1;
   // Without spheres, a negative verletDist is a fraction of the smallest block's or particle's R.
   const double smallest = spheres.empty() ? blockRmin : rmin;
   skin_ = verletDist >= 0 ? verletDist : (std::isfinite(smallest) ? -verletDist * smallest : 0.0);
@@ -667,13 +676,13 @@ void Collider::rebuild(Scene& scene)
   if (scene.periodic)
   {
     pairs.clear();
-    periodicSpherePairs(b, spheres, scene.cell, rmax, skin_, pairs);
+    periodicSpherePairs(b, spheres, scene.cell, rmax, skin_, filter, pairs);
   }
   else
   {
     grid_.build(b, spheres, 2 * rmax + skin_);
     timingDeltas.checkpoint("re-detection: binning");
-    spherePairs(b, spheres, grid_, skin_, perThread_);
+    spherePairs(b, spheres, grid_, skin_, filter, perThread_);
   }
   timingDeltas.checkpoint("re-detection: sphere pairs");
   // The other shapes' pairs, few, sorted on their own and merged in.
@@ -683,16 +692,16 @@ void Collider::rebuild(Scene& scene)
     // Every sphere against each facet or box: periodic scenes with many of them are rare.
     for (const std::vector<BodyId>* kind : {&facets, &boxes_})
       for (BodyId k : *kind)
-        periodicBoundaryPairs(b, k, spheres, scene.cell, rmax, skin_, allowBiggerThanPeriod, others);
+        periodicBoundaryPairs(b, k, spheres, scene.cell, rmax, skin_, allowBiggerThanPeriod, filter, others);
   else
   {
     for (BodyId f : facets)
-      facetPairs(b, f, grid_, rmax, skin_, others);
+      facetPairs(b, f, grid_, rmax, skin_, filter, others);
     for (BodyId k : boxes_)
-      boxPairs(b, k, grid_, rmax, skin_, others);
+      boxPairs(b, k, grid_, rmax, skin_, filter, others);
   }
   if (!convex_.empty())
-    convexPairs(b, convex_, walls, skin_, others);
+    convexPairs(b, convex_, walls, skin_, filter, others);
   for (BodyId w : walls)
   {
     const auto wi = static_cast<std::size_t>(w);
@@ -702,7 +711,7 @@ void Collider::rebuild(Scene& scene)
       const auto si = static_cast<std::size_t>(s);
       const double d = b.pos[si][wall.axis] - b.pos[wi][wall.axis];
       const bool side = wall.sense == 0 || (wall.sense > 0 ? d > -b.radius[si] : d < b.radius[si]);
-      if (side && std::abs(d) < b.radius[si] + skin_)
+      if (side && std::abs(d) < b.radius[si] + skin_ && filter(b, wi, si))
         others.push_back({key(w, s), Eigen::Vector3i::Zero()});
     }
   }
@@ -723,7 +732,7 @@ void Collider::rebuild(Scene& scene)
   ContactList& old = scene.contacts.list;
   ContactExtraList& oldExtra = scene.contacts.extra;
   const bool withExtra = !oldExtra.empty();
-  mergeContacts(b, pairs, old, oldExtra, spare_, spareExtra_);
+  mergeContacts(b, pairs, old, oldExtra, filter, spare_, spareExtra_);
   old.swap(spare_);
   if (withExtra)
     oldExtra.swap(spareExtra_);

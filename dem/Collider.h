@@ -1,5 +1,6 @@
 #pragma once
 
+#include "dem/Bodies.h"
 #include "dem/CellGrid.h"
 #include "dem/Contacts.h"
 #include "dem/Engine.h"
@@ -39,6 +40,9 @@ public:
   /// the interaction range) meets the spheres where they are along it (Yade's
   /// InsertionSortCollider.allowBiggerThanPeriod); without it such a body is an error.
   bool allowBiggerThanPeriod = false;
+  /// Bodies of one group mask sharing a bit with it never touch each other (Yade's
+  /// InsertionSortCollider.avoidSelfInteractionMask; 0: none is kept apart).
+  int avoidSelfInteractionMask = 0;
   /// Number of rebuilds so far (diagnostics).
   std::int64_t rebuilds = 0;
 
@@ -86,6 +90,17 @@ public:
   void noteDisplacements(const Displacements& all) { common_ = commonOf(all); }
   /// Re-detect the candidate pairs now.
   void rebuild(Scene& scene);
+
+  /// Which pairs a re-detection may make (Bodies::mayCollide with avoidSelfInteractionMask).
+  struct PairFilter
+  {
+    int avoidSelfInteractionMask = 0;
+    bool masks = false; ///< some pair may be refused by the masks (else only clumps refuse pairs)
+    bool operator()(const Bodies& b, std::size_t i, std::size_t j) const
+    {
+      return b.mayCollide(i, j, avoidSelfInteractionMask);
+    }
+  };
 
 private:
   [[nodiscard]] bool needsRebuild(const Scene& scene);

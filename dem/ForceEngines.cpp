@@ -58,7 +58,7 @@ void GravityEngine::run(Scene& scene)
   double work = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || b.shape[i] == ShapeKind::Clump)
+    if (!b.alive[i] || b.shape[i] == ShapeKind::Clump || (mask != 0 && (b.groupMask[i] & mask) == 0))
       continue;
     b.force[i] += gravity * b.mass[i];
     if (track) // the energy comes in from outside: its work counts negative, as Yade books it

@@ -56,8 +56,7 @@ public:
 /// A homogeneous gravity field as an engine (Yade's GravityEngine, which Yade calls deprecated in
 /// favour of NewtonIntegrator.gravity): adds gravity x mass to every body but clumps (whose
 /// members get theirs). With energy tracking it books gravWork as Yade does, -m g.v dt with the
-/// velocity the body has when the engine runs. Yade's `mask` selects bodies by group mask, which
-/// Talus bodies do not have: only 0 (all bodies) is accepted (checked in Python).
+/// velocity the body has when the engine runs.
 class GravityEngine : public Engine
 {
 public:
@@ -66,6 +65,7 @@ public:
 
   Vec3 gravity = Vec3::Zero();
   bool warnOnce = true; ///< print Yade's deprecation notice at the first run
+  int mask = 0;         ///< nonzero: only the bodies whose group mask shares a bit with it (Yade's)
 };
 
 /// Gravity that follows a laptop's tilt (Yade's HdapsGravityEngine): reads the accelerometer's

@@ -73,6 +73,11 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
   {
     if (!b.alive[i])
       continue;
+    if (mask > 0 && (b.groupMask[i] & mask) == 0)
+    {
+      mode_[i] = Masked;
+      continue;
+    }
     if (b.clumpId[i] >= 0)
       mode_[i] = Member;
     else if (b.shape[i] == ShapeKind::Clump)
@@ -104,6 +109,7 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
   }
   seenBodiesVersion_ = scene.bodiesVersion;
   seenPropertiesVersion_ = scene.bodyPropertiesVersion;
+  seenMask_ = mask;
 }
 
 namespace
@@ -205,7 +211,8 @@ void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& forc
 
 void NewtonIntegrator::prepare(Scene& scene)
 {
-  if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_)
+  if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_
+      || mask != seenMask_)
     refreshInverses(scene);
 }
 
@@ -258,7 +265,7 @@ std::int64_t NewtonIntegrator::integrateRange(Scene& scene, std::int64_t first, 
     if (mode_[i] != 0)
     {
       // Clumps and aspherical bodies: the rare path.
-      if (mode_[i] & Member)
+      if (mode_[i] & (Member | Masked))
         return true;
       Vec3 f = b.force[i], t = b.torque[i];
       if (mode_[i] & ClumpBody)

@@ -31,6 +31,9 @@ public:
 
   Vec3 gravity = Vec3::Zero();
   double damping = 0.2; ///< Yade's default
+  /// Positive: only the bodies whose group mask shares a bit with it move; the others keep
+  /// their position, orientation and velocities (Yade's NewtonIntegrator.mask; default -1: all).
+  int mask = -1;
 
   // The pieces of run() for the fused step, which runs the loop in its own parallel region
   // (energy tracking takes run()).
@@ -69,10 +72,12 @@ private:
     Member = 1,     ///< clump member: moved by its clump
     ClumpBody = 2,  ///< sums its members' forces and moves them
     Aspherical = 4, ///< exact rotation of an aspherical body
+    Masked = 8,     ///< left out by `mask`
   };
   std::vector<std::uint8_t> mode_;
   bool hasClumps_ = false;
   std::int64_t seenBodiesVersion_ = -1, seenPropertiesVersion_ = -1;
+  int seenMask_ = -1;
   mutable BalancedRanges ranges_; ///< bodies per thread (their timing only)
 };
 } // namespace talus::dem

@@ -80,7 +80,8 @@ inline constexpr std::pair<const char*, std::vector<Vec3> Bodies::*> bodyVectors
 inline constexpr std::pair<const char*, std::vector<double> Bodies::*> bodyScalars[] = {{"mass", &Bodies::mass},
                                                                                   {"radius", &Bodies::radius}};
 inline constexpr std::pair<const char*, std::vector<int> Bodies::*> bodyInts[] = {
-    {"shapeIndex", &Bodies::shapeIndex}, {"material", &Bodies::material}, {"clumpId", &Bodies::clumpId}};
+    {"shapeIndex", &Bodies::shapeIndex}, {"material", &Bodies::material}, {"clumpId", &Bodies::clumpId},
+    {"groupMask", &Bodies::groupMask}};
 inline constexpr std::pair<const char*, std::vector<std::uint8_t> Bodies::*> bodyBytes[] = {
     {"blockedDofs", &Bodies::blockedDofs}, {"dynamic", &Bodies::dynamic}, {"alive", &Bodies::alive}};
 static_assert(sizeof(int) == 4 && sizeof(BodyId) == 4, "int arrays are written as 32-bit integers");

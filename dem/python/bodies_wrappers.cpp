@@ -3,6 +3,7 @@
 // API (Yade's names, defaults, docstrings) is talus.dem.kinematic and talus.dem.bodies.
 #include "dem/KinematicEngines.h"
 #include "dem/Scene.h"
+#include "dem/ServoPIDController.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
@@ -22,6 +23,21 @@ void talus_wrap_bodies(py::module_& m)
       .def(py::init<>())
       .def_readwrite("translationAxis", &TranslationEngine::translationAxis)
       .def_readwrite("velocity", &TranslationEngine::velocity);
+  py::class_<ServoPIDController, TranslationEngine, std::shared_ptr<ServoPIDController>>(m, "ServoPIDController")
+      .def(py::init<>())
+      .def_readwrite("axis", &ServoPIDController::axis)
+      .def_readwrite("target", &ServoPIDController::target)
+      .def_readwrite("maxVelocity", &ServoPIDController::maxVelocity)
+      .def_readwrite("kP", &ServoPIDController::kP)
+      .def_readwrite("kI", &ServoPIDController::kI)
+      .def_readwrite("kD", &ServoPIDController::kD)
+      .def_readwrite("iterPeriod", &ServoPIDController::iterPeriod)
+      .def_readwrite("iterPrevStart", &ServoPIDController::iterPrevStart)
+      .def_readwrite("errorCur", &ServoPIDController::errorCur)
+      .def_readwrite("errorPrev", &ServoPIDController::errorPrev)
+      .def_readwrite("iTerm", &ServoPIDController::iTerm)
+      .def_readwrite("curVel", &ServoPIDController::curVel)
+      .def_readwrite("current", &ServoPIDController::current);
   py::class_<RotationEngine, KinematicEngine, std::shared_ptr<RotationEngine>>(m, "RotationEngine")
       .def(py::init<>())
       .def_readwrite("rotationAxis", &RotationEngine::rotationAxis)
@@ -55,6 +71,17 @@ void talus_wrap_bodies(py::module_& m)
     s.checkBody(id);
     return s.bodies.clumpId[static_cast<std::size_t>(id)];
   });
+  // Yade's b.mask: a change re-detects the contacts (the pairs it allows or refuses now), and
+  // engines with a mask see it.
+  m.def("group_mask", [](const Scene& s, BodyId id) {
+    s.checkBody(id);
+    return s.bodies.groupMask[static_cast<std::size_t>(id)];
+  });
+  m.def("set_group_mask", [](Scene& s, BodyId id, int mask) {
+    s.checkBody(id);
+    s.bodies.groupMask[static_cast<std::size_t>(id)] = mask;
+    ++s.bodiesVersion;
+  });
   m.def("add_to_clump", &Scene::addToClump, py::arg("scene"), py::arg("clump"), py::arg("ids"),
         py::arg("discretization") = 0);
   m.def("release_from_clump", &Scene::releaseFromClump, py::arg("scene"), py::arg("member"), py::arg("clump"),
@@ -82,6 +109,7 @@ void talus_wrap_bodies(py::module_& m)
     case ShapeKind::Facet:
       d["vertices"] = std::vector<Vec3>(s.bodies.facets[k].vertices.begin(), s.bodies.facets[k].vertices.end());
       d["normal"] = s.bodies.facets[k].normal;
+      d["bounded"] = s.bodies.facets[k].bounded;
       break;
     default: break;
     }

@@ -165,6 +165,7 @@ PYBIND11_MODULE(_dem, m)
       .def(py::init<>())
       .def_readwrite("verletDist", &Collider::verletDist)
       .def_readwrite("allowBiggerThanPeriod", &Collider::allowBiggerThanPeriod)
+      .def_readwrite("avoidSelfInteractionMask", &Collider::avoidSelfInteractionMask)
       .def_readonly("rebuilds", &Collider::rebuilds);
   py::class_<ContactLaw, std::shared_ptr<ContactLaw>>(m, "ContactLaw")
       .def_property_readonly("typeName", &ContactLaw::typeName)
@@ -178,7 +179,8 @@ PYBIND11_MODULE(_dem, m)
   py::class_<NewtonIntegrator, Engine, std::shared_ptr<NewtonIntegrator>>(m, "NewtonIntegrator")
       .def(py::init<>())
       .def_readwrite("gravity", &NewtonIntegrator::gravity)
-      .def_readwrite("damping", &NewtonIntegrator::damping);
+      .def_readwrite("damping", &NewtonIntegrator::damping)
+      .def_readwrite("mask", &NewtonIntegrator::mask);
   py::class_<CallbackEngine, Engine, std::shared_ptr<CallbackEngine>>(m, "CallbackEngine")
       .def(py::init<>())
       .def_readwrite("callback", &CallbackEngine::callback)
@@ -212,6 +214,8 @@ PYBIND11_MODULE(_dem, m)
   m.def("fabricTensor", &fabricTensor);
   m.def("bodyStressTensors", &bodyStressTensors);
   m.def("bodies_in_box", &bodiesInBox, py::arg("scene"), py::arg("lo"), py::arg("hi"), py::arg("grow") = 0.0);
+  m.def("bodies_touching_sphere", &bodiesTouchingSphere, py::arg("scene"), py::arg("center"), py::arg("radius"),
+        py::arg("except") = -1);
   m.def("sphereVolume", &sphereVolume);
 
   py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene")
@@ -238,7 +242,8 @@ PYBIND11_MODULE(_dem, m)
       .def("materialCount", [](const Scene& s) { return s.materials.size(); })
       .def("addSphere", &Scene::addSphere)
       .def("addWall", &Scene::addWall)
-      .def("addFacet", &Scene::addFacet)
+      .def("addFacet", &Scene::addFacet, py::arg("a"), py::arg("b"), py::arg("c"), py::arg("material"),
+           py::arg("bounded") = true)
       .def("erase", &Scene::erase)
       .def("setBlockedDofs", &Scene::setBlockedDofs)
       .def("setDynamic", &Scene::setDynamic)

@@ -35,7 +35,8 @@ void talus_wrap_force_engines(py::module_& m)
   py::class_<GravityEngine, Engine, std::shared_ptr<GravityEngine>>(m, "GravityEngine")
       .def(py::init<>())
       .def_readwrite("gravity", &GravityEngine::gravity)
-      .def_readwrite("warnOnce", &GravityEngine::warnOnce);
+      .def_readwrite("warnOnce", &GravityEngine::warnOnce)
+      .def_readwrite("mask", &GravityEngine::mask);
   py::class_<HdapsGravityEngine, GravityEngine, std::shared_ptr<HdapsGravityEngine>>(m, "HdapsGravityEngine")
       .def(py::init<>())
       .def_readwrite("hdapsDir", &HdapsGravityEngine::hdapsDir)

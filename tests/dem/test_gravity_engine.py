@@ -30,8 +30,3 @@ def test_gravity_engine_equals_newton_gravity_without_energy():
     g = (0.0, 1.0, -9.81)
     assert np.array_equal(fall([ForceResetter(), GravityEngine(gravity=g, warnOnce=False), NewtonIntegrator()]),
                           fall([ForceResetter(), NewtonIntegrator(gravity=g)]))
-
-
-def test_gravity_engine_refuses_a_mask():
-    with pytest.raises(ValueError, match="mask=2 is not supported"):
-        GravityEngine(mask=2)

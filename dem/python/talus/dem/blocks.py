@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from talus import _dem
-from talus.dem.bodies import BodySpec
+from talus.dem.bodies import BodySpec, group_mask
 from talus.dem.engines import Functor, _Law
 from talus.dem.export import _atomic_write, vtu_bytes
 from talus.dem.linalg import Quaternion
@@ -64,7 +64,7 @@ class PotentialBlock:
 
 
 def potentialBlock(shape: PotentialBlock, pos=None, orientation=(1.0, 0.0, 0.0, 0.0), material=-1,
-                   fixed: bool = False, **_ignored) -> BodySpec:
+                   fixed: bool = False, mask=1, **_ignored) -> BodySpec:
     """A body of the given shape whose centroid is at ``pos`` (None: where the planes put it,
     i.e. planes given in world coordinates), turned by ``orientation`` (w, x, y, z) about the
     centroid. Its mass and inertia come from the material's density and the block's volume."""
@@ -74,7 +74,8 @@ def potentialBlock(shape: PotentialBlock, pos=None, orientation=(1.0, 0.0, 0.0, 
     if len(q) != 4:
         raise ValueError(f"potentialBlock: orientation must be a quaternion (w, x, y, z), got {orientation!r}")
     center = None if pos is None else tuple(float(x) for x in pos)
-    return BodySpec("PotentialBlock", center, material=material, fixed=fixed, orientation=q, block=shape)
+    return BodySpec("PotentialBlock", center, material=material, fixed=fixed, orientation=q, block=shape,
+                    group_mask=group_mask(mask, "potentialBlock"))
 
 
 def _add(scene: "Scene", spec: BodySpec, material: int) -> int:

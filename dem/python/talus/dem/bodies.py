@@ -35,17 +35,19 @@ class BodySpec:
     material: object = -1
     fixed: bool = False
     vertices: tuple = ()
+    bounded: bool = True  # False: a facet the collider never pairs (Yade's noBound)
     extents: tuple = ()
     orientation: tuple = (1.0, 0.0, 0.0, 0.0)
     color: tuple = field(default=DEFAULT_COLOR)
     block: object = None  # the PotentialBlock or PotentialParticle shape (talus.dem.blocks, .particles)
+    group_mask: int = 1   # Yade's groupMask (``mask``), see Body.mask
     # State set before the append (velocities, mass, inertia, blocked DOFs), applied by it.
     initial: dict = field(default_factory=dict)
     id: int = -1          # the body's id once appended
     _scene: object = field(default=None, repr=False)
 
     # What Body() accepts as attributes, as Yade's Body(shape=..., material=...).
-    _YADE_ATTRIBUTES = ("shape", "material", "mat", "dynamic")
+    _YADE_ATTRIBUTES = ("shape", "material", "mat", "dynamic", "mask", "groupMask")
 
     @classmethod
     def blank(cls, **attributes) -> "BodySpec":
@@ -109,6 +111,21 @@ class BodySpec:
             body.dynamic = value
         else:
             self.fixed = not value
+
+    @property
+    def mask(self) -> int:
+        body = self._body()
+        return body.mask if body else self.group_mask
+
+    @mask.setter
+    def mask(self, value):
+        body = self._body()
+        if body:
+            body.mask = value
+        else:
+            self.group_mask = group_mask(value, "a body not yet appended")
+
+    groupMask = mask   # Yade's C++ name
 
     @property
     def mat(self):
@@ -191,6 +208,18 @@ class _DetachedState:
             raise AttributeError(f"State has no attribute {name!r}")
 
 
+def group_mask(value, who: str) -> int:
+    """``value`` as a group mask (Yade's: a C int; negative values have every high bit set)."""
+    import operator
+    try:
+        mask = operator.index(value)
+    except TypeError:
+        raise TypeError(f"mask of {who}: an integer is needed, got {value!r}") from None
+    if not -2**31 <= mask < 2**31:
+        raise OverflowError(f"mask of {who}: {mask} does not fit a 32-bit signed integer (Yade's groupMask)")
+    return mask
+
+
 def _yade_material(material):
     """``material`` as Yade's utils take it when they make a body: the default (-1) while O has
     no material yet makes Yade's default FrictMat there and then (len(O.materials) is 1 after
@@ -209,15 +238,16 @@ def _look(color, wire: bool, highlight: bool) -> dict:
 
 
 def sphere(center: Sequence[float], radius: float, material=-1, fixed: bool = False, color=None, wire=False,
-           highlight=False, **_ignored) -> BodySpec:
+           highlight=False, mask=1, **_ignored) -> BodySpec:
     """A sphere of the given centre and radius; ``material`` is an index, a label or a
-    Material (default: the last material added, or Yade's default FrictMat)."""
+    Material (default: the last material added, or Yade's default FrictMat); ``mask``: its
+    group mask (Body.mask)."""
     return BodySpec("Sphere", tuple(float(x) for x in center), float(radius), material=_yade_material(material),
-                    fixed=fixed,
+                    fixed=fixed, group_mask=group_mask(mask, "sphere"),
                     **_look(color, wire, highlight))
 
 
-def wall(position, axis: int, sense: int = 0, material=-1, color=None, **_ignored) -> BodySpec:
+def wall(position, axis: int, sense: int = 0, material=-1, color=None, mask=1, **_ignored) -> BodySpec:
     """An infinite wall normal to ``axis`` through ``position`` (a number or a point, as in Yade);
     ``sense`` -1/+1 makes only that side interact, 0 both. Walls are fixed."""
     if axis not in (0, 1, 2):
@@ -229,7 +259,7 @@ def wall(position, axis: int, sense: int = 0, material=-1, color=None, **_ignore
     center = [0.0, 0.0, 0.0]
     center[axis] = coord
     return BodySpec("Wall", tuple(center), axis=axis, sense=sense, material=_yade_material(material), fixed=True,
-                    **_look(color, False, False))
+                    group_mask=group_mask(mask, "wall"), **_look(color, False, False))
 
 
 def aabbWalls(extrema=None, thickness: float = 0, material=-1, **_ignored) -> list[BodySpec]:
@@ -247,18 +277,19 @@ def aabbWalls(extrema=None, thickness: float = 0, material=-1, **_ignored) -> li
 
 
 def facet(vertices: Sequence[Sequence[float]], material=-1, color=None, wire=True, highlight=False,
-          **_ignored) -> BodySpec:
+          noBound=False, mask=1, **_ignored) -> BodySpec:
     """A fixed triangle with the three given vertices (its position is the incentre, as in Yade;
-    drawn as wire frame by default, as Yade's)."""
+    drawn as wire frame by default, as Yade's). ``noBound``: the collider never pairs it (it
+    touches nothing: a surface factories place particles on)."""
     verts = tuple(tuple(float(x) for x in v) for v in vertices)
     if len(verts) != 3 or any(len(v) != 3 for v in verts):
         raise ValueError(f"facet: needs three 3D vertices, got {vertices!r}")
     return BodySpec("Facet", verts[0], material=_yade_material(material), fixed=True, vertices=verts,
-                    **_look(color, wire, highlight))
+                    bounded=not noBound, group_mask=group_mask(mask, "facet"), **_look(color, wire, highlight))
 
 
 def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0, 0.0, 0.0), fixed: bool = False,
-        material=-1, dynamic=None, color=None, wire=False, highlight=False, **_ignored) -> BodySpec:
+        material=-1, dynamic=None, color=None, wire=False, highlight=False, mask=1, **_ignored) -> BodySpec:
     """A box of half-sizes ``extents`` (Yade's utils.box); ``orientation`` is a quaternion
     (w, x, y, z) or anything with w, x, y, z attributes. Dynamic unless ``fixed`` (or
     ``dynamic=False``); its mass and inertia come from the material's density. Boxes interact
@@ -276,7 +307,7 @@ def box(center: Sequence[float], extents: Sequence[float], orientation=(1.0, 0.0
     if dynamic is not None:
         fixed = not dynamic
     return BodySpec("Box", c, material=_yade_material(material), fixed=fixed, extents=e, orientation=q,
-                    **_look(color, wire, highlight))
+                    group_mask=group_mask(mask, "box"), **_look(color, wire, highlight))
 
 
 def _dofs_to_mask(letters: str) -> int:
@@ -284,6 +315,34 @@ def _dofs_to_mask(letters: str) -> int:
     if bad:
         raise ValueError(f"blockedDOFs: unknown letters {''.join(sorted(bad))!r}; use any of 'xyzXYZ'")
     return sum(1 << _DOF_LETTERS.index(c) for c in set(letters))
+
+
+class _StateVector3(Vector3):
+    """``vel``, ``angVel``, ``inertia`` or ``refPos`` of a body as Yade hands them: a reference,
+    so that ``b.state.vel[0] = 1`` (or ``v = b.state.vel; v[0] = 1``) sets the body's (Yade's
+    ``pos`` is a copy). It is a snapshot otherwise: it does not follow the body's later motion.
+    Arithmetic on it gives plain Vector3s."""
+
+    def __setitem__(self, key, value):
+        super().__setitem__(key, value)
+        owner = getattr(self, "_owner", None)     # none on views and results numpy derives
+        if owner is not None:
+            setattr(owner[0], owner[1], np.asarray(self))
+
+    def __array_wrap__(self, out, context=None, return_scalar=False):
+        result = super().__array_wrap__(out, context, return_scalar)
+        return result.view(Vector3) if isinstance(result, _StateVector3) else result
+
+    def __repr__(self):
+        return repr(self.view(Vector3))
+
+    __str__ = __repr__
+
+
+def _reference(state: "State", name: str, values) -> _StateVector3:
+    vector = np.array(values, dtype=float).view(_StateVector3)
+    vector._owner = (state, name)
+    return vector
 
 
 class State(Serializable):
@@ -308,11 +367,11 @@ class State(Serializable):
             raise ValueError(f"body {self._id}: {name} must be 3 finite numbers, got {value}")
         getattr(self._scene._cpp, name)()[self._id] = value
 
-    # Copies as Yade's value types: changing the Vector3 one got does not move the body (as in
-    # Yade); assigning it does.
+    # As Yade hands them: pos a copy (changing the Vector3 one got does not move the body;
+    # assigning it does), vel, angVel, inertia and refPos references (see _StateVector3).
     pos = property(lambda s: Vector3(s._row("pos")), lambda s, v: s._set("pos", v))
-    vel = property(lambda s: Vector3(s._row("vel")), lambda s, v: s._set("vel", v))
-    inertia = property(lambda s: Vector3(s._row("inertia")),
+    vel = property(lambda s: _reference(s, "vel", s._row("vel")), lambda s, v: s._set("vel", v))
+    inertia = property(lambda s: _reference(s, "inertia", s._row("inertia")),
                        lambda s, v: s._scene._cpp.setInertia(s._id, np.asarray(v, dtype=float).reshape(3)),
                        doc="principal inertia (kg m^2); settable, as in Yade")
     mass = property(lambda s: float(s._row("mass")), lambda s, v: s._scene._cpp.setMass(s._id, float(v)),
@@ -323,7 +382,7 @@ class State(Serializable):
 
     @property
     def angVel(self):
-        return Vector3(self._row("angVel"))
+        return _reference(self, "angVel", self._row("angVel"))
 
     @angVel.setter
     def angVel(self, value):
@@ -342,7 +401,7 @@ class State(Serializable):
     @property
     def refPos(self) -> Vector3:
         """Reference position: where the body was made (a clump: the origin) unless set."""
-        return Vector3(self._reference().pos[self._id])
+        return _reference(self, "refPos", self._reference().pos[self._id])
 
     @refPos.setter
     def refPos(self, value):
@@ -399,6 +458,21 @@ class Body:
         self._scene._cpp.setDynamic(self.id, bool(value))
 
     @property
+    def mask(self) -> int:
+        """Yade's group mask (``groupMask``, default 1): the collider pairs two bodies only if
+        their masks share a bit (and InsertionSortCollider.avoidSelfInteractionMask keeps bodies
+        of one mask apart); GravityEngine.mask and NewtonIntegrator.mask act on the bodies
+        sharing a bit with theirs. A change applies to the contacts that begin after it: as in
+        Yade, a contact in progress lasts until it ends."""
+        return int(_dem.group_mask(self._scene._cpp, self.id))
+
+    @mask.setter
+    def mask(self, value):
+        _dem.set_group_mask(self._scene._cpp, self.id, group_mask(value, f"body {self.id}"))
+
+    groupMask = mask   # Yade's C++ name
+
+    @property
     def radius(self) -> float:
         return float(self._scene._cpp.radius()[self.id])
 
@@ -435,8 +509,11 @@ class Body:
 
     @property
     def bounded(self) -> bool:
-        """Whether the collider bounds the body: all but clumps, whose members are bounded."""
-        return not self.isClump
+        """Whether the collider bounds the body: all but clumps, whose members are bounded, and
+        facets made with noBound."""
+        if self.isClump:
+            return False
+        return _dem.shape_data(self._scene._cpp, self.id).get("bounded", True)
 
     # Body objects are views made on each access: two views of one body are equal, as Yade's
     # shared pointers to the same body are.
@@ -468,6 +545,8 @@ class BodyContainer:
         scene = self._scene
         scene._warn_if_views_move()
         id = self._create(spec, scene.materials.resolve(-1 if spec.material is None else spec.material))
+        if spec.group_mask != 1:
+            scene.bodies[id].mask = spec.group_mask
         state = scene.bodies[id].state
         state.refPos, state.refOri = state.pos, state.ori     # Yade's reference: as made
         for name, value in spec.initial.items():
@@ -502,7 +581,7 @@ class BodyContainer:
             from talus.dem import particles
             return particles._add(scene, spec, material)
         if spec.kind == "Facet":
-            return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material)
+            return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material, spec.bounded)
         if spec.kind == "Wall":
             return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
         raise ValueError(f"O.bodies.append: a body without a shape Talus can add ({spec.kind or 'none'}): give it "

@@ -28,6 +28,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.linalg import Vector3
+from talus.dem.bodies import group_mask
 
 
 class Functor:
@@ -466,13 +467,14 @@ class InsertionSortCollider(Engine):
                        "fastestBodyMaxDist", "minSweepDistFactor", "periodic", "dumpBounds")
 
     def __init__(self, boundDispatcher=(), verletDist: float = -0.5, label: str = "",
-                 allowBiggerThanPeriod: bool = False, **settings):
+                 allowBiggerThanPeriod: bool = False, avoidSelfInteractionMask: int = 0, **settings):
         unknown = set(settings) - set(self._SPEED_SETTINGS)
         if unknown:
             raise TypeError(f"InsertionSortCollider has no parameter(s) {', '.join(sorted(unknown))}")
         self._cpp = _dem.Collider()
         self._cpp.verletDist = verletDist
         self._cpp.allowBiggerThanPeriod = bool(allowBiggerThanPeriod)
+        self.avoidSelfInteractionMask = avoidSelfInteractionMask
         self.label = label
         self.boundDispatcher = BoundDispatcher(_functors(boundDispatcher))
         self.settings = settings
@@ -481,6 +483,11 @@ class InsertionSortCollider(Engine):
                           lambda self, v: setattr(self._cpp, "verletDist", v))
     allowBiggerThanPeriod = property(lambda self: self._cpp.allowBiggerThanPeriod,
                                      lambda self, v: setattr(self._cpp, "allowBiggerThanPeriod", bool(v)))
+    avoidSelfInteractionMask = property(
+        lambda self: self._cpp.avoidSelfInteractionMask,
+        lambda self, v: setattr(self._cpp, "avoidSelfInteractionMask",
+                                group_mask(v, "InsertionSortCollider.avoidSelfInteractionMask")),
+        doc="bodies of one mask sharing a bit with it never touch each other (Yade's; 0: none)")
     rebuilds = property(lambda self: self._cpp.rebuilds, doc="number of re-detections so far")
 
 
@@ -560,7 +567,7 @@ class NewtonIntegrator(Engine):
     ``warnNoForceReset`` is accepted and changes nothing."""
 
     def __init__(self, gravity=(0.0, 0.0, 0.0), damping: float = 0.2, label: str = "",
-                 exactAsphericalRot: bool = True, kinSplit: bool = False, warnNoForceReset: bool = True):
+                 exactAsphericalRot: bool = True, kinSplit: bool = False, warnNoForceReset: bool = True, mask: int = -1):
         if not exactAsphericalRot:
             raise ValueError("NewtonIntegrator: exactAsphericalRot=False (Yade's approximate rotation of aspherical "
                              "bodies) is not implemented; Talus always integrates their rotation exactly")
@@ -568,11 +575,15 @@ class NewtonIntegrator(Engine):
         self._cpp = _dem.NewtonIntegrator()
         self.gravity = gravity
         self.damping = damping
+        self.mask = mask
         self.label = label
 
     gravity = property(lambda self: Vector3(self._cpp.gravity),
                        lambda self, g: setattr(self._cpp, "gravity", [float(x) for x in g]))
     damping = property(lambda self: self._cpp.damping, lambda self, d: setattr(self._cpp, "damping", float(d)))
+    mask = property(lambda self: self._cpp.mask,
+                    lambda self, m: setattr(self._cpp, "mask", group_mask(m, "NewtonIntegrator.mask")),
+                    doc="positive: only bodies whose mask shares a bit with it move (Yade's; -1: all)")
 
 
 def asCallback(command: str | Callable[[], None] | None, what: str = "command") -> Callable[[], None] | None:

@@ -16,6 +16,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.engines import Engine
+from talus.dem.bodies import group_mask
 from talus.dem.linalg import Vector2i, Vector3
 
 
@@ -94,20 +95,18 @@ class GravityEngine(Engine):
     GravityEngine, which Yade deprecates in favour of ``NewtonIntegrator(gravity=...)``); with
     ``O.trackEnergy`` it books ``gravWork`` as Yade, -m g.v dt with the velocity of the step's
     start. Yade's notice that it is deprecated is printed at the first step unless ``warnOnce``
-    is False. Yade's ``mask`` (bodies by group mask) is not supported: Talus bodies have none."""
+    is False. ``mask`` nonzero: only the bodies whose group mask (Body.mask) shares a bit with it."""
 
     def __init__(self, gravity=(0.0, 0.0, 0.0), warnOnce: bool = True, mask: int = 0, label: str = "",
                  dead: bool = False):
-        if mask != 0:
-            raise ValueError(f"GravityEngine: mask={mask!r} is not supported (Talus bodies have no group mask); "
-                             "use mask=0 (all bodies)")
         self._cpp = _dem.GravityEngine()
-        self.gravity, self.warnOnce, self.label, self.dead = gravity, warnOnce, label, dead
+        self.gravity, self.warnOnce, self.mask, self.label, self.dead = gravity, warnOnce, mask, label, dead
 
     gravity = property(lambda s: Vector3(s._cpp.gravity),
                        lambda s, v: setattr(s._cpp, "gravity", _vector(v, "gravity")))
     warnOnce = property(lambda s: s._cpp.warnOnce, lambda s, v: setattr(s._cpp, "warnOnce", bool(v)))
-    mask = property(lambda s: 0)
+    mask = property(lambda s: s._cpp.mask,
+                    lambda s, v: setattr(s._cpp, "mask", group_mask(v, "GravityEngine.mask")))
 
 
 class HdapsGravityEngine(Engine):

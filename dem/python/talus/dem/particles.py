@@ -24,7 +24,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.blocks import _twoDimension
-from talus.dem.bodies import BodySpec
+from talus.dem.bodies import BodySpec, group_mask
 from talus.dem.engines import Functor, _Law
 from talus.dem.export import _atomic_write, vtu_bytes
 
@@ -64,7 +64,7 @@ class PotentialParticle:
 
 
 def potentialParticle(shape: PotentialParticle, pos=(0.0, 0.0, 0.0), orientation=(1.0, 0.0, 0.0, 0.0),
-                      material=-1, fixed: bool = False, **_ignored) -> BodySpec:
+                      material=-1, fixed: bool = False, mask=1, **_ignored) -> BodySpec:
     """A body of the given shape whose local frame (the planes' frame) is at ``pos``, turned by
     ``orientation`` (w, x, y, z), as Yade's state.pos and state.ori. Mass and inertia come from
     the material's density and the computed volume and principal inertia."""
@@ -74,7 +74,7 @@ def potentialParticle(shape: PotentialParticle, pos=(0.0, 0.0, 0.0), orientation
     if len(q) != 4:
         raise ValueError(f"potentialParticle: orientation must be a quaternion (w, x, y, z), got {orientation!r}")
     return BodySpec("PotentialParticle", tuple(float(x) for x in pos), material=material, fixed=fixed,
-                    orientation=q, block=shape)
+                    orientation=q, block=shape, group_mask=group_mask(mask, "potentialParticle"))
 
 
 def _add(scene: "Scene", spec: BodySpec, material: int) -> int:
