@@ -13,9 +13,9 @@ std::vector<BodyId> bodiesInBox(const Scene& scene, const Vec3& lo, const Vec3& 
   std::vector<BodyId> found;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || b.shape[i] == ShapeKind::Clump)
-      continue;
     const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+    if (!b.alive[i] || b.shape[i] == ShapeKind::Clump || (b.shape[i] == ShapeKind::Facet && !b.facets[s].bounded))
+      continue;
     Vec3 low = b.pos[i], high = b.pos[i];
     switch (b.shape[i])
     {
@@ -55,5 +55,39 @@ std::vector<BodyId> bodiesInBox(const Scene& scene, const Vec3& lo, const Vec3& 
       found.push_back(static_cast<BodyId>(i));
   }
   return found;
+}
+
+std::vector<BodyId> bodiesTouchingSphere(const Scene& scene, const Vec3& c, double r, BodyId except)
+{
+  const Bodies& b = scene.bodies;
+  std::vector<BodyId> touching;
+  for (BodyId id : bodiesInBox(scene, c - Vec3::Constant(r), c + Vec3::Constant(r), 0.0))
+  {
+    const auto i = static_cast<std::size_t>(id);
+    const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+    double reach = r; // the largest distance from c to the body's surface that touches
+    Vec3 nearest = b.pos[i];
+    switch (b.shape[i])
+    {
+    case ShapeKind::Sphere: reach += b.radius[i]; break;
+    case ShapeKind::Wall: nearest = c; nearest[b.walls[s].axis] = b.pos[i][b.walls[s].axis]; break;
+    case ShapeKind::Facet:
+    {
+      const std::array<Vec3, 3> v = facetVertices(b, i);
+      nearest = closestPointOnTriangle(c, v[0], v[1], v[2]);
+      break;
+    }
+    case ShapeKind::Box:
+    {
+      const Vec3 local = b.ori[i].conjugate() * (c - b.pos[i]);
+      nearest = b.pos[i] + b.ori[i] * local.cwiseMax(-b.boxes[s].extents).cwiseMin(b.boxes[s].extents);
+      break;
+    }
+    default: nearest = c; break; // Potential Blocks and Particles: within the bounding box
+    }
+    if (id != except && (c - nearest).squaredNorm() < reach * reach)
+      touching.push_back(id);
+  }
+  return touching;
 }
 } // namespace talus::dem

@@ -69,7 +69,7 @@ BodyId Scene::addWall(double position, int axis, int sense, int material)
   return id;
 }
 
-BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material)
+BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material, bool bounded)
 {
   const std::string which = "facet #" + std::to_string(bodies.size());
   if (!a.allFinite() || !b.allFinite() || !c.allFinite())
@@ -82,7 +82,7 @@ BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material
     throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
   // Incentre: vertices weighted by the lengths of the opposite sides.
   const Vec3 centre = (la * a + lb * b + lc * c) / (la + lb + lc);
-  bodies.facets.push_back({{a - centre, b - centre, c - centre}, n.normalized()});
+  bodies.facets.push_back({{a - centre, b - centre, c - centre}, n.normalized(), bounded});
   const BodyId id = bodies.append(ShapeKind::Facet, static_cast<int>(bodies.facets.size()) - 1, material);
   const auto i = static_cast<std::size_t>(id);
   bodies.pos[i] = centre;

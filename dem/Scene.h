@@ -75,7 +75,7 @@ public:
   BodyId addWall(double position, int axis, int sense, int material);
   /// Add a fixed triangular facet with vertices a, b, c (world coordinates).
   /// @throws std::invalid_argument if the triangle is degenerate or not finite
-  BodyId addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material);
+  BodyId addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material, bool bounded = true);
   /// Add a box of half-sizes `extents` centred at `center`, turned by `orientation`; mass and
   /// inertia from its material's density. Dynamic unless `fixed`.
   /// @throws std::invalid_argument naming the offending value

@@ -266,6 +266,13 @@ void readBodies(const Reader& r, Loaded& in, const Context& ctx)
       b.facets[f].vertices[k] = Vec3(vertices[9 * f + 3 * k], vertices[9 * f + 3 * k + 1], vertices[9 * f + 3 * k + 2]);
     b.facets[f].normal = Vec3(normal[3 * f], normal[3 * f + 1], normal[3 * f + 2]);
   }
+  if (r.exists("/bodies/facets/bounded")) // written since facets may have no bound
+  {
+    std::vector<std::int32_t> bounded(nf);
+    r.int32s("/bodies/facets/bounded", bounded);
+    for (std::size_t f = 0; f < nf; ++f)
+      b.facets[f].bounded = bounded[f] != 0;
+  }
 
   const std::vector<hsize_t> db = r.dims("/bodies/boxes/extents");
   if (db.size() != 2 || db[1] != 3)

@@ -184,6 +184,10 @@ void writeBodies(const Writer& w, const Scene& scene)
   }
   w.doubles("/bodies/facets/vertices", {nf, 3, 3}, vertices.data());
   w.doubles("/bodies/facets/normal", {nf, 3}, normal.data());
+  std::vector<std::int32_t> bounded(nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    bounded[f] = b.facets[f].bounded ? 1 : 0;
+  w.int32s("/bodies/facets/bounded", bounded.data(), bounded.size());
 
   const Id boxes = w.group("/bodies/boxes");
   std::vector<Vec3> extents;

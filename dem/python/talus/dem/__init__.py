@@ -41,6 +41,8 @@ from talus.dem.force_engines import *  # noqa: F401,F403  (Yade's force engines,
 from talus.dem.force_engines import __all__ as _force_engine_names
 from talus.dem.factories import BoxFactory, CircularFactory, SpheresFactory
 from talus.dem.domain_limiter import DomainLimiter
+from talus.dem.reset_random_position import ResetRandomPosition
+from talus.dem.servo import ServoPIDController
 from talus.dem.interactions import Interaction
 from talus.dem.io import CheckpointError
 from talus.dem.materials import CohFrictMat, ElastMat, FrictMat, Material, ViscElMat
@@ -60,4 +62,5 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "growParticles", "setContactFriction", "aabbWalls",
            "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder", *_legacy_names, "TriaxialTest",
            *_kinematic_names, *_force_engine_names, "SpheresFactory", "BoxFactory", "CircularFactory", "DomainLimiter",
+           "ResetRandomPosition", "ServoPIDController",
            *_engine_names, *_block_names, *_particle_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]
