@@ -126,9 +126,6 @@ def test_unset_or_unsupported_parameters_are_errors():
     with pytest.raises(ValueError, match="PSDsizes should have a number of elements on 1 more"):
         factory_scene(BoxFactory(center=(0, 0, 0), extents=(1, 1, 1), normal=(0, 0, 1), massFlowRate=1, vMin=0, vMax=0,
                                  PSDsizes=[1, 2], PSDcum=[0.5, 1], exactDiam=False))
-    for engine in (BoxFactory, DomainLimiter):
-        with pytest.raises(ValueError, match="groupMask"):
-            engine(mask=2)
 
 
 def test_domain_limiter_without_period_never_runs():
@@ -142,3 +139,15 @@ def test_domain_limiter_without_period_never_runs():
     limiter.iterPeriod, limiter.nDo = 1, 1
     O.run(3, True)
     assert O.bodies[0] is None and limiter.nDeleted == 1 and limiter.nDone == 1
+
+
+def test_masks():
+    f = BoxFactory(center=(0, 0, 0), extents=(1, 1, 1), normal=(0, 0, 1), massFlowRate=20, rMin=0.01, rMax=0.02,
+                   vMin=0, vMax=0, mask=6, maxParticles=4)
+    factory_scene(f)
+    assert [O.bodies[i].mask for i in f.ids] == [6] * 4
+    O.bodies[f.ids[0]].mask = 1
+    limiter = DomainLimiter(lo=(5, 5, 5), hi=(6, 6, 6), iterPeriod=1, mask=2)
+    O.engines = O.engines[:-1] + [limiter]
+    O.step()
+    assert limiter.nDeleted == 3 and O.bodies[f.ids[0]] is not None       # the body of mask 1 stays

@@ -16,14 +16,13 @@ class DomainLimiter(PeriodicPythonEngine):
     outside [``lo``, ``hi``], when it runs (a periodic engine: ``iterPeriod``, ``virtPeriod``,
     ``realPeriod``, ``nDo``, ``initRun``; with none set it never runs, as in Yade). Counts them
     in ``nDeleted``, their mass in ``mDeleted``, the spheres' volume in ``vDeleted``. Other
-    bodies (facets, walls, boxes) stay wherever they are."""
+    bodies (facets, walls, boxes) stay wherever they are. With ``mask`` > 0, only bodies whose
+    group mask shares a bit with it."""
 
     def __init__(self, lo=(0.0, 0.0, 0.0), hi=(0.0, 0.0, 0.0), mDeleted: float = 0.0, vDeleted: float = 0.0,
                  mask: int = -1, iterPeriod: int = 0, virtPeriod: float = 0.0, realPeriod: float = 0.0, nDo: int = -1,
                  initRun: bool = False, label: str = "", dead: bool = False):
         super().__init__(iterPeriod, virtPeriod, realPeriod, nDo, initRun, label, dead)
-        if mask > 0:
-            raise ValueError(f"DomainLimiter: mask={mask} is not supported (Talus bodies have no groupMask); leave mask=-1")
         self.lo, self.hi, self.mask = lo, hi, int(mask)
         self.mDeleted, self.vDeleted = float(mDeleted), float(vDeleted)
         self._nDeleted = 0
@@ -37,6 +36,8 @@ class DomainLimiter(PeriodicPythonEngine):
     def _action(self, scene):
         pos = np.asarray(scene._cpp.pos())
         candidates = np.concatenate([scene.sphere_ids(), _dem.live_ids(scene._cpp, "Clump")])
+        if self.mask > 0:
+            candidates = np.array([i for i in candidates if _dem.group_mask(scene._cpp, int(i)) & self.mask], dtype=int)
         # Outside in any coordinate, as Yade's p < lo or p > hi (a NaN position stays).
         outside = candidates[((pos[candidates] < self._lo) | (pos[candidates] > self._hi)).any(axis=1)]
         gone = [id for id in sorted(int(i) for i in outside) if not scene.bodies[id].isClumpMember]

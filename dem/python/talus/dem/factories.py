@@ -13,7 +13,7 @@ random in the region until its bounding box meets no other body's (grown by the 
 skin, as Yade's bounds are) nor a sphere inserted in the same step, at most ``maxAttempt``
 times (then, with ``stopIfFailed``, the factory stops). All spheres of a step get the same
 velocity, along ``normalVel`` (or ``normal``) with a magnitude uniform in [vMin, vMax]; as in
-Yade ``vAngle`` is kept but not used.
+Yade ``vAngle`` is kept but not used. ``mask`` > 0 is the spheres' group mask.
 
 Yade draws from a generator seeded by the clock; Talus's factories are reproducible: ``seed``
 (default: the factory's rank among the factories made so far) seeds each factory's own
@@ -60,9 +60,6 @@ class SpheresFactory(PythonEngine):
                  PSDcalculateMass: bool = True, stopIfFailed: bool = True, exactDiam: bool = True,
                  seed: int | None = None, label: str = "", dead: bool = False):
         super().__init__(label, dead)
-        if mask > 0:
-            raise ValueError(f"{type(self).__name__}: mask={mask} is not supported (Talus bodies have no groupMask); "
-                             "leave mask=-1")
         self.massFlowRate, self.rMin, self.rMax = float(massFlowRate), float(rMin), float(rMax)
         self.vMin, self.vMax, self.vAngle = float(vMin), float(vMax), float(vAngle)
         self.normal, self.normalVel, self.color = normal, normalVel, color
@@ -148,6 +145,8 @@ class SpheresFactory(PythonEngine):
         body.state.vel = velocity
         if self.blockedDOFs:
             body.state.blockedDOFs = self.blockedDOFs
+        if self.mask > 0:
+            body.mask = self.mask
         self.ids.append(id)
         mass = body.state.mass
         self.totalMass += mass
