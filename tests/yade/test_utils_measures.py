@@ -29,3 +29,18 @@ def test_total_force_in_volume_and_tmp_filename(talus_cmd, tmp_path):
     name, exists, fresh = out.split("tmp ")[1].split()
     assert exists == "True" and fresh == "True"
     assert not os.path.exists(name)          # the folder went when the run's Python exited
+
+
+def test_calm_and_text_export_select_bodies_by_mask(talus_cmd, tmp_path):
+    script = tmp_path / "masks.py"
+    script.write_text(
+        "O.bodies.append([sphere((0, 0, 0), 1, mask=1), sphere((3, 0, 0), 1, mask=2), sphere((6, 0, 0), 1, mask=3)])\n"
+        "for b in O.bodies: b.state.vel = (1, 2, 3)\n"
+        "calm(2)\n"
+        "print('V', [tuple(b.state.vel) for b in O.bodies])\n"
+        "from yade import export\n"
+        "print('N', export.textExt('a.txt', mask=1), export.textExt('b.txt'), export.textExt('c.txt', mask=0))\n")
+    out = talus_cmd("run", script, cwd=tmp_path).stdout
+    # What Yade 2023.02a prints for the same script.
+    assert "V [(1.0, 2.0, 3.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)]" in out
+    assert "N 2 3 0" in out

@@ -40,11 +40,11 @@ def randomOrientation() -> Quaternion:
 
 
 def calm(mask: int = -1) -> None:
-    """Stop every body: velocity, angular velocity and angular momentum set to zero (Yade's calm).
-    Talus has no group masks: only ``mask=-1`` (all bodies)."""
-    if mask != -1:
-        raise ValueError(f"calm: mask={mask!r} is not supported (Talus bodies have no groupMask); use mask=-1")
+    """Stop the bodies whose mask shares a bit with ``mask`` (all when it is not positive):
+    velocity and angular velocity set to zero (Yade's calm)."""
     for b in O.bodies:
+        if b is None or (mask > 0 and not b.mask & mask):
+            continue
         b.state.vel = (0.0, 0.0, 0.0)
         b.state.angVel = (0.0, 0.0, 0.0)
 

@@ -30,15 +30,16 @@ def textExt(filename: str, format: str = "x_y_z_r", comment: str = "", mask: int
             attrs: Sequence[str] = (), scene=None) -> int:
     """Write the spheres of ``scene`` (default O) to ``filename`` in ``format``; returns their
     number. ``comment``: lines after the format line (with ``x_y_z_r_attrs``, its last line
-    names the ``attrs`` columns, after Yade's ``# x y z r``)."""
+    names the ``attrs`` columns, after Yade's ``# x y z r``); ``mask`` >= 0: only the spheres whose
+    mask shares a bit with it (Yade's)."""
     from talus.dem import O
     scene = scene or O
     if format not in _FORMATS:
         raise ValueError(f"textExt: format={format!r} is not supported; Talus writes {', '.join(_FORMATS)}")
-    if mask != -1:
-        raise ValueError(f"textExt: mask={mask!r} is not supported (Talus bodies have no mask); use mask=-1")
     lines = [f"#format {format}\n", *_comment_lines(format, comment)]
     ids = scene.sphere_ids()
+    if mask >= 0:
+        ids = [i for i in ids if scene.bodies[int(i)].mask & mask]
     cpp = scene._cpp
     pos, radius, material = cpp.pos(), cpp.radius(), cpp.materialIds()
     for i in ids:
