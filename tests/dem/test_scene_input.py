@@ -75,9 +75,11 @@ def test_a_law_without_its_physics_functor_is_refused():
 
 def test_time_step_and_wall_parameters():
     S = Scene()
-    for dt in (-1.0, math.nan, math.inf):
+    for dt in (math.nan, math.inf, -math.inf):
         with pytest.raises(ValueError, match="O.dt must be zero or positive"):
             S.dt = dt
+    with pytest.raises(RuntimeError, match="No TimeStepper"):   # Yade: hands dt to the stepper
+        S.dt = -1.0
     S.dt = 0.0   # as in Yade: a step that moves nothing
     with pytest.raises(ValueError, match="axis must be 0, 1 or 2"):
         S.bodies.append(wall(0, axis=3))

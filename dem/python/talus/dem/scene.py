@@ -258,10 +258,38 @@ class Scene(CheckpointMethods):
 
     def _set_dt(self, value: float):
         # Zero is Yade's way to apply what acts on velocities (a cell's velGrad, a clump's
-        # velocity to its members) without moving anything.
+        # velocity to its members) without moving anything. A negative value is Yade's way to
+        # hand the step back to the time stepper (the step itself is kept until it acts).
+        if value < 0 and value > -float("inf"):
+            self.dynDt = True
+            return
         if not (value >= 0 and value < float("inf")):
             raise ValueError(f"O.dt must be zero or positive and finite, got {value}")
         self._cpp.dt = float(value)
+
+    def _timeStepper(self):
+        """The time stepper among the engines (None without one)."""
+        steppers = [e for e in self.engines if isinstance(getattr(e, "_cpp", None), _dem.GlobalStiffnessTimeStepper)]
+        if len(steppers) > 1:
+            raise RuntimeError(f"Multiple ({len(steppers)}) TimeSteppers in the simulation?!")
+        return steppers[0] if steppers else None
+
+    @property
+    def dynDt(self) -> bool:
+        """The time stepper of the engines is active (Yade's O.dynDt); setting it switches the
+        stepper on or off (a step set by hand is kept only while it is off). False without one;
+        setting True without one is an error, as in Yade."""
+        stepper = self._timeStepper()
+        return stepper is not None and bool(stepper.active)
+
+    @dynDt.setter
+    def dynDt(self, value: bool):
+        stepper = self._timeStepper()
+        if stepper is None:
+            if value:
+                raise RuntimeError("No TimeStepper found in O.engines.")
+            return
+        stepper.active = bool(value)
 
     @property
     def engines(self) -> list[Engine]:
