@@ -1,7 +1,7 @@
 """Yade's State.refPos and refOri, written so that the same file runs in Yade (`yade -n -x`)
 and in Talus: what a sphere, a facet, a clump and its members get when made, that a run leaves
-them, that they are settable and kept by saveTmp/loadTmp. Prints one RESULT line
-(tests/yade/test_state_reference.py)."""
+them, that they are settable and kept by saveTmp/loadTmp; and which state vectors are references
+into the body. Prints one RESULT line (tests/yade/test_state_reference.py)."""
 import json
 
 try:
@@ -35,4 +35,15 @@ O.saveTmp()
 b.state.refPos = (7, 7, 7)
 O.loadTmp()
 out["loaded"] = ref(O.bodies[0])
+# Yade hands vel, angVel, inertia and refPos as references into the body, pos as a copy.
+s = O.bodies[0].state
+s.vel[0] = 5
+angVel = s.angVel
+angVel[1] = 3
+s.inertia[2] = 0.25
+s.refPos[1] = -1
+s.pos[2] = 70
+doubled = s.vel * 2
+doubled[2] = 9          # a result of arithmetic is a value of its own
+out["references"] = [list(s.vel), list(s.angVel), list(s.inertia), list(s.refPos), list(s.pos)]
 print("RESULT " + json.dumps(out))

@@ -1,5 +1,6 @@
 """state.refPos and state.refOri as Yade 2023.02a's (set where a body is made, a clump at the
-origin, never moved by a run, settable, kept by checkpoints)."""
+origin, never moved by a run, settable, kept by checkpoints); vel, angVel, inertia and refPos
+handed as references into the body, pos as a copy."""
 from pathlib import Path
 
 import numpy as np
@@ -14,6 +15,7 @@ HERE = Path(__file__).parent
 def test_reference_as_yade():
     ours, theirs = (twin.run(HERE / "state_reference_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["after run"][0] == [1, 2, 3] and theirs["clump"][0] == [0, 0, 0]
+    assert theirs["references"][0][0] == 5 and theirs["references"][4][2] != 70   # vel a reference, pos a copy
     assert ours.keys() == theirs.keys()
     for key in theirs:
         assert np.allclose(np.concatenate(ours[key]), np.concatenate(theirs[key]), rtol=1e-15, atol=1e-15), key

@@ -1,9 +1,9 @@
 """Yade's ``bodiesHandling``: the extent of a group of spheres or facets, moving and scaling
-spheres, copying one. Bodies are given as ids or as Body objects of ``O``; erased ids are
-skipped, and so are bodies of another shape (as in Yade).
-
-Talus bodies have no ``mask``: a ``mask`` other than -1 is an error. A sphere in a scene keeps
-its radius in Talus, so ``spheresModify`` scales only copies (``copy=True``) or with scale 1.
+spheres, copying one. Bodies are given as ids or as Body objects of ``O``, or by ``mask`` alone
+(the bodies whose mask shares a bit with it); with both, those of the list the mask selects.
+Erased ids are skipped, and so are bodies of another shape (as in Yade). A sphere in a scene
+keeps its radius in Talus, so ``spheresModify`` scales only copies (``copy=True``) or with
+scale 1.
 """
 
 from __future__ import annotations
@@ -18,9 +18,8 @@ from talus.dem.shapes import Facet, Sphere
 
 
 def _bodies(ids: Iterable, mask: int, function: str) -> list:
-    """The live bodies named by ``ids`` (ids or Body objects), in order."""
-    if mask != -1:
-        raise ValueError(f"{function}: mask={mask!r} is not supported (Talus bodies have no mask); use mask=-1")
+    """The live bodies named by ``ids`` (ids or Body objects), in order, that ``mask`` selects
+    (Yade's test: any mask >= 0)."""
     from talus.dem import O
     bodies = []
     for item in ids:
@@ -30,7 +29,23 @@ def _bodies(ids: Iterable, mask: int, function: str) -> list:
             bodies.append(item)
         else:
             raise TypeError(f"{function}: expected body ids or bodies, got {item!r}")
-    return [b for b in bodies if b is not None]
+    return [b for b in bodies if b is not None and (mask < 0 or b.mask & mask)]
+
+
+def _given(ids, mask: int, fewest: int, function: str) -> list:
+    """Yade's choice of bodies: ``ids``, or without them every body ``mask`` selects (at least
+    ``fewest`` of them, else Yade's RuntimeWarning, raised)."""
+    if len(ids) >= 1:
+        return _bodies(ids, mask, function)
+    if mask < 0:
+        raise RuntimeWarning("Only a list of particles with length > 1 can be analyzed" if fewest > 1
+                             else "No bodies to modify")
+    from talus.dem import O
+    chosen = _bodies([b for b in O.bodies if b is not None], mask, function)
+    if len(chosen) < fewest:
+        raise RuntimeWarning("Not enough bodies to analyze with given mask" if fewest > 1
+                             else "No bodies to modify with given mask")
+    return chosen
 
 
 def _extent(boxes: list[tuple[int, Vector3, Vector3]]) -> dict:
@@ -52,9 +67,7 @@ def spheresPackDimensions(idSpheres=(), mask: int = -1) -> dict:
     """Extent of the spheres among ``idSpheres``: ``min``, ``max`` (corners of their bounding
     box), ``minId``, ``maxId`` (per axis, the sphere reaching it), ``center``, ``extends``,
     ``volume`` (of the spheres), ``mass``, ``number``."""
-    if len(idSpheres) < 1:
-        raise RuntimeWarning("Only a list of particles with length > 1 can be analyzed")
-    spheres = [b for b in _bodies(idSpheres, mask, "spheresPackDimensions") if isinstance(b.shape, Sphere)]
+    spheres = [b for b in _given(idSpheres, mask, 2, "spheresPackDimensions") if isinstance(b.shape, Sphere)]
     boxes = []
     for b in spheres:
         r = b.shape.radius
@@ -68,10 +81,8 @@ def spheresPackDimensions(idSpheres=(), mask: int = -1) -> dict:
 def facetsDimensions(idFacets=(), mask: int = -1) -> dict:
     """Extent of the facets among ``idFacets`` (from their vertices): ``min``, ``max``,
     ``minId``, ``maxId``, ``center``, ``extends``, ``number``."""
-    if len(idFacets) < 1:
-        raise RuntimeWarning("Only a list of particles with length > 1 can be analyzed")
     boxes = []
-    for b in _bodies(idFacets, mask, "facetsDimensions"):
+    for b in _given(idFacets, mask, 2, "facetsDimensions"):
         if not isinstance(b.shape, Facet):
             continue
         corners = [b.state.pos + b.state.ori * v for v in b.shape.vertices]
@@ -85,11 +96,10 @@ def spheresModify(idSpheres=(), mask: int = -1, shift=Vector3.Zero, scale: float
     """Turn the spheres of ``idSpheres`` by ``orientation`` and scale them by ``scale`` about
     the centre of their extent, then move them by ``shift``; with ``copy``, their copies
     instead (returned, to append). Returns True without ``copy``."""
-    if len(idSpheres) == 0:
-        raise RuntimeWarning("No bodies to modify")
-    centre = spheresPackDimensions(idSpheres, mask)["center"]
+    chosen = _given(idSpheres, mask, 1, "spheresModify")
+    centre = spheresPackDimensions(chosen)["center"]
     copies = []
-    for b in _bodies(idSpheres, mask, "spheresModify"):
+    for b in chosen:
         if not isinstance(b.shape, Sphere):
             continue
         if copy:
@@ -112,7 +122,7 @@ def sphereDuplicate(idSphere):
     if b is None or not isinstance(b.shape, Sphere):
         return False
     return sphere(b.state.pos, b.shape.radius, material=b.material, fixed=not b.dynamic, wire=b.shape.wire,
-                  color=b.shape.color, highlight=b.shape.highlight)
+                  color=b.shape.color, highlight=b.shape.highlight, mask=b.mask)
 
 
 __all__ = ["spheresPackDimensions", "facetsDimensions", "spheresModify", "sphereDuplicate"]

@@ -174,20 +174,23 @@ def aabbDim(cutoff: float = 0.0, centers: bool = False, scene=None) -> Vector3:
     return Vector3(hi - lo)
 
 
-def _spheres(mask: int, function: str, scene) -> tuple:
-    if mask != -1:
-        raise ValueError(f"{function}: mask={mask!r} is not supported (Talus bodies have no mask); use mask=-1")
+def _spheres(mask: int, scene) -> tuple:
+    """The scene and its spheres (clump members included) that ``mask`` selects: with mask > 0
+    those whose mask shares a bit with it, otherwise all (Yade's)."""
     scene = _scene(scene)
-    return scene, scene.sphere_ids()
+    ids = scene.sphere_ids()
+    if mask > 0:
+        ids = np.array([i for i in ids if scene.bodies[int(i)].mask & mask], dtype=int)
+    return scene, ids
 
 
 def getSpheresVolume(mask: int = -1, scene=None) -> float:
-    """Total volume of the spheres (clump members included), as Yade's."""
-    scene, ids = _spheres(mask, "getSpheresVolume", scene)
-    return float(_dem.sphereVolume(scene._cpp))
+    """Total volume of the spheres ``mask`` selects, as Yade's."""
+    scene, ids = _spheres(mask, scene)
+    return float(sum(4.0 / 3.0 * np.pi * r ** 3 for r in scene._cpp.radius()[ids]))
 
 
 def getSpheresMass(mask: int = -1, scene=None) -> float:
-    """Total mass of the spheres (clump members included), as Yade's."""
-    scene, ids = _spheres(mask, "getSpheresMass", scene)
-    return float(np.sum(scene._cpp.mass()[ids]))
+    """Total mass of the spheres ``mask`` selects, as Yade's."""
+    scene, ids = _spheres(mask, scene)
+    return float(sum(scene._cpp.mass()[ids]))      # in id order, as Yade adds them
