@@ -2,6 +2,7 @@
 // talus._dem; `talus_wrap_controllers(m)` is called from dem_wrappers.cpp. The Python API
 // (Yade's names, defaults, doneHook strings) is talus.dem.controllers.
 #include "dem/GlobalStiffnessTimeStepper.h"
+#include "dem/Peri3dController.h"
 #include "dem/PeriIsoCompressor.h"
 #include "dem/PeriTriaxController.h"
 #include "dem/SampleOperations.h"
@@ -55,6 +56,34 @@ void talus_wrap_controllers(py::module_& m)
       .def_readwrite("maxBodySpan", &PeriTriaxController::maxBodySpan)
       .def_readwrite("currUnbalanced", &PeriTriaxController::currUnbalanced)
       .def_readwrite("externalWork", &PeriTriaxController::externalWork);
+
+  using P3 = Peri3dController;
+  py::class_<P3, Engine, std::shared_ptr<P3>>(m, "Peri3dController")
+      .def(py::init<>())
+      .def_readwrite("goal", &P3::goal)
+      .def_readwrite("stressMask", &P3::stressMask)
+      .def_readwrite("nSteps", &P3::nSteps)
+      .def_readwrite("maxStrainRate", &P3::maxStrainRate)
+      .def_readwrite("maxStrain", &P3::maxStrain)
+      .def_readwrite("mod", &P3::mod)
+      .def_readwrite("youngEstimation", &P3::youngEstimation)
+      .def_readwrite("poissonEstimation", &P3::poissonEstimation)
+      .def_readwrite("paths", &P3::paths)
+      .def_readwrite("doneHook", &P3::doneHook)
+      .def_readwrite("progress", &P3::progress)
+      .def_readwrite("stress", &P3::stress)
+      .def_readwrite("strain", &P3::strain)
+      .def_readwrite("strainRate", &P3::strainRate)
+      .def_readwrite("stressRate", &P3::stressRate)
+      .def_readwrite("stressIdeal", &P3::stressIdeal)
+      .def_readwrite("stressGoal", &P3::stressGoal)
+      .def_readwrite("strainGoal", &P3::strainGoal)
+      .def_readwrite("ps", &P3::ps)
+      .def_readwrite("pe", &P3::pe)
+      .def_readwrite("pathSizes", &P3::pathSizes)
+      .def_readwrite("pathsCounter", &P3::pathsCounter)
+      .def_readwrite("lenPs", &P3::lenPs)
+      .def_readwrite("lenPe", &P3::lenPe);
 
   py::class_<PeriIsoCompressor, Engine, std::shared_ptr<PeriIsoCompressor>>(m, "PeriIsoCompressor")
       .def(py::init<>())

@@ -43,6 +43,7 @@ from talus.dem.factories import BoxFactory, CircularFactory, SpheresFactory
 from talus.dem.domain_limiter import DomainLimiter
 from talus.dem.reset_random_position import ResetRandomPosition
 from talus.dem.servo import ServoPIDController
+from talus.dem.peri3d import Peri3dController
 from talus.dem.interactions import Interaction
 from talus.dem.io import CheckpointError
 from talus.dem.materials import CohFrictMat, ElastMat, FrictMat, Material, ViscElMat
@@ -62,5 +63,5 @@ __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet",
            "growParticles", "setContactFriction", "aabbWalls",
            "TriaxialCompressionEngine", "ThreeDTriaxialEngine", "TriaxialStateRecorder", *_legacy_names, "TriaxialTest",
            *_kinematic_names, *_force_engine_names, "SpheresFactory", "BoxFactory", "CircularFactory", "DomainLimiter",
-           "ResetRandomPosition", "ServoPIDController",
+           "ResetRandomPosition", "ServoPIDController", "Peri3dController",
            *_engine_names, *_block_names, *_particle_names, "Joint", "JointFileError", "generateBlocks", "readJoints"]
