@@ -272,6 +272,9 @@ PYBIND11_MODULE(_dem, m)
           },
           py::call_guard<py::gil_scoped_release>())
       .def("pause", &Scene::pause)
+      .def(
+          "runEngine", [](Scene& s, Engine& e) { e.run(s); }, py::arg("engine"),
+          "Run one engine once outside a step (Yade's O.runEngine): the clock does not advance.")
       // Zero-copy array views of body state (the particle exchange interface in Python).
       // A view stays valid until bodies are appended (which may move the arrays).
       .def("pos", [](py::object self) { return view3(self.cast<Scene&>().bodies.pos, self); })

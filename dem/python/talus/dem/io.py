@@ -343,6 +343,15 @@ def _scene_memory(scene) -> dict:
     return _memory.setdefault(scene, {"slots": {}, "last": None})
 
 
+def last_file(scene) -> str | None:
+    """The file last saved or loaded by ``scene`` (``:memory:<slot>`` for a saveTmp slot, as
+    Yade names them), None if none."""
+    last = _scene_memory(scene)["last"]
+    if last is None:
+        return None
+    return f":memory:{last}" if isinstance(last, _Slot) else str(last)
+
+
 def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> None:
     """Write a checkpoint of ``scene`` to ``path`` (conventionally ``*.h5``), atomically.
 

@@ -25,6 +25,7 @@ from talus.dem.engines import Engine, collapseDispatchers
 from talus.dem.forces import ForceContainer
 from talus.dem.interactions import InteractionContainer
 from talus.dem.io import CheckpointMethods
+from talus.dem.omega import OmegaMethods
 from talus.dem.materials import Material, default_material
 from talus.dem.particles import Ig2_PP_PP_ScGeom
 
@@ -118,7 +119,7 @@ def _labelled(engines):
                               *getattr(e, "comb", ()), *getattr(e, "slaves", ())])
 
 
-class Scene(CheckpointMethods):
+class Scene(OmegaMethods, CheckpointMethods):
     """A simulation. ``talus.dem.O`` is the default one, as Yade's ``O``."""
 
     def __init__(self):
