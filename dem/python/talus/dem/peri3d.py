@@ -107,12 +107,11 @@ class Peri3dController(Engine):
         self._cpp.doneHook = asCallback(command, "doneHook")
 
     def _io_state(self):
-        return {name: np.array(getattr(self._cpp, name)) for name in _STATE}
+        return {name: np.array(v) if isinstance(v := getattr(self._cpp, name), np.ndarray) else v for name in _STATE}
 
     def _io_restore(self, state):
         for name, value in state.items():
-            value = np.asarray(value)
-            setattr(self._cpp, name, value.item() if value.ndim == 0 else value)
+            setattr(self._cpp, name, value)
 
 
 __all__ = ["Peri3dController"]
