@@ -46,6 +46,7 @@ BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
   material.push_back(materialId);
   blockedDofs.push_back(0);
   dynamic.push_back(1);
+  damped.push_back(1);
   alive.push_back(1);
   clumpId.push_back(-1);
   groupMask.push_back(1);

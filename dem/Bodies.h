@@ -85,6 +85,7 @@ struct Bodies
   std::vector<int> material;   ///< index into the scene's materials
   std::vector<std::uint8_t> blockedDofs; ///< Dof bits; blocked DOFs keep their velocity
   std::vector<std::uint8_t> dynamic;     ///< 1: moved by forces; 0: moved only by its velocity
+  std::vector<std::uint8_t> damped;      ///< Yade's State.isDamped; 0: NewtonIntegrator's damping leaves it alone
   std::vector<std::uint8_t> alive;
   std::vector<BodyId> clumpId; ///< the clump this body is a member of, -1 if none
   /// Yade's Body.groupMask (b.mask): two bodies may touch only if their masks share a bit

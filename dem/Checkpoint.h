@@ -19,7 +19,7 @@ inline constexpr bool haveCheckpoints = false;
 #endif
 
 /// Layout version written in the root attribute `format_version`; the only one read back.
-inline constexpr int checkpointFormatVersion = 6;
+inline constexpr int checkpointFormatVersion = 7;
 /// Value of the root attribute `magic` of every Talus checkpoint.
 inline constexpr const char* checkpointMagic = "talus-checkpoint";
 

@@ -154,11 +154,16 @@ void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& forc
     for (int d = 0; d < 3; ++d)
       if (!(blocked & (1u << d)))
         g[d] = gravity[d];
-    Vec3 a = force.cwiseProduct(invMass_[i]) + g;
-    const Vec3 undamped = a;
-    if (damping != 0)
+    Vec3 a = force.cwiseProduct(invMass_[i]);
+    if (dampGravity)
+      a += g;
+    const Vec3 undamped = dampGravity ? a : Vec3(a + g);
+    const double bodyDamping = b.damped[i] ? damping : 0.0; // Yade's State.isDamped
+    if (bodyDamping != 0)
       for (int d = 0; d < 3; ++d)
-        a[d] = damped(a[d], b.vel[i][d], dt, damping);
+        a[d] = damped(a[d], b.vel[i][d], dt, bodyDamping);
+    if (!dampGravity)
+      a += g;
     const Vec3 vOld = b.vel[i];
     b.vel[i] += a * dt;
     if constexpr (Track)
@@ -172,11 +177,11 @@ void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& forc
         if (blocked & (8u << d))
           M[d] = 0;
       const Vec3 undampedM = M;
-      if (damping != 0)
+      if (bodyDamping != 0)
         for (int d = 0; d < 3; ++d)
         {
           const double s = M[d] * b.angVel[i][d];
-          M[d] *= 1 - damping * (static_cast<double>(s > 0) - static_cast<double>(s < 0));
+          M[d] *= 1 - bodyDamping * (static_cast<double>(s > 0) - static_cast<double>(s < 0));
         }
       const Vec3 omegaOld = b.angVel[i];
       Quat& q = b.ori[i];
@@ -198,9 +203,9 @@ void NewtonIntegrator::integrateRigid(Bodies& b, std::size_t i, const Vec3& forc
     }
     Vec3 alpha = torque.cwiseProduct(invInertia_[i]);
     const Vec3 undampedAlpha = alpha, omegaOld = b.angVel[i];
-    if (damping != 0)
+    if (bodyDamping != 0)
       for (int d = 0; d < 3; ++d)
-        alpha[d] = damped(alpha[d], b.angVel[i][d], dt, damping);
+        alpha[d] = damped(alpha[d], b.angVel[i][d], dt, bodyDamping);
     b.angVel[i] += alpha * dt;
     if constexpr (Track)
       damp += rotationDamping(b.inertia[i], alpha, undampedAlpha, omegaOld, b.angVel[i], dt);
@@ -312,14 +317,18 @@ std::int64_t NewtonIntegrator::integrateRange(Scene& scene, std::int64_t first, 
       // whole misses the store-to-load forwarding, which took a quarter of the integration.
       const Vec3 g((blocked & 1u) != 0 ? 0.0 : gravity[0], (blocked & 2u) != 0 ? 0.0 : gravity[1],
                    (blocked & 4u) != 0 ? 0.0 : gravity[2]);
-      a += g;
-      const Vec3 undamped = a, undampedAlpha = alpha;
-      if (damping != 0)
+      if (dampGravity)
+        a += g;
+      const Vec3 undamped = dampGravity ? a : Vec3(a + g), undampedAlpha = alpha;
+      const double bodyDamping = b.damped[i] ? damping : 0.0; // Yade's State.isDamped
+      if (bodyDamping != 0)
         for (int d = 0; d < 3; ++d)
         {
-          a[d] = damped(a[d], v[d], dt, damping);
-          alpha[d] = damped(alpha[d], omega[d], dt, damping);
+          a[d] = damped(a[d], v[d], dt, bodyDamping);
+          alpha[d] = damped(alpha[d], omega[d], dt, bodyDamping);
         }
+      if (!dampGravity)
+        a += g;
       const Vec3 vOld = v, omegaOld = omega;
       v += a * dt;
       omega += alpha * dt;

@@ -16,7 +16,8 @@ namespace talus::dem
 /// a_i <- a_i (1 - damping sign(a_i (v_i + a_i dt/2))) (gravity is damped too, as in Yade);
 /// v += a dt; x += v dt. Rotation of spheres: the same with torque / inertia, and the
 /// orientation turned by the rotation vector omega dt. Blocked DOFs keep their velocity.
-/// Non-dynamic bodies move with their imposed velocities.
+/// Non-dynamic bodies move with their imposed velocities. A body whose `damped` flag is 0
+/// (Yade's State.isDamped = False) is not damped.
 ///
 /// Clumps: the forces and torques of the members are added to the clump's (in member order),
 /// the clump is integrated and its members are placed rigidly. Aspherical bodies (clumps, boxes)
@@ -31,6 +32,7 @@ public:
 
   Vec3 gravity = Vec3::Zero();
   double damping = 0.2; ///< Yade's default
+  bool dampGravity = true; ///< false: gravity is added after the damping, which leaves it whole (Yade's)
   /// Positive: only the bodies whose group mask shares a bit with it move; the others keep
   /// their position, orientation and velocities (Yade's NewtonIntegrator.mask; default -1: all).
   int mask = -1;

@@ -83,7 +83,8 @@ inline constexpr std::pair<const char*, std::vector<int> Bodies::*> bodyInts[] =
     {"shapeIndex", &Bodies::shapeIndex}, {"material", &Bodies::material}, {"clumpId", &Bodies::clumpId},
     {"groupMask", &Bodies::groupMask}};
 inline constexpr std::pair<const char*, std::vector<std::uint8_t> Bodies::*> bodyBytes[] = {
-    {"blockedDofs", &Bodies::blockedDofs}, {"dynamic", &Bodies::dynamic}, {"alive", &Bodies::alive}};
+    {"blockedDofs", &Bodies::blockedDofs}, {"dynamic", &Bodies::dynamic}, {"alive", &Bodies::alive},
+    {"damped", &Bodies::damped}};
 static_assert(sizeof(int) == 4 && sizeof(BodyId) == 4, "int arrays are written as 32-bit integers");
 
 inline std::string at(const char* group, const char* name) { return std::string(group) + name; }

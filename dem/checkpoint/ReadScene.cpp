@@ -545,8 +545,8 @@ void validate(const Loaded& in, const Context& ctx)
     }
     else if (clump != -1)
       ctx.fail(which + " has an invalid clump id " + std::to_string(clump), false);
-    if (b.blockedDofs[i] > DofAll || b.dynamic[i] > 1 || b.alive[i] > 1)
-      ctx.fail(which + " has invalid flags (blockedDofs, dynamic or alive)", false);
+    if (b.blockedDofs[i] > DofAll || b.dynamic[i] > 1 || b.alive[i] > 1 || b.damped[i] > 1)
+      ctx.fail(which + " has invalid flags (blockedDofs, dynamic, alive or damped)", false);
   }
   for (std::size_t k = 0; k < b.clumps.size(); ++k)
     for (BodyId m : b.clumps[k].members)

@@ -82,6 +82,15 @@ void talus_wrap_bodies(py::module_& m)
     s.bodies.groupMask[static_cast<std::size_t>(id)] = mask;
     ++s.bodiesVersion;
   });
+  // Yade's State.isDamped: whether NewtonIntegrator's damping acts on the body.
+  m.def("is_damped", [](const Scene& s, BodyId id) {
+    s.checkBody(id);
+    return s.bodies.damped[static_cast<std::size_t>(id)] != 0;
+  });
+  m.def("set_damped", [](Scene& s, BodyId id, bool damped) {
+    s.checkBody(id);
+    s.bodies.damped[static_cast<std::size_t>(id)] = damped ? 1 : 0;
+  });
   m.def("add_to_clump", &Scene::addToClump, py::arg("scene"), py::arg("clump"), py::arg("ids"),
         py::arg("discretization") = 0);
   m.def("release_from_clump", &Scene::releaseFromClump, py::arg("scene"), py::arg("member"), py::arg("clump"),

@@ -180,6 +180,7 @@ PYBIND11_MODULE(_dem, m)
       .def(py::init<>())
       .def_readwrite("gravity", &NewtonIntegrator::gravity)
       .def_readwrite("damping", &NewtonIntegrator::damping)
+      .def_readwrite("dampGravity", &NewtonIntegrator::dampGravity)
       .def_readwrite("mask", &NewtonIntegrator::mask);
   py::class_<CallbackEngine, Engine, std::shared_ptr<CallbackEngine>>(m, "CallbackEngine")
       .def(py::init<>())

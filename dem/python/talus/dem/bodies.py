@@ -166,7 +166,7 @@ class _DetachedState:
     is kept and applied when the body is appended."""
 
     __slots__ = ("_spec",)
-    _KEPT = ("vel", "angVel", "mass", "inertia", "blockedDOFs", "refPos", "refOri")
+    _KEPT = ("vel", "angVel", "mass", "inertia", "blockedDOFs", "refPos", "refOri", "isDamped")
 
     def __init__(self, spec: BodySpec):
         object.__setattr__(self, "_spec", spec)
@@ -191,6 +191,8 @@ class _DetachedState:
     def __getattr__(self, name):
         if name in ("vel", "angVel"):
             return Vector3(self._spec.initial.get(name, (0.0, 0.0, 0.0)))
+        if name == "isDamped":
+            return bool(self._spec.initial.get(name, True))
         if name == "blockedDOFs":
             return self._spec.initial.get(name, "xyzXYZ" if self._spec.fixed else "")
         if name in ("refPos", "refOri") and name not in self._spec.initial:   # as Yade: where it is made
@@ -433,6 +435,15 @@ class State(Serializable):
     @blockedDOFs.setter
     def blockedDOFs(self, letters: str):
         self._scene._cpp.setBlockedDofs(self._id, _dofs_to_mask(letters))
+
+    @property
+    def isDamped(self) -> bool:
+        """Whether NewtonIntegrator's damping acts on the body (Yade's; default True)."""
+        return bool(_dem.is_damped(self._scene._cpp, self._id))
+
+    @isDamped.setter
+    def isDamped(self, value: bool):
+        _dem.set_damped(self._scene._cpp, self._id, bool(value))
 
 
 class Body:

@@ -564,10 +564,13 @@ class NewtonIntegrator(Engine):
     Aspherical bodies (clumps, boxes) always rotate by Yade's exact scheme
     (``exactAsphericalRot=True``, Yade's default); ``kinSplit``: O.energy gives the kinetic
     energy as its translational and rotational parts (``kinTrans``, ``kinRot``), as Yade's;
-    ``warnNoForceReset`` is accepted and changes nothing."""
+    ``dampGravity=False``: the damping acts on the other forces only, gravity is added after it
+    (Yade's); ``warnNoForceReset`` is accepted and changes nothing. Bodies with
+    ``state.isDamped = False`` are not damped."""
 
     def __init__(self, gravity=(0.0, 0.0, 0.0), damping: float = 0.2, label: str = "",
-                 exactAsphericalRot: bool = True, kinSplit: bool = False, warnNoForceReset: bool = True, mask: int = -1):
+                 exactAsphericalRot: bool = True, kinSplit: bool = False, warnNoForceReset: bool = True, mask: int = -1,
+                 dampGravity: bool = True):
         if not exactAsphericalRot:
             raise ValueError("NewtonIntegrator: exactAsphericalRot=False (Yade's approximate rotation of aspherical "
                              "bodies) is not implemented; Talus always integrates their rotation exactly")
@@ -575,12 +578,15 @@ class NewtonIntegrator(Engine):
         self._cpp = _dem.NewtonIntegrator()
         self.gravity = gravity
         self.damping = damping
+        self.dampGravity = dampGravity
         self.mask = mask
         self.label = label
 
     gravity = property(lambda self: Vector3(self._cpp.gravity),
                        lambda self, g: setattr(self._cpp, "gravity", [float(x) for x in g]))
     damping = property(lambda self: self._cpp.damping, lambda self, d: setattr(self._cpp, "damping", float(d)))
+    dampGravity = property(lambda self: self._cpp.dampGravity,
+                           lambda self, d: setattr(self._cpp, "dampGravity", bool(d)))
     mask = property(lambda self: self._cpp.mask,
                     lambda self, m: setattr(self._cpp, "mask", group_mask(m, "NewtonIntegrator.mask")),
                     doc="positive: only bodies whose mask shares a bit with it move (Yade's; -1: all)")
