@@ -103,7 +103,7 @@ def script_namespace() -> dict:
     ``yade``, ``from yade.utils import *``, ``from yade.pack import *``, ``from math import *``,
     the modules ``yade``, ``utils``, ``pack``, ``geom``, and what Yade's launcher itself imports
     (``os``, ``sys``, ``time``, ``math``, ``numpy``, ``random``, ``itertools``, ``warnings``,
-    ``argparse``, ``doctest``, ``execfile``), as listed by a script under ``yade -x``."""
+    ``argparse``, ``doctest``, ``execfile``, ``version``), as listed by a script under ``yade -x``."""
     import argparse
     import doctest
     import itertools
@@ -122,4 +122,5 @@ def script_namespace() -> dict:
     namespace.update(yade=yade, utils=utils, pack=pack, geom=geom, os=os, sys=sys, time=time, math=math,
                      numpy=numpy, random=random, itertools=itertools, warnings=warnings, argparse=argparse,
                      doctest=doctest, execfile=execfile)
+    namespace["version"] = config.version     # Yade's launcher's global: the program's version
     return namespace
