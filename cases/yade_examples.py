@@ -75,8 +75,11 @@ NOT_SCRIPT_NAMES = re.compile(r"(^|/)(params|defaultParams|measures|simulationDe
 # Patches applied identically for both programs: (path, old text, new text, why).
 PATCHES: list[tuple[str, str, str, str]] = []
 
-QUICK = ["billiard.py", "simple-scene/simple-scene.py", "PeriodicBoundaries/periodic-simple.py",
-         "clumps/clump-viscoelastic.py", "test/facet-sphere.py"]
+QUICK = ["billiard.py", "ViscElMatchMaker.py", "simple-scene/simple-scene.py",
+         "simple-scene/simple-scene-default-engines.py", "PeriodicBoundaries/periodic-simple.py",
+         "clumps/clump-viscoelastic.py", "clumps/addToClump-example.py", "test/facet-sphere.py",
+         "test/kinematic.py", "test/pack-predicates.py", "test/triax-basic.py",
+         "FluidCouplingVANS1D/oneWayCoupling/sedimentTransportExample.py"]
 
 
 def population() -> list[str]:

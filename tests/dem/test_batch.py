@@ -200,8 +200,8 @@ def test_save_data_txt_in_yades_format(tmp_path):
     plot.addData(a=1, b=2.5)
     plot.addData(a=2, b=3.0)
     plot.saveDataTxt(tmp_path / "d.txt", headers={"radius": 0.1, "n": 5})
-    # Yade 2023.02a writes exactly this for the same data (ints given as floats).
-    assert (tmp_path / "d.txt").read_text() == "# radius=\t0.1\n# n=\t5\n# a\t\tb\n1.0\t2.5\n2.0\t3.0\n"
+    # Yade 2023.02a writes exactly this for the same data (ints kept as ints).
+    assert (tmp_path / "d.txt").read_text() == "# radius=\t0.1\n# n=\t5\n# a\t\tb\n1\t2.5\n2\t3.0\n"
     plot.saveDataTxt(tmp_path / "d.txt.gz", vars=["b"])
     import gzip
     assert gzip.open(tmp_path / "d.txt.gz", "rt").read() == "# b\n2.5\n3.0\n"

@@ -120,7 +120,7 @@ def test_facet_cylinder_geometry():
     np.testing.assert_allclose(np.hypot(v[:, 0], v[:, 1]), 0.5, rtol=1e-14)
     np.testing.assert_allclose(np.abs(v[:, 2]), 0.4, rtol=1e-14)
     assert len(geom.facetCylinder((0, 0, 0), 1, 1, segmentsNumber=5)) == 20
-    with pytest.raises(ValueError, match="radius"):
+    with pytest.raises(ValueError, match="radii must be positive"):
         geom.facetCylinder((0, 0, 0), -1, 1)
 
 

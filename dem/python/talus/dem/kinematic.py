@@ -56,6 +56,14 @@ class KinematicEngine(Engine):
         self.ids = ids
         self.label = label
 
+    def __add__(self, other: "KinematicEngine") -> "CombinedKinematicEngine":
+        """Yade's ``engine + engine``: a CombinedKinematicEngine moving this engine's ids by both."""
+        if not isinstance(other, KinematicEngine):
+            return NotImplemented
+        combined = CombinedKinematicEngine(ids=self.ids)
+        combined.comb = [self, other]
+        return combined
+
 
 class TranslationEngine(KinematicEngine):
     """Moves ``ids`` at ``velocity`` along ``translationAxis`` (normalised, as in Yade)."""
@@ -65,14 +73,6 @@ class TranslationEngine(KinematicEngine):
         self._init(_dem.TranslationEngine(), ids, label)
         self.translationAxis = translationAxis
         self.velocity = velocity
-    def __add__(self, other: "KinematicEngine") -> "CombinedKinematicEngine":
-        """Yade's ``engine + engine``: a CombinedKinematicEngine moving this engine's ids by both."""
-        if not isinstance(other, KinematicEngine):
-            return NotImplemented
-        combined = CombinedKinematicEngine(ids=self.ids)
-        combined.comb = [self, other]
-        return combined
-
 
     translationAxis = property(lambda s: Vector3(s._cpp.translationAxis),
                                lambda s, v: setattr(s._cpp, "translationAxis", _unit(v, "translationAxis")))
