@@ -28,7 +28,9 @@ class _Inert:
         return _Inert()
 
 
-View = Controller = Inspector = Generator = Renderer = SnapshotEngine = _batch
+View = Controller = Inspector = Generator = Renderer = _batch
+
+from yade._gui import SnapshotEngine  # noqa: E402,F401  (an engine for O.engines: inert, one notice)
 
 
 def views() -> list:

@@ -15,13 +15,14 @@ points at the pad's distance) Talus is approximate in the same way.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
 
 __all__ = ["Predicate", "PredicateBoolean", "PredicateUnion", "PredicateIntersection", "PredicateDifference",
            "PredicateSymmetricDifference", "inSphere", "inAlignedBox", "inParallelepiped", "inCylinder",
-           "inHyperboloid", "inEllipsoid", "notInNotch", "inSpace", "inHalfSpace", "inGtsSurface"]
+           "inHyperboloid", "inEllipsoid", "notInNotch", "inSpace", "inHalfSpace", "inConvexPolyhedron", "inGtsSurface"]
 
 _INF = float("inf")
 
@@ -340,6 +341,49 @@ class inHalfSpace(Predicate):
 
     def dim(self):
         return _vector3((_INF,) * 3)
+
+
+class inConvexPolyhedron(Predicate):
+    """Inside every plane of ``planes``, a sequence of (point, normal) with the normals pointing
+    inwards: a point is inside when it is at least ``pad`` inside each plane (Yade's)."""
+
+    def __init__(self, planes):
+        planes = list(planes)
+        if len(planes) < 4:
+            raise ValueError(f"inConvexPolyhedron: a bounded polyhedron needs at least 4 planes, got {len(planes)}")
+        self._points = np.array([_vec(p, "inConvexPolyhedron: plane point") for p, _ in planes])
+        normals = np.array([_vec(n, "inConvexPolyhedron: plane normal") for _, n in planes])
+        lengths = np.linalg.norm(normals, axis=1)
+        if not np.all(lengths > 0):
+            raise ValueError("inConvexPolyhedron: every plane needs a non-zero normal")
+        self._normals = normals / lengths[:, None]
+        self._lo, self._hi = self._corners()
+
+    def _inside_by(self, point) -> np.ndarray:
+        return np.einsum("ij,ij->i", self._normals, np.asarray(point, float) - self._points)
+
+    def __call__(self, point, pad: float = 0.0) -> bool:
+        return bool(np.all(self._inside_by(point) >= pad))
+
+    def _corners(self):
+        """The bounding box of the polyhedron's vertices: the intersections of three planes
+        inside all the others."""
+        offsets = np.einsum("ij,ij->i", self._normals, self._points)
+        vertices = []
+        for trio in itertools.combinations(range(len(self._normals)), 3):
+            a = self._normals[list(trio)]
+            if abs(np.linalg.det(a)) < 1e-12:
+                continue
+            x = np.linalg.solve(a, offsets[list(trio)])
+            if np.all(self._inside_by(x) >= -1e-9 * max(1.0, np.abs(x).max())):
+                vertices.append(x)
+        if not vertices:
+            raise ValueError("inConvexPolyhedron: the planes do not bound a polyhedron")
+        vertices = np.array(vertices)
+        return vertices.min(axis=0), vertices.max(axis=0)
+
+    def aabb(self):
+        return _vector3(self._lo), _vector3(self._hi)
 
 
 class inGtsSurface(Predicate):
