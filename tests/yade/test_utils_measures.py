@@ -44,3 +44,16 @@ def test_calm_and_text_export_select_bodies_by_mask(talus_cmd, tmp_path):
     # What Yade 2023.02a prints for the same script.
     assert "V [(1.0, 2.0, 3.0), (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)]" in out
     assert "N 2 3 0" in out
+
+
+def test_first_iter_run_hp1_helpers_and_launcher_options(talus_cmd, tmp_path):
+    script = tmp_path / "first.py"
+    script.write_text(
+        "O.engines = [PyRunner(command='calls.append(O.iter)', iterPeriod=3, firstIterRun=5)]\n"
+        "calls = []\n"
+        "O.dt = 1\n"
+        "O.run(15, True)\n"
+        "import yade.math\n"
+        "print('CALLS', calls, yade.math.radiansHP1(180) == math.pi, yade.math.degreesHP1(math.pi), opts.nogui)\n")
+    # Yade 2023.02a (yade -n -x): CALLS [5, 8, 11, 14] True 180.0 True
+    assert "CALLS [5, 8, 11, 14] True 180.0 True" in talus_cmd("run", script).stdout

@@ -66,7 +66,8 @@ def _run(args: argparse.Namespace) -> int:
     import yade   # the namespace `yade -x` gives a script: Yade's classes, utils, pack, math
     yade.yade_run_defaults()
     try:
-        runpy.run_path(str(script), init_globals=yade.script_namespace(), run_name="__main__")
+        options = yade.launcher_options(str(script), list(args.script_args), args.threads)
+        runpy.run_path(str(script), init_globals={**yade.script_namespace(), "opts": options}, run_name="__main__")
         if yade.O.running:
             print("talus run: the script ended with O.run() still open-ended (no step count, not waited "
                   "for): it stops here, as under yade -x; call O.wait() in the script to run it until "

@@ -76,6 +76,16 @@ def yade_run_defaults() -> None:
         O.engines = default_engines()
 
 
+def launcher_options(script: str, args: list, threads: int | None = None):
+    """``opts``, the options of Yade's launcher that ``yade -x`` gives a script: a batch run
+    without GUI that exits after the script."""
+    import argparse
+    return argparse.Namespace(version=False, threads=threads, cores=None, updateScripts=None, nice=None,
+                              exitAfter=True, verbosity=None, nogui=True, test=False, check=False, checkall=False,
+                              performance=False, quickperformance=False, stdperformance=None, script=script,
+                              args=[script, *args], impLibraries=None, mpi_mode=False)
+
+
 def default_engines() -> list:
     """The engines Yade 2023.02a gives its first scene: spheres, facets and boxes with linear
     frictional contacts, the time step from the global stiffness every 10 steps, damping 0.2."""

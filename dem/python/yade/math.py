@@ -8,6 +8,7 @@ answer for double. The higher levels, their converters and C++ self-tests are ou
 scope (an AttributeError says so).
 """
 
+import math
 import sys
 from math import *  # noqa: F401,F403  (Real is float: Python's functions are Real's functions)
 
@@ -62,6 +63,21 @@ class RealHPConfig:
         return (1,)
 
     getSupportedByEigenCgal = getSupportedByMinieigen
+
+
+def radiansHP1(degrees: float) -> float:
+    """Yade's radians at RealHP<1> (double): Python's."""
+    return math.radians(degrees)
+
+
+def degreesHP1(radians: float) -> float:
+    """Yade's degrees at RealHP<1> (double): Python's."""
+    return math.degrees(radians)
+
+
+def toHP1(value) -> float:
+    """A number at RealHP<1>: a float."""
+    return float(value)
 
 
 def __getattr__(name: str):

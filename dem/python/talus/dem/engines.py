@@ -626,10 +626,12 @@ def _yade_command(command: str) -> Callable[[], None]:
 class PyRunner(Engine):
     """Runs ``command`` every ``iterPeriod`` steps, ``virtPeriod`` seconds of simulated time
     and/or ``realPeriod`` seconds of wall time: a string executed in the script's namespace (as
-    in Yade) or a Python callable; at most ``nDo`` times (-1: no limit)."""
+    in Yade) or a Python callable; at most ``nDo`` times (-1: no limit). ``firstIterRun`` > 0:
+    first called at that step, then every ``iterPeriod`` (Yade's; it disables ``initRun``)."""
 
     def __init__(self, command: str | Callable[[], None] = "", iterPeriod: int = 0, realPeriod: float = 0,
-                 initRun: bool = False, label: str = "", dead: bool = False, virtPeriod: float = 0, nDo: int = -1):
+                 initRun: bool = False, label: str = "", dead: bool = False, virtPeriod: float = 0, nDo: int = -1,
+                 firstIterRun: int = 0):
         if min(iterPeriod, realPeriod, virtPeriod) < 0:
             raise ValueError(f"PyRunner: iterPeriod, realPeriod and virtPeriod must be >= 0, got {iterPeriod}, "
                              f"{realPeriod}, {virtPeriod}")
@@ -642,6 +644,11 @@ class PyRunner(Engine):
         self._cpp.virtPeriod = float(virtPeriod)
         self._cpp.initRun = initRun
         self._cpp.nDo = int(nDo)
+        if firstIterRun > 0:
+            if self._cpp.iterPeriod <= 0:
+                raise ValueError("PyRunner: firstIterRun needs an iterPeriod (Talus schedules it by steps)")
+            self._cpp.initRun = False
+            self._cpp.iterLast = int(firstIterRun) - self._cpp.iterPeriod
         self.command = command
         self.label = label
         self.dead = dead
