@@ -644,6 +644,7 @@ class PyRunner(Engine):
         self._cpp.virtPeriod = float(virtPeriod)
         self._cpp.initRun = initRun
         self._cpp.nDo = int(nDo)
+        self._firstIterRun = int(firstIterRun)
         if firstIterRun > 0:
             if self._cpp.iterPeriod <= 0:
                 raise ValueError("PyRunner: firstIterRun needs an iterPeriod (Talus schedules it by steps)")
@@ -672,6 +673,7 @@ class PyRunner(Engine):
     iterPeriod = property(lambda self: self._cpp.iterPeriod, lambda self, v: setattr(self._cpp, "iterPeriod", v))
     virtPeriod = property(lambda self: self._cpp.virtPeriod, lambda self, v: setattr(self._cpp, "virtPeriod", float(v)))
     nDone = property(lambda self: self._cpp.nDone)
+    firstIterRun = property(lambda self: self._firstIterRun, doc="the step of the first call (0: by the periods)")
     nDo = property(lambda self: self._cpp.nDo, lambda self, v: setattr(self._cpp, "nDo", int(v)),
                    doc="calls after which it is not called any more (-1: no limit)")
 
