@@ -15,7 +15,7 @@ Checked:  yade-examples.completion: the fraction of in-scope scripts that finish
           (exit status 0, no traceback) (>= 0.9); its fields list every script with its status
           under both programs and the first error line, and the out-of-scope scripts with reasons.
           --quick runs the fixed subset QUICK (a few seconds each) under Talus only.
-Produces: the record, results/yade-examples.json (the per-script table) and
+Produces: the record, results/yade-examples.details.json (the per-script table) and
           yade-examples.png (status by folder).
 """
 from __future__ import annotations
@@ -322,7 +322,7 @@ def main():
     for r in table.values():
         if r["talus"]["status"] != "ok":
             errors[r["talus"]["error"]] = errors.get(r["talus"]["error"], 0) + 1
-    (case.folder / "yade-examples.json").write_text(json.dumps(
+    (case.folder / "yade-examples.details.json").write_text(json.dumps(
         {"in_scope": table, "out_of_scope": out_of_scope, "patches": PATCHES}, indent=1))
     case.record("fraction of in-scope scripts that finish under talus run (unchanged but for PATCHES)",
                 completion, "Yade 2023.02a's examples (the same scripts under yade -x)", 0.9,

@@ -15,7 +15,7 @@ Checked:  yade-tests.pass: the fraction of in-scope tests that pass under Talus 
           fields give the counts under both programs, the tests that do not pass under Talus with
           their first error line, and the out-of-scope tests with reasons.
           --quick runs the fixed subset QUICK under Talus only (a few seconds).
-Produces: the record and results/yade-tests.json (the per-test table).
+Produces: the record and results/yade-tests.details.json (the per-test table).
 """
 from __future__ import annotations
 
@@ -215,7 +215,7 @@ def main():
                if r.get("talus", {}).get("status") != "ok"}
     passed = [t for t in in_scope if t not in failing]
     fraction = len(passed) / max(1, len(in_scope))
-    (case.folder / "yade-tests.json").write_text(json.dumps(
+    (case.folder / "yade-tests.details.json").write_text(json.dumps(
         {"tests": table, "out_of_scope": out_of_scope, "not_passing": failing}, indent=1))
     case.record("fraction of Yade's in-scope regression tests (yade --test) that pass against Talus",
                 fraction, "Yade 2023.02a's test suite (the same tests under yade -n -x)", 0.8,

@@ -21,7 +21,7 @@ def test_quick_subset_of_yades_examples_finishes(build_dir, tmp_path):
                            str(tmp_path)], capture_output=True, text=True, env=env, timeout=900)
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-2000:]
     record = json.loads((tmp_path / "yade-examples.completion.json").read_text())
-    table = json.loads((tmp_path / "yade-examples.json").read_text())["in_scope"]
+    table = json.loads((tmp_path / "yade-examples.details.json").read_text())["in_scope"]
     assert len(table) >= 12 and record["scripts"] == len(table)
     failed = {script: row["talus"]["error"] for script, row in table.items() if row["talus"]["status"] != "ok"}
     assert not failed and record["value"] == 1.0

@@ -30,7 +30,7 @@ def test_quick_mode_runs_yade_tests_against_talus(repo_dir, build_dir, tmp_path)
                           timeout=600)
     assert done.returncode == 0, done.stdout + done.stderr
     record = json.loads((tmp_path / "yade-tests.pass.json").read_text())
-    table = json.loads((tmp_path / "yade-tests.json").read_text())["tests"]
+    table = json.loads((tmp_path / "yade-tests.details.json").read_text())["tests"]
     assert record["quick"] and record["tests"] >= 40            # the four modules were collected
     assert record["value"] == pytest.approx(record["passed"] / record["tests"])
     failing = {t: table[t]["talus"].get("error") for t in MUST_PASS if table[t]["talus"]["status"] != "ok"}

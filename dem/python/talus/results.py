@@ -133,9 +133,13 @@ def write_record(record: dict, folder: Path | str | None = None) -> Path:
 
 
 def read_records(folder: Path | str) -> list[dict]:
-    """All records in a folder, sorted by name; a malformed file raises naming the file."""
+    """All records in a folder, sorted by name; a malformed file raises naming the file. A case's
+    ``<name>.details.json`` (a table behind its records, such as one row per script) is not a
+    record."""
     records = []
     for path in sorted(Path(folder).glob("*.json")):
+        if path.name.endswith(".details.json"):
+            continue
         try:
             record = json.loads(path.read_text())
         except json.JSONDecodeError as e:
