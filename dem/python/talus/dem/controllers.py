@@ -35,6 +35,18 @@ def _forward(name: str, doc: str = "", kind=None):
     return property(get, set, doc=doc)
 
 
+def _done_hook():
+    """Yade's doneHook of a controller: a command string or a callable, run when it reaches its
+    goal (kept as given; the C++ engine gets the callable)."""
+    def get(self):
+        return self._doneHook
+
+    def set(self, command):
+        self._doneHook = command
+        self._cpp.doneHook = asCallback(command, "doneHook")
+    return property(get, set, doc="command run when the goal is reached (a string or a callable)")
+
+
 def _vector(value) -> np.ndarray:
     v = np.asarray(value, dtype=float).reshape(-1)
     if v.shape != (3,) or not np.all(np.isfinite(v)):
@@ -123,14 +135,7 @@ class PeriTriaxController(Engine):
     currUnbalanced = _forward("currUnbalanced")
     externalWork = _forward("externalWork")
 
-    @property
-    def doneHook(self):
-        return self._doneHook
-
-    @doneHook.setter
-    def doneHook(self, command):
-        self._doneHook = command
-        self._cpp.doneHook = asCallback(command, "doneHook")
+    doneHook = _done_hook()
 
     def _io_state(self):
         c = self._cpp
@@ -182,14 +187,7 @@ class PeriIsoCompressor(Engine):
     avgStiffness = _forward("avgStiffness")
     currUnbalanced = _forward("currUnbalanced")
 
-    @property
-    def doneHook(self):
-        return self._doneHook
-
-    @doneHook.setter
-    def doneHook(self, command):
-        self._doneHook = command
-        self._cpp.doneHook = asCallback(command, "doneHook")
+    doneHook = _done_hook()
 
 
 _WALLS = ("left", "right", "bottom", "top", "back", "front")

@@ -8,8 +8,8 @@ from typing import Callable
 import numpy as np
 
 from talus import _dem
-from talus.dem.controllers import _forward
-from talus.dem.engines import Engine, asCallback
+from talus.dem.controllers import _done_hook, _forward
+from talus.dem.engines import Engine
 from talus.dem.linalg import Vector2
 
 _PATHS = ("xxPath", "yyPath", "zzPath", "yzPath", "zxPath", "xyPath")
@@ -97,14 +97,7 @@ class Peri3dController(Engine):
     lenPs, lenPe = _forward("lenPs", kind=int), _forward("lenPe", kind=int)
     xxPath, yyPath, zzPath, yzPath, zxPath, xyPath = (_path(i) for i in range(6))
 
-    @property
-    def doneHook(self):
-        return self._doneHook
-
-    @doneHook.setter
-    def doneHook(self, command):
-        self._doneHook = command
-        self._cpp.doneHook = asCallback(command, "doneHook")
+    doneHook = _done_hook()
 
     def _io_state(self):
         return {name: np.array(v) if isinstance(v := getattr(self._cpp, name), np.ndarray) else v for name in _STATE}
