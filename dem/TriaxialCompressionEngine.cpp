@@ -10,19 +10,6 @@
 
 namespace talus::dem
 {
-namespace
-{
-enum Wall
-{
-  Left,
-  Right,
-  Bottom,
-  Top,
-  Back,
-  Front
-};
-} // namespace
-
 std::string TriaxialCompressionEngine::stateName(int state)
 {
   switch (state)

@@ -11,15 +11,6 @@ namespace talus::dem
 {
 namespace
 {
-enum Wall
-{
-  Left,
-  Right,
-  Bottom,
-  Top,
-  Back,
-  Front
-};
 const char* const wallNames[6] = {"wall_left_id", "wall_right_id", "wall_bottom_id", "wall_top_id", "wall_back_id", "wall_front_id"};
 constexpr int wallAxis[6] = {0, 0, 1, 1, 2, 2};
 

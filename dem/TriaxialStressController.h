@@ -11,6 +11,17 @@ namespace talus::dem
 {
 class Scene;
 
+/// The six walls of a triaxial cell, in Yade's order (indices into wall ids, stresses, ...).
+enum TriaxialWall
+{
+  Left,
+  Right,
+  Bottom,
+  Top,
+  Back,
+  Front
+};
+
 /// Yade's TriaxialStressController: six walls around a box of spheres, each axis servo-controlled
 /// to a stress or a strain rate (stressMask bit 1, 2, 4 for x, y, z; goal1..3; tension positive).
 /// Walls are Talus's infinite planes (wall(pos, axis)) by id, in Yade's order: left/right (x),
