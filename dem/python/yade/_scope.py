@@ -18,8 +18,8 @@ RULES: list[tuple[str, str]] = [
     (r"LevelSet|FastMarchingMethod", "level-set shapes"),
     (r"Tetra|DeformableElement|deformableelementsutils|DeformableCohesive|\bNode\b|_Node_|InternalForce|LinIsoElastMat|"
      r"LinIsoRayleighDampElastMat|LinCohesive", "tetrahedra and deformable elements"),
-    (r"Thermal", "thermal coupling (open issue #29: ThermalEngine)"),
-    (r"TwoPhaseFlowEngine|UnsaturatedEngine|PhaseCluster", "two-phase pore flow (open issue #29: TwoPhaseFlowEngine)"),
+    (r"Thermal", "thermal coupling (ThermalEngine; planned)"),
+    (r"TwoPhaseFlowEngine|UnsaturatedEngine|PhaseCluster", "two-phase pore flow (TwoPhaseFlowEngine; planned)"),
     (r"Cpm", "concrete (CPM) model"),
     (r"WireMat|WirePhys|WireState", "wire mesh model"),
     (r"L6Geom|L3Geom", "local-coordinates contact geometry (L3Geom/L6Geom)"),
@@ -31,7 +31,7 @@ RULES: list[tuple[str, str]] = [
     (r"JCFpm", "jointed cohesive-frictional model"),
     (r"Luding", "Luding's model"),
     (r"Mortar", "mortar model"),
-    (r"\bmpy\b|^mpy$|Subdomain|MPIBodyContainer|FluidDomainBbox|domaindecomposition|bisectionDecomposition", "MPI subdomains (open issue #26: distributed DEM)"),
+    (r"\bmpy\b|^mpy$|Subdomain|MPIBodyContainer|FluidDomainBbox|domaindecomposition|bisectionDecomposition", "MPI subdomains (distributed DEM; planned)"),
     (r"hdaps", "laptop accelerometer input (/sys/devices/platform/hdaps)"),
     (r"LubricationPhys|Law2_ScGeom_ImplicitLubricationPhys|LubricationPDFEngine", "lubrication contact law"),
     (r"HertzMindlinExtended|Law2_ScGeom_MindlinPhys_HertzWithLinearShear|FrictMatCDM|CDMPhys|_CDM",
@@ -65,7 +65,7 @@ def missing_name_note(name: str, module: str | None = None) -> str | None:
         return None
     reason = out_of_scope(name)
     where = f"{module}.{name}" if module not in (None, "yade") else name
-    if reason and "open issue" in reason:
+    if reason and reason.endswith("; planned)"):
         return f"{where} is a name of Yade 2023.02a that Talus does not implement yet: it belongs to {reason}"
     if reason:
         return (f"{where} is a name of Yade 2023.02a that Talus does not implement: it belongs to {reason}, "
