@@ -192,7 +192,7 @@ def run_one(command: list[str], script: Path, timeout: float, env: dict) -> dict
 
 
 # Yade's rows and end states of the last run with Yade, so that Talus-only runs (--programs talus)
-# are still set against Yade's: running all of Yade's examples takes about an hour.
+# are still set against Yade's: running all of Yade's examples is slow (docs/yade-scripts.md).
 YADE_CACHE = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "talus" / "yade_examples.json"
 
 # A script is compared number for number only when nothing in it is random: both programs then
