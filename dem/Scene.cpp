@@ -274,8 +274,21 @@ void Scene::erase(BodyId id, bool eraseClumpMembers)
     eraseClumpMember(id);
   // Its contacts go now, not at the next collider run: an engine between the collider and
   // the interaction loop would otherwise still see them.
-  removeContacts([id](const Contact& c) { return c.id1 == id || c.id2 == id; });
+  contacts.removeIf([id](const Contact& c) { return c.id1 == id || c.id2 == id; }, bodies.size());
   bodies.alive[i] = 0;
+  ++bodiesVersion;
+  ++bodyPropertiesVersion;
+}
+
+void Scene::clearBodies()
+{
+  Bodies empty;
+  empty.blockContact = bodies.blockContact;
+  empty.particleContact = bodies.particleContact;
+  bodies = std::move(empty);
+  contacts.list.clear();
+  contacts.extra.clear();
+  contacts.index(0);
   ++bodiesVersion;
   ++bodyPropertiesVersion;
 }
@@ -283,34 +296,9 @@ void Scene::erase(BodyId id, bool eraseClumpMembers)
 bool Scene::eraseContact(BodyId id1, BodyId id2)
 {
   const std::size_t before = contacts.list.size();
-  removeContacts([id1, id2](const Contact& c) { return (c.id1 == id1 && c.id2 == id2) || (c.id1 == id2 && c.id2 == id1); });
+  contacts.removeIf([id1, id2](const Contact& c) { return (c.id1 == id1 && c.id2 == id2) || (c.id1 == id2 && c.id2 == id1); },
+                    bodies.size());
   return contacts.list.size() != before;
-}
-
-void Scene::removeContacts(const std::function<bool(const Contact&)>& doomed)
-{
-  // The richer state (contacts.extra) is aligned entry for entry with the list: both are
-  // compacted together, or a law with contact state would read another pair's state.
-  ContactList& list = contacts.list;
-  ContactExtraList& extra = contacts.extra;
-  const bool withExtra = extra.size() == list.size();
-  std::size_t kept = 0;
-  for (std::size_t k = 0; k < list.size(); ++k)
-  {
-    if (doomed(list[k]))
-      continue;
-    if (kept != k)
-    {
-      list[kept] = list[k];
-      if (withExtra)
-        extra[kept] = extra[k];
-    }
-    ++kept;
-  }
-  list.resize(kept);
-  if (withExtra)
-    extra.resize(kept);
-  contacts.index(bodies.size());
 }
 
 void Scene::runEngine(std::size_t k)
@@ -480,6 +468,25 @@ double Scene::pWaveTimeStep() const
       const double r = bodies.radius[i], density = bodies.mass[i] / ((4.0 / 3.0) * M_PI * std::pow(r, 3));
       best = std::min(best, r / std::sqrt(m.young / density));
     }
+  return best;
+}
+
+Scene::StiffestSphere Scene::stiffestSphere() const
+{
+  StiffestSphere best;
+  for (std::size_t i = 0; i < bodies.size(); ++i)
+  {
+    if (!bodies.alive[i] || bodies.shape[i] != ShapeKind::Sphere || bodies.clumpId[i] >= 0 || !bodies.dynamic[i]
+        || !(bodies.mass[i] > 0))
+      continue;
+    const Material& m = materials[static_cast<std::size_t>(bodies.material[i])];
+    if (!(m.young > 0) || (m.kind == MaterialKind::ViscEl && (std::isfinite(m.tc) || std::isfinite(m.kn))))
+      continue;
+    const double r = bodies.radius[i], density = bodies.mass[i] / ((4.0 / 3.0) * M_PI * std::pow(r, 3));
+    const double step = r / std::sqrt(m.young / density);
+    if (step < best.step)
+      best = {step, static_cast<BodyId>(i)};
+  }
   return best;
 }
 } // namespace talus::dem

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <memory>
@@ -138,6 +139,9 @@ public:
   /// removes it from its clump, which keeps its mass, inertia and the other members' placement
   /// (as in Yade) and goes with its last member.
   void erase(BodyId id, bool eraseClumpMembers = false);
+  /// Remove every body and contact (Yade's O.bodies.clear): ids start again at 0. Materials,
+  /// engines, the cell and the clock stay; engines holding body ids keep them, as in Yade.
+  void clearBodies();
   /// Remove the contact of a pair (either order) with its state, as Yade's
   /// O.interactions.erase; the collider finds the pair again if it is still in the skin.
   /// @return whether there was one
@@ -177,6 +181,15 @@ public:
 
   /// Yade's PWaveTimeStep: min over spheres of r sqrt(density / young).
   [[nodiscard]] double pWaveTimeStep() const;
+  /// The free, moving sphere whose P-wave step r sqrt(density / young) is the smallest among
+  /// those whose material's contact stiffness comes from young (not ViscElMat's tc or kn
+  /// forms): the bound O.dt is checked against before contacts exist. id -1 if none.
+  struct StiffestSphere
+  {
+    double step = std::numeric_limits<double>::infinity();
+    BodyId id = -1;
+  };
+  [[nodiscard]] StiffestSphere stiffestSphere() const;
   /// Critical step of the stiffest contact alone, min over real contacts of
   /// 2 sqrt(m_reduced / kn) (a lower bound is what matters: packings need less, ~0.3 x P-wave).
   [[nodiscard]] double contactTimeStep() const;
@@ -204,7 +217,5 @@ private:
   /// Take an erased member out of its clump, which keeps its mass properties (Yade's erase);
   /// a clump left without members is erased too.
   void eraseClumpMember(BodyId member);
-  /// Remove the contacts `doomed` picks, with their aligned state, and re-index.
-  void removeContacts(const std::function<bool(const Contact&)>& doomed);
 };
 } // namespace talus::dem

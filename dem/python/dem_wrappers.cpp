@@ -246,6 +246,7 @@ PYBIND11_MODULE(_dem, m)
       .def("addFacet", &Scene::addFacet, py::arg("a"), py::arg("b"), py::arg("c"), py::arg("material"),
            py::arg("bounded") = true)
       .def("erase", &Scene::erase)
+      .def("clearBodies", &Scene::clearBodies)
       .def("setBlockedDofs", &Scene::setBlockedDofs)
       .def("setDynamic", &Scene::setDynamic)
       .def("setMass", &Scene::setMass)
@@ -254,6 +255,11 @@ PYBIND11_MODULE(_dem, m)
       .def("bodyCount", [](const Scene& s) { return s.bodies.size(); })
       .def("pWaveTimeStep", &Scene::pWaveTimeStep)
       .def("contactTimeStep", &Scene::contactTimeStep)
+      .def("stiffestSphere",
+           [](const Scene& s) {
+             const Scene::StiffestSphere best = s.stiffestSphere();
+             return py::make_tuple(best.step, best.id);
+           })
       .def_readwrite("maxOverlapRatio", &Scene::maxOverlapRatio)
       .def_readwrite("overlapStops", &Scene::overlapStops)
       .def_readwrite("overlapSteps", &Scene::overlapSteps)

@@ -9,7 +9,8 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.linalg import Quaternion, Vector3
-from talus.dem.appearance import DEFAULT_COLOR, check_color
+from talus.dem.reference import ReferenceStates
+from talus.dem.appearance import DEFAULT_COLOR, Appearance, check_color
 from talus.dem.serializable import Serializable
 from talus.dem.shapes import Box, Shape, Sphere, Wall, shape_of, shape_of_spec
 
@@ -664,6 +665,26 @@ class BodyContainer:
             return False
         _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))
         return True
+
+    def clear(self) -> None:
+        """Remove every body and its contacts; the next body appended gets id 0 (Yade's
+        O.bodies.clear, which also leaves the old contacts in O.interactions: Talus removes them).
+        Per-body arrays taken before (positions(), ...) no longer follow the bodies."""
+        scene = self._scene
+        scene._cpp.clearBodies()
+        scene._views = []
+        scene._appearance = Appearance()
+        scene._reference = ReferenceStates()
+
+    def replace(self, specs: BodySpec | Iterable[BodySpec]):
+        """Remove every body, then append ``specs`` (Yade's O.bodies.replace); returns their ids,
+        which start at 0."""
+        specs = [specs] if isinstance(specs, BodySpec) else list(specs)
+        for spec in specs:
+            if not isinstance(spec, BodySpec):
+                raise TypeError(f"O.bodies.replace: takes bodies (utils.sphere(...), ...), got {spec!r}")
+        self.clear()
+        return self.append(specs)
 
     def __getitem__(self, id: int) -> Body | None:
         """Body ``id`` (negative: counted from the end), None if it was erased (Yade's)."""
