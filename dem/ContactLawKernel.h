@@ -157,11 +157,11 @@ double ContactLawKernel<Law>::elasticEnergy(const Scene& scene, std::uint8_t law
 {
   const Law& law = static_cast<const Law&>(*this);
   const ContactList& list = scene.contacts.list;
-  const bool extra = Law::usesExtra && scene.contacts.extra.size() == list.size();
+  const ContactExtra* extra = Law::usesExtra ? scene.contacts.extraState() : nullptr;
   double sum = 0;
   for (std::size_t k = 0; k < list.size(); ++k)
     if (list[k].real && list[k].law == lawIndex)
-      sum += law.elastic(list[k], extra ? &scene.contacts.extra[k] : nullptr);
+      sum += law.elastic(list[k], extra ? extra + k : nullptr);
   return sum;
 }
 
@@ -171,7 +171,7 @@ double ContactLawKernel<Law>::grownElasticEnergy(const Scene& scene, std::uint8_
 {
   const Law& law = static_cast<const Law&>(*this);
   const ContactList& list = scene.contacts.list;
-  const bool extra = Law::usesExtra && scene.contacts.extra.size() == list.size();
+  const ContactExtra* extra = Law::usesExtra ? scene.contacts.extraState() : nullptr;
   double sum = 0;
   for (std::size_t k = 0; k < list.size(); ++k)
   {
@@ -183,7 +183,7 @@ double ContactLawKernel<Law>::grownElasticEnergy(const Scene& scene, std::uint8_
       continue;
     Contact ungrown = c; // as it would be without the growth
     ungrown.penetration = std::max(c.penetration - growth, 0.0);
-    const ContactExtra* x = extra ? &scene.contacts.extra[k] : nullptr;
+    const ContactExtra* x = extra ? extra + k : nullptr;
     sum += law.elastic(c, x) - law.elastic(ungrown, x);
   }
   return sum;

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <stdexcept>
+#include <string>
 
 namespace talus::dem
 {
@@ -24,6 +26,40 @@ void Contacts::index(std::size_t bodyCount)
       },
       [this](std::int64_t k, int side, std::int64_t slot) { entries[static_cast<std::size_t>(slot)] = (k << 1) | side; });
 }
+
+void Contacts::removeIf(const std::function<bool(const Contact&)>& doomed, std::size_t bodyCount)
+{
+  const bool withExtra = extraState() != nullptr;
+  std::size_t kept = 0;
+  for (std::size_t k = 0; k < list.size(); ++k)
+  {
+    if (doomed(list[k]))
+      continue;
+    if (kept != k)
+    {
+      list[kept] = list[k];
+      if (withExtra)
+        extra[kept] = extra[k];
+    }
+    ++kept;
+  }
+  list.resize(kept);
+  if (withExtra)
+    extra.resize(kept);
+  index(bodyCount);
+}
+
+const ContactExtra* Contacts::extraState() const
+{
+  if (extra.empty())
+    return nullptr;
+  if (extra.size() != list.size())
+    throw std::logic_error("contact state (Contacts::extra) has " + std::to_string(extra.size()) + " entries for "
+                           + std::to_string(list.size()) + " contacts");
+  return extra.data();
+}
+
+ContactExtra* Contacts::extraState() { return const_cast<ContactExtra*>(std::as_const(*this).extraState()); }
 
 std::size_t Contacts::countReal() const
 {

@@ -5,6 +5,7 @@
 #include "dem/types.h"
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace talus::dem
@@ -91,7 +92,17 @@ struct Contacts
   std::vector<std::int64_t> entries;
   /// State of the richer contact models (ContactExtra), entry k for contact k: empty unless a
   /// law that needs it runs (it sizes it on first use, the collider then keeps it aligned).
+  /// Code that removes contacts goes through removeIf, which compacts both.
   ContactExtraList extra;
+
+  /// Remove the contacts `doomed` selects, with their entries of `extra` (compacting the list
+  /// alone would hand each later contact the state of another pair), then rebuild the index.
+  void removeIf(const std::function<bool(const Contact&)>& doomed, std::size_t bodyCount);
+  /// The records of `extra` (entry k for contact k), null when no law keeps any.
+  /// @throws std::logic_error if `extra` is not aligned with the list (a contact would read
+  ///         another pair's state)
+  [[nodiscard]] ContactExtra* extraState();
+  [[nodiscard]] const ContactExtra* extraState() const;
 
   /// Rebuild the per-body index after the list changed, and give the list a new `version`.
   void index(std::size_t bodyCount);

@@ -142,7 +142,7 @@ void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
   const auto n = static_cast<std::int64_t>(list.size());
   if (std::any_of(laws.begin(), laws.end(), [](const auto& law) { return law->needsExtra(); }))
     alignContactExtra(scene.contacts);
-  ContactExtra* extra = scene.contacts.extra.size() == list.size() ? scene.contacts.extra.data() : nullptr;
+  ContactExtra* extra = scene.contacts.extraState();
 
   // 1. Geometry of every candidate pair; new contacts get their law and physics.
   bool failed = false;
@@ -241,7 +241,7 @@ void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, st
 /// Contact moments (rolling and twisting resistance) of the richer models, if any.
 const ContactExtra* contactMoments(const Contacts& contacts)
 {
-  return contacts.extra.size() == contacts.list.size() ? contacts.extra.data() : nullptr;
+  return contacts.extraState();
 }
 } // namespace
 

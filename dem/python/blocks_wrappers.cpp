@@ -134,10 +134,10 @@ void talus_wrap_blocks(py::module_& m)
   m.def("contact_areas", [](const Scene& s) {
     std::vector<double> out;
     const auto& list = s.contacts.list;
-    const bool have = s.contacts.extra.size() == list.size();
+    const ContactExtra* extra = s.contacts.extraState();
     for (std::size_t k = 0; k < list.size(); ++k)
       if (list[k].real)
-        out.push_back(have ? s.contacts.extra[k].contactArea : 0.0);
+        out.push_back(extra ? extra[k].contactArea : 0.0);
     return out;
   });
 }

@@ -59,15 +59,15 @@ void talus_wrap_laws(py::module_& m)
   m.def("contact_extra", [](const Scene& s) {
     py::list out;
     const auto& list = s.contacts.list;
-    const bool have = s.contacts.extra.size() == list.size();
+    const ContactExtra* extra = s.contacts.extraState();
     for (std::size_t k = 0; k < list.size(); ++k)
     {
       if (!list[k].real)
         continue;
       py::dict d;
-      if (have)
+      if (extra)
       {
-        const ContactExtra& x = s.contacts.extra[k];
+        const ContactExtra& x = extra[k];
         d["kno"] = x.kno;
         d["kso"] = x.kso;
         d["betan"] = x.betan;
