@@ -1,5 +1,5 @@
 """CFD-DEM case: spheres in a shear (Couette) flow, point-force coupling with OpenFOAM
-(talusPointForceFoam spawned over MPI; case folder cases/cfd_shear_flow/). The set-up of Yade's
+(talusPointForceFoam spawned over MPI; its case written by talus.coupling.case_builder). The set-up of Yade's
 shipped example examples/openfoam/example_icoFoamYade (scriptYade.py, icoFoamYade).
 
 Run:      build/bin/talus run cases/cfd_shear_flow.py [--quick] [--results DIR] [--procs 2] [--vtk DIR]
@@ -35,21 +35,20 @@ import math
 import re
 import shutil
 import subprocess
+import tempfile
 import time
 from pathlib import Path
 
 import numpy as np
 
 from talus import results
-from talus.coupling import FoamCoupling
-from talus.coupling.cases import foam_environment, mesh_case
+from talus.coupling.case_builder import PERIODIC, Wall, cfd_case
+from talus.coupling.cases import foam_environment
 from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
                        Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, pack, wall)
 from talus.dem.export import PvdCollection, write_spheres
 
-HERE = Path(__file__).resolve().parent
-CASE = HERE / "cfd_shear_flow"
 RHO, NU, RHO_P, H, U_WALL = 1000.0, 1e-4, 1000.0, 0.1, 0.05
 MU = RHO * NU
 CHECKED = 0.02
@@ -64,25 +63,19 @@ def profile(y):
 VTK_EVERY = 10
 
 
-def prepare_case(procs: int, cells: int, vtk: bool) -> Path:
-    def configure(work: Path):
-        if vtk:
-            control = work / "system" / "controlDict"
-            control.write_text(re.sub(r"writeInterval\s+\d+;", f"writeInterval   {VTK_EVERY};", control.read_text()))
-        mesh = work / "system" / "blockMeshDict"
-        mesh.write_text(mesh.read_text().replace("(NCELLS NCELLS NCELLS)", f"({cells} {cells} {cells})"))
-        # blockMesh numbers the cells x fastest, then y, then z.
-        y = (np.arange(cells) + 0.5) * H / cells
-        u = np.tile(np.repeat(profile(y), cells), cells)
-        values = "\n".join(f"({ui!r} 0 0)" for ui in u)
-        field = work / "0" / "U"
-        text = field.read_text().replace("UWALL", repr(U_WALL))
-        field.write_text(text.replace("INTERNAL", f"nonuniform List<vector> {len(u)}\n(\n{values}\n)"))
-    return mesh_case(CASE, procs, configure, prefix="talus_cfd_shear_flow_")
+def prepare_case(procs: int, cells: int, vtk: bool):
+    """The fluid case: walls moving at -/+ U_w across y, periodic across x and z, the linear
+    profile as the initial field, fields written every VTK_EVERY fluid steps with --vtk."""
+    return cfd_case(tempfile.mkdtemp(prefix="talus_cfd_shear_flow_"), solver="pointforce", box=((0, 0, 0), (H, H, H)),
+                    cells=(cells, cells, cells), rho=RHO, nu=NU, gravity=(0, 0, 0), coupling_interval=5e-4,
+                    boundaries={"y0": Wall((-U_WALL, 0, 0)), "y1": Wall((U_WALL, 0, 0)), "x0": PERIODIC, "z0": PERIODIC},
+                    initial_velocity=lambda x: np.outer(profile(x[:, 1]), (1, 0, 0)), procs=procs,
+                    write_every=VTK_EVERY if vtk else 1000)
 
 
 def run(procs: int, cells: int, fluid_steps: int, vtk: Path | None = None):
-    work = prepare_case(procs, cells, vtk is not None)
+    fluid = prepare_case(procs, cells, vtk is not None)
+    work = fluid.path
     s = Scene()
     s.periodic = True
     s.cell.setBox(H, 2 * H, H)
@@ -98,8 +91,7 @@ def run(procs: int, cells: int, fluid_steps: int, vtk: Path | None = None):
                                  [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
                  NewtonIntegrator(gravity=(0, 0, 0), damping=0.0)]
     s.dt = 0.7 * PWaveTimeStep(s)
-    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, 0), nProcs=procs, ids=ids,
-                            solver="talusPointForceFoam", implicitDrag=True, reynoldsLimit=1.0).start()
+    coupling = fluid.coupling(s, ids=ids, implicitDrag=True, reynoldsLimit=1.0).start()
     r = s.radii()[ids]
     tau = RHO_P * (2 * r) ** 2 / (18 * MU)
     t, u = [0.0], [s.velocities()[ids].copy()]
@@ -126,14 +118,13 @@ def run(procs: int, cells: int, fluid_steps: int, vtk: Path | None = None):
                        capture_output=True, env=foam_environment())
     last = max((p for p in work.iterdir() if re.fullmatch(r"[0-9.e-]+", p.name) and p.name != "0"),
                key=lambda p: float(p.name))
-    fluid = (last / "U").read_text()
+    fluid_u = (last / "U").read_text()
     if vtk is not None:
-        shutil.copytree(work, vtk, dirs_exist_ok=True)
-        (vtk / "case.foam").touch()  # what ParaView's OpenFOAM reader opens
+        shutil.copytree(work, vtk, dirs_exist_ok=True)   # with case.foam, what ParaView's OpenFOAM reader opens
         print(f"ParaView: open {vtk / 'case.foam'} (fluid) and {vtk / 'VTK' / 'particles-spheres.pvd'} (spheres)")
     shutil.rmtree(work, ignore_errors=True)
     return dict(t=np.array(t), u=np.array(u), tau=tau, y_start=y_start, y_end=y_end, coupling=coupling,
-                elapsed=elapsed, fluid_U=fluid, substeps=coupling.substeps)
+                elapsed=elapsed, fluid_U=fluid_u, substeps=coupling.substeps)
 
 
 def fluid_profile(text: str, cells: int) -> np.ndarray:

@@ -5,6 +5,7 @@
     talus report                  write docs/validation.md from a results folder
     talus bench                   time a command of ours against a peer's, side by side
     talus batch TABLE SCRIPT      run a script once per line of a parameter table (as ``yade-batch``)
+    talus case KIND --out DIR     write a ready-to-run case: cfd (OpenFOAM, CFD-DEM), permeability, femxdem
 """
 
 from __future__ import annotations
@@ -180,6 +181,11 @@ def parser() -> argparse.ArgumentParser:
                         description=batch.__doc__.split("\n\n")[0] + " See docs/dem.md, 'Parameter studies'.")
     batch.add_arguments(bt)
     bt.set_defaults(func=_batch)
+
+    from talus import case_command
+    cs = sub.add_parser("case", help="write a ready-to-run case (cfd, permeability, femxdem)",
+                        description=case_command.__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    case_command.add_arguments(cs)
     return p
 
 

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import os
 import shutil
-import subprocess
 import tempfile
 import time
 from dataclasses import dataclass
@@ -26,18 +25,14 @@ def mesh_case(source, procs: int = 1, edit: Callable[[Path], None] | None = None
     """A copy of the case folder ``source`` in a new temporary folder, changed by ``edit(work)``
     (e.g. the mesh size in system/blockMeshDict), meshed with blockMesh and, for ``procs > 1``,
     decomposed with decomposePar (system/decomposeParDict must ask for ``procs`` ranks). The
-    utilities' output goes to ``work/log.<utility>``; a failure raises with that log's name."""
+    utilities' output goes to ``work/log.<utility>``; a failure raises with that log's name.
+    New cases are written by :func:`talus.coupling.case_builder.cfd_case` instead."""
     work = Path(tempfile.mkdtemp(prefix=prefix))
     shutil.copytree(source, work, dirs_exist_ok=True)
     if edit is not None:
         edit(work)
-    env = foam_environment()
-    for command in [["blockMesh"]] + ([["decomposePar", "-force"]] if procs > 1 else []):
-        log_path = work / f"log.{command[0]}"
-        with open(log_path, "w") as log:
-            done = subprocess.run(command + ["-case", str(work)], stdout=log, stderr=subprocess.STDOUT, env=env)
-        if done.returncode != 0:
-            raise RuntimeError(f"{command[0]} failed on the case copied from {source} (see {log_path})")
+    from talus.coupling.case_builder import mesh_and_decompose
+    mesh_and_decompose(work, procs=procs)
     return work
 
 
