@@ -3,7 +3,8 @@
 #
 #   ./setup.sh            install the Debian packages Talus needs (as root; skipped when they are
 #                         all there), prepare OpenFOAM's development sources, configure, build,
-#                         and run the main demo. Safe to run again: it only does what is missing.
+#                         and run the main demo (cases/01_demo_cfd_dem.py: CFD-DEM under mpirun, the DEM
+#                         and 2 OpenFOAM ranks). Safe to run again: it only does what is missing.
 #   ./setup.sh test       run the whole test suite (ctest, then pytest) and print one summary line.
 #
 # Options (before or after the command):
@@ -81,8 +82,10 @@ run_build() {
   echo "($(elapsed "$t0"))"
   t0=$(date +%s); step "build ($jobs jobs)"
   cmake --build "$build" -j "$jobs"; echo "($(elapsed "$t0"))"
-  step "main demo"
-  "$build/bin/talus" run "$here/cases/00_hello_talus.py"
+  "$build/bin/talus" info
+  t0=$(date +%s); step "main demo: beads settling in a liquid, CFD-DEM under mpirun (cases/01_demo_cfd_dem.py)"
+  (cd "$here" && "$build/bin/talus" run -j 1 cases/01_demo_cfd_dem.py --results "$here/results")
+  echo "($(elapsed "$t0"))"
 }
 
 run_tests() {

@@ -1,7 +1,7 @@
 """The ``talus`` command.
 
     talus run SCRIPT [ARGS...]    run a script (as ``yade -x SCRIPT``, with the same namespace)
-    talus info                    version, components and features of this build
+    talus info                    the toolchain check: version, components and features of this build
     talus report                  write docs/validation.md from a results folder
     talus bench                   time a command of ours against a peer's, side by side
     talus batch TABLE SCRIPT      run a script once per line of a parameter table (as ``yade-batch``)
@@ -94,12 +94,21 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _info(_args: argparse.Namespace) -> int:
+    """The toolchain check: the compiled core and the Python layer are the same version and were
+    configured together; the build's components and features with the reason for any that is off."""
     info = talus.build_info()
-    print(f"talus {talus.__version__}  ({Path(talus.__file__).parent})")
+    print(f"Talus {talus.__version__} (compiled core {talus._dem.version()})  ({Path(talus.__file__).parent})")
     for kind in ("components", "features"):
         print(f"{kind}:")
         for name, (on, note) in info[kind].items():
             print(f"  {name:<14}{'ON ' if on else 'OFF'}  {note}")
+    cxx = {(kind + "s", name): on for kind, name, on, _note in talus._dem.build_config()}
+    py = {(kind, name): on for kind, table in info.items() for name, (on, _n) in table.items()}
+    if talus._dem.version() != talus.__version__ or cxx != py:
+        print(f"talus info: the compiled core and the Python package disagree: version {talus._dem.version()} "
+              f"vs {talus.__version__}, components {cxx} vs {py}; rebuild", file=sys.stderr)
+        return 1
+    print("toolchain OK")
     return 0
 
 
