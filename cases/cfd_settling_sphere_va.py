@@ -22,7 +22,6 @@ Checked:  the final velocity against the Schiller-Naumann terminal velocity with
 Produces: records cfd.settling_sphere_va and cfd.settling_sphere_va.ranks; chart
           cfd.settling_sphere_va.png.
 """
-import math
 import shutil
 from pathlib import Path
 
@@ -30,41 +29,15 @@ import numpy as np
 
 from talus import results
 from talus.coupling.cases import mesh_case, settle_sphere
+from talus.coupling.settling import SettlingSphere
 
 HERE = Path(__file__).resolve().parent
 CASE = HERE / "cfd_settling_sphere_va"
 RHO, NU, RHO_P, D, G, CM = 1000.0, 3e-5, 2500.0, 2e-3, 9.81, 0.5
-MU = RHO * NU
-V_P = math.pi * D ** 3 / 6
-MASS = RHO_P * V_P
-TAU = RHO_P * D ** 2 / (18 * MU)
+SPHERE = SettlingSphere(D, RHO_P, RHO, NU, G, addedMassCoefficient=CM)
+TAU = SPHERE.relaxation_time
 CELL_SIZES = [0.04, 0.02, 0.01]
 CHECKED = 0.02
-
-
-def drag(v):
-    re = abs(v) * D / NU
-    return 3 * math.pi * MU * D * v * (1 + 0.15 * re ** 0.687)
-
-
-def terminal_velocity() -> float:
-    lo, hi = 0.0, 1.0
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if drag(mid) < (MASS - RHO * V_P) * G else (lo, mid)
-    return 0.5 * (lo + hi)
-
-
-def reference(t_end: float, dt: float = 1e-5):
-    """The settling velocity of the equation of motion with Schiller-Naumann drag (RK4)."""
-    accel = lambda v: ((MASS - RHO * V_P) * G - drag(v)) / (MASS + CM * RHO * V_P)
-    t, v, ts, vs = 0.0, 0.0, [0.0], [0.0]
-    while t < t_end:
-        k1 = accel(v); k2 = accel(v + dt / 2 * k1); k3 = accel(v + dt / 2 * k2); k4 = accel(v + dt * k3)
-        v += dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
-        t += dt
-        ts.append(t); vs.append(v)
-    return np.array(ts), np.array(vs)
 
 
 def prepare_case(procs: int, dx: float, envelope: str) -> Path:
@@ -99,8 +72,8 @@ def main():
     case = results.Case("cfd.settling_sphere_va" + ("" if args.envelope == "gaussian" else "_cell"),
                         quick=args.quick, folder=args.results)
     fluid_steps = 250 if args.quick else 600
-    w = terminal_velocity()
-    t_ref, v_ref = reference(fluid_steps * 1e-3 + 1e-3)
+    w = SPHERE.terminal_velocity()
+    t_ref, v_ref = SPHERE.velocity_history(fluid_steps * 1e-3 + 1e-3, 1e-5)
     print(f"Schiller-Naumann terminal velocity {w:.6e} m/s (Re_p {w * D / NU:.2f}, tau {TAU:.3e} s)")
     fig, ax = plt.subplots(figsize=(5.5, 4))
     ax.plot(t_ref, v_ref * 100, "k--", lw=0.8, label="equation of motion (Schiller-Naumann)")

@@ -146,6 +146,7 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   else if (reply[2] != proto::kStatusOk)
     why = message.data();
   fluidDt_ = replyD[0];
+  dragReynoldsLimit_ = replyD[3];
   nCells_ = reply[4];
   if (why.empty() && settings_.couplingInterval > 0 &&
       fluidDt_ > settings_.couplingInterval * (1 + 1e-12))

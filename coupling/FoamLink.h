@@ -55,6 +55,8 @@ public:
   FoamLink& operator=(const FoamLink&) = delete;
 
   [[nodiscard]] double fluidDt() const { return fluidDt_; }
+  /// The particle Reynolds number up to which the solver's drag law (its dragModel) holds.
+  [[nodiscard]] double dragReynoldsLimit() const { return dragReynoldsLimit_; }
   [[nodiscard]] int fluidProcs() const { return fluidProcs_; }
   [[nodiscard]] long nCells() const { return nCells_; }
   [[nodiscard]] int nParticles() const { return nParticles_; }
@@ -86,6 +88,7 @@ private:
   int nParticles_ = 0;
   long nCells_ = 0;
   double fluidDt_ = 0;
+  double dragReynoldsLimit_ = 0;
   std::vector<double> boxes_;
   std::vector<std::vector<double>> sent_;                ///< per fluid rank: its particles
   std::vector<std::vector<std::size_t>> members_;        ///< per fluid rank: their indices

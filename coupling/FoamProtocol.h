@@ -26,7 +26,9 @@
 //                                               envelope's cut-off), sent once the case is read
 //    fluid rank 0 -> DEM, tag kTagHelloReply:  int[kReplyInts] = {kMagic, kVersion, status, nProcs,
 //                                               nCells (global)}
-//                         tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu}
+//                         tag kTagHelloReplyD: double[kReplyDoubles] = {deltaT [s], rho, nu,
+//                                               the particle Reynolds number up to which
+//                                               the solver's drag law holds}
 //                         tag kTagMessage:     char[kMessageChars], NUL-terminated reason
 //                                               (empty if status == kStatusOk)
 //    The process ids let each side notice within a fraction of a second that a process on the
@@ -67,7 +69,7 @@
 namespace talus::foam_protocol
 {
 constexpr int kMagic = 0x54414c53; // "TALS"
-constexpr int kVersion = 3;
+constexpr int kVersion = 4;
 
 constexpr int kTagHello = 6101;
 constexpr int kTagHelloD = 6102;
@@ -85,7 +87,7 @@ constexpr int kTagHalo = 6111;
 constexpr int kHelloInts = 5;
 constexpr int kHelloDoubles = 6;
 constexpr int kReplyInts = 5;
-constexpr int kReplyDoubles = 3;
+constexpr int kReplyDoubles = 4;
 constexpr int kMessageChars = 1024;
 constexpr int kParticleDoubles = 8;
 constexpr int kForceDoubles = 8;

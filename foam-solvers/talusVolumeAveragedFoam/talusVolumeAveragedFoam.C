@@ -12,7 +12,8 @@ Description
     per particle
         drag       V_p K (u_f - u_p), by default K = 18 rho nu / d^2 (1 + 0.15 Re_p^0.687)
                    alpha^-h (Schiller-Naumann with the hindrance exponent h), Re_p = |u_f - u_p| d
-                   / nu; or Di Felice, or Ergun / Wen-Yu (dragClosure.H)
+                   / nu (0.44 Re / 24 instead above Re_p 1000); or Stokes, Di Felice, or
+                   Ergun / Wen-Yu (dragClosure.H)
         buoyancy   V_p rho (-grad p + nu lap U) - rho V_p g   (p without its hydrostatic part)
         added mass C_m rho V_p (Du_f/Dt - du_p/dt), du_p/dt from the last two exchanges.
     The fluid gets the drag's reaction implicitly (-Ksp (U - U_p), hindrance included) and the
@@ -31,8 +32,9 @@ Description
                              convolution on the lattice of the cell centres
                              (latticeConvolution.H; pairwise where the centres form no equally
                              spaced lattice), or its sums over every particle-cell pair
-        dragModel            SchillerNaumann | DiFelice | ErgunWenYu (default SchillerNaumann)
-        hindranceExponent    h                    (default 2.65; SchillerNaumann only)
+        dragModel            Stokes | SchillerNaumann | DiFelice | ErgunWenYu
+                             (default SchillerNaumann)
+        hindranceExponent    h                    (default 2.65; Stokes and SchillerNaumann)
         addedMassCoefficient C_m                  (default 0.5; 0 switches it off)
         alphaMin             lower bound of alphaf (default 0.2)
         alphaRelaxationTime  T [s]: alphaf relaxes towards the particles' fraction over T
@@ -57,6 +59,8 @@ License
 namespace proto = talus::foam_protocol;
 
 static const char* const solverName = "talusVolumeAveragedFoam";
+// The drag closure without a dragModel entry (the seed chapter's).
+static const char* const defaultDragModel = "SchillerNaumann";
 
 namespace
 {

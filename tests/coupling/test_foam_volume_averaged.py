@@ -3,8 +3,8 @@ two particles; tests/coupling/foam_drag_driver.py is the DEM process) and a shor
 
 Checked: with the cell-local envelope, the first exchange (fluid at rest) returns exactly the
 Schiller-Naumann drag with the hindrance factor of the particle's cell, (1 - V_p / V_cell)^-2.65,
-plus the buoyancy (1e-12 relative), and with dragModel ErgunWenYu or DiFelice those closures
-(an unknown dragModel stops the run before the first step); with the Gaussian envelope, a case decomposed on 2 fluid
+plus the buoyancy (1e-12 relative), and with dragModel ErgunWenYu, DiFelice or Stokes those closures
+(an unknown dragModel stops the run before the first step, naming the valid ones); with the Gaussian envelope, a case decomposed on 2 fluid
 ranks (the envelopes cross the processor boundary) gives the serial forces, to 1e-12 on the
 first exchange and 1e-6 of the largest force over 3 exchanges (the pressure solver's tolerance); a sphere settling at Re_p ~ 5 reaches the Schiller-Naumann terminal velocity
 within 2 %; an unknown envelope stops the run before the first step with OpenFOAM's message; a
@@ -68,7 +68,12 @@ def di_felice(alpha, w, d):
     return 0.75 * (0.63 + 4.8 / math.sqrt(re)) ** 2 * RHO * w * alpha ** (2 - chi) / d
 
 
-@pytest.mark.parametrize("model, closure", [("ErgunWenYu", ergun_wen_yu), ("DiFelice", di_felice)])
+def stokes_hindered(alpha, w, d):
+    return 18 * RHO * NU / d ** 2 * alpha ** -2.65
+
+
+@pytest.mark.parametrize("model, closure", [("ErgunWenYu", ergun_wen_yu), ("DiFelice", di_felice),
+                                            ("Stokes", stokes_hindered)])
 def test_cell_envelope_first_exchange_follows_the_selected_drag_closure(tmp_path, model, closure):
     run, record = drive(case(tmp_path, "cell", drag=model))
     assert run.returncode == 0, run.stdout + run.stderr
@@ -82,8 +87,9 @@ def test_cell_envelope_first_exchange_follows_the_selected_drag_closure(tmp_path
 
 
 def test_unknown_drag_model_stops_before_the_first_step(tmp_path):
-    run, record = drive(case(tmp_path, "cell", drag="Stokes"))
+    run, record = drive(case(tmp_path, "cell", drag="Oseen"))
     assert run.returncode != 0 and record is None
+    assert "dragModel Oseen unknown: use Stokes, SchillerNaumann, DiFelice or ErgunWenYu" in run.stdout + run.stderr
 
 
 def test_gaussian_envelope_two_fluid_ranks_equal_serial(tmp_path):
@@ -128,7 +134,7 @@ import importlib.util, json, sys
 spec = importlib.util.spec_from_file_location("settling_va", {str(spec.origin)!r})
 m = importlib.util.module_from_spec(spec); spec.loader.exec_module(m)
 t, v, coupling, _ = m.settle(1, 0.02, 150, "gaussian")
-json.dump(dict(v=list(v), w=m.terminal_velocity(), re=coupling.maxReynolds), open(sys.argv[1], "w"))
+json.dump(dict(v=list(v), w=m.SPHERE.terminal_velocity(), re=coupling.maxReynolds), open(sys.argv[1], "w"))
 """
     out = tmp_path / "settle.json"
     run = subprocess.run([sys.executable, "-c", script, str(out)], capture_output=True, text=True, env=ENV,

@@ -116,11 +116,6 @@ class CouplingTimes:
         return CouplingTimes(**vars(self))
 
 
-# The particle Reynolds number up to which each solver's drag law holds (Stokes drag: 10 % off
-# at Re_p ~ 0.5; Schiller-Naumann: fitted up to Re_p ~ 1000).
-_REYNOLDS_LIMITS = {"talusPointForceFoam": 0.5, "talusVolumeAveragedFoam": 1000.0}
-
-
 from talus.dem.engines import Engine as _Engine  # noqa: E402
 
 
@@ -144,13 +139,15 @@ class FoamCoupling(_Engine):
             values different from its transportProperties.
         gravity: must equal the case's constant/g and the NewtonIntegrator's gravity.
         ids: bodies coupled (default: every sphere).
-        solver: solver name or path: talusPointForceFoam (default; Stokes drag, point forces) or
-            talusVolumeAveragedFoam (fluid fraction, Gaussian envelope, Schiller-Naumann drag).
+        solver: solver name or path: talusPointForceFoam (default; point forces, Stokes drag
+            unless the case's constant/couplingProperties sets dragModel, e.g. SchillerNaumann)
+            or talusVolumeAveragedFoam (fluid fraction, Gaussian envelope, Schiller-Naumann drag).
         nProcs: fluid ranks (MPI_Comm_spawn, ``-parallel`` when > 1).
         couplingInterval: [s] the fluid deltaT may not exceed it (None: no limit).
         timeout: longest wait for the other side [s]; then every process is aborted.
         reynoldsLimit: a RuntimeWarning when the particle Reynolds number exceeds it (default:
-            0.5 for talusPointForceFoam, 1000 for talusVolumeAveragedFoam).
+            the limit of the solver's drag law, told at the handshake: 0.5 for Stokes drag, 2e5
+            for Schiller-Naumann, 1e4 for Di Felice).
         implicitDrag: re-evaluate the drag beta (u_f - v) at every DEM sub-step with the particle's
             current velocity (beta and u_f from the last exchange) instead of holding the drag of
             the exchange over the fluid step. Needed when the particles' velocities change within
@@ -192,9 +189,8 @@ class FoamCoupling(_Engine):
         self.gravity = tuple(float(g) for g in gravity)
         self.ids = None if ids is None else np.asarray(ids, dtype=np.int64)
         self.solver, self.nProcs = solver, int(nProcs)
-        if reynoldsLimit is None:
-            reynoldsLimit = _REYNOLDS_LIMITS.get(Path(solver).name, 0.5)
-        self.couplingInterval, self.timeout, self.reynoldsLimit = couplingInterval, float(timeout), reynoldsLimit
+        self.couplingInterval, self.timeout = couplingInterval, float(timeout)
+        self.reynoldsLimit = None if reynoldsLimit is None else float(reynoldsLimit)  # None: the solver's (start)
         if checkpoint is not None and int(checkpointInterval) < 1:
             raise ValueError(f"FoamCoupling: checkpointInterval must be >= 1 fluid steps, got {checkpointInterval}")
         self.checkpoint = None if checkpoint is None else str(checkpoint)
@@ -327,7 +323,6 @@ class FoamCoupling(_Engine):
             warnings.warn(f"FoamCoupling: isGaussianInterp={self.isGaussianInterp} but the case's solver is "
                           f"{self.solver}: the solver decides (Gaussian envelope with pimpleFoamYade only)",
                           RuntimeWarning, stacklevel=3)
-        self.reynoldsLimit = _REYNOLDS_LIMITS[talus_solver]
         self.rhoFluid, self.nu, self.nProcs = case["rhoFluid"], case["nu"], case["nProcs"]
         self.gravity = tuple(case["gravity"])
         from talus.dem.engines import NewtonIntegrator
@@ -489,6 +484,8 @@ class FoamCoupling(_Engine):
         s.couplingInterval, s.timeout = float(self.couplingInterval or 0.0), self.timeout
         self.link = m.FoamLink(s, len(ids))
         _links.append(self.link)
+        if self.reynoldsLimit is None:
+            self.reynoldsLimit = self.link.dragReynoldsLimit
         self._check_inside_mesh(ids)
 
     def _check_inside_mesh(self, ids):
@@ -570,8 +567,10 @@ class FoamCoupling(_Engine):
         self.lastForces = forces
         self.exchanges += 1
         if re > self.reynoldsLimit and self.maxReynolds <= self.reynoldsLimit:
-            warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: "
-                          f"the drag law of {Path(self.solver).name} is no longer accurate", RuntimeWarning, stacklevel=3)
+            warnings.warn(f"FoamCoupling: particle Reynolds number {re:.3g} exceeds {self.reynoldsLimit:g}: the drag "
+                          f"law of {Path(self.solver).name} is no longer accurate; dragModel in the case's "
+                          f"constant/couplingProperties selects it (docs/coupling.md lists the drag laws and their "
+                          f"ranges: SchillerNaumann for finite Re_p)", RuntimeWarning, stacklevel=3)
         self.maxReynolds = max(self.maxReynolds, re)
 
     def _count_times(self, hook_seconds: float, hook_cpu: float):
