@@ -2,6 +2,9 @@
 
 #include "dem/types.h"
 
+#include <stdexcept>
+#include <string>
+
 namespace talus::dem
 {
 /// Rotation rate (axial vector) of the antisymmetric part of a velocity gradient: the spin that
@@ -30,9 +33,17 @@ struct Cell
   [[nodiscard]] Vec3 shiftVelocity(const Eigen::Vector3i& c) const { return velGrad * shift(c); }
 
   /// Advance the cell by one step of the current velocity gradient.
+  /// @throws std::runtime_error (the cell unchanged) if the step would invert the cell
   void integrate(double dt)
   {
     const Mat3 step = Mat3::Identity() + velGrad * dt;
+    // The cell's volume is multiplied by det(I + L dt): at or below zero it is flattened or
+    // turned inside out, which no strain rate means.
+    if (!(step.determinant() > 0))
+      throw std::runtime_error("the periodic cell's velGrad inverts the cell in one step: det(I + velGrad*O.dt) = "
+                               + std::to_string(step.determinant())
+                               + " <= 0 (O.dt " + std::to_string(dt)
+                               + "); velGrad times O.dt must stay well below 1 in magnitude");
     hSize = step * hSize;
     trsf = step * trsf;
     prevVelGrad = velGrad;

@@ -8,6 +8,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace talus::dem
@@ -24,19 +27,15 @@ public:
   void build(const Bodies& b, const std::vector<BodyId>& spheres, double range)
   {
     const auto n = static_cast<std::int64_t>(spheres.size());
-    Vec3 hi = Vec3::Constant(-std::numeric_limits<double>::infinity());
-    lo_ = -hi;
-    for (BodyId id : spheres)
-    {
-      lo_ = lo_.cwiseMin(b.pos[static_cast<std::size_t>(id)]);
-      hi = hi.cwiseMax(b.pos[static_cast<std::size_t>(id)]);
-    }
-    if (spheres.empty())
-      lo_ = hi = Vec3::Zero();
-    // Coarser cells if the box is sparse, so memory stays proportional to the sphere count.
+    const Extremes ends = extremes(b, spheres);
+    lo_ = ends.lo;
+    const Vec3 hi = ends.hi;
+    // Coarser cells if the box is sparse, whatever its shape (a flat or a long box too), so
+    // that the cell count, hence memory, stays proportional to the sphere count.
     h_ = std::max(range, 1e-300);
     const Vec3 extent = (hi - lo_).cwiseMax(Vec3::Constant(1e-300));
-    while ((extent / h_).array().floor().prod() > 8.0 * static_cast<double>(spheres.size()) + 27)
+    const double cellBudget = 8.0 * static_cast<double>(spheres.size()) + 27;
+    while (((extent / h_).array().floor() + 1).prod() > cellBudget)
       h_ *= 1.5;
     for (int d = 0; d < 3; ++d)
       dims_[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(extent[d] / h_)) + 1;
@@ -103,6 +102,70 @@ public:
   }
 
 private:
+  /// The box of the sphere centres (zero without spheres).
+  struct Extremes
+  {
+    Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();
+  };
+  /// @throws std::runtime_error naming the body whose centre is not finite, or the two
+  /// extreme bodies when the box is too large for doubles (its extent overflows): both come of
+  /// a step that moved a body absurdly far (a huge velocity or time step).
+  static Extremes extremes(const Bodies& b, const std::vector<BodyId>& spheres)
+  {
+    if (spheres.empty())
+      return {};
+    Extremes e{Vec3::Constant(std::numeric_limits<double>::infinity()),
+               Vec3::Constant(-std::numeric_limits<double>::infinity())};
+    // min and max pass a NaN by: 0 x each coordinate catches it (and an infinity).
+    double nonFinite = 0;
+    for (BodyId id : spheres)
+    {
+      const Vec3& p = b.pos[static_cast<std::size_t>(id)];
+      e.lo = e.lo.cwiseMin(p);
+      e.hi = e.hi.cwiseMax(p);
+      nonFinite += 0 * p.sum();
+    }
+    if (nonFinite == 0 && (e.hi - e.lo).allFinite())
+      return e;
+    // Rare: a second pass finds whom to name.
+    for (BodyId id : spheres)
+      if (!b.pos[static_cast<std::size_t>(id)].allFinite())
+        throw lostBody(b, id, "has a non-finite position");
+    if ((e.hi - e.lo).allFinite())
+      return e; // (finite coordinates whose sum overflowed)
+    int d = 0;
+    while (std::isfinite(e.hi[d] - e.lo[d]))
+      ++d;
+    auto at = [&](double x) {
+      return *std::find_if(spheres.begin(), spheres.end(),
+                           [&](BodyId id) { return b.pos[static_cast<std::size_t>(id)][d] == x; });
+    };
+    const BodyId low = at(e.lo[d]), high = at(e.hi[d]);
+    throw std::runtime_error("bodies " + std::to_string(low) + " and " + std::to_string(high)
+                             + " are too far apart along axis " + std::to_string(d) + " (at "
+                             + describe(b.pos[static_cast<std::size_t>(low)]) + " and "
+                             + describe(b.pos[static_cast<std::size_t>(high)])
+                             + "): the scene's extent overflows; a velocity or O.dt too large moved them");
+  }
+
+public:
+  /// The error for body `id`, whose position (`what`) a step made absurd.
+  static std::runtime_error lostBody(const Bodies& b, BodyId id, const std::string& what)
+  {
+    const auto i = static_cast<std::size_t>(id);
+    return std::runtime_error("body " + std::to_string(id) + " " + what + " " + describe(b.pos[i]) + " (velocity "
+                              + describe(b.vel[i])
+                              + "): a velocity or O.dt so large that a step moved it absurdly far");
+  }
+
+private:
+  static std::string describe(const Vec3& v)
+  {
+    std::ostringstream text;
+    text << "(" << v[0] << ", " << v[1] << ", " << v[2] << ")";
+    return text.str();
+  }
+
   [[nodiscard]] int coord(double x, int d) const
   {
     return std::clamp(static_cast<int>(std::floor((x - lo_[d]) / h_)), 0, dims_[static_cast<std::size_t>(d)] - 1);

@@ -120,9 +120,11 @@ void mergeCandidates(const std::vector<std::vector<Candidate>>& parts, const std
 /// Candidate sphere pairs in a periodic cell: for each pair, the nearest periodic image of the
 /// second sphere, with its integer cell offset. Spheres are binned by their fractional
 /// coordinates wrapped into the cell; with fewer than 3 bins along an axis (a cell not much
-/// larger than the interaction range) every pair is tested.
+/// larger than the interaction range) every pair is tested. Bins are merged where the cell is
+/// sparse, so that their count stays proportional to the sphere count.
 void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell& cell, double rmax,
-                         double skin, const Collider::PairFilter& filter, std::vector<Candidate>& pairs)
+                         double skin, bool allowBiggerThanPeriod, const Collider::PairFilter& filter,
+                         std::vector<Candidate>& pairs)
 {
   const Mat3 inv = cell.hSize.inverse();
   const std::size_t n = spheres.size();
@@ -130,16 +132,35 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
   std::vector<Eigen::Vector3i> period(n);
   for (std::size_t s = 0; s < n; ++s)
   {
-    const Vec3 f = inv * b.pos[static_cast<std::size_t>(spheres[s])];
+    const auto i = static_cast<std::size_t>(spheres[s]);
+    const Vec3 f = inv * b.pos[i];
     const Vec3 fl = f.array().floor().matrix();
+    if (!(fl.cwiseAbs().maxCoeff() < 1e9))
+      throw CellGrid::lostBody(b, spheres[s], b.pos[i].allFinite() ? "is more than 1e9 periodic cells away, at"
+                                                                    : "has a non-finite position");
     period[s] = fl.cast<int>();
     wrapped[s] = f - fl;
+    // A sphere as wide as the cell would touch its own images (Yade's collider stops there too).
+    for (int d = 0; d < 3 && !allowBiggerThanPeriod; ++d)
+      if (2 * (b.radius[i] + skin) * inv.row(d).norm() >= 0.99)
+        throw std::runtime_error("sphere " + std::to_string(spheres[s]) + " (radius " + std::to_string(b.radius[i])
+                                 + ") is larger than the periodic cell: its diameter plus the collider's skin spans "
+                                   "the cell's width "
+                                 + std::to_string(1 / inv.row(d).norm()) + " along axis " + std::to_string(d)
+                                 + " (a sphere's diameter must stay below the cell's width; "
+                                   "InsertionSortCollider.allowBiggerThanPeriod=True lets it run anyway)");
   }
   // Fractional reach of the interaction range along each axis: range * |row of H^-1|.
   const double range = 2 * rmax + skin;
   std::array<int, 3> bins{};
   for (int d = 0; d < 3; ++d)
-    bins[static_cast<std::size_t>(d)] = static_cast<int>(std::floor(1.0 / (range * inv.row(d).norm())));
+    bins[static_cast<std::size_t>(d)] = static_cast<int>(std::min(std::floor(1.0 / (range * inv.row(d).norm())), 1e9));
+  const double binBudget = 8.0 * static_cast<double>(n) + 27;
+  while (static_cast<double>(bins[0]) * bins[1] * bins[2] > binBudget)
+  {
+    int& widest = *std::max_element(bins.begin(), bins.end());
+    widest = std::max(3, widest * 2 / 3);
+  }
   auto consider = [&](std::size_t s, std::size_t t) {
     const BodyId a = spheres[s], c = spheres[t];
     if (!filter(b, static_cast<std::size_t>(a), static_cast<std::size_t>(c)))
@@ -676,7 +697,7 @@ void Collider::rebuild(Scene& scene)
   if (scene.periodic)
   {
     pairs.clear();
-    periodicSpherePairs(b, spheres, scene.cell, rmax, skin_, filter, pairs);
+    periodicSpherePairs(b, spheres, scene.cell, rmax, skin_, allowBiggerThanPeriod, filter, pairs);
   }
   else
   {
@@ -731,7 +752,7 @@ void Collider::rebuild(Scene& scene)
 
   ContactList& old = scene.contacts.list;
   ContactExtraList& oldExtra = scene.contacts.extra;
-  const bool withExtra = !oldExtra.empty();
+  const bool withExtra = scene.contacts.extraState() != nullptr;
   mergeContacts(b, pairs, old, oldExtra, filter, spare_, spareExtra_);
   old.swap(spare_);
   if (withExtra)

@@ -226,6 +226,19 @@ long SpherePack::makeCloud(const Vec3& mn, const Vec3& mx, double rMean, double 
   if (!(rRelFuzz >= 0 && rRelFuzz < 1) && mode != RadiusMode::Distribution)
     throw std::invalid_argument("makeCloud: rRelFuzz must be in [0, 1), got " + std::to_string(rRelFuzz));
 
+  if (num > maxSpheres)
+    throw std::invalid_argument("makeCloud: num = " + std::to_string(num) + " spheres is more than the limit of "
+                                + std::to_string(maxSpheres));
+  if (num < 0 && mode == RadiusMode::Mean)
+  {
+    // Filled until a sphere finds no room: at most the spheres a densest packing would hold.
+    const double most = volume != 0 ? 0.7405 * std::abs(volume) / (4 / 3. * M_PI * std::pow(rMean, 3))
+                                    : 0.9069 * area / (M_PI * rMean * rMean);
+    if (most > static_cast<double>(maxSpheres))
+      throw std::invalid_argument("makeCloud: the box holds up to " + std::to_string(most) + " spheres of rMean = "
+                                  + std::to_string(rMean) + ", more than the limit of " + std::to_string(maxSpheres)
+                                  + " (a larger rMean or a num)");
+  }
   const int maxTry = 1000;
   const bool cellular = periodic && volume != 0; // a flat periodic box makes no cell, as in Yade
   if (cellular)

@@ -14,6 +14,9 @@ struct SpherePack
   std::vector<Vec3> centers;
   std::vector<double> radii;
   Mat3 hSize = Mat3::Zero();
+  /// The most spheres a packing generator makes: beyond it a generator refuses before
+  /// allocating (a radius too small for the box, a count mistyped), as no scene could hold them.
+  static constexpr long maxSpheres = 100'000'000;
   /// Factor by which makeCloud scaled a size distribution down to fit `num` spheres (1: none).
   double appliedPsdScaling = 1;
 
@@ -34,8 +37,9 @@ struct SpherePack
   /// the nearest image in fractional coordinates only, which is exact while two radii stay below
   /// half the distance between the cell's faces, and checks no sphere against its own image).
   /// @return the number of spheres created (may be below num when rMean is given)
-  /// @throws std::invalid_argument naming the inconsistent parameter, or when the largest
-  /// sphere asked for does not fit in the cell (its diameter reaches the shortest period)
+  /// @throws std::invalid_argument naming the inconsistent parameter, when the largest
+  /// sphere asked for does not fit in the cell (its diameter reaches the shortest period), or
+  /// when num, or the spheres of rMean the box could hold, exceed maxSpheres
   long makeCloud(const Vec3& minCorner, const Vec3& maxCorner, double rMean, double rRelFuzz, int num, bool periodic,
                  double porosity, const std::vector<double>& psdSizes, const std::vector<double>& psdCumm,
                  bool distributeMass, int seed, const Mat3& cell = Mat3::Zero());

@@ -17,5 +17,6 @@ void talus_wrap_pack(py::module_& m)
       .def_readwrite("radii", &SpherePack::radii)
       .def_readwrite("hSize", &SpherePack::hSize)
       .def_readwrite("appliedPsdScaling", &SpherePack::appliedPsdScaling)
+      .def_readonly_static("maxSpheres", &SpherePack::maxSpheres)
       .def("makeCloud", &SpherePack::makeCloud, py::call_guard<py::gil_scoped_release>());
 }

@@ -29,7 +29,7 @@ import time
 
 import numpy as np
 
-from talus.dem.pack import SpherePack, filterSpherePack
+from talus.dem.pack import SpherePack, check_sphere_count, filterSpherePack
 
 __all__ = ["randomDensePack", "randomPeriPack"]
 
@@ -198,6 +198,7 @@ def randomDensePack(predicate, radius: float, material=-1, dim=None, cropLayers:
     dim = np.asarray(predicate.dim() if dim is None else dim, float).reshape(3)
     if not np.all(np.isfinite(dim)):
         raise ValueError("randomDensePack: the predicate is unbounded; give dim")
+    check_sphere_count(0.6 * np.prod(dim + 4 * cropLayers * radius) / (4 / 3 * math.pi * radius ** 3), "randomDensePack")
     wantPeri = spheresInCell > 0
     if wantPeri:
         fullDim = dim

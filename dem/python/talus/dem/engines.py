@@ -124,6 +124,14 @@ class MatchMaker:
         return f"MatchMaker(algo={self.algo!r}, val={self.val!r}, matches={list(self._matches.items())!r})"
 
 
+def finite_vector(value, what: str) -> list[float]:
+    """`value` as 3 floats; a ValueError naming `what` if it is not 3 finite numbers."""
+    v = np.asarray(value, dtype=float).reshape(-1)
+    if v.shape != (3,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"{what} must be 3 finite numbers, got {value!r}")
+    return v.tolist()
+
+
 def _number(functor: Functor, name: str, value) -> float:
     try:
         return float(value)
@@ -583,8 +591,21 @@ class NewtonIntegrator(Engine):
         self.label = label
 
     gravity = property(lambda self: Vector3(self._cpp.gravity),
-                       lambda self, g: setattr(self._cpp, "gravity", [float(x) for x in g]))
-    damping = property(lambda self: self._cpp.damping, lambda self, d: setattr(self._cpp, "damping", float(d)))
+                       lambda self, g: setattr(self._cpp, "gravity", finite_vector(g, "NewtonIntegrator.gravity")))
+
+    @property
+    def damping(self) -> float:
+        return self._cpp.damping
+
+    @damping.setter
+    def damping(self, d: float):
+        # Cundall's damping scales a force by 1 -+ damping: outside [0, 1] it adds energy (< 0)
+        # or turns forces against themselves (> 1). Yade accepts it; it is never meant.
+        d = float(d)
+        if not 0 <= d <= 1:
+            raise ValueError(f"NewtonIntegrator.damping must be in [0, 1] (usually 0 to 0.4), got {d}")
+        self._cpp.damping = d
+
     dampGravity = property(lambda self: self._cpp.dampGravity,
                            lambda self, d: setattr(self._cpp, "dampGravity", bool(d)))
     mask = property(lambda self: self._cpp.mask,

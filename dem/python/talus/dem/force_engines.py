@@ -15,16 +15,9 @@ from typing import Sequence
 import numpy as np
 
 from talus import _dem
-from talus.dem.engines import Engine
+from talus.dem.engines import Engine, finite_vector as _vector
 from talus.dem.bodies import group_mask
 from talus.dem.linalg import Vector2i, Vector3
-
-
-def _vector(value, what: str) -> list[float]:
-    v = np.asarray(value, dtype=float).reshape(-1)
-    if v.shape != (3,) or not np.all(np.isfinite(v)):
-        raise ValueError(f"{what} must be 3 finite numbers, got {value!r}")
-    return v.tolist()
 
 
 def _table(value, what: str) -> list[float]:

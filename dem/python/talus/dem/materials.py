@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 from talus import _dem
 from talus.dem.serializable import Serializable
 
@@ -110,6 +112,28 @@ class CohFrictMat(Material):
     _kind = _dem.MaterialKind.CohFrict
     _attributes = ("isCohesive", "alphaKr", "alphaKtw", "etaRoll", "etaTwist", "normalCohesion", "shearCohesion",
                    "fragile", "momentRotationLaw", *_FRICTIONAL)
+
+    def __init__(self, **params):
+        super().__init__(**params)
+        for name in ("normalCohesion", "shearCohesion"):
+            if name in params:
+                _warn_if_negative_cohesion(name, getattr(self._cpp, name))
+
+    def __setattr__(self, name, value):
+        super().__setattr__(name, value)
+        if name in ("normalCohesion", "shearCohesion"):
+            _warn_if_negative_cohesion(name, getattr(self._cpp, name))
+
+
+def _warn_if_negative_cohesion(name: str, value: float) -> None:
+    # Yade's default, -1, stands for "no cohesion"; another negative value is likely meant as
+    # "unbreakable" (Yade's documentation says "purely elastic"), which neither Yade's law nor
+    # Talus's does: the strength is that negative number times r^2.
+    if value < 0 and value != -1:
+        effect = ("the bond breaks unless compressed by more than |normalCohesion| r^2"
+                  if name == "normalCohesion" else "the friction limit is lowered by |shearCohesion| r^2")
+        warnings.warn(f"CohFrictMat.{name} = {value:g} < 0: {effect} (as in Yade); the meaningful range is >= 0 "
+                      "(0: no cohesion)", UserWarning, stacklevel=3)
 
 
 def default_material() -> FrictMat:

@@ -25,6 +25,16 @@ __all__ = [*predicates.__all__, "regularHexa", "regularOrtho", "filterSpherePack
            "sweptPolylines2gtsSurface", "gtsSurface2Facets", "revolutionSurfaceMeridians"]
 
 
+MAX_SPHERES = _dem.SpherePack.maxSpheres   # the most spheres a generator makes (makeCloud's limit too)
+
+
+def check_sphere_count(count: float, what: str) -> None:
+    """Refuse, before anything is allocated, a packing of more than MAX_SPHERES spheres."""
+    if not count <= MAX_SPHERES:
+        raise ValueError(f"{what} would make {count:.3g} spheres, more than the limit of {MAX_SPHERES:.0e} "
+                         "(a radius too small for the box?)")
+
+
 def _lattice_points(predicate, radius: float, gap: float, kind: str) -> np.ndarray:
     """The lattice points of Yade's regularHexa / regularOrtho over the predicate's box, in
     Yade's order (x slowest)."""
@@ -40,11 +50,13 @@ def _lattice_points(predicate, radius: float, gap: float, kind: str) -> np.ndarr
         # Simple hcp lattice: rows j shifted by half a sphere on odd (j + k), layers k at
         # heights 2 sqrt(6)/3 k (a/2), odd layers shifted by a third of a row.
         hy, hz = a * math.sqrt(3) / 2, a * math.sqrt(6) / 3
-        i, j, k = np.meshgrid(np.arange(int(dim[0] / a) + 1), np.arange(int(dim[1] / hy) + 1),
-                              np.arange(int(dim[2] / hz) + 1), indexing="ij")
+        counts = np.floor(dim / (a, hy, hz)) + 1
+        check_sphere_count(np.prod(counts), "regularHexa")
+        i, j, k = np.meshgrid(*(np.arange(int(n)) for n in counts), indexing="ij")
         i, j, k = i.ravel(), j.ravel(), k.ravel()
         unit = np.c_[2 * i + (j + k) % 2, math.sqrt(3.0) * (j + (k % 2) / 3.0), 2.0 * math.sqrt(6.0) / 3.0 * k]
         return unit * (a / 2.0) + lo
+    check_sphere_count(np.prod(np.maximum(np.ceil((dim - 2 * radius) / a), 0)), "regularOrtho")
     axes = [np.arange(lo[d] + radius, hi[d] - radius, a) for d in range(3)]
     return np.array(np.meshgrid(*axes, indexing="ij")).reshape(3, -1).T
 
@@ -239,6 +251,7 @@ class SpherePack:
             raise ValueError("SpherePack.cellRepeat: needs a periodic packing with an axis-aligned cell")
         if min(count) <= 0:
             raise ValueError(f"SpherePack.cellRepeat: the counts must be positive, got {count}")
+        check_sphere_count(len(self) * math.prod(count), "SpherePack.cellRepeat")
         size = self.cellSize
         c, r = np.array(self._cpp.centers).reshape(-1, 3), np.array(self._cpp.radii)
         # Yade's order: the original cell first, then the copies with the z offset fastest

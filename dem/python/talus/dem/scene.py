@@ -28,6 +28,7 @@ from talus.dem.io import CheckpointMethods
 from talus.dem.omega import OmegaMethods
 from talus.dem.materials import Material, default_material
 from talus.dem.particles import Ig2_PP_PP_ScGeom
+from talus.dem.scene_checks import check_engines, check_time_step
 
 # Whether a contact overlapping beyond maxOverlapRatio stops the run in a new scene (see
 # Scene.overlapStops). Yade has no such check: a run started as `yade -x` would start it sets
@@ -305,6 +306,7 @@ class Scene(OmegaMethods, CheckpointMethods):
         for e in engines:
             if not isinstance(e, Engine):
                 raise TypeError(f"O.engines takes engines, got {e!r}")
+        check_engines(engines)
         self._cpp.engines = [e._cpp for e in engines]     # the C++ scene defers them inside a step
         if self._cpp.subStep >= 0:
             self._pending = engines
@@ -360,6 +362,7 @@ class Scene(OmegaMethods, CheckpointMethods):
     def step(self):
         """Run one time step."""
         self._openRunPending = False
+        check_time_step(self)
         try:
             self._cpp.step()
         finally:
@@ -429,6 +432,7 @@ class Scene(OmegaMethods, CheckpointMethods):
                 limits.append(max(1, math.ceil((stopTime - self.time) / self.dt - 1e-9)))
             steps = min(limits) if limits else -1
             before = self.iter
+            check_time_step(self)
             try:
                 self._cpp.run(steps)
             finally:

@@ -28,6 +28,7 @@ section "Pore-scale flow".
 
 from __future__ import annotations
 
+import math
 import warnings
 from typing import Sequence
 
@@ -42,6 +43,23 @@ _ENGINE_COUNTS = {"meshUpdateInterval": 1, "backgroundSteps": 0}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
             "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness")
+
+
+def _boundary_list(name: str, value) -> list:
+    """One of the six-boundary lists: finite numbers (bndCondValue, wallPosition) or flags
+    (True/False or 1/0: a string such as 'abcdef' would read as six True)."""
+    values = [value] if isinstance(value, (str, bytes)) else list(value)
+    if len(values) != 6:
+        raise ValueError(f"FlowEngine.{name} needs a list of 6 values (xmin, xmax, ymin, ymax, zmin, zmax), "
+                         f"got {value!r}")
+    if name in ("bndCondValue", "wallPosition"):
+        numbers = [float(v) for v in values]
+        if not all(math.isfinite(v) for v in numbers):
+            raise ValueError(f"FlowEngine.{name} must be 6 finite numbers, got {value!r}")
+        return numbers
+    if not all(isinstance(v, (bool, int, np.integer, np.bool_)) and v in (0, 1) for v in values):
+        raise TypeError(f"FlowEngine.{name} must be a list of 6 booleans (True/False or 1/0), got {value!r}")
+    return [bool(v) for v in values]
 
 
 class HiddenSphereWarning(UserWarning):
@@ -137,11 +155,7 @@ class FlowEngine(Engine):
             return
         params = self._flow.params
         if name in _BOUNDARY_LISTS:
-            values = list(value)
-            if len(values) != 6:
-                raise ValueError(f"FlowEngine.{name} needs 6 values (xmin, xmax, ymin, ymax, zmin, zmax)")
-            kind = float if name in ("bndCondValue", "wallPosition") else bool
-            setattr(params, name, [kind(v) for v in values])
+            setattr(params, name, _boundary_list(name, value))
         elif name in _SCALARS:
             if name == "useSolver" and int(value) not in (0, 3):
                 raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD)")
