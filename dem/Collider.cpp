@@ -140,15 +140,21 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
                                                                     : "has a non-finite position");
     period[s] = fl.cast<int>();
     wrapped[s] = f - fl;
-    // A sphere as wide as the cell would touch its own images (Yade's collider stops there too).
-    for (int d = 0; d < 3 && !allowBiggerThanPeriod; ++d)
-      if (2 * (b.radius[i] + skin) * inv.row(d).norm() >= 0.99)
-        throw std::runtime_error("sphere " + std::to_string(spheres[s]) + " (radius " + std::to_string(b.radius[i])
-                                 + ") is larger than the periodic cell: its diameter plus the collider's skin spans "
-                                   "the cell's width "
-                                 + std::to_string(1 / inv.row(d).norm()) + " along axis " + std::to_string(d)
-                                 + " (a sphere's diameter must stay below the cell's width; "
-                                   "InsertionSortCollider.allowBiggerThanPeriod=True lets it run anyway)");
+  }
+  // A sphere as wide as the cell would touch its own images (Yade's collider stops there too).
+  for (int d = 0; d < 3 && n > 0 && !allowBiggerThanPeriod; ++d)
+  {
+    const double width = 1 / inv.row(d).norm();
+    if (2 * (rmax + skin) < 0.99 * width)
+      continue;
+    const BodyId largest = *std::find_if(spheres.begin(), spheres.end(),
+                                         [&](BodyId id) { return b.radius[static_cast<std::size_t>(id)] == rmax; });
+    throw std::runtime_error("sphere " + std::to_string(largest) + " (radius " + std::to_string(rmax)
+                             + ") is larger than the periodic cell: its diameter plus the collider's skin spans the "
+                               "cell's width "
+                             + std::to_string(width) + " along axis " + std::to_string(d)
+                             + " (a sphere's diameter must stay below the cell's width; "
+                               "InsertionSortCollider.allowBiggerThanPeriod=True lets it run anyway)");
   }
   // Fractional reach of the interaction range along each axis: range * |row of H^-1|.
   const double range = 2 * rmax + skin;
