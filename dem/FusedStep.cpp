@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -15,32 +16,64 @@ namespace talus::dem
 {
 namespace
 {
-/// The scene's live engines if they are exactly the usual four, else nulls.
+/// Where the usual engines sit among the scene's live engines: ForceResetter, a collider and an
+/// InteractionLoop with one law and no callbacks, one after the other, then NewtonIntegrator;
+/// any other engines before them (prefix), between the loop and the integrator (middle) or
+/// after it (suffix), each kind once.
 struct UsualEngines
 {
+  std::size_t resetterIndex = 0, loopIndex = 0, newtonIndex = 0; ///< in scene.engines
   Collider* collider = nullptr;
   InteractionLoop* loop = nullptr;
   NewtonIntegrator* newton = nullptr;
+  int prefix = 0, middle = 0, suffix = 0; ///< live engines of each group
 };
 
-UsualEngines usualEngines(const Scene& scene)
+std::optional<UsualEngines> usualEngines(const Scene& scene)
 {
-  std::array<Engine*, 4> live{};
-  std::size_t count = 0;
-  for (const auto& engine : scene.engines)
+  enum class Next { Resetter, Collider, Loop, Newton, Done } next = Next::Resetter;
+  UsualEngines usual;
+  for (std::size_t k = 0; k < scene.engines.size(); ++k)
   {
+    Engine* engine = scene.engines[k].get();
     if (engine->dead)
       continue;
-    if (count == live.size())
-      return {};
-    live[count++] = engine.get();
+    if (dynamic_cast<ForceResetter*>(engine))
+    {
+      if (next != Next::Resetter)
+        return std::nullopt;
+      usual.resetterIndex = k;
+      next = Next::Collider;
+    }
+    else if (next == Next::Collider)
+    {
+      if (!(usual.collider = dynamic_cast<Collider*>(engine)))
+        return std::nullopt;
+      next = Next::Loop;
+    }
+    else if (next == Next::Loop)
+    {
+      usual.loop = dynamic_cast<InteractionLoop*>(engine);
+      if (!usual.loop || usual.loop->laws.size() != 1 || !usual.loop->callbacks.empty())
+        return std::nullopt;
+      usual.loopIndex = k;
+      next = Next::Newton;
+    }
+    else if (dynamic_cast<Collider*>(engine) || dynamic_cast<InteractionLoop*>(engine))
+      return std::nullopt;
+    else if (auto* newton = dynamic_cast<NewtonIntegrator*>(engine))
+    {
+      if (next != Next::Newton)
+        return std::nullopt;
+      usual.newton = newton;
+      usual.newtonIndex = k;
+      next = Next::Done;
+    }
+    else
+      ++(next == Next::Resetter ? usual.prefix : next == Next::Newton ? usual.middle : usual.suffix);
   }
-  if (count != live.size() || !dynamic_cast<ForceResetter*>(live[0]))
-    return {};
-  UsualEngines usual{dynamic_cast<Collider*>(live[1]), dynamic_cast<InteractionLoop*>(live[2]),
-                     dynamic_cast<NewtonIntegrator*>(live[3])};
-  if (!usual.collider || !usual.loop || usual.loop->laws.size() != 1 || !usual.loop->callbacks.empty() || !usual.newton)
-    return {};
+  if (next != Next::Done)
+    return std::nullopt;
   return usual;
 }
 
@@ -148,29 +181,96 @@ std::int64_t FusedStep::computeContacts(Scene& scene, ContactLaw& law, int threa
   return bad;
 }
 
-bool FusedStep::run(Scene& scene)
+/// Each thread's flags and times of one step, a cache line apiece (they are written during it).
+struct FusedStep::Team
 {
-  if (scene.timingEnabled || scene.energy.enabled)
+  struct alignas(64) Member
+  {
+    Collider::Displacements moved, movedAhead;
+    std::int64_t badContact = -1, badBody = -1;
+    double bodySeconds = 0, contactSeconds = 0;
+  };
+  std::array<Member, BalancedRanges::maxThreads> members{};
+  int used = 1; ///< threads that worked
+
+  /// The smallest index the threads report through `field`, -1 if none.
+  [[nodiscard]] std::int64_t first(std::int64_t Member::*field) const
+  {
+    std::int64_t found = -1;
+    for (int t = 0; t < used; ++t)
+    {
+      const std::int64_t theirs = members[static_cast<std::size_t>(t)].*field;
+      if (theirs >= 0 && (found < 0 || theirs < found))
+        found = theirs;
+    }
+    return found;
+  }
+};
+
+bool FusedStep::run(Scene& scene, const EngineRunner& runEngine)
+{
+  if (scene.timingEnabled || scene.energy.enabled || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
     return false;
-  const auto bodies = static_cast<std::int64_t>(scene.bodies.size());
-  if (bodies < parallelLoopMinimum)
+  std::optional<UsualEngines> usual = usualEngines(scene);
+  if (!usual)
     return false;
-  const UsualEngines usual = usualEngines(scene);
-  if (!usual.collider)
-    return false;
-  Collider& collider = *usual.collider;
-  InteractionLoop& loop = *usual.loop;
-  NewtonIntegrator& newton = *usual.newton;
+  if (usual->prefix > 0)
+  {
+    const std::size_t resetter = usual->resetterIndex;
+    for (std::size_t k = 0; k < resetter; ++k)
+      runEngine(k);
+    // They may have changed what the rest of the step can be (engines, bodies, timing).
+    usual = usualEngines(scene);
+    if (!usual || scene.timingEnabled || scene.energy.enabled
+        || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
+    {
+      for (std::size_t k = resetter; k < scene.engines.size(); ++k)
+        runEngine(k);
+      return true;
+    }
+  }
+  Team team;
+  if (usual->middle == 0)
+    forces(scene, *usual->collider, *usual->loop, usual->newton, team,
+           usual->prefix == 0 && usual->suffix == 0);
+  else
+  {
+    // The engines between the loop and the integrator (force engines, couplings) see every
+    // contact's force gathered, as in the engines' order: the integration waits for them.
+    forces(scene, *usual->collider, *usual->loop, nullptr, team, false);
+    for (std::size_t k = usual->loopIndex + 1; k < usual->newtonIndex; ++k)
+      runEngine(k);
+    integrate(scene, *usual->newton, team);
+  }
+  for (int t = 0; t < team.used; ++t)
+  {
+    bodyRanges_.record(t, team.members[static_cast<std::size_t>(t)].bodySeconds);
+    contactRanges_.record(t, team.members[static_cast<std::size_t>(t)].contactSeconds);
+  }
+  bodyRanges_.rebalance(team.used);
+  contactRanges_.rebalance(team.used);
+  ++steps;
+  for (std::size_t k = usual->newtonIndex + 1; k < scene.engines.size(); ++k)
+    runEngine(k);
+  return true;
+}
+
+void FusedStep::forces(Scene& scene, Collider& collider, InteractionLoop& loop, NewtonIntegrator* newton, Team& team,
+                       bool alone)
+{
   ContactLaw& law = *loop.laws[0];
+  const auto bodies = static_cast<std::int64_t>(scene.bodies.size());
   loop.prepare(scene);
-  newton.prepare(scene);
+  if (newton)
+    newton->prepare(scene);
   Collider::SkinCheck skin = collider.skinCheck(scene);
-  const bool clumps = newton.hasClumps();
+  const bool clumps = newton && newton->hasClumps();
   // In an open scene the skin check depends on the positions only, so each thread checks its
   // bodies right after moving them, for the next step: the step then needs no barrier between
   // the check and the contacts, and re-detects, when it must, before its one parallel region.
-  // (Not with clumps: a clump moves its members, which may be another thread's bodies.)
-  const bool checkAhead = !scene.periodic && !clumps;
+  // (Not with clumps: a clump moves its members, which may be another thread's bodies; not
+  // with other engines, which may move bodies between this check and the next step.)
+  const bool checkAhead = newton && alone && !scene.periodic && !clumps;
   const bool knownAhead = checkAhead && aheadFor_ == scene.iter;
   aheadFor_ = -1;
   // A new contact list: the check's references are new, the richer state and the boundary runs
@@ -188,24 +288,15 @@ bool FusedStep::run(Scene& scene)
   if (redetectFirst)
     redetectNow();
   const bool checkNow = !redetectFirst && !knownAhead;
-
-  // Each thread's flags and times, a cache line apiece (they are written during the step).
-  struct alignas(64) PerThread
-  {
-    Collider::Displacements moved, movedAhead;
-    std::int64_t badContact = -1, badBody = -1;
-    double bodySeconds = 0, contactSeconds = 0;
-  };
-  std::array<PerThread, BalancedRanges::maxThreads> mine{};
-  int used = 1;
   bool redetect = false;
   Collider::Displacements measured; // this step's check (checkNow), all threads together
 
-  // Contacts, a barrier, then this thread's bodies: gather, integrate, and check ahead (with
-  // `ahead`, the next step's check). Called by every thread of the team (it holds a barrier). A
-  // contact overlapping too much stops the step before any body moves, as the engines do.
+  // Contacts, a barrier, then this thread's bodies: gather, and with an integrator integrate
+  // and check ahead (with `ahead`, the next step's check). Called by every thread of the team (it
+  // holds a barrier). A contact overlapping too much stops the step before any body moves, as
+  // the engines do, unless the scene only counts such overlaps.
   auto contactsThenBodies = [&](int thread, int threads, bool working, const Collider::SkinCheck& ahead) {
-    PerThread& my = mine[static_cast<std::size_t>(working ? thread : 0)];
+    Team::Member& my = team.members[static_cast<std::size_t>(working ? thread : 0)];
     const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
     if (working)
     {
@@ -215,25 +306,30 @@ bool FusedStep::run(Scene& scene)
       my.contactSeconds = now() - start;
     }
 #pragma omp barrier
-    for (int t = 0; t < threads; ++t)
-      if (mine[static_cast<std::size_t>(t)].badContact >= 0)
-        return;
+    if (scene.overlapStops)
+      for (int t = 0; t < threads; ++t)
+        if (team.members[static_cast<std::size_t>(t)].badContact >= 0)
+          return;
     const auto [first, last] = working ? bodyRanges_.range(bodies, thread, threads) : std::pair<std::int64_t, std::int64_t>{0, 0};
     const double start = now();
     loop.gatherIn(scene, first, last);
-    if (clumps)
+    if (newton)
     {
-      // A clump reads its members' forces and moves them, whichever thread gathered them.
+      if (clumps)
+      {
+        // A clump reads its members' forces and moves them, whichever thread gathered them.
 #pragma omp barrier
+      }
+      const std::int64_t bad = newton->integrateIn(scene, first, last);
+      if (working)
+      {
+        my.badBody = bad;
+        if (checkAhead)
+          my.movedAhead = collider.displacementsIn(scene, ahead, first, last);
+      }
     }
-    const std::int64_t bad = newton.integrateIn(scene, first, last);
     if (working)
-    {
-      my.badBody = bad;
-      if (checkAhead)
-        my.movedAhead = collider.displacementsIn(scene, ahead, first, last);
       my.bodySeconds += now() - start;
-    }
   };
 
   listChanged();
@@ -243,7 +339,7 @@ bool FusedStep::run(Scene& scene)
     const bool working = thread < threads;
     if (working)
     {
-      PerThread& my = mine[static_cast<std::size_t>(thread)];
+      Team::Member& my = team.members[static_cast<std::size_t>(thread)];
       const auto [first, last] = bodyRanges_.range(bodies, thread, threads);
       const double start = now();
       ForceResetter::resetIn(scene.bodies, first, last);
@@ -258,7 +354,7 @@ bool FusedStep::run(Scene& scene)
     {
 #pragma omp barrier
       for (int t = 0; t < threads; ++t)
-        all.add(mine[static_cast<std::size_t>(t)].moved);
+        all.add(team.members[static_cast<std::size_t>(t)].moved);
       anyMoved = Collider::mustRebuild(skin, all);
       ahead.common = Collider::commonOf(all); // what the collider keeps after this check
     }
@@ -266,7 +362,7 @@ bool FusedStep::run(Scene& scene)
       contactsThenBodies(thread, threads, working, ahead);
     if (thread == 0)
     {
-      used = threads;
+      team.used = threads;
       redetect = anyMoved;
       measured = all;
     }
@@ -284,35 +380,40 @@ bool FusedStep::run(Scene& scene)
     }
   }
   law.stepDone();
-  for (int t = 0; t < used; ++t)
-  {
-    bodyRanges_.record(t, mine[static_cast<std::size_t>(t)].bodySeconds);
-    contactRanges_.record(t, mine[static_cast<std::size_t>(t)].contactSeconds);
-  }
-  bodyRanges_.rebalance(used);
-  contactRanges_.rebalance(used);
-  ++steps;
-
-  std::int64_t badContactIndex = -1, badBodyIndex = -1;
-  Collider::Displacements movedAhead;
-  for (int t = 0; t < used; ++t)
-  {
-    const PerThread& their = mine[static_cast<std::size_t>(t)];
-    if (their.badContact >= 0 && (badContactIndex < 0 || their.badContact < badContactIndex))
-      badContactIndex = their.badContact;
-    if (their.badBody >= 0 && (badBodyIndex < 0 || their.badBody < badBodyIndex))
-      badBodyIndex = their.badBody;
-    movedAhead.add(their.movedAhead);
-  }
-  if (badContactIndex >= 0)
-    InteractionLoop::overlapFound(scene, scene.contacts.list[static_cast<std::size_t>(badContactIndex)]);
-  newton.finish(scene, badBodyIndex);
+  if (const std::int64_t bad = team.first(&Team::Member::badContact); bad >= 0)
+    InteractionLoop::overlapFound(scene, scene.contacts.list[static_cast<std::size_t>(bad)]);
+  if (!newton)
+    return;
+  newton->finish(scene, team.first(&Team::Member::badBody));
   if (checkAhead)
   {
+    Collider::Displacements movedAhead;
+    for (int t = 0; t < team.used; ++t)
+      movedAhead.add(team.members[static_cast<std::size_t>(t)].movedAhead);
     movedAhead_ = Collider::mustRebuild(skin, movedAhead);
     collider.noteDisplacements(movedAhead);
     aheadFor_ = scene.iter + 1;
   }
-  return true;
+}
+
+void FusedStep::integrate(Scene& scene, NewtonIntegrator& newton, Team& team)
+{
+  newton.prepare(scene);
+  const auto bodies = static_cast<std::int64_t>(scene.bodies.size());
+#pragma omp parallel
+  {
+    const int thread = threadNumber(), threads = teamSize();
+    const auto [first, last] = thread < threads ? bodyRanges_.range(bodies, thread, threads)
+                                                : std::pair<std::int64_t, std::int64_t>{0, 0};
+    const double start = now();
+    const std::int64_t bad = newton.integrateIn(scene, first, last);
+    if (thread < threads)
+    {
+      Team::Member& my = team.members[static_cast<std::size_t>(thread)];
+      my.badBody = bad;
+      my.bodySeconds += now() - start;
+    }
+  }
+  newton.finish(scene, team.first(&Team::Member::badBody));
 }
 } // namespace talus::dem

@@ -2,37 +2,48 @@
 
 #include "dem/Threads.h"
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
 namespace talus::dem
 {
 class Scene;
+class Collider;
 class ContactLaw;
+class InteractionLoop;
+class NewtonIntegrator;
 struct Contacts;
 
-/// The usual step — ForceResetter, Collider, InteractionLoop with one law, NewtonIntegrator and
-/// no other engine — in one OpenMP parallel region instead of the engines' five.
+/// The usual step — ForceResetter, a collider, an InteractionLoop with one law, NewtonIntegrator
+/// — in one OpenMP parallel region instead of the engines' five, with any other engines before,
+/// after, or between the loop and the integrator run in their place.
 ///
 /// Why: on the project's 2-vCPU guest a parallel region costs 3.5 µs at two threads and a barrier
 /// inside one 2 µs, about 8 % of a 4 400-sphere step (docs/dem.md, Speed). Here each thread keeps
 /// one range of bodies for the reset, the skin check, the force gather and the integration, so
-/// those need no barrier between them. In an open scene without clumps, each thread checks the
-/// skin of its bodies right after moving them, for the next step of the same run(): such a step
-/// re-detects (when it must) before its one region, which has one barrier, after the contact
-/// loop. Otherwise the skin check is made in the step, with a barrier after it and, when the
-/// collider re-detects, a second region after the re-detection.
+/// those need no barrier between them. When the usual engines are alone, in an open scene
+/// without clumps, each thread checks the skin of its bodies right after moving them, for the
+/// next step of the same run(): such a step re-detects (when it must) before its one region,
+/// which has one barrier, after the contact loop. Otherwise the skin check is made in the step,
+/// with a barrier after it and, when the collider re-detects, a second region after the
+/// re-detection. Engines between the loop and the integrator (force engines, couplings) run
+/// after the gather, and the integration in a region of its own after them.
 ///
 /// The engines' own range functions do the work, item by item as their run() does, so a fused
 /// step gives the same bits as the engines one by one (tests/dem/test_threads.py). Scenes with
-/// other engines, several laws, energy tracking or timing (which times each engine) take the
+/// several laws or colliders, energy tracking or timing (which times each engine) take the
 /// engines' path, and so do scenes of fewer bodies than parallelLoopMinimum.
 class FusedStep
 {
 public:
-  /// Run one step of `scene` if its engines are the usual ones; false (nothing done) otherwise.
-  bool run(Scene& scene);
+  /// Runs engine k of the scene's list as the engines' path does (timing, errors).
+  using EngineRunner = std::function<void(std::size_t)>;
+  /// Run one step of `scene` if its engines include the usual ones, the others through
+  /// `runEngine`; false (nothing done) otherwise.
+  bool run(Scene& scene, const EngineRunner& runEngine);
 
   std::int64_t steps = 0; ///< steps run fused (diagnostics: Scene.fusedSteps)
 
@@ -40,6 +51,14 @@ public:
   void forgetAhead() { aheadFor_ = -1; }
 
 private:
+  struct Team; ///< the threads' flags and times of one step
+  /// Reset, skin check (and re-detection when due), contacts and gather; with `newton`, each
+  /// thread integrates its bodies right after gathering them. `alone`: no other engine runs
+  /// between this step's integration and the next step's reset, so the skin may be checked ahead.
+  void forces(Scene& scene, Collider& collider, InteractionLoop& loop, NewtonIntegrator* newton, Team& team,
+              bool alone);
+  /// The integration alone, after the engines between the loop and the integrator.
+  void integrate(Scene& scene, NewtonIntegrator& newton, Team& team);
   /// The contacts of thread `thread` of `threads` (see boundaryRuns_); the first bad one's
   /// index, or the contact count.
   std::int64_t computeContacts(Scene& scene, ContactLaw& law, int thread, int threads);

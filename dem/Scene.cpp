@@ -390,11 +390,12 @@ void Scene::advance()
     bool fusedRan = false;
     try
     {
-      fusedRan = fused.run(*this);
+      fusedRan = fused.run(*this, [this](std::size_t k) { runEngine(k); });
     }
     catch (const std::exception& e)
     {
-      failedStep_ = e.what();
+      if (subStep <= 0 && failedStep_.empty()) // not already marked by runEngine
+        failedStep_ = e.what();
       throw;
     }
     if (!fusedRan)

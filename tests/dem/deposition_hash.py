@@ -3,7 +3,10 @@
 sphere in a clump with its neighbour), --engines-one-by-one (timing on: the engines' own
 path instead of the fused step), --verlet=D (the collider's verletDist; 0 re-detects at every
 step), --moving-wall (the wall at x = 1 moves inwards at 5 cm/s), --lifted (the packing starts
-0.1 above the floor)."""
+0.1 above the floor), --other-engines (a PyRunner before the usual engines, gravity from a
+GravityEngine between the loop and the integrator, and a PyRunner after them nudging a sphere
+every 250 steps), --overlap-counts (two spheres overlapping by 1.5 radii, O.overlapStops
+off: the run goes on and counts the steps with such an overlap)."""
 import hashlib
 import sys
 
@@ -11,7 +14,7 @@ import numpy as np
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
-                       NewtonIntegrator, O, PWaveTimeStep, sphere, wall)
+                       GravityEngine, NewtonIntegrator, O, PWaveTimeStep, PyRunner, sphere, wall)
 
 options = [a for a in sys.argv[1:] if a.startswith("--")]
 numbers = [a for a in sys.argv[1:] if not a.startswith("--")]
@@ -32,11 +35,23 @@ if "--clumps" in options:
         O.bodies.appendClumped([sphere(centres[k], r), sphere(centres[k + 1], r)])
 else:
     O.bodies.append([sphere(c, r) for c, r in zip(centres, radii)])
+if "--overlap-counts" in options:
+    O.bodies[-1].state.pos = O.bodies[-2].state.pos + (0, 0, 0.5 * min(radii[-2:]))
+    O.overlapStops = False
 verlet = [float(a.split("=")[1]) for a in options if a.startswith("--verlet=")]
 collider = InsertionSortCollider(verletDist=verlet[0]) if verlet else InsertionSortCollider()
 O.engines = [ForceResetter(), collider,
              InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
              NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.3)]
+if "--other-engines" in options:
+    calls = []
+
+    def nudge():  # moves a sphere between steps: the skin must be checked again, not ahead
+        O.bodies[len(O.bodies) - 1].state.pos += (0.002, 0, 0)
+
+    O.engines = ([PyRunner(command="calls.append(O.iter)", iterPeriod=1)] + O.engines[:3]
+                 + [GravityEngine(gravity=(0, 0, -9.81)), NewtonIntegrator(gravity=(0, 0, 0), damping=0.3),
+                    PyRunner(command="nudge()", iterPeriod=250)])
 O.dt = 0.5 * PWaveTimeStep()
 if "--moving-wall" in options:
     O.velocities()[2] = (-0.05, 0, 0)  # the wall at x = 1 pushes into the packing
@@ -47,3 +62,4 @@ print("contacts", O._cpp.realContactCount())
 print("hash", hashlib.sha256(state.tobytes()).hexdigest())
 print("fused", O.fusedSteps)
 print("rebuilds", collider.rebuilds)
+print("overlapSteps", O.overlapSteps)

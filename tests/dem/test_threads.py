@@ -53,6 +53,29 @@ def test_fused_step_equals_the_engines_one_by_one(build_dir, clumps):
     assert (contacts_fused, hash_fused) == (contacts_engines, hash_engines)
 
 
+@needs_openmp
+def test_other_engines_run_in_their_place_around_the_fused_step(build_dir):
+    """A PyRunner before the usual engines, a GravityEngine between the loop and the integrator
+    and a PyRunner after them that moves a sphere between steps: still fused (the integration in
+    a region after the GravityEngine, the skin checked in the step), and the same bits as the
+    engines one by one."""
+    fused = outputs(2, build_dir, "--other-engines")
+    engines = outputs(2, build_dir, "--other-engines", "--engines-one-by-one")
+    assert (int(fused["fused"]), int(engines["fused"])) == (STEPS, 0)
+    assert int(fused["contacts"]) > 500
+    assert (fused["contacts"], fused["hash"]) == (engines["contacts"], engines["hash"])
+
+
+@needs_openmp
+def test_fused_step_goes_on_past_a_counted_overlap(build_dir):
+    """With O.overlapStops off an overlap beyond maxOverlapRatio is counted and the step goes
+    on: the fused step integrates the bodies as the engines do."""
+    fused = outputs(2, build_dir, "--overlap-counts")
+    engines = outputs(2, build_dir, "--overlap-counts", "--engines-one-by-one")
+    assert int(fused["fused"]) == STEPS and int(fused["overlapSteps"]) > 0
+    assert (fused["overlapSteps"], fused["hash"]) == (engines["overlapSteps"], engines["hash"])
+
+
 @pytest.mark.parametrize("extra", [[], ["--clumps"], ["--moving-wall"], ["--lifted"]],
                          ids=["spheres", "clumps", "moving-wall", "falling-onto-the-floor"])
 def test_skin_check_misses_no_contact(build_dir, extra):
