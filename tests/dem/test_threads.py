@@ -126,3 +126,48 @@ def test_fused_step_sees_bodies_moved_between_runs(advance):
         S.step()
     assert S.fusedSteps == 6
     assert [(c["id1"], c["id2"]) for c in S.contacts()] == [(ids[0], ids[1])]
+
+
+@pytest.mark.parametrize("place", ["before", "between", "after"])
+def test_a_failing_pyrunner_around_the_fused_step_resumes_as_the_engines_do(place):
+    """A PyRunner raising at steps 5 and 9, before the usual engines, between the loop and the
+    integrator, or after them: each error reaches the caller, the next run finishes that step from
+    the engine after the PyRunner, and the 20 steps end where the engines one by one end."""
+    from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                           Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
+                           NewtonIntegrator, PyRunner, Scene, sphere, wall)
+    import numpy as np
+
+    def run(engines_one_by_one):
+        S = Scene()
+        mat = S.materials.append(FrictMat(young=1e7, density=2600))
+        S.bodies.append([sphere((0.05 * i, 0.05 * j, 0.05 * k), 0.026, material=mat)
+                         for i in range(12) for j in range(12) for k in range(8)])
+        S.bodies.append(wall(-0.03, axis=2, sense=1))
+
+        def fail_twice():
+            if S.iter in (5, 9):
+                raise RuntimeError("failing on purpose")
+
+        failing = PyRunner(command=fail_twice, iterPeriod=1)
+        engines = [ForceResetter(), InsertionSortCollider(),
+                   InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                   NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.2)]
+        at = {"before": 0, "between": 3, "after": 4}[place]
+        S.engines = engines[:at] + [failing] + engines[at:]
+        S.dt = 1e-4
+        S.timingEnabled = engines_one_by_one
+        errors = 0
+        while S.iter < 20:
+            try:
+                S.run(20 - S.iter, wait=True)
+            except RuntimeError as e:
+                assert "failing on purpose" in str(e)
+                errors += 1
+        return S, errors
+
+    fused, fused_errors = run(False)
+    engines, engine_errors = run(True)
+    assert fused_errors == engine_errors == 2
+    assert fused.fusedSteps >= 18 and engines.fusedSteps == 0
+    assert np.array_equal(fused.positions(), engines.positions())
