@@ -94,6 +94,25 @@ def test_time_step_far_above_the_critical_step_in_a_sparse_scene():
         Y.run(2)                   # same step, same bodies: not said again
 
 
+def test_time_step_check_needs_contacts_that_can_form():
+    # A sphere settling in a fluid (a coupling's scene: no contact law) takes the fluid's step.
+    S = Scene()
+    S.bodies.append([sphere((0, 0, 0), 1e-3), sphere((1, 0, 0), 1e-3)])
+    S.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -9.81))]
+    S.dt = 1e3 * PWaveTimeStep(S)
+    S.run(2)
+    # The same scene with a contact law is refused, the lone sphere with one is not.
+    S.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *LINEAR), NewtonIntegrator()]
+    with pytest.raises(ValueError, match="1e\\+03 times the P-wave critical step"):
+        S.run(2)
+    T = Scene()
+    T.bodies.append(sphere((0, 0, 0), 1e-3))
+    T.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *LINEAR), NewtonIntegrator()]
+    T.dt = 1e3 * PWaveTimeStep(T)
+    T.run(2)
+    assert T.iter == 2
+
+
 def test_time_step_check_skips_bodies_that_do_not_move():
     S = falling_spheres(0.5)
     S.dt = 1e3 * PWaveTimeStep(S)

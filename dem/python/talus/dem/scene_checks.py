@@ -57,17 +57,23 @@ def check_engines(engines) -> None:
 
 def check_time_step(scene) -> None:
     """Before a run: refuse an O.dt more than DT_LIMIT times the P-wave step of the stiffest
-    moving sphere (checked again only when O.dt or the bodies change; not while a time stepper
-    sets O.dt), contacts or not: in a sparse scene nothing else would notice."""
+    moving sphere, contacts or not (in a sparse scene nothing else would notice), where contacts
+    can form: an InteractionLoop and two bodies or more (a lone sphere settling in a fluid may
+    take the fluid's step). Checked again only when O.dt, the bodies or the engines change; not
+    while a time stepper sets O.dt."""
     cpp = scene._cpp
+    engines = scene._running()
     key = (cpp.dt, cpp.bodiesVersion, cpp.materialCount())
-    if scene.__dict__.get("_checkedTimeStep") == key:
+    checked = scene.__dict__.get("_checkedTimeStep")
+    if checked is not None and checked[0] == key and checked[1] is engines:
         return
+    contacts = cpp.bodyCount() >= 2 and any(isinstance(e, InteractionLoop) and not getattr(e, "dead", False)
+                                            for e in engines)
     stepper = scene._timeStepper()
-    step, body = cpp.stiffestSphere() if stepper is None or not stepper.active else (math.inf, -1)
+    step, body = cpp.stiffestSphere() if contacts and (stepper is None or not stepper.active) else (math.inf, -1)
     if body >= 0 and cpp.dt > DT_LIMIT * step:
         _refuse_time_step(scene, step, body)
-    scene.__dict__["_checkedTimeStep"] = key     # refused, it is checked again at the next run
+    scene.__dict__["_checkedTimeStep"] = (key, engines)    # refused, it is checked again at the next run
 
 
 def _refuse_time_step(scene, step: float, body: int) -> None:
