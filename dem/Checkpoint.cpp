@@ -8,6 +8,7 @@
 #include "dem/Checkpoint.h"
 
 #include "dem/checkpoint/Layout.h"
+#include "dem/checkpoint/Temporaries.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -120,9 +121,8 @@ void saveCheckpoint(const Scene& scene, const std::string& path, const Checkpoin
     ctx.fail("cannot write: the folder " + quoted(folder.string()) + " does not exist", false);
   if (fs::is_directory(target, ec))
     ctx.fail("cannot write: it is a folder", false);
-  const std::string temporary = (folder / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid())
-                                           + "-" + std::to_string(uniqueCounter++)))
-                                    .string();
+  removeStaleTemporaries(folder);
+  const std::string temporary = temporaryPath(folder, target);
   try
   {
     {
@@ -156,6 +156,10 @@ CheckpointExtras loadCheckpoint(Scene& scene, const std::string& path)
     ctx.fail(errno == ENOENT ? std::string("no such file") : "cannot access it: " + errnoText(errno), false);
   if (S_ISDIR(st.st_mode))
     ctx.fail("it is a folder, not a checkpoint file", false);
+  {
+    const std::filesystem::path file(path);
+    removeStaleTemporaries(file.has_parent_path() ? file.parent_path() : std::filesystem::path("."));
+  }
   if (H5Fis_hdf5(path.c_str()) <= 0)
   {
     H5Eclear2(H5E_DEFAULT);

@@ -18,8 +18,11 @@ inline constexpr bool haveCheckpoints = true;
 inline constexpr bool haveCheckpoints = false;
 #endif
 
-/// Layout version written in the root attribute `format_version`; the only one read back.
-inline constexpr int checkpointFormatVersion = 7;
+/// Layout version written in the root attribute `format_version`. Version 8 stores the real
+/// contacts only; version 7 (every candidate pair) has the same layout and is read as well.
+inline constexpr int checkpointFormatVersion = 8;
+/// The oldest version read back.
+inline constexpr int oldestCheckpointFormatVersion = 7;
 /// Value of the root attribute `magic` of every Talus checkpoint.
 inline constexpr const char* checkpointMagic = "talus-checkpoint";
 
@@ -37,8 +40,8 @@ public:
 
 /// Write everything a run needs to continue bit-identically: the clock (dt, time, iter), the
 /// scene's settings (maxOverlapRatio), the periodic cell, every material, every body array
-/// (erased slots, blocked DOFs, external forces, every shape included) and the
-/// contact list in order with its full state (ids, kind, real, fresh, law, periodic image,
+/// (erased slots, blocked DOFs, external forces, every shape included) and the real
+/// contacts in list order with their full state (ids, kind, real, fresh, law, periodic image,
 /// geometry, physics, shear history, forces) with the richer models' state (Contacts::extra),
 /// and the energy tracker. Engines are not stored (they are Python
 /// objects; the Python layer stores their parameters in `extras`).
@@ -46,8 +49,10 @@ public:
 /// The write is atomic: the checkpoint goes to a temporary file in the target's folder, is
 /// flushed, synced and closed, and only then renamed over `path`. On failure the temporary file
 /// is removed, an existing file at `path` is left untouched, and CheckpointError is thrown.
+/// The temporary files that saves killed mid-write left in the folder are removed first (those
+/// of processes of this host that no longer run); loadCheckpoint does the same.
 ///
-/// HDF5 layout (format_version 3): root attributes `magic`, `format_version`,
+/// HDF5 layout: root attributes `magic`, `format_version`,
 /// `talus_version`; groups `clock`, `settings`, `energy`, `cell`, `materials`, `bodies` (with
 /// `walls`, `facets`, `boxes`, `clumps`, `blocks`, `particles`: Potential Blocks and Particles with their derived geometry), `contacts` (with `extra`), `extras` (docs/dem-io.md lists every dataset). Numeric datasets are chunked with a Fletcher-32 checksum, and the object headers
 /// carry metadata checksums, so corruption is detected when reading.

@@ -408,10 +408,11 @@ void readScene(hid_t file, Loaded& in, const Context& ctx)
                false);
   }
   const std::int64_t version = r.integer("/", "format_version");
-  if (version != checkpointFormatVersion)
+  if (version < oldestCheckpointFormatVersion || version > checkpointFormatVersion)
     ctx.fail("checkpoint format version " + std::to_string(version) + " (written by Talus "
                  + r.stringAttribute("/", "talus_version") + "); this Talus (" + std::string(talus::version())
-                 + ") reads version " + std::to_string(checkpointFormatVersion),
+                 + ") reads versions " + std::to_string(oldestCheckpointFormatVersion) + " to "
+                 + std::to_string(checkpointFormatVersion),
              false);
 
   in.dt = r.real("/clock", "dt");
@@ -547,6 +548,20 @@ void validate(const Loaded& in, const Context& ctx)
       ctx.fail(which + " has an invalid clump id " + std::to_string(clump), false);
     if (b.blockedDofs[i] > DofAll || b.dynamic[i] > 1 || b.alive[i] > 1 || b.damped[i] > 1)
       ctx.fail(which + " has invalid flags (blockedDofs, dynamic, alive or damped)", false);
+    // Fields no scene can hold (an edited file): named here, not a step later as a
+    // non-finite force blamed on the time step.
+    if (!b.alive[i])
+      continue;
+    if (!b.pos[i].allFinite())
+      ctx.fail(which + ": position is not finite", false);
+    if (b.shape[i] == ShapeKind::Sphere && !(std::isfinite(b.radius[i]) && b.radius[i] > 0))
+      ctx.fail(which + ": radius " + std::to_string(b.radius[i]) + " is not positive and finite", false);
+    if (!(std::isfinite(b.mass[i]) && b.mass[i] >= 0))
+      ctx.fail(which + ": mass " + std::to_string(b.mass[i]) + " is not finite and >= 0", false);
+    if (b.dynamic[i] && clump < 0 && (b.blockedDofs[i] & (DofX | DofY | DofZ)) != (DofX | DofY | DofZ)
+        && !(b.mass[i] > 0))
+      ctx.fail(which + ": mass is 0 but the body is dynamic (a massless body must be non-dynamic or blocked)",
+               false);
   }
   for (std::size_t k = 0; k < b.clumps.size(); ++k)
     for (BodyId m : b.clumps[k].members)

@@ -218,66 +218,74 @@ void writeBodies(const Writer& w, const Scene& scene)
   writePlaneShapes(w, b);
 }
 
-/// Contacts: the list in its order, every field of Contact.
+/// Contacts: the real ones in list order, every field of Contact. The others are candidate
+/// pairs inside the collider's skin, without history (Contact::reset), which the loaded scene's
+/// first re-detection finds again: a settled bed has several times more of them than contacts.
 void writeContacts(const Writer& w, const Scene& scene)
 {
-  const ContactList& list = scene.contacts.list;
-  const std::size_t c = list.size();
+  const ContactList& all = scene.contacts.list;
+  std::vector<std::size_t> live;
+  for (std::size_t k = 0; k < all.size(); ++k)
+    if (all[k].real)
+      live.push_back(k);
+  const std::size_t c = live.size();
+  auto list = [&](std::size_t k) -> const Contact& { return all[live[k]]; };
   const Id g = w.group("/contacts");
   std::vector<std::int32_t> ids(c), cellDist(3 * c);
   for (const auto& [name, field] : contactIds)
   {
     for (std::size_t k = 0; k < c; ++k)
-      ids[k] = list[k].*field;
+      ids[k] = list(k).*field;
     w.int32s(at("/contacts/", name), ids.data(), c);
   }
   for (std::size_t k = 0; k < c; ++k)
     for (std::size_t d = 0; d < 3; ++d)
-      cellDist[3 * k + d] = list[k].cellDist[static_cast<int>(d)];
+      cellDist[3 * k + d] = list(k).cellDist[static_cast<int>(d)];
   w.array("/contacts/cellDist", H5T_STD_I32LE, H5T_NATIVE_INT32, {c, 3}, cellDist.data());
   std::vector<std::uint8_t> bytes(c);
   for (const auto& [name, field] : contactFlags)
   {
     for (std::size_t k = 0; k < c; ++k)
-      bytes[k] = list[k].*field ? 1 : 0;
+      bytes[k] = list(k).*field ? 1 : 0;
     w.uint8s(at("/contacts/", name), bytes.data(), c);
   }
   for (std::size_t k = 0; k < c; ++k)
-    bytes[k] = static_cast<std::uint8_t>(list[k].kind);
+    bytes[k] = static_cast<std::uint8_t>(list(k).kind);
   w.uint8s("/contacts/kind", bytes.data(), c);
   for (std::size_t k = 0; k < c; ++k)
-    bytes[k] = list[k].law;
+    bytes[k] = list(k).law;
   w.uint8s("/contacts/law", bytes.data(), c);
   std::vector<Vec3> column3(c);
   for (const auto& [name, field] : contactVectors)
   {
     for (std::size_t k = 0; k < c; ++k)
-      column3[k] = list[k].*field;
+      column3[k] = list(k).*field;
     w.vec3s(at("/contacts/", name), column3);
   }
   std::vector<double> column(c);
   for (const auto& [name, field] : contactScalars)
   {
     for (std::size_t k = 0; k < c; ++k)
-      column[k] = list[k].*field;
+      column[k] = list(k).*field;
     w.doubles(at("/contacts/", name), {c}, column.data());
   }
   // The richer models' state: as many rows as contacts, or none.
-  const ContactExtraList& extra = scene.contacts.extra;
-  const std::size_t e = extra.size();
+  const ContactExtra* state = scene.contacts.extraState();
+  const std::size_t e = state ? c : 0;
+  auto extra = [&](std::size_t k) -> const ContactExtra& { return state[live[k]]; };
   const Id ge = w.group("/contacts/extra");
   column.resize(e);
   for (const auto& [name, field] : extraScalars)
   {
     for (std::size_t k = 0; k < e; ++k)
-      column[k] = extra[k].*field;
+      column[k] = extra(k).*field;
     w.doubles(at("/contacts/extra/", name), {e}, column.data());
   }
   column3.resize(e);
   for (const auto& [name, field] : extraVectors)
   {
     for (std::size_t k = 0; k < e; ++k)
-      column3[k] = extra[k].*field;
+      column3[k] = extra(k).*field;
     w.vec3s(at("/contacts/extra/", name), column3);
   }
   std::vector<double> quats(4 * e);
@@ -285,7 +293,7 @@ void writeContacts(const Writer& w, const Scene& scene)
   {
     for (std::size_t k = 0; k < e; ++k)
     {
-      const Quat& q = extra[k].*field;
+      const Quat& q = extra(k).*field;
       quats[4 * k] = q.w(), quats[4 * k + 1] = q.x(), quats[4 * k + 2] = q.y(), quats[4 * k + 3] = q.z();
     }
     w.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
@@ -294,7 +302,7 @@ void writeContacts(const Writer& w, const Scene& scene)
   for (const auto& [name, field] : extraBytes)
   {
     for (std::size_t k = 0; k < e; ++k)
-      bytes[k] = extra[k].*field;
+      bytes[k] = extra(k).*field;
     w.uint8s(at("/contacts/extra/", name), bytes.data(), e);
   }
 }

@@ -353,7 +353,8 @@ PYBIND11_MODULE(_dem, m)
         return out;
       })
       .def("contactCount", [](const Scene& s, bool realOnly) { return realOnly ? s.contacts.countReal() : s.contacts.list.size(); })
-      .def("eraseContact", &Scene::eraseContact);
+      .def("eraseContact", &Scene::eraseContact)
+      .def("eraseContacts", [](Scene& s) { s.contacts.removeIf([](const Contact&) { return true; }, s.bodies.size()); });
   void talus_wrap_bodies(py::module_&); talus_wrap_bodies(m); // after Engine, Scene: kinematics, clumps, boxes: bodies_wrappers.cpp
   void talus_wrap_force_engines(py::module_&); talus_wrap_force_engines(m); // force engines, loop callbacks: force_engines_wrappers.cpp
   void talus_wrap_blocks(py::module_&); talus_wrap_blocks(m); // Potential Blocks: blocks_wrappers.cpp

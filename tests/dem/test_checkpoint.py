@@ -293,6 +293,39 @@ def test_failed_write_leaves_the_previous_checkpoint(tmp_path, build_dir):
     assert T.iter == 10
 
 
+def dead_pid() -> int:
+    """The id of a process that has ended (reaped: no process has it, unless reused since)."""
+    done = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    return int(done.stdout)
+
+
+@pytest.mark.parametrize("action", ["save", "load"])
+def test_stale_temporary_files_of_dead_writers_are_removed(tmp_path, action):
+    """Saves killed mid-write leave `.<name>.tmp-<pid>-<n>[@<host>]`: the next save or load in
+    the folder removes those of dead processes of this host, and nothing else."""
+    import socket
+    path = tmp_path / "ck.h5"
+    S = deposition(False, m=2)
+    io.save(S, path)
+    live = subprocess.Popen(["sleep", "60"])      # a writer still writing
+    try:
+        gone, host = dead_pid(), socket.gethostname()
+        stale = [f".ck.h5.tmp-{gone}-0", f".ck.h5.tmp-{gone}-3@{host}", f".other.h5.tmp-{gone}-1@{host}"]
+        kept = [f".ck.h5.tmp-{live.pid}-0@{host}", f".ck.h5.tmp-{os.getpid()}-7@{host}",
+                f".ck.h5.tmp-{gone}-0@another-host",      # a folder shared with another machine
+                f"ck.h5.tmp-{gone}-0", f".ck.h5.tmp-{gone}", f".ck.h5.tmp-x{gone}-0", "notes.txt"]
+        for name in stale + kept:
+            (tmp_path / name).write_bytes(b"\0" * 1000)
+        if action == "save":
+            io.save(S, path)
+        else:
+            io.load(Scene(), path)
+        assert sorted(p.name for p in tmp_path.iterdir()) == sorted(kept + ["ck.h5"])
+    finally:
+        live.kill()
+        live.wait()
+
+
 def test_bad_targets_are_refused(tmp_path):
     S = deposition(False, m=2)
     with pytest.raises(io.CheckpointError, match=r"checkpoint '.*/missing/x.h5': cannot write: the folder .* does not exist"):
@@ -323,7 +356,9 @@ def small_checkpoint(tmp_path_factory):
     assert S._cpp.realContactCount() > 0
     path = tmp_path_factory.mktemp("ck") / "small.h5"
     io.save(S, path)
-    return path, state(S), S._cpp.contactCount()
+    # Only the real contacts are stored: the candidate pairs inside the skin are found again.
+    assert S._cpp.contactCount() > S._cpp.realContactCount()
+    return path, state(S), S._cpp.realContactCount()
 
 
 def untouched_scene():
@@ -399,11 +434,26 @@ def test_wrong_version_and_foreign_files(tmp_path, small_checkpoint):
     version = _dem.checkpoint_format_version()
     assert out.split() == ["talus-checkpoint", str(version), f"({len(saved['pos'])},", "3)", f"({pairs},)"]
     T = untouched_scene()
-    with pytest.raises(io.CheckpointError, match=rf"newer.h5': checkpoint format version 99 .*reads version {version}"):
+    with pytest.raises(io.CheckpointError, match=rf"newer.h5': checkpoint format version 99 .*reads versions 7 to {version}"):
         io.load(T, newer)
     with pytest.raises(io.CheckpointError, match=r"foreign.h5': not a Talus checkpoint"):
         io.load(T, foreign)
     check_untouched(T)
+
+
+def test_version_7_files_still_load(tmp_path, small_checkpoint):
+    """Version 7 stored every candidate pair in the same layout; its files load as before."""
+    source, saved, _ = small_checkpoint
+    older = tmp_path / "older.h5"
+    older.write_bytes(source.read_bytes())
+    with_h5py("""
+        import sys, h5py
+        with h5py.File(sys.argv[1], "r+") as f:
+            f.attrs["format_version"] = 7
+        """, older)
+    T = Scene()
+    io.load(T, older)
+    assert_identical(state(T), saved)
 
 
 def test_size_and_speed_of_a_1000_sphere_checkpoint(tmp_path):

@@ -135,8 +135,7 @@ class InteractionContainer:
 
     def clear(self):
         """Remove every pair and its history (Yade's ``clear``)."""
-        for values in self._scene._cpp.contacts(False):
-            self._scene._cpp.eraseContact(values["id1"], values["id2"])
+        self._scene._cpp.eraseContacts()
 
     def all(self, onlyReal: bool = False) -> list[Interaction]:
         """Every pair (or only the real ones)."""

@@ -1,0 +1,22 @@
+// The temporary files of checkpoint saves (internal, not installed): a save writes beside its
+// target under a name that says which process on which host writes it, then renames it; a
+// process killed in between leaves it behind, and the next save or load in that folder removes
+// it once that process is gone.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+namespace talus::dem::checkpoint
+{
+/// Where a save of `target` (in `folder`) writes before renaming:
+/// `<folder>/.<target name>.tmp-<pid>-<n>@<host>`, n counting this process's saves.
+std::string temporaryPath(const std::filesystem::path& folder, const std::filesystem::path& target);
+
+/// Remove the temporary files in `folder` whose writer is dead: written on this host (or
+/// without a host: by a Talus before the host was part of the name) by a process that no
+/// longer runs. Files of live processes, of other hosts (a folder shared over the network) and
+/// every other file stay. Best effort: a folder that cannot be listed or a file that cannot be
+/// removed is left as it is.
+void removeStaleTemporaries(const std::filesystem::path& folder);
+} // namespace talus::dem::checkpoint
