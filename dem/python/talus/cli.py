@@ -62,6 +62,9 @@ def _run(args: argparse.Namespace) -> int:
         os.environ["OMP_NUM_THREADS"] = str(args.threads)   # for child processes
         talus._dem.setThreadCount(args.threads)             # this one's runtime already started
     _warn_if_oversubscribed(talus._dem.threadCount())
+    if args.trust_checkpoints:
+        from talus.dem import trust
+        os.environ[trust.ENVIRONMENT] = "1"                  # child processes (batch jobs) too
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))
     import yade   # the namespace `yade -x` gives a script: Yade's classes, utils, pack, math
@@ -157,6 +160,9 @@ def parser() -> argparse.ArgumentParser:
 
     run = sub.add_parser("run", help="run a case script")
     run.add_argument("-j", "--threads", type=int, default=None, help="OpenMP threads")
+    run.add_argument("--trust-checkpoints", action="store_true",
+                     help="let the checkpoints the script loads run their Python commands (PyRunner commands, "
+                          "hooks): only for checkpoints you trust, a checkpoint is code")
     run.add_argument("script", help="Python script to run")
     run.add_argument("script_args", nargs=argparse.REMAINDER, help="arguments passed to the script")
     run.set_defaults(func=_run)

@@ -32,6 +32,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from talus import _dem
+from talus.dem import trust
 from talus.dem.appearance import Appearance
 from talus.dem.reference import ReferenceStates
 
@@ -225,10 +226,11 @@ def _rebuild(spec: dict):
     return engine
 
 
-def _restore_engines(scene: "Scene", specs: list[dict] | None, mode: str, where: str):
-    """Set the scene's engines from ``specs`` according to ``mode`` (see :func:`load`)."""
+def _restore_engines(scene: "Scene", specs: list[dict] | None, mode: str, where: str) -> bool:
+    """Set the scene's engines from ``specs`` according to ``mode`` (see :func:`load`); True if
+    the saved engines were set."""
     if mode == "current":
-        return
+        return False
     if specs is None:
         problem = "it holds no engine list"
     else:
@@ -237,13 +239,14 @@ def _restore_engines(scene: "Scene", specs: list[dict] | None, mode: str, where:
         if not bad:
             try:
                 scene.engines = [_rebuild(s) for s in specs]
-                return
+                return True
             except Exception as e:  # noqa: BLE001  (a class changed since the save, ...)
                 problem = f"rebuilding them failed: {type(e).__name__}: {e}"
     message = f"{where}: the saved engines cannot be rebuilt ({problem})"
     if mode == "saved":
         raise CheckpointError(message)
     warnings.warn(message + "; the scene keeps its current engines", CheckpointWarning, stacklevel=3)
+    return False
 
 
 # ------------------------------------------------------------------------------------------------
@@ -371,6 +374,9 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
             warnings.warn(f"O.save({path!r}): " + "; ".join(f"{s['describe']}: {s['reason']}" for s in bad)
                           + "; O.load will keep the engines the scene has then", CheckpointWarning, stacklevel=2)
         extras["engines"] = json.dumps({"format": _ENGINES_FORMAT, "engines": specs})
+        signature = trust.signature_for(extras["engines"], getattr(scene, "_held_commands", set()))
+        if signature is not None:
+            extras["engines_signature"] = signature
     extras.update(_body_data(scene))
     _dem.save_checkpoint(scene._cpp, path, extras)
     _scene_memory(scene)["last"] = path
@@ -389,7 +395,7 @@ def _engine_list(extras: dict, where: str) -> list[dict] | None:
     return data["engines"]
 
 
-def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto") -> None:
+def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto", trusted: bool | None = None) -> None:
     """Restore ``scene`` from the checkpoint at ``path``: bodies, materials, contacts, periodic
     cell and clock; the next step re-detects contacts and continues as the saved run would have.
 
@@ -398,6 +404,12 @@ def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto") -> N
     (:class:`CheckpointError` if it cannot be rebuilt); ``"current"`` keeps the scene's engines.
     Raises :class:`CheckpointError` naming the file if it is missing, truncated, corrupted, not a
     Talus checkpoint or of another format version; the scene is then unchanged.
+
+    ``trusted``: whether the saved engines' Python commands (PyRunner commands, hooks) may run.
+    By default (None) only those of a file the user saved (its engine list carries the user's
+    signature), or of every file under ``talus run --trust-checkpoints``; the others are loaded but held, with a
+    :class:`CheckpointWarning` listing them, and one that comes due stops the run with
+    :class:`talus.dem.trust.UntrustedCommandError` (see :mod:`talus.dem.trust`).
     """
     _require()
     if engines not in _ENGINE_MODES:
@@ -405,20 +417,34 @@ def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto") -> N
     path = os.fspath(path)
     where = f"checkpoint {path!r}"
     extras = _load_state(scene, lambda: _dem.load_checkpoint(scene._cpp, path))
-    _restore_engines(scene, _engine_list(extras, where), engines, where)
+    if trusted is None:
+        trusted = trust.trusted_by_default(extras.get("engines"), extras.get("engines_signature"))
+    if trusted:
+        if _restore_engines(scene, _engine_list(extras, where), engines, where):
+            scene._held_commands = set()
+    else:
+        with trust.holding(path) as held:
+            restored = _restore_engines(scene, _engine_list(extras, where), engines, where)
+        if restored:
+            scene._held_commands = {command for _, command in held}
+        if restored and held:
+            listed = "; ".join(f"{what}: {command!r}" for what, command in held)
+            warnings.warn(f"{where} holds Python commands, loaded but not run: {listed}. A checkpoint's commands "
+                          f"run as code with your permissions; {trust.allow_hint(path)}", CheckpointWarning,
+                          stacklevel=3)
     _scene_memory(scene)["last"] = path
 
 
-def reload(scene: "Scene", *, engines: str = "auto") -> None:
+def reload(scene: "Scene", *, engines: str = "auto", trusted: bool | None = None) -> None:
     """Load again the file or memory slot last saved or loaded by this scene (Yade's
-    ``O.reload()``)."""
+    ``O.reload()``); ``trusted`` as for :func:`load` (memory slots are always trusted)."""
     last = _scene_memory(scene)["last"]
     if last is None:
         raise CheckpointError("O.reload: this scene has not been saved or loaded yet")
     if isinstance(last, _Slot):
         loadTmp(scene, last.name, engines=engines)
     else:
-        load(scene, last, engines=engines)
+        load(scene, last, engines=engines, trusted=trusted)
 
 
 class _Slot(str):
@@ -468,13 +494,14 @@ class CheckpointMethods:
         """Write a checkpoint (HDF5, atomic); see :func:`talus.dem.io.save`."""
         save(self, path, engines=engines)
 
-    def load(self, path: str | os.PathLike, quiet: bool = False, *, engines: str = "auto") -> None:
+    def load(self, path: str | os.PathLike, quiet: bool = False, *, engines: str = "auto",
+             trusted: bool | None = None) -> None:
         """Restore a checkpoint written by ``save``; see :func:`talus.dem.io.load`."""
-        load(self, path, engines=engines)
+        load(self, path, engines=engines, trusted=trusted)
 
-    def reload(self, quiet: bool = False, *, engines: str = "auto") -> None:
+    def reload(self, quiet: bool = False, *, engines: str = "auto", trusted: bool | None = None) -> None:
         """Load again the file last saved or loaded; see :func:`talus.dem.io.reload`."""
-        reload(self, engines=engines)
+        reload(self, engines=engines, trusted=trusted)
 
     def saveTmp(self, slot: str = "", quiet: bool = False) -> None:
         """Keep the state in a memory slot; see :func:`talus.dem.io.saveTmp`."""
