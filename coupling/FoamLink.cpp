@@ -44,6 +44,11 @@ double threadCpuSeconds()
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+double steadySeconds()
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 int thisHost()
 {
   char name[256] = {};
@@ -168,6 +173,8 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   sent_.assign(static_cast<std::size_t>(fluidProcs_), {});
   members_.assign(static_cast<std::size_t>(fluidProcs_), {});
   memberCount_.assign(static_cast<std::size_t>(fluidProcs_), 0);
+  heard_ = steadySeconds();
+  watchdog_ = std::thread([this] { watch(); });
 }
 
 FoamLink::~FoamLink()
@@ -184,31 +191,32 @@ FoamLink::~FoamLink()
 
 void FoamLink::wait(std::span<MPI_Request> requests, const char* what)
 {
-  const auto start = std::chrono::steady_clock::now();
+  waiting_ = true;
+  double start = steadySeconds();
+  double previous = start;
+  double lastLivenessCheck = start;
   auto pause = std::chrono::microseconds(20);
-  double lastLivenessCheck = 0;
   while (true)
   {
     int done = 0;
     MPI_Testall(static_cast<int>(requests.size()), requests.data(), &done, MPI_STATUSES_IGNORE);
     if (done)
-      return;
-    const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (waited - lastLivenessCheck > 0.1)
     {
-      lastLivenessCheck = waited;
+      waiting_ = false;
+      return;
+    }
+    const double now = steadySeconds();
+    if (now - previous > settings_.timeout)
+      start = now; // this process was paused: the fluid was not the one keeping it waiting
+    notePause(now, previous);
+    if (now - lastLivenessCheck > 0.1)
+    {
+      lastLivenessCheck = now;
       for (const auto& peer : peers_)
         if (kill(peer.pid, 0) != 0 && errno == ESRCH)
-        {
-          std::fprintf(stderr,
-                       "FoamCoupling: fluid rank %d (pid %d) of '%s' has died while the DEM waited "
-                       "for %s; aborting every process of the coupled run\n",
-                       peer.rank, peer.pid, settings_.solver.c_str(), what);
-          std::fflush(stderr);
-          MPI_Abort(inter_, 4);
-        }
+          fluidRankDied(peer.rank, peer.pid, what);
     }
-    if (waited > settings_.timeout)
+    if (now - start > settings_.timeout)
     {
       std::fprintf(stderr,
                    "FoamCoupling: waited %g s for %s from the fluid solver '%s': it is gone or "
@@ -220,6 +228,100 @@ void FoamLink::wait(std::span<MPI_Request> requests, const char* what)
     std::this_thread::sleep_for(pause);
     pause = std::min(pause * 2, std::chrono::microseconds(1000));
   }
+}
+
+void FoamLink::notePause(double now, double& previous)
+{
+  if (now - previous > settings_.timeout)
+  {
+    pauseSeconds_ = now - previous;
+    pauseEnded_ = now;
+  }
+  previous = now;
+}
+
+bool FoamLink::fluidTimedOut(double now) const
+{
+  // A pause of this process longer than the timeout, ended less than a timeout ago, explains a
+  // fluid that gave up; so does a command sent (or still unsent) more than a timeout after the
+  // last reply.
+  const double pauseEnded = pauseEnded_;
+  if (pauseEnded > 0 && now - pauseEnded < settings_.timeout)
+    return true;
+  return silence(now) > settings_.timeout;
+}
+
+double FoamLink::silence(double now) const
+{
+  return (waiting_ ? sentAt_.load() : now) - heard_;
+}
+
+void FoamLink::fluidRankDied(int rank, int pid, const char* what)
+{
+  const double now = steadySeconds();
+  if (fluidTimedOut(now))
+    fluidGaveUp(std::max(silence(now), pauseSeconds_.load()));
+  endRun(4, "FoamCoupling: fluid rank " + std::to_string(rank) + " (pid " + std::to_string(pid) + ") of '" +
+                settings_.solver + "' has died while the DEM waited for " + what +
+                "; aborting every process of the coupled run");
+}
+
+void FoamLink::fluidGaveUp(double silentSeconds)
+{
+  std::ostringstream s;
+  s << "FoamCoupling: the fluid solver '" << settings_.solver << "' timed out: this DEM process sent it "
+    << "nothing for " << silentSeconds << " s, longer than the timeout of " << settings_.timeout
+    << " s (FoamCoupling timeout) after which the fluid stops waiting (the DEM was stuck in a step, "
+    << "a hook or a PyRunner between two exchanges, or stopped); stopping every process of the "
+    << "coupled run";
+  endRun(3, s.str());
+}
+
+void FoamLink::endRun(int code, const std::string& message)
+{
+  // The main thread and the watchdog may both find the end: one message, one exit.
+  static std::atomic_flag ending = ATOMIC_FLAG_INIT;
+  if (ending.test_and_set())
+    while (true)
+      std::this_thread::sleep_for(std::chrono::seconds(1));
+  // The fluid ranks' last words reach this process's terminal through Open MPI's threads here:
+  // a moment for them to arrive before the run ends.
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  std::fprintf(stderr, "%s\n", message.c_str());
+  std::fflush(stderr);
+  if (std::this_thread::get_id() != watchdog_.get_id())
+    MPI_Abort(inter_, code);
+  // No MPI call from a second thread (MPI_THREAD_SINGLE): the process ends, and Open MPI's
+  // daemon, which watches it, ends the fluid ranks left.
+  std::_Exit(code);
+}
+
+void FoamLink::watch()
+{
+  double previous = steadySeconds();
+  std::unique_lock lock(watchdogMutex_);
+  while (!watchdogWake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return watchdogStop_; }))
+  {
+    const double now = steadySeconds();
+    notePause(now, previous);
+    if (!waiting_ && now - heard_ > settings_.timeout)
+      fluidGaveUp(now - heard_);
+    for (const auto& peer : peers_)
+      if (kill(peer.pid, 0) != 0 && errno == ESRCH)
+        fluidRankDied(peer.rank, peer.pid, waiting_ ? "the forces" : "nothing (between two exchanges)");
+  }
+}
+
+void FoamLink::stopWatchdog()
+{
+  if (!watchdog_.joinable())
+    return;
+  {
+    const std::lock_guard lock(watchdogMutex_);
+    watchdogStop_ = true;
+  }
+  watchdogWake_.notify_all();
+  watchdog_.join();
 }
 
 void FoamLink::sendAll(const void* data, int count, MPI_Datatype type, int tag, const char* what)
@@ -241,6 +343,8 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
       beta.size() != n || fluidVelocities.size() != 3 * n)
     throw std::runtime_error("FoamCoupling: particle arrays do not match the " +
                              std::to_string(nParticles_) + " particles of the handshake");
+  if (const double silent = steadySeconds() - heard_; silent > settings_.timeout)
+    fluidGaveUp(silent); // sending would only find the fluid gone
   const auto start = std::chrono::steady_clock::now();
   // Each fluid rank gets the particles inside its widened box only (FoamProtocol.h, inBox).
   // The arrays keep room for every particle (no allocation, no capacity test per value: with
@@ -288,7 +392,9 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   }
   const auto sent = std::chrono::steady_clock::now();
   const double sentCpu = threadCpuSeconds();
+  sentAt_ = steadySeconds();
   wait(rq, "the forces");
+  heard_ = steadySeconds();
   const auto received = std::chrono::steady_clock::now();
   stats_.waitCpuSeconds = threadCpuSeconds() - sentCpu;
 
@@ -352,6 +458,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
 
 void FoamLink::stop()
 {
+  stopWatchdog(); // the fluid ranks are about to exit
   if (!running())
     return;
   const int command[2] = {proto::kCommandStop, 0};

@@ -1,10 +1,14 @@
 #pragma once
 
 #include <array>
+#include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <mpi.h>
+#include <mutex>
 #include <span>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace talus::coupling
@@ -19,7 +23,9 @@ struct FoamSettings
   double nu = 0;             ///< kinematic viscosity [m2/s], must equal transportProperties nu
   std::array<double, 3> gravity{}; ///< must equal constant/g
   double couplingInterval = 0;     ///< [s]; 0: one exchange per fluid step
-  double timeout = 60;             ///< longest wait for the fluid side [s] before aborting all
+  /// Longest wait [s] of either side for the other before the run is stopped: the DEM for the
+  /// fluid's forces, the fluid for the DEM's next command (-couplingTimeout).
+  double timeout = 60;
 };
 
 /// What the last exchange cost.
@@ -43,7 +49,10 @@ struct ExchangeStats
 /// The constructor spawns the solver ranks and does the handshake; each exchange() sends each
 /// fluid rank the particles inside its sub-mesh's widened box and gets one force array back from
 /// each (2P + P messages; the fluid ranks add one message per neighbour and reduction).
-/// A fluid side gone silent for `timeout` seconds aborts every process with a message.
+/// A fluid side gone silent for `timeout` seconds aborts every process with a message. The other
+/// way round, the fluid gives up on a DEM process that sends nothing for `timeout` seconds
+/// (stuck between two exchanges, or stopped); a watchdog thread of this process then stops it
+/// too, saying so, rather than leaving it to find a dead fluid at its next exchange.
 class FoamLink
 {
 public:
@@ -80,6 +89,23 @@ public:
 
 private:
   void wait(std::span<MPI_Request> requests, const char* what);
+  /// The watchdog thread's loop: every 0.1 s, whether the fluid has given up on this process
+  /// (its silence or its own stop longer than the timeout) or a fluid rank on this host died.
+  void watch();
+  void stopWatchdog();
+  /// Why the fluid rank `peer` has died: its timeout (this process silent or stopped for longer
+  /// than it) or something else. Prints it and ends this process (exit code 3 or 4).
+  [[noreturn]] void fluidRankDied(int rank, int pid, const char* what);
+  /// This process sent the fluid nothing for longer than the timeout: the fluid has given up.
+  [[noreturn]] void fluidGaveUp(double silentSeconds);
+  /// Whether the fluid's timeout explains a dead fluid at time `now` (steady seconds).
+  [[nodiscard]] bool fluidTimedOut(double now) const;
+  /// How long the fluid has waited for this process at `now`, as far as this process knows.
+  [[nodiscard]] double silence(double now) const;
+  /// Prints `message` and ends this process and the coupled run.
+  [[noreturn]] void endRun(int code, const std::string& message);
+  /// Records a pause of this process (stopped, or starved of CPU) longer than the timeout.
+  void notePause(double now, double& previous);
   void sendAll(const void* data, int count, MPI_Datatype type, int tag, const char* what);
 
   FoamSettings settings_;
@@ -102,6 +128,18 @@ private:
     int pid;
   };
   std::vector<Peer> peers_; ///< fluid ranks on this host, watched while waiting
+  // Steady-clock seconds of the last reply from the fluid and of the last command sent, whether
+  // the main thread is waiting for the fluid, and when a pause of this process longer than the
+  // timeout ended (0: none): what the watchdog judges the fluid's timeout by.
+  std::atomic<double> heard_{0};
+  std::atomic<double> sentAt_{0};
+  std::atomic<bool> waiting_{false};
+  std::atomic<double> pauseEnded_{0};
+  std::atomic<double> pauseSeconds_{0};
+  std::thread watchdog_;
+  std::mutex watchdogMutex_;
+  std::condition_variable watchdogWake_;
+  bool watchdogStop_ = false;
 };
 
 /// An exchange's change of the fluid forces applied to the bodies: for each coupled particle i

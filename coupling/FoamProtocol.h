@@ -65,7 +65,10 @@
 //
 // Timeouts: each side waits at most a configured time for the other (DEM: FoamCoupling.timeout,
 // fluid: the -couplingTimeout option, which FoamCoupling sets to its own) and then aborts every
-// process with a message.
+// process with a message. The fluid waits for the DEM's next command from its reply on; a DEM
+// that sends nothing for longer (stuck between two exchanges, or stopped) is woken (SIGCONT, same
+// host) and ends itself: its watchdog thread counts the same silence and, like its waits, tells
+// the fluid's timeout from a fluid rank that died.
 namespace talus::foam_protocol
 {
 constexpr int kMagic = 0x54414c53; // "TALS"

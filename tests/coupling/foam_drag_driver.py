@@ -2,7 +2,8 @@
 spawns the fluid solver):
     foam_drag_driver.py CASE OUT.json [--nu NU] [--procs P] [--outside] [--small] [--interval SECONDS]
                         [--solver NAME] [--exchanges K] [--checkpoint FILE] [--leave] [--implicit]
-                        [--density RHO] [--newton-gravity GZ] [--reversed]
+                        [--density RHO] [--newton-gravity GZ] [--reversed] [--timeout SECONDS]
+                        [--stall-after K]
 
 Two spheres moving in the fluid at rest of CASE; after two (K) exchanges it writes the forces and
 the particles' velocities of each exchange, their radii, the fluid step and where the time went
@@ -10,6 +11,7 @@ the particles' velocities of each exchange, their radii, the fluid step and wher
 import argparse
 import json
 import os
+import time
 
 import numpy as np
 
@@ -31,6 +33,9 @@ parser.add_argument("--implicit", action="store_true", help="FoamCoupling implic
 parser.add_argument("--density", type=float, default=2500.0, help="particle density")
 parser.add_argument("--leave", action="store_true", help="the second sphere is driven up through the top at 5 m/s")
 parser.add_argument("--reversed", action="store_true", help="couple the bodies as ids=[1, 0] (not one run of ids)")
+parser.add_argument("--timeout", type=float, default=20.0, help="FoamCoupling timeout")
+parser.add_argument("--stall-after", type=int, default=None,
+                    help="after K exchanges the DEM process sleeps (in Python, between two exchanges) for good")
 parser.add_argument("--newton-gravity", type=float, default=-9.81,
                     help="the NewtonIntegrator's gravity along z (FoamCoupling is told -9.81)")
 args = parser.parse_args()
@@ -48,13 +53,16 @@ if args.leave:
     s.bodies[1].state.vel = (0.0, 0.0, 5.0)
 s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, args.newton_gravity), damping=0.0)]
 s.dt = 1e-6
-coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=20,
+coupling = FoamCoupling(s, case, rhoFluid=1000.0, nu=nu, gravity=(0, 0, -9.81), nProcs=n_procs, timeout=args.timeout,
                         couplingInterval=args.interval, solver=args.solver, checkpoint=args.checkpoint,
                         checkpointInterval=10, implicitDrag=args.implicit, ids=[1, 0] if args.reversed else None)
 coupling.start()
 forces, velocities = [], []
 print("DEM process", os.getpid(), "started the fluid", flush=True)
-for _ in range(args.exchanges):
+for k in range(args.exchanges):
+    if k == args.stall_after:
+        print("DEM process stalls", flush=True)
+        time.sleep(1e6)
     velocities.append(s.velocities()[:2].tolist())  # as the next exchange sends them
     s.run(coupling.substeps, True)
     forces.append(coupling.lastForces.tolist())

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from talus.coupling.network import apply_network_settings, network_settings
 
 __all__ = ["CouplingTimes", "FoamCoupling", "find_solver", "initMPI"]
 
@@ -144,7 +145,16 @@ class FoamCoupling(_Engine):
             or talusVolumeAveragedFoam (fluid fraction, Gaussian envelope, Schiller-Naumann drag).
         nProcs: fluid ranks (MPI_Comm_spawn, ``-parallel`` when > 1).
         couplingInterval: [s] the fluid deltaT may not exceed it (None: no limit).
-        timeout: longest wait for the other side [s]; then every process is aborted.
+        timeout: longest wait [s] of either side for the other: the DEM for the fluid's forces,
+            the fluid for the DEM's next exchange (a DEM stuck in a step, a hook or a PyRunner, or
+            stopped, for longer); then both sides stop, each saying why, and every process of
+            the run ends.
+        interfaces: the network interfaces Open MPI's TCP traffic may use (Open MPI's
+            ``if_include`` syntax: names or CIDR networks, comma-separated). Default ``"lo"``,
+            the loopback: a run on one host stays off the network. ``None``: Open MPI's default
+            (every interface but the loopback), or e.g. ``"eth0"`` for fluid ranks on other
+            hosts; ``OMPI_MCA_{btl,oob}_tcp_if_{include,exclude}`` in the environment win
+            (talus.coupling.network).
         reynoldsLimit: a RuntimeWarning when the particle Reynolds number exceeds it (default:
             the limit of the solver's drag law, told at the handshake: 0.5 for Stokes drag, 2e5
             for Schiller-Naumann, 1e4 for Di Felice).
@@ -161,7 +171,8 @@ class FoamCoupling(_Engine):
                  gravity=(0.0, 0.0, -9.81), ids=None,
                  solver: str = "talusPointForceFoam", nProcs: int = 1, couplingInterval: float | None = None,
                  timeout: float = 60.0, reynoldsLimit: float | None = None, checkpoint=None,
-                 checkpointInterval: int = 100, implicitDrag: bool = False, label: str = ""):
+                 checkpointInterval: int = 100, implicitDrag: bool = False, interfaces: str | None = "lo",
+                 label: str = ""):
         # The engine Yade's scripts put in O.engines (a callback every step, see _engine_step).
         from talus.dem.engines import PyRunner
         import weakref
@@ -190,6 +201,10 @@ class FoamCoupling(_Engine):
         self.ids = None if ids is None else np.asarray(ids, dtype=np.int64)
         self.solver, self.nProcs = solver, int(nProcs)
         self.couplingInterval, self.timeout = couplingInterval, float(timeout)
+        if not self.timeout > 0:
+            raise ValueError(f"FoamCoupling: timeout must be a positive number of seconds, got {timeout!r}")
+        network_settings(interfaces)  # refuses a malformed value before anything starts
+        self.interfaces = interfaces
         self.reynoldsLimit = None if reynoldsLimit is None else float(reynoldsLimit)  # None: the solver's (start)
         if checkpoint is not None and int(checkpointInterval) < 1:
             raise ValueError(f"FoamCoupling: checkpointInterval must be >= 1 fluid steps, got {checkpointInterval}")
@@ -477,6 +492,7 @@ class FoamCoupling(_Engine):
         # The DEM process plus the fluid ranks usually outnumber the cores; Open MPI refuses to
         # spawn more processes than slots unless told (read when MPI starts, below).
         os.environ.setdefault("OMPI_MCA_rmaps_base_oversubscribe", "1")
+        apply_network_settings(self.interfaces)
         m = _module()
         s = m.FoamSettings()
         s.solver, s.caseDir, s.nProcs = find_solver(self.solver), self.case, self.nProcs
