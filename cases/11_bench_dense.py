@@ -181,4 +181,5 @@ def main():
     case.save_chart(fig, "cost-per-particle")
 
 
-main()
+if __name__ == "__main__":
+    main()
