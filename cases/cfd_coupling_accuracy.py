@@ -1,6 +1,6 @@
 """CFD-DEM case: accuracy and cost of the two couplings against the particle-to-cell size ratio,
-on the Stokes settling sphere of cases/cfd_settling_sphere.py (same case folder, which holds the
-settings of both solvers).
+on the Stokes settling sphere of cases/cfd_settling_sphere.py (its case, written by the case
+builder for either solver).
 
 Run:      build/bin/talus run cases/cfd_coupling_accuracy.py [--quick] [--results DIR]
 Set-up:   as cfd_settling_sphere.py (d = 1 mm, rho_p = 2500, mu = 1 Pa s, Stokes w = 0.8175 mm/s,
@@ -16,8 +16,6 @@ Measured: the settling velocity at the end against Stokes, and the wall time, pe
 Produces: record cfd.coupling_accuracy; chart cfd.coupling_accuracy.png (error against d/dx and
           against wall time).
 """
-import numpy as np
-
 import cfd_settling_sphere as settling
 from talus import results
 

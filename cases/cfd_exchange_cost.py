@@ -4,7 +4,7 @@ data per rank, a bounded number of messages, overhead below 20 % of the step tim
 
 Run:      build/bin/talus run cases/cfd_exchange_cost.py [--quick] [--results DIR]
           [--solver talusPointForceFoam|talusVolumeAveragedFoam] [--envelope-method pairwise|convolution]
-Set-up:   the closed box of cases/cfd_settling_sphere/ (45 x 45 x 90 mm; rho = 1000 kg/m3,
+Set-up:   the closed box of cases/cfd_settling_sphere.py (45 x 45 x 90 mm; rho = 1000 kg/m3,
           nu = 1e-3 m2/s) meshed 10 x 10 x 20 (cells 4.5 mm), decomposed along z for 2 ranks;
           fluid step 20 us; spheres r = 0.35 mm (d/dx = 0.16), rho_p = 2500 (relaxation time
           68 us).
@@ -45,38 +45,32 @@ Produces: records cfd.exchange_cost (largest share of the particles owned by one
           the solver's log); chart cfd.exchange_cost.png (wall and CPU time per exchange
           against N for 1 and 2 fluid ranks, with the O(N) line).
 """
+import shutil
 import time
 from pathlib import Path
 
 import numpy as np
 
+import cfd_settling_sphere as settling
 import talus
 from talus import results
-from talus.coupling import FoamCoupling
-from talus.coupling.cases import mesh_case
+from talus.coupling.case_builder import FoamCase
 from talus.dem import (Bo1_Sphere_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom, InsertionSortCollider,
                        InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
                        NewtonIntegrator, PWaveTimeStep, Scene, sphere)
 
-HERE = Path(__file__).resolve().parent
-CASE = HERE / "cfd_settling_sphere"
-RADIUS, RHO_P, RHO, NU, G = 3.5e-4, 2500.0, 1000.0, 1e-3, (0.0, 0.0, -9.81)
+RADIUS, RHO_P, G = 3.5e-4, 2500.0, (0.0, 0.0, -9.81)
 LOW, HIGH = np.array([-0.022, -0.022, 0.001]), np.array([0.022, 0.022, 0.089])  # inside the box
-DT_FLUID = 2e-5  # the case's system/controlDict deltaT
+DT_FLUID = 2e-5  # the settling case's fluid step
 OVERHEAD_N = 10000
 BED_SIDE = 22  # the dense bed's 22^3 = 10648 spheres
 MEASURED = 20  # exchanges measured per particle count (medians: the loaded machine's times scatter)
 
 
-def mesh(procs: int, envelope_method: str | None) -> Path:
-    def cells(work: Path):
-        block = work / "system" / "blockMeshDict"
-        block.write_text(block.read_text().replace("(9 9 18)", "(10 10 20)"))
-        if envelope_method is not None:
-            (work / "constant" / "couplingProperties").write_text(
-                "FoamFile { version 2.0; format ascii; class dictionary; object couplingProperties; }\n"
-                f"envelopeMethod {envelope_method};\n")
-    return mesh_case(CASE, procs, edit=cells, prefix="talus_cfd_exchange_")
+def mesh(procs: int, solver: str, envelope_method: str | None) -> FoamCase:
+    """The settling case's box meshed 10 x 10 x 20 for ``solver`` on ``procs`` fluid ranks."""
+    return settling.prepare_case(procs, (10, 20), solver, coupling_properties=None if envelope_method is None
+                                 else {"envelopeMethod": envelope_method})
 
 
 def exchange_phases(work: Path, solver: str) -> dict:
@@ -126,11 +120,11 @@ def bed(side: int) -> tuple[np.ndarray, float]:
 def measure_exchange(n: int, procs: int, solver: str, envelope_method: str | None) -> dict:
     """Cost of one exchange with n particles on procs fluid ranks (one DEM step per fluid step),
     as wall and as CPU time."""
-    work = mesh(procs, envelope_method)
+    foam = mesh(procs, solver, envelope_method)
     x = np.random.default_rng(1).uniform(LOW, HIGH, size=(n, 3))
     s = scene_of(x, contacts=False)
     s.dt = DT_FLUID
-    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=G, nProcs=procs, solver=solver).start()
+    coupling = foam.coupling(s).start()
     try:
         s.run(2, True)
         dem, fluid, messages, doubles = [], [], [], []
@@ -146,6 +140,7 @@ def measure_exchange(n: int, procs: int, solver: str, envelope_method: str | Non
         boxes = np.array(coupling.link.boxes).reshape(-1, 7)
     finally:
         coupling.stop()
+        shutil.rmtree(foam.path, ignore_errors=True)
     # A rank gets the particles in its sub-mesh's box widened by the envelope's cut-off (the
     # volume-averaged solver: those whose envelope reaches its cells; it computes their pairs
     # with its own cells only) and owns those inside the box itself.
@@ -164,10 +159,10 @@ def measure_overhead(solver: str, envelope_method: str | None, steps: int, posit
     cube of side ``period``, inside the mesh) and the full DEM loop (on one thread, see main),
     as wall and as CPU time; with the volume-averaged solver also its exchange's phases (CPU,
     averaged over the run's exchanges after its first two)."""
-    work = mesh(1, envelope_method)
+    foam = mesh(1, solver, envelope_method)
     s = scene_of(positions, contacts=True, period=period)
     s.dt = 0.8 * PWaveTimeStep(s)
-    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=G, solver=solver).start()
+    coupling = foam.coupling(s).start()
     try:
         s.run(2 * coupling.substeps, True)
         before = coupling.times.copy()
@@ -178,6 +173,8 @@ def measure_overhead(solver: str, envelope_method: str | None, steps: int, posit
         contacts = s._cpp.realContactCount()
     finally:
         coupling.stop()
+    phases = exchange_phases(foam.path, solver)
+    shutil.rmtree(foam.path, ignore_errors=True)
     k, reports = spent.exchanges, spent.fluidReports
     exchange = spent.dem / k + spent.fluidExchange / reports
     fluid_step = spent.fluidSteps / reports
@@ -193,7 +190,7 @@ def measure_overhead(solver: str, envelope_method: str | None, steps: int, posit
                 exchange_s=exchange, dem_coupling_s=spent.dem / k, fluid_exchange_s=spent.fluidExchange / reports,
                 fluid_step_s=fluid_step, dem_substeps_s=dem_substeps, wall_per_step_s=wall / k,
                 share_wall=exchange / (fluid_step + dem_substeps + exchange), share_of_wall=exchange / (wall / k),
-                fluid_exchange_phases_cpu_s=exchange_phases(work, solver))
+                fluid_exchange_phases_cpu_s=phases)
 
 
 def growth_exponent(rows, key: str) -> float:

@@ -1,5 +1,5 @@
 """CFD-DEM case: one sphere settling in a viscous fluid at rest, point-force coupling with
-OpenFOAM (talusPointForceFoam, spawned over MPI; case folder cases/cfd_settling_sphere/).
+OpenFOAM (talusPointForceFoam, spawned over MPI; its case written by talus.coupling.case_builder).
 
 Run:      build/bin/talus run cases/cfd_settling_sphere.py [--quick] [--results DIR] [--procs 2]
           (or /usr/bin/python3 cases/cfd_settling_sphere.py; as root export
@@ -24,15 +24,14 @@ Produces: record cfd.settling_sphere; chart cfd.settling_sphere.png (velocity ag
           curve per d/dx).
 """
 import shutil
-from pathlib import Path
+import tempfile
 
 import numpy as np
 
 from talus import results
-from talus.coupling.cases import mesh_case, settle_sphere
+from talus.coupling.case_builder import FoamCase, cfd_case
+from talus.coupling.cases import settle_sphere
 
-HERE = Path(__file__).resolve().parent
-CASE = HERE / "cfd_settling_sphere"
 RHO, NU, RHO_P, D, G = 1000.0, 1e-3, 2500.0, 1e-3, 9.81
 MU = RHO * NU
 W_STOKES = (RHO_P - RHO) * G * D ** 2 / (18 * MU)
@@ -43,22 +42,23 @@ MESHES = [(9, 18), (5, 10), (3, 6)]  # lateral and vertical cell counts of the 4
 BOX = 0.045
 
 
-def prepare_case(procs: int, cells: tuple[int, int]) -> Path:
-    """A fresh copy of the case folder with its mesh coarsened to ``cells`` (and decomposed)."""
-    def coarsen(work: Path):
-        mesh = work / "system" / "blockMeshDict"
-        mesh.write_text(mesh.read_text().replace("(9 9 18)", f"({cells[0]} {cells[0]} {cells[1]})"))
-    return mesh_case(CASE, procs, coarsen, prefix="talus_cfd_settling_")
+def prepare_case(procs: int, cells: tuple[int, int], solver: str = "talusPointForceFoam", **options) -> FoamCase:
+    """The closed box (no-slip walls) of ``cells`` (lateral, vertical) meshed (and decomposed
+    along z) in a new temporary folder, for either solver; ``options`` go to cfd_case."""
+    return cfd_case(tempfile.mkdtemp(prefix="talus_cfd_settling_"), solver=solver,
+                    box=((-BOX / 2, -BOX / 2, 0), (BOX / 2, BOX / 2, 2 * BOX)), cells=(cells[0], cells[0], cells[1]),
+                    rho=RHO, nu=NU, gravity=(0, 0, -G), coupling_interval=2e-5, procs=procs, write_every=500,
+                    **options)
 
 
 def settle(procs: int, cells: tuple[int, int], fluid_steps: int, solver: str = "talusPointForceFoam"):
     """One run; returns times, velocities, the coupling, the wall time."""
-    work = prepare_case(procs, cells)
+    fluid = prepare_case(procs, cells, solver)
     try:
-        run = settle_sphere(work, diameter=D, density=RHO_P, position=(0.0, 0.0, 0.06), rhoFluid=RHO, nu=NU,
-                            gravity=G, dt=2e-6, fluid_steps=fluid_steps, solver=solver, nProcs=procs)
+        run = settle_sphere(fluid, diameter=D, density=RHO_P, position=(0.0, 0.0, 0.06), dt=2e-6,
+                            fluid_steps=fluid_steps)
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        shutil.rmtree(fluid.path, ignore_errors=True)
     return run.t, run.v, run.coupling, run.elapsed
 
 

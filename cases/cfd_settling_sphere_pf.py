@@ -1,6 +1,6 @@
 """CFD-DEM case: one sphere settling at finite particle Reynolds number (Re_p ~ 20 and ~ 450),
 point-force coupling with OpenFOAM (talusPointForceFoam with `dragModel SchillerNaumann` in
-constant/couplingProperties; case folder cases/cfd_settling_sphere_pf/).
+constant/couplingProperties; its case written by talus.coupling.case_builder).
 
 Run:      build/bin/talus run cases/cfd_settling_sphere_pf.py [--quick] [--results DIR]
           [--procs 2] [--re 20|450] [--drag-model NAME]  (as root export
@@ -24,16 +24,15 @@ Produces: records cfd.settling_sphere_pf_re20 and cfd.settling_sphere_pf_re450; 
           same names (velocity against time, one curve per d/dx, and the equation of motion).
 """
 import shutil
-from pathlib import Path
+import tempfile
 
 import numpy as np
 
 from talus import results
-from talus.coupling.cases import mesh_case, settle_sphere
+from talus.coupling.case_builder import FoamCase, cfd_case
+from talus.coupling.cases import settle_sphere
 from talus.coupling.settling import SettlingSphere
 
-HERE = Path(__file__).resolve().parent
-CASE = HERE / "cfd_settling_sphere_pf"
 RHO, NU, RHO_P, G = 1000.0, 1e-6, 2500.0, 9.81
 CHECKED_D_OVER_DX, TOLERANCE = 0.05, 0.02
 # Per Reynolds number: diameter [m], fluid step [s], fluid steps (quick, full).
@@ -44,28 +43,25 @@ def sphere(re: int) -> SettlingSphere:
     return SettlingSphere(SETTINGS[re][0], RHO_P, RHO, NU, G)
 
 
-def prepare_case(procs: int, dx: float, fluid_dt: float, drag_model: str) -> Path:
-    """A meshed copy of the case folder with cells of size dx, the fluid step and the drag law."""
-    def configure(work: Path):
-        for name, old, new in [("system/blockMeshDict", "scale DX;", f"scale {dx!r};"),
-                               ("system/controlDict", "deltaT          DELTA_T;", f"deltaT {fluid_dt!r};"),
-                               ("constant/couplingProperties", "dragModel       SchillerNaumann;",
-                                f"dragModel {drag_model};")]:
-            path = work / name
-            path.write_text(path.read_text().replace(old, new))
-    return mesh_case(CASE, procs, configure, prefix="talus_cfd_settling_pf_")
+def prepare_case(procs: int, dx: float, fluid_dt: float, drag_model: str) -> FoamCase:
+    """The closed box (no-slip walls) of 5 x 5 x 20 cells of size dx, the sphere's axis through
+    cell centres, with the fluid step and the drag law, meshed in a new temporary folder."""
+    return cfd_case(tempfile.mkdtemp(prefix="talus_cfd_settling_pf_"), solver="pointforce",
+                    box=((-2.5 * dx, -2.5 * dx, 0), (2.5 * dx, 2.5 * dx, 20 * dx)), cells=(5, 5, 20), rho=RHO, nu=NU,
+                    gravity=(0, 0, -G), coupling_interval=fluid_dt, procs=procs, write_every=1000,
+                    coupling_properties={"dragModel": drag_model})
 
 
 def settle(re: int, d_over_dx: float, fluid_steps: int, procs: int = 1, drag_model: str = "SchillerNaumann"):
     """One run; returns times, velocities, the coupling, the wall time."""
     d, fluid_dt, _ = SETTINGS[re]
     dx = d / d_over_dx
-    work = prepare_case(procs, dx, fluid_dt, drag_model)
+    fluid = prepare_case(procs, dx, fluid_dt, drag_model)
     try:
-        run = settle_sphere(work, diameter=d, density=RHO_P, position=(0.0, 0.0, 18.5 * dx), rhoFluid=RHO, nu=NU,
-                            gravity=G, dt=fluid_dt / 10, fluid_steps=fluid_steps, nProcs=procs)
+        run = settle_sphere(fluid, diameter=d, density=RHO_P, position=(0.0, 0.0, 18.5 * dx), dt=fluid_dt / 10,
+                            fluid_steps=fluid_steps)
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        shutil.rmtree(fluid.path, ignore_errors=True)
     return run.t, run.v, run.coupling, run.elapsed
 
 

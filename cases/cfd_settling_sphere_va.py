@@ -1,6 +1,6 @@
 """CFD-DEM case: one sphere settling in the intermediate regime (Re_p ~ 5), volume-averaged
-coupling with OpenFOAM (talusVolumeAveragedFoam spawned over MPI; case folder
-cases/cfd_settling_sphere_va/).
+coupling with OpenFOAM (talusVolumeAveragedFoam spawned over MPI; its case written by
+talus.coupling.case_builder).
 
 Run:      build/bin/talus run cases/cfd_settling_sphere_va.py [--quick] [--results DIR] [--procs 2]
           [--envelope gaussian|cell]  (as root export OMPI_ALLOW_RUN_AS_ROOT=1
@@ -23,16 +23,15 @@ Produces: records cfd.settling_sphere_va and cfd.settling_sphere_va.ranks; chart
           cfd.settling_sphere_va.png.
 """
 import shutil
-from pathlib import Path
+import tempfile
 
 import numpy as np
 
 from talus import results
-from talus.coupling.cases import mesh_case, settle_sphere
+from talus.coupling.case_builder import FoamCase, cfd_case
+from talus.coupling.cases import settle_sphere
 from talus.coupling.settling import SettlingSphere
 
-HERE = Path(__file__).resolve().parent
-CASE = HERE / "cfd_settling_sphere_va"
 RHO, NU, RHO_P, D, G, CM = 1000.0, 3e-5, 2500.0, 2e-3, 9.81, 0.5
 SPHERE = SettlingSphere(D, RHO_P, RHO, NU, G, addedMassCoefficient=CM)
 TAU = SPHERE.relaxation_time
@@ -40,23 +39,22 @@ CELL_SIZES = [0.04, 0.02, 0.01]
 CHECKED = 0.02
 
 
-def prepare_case(procs: int, dx: float, envelope: str) -> Path:
-    def configure(work: Path):
-        mesh = work / "system" / "blockMeshDict"
-        mesh.write_text(mesh.read_text().replace("scale DX;", f"scale {dx};"))
-        props = work / "constant" / "couplingProperties"
-        props.write_text(props.read_text().replace("envelope             gaussian;", f"envelope {envelope};"))
-    return mesh_case(CASE, procs, configure, prefix="talus_cfd_settling_va_")
+def prepare_case(procs: int, dx: float, envelope: str) -> FoamCase:
+    """The closed box (no-slip walls) of 11 x 11 x 15 cells of size dx, the sphere's axis through
+    cell centres, meshed (and decomposed along z) in a new temporary folder."""
+    return cfd_case(tempfile.mkdtemp(prefix="talus_cfd_settling_va_"), solver="volumeaveraged",
+                    box=((-5.5 * dx, -5.5 * dx, 0), (5.5 * dx, 5.5 * dx, 15 * dx)), cells=(11, 11, 15), rho=RHO, nu=NU,
+                    gravity=(0, 0, -G), coupling_interval=1e-3, procs=procs,
+                    coupling_properties={"envelope": envelope, "addedMassCoefficient": CM})
 
 
 def settle(procs: int, dx: float, fluid_steps: int, envelope: str):
-    work = prepare_case(procs, dx, envelope)
+    fluid = prepare_case(procs, dx, envelope)
     try:
-        run = settle_sphere(work, diameter=D, density=RHO_P, position=(0.0, 0.0, 12.5 * dx), rhoFluid=RHO, nu=NU,
-                            gravity=G, dt=1e-4, fluid_steps=fluid_steps, solver="talusVolumeAveragedFoam",
-                            nProcs=procs)
+        run = settle_sphere(fluid, diameter=D, density=RHO_P, position=(0.0, 0.0, 12.5 * dx), dt=1e-4,
+                            fluid_steps=fluid_steps)
     finally:
-        shutil.rmtree(work, ignore_errors=True)
+        shutil.rmtree(fluid.path, ignore_errors=True)
     return run.t, run.v, run.coupling, run.elapsed
 
 

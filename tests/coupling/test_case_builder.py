@@ -5,9 +5,10 @@ relaxation time 19 ms) -- set up with the builder in a script of under 20 lines,
 2 fluid ranks with the volume-averaged solver: its velocity follows the integrated equation of
 motion with Schiller-Naumann drag within 2 % of the final velocity, and the two runs agree to
 1e-9; the files written for each solver (the convection scheme each names, PISO or PIMPLE,
-pRefCell only without a pressure boundary, PCG below GAMG_FROM_CELLS cells and GAMG above, slabs
-across an axis without periodic patches, an inlet's ramp and alphaf), an existing mesh reused,
-bad input refused naming the parameter, and `talus case cfd` writing a meshed, decomposed case."""
+pRefCell only without a pressure boundary, GAMG from GAMG_FROM_CELLS cells or GAMG_FROM_SPAN cells
+along the longest side and PCG below, slabs across an axis without periodic patches, an inlet's
+ramp and alphaf, a graded box, the fields' precision), an existing mesh reused, bad input refused
+naming the parameter, and `talus case cfd` writing a meshed, decomposed case."""
 import json
 import math
 import re
@@ -137,6 +138,42 @@ def test_volume_averaged_case_files(tmp_path):
     assert re.search(r"envelopeWidth\s+0.003;", read(case, "constant/couplingProperties"))
 
 
+@pytest.mark.parametrize("cells, solver", [
+    ((5, 5, 20), "PCG"),                      # the point-force settling case's box
+    ((10, 10, 150), "PCG"),                   # 15 000 cells, 150 along z
+    ((5, 5, 200), "GAMG"),                    # 5 000 cells, but 200 along z
+    ((28, 28, 28), "GAMG"),                   # 21 952 cells
+])
+def test_pressure_solver_follows_the_mesh_size_and_shape(tmp_path, cells, solver):
+    from talus.coupling.case_builder import GAMG_FROM_CELLS, GAMG_FROM_SPAN, cfd_case
+    assert (GAMG_FROM_CELLS, GAMG_FROM_SPAN) == (20000, 200)   # the thresholds the cases above straddle
+    case = cfd_case(tmp_path / "box", box=((0, 0, 0), tuple(0.01 * n for n in cells)), cells=cells, rho=1000, nu=1e-6,
+                    coupling_interval=1e-3, run_mesh=False)
+    assert f"p {{ solver {solver};" in read(case, "system/fvSolution")
+    assert "tolerance 1e-08; relTol 0.01;" in read(case, "system/fvSolution")
+    # An existing mesh of the same shape: its span in cells from its bounding box and cell count.
+    if solver == "GAMG" and cells[0] == 5:
+        meshed = cfd_case(tmp_path / "meshed", box=((0, 0, 0), (0.05, 0.05, 2.0)), cells=cells, rho=1000, nu=1e-6,
+                          coupling_interval=1e-3)
+        again = cfd_case(tmp_path / "again", mesh=meshed.path, rho=1000, nu=1e-6, coupling_interval=1e-3,
+                         run_mesh=False)
+        assert "p { solver GAMG;" in read(again, "system/fvSolution")
+
+
+def test_graded_box_and_write_precision(tmp_path):
+    from talus.coupling.case_builder import cfd_case
+    case = cfd_case(tmp_path / "graded", box=((0, 0, 0), (1, 1, 2)), cells=(4, 4, 8), grading=(1, 1, 2), rho=1, nu=1,
+                    coupling_interval=1, write_precision=17)
+    assert "(4 4 8) simpleGrading (1 1 2)" in read(case, "system/blockMeshDict")
+    assert re.search(r"writePrecision\s+17;", read(case, "system/controlDict"))
+    points = (case.path / "constant" / "polyMesh" / "points").read_text()
+    z = sorted({round(float(m), 12) for m in re.findall(r"\(\S+ \S+ (\S+)\)", points)})
+    assert len(z) == 9 and (z[-1] - z[-2]) / (z[1] - z[0]) == pytest.approx(2)   # the last cell twice the first
+    with pytest.raises(ValueError, match="initial_velocity as a function .* ungraded box"):
+        cfd_case(tmp_path / "c", box=((0, 0, 0), (1, 1, 1)), cells=(2, 2, 2), grading=(1, 2, 1), rho=1, nu=1,
+                 coupling_interval=1, initial_velocity=lambda x: x, run_mesh=False)
+
+
 def test_existing_mesh_and_initial_field(tmp_path):
     from talus.coupling.case_builder import cfd_case
     first = cfd_case(tmp_path / "box", box=((0, 0, 0), (3, 2, 1)), cells=(3, 2, 1), rho=1, nu=1,
@@ -158,6 +195,8 @@ def test_existing_mesh_and_initial_field(tmp_path):
     (dict(nu=0), "nu must be positive"),
     (dict(procs=2, decomposition=(1, 1, 3)), "decomposition"),
     (dict(cell_size=0.1), "cells .* or its cell_size, not both"),
+    (dict(grading=(1, 0, 1)), "grading .* three positive ratios"),
+    (dict(write_precision=0), "write_precision"),
 ])
 def test_bad_input(tmp_path, kwargs, message):
     from talus.coupling.case_builder import cfd_case

@@ -1,7 +1,7 @@
 """coupling: talusVolumeAveragedFoam's envelopeMethod convolution (latticeConvolution.H) against an
 independent numpy evaluation of its kernel, against 2 fluid ranks and against the pairwise
-Gaussian, on cfd_settling_sphere's box meshed 10 x 10 x 20 (cells 4.5 mm, the exchange-cost
-mesh) with 3000 spheres at random positions and velocities (tests/coupling/foam_cloud_driver.py),
+Gaussian, on cfd_settling_sphere.py's box meshed 10 x 10 x 20 (cells 4.5 mm, the exchange-cost
+mesh; written by the case builder) with 3000 spheres at random positions and velocities (tests/coupling/foam_cloud_driver.py),
 fluid at rest, first exchange.
 
 Checked:
@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from foam_case import ENV, REPO, needs_solver
+from foam_case import ENV, needs_solver
 
 pytestmark = needs_solver("talusVolumeAveragedFoam")
 
@@ -40,20 +40,12 @@ CUTOFF = 3 * SIGMA                                   # the default cut-off (3 si
 RHO, NU = 1000.0, 1e-3
 
 
-def case(tmp_path: Path, method: str, procs: int = 1, grading: str = "1 1 1") -> Path:
-    work = tmp_path / f"case_{method}_{procs}_{grading.replace(' ', '_')}"
-    source = REPO / "cases" / "cfd_settling_sphere"
-    subprocess.run(["cp", "-r", str(source), str(work)], check=True)
-    block = work / "system" / "blockMeshDict"
-    block.write_text(block.read_text().replace("(9 9 18) simpleGrading (1 1 1)",
-                                               f"(10 10 20) simpleGrading ({grading})"))
-    control = work / "system" / "controlDict"   # every digit of the fields written
-    control.write_text(control.read_text().replace("writePrecision  8;", "writePrecision  17;"))
-    (work / "constant" / "couplingProperties").write_text(
-        "FoamFile { version 2.0; format ascii; class dictionary; object couplingProperties; }\n"
-        f"envelopeMethod {method};\n")
-    for tool in ["blockMesh"] + (["decomposePar"] if procs > 1 else []):
-        subprocess.run([tool, "-case", str(work)], check=True, capture_output=True, env=ENV, timeout=60)
+def case(tmp_path: Path, method: str, procs: int = 1, grading=(1, 1, 1)) -> Path:
+    """The closed box, meshed (and decomposed along z), its fields written with every digit."""
+    from talus.coupling.case_builder import cfd_case
+    work = tmp_path / f"case_{method}_{procs}_{'_'.join(map(str, grading))}"
+    cfd_case(work, solver="volumeaveraged", box=(LOW, LOW + H * CELLS), cells=CELLS, grading=grading, rho=RHO, nu=NU,
+             coupling_interval=2e-5, procs=procs, write_precision=17, coupling_properties={"envelopeMethod": method})
     return work
 
 
@@ -189,7 +181,7 @@ def test_convolution_close_to_pairwise(tmp_path):
 
 
 def test_graded_mesh_falls_back_to_pairwise(tmp_path):
-    work = case(tmp_path, "convolution", grading="1 1 2")
+    work = case(tmp_path, "convolution", grading=(1, 1, 2))
     drive(work, "--n", "200")
     log = (work / "log.talusVolumeAveragedFoam").read_text()
     assert "envelopeMethod convolution: the cell centres are not equally spaced along z" in log

@@ -1,7 +1,6 @@
 """ymport: STL (ASCII and binary) and OpenFOAM polyMesh boundaries as facets, with errors naming
 the file and the line."""
 import struct
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -125,23 +124,26 @@ def test_polymesh_errors_name_file_and_line(tmp_path):
         ymport.polyMesh(str(tmp_path / "nowhere"))
 
 
-CASES = Path(__file__).resolve().parents[2] / "cases"
-
-
 def outward(triangles, centre):
     normals = np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0])
     return np.einsum("ij,ij->i", normals, triangles.mean(axis=1) - centre)
 
 
-def test_blockmeshdict_of_a_shipped_case():
-    """The settling-sphere box: 6 block faces, two triangles each, normals out of the fluid."""
-    triangles, groups = ymport.read_blockmeshdict(str(CASES / "cfd_settling_sphere"))
-    assert len(triangles) == 12 and list(groups) == ["walls"]
+def test_blockmeshdict_of_a_built_case(tmp_path):
+    """The settling-sphere box as the CFD case builder writes it: 6 block faces, each its own
+    patch, two triangles each, normals out of the fluid."""
+    case_builder = pytest.importorskip("talus.coupling.case_builder")
+    case_builder.cfd_case(tmp_path / "box", box=((-0.0225, -0.0225, 0), (0.0225, 0.0225, 0.09)), cells=(9, 9, 18),
+                          rho=1000, nu=1e-3, coupling_interval=2e-5, run_mesh=False)
+    triangles, groups = ymport.read_blockmeshdict(str(tmp_path / "box"))
+    assert len(triangles) == 12 and list(groups) == ["x0", "x1", "y0", "y1", "z0", "z1"]
+    assert all(len(faces) == 2 for faces in groups.values())
     assert np.allclose(triangles.reshape(-1, 3).min(axis=0), [-0.0225, -0.0225, 0])
     assert np.allclose(triangles.reshape(-1, 3).max(axis=0), [0.0225, 0.0225, 0.09])
     assert np.all(outward(triangles, [0, 0, 0.045]) > 0)
     area = 0.5 * np.linalg.norm(np.cross(triangles[:, 1] - triangles[:, 0], triangles[:, 2] - triangles[:, 0]), axis=1)
     assert area.sum() == pytest.approx(2 * 0.045 * 0.045 + 4 * 0.045 * 0.09, rel=1e-12)
+    assert area[groups["z0"]].sum() == pytest.approx(0.045 * 0.045, rel=1e-12)
 
 
 BLOCKS = HEADER.format(cls="dictionary", obj="blockMeshDict") + """

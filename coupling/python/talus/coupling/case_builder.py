@@ -13,9 +13,9 @@
 :func:`cfd_case` writes 0/ (U, p and, for the volume-averaged solver, alphaf), constant/
 (transportProperties, g, couplingProperties when given), system/ (blockMeshDict for a box,
 controlDict, fvSchemes with the solver's own scheme names, fvSolution with a pressure solver
-chosen for the mesh size and ``pRefCell`` when no boundary fixes the pressure, decomposeParDict)
-and an empty ``case.foam`` for ParaView's reader; then meshes it (blockMesh) and decomposes it
-(decomposePar) for ``procs > 1``. ``talus case cfd`` does the same from the command line.
+chosen for the mesh's size and shape and ``pRefCell`` when no boundary fixes the pressure,
+decomposeParDict) and an empty ``case.foam`` for ParaView's reader; then meshes it (blockMesh)
+and decomposes it (decomposePar) for ``procs > 1``. ``talus case cfd`` does the same from the command line.
 
 Boundary conditions, per patch (a box's patches are its faces x0, x1, y0, y1, z0, z1; an
 existing mesh's are read from its constant/polyMesh/boundary):
@@ -50,9 +50,12 @@ SOLVERS = {"pointforce": "talusPointForceFoam", "volumeaveraged": "talusVolumeAv
 _CONVECTION = {"talusPointForceFoam": "div(phi,U)", "talusVolumeAveragedFoam": "div(alphaPhi,U)"}
 # The pressure-velocity algorithm's dictionary in fvSolution.
 _ALGORITHM = {"talusPointForceFoam": "PISO", "talusVolumeAveragedFoam": "PIMPLE"}
-# Above this many cells the pressure goes to GAMG: a Krylov solver's iterations grow with the
-# mesh's extent in cells (hundreds per step on a tall mesh of ~1e5 cells), multigrid's do not.
+# The pressure goes to GAMG from this many cells, or from this many cells along the mesh's
+# longest side: a Krylov solver's iterations grow with the mesh's extent in cells (PCG with
+# DIC: about 0.6 per cell of the longest side per fluid step, both correctors), multigrid's do
+# not (25 to 30); docs/coupling.md has the measurements behind both thresholds.
 GAMG_FROM_CELLS = 20000
+GAMG_FROM_SPAN = 200
 _FACES = ("x0", "x1", "y0", "y1", "z0", "z1")
 
 
@@ -173,7 +176,7 @@ def _conditions(patches: Sequence[str], cyclic: set, boundaries: Mapping, defaul
     return chosen
 
 
-def _box_mesh_dict(low, high, cells, conditions) -> str:
+def _box_mesh_dict(low, high, cells, grading, conditions) -> str:
     x0, y0, z0 = low
     x1, y1, z1 = high
     corners = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
@@ -191,7 +194,8 @@ def _box_mesh_dict(low, high, cells, conditions) -> str:
             lines.append(f"    {name} {{ type {kind}; faces ({faces[name]}); }}")
     return (_header("dictionary", "system", "blockMeshDict")
             + "vertices\n(\n" + "".join(f"    {_foam_vector(c)}\n" for c in corners) + ");\n\n"
-            + f"blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({cells[0]} {cells[1]} {cells[2]}) simpleGrading (1 1 1)\n);\n\n"
+            + f"blocks\n(\n    hex (0 1 2 3 4 5 6 7) ({cells[0]} {cells[1]} {cells[2]}) "
+              f"simpleGrading ({' '.join(f'{g:.12g}' for g in grading)})\n);\n\n"
             + "boundary\n(\n" + "\n".join(lines) + "\n);\n")
 
 
@@ -243,8 +247,15 @@ def _internal_velocity(initial_velocity, box_cells) -> str:
     return f"nonuniform List<vector> {len(u)}\n(\n" + "\n".join(_foam_vector(v) for v in u) + "\n)"
 
 
-def _pressure_solver(cells: int, tolerance: float) -> str:
-    if cells >= GAMG_FROM_CELLS:
+def _span_in_cells(cells: int, low, high) -> int:
+    """The mesh's longest side in mean cell sizes (the cube root of its bounding box's volume
+    per cell), rounded: a box's largest cell count when its cells are cubes."""
+    span = np.asarray(high, dtype=float) - np.asarray(low, dtype=float)
+    return round(span.max() / (np.prod(span) / cells) ** (1 / 3))
+
+
+def _pressure_solver(cells: int, span: int, tolerance: float) -> str:
+    if cells >= GAMG_FROM_CELLS or span >= GAMG_FROM_SPAN:
         p = f"solver GAMG; smoother GaussSeidel; tolerance {tolerance:g}; relTol 0.01;"
     else:
         p = f"solver PCG; preconditioner DIC; tolerance {tolerance:g}; relTol 0.01;"
@@ -271,10 +282,10 @@ def _decomposition(procs: int, decomposition, conditions, low, high) -> tuple[in
 
 
 def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size: float | None = None,
-             mesh=None, rho: float, nu: float, gravity=(0.0, 0.0, -9.81), boundaries: Mapping | None = None,
+             grading=(1.0, 1.0, 1.0), mesh=None, rho: float, nu: float, gravity=(0.0, 0.0, -9.81), boundaries: Mapping | None = None,
              default_boundary="wall", coupling_interval: float, procs: int = 1, decomposition=None,
              coupling_properties: Mapping | None = None, initial_velocity=None, write_every: int = 100,
-             pressure_tolerance: float = 1e-8, run_mesh: bool = True) -> FoamCase:
+             write_precision: int = 8, pressure_tolerance: float = 1e-8, run_mesh: bool = True) -> FoamCase:
     """Write an OpenFOAM case for a coupled run in the folder ``out`` (created; an existing
     folder must be empty) and mesh it.
 
@@ -282,8 +293,9 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
         solver: ``pointforce`` (talusPointForceFoam, PISO) or ``volumeaveraged``
             (talusVolumeAveragedFoam, PIMPLE); the executables' names are accepted too.
         box: ((x0, y0, z0), (x1, y1, z1)) [m], meshed with ``cells`` (nx, ny, nz) or cubes of
-            about ``cell_size``; or ``mesh``: an existing case folder (its constant/polyMesh) or
-            polyMesh folder, copied.
+            about ``cell_size``, graded by ``grading`` (blockMesh's simpleGrading: per axis the
+            last cell's size over the first's); or ``mesh``: an existing case folder (its
+            constant/polyMesh) or polyMesh folder, copied.
         rho, nu: fluid density [kg/m3] and kinematic viscosity [m2/s]; ``gravity`` [m/s2].
         boundaries: patch name -> condition (see the module's doc); ``default_boundary`` for
             the others.
@@ -294,9 +306,11 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
             solver's envelope, drag model, ...; see docs/coupling.md).
         initial_velocity: the fluid's initial velocity: a vector, or (box only) a function of
             the cell centres (n x 3 array) returning n x 3 velocities.
-        write_every: the fluid fields are written every so many fluid steps (and at the end).
+        write_every: the fluid fields are written every so many fluid steps (and at the end),
+            with ``write_precision`` significant digits.
         pressure_tolerance: absolute tolerance of the pressure solver (relTol 0.01, 0 in the
-            last corrector); PCG with DIC below GAMG_FROM_CELLS cells, GAMG above.
+            last corrector): GAMG from GAMG_FROM_CELLS cells or GAMG_FROM_SPAN cells along the
+            longest side, PCG with DIC below.
         run_mesh: run blockMesh (box) and decomposePar (procs > 1) now.
     """
     solver = SOLVERS.get(solver, solver)
@@ -307,8 +321,9 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
     for name, value in (("rho", rho), ("nu", nu), ("coupling_interval", coupling_interval)):
         if not value > 0:
             raise ValueError(f"cfd_case: {name} must be positive, got {value}")
-    if int(procs) < 1 or int(write_every) < 1:
-        raise ValueError(f"cfd_case: procs ({procs}) and write_every ({write_every}) must be at least 1")
+    if int(procs) < 1 or int(write_every) < 1 or int(write_precision) < 1:
+        raise ValueError(f"cfd_case: procs ({procs}), write_every ({write_every}) and write_precision "
+                         f"({write_precision}) must be at least 1")
     procs = int(procs)
     out = Path(out)
     if out.exists() and any(out.iterdir()):
@@ -317,6 +332,12 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
 
     if box is not None:
         low, high, counts = _box_geometry(box, cells, cell_size)
+        grading = _vector(grading)
+        if not all(g > 0 for g in grading):
+            raise ValueError(f"cfd_case: grading {grading}: three positive ratios (last cell over first)")
+        if callable(initial_velocity) and grading != (1.0, 1.0, 1.0):
+            raise ValueError("cfd_case: initial_velocity as a function of the cell centres needs an ungraded box "
+                             "(grading (1, 1, 1))")
         # "periodic" on one face of an axis makes the pair periodic.
         for name, c in list(boundaries.items()):
             if name in _FACES and boundary_condition(c) == PERIODIC:
@@ -342,7 +363,7 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
     (out / "constant").mkdir(exist_ok=True)
     (out / "system").mkdir(exist_ok=True)
     if box is not None:
-        (out / "system" / "blockMeshDict").write_text(_box_mesh_dict(low, high, counts, conditions))
+        (out / "system" / "blockMeshDict").write_text(_box_mesh_dict(low, high, counts, grading, conditions))
     else:
         shutil.copytree(poly, out / "constant" / "polyMesh")
         n_cells = _count_cells(out / "constant" / "polyMesh")
@@ -377,7 +398,8 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
           "// beyond any coupled run.\n"
         + f"application     {solver};\nstartFrom       startTime;\nstartTime       0;\nstopAt          endTime;\n"
           f"endTime         1e9;\ndeltaT          {coupling_interval:.12g};\nwriteControl    timeStep;\n"
-          f"writeInterval   {int(write_every)};\npurgeWrite      0;\nwriteFormat     ascii;\nwritePrecision  8;\n"
+          f"writeInterval   {int(write_every)};\npurgeWrite      0;\nwriteFormat     ascii;\n"
+          f"writePrecision  {int(write_precision)};\n"
           "writeCompression off;\ntimeFormat      general;\ntimePrecision   8;\nrunTimeModifiable false;\n")
     orthogonal = box is not None
     laplacian = "Gauss linear orthogonal" if orthogonal else "Gauss linear corrected"
@@ -395,7 +417,8 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
         controls += ["pRefCell 0;", "pRefValue 0;"]
     (out / "system" / "fvSolution").write_text(
         _header("dictionary", "system", "fvSolution")
-        + "solvers\n{\n" + _pressure_solver(n_cells, pressure_tolerance) + "}\n\n"
+        + "solvers\n{\n" + _pressure_solver(n_cells, _span_in_cells(n_cells, low, high), pressure_tolerance)
+        + "}\n\n"
         + f"{algorithm}\n{{\n" + "".join(f"    {c}\n" for c in controls) + "}\n")
     counts = _decomposition(procs, decomposition, conditions, low, high)
     (out / "system" / "decomposeParDict").write_text(

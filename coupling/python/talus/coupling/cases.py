@@ -1,39 +1,21 @@
-"""Helpers the coupled cases (cases/cfd_*.py) share: a fresh, meshed copy of an OpenFOAM case
-folder, and the coupled run of one sphere settling from rest."""
+"""Helpers the coupled cases (cases/cfd_*.py) share: OpenFOAM's environment for its utilities,
+and the coupled run of one sphere settling from rest (its case written by
+:func:`talus.coupling.case_builder.cfd_case`)."""
 
 from __future__ import annotations
 
 import os
-import shutil
-import tempfile
 import time
 from dataclasses import dataclass
-from pathlib import Path
-from typing import Callable
 
 import numpy as np
 
-__all__ = ["SettlingRun", "foam_environment", "mesh_case", "settle_sphere"]
+__all__ = ["SettlingRun", "foam_environment", "settle_sphere"]
 
 
 def foam_environment() -> dict:
     """The process environment with OpenFOAM's etc/ folder (its utilities need it)."""
     return dict(os.environ, WM_PROJECT_DIR=os.environ.get("WM_PROJECT_DIR", "/usr/share/openfoam"))
-
-
-def mesh_case(source, procs: int = 1, edit: Callable[[Path], None] | None = None, prefix: str = "talus_cfd_") -> Path:
-    """A copy of the case folder ``source`` in a new temporary folder, changed by ``edit(work)``
-    (e.g. the mesh size in system/blockMeshDict), meshed with blockMesh and, for ``procs > 1``,
-    decomposed with decomposePar (system/decomposeParDict must ask for ``procs`` ranks). The
-    utilities' output goes to ``work/log.<utility>``; a failure raises with that log's name.
-    New cases are written by :func:`talus.coupling.case_builder.cfd_case` instead."""
-    work = Path(tempfile.mkdtemp(prefix=prefix))
-    shutil.copytree(source, work, dirs_exist_ok=True)
-    if edit is not None:
-        edit(work)
-    from talus.coupling.case_builder import mesh_and_decompose
-    mesh_and_decompose(work, procs=procs)
-    return work
 
 
 @dataclass
@@ -46,22 +28,20 @@ class SettlingRun:
     elapsed: float
 
 
-def settle_sphere(case, *, diameter: float, density: float, position, rhoFluid: float, nu: float,
-                  gravity: float, dt: float, fluid_steps: int, solver: str = "talusPointForceFoam",
-                  nProcs: int = 1) -> SettlingRun:
-    """One sphere released from rest at ``position`` in the meshed case folder ``case`` (fluid at
-    rest), coupled with ``solver`` on ``nProcs`` fluid ranks for ``fluid_steps`` fluid steps;
-    gravity -``gravity`` along z, DEM step ``dt`` (lowered so that it divides the fluid step)."""
-    from talus.coupling.foam import FoamCoupling
+def settle_sphere(case, *, diameter: float, density: float, position, dt: float,
+                  fluid_steps: int) -> SettlingRun:
+    """One sphere released from rest at ``position`` in the fluid at rest of ``case`` (a
+    :class:`~talus.coupling.case_builder.FoamCase`: its fluid, gravity, solver and ranks),
+    coupled for ``fluid_steps`` fluid steps; DEM step ``dt`` (lowered so that it divides the
+    fluid step)."""
     from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
 
     s = Scene()
     s.materials.append(FrictMat(density=density))
     s.bodies.append(sphere(tuple(position), diameter / 2))
-    s.engines = [ForceResetter(), NewtonIntegrator(gravity=(0, 0, -gravity), damping=0.0)]
+    s.engines = [ForceResetter(), NewtonIntegrator(gravity=case.gravity, damping=0.0)]
     s.dt = dt
-    coupling = FoamCoupling(s, case, rhoFluid=rhoFluid, nu=nu, gravity=(0, 0, -gravity), nProcs=nProcs,
-                            solver=solver).start()
+    coupling = case.coupling(s).start()
     t, v = [0.0], [0.0]
     start = time.perf_counter()
     try:
