@@ -1,5 +1,5 @@
 """CFD-DEM case: fluidisation of a deposited bed (volume-averaged coupling,
-talusVolumeAveragedFoam; case folder cases/cfd_fluidised_bed/).
+talusVolumeAveragedFoam; its case written by talus.coupling.case_builder).
 
 Run:      build/bin/talus run cases/cfd_fluidised_bed.py [--quick] [--results DIR] [--procs 2] [--fixed]
           [--envelope-method pairwise|convolution]
@@ -13,7 +13,7 @@ Set-up:   a packing deposited like cfd_packed_bed.py's periodic one (900 spheres
           the packing's porosity, middle 40 % of the bed) over 0.5 s (quick; 1.5 s full) and
           held 0.08 s (0.15 s). Fluid cells 0.8 mm, Gaussian envelope 1.5 mm; fluid step 0.1 ms,
           14 DEM steps per fluid step, drag re-evaluated at each (implicitDrag); alphaf
-          fixedValue 1 at the inlet (0/alphaf: U there is the superficial velocity); the fluid
+          fixedValue 1 at the inlet (the builder's Inlet: U there is the superficial velocity); the fluid
           fraction relaxes over 5 ms (alphaRelaxationTime); no added mass. Before the coupling the
           packing settles under its buoyant weight (numerical damping only then).
           --fixed: the same with every particle held (the set-up's fixed-bed check).
@@ -51,29 +51,38 @@ import math
 import re
 import shutil
 import subprocess
+import tempfile
 import time
-from pathlib import Path
 
 import numpy as np
 
 import cfd_packed_bed as packed
 from talus import results
-from talus.coupling import FoamCoupling
-from talus.coupling.cases import foam_environment, mesh_case
+from talus.coupling.case_builder import PERIODIC, FoamCase, Inlet, Outlet, cfd_case
+from talus.coupling.cases import foam_environment
 from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom,
                        InsertionSortCollider, InteractionLoop, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, Scene, ViscElMat, sphere, wall)
 
-HERE = Path(__file__).resolve().parent
-CASE = HERE / "cfd_fluidised_bed"
 RHO, NU, RHO_P, D, G = 1000.0, 1e-5, 2500.0, 1e-3, 9.81
 MU = RHO * NU
 L, FLOOR = packed.L, packed.FLOOR
-# Fluid cells 0.8 mm and envelope width 1.5 mm (constant/couplingProperties): the envelope's
-# cut-off (1.9 mm, 2 particle layers) smears the bed's top; with the packed bed's 1.6 mm / 3 mm
-# it reached 4 of the 12 layers at each end, and the bed carried 35 % less drag than its
-# interior porosity gives (fluidised at ~1.9 U_mf).
+# Fluid cells 0.8 mm and envelope width 1.5 mm: the envelope's cut-off (1.9 mm, 2 particle
+# layers) smears the bed's top; with the packed bed's 1.6 mm / 3 mm it reached 4 of the 12
+# layers at each end, and the bed carried 35 % less drag than its interior porosity gives
+# (fluidised at ~1.9 U_mf).
 DX = 0.8e-3
+COUPLING = {
+    "envelope": "gaussian", "envelopeWidth": 1.5e-3, "hindranceExponent": 2.65,
+    # No added mass in a dense bed: the particles' accelerations there come from contacts
+    # (vibrations at the contact period), and the explicit added mass built on the lagged
+    # du_p/dt of two exchanges amplifies them (the bed blew apart within 15 fluid steps).
+    "addedMassCoefficient": 0,
+    # The fluid fraction relaxes towards the particles' over 5 ms (50 fluid steps, 5 contact
+    # periods): without it the contact jitter's d(alphaf)/dt gave pressure pulses of +-200 Pa
+    # over the bed that, lagged by a fluid step, pumped the bed up (docs/coupling.md).
+    "alphaRelaxationTime": 5e-3,
+}
 HOLD = 0.08  # held at 2 U_mf this long (quick; 0.15 s full) to average the plateau
 # Contact duration and restitution of the visco-elastic contacts: tc = 0.15 ms gives
 # kn = m (pi^2 + ln^2 en) / tc^2 = 330 N/m between spheres, so the whole bed yields only a few
@@ -96,22 +105,18 @@ def ergun_umf(eps):
     return 0.5 * (lo + hi)
 
 
-def prepare_case(procs: int, height: float, u_max: float, ramp: float, envelope_method: str | None) -> Path:
-    """The column from the floor (the inlet: no clear fluid below the bed for the envelope to
-    smear the bed's fluid fraction into) up to ``height``."""
-    def configure(work: Path):
-        if envelope_method is not None:
-            with open(work / "constant" / "couplingProperties", "a") as properties:
-                properties.write(f"envelopeMethod {envelope_method};\n")
-        nz = round((height - FLOOR) / DX)
-        mesh = work / "system" / "blockMeshDict"
-        head, tail = mesh.read_text().split("vertices", 1)
-        tail = tail.replace("(NX NX NZ)", f"({round(L / DX)} {round(L / DX)} {nz})")
-        tail = re.sub(r"\bL\b", repr(L), re.sub(r"\bH\b", repr(FLOOR + nz * DX), tail))
-        mesh.write_text(head + "vertices" + tail.replace("Z0", repr(FLOOR)))
-        u = work / "0" / "U"
-        u.write_text(u.read_text().replace("UMAX", repr(u_max)).replace("TRAMP", repr(ramp)))
-    return mesh_case(CASE, procs, configure, prefix="talus_cfd_fluidised_bed_")
+def prepare_case(procs: int, height: float, u_max: float, ramp: float, envelope_method: str | None) -> FoamCase:
+    """The column periodic across x and y from the floor (the inlet, the distributor: no clear
+    fluid below the bed for the envelope to smear the bed's fluid fraction into; pure fluid
+    enters there, so its velocity is the superficial one, ramped linearly from 0 to ``u_max``
+    over ``ramp`` s, then held) up to ``height`` (the outlet, p = 0)."""
+    nz = round((height - FLOOR) / DX)
+    extra = {} if envelope_method is None else {"envelopeMethod": envelope_method}
+    return cfd_case(tempfile.mkdtemp(prefix="talus_cfd_fluidised_bed_"), solver="volumeaveraged",
+                    box=((0, 0, FLOOR), (L, L, FLOOR + nz * DX)), cells=(round(L / DX), round(L / DX), nz), rho=RHO,
+                    nu=NU, gravity=(0, 0, -G), coupling_interval=1e-4, procs=procs, write_every=10000,
+                    boundaries={"z0": Inlet((0, 0, u_max), ramp=ramp), "z1": Outlet(), "x0": PERIODIC, "y0": PERIODIC},
+                    coupling_properties={**COUPLING, **extra})
 
 
 def main():
@@ -139,7 +144,7 @@ def main():
     weight = (RHO_P - RHO) * G * volume / (L * L)
     print(f"{n} spheres, porosity {eps:.4f}, Ergun U_mf {u_mf:.4e} m/s, buoyant weight / area {weight:.3f} Pa")
 
-    work = prepare_case(args.procs, bed_top + 12e-3, 2 * u_mf, ramp, args.envelope_method)
+    fluid = prepare_case(args.procs, bed_top + 12e-3, 2 * u_mf, ramp, args.envelope_method)
     # Visco-elastic contacts (spring-dashpot, Yade's ViscElMat as Yade users fluidise beds): the
     # dashpot acts on the relative velocity at the contact only, so it quiets the contact
     # vibrations without touching the fluid-particle balance (Cundall's numerical damping acts
@@ -174,8 +179,7 @@ def main():
     if args.fixed:
         for i in ids:
             s.bodies[i].state.blockedDOFs = "xyzXYZ"
-    coupling = FoamCoupling(s, work, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), nProcs=args.procs, ids=ids,
-                            solver="talusVolumeAveragedFoam", implicitDrag=True).start()
+    coupling = fluid.coupling(s, ids=ids, implicitDrag=True).start()
     dt_fluid = coupling.link.fluidDt
     steps = round((ramp + hold) / dt_fluid)
     t_start = s.time  # the fluid's clock starts at the coupling, after the DEM-only relaxation
@@ -193,11 +197,12 @@ def main():
                   f"{np.max(s.positions()[ids][:, 2]) * 1e3:.3f} mm", flush=True)
     elapsed = time.perf_counter() - start
     coupling.stop()
-    last = max((p for p in work.iterdir() if re.fullmatch(r"[0-9.e-]+", p.name) and p.name != "0"),
-               key=lambda p: float(p.name))
+    work = fluid.path
     if args.procs > 1:
         subprocess.run(["reconstructPar", "-latestTime", "-case", str(work)], check=True, capture_output=True,
                        env=foam_environment())
+    last = max((p for p in work.iterdir() if re.fullmatch(r"[0-9.e-]+", p.name) and p.name != "0"),
+               key=lambda p: float(p.name))
     p = packed.read_internal_field(last / "p")
     nx = round(L / DX)
     p_z = RHO * p.reshape(-1, nx * nx).mean(axis=1)
