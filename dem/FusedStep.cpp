@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -207,8 +208,13 @@ struct FusedStep::Team
   }
 };
 
-bool FusedStep::run(Scene& scene, const EngineRunner& runEngine)
+bool FusedStep::run(Scene& scene, const EngineRunner& runEngineUntimed)
 {
+  auto runEngine = [&](std::size_t k) {
+    const auto start = std::chrono::steady_clock::now();
+    runEngineUntimed(k);
+    otherEnginesSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   if (scene.timingEnabled || scene.energy.enabled || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
     return false;
   std::optional<UsualEngines> usual = usualEngines(scene);

@@ -46,6 +46,9 @@ public:
   bool run(Scene& scene, const EngineRunner& runEngine);
 
   std::int64_t steps = 0; ///< steps run fused (diagnostics: Scene.fusedSteps)
+  /// Wall seconds spent in the other engines of fused steps (diagnostics: what the step's own
+  /// work took is the rest).
+  double otherEnginesSeconds = 0;
 
   /// Forget the skin check made ahead for the next step: the caller may move bodies before it.
   void forgetAhead() { aheadFor_ = -1; }

@@ -267,6 +267,7 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("maxEnergyGrowth", &Scene::maxEnergyGrowth)
       .def_readwrite("timingEnabled", &Scene::timingEnabled)
       .def_property_readonly("fusedSteps", [](const Scene& s) { return s.fused.steps; })
+      .def_property_readonly("fusedOtherEnginesSeconds", [](const Scene& s) { return s.fused.otherEnginesSeconds; })
       .def("step", &Scene::step, py::call_guard<py::gil_scoped_release>())
       .def(
           "run",

@@ -254,9 +254,17 @@ class Scene(OmegaMethods, CheckpointMethods):
 
     @property
     def fusedSteps(self) -> int:
-        """Steps run in one parallel region (the usual four engines, no timing or energy
-        tracking, at least 1024 bodies): the same results as the engines one by one, faster."""
+        """Steps run fused: ForceResetter, collider, InteractionLoop (one law) and
+        NewtonIntegrator in one parallel region (two with engines between the loop and the
+        integrator), other engines in their place; no timing or energy tracking, at least 1024
+        bodies. The same results as the engines one by one, faster."""
         return self._cpp.fusedSteps
+
+    @property
+    def fusedOtherEnginesSeconds(self) -> float:
+        """Wall seconds the other engines (PyRunners, couplings, controllers...) took in fused
+        steps: the rest of those steps' time is the DEM's own."""
+        return self._cpp.fusedOtherEnginesSeconds
 
     def _set_dt(self, value: float):
         # Zero is Yade's way to apply what acts on velocities (a cell's velGrad, a clump's
