@@ -457,6 +457,18 @@ def _functors(given) -> list:
     return list(given.functors) if isinstance(given, Dispatcher) else list(given)
 
 
+def _verlet_dist(value) -> float:
+    """The collider's skin: a NaN one would size the contact grid from NaN bounds."""
+    try:
+        skin = float(value)
+    except (TypeError, ValueError):
+        skin = float("nan")
+    if skin != skin or isinstance(value, (str, bytes)):
+        raise ValueError(f"InsertionSortCollider.verletDist must be a number (a length, or negative: that "
+                         f"fraction of the smallest radius), got {value!r}")
+    return skin
+
+
 class InsertionSortCollider(Engine):
     """Contact detection with a Verlet skin ``verletDist`` (negative: a fraction of the smallest
     radius, Yade's default -0.5). Implemented with linked cells; Yade's name is kept.
@@ -480,7 +492,7 @@ class InsertionSortCollider(Engine):
         if unknown:
             raise TypeError(f"InsertionSortCollider has no parameter(s) {', '.join(sorted(unknown))}")
         self._cpp = _dem.Collider()
-        self._cpp.verletDist = verletDist
+        self.verletDist = verletDist
         self._cpp.allowBiggerThanPeriod = bool(allowBiggerThanPeriod)
         self.avoidSelfInteractionMask = avoidSelfInteractionMask
         self.label = label
@@ -488,7 +500,7 @@ class InsertionSortCollider(Engine):
         self.settings = settings
 
     verletDist = property(lambda self: self._cpp.verletDist,
-                          lambda self, v: setattr(self._cpp, "verletDist", v))
+                          lambda self, v: setattr(self._cpp, "verletDist", _verlet_dist(v)))
     allowBiggerThanPeriod = property(lambda self: self._cpp.allowBiggerThanPeriod,
                                      lambda self, v: setattr(self._cpp, "allowBiggerThanPeriod", bool(v)))
     avoidSelfInteractionMask = property(

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import os
 
+import math
+
 import numpy as np
 
 
@@ -40,6 +42,14 @@ def prepareRVE(path: str | os.PathLike, size: float = 1.0, rMean: float = 0.1, r
                            Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
                            NewtonIntegrator, PeriTriaxController, PWaveTimeStep, Scene, avgNumInteractions, pack,
                            porosity, setContactFriction)
+    for name, value in (("size", size), ("rMean", rMean), ("young", young), ("density", density)):
+        if not 0 < float(value) < math.inf:
+            raise ValueError(f"prepareRVE: {name} must be positive and finite, got {value!r}")
+    if not -math.inf < float(sigma) < 0:
+        raise ValueError(f"prepareRVE: sigma (the consolidation stress, compression negative) must be negative "
+                         f"and finite, got {sigma!r}")
+    if not 0 <= float(rRelFuzz) < 1:
+        raise ValueError(f"prepareRVE: rRelFuzz must be in [0, 1), got {rRelFuzz!r}")
     S = Scene()
     S.periodic = True
     phi0 = friction if compactionFriction is None else compactionFriction

@@ -63,6 +63,12 @@ class MultiscaleRVEs:
             raise ValueError(f"MultiscaleRVEs: form must be one of {_FORMS}, got {form!r}")
         if int(nSteps) < 1:
             raise ValueError(f"MultiscaleRVEs: nSteps must be >= 1, got {nSteps}")
+        if not 0 <= float(damping) <= 1:
+            raise ValueError(f"MultiscaleRVEs: damping (the RVEs' NewtonIntegrator damping) must be in [0, 1], "
+                             f"got {damping!r}")
+        if not 0 < float(fdStep) < 1:
+            raise ValueError(f"MultiscaleRVEs: fdStep (the finite-difference strain of form='fd') must be in (0, 1), "
+                             f"got {fdStep!r}")
         self.numPoints, self.nSteps, self.form, self.comm, self.fdStep = len(rves), int(nSteps), form, comm, fdStep
         self._grads = None
         size, rank = (comm.Get_size(), comm.Get_rank()) if comm is not None else (1, 0)

@@ -44,6 +44,21 @@ _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
             "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness")
 
+# the real numbers among them (the others are flags and the solver's number)
+_REALS = ("permeabilityFactor", "viscosity", "minKdivKmean", "maxKdivKmean", "tolerance", "relax",
+          "fluidBulkModulus", "eps", "stiffness")
+
+
+def _finite_number(name: str, value) -> float:
+    """A real parameter: an infinite permeabilityFactor, say, would give NaN pressures."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not math.isfinite(number) or isinstance(value, (str, bytes)):
+        raise ValueError(f"FlowEngine.{name} must be a finite number, got {value!r}")
+    return number
+
 
 def _boundary_list(name: str, value) -> list:
     """One of the six-boundary lists: finite numbers (bndCondValue, wallPosition) or flags
@@ -159,7 +174,7 @@ class FlowEngine(Engine):
         elif name in _SCALARS:
             if name == "useSolver" and int(value) not in (0, 3):
                 raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD)")
-            setattr(params, name, value)
+            setattr(params, name, _finite_number(name, value) if name in _REALS else value)
         else:
             raise AttributeError(f"FlowEngine has no attribute {name!r}")
         self._flow.params = params
@@ -185,8 +200,11 @@ class FlowEngine(Engine):
         messages and results (default 0..n-1). Warns (HiddenSphereWarning) with the body ids of
         spheres the triangulation dropped; raises ValueError for fewer than 4 spheres, NaN
         positions or a sphere centre outside the boundaries."""
-        pos = np.asarray(positions, dtype=float).reshape(-1, 3)
+        pos = np.asarray(positions, dtype=float)
         rad = np.asarray(radii, dtype=float).reshape(-1)
+        if pos.ndim != 2 or pos.shape[1] != 3 or len(pos) != len(rad):
+            raise ValueError(f"FlowEngine.triangulate: positions must be (n, 3) with one radius each, got positions "
+                             f"of shape {pos.shape} and {len(rad)} radii")
         ident = np.arange(len(rad), dtype=np.int64) if ids is None else np.asarray(ids, dtype=np.int64)
         self._flow.build(pos, rad, ident)
         hidden = self._flow.hiddenSpheres()
