@@ -14,12 +14,12 @@ from __future__ import annotations
 import json
 import math
 import os
+import queue
 import random
-import select
 import subprocess
 import sys
 import tempfile
-import time
+import threading
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -268,17 +268,19 @@ def run_draws(seed: int, count: int, batch: int = 200, hang_seconds: float = 30.
         last = min(count, first + batch)
         proc = subprocess.Popen([sys.executable, __file__, str(seed), str(first), str(last)],
                                 stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-        started, deadline, line = first, time.monotonic() + hang_seconds + 10, ""  # + the imports
-        buffer = ""
+        lines = queue.Queue()  # a reader thread: a select() on the pipe misses lines already buffered
+        threading.Thread(target=lambda: [lines.put(line) for line in proc.stdout] + [lines.put("")],
+                         daemon=True).start()
+        started, wait = first, hang_seconds + 10  # the first draw also waits for the imports
         while True:
-            ready, _, _ = select.select([proc.stdout], [], [], max(0.0, deadline - time.monotonic()))
-            if not ready:
+            try:
+                line = lines.get(timeout=wait)
+            except queue.Empty:
                 proc.kill()
                 proc.communicate()
                 results.append(dict(index=started, outcome="hang", **_describe(seed, started)))
                 first = started + 1
                 break
-            line = proc.stdout.readline()
             if not line:  # the process ended
                 code = proc.wait()
                 err = proc.stderr.read()
@@ -287,11 +289,9 @@ def run_draws(seed: int, count: int, batch: int = 200, hang_seconds: float = 30.
                                         **_describe(seed, started)))
                 first = started + 1 if started < last else last
                 break
-            buffer = line
-            record = json.loads(buffer)
+            record = json.loads(line)
             results.append(record)
-            started = record["index"] + 1
-            deadline = time.monotonic() + hang_seconds
+            started, wait = record["index"] + 1, hang_seconds
     return results
 
 
