@@ -59,12 +59,16 @@ public:
   /// @return the index of the first contact overlapping more than scene.maxOverlapRatio of its
   /// smaller radius, or -1
   virtual std::int64_t computeAll(Scene& scene) = 0;
-  /// computeAll's work on the contacts [first, last) only, without energy tracking, for a caller
-  /// that runs the loop in its own parallel region (the fused step) and calls stepDone() after
-  /// the last range; Contacts::extra must already be aligned when needsExtra().
+  /// computeAll's work on the contacts [first, last) only, for a caller that runs the loop in its
+  /// own parallel region (the fused step) and calls stepDone() after the last range;
+  /// Contacts::extra must already be aligned when needsExtra().
+  /// @param energyBlocks null: no energy tracking; else `first` is a multiple of energyBlock
+  /// and what contact k dissipates is added to energyBlocks[k / energyBlock] (the blocks of
+  /// computeAll, so the sums do not depend on how the contacts are split)
   /// @return the index of the first contact of the range overlapping too much, or the number
   /// of contacts
-  virtual std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last) = 0;
+  virtual std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last,
+                                    ContactEnergy* energyBlocks) = 0;
   /// Called once per step before any contact is processed (the law may look at the scene's
   /// materials and align Contacts::extra).
   virtual void prepare(Scene& /*scene*/) {}
@@ -134,7 +138,7 @@ public:
   [[nodiscard]] bool needsExtra() const override { return Law::usesExtra; }
   void computeForces(Scene& scene, std::uint8_t lawIndex) override;
   std::int64_t computeAll(Scene& scene) override;
-  std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last) override;
+  std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last, ContactEnergy* energyBlocks) override;
   [[nodiscard]] double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const override;
   [[nodiscard]] double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
                                           const std::vector<double>& grownBy) const override;

@@ -146,10 +146,20 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
 }
 
 template <class Law>
-std::int64_t ContactLawKernel<Law>::computeAllIn(Scene& scene, std::int64_t first, std::int64_t last)
+std::int64_t ContactLawKernel<Law>::computeAllIn(Scene& scene, std::int64_t first, std::int64_t last,
+                                                 ContactEnergy* energyBlocks)
 {
-  ContactEnergy unused;
-  return firstBadIn<false>(scene, detail::stepContext<Law>(scene), first, last, unused);
+  const StepContext step = detail::stepContext<Law>(scene);
+  if (!energyBlocks)
+  {
+    ContactEnergy unused;
+    return firstBadIn<false>(scene, step, first, last, unused);
+  }
+  std::int64_t bad = static_cast<std::int64_t>(scene.contacts.list.size());
+  for (std::int64_t start = first; start < last; start += energyBlock)
+    bad = std::min(bad, firstBadIn<true>(scene, step, start, std::min(last, start + energyBlock),
+                                         energyBlocks[start / energyBlock]));
+  return bad;
 }
 
 template <class Law>

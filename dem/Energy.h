@@ -76,6 +76,12 @@ struct ContactEnergy
   }
 };
 
+/// Gravity's work and the damping's dissipation, summed over a block of bodies by NewtonIntegrator.
+struct BodyEnergy
+{
+  double gravWork = 0, damp = 0;
+};
+
 /// Number of contacts or bodies summed together before the per-block sums are added in order.
 inline constexpr std::int64_t energyBlock = 256;
 

@@ -1,6 +1,8 @@
 #include "dem/FusedStep.h"
 
 #include "dem/Collider.h"
+#include "dem/ContactLawKernel.h"
+#include "dem/Energy.h"
 #include "dem/ForceResetter.h"
 #include "dem/InteractionLoop.h"
 #include "dem/NewtonIntegrator.h"
@@ -96,6 +98,15 @@ int teamSize()
 #endif
 }
 
+/// A thread's share [first, last) of n items with its ends moved to multiples of energyBlock
+/// (n stays n): the shares of the threads still tile the items, and each block of energy sums
+/// lies in one of them.
+std::pair<std::int64_t, std::int64_t> blockAligned(std::pair<std::int64_t, std::int64_t> share, std::int64_t n)
+{
+  auto align = [n](std::int64_t x) { return x >= n ? n : std::min(n, (x + energyBlock / 2) / energyBlock * energyBlock); };
+  return {align(share.first), align(share.second)};
+}
+
 double now()
 {
 #ifdef _OPENMP
@@ -141,10 +152,17 @@ std::int64_t FusedStep::computeContacts(Scene& scene, ContactLaw& law, int threa
 {
   const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
   std::int64_t bad = contacts;
+  ContactEnergy* energy = scene.energy.enabled ? contactEnergy_.data() : nullptr;
   auto compute = [&](std::int64_t first, std::int64_t last) {
     if (first < last)
-      bad = std::min(bad, law.computeAllIn(scene, first, last));
+      bad = std::min(bad, law.computeAllIn(scene, first, last, energy));
   };
+  if (energy)
+  {
+    const auto [first, last] = blockAligned(contactRanges_.range(contacts, thread, threads), contacts);
+    compute(first, last);
+    return bad;
+  }
   if (boundaryRuns_.empty())
   {
     const auto [first, last] = contactRanges_.range(contacts, thread, threads);
@@ -215,7 +233,7 @@ bool FusedStep::run(Scene& scene, const EngineRunner& runEngineUntimed)
     runEngineUntimed(k);
     otherEnginesSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  if (scene.timingEnabled || scene.energy.enabled || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
+  if (scene.timingEnabled || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
     return false;
   std::optional<UsualEngines> usual = usualEngines(scene);
   if (!usual)
@@ -227,8 +245,7 @@ bool FusedStep::run(Scene& scene, const EngineRunner& runEngineUntimed)
       runEngine(k);
     // They may have changed what the rest of the step can be (engines, bodies, timing).
     usual = usualEngines(scene);
-    if (!usual || scene.timingEnabled || scene.energy.enabled
-        || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
+    if (!usual || scene.timingEnabled || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
     {
       for (std::size_t k = resetter; k < scene.engines.size(); ++k)
         runEngine(k);
@@ -236,13 +253,14 @@ bool FusedStep::run(Scene& scene, const EngineRunner& runEngineUntimed)
     }
   }
   Team team;
-  if (usual->middle == 0)
+  if (usual->middle == 0 && !scene.energy.enabled)
     forces(scene, *usual->collider, *usual->loop, usual->newton, team,
            usual->prefix == 0 && usual->suffix == 0);
   else
   {
     // The engines between the loop and the integrator (force engines, couplings) see every
-    // contact's force gathered, as in the engines' order: the integration waits for them.
+    // contact's force gathered, as in the engines' order: the integration waits for them, and
+    // with energy tracked for the work of the imposed motions, which needs the forces too.
     forces(scene, *usual->collider, *usual->loop, nullptr, team, false);
     for (std::size_t k = usual->loopIndex + 1; k < usual->newtonIndex; ++k)
       runEngine(k);
@@ -289,6 +307,9 @@ void FusedStep::forces(Scene& scene, Collider& collider, InteractionLoop& loop, 
     if (law.needsExtra())
       alignContactExtra(scene.contacts);
     findBoundaryRuns(scene.contacts);
+    if (scene.energy.enabled)
+      contactEnergy_.assign(static_cast<std::size_t>((scene.contacts.list.size() + energyBlock - 1) / energyBlock),
+                            ContactEnergy{});
   };
   const bool redetectFirst = skin.rebuild || (knownAhead && movedAhead_);
   if (redetectFirst)
@@ -326,7 +347,7 @@ void FusedStep::forces(Scene& scene, Collider& collider, InteractionLoop& loop, 
         // A clump reads its members' forces and moves them, whichever thread gathered them.
 #pragma omp barrier
       }
-      const std::int64_t bad = newton->integrateIn(scene, first, last);
+      const std::int64_t bad = newton->integrateIn(scene, first, last, nullptr);
       if (working)
       {
         my.badBody = bad;
@@ -386,6 +407,12 @@ void FusedStep::forces(Scene& scene, Collider& collider, InteractionLoop& loop, 
     }
   }
   law.stepDone();
+  if (scene.energy.enabled)
+  {
+    detail::addContactEnergy(scene, contactEnergy_);
+    if (!scene.energy.grownBy.empty())
+      addGrownContactsEnergy(scene, loop);
+  }
   if (const std::int64_t bad = team.first(&Team::Member::badContact); bad >= 0)
     InteractionLoop::overlapFound(scene, scene.contacts.list[static_cast<std::size_t>(bad)]);
   if (!newton)
@@ -406,13 +433,22 @@ void FusedStep::integrate(Scene& scene, NewtonIntegrator& newton, Team& team)
 {
   newton.prepare(scene);
   const auto bodies = static_cast<std::int64_t>(scene.bodies.size());
+  const bool tracking = scene.energy.enabled;
+  if (tracking)
+  {
+    addImposedMotionWork(scene);
+    bodyEnergy_.assign(static_cast<std::size_t>((bodies + energyBlock - 1) / energyBlock), {});
+  }
 #pragma omp parallel
   {
     const int thread = threadNumber(), threads = teamSize();
-    const auto [first, last] = thread < threads ? bodyRanges_.range(bodies, thread, threads)
-                                                : std::pair<std::int64_t, std::int64_t>{0, 0};
+    std::pair<std::int64_t, std::int64_t> share{0, 0};
+    if (thread < threads)
+      share = tracking ? blockAligned(bodyRanges_.range(bodies, thread, threads), bodies)
+                       : bodyRanges_.range(bodies, thread, threads);
+    const auto [first, last] = share;
     const double start = now();
-    const std::int64_t bad = newton.integrateIn(scene, first, last);
+    const std::int64_t bad = newton.integrateIn(scene, first, last, tracking ? bodyEnergy_.data() : nullptr);
     if (thread < threads)
     {
       Team::Member& my = team.members[static_cast<std::size_t>(thread)];
@@ -420,6 +456,8 @@ void FusedStep::integrate(Scene& scene, NewtonIntegrator& newton, Team& team)
       my.bodySeconds += now() - start;
     }
   }
+  if (tracking)
+    NewtonIntegrator::addEnergy(scene, bodyEnergy_);
   newton.finish(scene, team.first(&Team::Member::badBody));
 }
 } // namespace talus::dem

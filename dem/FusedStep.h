@@ -1,5 +1,6 @@
 #pragma once
 
+#include "dem/Energy.h"
 #include "dem/Threads.h"
 
 #include <cstddef>
@@ -32,10 +33,14 @@ struct Contacts;
 /// re-detection. Engines between the loop and the integrator (force engines, couplings) run
 /// after the gather, and the integration in a region of its own after them.
 ///
+/// With energy tracked, each thread's ranges of contacts and bodies start at multiples of
+/// energyBlock, the blocks the engines sum energies in, and the integration runs after the
+/// imposed motions' work, in a region of its own.
+///
 /// The engines' own range functions do the work, item by item as their run() does, so a fused
 /// step gives the same bits as the engines one by one (tests/dem/test_threads.py). Scenes with
-/// several laws or colliders, energy tracking or timing (which times each engine) take the
-/// engines' path, and so do scenes of fewer bodies than parallelLoopMinimum.
+/// several laws or colliders or with timing on (which times each engine) take the engines'
+/// path, and so do scenes of fewer bodies than parallelLoopMinimum.
 class FusedStep
 {
 public:
@@ -79,6 +84,11 @@ private:
   std::int64_t boundaryContacts_ = 0; ///< contacts in boundaryRuns_
   std::uint64_t runsVersion_ = 0;     ///< the Contacts::version boundaryRuns_ was found for
   static constexpr std::size_t maxBoundaryRuns = 64;
+
+  /// With energy tracked, the step's energy sums per block of contacts and of bodies (the
+  /// engines' blocks: the same sums whatever the threads' ranges).
+  std::vector<ContactEnergy> contactEnergy_;
+  std::vector<BodyEnergy> bodyEnergy_;
 
   std::int64_t aheadFor_ = -1; ///< the scene.iter whose step the ahead check is for, or -1
   bool movedAhead_ = false;    ///< the ahead check: a body moved beyond half the skin

@@ -229,11 +229,33 @@ void NewtonIntegrator::run(Scene& scene)
   finish(scene, scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene));
 }
 
-std::int64_t NewtonIntegrator::integrateIn(Scene& scene, std::int64_t first, std::int64_t last) const
+std::int64_t NewtonIntegrator::integrateIn(Scene& scene, std::int64_t first, std::int64_t last,
+                                           BodyEnergy* energyBlocks) const
 {
-  double unused = 0;
-  const std::int64_t bad = integrateRange<false>(scene, first, last, unused, unused);
-  return bad < static_cast<std::int64_t>(scene.bodies.size()) ? bad : -1;
+  const auto n = static_cast<std::int64_t>(scene.bodies.size());
+  std::int64_t bad = n;
+  if (!energyBlocks)
+  {
+    double unused = 0;
+    bad = integrateRange<false>(scene, first, last, unused, unused);
+  }
+  else
+    for (std::int64_t start = first; start < last; start += energyBlock)
+    {
+      BodyEnergy& block = energyBlocks[start / energyBlock];
+      bad = std::min(bad, integrateRange<true>(scene, start, std::min(last, start + energyBlock), block.gravWork,
+                                               block.damp));
+    }
+  return bad < n ? bad : -1;
+}
+
+void NewtonIntegrator::addEnergy(Scene& scene, const std::vector<BodyEnergy>& blocks)
+{
+  for (const BodyEnergy& block : blocks)
+  {
+    scene.energy.gravWork += block.gravWork;
+    scene.energy.nonviscDamp += block.damp;
+  }
 }
 
 void NewtonIntegrator::finish(Scene& scene, std::int64_t firstBad)
@@ -365,19 +387,15 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
   {
     // Bodies in fixed blocks, each block's sums added in order.
     const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
-    std::vector<std::array<double, 2>> energy(static_cast<std::size_t>(blocks), {0.0, 0.0}); // gravWork, damping
+    std::vector<BodyEnergy> energy(static_cast<std::size_t>(blocks));
 #pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelLoopMinimum)
     for (std::int64_t blk = 0; blk < blocks; ++blk)
     {
-      auto& [gravWork, damp] = energy[static_cast<std::size_t>(blk)];
+      BodyEnergy& block = energy[static_cast<std::size_t>(blk)];
       firstBad = std::min(firstBad, integrateRange<true>(scene, blk * energyBlock, std::min(n, (blk + 1) * energyBlock),
-                                                         gravWork, damp));
+                                                         block.gravWork, block.damp));
     }
-    for (const auto& [gravWork, damp] : energy)
-    {
-      scene.energy.gravWork += gravWork;
-      scene.energy.nonviscDamp += damp;
-    }
+    addEnergy(scene, energy);
   }
   else
   {

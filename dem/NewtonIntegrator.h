@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/Bodies.h"
+#include "dem/Energy.h"
 #include "dem/Engine.h"
 #include "dem/Threads.h"
 #include "dem/types.h"
@@ -37,12 +38,15 @@ public:
   /// their position, orientation and velocities (Yade's NewtonIntegrator.mask; default -1: all).
   int mask = -1;
 
-  // The pieces of run() for the fused step, which runs the loop in its own parallel region
-  // (energy tracking takes run()).
+  // The pieces of run() for the fused step, which runs the loop in its own parallel region.
   /// Refresh what the step reads of the bodies if they changed.
   void prepare(Scene& scene);
   /// Integrate the bodies [first, last); the first of them with a non-finite force or torque, or -1.
-  std::int64_t integrateIn(Scene& scene, std::int64_t first, std::int64_t last) const;
+  /// @param energyBlocks null: no energy tracking; else `first` is a multiple of energyBlock and
+  /// body i's terms are added to energyBlocks[i / energyBlock] (run()'s blocks)
+  std::int64_t integrateIn(Scene& scene, std::int64_t first, std::int64_t last, BodyEnergy* energyBlocks) const;
+  /// Add the blocks' energies to the scene's tracker, in block order (as run() does).
+  static void addEnergy(Scene& scene, const std::vector<BodyEnergy>& blocks);
   /// After every range: stop the run if a body had a non-finite force (firstBad >= 0), else move
   /// the periodic cell.
   /// @throws std::runtime_error naming the body, the time step and the P-wave estimate

@@ -324,9 +324,9 @@ public:
   void initialize(Contact& c, ContactExtra* x, const Scene& scene) const override { active().initialize(c, x, scene); }
   void computeForces(Scene& scene, std::uint8_t lawIndex) override { active().computeForces(scene, lawIndex); }
   std::int64_t computeAll(Scene& scene) override { return active().computeAll(scene); }
-  std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last) override
+  std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last, ContactEnergy* energyBlocks) override
   {
-    return active().computeAllIn(scene, first, last);
+    return active().computeAllIn(scene, first, last, energyBlocks);
   }
   void stepDone() override { active().stepDone(); }
   [[nodiscard]] double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const override

@@ -6,7 +6,8 @@ step), --moving-wall (the wall at x = 1 moves inwards at 5 cm/s), --lifted (the 
 0.1 above the floor), --other-engines (a PyRunner before the usual engines, gravity from a
 GravityEngine between the loop and the integrator, and a PyRunner after them nudging a sphere
 every 250 steps), --overlap-counts (two spheres overlapping by 1.5 radii, O.overlapStops
-off: the run goes on and counts the steps with such an overlap)."""
+off: the run goes on and counts the steps with such an overlap), --energy (O.trackEnergy: the
+energy terms printed too)."""
 import hashlib
 import sys
 
@@ -56,6 +57,7 @@ O.dt = 0.5 * PWaveTimeStep()
 if "--moving-wall" in options:
     O.velocities()[2] = (-0.05, 0, 0)  # the wall at x = 1 pushes into the packing
 O.timingEnabled = "--engines-one-by-one" in options
+O.trackEnergy = "--energy" in options
 O.run(steps)
 state = np.concatenate([O.positions().ravel(), O.velocities().ravel(), O.angular_velocities().ravel()])
 print("contacts", O._cpp.realContactCount())
@@ -63,3 +65,5 @@ print("hash", hashlib.sha256(state.tobytes()).hexdigest())
 print("fused", O.fusedSteps)
 print("rebuilds", collider.rebuilds)
 print("overlapSteps", O.overlapSteps)
+if O.trackEnergy:
+    print("energy", " ".join(f"{k}={v!r}" for k, v in sorted(O.energy.items())))

@@ -67,6 +67,20 @@ def test_other_engines_run_in_their_place_around_the_fused_step(build_dir):
 
 
 @needs_openmp
+@pytest.mark.parametrize("extra", [[], ["--clumps"], ["--other-engines"]], ids=["spheres", "clumps", "other-engines"])
+def test_fused_step_tracks_energy_as_the_engines_do(build_dir, extra):
+    """O.trackEnergy: still fused, and every energy term (summed per block of 256 contacts or
+    bodies whoever computes them) the same bits as the engines one by one and as one thread."""
+    fused = outputs(2, build_dir, "--energy", *extra)
+    engines = outputs(2, build_dir, "--energy", "--engines-one-by-one", *extra)
+    one_thread = outputs(1, build_dir, "--energy", *extra)
+    assert (int(fused["fused"]), int(engines["fused"])) == (STEPS, 0)
+    assert "plastDissip=0.0 " not in fused["energy"] and "nonviscDamp=0.0 " not in fused["energy"]
+    for other in (engines, one_thread):
+        assert (fused["hash"], fused["energy"]) == (other["hash"], other["energy"])
+
+
+@needs_openmp
 def test_fused_step_goes_on_past_a_counted_overlap(build_dir):
     """With O.overlapStops off an overlap beyond maxOverlapRatio is counted and the step goes
     on: the fused step integrates the bodies as the engines do."""

@@ -256,8 +256,8 @@ class Scene(OmegaMethods, CheckpointMethods):
     def fusedSteps(self) -> int:
         """Steps run fused: ForceResetter, collider, InteractionLoop (one law) and
         NewtonIntegrator in one parallel region (two with engines between the loop and the
-        integrator), other engines in their place; no timing or energy tracking, at least 1024
-        bodies. The same results as the engines one by one, faster."""
+        integrator or with energy tracked), other engines in their place; timing off, at least
+        1024 bodies. The same results as the engines one by one, faster."""
         return self._cpp.fusedSteps
 
     @property
