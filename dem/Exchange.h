@@ -16,7 +16,7 @@ namespace talus::dem
 ///
 /// - read particle state as arrays indexed by body id (spans over the core's own storage, no
 ///   copies; valid until bodies are added): positions, velocities, angular velocities, radii,
-///   masses, and which ids are live spheres;
+///   masses, and which ids are live spheres; the contact list, read only;
 /// - apply forces and torques: `persistentForces()` keeps a value until the coupling changes it
 ///   (Yade's permanent forces), `stepForces()` is this step's accumulator, reset by the
 ///   ForceResetter, to be added to from a hook placed after it;
@@ -48,6 +48,10 @@ public:
     const auto i = static_cast<std::size_t>(id);
     return i < scene_.bodies.size() && scene_.bodies.alive[i] && scene_.bodies.shape[i] == ShapeKind::Sphere;
   }
+
+  /// The contact list, read only (pairs, overlaps, forces): for exchanges through the contacts,
+  /// such as heat conduction between particles.
+  [[nodiscard]] const Contacts& contacts() const { return scene_.contacts; }
 
   [[nodiscard]] std::span<Vec3> persistentForces() { return scene_.bodies.extForce; }
   [[nodiscard]] std::span<Vec3> persistentTorques() { return scene_.bodies.extTorque; }

@@ -67,6 +67,7 @@ void setProfile(VansFluid& fluid, const Array& values)
 PYBIND11_MODULE(_flow, m)
 {
   void registerPoreFlow(py::module_&); registerPoreFlow(m); // pore flow: pore_wrappers.cpp
+  void registerThermal(py::module_&); registerThermal(m); // heat conduction: thermal_wrappers.cpp
   m.doc() = "Compiled core of talus.flow (use the talus package, not this module)";
 
   py::enum_<MixingLengthModel>(m, "MixingLengthModel")

@@ -11,6 +11,7 @@
 #include <pybind11/functional.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <string>
 
 namespace py = pybind11;
@@ -189,6 +190,21 @@ void registerPoreFlow(py::module_& m)
           for (int k = 0; k < 4; ++k)
             out(static_cast<py::ssize_t>(i), k) = net.vertices[static_cast<std::size_t>(net.pores[i].vertices[k])].id;
         return a;
+      })
+      .def("boundarySphereIds", [](const PoreFlow& f, int k) {
+        // body ids of the spheres sharing a pore with boundary k (vertex k), in ascending order
+        if (k < 0 || k >= kBoundaries)
+          throw py::index_error("boundary index must be 0..5");
+        const auto& net = f.network();
+        std::vector<std::int64_t> ids;
+        for (const auto& pore : net.pores)
+          if (std::find(pore.vertices.begin(), pore.vertices.end(), k) != pore.vertices.end())
+            for (const auto v : pore.vertices)
+              if (v >= kBoundaries)
+                ids.push_back(net.vertices[static_cast<std::size_t>(v)].id);
+        std::sort(ids.begin(), ids.end());
+        ids.erase(std::unique(ids.begin(), ids.end()), ids.end());
+        return ids;
       })
       .def("poreNeighbours", [](const PoreFlow& f) {
         const auto& pores = f.network().pores;

@@ -18,7 +18,11 @@ RULES: list[tuple[str, str]] = [
     (r"LevelSet|FastMarchingMethod", "level-set shapes"),
     (r"Tetra|DeformableElement|deformableelementsutils|DeformableCohesive|\bNode\b|_Node_|InternalForce|LinIsoElastMat|"
      r"LinIsoRayleighDampElastMat|LinCohesive", "tetrahedra and deformable elements"),
-    (r"Thermal", "thermal coupling (ThermalEngine; planned)"),
+    # ThermalEngine conducts between particles; its couplings with the pore fluid are planned
+    (r"ThermalState|\bthermalEngine\s*=\s*(True|1)\b|"
+     r"\.(advection|fluidConduction|thermoMech|solidThermoMech|fluidThermoMech)\s*=\s*(True|1)\b",
+     "thermal coupling with the pore fluid and thermal expansion (ThermalEngine's advection, fluidConduction, "
+     "thermoMech; planned)"),
     (r"TwoPhaseFlowEngine|UnsaturatedEngine|PhaseCluster", "two-phase pore flow (TwoPhaseFlowEngine; planned)"),
     (r"Cpm", "concrete (CPM) model"),
     (r"WireMat|WirePhys|WireState", "wire mesh model"),

@@ -361,6 +361,28 @@ class State(Serializable):
         object.__setattr__(self, "_scene", scene)
         object.__setattr__(self, "_id", id)
 
+    # Per-body fields an engine of the scene computes (ThermalEngine: temp, k, Cp): Yade keeps them
+    # in the body's state (ThermalState); Talus in the engine, which lists them in _bodyFields()
+    # as name -> (get(id), set(id, value)).
+    def _engine_field(self, name):
+        for engine in self._scene.engines:
+            fields = engine._bodyFields() if hasattr(engine, "_bodyFields") else {}
+            if name in fields:
+                return fields[name]
+        raise AttributeError(f"'State' object has no attribute {name!r} (nor has any engine of the scene "
+                             f"such a per-body field)")
+
+    def __getattr__(self, name):
+        if name.startswith("_"):
+            raise AttributeError(name)
+        return self._engine_field(name)[0](self._id)
+
+    def __setattr__(self, name, value):
+        if hasattr(type(self), name):
+            object.__setattr__(self, name, value)
+        else:
+            self._engine_field(name)[1](self._id, value)
+
     def _row(self, name):
         return getattr(self._scene._cpp, name)()[self._id]
 

@@ -278,7 +278,8 @@ class PvdCollection:
 _WRITERS = {"spheres": write_spheres, "facets": write_facets, "walls": write_walls, "boxes": write_boxes,
             "intrs": write_contacts, "pericell": write_periodic_cell}
 _RECORDERS = {"spheres": ("spheres",), "facets": ("facets",), "walls": ("walls",), "boxes": ("walls", "boxes"),
-              "intr": ("intrs",), "pericell": ("pericell",), "all": ("spheres", "facets", "walls", "boxes", "intrs")}
+              "intr": ("intrs",), "pericell": ("pericell",), "all": ("spheres", "facets", "walls", "boxes", "intrs"),
+              "thermal": ("spheres",)}
 # Yade recorders whose data the sphere file always holds (colours: the facet and box files too).
 _INCLUDED = {"velocity", "id", "ids", "materialId", "mass", "force", "color", "colors"}
 
@@ -290,8 +291,9 @@ class VTKRecorder(PyRunner):
     ``...walls...`` and ``...intrs...`` (the contact network), each series listed in
     ``{fileName}spheres.pvd`` etc. for ParaView. ``recorders``: any of ``spheres``, ``facets``,
     ``walls``, ``boxes`` (Box bodies as hexahedra, and walls as Yade's ``boxes`` does), ``intr``,
-    ``pericell`` (the periodic cell; nothing in a scene that is not periodic), or ``all`` (all but
-    ``pericell``, as Yade's); Yade's ``velocity``, ``ids``, ``colors``,
+    ``pericell`` (the periodic cell; nothing in a scene that is not periodic), ``thermal`` (the
+    sphere file gets the per-body fields of the scene's ThermalEngine: ``temp``, ``k``, ``Cp``), or
+    ``all`` (all but ``pericell``, as Yade's); Yade's ``velocity``, ``ids``, ``colors``,
     ``materialId``, ``mass``, ``force`` are accepted (the sphere file always has them).
     ``wallSize``: side of the squares drawn for walls (default: from the spheres' extent).
     Folders in ``fileName`` are created. Usable in ``O.engines`` and saved by ``O.save``.
@@ -328,6 +330,8 @@ class VTKRecorder(PyRunner):
             path = f"{self.fileName}{kind}.{scene.iter}.vtu"
             if kind == "walls":
                 write_walls(scene, path, self.wallSize)
+            elif kind == "spheres" and "thermal" in self.recorders:
+                write_spheres(scene, path, _engine_sphere_arrays(scene))
             else:
                 _WRITERS[kind](scene, path)
             self._collection(kind).add(scene.time, path)
@@ -350,6 +354,20 @@ class VTKRecorder(PyRunner):
     def _io_restore(self, state):
         self._series = {kind: PvdCollection(f"{self.fileName}{kind}.pvd", [tuple(e) for e in entries])
                         for kind, entries in state.items()}
+
+
+def _engine_sphere_arrays(scene: "Scene") -> dict:
+    """The per-sphere arrays engines of ``scene`` add to the sphere file (``_vtkSphereArrays(ids)``:
+    name -> array over the live spheres in id order; ThermalEngine's temperatures)."""
+    ids = scene.sphere_ids()
+    arrays = {}
+    for engine in scene.engines:
+        if hasattr(engine, "_vtkSphereArrays"):
+            arrays.update(engine._vtkSphereArrays(ids))
+    if not arrays:
+        raise ValueError("VTKRecorder: the 'thermal' recorder needs a ThermalEngine in O.engines (no engine gives "
+                         "the spheres temperatures)")
+    return arrays
 
 
 class VTKExporter:

@@ -38,8 +38,9 @@ def check_sphere_count(count: float, what: str) -> None:
 def _lattice_points(predicate, radius: float, gap: float, kind: str) -> np.ndarray:
     """The lattice points of Yade's regularHexa / regularOrtho over the predicate's box, in
     Yade's order (x slowest)."""
-    if not radius > 0 or not gap >= 0:
-        raise ValueError(f"regular packing: radius must be positive and gap >= 0, got {radius}, {gap}")
+    # A small negative gap is Yade's way of making the neighbours touch (overlap -gap).
+    if not radius > 0 or not 2 * radius + gap > 0:
+        raise ValueError(f"regular packing: radius must be positive and gap > -2 radius, got {radius}, {gap}")
     a = 2 * radius + gap
     lo, hi = (np.asarray(x, dtype=float) for x in predicate.aabb())
     dim = hi - lo

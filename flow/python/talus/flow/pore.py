@@ -44,6 +44,10 @@ _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
             "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness")
 
+# Yade's FlowEngine attributes of the thermal coupling (pore temperatures; planned)
+_THERMAL_ATTRIBUTES = ("thermalEngine", "tZero", "bndCondIsTemperature", "thermalBndCondValue",
+                       "tempDependentViscosity", "thermalPorosity")
+
 # the real numbers among them (the others are flags and the solver's number)
 _REALS = ("permeabilityFactor", "viscosity", "minKdivKmean", "maxKdivKmean", "tolerance", "relax",
           "fluidBulkModulus", "eps", "stiffness")
@@ -175,6 +179,9 @@ class FlowEngine(Engine):
             if name == "useSolver" and int(value) not in (0, 3):
                 raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD)")
             setattr(params, name, _finite_number(name, value) if name in _REALS else value)
+        elif name in _THERMAL_ATTRIBUTES:
+            raise NotImplementedError(f"FlowEngine.{name}: the pore temperatures of the thermal coupling are not "
+                                      "implemented yet in Talus (planned, docs/thermal.md)")
         else:
             raise AttributeError(f"FlowEngine has no attribute {name!r}")
         self._flow.params = params
@@ -256,6 +263,28 @@ class FlowEngine(Engine):
         if hidden:
             warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
                           "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
+
+    def emulateAction(self):
+        """Run the engine's action once now (Yade's): triangulate (at the first call or when
+        ``updateTriangulation`` is set), solve, add the fluid forces. With no pressure imposed on
+        any boundary and an incompressible fluid (a FlowEngine kept for its triangulation only, as
+        in Yade's ThermalEngine examples, where Yade's solve fails and goes on) the network is
+        built and no pressure is solved, with a warning."""
+        if not any(self.bndCondIsPressure) and self.fluidBulkModulus == 0:
+            from talus.dem import O
+            # the build sets up the pressure system, which needs an imposed pressure: one for the
+            # build only (the next solve sees the boundary types changed and sets it up again)
+            types = self.bndCondIsPressure
+            self.bndCondIsPressure = [True] + types[1:]
+            try:
+                self.triangulateScene(self._scene or O)
+            finally:
+                self.bndCondIsPressure = types
+            self._rebuild = False
+            warnings.warn("FlowEngine.emulateAction: no boundary imposes a pressure (bndCondIsPressure all off): "
+                          "the pore network is built, no pressure is solved", RuntimeWarning, stacklevel=2)
+            return
+        self._step()
 
     def moveVertices(self, positions, dt: float, boundaryPositions=None):
         """Move the spheres (same order as in ``triangulate``) and, optionally, the six

@@ -1,0 +1,397 @@
+"""Heat transfer in a sphere packing (Yade's ``ThermalEngine``; Caulk, Scholtès, Krzaczek &
+Chareyre 2020, "A pore-scale thermo-hydro-mechanical model for particulate systems", CMAME).
+
+Available now: conduction between particles in contact, one temperature per sphere, explicit in
+time::
+
+    C_i dT_i/dt = sum_j G_ij (T_j - T_i),   C_i = m_i particleCp,
+    G_ij = 2 (k_i + k_j) r_i r_j / d_ij     (d_ij the distance between the centres)
+
+or, with ``useKernMethod``, ``G_ij = 2 (k_i + k_j) rc² / d_ij`` with rc the radius of the circle
+where the two spheres intersect. ``m_i`` is the body's mass, or ``particleDensity`` x volume
+when ``particleDensity`` > 0. Temperature boundaries (``bndCondIsTemperature``,
+``thermalBndCondValue``, numbered as Yade's ``wallIds``: xmin, xmax, ymin, ymax, zmin, zmax)
+hold the spheres that share a pore with that boundary in the triangulation of the scene's
+``FlowEngine``, as Yade does; without boundaries no FlowEngine is needed (DEM-only conduction).
+
+Heat through the fluid, advection by the pore fluxes and thermal expansion are planned: their
+switches (``fluidConduction``, ``advection``, ``thermoMech``, ``solidThermoMech``,
+``fluidThermoMech``, all on by default in Yade) must be set False, and a run stops at its first
+step naming those left on. See ``docs/thermal.md``.
+
+    thermal = ThermalEngine(label="thermal", advection=False, fluidConduction=False, thermoMech=False,
+                            solidThermoMech=False, fluidThermoMech=False, particleT0=400, particleK=2,
+                            particleCp=710, particleDensity=2600, tsSafetyFactor=0,
+                            bndCondIsTemperature=[1, 1, 0, 0, 0, 0])
+    ...
+    print(O.bodies[10].state.temp, thermal.thermalBndFlux)
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+
+import numpy as np
+
+from talus import _flow
+from talus.dem.engines import Engine, PyRunner
+
+ABSOLUTE_ZERO = -273.15   # °C: Yade's scripts use °C or K, so no temperature may go below it
+
+# Yade 2023.02a's parameters of ThermalEngine and their defaults, by how Talus treats them.
+_IMPLEMENTED = {
+    "conduction": True, "tsSafetyFactor": 0.8, "particleT0": 0.0, "particleK": 3.0, "particleCp": 750.0,
+    "particleDensity": 0.0, "bndCondIsTemperature": [False] * 6, "thermalBndCondValue": [0.0] * 6,
+    "useKernMethod": False, "boundarySet": False, "delT": 0.0, "debug": False,
+}
+# Switches of the planned physics, with what they switch on.
+_PLANNED_SWITCHES = {
+    "advection": (True, "heat advection by the pore fluxes"),
+    "fluidConduction": (True, "conduction through the pore fluid"),
+    "thermoMech": (True, "thermal expansion of the particles (radius change)"),
+    "solidThermoMech": (True, "pore volume change from the particles' expansion"),
+    "fluidThermoMech": (True, "pore pressure change from the fluid's expansion"),
+    "useHertzMethod": (False, "the Hertzian contact area for the conductance"),
+    "letThermalRunFlowForceUpdates": (False, "fluid force updates after thermal pressure changes"),
+    "tempDependentFluidBeta": (False, "a temperature-dependent fluid expansion coefficient"),
+}
+# Numbers only the planned physics reads: accepted (and checked) so that scripts setting them run;
+# they take effect with their switch.
+_PLANNED_NUMBERS = {
+    "fluidK": 0.58, "fluidBeta": 2e-4, "fluidBulkModulus": 0.0, "particleAlpha": 1.16e-5, "porosityFactor": 0.0,
+    "fluidConductionAreaFactor": 1.0, "minimumFluidCondDist": 0.0, "uniformReynolds": -1.0,
+}
+_PLANNED_FLAGS = {"ignoreFictiousConduction": False, "unboundCavityBodies": True, "flowTempBoundarySet": True}
+_NONNEGATIVE = ("particleK", "particleDensity", "fluidK", "fluidBulkModulus", "porosityFactor",
+                "fluidConductionAreaFactor", "minimumFluidCondDist")
+_BOUNDARY_NAMES = "xmin, xmax, ymin, ymax, zmin, zmax"
+
+
+def _defaults() -> dict:
+    return {**_IMPLEMENTED, **{k: v for k, (v, _) in _PLANNED_SWITCHES.items()}, **_PLANNED_NUMBERS, **_PLANNED_FLAGS}
+
+
+def _number(name: str, value) -> float:
+    if isinstance(value, (str, bytes, bool)):
+        raise TypeError(f"ThermalEngine.{name} must be a number, got {value!r}")
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise TypeError(f"ThermalEngine.{name} must be a number, got {value!r}") from None
+    if not math.isfinite(number):
+        raise ValueError(f"ThermalEngine.{name} must be finite, got {value!r}")
+    return number
+
+
+def _temperature(name: str, value) -> float:
+    t = _number(name, value)
+    if t < ABSOLUTE_ZERO:
+        raise ValueError(f"{name} = {t} is below absolute zero (-273.15 °C, 0 K)")
+    return t
+
+
+def _six(name: str, value) -> list:
+    values = [value] if isinstance(value, (str, bytes)) else list(np.ravel(value))
+    if len(values) != 6:
+        raise ValueError(f"ThermalEngine.{name} needs 6 values ({_BOUNDARY_NAMES}), got {value!r}")
+    return values
+
+
+def _check(name: str, value):
+    """The value ``name`` takes, or the error that names it."""
+    if name == "bndCondIsTemperature":
+        flags = _six(name, value)
+        if not all(isinstance(v, (bool, int, np.integer, np.bool_)) and v in (0, 1) for v in flags):
+            raise TypeError(f"ThermalEngine.{name} must be 6 booleans (True/False or 1/0), got {value!r}")
+        return [bool(v) for v in flags]
+    if name == "thermalBndCondValue":
+        return [_temperature(f"ThermalEngine.{name}[{k}]", v) for k, v in enumerate(_six(name, value))]
+    if name == "particleT0":
+        return _temperature("ThermalEngine.particleT0", value)
+    if name in _PLANNED_SWITCHES or name in _PLANNED_FLAGS or isinstance(_IMPLEMENTED.get(name), bool):
+        if not isinstance(value, (bool, int, np.integer, np.bool_)) or value not in (0, 1):
+            raise TypeError(f"ThermalEngine.{name} must be True or False, got {value!r}")
+        return bool(value)
+    number = _number(name, value)
+    if name == "particleCp" and number <= 0:
+        raise ValueError(f"ThermalEngine.particleCp must be > 0 (J/(kg K)), got {number}")
+    if name in _NONNEGATIVE and number < 0:
+        raise ValueError(f"ThermalEngine.{name} must be >= 0, got {number}")
+    if name == "tsSafetyFactor" and number > 1:
+        raise ValueError(f"ThermalEngine.tsSafetyFactor = {number}: above 1 the explicit conduction step overshoots "
+                         "the stable one; use (0, 1], or <= 0 for a thermal step equal to O.dt")
+    return number
+
+
+def _per_body(field: str, parameter: str, value) -> float:
+    """A per-body value (state.k, state.Cp) under the rule of the engine's parameter."""
+    try:
+        return _check(parameter, value)
+    except (TypeError, ValueError) as e:
+        raise type(e)(str(e).replace(f"ThermalEngine.{parameter}", f"state.{field}")) from None
+
+
+def _planned(name: str) -> NotImplementedError:
+    return NotImplementedError(f"ThermalEngine.{name}: {_PLANNED_SWITCHES[name][1]} is not implemented yet in Talus "
+                               f"(planned, docs/thermal.md); set ThermalEngine.{name} = False")
+
+
+def _encode(array) -> str:
+    return base64.b64encode(np.ascontiguousarray(array, dtype="<f8").tobytes()).decode("ascii")
+
+
+def _decode(text: str) -> np.ndarray:
+    return np.frombuffer(base64.b64decode(text), dtype="<f8").copy()
+
+
+class ThermalEngine(Engine):
+    """Heat conduction between particles with Yade's ThermalEngine names (see the module
+    docstring). Placed in ``O.engines`` after the FlowEngine (Yade's order) and before the
+    NewtonIntegrator; every sphere of the scene gets ``state.temp``, ``state.k``, ``state.Cp``
+    (Yade's ThermalState) and ``state.Tcondition`` (read only: held by a boundary).
+
+    Time step (``tsSafetyFactor``): <= 0, conduction each step with O.dt, and a run whose O.dt is
+    above the stable conduction step stops with a message; in (0, 1] (default 0.8, as Yade),
+    conduction every ``getConductionIterPeriod()`` steps over the time elapsed, the period chosen
+    so that this stays below tsSafetyFactor x the stable step, and in sub-steps of that size when
+    it is below O.dt (where Yade would run one unstable step). The stable step is
+    min_i C_i / sum_j G_ij (``getMaxTimeStep()``).
+
+    Outputs: ``thermalBndFlux`` (W into each boundary's particles during the last conduction
+    step, positive when the packing is hotter; Yade's), ``thermalBndHeat`` (J received by each
+    boundary since the start; Talus), VTKRecorder's ``thermal`` recorder (``temp``, ``k``, ``Cp``
+    in the sphere file), checkpoints (O.save keeps the temperatures)."""
+
+    def __init__(self, scene=None, **attrs):
+        """``scene``: the talus.dem scene the engine acts on (default ``talus.dem.O``); the other
+        keywords set Yade's attributes."""
+        self._scene = scene
+        self._params = _defaults()
+        self._conduction = None      # the C++ state, made on first use (it needs the scene)
+        self._schedule = _flow.ConductionSchedule()
+        self._started = False
+        self._userSet: set[int] = set()     # bodies whose fields were set before the first step
+        self._pendingState = None    # a checkpoint's state, applied once the scene is known
+        self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp
+        self._cpp.resumable = False   # a failed step may have advanced part of the temperatures
+        for name, value in attrs.items():
+            setattr(self, name, value)
+
+    # --- Yade's attributes ----------------------------------------------------------------
+    def __setattr__(self, name, value):
+        if name.startswith("_") or isinstance(getattr(type(self), name, None), property):
+            object.__setattr__(self, name, value)
+            return
+        if name not in self._params:
+            raise AttributeError(f"ThermalEngine has no attribute {name!r}")
+        value = _check(name, value)
+        if name in _PLANNED_SWITCHES and value:
+            raise _planned(name)
+        self._params[name] = value
+
+    def __getattr__(self, name):
+        params = object.__getattribute__(self, "_params")
+        if name in params:
+            value = params[name]
+            return list(value) if isinstance(value, list) else value
+        raise AttributeError(f"ThermalEngine has no attribute {name!r}")
+
+    @property
+    def thermalBndFlux(self) -> list[float]:
+        """Heat rate (W) into each boundary's particles during the last conduction step."""
+        return [0.0] * 6 if self._conduction is None else list(self._conduction.boundaryFlux())
+
+    @property
+    def thermalBndHeat(self) -> list[float]:
+        """Heat (J) received by each boundary's particles since the start (Talus)."""
+        return [0.0] * 6 if self._conduction is None else list(self._conduction.boundaryHeat())
+
+    @property
+    def lenBodies(self) -> int:
+        """Bodies the per-body arrays cover (Yade's)."""
+        return 0 if self._conduction is None else len(self._conduction.temperatures())
+
+    def getThermalDT(self) -> float:
+        """Time covered by the last conduction run (Yade's)."""
+        return self._schedule.thermalDT()
+
+    def getMaxTimeStep(self) -> float:
+        """Stable conduction step at the last run: min_i C_i / sum_j G_ij (Yade's)."""
+        return self._schedule.maxTimeStep()
+
+    def getConductionIterPeriod(self) -> int:
+        """DEM steps between conduction runs (Yade's)."""
+        return self._schedule.conductionIterPeriod()
+
+    def checkThermal(self) -> bool:
+        """Yade's: whether every body has a thermal state. Always True in Talus: the engine holds
+        the temperatures of every body."""
+        return True
+
+    def makeThermal(self) -> None:
+        """Yade's: give bodies thermal states. Nothing to do in Talus (see checkThermal)."""
+
+    def setReynoldsNumbers(self) -> None:
+        raise _planned("advection")
+
+    # --- the engine's action --------------------------------------------------------------
+    def _scene_(self):
+        from talus.dem import O
+        return self._scene or O
+
+    def _state(self):
+        """The C++ per-body state, made on first use with the current defaults."""
+        if self._conduction is None:
+            self._conduction = _flow.ParticleConduction(self._scene_()._cpp)
+            self._push_parameters()
+            if self._pendingState is not None:
+                self._restore(self._pendingState)
+                self._pendingState = None
+        self._conduction.resize()
+        return self._conduction
+
+    def _push_parameters(self):
+        p, c = self._params, self._conduction
+        c.initialTemperature = p["particleT0"]
+        c.defaultConductivity = p["particleK"]
+        c.defaultHeatCapacity = p["particleCp"]
+        c.particleDensity = p["particleDensity"]
+        c.conductance = _flow.ContactConductance.Kern if p["useKernMethod"] else _flow.ContactConductance.Radii
+        self._schedule.tsSafetyFactor = p["tsSafetyFactor"]
+
+    def _start(self, scene):
+        """First step: refuse the planned physics left on, and give every sphere Yade's initial
+        values (particleT0, particleK, particleCp) except the fields set by hand before."""
+        on = [name for name in _PLANNED_SWITCHES if self._params[name]]
+        if on:
+            raise NotImplementedError(
+                "ThermalEngine: " + "; ".join(f"{n} ({_PLANNED_SWITCHES[n][1]})" for n in on) + " not implemented yet "
+                "in Talus (planned, docs/thermal.md). Yade's defaults switch them on: set "
+                + ", ".join(f"{n}=False" for n in on))
+        c = self._state()
+        keep = np.zeros(len(c.temperatures()), dtype=bool)
+        keep[[i for i in self._userSet if i < len(keep)]] = True
+        for getter, setter, default in ((c.temperatures, c.setTemperatures, self._params["particleT0"]),
+                                        (c.conductivities, c.setConductivities, self._params["particleK"]),
+                                        (c.heatCapacities, c.setHeatCapacities, self._params["particleCp"])):
+            setter(np.where(keep, getter(), default))
+        self._started = True
+
+    def _set_boundaries(self, scene):
+        """Hold the spheres of each temperature boundary (Yade's setConductionBoundary)."""
+        c = self._state()
+        c.clearBoundaries()
+        wanted = [k for k in range(6) if self._params["bndCondIsTemperature"][k]]
+        if wanted:
+            flow = self._flow_engine(scene)
+            for k in wanted:
+                c.imposeTemperature(k, flow._flow.boundarySphereIds(k), self._params["thermalBndCondValue"][k])
+        self._params["boundarySet"] = True
+
+    @staticmethod
+    def _flow_engine(scene):
+        from talus.flow.pore import FlowEngine
+        flows = [e for e in scene.engines if isinstance(e, FlowEngine)]
+        if not flows:
+            raise ValueError("ThermalEngine.bndCondIsTemperature: temperature boundaries hold the spheres next to "
+                             "each boundary of a FlowEngine's triangulation, and O.engines has no FlowEngine (add one, "
+                             "dead after flow.emulateAction() if no flow is wanted, as in Yade's examples)")
+        if flows[0].nCells() == 0:
+            raise ValueError("ThermalEngine.bndCondIsTemperature: the FlowEngine has not triangulated the packing yet: "
+                             "put it before the ThermalEngine in O.engines or call flow.emulateAction() first")
+        return flows[0]
+
+    def _step(self):
+        scene = self._scene_()
+        c = self._state()
+        self._push_parameters()
+        if not self._started:
+            self._start(scene)
+        if not self._params["boundarySet"]:
+            self._set_boundaries(scene)
+        if self._params["delT"] != 0:   # once, to the free spheres (Yade's delT)
+            t = c.temperatures()
+            free = np.asarray(c.boundaries()) < 0
+            t[free] += self._params["delT"]
+            c.setTemperatures(t)
+            self._params["delT"] = 0.0
+        if self._params["conduction"]:
+            self._schedule.step(c, scene.dt)
+
+    # --- per-body fields (state.temp, state.k, state.Cp, state.Tcondition) -------------------
+    def _bodyFields(self):
+        def field(getter, setter, check):
+            def get(i):
+                self._scene_()._cpp.checkBody(i)
+                return float(getter()[i])
+
+            def set(i, value):
+                self._scene_()._cpp.checkBody(i)
+                values = getter()
+                values[i] = check(value)
+                setter(values)
+                if not self._started:
+                    self._userSet.add(i)
+            return get, set
+
+        def read_only(name):
+            def refuse(i, value):
+                raise AttributeError(f"state.{name} is set by ThermalEngine.bndCondIsTemperature, not per body")
+            return refuse
+
+        c = self._state()
+        return {
+            "temp": field(c.temperatures, c.setTemperatures, lambda v: _temperature("state.temp", v)),
+            "k": field(c.conductivities, c.setConductivities, lambda v: _per_body("k", "particleK", v)),
+            "Cp": field(c.heatCapacities, c.setHeatCapacities, lambda v: _per_body("Cp", "particleCp", v)),
+            "Tcondition": (lambda i: bool(c.boundaries()[i] >= 0), read_only("Tcondition")),
+        }
+
+    def _vtkSphereArrays(self, ids):
+        c = self._state()
+        return {"temp": c.temperatures()[ids], "k": c.conductivities()[ids], "Cp": c.heatCapacities()[ids]}
+
+    # --- checkpoints ------------------------------------------------------------------------
+    def _io_params(self):
+        # what differs from Yade's defaults (those of the planned switches are refused when given)
+        defaults = _defaults()
+        return {name: value for name, value in self._params.items()
+                if name not in ("boundarySet", "delT") and value != defaults[name]}
+
+    def _io_state(self):
+        if self._conduction is None:
+            return {}
+        c, n = self._conduction, self._schedule.counters()
+        return {"temp": _encode(c.temperatures()), "k": _encode(c.conductivities()), "Cp": _encode(c.heatCapacities()),
+                "boundary": [int(b) for b in c.boundaries()], "heat": list(c.boundaryHeat()),
+                "started": self._started, "boundarySet": self._params["boundarySet"],
+                "values": list(self._params["thermalBndCondValue"]),
+                "counters": [n.runs, n.sinceRun, n.period, n.timeSinceRun, n.thermalDT, n.maxTimeStep]}
+
+    def _io_restore(self, state):
+        if state:
+            self._pendingState = state
+            self._conduction = None
+
+    def _restore(self, state):
+        c = self._conduction
+        c.resize()
+        n = len(c.temperatures())
+        for key, setter in (("temp", c.setTemperatures), ("k", c.setConductivities), ("Cp", c.setHeatCapacities)):
+            saved = _decode(state[key])
+            if len(saved) != n:
+                raise ValueError(f"ThermalEngine: the checkpoint holds {key} for {len(saved)} bodies, the scene has {n}")
+            setter(saved)
+        boundary = np.asarray(state["boundary"])
+        for k in range(6):
+            ids = [int(i) for i in np.flatnonzero(boundary == k)]
+            if ids:
+                c.imposeTemperature(k, ids, state["values"][k])
+        c.setBoundaryHeat(state["heat"])
+        counters = _flow.ConductionCounters()
+        (counters.runs, counters.sinceRun, counters.period, counters.timeSinceRun, counters.thermalDT,
+         counters.maxTimeStep) = state["counters"]
+        self._schedule.setCounters(counters)
+        self._started = state["started"]
+        self._params["boundarySet"] = state["boundarySet"]

@@ -1,0 +1,96 @@
+// Python bindings of the heat conduction between particles (flow/thermal/): no logic, only the
+// mapping of C++ names to Python. The typed, documented API with Yade's names is
+// talus.flow.thermal.ThermalEngine.
+#include "dem/Scene.h"
+#include "flow/thermal/ConductionSchedule.h"
+#include "flow/thermal/ParticleConduction.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using namespace talus::flow::thermal;
+
+namespace
+{
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// A per-body array as numpy (a copy: the owner grows with the scene).
+Array copy(const std::vector<double>& v)
+{
+  return Array(static_cast<py::ssize_t>(v.size()), v.data());
+}
+
+/// Replace a per-body array by `values`, one per body.
+void assign(std::vector<double>& target, const Array& values, const char* name)
+{
+  if (values.ndim() != 1 || static_cast<std::size_t>(values.size()) != target.size())
+    throw py::value_error(std::string(name) + " needs one value per body (" + std::to_string(target.size()) + ")");
+  target.assign(values.data(), values.data() + values.size());
+}
+} // namespace
+
+void registerThermal(py::module_& m)
+{
+  py::enum_<ContactConductance>(m, "ContactConductance")
+      .value("Radii", ContactConductance::Radii)
+      .value("Kern", ContactConductance::Kern);
+
+  // The scene type is registered by talus._dem (imported first by the talus package).
+  py::class_<ParticleConduction, std::shared_ptr<ParticleConduction>>(m, "ParticleConduction")
+      .def(py::init([](const std::shared_ptr<talus::dem::Scene>& scene) {
+             if (!scene)
+               throw std::invalid_argument("ParticleConduction: scene is None");
+             return std::make_shared<ParticleConduction>(talus::dem::ParticleExchange(*scene));
+           }),
+           py::arg("scene"), py::keep_alive<1, 2>())
+      .def_readwrite("initialTemperature", &ParticleConduction::initialTemperature)
+      .def_readwrite("defaultConductivity", &ParticleConduction::defaultConductivity)
+      .def_readwrite("defaultHeatCapacity", &ParticleConduction::defaultHeatCapacity)
+      .def_readwrite("particleDensity", &ParticleConduction::particleDensity)
+      .def_readwrite("conductance", &ParticleConduction::conductance)
+      .def("resize", &ParticleConduction::resize)
+      .def("temperatures", [](const ParticleConduction& c) { return copy(c.temperature); })
+      .def("setTemperatures", [](ParticleConduction& c, const Array& v) { assign(c.temperature, v, "temperatures"); })
+      .def("conductivities", [](const ParticleConduction& c) { return copy(c.conductivity); })
+      .def("setConductivities", [](ParticleConduction& c, const Array& v) { assign(c.conductivity, v, "conductivities"); })
+      .def("heatCapacities", [](const ParticleConduction& c) { return copy(c.heatCapacity); })
+      .def("setHeatCapacities", [](ParticleConduction& c, const Array& v) { assign(c.heatCapacity, v, "heat capacities"); })
+      .def("boundaries", [](const ParticleConduction& c) { return std::vector<int>(c.boundary.begin(), c.boundary.end()); })
+      .def("imposeTemperature", &ParticleConduction::imposeTemperature, py::arg("boundary"), py::arg("ids"), py::arg("value"))
+      .def("clearBoundaries", &ParticleConduction::clearBoundaries)
+      .def("computeRates", &ParticleConduction::computeRates)
+      .def("advance", &ParticleConduction::advance, py::arg("dt"))
+      .def("stableTimeStep", &ParticleConduction::stableTimeStep)
+      .def("limitingBody", &ParticleConduction::limitingBody)
+      .def("heatCapacityOf", &ParticleConduction::heatCapacityOf, py::arg("id"))
+      .def("boundaryFlux", [](const ParticleConduction& c) { return c.boundaryFlux(); })
+      .def("boundaryHeat", [](const ParticleConduction& c) { return c.boundaryHeat(); })
+      .def("setBoundaryHeat", [](ParticleConduction& c, const std::array<double, kBoundaries>& v) { c.boundaryHeat() = v; });
+
+  py::class_<ConductionSchedule::Counters>(m, "ConductionCounters")
+      .def(py::init<>())
+      .def_readwrite("runs", &ConductionSchedule::Counters::runs)
+      .def_readwrite("sinceRun", &ConductionSchedule::Counters::sinceRun)
+      .def_readwrite("period", &ConductionSchedule::Counters::period)
+      .def_readwrite("timeSinceRun", &ConductionSchedule::Counters::timeSinceRun)
+      .def_readwrite("thermalDT", &ConductionSchedule::Counters::thermalDT)
+      .def_readwrite("maxTimeStep", &ConductionSchedule::Counters::maxTimeStep);
+
+  py::class_<ConductionSchedule>(m, "ConductionSchedule")
+      .def(py::init<>())
+      .def_readwrite("tsSafetyFactor", &ConductionSchedule::tsSafetyFactor)
+      .def("step", &ConductionSchedule::step, py::arg("conduction"), py::arg("dt"))
+      .def("conductionIterPeriod", &ConductionSchedule::conductionIterPeriod)
+      .def("thermalDT", &ConductionSchedule::thermalDT)
+      .def("maxTimeStep", &ConductionSchedule::maxTimeStep)
+      .def("substeps", &ConductionSchedule::substeps)
+      .def("counters", &ConductionSchedule::counters)
+      .def("setCounters", &ConductionSchedule::setCounters);
+}

@@ -1,0 +1,105 @@
+#pragma once
+// Heat conduction between spheres in contact, with one temperature per particle (the
+// conduction part of Yade's ThermalEngine; Caulk, Scholtès, Krzaczek & Chareyre 2020, CMAME).
+#include "dem/Exchange.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace talus::flow::thermal
+{
+/// Number of boundaries of a packing, numbered as Yade's wallIds: xmin, xmax, ymin, ymax, zmin, zmax.
+inline constexpr int kBoundaries = 6;
+
+/// How the conductance of a contact is computed (Yade's useKernMethod; the default otherwise).
+enum class ContactConductance : std::uint8_t
+{
+  /// G = 2 (k1 + k2) r1 r2 / d, d = r1 + r2 - overlap: Yade's default, an area of the order of
+  /// the smaller cross-section whatever the overlap.
+  Radii,
+  /// G = 2 (k1 + k2) rc^2 / d with rc the radius of the circle where the two spheres intersect
+  /// (Kern and Bland's formula): the overlap decides the area.
+  Kern,
+};
+
+/// Temperatures of the spheres of a scene, advanced by explicit heat conduction through their
+/// contacts:
+///
+///     C_i dT_i/dt = sum_j G_ij (T_j - T_i),   C_i = m_i Cp_i
+///
+/// over the real sphere-sphere contacts of the scene (read through the particle exchange
+/// interface). m_i is the body's mass, or rho V_i when `particleDensity` > 0 (Yade's override,
+/// for scenes with scaled densities). Particles of a temperature boundary keep their
+/// temperature; the heat they receive is summed per boundary.
+///
+/// Per-body arrays are indexed by body id and grow with the scene; bodies that are not live
+/// spheres are left out of every sum.
+class ParticleConduction
+{
+public:
+  explicit ParticleConduction(dem::ParticleExchange exchange) : exchange_(exchange) {}
+
+  /// Values new spheres start with (Yade's particleT0, particleK, particleCp).
+  double initialTemperature = 0, defaultConductivity = 3.0, defaultHeatCapacity = 750.0;
+  /// > 0: the density of the heat capacity instead of the body's mass (Yade's particleDensity).
+  double particleDensity = 0;
+  ContactConductance conductance = ContactConductance::Radii;
+
+  /// Per body: temperature (K or °C, as the user's values), conductivity (W/(m K)) and specific
+  /// heat capacity (J/(kg K)); the boundary whose temperature it keeps, -1 for none.
+  std::vector<double> temperature, conductivity, heatCapacity;
+  std::vector<std::int8_t> boundary;
+
+  /// Give every body an entry (new ones get the defaults above).
+  void resize();
+  /// Hold `ids` at `value` as particles of boundary `k` (0..5).
+  /// @throws std::invalid_argument for a boundary outside 0..5 or an id that is not a live sphere
+  void imposeTemperature(int k, const std::vector<dem::BodyId>& ids, double value);
+  /// Release every particle held by a boundary.
+  void clearBoundaries();
+
+  /// Heat rates and conductance sums of the current contacts and temperatures (the first half
+  /// of a step; also gives stableTimeStep).
+  void computeRates();
+  /// Advance the temperatures by `dt` (s) with the rates of the last computeRates (explicit
+  /// Euler); the heat rate into each boundary during it is kept (boundaryFlux).
+  void applyRates(double dt);
+  /// computeRates then applyRates(dt).
+  void advance(double dt)
+  {
+    computeRates();
+    applyRates(dt);
+  }
+  /// The largest stable step of the explicit scheme at the last computeRates: min over free
+  /// spheres of C_i / sum_j G_ij; below it each new temperature is a weighted mean of old ones
+  /// (no overshoot, no growth). +inf without contacts.
+  [[nodiscard]] double stableTimeStep() const { return stableStep_; }
+  /// The body whose step limits stableTimeStep (-1: none).
+  [[nodiscard]] dem::BodyId limitingBody() const { return limitingBody_; }
+
+  /// Heat rate (W) from the packing into each boundary's particles during the last step
+  /// (Yade's thermalBndFlux: positive when the packing is hotter than the boundary).
+  [[nodiscard]] const std::array<double, kBoundaries>& boundaryFlux() const { return boundaryFlux_; }
+  /// Heat (J) received by each boundary since the start (Talus: the energy balance).
+  [[nodiscard]] const std::array<double, kBoundaries>& boundaryHeat() const { return boundaryHeat_; }
+  std::array<double, kBoundaries>& boundaryHeat() { return boundaryHeat_; }
+
+  /// Heat capacity C_i (J/K) of sphere `id`.
+  [[nodiscard]] double heatCapacityOf(dem::BodyId id) const;
+  /// Conductance (W/K) of a real sphere-sphere contact (see ContactConductance).
+  [[nodiscard]] double contactConductance(const dem::Contact& c) const;
+
+private:
+  /// Whether contact `c` conducts: real, between two live spheres.
+  [[nodiscard]] bool conducts(const dem::Contact& c) const;
+
+  dem::ParticleExchange exchange_;
+  std::vector<double> rate_;        ///< heat rate into each body (W)
+  std::vector<double> conductance_; ///< sum of the conductances of each body's contacts (W/K)
+  double stableStep_ = 0;
+  std::array<double, kBoundaries> boundaryFlux_{};
+  std::array<double, kBoundaries> boundaryHeat_{};
+  dem::BodyId limitingBody_ = -1;
+};
+} // namespace talus::flow::thermal
