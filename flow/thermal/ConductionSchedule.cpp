@@ -8,8 +8,6 @@ namespace talus::flow::thermal
 {
 void ConductionSchedule::step(ParticleConduction& conduction, double dt)
 {
-  timeSinceRun_ += dt;
-  ++sinceRun_;
   if (tsSafetyFactor <= 0)
   {
     conduction.computeRates();
@@ -31,6 +29,8 @@ void ConductionSchedule::step(ParticleConduction& conduction, double dt)
     timeSinceRun_ = 0;
     return;
   }
+  timeSinceRun_ += dt;
+  ++sinceRun_;
   // As Yade: the first call conducts over its own step, later ones once `period_` steps passed.
   if (runs_ > 0 && sinceRun_ < period_)
     return;

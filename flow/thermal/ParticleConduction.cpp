@@ -59,8 +59,8 @@ double ParticleConduction::contactConductance(const dem::Contact& c) const
   if (conductance == ContactConductance::Radii)
     return 2 * k * r1 * r2 / d;
   // Radius of the intersection circle of two spheres (Kern & Bland, Solid Mensuration, 1948):
-  // rc^2 = (d-r1-r2)(d+r1-r2)(d-r1+r2)(d+r1+r2) / (4 d^2), zero once they no longer overlap.
-  const double product = (d - r1 - r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2);
+  // rc^2 = (r1+r2-d)(d+r1-r2)(d-r1+r2)(d+r1+r2) / (4 d^2), zero once they no longer overlap.
+  const double product = (r1 + r2 - d) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2);
   const double rc2 = std::max(product, 0.0) / (4 * d * d);
   return 2 * k * rc2 / d;
 }

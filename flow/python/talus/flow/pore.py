@@ -264,6 +264,15 @@ class FlowEngine(Engine):
             warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
                           "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
 
+    def _io_params(self):
+        """What rebuilds the engine from a checkpoint: its label and parameters (the network is
+        rebuilt at its next step)."""
+        names = (*_BOUNDARY_LISTS, *_SCALARS, *_ENGINE_COUNTS, "defTolerance", "multithread")
+        params = {name: getattr(self, name) for name in names}
+        if self._wallIds is not None:
+            params["wallIds"] = list(self._wallIds)
+        return {"label": self.label, **params}
+
     def emulateAction(self):
         """Run the engine's action once now (Yade's): triangulate (at the first call or when
         ``updateTriangulation`` is set), solve, add the fluid forces. With no pressure imposed on

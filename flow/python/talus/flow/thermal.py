@@ -173,8 +173,8 @@ class ThermalEngine(Engine):
         self._started = False
         self._userSet: set[int] = set()     # bodies whose fields were set before the first step
         self._pendingState = None    # a checkpoint's state, applied once the scene is known
+        # every refusal comes before any temperature changes: a failed step can be resumed
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp
-        self._cpp.resumable = False   # a failed step may have advanced part of the temperatures
         for name, value in attrs.items():
             setattr(self, name, value)
 
@@ -310,14 +310,14 @@ class ThermalEngine(Engine):
             self._start(scene)
         if not self._params["boundarySet"]:
             self._set_boundaries(scene)
-        if self._params["delT"] != 0:   # once, to the free spheres (Yade's delT)
+        if self._params["conduction"]:
+            self._schedule.step(c, scene.dt)
+        if self._params["delT"] != 0:   # once, to the free spheres, after conduction (Yade's delT)
             t = c.temperatures()
             free = np.asarray(c.boundaries()) < 0
             t[free] += self._params["delT"]
             c.setTemperatures(t)
             self._params["delT"] = 0.0
-        if self._params["conduction"]:
-            self._schedule.step(c, scene.dt)
 
     # --- per-body fields (state.temp, state.k, state.Cp, state.Tcondition) -------------------
     def _bodyFields(self):
@@ -356,8 +356,8 @@ class ThermalEngine(Engine):
     def _io_params(self):
         # what differs from Yade's defaults (those of the planned switches are refused when given)
         defaults = _defaults()
-        return {name: value for name, value in self._params.items()
-                if name not in ("boundarySet", "delT") and value != defaults[name]}
+        return {"label": self.label, **{name: value for name, value in self._params.items()
+                                        if name not in ("boundarySet", "delT") and value != defaults[name]}}
 
     def _io_state(self):
         if self._conduction is None:
