@@ -324,28 +324,24 @@ class ThermalEngine(Engine):
         def field(getter, setter, check):
             def get(i):
                 self._scene_()._cpp.checkBody(i)
-                return float(getter()[i])
+                return getter(i)
 
             def set(i, value):
                 self._scene_()._cpp.checkBody(i)
-                values = getter()
-                values[i] = check(value)
-                setter(values)
+                setter(i, check(value))
                 if not self._started:
                     self._userSet.add(i)
             return get, set
 
-        def read_only(name):
-            def refuse(i, value):
-                raise AttributeError(f"state.{name} is set by ThermalEngine.bndCondIsTemperature, not per body")
-            return refuse
+        def refuse(i, value):
+            raise AttributeError("state.Tcondition is set by ThermalEngine.bndCondIsTemperature, not per body")
 
         c = self._state()
         return {
-            "temp": field(c.temperatures, c.setTemperatures, lambda v: _temperature("state.temp", v)),
-            "k": field(c.conductivities, c.setConductivities, lambda v: _per_body("k", "particleK", v)),
-            "Cp": field(c.heatCapacities, c.setHeatCapacities, lambda v: _per_body("Cp", "particleCp", v)),
-            "Tcondition": (lambda i: bool(c.boundaries()[i] >= 0), read_only("Tcondition")),
+            "temp": field(c.temperatureAt, c.setTemperatureAt, lambda v: _temperature("state.temp", v)),
+            "k": field(c.conductivityAt, c.setConductivityAt, lambda v: _per_body("k", "particleK", v)),
+            "Cp": field(c.heatCapacityAt, c.setHeatCapacityAt, lambda v: _per_body("Cp", "particleCp", v)),
+            "Tcondition": (lambda i: c.boundaryAt(i) >= 0, refuse),
         }
 
     def _vtkSphereArrays(self, ids):
