@@ -111,9 +111,11 @@ def _dem_cases():
         C("time stepper safety negative", lambda t: d.GlobalStiffnessTimeStepper(timestepSafetyCoefficient=-1), ValueError, r"timestepSafetyCoefficient must be positive"),
         C("collider skin NaN", lambda t: d.InsertionSortCollider(verletDist=NAN), ValueError, r"InsertionSortCollider.verletDist must be a number"),
         C("engine list of numbers", lambda t: setattr(_scene(), "engines", [5]), TypeError, r"O.engines takes engines, got 5"),
+        C("engine list not a list", lambda t: setattr(_scene(), "engines", 5), TypeError, r"O.engines takes a list of engines, got 5"),
         # run control and the periodic cell
         C("O.run negative steps", lambda t: _scene().run(-5, True), ValueError, r"O.run: nSteps must be >= 0"),
         C("O.dt NaN", lambda t: setattr(_scene(), "dt", NAN), ValueError, r"O.dt must be zero or positive and finite"),
+        C("O.dt a string", lambda t: setattr(_scene(), "dt", "abc"), TypeError, r"O.dt is a number of seconds, got 'abc'"),
         C("cell of zero volume", lambda t: _scene().cell.setBox(0, 1, 1), Exception, r"cell: hSize must be finite with a positive volume"),
         C("cell box negative", lambda t: _scene().cell.setBox(-1, 1, 1), Exception, r"cell: hSize must be finite with a positive volume"),
         # packings

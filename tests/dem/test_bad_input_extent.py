@@ -1,6 +1,7 @@
 """Scenes of absurd extent: the collider's grid stays proportional to the sphere count whatever
 the scene's shape (flat, long, a sparse periodic cell), and a body a step moved absurdly far is
 named instead of a raw allocation error."""
+import os
 import subprocess
 import sys
 import textwrap
@@ -35,7 +36,7 @@ SPARSE = {
 
 
 @pytest.mark.parametrize("scene", SPARSE.values(), ids=list(SPARSE))
-def test_sparse_scenes_of_any_shape_stay_small(scene):
+def test_sparse_scenes_of_any_shape_stay_small(scene, build_dir):
     # In a process of its own, to read its peak memory.
     code = textwrap.dedent(f"""
         import resource, sys
@@ -46,7 +47,8 @@ def test_sparse_scenes_of_any_shape_stay_small(scene):
         S.run(10)
         print(S.iter, (resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before) / 1024)
         """)
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    env = {**os.environ, "PYTHONPATH": str(build_dir / "python")}
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120, env=env)
     assert done.returncode == 0, done.stderr
     steps, grown_mb = done.stdout.split()
     assert int(steps) == 10

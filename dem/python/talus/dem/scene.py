@@ -5,12 +5,13 @@ from __future__ import annotations
 import atexit
 import builtins
 import math
+import numbers
 import shutil
 import tempfile
 import time
 import warnings
 import weakref
-from typing import Sequence
+from typing import Iterable, Sequence
 
 import numpy as np
 
@@ -267,6 +268,8 @@ class Scene(OmegaMethods, CheckpointMethods):
         return self._cpp.fusedOtherEnginesSeconds
 
     def _set_dt(self, value: float):
+        if isinstance(value, bool) or not isinstance(value, numbers.Real):
+            raise TypeError(f"O.dt is a number of seconds, got {value!r}")
         # Zero is Yade's way to apply what acts on velocities (a cell's velGrad, a clump's
         # velocity to its members) without moving anything. A negative value is Yade's way to
         # hand the step back to the time stepper (the step itself is kept until it acts).
@@ -310,6 +313,8 @@ class Scene(OmegaMethods, CheckpointMethods):
 
     @engines.setter
     def engines(self, engines: Sequence[Engine]):
+        if isinstance(engines, (Engine, str)) or not isinstance(engines, Iterable):
+            raise TypeError(f"O.engines takes a list of engines, got {engines!r}")
         engines = collapseDispatchers(list(engines))
         for e in engines:
             if not isinstance(e, Engine):
