@@ -143,16 +143,36 @@ def _functor(name: str, doc: str) -> type:
     return type(name, (Functor,), {"__doc__": doc})
 
 
-Bo1_Sphere_Aabb = _functor("Bo1_Sphere_Aabb", "Bounding box of spheres (accepted; Talus bounds shapes itself).")
+def _neutral_only(name: str, doc: str, parameter: str, neutral, meaning: str) -> type:
+    """A functor class taking Yade's `parameter` only at the values that change nothing
+    (``neutral(value)``), and naming it with what it would do (`meaning`) otherwise."""
+    def __init__(self, label: str = "", **params):
+        value = params.get(parameter)
+        if value is not None and not (isinstance(value, (int, float)) and not isinstance(value, bool) and neutral(value)):
+            raise ValueError(f"{name}.{parameter} = {value!r}: {meaning} is not implemented in Talus; "
+                             "leave it at Yade's default")
+        Functor.__init__(self, label, **params)
+
+    return type(name, (Functor,), {"__doc__": doc, "_parameters": (parameter,), "__init__": __init__})
+
+
+Bo1_Sphere_Aabb = _neutral_only(
+    "Bo1_Sphere_Aabb", "Bounding box of spheres (accepted; Talus bounds shapes itself). ``aabbEnlargeFactor``: "
+    "only the values that enlarge nothing (negative, Yade's default, or 1).",
+    "aabbEnlargeFactor", lambda f: f <= 0 or f == 1, "enlarging the bounding boxes (contacts at a distance)")
 Bo1_Wall_Aabb = _functor("Bo1_Wall_Aabb", "Bounding box of walls (accepted; Talus bounds shapes itself).")
 Bo1_Facet_Aabb = _functor("Bo1_Facet_Aabb", "Bounding box of facets (accepted; Talus bounds shapes itself).")
 Bo1_Box_Aabb = _functor("Bo1_Box_Aabb", "Bounding box of boxes (accepted; Talus bounds shapes itself).")
 Ig2_Box_Sphere_ScGeom = _functor("Ig2_Box_Sphere_ScGeom", "Box-sphere contact geometry (face, edge, corner).")
-Ig2_Sphere_Sphere_ScGeom = _functor("Ig2_Sphere_Sphere_ScGeom", "Sphere-sphere contact geometry.")
+Ig2_Sphere_Sphere_ScGeom = _neutral_only(
+    "Ig2_Sphere_Sphere_ScGeom", "Sphere-sphere contact geometry. ``interactionDetectionFactor``: only 1, Yade's default.",
+    "interactionDetectionFactor", lambda f: f == 1, "detecting contacts at a distance")
 Ig2_Facet_Sphere_ScGeom = _functor("Ig2_Facet_Sphere_ScGeom", "Facet-sphere contact geometry (face, edge, vertex).")
 Ig2_Wall_Sphere_ScGeom = _functor("Ig2_Wall_Sphere_ScGeom", "Wall-sphere contact geometry.")
-Ig2_Sphere_Sphere_ScGeom6D = _functor("Ig2_Sphere_Sphere_ScGeom6D",
-                                      "Sphere-sphere contact geometry with relative rotations (the law asks for them).")
+Ig2_Sphere_Sphere_ScGeom6D = _neutral_only(
+    "Ig2_Sphere_Sphere_ScGeom6D", "Sphere-sphere contact geometry with relative rotations (the law asks for "
+    "them). ``interactionDetectionFactor``: only 1, Yade's default.",
+    "interactionDetectionFactor", lambda f: f == 1, "detecting contacts at a distance")
 Ig2_Wall_Sphere_ScGeom6D = _functor("Ig2_Wall_Sphere_ScGeom6D", "Wall-sphere contact geometry with relative rotations.")
 Ig2_Box_Sphere_ScGeom6D = _functor("Ig2_Box_Sphere_ScGeom6D", "Box-sphere contact geometry with relative rotations.")
 Ip2_FrictMat_FrictMat_FrictPhys = _functor(
