@@ -1,6 +1,7 @@
 // Python bindings of dem/: no logic here, only the mapping of C++ names to Python. Defaults,
 // docstrings and Yade-style conveniences live in the talus.dem Python layer.
 #include "dem/CallbackEngine.h"
+#include "dem/ParallelEngine.h"
 #include "dem/Collider.h"
 #include "dem/ContactLaw.h"
 #include "dem/ForceResetter.h"
@@ -182,6 +183,9 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("damping", &NewtonIntegrator::damping)
       .def_readwrite("dampGravity", &NewtonIntegrator::dampGravity)
       .def_readwrite("mask", &NewtonIntegrator::mask);
+  py::class_<ParallelEngine, Engine, std::shared_ptr<ParallelEngine>>(m, "ParallelEngine")
+      .def(py::init<>())
+      .def_readwrite("slaves", &ParallelEngine::slaves);
   py::class_<CallbackEngine, Engine, std::shared_ptr<CallbackEngine>>(m, "CallbackEngine")
       .def(py::init<>())
       .def_readwrite("callback", &CallbackEngine::callback)

@@ -404,6 +404,33 @@ class ForceResetter(Engine):
         self.label = label
 
 
+class ParallelEngine(Engine):
+    """Yade's ParallelEngine: ``slaves``, each an engine or a list of engines run in order. Yade
+    runs the slaves side by side; Talus runs them one after the other in the order given (they
+    must not touch the same data in Yade either, so the order cannot change the result)."""
+
+    def __init__(self, slaves: Sequence = (), label: str = ""):
+        self._cpp = _dem.ParallelEngine()
+        self.label = label
+        self.slaves = slaves
+
+    @property
+    def slaves(self) -> list:
+        return [list(group) if isinstance(group, list) else group for group in self._slaves]
+
+    @slaves.setter
+    def slaves(self, slaves: Sequence):
+        groups = []
+        for slave in slaves:
+            group = list(slave) if isinstance(slave, (list, tuple)) else [slave]
+            for engine in group:
+                if not isinstance(engine, Engine):
+                    raise TypeError(f"ParallelEngine.slaves takes engines or lists of engines, got {engine!r}")
+            groups.append(group if isinstance(slave, (list, tuple)) else slave)
+        self._slaves = groups
+        self._cpp.slaves = [[e._cpp for e in (g if isinstance(g, list) else [g])] for g in groups]
+
+
 class Dispatcher:
     """Yade's functor dispatchers (``BoundDispatcher``, ``IGeomDispatcher``, ``IPhysDispatcher``,
     ``LawDispatcher``): a list of functors, as engines hold them (``loop.lawDispatcher.functors``)
@@ -741,7 +768,7 @@ class PyRunner(Engine):
 
 __all__ = [
     "Functor", "Engine", "collapseDispatchers", "Dispatcher", "BoundDispatcher", "IGeomDispatcher", "IPhysDispatcher", "LawDispatcher", "ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator",
-    "PyRunner", "asCallback", "FlatGridCollider", "Ig2_Box_Sphere_ScGeom6D", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
+    "PyRunner", "ParallelEngine", "asCallback", "FlatGridCollider", "Ig2_Box_Sphere_ScGeom6D", "Bo1_Sphere_Aabb", "Bo1_Wall_Aabb", "Bo1_Facet_Aabb", "Bo1_Box_Aabb", "Ig2_Sphere_Sphere_ScGeom",
     "Ig2_Box_Sphere_ScGeom",
     "Ig2_Wall_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom",
     "Ip2_FrictMat_FrictMat_FrictPhys", "Ip2_ViscElMat_ViscElMat_ViscElPhys",

@@ -35,6 +35,14 @@ def _warn_or_raise(scene, text: str) -> None:
     _warn(text)
 
 
+def _with_slaves(engines):
+    """The engines and, in their place, those of ParallelEngines' slaves."""
+    for e in engines:
+        yield e
+        for slave in getattr(e, "slaves", ()):
+            yield from _with_slaves(slave if isinstance(slave, list) else [slave])
+
+
 def check_engines(engines) -> None:
     """Refuse two NewtonIntegrators moving the same bodies (each step would integrate them twice);
     warn of an InteractionLoop without a collider (no contact would ever be detected)."""
@@ -50,7 +58,7 @@ def check_engines(engines) -> None:
                                  f"(masks {first.mask} and {second.mask}): each step would integrate them twice; "
                                  "keep one, or give them masks without a common bit")
     loops = live(InteractionLoop)
-    if loops and not any(isinstance(e, InsertionSortCollider) for e in engines):
+    if loops and not any(isinstance(e, InsertionSortCollider) for e in _with_slaves(engines)):
         _warn(f"O.engines has an InteractionLoop (engine {loops[0][0]}) but no collider (InsertionSortCollider): "
               "no contact will be detected, only interactions created by hand (createInteraction) will act")
 
