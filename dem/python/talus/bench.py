@@ -39,6 +39,7 @@ class Side:
     env: dict[str, str] = field(default_factory=dict)  # set in the command's environment (e.g. OMP_NUM_THREADS)
     realtime: bool = False      # run under SCHED_FIFO where allowed (see realtime_prefix)
     samples: list[float] = field(default_factory=list)
+    last_output: str = ""       # stdout and stderr of the latest run (for figures beside the timed one)
 
     @property
     def median(self) -> float:
@@ -115,7 +116,7 @@ def run_once(side: Side, timeout: float) -> float:
     except subprocess.TimeoutExpired:
         raise CommandFailed(f"{side.label}: {shlex.join(side.command)} took longer than {timeout} s") from None
     wall = time.perf_counter() - started
-    output = done.stdout + done.stderr
+    output = side.last_output = done.stdout + done.stderr
     if done.returncode != 0:
         tail = "\n".join(output.strip().splitlines()[-15:])
         raise CommandFailed(

@@ -1,0 +1,50 @@
+"""A small periodic RVE driven in short calls, as a FEM x DEM Gauss point drives it, for speed
+comparisons; the same file runs in Yade and in Talus.
+
+    yade -n -j1 -x rve.py PACKING CALLS STEPS   |   talus run rve.py PACKING CALLS STEPS
+
+PACKING is a text file written by cases/dem_bench_kinds.py: a first line `dt young density sx sy
+sz` (the cell's sides) and then `x y z r` per sphere (a dense packing, its contacts loaded).
+FrictMat (poisson 0.3, friction 0.5 rad), linear Cundall-Strack with Coulomb friction, Cundall
+damping 0.2, no gravity. Each of CALLS calls sets the cell's velocity gradient for a small strain
+increment (1e-4 shortening along x, half of it stretching y and z, a little shear), runs STEPS
+steps (O.run(STEPS, True)) and reads the stress (getStress). One step builds the contacts first.
+Prints `TIMED <calls x steps> <seconds> <contacts> <cpu seconds>` (the CPU time of this process
+over the calls).
+"""
+import sys
+import time
+
+try:
+    O  # noqa: B018  (defined when Yade runs the script)
+except NameError:
+    from talus.dem import *  # noqa: F401,F403
+
+packing_file, calls, steps = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+with open(packing_file) as source:
+    dt, young, density, sx, sy, sz = (float(v) for v in source.readline().split())
+    spheres = [tuple(float(v) for v in line.split()) for line in source if line.strip()]
+
+O.periodic = True
+O.cell.setBox(sx, sy, sz)
+material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
+O.bodies.append([sphere((x, y, z), r, material=material) for x, y, z, r in spheres])
+O.engines = [
+    ForceResetter(),
+    InsertionSortCollider([Bo1_Sphere_Aabb()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
+                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
+    NewtonIntegrator(damping=0.2),
+]
+O.dt = dt
+O.run(1, True)
+rate = 1.0 / (steps * dt)
+start, cpu = time.perf_counter(), time.process_time()
+for _ in range(calls):
+    O.cell.velGrad = Matrix3(-1e-4 * rate, 2e-5 * rate, 0, 0, 5e-5 * rate, 0, 0, 0, 5e-5 * rate)
+    O.run(steps, True)
+    stress = getStress()
+seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
+contacts = sum(1 for i in O.interactions if i.isReal) if hasattr(O, "interactions") else O._cpp.realContactCount()
+fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
+print(f"TIMED {calls * steps} {seconds:.6f} {contacts} {cpu:.6f}{fused}")

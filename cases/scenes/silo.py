@@ -1,0 +1,58 @@
+"""A silo discharging through its floor's orifice, for speed comparisons; the same file runs in
+Yade and in Talus.
+
+    yade -n -j1 -x silo.py PACKING STEPS   |   talus run silo.py PACKING STEPS
+
+PACKING is a text file written by cases/dem_bench_kinds.py: a first line `dt young density exit_z`,
+then the silo's triangles (`F x1 y1 z1 x2 y2 z2 x3 y3 z3`: a square box of facets open at the top,
+its floor with a square orifice) and the spheres (`S x y z r`, a loose lattice filling it).
+FrictMat (poisson 0.3, friction 0.5 rad), Hertz-Mindlin, Cundall damping 0.2, gravity -9.81
+along z. Every 100 steps a PyRunner erases the spheres that have fallen below exit_z. One step
+builds the contacts, then STEPS steps are timed. Prints `TIMED <steps> <seconds> <spheres left>
+<cpu seconds>` (the CPU time of this process over the timed steps).
+"""
+import sys
+import time
+
+try:
+    O  # noqa: B018  (defined when Yade runs the script)
+    import yade.utils as _utils
+    _facet = _utils.facet
+except NameError:
+    from talus.dem import *  # noqa: F401,F403
+    _facet = facet
+
+packing_file, steps = sys.argv[1], int(sys.argv[2])
+with open(packing_file) as source:
+    dt, young, density, exit_z = (float(v) for v in source.readline().split())
+    rows = [line.split() for line in source if line.strip()]
+triangles = [[float(v) for v in row[1:]] for row in rows if row[0] == "F"]
+spheres = [[float(v) for v in row[1:]] for row in rows if row[0] == "S"]
+
+material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
+O.bodies.append([_facet((t[0:3], t[3:6], t[6:9]), material=material) for t in triangles])
+falling = set(O.bodies.append([sphere((x, y, z), r, material=material) for x, y, z, r in spheres]))
+
+
+def eraseFallen():
+    gone = [i for i in falling if O.bodies[i].state.pos[2] < exit_z]
+    for i in gone:
+        O.bodies.erase(i)
+        falling.discard(i)
+
+
+O.engines = [
+    ForceResetter(),
+    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_MindlinPhys()],
+                    [Law2_ScGeom_MindlinPhys_Mindlin()]),
+    NewtonIntegrator(damping=0.2, gravity=(0, 0, -9.81)),
+    PyRunner(command="eraseFallen()", iterPeriod=100),
+]
+O.dt = dt
+O.run(1, True)
+start, cpu = time.perf_counter(), time.process_time()
+O.run(steps, True)
+seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
+fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
+print(f"TIMED {steps} {seconds:.6f} {len(falling)} {cpu:.6f}{fused}")
