@@ -4,7 +4,9 @@
 #include "dem/Scene.h"
 #include "flow/thermal/ConductionSchedule.h"
 #include "flow/thermal/ParticleConduction.h"
+#include "flow/thermal/PoreHeat.h"
 
+#include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -42,8 +44,12 @@ void registerThermal(py::module_& m)
       .value("Radii", ContactConductance::Radii)
       .value("Kern", ContactConductance::Kern);
 
+  py::class_<HeatModel, std::shared_ptr<HeatModel>>(m, "HeatModel")
+      .def("stableTimeStep", &HeatModel::stableTimeStep)
+      .def("limitingPart", &HeatModel::limitingPart);
+
   // The scene type is registered by talus._dem (imported first by the talus package).
-  py::class_<ParticleConduction, std::shared_ptr<ParticleConduction>>(m, "ParticleConduction")
+  py::class_<ParticleConduction, HeatModel, std::shared_ptr<ParticleConduction>>(m, "ParticleConduction")
       .def(py::init([](const std::shared_ptr<talus::dem::Scene>& scene) {
              if (!scene)
                throw std::invalid_argument("ParticleConduction: scene is None");
@@ -75,12 +81,42 @@ void registerThermal(py::module_& m)
       .def("clearBoundaries", &ParticleConduction::clearBoundaries)
       .def("computeRates", &ParticleConduction::computeRates)
       .def("advance", &ParticleConduction::advance, py::arg("dt"))
-      .def("stableTimeStep", &ParticleConduction::stableTimeStep)
       .def("limitingBody", &ParticleConduction::limitingBody)
       .def("heatCapacityOf", &ParticleConduction::heatCapacityOf, py::arg("id"))
       .def("boundaryFlux", [](const ParticleConduction& c) { return c.boundaryFlux(); })
       .def("boundaryHeat", [](const ParticleConduction& c) { return c.boundaryHeat(); })
       .def("setBoundaryHeat", [](ParticleConduction& c, const std::array<double, kBoundaries>& v) { c.boundaryHeat() = v; });
+
+  py::class_<FluidHeatParameters>(m, "FluidHeatParameters")
+      .def(py::init<>())
+      .def_readwrite("fluidK", &FluidHeatParameters::fluidK)
+      .def_readwrite("fluidCp", &FluidHeatParameters::fluidCp)
+      .def_readwrite("fluidRho", &FluidHeatParameters::fluidRho)
+      .def_readwrite("nusseltK", &FluidHeatParameters::nusseltK)
+      .def_readwrite("advection", &FluidHeatParameters::advection)
+      .def_readwrite("fluidConduction", &FluidHeatParameters::fluidConduction)
+      .def_readwrite("ignoreFictitious", &FluidHeatParameters::ignoreFictitious)
+      .def_readwrite("areaFactor", &FluidHeatParameters::areaFactor)
+      .def_readwrite("minimumDistance", &FluidHeatParameters::minimumDistance)
+      .def_readwrite("thermalPorosity", &FluidHeatParameters::thermalPorosity);
+
+  py::class_<PoreHeat, HeatModel, std::shared_ptr<PoreHeat>>(m, "PoreHeat")
+      .def(py::init([](const std::shared_ptr<ParticleConduction>& particles, const std::shared_ptr<talus::flow::pore::PoreFlow>& flow) {
+             if (!particles || !flow)
+               throw std::invalid_argument("PoreHeat: particles or flow is None");
+             return std::make_shared<PoreHeat>(*particles, flow);
+           }),
+           py::arg("particles"), py::arg("flow"), py::keep_alive<1, 2>())
+      .def_readwrite("params", &PoreHeat::params)
+      .def_readwrite("initialTemperature", &PoreHeat::initialTemperature)
+      .def("setBoundary", &PoreHeat::setBoundary, py::arg("boundary"), py::arg("held"), py::arg("value"))
+      .def("sync", &PoreHeat::sync)
+      .def("temperatures", [](PoreHeat& h) {
+        h.sync();
+        return copy(h.temperatures());
+      })
+      .def("setTemperature", &PoreHeat::setTemperature, py::arg("pore"), py::arg("value"))
+      .def("temperatureAt", &PoreHeat::temperatureAt, py::arg("x"));
 
   py::class_<ConductionSchedule::Counters>(m, "ConductionCounters")
       .def(py::init<>())
@@ -94,7 +130,7 @@ void registerThermal(py::module_& m)
   py::class_<ConductionSchedule>(m, "ConductionSchedule")
       .def(py::init<>())
       .def_readwrite("tsSafetyFactor", &ConductionSchedule::tsSafetyFactor)
-      .def("step", &ConductionSchedule::step, py::arg("conduction"), py::arg("dt"))
+      .def("step", &ConductionSchedule::step, py::arg("model"), py::arg("dt"))
       .def("conductionIterPeriod", &ConductionSchedule::conductionIterPeriod)
       .def("thermalDT", &ConductionSchedule::thermalDT)
       .def("maxTimeStep", &ConductionSchedule::maxTimeStep)

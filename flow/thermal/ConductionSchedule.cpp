@@ -6,22 +6,22 @@
 
 namespace talus::flow::thermal
 {
-void ConductionSchedule::step(ParticleConduction& conduction, double dt)
+void ConductionSchedule::step(HeatModel& model, double dt)
 {
   if (tsSafetyFactor <= 0)
   {
-    conduction.computeRates();
-    if (dt > conduction.stableTimeStep())
+    model.computeRates();
+    if (dt > model.stableTimeStep())
     {
       std::ostringstream message;
       message << "ThermalEngine: the thermal step O.dt = " << dt << " s exceeds the stable conduction step "
-              << conduction.stableTimeStep() << " s (sphere " << conduction.limitingBody()
-              << ": heat capacity / sum of its contact conductances); with tsSafetyFactor <= 0 the thermal step is "
+              << model.stableTimeStep() << " s (" << model.limitingPart()
+              << ": heat capacity / sum of its conductances); with tsSafetyFactor <= 0 the thermal step is "
                  "O.dt: lower O.dt or set tsSafetyFactor in (0, 1] to let ThermalEngine choose its step";
       throw std::domain_error(message.str());
     }
-    conduction.applyRates(dt);
-    maxTimeStep_ = conduction.stableTimeStep();
+    model.applyRates(dt);
+    maxTimeStep_ = model.stableTimeStep();
     thermalDT_ = dt;
     period_ = substeps_ = 1;
     ++runs_;
@@ -34,24 +34,24 @@ void ConductionSchedule::step(ParticleConduction& conduction, double dt)
   // As Yade: the first call conducts over its own step, later ones once `period_` steps passed.
   if (runs_ > 0 && sinceRun_ < period_)
     return;
-  conduct(conduction, runs_ == 0 ? dt : timeSinceRun_);
+  conduct(model, runs_ == 0 ? dt : timeSinceRun_);
   period_ = std::max(1, static_cast<int>(std::floor(tsSafetyFactor * maxTimeStep_ / dt)));
   sinceRun_ = 0;
   timeSinceRun_ = 0;
 }
 
-void ConductionSchedule::conduct(ParticleConduction& conduction, double span)
+void ConductionSchedule::conduct(HeatModel& model, double span)
 {
-  conduction.computeRates();
-  maxTimeStep_ = conduction.stableTimeStep();
+  model.computeRates();
+  maxTimeStep_ = model.stableTimeStep();
   const double target = tsSafetyFactor * maxTimeStep_;
   substeps_ = span > target ? static_cast<int>(std::ceil(span / target)) : 1;
   const double h = span / substeps_;
   for (int s = 0; s < substeps_; ++s)
   {
     if (s > 0)
-      conduction.computeRates();
-    conduction.applyRates(h);
+      model.computeRates();
+    model.applyRates(h);
   }
   thermalDT_ = span;
   ++runs_;

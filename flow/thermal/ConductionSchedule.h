@@ -1,11 +1,11 @@
 #pragma once
 // When heat conduction runs and with which step, against the DEM step (Yade's tsSafetyFactor
 // policy of ThermalEngine, with sub-steps where Yade would run past the stability limit).
-#include "flow/thermal/ParticleConduction.h"
+#include "flow/thermal/HeatModel.h"
 
 namespace talus::flow::thermal
 {
-/// Runs ParticleConduction alongside the DEM steps.
+/// Runs a HeatModel (ParticleConduction, or PoreHeat with the pore fluid) alongside the DEM steps.
 ///
 /// - `tsSafetyFactor` <= 0: conduction every DEM step with the DEM step; a step above the
 ///   stable one stops the run (std::domain_error naming the limit and the body) rather than
@@ -22,7 +22,7 @@ public:
 
   /// One DEM step of `dt` seconds.
   /// @throws std::domain_error if tsSafetyFactor <= 0 and dt exceeds the stable step
-  void step(ParticleConduction& conduction, double dt);
+  void step(HeatModel& model, double dt);
 
   /// DEM steps between conduction runs (Yade's getConductionIterPeriod).
   [[nodiscard]] int conductionIterPeriod() const { return period_; }
@@ -44,7 +44,7 @@ public:
   void setCounters(const Counters& c);
 
 private:
-  void conduct(ParticleConduction& conduction, double span);
+  void conduct(HeatModel& model, double span);
 
   long long runs_ = 0;
   int sinceRun_ = 0, period_ = 1, substeps_ = 1;

@@ -92,6 +92,18 @@ void ParticleConduction::computeRates()
     conductance_[i1] += g;
     conductance_[i2] += g;
   }
+  computeStableStep();
+}
+
+void ParticleConduction::addExchange(dem::BodyId id, double rate, double g)
+{
+  const auto i = static_cast<std::size_t>(id);
+  rate_[i] += rate;
+  conductance_[i] += g;
+}
+
+void ParticleConduction::computeStableStep()
+{
   stableStep_ = std::numeric_limits<double>::infinity();
   limitingBody_ = -1;
   for (std::size_t i = 0; i < temperature.size(); ++i)

@@ -2,9 +2,11 @@
 // Heat conduction between spheres in contact, with one temperature per particle (the
 // conduction part of Yade's ThermalEngine; Caulk, Scholtès, Krzaczek & Chareyre 2020, CMAME).
 #include "dem/Exchange.h"
+#include "flow/thermal/HeatModel.h"
 
 #include <array>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace talus::flow::thermal
@@ -35,7 +37,7 @@ enum class ContactConductance : std::uint8_t
 ///
 /// Per-body arrays are indexed by body id and grow with the scene; bodies that are not live
 /// spheres are left out of every sum.
-class ParticleConduction
+class ParticleConduction : public HeatModel
 {
 public:
   explicit ParticleConduction(dem::ParticleExchange exchange) : exchange_(exchange) {}
@@ -61,10 +63,16 @@ public:
 
   /// Heat rates and conductance sums of the current contacts and temperatures (the first half
   /// of a step; also gives stableTimeStep).
-  void computeRates();
+  void computeRates() override;
+  /// Add an exchange with something else than a sphere (the pore fluid) to sphere `id`'s rate
+  /// of the last computeRates: `rate` W into it through conductance `g` (W/K). Call
+  /// computeStableStep after the last one.
+  void addExchange(dem::BodyId id, double rate, double g);
+  /// stableTimeStep and limitingBody from the conductance sums (computeRates calls it).
+  void computeStableStep();
   /// Advance the temperatures by `dt` (s) with the rates of the last computeRates (explicit
   /// Euler); the heat rate into each boundary during it is kept (boundaryFlux).
-  void applyRates(double dt);
+  void applyRates(double dt) override;
   /// computeRates then applyRates(dt).
   void advance(double dt)
   {
@@ -74,7 +82,8 @@ public:
   /// The largest stable step of the explicit scheme at the last computeRates: min over free
   /// spheres of C_i / sum_j G_ij; below it each new temperature is a weighted mean of old ones
   /// (no overshoot, no growth). +inf without contacts.
-  [[nodiscard]] double stableTimeStep() const { return stableStep_; }
+  [[nodiscard]] double stableTimeStep() const override { return stableStep_; }
+  [[nodiscard]] std::string limitingPart() const override { return "sphere " + std::to_string(limitingBody_); }
   /// The body whose step limits stableTimeStep (-1: none).
   [[nodiscard]] dem::BodyId limitingBody() const { return limitingBody_; }
 

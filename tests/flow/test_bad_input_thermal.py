@@ -39,7 +39,7 @@ def test_parameter_refused_naming_it(name, value, message):
         setattr(engine, name, value)
 
 
-@pytest.mark.parametrize("name", ["advection", "fluidConduction", "thermoMech", "solidThermoMech", "fluidThermoMech",
+@pytest.mark.parametrize("name", ["thermoMech", "solidThermoMech", "fluidThermoMech",
                                   "useHertzMethod", "letThermalRunFlowForceUpdates", "tempDependentFluidBeta"])
 def test_planned_switch_refused_naming_it(name):
     with pytest.raises(NotImplementedError, match=rf"ThermalEngine.{name}: .* not implemented yet in Talus \(planned"):
@@ -47,11 +47,27 @@ def test_planned_switch_refused_naming_it(name):
     assert getattr(ThermalEngine(**{name: False}), name) is False
 
 
-def test_unknown_and_planned_flow_attributes():
+@pytest.mark.parametrize("name, value, error, message", [
+    ("tZero", -300, ValueError, r"FlowEngine.tZero = -300.0: below absolute zero"),
+    ("fluidRho", 0, ValueError, r"FlowEngine.fluidRho must be > 0"),
+    ("fluidCp", -4181, ValueError, r"FlowEngine.fluidCp must be > 0"),
+    ("thermalPorosity", 1.5, ValueError, r"FlowEngine.thermalPorosity must be in \[0, 1\]"),
+    ("thermalBndCondValue", [0, 0, -280, 0, 0, 0], ValueError, r"FlowEngine.thermalBndCondValue = .*below absolute zero"),
+    ("bndCondIsTemperature", [1, 0], ValueError, r"FlowEngine.bndCondIsPressure needs a list of 6 values"),
+    ("tempDependentViscosity", True, NotImplementedError, r"FlowEngine.tempDependentViscosity: .* not implemented"),
+])
+def test_flow_thermal_attribute_refused_naming_it(name, value, error, message):
+    with pytest.raises(error, match=message):
+        setattr(FlowEngine(), name, value)
+
+
+def test_unknown_attribute():
     with pytest.raises(AttributeError, match="ThermalEngine has no attribute 'particleKK'"):
         ThermalEngine(particleKK=2)
-    with pytest.raises(NotImplementedError, match="FlowEngine.thermalEngine: the pore temperatures"):
-        FlowEngine().thermalEngine = True
+    flow = FlowEngine(thermalEngine=True, tZero=20, fluidRho=997)
+    assert (flow.thermalEngine, flow.tZero, flow.fluidRho, flow.fluidCp) == (True, 20.0, 997.0, 4181.3)
+    with pytest.raises(RuntimeError, match="no pore temperatures yet"):
+        flow.getPoreTemperature((0, 0, 0))
 
 
 def chain(thermal, n=5, radius=0.01, flow=None):
@@ -70,8 +86,23 @@ def chain(thermal, n=5, radius=0.01, flow=None):
 def test_yade_defaults_stop_at_the_first_step_naming_the_switches():
     chain(ThermalEngine())
     O.dt = 1e-3
-    with pytest.raises(NotImplementedError, match=r"advection .*fluidConduction .*set advection=False, "
-                                                  r"fluidConduction=False, thermoMech=False"):
+    with pytest.raises(NotImplementedError, match=r"thermoMech .*solidThermoMech .*set thermoMech=False, "
+                                                  r"solidThermoMech=False, fluidThermoMech=False"):
+        O.step()
+
+
+@pytest.mark.parametrize("settings, error, message", [
+    (dict(advection=False), ValueError, r"ThermalEngine.fluidConduction needs advection=True"),
+    (dict(), NotImplementedError, r"ThermalEngine.uniformReynolds = -1 .* not implemented"),
+    (dict(uniformReynolds=10, fluidK=0), ValueError, r"ThermalEngine.fluidK = 0.0: .* must be > 0 with advection"),
+    (dict(uniformReynolds=10), ValueError, r"ThermalEngine.advection: .* O.engines has no FlowEngine"),
+])
+def test_fluid_settings_refused_at_the_first_step(settings, error, message):
+    """Yade's advection and fluidConduction (on by default) need a FlowEngine and a Reynolds
+    number; fluid conduction without advection would do nothing, as in Yade."""
+    chain(ThermalEngine(thermoMech=False, solidThermoMech=False, fluidThermoMech=False, **settings))
+    O.dt = 1e-3
+    with pytest.raises(error, match=message):
         O.step()
 
 

@@ -44,9 +44,11 @@ _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
             "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness")
 
-# Yade's FlowEngine attributes of the thermal coupling (pore temperatures; planned)
-_THERMAL_ATTRIBUTES = ("thermalEngine", "tZero", "bndCondIsTemperature", "thermalBndCondValue",
-                       "tempDependentViscosity", "thermalPorosity")
+# Yade's FlowEngine attributes of the thermal coupling (the pore temperatures ThermalEngine
+# advances when its ``advection`` is on) and their defaults
+_THERMAL_ATTRIBUTES = {"thermalEngine": False, "tZero": 0.0, "fluidRho": 1000.0, "fluidCp": 4181.3,
+                       "bndCondIsTemperature": [False] * 6, "thermalBndCondValue": [0.0] * 6,
+                       "thermalPorosity": 0.0, "tempDependentViscosity": False}
 
 # the real numbers among them (the others are flags and the solver's number)
 _REALS = ("permeabilityFactor", "viscosity", "minKdivKmean", "maxKdivKmean", "tolerance", "relax",
@@ -79,6 +81,30 @@ def _boundary_list(name: str, value) -> list:
     if not all(isinstance(v, (bool, int, np.integer, np.bool_)) and v in (0, 1) for v in values):
         raise TypeError(f"FlowEngine.{name} must be a list of 6 booleans (True/False or 1/0), got {value!r}")
     return [bool(v) for v in values]
+
+
+def _thermal_value(name: str, value):
+    """A thermal attribute checked as Yade's type and physics allow."""
+    if name in ("bndCondIsTemperature", "thermalBndCondValue"):
+        values = _boundary_list("bndCondValue" if name == "thermalBndCondValue" else "bndCondIsPressure", value)
+        if name == "thermalBndCondValue" and min(values) < -273.15:
+            raise ValueError(f"FlowEngine.thermalBndCondValue = {value!r}: below absolute zero (-273.15 °C, 0 K)")
+        return values
+    if name in ("thermalEngine", "tempDependentViscosity"):
+        if not isinstance(value, (bool, int, np.integer, np.bool_)) or value not in (0, 1):
+            raise TypeError(f"FlowEngine.{name} must be True or False, got {value!r}")
+        if name == "tempDependentViscosity" and value:
+            raise NotImplementedError("FlowEngine.tempDependentViscosity: a temperature-dependent viscosity is not "
+                                      "implemented yet in Talus (planned, docs/thermal.md)")
+        return bool(value)
+    number = _finite_number(name, value)
+    if name == "tZero" and number < -273.15:
+        raise ValueError(f"FlowEngine.tZero = {number}: below absolute zero (-273.15 °C, 0 K)")
+    if name in ("fluidRho", "fluidCp") and number <= 0:
+        raise ValueError(f"FlowEngine.{name} must be > 0, got {number}")
+    if name == "thermalPorosity" and not 0 <= number <= 1:
+        raise ValueError(f"FlowEngine.thermalPorosity must be in [0, 1] (0: the pores' void volume), got {number}")
+    return number
 
 
 class HiddenSphereWarning(UserWarning):
@@ -137,6 +163,8 @@ class FlowEngine(Engine):
         self._multithread = False
         self._backgroundSteps = 10
         self._rebuild = False
+        self._thermal = {k: (list(v) if isinstance(v, list) else v) for k, v in _THERMAL_ATTRIBUTES.items()}
+        self._poreHeat = None       # the pore temperatures, attached by a ThermalEngine with advection
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp  # from the first step on, as Yade's FlowEngine
         self._cpp.resumable = False   # a failed solve leaves the step without its fluid forces
         for name, value in attrs.items():
@@ -180,8 +208,8 @@ class FlowEngine(Engine):
                 raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD)")
             setattr(params, name, _finite_number(name, value) if name in _REALS else value)
         elif name in _THERMAL_ATTRIBUTES:
-            raise NotImplementedError(f"FlowEngine.{name}: the pore temperatures of the thermal coupling are not "
-                                      "implemented yet in Talus (planned, docs/thermal.md)")
+            self._thermal[name] = _thermal_value(name, value)
+            return
         else:
             raise AttributeError(f"FlowEngine has no attribute {name!r}")
         self._flow.params = params
@@ -196,6 +224,9 @@ class FlowEngine(Engine):
             return self._rebuild
         if name in ("defTolerance", "blockHook", "multithread", "backgroundSteps"):
             return object.__getattribute__(self, "_" + name)
+        if name in _THERMAL_ATTRIBUTES:
+            value = object.__getattribute__(self, "_thermal")[name]
+            return list(value) if isinstance(value, list) else value
         if name in _BOUNDARY_LISTS or name in _SCALARS:
             value = getattr(self._flow.params, name)
             return list(value) if name in _BOUNDARY_LISTS else value
@@ -267,7 +298,7 @@ class FlowEngine(Engine):
     def _io_params(self):
         """What rebuilds the engine from a checkpoint: its label and parameters (the network is
         rebuilt at its next step)."""
-        names = (*_BOUNDARY_LISTS, *_SCALARS, *_ENGINE_COUNTS, "defTolerance", "multithread")
+        names = (*_BOUNDARY_LISTS, *_SCALARS, *_ENGINE_COUNTS, "defTolerance", "multithread", *_THERMAL_ATTRIBUTES)
         params = {name: getattr(self, name) for name in names}
         if self._wallIds is not None:
             params["wallIds"] = list(self._wallIds)
@@ -374,6 +405,33 @@ class FlowEngine(Engine):
     def getCellFlux(self, cond: int) -> float:
         """Flux injected into the network by imposed point ``cond`` (positive out of its pore)."""
         return self._flow.getCellFlux(cond)
+
+    # --- pore temperatures (ThermalEngine with advection) -------------------------------------
+    def _heat(self):
+        if self._poreHeat is None:
+            raise RuntimeError("FlowEngine: no pore temperatures yet: they belong to a ThermalEngine with advection=True, "
+                               "made at its first step")
+        return self._poreHeat
+
+    def getPoreTemperature(self, pos) -> float:
+        """Temperature of the pore containing ``pos`` (Yade's)."""
+        return self._heat().temperatureAt(np.asarray(pos, dtype=float))
+
+    def getCellTemperature(self, cell: int) -> float:
+        """Temperature of pore ``cell`` (Yade's)."""
+        return float(self._heat().temperatures()[cell])
+
+    def setCellTemperature(self, cell: int, temperature: float):
+        """Set the temperature of pore ``cell`` (Yade's)."""
+        t = _finite_number("setCellTemperature", temperature)
+        if t < -273.15:
+            raise ValueError(f"FlowEngine.setCellTemperature: {t} is below absolute zero (-273.15 °C, 0 K)")
+        self._heat().setTemperature(int(cell), t)
+
+    @property
+    def cellTemperatures(self) -> np.ndarray:
+        """Temperature of each pore (Talus)."""
+        return self._heat().temperatures()
 
     # --- Yade's queries -------------------------------------------------------------------
     def nCells(self) -> int:

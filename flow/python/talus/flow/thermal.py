@@ -14,10 +14,13 @@ when ``particleDensity`` > 0. Temperature boundaries (``bndCondIsTemperature``,
 hold the spheres that share a pore with that boundary in the triangulation of the scene's
 ``FlowEngine``, as Yade does; without boundaries no FlowEngine is needed (DEM-only conduction).
 
-Heat through the fluid, advection by the pore fluxes and thermal expansion are planned: their
-switches (``fluidConduction``, ``advection``, ``thermoMech``, ``solidThermoMech``,
-``fluidThermoMech``, all on by default in Yade) must be set False, and a run stops at its first
-step naming those left on. See ``docs/thermal.md``.
+With ``advection`` (and ``fluidConduction``), as Yade: one temperature per pore of the FlowEngine
+network (starting at its ``tZero``), advected upwind by the pore fluxes, exchanging heat with the
+spheres that bound it (h A (T_pore - T_sphere), h = Nu fluidK / 2r with Nu from
+``uniformReynolds``, A the sphere's spherical triangle in the pore) and conducted between
+neighbouring pores (fluidK x throat fluid area / distance). Thermal expansion is planned: its
+switches (``thermoMech``, ``solidThermoMech``, ``fluidThermoMech``, on by default in Yade) must be
+set False, and a run stops at its first step naming those left on. See ``docs/thermal.md``.
 
     thermal = ThermalEngine(label="thermal", advection=False, fluidConduction=False, thermoMech=False,
                             solidThermoMech=False, fluidThermoMech=False, particleT0=400, particleK=2,
@@ -44,11 +47,11 @@ _IMPLEMENTED = {
     "conduction": True, "tsSafetyFactor": 0.8, "particleT0": 0.0, "particleK": 3.0, "particleCp": 750.0,
     "particleDensity": 0.0, "bndCondIsTemperature": [False] * 6, "thermalBndCondValue": [0.0] * 6,
     "useKernMethod": False, "boundarySet": False, "delT": 0.0, "debug": False,
+    "advection": True, "fluidConduction": True, "fluidK": 0.58, "fluidConductionAreaFactor": 1.0,
+    "minimumFluidCondDist": 0.0, "uniformReynolds": -1.0, "ignoreFictiousConduction": False,
 }
 # Switches of the planned physics, with what they switch on.
 _PLANNED_SWITCHES = {
-    "advection": (True, "heat advection by the pore fluxes"),
-    "fluidConduction": (True, "conduction through the pore fluid"),
     "thermoMech": (True, "thermal expansion of the particles (radius change)"),
     "solidThermoMech": (True, "pore volume change from the particles' expansion"),
     "fluidThermoMech": (True, "pore pressure change from the fluid's expansion"),
@@ -59,10 +62,9 @@ _PLANNED_SWITCHES = {
 # Numbers only the planned physics reads: accepted (and checked) so that scripts setting them run;
 # they take effect with their switch.
 _PLANNED_NUMBERS = {
-    "fluidK": 0.58, "fluidBeta": 2e-4, "fluidBulkModulus": 0.0, "particleAlpha": 1.16e-5, "porosityFactor": 0.0,
-    "fluidConductionAreaFactor": 1.0, "minimumFluidCondDist": 0.0, "uniformReynolds": -1.0,
+    "fluidBeta": 2e-4, "fluidBulkModulus": 0.0, "particleAlpha": 1.16e-5, "porosityFactor": 0.0,
 }
-_PLANNED_FLAGS = {"ignoreFictiousConduction": False, "unboundCavityBodies": True, "flowTempBoundarySet": True}
+_PLANNED_FLAGS = {"unboundCavityBodies": True, "flowTempBoundarySet": True}
 _NONNEGATIVE = ("particleK", "particleDensity", "fluidK", "fluidBulkModulus", "porosityFactor",
                 "fluidConductionAreaFactor", "minimumFluidCondDist")
 _BOUNDARY_NAMES = "xmin, xmax, ymin, ymax, zmin, zmax"
@@ -173,6 +175,7 @@ class ThermalEngine(Engine):
         self._started = False
         self._userSet: set[int] = set()     # bodies whose fields were set before the first step
         self._pendingState = None    # a checkpoint's state, applied once the scene is known
+        self._poreHeat = None        # (FlowEngine, its pore temperatures) with advection
         # every refusal comes before any temperature changes: a failed step can be resumed
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp
         for name, value in attrs.items():
@@ -233,7 +236,8 @@ class ThermalEngine(Engine):
         """Yade's: give bodies thermal states. Nothing to do in Talus (see checkThermal)."""
 
     def setReynoldsNumbers(self) -> None:
-        raise _planned("advection")
+        """Yade's: the pores' Nusselt numbers. Talus takes them from ``uniformReynolds`` at each
+        step: nothing to do."""
 
     # --- the engine's action --------------------------------------------------------------
     def _scene_(self):
@@ -269,6 +273,20 @@ class ThermalEngine(Engine):
                 "ThermalEngine: " + "; ".join(f"{n} ({_PLANNED_SWITCHES[n][1]})" for n in on) + " not implemented yet "
                 "in Talus (planned, docs/thermal.md). Yade's defaults switch them on: set "
                 + ", ".join(f"{n}=False" for n in on))
+        if self._params["fluidConduction"] and not self._params["advection"]:
+            raise ValueError("ThermalEngine.fluidConduction needs advection=True: conduction through the fluid acts on "
+                             "the pore temperatures, which exist with advection (Yade does nothing then); set "
+                             "fluidConduction=False, or advection=True")
+        if self._params["advection"]:
+            if self._params["uniformReynolds"] < 0:
+                raise NotImplementedError(
+                    "ThermalEngine.uniformReynolds = -1 (Yade's default: Reynolds numbers from the pore velocities) is "
+                    "not implemented yet in Talus: set uniformReynolds to the pores' Reynolds number (for creeping "
+                    "flow a small value, e.g. 10 as Yade's noFlowScenario.py)")
+            if self._params["fluidK"] <= 0:
+                raise ValueError(f"ThermalEngine.fluidK = {self._params['fluidK']}: the fluid's conductivity must be > 0 "
+                                 "with advection (its Prandtl number divides by it)")
+            self._flow_engine(scene, "ThermalEngine.advection")
         c = self._state()
         keep = np.zeros(len(c.temperatures()), dtype=bool)
         keep[[i for i in self._userSet if i < len(keep)]] = True
@@ -290,17 +308,43 @@ class ThermalEngine(Engine):
         self._params["boundarySet"] = True
 
     @staticmethod
-    def _flow_engine(scene):
+    def _flow_engine(scene, what="ThermalEngine.bndCondIsTemperature"):
         from talus.flow.pore import FlowEngine
         flows = [e for e in scene.engines if isinstance(e, FlowEngine)]
         if not flows:
-            raise ValueError("ThermalEngine.bndCondIsTemperature: temperature boundaries hold the spheres next to "
-                             "each boundary of a FlowEngine's triangulation, and O.engines has no FlowEngine (add one, "
-                             "dead after flow.emulateAction() if no flow is wanted, as in Yade's examples)")
+            raise ValueError(f"{what}: temperature boundaries and pore temperatures live on the triangulation of a "
+                             "FlowEngine, and O.engines has no FlowEngine (add one, dead after flow.emulateAction() if "
+                             "no flow is wanted, as in Yade's examples)")
         if flows[0].nCells() == 0:
-            raise ValueError("ThermalEngine.bndCondIsTemperature: the FlowEngine has not triangulated the packing yet: "
-                             "put it before the ThermalEngine in O.engines or call flow.emulateAction() first")
+            raise ValueError(f"{what}: the FlowEngine has not triangulated the packing yet: put it before the "
+                             "ThermalEngine in O.engines or call flow.emulateAction() first")
         return flows[0]
+
+    def _model(self, scene):
+        """What the schedule advances: the spheres alone, or with the pore fluid (advection)."""
+        c = self._state()
+        if not self._params["advection"]:
+            return c
+        flow = self._flow_engine(scene, "ThermalEngine.advection")
+        if self._poreHeat is None or self._poreHeat[0] is not flow:
+            heat = _flow.PoreHeat(c, flow._flow)
+            heat.initialTemperature = flow.tZero
+            self._poreHeat = (flow, heat)
+            flow._poreHeat = heat
+        heat, p = self._poreHeat[1], self._params
+        fluid = heat.params
+        fluid.fluidK, fluid.fluidCp, fluid.fluidRho = p["fluidK"], flow.fluidCp, flow.fluidRho
+        prandtl = flow.fluidCp * flow.viscosity / p["fluidK"]
+        # Yade's Nusselt number for uniformReynolds (Ranz-Marshall, with its exponent 0.33333)
+        fluid.nusseltK = (2 + 0.6 * p["uniformReynolds"] ** 0.5 * prandtl ** 0.33333) * p["fluidK"]
+        fluid.advection, fluid.fluidConduction = True, p["fluidConduction"]
+        fluid.ignoreFictitious = p["ignoreFictiousConduction"]
+        fluid.areaFactor, fluid.minimumDistance = p["fluidConductionAreaFactor"], p["minimumFluidCondDist"]
+        fluid.thermalPorosity = flow.thermalPorosity
+        heat.params = fluid
+        for k, (held, value) in enumerate(zip(flow.bndCondIsTemperature, flow.thermalBndCondValue)):
+            heat.setBoundary(k, held, value)
+        return heat
 
     def _step(self):
         scene = self._scene_()
@@ -311,7 +355,7 @@ class ThermalEngine(Engine):
         if not self._params["boundarySet"]:
             self._set_boundaries(scene)
         if self._params["conduction"]:
-            self._schedule.step(c, scene.dt)
+            self._schedule.step(self._model(scene), scene.dt)
         if self._params["delT"] != 0:   # once, to the free spheres, after conduction (Yade's delT)
             t = c.temperatures()
             free = np.asarray(c.boundaries()) < 0

@@ -1,0 +1,95 @@
+#pragma once
+// Heat in the pore fluid of a FlowEngine network, coupled to the particles' conduction (the fluid
+// part of Yade's ThermalEngine; Caulk, Scholtès, Krzaczek & Chareyre 2020, CMAME): one
+// temperature per pore, advected by the pore fluxes, exchanged with the spheres that bound the
+// pore and conducted through the fluid between neighbouring pores.
+#include "flow/pore/PoreFlow.h"
+#include "flow/thermal/ParticleConduction.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace talus::flow::thermal
+{
+/// Fluid properties and options (Yade's names in ThermalEngine and FlowEngine).
+struct FluidHeatParameters
+{
+  double fluidK = 0.58;         ///< conductivity, W/(m K) (ThermalEngine.fluidK)
+  double fluidCp = 4181.3;      ///< specific heat, J/(kg K) (FlowEngine.fluidCp)
+  double fluidRho = 1000;       ///< density, kg/m^3 (FlowEngine.fluidRho)
+  /// Nusselt number times fluidK: h = nusseltK / (2 r) on the sphere surface in each pore
+  double nusseltK = 0;
+  bool advection = true;        ///< transport by the pore fluxes (ThermalEngine.advection)
+  bool fluidConduction = true;  ///< conduction between neighbouring pores (ThermalEngine.fluidConduction)
+  bool ignoreFictitious = false; ///< no sphere-fluid exchange in boundary pores (ignoreFictiousConduction)
+  double areaFactor = 1;        ///< fluidConductionAreaFactor
+  double minimumDistance = 0;   ///< minimumFluidCondDist
+  double thermalPorosity = 0;   ///< > 0: heat capacity of thermalPorosity x the void volume (FlowEngine's)
+};
+
+/// Explicit heat model of the spheres and the pore fluid. Each step (as Yade's ThermalEngine with
+/// advection and fluidConduction):
+///
+/// 1. the rates of the current temperatures: conduction between spheres (ParticleConduction),
+///    upwind advection  -rho Cp T_up Q  through each throat (Q = k (p_i - p_j) from the solved
+///    pressures), and the sphere-fluid exchange  h A (T_pore - T_sphere)  over the spherical
+///    triangle A = r^2 x solid angle of each sphere in each pore, h = nusseltK / (2 r);
+/// 2. spheres and pores advance with them; then fluid conduction between neighbouring inner
+///    pores, G = fluidK x fluid area of the throat / distance between the pores' vertex centroids,
+///    with those new pore temperatures (Yade's split).
+///
+/// Pores touching a boundary (fictitious) keep their temperature; those of a temperature boundary
+/// hold its value and exchange heat with their spheres. The heat capacity of a pore is
+/// rho Cp V_void. The pore temperatures follow the network through remeshes (each new pore takes
+/// the temperature of the old pore containing its centroid, else `initialTemperature`).
+class PoreHeat : public HeatModel
+{
+public:
+  PoreHeat(ParticleConduction& particles, std::shared_ptr<const pore::PoreFlow> flow)
+      : particles_(particles), flow_(std::move(flow))
+  {
+  }
+
+  FluidHeatParameters params;
+  /// Temperature of pores created without an old pore to take it from (FlowEngine.tZero).
+  double initialTemperature = 0;
+
+  /// Hold the pores of boundary k (0..5) at `value` (FlowEngine.bndCondIsTemperature); the held
+  /// pores are found again after each remesh.
+  void setBoundary(int k, bool held, double value);
+
+  void computeRates() override;
+  void applyRates(double dt) override;
+  [[nodiscard]] double stableTimeStep() const override;
+  [[nodiscard]] std::string limitingPart() const override;
+
+  /// Per pore of the current network (after `sync`).
+  [[nodiscard]] const std::vector<double>& temperatures() const { return temperature_; }
+  void setTemperature(int pore, double value);
+  /// Temperature of the pore containing x (Yade's getPoreTemperature); NaN outside the network.
+  [[nodiscard]] double temperatureAt(const pore::Vec3& x);
+  /// Follow the flow's network (the pore list after a remesh) and re-apply the boundaries.
+  void sync();
+
+private:
+  [[nodiscard]] bool free(std::size_t pore) const;
+  [[nodiscard]] double heatCapacity(std::size_t pore) const;
+  void computeGeometry();
+
+  ParticleConduction& particles_;
+  std::shared_ptr<const pore::PoreFlow> flow_;
+  std::optional<pore::PoreNetwork> mesh_; ///< the network the arrays below belong to
+  std::vector<double> temperature_, rate_, conductance_;
+  std::vector<char> held_;
+  std::array<bool, pore::kBoundaries> boundaryHeld_{};
+  std::array<double, pore::kBoundaries> boundaryValue_{};
+  std::vector<std::array<double, 4>> sphereArea_; ///< spherical triangle of each pore vertex (0: boundary)
+  std::vector<double> fluidConductance_;          ///< per throat: fluidK A / L (0 with a boundary pore)
+  double stableStep_ = 0;
+  int limitingPore_ = -1;
+};
+} // namespace talus::flow::thermal
