@@ -47,6 +47,17 @@ std::pair<double, double> kineticEnergyParts(const Scene& scene)
   return total;
 }
 
+std::vector<double> bodyKineticEnergies(const Scene& scene)
+{
+  std::vector<double> energies(scene.bodies.size());
+  for (std::size_t i = 0; i < energies.size(); ++i)
+  {
+    const auto [translational, rotational] = bodyKinetic(scene, i);
+    energies[i] = translational + rotational;
+  }
+  return energies;
+}
+
 double kineticEnergy(const Scene& scene)
 {
   const auto n = static_cast<std::int64_t>(scene.bodies.size());

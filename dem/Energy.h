@@ -91,6 +91,9 @@ double kineticEnergy(const Scene& scene);
 /// The two parts of kineticEnergy, summed body by body in id order: {translational, rotational}
 /// (Yade's kinTrans and kinRot, which NewtonIntegrator's kinSplit books instead of kinetic).
 std::pair<double, double> kineticEnergyParts(const Scene& scene);
+/// Each body's part of kineticEnergy (0 for those it does not count: erased, not dynamic, clump
+/// members), indexed by id.
+std::vector<double> bodyKineticEnergies(const Scene& scene);
 /// Elastic energy stored in the contacts of the scene's InteractionLoop(s), as each law defines
 /// it (1/2 Fn^2/kn + 1/2 Fs^2/ks for linear springs, 2/5 Fn u for Hertz, moments as springs).
 double elasticPotential(const Scene& scene);

@@ -54,6 +54,7 @@ void talus_wrap_laws(py::module_& m)
   });
   m.def("clear_energy", [](Scene& s) { s.energy.clear(); });
   m.def("kinetic_energy_parts", [](const Scene& s) { return kineticEnergyParts(s); });
+  m.def("body_kinetic_energies", [](const Scene& s) { return bodyKineticEnergies(s); });
 
   // State of the richer contact models, for the real contacts (same order as Scene.contacts()).
   m.def("contact_extra", [](const Scene& s) {

@@ -96,6 +96,8 @@ class Cell:
     def trsf(self, value):
         self._cpp.trsf = _matrix("trsf", value)
 
+    prevVelGrad = property(lambda s: Matrix3(s._cpp.prevVelGrad),
+                           doc="the velocity gradient of the last step (Yade's Cell.prevVelGrad)")
     homoDeform = property(lambda s: s._cpp.homoDeform, lambda s, v: setattr(s._cpp, "homoDeform", bool(v)))
     volume = property(lambda s: s._cpp.volume)
 

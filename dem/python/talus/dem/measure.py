@@ -100,15 +100,16 @@ def _moving(scene) -> np.ndarray:
 
 
 def kineticEnergy(findMaxId: bool = False, scene=None):
-    """Total kinetic energy of the dynamic bodies, 1/2 m v^2 + 1/2 sum I_k w_k^2 (principal
-    inertia with the world-frame angular velocity: exact for spheres). With ``findMaxId``,
-    ``(energy, id of the body with the most)`` as Yade's utils.kineticEnergy."""
+    """Total kinetic energy of the dynamic bodies, 1/2 m v^2 + 1/2 w.I w, summed in id order as
+    Yade's utils.kineticEnergy; with ``findMaxId``, ``(energy, id of the body with the most)``.
+    In a periodic cell with homoDeform, of the fluctuations only, as Yade's and as O.energy's
+    kinetic term: the velocity less the cell's field L x at the position the last step started
+    from (x - dt v), the angular velocity less the cell's spin (L: Cell.prevVelGrad)."""
     scene = _scene(scene)
-    ids = _moving(scene)
-    cpp = scene._cpp
-    per_body = 0.5 * (np.asarray(cpp.mass())[ids] * np.sum(np.asarray(cpp.vel())[ids] ** 2, axis=1)
-                      + np.sum(np.asarray(cpp.inertia())[ids] * np.asarray(cpp.angVel())[ids] ** 2, axis=1))
-    total = float(per_body.sum())
+    per_body = np.asarray(_dem.body_kinetic_energies(scene._cpp))
+    ids = np.flatnonzero(per_body)
+    per_body = per_body[ids]
+    total = float(np.add.accumulate(per_body)[-1]) if len(per_body) else 0.0   # in order, as Yade
     if findMaxId:
         return total, (int(ids[np.argmax(per_body)]) if len(ids) else -1)
     return total
