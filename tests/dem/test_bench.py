@@ -90,3 +90,26 @@ def test_realtime_sides_run_under_fifo_only_where_allowed(monkeypatch, allowed):
         assert bench.realtime_prefix() == ["chrt", "-f", "10"]
     expected = os.SCHED_FIFO if bench.realtime_prefix() else os.SCHED_OTHER
     assert (fifo.samples, plain.samples) == ([expected], [os.SCHED_OTHER])
+
+
+def test_a_side_keeps_the_output_of_its_latest_run(tmp_path):
+    side = bench.Side("talus", printer(7, 8)(tmp_path / "a"), r"rate ([0-9.]+)")
+    bench.run_rounds([side], repeat=2, progress=None)
+    assert side.samples == [7, 8] and side.last_output.strip() == "rate 8"
+
+
+def test_the_scene_kinds_benchmark_runs_a_small_drum(talus_cmd, tmp_path):
+    """cases/dem_bench_kinds.py --quick on its smallest facet scene: Talus's figure and each
+    installed peer's (Yade's process time, LIGGGHTS's from /proc) are positive CPU times."""
+    import shutil
+    from pathlib import Path
+    case = Path(__file__).resolve().parents[2] / "cases" / "dem_bench_kinds.py"
+    talus_cmd("run", "-j", "1", case, "--quick", "--only", "drum", "--results", tmp_path, timeout=300)
+    peers = [p for p in ("yade", "liggghts") if shutil.which(p)]
+    if not peers:
+        pytest.skip("neither yade nor liggghts is installed: the case records nothing")
+    for peer in peers:
+        record = json.loads((tmp_path / f"dem.bench.kind.drum-{peer}.json").read_text())
+        assert record["ours"] > 0 and record["theirs"] > 0 and record["spheres"] == 1500
+        assert record["ratio"] == pytest.approx(record["theirs"] / record["ours"])
+        assert record["fused_steps"] == 501           # 1 + 500 steps, the drum above 1024 bodies
