@@ -788,4 +788,54 @@ void Collider::rebuild(Scene& scene)
   common_ = Vec3::Zero();
   ++rebuilds;
 }
+std::optional<Collider::Bound> Collider::boundOf(const Scene& scene, BodyId id) const
+{
+  const Bodies& b = scene.bodies;
+  const auto i = static_cast<std::size_t>(id);
+  if (id < 0 || i >= b.size() || i >= referencePos_.size() || seenBodiesVersion_ != scene.bodiesVersion || !b.alive[i]
+      || b.shape[i] == ShapeKind::Clump)
+    return std::nullopt;
+  const Vec3 ref = referencePos_[i];
+  const auto s = static_cast<std::size_t>(b.shapeIndex[i]);
+  Vec3 lo = ref, hi = ref;
+  switch (b.shape[i])
+  {
+  case ShapeKind::Sphere:
+    lo -= Vec3::Constant(b.radius[i]);
+    hi += Vec3::Constant(b.radius[i]);
+    break;
+  case ShapeKind::Wall:
+  {
+    const double inf = std::numeric_limits<double>::infinity();
+    const int axis = b.walls[s].axis;
+    lo = Vec3::Constant(-inf);
+    hi = Vec3::Constant(inf);
+    lo[axis] = hi[axis] = ref[axis];
+    break;
+  }
+  case ShapeKind::Facet:
+    for (const Vec3& v : b.facets[s].vertices)
+    {
+      const Vec3 corner = ref + b.ori[i] * v;
+      lo = lo.cwiseMin(corner);
+      hi = hi.cwiseMax(corner);
+    }
+    break;
+  case ShapeKind::Box:
+  {
+    const Vec3 half = b.ori[i].toRotationMatrix().cwiseAbs() * b.boxes[s].extents;
+    lo -= half;
+    hi += half;
+    break;
+  }
+  default: // Potential Blocks and Particles: their box now, moved back to the reference
+    if (b.shape[i] == ShapeKind::PotentialBlock)
+      potentialBlockAabb(b, i, lo, hi);
+    else
+      potentialParticleAabb(b, i, lo, hi);
+    lo += ref - b.pos[i];
+    hi += ref - b.pos[i];
+  }
+  return Bound{lo - Vec3::Constant(skin_), hi + Vec3::Constant(skin_), ref, skin_};
+}
 } // namespace talus::dem

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace talus::dem
@@ -45,6 +46,17 @@ public:
   int avoidSelfInteractionMask = 0;
   /// Number of rebuilds so far (diagnostics).
   std::int64_t rebuilds = 0;
+
+  /// Yade's Bound of body `id` (b.bound): its shape's axis-aligned box at the position the last
+  /// re-detection saw (`refPos`), grown by the skin (`sweepLength`) on every side; a wall is
+  /// unbounded along its plane. None before the first re-detection, after bodies changed, for
+  /// an erased body or a clump (its members are bounded).
+  struct Bound
+  {
+    Vec3 min, max, refPos;
+    double sweepLength;
+  };
+  [[nodiscard]] std::optional<Bound> boundOf(const Scene& scene, BodyId id) const;
 
   /// The skin check's verdict before the per-body test: `rebuild` when it is already known
   /// (bodies changed, the cell deformed past the skin, a block or particle moved or turned too

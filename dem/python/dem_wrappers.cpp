@@ -167,7 +167,13 @@ PYBIND11_MODULE(_dem, m)
       .def_readwrite("verletDist", &Collider::verletDist)
       .def_readwrite("allowBiggerThanPeriod", &Collider::allowBiggerThanPeriod)
       .def_readwrite("avoidSelfInteractionMask", &Collider::avoidSelfInteractionMask)
-      .def_readonly("rebuilds", &Collider::rebuilds);
+      .def_readonly("rebuilds", &Collider::rebuilds)
+      .def("boundOf", [](const Collider& c, const Scene& scene, BodyId id) -> py::object {
+        const auto bound = c.boundOf(scene, id);
+        if (!bound)
+          return py::none();
+        return py::make_tuple(bound->min, bound->max, bound->refPos, bound->sweepLength);
+      });
   py::class_<ContactLaw, std::shared_ptr<ContactLaw>>(m, "ContactLaw")
       .def_property_readonly("typeName", &ContactLaw::typeName)
       .def_property_readonly("physicsName", &ContactLaw::physicsName);

@@ -542,6 +542,25 @@ class Body:
     mat = material   # Yade's short name
 
     @property
+    def bound(self) -> "Aabb | None":
+        """Yade's ``b.bound``: the box the collider last bounded the body with (its shape at the
+        position of the last re-detection, grown by the skin), as a snapshot. None without a
+        collider and for a clump (its members are bounded); NaN everywhere while the collider
+        has not bounded the body (before its first run, after bodies changed, after O.load:
+        Yade does not save bounds either)."""
+        if self.isClump:
+            return None
+        for engine in self._scene.engines:
+            cpp = getattr(engine, "_cpp", None)
+            if isinstance(cpp, _dem.Collider) and not engine.dead:
+                found = cpp.boundOf(self._scene._cpp, self.id)
+                if found is None:
+                    nan = Vector3(float("nan"), float("nan"), float("nan"))
+                    return Aabb(nan, nan, nan, float("nan"))
+                return Aabb(*(Vector3(v) for v in found[:3]), float(found[3]))
+        return None
+
+    @property
     def bounded(self) -> bool:
         """Whether the collider bounds the body: all but clumps, whose members are bounded, and
         facets made with noBound."""
@@ -559,6 +578,16 @@ class Body:
 
     def __repr__(self):
         return f"<Body {self.id} {self.shape}>"
+
+
+@dataclass(frozen=True)
+class Aabb:
+    """A body's bound (Yade's Aabb): ``min``, ``max``, the position it was taken at ``refPos`` and
+    the skin ``sweepLength`` it is grown by."""
+    min: Vector3
+    max: Vector3
+    refPos: Vector3
+    sweepLength: float
 
 
 class BodyContainer:

@@ -478,8 +478,8 @@ class Dispatcher:
 
 class BoundDispatcher(Dispatcher, Engine):
     """The bound functors of a collider; also an engine of O.engines by itself, as Yade allows.
-    There it does nothing: Talus's collider bounds the bodies itself and Talus keeps no bounds
-    between steps (Yade's ``b.bound``) for it to update."""
+    There it does nothing: Talus's collider bounds the bodies itself (``b.bound`` reads its
+    bounds)."""
     _arity = 1
     _prefix = ("Bo1_", "Potential")   # PotentialBlock2AABB, PotentialParticle2AABB are Yade's too
 
