@@ -113,6 +113,7 @@ def _dem_cases():
         C("engine list of numbers", lambda t: setattr(_scene(), "engines", [5]), TypeError, r"O.engines takes engines, got 5"),
         C("bounding boxes enlarged", lambda t: d.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.5), ValueError, r"Bo1_Sphere_Aabb.aabbEnlargeFactor = 1.5: enlarging the bounding boxes .* not implemented"),
         C("contacts detected at a distance", lambda t: d.Ig2_Sphere_Sphere_ScGeom6D(interactionDetectionFactor=1.2), ValueError, r"Ig2_Sphere_Sphere_ScGeom6D.interactionDetectionFactor = 1.2: detecting contacts at a distance"),
+        C("stressMask beyond the three axes", lambda t: d.PeriTriaxController(stressMask=9), ValueError, r"stressMask takes bits 1, 2, 4 \(x, y, z\): an integer from 0 to 7, got 9"),
         C("engine list not a list", lambda t: setattr(_scene(), "engines", 5), TypeError, r"O.engines takes a list of engines, got 5"),
         # run control and the periodic cell
         C("O.run negative steps", lambda t: _scene().run(-5, True), ValueError, r"O.run: nSteps must be >= 0"),

@@ -35,6 +35,14 @@ def _forward(name: str, doc: str = "", kind=None):
     return property(get, set, doc=doc)
 
 
+def _axis_mask(value) -> int:
+    """A stressMask of the three axes (bits 1, 2, 4): higher bits would be ignored, so a mask
+    beyond 7 is a mistake said at once."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= value <= 7:
+        raise ValueError(f"stressMask takes bits 1, 2, 4 (x, y, z): an integer from 0 to 7, got {value!r}")
+    return int(value)
+
+
 def _done_hook():
     """Yade's doneHook of a controller: a command string or a callable, run when it reaches its
     goal (kept as given; the C++ engine gets the callable)."""
@@ -118,7 +126,7 @@ class PeriTriaxController(Engine):
         self.doneHook, self.label = doneHook, label
 
     goal = _forward("goal", kind=_vector)
-    stressMask = _forward("stressMask", kind=int)
+    stressMask = _forward("stressMask", kind=_axis_mask)
     maxStrainRate = _forward("maxStrainRate", kind=_vector)
     maxUnbalanced = _forward("maxUnbalanced", kind=float)
     absStressTol = _forward("absStressTol", kind=float)
@@ -254,7 +262,7 @@ class TriaxialStressController(Engine):
     goal1 = _forward("goal1", kind=float)
     goal2 = _forward("goal2", kind=float)
     goal3 = _forward("goal3", kind=float)
-    stressMask = _forward("stressMask", kind=int)
+    stressMask = _forward("stressMask", kind=_axis_mask)
     internalCompaction = _forward("internalCompaction", kind=bool)
     maxMultiplier = _forward("maxMultiplier", kind=float)
     finalMaxMultiplier = _forward("finalMaxMultiplier", kind=float)
