@@ -1,0 +1,72 @@
+#include "dem/distributed/Collective.h"
+
+#include <stdexcept>
+
+namespace talus::dem::distributed
+{
+void throwIfAnyRank(MPI_Comm comm, const std::string& localError)
+{
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  int first = localError.empty() ? ranks : rank;
+  MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
+  if (first == ranks)
+    return;
+  std::string message = localError;
+  int length = static_cast<int>(message.size());
+  MPI_Bcast(&length, 1, MPI_INT, first, comm);
+  message.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(message.data(), length, MPI_CHAR, first, comm);
+  throw std::invalid_argument(message);
+}
+
+std::vector<int> sendRows(MPI_Comm comm, const RankBodies& from, std::span<const std::int64_t> rows,
+                          std::span<const int> to, RankBodies& into)
+{
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  if (rows.size() != to.size())
+    throw std::invalid_argument("sendRows: " + std::to_string(rows.size()) + " rows for " + std::to_string(to.size())
+                                + " destinations");
+  const auto P = static_cast<std::size_t>(ranks);
+  // Group the rows by destination (stable: each destination gets them in the caller's order).
+  std::vector<int> sendCounts(P, 0), sendStart(P + 1, 0);
+  for (std::size_t k = 0; k < rows.size(); ++k)
+  {
+    if (to[k] < 0 || to[k] >= ranks || rows[k] < 0 || static_cast<std::size_t>(rows[k]) >= from.size())
+      throw std::invalid_argument("sendRows: row " + std::to_string(rows[k]) + " to rank " + std::to_string(to[k])
+                                  + " (rows: " + std::to_string(from.size()) + ", ranks: " + std::to_string(ranks) + ")");
+    ++sendCounts[static_cast<std::size_t>(to[k])];
+  }
+  for (std::size_t r = 0; r < P; ++r)
+    sendStart[r + 1] = sendStart[r] + sendCounts[r];
+  std::vector<std::int64_t> grouped(rows.size());
+  std::vector<int> next(sendStart.begin(), sendStart.end() - 1);
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    grouped[static_cast<std::size_t>(next[static_cast<std::size_t>(to[k])]++)] = rows[k];
+  std::vector<std::byte> sendBuffer;
+  packRows(from, grouped, sendBuffer);
+
+  std::vector<int> recvCounts(P, 0), recvStart(P + 1, 0);
+  MPI_Alltoall(sendCounts.data(), 1, MPI_INT, recvCounts.data(), 1, MPI_INT, comm);
+  for (std::size_t r = 0; r < P; ++r)
+    recvStart[r + 1] = recvStart[r] + recvCounts[r];
+  std::vector<std::byte> recvBuffer(static_cast<std::size_t>(recvStart[P]) * rowBytes());
+
+  // Counts in rows, not bytes: a row type keeps them far from int's limit.
+  MPI_Datatype row = MPI_DATATYPE_NULL;
+  MPI_Type_contiguous(static_cast<int>(rowBytes()), MPI_BYTE, &row);
+  MPI_Type_commit(&row);
+  MPI_Alltoallv(sendBuffer.data(), sendCounts.data(), sendStart.data(), row, recvBuffer.data(), recvCounts.data(),
+                recvStart.data(), row, comm);
+  MPI_Type_free(&row);
+
+  unpackRows(recvBuffer, into);
+  std::vector<int> source;
+  source.reserve(static_cast<std::size_t>(recvStart[P]));
+  for (int r = 0; r < ranks; ++r)
+    source.insert(source.end(), static_cast<std::size_t>(recvCounts[static_cast<std::size_t>(r)]), r);
+  return source;
+}
+} // namespace talus::dem::distributed

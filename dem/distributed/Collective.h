@@ -1,0 +1,27 @@
+#pragma once
+
+#include "dem/distributed/BodyRows.h"
+
+#include <mpi.h>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace talus::dem::distributed
+{
+/// Raise one error on every rank of `comm` when any rank has one (collective): the ranks pass
+/// what they found wrong (empty: nothing), and all throw the lowest failing rank's message, so
+/// no rank goes on into a collective the others have left.
+/// @throws std::invalid_argument with that message
+void throwIfAnyRank(MPI_Comm comm, const std::string& localError);
+
+/// Send rows `rows` of `from` to the ranks `to` (one entry per row; collective, every rank
+/// calls it, with nothing to send or not) and append the rows received to `into`, by source
+/// rank, each source's rows in the order it listed them.
+/// @return the source rank of each row appended
+/// @throws std::invalid_argument if `rows` and `to` differ in length or name a row or rank
+///         that does not exist (on this rank only: a caller's bug, not bad input)
+std::vector<int> sendRows(MPI_Comm comm, const RankBodies& from, std::span<const std::int64_t> rows,
+                          std::span<const int> to, RankBodies& into);
+} // namespace talus::dem::distributed
