@@ -155,7 +155,8 @@ public:
     const auto i = static_cast<std::size_t>(id);
     return std::runtime_error("body " + std::to_string(id) + " " + what + " " + describe(b.pos[i]) + " (velocity "
                               + describe(b.vel[i])
-                              + "): a velocity or O.dt so large that a step moved it absurdly far");
+                              + "): a velocity or O.dt so large that a step moved it absurdly far, or a position "
+                              + "set so from Python (O.positions(), state.pos)");
   }
 
 private:

@@ -586,6 +586,7 @@ void Collider::Displacements::add(const Displacements& d)
   other2 = std::max(other2, d.other2);
   low = low.cwiseMin(d.low);
   high = high.cwiseMax(d.high);
+  nonFinite = nonFinite || d.nonFinite;
 }
 
 Collider::Displacements Collider::displacementsIn(const Scene& scene, const SkinCheck& check, std::int64_t first,
@@ -599,6 +600,7 @@ Collider::Displacements Collider::displacementsIn(const Scene& scene, const Skin
       continue;
     const Vec3 reference = check.deformed ? Vec3(check.affine * referencePos_[i]) : referencePos_[i];
     const Vec3 moved = b.pos[i] - reference;
+    d.nonFinite = d.nonFinite || !std::isfinite(moved.squaredNorm());
     if (b.shape[i] == ShapeKind::Sphere)
     {
       d.sphere2 = std::max(d.sphere2, moved.squaredNorm());
@@ -615,6 +617,8 @@ Collider::Displacements Collider::displacementsIn(const Scene& scene, const Skin
 bool Collider::mustRebuild(const SkinCheck& check, const Displacements& all)
 {
   const double limit2 = check.limit2;
+  if (all.nonFinite)
+    return true;
   // Pairs of two other bodies (blocks, a wall and a block): each within half the skin.
   if (check.otherPairs && all.other2 > limit2)
     return true;

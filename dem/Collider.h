@@ -89,6 +89,9 @@ public:
     double other2 = -1;       ///< largest squared displacement of another body with a surface (-1: none)
     Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity());   ///< spheres' smallest displacement, per axis
     Vec3 high = Vec3::Constant(-std::numeric_limits<double>::infinity()); ///< and largest
+    /// A body's position is not finite (written so from Python, or a diverged run): the
+    /// re-detection it forces names the body.
+    bool nonFinite = false;
     void add(const Displacements& d);
   };
   /// The displacements of the bodies of [first, last) (check.rebuild false).

@@ -52,6 +52,16 @@ def _run_engine(engine):
     S.run(1, True)
 
 
+def _nan_written_into_positions():
+    from talus.dem import ForceResetter, InsertionSortCollider, NewtonIntegrator, sphere
+    S = _scene(*[sphere((0, 0, 0.1 * i), 0.04) for i in range(3)])
+    S.engines = [ForceResetter(), InsertionSortCollider(), NewtonIntegrator()]
+    S.dt = 1e-5
+    S.run(2, True)
+    S.positions()[1] = (math.nan, 0, 0)
+    S.run(2, True)
+
+
 def _write(path: Path, text: str) -> str:
     path.write_text(text)
     return str(path)
@@ -114,6 +124,7 @@ def _dem_cases():
         C("bounding boxes enlarged", lambda t: d.Bo1_Sphere_Aabb(aabbEnlargeFactor=1.5), ValueError, r"Bo1_Sphere_Aabb.aabbEnlargeFactor = 1.5: enlarging the bounding boxes .* not implemented"),
         C("contacts detected at a distance", lambda t: d.Ig2_Sphere_Sphere_ScGeom6D(interactionDetectionFactor=1.2), ValueError, r"Ig2_Sphere_Sphere_ScGeom6D.interactionDetectionFactor = 1.2: detecting contacts at a distance"),
         C("stressMask beyond the three axes", lambda t: d.PeriTriaxController(stressMask=9), ValueError, r"stressMask takes bits 1, 2, 4 \(x, y, z\): an integer from 0 to 7, got 9"),
+        C("NaN written into positions()", lambda t: _nan_written_into_positions(), RuntimeError, r"body 1 has a non-finite position \(nan, 0, 0\) .* or a position set so from Python"),
         C("engine list not a list", lambda t: setattr(_scene(), "engines", 5), TypeError, r"O.engines takes a list of engines, got 5"),
         # run control and the periodic cell
         C("O.run negative steps", lambda t: _scene().run(-5, True), ValueError, r"O.run: nSteps must be >= 0"),
