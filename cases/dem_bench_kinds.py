@@ -407,8 +407,7 @@ def chart(case, table) -> None:
     ax.set_ylabel("ns per particle-step (CPU time, 1 thread)")
     ax.set_yscale("log")
     ax.grid(True, axis="y", which="both", alpha=0.3)
-    ax.set_title("DEM cost by scene kind")
-    ax.legend()
+    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.08), ncol=3, frameon=False)
     case.save_chart(fig)
 
 
