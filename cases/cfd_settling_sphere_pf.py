@@ -26,12 +26,11 @@ Produces: records cfd.settling_sphere_pf_re20 and cfd.settling_sphere_pf_re450; 
 import shutil
 import tempfile
 
-import numpy as np
 
 from talus import results
 from talus.coupling.case_builder import FoamCase, cfd_case
 from talus.coupling.cases import settle_sphere
-from talus.coupling.settling import SettlingSphere
+from talus.coupling.settling import SettlingSphere, settling_row
 
 RHO, NU, RHO_P, G = 1000.0, 1e-6, 2500.0, 9.81
 CHECKED_D_OVER_DX, TOLERANCE = 0.05, 0.02
@@ -79,15 +78,8 @@ def run_reynolds(re: int, args, plt):
     rows = []
     for d_over_dx in [CHECKED_D_OVER_DX] + ([] if args.quick else [0.1, 0.2]):
         t, v, coupling, elapsed = settle(re, d_over_dx, fluid_steps, args.procs, args.drag_model)
-        transient = float(np.max(np.abs(v - np.interp(t, t_ref, v_ref)))) / w
-        row = dict(d_over_dx=d_over_dx, dx=d / d_over_dx, v_end=float(v[-1]), t_end=float(t[-1]),
-                   rel_error_end=(v[-1] - w) / w, max_transient_error=transient, wall_time_s=elapsed,
-                   max_Re_p=coupling.maxReynolds, fluid_cells=coupling.link.nCells)
-        rows.append(row)
-        print(f"  d/dx {d_over_dx:.2f}: v({t[-1]:.3g} s) {v[-1]:.6e} m/s ({row['rel_error_end']:+.3%} vs terminal), "
-              f"largest deviation from the equation of motion {transient:.3%} of w, Re_p {coupling.maxReynolds:.1f}; "
-              f"{fluid_steps} fluid steps in {elapsed:.1f} s on {args.procs} fluid rank(s)")
-        ax.plot(t, v * 100, "-", lw=1.2, label=f"d/dx = {d_over_dx:.2f}")
+        rows.append(settling_row(t, v, w, (t_ref, v_ref), coupling, elapsed, d, d / d_over_dx, fluid_steps,
+                                 args.procs, ax))
     ax.axhline(w * 100, color="grey", lw=0.5, ls=":")
     ax.set_xlabel("t [s]")
     ax.set_ylabel("settling velocity [cm/s]")

@@ -30,7 +30,7 @@ import numpy as np
 from talus import results
 from talus.coupling.case_builder import FoamCase, cfd_case
 from talus.coupling.cases import settle_sphere
-from talus.coupling.settling import SettlingSphere
+from talus.coupling.settling import SettlingSphere, settling_row
 
 RHO, NU, RHO_P, D, G, CM = 1000.0, 3e-5, 2500.0, 2e-3, 9.81, 0.5
 SPHERE = SettlingSphere(D, RHO_P, RHO, NU, G, addedMassCoefficient=CM)
@@ -79,15 +79,7 @@ def main():
     for dx in CELL_SIZES:
         t, v, coupling, elapsed = settle(args.procs, dx, fluid_steps, args.envelope)
         velocities[dx] = v
-        transient = float(np.max(np.abs(v - np.interp(t, t_ref, v_ref)))) / w
-        row = dict(d_over_dx=D / dx, dx=dx, v_end=float(v[-1]), t_end=float(t[-1]),
-                   rel_error_end=(v[-1] - w) / w, max_transient_error=transient, wall_time_s=elapsed,
-                   max_Re_p=coupling.maxReynolds, fluid_cells=coupling.link.nCells)
-        rows.append(row)
-        print(f"d/dx {D / dx:.3f}: v({t[-1]:.3g} s) {v[-1]:.6e} m/s ({row['rel_error_end']:+.2%} vs terminal), "
-              f"largest transient deviation {transient:.2%} of w, Re_p {coupling.maxReynolds:.2f}; "
-              f"{fluid_steps} fluid steps in {elapsed:.1f} s on {args.procs} fluid rank(s)")
-        ax.plot(t, v * 100, "-", lw=1.2, label=f"d/dx = {D / dx:.2f}")
+        rows.append(settling_row(t, v, w, (t_ref, v_ref), coupling, elapsed, D, dx, fluid_steps, args.procs, ax))
     ax.axhline(w * 100, color="grey", lw=0.5, ls=":")
     ax.set_xlabel("t [s]")
     ax.set_ylabel("settling velocity [cm/s]")

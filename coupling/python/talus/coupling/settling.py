@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["SettlingSphere", "schiller_naumann_correction"]
+__all__ = ["SettlingSphere", "schiller_naumann_correction", "settling_row"]
 
 
 def schiller_naumann_correction(re: float) -> float:
@@ -71,3 +71,22 @@ class SettlingSphere:
             t += dt
             ts.append(t); vs.append(v)
         return np.array(ts), np.array(vs)
+
+
+def settling_row(t, v, terminal: float, reference: tuple, coupling, elapsed: float, diameter: float, dx: float,
+                 fluid_steps: int, procs: int, ax=None) -> dict:
+    """One coupled settling run against the `terminal` velocity and the equation of motion
+    `reference` (times, velocities): its row for the case's table (final error, largest
+    deviation during the fall, both over the terminal velocity), printed, and its curve drawn on
+    `ax`."""
+    t_ref, v_ref = reference
+    transient = float(np.max(np.abs(v - np.interp(t, t_ref, v_ref)))) / terminal
+    row = dict(d_over_dx=diameter / dx, dx=dx, v_end=float(v[-1]), t_end=float(t[-1]),
+               rel_error_end=(v[-1] - terminal) / terminal, max_transient_error=transient, wall_time_s=elapsed,
+               max_Re_p=coupling.maxReynolds, fluid_cells=coupling.link.nCells)
+    print(f"  d/dx {diameter / dx:.3f}: v({t[-1]:.3g} s) {v[-1]:.6e} m/s ({row['rel_error_end']:+.3%} vs terminal), "
+          f"largest deviation from the equation of motion {transient:.3%} of w, Re_p {coupling.maxReynolds:.2f}; "
+          f"{fluid_steps} fluid steps in {elapsed:.1f} s on {procs} fluid rank(s)")
+    if ax is not None:
+        ax.plot(t, v * 100, "-", lw=1.2, label=f"d/dx = {diameter / dx:.2f}")
+    return row
