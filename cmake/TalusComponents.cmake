@@ -29,6 +29,22 @@ function(talus_feature name enabled note)
   _talus_set(FEATURE ${name} "${enabled}" "${note}")
 endfunction()
 
+## talus_need_mpi(<COMPONENT|FEATURE> <name> <out-var>): <out-var> TRUE when MPI and an mpirun
+## (cached as TALUS_MPIEXEC) are found; otherwise FALSE, and <name> is switched off with the reason.
+function(talus_need_mpi kind name out)
+  set(${out} FALSE PARENT_SCOPE)
+  if(NOT MPI_FOUND)
+    _talus_set(${kind} ${name} OFF "MPI not found (apt-get install libopenmpi-dev openmpi-bin)")
+    return()
+  endif()
+  find_program(TALUS_MPIEXEC NAMES mpirun mpiexec)
+  if(NOT TALUS_MPIEXEC)
+    _talus_set(${kind} ${name} OFF "MPI headers found but no mpirun (apt-get install openmpi-bin)")
+    return()
+  endif()
+  set(${out} TRUE PARENT_SCOPE)
+endfunction()
+
 ## talus_config_entries(<out-var>): "name:ON:note" items of all components, then all features.
 function(_talus_entries kind out)
   get_property(names GLOBAL PROPERTY TALUS_${kind}_NAMES)
