@@ -10,7 +10,8 @@ Kinds:    each a scene script under cases/scenes/ run unchanged by `talus run` a
                  diameters wide, Hertz-Mindlin, the fallen spheres erased by a PyRunner every
                  100 steps (scenes/silo.py);
           drum   a closed cylinder of 96 facets turned by a RotationEngine at 1 rad/s, its lower
-                 part filled, linear law (scenes/drum.py);
+                 part filled with a bed first settled (12 000 steps, quick 3 000, of Talus with
+                 the drum at rest), linear law (scenes/drum.py);
           peri-triax  a periodic cloud compacted to 100 kPa by PeriTriaxController (scenes/peri_triax.py);
           rve    400 spheres in a periodic cell (a jittered fcc packing, 5 x 5 x 4 unit cells), driven in calls of 100
                  steps with a velocity gradient and a getStress each, as FEM x DEM Gauss points
@@ -122,9 +123,11 @@ def silo_packing(path: Path, n: int):
 OMEGA = 1.0
 
 
-def drum_packing(path: Path, n: int):
+def drum_packing(path: Path, n: int, settle: int):
     """A closed drum (axis z, 24 segments) whose lower 45 % holds n spheres in eight layers
-    along its axis (radii 0.9-1 r on a lattice of 2.1 r)."""
+    along its axis (radii 0.9-1 r on a lattice of 2.1 r), settled by `settle` steps of Talus with
+    the drum at rest: the lattice collapses into a bed that takes longer than the timed steps to
+    come to rest, and the benchmark is the drum turning a bed."""
     rng = np.random.default_rng(11)
     spacing, layers, segments = 2.1 * RADIUS, 8, 24
     radius = spacing * math.sqrt(n / (layers * 0.45 * math.pi)) + 2 * spacing
@@ -143,7 +146,12 @@ def drum_packing(path: Path, n: int):
     for (x0, y0), (x1, y1) in zip(rim, rim[1:]):
         tri += rectangle((x0, y0, lo), (x1, y1, lo), (x1, y1, hi), (x0, y0, hi))
         tri += [((0, 0, lo), (x1, y1, lo), (x0, y0, lo)), ((0, 0, hi), (x0, y0, hi), (x1, y1, hi))]
-    spheres = np.column_stack([centres, radii])
+    fill = path.with_suffix(".fill")
+    write_facet_packing(fill, (time_step(radii), YOUNG, DENSITY, 0.0), tri, np.column_stack([centres, radii]))
+    bench.run_once(bench.Side("talus settling the drum", bench.talus_command(
+        "run", "-j", "1", str(SCENES / "drum.py"), str(fill), str(settle), str(path)), CPU), 3600)
+    spheres = np.array([[float(v) for v in line.split()[1:]] for line in path.read_text().splitlines()
+                        if line.startswith("S ")])
     write_facet_packing(path, (time_step(radii), YOUNG, DENSITY, OMEGA), tri, spheres)
     m = 1.01 * radius
     return len(spheres), tri, spheres, (-m, m, -m, m, lo - 0.01 * length, hi + 0.01 * length)
@@ -319,7 +327,8 @@ def prepare(kind: Kind, folder: Path, quick: bool):
         return args, n, n * steps, ligg
     if kind.name in ("silo", "drum"):
         steps = 500 if quick else 4000
-        n, tri, spheres, box = (silo_packing if kind.name == "silo" else drum_packing)(packing, 1500 if quick else 4000)
+        n, tri, spheres, box = (silo_packing(packing, 1500 if quick else 4000) if kind.name == "silo" else
+                                drum_packing(packing, 1500 if quick else 4000, 3000 if quick else 12000))
         stl = folder / f"{kind.name}.stl"
         write_stl(stl, tri)
         if kind.name == "silo":
