@@ -8,7 +8,8 @@ Kinds:    each a scene script under cases/scenes/ run unchanged by `talus run` a
                  (scenes/dense_bed.py, a lattice bed in a five-wall box) with each contact law;
           silo   a square facet silo (16 triangles) discharging through a floor orifice six
                  diameters wide, Hertz-Mindlin, the fallen spheres erased by a PyRunner every
-                 100 steps (scenes/silo.py);
+                 100 steps (scenes/silo.py); the fill first settled with the orifice plugged
+                 (12 000 steps, quick 3 000, of Talus);
           drum   a closed cylinder of 96 facets turned by a RotationEngine at 1 rad/s, its lower
                  part filled with a bed first settled (12 000 steps, quick 3 000, of Talus with
                  the drum at rest), linear law (scenes/drum.py);
@@ -97,9 +98,21 @@ def write_sphere_packing(path: Path, header, spheres) -> None:
             out.write(" ".join(repr(float(v)) for v in s) + "\n")
 
 
-def silo_packing(path: Path, n: int):
-    """A square silo about ten layers of n spheres deep (radii 0.9-1 r on a lattice of 2.1 r),
-    its floor's orifice six diameters wide; spheres erased 4 r below the floor."""
+def settled(path: Path, scene: str, header, triangles, spheres, steps: int):
+    """The spheres after `steps` steps of Talus running the scene on them (its SAVE argument):
+    a lattice collapses into a bed that takes longer than the timed steps to come to rest, and
+    the benchmarks time a silo discharging and a drum turning a bed."""
+    fill = path.with_suffix(".fill")
+    write_facet_packing(fill, header, triangles, spheres)
+    bench.run_once(bench.Side(f"talus settling {scene}", bench.talus_command(
+        "run", "-j", "1", str(SCENES / scene), str(fill), str(steps), str(path)), CPU), 3600)
+    return np.array([[float(v) for v in line.split()[1:]] for line in path.read_text().splitlines()])
+
+
+def silo_packing(path: Path, n: int, settle: int):
+    """A square silo about ten layers of n spheres deep (radii 0.9-1 r on a lattice of 2.1 r)
+    settled by `settle` steps with its orifice plugged, the orifice six diameters wide; spheres
+    erased 4 r below the floor."""
     rng = np.random.default_rng(7)
     spacing = 2.1 * RADIUS
     side = max(8, math.ceil(math.sqrt(n / 10)))
@@ -115,8 +128,10 @@ def silo_packing(path: Path, n: int):
         tri += rectangle((0, y, 0), (width, y, 0), (width, y, height), (0, y, height))
     for x0, x1, y0, y1 in ((0, width, 0, a), (0, width, b, width), (0, a, a, b), (b, width, a, b)):
         tri += rectangle((x0, y0, 0), (x1, y0, 0), (x1, y1, 0), (x0, y1, 0))
-    spheres = np.column_stack([centres, radii])
-    write_facet_packing(path, (time_step(radii), YOUNG, DENSITY, -4 * RADIUS), tri, spheres)
+    header = (time_step(radii), YOUNG, DENSITY, -4 * RADIUS)
+    plug = rectangle((a, a, 0), (b, a, 0), (b, b, 0), (a, b, 0))
+    spheres = settled(path, "silo.py", header, tri + plug, np.column_stack([centres, radii]), settle)
+    write_facet_packing(path, header, tri, spheres)
     return len(spheres), tri, spheres, (0.0, width, 0.0, width, -4 * RADIUS, height)
 
 
@@ -125,9 +140,8 @@ OMEGA = 1.0
 
 def drum_packing(path: Path, n: int, settle: int):
     """A closed drum (axis z, 24 segments) whose lower 45 % holds n spheres in eight layers
-    along its axis (radii 0.9-1 r on a lattice of 2.1 r), settled by `settle` steps of Talus with
-    the drum at rest: the lattice collapses into a bed that takes longer than the timed steps to
-    come to rest, and the benchmark is the drum turning a bed."""
+    along its axis (radii 0.9-1 r on a lattice of 2.1 r), settled by `settle` steps with the drum
+    at rest."""
     rng = np.random.default_rng(11)
     spacing, layers, segments = 2.1 * RADIUS, 8, 24
     radius = spacing * math.sqrt(n / (layers * 0.45 * math.pi)) + 2 * spacing
@@ -146,12 +160,8 @@ def drum_packing(path: Path, n: int, settle: int):
     for (x0, y0), (x1, y1) in zip(rim, rim[1:]):
         tri += rectangle((x0, y0, lo), (x1, y1, lo), (x1, y1, hi), (x0, y0, hi))
         tri += [((0, 0, lo), (x1, y1, lo), (x0, y0, lo)), ((0, 0, hi), (x0, y0, hi), (x1, y1, hi))]
-    fill = path.with_suffix(".fill")
-    write_facet_packing(fill, (time_step(radii), YOUNG, DENSITY, 0.0), tri, np.column_stack([centres, radii]))
-    bench.run_once(bench.Side("talus settling the drum", bench.talus_command(
-        "run", "-j", "1", str(SCENES / "drum.py"), str(fill), str(settle), str(path)), CPU), 3600)
-    spheres = np.array([[float(v) for v in line.split()[1:]] for line in path.read_text().splitlines()
-                        if line.startswith("S ")])
+    spheres = settled(path, "drum.py", (time_step(radii), YOUNG, DENSITY, 0.0), tri,
+                      np.column_stack([centres, radii]), settle)
     write_facet_packing(path, (time_step(radii), YOUNG, DENSITY, OMEGA), tri, spheres)
     m = 1.01 * radius
     return len(spheres), tri, spheres, (-m, m, -m, m, lo - 0.01 * length, hi + 0.01 * length)
@@ -327,8 +337,8 @@ def prepare(kind: Kind, folder: Path, quick: bool):
         return args, n, n * steps, ligg
     if kind.name in ("silo", "drum"):
         steps = 500 if quick else 4000
-        n, tri, spheres, box = (silo_packing(packing, 1500 if quick else 4000) if kind.name == "silo" else
-                                drum_packing(packing, 1500 if quick else 4000, 3000 if quick else 12000))
+        n, settle = (1500, 3000) if quick else (4000, 12000)
+        n, tri, spheres, box = (silo_packing if kind.name == "silo" else drum_packing)(packing, n, settle)
         stl = folder / f"{kind.name}.stl"
         write_stl(stl, tri)
         if kind.name == "silo":

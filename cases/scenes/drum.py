@@ -9,7 +9,7 @@ A RotationEngine turns the facets at omega rad/s about z; FrictMat (poisson 0.3,
 0.5 rad), linear Cundall-Strack with Coulomb friction, Cundall damping 0.2, gravity -9.81 along
 y. One step builds the contacts, then STEPS steps are timed. Prints `TIMED <steps> <seconds>
 <contacts> <cpu seconds>` (the CPU time of this process over the timed steps). With SAVE, the
-spheres where they end are written there in PACKING's format (the case settles the bed with the
+spheres where they end are written there as `S x y z r` lines (the case settles the bed with the
 drum at rest, omega 0, and times the settled bed turning).
 """
 import sys
@@ -25,8 +25,7 @@ except NameError:
 
 packing_file, steps = sys.argv[1], int(sys.argv[2])
 with open(packing_file) as source:
-    header = source.readline()
-    dt, young, density, omega = (float(v) for v in header.split())
+    dt, young, density, omega = (float(v) for v in source.readline().split())
     rows = [line.split() for line in source if line.strip()]
 triangles = [[float(v) for v in row[1:]] for row in rows if row[0] == "F"]
 spheres = [[float(v) for v in row[1:]] for row in rows if row[0] == "S"]
@@ -52,6 +51,5 @@ fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
 print(f"TIMED {steps} {seconds:.6f} {contacts} {cpu:.6f}{fused}")
 if len(sys.argv) > 3:
     with open(sys.argv[3], "w") as out:
-        out.write(header + "".join(f"F {' '.join(map(repr, t))}\n" for t in triangles))
-        out.write("".join(f"S {float(p[0])!r} {float(p[1])!r} {float(p[2])!r} {float(O.bodies[i].shape.radius)!r}\n"
-                          for i in balls for p in [O.bodies[i].state.pos]))
+        out.writelines(f"S {' '.join(repr(float(v)) for v in (*O.bodies[i].state.pos, O.bodies[i].shape.radius))}\n"
+                       for i in balls)

@@ -1,7 +1,7 @@
 """A silo discharging through its floor's orifice, for speed comparisons; the same file runs in
 Yade and in Talus.
 
-    yade -n -j1 -x silo.py PACKING STEPS   |   talus run silo.py PACKING STEPS
+    yade -n -j1 -x silo.py PACKING STEPS [SAVE]   |   talus run silo.py PACKING STEPS [SAVE]
 
 PACKING is a text file written by cases/dem_bench_kinds.py: a first line `dt young density exit_z`,
 then the silo's triangles (`F x1 y1 z1 x2 y2 z2 x3 y3 z3`: a square box of facets open at the top,
@@ -9,7 +9,8 @@ its floor with a square orifice) and the spheres (`S x y z r`, a loose lattice f
 FrictMat (poisson 0.3, friction 0.5 rad), Hertz-Mindlin, Cundall damping 0.2, gravity -9.81
 along z. Every 100 steps a PyRunner erases the spheres that have fallen below exit_z. One step
 builds the contacts, then STEPS steps are timed. Prints `TIMED <steps> <seconds> <spheres left>
-<cpu seconds>` (the CPU time of this process over the timed steps).
+<cpu seconds>` (the CPU time of this process over the timed steps). With SAVE, the spheres
+left are written there as `S x y z r` lines (the case settles the fill with the orifice plugged).
 """
 import sys
 import time
@@ -56,3 +57,7 @@ O.run(steps, True)
 seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
 fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
 print(f"TIMED {steps} {seconds:.6f} {len(falling)} {cpu:.6f}{fused}")
+if len(sys.argv) > 3:
+    with open(sys.argv[3], "w") as out:
+        out.writelines(f"S {' '.join(repr(float(v)) for v in (*O.bodies[i].state.pos, O.bodies[i].shape.radius))}\n"
+                       for i in sorted(falling))
