@@ -134,8 +134,7 @@ class _Dense(np.ndarray):
         """The components from the constructor's arguments (each type adds its own forms)."""
         if not args:
             return np.zeros(cls._shape)
-        size = int(np.prod(cls._shape))
-        if len(args) == size and all(isinstance(a, (Number, np.number)) for a in args):
+        if len(args) == math.prod(cls._shape) and all(isinstance(a, (Number, np.number)) for a in args):
             return args
         if len(args) == 1:
             return args[0]
@@ -143,18 +142,20 @@ class _Dense(np.ndarray):
 
     @classmethod
     def _from_array(cls, values):
+        if isinstance(values, np.ndarray) and values.shape == cls._shape and values.dtype == cls._dtype:
+            return values.copy().view(cls)   # the common case (a row of the scene's arrays), quick
         try:
             array = np.array(values, dtype=float if cls._dtype.kind == "f" else None)
         except (TypeError, ValueError) as e:
             raise TypeError(f"{cls.__name__}: cannot build from {values!r} ({e})") from None
-        if array.size == int(np.prod(cls._shape)) and array.shape != cls._shape and array.ndim == 1:
+        if array.size == math.prod(cls._shape) and array.shape != cls._shape and array.ndim == 1:
             array = array.reshape(cls._shape)   # Matrix3 from a flat sequence of 9 numbers
         if array.shape != cls._shape or array.dtype.kind not in "biuf":
             raise TypeError(f"{cls.__name__}: expected {'x'.join(map(str, cls._shape))} numbers, got {values!r}")
         if cls._dtype.kind == "i" and array.dtype.kind == "f":
             if not np.all(array == np.round(array)):
                 raise TypeError(f"{cls.__name__}: components must be integers, got {values!r}")
-        return array.astype(cls._dtype).view(cls)
+        return array.astype(cls._dtype, copy=False).view(cls)
 
     # -- numpy plumbing ---------------------------------------------------------------------
     def __array_wrap__(self, out, context=None, return_scalar=False):
