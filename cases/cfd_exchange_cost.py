@@ -1,5 +1,5 @@
 """CFD-DEM case: cost of one coupling exchange against the particle count and the number of
-fluid ranks, and the coupling's share of a coupled step at 10 000 particles (issue #6: O(N/P)
+fluid ranks, and the coupling's share of a coupled step at 10 000 particles (O(N/P)
 data per rank, a bounded number of messages, overhead below 20 % of the step time).
 
 Run:      build/bin/talus run cases/cfd_exchange_cost.py [--quick] [--results DIR]
@@ -289,7 +289,7 @@ def main():
         case.record(f"coupling share of a coupled step at {len(positions)} particles in CPU time: exchange (DEM-side "
                     f"coupling work + the fluid rank's exchange) / (fluid step's solution + {o['substeps']} DEM "
                     f"sub-steps with collider and contact law, {what}, 1 DEM thread + exchange), 1 fluid rank",
-                    o["share"], "issue #6: below 20 % of the step time", 0.2, suffix=suffix, steps=steps, **o)
+                    o["share"], "below 20 % of the step time", 0.2, suffix=suffix, steps=steps, **o)
     if not bounded:
         raise SystemExit("the number of messages per exchange depends on the particle count")
 

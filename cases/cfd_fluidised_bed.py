@@ -24,7 +24,7 @@ Measured: the bed's pressure drop from the particles' side each fluid step: the 
 Checked:  the plateau (mean over the held phase) against the buoyant bed weight per area
           (rho_p - rho) g sum V_p / A within 5 %; the minimum fluidisation velocity (where the
           line fitted to the pressure drop below 0.6 of the plateau meets the plateau) against
-          the Ergun estimate within 15 % (issue #6).
+          the Ergun estimate within 15 %.
 Produces: records cfd.fluidised_bed.plateau and .umf (cfd.fluidised_bed_fixed.umf with
           --fixed; cfd.fluidised_bed_convolution.* with an explicit --envelope-method); chart
           cfd.fluidised_bed.png (pressure drop against the superficial velocity).

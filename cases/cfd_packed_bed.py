@@ -18,7 +18,7 @@ Checked:  the pressure gradient, fitted by least squares to the laterally averag
           pressures of the cells whose centres lie in the middle 40 % of the bed, against the
           Ergun equation dP/dz = 150 mu (1 - e)^2 U0 / (e^3 d^2) + 1.75 rho (1 - e) U0^2 / (e^3 d)
           at the porosity e of the packing over exactly the slab those cells cover (exact
-          sphere-slab volumes), within 10 % (issue #6). Also recorded: the distance from the
+          sphere-slab volumes), within 10 %. Also recorded: the distance from the
           closure's own Stokes limit 18 mu (1 - e) U0 / (d^2 e^(2 + h)) (Ergun x 0.12 e^(1-h) /
           (1 - e): 1.107 at the periodic packing's e = 0.332), the solver's fluid fraction there,
           and the pressure drops of the bed from the fluid and from the particles.

@@ -13,7 +13,7 @@ Set-up:   sphere d = 1 mm, rho_p = 2500 kg/m3, released from rest at (0, 0, 60 m
           at a cell centre laterally). Fluid step 2e-5 s (tau / 7), DEM step 2e-6 s (10 sub-steps).
           Quick: 200 fluid steps (4 ms = 29 tau) per mesh; full: 2500 (50 ms).
 Checked:  the velocity after 10 tau on the coarsest mesh (d/dx = 0.067) against the Stokes value,
-          within 2 % (issue #6). What the other numbers show is the point-force approach's known
+          within 2 %. What the other numbers show is the point-force approach's known
           error: the drag uses the velocity of the particle's cell, which the particle's own
           reaction force sets in motion, so the slip and the drag are underestimated and the
           sphere settles faster than Stokes. The excess grows with d/dx and with time (the cell

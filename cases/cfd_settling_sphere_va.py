@@ -12,13 +12,13 @@ Set-up:   sphere d = 2 mm, rho_p = 2500 kg/m3, released from rest in a closed bo
           10 mm (d/dx = 0.05, 0.1, 0.2; the box scales with dx). Fluid step 1 ms, DEM step
           0.1 ms (10 sub-steps). Quick: 250 fluid steps (0.25 s = 13.5 tau); full: 600.
 Checked:  the final velocity against the Schiller-Naumann terminal velocity within 2 % on the
-          d/dx = 0.1 mesh (issue #6), and the whole transient against the integrated equation of
+          d/dx = 0.1 mesh, and the whole transient against the integrated equation of
           motion (m + C_m rho V) dv/dt = (m - rho V) g - 3 pi mu d v (1 + 0.15 Re^0.687),
           recorded as the largest deviation relative to w. The error that grows with d/dx is the
           particle's own wake seen through the envelope (as for point forces, weaker since the
           force is spread over ~3 cells). Serial against 2 fluid ranks: the d/dx = 0.1 run is
           repeated on the case decomposed in 2 (along z) and the settling velocities of the two
-          runs must agree within 1e-6 relative at every fluid step (issue #6).
+          runs must agree within 1e-6 relative at every fluid step.
 Produces: records cfd.settling_sphere_va and cfd.settling_sphere_va.ranks; chart
           cfd.settling_sphere_va.png.
 """

@@ -1,4 +1,4 @@
-"""FEM x DEM benchmark: Gauss-point calls per second, Talus against a Yade-based call (issue #7).
+"""FEM x DEM benchmark: Gauss-point calls per second, Talus against a Yade-based call.
 
 Run:      build/bin/talus run cases/fem_bench_rve.py [--quick] [--results DIR]
 Set-up:   one RVE (talus.fem.prepareRVE, rMean 0.1, cube of edge 1.5 (quick) or 2.5, -100 kPa),

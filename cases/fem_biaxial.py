@@ -1,4 +1,4 @@
-"""FEM x DEM case: drained biaxial compression of a coarse plane-strain sample (issue #7).
+"""FEM x DEM case: drained biaxial compression of a coarse plane-strain sample.
 
 Run:      build/bin/talus run cases/fem_biaxial.py [--quick] [--results DIR]
 Set-up:   a 1 x 2 sample of bilinear quadrilaterals (quick: 2 x 4, full: 4 x 8; 2x2 Gauss points)

@@ -1,4 +1,4 @@
-"""FEM x DEM: the same drained biaxial run driven by escript and by FEniCSx (issue #7).
+"""FEM x DEM: the same drained biaxial run driven by escript and by FEniCSx.
 
 Run:      build/bin/talus run cases/fem_escript_vs_fenicsx.py [--quick] [--results DIR]
 Set-up:   a uniform 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Gauss points, one RVE

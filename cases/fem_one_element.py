@@ -1,4 +1,4 @@
-"""FEM x DEM case: one element, homogeneous strain (issue #7). The FEM x DEM stress path equals a
+"""FEM x DEM case: one element, homogeneous strain. The FEM x DEM stress path equals a
 direct DEM run of the same RVE under the same strain path.
 
 Run:      build/bin/talus run cases/fem_one_element.py [--quick] [--results DIR]

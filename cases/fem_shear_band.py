@@ -1,4 +1,4 @@
-"""FEM x DEM case: shear band in drained biaxial compression, mesh refinement study (issue #7).
+"""FEM x DEM case: shear band in drained biaxial compression, mesh refinement study.
 
 Run:      build/bin/talus run cases/fem_shear_band.py [--quick] [--results DIR]
 Set-up:   a W x H = 1 x 2 plane-strain sample of bilinear quadrilaterals (2x2 Gauss points) on two

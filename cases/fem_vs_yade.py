@@ -1,4 +1,4 @@
-"""FEM x DEM against Yade: the Gauss-point stress and tangent on the same packing (issue #7).
+"""FEM x DEM against Yade: the Gauss-point stress and tangent on the same packing.
 
 Run:      build/bin/talus run cases/fem_vs_yade.py [--quick] [--results DIR]
 Set-up:   two RVEs prepared by talus.fem.prepareRVE at -100 kPa: a 3D cube of spheres (rMean 0.1,

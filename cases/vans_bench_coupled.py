@@ -15,7 +15,7 @@ Set-up:   the scene of cases/vans_sediment_transport.py (1165 grains over 100 fi
           for 8 s of coupled transport (not timed, Talus only) and both programs restart from
           that state (positions, velocities, spins, fluid velocity profile; fresh contacts) for
           4 s of coupled transport. --develop and --coupled override the mode's lengths.
-Checked:  speed ratio Yade time / Talus time of the compared coupled phase (issue #4's target
+Checked:  speed ratio Yade time / Talus time of the compared coupled phase (the target
           >= 3), record vans.bench.coupled (wall times; the ratio of the single-threaded runs'
           CPU times, which the load of a shared machine does not skew, and the deposition
           ratios are extras). When the averaging

@@ -1,5 +1,5 @@
 """VANS case: accuracy against cost of the two-way coupling, over the coupling period and the
-fluid time step (issue #4, "speed and accuracy together").
+fluid time step ("speed and accuracy together").
 
 Run:      OMP_NUM_THREADS=1 build/bin/talus run cases/vans_coupling_period.py [--quick] [--results DIR]
 Set-up:   the sediment-transport scene of cases/vans_sediment_transport.py, deposited for 0.3 s

@@ -10,7 +10,7 @@ Set-up:   one sphere released from rest in water (rho 1000 kg/m^3, mu 1e-3 Pa s)
 Checked:  the terminal velocity against the Dallavalle-law value (drag coefficient
           0.44 + 24.4/Re_p, Yade's constants), the root w of
           (rho_p - rho_f) V g = 1/2 rho_f pi r^2 (0.44 w + 24.4 nu/d) w:
-          worst relative error < 0.5 % (issue #4); measured ~1e-9 (the leap-frog fixed point is
+          worst relative error < 0.5 %; measured ~1e-9 (the leap-frog fixed point is
           exact, what remains is the unfinished approach).
 Produces: record vans.settling; chart vans.settling.png (v/w against t/tau for every sphere).
 """

@@ -16,7 +16,7 @@ Set-up:   four sets of synthetic solid-phase profiles and options, each given to
 Checked:  max over nodes of |u_Talus - u_Yade| / max |u_Yade|, worst set: <= 1e-8 (record
           vans.yade-parity; the Reynolds stresses are compared the same way and reported).
           Speed: the bedload set (ndimz = 900, 1000 steps) timed inside each program, median of
-          5 calls (quick: 3): record vans.bench.fluid-resolution, ratio >= 1 (issue #4's target).
+          5 calls (quick: 3): record vans.bench.fluid-resolution, ratio >= 1 (the target).
           If yade is not installed the case says so and records nothing (exit status 0).
 Produces: records vans.yade-parity and vans.bench.fluid-resolution; chart
           vans.yade-parity.profiles.png (the bedload profiles of both programs and their

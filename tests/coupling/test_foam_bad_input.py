@@ -1,5 +1,5 @@
-"""coupling: bad input is refused before the coupled run starts, with a message naming the item
-(issue #6, "Bad input"): a missing case file, a solver that does not exist, a case not
+"""coupling: bad input is refused before the coupled run starts, with a message naming the item:
+a missing case file, a solver that does not exist, a case not
 decomposed for the fluid ranks asked, gravity differing between the DEM side and the case or
 the NewtonIntegrator, and a malformed case file (the solver dies on it while the DEM waits for
 the handshake: every process gone within seconds). The particle outside the mesh at the start

@@ -1,5 +1,5 @@
-"""coupling: a coupled case leaves what ParaView opens (issue #6, "fluid fields and particles
-both open in ParaView"): cases/cfd_shear_flow.py with --vtk keeps the OpenFOAM case folder
+"""coupling: a coupled case leaves what ParaView opens (fluid fields and particles both open in
+ParaView): cases/cfd_shear_flow.py with --vtk keeps the OpenFOAM case folder
 (mesh, fields every 10 fluid steps, case.foam for ParaView's OpenFOAM reader) and the spheres
 written by the DEM at the same steps (VTK/particles-spheres.pvd).
 

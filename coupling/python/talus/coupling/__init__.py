@@ -1,4 +1,4 @@
-"""CFD-DEM coupling with OpenFOAM over MPI (issue #6): ``FoamCoupling`` spawns the OpenFOAM
+"""CFD-DEM coupling with OpenFOAM over MPI: ``FoamCoupling`` spawns the OpenFOAM
 coupling solver (foam-solvers/talusPointForceFoam) and exchanges particles and forces with it
 every fluid step. See docs/coupling.md."""
 
