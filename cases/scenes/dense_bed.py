@@ -17,8 +17,11 @@ One step builds the contacts, then STEPS steps are timed. Prints `TIMED <steps> 
 <contacts> <cpu seconds>` (the CPU time of this process over the timed steps).
 """
 import math
+import os
 import sys
-import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # bench_scene.py, under Yade's -x too
+from bench_scene import read_packing, timed  # noqa: E402
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
@@ -30,9 +33,7 @@ except NameError:
 
 packing_file, steps = sys.argv[1], int(sys.argv[2])
 law = sys.argv[3] if len(sys.argv) > 3 else "linear"
-with open(packing_file) as source:
-    dt, young, density, box_x, box_y = (float(v) for v in source.readline().split())
-    spheres = [tuple(float(v) for v in line.split()) for line in source if line.strip()]
+(dt, young, density, box_x, box_y), spheres, _ = read_packing(packing_file)
 
 damping = 0.2
 if law == "linear":
@@ -76,10 +77,4 @@ O.engines = [
     NewtonIntegrator(damping=damping, gravity=(0, 0, -9.81)),
 ]
 O.dt = dt
-O.run(1, True)
-start, cpu = time.perf_counter(), time.process_time()
-O.run(steps, True)
-seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
-contacts = sum(1 for i in O.interactions if i.isReal) if hasattr(O, "interactions") else O._cpp.realContactCount()
-fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
-print(f"TIMED {steps} {seconds:.6f} {contacts} {cpu:.6f}{fused}")
+timed(O, steps)

@@ -12,8 +12,11 @@ y. One step builds the contacts, then STEPS steps are timed. Prints `TIMED <step
 spheres where they end are written there as `S x y z r` lines (the case settles the bed with the
 drum at rest, omega 0, and times the settled bed turning).
 """
+import os
 import sys
-import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # bench_scene.py, under Yade's -x too
+from bench_scene import read_packing, timed, write_spheres  # noqa: E402
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
@@ -24,11 +27,7 @@ except NameError:
     _facet = facet
 
 packing_file, steps = sys.argv[1], int(sys.argv[2])
-with open(packing_file) as source:
-    dt, young, density, omega = (float(v) for v in source.readline().split())
-    rows = [line.split() for line in source if line.strip()]
-triangles = [[float(v) for v in row[1:]] for row in rows if row[0] == "F"]
-spheres = [[float(v) for v in row[1:]] for row in rows if row[0] == "S"]
+(dt, young, density, omega), spheres, triangles = read_packing(packing_file)
 
 material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
 drum = O.bodies.append([_facet((t[0:3], t[3:6], t[6:9]), material=material) for t in triangles])
@@ -42,14 +41,6 @@ O.engines = [
     NewtonIntegrator(damping=0.2, gravity=(0, -9.81, 0)),
 ]
 O.dt = dt
-O.run(1, True)
-start, cpu = time.perf_counter(), time.process_time()
-O.run(steps, True)
-seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
-contacts = sum(1 for i in O.interactions if i.isReal) if hasattr(O, "interactions") else O._cpp.realContactCount()
-fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
-print(f"TIMED {steps} {seconds:.6f} {contacts} {cpu:.6f}{fused}")
+timed(O, steps)
 if len(sys.argv) > 3:
-    with open(sys.argv[3], "w") as out:
-        out.writelines(f"S {' '.join(repr(float(v)) for v in (*O.bodies[i].state.pos, O.bodies[i].shape.radius))}\n"
-                       for i in balls)
+    write_spheres(O, sys.argv[3], balls)

@@ -11,8 +11,11 @@ dynCell, maxStrainRate 10, maxUnbalanced 0.1, relStressTol 1e-3), which compacts
 then holds it. One step builds the contacts, then STEPS steps are timed. Prints `TIMED <steps>
 <seconds> <contacts> <cpu seconds>` (the CPU time of this process over the timed steps).
 """
+import os
 import sys
-import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # bench_scene.py, under Yade's -x too
+from bench_scene import read_packing, timed  # noqa: E402
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
@@ -20,9 +23,7 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
 
 packing_file, steps = sys.argv[1], int(sys.argv[2])
-with open(packing_file) as source:
-    dt, young, density, size = (float(v) for v in source.readline().split())
-    spheres = [tuple(float(v) for v in line.split()) for line in source if line.strip()]
+(dt, young, density, size), spheres, _ = read_packing(packing_file)
 
 O.periodic = True
 O.cell.setBox(size, size, size)
@@ -38,10 +39,4 @@ O.engines = [
     NewtonIntegrator(damping=0.2),
 ]
 O.dt = dt
-O.run(1, True)
-start, cpu = time.perf_counter(), time.process_time()
-O.run(steps, True)
-seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
-contacts = sum(1 for i in O.interactions if i.isReal) if hasattr(O, "interactions") else O._cpp.realContactCount()
-fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
-print(f"TIMED {steps} {seconds:.6f} {contacts} {cpu:.6f}{fused}")
+timed(O, steps)

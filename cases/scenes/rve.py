@@ -12,8 +12,11 @@ steps (O.run(STEPS, True)) and reads the stress (getStress). One step builds the
 Prints `TIMED <calls x steps> <seconds> <contacts> <cpu seconds>` (the CPU time of this process
 over the calls).
 """
+import os
 import sys
-import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # bench_scene.py, under Yade's -x too
+from bench_scene import read_packing, timed  # noqa: E402
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
@@ -21,9 +24,7 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
 
 packing_file, calls, steps = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
-with open(packing_file) as source:
-    dt, young, density, sx, sy, sz = (float(v) for v in source.readline().split())
-    spheres = [tuple(float(v) for v in line.split()) for line in source if line.strip()]
+(dt, young, density, sx, sy, sz), spheres, _ = read_packing(packing_file)
 
 O.periodic = True
 O.cell.setBox(sx, sy, sz)
@@ -37,14 +38,14 @@ O.engines = [
     NewtonIntegrator(damping=0.2),
 ]
 O.dt = dt
-O.run(1, True)
 rate = 1.0 / (steps * dt)
-start, cpu = time.perf_counter(), time.process_time()
-for _ in range(calls):
-    O.cell.velGrad = Matrix3(-1e-4 * rate, 2e-5 * rate, 0, 0, 5e-5 * rate, 0, 0, 0, 5e-5 * rate)
-    O.run(steps, True)
-    stress = getStress()
-seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
-contacts = sum(1 for i in O.interactions if i.isReal) if hasattr(O, "interactions") else O._cpp.realContactCount()
-fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
-print(f"TIMED {calls * steps} {seconds:.6f} {contacts} {cpu:.6f}{fused}")
+
+
+def calls_of_steps():
+    for _ in range(calls):
+        O.cell.velGrad = Matrix3(-1e-4 * rate, 2e-5 * rate, 0, 0, 5e-5 * rate, 0, 0, 0, 5e-5 * rate)
+        O.run(steps, True)
+        getStress()
+
+
+timed(O, calls * steps, calls_of_steps)

@@ -1,0 +1,49 @@
+"""What the benchmark scenes of this folder share, importable by the same text under Yade
+(`yade -x`) and Talus: reading the packing a case wrote, and timing the steps.
+
+A packing file: a first line of numbers (the scene's parameters), then one line per sphere
+`x y z r`, or, in files that also hold a mesh, `S x y z r` and `F x1 y1 z1 x2 y2 z2 x3 y3 z3` per
+triangle."""
+import time
+
+
+def read_packing(path):
+    """(parameters, spheres, triangles): the first line's numbers, each sphere's (x, y, z, r)
+    and each triangle's nine coordinates."""
+    spheres, triangles = [], []
+    with open(path) as source:
+        parameters = [float(v) for v in source.readline().split()]
+        for line in source:
+            fields = line.split()
+            if not fields:
+                continue
+            if fields[0] == "F":
+                triangles.append([float(v) for v in fields[1:]])
+            else:
+                spheres.append(tuple(float(v) for v in (fields[1:] if fields[0] == "S" else fields)))
+    return parameters, spheres, triangles
+
+
+def real_contacts(O):
+    return sum(1 for i in O.interactions if i.isReal) if hasattr(O, "interactions") else O._cpp.realContactCount()
+
+
+def timed(O, steps, run=None, figure=real_contacts):
+    """One step to build the contacts, then `run()` (default: O.run(steps)) timed; prints
+    `TIMED <steps> <seconds> <figure(O)> <cpu seconds>` and, in Talus, ` fused <fused steps>`."""
+    O.run(1, True)
+    start, cpu = time.perf_counter(), time.process_time()
+    if run is None:
+        O.run(steps, True)
+    else:
+        run()
+    seconds, cpu = time.perf_counter() - start, time.process_time() - cpu
+    fused = f" fused {O.fusedSteps}" if hasattr(O, "fusedSteps") else ""
+    print(f"TIMED {steps} {seconds:.6f} {figure(O)} {cpu:.6f}{fused}")
+
+
+def write_spheres(O, path, ids):
+    """Spheres `ids` where they are now, as `S x y z r` lines (the fill a settling run leaves)."""
+    with open(path, "w") as out:
+        out.writelines(f"S {' '.join(repr(float(v)) for v in (*O.bodies[i].state.pos, O.bodies[i].shape.radius))}\n"
+                       for i in ids)
