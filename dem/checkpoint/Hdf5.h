@@ -1,11 +1,11 @@
-// HDF5 plumbing of the checkpoints (dem/Checkpoint.cpp and dem/checkpoint/*.cpp; internal, not
+// HDF5 plumbing of the checkpoints (dem/checkpoint/Checkpoint.cpp and dem/checkpoint/*.cpp; internal, not
 // installed): owned identifiers, errors with HDF5's innermost message, quiet error printing,
 // and the Writer and Reader of datasets and attributes.
 #pragma once
 
-#include "dem/Checkpoint.h"
-#include "dem/Scene.h"
-#include "dem/build_config.h"
+#include "dem/checkpoint/Checkpoint.h"
+#include "dem/core/Scene.h"
+#include "dem/base/build_config.h"
 
 #include <hdf5.h>
 

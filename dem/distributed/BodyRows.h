@@ -1,6 +1,6 @@
 #pragma once
 
-#include "dem/Bodies.h"
+#include "dem/core/Bodies.h"
 
 #include <cstddef>
 #include <cstdint>

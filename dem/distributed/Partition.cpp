@@ -1,6 +1,6 @@
 #include "dem/distributed/Partition.h"
 
-#include "dem/Contacts.h"
+#include "dem/core/Contacts.h"
 #include "dem/distributed/Collective.h"
 
 #include <zoltan.h>

@@ -1,7 +1,7 @@
 // Cohesive-frictional contact with rolling and twisting resistance and bond breakage, as Yade's
 // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys + Law2_ScGeom6D_CohFrictPhys_CohesionMoment (without
 // creep). The relative rotation of ScGeom6D (twist and bending) lives in ContactExtra.
-#include "dem/ContactLawKernel.h"
+#include "dem/laws/ContactLawKernel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 // Hertz-Mindlin contact with Coulomb friction and Thornton's viscous damping, as Yade's
 // Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin (without adhesion and
 // rolling moments).
-#include "dem/ContactLawKernel.h"
+#include "dem/laws/ContactLawKernel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 // The blocks' law also has Yade's rock-joint bonds (useFaceProperties): a contact between two
 // intact-rock faces (BlockGen's rock bridges and cemented joints) carries a cohesion and a
 // tensile strength until it breaks, then it is frictional.
-#include "dem/ContactLawKernel.h"
+#include "dem/laws/ContactLawKernel.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Linear elastic contact with Coulomb friction (Cundall & Strack), as Yade's
 // Ip2_FrictMat_FrictMat_FrictPhys + Law2_ScGeom_FrictPhys_CundallStrack.
-#include "dem/ContactLawKernel.h"
+#include "dem/laws/ContactLawKernel.h"
 
 #include <algorithm>
 #include <cmath>

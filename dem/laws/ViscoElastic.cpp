@@ -1,6 +1,6 @@
 // Linear visco-elastic contact (spring-dashpot) with Coulomb friction and rolling resistance,
 // as Yade's Ip2_ViscElMat_ViscElMat_ViscElPhys + Law2_ScGeom_ViscElPhys_Basic.
-#include "dem/ContactLawKernel.h"
+#include "dem/laws/ContactLawKernel.h"
 
 #include <algorithm>
 #include <atomic>

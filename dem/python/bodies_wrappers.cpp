@@ -1,9 +1,9 @@
 // Python bindings of dem/'s body types and kinematics: kinematic engines, clumps, boxes.
 // Compiled into talus._dem; `talus_wrap_bodies(m)` is called from dem_wrappers.cpp. The Python
 // API (Yade's names, defaults, docstrings) is talus.dem.kinematic and talus.dem.bodies.
-#include "dem/KinematicEngines.h"
-#include "dem/Scene.h"
-#include "dem/ServoPIDController.h"
+#include "dem/impose/KinematicEngines.h"
+#include "dem/core/Scene.h"
+#include "dem/control/ServoPIDController.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>

@@ -1,13 +1,13 @@
 // Python bindings of the time stepper and the stress/strain controllers. Compiled into
 // talus._dem; `talus_wrap_controllers(m)` is called from dem_wrappers.cpp. The Python API
 // (Yade's names, defaults, doneHook strings) is talus.dem.controllers.
-#include "dem/GlobalStiffnessTimeStepper.h"
-#include "dem/Peri3dController.h"
-#include "dem/PeriIsoCompressor.h"
-#include "dem/PeriTriaxController.h"
-#include "dem/SampleOperations.h"
-#include "dem/Scene.h"
-#include "dem/TriaxialStressController.h"
+#include "dem/step/GlobalStiffnessTimeStepper.h"
+#include "dem/control/Peri3dController.h"
+#include "dem/control/PeriIsoCompressor.h"
+#include "dem/control/PeriTriaxController.h"
+#include "dem/impose/SampleOperations.h"
+#include "dem/core/Scene.h"
+#include "dem/control/TriaxialStressController.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>

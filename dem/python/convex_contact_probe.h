@@ -2,8 +2,8 @@
 
 // The contact probe and the 2D-mode check that the Potential Block and Potential Particle
 // bindings share (blocks_wrappers.cpp, particles_wrappers.cpp).
-#include "dem/ConvexContact.h"
-#include "dem/Scene.h"
+#include "dem/shapes/ConvexContact.h"
+#include "dem/core/Scene.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>

@@ -1,17 +1,17 @@
 // Python bindings of dem/: no logic here, only the mapping of C++ names to Python. Defaults,
 // docstrings and Yade-style conveniences live in the talus.dem Python layer.
-#include "dem/CallbackEngine.h"
-#include "dem/ParallelEngine.h"
-#include "dem/Collider.h"
-#include "dem/ContactLaw.h"
-#include "dem/ForceResetter.h"
-#include "dem/InteractionLoop.h"
-#include "dem/Measurements.h"
-#include "dem/NewtonIntegrator.h"
-#include "dem/Probe.h"
-#include "dem/Scene.h"
-#include "dem/Threads.h"
-#include "dem/build_config.h"
+#include "dem/step/CallbackEngine.h"
+#include "dem/step/ParallelEngine.h"
+#include "dem/contact/Collider.h"
+#include "dem/laws/ContactLaw.h"
+#include "dem/step/ForceResetter.h"
+#include "dem/step/InteractionLoop.h"
+#include "dem/measure/Measurements.h"
+#include "dem/step/NewtonIntegrator.h"
+#include "dem/measure/Probe.h"
+#include "dem/core/Scene.h"
+#include "dem/base/Threads.h"
+#include "dem/base/build_config.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/functional.h>

@@ -1,9 +1,9 @@
 // Python bindings of the force engines and the InteractionLoop's callbacks. Compiled into
 // talus._dem; `talus_wrap_force_engines(m)` is called from dem_wrappers.cpp. The Python API
 // (Yade's names, defaults, docstrings) is talus.dem.force_engines.
-#include "dem/ForceEngines.h"
-#include "dem/InteractionLoop.h"
-#include "dem/IntrCallback.h"
+#include "dem/impose/ForceEngines.h"
+#include "dem/step/InteractionLoop.h"
+#include "dem/laws/IntrCallback.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>

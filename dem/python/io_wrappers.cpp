@@ -1,9 +1,9 @@
 // Python bindings of dem/'s I/O: checkpoints (HDF5) and the array copies that the ParaView
 // export reads. Compiled into talus._dem; `talus_wrap_io(m)` is called from dem_wrappers.cpp.
 // The Python API (defaults, docstrings, engine lists) is talus.dem.io and talus.dem.export.
-#include "dem/Checkpoint.h"
-#include "dem/ContactGeometry.h"
-#include "dem/Scene.h"
+#include "dem/checkpoint/Checkpoint.h"
+#include "dem/contact/ContactGeometry.h"
+#include "dem/core/Scene.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>

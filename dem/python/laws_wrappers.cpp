@@ -1,9 +1,9 @@
 // Python bindings of the contact models' parameters and state and of the energy tracker.
 // Compiled into talus._dem; `talus_wrap_laws(m)` is called from dem_wrappers.cpp. The Python
 // API (Yade's functor classes, O.energy) is talus.dem.engines and talus.dem.energy.
-#include "dem/ContactLaw.h"
-#include "dem/Energy.h"
-#include "dem/Scene.h"
+#include "dem/laws/ContactLaw.h"
+#include "dem/measure/Energy.h"
+#include "dem/core/Scene.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>

@@ -1,6 +1,6 @@
 // Python bindings of dem/SpherePack (Yade's SpherePack.makeCloud). Compiled into talus._dem;
 // `talus_wrap_pack(m)` is called from dem_wrappers.cpp. The Python API is talus.dem.pack.
-#include "dem/SpherePack.h"
+#include "dem/shapes/SpherePack.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>

@@ -1,5 +1,5 @@
 // The library reports the version and the component table decided at configure time.
-#include "dem/build_config.h"
+#include "dem/base/build_config.h"
 
 #include <gtest/gtest.h>
 

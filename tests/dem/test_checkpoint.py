@@ -78,7 +78,7 @@ def assert_identical(a: dict, b: dict):
 
 
 def test_layout_is_covered():
-    """Every field of these structures is written by dem/Checkpoint.cpp (Scene: all but its
+    """Every field of these structures is written by dem/checkpoint/Checkpoint.cpp (Scene: all but its
     engines and the transient pauseRequested_, failedStep_, the sub-stepping state (subStep,
     subStepping, nextEngines, stepping_: how the steps are run, reset by loading) and fused: the fused step's
     per-thread ranges, its step count, its skin check made ahead, forgotten at every run(), and

@@ -1,11 +1,11 @@
 // The particle exchange interface, as a coupling uses it: read arrays, apply persistent and
 // per-step forces, hook into the step.
-#include "dem/Exchange.h"
-#include "dem/ContactLaw.h"
-#include "dem/ForceResetter.h"
-#include "dem/InteractionLoop.h"
-#include "dem/NewtonIntegrator.h"
-#include "dem/Collider.h"
+#include "dem/interface/Exchange.h"
+#include "dem/laws/ContactLaw.h"
+#include "dem/step/ForceResetter.h"
+#include "dem/step/InteractionLoop.h"
+#include "dem/step/NewtonIntegrator.h"
+#include "dem/contact/Collider.h"
 
 #include <gtest/gtest.h>
 

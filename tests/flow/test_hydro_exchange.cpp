@@ -2,8 +2,8 @@
 // a sphere settling in still fluid reaches the Dallavalle terminal velocity.
 #include "flow/HydroForceExchange.h"
 
-#include "dem/ForceResetter.h"
-#include "dem/NewtonIntegrator.h"
+#include "dem/step/ForceResetter.h"
+#include "dem/step/NewtonIntegrator.h"
 
 #include <gtest/gtest.h>
 

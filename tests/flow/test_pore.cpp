@@ -1,8 +1,8 @@
 // Pore-scale flow (flow/pore/): geometry against analytic values, the pressure solvers against
 // each other, flux conservation, and the bad-input errors. The comparison with Yade's FlowEngine
 // on the same packing is tests/flow/test_pore.py.
-#include "dem/ForceResetter.h"
-#include "dem/NewtonIntegrator.h"
+#include "dem/step/ForceResetter.h"
+#include "dem/step/NewtonIntegrator.h"
 #include "flow/pore/FlowCoupling.h"
 #include "flow/pore/PoreFlow.h"
 

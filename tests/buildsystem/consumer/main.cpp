@@ -1,5 +1,5 @@
 // Prints the version and components of the Talus it was linked against.
-#include <dem/build_config.h>
+#include <dem/base/build_config.h>
 
 #include <iostream>
 

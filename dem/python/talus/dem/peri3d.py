@@ -1,5 +1,5 @@
 """Yade's Peri3dController: stress or strain control of all six components of the periodic
-cell (see dem/Peri3dController.h for the algorithm)."""
+cell (see dem/control/Peri3dController.h for the algorithm)."""
 
 from __future__ import annotations
 

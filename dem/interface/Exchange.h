@@ -1,0 +1,96 @@
+#pragma once
+
+#include "dem/step/CallbackEngine.h"
+#include "dem/core/Scene.h"
+
+#include <functional>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+namespace talus::dem
+{
+/// The particle exchange interface: everything a coupling (VANS fluid, pore flow, OpenFOAM,
+/// FEM x DEM) may do with the DEM core, and nothing more.
+///
+/// - read particle state as arrays indexed by body id (spans over the core's own storage, no
+///   copies; valid until bodies are added): positions, velocities, angular velocities, radii,
+///   masses, and which ids are live spheres; the contact list, read only;
+/// - apply forces and torques: `persistentForces()` keeps a value until the coupling changes it
+///   (Yade's permanent forces), `stepForces()` is this step's accumulator, reset by the
+///   ForceResetter, to be added to from a hook placed after it;
+/// - hook into the step: `addHook` inserts an engine calling the coupling at a chosen point,
+///   every `period` steps.
+///
+/// Couplings hold a ParticleExchange, never the Scene itself.
+class ParticleExchange
+{
+public:
+  /// Where in the step a hook runs.
+  enum class HookPoint
+  {
+    BeforeForces, ///< after the ForceResetter, before contact forces: add fluid forces here
+    AfterForces,  ///< after contact forces, before integration: read this step's total forces
+    AfterStep,    ///< after integration: read the new positions and velocities
+  };
+
+  explicit ParticleExchange(Scene& scene) : scene_(scene) {}
+
+  [[nodiscard]] std::span<const Vec3> positions() const { return scene_.bodies.pos; }
+  [[nodiscard]] std::span<const Vec3> velocities() const { return scene_.bodies.vel; }
+  [[nodiscard]] std::span<const Vec3> angularVelocities() const { return scene_.bodies.angVel; }
+  [[nodiscard]] std::span<const double> radii() const { return scene_.bodies.radius; }
+  [[nodiscard]] std::span<const double> masses() const { return scene_.bodies.mass; }
+  /// True for ids that are live spheres (the particles couplings act on).
+  [[nodiscard]] bool isSphere(BodyId id) const
+  {
+    const auto i = static_cast<std::size_t>(id);
+    return i < scene_.bodies.size() && scene_.bodies.alive[i] && scene_.bodies.shape[i] == ShapeKind::Sphere;
+  }
+
+  /// The contact list, read only (pairs, overlaps, forces): for exchanges through the contacts,
+  /// such as heat conduction between particles.
+  [[nodiscard]] const Contacts& contacts() const { return scene_.contacts; }
+
+  [[nodiscard]] std::span<Vec3> persistentForces() { return scene_.bodies.extForce; }
+  [[nodiscard]] std::span<Vec3> persistentTorques() { return scene_.bodies.extTorque; }
+  [[nodiscard]] std::span<Vec3> stepForces() { return scene_.bodies.force; }
+  [[nodiscard]] std::span<Vec3> stepTorques() { return scene_.bodies.torque; }
+
+  [[nodiscard]] double time() const { return scene_.time; }
+  [[nodiscard]] double dt() const { return scene_.dt; }
+  [[nodiscard]] std::int64_t iter() const { return scene_.iter; }
+  [[nodiscard]] bool periodic() const { return scene_.periodic; }
+  [[nodiscard]] const Cell& cell() const { return scene_.cell; }
+
+  /// Insert a hook engine calling `f` every `period` steps at `point`; returns it (remove it by
+  /// setting `dead`). @throws std::logic_error if the engine list lacks the anchor engine
+  std::shared_ptr<CallbackEngine> addHook(HookPoint point, std::function<void()> f, std::int64_t period = 1)
+  {
+    auto hook = std::make_shared<CallbackEngine>();
+    hook->callback = std::move(f);
+    hook->iterPeriod = period;
+    hook->initRun = true;
+    auto& engines = scene_.engines;
+    auto find = [&](const std::string& type) {
+      for (std::size_t k = 0; k < engines.size(); ++k)
+        if (engines[k]->typeName() == type)
+          return k;
+      throw std::logic_error("cannot place a coupling hook: the engine list has no " + type);
+    };
+    std::size_t at = 0;
+    switch (point)
+    {
+    case HookPoint::BeforeForces: at = find("ForceResetter") + 1; break;
+    case HookPoint::AfterForces: at = find("NewtonIntegrator"); break;
+    case HookPoint::AfterStep: at = find("NewtonIntegrator") + 1; break;
+    }
+    engines.insert(engines.begin() + static_cast<std::ptrdiff_t>(at), hook);
+    return hook;
+  }
+
+private:
+  Scene& scene_;
+};
+} // namespace talus::dem

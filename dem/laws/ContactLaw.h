@@ -1,0 +1,175 @@
+#pragma once
+
+#include "dem/contact/ContactGeometry.h"
+#include "dem/core/Contacts.h"
+#include "dem/core/EnergyTracker.h"
+#include "dem/core/Material.h"
+#include "dem/core/PairParameter.h"
+#include "dem/base/Threads.h"
+
+#include <algorithm>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace talus::dem
+{
+class Scene;
+
+/// A contact model: how a contact's physics is set from the two materials when it becomes
+/// real (Yade's Ip2 functor) and how forces follow from its kinematics (Yade's Law2 functor).
+///
+/// Each model is one file in dem/laws/, registered by name with TALUS_REGISTER_CONTACT_LAW;
+/// adding one edits no other file. `computeForces` is called once per step and loops over the
+/// contacts itself, so there is no virtual call per contact.
+class ContactLaw
+{
+public:
+  ContactLaw() = default;
+  ContactLaw(const ContactLaw&) = delete;
+  ContactLaw& operator=(const ContactLaw&) = delete;
+  virtual ~ContactLaw() = default;
+
+  /// Yade's Law2 name, e.g. "Law2_ScGeom_FrictPhys_CundallStrack".
+  [[nodiscard]] virtual std::string typeName() const = 0;
+  /// Yade's Ip2 name that creates this law's physics, e.g. "Ip2_FrictMat_FrictMat_FrictPhys".
+  [[nodiscard]] virtual std::string physicsName() const = 0;
+  /// 0 if the law cannot handle this material pair; otherwise a specificity (higher wins).
+  [[nodiscard]] virtual int handles(const Material& m1, const Material& m2) const = 0;
+  /// Whether the law's model applies to contacts of this geometry (in an InteractionLoop with
+  /// several laws, a contact goes to the most specific law among those that do): by default
+  /// the spheres' contacts (with spheres, walls, facets, boxes); the Potential Blocks' and
+  /// Particles' laws take their own.
+  [[nodiscard]] virtual bool handlesGeometry(ContactGeometryKind kind) const
+  {
+    return kind == ContactGeometryKind::SphereSphere || kind == ContactGeometryKind::WallSphere
+           || kind == ContactGeometryKind::FacetSphere || kind == ContactGeometryKind::BoxSphere;
+  }
+  /// The law keeps state in Contacts::extra (which is then allocated and kept aligned).
+  [[nodiscard]] virtual bool needsExtra() const = 0;
+  /// Set the physics (stiffness, damping, friction) of a contact that just became real; `x` is
+  /// its ContactExtra (null unless needsExtra()).
+  virtual void initialize(Contact& c, ContactExtra* x, const Scene& scene) const = 0;
+  /// Set c.force of every real contact whose c.law == lawIndex (geometry already updated).
+  virtual void computeForces(Scene& scene, std::uint8_t lawIndex) = 0;
+  /// The law is the only one of its InteractionLoop: update the geometry of every candidate
+  /// pair, initialise new contacts and compute forces, in one pass over the contacts.
+  /// @return the index of the first contact overlapping more than scene.maxOverlapRatio of its
+  /// smaller radius, or -1
+  virtual std::int64_t computeAll(Scene& scene) = 0;
+  /// computeAll's work on the contacts [first, last) only, for a caller that runs the loop in its
+  /// own parallel region (the fused step) and calls stepDone() after the last range;
+  /// Contacts::extra must already be aligned when needsExtra().
+  /// @param energyBlocks null: no energy tracking; else `first` is a multiple of energyBlock
+  /// and what contact k dissipates is added to energyBlocks[k / energyBlock] (the blocks of
+  /// computeAll, so the sums do not depend on how the contacts are split)
+  /// @return the index of the first contact of the range overlapping too much, or the number
+  /// of contacts
+  virtual std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last,
+                                    ContactEnergy* energyBlocks) = 0;
+  /// Called once per step before any contact is processed (the law may look at the scene's
+  /// materials and align Contacts::extra).
+  virtual void prepare(Scene& /*scene*/) {}
+  /// Called once per step after the law's contacts were processed (one-shot settings reset).
+  virtual void stepDone() {}
+  /// Elastic energy stored in the real contacts whose c.law == lawIndex.
+  [[nodiscard]] virtual double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const = 0;
+  /// Of the contacts of this law that became real this step, the part of their elastic energy
+  /// that the growth of their bodies' radii (grownBy, per body id) put in: E(u) - E(max(u - g, 0)),
+  /// u the penetration and g the growth of the pair (see addGrownContactsEnergy).
+  [[nodiscard]] virtual double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
+                                                  const std::vector<double>& grownBy) const = 0;
+
+  /// Parameters of the law and of its physics functor (Yade's Ip2/Law2 attributes), by name.
+  /// @throws std::invalid_argument naming the law and the parameter if it has no such one or
+  ///         the value is out of range
+  virtual void setParameter(const std::string& name, double value);
+  [[nodiscard]] virtual double parameter(const std::string& name) const;
+  /// A parameter of the physics functor given per pair of materials (Yade's MatchMaker).
+  /// @throws std::invalid_argument naming the law and the parameter if it takes none such
+  virtual void setPairParameter(const std::string& name, const PairParameter& value);
+  /// Names accepted by setParameter.
+  [[nodiscard]] virtual std::vector<std::string> parameterNames() const { return {}; }
+
+protected:
+  [[noreturn]] void unknownParameter(const std::string& name) const;
+};
+
+/// What a law's per-contact force function may read besides the contact.
+struct StepContext
+{
+  const Bodies& bodies;
+  const std::deque<Material>& materials;
+  const Cell* cell; ///< the periodic cell, null if space is not periodic
+  double dt;
+  ContactExtra* extra; ///< Contacts::extra (index = contact index), null unless the law needs it
+};
+
+/// 1/2 kn u^2 + 1/2 Fs^2/ks: the energy of a contact's linear springs, the normal one compressed
+/// by u. Taken from the compression rather than from the last normal force (the same after a force
+/// pass) so that it follows radii changed at fixed positions (growParticles) at once.
+inline double springEnergy(const Contact& c, double compression)
+{
+  return 0.5 * c.kn * compression * compression + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
+}
+
+/// True if a real contact overlaps more than `ratio` (> 0) of its smaller reference radius.
+/// A contact without force at that overlap (no stiffness: a material of young 0, which Yade's
+/// scripts give to bodies that only show something) cannot blow up and is let through, as is one
+/// between two bodies that forces do not move (a fixed floor box in fixed bed spheres).
+inline bool overlapsTooMuch(const Contact& c, double ratio, const Bodies& b)
+{
+  return ratio > 0 && c.penetration > ratio * std::min(c.refR1, c.refR2) && c.force != Vec3::Zero()
+         && (b.dynamic[static_cast<std::size_t>(c.id1)] || b.dynamic[static_cast<std::size_t>(c.id2)]);
+}
+
+/// Base of the concrete laws: the loops over contacts, calling the law's inline
+/// `template <bool Track> void force(Contact&, std::size_t k, const StepContext&, ContactEnergy&) const`
+/// (k: the contact's index; energies dissipated are added to the last argument when Track) and
+/// `double elastic(const Contact&, const ContactExtra*) const` (no virtual call per contact).
+/// A law that keeps state in Contacts::extra declares `static constexpr bool usesExtra = true`.
+template <class Law>
+class ContactLawKernel : public ContactLaw
+{
+public:
+  static constexpr bool usesExtra = false;
+  [[nodiscard]] bool needsExtra() const override { return Law::usesExtra; }
+  void computeForces(Scene& scene, std::uint8_t lawIndex) override;
+  std::int64_t computeAll(Scene& scene) override;
+  std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last, ContactEnergy* energyBlocks) override;
+  [[nodiscard]] double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const override;
+  [[nodiscard]] double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
+                                          const std::vector<double>& grownBy) const override;
+
+private:
+  template <bool Track>
+  std::int64_t loopAll(Scene& scene);
+  template <bool Track>
+  std::int64_t firstBadIn(Scene& scene, const StepContext& step, std::int64_t first, std::int64_t last,
+                          ContactEnergy& energy) const;
+  template <bool Track>
+  void loopForces(Scene& scene, std::uint8_t lawIndex);
+  BalancedRanges ranges_; ///< computeAll's contacts per thread
+};
+
+/// Make Contacts::extra as long as the contact list (allocating it on first use).
+/// @throws std::logic_error if it exists with another length
+void alignContactExtra(Contacts& contacts);
+
+/// Register a contact law factory under its Law2 name (and optional aliases).
+bool registerContactLaw(const std::vector<std::string>& names, std::function<std::unique_ptr<ContactLaw>()> factory);
+/// Create a registered contact law. @throws std::invalid_argument listing the known names
+std::unique_ptr<ContactLaw> makeContactLaw(const std::string& name);
+/// Names of every registered contact law.
+std::vector<std::string> contactLawNames();
+} // namespace talus::dem
+
+/// Register contact law class TYPE under the given names (first: Yade's Law2 name).
+#define TALUS_REGISTER_CONTACT_LAW(TYPE, ...)                                                                    \
+  namespace                                                                                                      \
+  {                                                                                                              \
+  const bool registered_##TYPE                                                                                   \
+      = ::talus::dem::registerContactLaw({__VA_ARGS__}, [] { return std::make_unique<TYPE>(); });                \
+  }

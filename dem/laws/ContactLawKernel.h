@@ -1,0 +1,201 @@
+#pragma once
+
+// The loops of ContactLawKernel, included by each law's .cpp (they need the Scene).
+#include "dem/laws/ContactLaw.h"
+#include "dem/core/Scene.h"
+#include "dem/base/Threads.h"
+
+#include <algorithm>
+
+namespace talus::dem
+{
+namespace detail
+{
+/// The step's context for a law (with Contacts::extra aligned if the law uses it).
+template <class Law>
+StepContext stepContext(Scene& scene)
+{
+  ContactExtra* extra = nullptr;
+  if constexpr (Law::usesExtra)
+  {
+    alignContactExtra(scene.contacts);
+    extra = scene.contacts.extra.data();
+  }
+  return StepContext{scene.bodies, scene.materials, scene.periodic ? &scene.cell : nullptr, scene.dt, extra};
+}
+
+/// Add per-block contact energies to the scene's tracker, in block order.
+inline void addContactEnergy(Scene& scene, const std::vector<ContactEnergy>& blocks)
+{
+  ContactEnergy total;
+  for (const ContactEnergy& e : blocks)
+    total += e;
+  scene.energy.plastDissip += total.plastDissip;
+  scene.energy.viscDamp += total.viscDamp;
+}
+} // namespace detail
+
+template <class Law>
+void ContactLawKernel<Law>::computeForces(Scene& scene, std::uint8_t lawIndex)
+{
+  if (scene.energy.enabled)
+    loopForces<true>(scene, lawIndex);
+  else
+    loopForces<false>(scene, lawIndex);
+}
+
+template <class Law>
+template <bool Track>
+void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
+{
+  const Law& law = static_cast<const Law&>(*this);
+  ContactList& list = scene.contacts.list;
+  const StepContext step = detail::stepContext<Law>(scene);
+  const auto n = static_cast<std::int64_t>(list.size());
+  // Tracking energy: contacts in fixed blocks, each block's energies summed in order.
+  auto one = [&](std::int64_t k, ContactEnergy& e) {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    if (c.real && c.law == lawIndex)
+      law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
+  };
+  if constexpr (Track)
+  {
+    // Contacts in fixed blocks, each block's energies summed in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(static) if (n >= parallelLoopMinimum)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      for (std::int64_t k = blk * energyBlock, end = std::min(n, k + energyBlock); k < end; ++k)
+        one(k, energy[static_cast<std::size_t>(blk)]);
+    detail::addContactEnergy(scene, energy);
+  }
+  else
+  {
+    ContactEnergy unused;
+#pragma omp parallel for schedule(static) firstprivate(unused) if (n >= parallelLoopMinimum)
+    for (std::int64_t k = 0; k < n; ++k)
+      one(k, unused);
+  }
+  stepDone();
+}
+
+template <class Law>
+std::int64_t ContactLawKernel<Law>::computeAll(Scene& scene)
+{
+  return scene.energy.enabled ? loopAll<true>(scene) : loopAll<false>(scene);
+}
+
+template <class Law>
+template <bool Track>
+std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& step, std::int64_t first,
+                                               std::int64_t last, ContactEnergy& energy) const
+{
+  const Law& law = static_cast<const Law&>(*this);
+  ContactList& list = scene.contacts.list;
+  const auto n = static_cast<std::int64_t>(list.size());
+  const double ratio = scene.maxOverlapRatio;
+  std::int64_t bad = n;
+  for (std::int64_t k = first; k < last; ++k)
+  {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
+    const bool sphereFastPath = !Law::usesExtra && c.kind == ContactGeometryKind::SphereSphere;
+    if (!(sphereFastPath ? contactGeometry<true>(c, step.bodies, step.cell, step.dt, nullptr)
+                         : updateContactGeometry(c, step.bodies, step.cell, step.dt, x)))
+      continue;
+    if (c.fresh)
+    {
+      c.law = 0;
+      law.initialize(c, x, scene);
+    }
+    law.template force<Track>(c, static_cast<std::size_t>(k), step, energy);
+    if (overlapsTooMuch(c, ratio, step.bodies))
+      bad = std::min(bad, k);
+  }
+  return bad;
+}
+
+template <class Law>
+template <bool Track>
+std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
+{
+  const StepContext step = detail::stepContext<Law>(scene);
+  const auto n = static_cast<std::int64_t>(scene.contacts.list.size());
+  std::int64_t firstBad = n;
+  if constexpr (Track)
+  {
+    // Contacts in fixed blocks, each block's energies summed in order.
+    const std::int64_t blocks = (n + energyBlock - 1) / energyBlock;
+    std::vector<ContactEnergy> energy(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(static) reduction(min : firstBad) if (n >= parallelLoopMinimum)
+    for (std::int64_t blk = 0; blk < blocks; ++blk)
+      firstBad = std::min(firstBad, firstBadIn<true>(scene, step, blk * energyBlock, std::min(n, (blk + 1) * energyBlock),
+                                                     energy[static_cast<std::size_t>(blk)]));
+    detail::addContactEnergy(scene, energy);
+  }
+  else
+  {
+    auto firstIn = [&](std::int64_t first, std::int64_t last) {
+      ContactEnergy unused;
+      return firstBadIn<false>(scene, step, first, last, unused);
+    };
+    firstBad = balancedFor(ranges_, n, n, firstIn, [](std::int64_t a, std::int64_t c) { return std::min(a, c); });
+  }
+  stepDone();
+  return firstBad < n ? firstBad : -1;
+}
+
+template <class Law>
+std::int64_t ContactLawKernel<Law>::computeAllIn(Scene& scene, std::int64_t first, std::int64_t last,
+                                                 ContactEnergy* energyBlocks)
+{
+  const StepContext step = detail::stepContext<Law>(scene);
+  if (!energyBlocks)
+  {
+    ContactEnergy unused;
+    return firstBadIn<false>(scene, step, first, last, unused);
+  }
+  std::int64_t bad = static_cast<std::int64_t>(scene.contacts.list.size());
+  for (std::int64_t start = first; start < last; start += energyBlock)
+    bad = std::min(bad, firstBadIn<true>(scene, step, start, std::min(last, start + energyBlock),
+                                         energyBlocks[start / energyBlock]));
+  return bad;
+}
+
+template <class Law>
+double ContactLawKernel<Law>::elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const
+{
+  const Law& law = static_cast<const Law&>(*this);
+  const ContactList& list = scene.contacts.list;
+  const ContactExtra* extra = Law::usesExtra ? scene.contacts.extraState() : nullptr;
+  double sum = 0;
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (list[k].real && list[k].law == lawIndex)
+      sum += law.elastic(list[k], extra ? extra + k : nullptr);
+  return sum;
+}
+
+template <class Law>
+double ContactLawKernel<Law>::grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
+                                                 const std::vector<double>& grownBy) const
+{
+  const Law& law = static_cast<const Law&>(*this);
+  const ContactList& list = scene.contacts.list;
+  const ContactExtra* extra = Law::usesExtra ? scene.contacts.extraState() : nullptr;
+  double sum = 0;
+  for (std::size_t k = 0; k < list.size(); ++k)
+  {
+    const Contact& c = list[k];
+    if (!c.real || !c.fresh || c.law != lawIndex)
+      continue;
+    const double growth = grownBy[static_cast<std::size_t>(c.id1)] + grownBy[static_cast<std::size_t>(c.id2)];
+    if (growth <= 0)
+      continue;
+    Contact ungrown = c; // as it would be without the growth
+    ungrown.penetration = std::max(c.penetration - growth, 0.0);
+    const ContactExtra* x = extra ? extra + k : nullptr;
+    sum += law.elastic(c, x) - law.elastic(ungrown, x);
+  }
+  return sum;
+}
+} // namespace talus::dem

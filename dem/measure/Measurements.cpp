@@ -1,0 +1,225 @@
+#include "dem/measure/Measurements.h"
+
+#include "dem/core/Clump.h"
+#include "dem/step/NewtonIntegrator.h"
+#include "dem/core/Scene.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace talus::dem
+{
+double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce)
+{
+  const Bodies& b = scene.bodies;
+  double sumBodies = 0, maxBody = 0;
+  std::size_t bodies = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+  {
+    // A clump counts once, with its members' forces; its members do not count alone.
+    if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0)
+      continue;
+    Vec3 force = b.force[i], torque = Vec3::Zero();
+    if (b.shape[i] == ShapeKind::Clump)
+      addClumpMemberForces(b, i, force, torque);
+    const double f = (force + b.mass[i] * gravity).norm();
+    sumBodies += f;
+    maxBody = std::max(maxBody, f);
+    ++bodies;
+  }
+  double sumContacts = 0;
+  std::size_t contacts = 0;
+  for (const Contact& c : scene.contacts.list)
+    if (c.real)
+    {
+      sumContacts += c.force.norm();
+      ++contacts;
+    }
+  if (contacts == 0 || sumContacts == 0 || bodies == 0)
+    return std::numeric_limits<double>::quiet_NaN();
+  const double meanContact = sumContacts / static_cast<double>(contacts);
+  return (useMaxForce ? maxBody : sumBodies / static_cast<double>(bodies)) / meanContact;
+}
+
+namespace
+{
+double sampleVolume(const Scene& scene, double volume, const char* caller)
+{
+  if (volume > 0)
+    return volume;
+  if (!scene.periodic)
+    throw std::invalid_argument(std::string(caller) + ": give the volume of the sample (the scene is not periodic)");
+  return scene.cell.volume();
+}
+
+/// From body 1's centre to body 2's image, with the cell as it is now (not as the geometry saw
+/// it at the step's start, before the integrator moved the bodies and the cell). A wall or
+/// facet has no centre: its branch vector is the sphere's distance to it along the normal, so
+/// that in equilibrium the stress of a walled sample equals wall force over area.
+Vec3 branchVector(const Scene& scene, const Contact& c)
+{
+  const Bodies& b = scene.bodies;
+  const auto i2 = static_cast<std::size_t>(c.id2);
+  if (c.kind != ContactGeometryKind::SphereSphere)
+    return c.normal * (b.radius[i2] - c.penetration);
+  const Vec3 shift = scene.periodic ? scene.cell.shift(c.cellDist) : Vec3::Zero();
+  return b.pos[i2] + shift - b.pos[static_cast<std::size_t>(c.id1)];
+}
+} // namespace
+
+Vec3 sceneGravity(const Scene& scene)
+{
+  for (const auto& e : scene.engines)
+    if (const auto* newton = dynamic_cast<const NewtonIntegrator*>(e.get()))
+      return newton->gravity;
+  return Vec3::Zero();
+}
+
+Mat3 loveWeberStress(const Scene& scene, double volume)
+{
+  volume = sampleVolume(scene, volume, "getStress");
+  Mat3 sum = Mat3::Zero();
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    sum += c.force * branchVector(scene, c).transpose();
+  }
+  return -sum / volume;
+}
+
+namespace
+{
+/// sym(u (x) l) in Voigt form (xx, yy, zz, yz, xz, xy).
+Eigen::Matrix<double, 6, 1> symmetricVoigt(const Vec3& u, const Vec3& l)
+{
+  Eigen::Matrix<double, 6, 1> a;
+  a << u[0] * l[0], u[1] * l[1], u[2] * l[2], 0.5 * (u[1] * l[2] + u[2] * l[1]), 0.5 * (u[0] * l[2] + u[2] * l[0]),
+      0.5 * (u[0] * l[1] + u[1] * l[0]);
+  return a;
+}
+
+Eigen::Matrix<double, 6, 6> yadeTangent(const Scene& scene)
+{
+  Eigen::Matrix<double, 6, 6> tangent = Eigen::Matrix<double, 6, 6>::Zero();
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    const Vec3 l = branchVector(scene, c);
+    const Eigen::Matrix<double, 6, 1> a = symmetricVoigt(c.normal, l);
+    tangent += c.kn * a * a.transpose();
+    const double shear = c.shearForce.norm();
+    if (shear > 0)
+    {
+      const Eigen::Matrix<double, 6, 1> b = symmetricVoigt(c.shearForce / shear, l);
+      tangent += c.ks * b * b.transpose();
+    }
+  }
+  return tangent;
+}
+} // namespace
+
+Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume, TangentForm form)
+{
+  volume = sampleVolume(scene, volume, "getStressAndTangent");
+  if (form == TangentForm::Yade)
+    return yadeTangent(scene) / volume;
+  // D as a 9x9 matrix on (ij),(kl) pairs: D(3i+j, 3k+l) = sum K_ik l_j l_l, i.e. a sum of
+  // Kronecker products K (x) (l l^T) in a row-major pair numbering.
+  Eigen::Matrix<double, 9, 9> d = Eigen::Matrix<double, 9, 9>::Zero();
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    const Vec3 l = branchVector(scene, c);
+    const Mat3 nn = c.normal * c.normal.transpose();
+    // Between spheres the shear increment scales the relative translation by
+    // alpha = (r1 + r2) / |l| (Yade's avoidGranularRatcheting, ContactGeometry.h): so does the
+    // shear stiffness seen by an affine strain.
+    const double alpha = c.kind == ContactGeometryKind::SphereSphere ? (c.refR1 + c.refR2) / l.norm() : 1.0;
+    const Mat3 k = c.kn * nn + alpha * c.ks * (Mat3::Identity() - nn);
+    const Mat3 ll = l * l.transpose();
+    for (int i = 0; i < 3; ++i)
+      for (int kk = 0; kk < 3; ++kk)
+        d.block<3, 3>(3 * i, 3 * kk) += k(i, kk) * ll;
+  }
+  static constexpr int voigtI[6] = {0, 1, 2, 1, 0, 0};
+  static constexpr int voigtJ[6] = {0, 1, 2, 2, 2, 1};
+  Eigen::Matrix<double, 6, 6> tangent;
+  for (int a = 0; a < 6; ++a)
+    for (int bb = 0; bb < 6; ++bb)
+    {
+      const int i = voigtI[a], j = voigtJ[a], k = voigtI[bb], l = voigtJ[bb];
+      tangent(a, bb) = 0.25 * (d(3 * i + j, 3 * k + l) + d(3 * j + i, 3 * k + l) + d(3 * i + j, 3 * l + k) +
+                               d(3 * j + i, 3 * l + k));
+    }
+  return tangent / volume;
+}
+
+double coordinationNumber(const Scene& scene, bool skipFree)
+{
+  const Bodies& b = scene.bodies;
+  std::vector<int> count(b.size(), 0);
+  for (const Contact& c : scene.contacts.list)
+    if (c.real)
+    {
+      ++count[static_cast<std::size_t>(c.id1)];
+      ++count[static_cast<std::size_t>(c.id2)];
+    }
+  double contacts = 0, spheres = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b.alive[i] && b.shape[i] == ShapeKind::Sphere && (!skipFree || count[i] > 0))
+    {
+      contacts += count[i];
+      spheres += 1;
+    }
+  return spheres > 0 ? contacts / spheres : 0.0;
+}
+
+Mat3 fabricTensor(const Scene& scene)
+{
+  Mat3 sum = Mat3::Zero();
+  double n = 0;
+  for (const Contact& c : scene.contacts.list)
+    if (c.real && c.kind == ContactGeometryKind::SphereSphere)
+    {
+      sum += c.normal * c.normal.transpose();
+      n += 1;
+    }
+  return n > 0 ? Mat3(sum / n) : Mat3::Zero();
+}
+
+std::vector<Mat3> bodyStressTensors(const Scene& scene)
+{
+  const Bodies& b = scene.bodies;
+  std::vector<Mat3> stress(b.size(), Mat3::Zero());
+  auto add = [&](BodyId id, const Vec3& centre, const Contact& c, const Vec3& force) {
+    const auto i = static_cast<std::size_t>(id);
+    if (b.shape[i] == ShapeKind::Sphere)
+      stress[i] += force * (c.contactPoint - centre).transpose() / (4.0 / 3.0 * M_PI * std::pow(b.radius[i], 3));
+  };
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!c.real)
+      continue;
+    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
+    add(c.id1, b.pos[i1], c, -c.force);
+    // body 2 meets body 1 through its image shifted by the contact's period
+    add(c.id2, b.pos[i2] + (scene.periodic ? scene.cell.shift(c.cellDist) : Vec3::Zero()), c, c.force);
+  }
+  return stress;
+}
+
+double sphereVolume(const Scene& scene)
+{
+  const Bodies& b = scene.bodies;
+  double v = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b.alive[i] && b.shape[i] == ShapeKind::Sphere)
+      v += 4.0 / 3.0 * M_PI * b.radius[i] * b.radius[i] * b.radius[i];
+  return v;
+}
+} // namespace talus::dem

@@ -1,0 +1,67 @@
+#pragma once
+
+#include "dem/base/types.h"
+
+#include <vector>
+
+namespace talus::dem
+{
+class Scene;
+
+/// Yade's unbalancedForce: the mean (or, with useMaxForce, the largest) magnitude of the total
+/// force on dynamic bodies, gravity included, divided by the mean magnitude of contact forces.
+/// 0 for a scene at equilibrium; NaN when there is no contact force to compare with.
+double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce = false);
+
+/// Gravity of the scene's (first) NewtonIntegrator, zero without one: what unbalancedForce
+/// needs when an engine calls it.
+Vec3 sceneGravity(const Scene& scene);
+
+/// Love-Weber homogenised stress -(1/V) sum over real contacts of f (x) l, with f the force on
+/// body 2 and l the branch vector from body 1's centre to body 2's (image) centre (for a wall or
+/// facet: from the sphere's closest point on it to its centre); compression is negative, as
+/// Yade's getStress. `volume` <= 0 means the periodic cell's volume.
+Mat3 loveWeberStress(const Scene& scene, double volume = -1);
+
+/// Contact-stiffness tangent operator of the homogenised stress, as a 6x6 Voigt matrix (order
+/// xx, yy, zz, yz, xz, xy; shear strains as engineering strains 2 eps_ij), so that a small
+/// homogeneous strain increment deps changes loveWeberStress by about C deps when every particle
+/// follows the affine field and no contact slides, opens or closes:
+///   D_ijkl = (1/V) sum_c [kn n_i n_k + alpha ks (delta_ik - n_i n_k)] l_j l_l,
+/// symmetrised in (i,j) and (k,l). kn, ks are the contacts' current (tangent) stiffnesses;
+/// alpha = (r1 + r2) / |l| between spheres (the shear increment's ratcheting factor), 1 otherwise. It is
+/// the stiffness of the packing without particle relaxation and without the rotation of contact
+/// forces (an upper bound of the relaxed response), the operator the seed's FEMxDEM procedure
+/// hands to the finite elements. `volume` <= 0 means the periodic cell's volume.
+///
+/// TangentForm::Yade gives instead the operator of Yade's getStressAndTangent (Shop.cpp, for its
+/// FEMxDEM coupling): sum of kn a a^T + ks b b^T with a = sym(n (x) l), b = sym(t (x) l) in Voigt
+/// form, t the direction of the current shear force (no shear term while it is zero). It keeps
+/// only the shear stiffness along the existing shear force, so it under-estimates the shear
+/// response; it is there to reproduce Yade's numbers.
+enum class TangentForm
+{
+  Full,
+  Yade
+};
+Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume = -1,
+                                                    TangentForm form = TangentForm::Full);
+
+/// Yade's avgNumInteractions: 2 Nc / N over live spheres (optionally not counting spheres with
+/// no contact, `skipFree`).
+double coordinationNumber(const Scene& scene, bool skipFree = false);
+
+/// Fabric tensor (1/Nc) sum n (x) n over real sphere-sphere contacts.
+Mat3 fabricTensor(const Scene& scene);
+
+/// Yade's bodyStressTensors: per body, the mean stress in the solid sphere from its contact
+/// forces, (1/V) sum over its real contacts of f (x) a, with f the force on it, a the arm from
+/// its centre to the contact point and V = 4/3 pi r^3 (exact for a sphere in static
+/// equilibrium loaded at points, where it is symmetric; Yade's index order otherwise);
+/// compression is negative. Contact moments are not included, as in Yade. Zero for bodies that
+/// are not spheres. Indexed by body id.
+std::vector<Mat3> bodyStressTensors(const Scene& scene);
+
+/// Total volume of the live spheres.
+double sphereVolume(const Scene& scene);
+} // namespace talus::dem

@@ -1,0 +1,23 @@
+#pragma once
+
+#include "dem/core/Engine.h"
+#include "dem/base/Threads.h"
+
+namespace talus::dem
+{
+struct Bodies;
+
+/// Starts a step: every body's force and torque become its persistent external force and
+/// torque (zero unless a coupling or the user set them), ready for contacts to add to.
+class ForceResetter : public Engine
+{
+public:
+  void run(Scene& scene) override;
+  [[nodiscard]] std::string typeName() const override { return "ForceResetter"; }
+  /// run()'s work on the bodies [first, last) (for the fused step's parallel region).
+  static void resetIn(Bodies& bodies, std::int64_t first, std::int64_t last);
+
+private:
+  BalancedRanges ranges_; ///< bodies per thread
+};
+} // namespace talus::dem

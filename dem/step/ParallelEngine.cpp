@@ -1,0 +1,12 @@
+#include "dem/step/ParallelEngine.h"
+
+namespace talus::dem
+{
+void ParallelEngine::run(Scene& scene)
+{
+  for (const auto& group : slaves)
+    for (const auto& engine : group)
+      if (!engine->dead)
+        engine->run(scene);
+}
+} // namespace talus::dem
