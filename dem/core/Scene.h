@@ -3,6 +3,7 @@
 #include "dem/core/Bodies.h"
 #include "dem/core/Cell.h"
 #include "dem/core/Contacts.h"
+#include "dem/core/Domain.h"
 #include "dem/core/EnergyTracker.h"
 #include "dem/core/Engine.h"
 #include "dem/step/FusedStep.h"
@@ -29,6 +30,11 @@ public:
   std::deque<Material> materials;
   Contacts contacts;
   std::vector<std::shared_ptr<Engine>> engines;
+
+  /// The split over processes (null: the whole scene is here). See Domain.
+  std::shared_ptr<Domain> domain;
+  /// Rows [0, ownedBodies()) are this process's bodies, the rest ghosts (all rows when serial).
+  std::size_t ownedBodies() const { return domain ? domain->ownedBodies(*this) : bodies.size(); }
 
   /// Energy tracking (O.trackEnergy / O.energy); off by default.
   EnergyTracker energy;
