@@ -9,7 +9,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
                        NewtonIntegrator, Scene, facet, getStress, sphere, twin, wall)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
 
 
@@ -91,8 +91,8 @@ def test_rigid_rotation_of_the_cell_spins_the_particles_and_makes_no_shear():
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
 def test_stress_of_a_sheared_periodic_packing_equals_yades():
-    ours = twin.run(HERE / "periodic_stress.py", {}, "talus", timeout=300)
-    yade = twin.run(HERE / "periodic_stress.py", {}, "yade", timeout=300)
+    ours = twin.run(TWINS / "periodic_stress.py", {}, "talus", timeout=300)
+    yade = twin.run(TWINS / "periodic_stress.py", {}, "yade", timeout=300)
     assert ours["contacts"] == yade["contacts"] > 2
     scale = np.abs(yade["stress"]).max()
     assert np.abs(np.array(ours["stress"]) - np.array(yade["stress"])).max() < 1e-12 * scale

@@ -12,13 +12,13 @@ import pytest
 from talus.dem import FrictMat, Quaternion, Scene, Vector3, facet, sphere, twin
 from talus.dem.clumps import clumpTemplate
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")
 
 
 @pytest.fixture(scope="module")
 def both():
-    script = HERE / "clump_operations.py"
+    script = TWINS / "clump_operations.py"
     return twin.run(script, {}, "talus"), twin.run(script, {}, "yade")
 
 

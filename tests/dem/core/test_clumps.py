@@ -12,7 +12,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, growParticles, sphere,
                        wall)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")
 
 
@@ -136,7 +136,7 @@ def test_clump_drop_matches_yade(friction):
     """The same clump dropped on a wall in Yade and Talus, frictionless and frictional: member
     positions every 200 steps through the landing, tipping and rocking agree within 1e-6
     (measured 2e-15 and 4e-14)."""
-    ours, theirs = (twin.run(HERE / "clump_drop.py", {"friction": friction}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(TWINS / "clump_drop.py", {"friction": friction}, who) for who in ("talus", "yade"))
     assert ours["mass"] == pytest.approx(theirs["mass"], rel=1e-13)
     np.testing.assert_allclose(ours["inertia"], theirs["inertia"], rtol=1e-12)
     m_ours, m_yade = np.array(ours["members"]), np.array(theirs["members"])
@@ -192,7 +192,7 @@ def test_clump_growth_matches_yade():
     clump) and positions every 200 steps within 1e-6 (measured 8e-17 in flight, 3e-8 and 9e-8
     once it rests on the wall: Talus gives the members the clump's rigid velocity at the growth,
     Yade at its next step)."""
-    ours, theirs = (twin.run(HERE / "clump_growth.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(TWINS / "clump_growth.py", {}, who) for who in ("talus", "yade"))
     assert len(ours["grown"]) == len(theirs["grown"]) == 8
     for a, b in zip(ours["grown"], theirs["grown"]):
         assert a["mass"] == pytest.approx(b["mass"], rel=1e-13)
