@@ -10,7 +10,7 @@ import pytest
 from talus.dem import twin
 from talus.dem import *  # noqa: F401,F403
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 def arrays(sp):
@@ -123,7 +123,7 @@ def test_save_load_round_trip(tmp_path):
 
 @pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed")
 def test_seeded_clouds_equal_yades():
-    ours, theirs = (twin.run(HERE / "cloud_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(TWINS / "cloud_side_by_side.py", {}, who) for who in ("talus", "yade"))
     for name in theirs:
         assert ours[name]["n"] == theirs[name]["n"], name
         a, b = np.array(ours[name]["spheres"]), np.array(theirs[name]["spheres"])
