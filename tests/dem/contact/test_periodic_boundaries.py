@@ -9,13 +9,13 @@ from talus.dem import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, ForceResetter, Ig2_Facet
                        InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
                        NewtonIntegrator, Scene, facet, sphere, twin)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 @pytest.mark.parametrize("shape", ["facet", "box"])
 def test_spheres_on_facets_and_boxes_across_the_boundary_match_yade(shape):
-    ours, theirs = (twin.run(HERE / "periodic_boundaries_side_by_side.py", {"shape": shape}, who, timeout=600)
+    ours, theirs = (twin.run(TWINS / "periodic_boundaries_side_by_side.py", {"shape": shape}, who, timeout=600)
                     for who in ("talus", "yade"))
     mine, yade = np.array(ours["positions"]), np.array(theirs["positions"])
     assert np.abs(yade[-1] - yade[0]).max() > 0.1                 # they landed and rolled

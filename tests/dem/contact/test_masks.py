@@ -8,8 +8,8 @@ import pytest
 from talus.dem import Scene, box, facet, sphere, twin, wall
 from talus.dem import io
 
-HERE = Path(__file__).parent
-SCRIPT = HERE / "masks_side_by_side.py"
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+SCRIPT = TWINS / "masks_side_by_side.py"
 needs_yade = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 
 
