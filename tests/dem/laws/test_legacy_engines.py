@@ -8,14 +8,14 @@ import pytest
 from talus.dem import *  # noqa: F401,F403
 from talus.dem import twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
 def test_elastic_contact_law_matches_yades_interaction_loop():
     # Yade's exact-rot.py: Talus runs the old engine list, Yade the InteractionLoop it stands
     # for (Yade 2023.02a aborts on the old list, in exact-rot.py, exact-rot-facet.py, shear.py).
-    path = HERE / "elastic_contact_law_side_by_side.py"
+    path = TWINS / "elastic_contact_law_side_by_side.py"
     ours, theirs = twin.run(path, {"oldStyle": True}, "talus"), twin.run(path, {}, "yade")
     assert np.linalg.norm(theirs["fs"]) > 100          # the turning spheres did load the contact in shear
     for key in ("bodies", "fn", "fs"):

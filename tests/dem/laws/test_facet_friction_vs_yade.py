@@ -7,12 +7,12 @@ import pytest
 
 from talus.dem import twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_sliding_and_rolling_in_a_facet_box_match_yade():
-    ours, theirs = (np.array(twin.run(HERE / "facet_friction_side_by_side.py", {}, who)) for who in ("talus", "yade"))
+    ours, theirs = (np.array(twin.run(TWINS / "facet_friction_side_by_side.py", {}, who)) for who in ("talus", "yade"))
     assert ours.shape == theirs.shape
     moved = np.abs(theirs[-1] - theirs[0]).max()
     assert moved > 0.05                                # they did slide and roll

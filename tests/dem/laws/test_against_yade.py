@@ -7,18 +7,18 @@ import pytest
 
 from talus.dem import twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade_missing = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
 
 
 def both(script):
     """The RESULT of ``script`` run by Talus and by Yade."""
-    return twin.run(HERE / script, {}, "talus"), twin.run(HERE / script, {}, "yade")
+    return twin.run(TWINS / script, {}, "talus"), twin.run(TWINS / script, {}, "yade")
 
 
 @yade_missing
 def test_bouncing_sphere_matches_yade():
-    ours, theirs = both(HERE.parents[1] / "cases" / "yade" / "bouncing_sphere.py")   # the tutorial case's scenario
+    ours, theirs = both(Path(__file__).parents[3] / "cases" / "yade" / "bouncing_sphere.py")   # the tutorial case's scenario
     assert ours["dt"] == theirs["dt"]
     z_ours, z_yade = ours["z"], theirs["z"]
     assert min(z_yade) < 1.0            # it did bounce on the support (contact at z = 1)

@@ -7,12 +7,12 @@ import pytest
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_MindlinPhys,
                        Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, NewtonIntegrator, Scene, sphere, twin)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_restitution_per_material_pair_matches_yade():
-    ours, theirs = (np.array(twin.run(HERE / "mindlin_matchmaker_side_by_side.py", {}, who)) for who in ("talus", "yade"))
+    ours, theirs = (np.array(twin.run(TWINS / "mindlin_matchmaker_side_by_side.py", {}, who)) for who in ("talus", "yade"))
     assert ours.shape == theirs.shape
     assert np.abs(theirs[-1] - theirs[0]).max() > 1      # the collisions changed the velocities
     assert np.abs(ours - theirs).max() < 1e-12 * np.abs(theirs).max()

@@ -14,12 +14,12 @@ import pytest
 from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_ViscElPhys_Basic, MatchMaker, NewtonIntegrator, Scene, ViscElMat, sphere)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 YADE = shutil.which("yade")
 
 
 def scenes(cmd, env=None):
-    done = subprocess.run([*cmd, "viscoelastic_yade.py"], capture_output=True, text=True, timeout=600, cwd=HERE, env=env)
+    done = subprocess.run([*cmd, "viscoelastic_yade.py"], capture_output=True, text=True, timeout=600, cwd=TWINS, env=env)
     lines = [line for line in done.stdout.splitlines() if line.startswith("JSON ")]
     assert lines, f"{cmd[0]} exited {done.returncode}:\n{done.stdout[-2000:]}\n{done.stderr[-2000:]}"
     return json.loads(lines[0][5:])
