@@ -10,7 +10,7 @@ import pytest
 from talus.dem import twin
 from talus.dem import *  # noqa: F401,F403
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 def sphere_on_wall(coefficient=0.5, **kw):
@@ -86,7 +86,7 @@ def test_rayleigh_time_step_formula():
 
 @pytest.mark.skipif(shutil.which("yade") is None, reason="yade is not installed")
 def test_time_steps_equal_yades():
-    ours, theirs = (twin.run(HERE / "timestepper_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(TWINS / "timestepper_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert ours["n"] == theirs["n"]
     assert ours["dt"][0] == pytest.approx(theirs["dt"][0], rel=1e-14)   # the same contacts, the same step
     assert np.allclose(ours["dt"], theirs["dt"], rtol=1e-12, atol=0)
@@ -119,7 +119,7 @@ def test_viscel_bounds_the_step_by_the_dashpot():
 def test_viscel_time_steps_equal_yades(en):
     """en = 0.5: the springs govern; en = 0.05: the dashpots do (the step then differs from
     viscEl=False's from the first step on)."""
-    script = HERE / "timestepper_viscel_side_by_side.py"
+    script = TWINS / "timestepper_viscel_side_by_side.py"
     ours, theirs = (twin.run(script, {"en": en, "viscEl": True}, who) for who in ("talus", "yade"))
     assert ours["n"] == theirs["n"] and ours["contacts"] == theirs["contacts"]
     assert np.allclose(ours["dt"], theirs["dt"], rtol=1e-14, atol=0)

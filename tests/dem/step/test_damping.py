@@ -6,14 +6,14 @@ import pytest
 
 from talus.dem import twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 @pytest.mark.parametrize("dampGravity", [True, False])
 def test_damping_per_body_as_yade(dampGravity):
     params = {"dampGravity": dampGravity}
-    ours, theirs = (twin.run(HERE / "damping_side_by_side.py", params, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(TWINS / "damping_side_by_side.py", params, who) for who in ("talus", "yade"))
     assert theirs["isDamped"] == ours["isDamped"] == [True, False]
     track, expected = np.array(ours["track"]), np.array(theirs["track"])
     assert np.abs(expected[:, 0] - expected[:, 1]).max() > 1e-3         # the undamped one moves otherwise
