@@ -11,14 +11,14 @@ import pytest
 from talus.dem import (BoxFactory, CircularFactory, DomainLimiter, ForceResetter, FrictMat, InsertionSortCollider,
                        InteractionLoop, NewtonIntegrator, O, SpheresFactory, sphere, twin)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.fixture(scope="module")
 def runs():
     if not twin.yade_available():
         pytest.skip("yade is not installed")
-    script = HERE / "factories_side_by_side.py"
+    script = TWINS / "factories_side_by_side.py"
     return twin.run(script, {}, "talus"), twin.run(script, {}, "yade")
 
 

@@ -7,12 +7,12 @@ import pytest
 
 from talus.dem import twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_first_reinsertion_is_yades():
-    script = HERE / "reset_random_position_side_by_side.py"
+    script = TWINS / "reset_random_position_side_by_side.py"
     ours, theirs = (twin.run(script, {}, who) for who in ("talus", "yade"))
     assert len(ours) >= 5 and len(theirs) >= 5                      # the spheres recirculate in both
     # step, id, position (on the facets at z = 0.5), velocity and angular velocity drawn

@@ -12,7 +12,7 @@ from talus.dem import (FrictMat, ForceResetter, HarmonicMotionEngine, InsertionS
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
                        PWaveTimeStep, PyRunner, RotationEngine, Scene, TranslationEngine, box, facet, geom, sphere)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")
 
 
@@ -126,7 +126,7 @@ def test_facet_cylinder_geometry():
 
 @pytest.mark.skipif(yade is None, reason="yade is not installed")
 def test_facet_cylinder_matches_yade():
-    out = {who: np.array(twin.run(HERE / "facet_cylinder.py", {}, who)) for who in ("talus", "yade")}
+    out = {who: np.array(twin.run(TWINS / "facet_cylinder.py", {}, who)) for who in ("talus", "yade")}
     assert out["talus"].shape == out["yade"].shape == (28, 3, 3)
     np.testing.assert_allclose(out["talus"], out["yade"], atol=1e-14)
 

@@ -7,12 +7,12 @@ import pytest
 from talus.dem import GravityEngine, NewtonIntegrator, Scene, sphere, ForceResetter
 from talus.dem import twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_gravity_engine_matches_yade():
-    ours, theirs = (np.array(twin.run(HERE / "gravity_engine_side_by_side.py", {}, who)) for who in ("talus", "yade"))
+    ours, theirs = (np.array(twin.run(TWINS / "gravity_engine_side_by_side.py", {}, who)) for who in ("talus", "yade"))
     assert ours.shape == theirs.shape
     assert abs(theirs[-1, -1]) > 1e-3                    # gravity did work
     assert np.abs(theirs[-1, 3:6] - theirs[0, 3:6]).max() == 0   # the fixed sphere stays
