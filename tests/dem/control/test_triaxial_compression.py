@@ -11,7 +11,7 @@ import pytest
 from talus.dem import *  # noqa: F401,F403
 from talus.dem import twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade_missing = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
 
 
@@ -19,7 +19,7 @@ def records(phase, steps):
     """The TriaxialStateRecorder rows (iteration s11 s22 s33 e11 e22 e33 unb porosity kineticE)
     of the same run in Talus and in Yade."""
     params = {"phase": phase, "steps": steps}
-    ours, theirs = (twin.run(HERE / "triax_side_by_side.py", params, p) for p in ("talus", "yade"))
+    ours, theirs = (twin.run(TWINS / "triax_side_by_side.py", params, p) for p in ("talus", "yade"))
     return np.array(ours["rows"]), np.array(theirs["rows"]), ours, theirs
 
 
@@ -64,7 +64,7 @@ def test_three_d_triaxial_engine_matches_yade():
 
 def packed_scene(**engine):
     """The stored compacted packing between its walls, with a TriaxialCompressionEngine."""
-    stored = json.loads((HERE / "triax_packing.json").read_text())
+    stored = json.loads((TWINS / "triax_packing.json").read_text())
     scene = Scene()
     scene.materials.append(FrictMat(young=15e6, poisson=.4, frictionAngle=math.radians(30), density=2600,
                                     label="spheres"))
@@ -153,7 +153,7 @@ def test_wall_ids_are_checked():
 def test_triaxial_test_preprocessor_matches_yade():
     # Yade's TriaxialTest on the stored packing (importFilename): the same scene (walls 0-5,
     # engines, first step, masses from `density`), then 200 steps of its compaction.
-    ours, theirs = (twin.run(HERE / "triaxial_test_side_by_side.py", {"steps": 200}, p) for p in ("talus", "yade"))
+    ours, theirs = (twin.run(TWINS / "triaxial_test_side_by_side.py", {"steps": 200}, p) for p in ("talus", "yade"))
     for key in ("engines", "walls", "state", "mass"):
         assert ours[key] == theirs[key], key
     assert ours["dt0"] == pytest.approx(theirs["dt0"], rel=1e-14)

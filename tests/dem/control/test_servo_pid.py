@@ -7,12 +7,12 @@ import pytest
 
 from talus.dem import ServoPIDController, twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_servo_pid_controller_matches_yade():
-    ours, theirs = (np.array(twin.run(HERE / "servo_pid_side_by_side.py", {}, who)) for who in ("talus", "yade"))
+    ours, theirs = (np.array(twin.run(TWINS / "servo_pid_side_by_side.py", {}, who)) for who in ("talus", "yade"))
     assert ours.shape == theirs.shape
     assert np.ptp(theirs[:, 9]) > 0.5 and np.abs(theirs[:, 8]).max() > 2e4   # the speed and the force changed
     scale = np.maximum(np.abs(theirs).max(axis=0), 1e-300)

@@ -7,13 +7,13 @@ import pytest
 
 from talus.dem import Peri3dController, twin
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 needs_yade = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 STRESS, STRAIN, PROGRESS, TRSF = slice(0, 6), slice(6, 12), 12, slice(13, 22)
 
 
 def _both(case):
-    return [twin.run(HERE / "peri3d_side_by_side.py", {"case": case}, who, timeout=600) for who in ("talus", "yade")]
+    return [twin.run(TWINS / "peri3d_side_by_side.py", {"case": case}, who, timeout=600) for who in ("talus", "yade")]
 
 
 @needs_yade
