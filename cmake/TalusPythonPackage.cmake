@@ -1,6 +1,8 @@
 # The talus Python package, assembled in <build>/python/talus so that `import talus` works from
 # the build tree without installing:
-#   - pure-Python files from every enabled component's python/talus/ folder (dem/ holds the root),
+#   - pure-Python files from python/ (the package root and the project-wide tools: cli, results,
+#     report, bench, plot, batch) and from every enabled component's python/ folder (talus.dem,
+#     talus.flow, ... and the drop-in packages),
 #   - the compiled modules (talus._dem, talus._flow, ...), one per component,
 #   - the generated _build_config.py.
 # The `talus` command (bin/talus) is a launcher that puts the package on sys.path.
@@ -26,16 +28,19 @@ function(talus_python_module name source)
   install(TARGETS ${name} LIBRARY DESTINATION ${TALUS_PYTHON_INSTALL_DIR}/talus)
 endfunction()
 
-## talus_assemble_python_package(): copy the pure-Python files and write the launchers. Each
-## component's python/ folder holds the package `talus` (its sub-package) and may hold
-## drop-in packages with a peer's names (dem/python/yade: Yade's scripting interface).
+## talus_assemble_python_package(): copy the pure-Python files and write the launchers. The
+## top-level python/ folder holds the root of the package `talus`; each component's python/
+## folder holds its sub-package (talus.<component>) and may hold drop-in packages with a peer's
+## names (dem/python/yade: Yade's scripting interface).
 function(talus_assemble_python_package)
   set(outputs)
+  set(roots ${PROJECT_SOURCE_DIR}/python)
   foreach(component dem flow coupling fem)
-    set(root ${PROJECT_SOURCE_DIR}/${component}/python)
-    if(NOT TALUS_COMPONENT_${component} OR NOT EXISTS ${root})
-      continue()
+    if(TALUS_COMPONENT_${component} AND EXISTS ${PROJECT_SOURCE_DIR}/${component}/python)
+      list(APPEND roots ${PROJECT_SOURCE_DIR}/${component}/python)
     endif()
+  endforeach()
+  foreach(root IN LISTS roots)
     file(GLOB_RECURSE sources CONFIGURE_DEPENDS RELATIVE ${root} ${root}/*.py)
     foreach(rel IN LISTS sources)
       set(out ${TALUS_PYTHON_BUILD_DIR}/${rel})

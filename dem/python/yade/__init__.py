@@ -134,3 +134,6 @@ def script_namespace() -> dict:
                      doctest=doctest, execfile=execfile)
     namespace["version"] = config.version     # Yade's launcher's global: the program's version
     return namespace
+
+
+plot.add_script_names(script_namespace)   # addAutoData evaluates in Yade's names, as Yade's plot does

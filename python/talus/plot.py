@@ -126,11 +126,24 @@ def addAutoData() -> None:
     addData(row)
 
 
-@functools.cache
+_script_namespaces: list[Callable[[], dict]] = []
+
+
+def add_script_names(namespace: Callable[[], dict]) -> None:
+    """Let addAutoData's expressions see the names ``namespace()`` returns (asked once, at the
+    first addAutoData), under the script's own globals. The ``yade`` package registers Yade's
+    script namespace, which Yade's plot module evaluates in; this module imports no scripting
+    layer itself, so that the DEM can import it."""
+    if not callable(namespace):
+        raise TypeError(f"plot.add_script_names: namespace must be a function returning a dict, got {namespace!r}")
+    _script_namespaces.append(functools.cache(namespace))
+
+
 def _script_names() -> dict:
-    """Yade's names, which addAutoData's expressions see as those of Yade's plot module do."""
-    import yade
-    return yade.script_namespace()
+    names = {}
+    for namespace in _script_namespaces:
+        names.update(namespace())
+    return names
 
 
 def resetData() -> None:
