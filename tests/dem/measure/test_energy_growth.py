@@ -8,7 +8,7 @@ import pytest
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, Scene, growParticles, sphere, wall)
 
-from test_controllers import run_until, walled_cloud
+from control.test_controllers import run_until, walled_cloud
 from test_energy import restart_continues
 
 

@@ -16,8 +16,8 @@ from talus.dem import (FrictMat, HarmonicMotionEngine, NewtonIntegrator, PeriTri
                        pack, sphere)
 
 from energy_deposition import scene as deposition
-from test_contact_physics import LINEAR, engines
-from test_controllers import frict_engines, periodic_cloud, walled_cloud
+from laws.test_contact_physics import LINEAR, engines
+from control.test_controllers import frict_engines, periodic_cloud, walled_cloud
 
 SCRIPT = Path(__file__).with_name("energy_deposition.py")
 

@@ -10,8 +10,8 @@ import pytest
 
 from talus.dem import NewtonIntegrator, Scene, FrictMat, sphere, twin
 
-HERE = Path(__file__).parent
-SCRIPT = HERE / "clump_energy_deposition.py"
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+SCRIPT = TWINS / "clump_energy_deposition.py"
 yade = shutil.which("yade")
 
 

@@ -10,7 +10,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
                        NewtonIntegrator, Scene, getStress, getStressAndTangent, sphere, twin)
 
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 
 
 def periodic(hsize, centres, radii):
@@ -54,7 +54,7 @@ def voigt(t):
 @pytest.mark.parametrize("strain", [[1e-7, 0, 0, 0, 0, 0], [0, 0, 0, 0, 0, 1e-7], [0, -2e-8, 0, 3e-8, 0, 0]],
                          ids=["axial", "shear-xy", "mixed"])
 def test_tangent_predicts_the_stress_increment_of_a_packing(strain):
-    data = json.loads((HERE / "periodic_packing.json").read_text())
+    data = json.loads((TWINS / "periodic_packing.json").read_text())
     S = periodic(data["hSize"], data["pos"], data["radius"])
     e = np.array(strain)
     E = np.array([[e[0], e[5] / 2, e[4] / 2], [e[5] / 2, e[1], e[3] / 2], [e[4] / 2, e[3] / 2, e[2]]])
@@ -89,7 +89,7 @@ def force_rotation(S, E):
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
 def test_yade_form_equals_yades_get_stress_and_tangent():
     def run(program):
-        result = twin.run(HERE / "packing_tangent.py", {}, program, timeout=300)
+        result = twin.run(TWINS / "packing_tangent.py", {}, program, timeout=300)
         return {k: np.array(v) if isinstance(v, list) else v for k, v in result.items()}
     ours, yade = run("talus"), run("yade")
     assert ours["shearing"] > 100                      # the shear part of Yade's form is exercised

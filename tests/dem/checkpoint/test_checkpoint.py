@@ -23,7 +23,7 @@ from talus.dem import (CohFrictMat, FrictMat, ForceResetter, Ip2_CohFrictMat_Coh
                        sphere, wall)
 
 pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
-HERE = Path(__file__).parent
+TWINS = Path(__file__).parents[1] / "yade_twins"  # the packing the Yade twins read
 
 
 def deposition(visco, m: int = 7) -> Scene:
@@ -148,7 +148,7 @@ def test_restart_with_clumps_boxes_and_kinematics(tmp_path):
 
 
 def test_periodic_restart_continues_bit_identically(tmp_path):
-    data = json.loads((HERE / "periodic_packing.json").read_text())
+    data = json.loads((TWINS / "periodic_packing.json").read_text())
     A = Scene()
     A.periodic = True
     A.cell.hSize = Matrix3(*[x for row in data["hSize"] for x in row])
