@@ -38,7 +38,7 @@ struct Contacts;
 /// imposed motions' work, in a region of its own.
 ///
 /// The engines' own range functions do the work, item by item as their run() does, so a fused
-/// step gives the same bits as the engines one by one (tests/dem/test_threads.py). Scenes with
+/// step gives the same bits as the engines one by one (tests/dem/step/test_threads.py). Scenes with
 /// several laws or colliders or with timing on (which times each engine) take the engines'
 /// path, and so do scenes of fewer bodies than parallelLoopMinimum.
 class FusedStep

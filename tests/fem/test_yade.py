@@ -1,5 +1,5 @@
 """Against Yade: on the same exported RVE packing (one step of deterministic particle velocities, as
-tests/dem/test_tangent.py; the scenario cases/yade/fem_rve_tangent.py, also run by
+tests/dem/measure/test_tangent.py; the scenario cases/yade/fem_rve_tangent.py, also run by
 cases/fem_vs_yade.py), the Gauss-point stress and tangent (form="yade") equal Yade's
 getStressAndTangent within 1e-6."""
 from pathlib import Path

@@ -1,7 +1,7 @@
 """Yade's clump and body-container API: addToClump, releaseFromClump, replaceByClumps with
 clumpTemplate, getRoundness, shape.members as a dict, clumps with facets and boxes, erased ids
 (None, as Yade), textClumps, checkpoints of changed clumps; compared with Yade 2023.02a on
-fixed inputs (tests/dem/clump_operations.py)."""
+fixed inputs (tests/dem/yade_twins/clump_operations.py)."""
 import shutil
 import warnings
 from pathlib import Path

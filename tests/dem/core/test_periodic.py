@@ -152,7 +152,7 @@ def test_a_bed_wall_in_a_periodic_cell():
     assert first_meeting is not None, "spheres 2 and 3 should meet across the y boundary"
     assert all(c["id1"] == 0 for c in F.contacts())  # without the cell they never meet
     assert on_wall == set(ids), "all three bounce on the bed wall"
-    # Facets and boxes are periodic too (tests/dem/test_periodic_boundaries.py), Potential
+    # Facets and boxes are periodic too (tests/dem/contact/test_periodic_boundaries.py), Potential
     # Blocks and Particles are not.
     T = Scene()
     T.bodies.append(facet([(0, 0, 0), (1, 0, 0), (0, 1, 0)]))

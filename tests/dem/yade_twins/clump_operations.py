@@ -4,7 +4,7 @@ one of its members), releaseFromClump, erasing a member, a checkpoint saved and 
 export/ymport.textClumps, replaceByClumps on a regular packing (only what the random
 orientation leaves alone: which spheres, masses, radii, member distances to the centroid) and
 getRoundness; then a clump of two facets driven by a torque into a free sphere. Runs unchanged in
-Yade (`yade -n -x`) and in Talus; prints the results as JSON (tests/dem/test_clump_operations.py).
+Yade (`yade -n -x`) and in Talus; prints the results as JSON (tests/dem/core/test_clump_operations.py).
 
 Yade's Law2_ScGeom_FrictPhys_CundallStrack takes a facet's lever arm from radii
 (sphericalBodies=True, its default), wrong for a facet that turns; Talus always takes the

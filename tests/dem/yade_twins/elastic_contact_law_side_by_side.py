@@ -2,7 +2,7 @@
 RotationEngines, gravity. With {"oldStyle": true} (Talus) the engine list is the example's
 IGeomDispatcher, IPhysDispatcher, ElasticContactLaw (after a RotationEngine, as shear.py has
 it); else the InteractionLoop it stands for, which is what Yade 2023.02a can run (its standalone
-IGeomDispatcher aborts). Prints RESULT with the final state (tests/dem/test_legacy_engines.py)."""
+IGeomDispatcher aborts). Prints RESULT with the final state (tests/dem/laws/test_legacy_engines.py)."""
 import json
 import os
 from math import sqrt

@@ -1,6 +1,6 @@
 """GravityEngine on free spheres and a clump, with energy tracking, written so that the same file
 runs in Yade (`yade -n -x`) and in Talus: prints the positions and O.energy['gravWork'] every 50
-steps (one RESULT line; tests/dem/test_gravity_engine.py)."""
+steps (one RESULT line; tests/dem/impose/test_gravity_engine.py)."""
 import json
 
 try:

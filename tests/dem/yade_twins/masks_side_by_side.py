@@ -1,5 +1,5 @@
 """Group masks, written so that the same file runs in Yade (`yade -n -x`) and in Talus
-(tests/dem/test_masks.py); the scenario is the parameter "case":
+(tests/dem/contact/test_masks.py); the scenario is the parameter "case":
 - "fall": spheres of masks 1, 2, 3 fall through a mask-0 box (the VANS examples' water surface)
   onto a mask-1 floor box; the first one's mask is then changed to 2 while it rests on the floor
   (the contact lasts, as in Yade); prints positions every 100 steps;

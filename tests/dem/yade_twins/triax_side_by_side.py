@@ -1,5 +1,5 @@
 """Yade's triax-basic.py test (TriaxialCompressionEngine on six walls, frictionless walls,
-TriaxialStateRecorder) on fixed input, in Yade or in Talus (tests/dem/test_triaxial_compression.py
+TriaxialStateRecorder) on fixed input, in Yade or in Talus (tests/dem/control/test_triaxial_compression.py
 runs it in both). Parameters (JSON in $TALUS_SCENARIO):
 
 * phase "compaction": 300 spheres from makeCloud(seed=7), isotropic compaction to 50 kPa for

@@ -1,7 +1,7 @@
 """Yade's TriaxialTest preprocessor on the packing of triax_packing.json (importFilename), then
 `steps` steps: the scene's first time step and engines, the TriaxialCompressionEngine's
 read-outs and the spheres' positions. Runs in Yade and in Talus
-(tests/dem/test_triaxial_compression.py); prints RESULT."""
+(tests/dem/control/test_triaxial_compression.py); prints RESULT."""
 import json
 import os
 

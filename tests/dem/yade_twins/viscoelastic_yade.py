@@ -1,6 +1,6 @@
 """Visco-elastic contacts (ViscElMat) in small scenes, run unchanged by `yade -x` and `talus run`:
 prints one line "JSON {...}" with each scene's contact parameters and its bodies' motion, for
-tests/dem/test_viscoelastic_yade.py to compare. Scenes: the young/en form on sphere pairs of
+tests/dem/laws/test_viscoelastic_yade.py to compare. Scenes: the young/en form on sphere pairs of
 several restitutions; an oblique sphere-sphere and a sphere-wall impact (young/en, tc, kn
 forms); spheres on a facet, a box and a fixed sphere; rolling resistance (mRtype 1 and 2);
 Ip2 MatchMakers; lubrication."""
