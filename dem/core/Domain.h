@@ -17,10 +17,21 @@ class Domain
 public:
   virtual ~Domain() = default;
 
-  /// Rows [0, ownedBodies) of the scene's bodies are this process's; the rows after them are
-  /// ghosts, read-only copies of bodies other processes own. Resetting forces, gathering them and
-  /// integrating touch owned rows only; detection and contacts see all rows.
+  /// The rows the step resets, gathers and integrates: [0, ownedBodies). Detection and contacts
+  /// see all rows. The MPI domain interleaves its ghosts (read-only copies of bodies other
+  /// processes own) with its own bodies in global-id order, so that every contact has the
+  /// orientation and every body sums its contacts in the order of the serial scene (the same
+  /// bits): its ownedBodies is every row, a ghost's integration (with part of its forces) being
+  /// overwritten by its owner's state in afterIntegration. Which rows are whose: owns().
   virtual std::size_t ownedBodies(const Scene& scene) const = 0;
+
+  /// Whether row `row` is this process's body (false: a ghost). Measurements count owned rows.
+  virtual bool owns(std::size_t row) const = 0;
+
+  /// Whether this process computes the contact of rows `row1` and `row2`: one of them is its own
+  /// (a contact across two processes is computed by both, each applying the force to its own
+  /// body), and a body every process holds (a wall) meets only the bodies owned here.
+  virtual bool computesPair(std::size_t row1, std::size_t row2) const = 0;
 
   /// The skin check's answer for the whole run: true on every process when any needs a
   /// re-detection (all processes re-detect together).
@@ -39,5 +50,9 @@ public:
 
   /// The smallest value over processes (critical time steps).
   virtual double min(double value) const = 0;
+
+  /// Element-wise minima over processes, in place (maxima as minima of the negated values): the
+  /// skin check's displacements in one reduction per step.
+  virtual void min(std::span<double> values) const = 0;
 };
 } // namespace talus::dem
