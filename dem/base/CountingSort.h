@@ -22,8 +22,8 @@ void stableCountingSort(std::int64_t items, std::int64_t buckets, std::vector<st
                         ForEachKey&& forEachKey, Place&& place)
 {
   // The threads' counts cost in proportion to the buckets: with more buckets than items (the
-  // collider's cells) one thread was faster (82 against 138 µs a re-detection of Yade's speed
-  // test scene, with 2 threads).
+  // collider's cells) one thread is faster than several clearing and summing their own counts
+  // (docs/dem.md, "Measurements behind the code").
   const int threads = (items >= parallelLoopMinimum && buckets < items) ? threadCount() : 1;
   // counts[t * buckets + k]: how many keys of run t fall in bucket k; then where run t's slots
   // begin within bucket k's.

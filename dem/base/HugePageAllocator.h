@@ -16,11 +16,10 @@ namespace talus::dem
 /// smaller ones come from operator new.
 ///
 /// Why: a re-detection that lengthens the contact list moves it to fresh memory, and every
-/// first touch of a 4 KiB page is a page fault. On this project's guest a fault costs about
-/// 14 µs: 4 MiB of contact records took 15 ms to fault in with 4 KiB pages and 0.24–0.43 ms
-/// as huge pages (microbenchmark, 2026-12-05), and the speed test's fresh contact storage
-/// took 23 ms of its 2000 steps. Where the kernel refuses (THP "never", other systems) the
-/// advice is ignored and nothing changes but the alignment.
+/// first touch of a 4 KiB page is a page fault, dear in a virtual machine; a 2 MiB page takes
+/// one fault for 512 small ones (docs/dem.md, "Measurements behind the code"). Where the kernel
+/// refuses (THP "never", other systems) the advice is ignored and nothing changes but the
+/// alignment.
 template <class T>
 struct HugePageAllocator
 {

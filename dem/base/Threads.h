@@ -14,8 +14,9 @@ namespace talus::dem
 {
 /// Loops over fewer items than this run on one thread (OpenMP `if` clause): a parallel region
 /// costs microseconds even on idle cores, and on an oversubscribed machine its barrier waits for
-/// descheduled threads, which made small scenes up to 100 times slower. Results do not depend on
-/// the thread count, so the threshold changes speed only.
+/// descheduled threads, which made small scenes many times slower (docs/dem.md, "Measurements
+/// behind the code"). Results do not depend on the thread count, so the threshold changes speed
+/// only.
 inline constexpr std::int64_t parallelLoopMinimum = 1024;
 
 /// Number of OpenMP threads the DEM loops use (1 without OpenMP).
