@@ -25,9 +25,12 @@ enum class ShapeKind : std::uint8_t
 };
 
 /// Yade's class name of a shape kind ("Sphere", "PotentialBlock", ...), for messages.
+/// @return a static string, never null
 const char* shapeName(ShapeKind kind);
 
-/// The shape kind of a Yade class name (shapeName's inverse); none for an unknown name.
+/// The shape kind of a Yade class name (shapeName's inverse).
+/// @param name Yade's class name, case-sensitive
+/// @return the kind, or none for an unknown name
 std::optional<ShapeKind> shapeKindNamed(std::string_view name);
 
 /// An infinite wall: the plane x[axis] = pos[axis]; `sense` says which side interacts
@@ -104,26 +107,37 @@ struct Bodies
 
   /// Number of slots, erased bodies included.
   [[nodiscard]] std::size_t size() const { return pos.size(); }
-  /// Append a slot with zero state and the given shape; returns its id.
+  /// Append a slot with zero state and the given shape.
+  /// @param kind the body's shape kind
+  /// @param shapeIdx its index in the kind's array (`walls`, `facets`, ...); -1 for a sphere
+  /// @param materialId index into the scene's materials
+  /// @return the new body's id (the slot index)
   BodyId append(ShapeKind kind, int shapeIdx, int materialId);
   /// Set a body's angular velocity, and the angular momentum that goes with it (what the
   /// integrator advances for aspherical bodies).
+  /// @param i the body's id
+  /// @param w the angular velocity (rad/s, world frame)
   void setAngularVelocity(std::size_t i, const Vec3& w);
-  /// True for bodies whose rotation integrates the angular momentum in the principal frame
-  /// (clumps, boxes, blocks and potential particles with unequal principal moments, as Yade's isAspherical).
   /// Whether the collider may pair bodies i and j, for other than spatial reasons (Yade's
   /// Collider::mayCollide): not members of one clump, masks sharing a bit, and not two bodies of
   /// one mask that shares a bit with the collider's avoidSelfInteractionMask.
+  /// @param i, j the bodies' ids
+  /// @param avoidSelfInteractionMask the collider's (0: none)
+  /// @return false if the pair must never touch
   [[nodiscard]] bool mayCollide(std::size_t i, std::size_t j, int avoidSelfInteractionMask) const
   {
     return (clumpId[i] < 0 || clumpId[i] != clumpId[j]) && masksAllow(i, j, avoidSelfInteractionMask);
   }
-  /// The masks' part of mayCollide.
+  /// The masks' part of mayCollide (the same parameters and result).
   [[nodiscard]] bool masksAllow(std::size_t i, std::size_t j, int avoidSelfInteractionMask) const
   {
     const int mi = groupMask[i], mj = groupMask[j];
     return (mi & mj) != 0 && !(mi == mj && (mi & avoidSelfInteractionMask) != 0);
   }
+  /// True for bodies whose rotation integrates the angular momentum in the principal frame
+  /// (clumps, boxes, blocks and potential particles with unequal principal moments, as Yade's
+  /// isAspherical).
+  /// @param i the body's id
   [[nodiscard]] bool aspherical(std::size_t i) const
   {
     return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box || shape[i] == ShapeKind::PotentialBlock

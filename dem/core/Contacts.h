@@ -33,8 +33,8 @@ enum class ContactGeometryKind : std::uint8_t
 /// the per-body force gather reads (the flags, the force and the contact point), and what the
 /// collider's candidate test of a separated pair reads (ids, kind, real), so those two passes,
 /// which visit the records out of order or mostly skip them, touch one line per record. Large
-/// packings are limited by memory traffic, not arithmetic (the 200k-sphere bed: 1.7 times the
-/// cost per particle-step of the 16k one with the gather reading three lines).
+/// packings are limited by memory traffic, not arithmetic: the lines a pass reads set the cost
+/// per particle-step of a large bed (docs/dem.md, "Measurements behind the code").
 struct alignas(64) Contact
 {
   BodyId id1 = -1, id2 = -1;
@@ -97,14 +97,18 @@ struct Contacts
 
   /// Remove the contacts `doomed` selects, with their entries of `extra` (compacting the list
   /// alone would hand each later contact the state of another pair), then rebuild the index.
+  /// @param doomed true for a contact to remove
+  /// @param bodyCount the scene's body count, for the index
   void removeIf(const std::function<bool(const Contact&)>& doomed, std::size_t bodyCount);
-  /// The records of `extra` (entry k for contact k), null when no law keeps any.
+  /// The records of `extra` (entry k for contact k).
+  /// @return the first record, or null when no law keeps any
   /// @throws std::logic_error if `extra` is not aligned with the list (a contact would read
   ///         another pair's state)
   [[nodiscard]] ContactExtra* extraState();
   [[nodiscard]] const ContactExtra* extraState() const;
 
   /// Rebuild the per-body index after the list changed, and give the list a new `version`.
+  /// @param bodyCount the scene's body count (slots, erased bodies included)
   void index(std::size_t bodyCount);
   /// A number no other list state has had, in any Contacts (a copy keeps it with the list it
   /// copies): what is derived from the list stays valid while it is unchanged. 0 before the

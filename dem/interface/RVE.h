@@ -37,6 +37,11 @@ struct RVEState
 /// L dt = (grad / n) (I + k / n grad)^-1, which takes the cell from (I + k/n grad) H0 to
 /// (I + (k+1)/n grad) H0. (One definition, also used by talus.fem.direct's reference runs, so
 /// that they apply the very same numbers.)
+/// @param grad the increment's displacement gradient du/dX, relative to its start
+/// @param k the DEM step within the increment, 0 <= k < nSteps
+/// @param nSteps the DEM steps the increment takes
+/// @param dt the DEM time step (s)
+/// @return the velocity gradient L (1/s) the periodic cell follows during step k
 [[nodiscard]] Mat3 subStepVelocityGradient(const Mat3& grad, int k, int nSteps, double dt);
 
 /// A representative volume element: one periodic DEM scene owned here, with a committed state
@@ -57,26 +62,41 @@ public:
   /// Take a copy of the state of a periodic scene (materials, bodies, contacts, cell, clock and
   /// the scene's settings: overlap and energy checks, energy tracking, timing);
   /// its engines are not shared, the RVE builds its own from `engines`.
-  /// @throws std::invalid_argument naming `name` if the scene is not periodic or has no sphere
+  /// @param source the periodic scene copied (left as it is)
+  /// @param engines the contact law and damping of the RVE's own engines
+  /// @param name how errors name this RVE (a Gauss point, say)
+  /// @throws std::invalid_argument naming `name` if the scene is not periodic or has no sphere,
+  ///         or naming the law if `engines.law` is not a registered contact law
   RVE(const Scene& source, const RVEEngines& engines, const std::string& name = "scene");
   /// Load an RVE from a Talus checkpoint file (O.save).
+  /// @param path the checkpoint file; it also names the RVE in errors
+  /// @param engines the contact law and damping of the RVE's own engines
+  /// @return the RVE, its committed state the file's
   /// @throws std::invalid_argument naming the file when it does not exist, is not a checkpoint
-  ///         or is not periodic
+  ///         (or this build has no HDF5), is not periodic or has no sphere
   static RVE load(const std::string& path, const RVEEngines& engines);
 
   /// Deform from the committed state by the displacement gradient `grad` over `nSteps` steps.
-  /// @throws std::invalid_argument if grad is not finite or det(I + grad) <= 0
+  /// @param grad the displacement gradient du/dX relative to the committed configuration
+  /// @param nSteps the DEM steps it is imposed over, >= 1
+  /// @throws std::invalid_argument if grad is not finite, det(I + grad) <= 0 or nSteps < 1
   /// @throws std::runtime_error if a DEM step fails (the committed state is kept)
   void deform(const Mat3& grad, int nSteps);
+  /// Make the trial state (the last deform's) the committed one.
   void commit();
+  /// Return to the committed state; nothing to do without a trial state.
   void rollback();
   /// True when the scene holds a trial state (deform was called after the last commit/rollback).
   [[nodiscard]] bool hasTrial() const { return trial_; }
 
   /// Love-Weber stress (compression negative) and the contact-stiffness tangent of the current
   /// (trial or committed) state, by dem's loveWeberStress and contactStiffnessTangent.
+  /// @return the stress (Pa) over the cell's volume
   [[nodiscard]] Mat3 stress() const;
+  /// @param form which contact-stiffness tangent (see TangentForm)
+  /// @return the 6x6 tangent (Pa) in Voigt order xx, yy, zz, yz, xz, xy
   [[nodiscard]] Mat6 tangent(TangentForm form = TangentForm::Full) const;
+  /// @return porosity, void ratio, coordination, fabric and mean rotation of the current state
   [[nodiscard]] RVEState state() const;
 
   [[nodiscard]] const Scene& scene() const { return scene_; }

@@ -11,16 +11,25 @@ class Scene;
 /// Yade's unbalancedForce: the mean (or, with useMaxForce, the largest) magnitude of the total
 /// force on dynamic bodies, gravity included, divided by the mean magnitude of contact forces.
 /// 0 for a scene at equilibrium; NaN when there is no contact force to compare with.
+/// @param scene the scene, its forces those of the last step
+/// @param gravity the acceleration of gravity the integrator adds (sceneGravity(scene) for the
+///        scene's own)
+/// @param useMaxForce the largest total force instead of the mean
+/// @return the ratio, dimensionless
 double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce = false);
 
 /// Gravity of the scene's (first) NewtonIntegrator, zero without one: what unbalancedForce
 /// needs when an engine calls it.
+/// @return the gravity vector (m/s^2)
 Vec3 sceneGravity(const Scene& scene);
 
 /// Love-Weber homogenised stress -(1/V) sum over real contacts of f (x) l, with f the force on
 /// body 2 and l the branch vector from body 1's centre to body 2's (image) centre (for a wall or
 /// facet: from the sphere's closest point on it to its centre); compression is negative, as
 /// Yade's getStress. `volume` <= 0 means the periodic cell's volume.
+/// @param volume the sample's volume (m^3); <= 0: the periodic cell's
+/// @return the stress tensor (Pa)
+/// @throws std::invalid_argument if volume <= 0 and the scene is not periodic
 Mat3 loveWeberStress(const Scene& scene, double volume = -1);
 
 /// Contact-stiffness tangent operator of the homogenised stress, as a 6x6 Voigt matrix (order
@@ -44,14 +53,21 @@ enum class TangentForm
   Full,
   Yade
 };
+/// @param volume the sample's volume (m^3); <= 0: the periodic cell's
+/// @param form the full operator or Yade's
+/// @return the 6x6 tangent (Pa), Voigt order xx, yy, zz, yz, xz, xy
+/// @throws std::invalid_argument if volume <= 0 and the scene is not periodic
 Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double volume = -1,
                                                     TangentForm form = TangentForm::Full);
 
 /// Yade's avgNumInteractions: 2 Nc / N over live spheres (optionally not counting spheres with
 /// no contact, `skipFree`).
+/// @param skipFree leave out the spheres with no real contact
+/// @return the mean number of real contacts per sphere; 0 without spheres
 double coordinationNumber(const Scene& scene, bool skipFree = false);
 
 /// Fabric tensor (1/Nc) sum n (x) n over real sphere-sphere contacts.
+/// @return the symmetric fabric tensor, trace 1 (zero without such contacts)
 Mat3 fabricTensor(const Scene& scene);
 
 /// Yade's bodyStressTensors: per body, the mean stress in the solid sphere from its contact
@@ -60,8 +76,10 @@ Mat3 fabricTensor(const Scene& scene);
 /// equilibrium loaded at points, where it is symmetric; Yade's index order otherwise);
 /// compression is negative. Contact moments are not included, as in Yade. Zero for bodies that
 /// are not spheres. Indexed by body id.
+/// @return one stress tensor (Pa) per body id
 std::vector<Mat3> bodyStressTensors(const Scene& scene);
 
 /// Total volume of the live spheres.
+/// @return the volume (m^3), overlaps counted twice
 double sphereVolume(const Scene& scene);
 } // namespace talus::dem
