@@ -83,10 +83,16 @@ public:
   void setParameters(const HydroForceParameters& parameters);
 
   /// Fluid velocity at the nCell + 1 velocity nodes (VansFluid's layout).
+  /// @param vxFluid streamwise velocities [m/s], nCell + 1 values
+  /// @throws std::invalid_argument on another count or a value not finite
   void setVxFluid(std::span<const double> vxFluid);
-  /// Solid fraction per layer used by the hindrance (nCell values in [0, 1)).
+  /// Solid fraction per layer used by the hindrance.
+  /// @param phiPart nCell values in [0, 1)
+  /// @throws std::invalid_argument on another count or a value out of range
   void setPhiPart(std::span<const double> phiPart);
-  /// Reynolds shear stress per mesh node [Pa] (nCell values), scaling the fluctuations.
+  /// Reynolds shear stress per mesh node, scaling the fluctuations.
+  /// @param stresses nCell values [Pa]
+  /// @throws std::invalid_argument on another count or a value not finite
   void setReynoldStresses(std::span<const double> stresses);
   [[nodiscard]] std::span<const double> vxFluid() const noexcept { return m_vxFluid; }
   [[nodiscard]] std::span<const double> phiPart() const noexcept { return m_phiPart; }
@@ -94,22 +100,33 @@ public:
 
   /// Add the fluid force of each particle in `ids` to `forces` (3 values per body). If velFluct,
   /// first advance the fluctuations' random walk by `dt` (their eddy lives count down).
-  /// @throws std::invalid_argument for an id that is not a body of the arrays or has no positive
-  ///         radius, or (unless ignoreOutside) a particle outside the grid; nothing is added then
+  /// @param particles the scene's particle arrays, by body id
+  /// @param ids the bodies that feel the fluid
+  /// @param forces 3 values per body of the arrays, added to
+  /// @param dt the time since the last call [s]
+  /// @throws std::invalid_argument if `forces` has not 3 values per body, for an id that is not
+  ///         a body of the arrays or has no positive radius, or (unless ignoreOutside) a particle
+  ///         outside the grid; nothing is added then
   void action(const ParticleArrays& particles, std::span<const std::int64_t> ids, std::span<double> forces,
               double dt);
 
-  /// The fluid force action() would add to particle `id` (zero outside the grid).
+  /// The fluid force action() would add to particle `id`.
+  /// @return the force [N], zero outside the grid
+  /// @throws std::invalid_argument if id is not a body of the arrays or has no positive radius
   [[nodiscard]] std::array<double, 3> force(const ParticleArrays& particles, std::int64_t id) const;
 
   /// Solid fraction, mean velocity and mean streamwise drag per layer over the spheres `ids`,
   /// each sphere split between the layers it crosses with the exact volume of each slice
   /// (V = pi r^2 (b - a) - pi (b^3 - a^3)/3 between heights a < b from its centre).
+  /// @param particles the scene's particle arrays, by body id
+  /// @param ids the spheres averaged over
+  /// @return the profiles, nCell values each
   /// @throws std::invalid_argument if vCell <= 0, or an id is not a body of the arrays
   [[nodiscard]] SolidProfile averageProfile(const ParticleArrays& particles, std::span<const std::int64_t> ids) const;
 
   /// Draw a new fluctuation for every particle of `ids` now (Yade's turbulentFluctuation), and
   /// restart its eddy life. Deterministic for a given seed and call sequence.
+  /// @throws std::invalid_argument if an id is not a body of the arrays or has no positive radius
   void turbulentFluctuation(const ParticleArrays& particles, std::span<const std::int64_t> ids);
   /// Current fluctuation (u'_x, u'_y, u'_z) of each body, 3 values per body (zero if none).
   [[nodiscard]] std::span<const double> fluctuations() const noexcept { return m_fluct; }
@@ -119,6 +136,9 @@ public:
   void seed(std::uint64_t value) { m_random.seed(value); }
 
   /// Volume of the part of a sphere of radius r between heights a and b from its centre.
+  /// @param r the radius [m]
+  /// @param a, b the heights from the centre (clipped to [-r, r]; nothing if b <= a)
+  /// @return the volume [m^3]
   [[nodiscard]] static double sliceVolume(double r, double a, double b);
 
 private:

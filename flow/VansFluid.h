@@ -48,14 +48,22 @@ public:
   /// HydroForceEngine.initialization() does.
   void initialization();
 
-  /// Solid volume fraction per cell (nCell values, each in [0, 1)).
+  /// Solid volume fraction per cell.
+  /// @param phiPart nCell values, each in [0, 1)
+  /// @throws std::invalid_argument on another count or a value out of range
   void setPhiPart(std::span<const double> phiPart);
-  /// Mean streamwise particle velocity per cell [m/s] (nCell values).
+  /// Mean streamwise particle velocity per cell.
+  /// @param vxPart nCell values [m/s]
+  /// @throws std::invalid_argument on another count or a value not finite
   void setVxPart(std::span<const double> vxPart);
-  /// Mean streamwise drag force per particle in each cell [N] (nCell values); with radiusPart it
-  /// gives the momentum exchange with the fluid. Negative values are dropped (taufsi >= 0).
+  /// Mean streamwise drag force per particle in each cell; with radiusPart it gives the momentum
+  /// exchange with the fluid. Negative values are dropped (taufsi >= 0).
+  /// @param averageDrag nCell values [N]
+  /// @throws std::invalid_argument on another count or a value not finite
   void setAverageDrag(std::span<const double> averageDrag);
-  /// Fluid velocity at the nCell + 1 velocity nodes [m/s]: the initial state of the next call.
+  /// Fluid velocity at the velocity nodes: the initial state of the next call.
+  /// @param vxFluid nCell + 1 values [m/s]
+  /// @throws std::invalid_argument on another count or a value not finite
   void setVxFluid(std::span<const double> vxFluid);
 
   [[nodiscard]] std::span<const double> phiPart() const noexcept { return m_phiPart; }
@@ -98,6 +106,8 @@ public:
   /// Advance the fluid velocity over tfin with steps dt, the solid profiles frozen, exactly as
   /// Yade's HydroForceEngine.fluidResolution(tfin, dt): steps are taken while the accumulated
   /// time (0, dt, 2 dt, ... summed in floating point) is below tfin.
+  /// @param tfin the time to advance [s], >= 0
+  /// @param dt the fluid time step [s], > 0
   /// @throws std::invalid_argument if tfin < 0 or dt <= 0 (or either is not finite), if dt is too
   ///         small to advance the summed time in floating point, if a profile
   ///         does not have the size nCell (nCell + 1 for vxFluid), holds a non-finite value, or

@@ -52,7 +52,7 @@ void insertVertices(PoreNetwork& net, cgal::Regular& rt, const std::vector<int>&
 /// body id (an image after its sphere, by index), independent of CGAL's and of the input's
 /// order; rank[i] is vertex i's place in it. Empty for InsertionOrder::Yade (CGAL's cell order).
 /// Ranked once per network: the sorts below compared (fictitious, id, index) keys read from the
-/// vertices, 2.5 % of a 1 000-sphere remesh.
+/// vertices, a visible part of a remesh (docs/flow.md, "Measurements behind the code").
 std::vector<int> canonicalRanks(const std::vector<Vertex>& vertices, InsertionOrder insertion);
 /// The facet vertices of throat t (the facet opposite t.facet in pore `poreVertices`): in the
 /// cell's order when `rank` is empty (InsertionOrder::Yade), else in the canonical order, with

@@ -130,7 +130,8 @@ struct PoreNetwork
 /// sphere-edge overlap S0 takes the first sphere it finds crossing its opposite edge).
 enum class InsertionOrder
 {
-  /// one range, spatially sorted by CGAL (2.5x faster); the facet vertices are then taken in a
+  /// one range, spatially sorted by CGAL (faster: docs/flow.md, "Measurements behind the
+  /// code"); the facet vertices are then taken in a
   /// canonical order (boundaries, then by body id), so the geometry depends neither on CGAL's
   /// order nor on the order of the input (differs from Yade's on
   /// facets where two spheres cross their opposite edges: 0.4 % on the most affected
