@@ -347,8 +347,9 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     fluidGaveUp(silent); // sending would only find the fluid gone
   const auto start = std::chrono::steady_clock::now();
   // Each fluid rank gets the particles inside its widened box only (FoamProtocol.h, inBox).
-  // The arrays keep room for every particle (no allocation, no capacity test per value: with
-  // push_back the packing took 0.25 ms of 10 000 particles' exchange, perf).
+  // The arrays keep room for every particle (no allocation, no capacity test per value, which
+  // made push_back a visible part of an exchange; docs/coupling.md, "Measurements behind the
+  // code").
   for (int p = 0; p < fluidProcs_; ++p)
   {
     const double* box = &boxes_[proto::kBoxDoubles * static_cast<std::size_t>(p)];
@@ -404,8 +405,8 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   stats_.fluidExchangeCpuSeconds = stats_.fluidStepCpuSeconds = 0;
   owned_.resize(n);
   // The first rank's values are written over every particle (zeros where it was sent none),
-  // the other ranks' added to them: no pass zeroing the 8 N doubles first (with it the sums took
-  // 0.11 ms at 10 000 particles, one fluid rank).
+  // the other ranks' added to them: no pass zeroing the 8 N doubles first (a pass over memory
+  // the sums write anyway).
   static constexpr std::array<double, proto::kForceDoubles> nothing{};
   const auto put = [&](std::size_t i, const double* f, bool add) {
     for (std::size_t k = 0; k < 3; ++k)

@@ -57,7 +57,11 @@ class FoamLink
 {
 public:
   /// Spawns the solver and checks the case against `settings`.
-  /// @throws std::runtime_error with the fluid side's reason on a mismatch
+  /// @param settings the solver, its case and what the DEM side states about it
+  /// @param nParticles the coupled particles, the same at every exchange
+  /// @throws std::runtime_error naming the setting or the file: a solver or case file missing,
+  ///         a case not meshed or not decomposed into nProcs, a setting out of range, the spawn
+  ///         failed, or the fluid side's reason on a mismatch with its case
   FoamLink(const FoamSettings& settings, int nParticles);
   ~FoamLink();
   FoamLink(const FoamLink&) = delete;
@@ -77,9 +81,16 @@ public:
   /// One fluid step: sends positions (3N), velocities (3N) and radii (N); writes the
   /// hydrodynamic force on each particle into `forces` (3N), its drag coefficient beta (N) and
   /// the fluid velocity the drag uses (3N): the drag in `forces` is beta (uf - v) with the
-  /// velocities sent. Returns the largest particle Reynolds number seen by the fluid. The fluid
-  /// then advances one step.
-  /// @throws std::runtime_error if a particle is outside the fluid mesh (the fluid is stopped)
+  /// velocities sent. The fluid then advances one step.
+  /// @param positions, velocities 3 values per particle [m], [m/s]
+  /// @param radii one value per particle [m]
+  /// @param forces 3 values per particle, written [N]
+  /// @param beta one value per particle, written [kg/s]
+  /// @param fluidVelocities 3 values per particle, written [m/s]
+  /// @return the largest particle Reynolds number seen by the fluid
+  /// @throws std::runtime_error if the fluid is not running, the arrays do not hold
+  ///         nParticles() particles, or a particle is outside the fluid mesh (the fluid is
+  ///         stopped)
   double exchange(std::span<const double> positions, std::span<const double> velocities,
                   std::span<const double> radii, std::span<double> forces, std::span<double> beta,
                   std::span<double> fluidVelocities);
@@ -146,9 +157,12 @@ private:
 /// (body ids[i]) the change forces[i] - applied[i] (3 doubles each) is added to the body's
 /// persistent force and to this step's accumulator (`persistent`, `step`: 3 doubles per body,
 /// by body id; the ForceResetter has already filled the accumulator from the persistent
-/// forces). One pass over the particles: three NumPy operations took 0.1 ms per exchange at
-/// 10 000 particles; with this the DEM side's coupling work fell from 0.39 to 0.34 ms. The same
+/// forces). One pass over the particles instead of three NumPy operations, each a pass of its
+/// own over arrays it allocates (docs/coupling.md, "Measurements behind the code"). The same
 /// sums, the same bits.
+/// @param forces, applied 3 values per coupled particle [N]
+/// @param ids the coupled particles' body ids
+/// @param persistent, step 3 values per body, added to
 /// @throws std::invalid_argument if the sizes differ or an id is not a body
 void addForceChange(std::span<const double> forces, std::span<const double> applied,
                     std::span<const std::int64_t> ids, std::span<double> persistent, std::span<double> step);
