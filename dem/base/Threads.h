@@ -42,11 +42,10 @@ inline void setThreadCount(int threads)
 }
 
 /// Contiguous ranges of a loop's items per thread whose boundaries follow the threads' measured
-/// times, one instance per loop (kept by its engine from step to step). On this project's 2-vCPU
-/// machine the second half of the quick-performance scene's bodies took 1.3-1.7 times longer per
-/// item than the first in every loop, even in the ForceResetter's copy, whichever thread ran it
-/// (both halves swapped, both vCPUs pinned either way), so equal halves left one thread waiting
-/// at every barrier. After each run every boundary moves by 1/512 of the items towards the
+/// times, one instance per loop (kept by its engine from step to step). On a virtual machine one
+/// half of a scene's bodies may take markedly longer per item than the other in every loop, even
+/// in the ForceResetter's copy, whichever thread runs it (docs/dem.md, Speed: the per-thread busy
+/// times), so equal halves leave one thread waiting at every barrier. After each run every boundary moves by 1/512 of the items towards the
 /// thread that finished first: one late run (a descheduled thread) moves it by one step only,
 /// and the ranges stay nearly the same from step to step, so each thread keeps its bodies'
 /// data in its own cache, which dynamic scheduling lost (measured twice). Items must be

@@ -54,7 +54,9 @@ public:
 ///
 /// HDF5 layout: root attributes `magic`, `format_version`,
 /// `talus_version`; groups `clock`, `settings`, `energy`, `cell`, `materials`, `bodies` (with
-/// `walls`, `facets`, `boxes`, `clumps`, `blocks`, `particles`: Potential Blocks and Particles with their derived geometry), `contacts` (with `extra`), `extras` (docs/dem-io.md lists every dataset). Numeric datasets are chunked with a Fletcher-32 checksum, and the object headers
+/// `walls`, `facets`, `boxes`, `clumps`, `blocks`, `particles`: Potential Blocks and Particles
+/// with their derived geometry), `contacts` (with `extra`), `extras` (docs/dem-io.md lists every
+/// dataset). Numeric datasets are chunked with a Fletcher-32 checksum, and the object headers
 /// carry metadata checksums, so corruption is detected when reading.
 /// @param[in] scene the scene to save
 /// @param[in] path the checkpoint file (conventionally `*.h5`); its folder must exist
@@ -69,6 +71,8 @@ void saveCheckpoint(const Scene& scene, const std::string& path, const Checkpoin
 /// in place, so references to the first min(old, new) materials stay valid. `bodiesVersion` and
 /// `bodyPropertiesVersion` are set above both their current and their saved values, so every
 /// engine refreshes its caches and the collider re-detects at the next step.
+/// @param[in,out] scene the scene restored into
+/// @param[in] path the checkpoint file
 /// @return the text records stored under `/extras`
 /// @throws CheckpointError naming the file and what is wrong (missing, not HDF5, truncated,
 ///         corrupted, not a Talus checkpoint, other format version, inconsistent content)
@@ -76,11 +80,17 @@ CheckpointExtras loadCheckpoint(Scene& scene, const std::string& path);
 
 /// The same checkpoint as saveCheckpoint, built in memory (HDF5 core driver): the bytes of an
 /// HDF5 file. Used by saveTmp/loadTmp.
-/// @throws CheckpointError
+/// @param[in] scene the scene to save
+/// @param[in] extras text records stored under `/extras`
+/// @return the bytes of the HDF5 file
+/// @throws CheckpointError naming the cause
 std::vector<std::uint8_t> saveCheckpointImage(const Scene& scene, const CheckpointExtras& extras = {});
 
 /// Restore a checkpoint from the bytes made by saveCheckpointImage (or read from a file).
+/// @param[in,out] scene the scene restored into (untouched on error)
+/// @param[in] image the bytes of the HDF5 file
 /// @param[in] name what to call the image in error messages (e.g. "saveTmp slot 'init'")
+/// @return the text records stored under `/extras`
 /// @throws CheckpointError as loadCheckpoint
 CheckpointExtras loadCheckpointImage(Scene& scene, const std::vector<std::uint8_t>& image, const std::string& name);
 } // namespace talus::dem

@@ -305,7 +305,8 @@ double deepestPoint(const std::vector<Vec3>& normals, const std::vector<double>&
   const std::array<double, 4> objective{0, 0, 0, -1};
   std::vector<double> rowlb(static_cast<std::size_t>(rows), -inf);
   // No scaling and a dense factorisation: CLP's defaults suit large problems; on these 4-column
-  // ones they were slower in every back-to-back measurement (by 15 % to 15x, with the load).
+  // ones they were slower in every back-to-back measurement (docs/dem.md, "Measurements behind
+  // the code").
   ClpSimplex model;
   model.setLogLevel(0);
   model.scaling(0);

@@ -9,6 +9,8 @@ namespace talus::dem
 {
 /// Rotation rate (axial vector) of the antisymmetric part of a velocity gradient: the spin that
 /// homoDeform adds to the bodies' angular velocities.
+/// @param L the velocity gradient (1/s)
+/// @return the rotation rate (rad/s)
 inline Vec3 spin(const Mat3& L) { return 0.5 * Vec3(L(2, 1) - L(1, 2), L(0, 2) - L(2, 0), L(1, 0) - L(0, 1)); }
 
 /// The periodic cell (Yade's Cell): a parallelepiped whose edges are the columns of `hSize`,
@@ -28,11 +30,15 @@ struct Cell
 
   [[nodiscard]] double volume() const { return hSize.determinant(); }
   /// Shift of the periodic image with integer offset c.
+  /// @param c the image's cell offset along each edge
+  /// @return the image's displacement from the original (m)
   [[nodiscard]] Vec3 shift(const Eigen::Vector3i& c) const { return hSize * c.cast<double>(); }
   /// Velocity of that image relative to the original (the affine field over the shift).
+  /// @param c the image's cell offset along each edge
   [[nodiscard]] Vec3 shiftVelocity(const Eigen::Vector3i& c) const { return velGrad * shift(c); }
 
   /// Advance the cell by one step of the current velocity gradient.
+  /// @param dt the time step (s)
   /// @throws std::runtime_error (the cell unchanged) if the step would invert the cell
   void integrate(double dt)
   {

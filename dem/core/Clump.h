@@ -6,6 +6,8 @@ namespace talus::dem
 {
 /// Place the members of clump body `i` rigidly: position, orientation, velocity (the clump's
 /// velocity plus its spin about its centroid) and angular velocity (Yade's Clump::moveMembers).
+/// @param b the scene's bodies, the members' state written
+/// @param i the clump body's id
 inline void moveClumpMembers(Bodies& b, std::size_t i)
 {
   const ClumpShape& clump = b.clumps[static_cast<std::size_t>(b.shapeIndex[i])];
@@ -21,6 +23,9 @@ inline void moveClumpMembers(Bodies& b, std::size_t i)
 
 /// Add the forces and torques of the members of clump body `i` to `force` and `torque` (about
 /// the clump's centroid), member by member in id order (Yade's addForceTorqueFromMembers).
+/// @param b the scene's bodies
+/// @param i the clump body's id
+/// @param force, torque added to (N, N m)
 inline void addClumpMemberForces(const Bodies& b, std::size_t i, Vec3& force, Vec3& torque)
 {
   for (BodyId id : b.clumps[static_cast<std::size_t>(b.shapeIndex[i])].members)
@@ -32,6 +37,7 @@ inline void addClumpMemberForces(const Bodies& b, std::size_t i, Vec3& force, Ve
 }
 
 /// Mass of the rigid body that body `i` moves with: its clump's for a member.
+/// @return the mass (kg)
 inline double rigidMass(const Bodies& b, std::size_t i)
 {
   return b.clumpId[i] >= 0 ? b.mass[static_cast<std::size_t>(b.clumpId[i])] : b.mass[i];
