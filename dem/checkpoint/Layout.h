@@ -44,23 +44,8 @@ inline constexpr std::pair<const char*, Vec3 Contact::*> contactVectors[] = {
 inline constexpr std::pair<const char*, double Contact::*> contactScalars[] = {
     {"penetration", &Contact::penetration}, {"refR1", &Contact::refR1}, {"refR2", &Contact::refR2},
     {"kn", &Contact::kn}, {"ks", &Contact::ks}, {"cn", &Contact::cn}, {"cs", &Contact::cs}, {"tanPhi", &Contact::tanPhi}};
-// Contacts::extra (the richer contact models' state), one dataset per field under /contacts/extra.
-inline constexpr std::pair<const char*, double ContactExtra::*> extraScalars[] = {
-    {"kno", &ContactExtra::kno}, {"kso", &ContactExtra::kso}, {"betan", &ContactExtra::betan},
-    {"betas", &ContactExtra::betas}, {"twist", &ContactExtra::twist}, {"normalAdhesion", &ContactExtra::normalAdhesion},
-    {"shearAdhesion", &ContactExtra::shearAdhesion}, {"kr", &ContactExtra::kr}, {"ktw", &ContactExtra::ktw},
-    {"maxRollPl", &ContactExtra::maxRollPl}, {"maxTwistPl", &ContactExtra::maxTwistPl}, {"unp", &ContactExtra::unp},
-    {"unpMax", &ContactExtra::unpMax}, {"mR", &ContactExtra::mR}};
-inline constexpr std::pair<const char*, Vec3 ContactExtra::*> extraVectors[] = {
-    {"bending", &ContactExtra::bending}, {"momentBending", &ContactExtra::momentBending},
-    {"momentTwist", &ContactExtra::momentTwist}};
-inline constexpr std::pair<const char*, Quat ContactExtra::*> extraQuats[] = {
-    {"initialOrientation1", &ContactExtra::initialOrientation1}, {"initialOrientation2", &ContactExtra::initialOrientation2}};
-inline constexpr std::pair<const char*, std::uint8_t ContactExtra::*> extraBytes[] = {
-    {"cohesionBroken", &ContactExtra::cohesionBroken}, {"fragile", &ContactExtra::fragile},
-    {"momentRotationLaw", &ContactExtra::momentRotationLaw},
-    {"cohesionDisablesFriction", &ContactExtra::cohesionDisablesFriction}, {"intactRock", &ContactExtra::intactRock},
-    {"tensionBroken", &ContactExtra::tensionBroken}, {"mRtype", &ContactExtra::mRtype}};
+// Contacts::extra (the richer models' state): one dataset per field under /contacts/extra, the
+// fields the contact-law parts declare (core/ContactExtra.h) but the transient ones.
 // The energy tracker's accumulated terms, attributes of /energy.
 inline constexpr std::pair<const char*, double EnergyTracker::*> energyTerms[] = {
     {"gravWork", &EnergyTracker::gravWork}, {"nonviscDamp", &EnergyTracker::nonviscDamp},

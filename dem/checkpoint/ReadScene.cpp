@@ -2,6 +2,8 @@
 // was read (dem/checkpoint/Layout.h).
 #include "dem/checkpoint/Layout.h"
 
+#include <type_traits>
+
 namespace talus::dem::checkpoint
 {
 /// The starts of the lists `<path>` written for `n` shapes (see writePlaneShapes), checked to
@@ -368,33 +370,35 @@ void readContacts(const Reader& r, Loaded& in, const Context& ctx)
   ContactExtraList& extra = in.contactExtra;
   extra.resize(e);
   column.resize(e);
-  for (const auto& [name, field] : extraScalars)
-  {
-    r.doubles(at("/contacts/extra/", name), {e}, column.data());
-    for (std::size_t k = 0; k < e; ++k)
-      extra[k].*field = column[k];
-  }
   column3.resize(e);
-  for (const auto& [name, field] : extraVectors)
-  {
-    r.vec3s(at("/contacts/extra/", name), column3);
-    for (std::size_t k = 0; k < e; ++k)
-      extra[k].*field = column3[k];
-  }
-  std::vector<double> quats(4 * e);
-  for (const auto& [name, field] : extraQuats)
-  {
-    r.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
-    for (std::size_t k = 0; k < e; ++k)
-      extra[k].*field = Quat(quats[4 * k], quats[4 * k + 1], quats[4 * k + 2], quats[4 * k + 3]);
-  }
   bytes.resize(e);
-  for (const auto& [name, field] : extraBytes)
-  {
-    r.uint8s(at("/contacts/extra/", name), bytes);
+  std::vector<double> quats(4 * e);
+  forEachContactStateField([&](const auto& f) {
+    using T = std::remove_cvref_t<decltype(extra[0].*f.member)>;
+    if (!f.stored)
+      return;
+    const std::string name = at("/contacts/extra/", f.name);
+    if constexpr (std::is_same_v<T, double>)
+      r.doubles(name, {e}, column.data());
+    else if constexpr (std::is_same_v<T, Vec3>)
+      r.vec3s(name, column3);
+    else if constexpr (std::is_same_v<T, Quat>)
+      r.doubles(name, {e, 4}, quats.data());
+    else
+      r.uint8s(name, bytes);
     for (std::size_t k = 0; k < e; ++k)
-      extra[k].*field = bytes[k];
-  }
+    {
+      T& value = extra[k].*f.member;
+      if constexpr (std::is_same_v<T, double>)
+        value = column[k];
+      else if constexpr (std::is_same_v<T, Vec3>)
+        value = column3[k];
+      else if constexpr (std::is_same_v<T, Quat>)
+        value = Quat(quats[4 * k], quats[4 * k + 1], quats[4 * k + 2], quats[4 * k + 3]);
+      else
+        value = bytes[k];
+    }
+  });
 }
 
 void readScene(hid_t file, Loaded& in, const Context& ctx)

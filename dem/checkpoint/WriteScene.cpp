@@ -1,6 +1,8 @@
 // Writing a checkpoint: every part of a scene into an open HDF5 file (dem/checkpoint/Layout.h).
 #include "dem/checkpoint/Layout.h"
 
+#include <type_traits>
+
 namespace talus::dem::checkpoint
 {
 /// The fields both shape kinds have: per shape the scalars, the boundary flag and the lists of
@@ -275,36 +277,38 @@ void writeContacts(const Writer& w, const Scene& scene)
   auto extra = [&](std::size_t k) -> const ContactExtra& { return state[live[k]]; };
   const Id ge = w.group("/contacts/extra");
   column.resize(e);
-  for (const auto& [name, field] : extraScalars)
-  {
-    for (std::size_t k = 0; k < e; ++k)
-      column[k] = extra(k).*field;
-    w.doubles(at("/contacts/extra/", name), {e}, column.data());
-  }
   column3.resize(e);
-  for (const auto& [name, field] : extraVectors)
-  {
-    for (std::size_t k = 0; k < e; ++k)
-      column3[k] = extra(k).*field;
-    w.vec3s(at("/contacts/extra/", name), column3);
-  }
+  bytes.resize(e);
   std::vector<double> quats(4 * e);
-  for (const auto& [name, field] : extraQuats)
-  {
+  forEachContactStateField([&](const auto& f) {
+    using T = std::remove_cvref_t<decltype(extra(0).*f.member)>;
+    if (!f.stored)
+      return;
     for (std::size_t k = 0; k < e; ++k)
     {
-      const Quat& q = extra(k).*field;
-      quats[4 * k] = q.w(), quats[4 * k + 1] = q.x(), quats[4 * k + 2] = q.y(), quats[4 * k + 3] = q.z();
+      const T& value = extra(k).*f.member;
+      if constexpr (std::is_same_v<T, double>)
+        column[k] = value;
+      else if constexpr (std::is_same_v<T, Vec3>)
+        column3[k] = value;
+      else if constexpr (std::is_same_v<T, Quat>)
+        quats[4 * k] = value.w(), quats[4 * k + 1] = value.x(), quats[4 * k + 2] = value.y(), quats[4 * k + 3] = value.z();
+      else
+        bytes[k] = value;
     }
-    w.doubles(at("/contacts/extra/", name), {e, 4}, quats.data());
-  }
-  bytes.resize(e);
-  for (const auto& [name, field] : extraBytes)
-  {
-    for (std::size_t k = 0; k < e; ++k)
-      bytes[k] = extra(k).*field;
-    w.uint8s(at("/contacts/extra/", name), bytes.data(), e);
-  }
+    const std::string name = at("/contacts/extra/", f.name);
+    if constexpr (std::is_same_v<T, double>)
+      w.doubles(name, {e}, column.data());
+    else if constexpr (std::is_same_v<T, Vec3>)
+      w.vec3s(name, column3);
+    else if constexpr (std::is_same_v<T, Quat>)
+      w.doubles(name, {e, 4}, quats.data());
+    else
+    {
+      static_assert(std::is_same_v<T, std::uint8_t>, "a contact state field of a type the checkpoint cannot store");
+      w.uint8s(name, bytes.data(), e);
+    }
+  });
 }
 
 void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx, bool checksums)

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <type_traits>
 
 namespace py = pybind11;
 using namespace talus::dem;
@@ -56,7 +57,9 @@ void talus_wrap_laws(py::module_& m)
   m.def("kinetic_energy_parts", [](const Scene& s) { return kineticEnergyParts(s); });
   m.def("body_kinetic_energies", [](const Scene& s) { return bodyKineticEnergies(s); });
 
-  // State of the richer contact models, for the real contacts (same order as Scene.contacts()).
+  // State of the richer contact models, for the real contacts (same order as Scene.contacts()):
+  // every field the contact-law parts declare (core/ContactExtra.h), by its Python name; Quat
+  // as (w, x, y, z).
   m.def("contact_extra", [](const Scene& s) {
     py::list out;
     const auto& list = s.contacts.list;
@@ -67,30 +70,16 @@ void talus_wrap_laws(py::module_& m)
         continue;
       py::dict d;
       if (extra)
-      {
-        const ContactExtra& x = extra[k];
-        d["kno"] = x.kno;
-        d["kso"] = x.kso;
-        d["betan"] = x.betan;
-        d["betas"] = x.betas;
-        d["twist"] = x.twist;
-        d["bending"] = x.bending;
-        d["normalAdhesion"] = x.normalAdhesion;
-        d["shearAdhesion"] = x.shearAdhesion;
-        d["kr"] = x.kr;
-        d["ktw"] = x.ktw;
-        d["maxRollPl"] = x.maxRollPl;
-        d["maxTwistPl"] = x.maxTwistPl;
-        d["unp"] = x.unp;
-        d["moment_bending"] = x.momentBending;
-        d["moment_twist"] = x.momentTwist;
-        d["cohesionBroken"] = static_cast<bool>(x.cohesionBroken);
-        d["fragile"] = static_cast<bool>(x.fragile);
-        d["intactRock"] = static_cast<bool>(x.intactRock);
-        d["tensionBroken"] = static_cast<bool>(x.tensionBroken);
-        d["mR"] = x.mR;
-        d["mRtype"] = static_cast<int>(x.mRtype);
-      }
+        forEachContactStateField([&](const auto& f) {
+          const auto& value = extra[k].*f.member;
+          using T = std::remove_cvref_t<decltype(value)>;
+          if constexpr (std::is_same_v<T, Quat>)
+            d[f.python] = py::make_tuple(value.w(), value.x(), value.y(), value.z());
+          else if constexpr (std::is_same_v<T, std::uint8_t>)
+            d[f.python] = f.flag ? py::cast(value != 0) : py::cast(static_cast<int>(value));
+          else
+            d[f.python] = value;
+        });
       out.append(d);
     }
     return out;
