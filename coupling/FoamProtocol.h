@@ -105,6 +105,8 @@ constexpr int kCommandStop = 0;
 constexpr int kCommandStep = 1;
 
 /// A non-negative hash of a host name (FNV-1a), to tell whether a peer runs on this host.
+/// @param name the host name, null-terminated
+/// @return the hash, in [0, 2^31)
 inline int hostHash(const char* name)
 {
   unsigned h = 2166136261u;
@@ -115,6 +117,9 @@ inline int hostHash(const char* name)
 
 /// Whether the point (x, y, z) concerns a fluid rank whose box is {xmin, ymin, zmin, xmax, ymax,
 /// zmax, margin}. Both sides decide with this function, on the same numbers.
+/// @param box the rank's 7 values
+/// @param x, y, z the point (m)
+/// @return true inside the box widened by the margin, faces included
 inline bool inBox(const double* box, double x, double y, double z)
 {
   const double m = box[6];

@@ -8,6 +8,9 @@
 namespace talus::dem
 {
 /// x wrapped into [x0, x1) by whole periods (Yade's Shop::periodicWrap, the same arithmetic).
+/// @param x the value
+/// @param x0, x1 the period's bounds, x0 < x1
+/// @return x plus a whole number of periods x1 - x0, in [x0, x1)
 inline double periodicWrap(double x, double x0, double x1)
 {
   const double normalised = (x - x0) / (x1 - x0);
@@ -17,6 +20,11 @@ inline double periodicWrap(double x, double x0, double x1)
 /// The table (times, values) read at time t, as Yade's interpolating engines read theirs: linear
 /// between readings, the first value before the first time, the last after the last time, or
 /// with `wrap` the time wrapped into [first time, last time) first.
+/// @param times, values the table
+/// @param t the time read
+/// @param wrap wrap t into the table's span (a periodic table)
+/// @param owner the engine's name, for errors
+/// @return the value at t
 /// @throws std::invalid_argument (naming `owner`) unless the times increase and match the values
 inline double interpolate(const std::vector<double>& times, const std::vector<double>& values, double t, bool wrap,
                           const std::string& owner)

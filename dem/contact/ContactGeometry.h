@@ -14,6 +14,10 @@ namespace talus::dem
 /// Closest point of triangle (a, b, c) to p, by the Voronoi region of p: a vertex, an edge or
 /// the face (Ericson, Real-Time Collision Detection, 5.1.5). `inFace` (optional) tells whether
 /// it lies inside the face rather than on an edge or a vertex.
+/// @param p the point
+/// @param a, b, c the triangle's vertices
+/// @param inFace set, when not null, to whether the point lies inside the face
+/// @return the closest point of the triangle
 inline Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, bool* inFace = nullptr)
 {
   if (inFace)
@@ -46,6 +50,7 @@ inline Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, 
 }
 
 /// World coordinates of a facet's vertices.
+/// @param i the facet body's id
 inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 {
   const FacetShape& f = b.facets[static_cast<std::size_t>(b.shapeIndex[i])];
@@ -59,6 +64,7 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 /// and -refR2 n (avoidGranularRatcheting, and a wall's noRatch); facet- and box-sphere contacts
 /// the true arms to the contact point, so a boundary turned by a kinematic engine shears its
 /// contacts with its velocity there.
+/// @return the relative velocity (m/s), world frame
 inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& normal, const Vec3& shift2, const Vec3& shiftVel)
 {
   const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
@@ -75,6 +81,9 @@ inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& norm
 /// body 2's periodic image is relative to body 2 (a sphere meeting a facet or box across the
 /// boundary of a periodic cell; zero otherwise). The overlap section's area of Potential
 /// Blocks and Particles goes to `x` when given.
+/// @param normal, penetration, contactPoint, r1, r2 written when the shapes touch (or the bond
+///        holds)
+/// @return whether the contact is (still) real
 bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtra* x, const Vec3& shift2, Vec3& normal,
                       double& penetration, Vec3& contactPoint, double& r1, double& r2);
 
@@ -95,6 +104,11 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
 /// `SpheresOnly`: the caller knows the pair is two spheres without extra state (x null), in a
 /// periodic scene or not — the hot path of dense granular runs, whose code carries no test of
 /// other shapes. Both forms do the same arithmetic in the same order, so they give the same bits.
+/// @param c the contact, its geometry and shear force updated (reset when the shapes are apart)
+/// @param cell the periodic cell, or null
+/// @param dt the time step (s)
+/// @param x the contact's extra state, or null
+/// @return whether the contact is real after the update
 template <bool SpheresOnly = false>
 [[gnu::always_inline]] inline bool contactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x)
 {
