@@ -51,6 +51,14 @@ struct PlacedPotential
 /// found along each ray): V = sum w rho^3 / 3, first and second moments likewise with rho^4 / 4
 /// and rho^5 / 5, on a Gauss-Legendre (cos theta) x uniform (phi) grid of `quadrature` x
 /// 2 `quadrature` rays. Identical arguments reuse the previous result.
+/// @param a, b, c, d the planes a x + b y + c z = d (unit normals (a, b, c)), Yade's arguments
+/// @param r the rounding, > 0
+/// @param k the weight of the sphere term |y|^2 / R^2 in the potential, in (0, 1]
+/// @param R the reference length, > 0
+/// @param isBoundary a boundary particle (interacts with non-boundary ones only)
+/// @param which how errors name the particle
+/// @param quadrature rays per polar angle of the integration
+/// @return the shape with its mass properties per unit density
 /// @throws std::invalid_argument starting with `which` (e.g. "PotentialParticle #3") if the
 ///         arrays differ in length, a value is not finite, a normal is not unit, k is outside
 ///         (0, 1], r or R is not positive, or the planes expanded by r do not bound a finite
@@ -62,6 +70,7 @@ PotentialParticleShape makePotentialParticle(const std::vector<double>& a, const
 
 /// The particle's potential in world coordinates relative to `origin`, for a body at `pos`
 /// turned by `ori` (the body frame is the principal frame).
+/// @return the potential, evaluated with eval() at points relative to `origin`
 PlacedPotential placePotential(const PotentialParticleShape& s, const Vec3& pos, const Quat& ori, const Vec3& origin);
 
 /// The minimum over x of w1 f1(x) + w2 f2(x) - c . x (f2 may be null), by Newton steps with a
@@ -74,6 +83,7 @@ void minimisePotentials(const PlacedPotential& f1, double w1, const PlacedPotent
 /// Where the ray x + t u (t > 0) leaves {max(f1, f2) <= 0}, from x inside (f2 may be null):
 /// Newton steps from outside, which for a convex function approach the root monotonically.
 /// `guess`: a length to try first (<= 0: `scale`); stops once a step is below `tol` scale.
+/// @return t at the exit
 double rayExit(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3& x, const Vec3& u, double guess,
                double scale, double tol = 1e-14);
 
@@ -88,8 +98,8 @@ void supportPoint(const PlacedPotential& f, const Vec3& e, Vec3& x, const Vec3* 
 /// A root of a decreasing function g on [lo, hi] by Newton steps (g returns the value and its
 /// derivative), falling back to bisection whenever a step leaves the bracket; stops when
 /// |g| <= tol, or the bracket or a step is below `width` (Newton converges from one side, so
-/// the bracket alone need not shrink). Returns the last point evaluated, whose state the
-/// callers read.
+/// the bracket alone need not shrink).
+/// @return the last point evaluated, whose state the callers read
 template <class G>
 double decreasingRoot(G&& g, double lo, double hi, double start, double tol, double width, int maxIter = 100)
 {
