@@ -2,26 +2,14 @@
 // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys + Law2_ScGeom6D_CohFrictPhys_CohesionMoment (without
 // creep). The relative rotation of ScGeom6D (twist and bending) lives in ContactExtra.
 #include "dem/laws/ContactLawKernel.h"
+#include "dem/laws/parts/Coulomb.h"
+#include "dem/laws/parts/Moments.h"
 
 #include <algorithm>
 #include <cmath>
 
 namespace talus::dem
 {
-namespace
-{
-/// Rotation vector (angle times unit axis, angle in [0, pi]) of a unit quaternion.
-Vec3 rotationVector(Quat q)
-{
-  if (q.w() < 0)
-    q.coeffs() = -q.coeffs();
-  const double s = q.vec().norm();
-  if (s == 0)
-    return Vec3::Zero();
-  return (2 * std::atan2(s, q.w()) / s) * q.vec();
-}
-} // namespace
-
 class CohesiveFriction : public ContactLawKernel<CohesiveFriction>
 {
 public:
@@ -72,7 +60,7 @@ public:
     x->momentRotationLaw = m1.momentRotationLaw && m2.momentRotationLaw;
     x->maxRollPl = x->momentRotationLaw ? std::min(m1.etaRoll * da, m2.etaRoll * db) : 0;
     x->maxTwistPl = x->momentRotationLaw ? std::min(m1.etaTwist * da, m2.etaTwist * db) : 0;
-    startRotations(c, *x, scene.bodies);
+    parts::startRotations(c, *x, scene.bodies);
     if (setCohesionOnNewContacts || setCohesionNow)
       bond(c, *x, m1, m2);
   }
@@ -91,7 +79,7 @@ public:
     if (setCohesionNow && !c.fresh && x.cohesionBroken)
     {
       bond(c, x, material(step.materials, b, c.id1), material(step.materials, b, c.id2));
-      startRotations(c, x, b);
+      parts::startRotations(c, x, b);
     }
     double fn = c.kn * (c.penetration - x.unp);
     if (-fn > x.normalAdhesion)
@@ -123,11 +111,7 @@ public:
         breakBond(x);
         maxFs = std::max(0.0, fn * c.tanPhi);
       }
-      const Vec3 trial = c.shearForce;
-      c.shearForce *= maxFs / fs;
-      if constexpr (Track)
-        if (c.ks > 0)
-          energy.plastDissip += std::max(0.0, (trial - c.shearForce).dot(c.shearForce) / c.ks);
+      parts::slide<Track>(c, maxFs / fs, energy);
       if (fn < 0)
         c.normalForce.setZero();
     }
@@ -139,27 +123,13 @@ public:
       x.momentTwist.setZero();
       return;
     }
-    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
-    if (!useIncrementalForm)
-    {
-      // ScGeom6D: rotation of body 1 relative to body 2 since the start.
-      const Vec3 rotation = rotationVector((b.ori[i1] * x.initialOrientation1.conjugate())
-                                           * (x.initialOrientation2 * b.ori[i2].conjugate()));
-      x.twist = rotation.dot(c.normal);
-      x.bending = rotation - x.twist * c.normal;
-      x.momentTwist = (x.twist * x.ktw) * c.normal;
-      x.momentBending = x.bending * x.kr;
-    }
+    if (useIncrementalForm)
+      parts::incrementalRotationMoments(c, x, b, step.dt);
     else
-    {
-      const Vec3 relativeRotation = (b.angVel[i2] - b.angVel[i1]) * step.dt;
-      const Vec3 twist = c.normal.dot(relativeRotation) * c.normal;
-      x.momentBending -= x.kr * (relativeRotation - twist);
-      x.momentTwist -= x.ktw * twist;
-    }
+      parts::totalRotationMoments(c, x, b);
     const double normal = c.normalForce.norm();
-    limit<Track>(x.momentBending, x.maxRollPl, normal, x.kr, energy);
-    limit<Track>(x.momentTwist, x.maxTwistPl, normal, x.ktw, energy);
+    parts::capMoment<Track>(x.momentBending, x.maxRollPl, normal, x.kr, useIncrementalForm, energy);
+    parts::capMoment<Track>(x.momentTwist, x.maxTwistPl, normal, x.ktw, useIncrementalForm, energy);
   }
 
   /// 1/2 kn (u_n - unp)^2 + 1/2 Fs^2/ks + the moment springs' 1/2 M^2/k.
@@ -208,15 +178,6 @@ private:
     x.fragile = m1.fragile || m2.fragile;
   }
 
-  /// ScGeom6D's reference orientations: rotations count from now.
-  static void startRotations(const Contact& c, ContactExtra& x, const Bodies& b)
-  {
-    x.initialOrientation1 = b.ori[static_cast<std::size_t>(c.id1)];
-    x.initialOrientation2 = b.ori[static_cast<std::size_t>(c.id2)];
-    x.twist = 0;
-    x.bending.setZero();
-  }
-
   void breakBond(ContactExtra& x) const
   {
     x.cohesionBroken = 1;
@@ -236,22 +197,6 @@ private:
     x.normalAdhesion = x.shearAdhesion = 0;
     x.momentBending.setZero();
     x.momentTwist.setZero();
-  }
-
-  /// Cap a moment at plastic * |Fn| (plastic >= 0); the incremental form dissipates the excess.
-  template <bool Track>
-  void limit(Vec3& moment, double plastic, double normal, double stiffness, ContactEnergy& energy) const
-  {
-    if (plastic < 0)
-      return;
-    const double max = plastic * normal, m = moment.norm();
-    if (m <= max)
-      return;
-    const Vec3 trial = moment;
-    moment *= max / m;
-    if constexpr (Track)
-      if (useIncrementalForm && stiffness > 0)
-        energy.plastDissip += (trial - moment).dot(moment) / stiffness;
   }
 };
 

@@ -1,7 +1,8 @@
 // Hertz-Mindlin contact with Coulomb friction and Thornton's viscous damping, as Yade's
 // Ip2_FrictMat_FrictMat_MindlinPhys + Law2_ScGeom_MindlinPhys_Mindlin (without adhesion and
-// rolling moments).
-#include "dem/laws/ContactLawKernel.h"
+// rolling moments): Hertz's spring, Thornton's damping and the incremental shear spring capped
+// by Coulomb friction, with the shear dashpot while it sticks.
+#include "dem/laws/PartsLaw.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,26 +30,24 @@ double thorntonDampingRatio(double e)
   const double alpha = e * poly;
   return std::sqrt(1.0 / (1.0 - (1.0 + e) * (1.0 + e) * std::exp(alpha)) - 1.0);
 }
-} // namespace
 
-class HertzMindlin : public ContactLawKernel<HertzMindlin>
+/// Ip2_FrictMat_FrictMat_MindlinPhys: any pair of elastic materials (FrictMat and its kin), as
+/// the linear law; its constants and damping ratios in HertzState.
+struct MindlinPhys
 {
-public:
+  static constexpr const char* ip2 = "Ip2_FrictMat_FrictMat_MindlinPhys";
   static constexpr bool usesExtra = true;
+  [[nodiscard]] int handles(const Material& /*m1*/, const Material& /*m2*/) const { return 1; }
 
-  [[nodiscard]] std::string typeName() const override { return "Law2_ScGeom_MindlinPhys_Mindlin"; }
-  [[nodiscard]] std::string physicsName() const override { return "Ip2_FrictMat_FrictMat_MindlinPhys"; }
-  /// Any pair of elastic materials (FrictMat and its kin), as the linear law.
-  [[nodiscard]] int handles(const Material&, const Material&) const override { return 1; }
-
-  // Ip2 parameters: restitution coefficients (normal, shear) or damping ratios, one value for
-  // all pairs of materials or per pair (Yade's MatchMaker); not given: `given` false.
+  // Restitution coefficients (normal, shear) or damping ratios, one value for all pairs of
+  // materials or per pair (Yade's MatchMaker); not given: `given` false.
   PairParameter en, es, betan, betas;
   mutable DeferredFailure setupFailure; ///< a pair without a value, reported after the step
-  void stepDone() override { setupFailure.throwIfFailed(); }
-  /// The parameter of that name (HertzMindlin or const HertzMindlin).
-  template <class Self> // HertzMindlin or const HertzMindlin
-  static auto& named(Self& self, const std::string& name)
+  void stepDone() { setupFailure.throwIfFailed(); }
+
+  /// The parameter of that name (MindlinPhys or const MindlinPhys).
+  template <class Self, class Unknown>
+  static auto& named(Self& self, const std::string& name, const Unknown& unknown)
   {
     if (name == "en")
       return self.en;
@@ -58,49 +57,50 @@ public:
       return self.betan;
     if (name == "betas")
       return self.betas;
-    self.unknownParameter(name);
+    unknown(name);
   }
 
-  [[nodiscard]] std::vector<std::string> parameterNames() const override
-  {
-    return {"en", "es", "betan", "betas"};
-  }
+  [[nodiscard]] std::vector<std::string> parameterNames() const { return {"en", "es", "betan", "betas"}; }
   /// One value for every pair; NaN: not given.
-  void setParameter(const std::string& name, double value) override
+  template <class Unknown>
+  void setParameter(const std::string& name, double value, const Unknown& unknown)
   {
     if (std::isnan(value))
-      named(*this, name) = PairParameter{};
+      named(*this, name, unknown) = PairParameter{};
     else
     {
       PairParameter p;
       p.fallback = value;
-      setPairParameter(name, p);
+      setPairParameter(name, p, unknown);
     }
   }
-  void setPairParameter(const std::string& name, const PairParameter& value) override
+  template <class Unknown>
+  void setPairParameter(const std::string& name, const PairParameter& value, const Unknown& unknown)
   {
-    PairParameter& slot = named(*this, name);
+    PairParameter& slot = named(*this, name, unknown);
     const bool restitution = name[0] == 'e';
     auto check = [&](double v) {
       if (!(restitution ? (v > 0 && v <= 1) : (v >= 0 && std::isfinite(v))))
-        throw std::invalid_argument(physicsName() + "." + name + " must be " + (restitution ? "in (0, 1]" : "finite and >= 0")
-                                    + ", got " + std::to_string(v));
+        throw std::invalid_argument(std::string(MindlinPhys::ip2) + "." + name + " must be "
+                                    + (restitution ? "in (0, 1]" : "finite and >= 0") + ", got " + std::to_string(v));
     };
     for (const auto& match : value.matches)
       check(match.second);
     if (value.fallback)
       check(*value.fallback);
-    const PairParameter& other = named(*this, name == "en" ? "betan" : name == "betan" ? "en" : name == "es" ? "betas" : "es");
+    const PairParameter& other
+        = named(*this, name == "en" ? "betan" : name == "betan" ? "en" : name == "es" ? "betas" : "es", unknown);
     if (other.given)
-      throw std::invalid_argument(physicsName() + ": only one of " + (name.back() == 'n' ? "en, betan" : "es, betas")
-                                  + " can be specified");
+      throw std::invalid_argument(std::string(MindlinPhys::ip2) + ": only one of "
+                                  + (name.back() == 'n' ? "en, betan" : "es, betas") + " can be specified");
     slot = value;
     slot.given = true;
   }
   /// The value for all pairs (NaN: not given, or given per pair).
-  [[nodiscard]] double parameter(const std::string& name) const override
+  template <class Unknown>
+  [[nodiscard]] double parameter(const std::string& name, const Unknown& unknown) const
   {
-    const PairParameter& p = named(*this, name);
+    const PairParameter& p = named(*this, name, unknown);
     return p.given && p.matches.empty() && p.fallback ? *p.fallback : notGiven;
   }
 
@@ -109,7 +109,7 @@ public:
   /// radii (for walls Yade's geometry gives both the sphere's radius, so R* = r/2; facets
   /// R* = 2r/3); kno = 4/3 E* sqrt(R*), kso = 8 G* sqrt(R*). Damping ratios from en, es when
   /// given (one alone stands for both), else betan, betas (betas defaults to betan), else none.
-  void initialize(Contact& c, ContactExtra* x, const Scene& scene) const override
+  void initialize(Contact& c, ContactExtra* x, const Scene& scene) const
   {
     const Material& m1 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id1)])];
     const Material& m2 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id2)])];
@@ -142,83 +142,26 @@ public:
       x->betas = betas.given ? value(betas) : x->betan;
     }
     if (missing)
-      setupFailure.fail(physicsName() + ": a MatchMaker (en, es, betan or betas) has no value for materials '" + m1.label
+      setupFailure.fail(std::string(ip2) + ": a MatchMaker (en, es, betan or betas) has no value for materials '" + m1.label
                         + "' and '" + m2.label + "' (bodies " + std::to_string(c.id1) + " and " + std::to_string(c.id2)
                         + "): list the pair in its matches, or give algo='val' with val");
     c.kn = c.ks = c.cn = c.cs = 0;
   }
-
-  /// F_n = kno u^1.5 - cn v_n (never attractive: the dashpot at most cancels the spring),
-  /// with tangent stiffnesses kn = 3/2 kno u^0.5, ks = kso u^0.5 and dashpots
-  /// cn = 2 betan sqrt(m kn), cs = 2 betas sqrt(m ks) (m: the reduced mass, or the dynamic body's
-  /// mass against a fixed one). Shear: elastic history -= ks du_s, capped at tan(phi) |F_n|;
-  /// the shear dashpot acts only while sticking.
-  template <bool Track>
-  void force(Contact& c, std::size_t k, const StepContext& step, ContactEnergy& energy) const
-  {
-    const ContactExtra& x = step.extra[k];
-    const Bodies& b = step.bodies;
-    const double u = std::max(c.penetration, 0.0);
-    const double sqrtU = std::sqrt(u);
-    const double fnElastic = x.kno * u * sqrtU;
-    const double ksOld = c.ks;
-    c.kn = 1.5 * x.kno * sqrtU;
-    c.ks = x.kso * sqrtU;
-    // The incremental shear spring is not conservative when its stiffness changes with the
-    // overlap: the energy 1/2 Fs^2 / ks it holds changes by 1/2 Fs^2 (1/ks_new - 1/ks_old)
-    // without work. That difference is counted with the dissipation (it is negative while the
-    // contact unloads), so that the balance of the energy tracker closes.
-    if constexpr (Track)
-      if (ksOld > 0 && c.ks > 0)
-        energy.plastDissip += 0.5 * c.shearForce.squaredNorm() * (1 / ksOld - 1 / c.ks);
-    // As Yade's Mindlin law: the shear increment from the geometry; the normal velocity of the
-    // bodies' centres (Yade's incident velocity at the contact point, whose rotational part
-    // has no normal component between spheres).
-    const Vec3 v = incidentVelocity(c, b, step.cell);
-    const double vn = c.normal.dot(v);
-    const Vec3 vs = c.shearIncrement / step.dt;
-    double fn = fnElastic;
-    if (x.betan != 0 || x.betas != 0)
-    {
-      const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
-      const double mass = !b.dynamic[i1] && b.dynamic[i2]   ? b.mass[i2]
-                          : !b.dynamic[i2] && b.dynamic[i1] ? b.mass[i1]
-                                                            : b.mass[i1] * b.mass[i2] / (b.mass[i1] + b.mass[i2]);
-      c.cn = 2 * std::sqrt(mass * c.kn) * x.betan;
-      c.cs = 2 * std::sqrt(mass * c.ks) * x.betas;
-      fn = std::max(0.0, fnElastic - c.cn * vn);
-    }
-    if constexpr (Track) // the normal dashpot's force is fnElastic - fn
-      energy.viscDamp += (fnElastic - fn) * vn * step.dt;
-    c.normalForce = fn * c.normal;
-    c.shearForce -= c.ks * c.shearIncrement;
-    const double maxFs = fn * c.tanPhi;
-    Vec3 shear = c.shearForce;
-    if (c.shearForce.squaredNorm() > maxFs * maxFs)
-    {
-      const Vec3 trial = c.shearForce;
-      c.shearForce *= maxFs / c.shearForce.norm();
-      shear = c.shearForce;
-      if constexpr (Track)
-        if (c.ks > 0)
-          energy.plastDissip += (trial - c.shearForce).dot(c.shearForce) / c.ks;
-    }
-    else if (c.cs != 0)
-    {
-      shear -= c.cs * vs;
-      if constexpr (Track)
-        energy.viscDamp += c.cs * vs.squaredNorm() * step.dt;
-    }
-    c.force = c.normalForce + shear;
-  }
-
-  /// 2/5 kno u^2.5 + 1/2 Fs^2 / ks.
-  double elastic(const Contact& c, const ContactExtra* x) const
-  {
-    const double u = std::max(c.penetration, 0.0);
-    return (x ? 0.4 * x->kno * u * u * std::sqrt(u) : 0.0) + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
-  }
 };
 
-TALUS_REGISTER_CONTACT_LAW(HertzMindlin, "Law2_ScGeom_MindlinPhys_Mindlin", "hertz")
+struct HertzMindlinNames
+{
+  static constexpr const char* law = "Law2_ScGeom_MindlinPhys_Mindlin";
+};
+} // namespace
+
+/// F_n = kno u^1.5 - cn v_n (never attractive: the dashpot at most cancels the spring),
+/// with tangent stiffnesses kn = 3/2 kno u^0.5, ks = kso u^0.5 and dashpots
+/// cn = 2 betan sqrt(m kn), cs = 2 betas sqrt(m ks). Shear: elastic history -= ks du_s, capped at
+/// tan(phi) |F_n|; the shear dashpot acts only while sticking. Elastic energy
+/// 2/5 kno u^2.5 + 1/2 Fs^2 / ks.
+using HertzMindlin = PartsLaw<HertzMindlinNames, MindlinPhys, parts::HertzSpring, parts::ThorntonDamping,
+                              parts::IncrementalCoulomb<parts::CoulombLimit::FromMagnitude, true>>;
+
+TALUS_REGISTER_PARTS_LAW(HertzMindlin, "hertz")
 } // namespace talus::dem

@@ -8,6 +8,7 @@
 // intact-rock faces (BlockGen's rock bridges and cemented joints) carries a cohesion and a
 // tensile strength until it breaks, then it is frictional.
 #include "dem/laws/ContactLawKernel.h"
+#include "dem/laws/parts/Coulomb.h"
 
 #include <algorithm>
 #include <cmath>
@@ -160,10 +161,7 @@ public:
         bond->cohesionBroken = bond->tensionBroken = 1;
         maxFs = std::max(fn, 0.0) * c.tanPhi;
       }
-      const Vec3 trial = c.shearForce;
-      c.shearForce *= maxFs / fs;
-      if constexpr (Track)
-        e.plastDissip += (trial - c.shearForce).dot(c.shearForce) / c.ks;
+      parts::slide<Track>(c, maxFs / fs, e);
     }
     c.force = c.normalForce + c.shearForce;
   }

@@ -1,6 +1,7 @@
 // Linear visco-elastic contact (spring-dashpot) with Coulomb friction and rolling resistance,
 // as Yade's Ip2_ViscElMat_ViscElMat_ViscElPhys + Law2_ScGeom_ViscElPhys_Basic.
 #include "dem/laws/ContactLawKernel.h"
+#include "dem/laws/parts/Coulomb.h"
 
 #include <algorithm>
 #include <atomic>
@@ -253,8 +254,7 @@ public:
     Vec3 viscous = Vec3::Zero();
     if (c.shearForce.squaredNorm() > maxFs2)
     {
-      const Vec3 trial = c.shearForce;
-      c.shearForce *= std::sqrt(maxFs2) / c.shearForce.norm();
+      const Vec3 trial = parts::cap(c.shearForce, std::sqrt(maxFs2) / c.shearForce.norm());
       if constexpr (Track)
         if (c.ks > 0)
           e.plastDissip += (c.shearForce.dot(trial - before) - 0.5 * (c.shearForce.squaredNorm() - before.squaredNorm())) / c.ks;

@@ -1,0 +1,37 @@
+#pragma once
+
+// The tangential part every contact law shares: the Coulomb cap on the shear force, and the
+// same cap on a plastic moment.
+#include "dem/core/Contacts.h"
+#include "dem/core/EnergyTracker.h"
+
+namespace talus::dem::parts
+{
+/// Bring a force (or moment) back onto its cap along its own direction: `ratio` is the cap over
+/// its trial magnitude (< 1). Returns the trial value.
+inline Vec3 cap(Vec3& value, double ratio)
+{
+  const Vec3 trial = value;
+  value *= ratio;
+  return trial;
+}
+
+/// What the slip from `trial` to `capped` dissipates in a spring of that stiffness:
+/// (trial - capped) . capped / stiffness, the work of the capped force over the spring's plastic
+/// slip (0 without a spring).
+inline double plasticWork(const Vec3& trial, const Vec3& capped, double stiffness)
+{
+  return stiffness > 0 ? (trial - capped).dot(capped) / stiffness : 0.0;
+}
+
+/// The Coulomb cap of the shear force, its dissipation booked when Track: the laws whose shear
+/// spring is incremental from its last capped value (all but the visco-elastic one, which books
+/// the work of its own increment and calls cap()).
+template <bool Track>
+inline void slide(Contact& c, double ratio, ContactEnergy& energy)
+{
+  const Vec3 trial = cap(c.shearForce, ratio);
+  if constexpr (Track)
+    energy.plastDissip += plasticWork(trial, c.shearForce, c.ks);
+}
+} // namespace talus::dem::parts

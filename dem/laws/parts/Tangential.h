@@ -1,0 +1,69 @@
+#pragma once
+
+// Tangential parts of the contact laws: the shear force, capped by the one Coulomb cap
+// (Coulomb.h). Each:
+//   static constexpr bool usesExtra;
+//   template <bool Track> static void force(Contact&, double fn, const StepContext&, ContactEnergy&);
+//       // c.shearForce and c.force (= c.normalForce + the shear force), fn the normal force's magnitude
+//   static double elastic(const Contact&);   // the energy the shear spring stores
+#include "dem/laws/ContactLaw.h"
+#include "dem/laws/parts/Coulomb.h"
+
+#include <cmath>
+
+namespace talus::dem::parts
+{
+/// How the Coulomb limit tan(phi) F_n is compared with the shear force: from the normal force
+/// vector's squared length (the linear law's rounding) or from its magnitude fn (the others').
+enum class CoulombLimit
+{
+  FromNormalForce,
+  FromMagnitude
+};
+
+/// An incremental elastic shear spring, F_s -= ks du_s, capped at tan(phi) F_n (sliding
+/// dissipates its slip); with Dashpot, the shear dashpot cs v_s (v_s = du_s / dt) adds to it
+/// while the contact sticks.
+template <CoulombLimit Limit, bool Dashpot>
+struct IncrementalCoulomb
+{
+  static constexpr bool usesExtra = false;
+  template <bool Track>
+  static void force(Contact& c, double fn, const StepContext& step, ContactEnergy& energy)
+  {
+    c.shearForce -= c.ks * c.shearIncrement;
+    bool sliding = false;
+    if constexpr (Limit == CoulombLimit::FromNormalForce)
+    {
+      const double maxFs2 = c.normalForce.squaredNorm() * c.tanPhi * c.tanPhi;
+      const double fs2 = c.shearForce.squaredNorm();
+      if (fs2 > maxFs2)
+      {
+        slide<Track>(c, std::sqrt(maxFs2 / fs2), energy);
+        sliding = true;
+      }
+    }
+    else
+    {
+      const double maxFs = fn * c.tanPhi;
+      if (c.shearForce.squaredNorm() > maxFs * maxFs)
+      {
+        slide<Track>(c, maxFs / c.shearForce.norm(), energy);
+        sliding = true;
+      }
+    }
+    Vec3 shear = c.shearForce;
+    if constexpr (Dashpot)
+      if (!sliding && c.cs != 0)
+      {
+        const Vec3 vs = c.shearIncrement / step.dt;
+        shear -= c.cs * vs;
+        if constexpr (Track)
+          energy.viscDamp += c.cs * vs.squaredNorm() * step.dt;
+      }
+    c.force = c.normalForce + shear;
+  }
+  /// 1/2 Fs^2 / ks.
+  static double elastic(const Contact& c) { return c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0; }
+};
+} // namespace talus::dem::parts
