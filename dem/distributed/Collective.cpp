@@ -21,6 +21,18 @@ void throwIfAnyRank(MPI_Comm comm, const std::string& localError)
   throw std::invalid_argument(message);
 }
 
+void raiseOnEveryRank(MPI_Comm comm, const std::string& localError)
+{
+  try
+  {
+    throwIfAnyRank(comm, localError);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    throw CollectiveError(e.what());
+  }
+}
+
 std::vector<int> sendRows(MPI_Comm comm, const RankBodies& from, std::span<const std::int64_t> rows,
                           std::span<const int> to, RankBodies& into)
 {

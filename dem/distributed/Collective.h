@@ -5,11 +5,23 @@
 #include <mpi.h>
 
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace talus::dem::distributed
 {
+/// An error raised on every rank alike (by raiseOnEveryRank): each rank may report it and stop
+/// on its own, none is left waiting for the others.
+struct CollectiveError : std::runtime_error
+{
+  using std::runtime_error::runtime_error;
+};
+
+/// throwIfAnyRank's check, raising a CollectiveError on every rank.
+/// @throws CollectiveError with the lowest failing rank's message
+void raiseOnEveryRank(MPI_Comm comm, const std::string& localError);
+
 /// Raise one error on every rank of `comm` when any rank has one (collective): the ranks pass
 /// what they found wrong (empty: nothing), and all throw the lowest failing rank's message, so
 /// no rank goes on into a collective the others have left.

@@ -68,6 +68,9 @@ def _run(args: argparse.Namespace) -> int:
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))
     import yade   # the namespace `yade -x` gives a script: Yade's classes, utils, pack, math
+    from talus.dem import distributed
+    if distributed.ACTIVE:          # under mpirun: the scene is split over the processes
+        distributed.start()
     yade.yade_run_defaults()
     try:
         options = yade.launcher_options(str(script), list(args.script_args), args.threads)
@@ -91,6 +94,8 @@ def _run(args: argparse.Namespace) -> int:
         while tb is not None and tb.tb_frame.f_code.co_filename != str(script):
             tb = tb.tb_next
         _note_missing_yade_name(exc)
+        if distributed.ACTIVE:      # reported once, and no process left waiting for another
+            return distributed.stop_on_error(exc, lambda: traceback.print_exception(exc_type, exc, tb))
         traceback.print_exception(exc_type, exc, tb)
         return 1
     return 0

@@ -1,0 +1,499 @@
+#include "dem/distributed/MpiDomain.h"
+
+#include "dem/contact/Collider.h"
+#include "dem/core/Scene.h"
+#include "dem/distributed/Collective.h"
+#include "dem/distributed/Ghosts.h"
+#include "dem/distributed/Migration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+namespace talus::dem::distributed
+{
+namespace
+{
+/// Doubles of a ghost's state sent at every step: position, velocity, angular velocity,
+/// orientation, angular momentum (what the contacts and the skin check read of it).
+constexpr std::size_t stateDoubles = 16;
+constexpr int updateTag = 7301;
+
+/// Call f(a_field, b_field) for each per-body array of `a` and the same array of `b`.
+template <class F>
+void forEachFieldPair(Bodies& a, const Bodies& b, F&& f)
+{
+  std::vector<const void*> theirs;
+  forEachBodyField(b, [&](const auto& field) { theirs.push_back(&field); });
+  std::size_t k = 0;
+  forEachBodyField(a, [&](auto& field) {
+    using Field = std::decay_t<decltype(field)>;
+    f(field, *static_cast<const Field*>(theirs[k++]));
+  });
+}
+
+/// A contact as it travels between ranks: the record, the global ids of its bodies, its richer
+/// state (ContactExtra) when the list keeps any.
+struct Travelling
+{
+  std::vector<Contact> records;
+  std::vector<ContactExtra> extra;
+  std::vector<GlobalId> ids; ///< two per record
+};
+
+// GCC 12 cannot see that out.size() (the rank count) is small and warns that the count vectors
+// might exceed the largest object.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Walloc-size-larger-than="
+/// Send the bytes of `out[r]` to each rank r, and return what each rank sent here,
+/// concatenated by source rank (collective).
+std::vector<std::byte> exchangeBytes(MPI_Comm comm, const std::vector<std::vector<std::byte>>& out)
+{
+  const std::size_t P = out.size();
+  if (P == 0)
+    return {};
+  std::vector<int> sendCounts(P), sendStart(P + 1, 0), recvCounts(P), recvStart(P + 1, 0);
+  for (std::size_t r = 0; r < P; ++r)
+  {
+    sendCounts[r] = static_cast<int>(out[r].size());
+    sendStart[r + 1] = sendStart[r] + sendCounts[r];
+  }
+  MPI_Alltoall(sendCounts.data(), 1, MPI_INT, recvCounts.data(), 1, MPI_INT, comm);
+  for (std::size_t r = 0; r < P; ++r)
+    recvStart[r + 1] = recvStart[r] + recvCounts[r];
+  std::vector<std::byte> sendBuffer(static_cast<std::size_t>(sendStart[P])), in(static_cast<std::size_t>(recvStart[P]));
+  for (std::size_t r = 0; r < P; ++r)
+    std::copy(out[r].begin(), out[r].end(), sendBuffer.begin() + sendStart[r]);
+  MPI_Alltoallv(sendBuffer.data(), sendCounts.data(), sendStart.data(), MPI_BYTE, in.data(), recvCounts.data(),
+                recvStart.data(), MPI_BYTE, comm);
+  return in;
+}
+#pragma GCC diagnostic pop
+
+template <class T>
+void appendBytes(std::vector<std::byte>& out, const T& x)
+{
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, static_cast<const void*>(&x), sizeof(T));
+}
+
+template <class T>
+const std::byte* readBytes(const std::byte* in, T& x)
+{
+  std::memcpy(static_cast<void*>(&x), in, sizeof(T));
+  return in + sizeof(T);
+}
+} // namespace
+
+MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings)
+    : comm_(comm), settings_(settings), method_(Method::RCB)
+{
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &ranks_);
+  const Bodies& b = scene.bodies;
+  std::vector<std::int64_t> spheres;
+  double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
+  std::string error;
+  for (std::size_t i = 0; i < b.size() && error.empty(); ++i)
+  {
+    if (!b.alive[i])
+      error = "body " + std::to_string(i) + " was erased: the distributed DEM takes scenes without erased bodies so far";
+    else if (b.shape[i] == ShapeKind::Sphere && b.clumpId[i] < 0)
+    {
+      spheres.push_back(static_cast<std::int64_t>(i));
+      rmin = std::min(rmin, b.radius[i]);
+      rmax = std::max(rmax, b.radius[i]);
+    }
+    else if (b.shape[i] != ShapeKind::Wall)
+      error = "body " + std::to_string(i) + " is "
+              + (b.clumpId[i] >= 0 ? std::string("a member of a clump") : std::string("a ") + shapeName(b.shape[i]))
+              + ": the distributed DEM takes spheres and walls only so far (no facets, boxes, clumps, blocks, "
+                "particles); run it in one process";
+  }
+  if (error.empty() && scene.periodic)
+    error = "the scene is periodic: the distributed DEM has no periodic cells yet; run it in one process";
+  if (error.empty() && static_cast<int>(spheres.size()) < ranks_)
+    error = "the scene has " + std::to_string(spheres.size()) + " spheres for " + std::to_string(ranks_)
+            + " processes: each process needs at least one; run it on fewer (mpirun -np)";
+  const Collider* collider = nullptr;
+  for (const auto& engine : scene.engines)
+    if (const auto* c = dynamic_cast<const Collider*>(engine.get()); c && !engine->dead)
+      collider = c;
+  if (error.empty() && collider == nullptr)
+    error = "the scene has no collider (InsertionSortCollider): the distributed DEM needs one";
+  try
+  {
+    method_ = methodNamed(settings_.method);
+  }
+  catch (const std::invalid_argument& e)
+  {
+    if (error.empty())
+      error = e.what();
+  }
+  raiseOnEveryRank(comm_, error);
+  const double skin = collider->verletDist >= 0 ? collider->verletDist : -collider->verletDist * rmin;
+  ghostDistance_ = 2 * rmax + skin;
+
+  // Every rank holds the whole scene: rank r offers the r-th slice of the spheres to Zoltan.
+  RankBodies whole{std::move(scene.bodies), {}};
+  whole.globalId.resize(whole.bodies.size());
+  std::iota(whole.globalId.begin(), whole.globalId.end(), GlobalId{0});
+  rowOf_.assign(whole.bodies.size(), -1);
+  globalId_ = whole.globalId;
+  const auto P = static_cast<std::size_t>(ranks_), me = static_cast<std::size_t>(rank_);
+  const std::vector<std::int64_t> slice(spheres.begin() + static_cast<std::ptrdiff_t>(spheres.size() * me / P),
+                                        spheres.begin() + static_cast<std::ptrdiff_t>(spheres.size() * (me + 1) / P));
+  RankBodies mine;
+  std::vector<std::byte> rows;
+  packRows(whole, slice, rows);
+  unpackRows(rows, mine);
+  const Plan plan = partition(comm_, mine, {}, settings_);
+  migrate(comm_, mine, plan);
+  boxes_ = plan.boxes;
+
+  // Contacts made before the domain (steps run in one process): every rank has them all.
+  Travelling contacts;
+  for (std::size_t k = 0; k < scene.contacts.list.size(); ++k)
+  {
+    const Contact& c = scene.contacts.list[k];
+    contacts.records.push_back(c);
+    if (!scene.contacts.extra.empty())
+      contacts.extra.push_back(scene.contacts.extra[k]);
+    contacts.ids.push_back(c.id1);
+    contacts.ids.push_back(c.id2);
+  }
+  scene.bodies = std::move(whole.bodies);
+  replicated_.assign(scene.bodies.size(), 0);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+    replicated_[i] = scene.bodies.shape[i] == ShapeKind::Wall;
+  assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
+}
+
+std::size_t MpiDomain::ownedBodies(const Scene& scene) const { return scene.bodies.size(); }
+
+bool MpiDomain::computesPair(std::size_t row1, std::size_t row2) const
+{
+  if (replicated_[row1] || replicated_[row2])
+    return owned_[row1] && owned_[row2];
+  return owned_[row1] || owned_[row2];
+}
+
+std::int64_t MpiDomain::rowOf(GlobalId id) const
+{
+  return id >= 0 && id < globalCount() ? rowOf_[static_cast<std::size_t>(id)] : -1;
+}
+
+int MpiDomain::regionOf(const Vec3& x) const
+{
+  if (!x.allFinite())
+    return -1;
+  for (std::size_t r = 0; r < boxes_.size(); ++r)
+    if ((x.array() >= boxes_[r].min.array()).all() && (x.array() <= boxes_[r].max.array()).all())
+      return static_cast<int>(r);
+  return -1;
+}
+
+bool MpiDomain::anyProcess(bool local) const
+{
+  int any = local ? 1 : 0;
+  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, comm_);
+  return any != 0;
+}
+
+void MpiDomain::sum(std::span<double> values) const
+{
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, comm_);
+}
+
+double MpiDomain::min(double value) const
+{
+  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  return value;
+}
+
+void MpiDomain::min(std::span<double> values) const
+{
+  MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN, comm_);
+}
+
+void MpiDomain::beforeDetection(Scene& scene)
+{
+  const Bodies& b = scene.bodies;
+  const std::size_t n = b.size();
+  // A body that moved, since the last re-detection, further from the others' common drift than
+  // the ghost layer reaches may have met bodies its rank had no copy of (a teleport from Python,
+  // a diverged run): an error, not a wrong force.
+  std::vector<double> drift(6, std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i)
+    if (owned_[i] && !replicated_[i])
+      for (int d = 0; d < 3; ++d)
+      {
+        const double moved = b.pos[i][d] - detectedAt_[i][d];
+        drift[static_cast<std::size_t>(d)] = std::min(drift[static_cast<std::size_t>(d)], moved);
+        drift[static_cast<std::size_t>(d) + 3] = std::min(drift[static_cast<std::size_t>(d) + 3], -moved);
+      }
+  min(drift);
+  const Vec3 common = 0.5 * (Vec3(drift[0], drift[1], drift[2]) - Vec3(drift[3], drift[4], drift[5]));
+  std::string error;
+  for (std::size_t i = 0; i < n && error.empty(); ++i)
+  {
+    if (!owned_[i] || replicated_[i])
+      continue;
+    const double off = (b.pos[i] - detectedAt_[i] - common).norm();
+    if (!(off <= ghostDistance_))
+      error = "step " + std::to_string(scene.iter) + ": body " + std::to_string(globalId_[i]) + " moved "
+              + std::to_string(off) + " apart from the others since the last re-detection, beyond the ghost layer ("
+              + std::to_string(ghostDistance_)
+              + ": twice the largest radius plus the collider's skin), or to a position that is not finite: "
+                "contacts with bodies of other processes may have been missed (a body moved from Python, or a "
+                "diverged run)";
+  }
+  raiseOnEveryRank(comm_, error);
+
+  // This rank's spheres, and where each goes.
+  std::vector<std::int64_t> mineRows;
+  for (std::size_t i = 0; i < n; ++i)
+    if (owned_[i] && !replicated_[i])
+      mineRows.push_back(static_cast<std::int64_t>(i));
+  RankBodies current{std::move(scene.bodies), globalId_};
+  RankBodies mine;
+  std::vector<std::byte> packed;
+  packRows(current, mineRows, packed);
+  unpackRows(packed, mine);
+  scene.bodies = std::move(current.bodies);
+  Plan plan;
+  if (method_ == Method::RCB)
+  {
+    for (std::size_t k = 0; k < mine.size(); ++k)
+      if (const int to = regionOf(mine.bodies.pos[k]); to != rank_)
+      {
+        plan.exportRows.push_back(static_cast<std::int64_t>(k));
+        plan.exportTo.push_back(to);
+      }
+    // What arrives here: every rank's leavers for this rank (their ids).
+    std::vector<std::vector<std::byte>> out(static_cast<std::size_t>(ranks_));
+    for (std::size_t k = 0; k < plan.exportRows.size(); ++k)
+      appendBytes(out[static_cast<std::size_t>(plan.exportTo[k])],
+                  mine.globalId[static_cast<std::size_t>(plan.exportRows[k])]);
+    const std::vector<std::byte> in = exchangeBytes(comm_, out);
+    plan.importIds.resize(in.size() / sizeof(GlobalId));
+    for (std::size_t k = 0; k < plan.importIds.size(); ++k)
+      (void)readBytes(in.data() + k * sizeof(GlobalId), plan.importIds[k]);
+    plan.boxes = boxes_;
+  }
+  else
+  {
+    plan = partition(comm_, mine, {}, settings_);
+    boxes_ = plan.boxes;
+  }
+
+  // Contacts: each rank keeps its own, and sends each contact of a body leaving it to the
+  // body's new rank, which may not have held it (both ranks computing a contact hold it).
+  std::vector<int> leavesTo(n, -1);
+  for (std::size_t k = 0; k < plan.exportRows.size(); ++k)
+    leavesTo[static_cast<std::size_t>(mineRows[static_cast<std::size_t>(plan.exportRows[k])])] = plan.exportTo[k];
+  const ContactList& list = scene.contacts.list;
+  const bool withExtra = !scene.contacts.extra.empty();
+  std::vector<std::vector<std::byte>> out(static_cast<std::size_t>(ranks_));
+  Travelling contacts;
+  for (std::size_t k = 0; k < list.size(); ++k)
+  {
+    const Contact& c = list[k];
+    const GlobalId g1 = globalId_[static_cast<std::size_t>(c.id1)], g2 = globalId_[static_cast<std::size_t>(c.id2)];
+    contacts.records.push_back(c);
+    if (withExtra)
+      contacts.extra.push_back(scene.contacts.extra[k]);
+    contacts.ids.push_back(g1);
+    contacts.ids.push_back(g2);
+    const int to1 = leavesTo[static_cast<std::size_t>(c.id1)], to2 = leavesTo[static_cast<std::size_t>(c.id2)];
+    for (const int to : {to1, to2 != to1 ? to2 : -1})
+      if (to >= 0)
+      {
+        std::vector<std::byte>& o = out[static_cast<std::size_t>(to)];
+        appendBytes(o, c);
+        appendBytes(o, g1);
+        appendBytes(o, g2);
+        if (withExtra)
+          appendBytes(o, scene.contacts.extra[k]);
+      }
+  }
+  std::int64_t sent = 0;
+  for (const auto& o : out)
+    sent += static_cast<std::int64_t>(o.size());
+  const std::vector<std::byte> in = exchangeBytes(comm_, out);
+  for (const std::byte* p = in.data(); p < in.data() + in.size();)
+  {
+    Contact c;
+    GlobalId g1 = 0, g2 = 0;
+    p = readBytes(readBytes(readBytes(p, c), g1), g2);
+    contacts.records.push_back(c);
+    contacts.ids.push_back(g1);
+    contacts.ids.push_back(g2);
+    if (withExtra)
+    {
+      ContactExtra x;
+      p = readBytes(p, x);
+      contacts.extra.push_back(x);
+    }
+  }
+
+  migrate(comm_, mine, plan);
+  traffic_.rebuilds += 1;
+  traffic_.rebuildBytes += sent + static_cast<std::int64_t>(plan.exportRows.size() * rowBytes());
+  assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
+}
+
+void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& contacts,
+                         std::vector<ContactExtra>& extra, std::vector<GlobalId>& contactIds)
+{
+  Ghosts ghosts = exchangeGhosts(comm_, mine, boxes_, ghostDistance_);
+  traffic_.rebuildBytes += static_cast<std::int64_t>(ghosts.sentRows.size() * rowBytes());
+
+  // The pool of rows: the walls, this rank's spheres, the ghosts; then in global-id order.
+  RankBodies pool;
+  {
+    std::vector<std::int64_t> wallRows;
+    for (std::size_t i = 0; i < scene.bodies.size(); ++i)
+      if (replicated_[i])
+        wallRows.push_back(static_cast<std::int64_t>(i));
+    RankBodies current{std::move(scene.bodies), globalId_};
+    std::vector<std::byte> packed;
+    packRows(current, wallRows, packed);
+    scene.bodies = std::move(current.bodies);
+    unpackRows(packed, pool);
+  }
+  const std::size_t walls = pool.size();
+  for (const RankBodies* part : {&mine, &ghosts.copies})
+  {
+    std::vector<std::int64_t> all(part->size());
+    std::iota(all.begin(), all.end(), std::int64_t{0});
+    std::vector<std::byte> packed;
+    packRows(*part, all, packed);
+    unpackRows(packed, pool);
+  }
+  const std::size_t n = pool.size(), ownedEnd = walls + mine.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t c) { return pool.globalId[a] < pool.globalId[c]; });
+  // The per-body arrays of the scene take the pool's rows in that order; its shape tables
+  // (walls, ...) stay.
+  forEachFieldPair(scene.bodies, pool.bodies, [&](auto& field, const auto& from) {
+    field.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      field[k] = from[order[k]];
+  });
+  std::fill(rowOf_.begin(), rowOf_.end(), -1);
+  globalId_.resize(n);
+  owned_.resize(n);
+  replicated_.resize(n);
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    globalId_[k] = pool.globalId[order[k]];
+    owned_[k] = order[k] < ownedEnd;
+    replicated_[k] = order[k] < walls;
+    rowOf_[static_cast<std::size_t>(globalId_[k])] = static_cast<std::int64_t>(k);
+  }
+
+  // Ghost updates: the rows sent to each rank, the rows each rank's updates land in.
+  auto rowOfId = [&](GlobalId id) { return rowOf_[static_cast<std::size_t>(id)]; };
+  sendRows_.resize(ghosts.sentRows.size());
+  for (std::size_t k = 0; k < sendRows_.size(); ++k)
+    sendRows_[k] = rowOfId(mine.globalId[static_cast<std::size_t>(ghosts.sentRows[k])]);
+  sendStart_ = ghosts.sentStart;
+  recvStart_.assign(static_cast<std::size_t>(ranks_) + 1, 0);
+  for (const int owner : ghosts.owner)
+    ++recvStart_[static_cast<std::size_t>(owner) + 1];
+  for (std::size_t r = 0; r < static_cast<std::size_t>(ranks_); ++r)
+    recvStart_[r + 1] += recvStart_[r];
+  recvRows_.resize(ghosts.copies.size());
+  for (std::size_t k = 0; k < recvRows_.size(); ++k)
+    recvRows_[k] = rowOfId(ghosts.copies.globalId[k]);
+
+  // The contacts this rank computes, in the collider's order (by rows, which follow global ids),
+  // each once.
+  std::vector<std::size_t> keep;
+  for (std::size_t k = 0; k < contacts.size(); ++k)
+  {
+    const std::int64_t r1 = rowOfId(contactIds[2 * k]), r2 = rowOfId(contactIds[2 * k + 1]);
+    if (r1 < 0 || r2 < 0 || !computesPair(static_cast<std::size_t>(r1), static_cast<std::size_t>(r2)))
+      continue;
+    contacts[k].id1 = static_cast<BodyId>(r1);
+    contacts[k].id2 = static_cast<BodyId>(r2);
+    keep.push_back(k);
+  }
+  auto pairOf = [&](std::size_t k) { return std::pair(contacts[k].id1, contacts[k].id2); };
+  std::stable_sort(keep.begin(), keep.end(), [&](std::size_t a, std::size_t c) { return pairOf(a) < pairOf(c); });
+  keep.erase(std::unique(keep.begin(), keep.end(), [&](std::size_t a, std::size_t c) { return pairOf(a) == pairOf(c); }),
+             keep.end());
+  Contacts& list = scene.contacts;
+  list.list.clear();
+  list.extra.clear();
+  for (const std::size_t k : keep)
+  {
+    list.list.push_back(contacts[k]);
+    if (!extra.empty())
+      list.extra.push_back(extra[k]);
+  }
+  list.index(n);
+
+  detectedAt_ = scene.bodies.pos;
+  sendBuffer_.resize(sendRows_.size() * stateDoubles);
+  recvBuffer_.resize(recvRows_.size() * stateDoubles);
+  // The rows changed: what engines cached per row (inverse masses, the collider's references)
+  // is stale.
+  ++scene.bodiesVersion;
+  ++scene.bodyPropertiesVersion;
+}
+
+void MpiDomain::afterIntegration(Scene& scene)
+{
+  Bodies& b = scene.bodies;
+  std::vector<MPI_Request> requests;
+  const auto P = static_cast<std::size_t>(ranks_);
+  for (std::size_t r = 0; r < P; ++r)
+    if (const std::int64_t count = recvStart_[r + 1] - recvStart_[r]; count > 0)
+    {
+      requests.emplace_back();
+      MPI_Irecv(recvBuffer_.data() + static_cast<std::size_t>(recvStart_[r]) * stateDoubles,
+                static_cast<int>(static_cast<std::size_t>(count) * stateDoubles), MPI_DOUBLE, static_cast<int>(r),
+                updateTag, comm_, &requests.back());
+    }
+  for (std::size_t k = 0; k < sendRows_.size(); ++k)
+  {
+    const auto i = static_cast<std::size_t>(sendRows_[k]);
+    double* s = sendBuffer_.data() + k * stateDoubles;
+    std::memcpy(s, b.pos[i].data(), 3 * sizeof(double));
+    std::memcpy(s + 3, b.vel[i].data(), 3 * sizeof(double));
+    std::memcpy(s + 6, b.angVel[i].data(), 3 * sizeof(double));
+    std::memcpy(s + 9, b.ori[i].coeffs().data(), 4 * sizeof(double));
+    std::memcpy(s + 13, b.angMom[i].data(), 3 * sizeof(double));
+  }
+  for (std::size_t r = 0; r < P; ++r)
+    if (const std::int64_t count = sendStart_[r + 1] - sendStart_[r]; count > 0)
+    {
+      requests.emplace_back();
+      MPI_Isend(sendBuffer_.data() + static_cast<std::size_t>(sendStart_[r]) * stateDoubles,
+                static_cast<int>(static_cast<std::size_t>(count) * stateDoubles), MPI_DOUBLE, static_cast<int>(r),
+                updateTag, comm_, &requests.back());
+      ++traffic_.updateMessages;
+      traffic_.updateBytes += count * static_cast<std::int64_t>(stateDoubles * sizeof(double));
+    }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  for (std::size_t k = 0; k < recvRows_.size(); ++k)
+  {
+    const auto i = static_cast<std::size_t>(recvRows_[k]);
+    const double* s = recvBuffer_.data() + k * stateDoubles;
+    std::memcpy(b.pos[i].data(), s, 3 * sizeof(double));
+    std::memcpy(b.vel[i].data(), s + 3, 3 * sizeof(double));
+    std::memcpy(b.angVel[i].data(), s + 6, 3 * sizeof(double));
+    std::memcpy(b.ori[i].coeffs().data(), s + 9, 4 * sizeof(double));
+    std::memcpy(b.angMom[i].data(), s + 13, 3 * sizeof(double));
+  }
+  ++traffic_.updates;
+}
+} // namespace talus::dem::distributed

@@ -1,0 +1,95 @@
+#pragma once
+
+#include "dem/core/Contacts.h"
+#include "dem/core/Domain.h"
+#include "dem/distributed/Partition.h"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace talus::dem::distributed
+{
+/// A scene split over the ranks of an MPI communicator (the Domain the step calls).
+///
+/// Rows: the spheres this rank owns, the walls (replicated: every rank holds all of them, and
+/// computes their contacts with its own spheres only) and the ghosts (copies of the spheres of
+/// other ranks within reach of this rank's region), all in ascending global id, so that the
+/// collider orients every contact and the gather sums every body's contacts as in the serial
+/// scene: the owned bodies' forces are the serial ones bit for bit.
+///
+/// Regions: Zoltan's partition of the spheres when the domain is made; at each re-detection a
+/// sphere that left its rank's region moves to the rank whose region holds it (RCB's boxes tile
+/// space), or, with HSFC, Zoltan partitions again. Contacts move with their bodies.
+class MpiDomain final : public Domain
+{
+public:
+  /// Split `scene`, built whole and identically on every rank of `comm` (collective): the
+  /// spheres are partitioned, each rank keeps its own, the walls and its ghosts, and the contacts
+  /// it computes.
+  /// @throws std::invalid_argument on every rank, naming what is not distributed yet (a shape,
+  ///         a periodic cell, an engine or contact law other than the linear one, energy
+  ///         tracking), an unknown partition method, or more ranks than spheres
+  MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings);
+
+  std::size_t ownedBodies(const Scene& scene) const override;
+  bool owns(std::size_t row) const override { return owned_[row] != 0; }
+  /// Whether row `row` is a body every rank holds (a wall): counted once in sums of states.
+  [[nodiscard]] bool replicated(std::size_t row) const { return replicated_[row] != 0; }
+  bool computesPair(std::size_t row1, std::size_t row2) const override;
+  bool anyProcess(bool local) const override;
+  void beforeDetection(Scene& scene) override;
+  void afterIntegration(Scene& scene) override;
+  void sum(std::span<double> values) const override;
+  double min(double value) const override;
+  void min(std::span<double> values) const override;
+
+  [[nodiscard]] int rank() const { return rank_; }
+  [[nodiscard]] int ranks() const { return ranks_; }
+  /// Bodies of the whole scene (global ids 0 .. globalCount - 1).
+  [[nodiscard]] std::int64_t globalCount() const { return static_cast<std::int64_t>(rowOf_.size()); }
+  /// The row of global id `id` here, -1 if this rank holds no copy of it.
+  [[nodiscard]] std::int64_t rowOf(GlobalId id) const;
+  [[nodiscard]] GlobalId globalIdOf(std::size_t row) const { return globalId_[row]; }
+  /// Distance within which a sphere of another rank is a ghost here: twice the largest radius
+  /// plus the collider's skin.
+  [[nodiscard]] double ghostDistance() const { return ghostDistance_; }
+
+  /// What the halo moved: ghost updates (one per step) and re-detections (migration and ghost
+  /// rebuild), bytes and messages this rank sent.
+  struct Traffic
+  {
+    std::int64_t updates = 0, updateBytes = 0, updateMessages = 0;
+    std::int64_t rebuilds = 0, rebuildBytes = 0;
+  };
+  [[nodiscard]] const Traffic& traffic() const { return traffic_; }
+
+private:
+  /// Lay the scene out again from this rank's spheres `mine` (global ids ascending): walls, mine
+  /// and the ghosts exchanged for them, in global-id order; `contacts` (with the global ids of
+  /// their bodies) become the contact list, keeping those this rank computes.
+  void assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& contacts, std::vector<ContactExtra>& extra,
+                std::vector<GlobalId>& contactIds);
+  /// The rank whose region holds `x` (RCB), -1 if none (not a finite position).
+  [[nodiscard]] int regionOf(const Vec3& x) const;
+
+  MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1;
+  PartitionSettings settings_;
+  Method method_;
+  std::vector<Box> boxes_;
+  double ghostDistance_ = 0;
+  std::vector<GlobalId> globalId_; ///< per row
+  std::vector<std::uint8_t> owned_, replicated_; ///< per row: this rank's; a wall (every rank's)
+  std::vector<std::int64_t> rowOf_; ///< per global id: its row here, -1 if none
+  /// Ghost updates: rows sent to rank r are sendRows_[sendStart_[r] .. sendStart_[r+1]), the
+  /// rows receiving from rank r are recvRows_[recvStart_[r] .. recvStart_[r+1]), in that order.
+  std::vector<std::int64_t> sendRows_, sendStart_, recvRows_, recvStart_;
+  std::vector<double> sendBuffer_, recvBuffer_;
+  std::vector<Vec3> detectedAt_; ///< per row: its position at the last re-detection
+  Traffic traffic_;
+};
+} // namespace talus::dem::distributed

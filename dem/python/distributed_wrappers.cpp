@@ -1,0 +1,155 @@
+// talus._distributed: the MPI domain a scene runs in under `mpirun -np N talus run`
+// (talus.dem.distributed sets it up and reads the global answers through it).
+#include "dem/core/Scene.h"
+#include "dem/distributed/Collective.h"
+#include "dem/distributed/MpiDomain.h"
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <limits>
+#include <memory>
+
+namespace py = pybind11;
+using namespace talus::dem;
+using namespace talus::dem::distributed;
+
+namespace
+{
+/// Per global id, the values `value` writes for each body, from the rank owning it (rank 0 for
+/// a wall, which every rank holds): the whole scene's on every rank.
+template <class Value>
+std::vector<double> byGlobalId(const MpiDomain& d, const Scene& s, Value&& value, std::size_t width)
+{
+  std::vector<double> total(static_cast<std::size_t>(d.globalCount()) * width, 0.0);
+  for (std::size_t i = 0; i < s.bodies.size(); ++i)
+    if (d.owns(i) && (!d.replicated(i) || d.rank() == 0))
+      value(i, total.data() + static_cast<std::size_t>(d.globalIdOf(i)) * width);
+  d.sum(total);
+  return total;
+}
+} // namespace
+
+PYBIND11_MODULE(_distributed, m)
+{
+  m.doc() = "The DEM over MPI ranks: the domain of a scene under mpirun (talus.dem.distributed)";
+  py::register_exception<CollectiveError>(m, "CollectiveError", PyExc_RuntimeError);
+  m.def("init", [] {
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (!initialised)
+    {
+      int provided = 0;
+      MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    }
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    return py::make_tuple(rank, ranks);
+  });
+  m.def("finalize", [] {
+    int initialised = 0, finalised = 0;
+    MPI_Initialized(&initialised);
+    MPI_Finalized(&finalised);
+    if (initialised && !finalised)
+      MPI_Finalize();
+  });
+  m.def("abort", [](int code) { MPI_Abort(MPI_COMM_WORLD, code); });
+  m.def("barrier", [] { MPI_Barrier(MPI_COMM_WORLD); });
+  m.def("all_agree", [](bool local) {
+    int all = local ? 1 : 0;
+    MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
+    return all != 0;
+  }, "True on every rank when `local` is true on all (collective)");
+
+  py::class_<MpiDomain, std::shared_ptr<MpiDomain>>(m, "Domain")
+      .def_property_readonly("rank", &MpiDomain::rank)
+      .def_property_readonly("ranks", &MpiDomain::ranks)
+      .def_property_readonly("globalCount", &MpiDomain::globalCount)
+      .def_property_readonly("ghostDistance", &MpiDomain::ghostDistance)
+      .def("rowOf", &MpiDomain::rowOf)
+      .def("owns", [](const MpiDomain& d, std::int64_t row) { return row >= 0 && d.owns(static_cast<std::size_t>(row)); })
+      .def("sum", [](const MpiDomain& d, std::vector<double> v) {
+        d.sum(v);
+        return v;
+      })
+      .def("min", [](const MpiDomain& d, double v) { return d.min(v); })
+      .def("traffic", [](const MpiDomain& d) {
+        const MpiDomain::Traffic& t = d.traffic();
+        py::dict out;
+        out["updates"] = t.updates;
+        out["update_bytes"] = t.updateBytes;
+        out["update_messages"] = t.updateMessages;
+        out["rebuilds"] = t.rebuilds;
+        out["rebuild_bytes"] = t.rebuildBytes;
+        return out;
+      })
+      .def("positions", [](const MpiDomain& d, const Scene& s) {
+        std::vector<double> all = byGlobalId(d, s, [&](std::size_t i, double* out) {
+          for (int k = 0; k < 3; ++k)
+            out[k] = s.bodies.pos[i][k];
+        }, 3);
+        py::array_t<double> a({static_cast<py::ssize_t>(d.globalCount()), py::ssize_t{3}});
+        std::copy(all.begin(), all.end(), a.mutable_data());
+        return a;
+      }, "Positions of every body by global id, on every rank (collective)")
+      .def("forceOf", [](const MpiDomain& d, const Scene& s, std::int64_t id) {
+        // Walls are held by every rank, each with the force of its own spheres' contacts.
+        std::vector<double> ft(6, 0.0);
+        const std::int64_t row = d.rowOf(id);
+        if (row >= 0 && d.owns(static_cast<std::size_t>(row)))
+          for (int k = 0; k < 3; ++k)
+          {
+            ft[static_cast<std::size_t>(k)] = s.bodies.force[static_cast<std::size_t>(row)][k];
+            ft[static_cast<std::size_t>(k) + 3] = s.bodies.torque[static_cast<std::size_t>(row)][k];
+          }
+        d.sum(ft);
+        return ft;
+      }, "Force and torque of body `id` summed over the ranks holding it as their own (collective)")
+      .def("unbalancedForce", [](const MpiDomain& d, const Scene& s, const Vec3& gravity, bool useMaxForce) {
+        // Yade's unbalancedForce over the whole scene: bodies where owned, contacts once (a
+        // contact of two ranks' bodies on the rank of its first body).
+        const Bodies& b = s.bodies;
+        std::vector<double> sums(4, 0.0); // body forces, bodies, contact forces, contacts
+        double largest = 0;
+        for (std::size_t i = 0; i < b.size(); ++i)
+          if (d.owns(i) && b.alive[i] && b.dynamic[i])
+          {
+            const double f = (b.force[i] + b.mass[i] * gravity).norm();
+            sums[0] += f;
+            sums[1] += 1;
+            largest = std::max(largest, f);
+          }
+        for (const Contact& c : s.contacts.list)
+          if (c.real && d.owns(static_cast<std::size_t>(b.shape[static_cast<std::size_t>(c.id1)] == ShapeKind::Wall ? c.id2 : c.id1)))
+          {
+            sums[2] += c.force.norm();
+            sums[3] += 1;
+          }
+        d.sum(sums);
+        largest = -d.min(-largest);
+        if (sums[3] == 0 || sums[2] == 0 || sums[1] == 0)
+          return std::numeric_limits<double>::quiet_NaN();
+        return (useMaxForce ? largest : sums[0] / sums[1]) / (sums[2] / sums[3]);
+      })
+      .def("kineticEnergy", [](const MpiDomain& d, const Scene& s) {
+        const Bodies& b = s.bodies;
+        std::vector<double> e(1, 0.0);
+        for (std::size_t i = 0; i < b.size(); ++i)
+          if (d.owns(i) && b.alive[i] && b.dynamic[i])
+            e[0] += 0.5 * b.mass[i] * b.vel[i].squaredNorm() + 0.5 * b.angVel[i].dot(b.inertia[i].cwiseProduct(b.angVel[i]));
+        d.sum(e);
+        return e[0];
+      }, "Total kinetic energy of the dynamic bodies (collective)");
+
+  m.def("attach", [](const std::shared_ptr<Scene>& scene, const std::string& method) {
+    PartitionSettings settings;
+    settings.method = method;
+    auto domain = std::make_shared<MpiDomain>(MPI_COMM_WORLD, *scene, settings);
+    scene->domain = domain;
+    return domain;
+  }, py::arg("scene"), py::arg("method") = "RCB",
+        "Split `scene` (built whole on every rank) over the ranks of MPI_COMM_WORLD (collective)");
+}

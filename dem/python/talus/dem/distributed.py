@@ -1,0 +1,148 @@
+"""The same script under ``mpirun -np N talus run script.py``: the DEM split over MPI processes.
+
+Every process runs the whole script and builds the whole scene (fine for now: memory grows with
+the scene on every process). When the script's first ``O.run``/``O.step`` starts, the spheres
+are partitioned (Zoltan's RCB, or HSFC with ``TALUS_PARTITION=HSFC``) and each process keeps
+its own, the walls (every process holds them) and ghosts, copies of the spheres of its
+neighbours within reach (dem/distributed/, docs/distributed-dem.md). From then on:
+
+- ``unbalancedForce()``, ``utils.kineticEnergy()`` and ``O.forces.f(id)`` of a wall give the
+  whole scene's value on every process (reductions), so a PyRunner testing them acts alike on all;
+- ``print`` writes from process 0 only (the others' standard output is discarded);
+- ``O.bodies[i]`` works for the bodies this process owns (and the walls); for another it raises,
+  naming the rule. ``positions()`` gathers every body's position, on every process.
+
+What is not distributed yet is refused, on every process alike, with its name: shapes other than
+spheres and walls, clumps, periodic cells, engines other than ForceResetter,
+InsertionSortCollider, InteractionLoop (linear law), NewtonIntegrator and PyRunner, energy
+tracking, checkpoints, VTK output.
+"""
+
+from __future__ import annotations
+
+import atexit
+import os
+import sys
+
+#: Processes of the run (Open MPI's mpirun tells each process); above 1 the scene is split.
+RANKS = int(os.environ.get("OMPI_COMM_WORLD_SIZE", "1"))
+ACTIVE = RANKS > 1
+
+_ENGINES = ("ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator", "PyRunner")
+_LAWS = ("Law2_ScGeom_FrictPhys_CundallStrack",)
+_rank = 0
+
+
+class NotDistributed(RuntimeError):
+    """A feature the distributed DEM does not have yet, asked for under mpirun: raised on every
+    process alike (the script is the same), so each stops on its own."""
+
+
+def start() -> None:
+    """Set up MPI for this process (``talus run`` under mpirun): standard output from process 0
+    only, MPI finalised at exit."""
+    global _rank
+    from talus import _distributed
+    _rank, _ = _distributed.init()
+    atexit.register(_distributed.finalize)
+    if _rank != 0:
+        sys.stdout = open(os.devnull, "w")
+
+
+def refuse(what: str) -> None:
+    """Raise NotDistributed for ``what`` when running under mpirun."""
+    if ACTIVE:
+        raise NotDistributed(f"{what} is not distributed yet: under mpirun ({RANKS} processes) the DEM runs "
+                             f"{', '.join(_ENGINES)} with spheres and walls and the linear contact law only; run "
+                             f"this script in one process (talus run, without mpirun)")
+
+
+def domain(scene):
+    """The MPI domain of ``scene``, None when it runs in one process."""
+    return getattr(scene, "_domain", None)
+
+
+def attach(scene) -> None:
+    """Split ``scene`` over the processes (at its first step under mpirun; collective)."""
+    if not ACTIVE or domain(scene) is not None:
+        return
+    for e in scene.engines:
+        name = type(e).__name__
+        if name not in _ENGINES:
+            refuse(f"the engine {name}")
+        for law in getattr(e, "lawFunctors", ()):
+            if type(law).__name__ not in _LAWS:
+                refuse(f"the contact law {type(law).__name__}")
+    if scene.trackEnergy:
+        refuse("energy tracking (O.trackEnergy)")
+    from talus import _distributed
+    scene._domain = _distributed.attach(scene._cpp, os.environ.get("TALUS_PARTITION", "RCB"))
+
+
+def row_of(scene, id: int) -> int:
+    """The row of body ``id`` in this process's arrays; raises for a body owned elsewhere."""
+    d = domain(scene)
+    if d is None:
+        return id
+    row = d.rowOf(int(id))
+    if not d.owns(row):
+        raise IndexError(f"body {id} is owned by another process: under mpirun (rank {d.rank} of {d.ranks}) a "
+                         f"body's state lives on the process that owns it; read the bodies of the whole scene "
+                         f"with talus.dem.distributed.positions(), called on every process")
+    return row
+
+
+def positions(scene=None):
+    """Positions of every body (global ids) as an (N, 3) array, on every process (collective);
+    in one process, O's positions."""
+    if scene is None:
+        from talus.dem import O as scene
+    d = domain(scene)
+    return scene.positions().copy() if d is None else d.positions(scene._cpp)
+
+
+def rank() -> int:
+    """This process's rank (0 in one process)."""
+    return _rank
+
+
+def traffic(scene=None) -> list[dict]:
+    """What each process's halo sent (ghost updates at every step, migrations and ghost
+    rebuilds at re-detections), a dict per process, on every process (collective); empty in one
+    process."""
+    if scene is None:
+        from talus.dem import O as scene
+    d = domain(scene)
+    if d is None:
+        return []
+    mine = d.traffic()
+    keys = sorted(mine)
+    table = [0.0] * (len(keys) * d.ranks)
+    for k, key in enumerate(keys):
+        table[d.rank * len(keys) + k] = float(mine[key])
+    table = d.sum(table)
+    return [{key: int(table[r * len(keys) + k]) for k, key in enumerate(keys)} for r in range(d.ranks)]
+
+
+def is_collective(exc: BaseException) -> bool:
+    """Whether every process raised ``exc`` alike (each may report it and stop on its own)."""
+    if isinstance(exc, NotDistributed):
+        return True
+    from talus import _distributed
+    return isinstance(exc, _distributed.CollectiveError)
+
+
+def stop_on_error(exc: BaseException, report) -> int:
+    """Under mpirun, report ``exc`` (with ``report``) on process 0 when every process raised
+    it, and return the exit status; any other error is reported by its process, which then ends
+    the whole run (the others may be waiting for it in a collective)."""
+    if is_collective(exc):
+        if _rank == 0:
+            report()
+        return 1
+    print(f"talus run: process {_rank} of {RANKS} failed; ending every process", file=sys.stderr)
+    report()
+    sys.stderr.flush()
+    from talus import _distributed
+    _distributed.abort(1)
+    return 1
