@@ -512,8 +512,8 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const C
   const std::size_t total = offset.back();
   // The spare list's old records are dead: grow it with room to spare, every record of the new
   // storage constructed at once, so that its (huge, see HugePageAllocator) pages are faulted in
-  // here and not a few at a time by the later re-detections that lengthen the list (growing
-  // into untouched 4 KiB pages took 50-400 µs a re-detection on this project's guest).
+  // here and not a few at a time by the later re-detections that lengthen the list (each of
+  // which would then pay page faults; docs/dem.md, "Measurements behind the code").
   auto reserveTouched = [total](auto& records) {
     if (records.capacity() >= total)
       return;
@@ -544,6 +544,21 @@ void mergeContacts(const Bodies& b, const std::vector<Candidate>& pairs, const C
   }
 }
 } // namespace
+
+bool Collider::acrossProcesses(const Domain& domain, bool rebuild, Displacements& all)
+{
+  std::array<double, 11> v{rebuild ? -1.0 : 0.0, -all.sphere2, -all.sphereSpread2, -all.other2,
+                           all.low[0], all.low[1], all.low[2], -all.high[0], -all.high[1], -all.high[2],
+                           all.nonFinite ? -1.0 : 0.0};
+  domain.min(v);
+  all.sphere2 = -v[1];
+  all.sphereSpread2 = -v[2];
+  all.other2 = -v[3];
+  all.low = Vec3(v[4], v[5], v[6]);
+  all.high = -Vec3(v[7], v[8], v[9]);
+  all.nonFinite = v[10] < 0;
+  return v[0] < 0;
+}
 
 Collider::SkinCheck Collider::skinCheck(const Scene& scene) const
 {
@@ -637,14 +652,18 @@ Vec3 Collider::commonOf(const Displacements& all)
 bool Collider::needsRebuild(const Scene& scene)
 {
   const SkinCheck check = skinCheck(scene);
-  if (check.rebuild)
+  if (check.rebuild && !scene.domain)
     return true;
   auto measure = [&](std::int64_t first, std::int64_t last) { return displacementsIn(scene, check, first, last); };
-  const Displacements all = balancedFor(skinRanges_, static_cast<std::int64_t>(scene.bodies.size()), Displacements{},
-                                        measure, [](Displacements a, const Displacements& c) {
-                                          a.add(c);
-                                          return a;
-                                        });
+  Displacements all = check.rebuild ? Displacements{}
+                                    : balancedFor(skinRanges_, static_cast<std::int64_t>(scene.bodies.size()),
+                                                  Displacements{}, measure, [](Displacements a, const Displacements& c) {
+                                                    a.add(c);
+                                                    return a;
+                                                  });
+  // Split over processes: all decide from everyone's displacements, and re-detect together.
+  if (scene.domain && acrossProcesses(*scene.domain, check.rebuild, all))
+    return true;
   noteDisplacements(all);
   return mustRebuild(check, all);
 }
@@ -655,7 +674,13 @@ void Collider::run(Scene& scene)
   const bool rebuilding = needsRebuild(scene);
   timingDeltas.checkpoint("skin check");
   if (rebuilding)
+  {
+    // Split over processes: bodies that left this process's region move first, and the ghosts
+    // are taken again (Domain::beforeDetection; the step's scheduler calls it on its own path).
+    if (scene.domain)
+      scene.domain->beforeDetection(scene);
     rebuild(scene);
+  }
 }
 
 void Collider::rebuild(Scene& scene)
@@ -693,6 +718,11 @@ void Collider::rebuild(Scene& scene)
       blockRmin = std::min(blockRmin, referenceLength(b, i));
     }
     // a clump has no surface: its members interact
+  }
+  if (scene.domain) // the skin and the cells from the radii of every process's spheres
+  {
+    rmin = scene.domain->min(rmin);
+    rmax = -scene.domain->min(-rmax);
   }
   Collider::PairFilter filter{avoidSelfInteractionMask, (avoidSelfInteractionMask & 1) != 0};
   for (std::size_t i = 0; i < b.size() && !filter.masks; ++i)
@@ -758,6 +788,10 @@ void Collider::rebuild(Scene& scene)
     std::sort(others.begin(), others.end(), byKey);
     mergeCandidates(perThread_, others, pairs);
   }
+  if (scene.domain) // the pairs this process computes (Domain::computesPair)
+    std::erase_if(pairs, [&](const Candidate& c) {
+      return !scene.domain->computesPair(static_cast<std::size_t>(c.key >> 32), static_cast<std::size_t>(c.key & 0xffffffffu));
+    });
   timingDeltas.checkpoint("re-detection: sort");
 
   ContactList& old = scene.contacts.list;

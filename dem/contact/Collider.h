@@ -14,6 +14,8 @@
 
 namespace talus::dem
 {
+class Domain;
+
 /// A candidate pair found by the collider: key (id1 << 32 | id2) and periodic image offset.
 using PairKey = std::uint64_t;
 struct Candidate
@@ -97,6 +99,9 @@ public:
   /// The displacements of the bodies of [first, last) (check.rebuild false).
   [[nodiscard]] Displacements displacementsIn(const Scene& scene, const SkinCheck& check, std::int64_t first,
                                               std::int64_t last) const;
+  /// The displacements `all` of every process (maxima and minima over them, in one reduction);
+  /// true when some process must re-detect whatever they are (`rebuild`: its bodies changed).
+  static bool acrossProcesses(const Domain& domain, bool rebuild, Displacements& all);
   /// Whether the displacements of all bodies call for a re-detection.
   [[nodiscard]] static bool mustRebuild(const SkinCheck& check, const Displacements& all);
   /// The common displacement a check after the one that measured `all` subtracts.

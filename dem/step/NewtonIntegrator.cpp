@@ -227,6 +227,8 @@ void NewtonIntegrator::run(Scene& scene)
   if (scene.energy.enabled)
     addImposedMotionWork(scene);
   finish(scene, scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene));
+  if (scene.domain) // split over processes: the ghosts take their owners' new state
+    scene.domain->afterIntegration(scene);
 }
 
 std::int64_t NewtonIntegrator::integrateIn(Scene& scene, std::int64_t first, std::int64_t last,
