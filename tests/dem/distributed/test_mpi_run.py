@@ -1,0 +1,84 @@
+"""`mpirun -np 2 talus run script.py` of a script written for one process: the serial run's
+positions bit for bit, what is not distributed refused by name on every process (reported
+once, no process left waiting), a partition method Zoltan lacks refused naming the valid ones,
+and a body owned by the other process refused naming the rule."""
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+SCENE = Path(__file__).resolve().parents[3] / "cases" / "scenes" / "deposition.py"
+
+try:
+    from talus import _distributed  # noqa: F401  (built with the mpi_dem feature only)
+except ImportError:
+    _distributed = None
+pytestmark = pytest.mark.skipif(_distributed is None or shutil.which("mpirun") is None,
+                                reason="the mpi_dem feature is off or mpirun is missing")
+
+
+def talus_run(script, *args, processes=None, env=None, timeout=60):
+    command = [sys.executable, "-m", "talus", "run", "-j", "1", str(script), *map(str, args)]
+    if processes:
+        command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(processes), *command]
+    environment = {**os.environ, "OMP_NUM_THREADS": "1", **(env or {})}
+    return subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=environment)
+
+
+def test_two_processes_give_the_serial_positions_bit_for_bit(tmp_path):
+    serial, split = tmp_path / "serial.json", tmp_path / "split.json"
+    assert talus_run(SCENE, 200, 400, serial).returncode == 0
+    done = talus_run(SCENE, 200, 400, split, processes=2)
+    assert done.returncode == 0, done.stderr
+    a, b = json.loads(serial.read_text()), json.loads(split.read_text())
+    assert len(b["positions"]) == 4 and np.array_equal(np.asarray(a["positions"]), np.asarray(b["positions"]))
+    # Each process sent ghost updates every step, and the spheres touched the floor by then.
+    assert [t["updates"] for t in b["traffic"]] == [400, 400]
+    assert all(t["update_bytes"] > 0 for t in b["traffic"])
+    assert a["floor_force"] < 0 and b["floor_force"] == pytest.approx(a["floor_force"], rel=1e-12)
+    # print from process 0 only: each sample's line once
+    assert done.stdout.count("\n100 ") + done.stdout.startswith("100 ") == 1
+
+
+def _script(tmp_path, body):
+    script = tmp_path / "script.py"
+    script.write_text(
+        "O.materials.append(FrictMat(young=1e7, density=2600))\n"
+        "for k in range(20):\n"
+        "    O.bodies.append(utils.sphere((0.1 * k, 0, 0), 0.04))\n"
+        "O.bodies.append(utils.wall(-1, axis=2, sense=1))\n"
+        "O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),\n"
+        "             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],\n"
+        "                             [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),\n"
+        "             NewtonIntegrator(gravity=(0, 0, -9.81))]\n"
+        "O.dt = 1e-5\n" + body)
+    return script
+
+
+@pytest.mark.parametrize("body, named", [
+    ("O.bodies.append(utils.facet(((0, 0, -1), (1, 0, -1), (0, 1, -1))))\nO.run(10, True)\n", "Facet"),
+    ("O.engines = O.engines + [GravityEngine(gravity=(0, 0, -1))]\nO.run(10, True)\n", "GravityEngine"),
+])
+def test_what_is_not_distributed_is_refused_by_name_once(tmp_path, body, named):
+    done = talus_run(_script(tmp_path, body), processes=2)
+    assert done.returncode != 0
+    assert done.stderr.count(named) == 1, done.stderr      # reported by process 0 only
+    assert "not distributed yet" in done.stderr or "in one process" in done.stderr, done.stderr
+
+
+def test_an_unknown_partition_method_is_refused_naming_the_valid_ones(tmp_path):
+    done = talus_run(_script(tmp_path, "O.run(10, True)\n"), processes=2, env={"TALUS_PARTITION": "PHG"})
+    assert done.returncode != 0
+    assert done.stderr.count("'PHG'") == 1 and "RCB, HSFC" in done.stderr, done.stderr
+
+
+def test_a_body_of_the_other_process_is_refused_naming_the_rule(tmp_path):
+    body = "O.run(10, True)\nfor k in range(20):\n    O.bodies[k].state.pos\n"
+    done = talus_run(_script(tmp_path, body), processes=2)
+    assert done.returncode != 0
+    assert "is owned by another process" in done.stderr and "positions()" in done.stderr, done.stderr
