@@ -2,6 +2,7 @@
 // Ip2_CohFrictMat_CohFrictMat_CohFrictPhys + Law2_ScGeom6D_CohFrictPhys_CohesionMoment (without
 // creep). The relative rotation of ScGeom6D (twist and bending) lives in ContactExtra.
 #include "dem/laws/ContactLawKernel.h"
+#include "dem/laws/parts/Bond.h"
 #include "dem/laws/parts/Coulomb.h"
 #include "dem/laws/parts/Moments.h"
 
@@ -99,17 +100,14 @@ public:
     }
     c.normalForce = fn * c.normal;
     c.shearForce -= c.ks * c.shearIncrement;
-    double maxFs = x.shearAdhesion;
-    if (!x.cohesionDisablesFriction || maxFs == 0)
-      maxFs += fn * c.tanPhi;
-    maxFs = std::max(0.0, maxFs);
+    double maxFs = parts::bondedShearStrength(x.shearAdhesion, fn, c.tanPhi, x.cohesionDisablesFriction);
     const double fs = c.shearForce.norm();
     if (fs > maxFs)
     {
       if (x.fragile && !x.cohesionBroken)
       {
         breakBond(x);
-        maxFs = std::max(0.0, fn * c.tanPhi);
+        maxFs = parts::frictionStrength(fn, c.tanPhi);
       }
       parts::slide<Track>(c, maxFs / fs, energy);
       if (fn < 0)

@@ -8,6 +8,7 @@
 // intact-rock faces (BlockGen's rock bridges and cemented joints) carries a cohesion and a
 // tensile strength until it breaks, then it is frictional.
 #include "dem/laws/ContactLawKernel.h"
+#include "dem/laws/parts/Bond.h"
 #include "dem/laws/parts/Coulomb.h"
 
 #include <algorithm>
@@ -152,14 +153,14 @@ public:
     c.shearForce -= c.ks * c.shearIncrement;
     const double friction = (Particles ? c.normalForce : elastic).norm() * c.tanPhi;
     const bool cohesive = bond && !bond->cohesionBroken;
-    double maxFs = cohesive ? std::max(0.0, bond->shearAdhesion + fn * c.tanPhi) : friction;
+    double maxFs = cohesive ? parts::bondedShearStrength(bond->shearAdhesion, fn, c.tanPhi) : friction;
     const double fs = c.shearForce.norm();
     if (fs > maxFs)
     {
       if (cohesive && allowBreakage)
       {
         bond->cohesionBroken = bond->tensionBroken = 1;
-        maxFs = std::max(fn, 0.0) * c.tanPhi;
+        maxFs = parts::frictionStrength(fn, c.tanPhi);
       }
       parts::slide<Track>(c, maxFs / fs, e);
     }

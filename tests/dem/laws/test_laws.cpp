@@ -4,6 +4,7 @@
 #include "dem/contact/Collider.h"
 #include "dem/core/Scene.h"
 #include "dem/laws/ContactLaw.h"
+#include "dem/laws/parts/Bond.h"
 #include "dem/laws/parts/Coulomb.h"
 #include "dem/laws/parts/Normal.h"
 #include "dem/step/ForceResetter.h"
@@ -165,4 +166,15 @@ TEST(NormalParts, SpringsAndTheirEnergies)
   c.penetration = -1e-5; // apart: no force, no energy
   EXPECT_EQ(parts::HertzSpring::force<false>(c, &x, energy), 0.0);
   EXPECT_EQ(parts::HertzSpring::elastic(c, &x), 0.0);
+}
+
+TEST(BondPart, MohrCoulombWithATensionCutOff)
+{
+  EXPECT_DOUBLE_EQ(parts::bondedShearStrength(10, 20, 0.5), 20.0);       // cohesion + fn tan(phi)
+  EXPECT_DOUBLE_EQ(parts::bondedShearStrength(10, -8, 0.5), 6.0);        // pulled: less
+  EXPECT_EQ(parts::bondedShearStrength(10, -40, 0.5), 0.0);              // never below 0
+  EXPECT_DOUBLE_EQ(parts::bondedShearStrength(10, 20, 0.5, true), 10.0); // cohesion alone
+  EXPECT_DOUBLE_EQ(parts::bondedShearStrength(0, 20, 0.5, true), 10.0);  // none: friction
+  EXPECT_DOUBLE_EQ(parts::frictionStrength(20, 0.5), 10.0);
+  EXPECT_EQ(parts::frictionStrength(-20, 0.5), 0.0);
 }
