@@ -30,10 +30,11 @@ def talus_run(script, *args, processes=None, env=None, timeout=60):
     return subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=environment)
 
 
-def test_two_processes_give_the_serial_positions_bit_for_bit(tmp_path):
+@pytest.mark.parametrize("method", ["RCB", "HSFC"])
+def test_two_processes_give_the_serial_positions_bit_for_bit(tmp_path, method):
     serial, split = tmp_path / "serial.json", tmp_path / "split.json"
     assert talus_run(SCENE, 200, 400, serial).returncode == 0
-    done = talus_run(SCENE, 200, 400, split, processes=2)
+    done = talus_run(SCENE, 200, 400, split, processes=2, env={"TALUS_PARTITION": method})
     assert done.returncode == 0, done.stderr
     a, b = json.loads(serial.read_text()), json.loads(split.read_text())
     assert len(b["positions"]) == 4 and np.array_equal(np.asarray(a["positions"]), np.asarray(b["positions"]))
@@ -82,3 +83,19 @@ def test_a_body_of_the_other_process_is_refused_naming_the_rule(tmp_path):
     done = talus_run(_script(tmp_path, body), processes=2)
     assert done.returncode != 0
     assert "is owned by another process" in done.stderr and "positions()" in done.stderr, done.stderr
+
+
+def test_a_body_moved_beyond_the_ghost_layer_is_named_with_the_step(tmp_path):
+    # Each process moves the first of its own spheres 5 m up between two runs (a teleport).
+    body = ("O.run(10, True)\n"
+            "for k in range(20):\n"
+            "    try:\n"
+            "        b = O.bodies[k]\n"
+            "    except IndexError:\n"
+            "        continue\n"
+            "    b.state.pos = b.state.pos + Vector3(0, 0, 5)\n"
+            "    break\n"
+            "O.run(10, True)\n")
+    done = talus_run(_script(tmp_path, body), processes=2)
+    assert done.returncode != 0
+    assert done.stderr.count("beyond the ghost layer") == 1 and "step 10: body " in done.stderr, done.stderr
