@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Iterable, Sequence
 import numpy as np
 
 from talus import _dem
+from talus.dem import distributed
 from talus.dem.linalg import Quaternion, Vector3
 from talus.dem.reference import ReferenceStates
 from talus.dem.appearance import DEFAULT_COLOR, Appearance, check_color
@@ -745,13 +746,17 @@ class BodyContainer:
         i = int(id) + n if id < 0 else int(id)
         if not 0 <= i < n:
             raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
+        i = distributed.row_of(self._scene, i)     # under mpirun: its row here, if owned here
         if not self._scene._cpp.alive()[i]:
             return None
         return Body(self._scene, i)
 
     def __len__(self) -> int:
-        return self._scene._cpp.bodyCount()
+        split = distributed.domain(self._scene)
+        return self._scene._cpp.bodyCount() if split is None else split.globalCount
 
     def __iter__(self):
+        if distributed.domain(self._scene) is not None:
+            distributed.refuse("iterating over O.bodies (each process holds its own bodies)")
         alive = self._scene._cpp.alive()
         return (Body(self._scene, i) for i in range(len(self)) if alive[i])

@@ -377,6 +377,8 @@ class VTKExporter:
     ``{"speed": "np.linalg.norm(b.state.vel)"}``."""
 
     def __init__(self, baseName: str, startSnap: int = 0, scene: "Scene | None" = None):
+        from talus.dem import distributed
+        distributed.refuse("VTK output (export.VTKExporter)")
         self.baseName = baseName
         self.startSnap = startSnap
         self._counts: dict[str, int] = {}

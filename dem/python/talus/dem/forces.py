@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from talus.dem import distributed
 from talus.dem.linalg import Vector3
 
 if TYPE_CHECKING:
@@ -48,10 +49,14 @@ class ForceContainer:
 
     def f(self, id: int, sync: bool = False):
         """Resultant force on a body in the last (or current) step."""
+        if (split := distributed.domain(self._scene)) is not None:   # under mpirun: summed over processes
+            return Vector3(split.forceOf(self._scene._cpp, int(id))[:3])
         return Vector3(self._row(self._scene._cpp.force(), id))
 
     def t(self, id: int, sync: bool = False):
         """Resultant torque on a body in the last (or current) step."""
+        if (split := distributed.domain(self._scene)) is not None:
+            return Vector3(split.forceOf(self._scene._cpp, int(id))[3:])
         return Vector3(self._row(self._scene._cpp.torque(), id))
 
     m = t  # Yade's alias

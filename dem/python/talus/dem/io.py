@@ -364,6 +364,8 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
     Raises :class:`CheckpointError` naming the file if it cannot be written; a file already at
     ``path`` is then left as it was.
     """
+    from talus.dem import distributed
+    distributed.refuse("writing a checkpoint (O.save)")
     _require()
     path = os.fspath(path)
     extras = {}
@@ -411,6 +413,8 @@ def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto", trus
     :class:`CheckpointWarning` listing them, and one that comes due stops the run with
     :class:`talus.dem.trust.UntrustedCommandError` (see :mod:`talus.dem.trust`).
     """
+    from talus.dem import distributed
+    distributed.refuse("reading a checkpoint (O.load)")
     _require()
     if engines not in _ENGINE_MODES:
         raise ValueError(f"O.load: engines must be one of {_ENGINE_MODES}, got {engines!r}")

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from talus import _dem
+from talus.dem import distributed
 from talus.dem.linalg import Matrix3, Matrix6, Vector3
 
 
@@ -29,6 +30,8 @@ def unbalancedForce(useMaxForce: bool = False, scene=None) -> float:
     """Mean (or largest) total force on dynamic bodies, gravity included, over the mean
     contact force: tends to 0 at equilibrium."""
     scene = _scene(scene)
+    if (split := distributed.domain(scene)) is not None:     # under mpirun: the whole scene's
+        return split.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)
     return _dem.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)
 
 
@@ -106,6 +109,10 @@ def kineticEnergy(findMaxId: bool = False, scene=None):
     kinetic term: the velocity less the cell's field L x at the position the last step started
     from (x - dt v), the angular velocity less the cell's spin (L: Cell.prevVelGrad)."""
     scene = _scene(scene)
+    if (split := distributed.domain(scene)) is not None:     # under mpirun: the whole scene's
+        if findMaxId:
+            distributed.refuse("utils.kineticEnergy(findMaxId=True)")
+        return split.kineticEnergy(scene._cpp)
     per_body = np.asarray(_dem.body_kinetic_energies(scene._cpp))
     ids = np.flatnonzero(per_body)
     per_body = per_body[ids]

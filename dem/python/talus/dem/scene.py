@@ -16,6 +16,7 @@ from typing import Iterable, Sequence
 import numpy as np
 
 from talus import _dem
+from talus.dem import distributed
 from talus.dem.blocks import Ig2_PB_PB_ScGeom
 from talus.dem.appearance import Appearance
 from talus.dem.reference import ReferenceStates
@@ -194,6 +195,8 @@ class Scene(OmegaMethods, CheckpointMethods):
 
     @trackEnergy.setter
     def trackEnergy(self, value: bool):
+        if value:
+            distributed.refuse("energy tracking (O.trackEnergy)")
         _dem.set_track_energy(self._cpp, bool(value))
 
     @property
@@ -375,6 +378,7 @@ class Scene(OmegaMethods, CheckpointMethods):
     def step(self):
         """Run one time step."""
         self._openRunPending = False
+        distributed.attach(self)    # under mpirun: the scene is split when its first step starts
         check_time_step(self)
         try:
             self._cpp.step()
@@ -445,6 +449,7 @@ class Scene(OmegaMethods, CheckpointMethods):
                 limits.append(max(1, math.ceil((stopTime - self.time) / self.dt - 1e-9)))
             steps = min(limits) if limits else -1
             before = self.iter
+            distributed.attach(self)    # under mpirun: the scene is split when its first step starts
             check_time_step(self)
             try:
                 self._cpp.run(steps)
