@@ -233,7 +233,8 @@ bool FusedStep::run(Scene& scene, const EngineRunner& runEngineUntimed)
     runEngineUntimed(k);
     otherEnginesSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
-  if (scene.timingEnabled || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
+  // Split over processes: the engines' path, which calls the domain (Collider, NewtonIntegrator).
+  if (scene.domain || scene.timingEnabled || static_cast<std::int64_t>(scene.bodies.size()) < parallelLoopMinimum)
     return false;
   std::optional<UsualEngines> usual = usualEngines(scene);
   if (!usual)
