@@ -24,16 +24,21 @@ namespace talus::dem
 /// times unitWidth2D.
 /// `accuracyTol`: the analytic centre's Newton iteration stops once its Newton decrement is
 /// below it (the chord and the area are exact for the point and normal found).
+/// @param b the scene's bodies
+/// @param i1, i2 the bodies' ids (i1 may be a wall)
+/// @param out the contact's normal, penetration, point and area when they overlap
 /// @return false if the shapes do not overlap
 bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                            ConvexContactGeometry& out, double accuracyTol = defaultBlockAccuracyTol);
 
 /// Deepest point x of the half-spaces normals_j . x <= h_j (unit normals), the centre of the
 /// largest ball inside them: maximise s subject to normals_j . x + s <= h_j (CLP), with x
-/// bounded by `bound` in each coordinate to keep the program well posed. Returns the depth s
-/// (the ball's radius; <= 0: the region is empty or flat).
+/// bounded by `bound` in each coordinate to keep the program well posed.
+/// @param x set to the deepest point
+/// @return the depth s (the ball's radius; <= 0: the region is empty or flat)
 double deepestPoint(const std::vector<Vec3>& normals, const std::vector<double>& h, double bound, Vec3& x);
 
 /// World-frame axis-aligned bounding box of block i, from its turned vertices.
+/// @param lo, hi set to the box's corners
 void potentialBlockAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi);
 } // namespace talus::dem

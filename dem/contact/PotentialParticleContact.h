@@ -30,11 +30,15 @@ constexpr double defaultParticleAccuracyTol = 1e-8;
 /// point is then within about accuracyTol r / 2 of the equal-potential surface), the inner
 /// minimisations and the chord's ends once their steps are below min(accuracyTol / 10, 1e-9) R;
 /// a contact is reported only once its point is inside both (however loose the tolerance).
+/// @param b the scene's bodies
+/// @param i1, i2 the bodies' ids (i1 may be a wall)
+/// @param out the contact's normal, penetration, point and area when they overlap
 /// @return false if the shapes do not overlap
 bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                               ConvexContactGeometry& out, double accuracyTol = defaultParticleAccuracyTol);
 
 /// World-frame axis-aligned bounding box of particle i: its support points along +-x, y, z
 /// (exact for any orientation).
+/// @param lo, hi set to the box's corners
 void potentialParticleAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi);
 } // namespace talus::dem

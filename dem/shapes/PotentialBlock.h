@@ -47,6 +47,14 @@ struct PotentialBlockPlacement
 /// Build a block from planes a_i x + b_i y + c_i z <= d_i + r (Yade's PotentialBlock arguments).
 /// Vertices are the intersections of plane triples inside every plane; volume, centroid and
 /// principal inertia follow from the faces. R <= 0 asks for the automatic reference length.
+/// @param a, b, c, d the planes, unit normals (a, b, c)
+/// @param r the rounding of the inner potential, >= 0
+/// @param R the reference length (<= 0: automatic)
+/// @param isBoundary a boundary block (interacts with non-boundary ones only)
+/// @param which how errors name the block
+/// @param placement set, when not null, to the centroid and principal axes in the planes' frame
+///        and the inertia per unit density
+/// @return the block in its principal frame
 /// @throws std::invalid_argument starting with `which` (e.g. "PotentialBlock #3") if the
 ///         arrays differ in length, a normal is not unit, r or R is negative or not finite, or
 ///         the planes do not bound a finite convex region of positive volume
@@ -56,14 +64,21 @@ PotentialBlockShape makePotentialBlock(const std::vector<double>& a, const std::
                                        PotentialBlockPlacement* placement);
 
 /// Give the faces of s their rock-joint properties, one entry per plane (empty: keep them).
+/// @param cohesion, tension the faces' strengths (Pa), >= 0
+/// @param intactRock whether each face is intact rock (bonded to its neighbour)
+/// @param jointType each face's joint type
+/// @param which how errors name the block
 /// @throws std::invalid_argument starting with `which` if a list has not one entry per plane or
 ///         a strength is negative or not finite
 void setBlockFaceProperties(PotentialBlockShape& s, const std::vector<double>& cohesion,
                             const std::vector<double>& tension, const std::vector<bool>& intactRock,
                             const std::vector<int>& jointType, const std::string& which);
 
-/// Gradient of the inner potential at y (body frame), and the number of planes active there;
-/// if y is inside the inner potential (gradient zero), the normal of the nearest plane with
-/// `active` = 0.
+/// Direction of the gradient of the inner potential at y (body frame), and the number of planes
+/// active there; if y is inside the inner potential (gradient zero), the normal of the nearest
+/// plane with `active` = 0.
+/// @param y the point, body frame
+/// @param active set, when not null, to the number of active planes
+/// @return the unit normal: the gradient's direction, or the nearest plane's normal
 Vec3 potentialBlockNormal(const PotentialBlockShape& s, const Vec3& y, int* active);
 } // namespace talus::dem
