@@ -6,9 +6,12 @@
 #include "dem/core/Bodies.h"
 #include "dem/core/Contacts.h"
 #include "dem/core/EnergyTracker.h"
+#include "dem/laws/ContactLaw.h"
 #include "dem/laws/parts/Coulomb.h"
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace talus::dem::parts
 {
@@ -72,4 +75,74 @@ inline void capMoment(Vec3& moment, double plastic, double normal, double stiffn
     if (dissipates)
       energy.plastDissip += plasticWork(trial, moment, stiffness);
 }
+
+// Moments parts of a law (PartsLaw's last part), objects with the Law2's parameters:
+//   template <bool Track> void force(Contact&, ContactExtra*, const StepContext&, ContactEnergy&) const;
+//   double addElastic(double elastic, const ContactExtra*) const;   // plus what its springs store
+//   template <class Self> static auto* flag(Self&, const std::string& name);   // its parameters
+//       // (bool* or const bool*; null: not one of them)
+//   std::vector<std::string> parameterNames() const;
+
+/// No moments.
+struct NoMoments
+{
+  static constexpr bool usesExtra = false;
+  template <bool Track>
+  void force(Contact& /*c*/, ContactExtra* /*x*/, const StepContext& /*step*/, ContactEnergy& /*energy*/) const
+  {
+  }
+  [[nodiscard]] double addElastic(double elastic, const ContactExtra* /*x*/) const { return elastic; }
+  template <class Self>
+  static bool* flag(Self& /*self*/, const std::string& /*name*/)
+  {
+    return nullptr;
+  }
+  [[nodiscard]] std::vector<std::string> parameterNames() const { return {}; }
+};
+
+/// Bending and twisting springs kr, ktw on the relative rotation (Yade's CohFrictPhys moments)
+/// of a contact with momentRotationLaw while it is bonded (always_use_moment_law: also after),
+/// capped at maxRollPl |F_n| and maxTwistPl |F_n| when those are >= 0; no moment otherwise.
+struct RotationMoments
+{
+  static constexpr bool usesExtra = true;
+  // Law2 parameters: moments from incremental rotations (plastic limits are then exact) rather
+  // than from the total rotation since the bond; keep moments after the bond broke.
+  bool useIncrementalForm = false, alwaysUseMomentLaw = false;
+
+  template <bool Track>
+  void force(Contact& c, ContactExtra* x, const StepContext& step, ContactEnergy& energy) const
+  {
+    if (!x->momentRotationLaw || (x->cohesionBroken && !alwaysUseMomentLaw))
+    {
+      x->momentBending.setZero();
+      x->momentTwist.setZero();
+      return;
+    }
+    if (useIncrementalForm)
+      incrementalRotationMoments(c, *x, step.bodies, step.dt);
+    else
+      totalRotationMoments(c, *x, step.bodies);
+    const double normal = c.normalForce.norm();
+    capMoment<Track>(x->momentBending, x->maxRollPl, normal, x->kr, useIncrementalForm, energy);
+    capMoment<Track>(x->momentTwist, x->maxTwistPl, normal, x->ktw, useIncrementalForm, energy);
+  }
+  /// Plus 1/2 M^2 / k of each spring.
+  [[nodiscard]] double addElastic(double elastic, const ContactExtra* x) const
+  {
+    if (x && x->kr > 0)
+      elastic += 0.5 * x->momentBending.squaredNorm() / x->kr;
+    if (x && x->ktw > 0)
+      elastic += 0.5 * x->momentTwist.squaredNorm() / x->ktw;
+    return elastic;
+  }
+  template <class Self> // RotationMoments or const RotationMoments
+  static auto* flag(Self& self, const std::string& name)
+  {
+    return name == "useIncrementalForm"      ? &self.useIncrementalForm
+           : name == "always_use_moment_law" ? &self.alwaysUseMomentLaw
+                                             : nullptr;
+  }
+  [[nodiscard]] std::vector<std::string> parameterNames() const { return {"useIncrementalForm", "always_use_moment_law"}; }
+};
 } // namespace talus::dem::parts

@@ -1,8 +1,9 @@
 #pragma once
 
 // Normal parts of the contact laws: the elastic normal force from the overlap, with the
-// stiffnesses it implies. Each is a struct of inline static functions (no virtual call):
+// stiffnesses it implies (a bond's is in Bond.h). Each is a struct of inline static functions (no virtual call):
 //   static constexpr bool usesExtra;   // keeps state in ContactExtra (its part state)
+//   static constexpr bool mayEnd;      // may end the contact (c.real false: no force this step)
 //   template <bool Track> static double force(Contact&, ContactExtra*, ContactEnergy&);
 //       // the elastic normal force's magnitude (>= 0 pushes), stiffnesses updated
 //   static double elastic(const Contact&, const ContactExtra*);   // the energy it stores
@@ -18,6 +19,7 @@ namespace talus::dem::parts
 struct LinearSpring
 {
   static constexpr bool usesExtra = false;
+  static constexpr bool mayEnd = false;
   template <bool Track>
   static double force(Contact& c, ContactExtra* /*x*/, ContactEnergy& /*energy*/)
   {
@@ -32,6 +34,7 @@ struct LinearSpring
 struct HertzSpring
 {
   static constexpr bool usesExtra = true;
+  static constexpr bool mayEnd = false;
   template <bool Track>
   static double force(Contact& c, ContactExtra* x, ContactEnergy& energy)
   {

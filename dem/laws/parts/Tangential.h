@@ -3,16 +3,22 @@
 // Tangential parts of the contact laws: the shear force, capped by the one Coulomb cap
 // (Coulomb.h). Each:
 //   static constexpr bool usesExtra;
-//   template <bool Track> static void force(Contact&, double fn, const StepContext&, ContactEnergy&);
-//       // c.shearForce and c.force (= c.normalForce + the shear force), fn the normal force's magnitude
+//   template <bool Track> static void force(Contact&, ContactExtra*, double fn, const StepContext&,
+//                                           ContactEnergy&);
+//       // c.shearForce and c.force (= c.normalForce + the shear force), fn the normal force's
+//       // signed magnitude
 //   static double elastic(const Contact&);   // the energy the shear spring stores
 #include "dem/laws/ContactLaw.h"
+#include "dem/laws/parts/Bond.h"
 #include "dem/laws/parts/Coulomb.h"
 
 #include <cmath>
 
 namespace talus::dem::parts
 {
+/// What an elastic shear spring stores, 1/2 Fs^2 / ks.
+inline double shearSpringEnergy(const Contact& c) { return c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0; }
+
 /// How the Coulomb limit tan(phi) F_n is compared with the shear force: from the normal force
 /// vector's squared length (the linear law's rounding) or from its magnitude fn (the others').
 enum class CoulombLimit
@@ -29,7 +35,7 @@ struct IncrementalCoulomb
 {
   static constexpr bool usesExtra = false;
   template <bool Track>
-  static void force(Contact& c, double fn, const StepContext& step, ContactEnergy& energy)
+  static void force(Contact& c, ContactExtra* /*x*/, double fn, const StepContext& step, ContactEnergy& energy)
   {
     c.shearForce -= c.ks * c.shearIncrement;
     bool sliding = false;
@@ -63,7 +69,33 @@ struct IncrementalCoulomb
       }
     c.force = c.normalForce + shear;
   }
-  /// 1/2 Fs^2 / ks.
-  static double elastic(const Contact& c) { return c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0; }
+  static double elastic(const Contact& c) { return shearSpringEnergy(c); }
+};
+/// An incremental elastic shear spring capped at the bond's strength (bondedShearStrength, with
+/// BondState's cohesion); exceeding it breaks a fragile bond, the cap then being friction alone.
+/// A pulled contact that slides keeps no normal force.
+struct BondedCoulomb
+{
+  static constexpr bool usesExtra = true;
+  template <bool Track>
+  static void force(Contact& c, ContactExtra* x, double fn, const StepContext& /*step*/, ContactEnergy& energy)
+  {
+    c.shearForce -= c.ks * c.shearIncrement;
+    double maxFs = bondedShearStrength(x->shearAdhesion, fn, c.tanPhi, x->cohesionDisablesFriction);
+    const double fs = c.shearForce.norm();
+    if (fs > maxFs)
+    {
+      if (x->fragile && !x->cohesionBroken)
+      {
+        breakBond(*x);
+        maxFs = frictionStrength(fn, c.tanPhi);
+      }
+      slide<Track>(c, maxFs / fs, energy);
+      if (fn < 0)
+        c.normalForce.setZero();
+    }
+    c.force = c.normalForce + c.shearForce;
+  }
+  static double elastic(const Contact& c) { return shearSpringEnergy(c); }
 };
 } // namespace talus::dem::parts

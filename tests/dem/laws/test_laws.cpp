@@ -178,3 +178,25 @@ TEST(BondPart, MohrCoulombWithATensionCutOff)
   EXPECT_DOUBLE_EQ(parts::frictionStrength(20, 0.5), 10.0);
   EXPECT_EQ(parts::frictionStrength(-20, 0.5), 0.0);
 }
+
+TEST(BondPart, APullBeyondTheStrengthEndsAFragileBondAndYieldsADuctileOne)
+{
+  Contact c;
+  c.real = true;
+  c.kn = 1e6;
+  c.penetration = -3e-4; // pulled: -300 N against a strength of 100 N
+  ContactExtra x;
+  x.cohesionBroken = 0;
+  x.normalAdhesion = 100;
+  ContactEnergy energy;
+  x.fragile = 0;
+  EXPECT_DOUBLE_EQ(parts::BondedSpring::force<false>(c, &x, energy), -100.0); // yields at the strength
+  EXPECT_DOUBLE_EQ(x.unp, -3e-4 + 1e-4);
+  EXPECT_TRUE(c.real);
+  x.unp = 0;
+  x.fragile = 1;
+  parts::BondedSpring::force<false>(c, &x, energy);
+  EXPECT_FALSE(c.real); // the contact ends, its bond with it
+  EXPECT_TRUE(x.cohesionBroken);
+  EXPECT_EQ(x.normalAdhesion, 0.0);
+}
