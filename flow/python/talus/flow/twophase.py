@@ -1,0 +1,320 @@
+"""Quasi-static two-phase flow in the pore network (Yade's ``TwoPhaseFlowEngine``, the "2PFV"
+model of Yuan & Chareyre 2017, CMAME 318).
+
+Each pore of the FlowEngine network holds one phase: wetting (saturation 1) or non-wetting (0).
+Boundary 2 (ymin) is the wetting reservoir, boundary 3 (ymax) the non-wetting one, both with an
+imposed pressure (``bndCondIsPressure[2]`` and ``[3]``); the capillary pressure is
+``bndCondValue[3] - bndCondValue[2]``. At each ``invasion()`` the non-wetting phase enters a
+wetting pore through a throat when the pressure difference exceeds both the throat's entry
+pressure ``surfaceTension / r_throat`` and the pore body's ``surfaceTension / r_body``
+(drainage); with ``isImbibitionActivated`` the wetting phase comes back when it falls below both.
+With ``isPhaseTrapped`` (default) a wetting cluster cut from its reservoir is trapped, at the
+capillary pressure of that moment. The throat radius follows ``entryPressureMethod``: 1 MS-P
+(Mayer-Stowe-Princen as Yuan & Chareyre compute it: the meniscus radius balancing the capillary
+force on the non-wetting front and its pressure in the throat's plane; throats touching a
+boundary take the inscribed circle), 2 the circle inscribed between the three spheres, 3 the
+circle of the throat's fluid area. The body radius is the sphere inscribed between the pore's
+four spheres. Names are Yade's::
+
+    from talus.flow import TwoPhaseFlowEngine
+    tp = TwoPhaseFlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], surfaceTension=10)
+    tp.initialization()                  # the network of talus.dem.O, or tp.triangulate(pos, radii) first
+    for pc in pcs:
+        tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
+        tp.invasion()
+        print(pc, tp.getSaturation(False))
+
+See ``docs/flow.md``, section "Two-phase flow".
+"""
+
+from __future__ import annotations
+
+import math
+import os
+
+import numpy as np
+
+from talus import _flow
+from talus.flow.pore import FlowEngine
+
+_OWNER = "TwoPhaseFlowEngine"
+# the options of the C++ model (TwoPhaseParameters), Yade's names and defaults
+_FLAGS = ("isPhaseTrapped", "isInvadeBoundary", "drainageFirst", "isDrainageActivated", "isImbibitionActivated",
+          "recursiveInvasion")
+# Yade's attributes kept for its scripts; no physics of this model depends on them
+_STORED = {"bndCondIsWaterReservoir": [False] * 6, "computeForceActivated": True, "keepTriangulation": False}
+
+
+def _triplet(*values):
+    """Three (position, radius) pairs as the C++ functions take them."""
+    return [np.asarray(v, dtype=float) if k % 2 == 0 else float(v) for k, v in enumerate(values)]
+
+
+class TwoPhaseFlowEngine(FlowEngine):
+    """Quasi-static drainage and imbibition on the pore network (see the module docstring), with
+    FlowEngine's attributes for the network and its boundaries and Yade's two-phase names:
+    ``surfaceTension`` (0.0728), ``entryPressureMethod`` (1), ``isPhaseTrapped`` (True),
+    ``isInvadeBoundary`` (True), ``drainageFirst`` (True), ``isDrainageActivated`` (True),
+    ``isImbibitionActivated`` (False), ``recursiveInvasion`` (True); ``initialization``,
+    ``invasion``, ``getSaturation``, ``getMinDrainagePc``, ``getMaxImbibitionPc``,
+    ``computeCapillaryForce``, ``fluidForce``, ``savePhaseVtk`` and the per-pore getters
+    (``getCellSaturation``, ``getCellIsWRes`` ...)."""
+
+    def __init__(self, scene=None, **attrs):
+        object.__setattr__(self, "_params", _flow.TwoPhaseParameters())
+        object.__setattr__(self, "_tp", _flow.TwoPhaseFlow())
+        object.__setattr__(self, "_stored", {k: (list(v) if isinstance(v, list) else v) for k, v in _STORED.items()})
+        object.__setattr__(self, "_userNetwork", False)
+        object.__setattr__(self, "_spheres", None)
+        object.__setattr__(self, "_capillary", None)
+        object.__setattr__(self, "_vtkCount", 0)
+        super().__init__(scene, **attrs)
+
+    # --- parameters ---------------------------------------------------------------------------
+    def __setattr__(self, name, value):
+        if name == "surfaceTension":
+            gamma = float(value) if isinstance(value, (int, float, np.number)) else math.nan
+            if not math.isfinite(gamma) or gamma < 0:
+                raise ValueError(f"{_OWNER}.surfaceTension must be a finite number >= 0 (N/m), got {value!r}")
+            self._params.surfaceTension = gamma
+            return
+        if name == "entryPressureMethod":
+            if not isinstance(value, (int, np.integer)) or isinstance(value, bool) or value not in (1, 2, 3):
+                raise ValueError(f"{_OWNER}.entryPressureMethod must be 1 (MS-P, Yuan & Chareyre 2017), 2 (inscribed "
+                                 f"circle) or 3 (circle of the throat's fluid area), got {value!r}")
+            self._params.entryPressureMethod = int(value)
+            return
+        if name in _FLAGS:
+            if not isinstance(value, (bool, int, np.integer, np.bool_)) or value not in (0, 1):
+                raise TypeError(f"{_OWNER}.{name} must be True or False, got {value!r}")
+            setattr(self._params, name, bool(value))
+            return
+        if name in _STORED:
+            self._stored[name] = list(value) if isinstance(_STORED[name], list) else value
+            if isinstance(_STORED[name], list) and len(self._stored[name]) != 6:
+                raise ValueError(f"{_OWNER}.{name} needs a list of 6 values (xmin, xmax, ymin, ymax, zmin, zmax), "
+                                 f"got {value!r}")
+            return
+        try:
+            super().__setattr__(name, value)
+        except (ValueError, TypeError, AttributeError) as error:
+            # FlowEngine's messages name FlowEngine: name the engine the user has
+            raise type(error)(str(error).replace("FlowEngine", _OWNER, 1)) from None
+
+    def __getattr__(self, name):
+        if name == "surfaceTension" or name == "entryPressureMethod" or name in _FLAGS:
+            return getattr(self._params, name)
+        if name in _STORED:
+            value = self._stored[name]
+            return list(value) if isinstance(value, list) else value
+        return super().__getattr__(name)
+
+    # --- network ------------------------------------------------------------------------------
+    def triangulate(self, positions, radii, ids=None):
+        """Build the network of given spheres (FlowEngine.triangulate); ``initialization`` then
+        uses it instead of the scene's spheres."""
+        super().triangulate(positions, radii, ids)
+        ident = np.arange(len(radii)) if ids is None else np.asarray(ids)
+        self._spheres = dict(zip((int(i) for i in ident), np.asarray(positions, dtype=float).reshape(-1, 3)))
+        self._userNetwork = True
+
+    def initialization(self):
+        """Build the network (from the scene's spheres, or the one of ``triangulate``), the entry
+        radii of the throats, the pore bodies and the initial phases: all wetting with
+        ``drainageFirst`` (else all non-wetting), the pores on boundary 2 wetting and those on
+        boundary 3 non-wetting (Yade's initialization)."""
+        if not (self.bndCondIsPressure[2] and self.bndCondIsPressure[3]):
+            raise ValueError(f"{_OWNER}.bndCondIsPressure must impose the pressure on boundaries 2 (ymin, the wetting "
+                             f"reservoir) and 3 (ymax, the non-wetting reservoir), got {self.bndCondIsPressure}")
+        if not self._userNetwork:
+            from talus.dem import O
+            scene = self._scene or O
+            ids = scene.sphere_ids()
+            positions = np.asarray(scene.positions())[ids]
+            FlowEngine.triangulate(self, positions, np.asarray(scene.radii())[ids], ids)
+            self._spheres = dict(zip((int(i) for i in ids), positions))
+        self._tp.initialize(self._flow, self._params)
+        self._capillary = None
+
+    def _model(self):
+        if not self._tp.initialized():
+            raise RuntimeError(f"{_OWNER}: call initialization() first")
+        self._tp.setParameters(self._params)  # the options as they are now (Yade reads them at each call)
+        return self._tp
+
+    # --- invasion -----------------------------------------------------------------------------
+    def invasion(self):
+        """Invade at the current ``bndCondValue`` (capillary pressure bndCondValue[3] -
+        bndCondValue[2]): drainage and/or imbibition as activated, then the reservoirs and the
+        trapped phases updated."""
+        self._model().invasion(self.bndCondValue)
+
+    def getSaturation(self, isSideBoundaryIncluded: bool = False) -> float:
+        """Wetting saturation of the packing: wetting pore-body volume over pore-body volume,
+        the pores on pressure boundaries left out and, unless ``isSideBoundaryIncluded``, the
+        pores touching any boundary."""
+        return self._model().saturation(bool(isSideBoundaryIncluded))
+
+    def getMinDrainagePc(self) -> float:
+        """The smallest capillary pressure at which one more pore drains (0: none can)."""
+        return self._model().minDrainagePc()
+
+    def getMaxImbibitionPc(self) -> float:
+        """The largest capillary pressure at which one more pore imbibes (0: none can)."""
+        return self._model().maxImbibitionPc()
+
+    def getPcSwCurve(self, pcs, isSideBoundaryIncluded: bool = False) -> np.ndarray:
+        """Talus: the saturation after invading at each capillary pressure of ``pcs`` in turn
+        (the non-wetting reservoir kept at bndCondValue[3], the wetting one set to
+        bndCondValue[3] - pc), as (pc, Sw) rows."""
+        model = self._model()
+        values = self.bndCondValue
+        curve = []
+        for pc in pcs:
+            values[2] = values[3] - float(pc)
+            model.invasion(values)
+            curve.append((float(pc), model.saturation(bool(isSideBoundaryIncluded))))
+        self.bndCondValue = values
+        return np.array(curve)
+
+    # --- per-pore getters (Yade's) ------------------------------------------------------------
+    def getCellSaturation(self, cell: int) -> float:
+        return float(self._model().saturations()[cell])
+
+    def getCellIsWRes(self, cell: int) -> bool:
+        return bool(self._model().flags("isWRes")[cell])
+
+    def getCellIsNWRes(self, cell: int) -> bool:
+        return bool(self._model().flags("isNWRes")[cell])
+
+    def getCellIsTrapW(self, cell: int) -> bool:
+        return bool(self._model().flags("isTrapW")[cell])
+
+    def getCellIsTrapNW(self, cell: int) -> bool:
+        return bool(self._model().flags("isTrapNW")[cell])
+
+    def getCellInSphereRadius(self, cell: int) -> float:
+        """Radius of the sphere inscribed in pore ``cell`` (its body radius)."""
+        return float(self._model().bodyRadii()[cell])
+
+    def getPoreThroatRadiusList(self, cell: int) -> list[float]:
+        """Entry radii of the four throats of pore ``cell`` (0 across a facet with no pore)."""
+        return [self.getPoreThroatRadius(cell, n) if n >= 0 else 0.0 for n in self.getNeighbors(cell)]
+
+    def getPoreThroatRadius(self, cell1: int, cell2: int) -> float:
+        """Entry radius of the throat between pores ``cell1`` and ``cell2``."""
+        pairs = self._flow.throatPores()
+        hit = np.nonzero(((pairs[:, 0] == cell1) & (pairs[:, 1] == cell2)) | ((pairs[:, 0] == cell2) & (pairs[:, 1] == cell1)))[0]
+        if len(hit) == 0:
+            raise ValueError(f"{_OWNER}.getPoreThroatRadius: pores {cell1} and {cell2} are not neighbours")
+        return float(self._model().throatRadii()[hit[0]])
+
+    def getMSPRcByPosRadius(self, position1, radius1, position2, radius2, position3, radius3) -> float:
+        """The MS-P entry radius of the throat between three spheres (Yade's)."""
+        return _flow.mspRadius(*_triplet(position1, radius1, position2, radius2, position3, radius3))
+
+    def getEffRcByPosRadius(self, position1, radius1, position2, radius2, position3, radius3) -> float:
+        """The radius of the circle inscribed between three spheres in their plane (Yade's)."""
+        return _flow.inscribedRadius(*_triplet(position1, radius1, position2, radius2, position3, radius3))
+
+    @property
+    def cellSaturations(self) -> np.ndarray:
+        """Talus: the saturation of every pore."""
+        return self._model().saturations()
+
+    @property
+    def cellInSphereRadii(self) -> np.ndarray:
+        """Talus: the body radius of every pore."""
+        return self._model().bodyRadii()
+
+    @property
+    def throatEntryRadii(self) -> np.ndarray:
+        """Talus: the entry radius of every throat (index as throatPores; -1: closed)."""
+        return self._model().throatRadii()
+
+    @property
+    def phasePressures(self) -> np.ndarray:
+        """Talus: the pressure of every pore's phase."""
+        return self._model().pressures()
+
+    # --- forces and output --------------------------------------------------------------------
+    def computeCapillaryForce(self, addForces: bool = False, permanently: bool = False):
+        """The forces of the phase pressures on the spheres and walls (Yade's scheme: each
+        pore's pressure on the sphere sectors in its facets plus its share of the facet's fluid
+        area); read them with ``fluidForce``. ``addForces`` adds them to the scene's bodies for
+        the next step (``permanently``: as permanent forces)."""
+        forces = self._model().capillaryForces()
+        ids = self._flow.vertexIds()
+        self._capillary = {int(ids[k]): forces[k] for k in range(6, len(forces))}
+        if addForces:
+            from talus.dem import O
+            scene = self._scene or O
+            for body, f in self._capillary.items():
+                if permanently:
+                    scene.forces.setPermF(body, tuple(f))
+                else:
+                    scene.forces.addF(body, tuple(f))
+            for k, body in enumerate(self._wall_ids(scene)):
+                if body >= 0:
+                    (scene.forces.setPermF if permanently else scene.forces.addF)(body, tuple(forces[k]))
+
+    def fluidForce(self, id: int):
+        """Capillary force on sphere ``id`` from the last computeCapillaryForce (before any:
+        FlowEngine's fluid force of the single-phase solve)."""
+        if self._capillary is None:
+            return super().fluidForce(id)
+        if id not in self._capillary:
+            return (0.0, 0.0, 0.0)  # a wall or a sphere out of the network, as Yade's zero force
+        return tuple(self._capillary[id])
+
+    def savePhaseVtk(self, folder: str = "./phaseVtk", withBoundaries: bool = True) -> str:
+        """ParaView file ``<folder>/out_<n>.vtk`` (n counts the calls, as Yade): one tetrahedron
+        per pore with cell data saturation, pressure, Pcondition; boundary pores (with
+        ``withBoundaries``) drawn with their wall vertices at the projection of the pore's
+        spheres on the wall. Returns the path."""
+        model = self._model()
+        os.makedirs(folder, exist_ok=True)
+        path = os.path.join(folder, f"out_{self._vtkCount}.vtk")
+        self._vtkCount += 1
+        walls = self.boundaryPositions()
+        cells, points = [], []
+        for c, vertices in enumerate(self._flow.poreVertexIds()):
+            real = [self._spheres[int(v)] for v in vertices if v >= 6]
+            if len(real) < 4 and (not withBoundaries or not real):
+                continue
+            centre = np.mean(real, axis=0)
+            for v in vertices:
+                if v >= 6:
+                    points.append(self._spheres[int(v)])
+                else:
+                    projected = centre.copy()
+                    projected[int(v) // 2] = walls[int(v)]
+                    points.append(projected)
+            cells.append(c)
+        sat, pressure, imposed = model.saturations(), model.pressures(), model.flags("Pcondition")
+        with open(path, "w") as out:
+            out.write("# vtk DataFile Version 3.0\nTalus TwoPhaseFlowEngine phases\nASCII\nDATASET UNSTRUCTURED_GRID\n")
+            out.write(f"POINTS {len(points)} double\n")
+            out.writelines(f"{p[0]:.9g} {p[1]:.9g} {p[2]:.9g}\n" for p in points)
+            out.write(f"CELLS {len(cells)} {5 * len(cells)}\n")
+            out.writelines(f"4 {4 * k} {4 * k + 1} {4 * k + 2} {4 * k + 3}\n" for k in range(len(cells)))
+            out.write(f"CELL_TYPES {len(cells)}\n" + "10\n" * len(cells))
+            out.write(f"CELL_DATA {len(cells)}\n")
+            for name, values in (("saturation", sat), ("pressure", pressure), ("Pcondition", imposed)):
+                out.write(f"SCALARS {name} double 1\nLOOKUP_TABLE default\n")
+                out.writelines(f"{values[c]:.9g}\n" for c in cells)
+        return path
+
+    def getClusters(self):
+        raise NotImplementedError(f"{_OWNER}.getClusters: the wetting clusters and their interfaces (Yade's "
+                                  "PhaseCluster, used by the dynamic injection of TwoPhaseFlowInjection.py) are not "
+                                  "implemented in Talus yet")
+
+    def clusterOutvadePore(self, *args, **kwargs):
+        self.getClusters()
+
+
+class UnsaturatedEngine(TwoPhaseFlowEngine):
+    """Yade's UnsaturatedEngine as its drainage script uses it (initialization, invasion,
+    getSaturation, savePhaseVtk, computeCapillaryForce, fluidForce): the same quasi-static
+    model as TwoPhaseFlowEngine."""

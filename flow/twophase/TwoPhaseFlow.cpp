@@ -1,0 +1,316 @@
+#include "flow/twophase/TwoPhaseFlow.h"
+
+#include "flow/InputChecks.h"
+#include "flow/pore/PoreFlow.h"
+#include "flow/twophase/CapillaryForce.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace talus::flow::twophase
+{
+namespace
+{
+constexpr const char* kOwner = "TwoPhaseFlowEngine";
+constexpr std::size_t kWetting = 2;    // boundary of the wetting reservoir (ymin)
+constexpr std::size_t kNonWetting = 3; // boundary of the non-wetting reservoir (ymax)
+
+void checkSurfaceTension(double gamma)
+{
+  checks::requireFinite(gamma, kOwner, "surfaceTension");
+  checks::require(gamma >= 0, kOwner, "surfaceTension", "must be >= 0, got " + checks::str(gamma));
+}
+
+void checkValues(const std::array<double, kBoundaries>& values)
+{
+  for (double v : values)
+    checks::requireFinite(v, kOwner, "bndCondValue");
+}
+} // namespace
+
+void TwoPhaseFlow::setParameters(const TwoPhaseParameters& params)
+{
+  checkSurfaceTension(params.surfaceTension);
+  entryPressureMethod(params.entryPressureMethod);
+  params_ = params;
+}
+
+void TwoPhaseFlow::initialize(const pore::PoreNetwork& net, const TwoPhaseParameters& params,
+                              const std::array<bool, kBoundaries>& bndCondIsPressure,
+                              const std::array<double, kBoundaries>& bndCondValue)
+{
+  setParameters(params);
+  const EntryPressureMethod method = entryPressureMethod(params.entryPressureMethod);
+  checks::require(bndCondIsPressure[kWetting] && bndCondIsPressure[kNonWetting], kOwner, "bndCondIsPressure",
+                  "must impose the pressure on boundaries 2 (ymin, the wetting reservoir) and 3 (ymax, the "
+                  "non-wetting reservoir), as Yade's TwoPhaseFlowEngine assumes");
+  checkValues(bndCondValue);
+  if (net.periodic)
+    throw std::invalid_argument("TwoPhaseFlowEngine: periodic networks are not supported");
+  isPressure_ = bndCondIsPressure;
+  bnd_ = bndCondValue;
+
+  throatRadius_ = throatEntryRadii(net, method, params.isInvadeBoundary);
+  bodyRadius_ = poreBodyRadii(net);
+  const std::size_t n = net.pores.size();
+  bodyVolume_.resize(n);
+  neighbours_.resize(n);
+  throats_.resize(n);
+  boundaryPore_.resize(n);
+  for (std::size_t c = 0; c < n; ++c)
+  {
+    const pore::Pore& p = net.pores[c];
+    // Yade's pore-body volume: |cell volume| - |solid volume in the cell|
+    bodyVolume_[c] = std::abs(p.volume) - std::abs(p.volume - p.voidVolume);
+    neighbours_[c] = p.neighbours;
+    throats_[c] = p.throats;
+    boundaryPore_[c] = p.nFictitious > 0 ? 1 : 0;
+  }
+  boundaryPores_ = net.boundaryPores;
+  poreVertices_.resize(n);
+  for (std::size_t c = 0; c < n; ++c)
+    poreVertices_[c] = net.pores[c].vertices;
+  nVertices_ = net.vertices.size();
+  unitForces_ = pore::unitForceVectors(net, solidLineShares(net));
+
+  pores_.assign(n, PoreState{});
+  for (std::size_t k = 0; k < kBoundaries; ++k)
+    if (bndCondIsPressure[k])
+      for (int c : boundaryPores_[k])
+      {
+        pores_[static_cast<std::size_t>(c)].imposed = true;
+        pores_[static_cast<std::size_t>(c)].pressure = bndCondValue[k];
+      }
+  for (int c : boundaryPores_[kWetting])
+    pores_[static_cast<std::size_t>(c)] = {1, bndCondValue[kWetting], true, true, false, false, false, 0};
+  for (int c : boundaryPores_[kNonWetting])
+    pores_[static_cast<std::size_t>(c)] = {0, bndCondValue[kNonWetting], true, false, true, false, false, 0};
+  for (PoreState& s : pores_)
+    if (!s.imposed)
+    {
+      s.saturation = params.drainageFirst ? 1 : 0;
+      s.pressure = bndCondValue[params.drainageFirst ? kWetting : kNonWetting];
+      s.wReservoir = params.drainageFirst;
+      s.nwReservoir = !params.drainageFirst;
+    }
+}
+
+void TwoPhaseFlow::applyPressures()
+{
+  for (std::size_t k = 0; k < kBoundaries; ++k)
+    if (isPressure_[k])
+      for (int c : boundaryPores_[k])
+        pores_[static_cast<std::size_t>(c)].pressure = bnd_[k];
+  for (PoreState& s : pores_)
+  {
+    if (s.wReservoir)
+      s.pressure = bnd_[kWetting];
+    if (s.nwReservoir)
+      s.pressure = bnd_[kNonWetting];
+    if (params_.isPhaseTrapped)
+    {
+      if (s.trappedW)
+        s.pressure = bnd_[kNonWetting] - s.trapCapillaryPressure;
+      if (s.trappedNW)
+        s.pressure = bnd_[kWetting] + s.trapCapillaryPressure;
+    }
+  }
+}
+
+void TwoPhaseFlow::invadeFrom(int start)
+{
+  const double gamma = params_.surfaceTension;
+  std::vector<int> stack{start};
+  while (!stack.empty())
+  {
+    const auto c = static_cast<std::size_t>(stack.back());
+    stack.pop_back();
+    const double p = pores_[c].pressure;
+    const double s = pores_[c].saturation;
+    for (std::size_t f = 0; f < 4; ++f)
+    {
+      const int j = neighbours_[c][f];
+      if (j < 0)
+        continue;
+      PoreState& other = pores_[static_cast<std::size_t>(j)];
+      const double r = throatRadius_[static_cast<std::size_t>(throats_[c][f])];
+      if (other.imposed || r < 0)
+        continue;
+      const double throatPc = gamma / r;
+      const double bodyPc = gamma / bodyRadius_[static_cast<std::size_t>(j)];
+      bool invaded = false;
+      if (other.saturation == s)
+      {
+        // a trapped pocket of the same phase joins the invading one
+        if (other.pressure != p && (other.trappedW || other.trappedNW))
+        {
+          other.pressure = p;
+          stack.push_back(j);
+        }
+        continue;
+      }
+      if (other.saturation > s) // drainage: the non-wetting phase enters past both entry pressures
+        invaded = p - other.pressure > throatPc && p - other.pressure > bodyPc;
+      else // imbibition: the wetting phase returns below both
+        invaded = other.pressure - p < bodyPc && other.pressure - p < throatPc;
+      if (invaded)
+      {
+        other.pressure = p;
+        other.saturation = s;
+        if (params_.recursiveInvasion)
+          stack.push_back(j);
+      }
+    }
+  }
+}
+
+void TwoPhaseFlow::floodReservoir(int k, double phase)
+{
+  const bool wetting = phase == 1;
+  std::vector<int> stack(boundaryPores_[static_cast<std::size_t>(k)]);
+  while (!stack.empty())
+  {
+    const auto c = static_cast<std::size_t>(stack.back());
+    stack.pop_back();
+    for (int j : neighbours_[c])
+    {
+      if (j < 0)
+        continue;
+      PoreState& s = pores_[static_cast<std::size_t>(j)];
+      if (s.imposed || s.saturation != phase || (wetting ? s.wReservoir : s.nwReservoir))
+        continue;
+      s.wReservoir = wetting;
+      s.nwReservoir = !wetting;
+      (wetting ? s.trappedW : s.trappedNW) = false;
+      s.trapCapillaryPressure = 0;
+      stack.push_back(j);
+    }
+  }
+}
+
+void TwoPhaseFlow::updateReservoirs(double pc)
+{
+  if (!params_.isPhaseTrapped)
+  {
+    // every pore stays connected to the reservoir whose pressure it has
+    for (PoreState& s : pores_)
+      if (s.pressure == bnd_[kWetting] || s.pressure == bnd_[kNonWetting])
+      {
+        s.wReservoir = s.pressure == bnd_[kWetting];
+        s.nwReservoir = !s.wReservoir;
+      }
+    return;
+  }
+  for (PoreState& s : pores_)
+    if (!s.imposed)
+      s.wReservoir = s.nwReservoir = false;
+  floodReservoir(kWetting, 1.0);
+  floodReservoir(kNonWetting, 0.0);
+  for (PoreState& s : pores_)
+  {
+    if (s.wReservoir || s.nwReservoir || s.trappedW || s.trappedNW)
+      continue;
+    s.trapCapillaryPressure = pc;
+    s.trappedW = s.saturation == 1;
+    s.trappedNW = s.saturation == 0;
+  }
+  for (PoreState& s : pores_)
+  {
+    if (s.trappedW)
+      s.pressure = bnd_[kNonWetting] - s.trapCapillaryPressure;
+    if (s.trappedNW)
+      s.pressure = bnd_[kWetting] + s.trapCapillaryPressure;
+  }
+}
+
+void TwoPhaseFlow::invasion(const std::array<double, kBoundaries>& bndCondValue)
+{
+  if (!initialized())
+    throw std::logic_error("TwoPhaseFlowEngine.invasion: call initialization() first");
+  checkValues(bndCondValue);
+  bnd_ = bndCondValue;
+  applyPressures();
+  if (params_.isDrainageActivated)
+    for (std::size_t c = 0; c < pores_.size(); ++c)
+      if (pores_[c].nwReservoir)
+        invadeFrom(static_cast<int>(c));
+  if (params_.isImbibitionActivated)
+    for (std::size_t c = 0; c < pores_.size(); ++c)
+      if (pores_[c].wReservoir)
+        invadeFrom(static_cast<int>(c));
+  updateReservoirs(bnd_[kNonWetting] - bnd_[kWetting]);
+}
+
+double TwoPhaseFlow::saturation(bool sideBoundaryIncluded) const
+{
+  double pores = 0, wetting = 0;
+  for (std::size_t c = 0; c < pores_.size(); ++c)
+  {
+    if (pores_[c].imposed || (boundaryPore_[c] && !sideBoundaryIncluded))
+      continue;
+    pores += bodyVolume_[c];
+    if (pores_[c].saturation > 0)
+      wetting += bodyVolume_[c] * pores_[c].saturation;
+  }
+  return wetting / pores;
+}
+
+double TwoPhaseFlow::minDrainagePc() const
+{
+  const double gamma = params_.surfaceTension;
+  double next = std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < pores_.size(); ++c)
+  {
+    if (!pores_[c].nwReservoir)
+      continue;
+    for (std::size_t f = 0; f < 4; ++f)
+    {
+      const int j = neighbours_[c][f];
+      if (j < 0 || pores_[static_cast<std::size_t>(j)].imposed || !pores_[static_cast<std::size_t>(j)].wReservoir)
+        continue;
+      const double r = throatRadius_[static_cast<std::size_t>(throats_[c][f])];
+      if (r > 0)
+        next = std::min(next, std::max(gamma / r, gamma / bodyRadius_[static_cast<std::size_t>(j)]));
+    }
+  }
+  return std::isinf(next) ? 0.0 : next;
+}
+
+double TwoPhaseFlow::maxImbibitionPc() const
+{
+  const double gamma = params_.surfaceTension;
+  double next = -std::numeric_limits<double>::infinity();
+  for (std::size_t c = 0; c < pores_.size(); ++c)
+  {
+    if (!pores_[c].wReservoir)
+      continue;
+    for (std::size_t f = 0; f < 4; ++f)
+    {
+      const int j = neighbours_[c][f];
+      if (j < 0 || pores_[static_cast<std::size_t>(j)].imposed || !pores_[static_cast<std::size_t>(j)].nwReservoir)
+        continue;
+      const double r = throatRadius_[static_cast<std::size_t>(throats_[c][f])];
+      if (r > 0)
+        next = std::max(next, std::min(gamma / bodyRadius_[static_cast<std::size_t>(j)], gamma / r));
+    }
+  }
+  return std::isinf(next) ? 0.0 : next;
+}
+
+std::vector<double> TwoPhaseFlow::pressures() const
+{
+  std::vector<double> p(pores_.size());
+  std::transform(pores_.begin(), pores_.end(), p.begin(), [](const PoreState& s) { return s.pressure; });
+  return p;
+}
+std::vector<pore::Vec3> TwoPhaseFlow::capillaryForces() const
+{
+  std::vector<pore::Vec3> f(nVertices_, pore::Vec3::Zero());
+  for (std::size_t c = 0; c < pores_.size(); ++c)
+    for (std::size_t k = 0; k < 4; ++k)
+      f[static_cast<std::size_t>(poreVertices_[c][k])] += pores_[c].pressure * unitForces_[c][k];
+  return f;
+}
+} // namespace talus::flow::twophase

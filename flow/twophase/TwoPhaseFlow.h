@@ -1,0 +1,111 @@
+#pragma once
+// Quasi-static two-phase flow on the pore network (Yade's TwoPhaseFlowEngine, the "2PFV" model of
+// Yuan & Chareyre 2017): each pore holds one phase, wetting (saturation 1) or non-wetting (0); a
+// throat lets the non-wetting phase into a wetting pore when the pressure difference across it
+// exceeds the throat's and the pore body's entry pressures, surfaceTension / radius (drainage),
+// and the wetting phase back when it falls below both (imbibition). The wetting reservoir is
+// boundary 2 (ymin) and the non-wetting one boundary 3 (ymax), as in Yade. With isPhaseTrapped a
+// phase cut from its reservoir is trapped at the capillary pressure of the moment it was cut.
+#include "flow/pore/PoreNetwork.h"
+#include "flow/twophase/EntryRadius.h"
+
+#include <array>
+#include <vector>
+
+namespace talus::flow::twophase
+{
+using pore::kBoundaries;
+
+/// TwoPhaseFlowEngine's options, Yade's names and defaults.
+struct TwoPhaseParameters
+{
+  double surfaceTension = 0.0728; ///< water-air at 20 °C, N/m
+  int entryPressureMethod = 1;    ///< see EntryPressureMethod
+  bool isPhaseTrapped = true;     ///< false: both phases always connected to their reservoirs
+  bool isInvadeBoundary = true;   ///< false (MS-P): throats between boundary pores closed
+  bool drainageFirst = true;      ///< start saturated with the wetting phase (else non-wetting)
+  bool isDrainageActivated = true;
+  bool isImbibitionActivated = false;
+  bool recursiveInvasion = true;  ///< false: one pore deep per invasion()
+};
+
+/// The state of one pore.
+struct PoreState
+{
+  double saturation = 1;
+  double pressure = 0;
+  bool imposed = false;  ///< on a pressure boundary (Yade's Pcondition): never invaded
+  bool wReservoir = false;
+  bool nwReservoir = false;
+  bool trappedW = false;
+  bool trappedNW = false;
+  double trapCapillaryPressure = 0; ///< Pn - Pw when the phase was cut from its reservoir
+};
+
+class TwoPhaseFlow
+{
+public:
+  /// Entry radii, pore bodies and the initial phases of `net` (geometry computed; Yade's
+  /// initialization). bndCondIsPressure[2] and [3] must be set: the reservoirs.
+  /// @throws std::invalid_argument naming the parameter (surfaceTension <= 0 or not finite,
+  ///         entryPressureMethod, the reservoirs not pressure boundaries, non-finite bndCondValue)
+  void initialize(const pore::PoreNetwork& net, const TwoPhaseParameters& params,
+                  const std::array<bool, kBoundaries>& bndCondIsPressure,
+                  const std::array<double, kBoundaries>& bndCondValue);
+  /// One invasion at the boundary values (capillary pressure bndCondValue[3] - bndCondValue[2]):
+  /// drainage from the non-wetting reservoir then imbibition from the wetting one, as activated,
+  /// then the reservoirs and trapped phases updated (Yade's invasion).
+  void invasion(const std::array<double, kBoundaries>& bndCondValue);
+  /// Wetting saturation: wetting pore-body volume over pore-body volume, pores on pressure
+  /// boundaries left out, boundary pores too unless `sideBoundaryIncluded` (Yade's getSaturation).
+  [[nodiscard]] double saturation(bool sideBoundaryIncluded) const;
+  /// The smallest capillary pressure that drains one more pore (0 when none can; Yade's getMinDrainagePc).
+  [[nodiscard]] double minDrainagePc() const;
+  /// The largest capillary pressure at which one more pore imbibes (0 when none; getMaxImbibitionPc).
+  [[nodiscard]] double maxImbibitionPc() const;
+
+  [[nodiscard]] bool initialized() const { return !pores_.empty(); }
+  [[nodiscard]] const std::vector<PoreState>& pores() const { return pores_; }
+  [[nodiscard]] const std::vector<double>& throatRadii() const { return throatRadius_; }
+  [[nodiscard]] const std::vector<double>& bodyRadii() const { return bodyRadius_; }
+  [[nodiscard]] const std::vector<double>& bodyVolumes() const { return bodyVolume_; }
+  /// Pore pressures (the phase pressure of each pore).
+  [[nodiscard]] std::vector<double> pressures() const;
+  /// Force of the phase pressures on each vertex of the network (0..5 the walls, then the
+  /// spheres; Yade's computeCapillaryForce, see CapillaryForce.h).
+  [[nodiscard]] std::vector<pore::Vec3> capillaryForces() const;
+  [[nodiscard]] const TwoPhaseParameters& parameters() const { return params_; }
+  /// Change the options between invasions (surfaceTension scales the entry pressures; the
+  /// entry-pressure method and isInvadeBoundary act at initialize only, as in Yade).
+  /// @throws std::invalid_argument as initialize
+  void setParameters(const TwoPhaseParameters& params);
+
+private:
+  /// Spread the phase of pore `start` to its neighbours as the entry pressures allow.
+  void invadeFrom(int start);
+  /// Reservoir flags from connectivity to boundaries 2 and 3 (isPhaseTrapped) or from the
+  /// pressures (not trapped), then the newly trapped phases at capillary pressure pc.
+  void updateReservoirs(double pc);
+  /// Pressures from the reservoir and trapped flags.
+  void applyPressures();
+  /// The pores a reservoir's phase reaches from the pores of boundary k through pores of
+  /// saturation `phase` (not imposed), flagged as that reservoir.
+  void floodReservoir(int k, double phase);
+
+  // the network's connectivity, copied: the network may be rebuilt after initialize
+  std::vector<std::array<int, 4>> neighbours_; ///< pore across each facet, -1: none
+  std::vector<std::array<int, 4>> throats_;    ///< throat across each facet, -1: none
+  std::vector<char> boundaryPore_;             ///< has a boundary vertex (Yade's isFictious)
+  std::array<std::vector<int>, kBoundaries> boundaryPores_;
+  std::vector<std::array<int, 4>> poreVertices_;
+  std::size_t nVertices_ = 0;
+  std::vector<std::array<pore::Vec3, 4>> unitForces_; ///< force on each pore vertex per unit pressure
+  TwoPhaseParameters params_;
+  std::array<double, kBoundaries> bnd_{};
+  std::array<bool, kBoundaries> isPressure_{};
+  std::vector<PoreState> pores_;
+  std::vector<double> throatRadius_;
+  std::vector<double> bodyRadius_;
+  std::vector<double> bodyVolume_;
+};
+} // namespace talus::flow::twophase

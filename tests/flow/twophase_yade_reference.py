@@ -1,0 +1,71 @@
+# Yade side of the two-phase tests (tests/flow/test_twophase.py): run with
+#   cd tests/flow && yade -n -x twophase_yade_reference.py
+# On the 400-sphere cloud of data/pore_packing.txt in the walls of its bounding box, Yade's
+# TwoPhaseFlowEngine (wetting reservoir ymin, non-wetting ymax at 0, surfaceTension 0.0728) for
+# each entry-pressure method and with and without trapping: the saturation after invasion() at
+# each capillary pressure of a drainage then (MS-P, trapped) an imbibition; the capillary forces
+# (computeCapillaryForce, fluidForce) of a few spheres mid-drainage; the saturation with the
+# boundary pores (getSaturation(True)) after the drainage; the pore-body radii of all pores; and the MS-P and inscribed
+# radii of a few sphere triplets (getMSPRcByPosRadius, getEffRcByPosRadius). Written as JSON to
+# data/twophase_yade_reference.json.
+import json
+
+spheres = [tuple(map(float, l.split())) for l in open("data/pore_packing.txt") if l.strip() and not l.startswith("#")]
+lo = [min(s[k] - s[3] for s in spheres) for k in range(3)]
+hi = [max(s[k] + s[3] for s in spheres) for k in range(3)]
+GAMMA = 0.0728
+PCS = [GAMMA / 0.1 * (0.2 + 0.1 * i) for i in range(40)]  # pc d / gamma from 0.2 to 4.1, d the mean diameter
+FORCE_STEP = 20                                            # forces after this many drainage steps
+FORCE_BODIES = [6, 50, 100, 200, 300, 405]
+
+
+def engine(method, trapped):
+    O.reset()
+    O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
+    for x, y, z, r in spheres:
+        O.bodies.append(sphere((x, y, z), r, fixed=True))
+    tp = TwoPhaseFlowEngine()
+    tp.bndCondIsPressure = [0, 0, 1, 1, 0, 0]
+    tp.bndCondValue = [0, 0, 0, 0, 0, 0]
+    tp.surfaceTension = GAMMA
+    tp.entryPressureMethod = method
+    tp.isPhaseTrapped = trapped
+    tp.initialization()
+    return tp
+
+
+tp = engine(1, True)
+bodyRadii = {" ".join(map(str, sorted(tp.getVertices(i)))): tp.getCellInSphereRadius(i) for i in range(tp.nCells())}
+runs = {}
+forces = {}
+for method in (1, 2, 3):
+    for trapped in (True, False):
+        tp = engine(method, trapped)
+        drainage, imbibition = [], []
+        for step, pc in enumerate(PCS):
+            tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
+            tp.invasion()
+            drainage.append(tp.getSaturation(False))
+            if method == 1 and trapped and step + 1 == FORCE_STEP:
+                tp.computeCapillaryForce()
+                forces = {str(b): list(tp.fluidForce(b)) for b in FORCE_BODIES}
+        sideIncluded = tp.getSaturation(True)
+        if method == 1:
+            tp.isDrainageActivated = False
+            tp.isImbibitionActivated = True
+            for pc in reversed(PCS):
+                tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
+                tp.invasion()
+                imbibition.append(tp.getSaturation(False))
+        runs[f"{method}-{int(trapped)}"] = {"drainage": drainage, "imbibition": imbibition,
+                                           "sideIncluded": sideIncluded, "nCells": tp.nCells()}
+
+triplets = [((0, 0, 0), 1.0, (2, 0, 0), 1.0, (1, 3 ** 0.5, 0), 1.0),
+            ((0, 0, 0), 1.0, (2.2, 0, 0), 0.9, (1.1, 1.9, 0.2), 1.1),
+            ((0, 0, 0), 0.5, (1.4, 0.1, 0), 0.7, (0.6, 1.3, 0), 0.6)]
+radii = [{"msp": tp.getMSPRcByPosRadius(Vector3(*a), ra, Vector3(*b), rb, Vector3(*c), rc),
+          "inscribed": tp.getEffRcByPosRadius(Vector3(*a), ra, Vector3(*b), rb, Vector3(*c), rc),
+          "spheres": [a, ra, b, rb, c, rc]} for a, ra, b, rb, c, rc in triplets]
+json.dump({"surfaceTension": GAMMA, "pcs": PCS, "runs": runs, "forceStep": FORCE_STEP, "forces": forces,
+           "triplets": radii, "bodyRadii": bodyRadii}, open("data/twophase_yade_reference.json", "w"), indent=1)
+print("written", {k: v["drainage"][-1] for k, v in runs.items()})
