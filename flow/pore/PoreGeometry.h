@@ -20,18 +20,27 @@ struct ConductanceParameters
 
 /// Solid angle of the triangle (a, b, c) seen from `s` (Van Oosterom & Strackee; as Yade, the
 /// absolute value of 2 atan(ratio), i.e. correct below 2 pi steradians / 2).
+/// @param s the viewpoint
+/// @param a, b, c the triangle's vertices
+/// @return the solid angle (sr), >= 0
 double solidAngle(const Vec3& s, const Vec3& a, const Vec3& b, const Vec3& c);
 
 /// Pore volumes, void volumes and the throat geometry (areas, fluid areas, hydraulic radii,
 /// lengths). Needs net.boundaries' flow conditions.
+/// @param net the triangulated network, its pores and throats written
+/// @param slipBoundary no-flux walls not counted as solid surface
 void computeGeometry(PoreNetwork& net, bool slipBoundary);
 
 /// Pore volumes (and void volumes if `voids`: the sphere sectors' solid angles are most of the
 /// cost) from the current vertex and boundary positions, the mesh being kept between remeshes
 /// while the spheres move (Yade's updateVolumes).
+/// @param net the network, its pore volumes written
+/// @param voids update the void volumes too
 void updatePoreVolumes(PoreNetwork& net, bool voids);
 
 /// Throat conductances k = permeabilityFactor * A_f * (2 R_h)^2 / (8 mu L), clamped as Yade does.
-/// @returns the reference value the clamping used (Yade's "globalK")
+/// @param net the network, its throats' conductances written
+/// @param params Yade's FlowEngine options that enter them
+/// @return the reference value the clamping used (Yade's "globalK")
 double computeConductances(PoreNetwork& net, const ConductanceParameters& params);
 } // namespace talus::flow::pore

@@ -12,6 +12,10 @@
 
 namespace talus::flow::pore
 {
-/// Write both files. @returns the two paths. @throws std::runtime_error if a file cannot be written
+/// Write both files.
+/// @param flow the solved pore flow
+/// @param base the files' path without the ending
+/// @return the two paths
+/// @throws std::runtime_error if a file cannot be written
 std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base);
 } // namespace talus::flow::pore
