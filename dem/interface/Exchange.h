@@ -3,6 +3,7 @@
 #include "dem/step/CallbackEngine.h"
 #include "dem/core/Scene.h"
 
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <span>
@@ -17,6 +18,7 @@ namespace talus::dem
 /// - read particle state as arrays indexed by body id (spans over the core's own storage, no
 ///   copies; valid until bodies are added): positions, velocities, angular velocities, radii,
 ///   masses, and which ids are live spheres; the contact list, read only;
+/// - change the spheres' radii (`growSpheres`: thermal expansion);
 /// - apply forces and torques: `persistentForces()` keeps a value until the coupling changes it
 ///   (Yade's permanent forces), `stepForces()` is this step's accumulator, reset by the
 ///   ForceResetter, to be added to from a hook placed after it;
@@ -52,6 +54,33 @@ public:
   /// The contact list, read only (pairs, overlaps, forces): for exchanges through the contacts,
   /// such as heat conduction between particles.
   [[nodiscard]] const Contacts& contacts() const { return scene_.contacts; }
+
+  /// Add `change[i]` to the radius of each live sphere i (one value per body id, the others
+  /// ignored) at fixed positions and masses (thermal expansion: Yade keeps the mass). The next
+  /// contact pass sees the new overlaps; contacts are re-detected with the new sizes.
+  /// @throws std::invalid_argument for a size mismatch or a radius that would not stay positive
+  void growSpheres(std::span<const double> change)
+  {
+    Bodies& b = scene_.bodies;
+    if (change.size() != b.size())
+      throw std::invalid_argument("growSpheres: " + std::to_string(change.size()) + " radius changes for " +
+                                  std::to_string(b.size()) + " bodies");
+    bool changed = false;
+    for (std::size_t i = 0; i < b.size(); ++i) // checked first: a refusal changes nothing
+      if (isSphere(static_cast<BodyId>(i)) && change[i] != 0)
+      {
+        if (!(b.radius[i] + change[i] > 0) || !std::isfinite(change[i]))
+          throw std::invalid_argument("growSpheres: sphere " + std::to_string(i) + " of radius " +
+                                      std::to_string(b.radius[i]) + " cannot change by " + std::to_string(change[i]));
+        changed = true;
+      }
+    if (!changed)
+      return;
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (isSphere(static_cast<BodyId>(i)))
+        b.radius[i] += change[i];
+    ++scene_.bodiesVersion;
+  }
 
   [[nodiscard]] std::span<Vec3> persistentForces() { return scene_.bodies.extForce; }
   [[nodiscard]] std::span<Vec3> persistentTorques() { return scene_.bodies.extTorque; }

@@ -154,6 +154,9 @@ void FlowCoupling::step()
   std::size_t live = 0;
   for (std::size_t i = 0; i < nBodies; ++i)
     live += exchange_.isSphere(static_cast<dem::BodyId>(i)) ? 1 : 0;
+  // the step first: a compressible fluid's storage term enters the system the build sets up
+  if (exchange_.dt() > 0)
+    flow_->setTimeStep(exchange_.dt());
   // A requested rebuild, or spheres added or erased, need a new mesh before this solve. A due
   // rebuild (interval, strain, an inverted pore) is done after it instead: the old mesh still
   // gives this step's volume changes, so the fluid never loses a step of support (remeshing
@@ -166,8 +169,6 @@ void FlowCoupling::step()
   else
     move();
   ++sinceBuild_;
-  if (exchange_.dt() > 0)
-    flow_->setTimeStep(exchange_.dt());
   flow_->solve();
   const std::vector<Vec3> f = flow_->vertexForces();
   forces_.assign(nBodies, Vec3::Zero());

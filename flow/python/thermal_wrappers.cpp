@@ -1,10 +1,11 @@
 // Python bindings of the heat conduction between particles (flow/thermal/): no logic, only the
 // mapping of C++ names to Python. The typed, documented API with Yade's names is
 // talus.flow.thermal.ThermalEngine.
-#include "dem/Scene.h"
+#include "dem/core/Scene.h"
 #include "flow/thermal/ConductionSchedule.h"
 #include "flow/thermal/ParticleConduction.h"
 #include "flow/thermal/PoreHeat.h"
+#include "flow/thermal/ThermalExpansion.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -117,6 +118,38 @@ void registerThermal(py::module_& m)
       })
       .def("setTemperature", &PoreHeat::setTemperature, py::arg("pore"), py::arg("value"))
       .def("temperatureAt", &PoreHeat::temperatureAt, py::arg("x"));
+
+  py::class_<ExpansionParameters>(m, "ExpansionParameters")
+      .def(py::init<>())
+      .def_readwrite("particles", &ExpansionParameters::particles)
+      .def_readwrite("solidVolume", &ExpansionParameters::solidVolume)
+      .def_readwrite("fluid", &ExpansionParameters::fluid)
+      .def_readwrite("fluidBeta", &ExpansionParameters::fluidBeta)
+      .def_readwrite("porosityFactor", &ExpansionParameters::porosityFactor);
+
+  py::class_<ThermalExpansion, std::shared_ptr<ThermalExpansion>>(m, "ThermalExpansion")
+      .def(py::init([](const std::shared_ptr<ParticleConduction>& particles, const std::shared_ptr<talus::dem::Scene>& scene) {
+             if (!particles || !scene)
+               throw std::invalid_argument("ThermalExpansion: particles or scene is None");
+             return std::make_shared<ThermalExpansion>(*particles, talus::dem::ParticleExchange(*scene));
+           }),
+           py::arg("particles"), py::arg("scene"), py::keep_alive<1, 2>(), py::keep_alive<1, 3>())
+      .def_readwrite("params", &ThermalExpansion::params)
+      .def_readwrite("defaultAlpha", &ThermalExpansion::defaultAlpha)
+      .def("resize", &ThermalExpansion::resize)
+      .def("alphas", [](const ThermalExpansion& e) { return copy(e.alpha); })
+      .def("setAlphas", [](ThermalExpansion& e, const Array& v) { assign(e.alpha, v, "alphas"); })
+      .def("alphaAt", [](const ThermalExpansion& e, std::size_t i) { return e.alpha.at(i); })
+      .def("setAlphaAt", [](ThermalExpansion& e, std::size_t i, double v) { e.alpha.at(i) = v; })
+      .def("marks", [](const ThermalExpansion& e) { return copy(e.sphereMark); })
+      .def("setMarks", [](ThermalExpansion& e, const Array& v) { assign(e.sphereMark, v, "marks"); })
+      .def("mark", [](ThermalExpansion& e, const std::shared_ptr<PoreHeat>& fluid) { e.mark(fluid.get()); },
+           py::arg("fluid").none(true))
+      .def("apply",
+           [](ThermalExpansion& e, double span, const std::shared_ptr<PoreHeat>& fluid,
+              const std::shared_ptr<talus::flow::pore::PoreFlow>& flow) { e.apply(span, fluid.get(), flow.get()); },
+           py::arg("span"), py::arg("fluid").none(true), py::arg("flow").none(true))
+      .def("lastVolumeRates", [](const ThermalExpansion& e) { return copy(e.lastVolumeRates()); });
 
   py::class_<ConductionSchedule::Counters>(m, "ConductionCounters")
       .def(py::init<>())

@@ -1,7 +1,7 @@
 #pragma once
 // Heat conduction between spheres in contact, with one temperature per particle (the
 // conduction part of Yade's ThermalEngine; Caulk, Scholtès, Krzaczek & Chareyre 2020, CMAME).
-#include "dem/Exchange.h"
+#include "dem/interface/Exchange.h"
 #include "flow/thermal/HeatModel.h"
 
 #include <array>

@@ -126,15 +126,18 @@ void PoreHeat::computeRates()
     for (const pore::Throat& th : net.throats)
     {
       const auto a = static_cast<std::size_t>(th.pores[0]), b = static_cast<std::size_t>(th.pores[1]);
+      // Upwind, in advective form: the pore receiving the flux tends to the upstream temperature,
+      // rho Cp |q| (T_up - T). For a divergence-free flux (incompressible fluid) it equals the
+      // conservative form -sum rho Cp T_up q of every inner pore; with a compressible fluid it
+      // keeps a uniform temperature uniform where pores expel or take in fluid (the pore's heat
+      // capacity is that of its void volume, whatever fluid mass it stores).
       const double q = th.conductance * (p[a] - p[b]); // from a to b
-      const double up = q > 0 ? temperature_[a] : temperature_[b];
-      if (free(a))
-        rate_[a] -= rhoCp * up * q;
-      if (free(b))
-        rate_[b] += rhoCp * up * q;
-      const std::size_t from = q > 0 ? a : b; // explicit upwind: outflow bounds the step
-      if (free(from))
-        conductance_[from] += rhoCp * std::abs(q);
+      const std::size_t from = q > 0 ? a : b, to = q > 0 ? b : a;
+      if (free(to))
+      {
+        rate_[to] += rhoCp * std::abs(q) * (temperature_[from] - temperature_[to]);
+        conductance_[to] += rhoCp * std::abs(q); // explicit upwind: inflow bounds the step
+      }
     }
   }
   for (std::size_t i = 0; i < net.pores.size(); ++i)
@@ -203,6 +206,6 @@ std::string PoreHeat::limitingPart() const
 {
   if (particles_.stableTimeStep() <= stableStep_)
     return particles_.limitingPart();
-  return "pore " + std::to_string(limitingPore_) + ": fluid heat capacity / its exchange, conduction and outflow";
+  return "pore " + std::to_string(limitingPore_) + ": fluid heat capacity / its exchange, conduction and inflow";
 }
 } // namespace talus::flow::thermal

@@ -35,8 +35,9 @@ struct FluidHeatParameters
 /// advection and fluidConduction):
 ///
 /// 1. the rates of the current temperatures: conduction between spheres (ParticleConduction),
-///    upwind advection  -rho Cp T_up Q  through each throat (Q = k (p_i - p_j) from the solved
-///    pressures), and the sphere-fluid exchange  h A (T_pore - T_sphere)  over the spherical
+///    upwind advection  rho Cp |Q| (T_up - T)  into the pore downstream of each throat (Q =
+///    k (p_i - p_j) from the solved pressures; the conservative  -rho Cp T_up Q  for a
+///    divergence-free flux), and the sphere-fluid exchange  h A (T_pore - T_sphere)  over the spherical
 ///    triangle A = r^2 x solid angle of each sphere in each pore, h = nusseltK / (2 r);
 /// 2. spheres and pores advance with them; then fluid conduction between neighbouring inner
 ///    pores, G = fluidK x fluid area of the throat / distance between the pores' vertex centroids,
@@ -74,6 +75,8 @@ public:
   [[nodiscard]] double temperatureAt(const pore::Vec3& x);
   /// Follow the flow's network (the pore list after a remesh) and re-apply the boundaries.
   void sync();
+  /// The triangulation the temperatures belong to (null before the first sync).
+  [[nodiscard]] const void* mesh() const { return mesh_ ? mesh_->triangulation.get() : nullptr; }
 
 private:
   [[nodiscard]] bool free(std::size_t pore) const;

@@ -30,6 +30,9 @@ PLANNED_OFF = dict(advection=False, fluidConduction=False, thermoMech=False, sol
     ("bndCondIsTemperature", [1, 2, 0, 0, 0, 0], r"ThermalEngine.bndCondIsTemperature must be 6 booleans"),
     ("fluidK", -0.6, r"ThermalEngine.fluidK must be >= 0"),
     ("particleCp", "710", r"ThermalEngine.particleCp must be a number"),
+    ("particleAlpha", -1e-5, r"ThermalEngine.particleAlpha must be >= 0"),
+    ("fluidBeta", -2e-4, r"ThermalEngine.fluidBeta must be >= 0"),
+    ("porosityFactor", -0.1, r"ThermalEngine.porosityFactor must be >= 0"),
 ])
 def test_parameter_refused_naming_it(name, value, message):
     with pytest.raises((ValueError, TypeError), match=message):
@@ -39,8 +42,7 @@ def test_parameter_refused_naming_it(name, value, message):
         setattr(engine, name, value)
 
 
-@pytest.mark.parametrize("name", ["thermoMech", "solidThermoMech", "fluidThermoMech",
-                                  "useHertzMethod", "letThermalRunFlowForceUpdates", "tempDependentFluidBeta"])
+@pytest.mark.parametrize("name", ["useHertzMethod", "letThermalRunFlowForceUpdates", "tempDependentFluidBeta"])
 def test_planned_switch_refused_naming_it(name):
     with pytest.raises(NotImplementedError, match=rf"ThermalEngine.{name}: .* not implemented yet in Talus \(planned"):
         ThermalEngine(**{name: True})
@@ -83,12 +85,19 @@ def chain(thermal, n=5, radius=0.01, flow=None):
     return thermal
 
 
-def test_yade_defaults_stop_at_the_first_step_naming_the_switches():
+def test_yade_defaults_stop_at_the_first_step_naming_uniform_reynolds():
     chain(ThermalEngine())
     O.dt = 1e-3
-    with pytest.raises(NotImplementedError, match=r"thermoMech .*solidThermoMech .*set thermoMech=False, "
-                                                  r"solidThermoMech=False, fluidThermoMech=False"):
+    with pytest.raises(NotImplementedError, match=r"ThermalEngine.uniformReynolds = -1 .* not implemented"):
         O.step()
+
+
+def test_per_body_alpha_refused_naming_it():
+    thermal = chain(ThermalEngine(**PLANNED_OFF))
+    with pytest.raises(ValueError, match=r"state.alpha must be >= 0"):
+        O.bodies[1].state.alpha = -1e-5
+    O.bodies[1].state.alpha = 2e-5
+    assert O.bodies[1].state.alpha == 2e-5 and thermal.particleAlpha == 1.16e-5
 
 
 @pytest.mark.parametrize("settings, error, message", [

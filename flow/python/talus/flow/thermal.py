@@ -34,6 +34,7 @@ from __future__ import annotations
 
 import base64
 import math
+import warnings
 
 import numpy as np
 
@@ -49,24 +50,21 @@ _IMPLEMENTED = {
     "useKernMethod": False, "boundarySet": False, "delT": 0.0, "debug": False,
     "advection": True, "fluidConduction": True, "fluidK": 0.58, "fluidConductionAreaFactor": 1.0,
     "minimumFluidCondDist": 0.0, "uniformReynolds": -1.0, "ignoreFictiousConduction": False,
+    "thermoMech": True, "solidThermoMech": True, "fluidThermoMech": True,
+    "fluidBeta": 2e-4, "particleAlpha": 1.16e-5, "porosityFactor": 0.0,
 }
 # Switches of the planned physics, with what they switch on.
 _PLANNED_SWITCHES = {
-    "thermoMech": (True, "thermal expansion of the particles (radius change)"),
-    "solidThermoMech": (True, "pore volume change from the particles' expansion"),
-    "fluidThermoMech": (True, "pore pressure change from the fluid's expansion"),
     "useHertzMethod": (False, "the Hertzian contact area for the conductance"),
     "letThermalRunFlowForceUpdates": (False, "fluid force updates after thermal pressure changes"),
     "tempDependentFluidBeta": (False, "a temperature-dependent fluid expansion coefficient"),
 }
-# Numbers only the planned physics reads: accepted (and checked) so that scripts setting them run;
-# they take effect with their switch.
-_PLANNED_NUMBERS = {
-    "fluidBeta": 2e-4, "fluidBulkModulus": 0.0, "particleAlpha": 1.16e-5, "porosityFactor": 0.0,
-}
+# Accepted (and checked) so that scripts setting them run: Yade 2023.02a reads none of them either
+# (the fluid's bulk modulus that acts is FlowEngine.fluidBulkModulus).
+_PLANNED_NUMBERS = {"fluidBulkModulus": 0.0}
 _PLANNED_FLAGS = {"unboundCavityBodies": True, "flowTempBoundarySet": True}
 _NONNEGATIVE = ("particleK", "particleDensity", "fluidK", "fluidBulkModulus", "porosityFactor",
-                "fluidConductionAreaFactor", "minimumFluidCondDist")
+                "fluidConductionAreaFactor", "minimumFluidCondDist", "particleAlpha", "fluidBeta")
 _BOUNDARY_NAMES = "xmin, xmax, ymin, ymax, zmin, zmax"
 
 
@@ -171,8 +169,10 @@ class ThermalEngine(Engine):
         self._scene = scene
         self._params = _defaults()
         self._conduction = None      # the C++ state, made on first use (it needs the scene)
+        self._expansion = None       # the thermal expansion's per-body state, made with it
         self._schedule = _flow.ConductionSchedule()
         self._started = False
+        self._marked = False         # the expansion's reference temperatures are taken
         self._userSet: set[int] = set()     # bodies whose fields were set before the first step
         self._pendingState = None    # a checkpoint's state, applied once the scene is known
         self._poreHeat = None        # (FlowEngine, its pore temperatures) with advection
@@ -248,11 +248,12 @@ class ThermalEngine(Engine):
         """The C++ per-body state, made on first use with the current defaults."""
         if self._conduction is None:
             self._conduction = _flow.ParticleConduction(self._scene_()._cpp)
+            self._expansion = _flow.ThermalExpansion(self._conduction, self._scene_()._cpp)
             self._push_parameters()
             if self._pendingState is not None:
                 self._restore(self._pendingState)
                 self._pendingState = None
-        self._conduction.resize()
+        self._expansion.resize()
         return self._conduction
 
     def _push_parameters(self):
@@ -263,6 +264,13 @@ class ThermalEngine(Engine):
         c.particleDensity = p["particleDensity"]
         c.conductance = _flow.ContactConductance.Kern if p["useKernMethod"] else _flow.ContactConductance.Radii
         self._schedule.tsSafetyFactor = p["tsSafetyFactor"]
+        e = self._expansion
+        e.defaultAlpha = p["particleAlpha"]
+        expansion = e.params
+        expansion.particles = p["thermoMech"]
+        expansion.solidVolume, expansion.fluid = p["solidThermoMech"], p["fluidThermoMech"]
+        expansion.fluidBeta, expansion.porosityFactor = p["fluidBeta"], p["porosityFactor"]
+        e.params = expansion
 
     def _start(self, scene):
         """First step: refuse the planned physics left on, and give every sphere Yade's initial
@@ -287,14 +295,29 @@ class ThermalEngine(Engine):
                 raise ValueError(f"ThermalEngine.fluidK = {self._params['fluidK']}: the fluid's conductivity must be > 0 "
                                  "with advection (its Prandtl number divides by it)")
             self._flow_engine(scene, "ThermalEngine.advection")
-        c = self._state()
+        c, e = self._state(), self._expansion
         keep = np.zeros(len(c.temperatures()), dtype=bool)
         keep[[i for i in self._userSet if i < len(keep)]] = True
         for getter, setter, default in ((c.temperatures, c.setTemperatures, self._params["particleT0"]),
                                         (c.conductivities, c.setConductivities, self._params["particleK"]),
-                                        (c.heatCapacities, c.setHeatCapacities, self._params["particleCp"])):
+                                        (c.heatCapacities, c.setHeatCapacities, self._params["particleCp"]),
+                                        (e.alphas, e.setAlphas, self._params["particleAlpha"])):
             setter(np.where(keep, getter(), default))
+        if self._params["thermoMech"]:
+            self._warn_expansion_without_pores(scene)
         self._started = True
+
+    def _warn_expansion_without_pores(self, scene):
+        """thermoMech acts on the pores only where they exist: say which part has nothing to act on."""
+        from talus.flow.pore import FlowEngine
+        p = self._params
+        if p["fluidThermoMech"] and p["fluidBeta"] > 0 and not p["advection"]:
+            warnings.warn("ThermalEngine.fluidThermoMech: the pore fluid has no temperature without advection=True, so "
+                          "it does not expand (as in Yade); set fluidThermoMech=False to silence this", RuntimeWarning,
+                          stacklevel=3)
+        if p["solidThermoMech"] and p["particleAlpha"] > 0 and not any(isinstance(e, FlowEngine) for e in scene.engines):
+            warnings.warn("ThermalEngine.solidThermoMech: O.engines has no FlowEngine, so the particles grow but no pore "
+                          "volume changes; set solidThermoMech=False to silence this", RuntimeWarning, stacklevel=3)
 
     def _set_boundaries(self, scene):
         """Hold the spheres of each temperature boundary (Yade's setConductionBoundary)."""
@@ -306,6 +329,11 @@ class ThermalEngine(Engine):
             for k in wanted:
                 c.imposeTemperature(k, flow._flow.boundarySphereIds(k), self._params["thermalBndCondValue"][k])
         self._params["boundarySet"] = True
+
+    @staticmethod
+    def _has_flow(scene) -> bool:
+        from talus.flow.pore import FlowEngine
+        return any(isinstance(e, FlowEngine) and e.nCells() > 0 for e in scene.engines)
 
     @staticmethod
     def _flow_engine(scene, what="ThermalEngine.bndCondIsTemperature"):
@@ -354,14 +382,28 @@ class ThermalEngine(Engine):
             self._start(scene)
         if not self._params["boundarySet"]:
             self._set_boundaries(scene)
-        if self._params["conduction"]:
-            self._schedule.step(self._model(scene), scene.dt)
+        model = self._model(scene) if self._params["conduction"] else None
+        fluid = self._poreHeat[1] if self._poreHeat is not None and model is self._poreHeat[1] else None
+        expand = self._params["thermoMech"] and model is not None
+        if expand and not self._marked:
+            if fluid is not None:
+                fluid.sync()
+            self._expansion.mark(fluid)
+            self._marked = True
+        runs = self._schedule.counters().runs
+        if model is not None:
+            self._schedule.step(model, scene.dt)
         if self._params["delT"] != 0:   # once, to the free spheres, after conduction (Yade's delT)
             t = c.temperatures()
             free = np.asarray(c.boundaries()) < 0
             t[free] += self._params["delT"]
             c.setTemperatures(t)
             self._params["delT"] = 0.0
+        if expand and self._schedule.counters().runs != runs:
+            # after the temperatures and delT of this run, as Yade's thermalExpansion
+            flow = self._flow_engine(scene, "ThermalEngine.solidThermoMech") if fluid is not None or (
+                self._params["solidThermoMech"] and self._has_flow(scene)) else None
+            self._expansion.apply(self._schedule.thermalDT(), fluid, flow._flow if flow is not None else None)
 
     # --- per-body fields (state.temp, state.k, state.Cp, state.Tcondition) -------------------
     def _bodyFields(self):
@@ -385,6 +427,8 @@ class ThermalEngine(Engine):
             "temp": field(c.temperatureAt, c.setTemperatureAt, lambda v: _temperature("state.temp", v)),
             "k": field(c.conductivityAt, c.setConductivityAt, lambda v: _per_body("k", "particleK", v)),
             "Cp": field(c.heatCapacityAt, c.setHeatCapacityAt, lambda v: _per_body("Cp", "particleCp", v)),
+            "alpha": field(self._expansion.alphaAt, self._expansion.setAlphaAt,
+                           lambda v: _per_body("alpha", "particleAlpha", v)),
             "Tcondition": (lambda i: c.boundaryAt(i) >= 0, refuse),
         }
 
@@ -407,7 +451,9 @@ class ThermalEngine(Engine):
                 "boundary": [int(b) for b in c.boundaries()], "heat": list(c.boundaryHeat()),
                 "started": self._started, "boundarySet": self._params["boundarySet"],
                 "values": list(self._params["thermalBndCondValue"]),
-                "counters": [n.runs, n.sinceRun, n.period, n.timeSinceRun, n.thermalDT, n.maxTimeStep]}
+                "counters": [n.runs, n.sinceRun, n.period, n.timeSinceRun, n.thermalDT, n.maxTimeStep],
+                "alpha": _encode(self._expansion.alphas()), "marks": _encode(self._expansion.marks()),
+                "marked": self._marked}
 
     def _io_restore(self, state):
         if state:
@@ -435,3 +481,12 @@ class ThermalEngine(Engine):
         self._schedule.setCounters(counters)
         self._started = state["started"]
         self._params["boundarySet"] = state["boundarySet"]
+        e = self._expansion
+        e.resize()
+        for key, setter in (("alpha", e.setAlphas), ("marks", e.setMarks)):
+            saved = _decode(state[key])
+            if len(saved) != n:
+                raise ValueError(f"ThermalEngine: the checkpoint holds {key} for {len(saved)} bodies, the scene has {n}")
+            setter(saved)
+        # the pores' reference temperatures are not kept: the first run after a load marks them anew
+        self._marked = state["marked"] and not self._params["fluidThermoMech"]
