@@ -24,7 +24,7 @@ four spheres. Names are Yade's::
         tp.invasion()
         print(pc, tp.getSaturation(False))
 
-See ``docs/flow.md``, section "Two-phase flow".
+See ``docs/twophase.md``.
 """
 
 from __future__ import annotations
@@ -41,8 +41,10 @@ _OWNER = "TwoPhaseFlowEngine"
 # the options of the C++ model (TwoPhaseParameters), Yade's names and defaults
 _FLAGS = ("isPhaseTrapped", "isInvadeBoundary", "drainageFirst", "isDrainageActivated", "isImbibitionActivated",
           "recursiveInvasion")
-# Yade's attributes kept for its scripts; no physics of this model depends on them
-_STORED = {"bndCondIsWaterReservoir": [False] * 6, "computeForceActivated": True, "keepTriangulation": False}
+# Yade's attributes kept for its scripts; no physics of this model depends on them (iniVoidVolumes:
+# Talus always has the void volumes)
+_STORED = {"bndCondIsWaterReservoir": [False] * 6, "computeForceActivated": True, "keepTriangulation": False,
+           "iniVoidVolumes": False, "isCellLabelActivated": False}
 
 
 def _triplet(*values):
@@ -89,11 +91,19 @@ class TwoPhaseFlowEngine(FlowEngine):
                 raise TypeError(f"{_OWNER}.{name} must be True or False, got {value!r}")
             setattr(self._params, name, bool(value))
             return
+        if name == "isCellLabelActivated" and value:
+            raise NotImplementedError(f"{_OWNER}.isCellLabelActivated: the wetting clusters (Yade's cell labels and "
+                                      "PhaseCluster, for the dynamic injection of TwoPhaseFlowInjection.py) are not "
+                                      "implemented in Talus yet")
+        if name == "meshUpdateInterval" and value == -1:
+            value = 2 ** 31 - 1  # Yade's -1: never remesh
         if name in _STORED:
-            self._stored[name] = list(value) if isinstance(_STORED[name], list) else value
-            if isinstance(_STORED[name], list) and len(self._stored[name]) != 6:
-                raise ValueError(f"{_OWNER}.{name} needs a list of 6 values (xmin, xmax, ymin, ymax, zmin, zmax), "
-                                 f"got {value!r}")
+            if isinstance(_STORED[name], list):
+                value = list(value)
+                if len(value) != 6:
+                    raise ValueError(f"{_OWNER}.{name} needs a list of 6 values (xmin, xmax, ymin, ymax, zmin, zmax), "
+                                     f"got {value!r}")
+            self._stored[name] = value
             return
         try:
             super().__setattr__(name, value)
