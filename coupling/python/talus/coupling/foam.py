@@ -17,7 +17,6 @@ from __future__ import annotations
 import atexit
 import math
 import os
-import shutil
 import time
 import warnings
 from dataclasses import dataclass
@@ -25,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from talus.coupling.foam_case import YADE_SOLVERS, case_settings, find_solver
 from talus.coupling.network import apply_network_settings, network_settings
 
 __all__ = ["CouplingTimes", "FoamCoupling", "find_solver", "initMPI"]
@@ -63,27 +63,6 @@ def initMPI():
     engine. Talus starts MPI when the fluid ranks are started (the engine's first step), so
     there is nothing left to do here; kept so that those scripts run unchanged."""
     return None
-
-
-def find_solver(name: str) -> str:
-    """Path of an OpenFOAM coupling solver: a path as given, else TALUS_FOAM_BIN/<name>, the
-    build tree's or installation's bin/ folder, then PATH."""
-    if os.sep in name:
-        return name
-    candidates = []
-    if os.environ.get("TALUS_FOAM_BIN"):
-        candidates.append(Path(os.environ["TALUS_FOAM_BIN"]) / name)
-    import talus
-    root = Path(talus.__file__).resolve().parents[1]
-    candidates += [root.parent / "bin" / name, root / "bin" / name]
-    for c in candidates:
-        if c.is_file():
-            return str(c)
-    found = shutil.which(name)
-    if found is None:
-        raise FileNotFoundError(f"FoamCoupling: solver {name!r} not found (looked in "
-                                f"{', '.join(map(str, candidates))} and PATH); build Talus with foam-solvers")
-    return found
 
 
 @dataclass
@@ -323,7 +302,6 @@ class FoamCoupling(_Engine):
         self._since_exchange += 1
 
     def _yade_start(self):
-        from talus.coupling.foam_case import YADE_SOLVERS, case_settings
         if self.couplingModeParallel:
             raise NotImplementedError("FoamCoupling.couplingModeParallel (Yade-MPI's parallel DEM) is not "
                                       "supported: Talus's DEM is one process")
@@ -463,8 +441,8 @@ class FoamCoupling(_Engine):
         self.ids = np.ascontiguousarray(ids, dtype=np.int64)  # as add_force_change takes them
         # The rows of the coupled bodies in the per-body arrays: a slice when they are one run of
         # ids (every sphere of a scene that has its walls first, say), so that the per-exchange
-        # gathers and updates are views instead of copies (100 000 particles: 40 ms of DEM-side
-        # work per exchange with index arrays).
+        # gathers and updates are views instead of copies (index arrays copy every row at every
+        # exchange: docs/coupling.md, "Measurements behind the code").
         contiguous = np.array_equal(ids, np.arange(ids[0], ids[0] + len(ids)))
         self._rows = slice(int(ids[0]), int(ids[0]) + len(ids)) if contiguous else ids
         self._start_link(ids)

@@ -20,12 +20,33 @@ import subprocess
 import sys
 from pathlib import Path
 
-__all__ = ["read_dict", "case_settings", "prepare_case", "v1912_decompose_dict", "YADE_SOLVERS"]
+__all__ = ["read_dict", "case_settings", "prepare_case", "v1912_decompose_dict", "find_solver", "YADE_SOLVERS"]
 
 # Yade's solver names (controlDict `application` of its examples) -> Talus's solvers.
 YADE_SOLVERS = {"icoFoamYade": "talusPointForceFoam", "pimpleFoamYade": "talusVolumeAveragedFoam"}
 
 _NUMBER = r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?"
+
+
+def find_solver(name: str) -> str:
+    """Path of an OpenFOAM coupling solver: a path as given, else TALUS_FOAM_BIN/<name>, the
+    build tree's or installation's bin/ folder, then PATH."""
+    if os.sep in name:
+        return name
+    candidates = []
+    if os.environ.get("TALUS_FOAM_BIN"):
+        candidates.append(Path(os.environ["TALUS_FOAM_BIN"]) / name)
+    import talus
+    root = Path(talus.__file__).resolve().parents[1]
+    candidates += [root.parent / "bin" / name, root / "bin" / name]
+    for c in candidates:
+        if c.is_file():
+            return str(c)
+    found = shutil.which(name)
+    if found is None:
+        raise FileNotFoundError(f"FoamCoupling: solver {name!r} not found (looked in "
+                                f"{', '.join(map(str, candidates))} and PATH); build Talus with foam-solvers")
+    return found
 
 
 def _strip_comments(text: str) -> str:
@@ -121,7 +142,6 @@ def _scotch_available() -> bool:
 
 
 def _case_info(case: Path) -> dict:
-    from talus.coupling.foam import find_solver
     out = subprocess.run([find_solver("talusCaseInfo"), "-case", str(case)], capture_output=True, text=True,
                          env=_foam_env(), timeout=120, check=True)
     return json.loads(out.stdout)

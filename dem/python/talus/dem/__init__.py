@@ -50,8 +50,10 @@ from talus.dem.materials import CohFrictMat, ElastMat, FrictMat, Material, ViscE
 from talus.dem.measure import (avgNumInteractions, bodyStressTensors, fabricTensor, getStress, getStressAndTangent,
                                porosity, unbalancedForce)
 from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
+from talus.dem.scenes import set_default_scene
 
 O = Scene()
+set_default_scene(O)
 
 __all__ = ["O", "Scene", "Body", "BodySpec", "Shape", "Sphere", "Wall", "Facet", "Box", "Clump", "sphere", "wall", "facet", "box", "geom", "pack", "timing", "ymport", "Material",
            "ElastMat", "FrictMat", "ViscElMat", "CohFrictMat", "PWaveTimeStep", "contactTimeStep", "Vector2", "Vector2i", "Vector3", "Vector3i", "Vector4", "Vector6",

@@ -21,10 +21,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from talus import _dem
-from talus.dem.bodies import BodySpec, group_mask
-from talus.dem.engines import Functor, _Law
-from talus.dem.export import _atomic_write, vtu_bytes
+from talus.dem.bodies import BodySpec
+from talus.dem.convex_contact import geometry_functor, two_dimension
+from talus.dem.engines import Functor, LawFunctor
 from talus.dem.linalg import Quaternion
+from talus.dem.masks import group_mask
+from talus.dem.shape_registry import ShapeKind, register
+from talus.dem.vtu import vtu_bytes, write_atomically
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -79,7 +82,7 @@ def potentialBlock(shape: PotentialBlock, pos=None, orientation=(1.0, 0.0, 0.0, 
 
 
 def _add(scene: "Scene", spec: BodySpec, material: int) -> int:
-    """Add a PotentialBlock body spec to the scene (called by O.bodies.append)."""
+    """Add a PotentialBlock body spec to the scene (O.bodies.append)."""
     s = spec.block
     center = None if spec.center is None else np.asarray(spec.center, dtype=float)
     return _dem.add_potential_block(scene._cpp, s.a, s.b, s.c, s.d, s.r, s.R, s.isBoundary, center,
@@ -126,7 +129,7 @@ def write_blocks(scene: "Scene", path: str) -> int:
     pts = np.concatenate(points) if points else np.zeros((0, 3))
     owner = np.asarray(owner, dtype=np.int32)
     data = {"id": owner, "velocity": cpp.vel()[owner] if len(owner) else np.zeros((0, 3))}
-    _atomic_write(path, vtu_bytes(pts, np.asarray(conn, dtype=np.int64), np.asarray(offsets, dtype=np.int64),
+    write_atomically(path, vtu_bytes(pts, np.asarray(conn, dtype=np.int64), np.asarray(offsets, dtype=np.int64),
                                   np.full(len(offsets), VTK_POLYGON, dtype=np.uint8), cell_data=data, time=cpp.time))
     return len(ids)
 
@@ -135,16 +138,6 @@ def write_blocks(scene: "Scene", path: str) -> int:
 class PotentialBlock2AABB(Functor):
     """Bounding box of blocks (accepted; Talus bounds blocks tightly from their vertices)."""
     _parameters = ("AabbMinMax",)
-
-
-def _twoDimension(geometry: Functor) -> tuple[bool, np.ndarray, float]:
-    """The 2D mode of a convex shapes' geometry functor (Ig2_PB_PB_ScGeom, Ig2_PP_PP_ScGeom):
-    twoDimension, the prisms' direction twoDdir (default (0, 1, 0)) and unitWidth2D (default 1)."""
-    direction = (0.0, 1.0, 0.0) if geometry.twoDdir is None else tuple(float(x) for x in geometry.twoDdir)
-    if len(direction) != 3:
-        raise ValueError(f"{type(geometry).__name__}.twoDdir must be a 3-vector, got {geometry.twoDdir!r}")
-    return (bool(geometry.twoDimension), np.asarray(direction, dtype=float),
-            1.0 if geometry.unitWidth2D is None else float(geometry.unitWidth2D))
 
 
 class Ig2_PB_PB_ScGeom(Functor):
@@ -160,7 +153,7 @@ class Ig2_PB_PB_ScGeom(Functor):
 
     def _applyToScene(self, cpp):
         """Set these settings for every block contact of the scene whose engines hold us."""
-        _dem.set_block_contact_settings(cpp, *_twoDimension(self), bool(self.exactDepth),
+        _dem.set_block_contact_settings(cpp, *two_dimension(self), bool(self.exactDepth),
                                         _dem.default_block_accuracy_tol if self.accuracyTol is None
                                         else float(self.accuracyTol))
 
@@ -201,7 +194,7 @@ class Ip2_FrictMat_FrictMat_KnKsPBPhys(Functor):
     del _live
 
 
-class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
+class Law2_SCG_KnKsPBPhys_KnKsPBLaw(LawFunctor):
     """F_n = Knormal A u_n n, incremental F_s with Kshear A, Coulomb friction, optional viscous
     damping (``allowViscousAttraction``: the damped normal force may pull). Bonds (see
     Ip2_FrictMat_FrictMat_KnKsPBPhys.useFaceProperties) pull down to -tension A and add
@@ -233,6 +226,16 @@ class Law2_SCG_KnKsPBPhys_KnKsPBLaw(_Law):
                 for name, value in g._io_params().items():
                     self._set(name, value)
 
+
+def _view(scene: "Scene", id: int) -> PotentialBlock:
+    """``b.shape`` of a block: Yade's PotentialBlock, its planes in the body's principal frame."""
+    s = _dem.block_shape(scene._cpp, id)
+    n = np.asarray(s["normals"], dtype=float).reshape(-1, 3)
+    return PotentialBlock(n[:, 0], n[:, 1], n[:, 2], s["d"], r=s["r"], R=s["R"], isBoundary=s["isBoundary"])
+
+
+register(ShapeKind("PotentialBlock", view=_view, add=_add,
+                   configure=lambda cpp, engines: geometry_functor(Ig2_PB_PB_ScGeom, engines)._applyToScene(cpp)))
 
 __all__ = ["PotentialBlock", "potentialBlock", "blockShape", "blockVertices", "blockContact", "write_blocks",
            "PotentialBlock2AABB", "Ig2_PB_PB_ScGeom", "Ip2_FrictMat_FrictMat_KnKsPBPhys",

@@ -2,18 +2,18 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Iterable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Sequence
 
 import numpy as np
 
 from talus import _dem
-from talus.dem import distributed
 from talus.dem.linalg import Quaternion, Vector3
-from talus.dem.reference import ReferenceStates
-from talus.dem.appearance import DEFAULT_COLOR, Appearance, check_color
+from talus.dem.masks import group_mask
+from talus.dem.appearance import DEFAULT_COLOR, check_color
 from talus.dem.serializable import Serializable
-from talus.dem.shapes import Box, Shape, Sphere, Wall, shape_of, shape_of_spec
+from talus.dem.shapes import Box, Shape, ShapeSpec, Sphere, Wall, shape_of, shape_of_spec
+from talus.dem.scenes import default_scene
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -22,31 +22,17 @@ _DOF_LETTERS = "xyzXYZ"
 
 
 @dataclass(eq=False)
-class BodySpec:
+class BodySpec(ShapeSpec):
     """A body made by ``sphere``, ``wall``, ``facet``, ``box`` (what Yade's ``utils.sphere``
     returns), or by ``Body()`` (Yade's: no shape yet, mass and inertia 0; the script gives it
     ``b.shape = Sphere(radius=r)``, ``b.state.pos``, ``b.state.mass``, ``b.mat``). As in Yade, a
     script may set its ``state``, ``shape.color`` or ``dynamic`` before appending it to
     ``O.bodies``; once appended it stands for the body in the scene (``id``, ``state``,
-    ``shape`` read and write the scene)."""
-    kind: str | None      # None: made by Body(), no shape yet
-    center: tuple
-    radius: float = 0.0
-    axis: int = 2
-    sense: int = 0
+    ``shape`` read and write the scene). Its shape fields are ShapeSpec's."""
     material: object = -1
     fixed: bool = False
-    vertices: tuple = ()
     bounded: bool = True  # False: a facet the collider never pairs (Yade's noBound)
-    extents: tuple = ()
-    orientation: tuple = (1.0, 0.0, 0.0, 0.0)
-    color: tuple = field(default=DEFAULT_COLOR)
-    block: object = None  # the PotentialBlock or PotentialParticle shape (talus.dem.blocks, .particles)
     group_mask: int = 1   # Yade's groupMask (``mask``), see Body.mask
-    # State set before the append (velocities, mass, inertia, blocked DOFs), applied by it.
-    initial: dict = field(default_factory=dict)
-    id: int = -1          # the body's id once appended
-    _scene: object = field(default=None, repr=False)
 
     # What Body() accepts as attributes, as Yade's Body(shape=..., material=...).
     _YADE_ATTRIBUTES = ("shape", "material", "mat", "dynamic", "mask", "groupMask")
@@ -141,7 +127,7 @@ class BodySpec:
             return None
         if isinstance(self.material, Material):
             return self.material
-        from talus.dem import O
+        O = default_scene()
         return O.materials[O.materials.resolve(self.material)]
 
     @mat.setter
@@ -212,24 +198,12 @@ class _DetachedState:
             raise AttributeError(f"State has no attribute {name!r}")
 
 
-def group_mask(value, who: str) -> int:
-    """``value`` as a group mask (Yade's: a C int; negative values have every high bit set)."""
-    import operator
-    try:
-        mask = operator.index(value)
-    except TypeError:
-        raise TypeError(f"mask of {who}: an integer is needed, got {value!r}") from None
-    if not -2**31 <= mask < 2**31:
-        raise OverflowError(f"mask of {who}: {mask} does not fit a 32-bit signed integer (Yade's groupMask)")
-    return mask
-
-
 def _yade_material(material):
     """``material`` as Yade's utils take it when they make a body: the default (-1) while O has
     no material yet makes Yade's default FrictMat there and then (len(O.materials) is 1 after
     the first utils.sphere); it is resolved when the body is appended."""
     if isinstance(material, int) and material < 0:
-        from talus.dem import O
+        O = default_scene()
         if len(O.materials) == 0:
             O.materials.resolve(-1)
     return material
@@ -589,174 +563,3 @@ class Aabb:
     max: Vector3
     refPos: Vector3
     sweepLength: float
-
-
-class BodyContainer:
-    """``O.bodies``: append specs, index bodies by id, erase; bulk arrays for couplings."""
-
-    def __init__(self, scene: "Scene"):
-        self._scene = scene
-
-    def append(self, spec: BodySpec | Iterable[BodySpec]):
-        """Add one body (returns its id) or a list of bodies (returns their ids)."""
-        if isinstance(spec, BodySpec):
-            return self._add(spec)
-        return [self._add(s) for s in spec]
-
-    def _add(self, spec: BodySpec) -> int:
-        if spec._scene is not None:
-            raise ValueError(f"this body is already body {spec.id} of a scene; make another one to append")
-        scene = self._scene
-        scene._warn_if_views_move()
-        id = self._create(spec, scene.materials.resolve(-1 if spec.material is None else spec.material))
-        if spec.group_mask != 1:
-            scene.bodies[id].mask = spec.group_mask
-        state = scene.bodies[id].state
-        state.refPos, state.refOri = state.pos, state.ori     # Yade's reference: as made
-        for name, value in spec.initial.items():
-            if name in ("highlight", "wire"):
-                continue
-            setattr(state, name, value)
-        look = scene._appearance
-        look.ensure(scene._cpp.bodyCount())
-        look.color[id] = spec.color
-        look.highlight[id] = spec.initial.get("highlight", False)
-        look.wire[id] = spec.initial.get("wire", False)
-        spec.id, spec._scene = id, scene
-        return id
-
-    def _create(self, spec: BodySpec, material: int) -> int:
-        scene = self._scene
-        if spec.kind == "Sphere":
-            center = np.asarray(spec.center, dtype=float)   # as Yade, not wrapped into a periodic cell
-            id = scene._cpp.addSphere(center, spec.radius, material)
-            if spec.fixed:
-                scene._cpp.setDynamic(id, False)
-                scene._cpp.setBlockedDofs(id, 63)
-            return id
-        if spec.kind == "Box":
-            return _dem.add_box(scene._cpp, np.asarray(spec.center, dtype=float),
-                                np.asarray(spec.extents, dtype=float), np.asarray(spec.orientation, dtype=float),
-                                material, bool(spec.fixed))
-        if spec.kind == "PotentialBlock":
-            from talus.dem import blocks
-            return blocks._add(scene, spec, material)
-        if spec.kind == "PotentialParticle":
-            from talus.dem import particles
-            return particles._add(scene, spec, material)
-        if spec.kind == "Facet":
-            return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material, spec.bounded)
-        if spec.kind == "Wall":
-            return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
-        raise ValueError(f"O.bodies.append: a body without a shape Talus can add ({spec.kind or 'none'}): give it "
-                         "one (b.shape = Sphere(radius=r)), or make it with utils.sphere, facet, box, wall")
-
-    def appendClumped(self, specs: Iterable[BodySpec], discretization: int = 0) -> tuple[int, list[int]]:
-        """Add bodies (spheres, facets, boxes) and make them one clump (Yade's appendClumped);
-        returns (clump id, member ids). Mass and inertia as :meth:`clump`."""
-        specs = list(specs)
-        scene = self._scene
-        if not scene.periodic:
-            ids = self.append(specs)
-            return self.clump(ids, discretization), ids
-        # In a periodic cell members may stick out of it, only the clump's centre must be inside:
-        # the members are added with the cell's check off, the clump's centre checked after (on
-        # failure everything added is removed again).
-        scene._cpp.setPeriodic(False)
-        ids, clump = [], None
-        try:
-            for spec in specs:
-                ids.append(self._add(spec))
-            clump = self.clump(ids, discretization)
-            scene._cpp.setPeriodic(True)
-        except ValueError as e:
-            if clump is not None:
-                self.erase(clump, eraseClumpMembers=True)
-            else:
-                for i in ids:
-                    self.erase(i)
-            scene._cpp.setPeriodic(True)
-            raise ValueError(f"appendClumped: {e}") from None
-        return clump, ids
-
-    def clump(self, ids: Iterable[int], discretization: int = 0) -> int:
-        """Make existing bodies (spheres, facets, boxes) one clump (Yade's O.bodies.clump);
-        returns its id. A member of another clump leaves it. Mass and inertia as Yade's: the
-        members summed whole (a sphere from its material's density), or, with
-        ``discretization`` > 0 and overlapping spheres, the spheres' union integrated on a grid
-        of cubes of edge (shortest side of their bounding box) / discretization."""
-        self._scene._warn_if_views_move()
-        return int(_dem.add_clump(self._scene._cpp, [int(i) for i in ids], int(discretization)))
-
-    def addToClump(self, bids, cid: int, discretization: int = 0) -> None:
-        """Yade's addToClump (talus.dem.clumps.addToClump)."""
-        from talus.dem import clumps
-        clumps.addToClump(self, bids, cid, discretization)
-
-    def releaseFromClump(self, bid: int, cid: int, discretization: int = 0) -> None:
-        """Yade's releaseFromClump (talus.dem.clumps.releaseFromClump)."""
-        from talus.dem import clumps
-        clumps.releaseFromClump(self, bid, cid, discretization)
-
-    def replaceByClumps(self, ctList, amounts, discretization: int = 0, seed: int | None = None) -> list:
-        """Yade's replaceByClumps (talus.dem.clumps.replaceByClumps)."""
-        from talus.dem import clumps
-        return clumps.replaceByClumps(self, ctList, amounts, discretization, seed)
-
-    def getRoundness(self, excludeList=()) -> float:
-        """Yade's roundness coefficient (talus.dem.clumps.getRoundness)."""
-        from talus.dem import clumps
-        return clumps.getRoundness(self, excludeList)
-
-    def erase(self, id: int, eraseClumpMembers: bool = False) -> bool:
-        """Remove a body and its contacts (its id is not reused); False if it was already
-        erased (Yade's). Erasing a clump frees its members unless ``eraseClumpMembers``; erasing
-        a member takes it out of its clump, which keeps its mass and inertia (as in Yade) and
-        goes with its last member."""
-        if self[id] is None:
-            return False
-        _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))
-        return True
-
-    def clear(self) -> None:
-        """Remove every body and its contacts; the next body appended gets id 0 (Yade's
-        O.bodies.clear, which also leaves the old contacts in O.interactions: Talus removes them).
-        Per-body arrays taken before (positions(), ...) no longer follow the bodies."""
-        scene = self._scene
-        scene._cpp.clearBodies()
-        scene._views = []
-        scene._appearance = Appearance()
-        scene._reference = ReferenceStates()
-
-    def replace(self, specs: BodySpec | Iterable[BodySpec]):
-        """Remove every body, then append ``specs`` (Yade's O.bodies.replace); returns their ids,
-        which start at 0."""
-        specs = [specs] if isinstance(specs, BodySpec) else list(specs)
-        for spec in specs:
-            if not isinstance(spec, BodySpec):
-                raise TypeError(f"O.bodies.replace: takes bodies (utils.sphere(...), ...), got {spec!r}")
-        self.clear()
-        return self.append(specs)
-
-    def __getitem__(self, id: int) -> Body | None:
-        """Body ``id`` (negative: counted from the end), None if it was erased (Yade's)."""
-        if not isinstance(id, (int, np.integer)):
-            raise TypeError(f"body ids are integers, got {id!r}")
-        n = len(self)
-        i = int(id) + n if id < 0 else int(id)
-        if not 0 <= i < n:
-            raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
-        i = distributed.row_of(self._scene, i)     # under mpirun: its row here, if owned here
-        if not self._scene._cpp.alive()[i]:
-            return None
-        return Body(self._scene, i)
-
-    def __len__(self) -> int:
-        split = distributed.domain(self._scene)
-        return self._scene._cpp.bodyCount() if split is None else split.globalCount
-
-    def __iter__(self):
-        if distributed.domain(self._scene) is not None:
-            distributed.refuse("iterating over O.bodies (each process holds its own bodies)")
-        alive = self._scene._cpp.alive()
-        return (Body(self._scene, i) for i in range(len(self)) if alive[i])

@@ -15,12 +15,13 @@ from typing import Iterable
 from talus.dem.bodies import sphere
 from talus.dem.linalg import Quaternion, Vector3
 from talus.dem.shapes import Facet, Sphere
+from talus.dem.scenes import default_scene
 
 
 def _bodies(ids: Iterable, mask: int, function: str) -> list:
     """The live bodies named by ``ids`` (ids or Body objects), in order, that ``mask`` selects
     (Yade's test: any mask >= 0)."""
-    from talus.dem import O
+    O = default_scene()
     bodies = []
     for item in ids:
         if isinstance(item, Integral):
@@ -40,7 +41,7 @@ def _given(ids, mask: int, fewest: int, function: str) -> list:
     if mask < 0:
         raise RuntimeWarning("Only a list of particles with length > 1 can be analyzed" if fewest > 1
                              else "No bodies to modify")
-    from talus.dem import O
+    O = default_scene()
     chosen = _bodies([b for b in O.bodies if b is not None], mask, function)
     if len(chosen) < fewest:
         raise RuntimeWarning("Not enough bodies to analyze with given mask" if fewest > 1

@@ -19,9 +19,10 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.bodies import sphere
+from talus.dem.scenes import default_scene
 
 if TYPE_CHECKING:
-    from talus.dem.bodies import BodyContainer
+    from talus.dem.body_container import BodyContainer
 
 
 class clumpTemplate:
@@ -179,7 +180,7 @@ def addToClump(bodies: "BodyContainer", bids, cid: int, discretization: int = 0)
         else:
             joining.append(i)
     if joining:
-        bodies._scene._warn_if_views_move()
+        bodies._scene._views.before_adding(bodies._scene._cpp)
         _dem.add_to_clump(bodies._scene._cpp, cid, joining, int(discretization))
 
 
@@ -202,7 +203,7 @@ def releaseFromClump(bodies: "BodyContainer", bid: int, cid: int, discretization
         warnings.warn(f"releaseFromClump: body {bid} was not released from clump {cid}, which would be left with "
                       "fewer than 2 members (erase the clump instead)", UserWarning, stacklevel=3)
     else:
-        bodies._scene._warn_if_views_move()
+        bodies._scene._views.before_adding(bodies._scene._cpp)
         _dem.release_from_clump(bodies._scene._cpp, bid, cid, int(discretization))
 
 
@@ -219,7 +220,7 @@ def exportTextClumps(filename: str, format: str = "x_y_z_r_clumpId", comment: st
                      scene=None) -> tuple[int, int]:
     """Write the sphere members of every clump as ``x y z r clumpId`` lines (Yade's
     export.textClumps, same text); returns (number of clumps, number of spheres)."""
-    from talus.dem import O
+    O = default_scene()
     scene = scene or O
     if format != "x_y_z_r_clumpId":
         raise ValueError(f"textClumps: format={format!r} is not supported; only 'x_y_z_r_clumpId'")
@@ -247,7 +248,7 @@ def importTextClumps(fileName: str, shift=(0.0, 0.0, 0.0), discretization: int =
     id become one clump (appendClumped), its spheres at ``shift + scale * orientation * (x, y,
     z)`` with radius ``scale * r``; ``kw`` goes to ``sphere`` (material, color). Lines starting
     with ``#`` are comments. Returns ``[(clumpId, [memberIds]), ...]``."""
-    from talus.dem import O
+    O = default_scene()
     from talus.dem.linalg import Quaternion, Vector3
     scene = scene or O
     turn = Quaternion((0, 1, 0), 0.0) if orientation is None else orientation

@@ -21,9 +21,10 @@ import numpy as np
 from talus import _dem
 from talus.dem.engines import Engine, asCallback
 from talus.dem.linalg import Vector3, as_value
+from talus.dem.scenes import default_scene
 
 
-def _forward(name: str, doc: str = "", kind=None):
+def cpp_attribute(name: str, doc: str = "", kind=None):
     """A property reading and writing the C++ engine's attribute ``name`` (``kind`` converts);
     vectors and matrices are read as Yade's value types (a copy)."""
     def get(self):
@@ -43,7 +44,7 @@ def _axis_mask(value) -> int:
     return int(value)
 
 
-def _done_hook():
+def done_hook_attribute():
     """Yade's doneHook of a controller: a command string or a callable, run when it reaches its
     goal (kept as given; the C++ engine gets the callable)."""
     def get(self):
@@ -83,17 +84,17 @@ class GlobalStiffnessTimeStepper(Engine):
         self.active, self.timestepSafetyCoefficient, self.defaultDt = active, timestepSafetyCoefficient, defaultDt
         self.maxDt, self.timeStepUpdateInterval, self.viscEl, self.label = maxDt, timeStepUpdateInterval, viscEl, label
 
-    active = _forward("active", kind=bool)
-    viscEl = _forward("viscEl", kind=bool)
-    timestepSafetyCoefficient = _forward("timestepSafetyCoefficient", kind=float)
-    defaultDt = _forward("defaultDt", kind=float)
-    maxDt = _forward("maxDt", kind=float)
-    timeStepUpdateInterval = _forward("timeStepUpdateInterval", kind=int)
-    previousDt = _forward("previousDt", "last step set", kind=float)
+    active = cpp_attribute("active", kind=bool)
+    viscEl = cpp_attribute("viscEl", kind=bool)
+    timestepSafetyCoefficient = cpp_attribute("timestepSafetyCoefficient", kind=float)
+    defaultDt = cpp_attribute("defaultDt", kind=float)
+    maxDt = cpp_attribute("maxDt", kind=float)
+    timeStepUpdateInterval = cpp_attribute("timeStepUpdateInterval", kind=int)
+    previousDt = cpp_attribute("previousDt", "last step set", kind=float)
 
     def stiffnessTimeStep(self, scene=None) -> float:
         """The step the current contacts allow (safety coefficient included), inf without contacts."""
-        from talus.dem import O
+        O = default_scene()
         return self._cpp.stiffnessTimeStep((scene or O)._cpp)
 
     def _io_state(self):
@@ -125,25 +126,25 @@ class PeriTriaxController(Engine):
         self.growDamping, self.globUpdate, self.dynCell, self.mass = growDamping, globUpdate, dynCell, mass
         self.doneHook, self.label = doneHook, label
 
-    goal = _forward("goal", kind=_vector)
-    stressMask = _forward("stressMask", kind=_axis_mask)
-    maxStrainRate = _forward("maxStrainRate", kind=_vector)
-    maxUnbalanced = _forward("maxUnbalanced", kind=float)
-    absStressTol = _forward("absStressTol", kind=float)
-    relStressTol = _forward("relStressTol", kind=float)
-    growDamping = _forward("growDamping", kind=float)
-    globUpdate = _forward("globUpdate", kind=int)
-    dynCell = _forward("dynCell", kind=bool)
-    mass = _forward("mass", kind=float)
-    stress = _forward("stress")
-    strain = _forward("strain")
-    strainRate = _forward("strainRate")
-    stiff = _forward("stiff")
-    stressTensor = _forward("stressTensor")
-    currUnbalanced = _forward("currUnbalanced")
-    externalWork = _forward("externalWork")
+    goal = cpp_attribute("goal", kind=_vector)
+    stressMask = cpp_attribute("stressMask", kind=_axis_mask)
+    maxStrainRate = cpp_attribute("maxStrainRate", kind=_vector)
+    maxUnbalanced = cpp_attribute("maxUnbalanced", kind=float)
+    absStressTol = cpp_attribute("absStressTol", kind=float)
+    relStressTol = cpp_attribute("relStressTol", kind=float)
+    growDamping = cpp_attribute("growDamping", kind=float)
+    globUpdate = cpp_attribute("globUpdate", kind=int)
+    dynCell = cpp_attribute("dynCell", kind=bool)
+    mass = cpp_attribute("mass", kind=float)
+    stress = cpp_attribute("stress")
+    strain = cpp_attribute("strain")
+    strainRate = cpp_attribute("strainRate")
+    stiff = cpp_attribute("stiff")
+    stressTensor = cpp_attribute("stressTensor")
+    currUnbalanced = cpp_attribute("currUnbalanced")
+    externalWork = cpp_attribute("externalWork")
 
-    doneHook = _done_hook()
+    doneHook = done_hook_attribute()
 
     def _io_state(self):
         c = self._cpp
@@ -184,18 +185,18 @@ class PeriIsoCompressor(Engine):
             raise ValueError(f"PeriIsoCompressor: stresses must be negative (compression), got {values}")
         self._cpp.stresses = values
 
-    charLen = _forward("charLen", kind=float)
-    maxSpan = _forward("maxSpan", kind=float)
-    maxUnbalanced = _forward("maxUnbalanced", kind=float)
-    globalUpdateInt = _forward("globalUpdateInt", kind=int)
-    maxDisplPerStep = _forward("maxDisplPerStep", kind=float)
-    keepProportions = _forward("keepProportions", kind=bool)
-    state = _forward("state", kind=int)
-    sigma = _forward("sigma")
-    avgStiffness = _forward("avgStiffness")
-    currUnbalanced = _forward("currUnbalanced")
+    charLen = cpp_attribute("charLen", kind=float)
+    maxSpan = cpp_attribute("maxSpan", kind=float)
+    maxUnbalanced = cpp_attribute("maxUnbalanced", kind=float)
+    globalUpdateInt = cpp_attribute("globalUpdateInt", kind=int)
+    maxDisplPerStep = cpp_attribute("maxDisplPerStep", kind=float)
+    keepProportions = cpp_attribute("keepProportions", kind=bool)
+    state = cpp_attribute("state", kind=int)
+    sigma = cpp_attribute("sigma")
+    avgStiffness = cpp_attribute("avgStiffness")
+    currUnbalanced = cpp_attribute("currUnbalanced")
 
-    doneHook = _done_hook()
+    doneHook = done_hook_attribute()
 
 
 _WALLS = ("left", "right", "bottom", "top", "back", "front")
@@ -259,36 +260,36 @@ class TriaxialStressController(Engine):
             setattr(self, f"wall_{w}_activated", values[f"wall_{w}_activated"])
         self.label = label
 
-    goal1 = _forward("goal1", kind=float)
-    goal2 = _forward("goal2", kind=float)
-    goal3 = _forward("goal3", kind=float)
-    stressMask = _forward("stressMask", kind=_axis_mask)
-    internalCompaction = _forward("internalCompaction", kind=bool)
-    maxMultiplier = _forward("maxMultiplier", kind=float)
-    finalMaxMultiplier = _forward("finalMaxMultiplier", kind=float)
-    max_vel = _forward("max_vel", kind=float)
-    stressDamping = _forward("stressDamping", kind=float)
-    strainDamping = _forward("strainDamping", kind=float)
-    thickness = _forward("thickness", kind=float)
-    stiffnessUpdateInterval = _forward("stiffnessUpdateInterval", kind=int)
-    radiusControlInterval = _forward("radiusControlInterval", kind=int)
-    computeStressStrainInterval = _forward("computeStressStrainInterval", kind=int)
-    updatePorosity = _forward("updatePorosity", kind=bool)
-    width0 = _forward("width0", kind=float)
-    height0 = _forward("height0", kind=float)
-    depth0 = _forward("depth0", kind=float)
-    strain = _forward("strain")
-    volumetricStrain = _forward("volumetricStrain")
-    meanStress = _forward("meanStress")
-    porosity = _forward("porosity")
-    boxVolume = _forward("boxVolume")
-    particlesVolume = _forward("particlesVolume")
+    goal1 = cpp_attribute("goal1", kind=float)
+    goal2 = cpp_attribute("goal2", kind=float)
+    goal3 = cpp_attribute("goal3", kind=float)
+    stressMask = cpp_attribute("stressMask", kind=_axis_mask)
+    internalCompaction = cpp_attribute("internalCompaction", kind=bool)
+    maxMultiplier = cpp_attribute("maxMultiplier", kind=float)
+    finalMaxMultiplier = cpp_attribute("finalMaxMultiplier", kind=float)
+    max_vel = cpp_attribute("max_vel", kind=float)
+    stressDamping = cpp_attribute("stressDamping", kind=float)
+    strainDamping = cpp_attribute("strainDamping", kind=float)
+    thickness = cpp_attribute("thickness", kind=float)
+    stiffnessUpdateInterval = cpp_attribute("stiffnessUpdateInterval", kind=int)
+    radiusControlInterval = cpp_attribute("radiusControlInterval", kind=int)
+    computeStressStrainInterval = cpp_attribute("computeStressStrainInterval", kind=int)
+    updatePorosity = cpp_attribute("updatePorosity", kind=bool)
+    width0 = cpp_attribute("width0", kind=float)
+    height0 = cpp_attribute("height0", kind=float)
+    depth0 = cpp_attribute("depth0", kind=float)
+    strain = cpp_attribute("strain")
+    volumetricStrain = cpp_attribute("volumetricStrain")
+    meanStress = cpp_attribute("meanStress")
+    porosity = cpp_attribute("porosity")
+    boxVolume = cpp_attribute("boxVolume")
+    particlesVolume = cpp_attribute("particlesVolume")
     spheresVolume = particlesVolume
-    width = _forward("width")
-    height = _forward("height")
-    depth = _forward("depth")
-    externalWork = _forward("externalWork")
-    previousMultiplier = _forward("previousMultiplier")
+    width = cpp_attribute("width")
+    height = cpp_attribute("height")
+    depth = cpp_attribute("depth")
+    externalWork = cpp_attribute("externalWork")
+    previousMultiplier = cpp_attribute("previousMultiplier")
 
     wall_left_id, wall_right_id, wall_bottom_id = _wall_id(0), _wall_id(1), _wall_id(2)
     wall_top_id, wall_back_id, wall_front_id = _wall_id(3), _wall_id(4), _wall_id(5)
@@ -332,7 +333,7 @@ class TriaxialStressController(Engine):
 def RayleighWaveTimeStep(scene=None) -> float:
     """Yade's Rayleigh-wave critical step: min over spheres of pi r / (0.1631 nu + 0.876605)
     sqrt(rho / G), G = E / (2 (1 + nu))."""
-    from talus.dem import O
+    O = default_scene()
     value = _dem.rayleighWaveTimeStep((scene or O)._cpp)
     if value == float("inf"):
         raise ValueError("RayleighWaveTimeStep: the scene has no spheres")
@@ -343,14 +344,14 @@ def growParticles(multiplier: float, updateMass: bool = True, dynamicOnly: bool 
     """Multiply the spheres' radii by ``multiplier`` (Yade's growParticles): masses and inertias
     follow (``updateMass``), current contacts keep their overlap history with scaled stiffness;
     a clump grows about its centroid (members' offsets and radii, mass and moments)."""
-    from talus.dem import O
+    O = default_scene()
     _dem.growParticles((scene or O)._cpp, float(multiplier), bool(updateMass), bool(dynamicOnly))
 
 
 def setContactFriction(angleRad: float, scene=None):
     """Set the friction angle of the dynamic bodies' materials and of the existing contacts
     (Yade's setContactFriction): e.g. compact frictionless, then shear with friction."""
-    from talus.dem import O
+    O = default_scene()
     scene = scene or O
     _dem.setContactFriction(scene._cpp, float(angleRad))
 

@@ -43,10 +43,12 @@ def _compress(size, radius: float, rRelFuzz: float, num: int, seed: int, frictio
               globalUpdateInt: int) -> SpherePack:
     """A periodic cloud in the cell ``size`` compressed as Yade's randomDensePack does, in a
     scene of its own (the user's scene is left alone)."""
-    from talus.dem import (FrictMat, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriIsoCompressor,
-                           PWaveTimeStep, Scene)
-    from talus.dem.engines import (Bo1_Sphere_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom,
-                                   Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack)
+    from talus.dem.controllers import PeriIsoCompressor
+    from talus.dem.engines import (Bo1_Sphere_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom, InsertionSortCollider,
+                                   InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
+                                   Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator)
+    from talus.dem.materials import FrictMat
+    from talus.dem.scene import PWaveTimeStep, Scene
     cloud = SpherePack()
     cloud.makeCloud((0, 0, 0), tuple(size), rMean=radius, rRelFuzz=rRelFuzz, num=num, periodic=True, seed=seed)
     scene = Scene()

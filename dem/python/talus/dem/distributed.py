@@ -24,6 +24,8 @@ import atexit
 import os
 import sys
 
+from talus.dem.scenes import default_scene
+
 #: Processes of the run (Open MPI's mpirun tells each process); above 1 the scene is split.
 RANKS = int(os.environ.get("OMPI_COMM_WORLD_SIZE", "1"))
 ACTIVE = RANKS > 1
@@ -96,7 +98,7 @@ def positions(scene=None):
     """Positions of every body (global ids) as an (N, 3) array, on every process (collective);
     in one process, O's positions."""
     if scene is None:
-        from talus.dem import O as scene
+        scene = default_scene()
     d = domain(scene)
     return scene.positions().copy() if d is None else d.positions(scene._cpp)
 
@@ -111,7 +113,7 @@ def traffic(scene=None) -> list[dict]:
     rebuilds at re-detections), a dict per process, on every process (collective); empty in one
     process."""
     if scene is None:
-        from talus.dem import O as scene
+        scene = default_scene()
     d = domain(scene)
     if d is None:
         return []

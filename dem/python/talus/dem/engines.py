@@ -28,7 +28,8 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.linalg import Vector3
-from talus.dem.bodies import group_mask
+from talus.dem.masks import group_mask
+from talus.dem.scenes import default_scene
 
 
 class Functor:
@@ -198,7 +199,9 @@ class Ip2_FrictMat_FrictMat_MindlinPhys(Functor):
     _parameters = ("en", "es", "betan", "betas")
 
 
-class _Law(Functor):
+class LawFunctor(Functor):
+    """Base of the contact laws (Yade's LawFunctor): the C++ law registered as ``_cpp_name``,
+    its parameters set from the functor's."""
     _cpp_name = ""
 
     def __init__(self, label: str = "", **params):
@@ -244,7 +247,7 @@ class Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(Functor):
             law._set("setCohesionNow", bool(value))
 
 
-class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
+class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(LawFunctor):
     """Cohesive bonds (normal and shear strengths, fragile or plastic), Coulomb friction, and
     with momentRotationLaw rolling and twisting moments (``useIncrementalForm``: from
     incremental rotations, needed for exact plastic limits; ``always_use_moment_law``: keep
@@ -271,7 +274,7 @@ class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
         return self._elasticEnergy("moment_twist", "ktw")
 
     def _elasticEnergy(self, force: str, stiffness: str) -> float:
-        from talus.dem import O
+        O = default_scene()
         from talus.dem.materials import CohFrictMat
         cohesive = np.array([isinstance(m, CohFrictMat) for m in O.materials], dtype=bool)
         material = O._cpp.materialIds()
@@ -283,7 +286,7 @@ class Law2_ScGeom6D_CohFrictPhys_CohesionMoment(_Law):
         return energy
 
 
-class Law2_ScGeom_MindlinPhys_Mindlin(_Law):
+class Law2_ScGeom_MindlinPhys_Mindlin(LawFunctor):
     """Hertz normal force kno u^1.5, incremental Mindlin shear stiffness kso u^0.5 with Coulomb
     friction, viscous damping from Ip2_FrictMat_FrictMat_MindlinPhys (never attractive).
     ``neverErase`` only at Yade's default False: a contact ends when its bodies part."""
@@ -300,12 +303,12 @@ class Law2_ScGeom_MindlinPhys_Mindlin(_Law):
                              "(Talus ends a contact when its bodies part)")
 
 
-class Law2_ScGeom_FrictPhys_CundallStrack(_Law):
+class Law2_ScGeom_FrictPhys_CundallStrack(LawFunctor):
     """Linear elastic normal force and incremental shear force with Coulomb friction."""
     _cpp_name = "Law2_ScGeom_FrictPhys_CundallStrack"
 
 
-class Law2_ScGeom_ViscElPhys_Basic(_Law):
+class Law2_ScGeom_ViscElPhys_Basic(LawFunctor):
     """Linear spring-dashpot normal and shear forces (never attractive) with Coulomb friction,
     and rolling resistance for materials with ``mR`` > 0."""
     _cpp_name = "Law2_ScGeom_ViscElPhys_Basic"
@@ -584,8 +587,8 @@ class InteractionLoop(Engine):
     def __init__(self, geomFunctors: Sequence[Functor] = (), physFunctors: Sequence[Functor] = (),
                  lawFunctors: Sequence[Functor] = (), label: str = ""):
         geomFunctors, physFunctors, lawFunctors = (_functors(f) for f in (geomFunctors, physFunctors, lawFunctors))
-        laws = [f for f in lawFunctors if isinstance(f, _Law)]
-        unknown = [f for f in lawFunctors if not isinstance(f, _Law)]
+        laws = [f for f in lawFunctors if isinstance(f, LawFunctor)]
+        unknown = [f for f in lawFunctors if not isinstance(f, LawFunctor)]
         if unknown:
             raise TypeError(f"InteractionLoop: not contact laws: {unknown}")
         if not laws:

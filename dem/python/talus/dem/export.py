@@ -26,8 +26,6 @@ numbers are written as they are (IEEE NaN/inf, legal in VTK) and flagged: the po
 
 from __future__ import annotations
 
-import base64
-import itertools
 import os
 import warnings
 from typing import TYPE_CHECKING, Iterable, Sequence
@@ -39,6 +37,8 @@ from talus import _dem
 from talus.dem.engines import PyRunner
 from talus.dem.io import owner_scene
 from talus.dem.linalg import Quaternion
+from talus.dem.scenes import default_scene
+from talus.dem.vtu import vtu_bytes, write_atomically
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -54,78 +54,10 @@ _HEX_CORNERS = np.array([(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
 # Corners of the periodic cell as fractions of its edges, in the order Yade's files list them.
 _CELL_CORNERS = np.array([(0, 0, 1), (0, 1, 1), (1, 1, 1), (1, 0, 1),
                           (0, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 0)], dtype=float)
-_VTK_TYPES = {np.dtype(np.float64): "Float64", np.dtype(np.float32): "Float32", np.dtype(np.int64): "Int64",
-              np.dtype(np.int32): "Int32", np.dtype(np.uint8): "UInt8"}
 
 
 class VTKWarning(UserWarning):
     """Something unusual was written to a VTK file (non-finite values)."""
-
-
-# ------------------------------------------------------------------------------------------------
-# Writing files.
-
-_counter = itertools.count()
-
-
-def _atomic_write(path: str, data: bytes) -> None:
-    """Write ``data`` to ``path`` through a temporary file in the same folder and a rename."""
-    folder = os.path.dirname(os.path.abspath(path))
-    os.makedirs(folder, exist_ok=True)
-    temporary = os.path.join(folder, f".{os.path.basename(path)}.tmp-{os.getpid()}-{next(_counter)}")
-    try:
-        with open(temporary, "wb") as f:
-            f.write(data)
-        os.replace(temporary, path)
-    except BaseException:
-        try:
-            os.unlink(temporary)
-        except OSError:
-            pass
-        raise
-
-
-def _data_array(array: np.ndarray, name: str | None, indent: str) -> str:
-    array = np.ascontiguousarray(array)
-    if array.dtype.byteorder == ">":
-        array = array.astype(array.dtype.newbyteorder("<"))
-    components = 1 if array.ndim == 1 else int(np.prod(array.shape[1:]))
-    raw = array.tobytes()
-    payload = base64.b64encode(np.uint64(len(raw)).tobytes() + raw).decode("ascii")
-    attrs = f'type="{_VTK_TYPES[array.dtype]}"'
-    if name is not None:
-        attrs += f" Name={quoteattr(name)}"
-    if components != 1:
-        attrs += f' NumberOfComponents="{components}"'
-    return f'{indent}<DataArray {attrs} format="binary">{payload}</DataArray>\n'
-
-
-def vtu_bytes(points: np.ndarray, connectivity: np.ndarray, offsets: np.ndarray, types: np.ndarray,
-              point_data: dict | None = None, cell_data: dict | None = None, time: float | None = None) -> bytes:
-    """The text of a ``.vtu`` file: an unstructured grid of ``points`` (n, 3) and cells given
-    by VTK's connectivity, end offsets and cell types, with named point and cell arrays."""
-    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
-    out = ['<?xml version="1.0"?>\n',
-           '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n',
-           "  <UnstructuredGrid>\n"]
-    if time is not None:
-        out += ["    <FieldData>\n",
-                _data_array(np.array([time], dtype=np.float64), "TimeValue", "      ").replace(
-                    "<DataArray ", '<DataArray NumberOfTuples="1" ', 1),
-                "    </FieldData>\n"]
-    out.append(f'    <Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(types)}">\n')
-    for tag, data in (("PointData", point_data or {}), ("CellData", cell_data or {})):
-        out.append(f"      <{tag}>\n")
-        for name, array in data.items():
-            out.append(_data_array(np.asarray(array), name, "        "))
-        out.append(f"      </{tag}>\n")
-    out += ["      <Points>\n", _data_array(points, None, "        "), "      </Points>\n",
-            "      <Cells>\n",
-            _data_array(np.asarray(connectivity, dtype=np.int64), "connectivity", "        "),
-            _data_array(np.asarray(offsets, dtype=np.int64), "offsets", "        "),
-            _data_array(np.asarray(types, dtype=np.uint8), "types", "        "),
-            "      </Cells>\n", "    </Piece>\n", "  </UnstructuredGrid>\n", "</VTKFile>\n"]
-    return "".join(out).encode("ascii")
 
 
 def _cells(count: int, size: int, cell_type: int):
@@ -162,7 +94,7 @@ def write_spheres(scene: "Scene", path: str, extra: dict | None = None) -> int:
     data.update(extra or {})
     positions = cpp.pos()[ids]
     data["nonfinite"] = _flag_nonfinite("spheres", ids, [positions, *data.values()])
-    _atomic_write(path, vtu_bytes(positions, *_cells(len(ids), 1, VTK_VERTEX), point_data=data, time=cpp.time))
+    write_atomically(path, vtu_bytes(positions, *_cells(len(ids), 1, VTK_VERTEX), point_data=data, time=cpp.time))
     return len(ids)
 
 
@@ -173,7 +105,7 @@ def write_facets(scene: "Scene", path: str) -> int:
     data = {"id": ids, "materialId": f["material"], "normal": f["normal"],
             "force": scene._cpp.force()[ids], "velocity": scene._cpp.vel()[ids],
             "color": scene._appearance.of(ids, scene._cpp.bodyCount())}
-    _atomic_write(path, vtu_bytes(f["vertices"].reshape(-1, 3), *_cells(len(ids), 3, VTK_TRIANGLE),
+    write_atomically(path, vtu_bytes(f["vertices"].reshape(-1, 3), *_cells(len(ids), 3, VTK_TRIANGLE),
                                   cell_data=data, time=scene._cpp.time))
     return len(ids)
 
@@ -187,7 +119,7 @@ def write_boxes(scene: "Scene", path: str) -> int:
     data = {"id": ids.astype(np.int32), "materialId": cpp.materialIds()[ids].astype(np.int32),
             "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids], "force": cpp.force()[ids],
             "color": scene._appearance.of(ids, cpp.bodyCount())}
-    _atomic_write(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 8, VTK_HEXAHEDRON),
+    write_atomically(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 8, VTK_HEXAHEDRON),
                                   cell_data=data, time=cpp.time))
     return len(ids)
 
@@ -220,7 +152,7 @@ def write_walls(scene: "Scene", path: str, size: float | None = None) -> int:
     ids = w["id"]
     data = {"id": ids, "materialId": w["material"], "axis": w["axis"], "sense": w["sense"],
             "force": scene._cpp.force()[ids]}
-    _atomic_write(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 4, VTK_QUAD),
+    write_atomically(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 4, VTK_QUAD),
                                   cell_data=data, time=scene._cpp.time))
     return len(ids)
 
@@ -230,7 +162,7 @@ def write_periodic_cell(scene: "Scene", path: str) -> int:
     if not scene.periodic:
         raise ValueError("write_periodic_cell: the scene is not periodic (O.periodic is False)")
     corners = _CELL_CORNERS @ np.asarray(scene.cell.hSize, dtype=float).T
-    _atomic_write(path, vtu_bytes(corners, *_cells(1, 8, VTK_HEXAHEDRON), time=scene._cpp.time))
+    write_atomically(path, vtu_bytes(corners, *_cells(1, 8, VTK_HEXAHEDRON), time=scene._cpp.time))
     return 1
 
 
@@ -247,7 +179,7 @@ def write_contacts(scene: "Scene", path: str, real_only: bool = True) -> int:
     data = {"forceN": np.linalg.norm(c["normalForce"], axis=1),
             "normalForce": c["normalForce"], "shearForce": c["shearForce"], "force": c["force"],
             "penetration": c["penetration"], "id1": id1, "id2": id2, "kind": c["kind"], "real": c["real"]}
-    _atomic_write(path, vtu_bytes(points, *_cells(len(id1), 2, VTK_LINE), cell_data=data, time=scene._cpp.time))
+    write_atomically(path, vtu_bytes(points, *_cells(len(id1), 2, VTK_LINE), cell_data=data, time=scene._cpp.time))
     return len(id1)
 
 
@@ -269,7 +201,7 @@ class PvdCollection:
                  "  <Collection>\n"]
         lines += [f'    <DataSet timestep="{t!r}" group="" part="0" file={quoteattr(f)}/>\n' for t, f in self.entries]
         lines += ["  </Collection>\n", "</VTKFile>\n"]
-        _atomic_write(self.path, "".join(lines).encode("utf-8"))
+        write_atomically(self.path, "".join(lines).encode("utf-8"))
 
 
 # ------------------------------------------------------------------------------------------------
@@ -339,7 +271,7 @@ class VTKRecorder(PyRunner):
     def _scene(self) -> "Scene":
         """The scene whose engine list holds this recorder; O for one called by hand outside any
         engine list (``VTKRecorder(...)()``, as in Yade)."""
-        from talus.dem import O
+        O = default_scene()
         if any(e is self for e in O.engines):
             return O
         try:
@@ -387,7 +319,7 @@ class VTKExporter:
     @property
     def scene(self) -> "Scene":
         if self._scene is None:
-            from talus.dem import O
+            O = default_scene()
             return O
         return self._scene
 
@@ -431,7 +363,7 @@ class VTKExporter:
             nodes[triangle] = facets["vertices"][row[int(i)]]
         data = {"id": chosen.astype(np.int32), **_evaluate(what, [scene.bodies[int(i)] for i in chosen])}
         path = self._path("facets", numLabel)
-        _atomic_write(path, vtu_bytes(nodes, table.reshape(-1), 3 * np.arange(1, len(table) + 1),
+        write_atomically(path, vtu_bytes(nodes, table.reshape(-1), 3 * np.arange(1, len(table) + 1),
                                       np.full(len(table), VTK_TRIANGLE, dtype=np.uint8), cell_data=data,
                                       time=scene._cpp.time))
         return path

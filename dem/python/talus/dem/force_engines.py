@@ -16,7 +16,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.engines import Engine, finite_vector as _vector
-from talus.dem.bodies import group_mask
+from talus.dem.masks import group_mask
 from talus.dem.linalg import Vector2i, Vector3
 
 

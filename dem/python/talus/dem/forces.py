@@ -41,7 +41,7 @@ class ForceContainer:
 
     def __call__(self):
         """The forces of all bodies (a zero-copy array, bodies x 3)."""
-        return self._scene._view(self._scene._cpp.force())
+        return self._scene._views.track(self._scene._cpp.force())
 
     def _row(self, array, id: int):
         self._scene._cpp.checkBody(int(id))

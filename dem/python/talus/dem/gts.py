@@ -49,7 +49,7 @@ class Point:
         """Whether the point is inside the closed ``surface``."""
         if not surface.is_closed():
             raise ValueError("Point.is_inside: the surface is not closed")
-        w = _winding_numbers(np.array([self.coords()]), surface._triangles())[0]
+        w = winding_numbers(np.array([self.coords()]), surface._triangles())[0]
         return bool(abs(w) > .5)
 
     def __repr__(self):
@@ -355,7 +355,7 @@ def read(file) -> Surface:
     return surface
 
 
-def _winding_numbers(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
+def winding_numbers(points: np.ndarray, triangles: np.ndarray) -> np.ndarray:
     """Per point, the winding number of the triangles about it: the sum of the signed solid
     angles of the triangles seen from the point over 4 pi (Van Oosterom and Strackee's formula)."""
     out = np.empty(len(points))

@@ -35,6 +35,7 @@ from talus import _dem
 from talus.dem import trust
 from talus.dem.appearance import Appearance
 from talus.dem.reference import ReferenceStates
+from talus.dem.scenes import live_scenes
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -326,10 +327,7 @@ def owner_scene(engine):
     scene = ref() if ref is not None else None
     if scene is not None and any(e is engine for e in scene.engines):
         return scene
-    import gc
-    from talus.dem import O
-    from talus.dem.scene import Scene
-    for candidate in [O, *(o for o in gc.get_objects() if isinstance(o, Scene) and o is not O)]:
+    for candidate in live_scenes():
         if any(e is engine for e in candidate.engines):
             object.__setattr__(engine, "_owner_scene", weakref.ref(candidate))
             return candidate

@@ -20,20 +20,13 @@ from typing import Sequence
 import numpy as np
 
 from talus import _dem
-from talus.dem.engines import Engine
+from talus.dem.engines import Engine, finite_vector
 from talus.dem.linalg import Vector3
-
-
-def _vector(value, what: str) -> list[float]:
-    v = np.asarray(value, dtype=float).reshape(-1)
-    if v.shape != (3,) or not np.all(np.isfinite(v)):
-        raise ValueError(f"{what} must be 3 finite numbers, got {value!r}")
-    return v.tolist()
 
 
 def _unit(value, what: str) -> list[float]:
     """The direction of ``value``, normalised when set (as Yade's postLoad does)."""
-    v = np.asarray(_vector(value, what))
+    v = np.asarray(finite_vector(value, what))
     length = np.linalg.norm(v)
     if length == 0:
         raise ValueError(f"{what} must not be zero")
@@ -94,11 +87,11 @@ class RotationEngine(KinematicEngine):
     angularVelocity = property(lambda s: s._cpp.angularVelocity,
                                lambda s, v: setattr(s._cpp, "angularVelocity", float(v)))
     rotationAxis = property(lambda s: Vector3(s._cpp.rotationAxis),
-                            lambda s, v: setattr(s._cpp, "rotationAxis", _vector(v, "rotationAxis")))
+                            lambda s, v: setattr(s._cpp, "rotationAxis", finite_vector(v, "rotationAxis")))
     rotateAroundZero = property(lambda s: s._cpp.rotateAroundZero,
                                 lambda s, v: setattr(s._cpp, "rotateAroundZero", bool(v)))
     zeroPoint = property(lambda s: Vector3(s._cpp.zeroPoint),
-                         lambda s, v: setattr(s._cpp, "zeroPoint", _vector(v, "zeroPoint")))
+                         lambda s, v: setattr(s._cpp, "zeroPoint", finite_vector(v, "zeroPoint")))
 
 
 class HarmonicMotionEngine(KinematicEngine):
@@ -110,9 +103,9 @@ class HarmonicMotionEngine(KinematicEngine):
         self._init(_dem.HarmonicMotionEngine(), ids, label)
         self.A, self.f, self.fi = A, f, fi
 
-    A = property(lambda s: Vector3(s._cpp.A), lambda s, v: setattr(s._cpp, "A", _vector(v, "A")))
-    f = property(lambda s: Vector3(s._cpp.f), lambda s, v: setattr(s._cpp, "f", _vector(v, "f")))
-    fi = property(lambda s: Vector3(s._cpp.fi), lambda s, v: setattr(s._cpp, "fi", _vector(v, "fi")))
+    A = property(lambda s: Vector3(s._cpp.A), lambda s, v: setattr(s._cpp, "A", finite_vector(v, "A")))
+    f = property(lambda s: Vector3(s._cpp.f), lambda s, v: setattr(s._cpp, "f", finite_vector(v, "f")))
+    fi = property(lambda s: Vector3(s._cpp.fi), lambda s, v: setattr(s._cpp, "fi", finite_vector(v, "fi")))
 
 
 class CombinedKinematicEngine(KinematicEngine):

@@ -9,11 +9,12 @@ import numpy as np
 from talus import _dem
 from talus.dem import distributed
 from talus.dem.linalg import Matrix3, Matrix6, Vector3
+from talus.dem.scenes import default_scene
 
 
 def _scene(scene):
     if scene is None:
-        from talus.dem import O
+        O = default_scene()
         return O
     return scene
 

@@ -20,6 +20,7 @@ from talus.dem import predicates
 from talus.dem.bodies import BodySpec, facet, sphere
 from talus.dem.linalg import Vector3
 from talus.dem.predicates import *  # noqa: F401,F403  (Yade's pack module holds the predicates)
+from talus.dem.scenes import default_scene
 
 __all__ = [*predicates.__all__, "regularHexa", "regularOrtho", "filterSpherePack", "SpherePack", "compressedCloud",
            "sweptPolylines2gtsSurface", "gtsSurface2Facets", "revolutionSurfaceMeridians"]
@@ -403,7 +404,7 @@ class SpherePack:
         :func:`sphere` (material, fixed, ...). Returns the new ids: an id per free sphere, a
         ``(clump id, member ids)`` pair per clump (as Yade)."""
         if scene is None:
-            from talus.dem import O as scene
+            scene = default_scene()
         R = np.eye(3)
         if rot is not None:
             R = np.asarray(rot.toRotationMatrix() if hasattr(rot, "toRotationMatrix") else rot, float).reshape(3, 3)
@@ -435,7 +436,7 @@ class SpherePack:
     def fromSimulation(self, scene=None):
         """Replace the content by the scene's spheres (and its cell if periodic)."""
         if scene is None:
-            from talus.dem import O as scene
+            scene = default_scene()
         alive = np.asarray(scene._cpp.alive(), dtype=bool)
         r = np.asarray(scene.radii())
         keep = alive & (r > 0)
@@ -500,11 +501,13 @@ def compressedCloud(minCorner, maxCorner, rMean: float = -1, rRelFuzz: float = 0
 
     :raises RuntimeError: if the target is not reached within ``maxIter`` steps
     """
-    from talus.dem import (FrictMat, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PeriTriaxController,
-                           PWaveTimeStep, Scene, unbalancedForce)
-    from talus.dem.engines import (Bo1_Sphere_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom,
-                                   Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack)
-    from talus.dem.measure import porosity as scene_porosity
+    from talus.dem.controllers import PeriTriaxController
+    from talus.dem.engines import (Bo1_Sphere_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom, InsertionSortCollider,
+                                   InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
+                                   Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator)
+    from talus.dem.materials import FrictMat
+    from talus.dem.measure import porosity as scene_porosity, unbalancedForce
+    from talus.dem.scene import PWaveTimeStep, Scene
     if (stress is None) == (porosity is None) and porosity is not None:
         raise ValueError("compressedCloud: give either stress or porosity, not both")
     cloud = SpherePack()

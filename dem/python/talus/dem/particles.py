@@ -23,10 +23,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from talus import _dem
-from talus.dem.blocks import _twoDimension
-from talus.dem.bodies import BodySpec, group_mask
-from talus.dem.engines import Functor, _Law
-from talus.dem.export import _atomic_write, vtu_bytes
+from talus.dem.bodies import BodySpec
+from talus.dem.convex_contact import geometry_functor, two_dimension
+from talus.dem.engines import Functor, LawFunctor
+from talus.dem.masks import group_mask
+from talus.dem.shape_registry import ShapeKind, register
+from talus.dem.vtu import vtu_bytes, write_atomically
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene
@@ -78,7 +80,7 @@ def potentialParticle(shape: PotentialParticle, pos=(0.0, 0.0, 0.0), orientation
 
 
 def _add(scene: "Scene", spec: BodySpec, material: int) -> int:
-    """Add a PotentialParticle body spec to the scene (called by O.bodies.append)."""
+    """Add a PotentialParticle body spec to the scene (O.bodies.append)."""
     s = spec.block
     return _dem.add_potential_particle(scene._cpp, s.a, s.b, s.c, s.d, s.r, s.k, s.R, s.isBoundary,
                                        np.asarray(spec.center, dtype=float), np.asarray(spec.orientation, dtype=float),
@@ -127,7 +129,7 @@ def write_particles(scene: "Scene", path: str, nTheta: int = 24, nPhi: int = 48)
     owner = np.asarray(owner, dtype=np.int32)
     offsets = 4 * np.arange(1, len(owner) + 1, dtype=np.int64)
     data = {"id": owner, "velocity": cpp.vel()[owner] if len(owner) else np.zeros((0, 3))}
-    _atomic_write(path, vtu_bytes(pts, np.asarray(conn, dtype=np.int64), offsets,
+    write_atomically(path, vtu_bytes(pts, np.asarray(conn, dtype=np.int64), offsets,
                                   np.full(len(owner), VTK_QUAD, dtype=np.uint8), cell_data=data, time=cpp.time))
     return len(ids)
 
@@ -151,7 +153,7 @@ class Ig2_PP_PP_ScGeom(Functor):
 
     def _applyToScene(self, cpp):
         """Set the 2D settings for every particle contact of the scene whose engines hold us."""
-        _dem.set_particle_contact_settings(cpp, *_twoDimension(self))
+        _dem.set_particle_contact_settings(cpp, *two_dimension(self))
 
 
 class Ip2_FrictMat_FrictMat_KnKsPhys(Functor):
@@ -161,7 +163,7 @@ class Ip2_FrictMat_FrictMat_KnKsPhys(Functor):
     _parameters = ("Knormal", "Kshear", "kn_i", "ks_i", "viscousDamping", "useFaceProperties")
 
 
-class Law2_SCG_KnKsPhys_KnKsLaw(_Law):
+class Law2_SCG_KnKsPhys_KnKsLaw(LawFunctor):
     """F_n = Knormal A u_n n, incremental F_s with Kshear A, Coulomb friction on the (damped)
     normal force, optional viscous damping (``allowViscousAttraction``: the damped normal force
     may pull). ``neverErase``, ``traceEnergy`` accepted (energies follow O.trackEnergy); Yade's
@@ -193,6 +195,17 @@ class Law2_SCG_KnKsPhys_KnKsLaw(_Law):
                 for name, value in g._io_params().items():
                     self._set(name, value)
 
+
+def _view(scene: "Scene", id: int) -> PotentialParticle:
+    """``b.shape`` of a particle: Yade's PotentialParticle, its planes in the shape frame."""
+    s = _dem.particle_shape(scene._cpp, id)
+    n = np.asarray(s["normals"], dtype=float).reshape(-1, 3)
+    return PotentialParticle(n[:, 0], n[:, 1], n[:, 2], s["d"], r=s["r"], k=s["k"], R=s["R"],
+                             isBoundary=s["isBoundary"])
+
+
+register(ShapeKind("PotentialParticle", view=_view, add=_add,
+                   configure=lambda cpp, engines: geometry_functor(Ig2_PP_PP_ScGeom, engines)._applyToScene(cpp)))
 
 __all__ = ["PotentialParticle", "potentialParticle", "particleShape", "particleContact", "particlePotential",
            "write_particles", "PotentialParticle2AABB", "Ig2_PP_PP_ScGeom", "Ip2_FrictMat_FrictMat_KnKsPhys",

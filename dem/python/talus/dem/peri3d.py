@@ -8,7 +8,7 @@ from typing import Callable
 import numpy as np
 
 from talus import _dem
-from talus.dem.controllers import _done_hook, _forward
+from talus.dem.controllers import cpp_attribute, done_hook_attribute
 from talus.dem.engines import Engine
 from talus.dem.linalg import Vector2
 
@@ -76,28 +76,28 @@ class Peri3dController(Engine):
         self.strain, self.stressIdeal, self.progress = strain, stressIdeal, progress
         self.doneHook, self.label = doneHook, label
 
-    goal = _forward("goal", kind=_vector6("goal"))
-    stressMask = _forward("stressMask", kind=int)
-    nSteps = _forward("nSteps", kind=int)
-    maxStrainRate = _forward("maxStrainRate", kind=float)
-    maxStrain = _forward("maxStrain", kind=float)
-    mod = _forward("mod", kind=float)
-    youngEstimation = _forward("youngEstimation", kind=float)
-    poissonEstimation = _forward("poissonEstimation", kind=float)
-    progress = _forward("progress", kind=float)
-    strain = _forward("strain", kind=_vector6("strain"))
-    stressIdeal = _forward("stressIdeal", kind=_vector6("stressIdeal"))
-    stress = _forward("stress", kind=_vector6("stress"))
-    strainRate = _forward("strainRate", kind=_vector6("strainRate"))
-    stressRate = _forward("stressRate", kind=_vector6("stressRate"))
-    stressGoal = _forward("stressGoal", kind=_vector6("stressGoal"))
-    strainGoal = _forward("strainGoal", kind=_vector6("strainGoal"))
-    ps, pe = _forward("ps"), _forward("pe")
-    pathSizes, pathsCounter = _forward("pathSizes"), _forward("pathsCounter")
-    lenPs, lenPe = _forward("lenPs", kind=int), _forward("lenPe", kind=int)
+    goal = cpp_attribute("goal", kind=_vector6("goal"))
+    stressMask = cpp_attribute("stressMask", kind=int)
+    nSteps = cpp_attribute("nSteps", kind=int)
+    maxStrainRate = cpp_attribute("maxStrainRate", kind=float)
+    maxStrain = cpp_attribute("maxStrain", kind=float)
+    mod = cpp_attribute("mod", kind=float)
+    youngEstimation = cpp_attribute("youngEstimation", kind=float)
+    poissonEstimation = cpp_attribute("poissonEstimation", kind=float)
+    progress = cpp_attribute("progress", kind=float)
+    strain = cpp_attribute("strain", kind=_vector6("strain"))
+    stressIdeal = cpp_attribute("stressIdeal", kind=_vector6("stressIdeal"))
+    stress = cpp_attribute("stress", kind=_vector6("stress"))
+    strainRate = cpp_attribute("strainRate", kind=_vector6("strainRate"))
+    stressRate = cpp_attribute("stressRate", kind=_vector6("stressRate"))
+    stressGoal = cpp_attribute("stressGoal", kind=_vector6("stressGoal"))
+    strainGoal = cpp_attribute("strainGoal", kind=_vector6("strainGoal"))
+    ps, pe = cpp_attribute("ps"), cpp_attribute("pe")
+    pathSizes, pathsCounter = cpp_attribute("pathSizes"), cpp_attribute("pathsCounter")
+    lenPs, lenPe = cpp_attribute("lenPs", kind=int), cpp_attribute("lenPe", kind=int)
     xxPath, yyPath, zzPath, yzPath, zxPath, xyPath = (_path(i) for i in range(6))
 
-    doneHook = _done_hook()
+    doneHook = done_hook_attribute()
 
     def _io_state(self):
         return {name: np.array(v) if isinstance(v := getattr(self._cpp, name), np.ndarray) else v for name in _STATE}

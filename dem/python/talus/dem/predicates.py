@@ -402,10 +402,10 @@ class inGtsSurface(Predicate):
         self._outward = surface.volume() >= 0
 
     def __call__(self, point, pad: float = 0.0) -> bool:
-        from talus.dem.gts import _winding_numbers
+        from talus.dem.gts import winding_numbers
         p = np.asarray(point, float)
         points = [p] if self.noPad or pad == 0 else [p] + [p + s * pad * e for e in np.eye(3) for s in (-1, 1)]
-        w = _winding_numbers(np.array(points), self._triangles)
+        w = winding_numbers(np.array(points), self._triangles)
         return bool(np.all(w > .5 if self._outward else w < -.5))
 
     def aabb(self):

@@ -20,6 +20,7 @@ from talus.dem.engines import (Bo1_Box_Aabb, Bo1_Facet_Aabb, Bo1_Sphere_Aabb, Bo
                                NewtonIntegrator)
 from talus.dem.materials import FrictMat
 from talus.dem.triaxial import TriaxialCompressionEngine, TriaxialStateRecorder
+from talus.dem.scenes import default_scene
 
 # Yade's defaults (TriaxialTest in Yade 2023.02a)
 _DEFAULTS = {
@@ -69,7 +70,7 @@ class TriaxialTest:
 
     def load(self):
         """Build the scene in O (what was there is replaced)."""
-        from talus.dem import O
+        O = default_scene()
         self._check()
         O.reset()
         self._build(O)

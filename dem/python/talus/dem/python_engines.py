@@ -13,6 +13,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.engines import Engine
+from talus.dem.scenes import default_scene
 
 _NEVER = 2 ** 62   # an iteration period no run reaches
 
@@ -41,7 +42,7 @@ class PythonEngine(Engine):
         self.label, self.dead = label, dead
 
     def _call(self):
-        from talus.dem import O
+        O = default_scene()
         if not any(e is self._cpp for e in O._cpp.engines):
             raise RuntimeError(f"{type(self).__name__} runs in talus.dem.O (the script's scene), which does not hold it")
         self._action(O)

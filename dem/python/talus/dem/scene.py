@@ -10,17 +10,15 @@ import shutil
 import tempfile
 import time
 import warnings
-import weakref
 from typing import Iterable, Sequence
 
 import numpy as np
 
 from talus import _dem
 from talus.dem import distributed
-from talus.dem.blocks import Ig2_PB_PB_ScGeom
 from talus.dem.appearance import Appearance
 from talus.dem.reference import ReferenceStates
-from talus.dem.bodies import BodyContainer
+from talus.dem.body_container import BodyContainer
 from talus.dem.cell import Cell
 from talus.dem.energy import EnergyTracker
 from talus.dem.engines import Engine, collapseDispatchers
@@ -29,8 +27,10 @@ from talus.dem.interactions import InteractionContainer
 from talus.dem.io import CheckpointMethods
 from talus.dem.omega import OmegaMethods
 from talus.dem.materials import Material, default_material
-from talus.dem.particles import Ig2_PP_PP_ScGeom
 from talus.dem.scene_checks import check_engines, check_time_step
+from talus.dem.scenes import add_scene, default_scene
+from talus.dem.shape_registry import shape_kinds
+from talus.dem.views import ArrayViews
 
 # Whether a contact overlapping beyond maxOverlapRatio stops the run in a new scene (see
 # Scene.overlapStops). Yade has no such check: a run started as `yade -x` would start it sets
@@ -41,11 +41,11 @@ _TMP_FOLDER = None   # O.tmpFilename's folder, made at its first call
 
 
 def _applyGeometrySettings(cpp, engines):
-    """The block and particle contacts' settings of a scene from its engines: those of the
-    first Ig2_PB_PB_ScGeom (resp. Ig2_PP_PP_ScGeom) of an InteractionLoop, or the defaults."""
-    for kind in (Ig2_PB_PB_ScGeom, Ig2_PP_PP_ScGeom):
-        functors = (g for e in engines for g in getattr(e, "geomFunctors", ()) if isinstance(g, kind))
-        next(functors, kind())._applyToScene(cpp)
+    """Each shape kind's contact settings of a scene from its engines (the block and particle
+    contacts': their geometry functors' options)."""
+    for kind in shape_kinds():
+        if kind.configure is not None:
+            kind.configure(cpp, engines)
 
 
 class MaterialContainer:
@@ -127,6 +127,7 @@ class Scene(OmegaMethods, CheckpointMethods):
 
     def __init__(self):
         self._cpp = _dem.Scene()
+        add_scene(self)
         self.materials = MaterialContainer(self)
         self.bodies = BodyContainer(self)
         self.cell = Cell(self)
@@ -141,7 +142,7 @@ class Scene(OmegaMethods, CheckpointMethods):
         self.stopAtTime = 0.0                   # ... or when the time reaches it (0: never)
         self._engines: list[Engine] = []
         self._pending: list[Engine] | None = None   # engines set during a step (see engines)
-        self._views: list[weakref.ref] = []  # arrays handed out by the exchange interface
+        self._views = ArrayViews()           # arrays handed out by the exchange interface
         self._openRunPending = False         # O.run() without count and without wait (see run)
         self._created = time.monotonic()
         self._cpp.overlapStops = OVERLAP_STOPS
@@ -475,38 +476,25 @@ class Scene(OmegaMethods, CheckpointMethods):
 
     # Array views of all bodies (index = body id): the particle exchange interface in Python.
     # Views stay valid until bodies are appended: an append that moves the arrays' storage
-    # while an earlier view is alive warns (see _warn_if_views_move).
-    def _view(self, array):
-        self._views = [r for r in self._views if r() is not None]
-        self._views.append(weakref.ref(array))
-        return array
-
-    def _warn_if_views_move(self, adding: int = 1):
-        """Before adding bodies: a view still alive would point at freed storage after it."""
-        if any(r() is not None for r in self._views) and self._cpp.bodySpareCapacity() < adding:
-            self._views = []  # said once for these views
-            warnings.warn("adding bodies moves the per-body arrays: arrays taken before from positions(), "
-                          "velocities(), forces(), persistent_forces(), radii(), ... no longer follow the bodies "
-                          "(do not use them; take them again after adding)", RuntimeWarning, stacklevel=4)
-
+    # while an earlier view is alive warns (talus.dem.views).
     def positions(self):
-        return self._view(self._cpp.pos())
+        return self._views.track(self._cpp.pos())
 
     def velocities(self):
-        return self._view(self._cpp.vel())
+        return self._views.track(self._cpp.vel())
 
     def angular_velocities(self):
-        return self._view(self._cpp.angVel())
+        return self._views.track(self._cpp.angVel())
 
     def torques(self):
-        return self._view(self._cpp.torque())
+        return self._views.track(self._cpp.torque())
 
     def persistent_forces(self):
         """Forces that stay applied until changed (Yade's permanent forces), by body id."""
-        return self._view(self._cpp.extForce())
+        return self._views.track(self._cpp.extForce())
 
     def persistent_torques(self):
-        return self._view(self._cpp.extTorque())
+        return self._views.track(self._cpp.extTorque())
 
     def add_hook(self, where: str, function, period: int = 1):
         """Call ``function()`` every ``period`` steps at a point of the step: "before_forces"
@@ -528,14 +516,14 @@ class Scene(OmegaMethods, CheckpointMethods):
         return hook
 
     def radii(self):
-        return self._view(self._cpp.radius())
+        return self._views.track(self._cpp.radius())
 
     def sphere_ids(self) -> np.ndarray:
         """Ids of the live spheres (the particles couplings act on), ascending."""
         return _dem.live_ids(self._cpp, "Sphere")
 
     def masses(self):
-        return self._view(self._cpp.mass())
+        return self._views.track(self._cpp.mass())
 
     def contacts(self) -> list[dict]:
         """A copy of the real contacts (ids, geometry, stiffness, forces), for inspection."""
@@ -544,7 +532,7 @@ class Scene(OmegaMethods, CheckpointMethods):
 
 def contactTimeStep(scene: Scene | None = None) -> float:
     """Critical step of the stiffest current contact alone, 2 sqrt(m / kn)."""
-    from talus.dem import O
+    O = default_scene()
     return (scene or O)._cpp.contactTimeStep()
 
 
@@ -555,7 +543,7 @@ def SpherePWaveTimeStep(radius: float, density: float, young: float) -> float:
 
 def PWaveTimeStep(scene: Scene | None = None) -> float:
     """Yade's P-wave critical step estimate: min over spheres of r sqrt(density / young)."""
-    from talus.dem import O
+    O = default_scene()
     value = (scene or O)._cpp.pWaveTimeStep()
     if value == float("inf"):
         raise ValueError("PWaveTimeStep: the scene has no spheres")

@@ -5,7 +5,8 @@ from __future__ import annotations
 from typing import Sequence
 
 from talus import _dem
-from talus.dem.kinematic import KinematicEngine, _vector
+from talus.dem.engines import finite_vector
+from talus.dem.kinematic import KinematicEngine
 from talus.dem.linalg import Vector3
 
 
@@ -36,7 +37,7 @@ class ServoPIDController(KinematicEngine):
     target, maxVelocity, kP, kI, kD = (_number(n) for n in ("target", "maxVelocity", "kP", "kI", "kD"))
     iterPeriod, iterPrevStart = _number("iterPeriod", int), _number("iterPrevStart", int)
     errorCur, errorPrev, iTerm, curVel = (_number(n) for n in ("errorCur", "errorPrev", "iTerm", "curVel"))
-    axis = property(lambda s: Vector3(s._cpp.axis), lambda s, v: setattr(s._cpp, "axis", _vector(v, "axis")),
+    axis = property(lambda s: Vector3(s._cpp.axis), lambda s, v: setattr(s._cpp, "axis", finite_vector(v, "axis")),
                     doc="direction of the motion and of the force controlled (normalised when it runs)")
     current = property(lambda s: Vector3(s._cpp.current), doc="force components along axis at the last update")
     translationAxis = property(lambda s: Vector3(s._cpp.translationAxis), doc="axis, as last applied")

@@ -14,12 +14,36 @@ A shape object is one of three things:
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 import numpy as np
 
 from talus import _dem
-from talus.dem.appearance import check_color
+from talus.dem.appearance import DEFAULT_COLOR, check_color
 from talus.dem.linalg import Quaternion, Vector3
 from talus.dem.serializable import Serializable
+from talus.dem.shape_registry import ShapeKind, register, shape_kind
+
+
+@dataclass(eq=False)
+class ShapeSpec:
+    """The geometry and looks of a body not yet in a scene: what a shape the script makes
+    (``Sphere(radius=r)``) holds, and the shape part of a body made by ``sphere``, ``facet``, ...
+    (talus.dem.bodies.BodySpec adds the body's material, mobility and mask)."""
+    kind: str | None      # None: made by Body(), no shape yet
+    center: tuple
+    radius: float = 0.0
+    axis: int = 2
+    sense: int = 0
+    vertices: tuple = ()
+    extents: tuple = ()
+    orientation: tuple = (1.0, 0.0, 0.0, 0.0)
+    color: tuple = field(default=DEFAULT_COLOR)
+    block: object = None  # the PotentialBlock or PotentialParticle shape (talus.dem.blocks, .particles)
+    # State set before the append (velocities, mass, inertia, blocked DOFs, wire, highlight), applied by it.
+    initial: dict = field(default_factory=dict)
+    id: int = -1          # the body's id once appended
+    _scene: object = field(default=None, repr=False)
 
 
 class Shape(Serializable):
@@ -29,11 +53,10 @@ class Shape(Serializable):
     _attributes = ("color", "wire", "highlight")
 
     def __init__(self, **attributes):
-        # A shape of its own, kept in a BodySpec of no scene; an unknown attribute is Yade's
+        # A shape of its own, kept in a ShapeSpec of no scene; an unknown attribute is Yade's
         # AttributeError.
-        from talus.dem.bodies import BodySpec
         self._scene, self._id = None, -1
-        self._spec = BodySpec(type(self).__name__, (0.0, 0.0, 0.0), radius=float("nan"), color=(1.0, 1.0, 1.0))  # Yade's
+        self._spec = ShapeSpec(type(self).__name__, (0.0, 0.0, 0.0), radius=float("nan"), color=(1.0, 1.0, 1.0))  # Yade's
         for name, value in attributes.items():
             setattr(self, name, value)
 
@@ -62,7 +85,7 @@ class Shape(Serializable):
         return getattr(look, name), id
 
     def _own(self, name: str, value=None):
-        """An attribute of a shape in no scene: the shape's own BodySpec field ``name``, set
+        """An attribute of a shape in no scene: the shape's own spec field ``name``, set
         when ``value`` is given; an error naming the body for one in a scene."""
         where = self._body()
         if where is not None:
@@ -246,16 +269,35 @@ def shape_of_spec(spec):
 
 
 def shape_of(scene, id: int):
-    kind = scene._cpp.shapeKind(id)
-    if kind == "PotentialBlock":   # Yade's PotentialBlock shape: its planes, r, R, isBoundary
-        from talus.dem.blocks import PotentialBlock
-        s = _dem.block_shape(scene._cpp, id)   # planes in the body's principal frame
-        n = np.asarray(s["normals"], dtype=float).reshape(-1, 3)
-        return PotentialBlock(n[:, 0], n[:, 1], n[:, 2], s["d"], r=s["r"], R=s["R"], isBoundary=s["isBoundary"])
-    if kind == "PotentialParticle":   # Yade's PotentialParticle shape: its planes, r, k, R, isBoundary
-        from talus.dem.particles import PotentialParticle
-        s = _dem.particle_shape(scene._cpp, id)   # planes in the shape frame
-        n = np.asarray(s["normals"], dtype=float).reshape(-1, 3)
-        return PotentialParticle(n[:, 0], n[:, 1], n[:, 2], s["d"], r=s["r"], k=s["k"], R=s["R"],
-                                 isBoundary=s["isBoundary"])
-    return _BY_KIND[kind]._view(scene, id)
+    """``b.shape`` of body ``id``, as its kind's module makes it."""
+    return shape_kind(scene._cpp.shapeKind(id)).view(scene, id)
+
+
+# Adding a body of each kind, from the BodySpec of sphere(), wall(), facet(), box().
+def _add_sphere(scene, spec, material: int) -> int:
+    center = np.asarray(spec.center, dtype=float)   # as Yade, not wrapped into a periodic cell
+    id = scene._cpp.addSphere(center, spec.radius, material)
+    if spec.fixed:
+        scene._cpp.setDynamic(id, False)
+        scene._cpp.setBlockedDofs(id, 63)
+    return id
+
+
+def _add_box(scene, spec, material: int) -> int:
+    return _dem.add_box(scene._cpp, np.asarray(spec.center, dtype=float), np.asarray(spec.extents, dtype=float),
+                        np.asarray(spec.orientation, dtype=float), material, bool(spec.fixed))
+
+
+def _add_facet(scene, spec, material: int) -> int:
+    return scene._cpp.addFacet(*(np.asarray(v, dtype=float) for v in spec.vertices), material, spec.bounded)
+
+
+def _add_wall(scene, spec, material: int) -> int:
+    return scene._cpp.addWall(spec.center[spec.axis], spec.axis, spec.sense, material)
+
+
+register(ShapeKind("Sphere", view=Sphere._view, add=_add_sphere))
+register(ShapeKind("Wall", view=Wall._view, add=_add_wall))
+register(ShapeKind("Facet", view=Facet._view, add=_add_facet))
+register(ShapeKind("Box", view=Box._view, add=_add_box))
+register(ShapeKind("Clump", view=Clump._view))   # made from other bodies by O.bodies.clump

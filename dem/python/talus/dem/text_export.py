@@ -23,6 +23,8 @@ from typing import Sequence
 
 import numpy as np
 
+from talus.dem.scenes import default_scene
+
 _FORMATS = ("x_y_z_r", "x_y_z_r_matId", "id_x_y_z_r_matId", "x_y_z_r_attrs")
 
 
@@ -32,7 +34,7 @@ def textExt(filename: str, format: str = "x_y_z_r", comment: str = "", mask: int
     number. ``comment``: lines after the format line (with ``x_y_z_r_attrs``, its last line
     names the ``attrs`` columns, after Yade's ``# x y z r``); ``mask`` >= 0: only the spheres whose
     mask shares a bit with it (Yade's)."""
-    from talus.dem import O
+    O = default_scene()
     scene = scene or O
     if format not in _FORMATS:
         raise ValueError(f"textExt: format={format!r} is not supported; Talus writes {', '.join(_FORMATS)}")

@@ -14,15 +14,13 @@ show them below their own line, as Yade's timingDeltas.
 
 from __future__ import annotations
 
+from talus.dem.scenes import default_scene
+
 __all__ = ["rows", "stats", "reset"]
 
 
 def _scene(scene):
-    if scene is None:
-        from talus.dem import O
-
-        return O
-    return scene
+    return default_scene() if scene is None else scene
 
 
 def rows(scene=None) -> list[dict]:

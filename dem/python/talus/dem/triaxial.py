@@ -25,7 +25,7 @@ import weakref
 import numpy as np
 
 from talus import _dem
-from talus.dem.controllers import TriaxialStressController, _forward, setContactFriction
+from talus.dem.controllers import TriaxialStressController, cpp_attribute, setContactFriction
 from talus.dem.engines import PyRunner
 from talus.dem.io import owner_scene
 from talus.dem.linalg import Vector3
@@ -117,31 +117,31 @@ class TriaxialCompressionEngine(_Driven):
         me = weakref.ref(self)
         self._cpp.saveHook = lambda stem: me()._save(stem)
 
-    strainRate = _forward("strainRate", kind=float)
-    currentStrainRate = _forward("currentStrainRate", kind=float)
-    StabilityCriterion = _forward("StabilityCriterion", kind=float)
-    translationAxis = _forward("translationAxis", kind=lambda v: np.asarray(v, dtype=float).reshape(3))
-    autoCompressionActivation = _forward("autoCompressionActivation", kind=bool)
-    autoUnload = _forward("autoUnload", kind=bool)
-    autoStopSimulation = _forward("autoStopSimulation", kind=bool)
-    testEquilibriumInterval = _forward("testEquilibriumInterval", kind=int)
-    currentState = _forward("currentState", "1 isotropic compaction, 2 unloading, 3 loading, 4 fixed-porosity "
+    strainRate = cpp_attribute("strainRate", kind=float)
+    currentStrainRate = cpp_attribute("currentStrainRate", kind=float)
+    StabilityCriterion = cpp_attribute("StabilityCriterion", kind=float)
+    translationAxis = cpp_attribute("translationAxis", kind=lambda v: np.asarray(v, dtype=float).reshape(3))
+    autoCompressionActivation = cpp_attribute("autoCompressionActivation", kind=bool)
+    autoUnload = cpp_attribute("autoUnload", kind=bool)
+    autoStopSimulation = cpp_attribute("autoStopSimulation", kind=bool)
+    testEquilibriumInterval = cpp_attribute("testEquilibriumInterval", kind=int)
+    currentState = cpp_attribute("currentState", "1 isotropic compaction, 2 unloading, 3 loading, 4 fixed-porosity "
                             "compaction, 5 limbo (0 before the first step)", kind=int)
-    previousState = _forward("previousState", kind=int)
-    sigmaIsoCompaction = _forward("sigmaIsoCompaction", kind=float)
-    previousSigmaIso = _forward("previousSigmaIso", kind=float)
-    sigmaLateralConfinement = _forward("sigmaLateralConfinement", kind=float)
-    Key = _forward("Key", kind=str)
-    noFiles = _forward("noFiles", kind=bool)
-    frictionAngleDegree = _forward("frictionAngleDegree", kind=float)
-    epsilonMax = _forward("epsilonMax", kind=float)
-    uniaxialEpsilonCurr = _forward("uniaxialEpsilonCurr", kind=float)
-    fixedPoroCompaction = _forward("fixedPoroCompaction", kind=bool)
-    fixedPorosity = _forward("fixedPorosity", kind=float)
-    maxStress = _forward("maxStress", kind=float)
-    sigma_iso = _forward("sigma_iso", kind=float)
-    isAxisymetric = _forward("isAxisymetric", kind=bool)
-    UnbalancedForce = _forward("UnbalancedForce", kind=float)
+    previousState = cpp_attribute("previousState", kind=int)
+    sigmaIsoCompaction = cpp_attribute("sigmaIsoCompaction", kind=float)
+    previousSigmaIso = cpp_attribute("previousSigmaIso", kind=float)
+    sigmaLateralConfinement = cpp_attribute("sigmaLateralConfinement", kind=float)
+    Key = cpp_attribute("Key", kind=str)
+    noFiles = cpp_attribute("noFiles", kind=bool)
+    frictionAngleDegree = cpp_attribute("frictionAngleDegree", kind=float)
+    epsilonMax = cpp_attribute("epsilonMax", kind=float)
+    uniaxialEpsilonCurr = cpp_attribute("uniaxialEpsilonCurr", kind=float)
+    fixedPoroCompaction = cpp_attribute("fixedPoroCompaction", kind=bool)
+    fixedPorosity = cpp_attribute("fixedPorosity", kind=float)
+    maxStress = cpp_attribute("maxStress", kind=float)
+    sigma_iso = cpp_attribute("sigma_iso", kind=float)
+    isAxisymetric = cpp_attribute("isAxisymetric", kind=bool)
+    UnbalancedForce = cpp_attribute("UnbalancedForce", kind=float)
 
     def _save(self, stem: str):
         scene = owner_scene(self)
@@ -190,12 +190,12 @@ class ThreeDTriaxialEngine(_Driven):
     currentStrainRate1, currentStrainRate2, currentStrainRate3 = (_axis_flag("currentStrainRate", k, float)
                                                                   for k in range(3))
     stressControl_1, stressControl_2, stressControl_3 = (_axis_flag("stressControl", k, bool) for k in range(3))
-    strainDamping = _forward("strainRateDamping", "relaxation of the strain rates (this engine's, not the "
+    strainDamping = cpp_attribute("strainRateDamping", "relaxation of the strain rates (this engine's, not the "
                              "controller's)", kind=float)
-    frictionAngleDegree = _forward("frictionAngleDegree", kind=float)
-    updateFrictionAngle = _forward("updateFrictionAngle", kind=bool)
-    UnbalancedForce = _forward("UnbalancedForce", kind=float)
-    Key = _forward("Key", kind=str)
+    frictionAngleDegree = cpp_attribute("frictionAngleDegree", kind=float)
+    updateFrictionAngle = cpp_attribute("updateFrictionAngle", kind=bool)
+    UnbalancedForce = cpp_attribute("UnbalancedForce", kind=float)
+    Key = cpp_attribute("Key", kind=str)
 
 
 class TriaxialStateRecorder(PyRunner):

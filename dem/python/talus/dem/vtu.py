@@ -1,0 +1,77 @@
+"""VTK XML unstructured grids (``.vtu``) written with numpy alone, and the atomic file write every
+Talus output uses: talus.dem.export (spheres, facets, walls, contacts, cell), and the Potential
+Blocks' and Potential Particles' own writers."""
+
+from __future__ import annotations
+
+import base64
+import itertools
+import os
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+
+_VTK_TYPES = {np.dtype(np.float64): "Float64", np.dtype(np.float32): "Float32", np.dtype(np.int64): "Int64",
+              np.dtype(np.int32): "Int32", np.dtype(np.uint8): "UInt8"}
+
+_counter = itertools.count()
+
+
+def write_atomically(path: str, data: bytes) -> None:
+    """Write ``data`` to ``path`` through a temporary file in the same folder and a rename."""
+    folder = os.path.dirname(os.path.abspath(path))
+    os.makedirs(folder, exist_ok=True)
+    temporary = os.path.join(folder, f".{os.path.basename(path)}.tmp-{os.getpid()}-{next(_counter)}")
+    try:
+        with open(temporary, "wb") as f:
+            f.write(data)
+        os.replace(temporary, path)
+    except BaseException:
+        try:
+            os.unlink(temporary)
+        except OSError:
+            pass
+        raise
+
+
+def _data_array(array: np.ndarray, name: str | None, indent: str) -> str:
+    array = np.ascontiguousarray(array)
+    if array.dtype.byteorder == ">":
+        array = array.astype(array.dtype.newbyteorder("<"))
+    components = 1 if array.ndim == 1 else int(np.prod(array.shape[1:]))
+    raw = array.tobytes()
+    payload = base64.b64encode(np.uint64(len(raw)).tobytes() + raw).decode("ascii")
+    attrs = f'type="{_VTK_TYPES[array.dtype]}"'
+    if name is not None:
+        attrs += f" Name={quoteattr(name)}"
+    if components != 1:
+        attrs += f' NumberOfComponents="{components}"'
+    return f'{indent}<DataArray {attrs} format="binary">{payload}</DataArray>\n'
+
+
+def vtu_bytes(points: np.ndarray, connectivity: np.ndarray, offsets: np.ndarray, types: np.ndarray,
+              point_data: dict | None = None, cell_data: dict | None = None, time: float | None = None) -> bytes:
+    """The text of a ``.vtu`` file: an unstructured grid of ``points`` (n, 3) and cells given
+    by VTK's connectivity, end offsets and cell types, with named point and cell arrays."""
+    points = np.asarray(points, dtype=np.float64).reshape(-1, 3)
+    out = ['<?xml version="1.0"?>\n',
+           '<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">\n',
+           "  <UnstructuredGrid>\n"]
+    if time is not None:
+        out += ["    <FieldData>\n",
+                _data_array(np.array([time], dtype=np.float64), "TimeValue", "      ").replace(
+                    "<DataArray ", '<DataArray NumberOfTuples="1" ', 1),
+                "    </FieldData>\n"]
+    out.append(f'    <Piece NumberOfPoints="{len(points)}" NumberOfCells="{len(types)}">\n')
+    for tag, data in (("PointData", point_data or {}), ("CellData", cell_data or {})):
+        out.append(f"      <{tag}>\n")
+        for name, array in data.items():
+            out.append(_data_array(np.asarray(array), name, "        "))
+        out.append(f"      </{tag}>\n")
+    out += ["      <Points>\n", _data_array(points, None, "        "), "      </Points>\n",
+            "      <Cells>\n",
+            _data_array(np.asarray(connectivity, dtype=np.int64), "connectivity", "        "),
+            _data_array(np.asarray(offsets, dtype=np.int64), "offsets", "        "),
+            _data_array(np.asarray(types, dtype=np.uint8), "types", "        "),
+            "      </Cells>\n", "    </Piece>\n", "  </UnstructuredGrid>\n", "</VTKFile>\n"]
+    return "".join(out).encode("ascii")
