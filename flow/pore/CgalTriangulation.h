@@ -27,6 +27,10 @@ using Point = Kernel::Point_3;
 struct Triangulation
 {
   cgal::Regular rt;
+  /// The finite cells by their info(), where point location can start its walk (locatePore).
+  std::vector<cgal::Regular::Cell_handle> cells;
+  /// A finite cell around each vertex (by the vertex's info(); -1: none), see cellAtVertex.
+  std::vector<int> cellAtVertex;
   /// Periodic networks: for each finite cell (by its info()), the pore it is an image of (-1:
   /// none, a cell of the outer layer of images) and by how many cells it is shifted from it.
   /// Empty for box networks, whose cell info() is the pore index.
@@ -60,6 +64,8 @@ std::vector<int> canonicalRanks(const std::vector<Vertex>& vertices, InsertionOr
 /// depend on the order of the facet vertices give the same value whatever order CGAL left them
 /// in and whatever order the spheres were given in.
 void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const std::vector<int>& rank);
+/// Fill tri.cells and tri.cellAtVertex from the cells' info(), once they are numbered.
+void indexCells(Triangulation& tri, std::size_t vertices);
 /// Pore centre (CGAL's weighted circumcentre) of a finite cell, from its vertices in the
 /// canonical order (`rank`, see canonicalRanks; the centres of pores touching a wall come from
 /// the fictitious spheres' huge weights and carry round-off that depends on the order: up to

@@ -84,6 +84,7 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
   lubricationMeshed_ = false;
   const PoreNetwork& net = *net_;
   dv_.assign(net.pores.size(), 0.0);
+  extraDv_.clear();
   voidsStale_ = false;
   for (PointPressure& f : fluxPoints_)
     f.pore = -1;
@@ -110,7 +111,12 @@ std::vector<double> PoreFlow::carriedPressures(const PoreNetwork& fresh) const
   {
     const Vec3 x = interiorPoint(fresh, fresh.pores[i]);
     Vec3i period;
-    const int at = x.allFinite() ? locatePore(*net_, x, &period) : -1;
+    // the search starts beside one of the pore's spheres (the boundaries are vertices 0-5) as
+    // the old network had it, where the new pore's point usually is: a short walk (a sphere
+    // list that changed only makes it longer)
+    const auto& v = fresh.pores[i].vertices;
+    int near = cellAtVertex(*net_, *std::max_element(v.begin(), v.end()));
+    const int at = x.allFinite() ? locatePore(*net_, x, &period, &near) : -1;
     if (at >= 0)
       p[i] = p_[static_cast<std::size_t>(at)] + pressureJump(period);
   }
@@ -131,8 +137,8 @@ void PoreFlow::prepareSolver()
 {
   // an incompressible fluid keeps the matrix until the next mesh: factorise it now; a
   // compressible one rebuilds it at every solve anyway
-  if (params.useSolver == 3 && params.fluidBulkModulus <= 0)
-    solver_.prepare(SolverKind::Cholmod);
+  if (params.useSolver != 0 && params.fluidBulkModulus <= 0)
+    solver_.prepare(static_cast<SolverKind>(params.useSolver));
 }
 
 void PoreFlow::adopt(std::unique_ptr<PoreFlow> fresh, const std::vector<Vec3>& spherePositions,
@@ -220,6 +226,17 @@ void PoreFlow::moveVertices(const std::vector<Vec3>& spherePositions,
   }
 }
 
+void PoreFlow::setExtraVolumeRates(std::vector<double> rates)
+{
+  if (!net_ || rates.size() != net_->pores.size())
+    throw std::invalid_argument("FlowEngine: " + std::to_string(rates.size()) + " extra volume rates for " +
+                                std::to_string(net_ ? net_->pores.size() : 0) + " pores");
+  for (const double r : rates)
+    if (!std::isfinite(r))
+      throw std::invalid_argument("FlowEngine: a non-finite extra volume rate");
+  extraDv_ = std::move(rates);
+}
+
 void PoreFlow::placeVertices(const std::vector<Vec3>& spherePositions,
                              const std::array<double, kBoundaries>& boundaryPositions)
 {
@@ -300,10 +317,21 @@ void PoreFlow::computeHydraulics()
 
 void PoreFlow::computeUnitForces()
 {
-  const PoreNetwork& net = *net_;
-  unitForces_.assign(net.pores.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
-  for (const Throat& t : net.throats)
+  // the fluid area of a facet shared by the solid surface of each vertex in the throat
+  std::vector<std::array<double, 3>> shares(net_->throats.size(), {0.0, 0.0, 0.0});
+  for (std::size_t t = 0; t < shares.size(); ++t)
+    if (const Throat& throat = net_->throats[t]; throat.solidSurface > 0)
+      for (std::size_t y = 0; y < 3; ++y)
+        shares[t][y] = throat.solidSurfaces[y] / throat.solidSurface;
+  unitForces_ = unitForceVectors(*net_, shares);
+}
+
+std::vector<std::array<Vec3, 4>> unitForceVectors(const PoreNetwork& net, const std::vector<std::array<double, 3>>& shares)
+{
+  std::vector<std::array<Vec3, 4>> unitForces(net.pores.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+  for (std::size_t ti = 0; ti < net.throats.size(); ++ti)
   {
+    const Throat& t = net.throats[ti];
     if (t.area <= 0)
       continue;
     for (int side = 0; side < 2; ++side)
@@ -326,18 +354,19 @@ void PoreFlow::computeUnitForces()
       {
         // the facet facing a wall pushes the wall with its projected area
         const Boundary& b = net.boundaries[static_cast<std::size_t>(opp.id)];
-        unitForces_[c][opposite] -= std::abs(s[b.coordinate]) * b.normal;
+        unitForces[c][opposite] -= std::abs(s[b.coordinate]) * b.normal;
       }
-      const Vec3 viscous = t.solidSurface > 0 ? Vec3(-s * (t.fluidArea / t.area) / t.solidSurface) : Vec3::Zero();
+      const Vec3 fluidArea = -s * (t.fluidArea / t.area);
       for (std::size_t y = 0; y < 3; ++y)
       {
         const std::size_t k = local[y];
-        unitForces_[c][k] += viscous * t.solidSurfaces[y];
+        unitForces[c][k] += fluidArea * shares[ti][y];
         if (!net.vertices[static_cast<std::size_t>(t.vertices[y])].fictitious)
-          unitForces_[c][k] -= normal * t.crossSections[y];
+          unitForces[c][k] -= normal * t.crossSections[y];
       }
     }
   }
+  return unitForces;
 }
 
 std::vector<Vec3> PoreFlow::vertexForces() const
@@ -390,9 +419,10 @@ void PoreFlow::solve()
 {
   if (!net_)
     throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
-  if (params.useSolver != 0 && params.useSolver != 3)
-    throw std::invalid_argument("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), got " +
-                                std::to_string(params.useSolver));
+  if (params.useSolver != 0 && params.useSolver != 3 && params.useSolver != 4)
+    throw std::invalid_argument(
+        "FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), or Talus's 4 (multigrid), got " +
+        std::to_string(params.useSolver));
   if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
     throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
   const bool compressible = params.fluidBulkModulus > 0;
@@ -405,7 +435,7 @@ void PoreFlow::solve()
   std::vector<double> source(p_.size());
   const std::vector<double> c = compressible ? storage() : std::vector<double>{};
   for (std::size_t i = 0; i < source.size(); ++i)
-    source[i] = -dv_[i] + (compressible ? c[i] * p_[i] : 0.0);
+    source[i] = -dv_[i] - (extraDv_.empty() ? 0.0 : extraDv_[i]) + (compressible ? c[i] * p_[i] : 0.0);
   for (std::size_t n = 0; n < fluxPoints_.size(); ++n)
   {
     PointPressure& f = fluxPoints_[n];
@@ -435,7 +465,7 @@ void PoreFlow::solve()
   }
   solver_.tolerance = params.tolerance;
   solver_.relax = params.relax;
-  solver_.solve(params.useSolver == 0 ? SolverKind::GaussSeidel : SolverKind::Cholmod, p_, source);
+  solver_.solve(static_cast<SolverKind>(params.useSolver), p_, source);
   if (reference_)
   {
     // zero volume-weighted mean of the periodic part p - g . x

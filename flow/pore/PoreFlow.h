@@ -23,7 +23,7 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
   /// true: the boundary is the packing's extreme (x - r or x + r); false: `wallPosition`
   std::array<bool, kBoundaries> boundaryUseMaxMin{true, true, true, true, true, true};
   std::array<double, kBoundaries> wallPosition{};
-  int useSolver = 3; ///< 0 Gauss-Seidel, 3 CHOLMOD (Yade's numbers)
+  int useSolver = 3; ///< 0 Gauss-Seidel, 3 CHOLMOD (Yade's numbers); Talus: 4 multigrid (SolverKind)
   double tolerance = 1e-6; ///< Gauss-Seidel relative change
   double relax = 1.9;
   /// Bulk modulus of the fluid; 0: incompressible (Yade's fluidBulkModulus). With K_f > 0 each
@@ -52,6 +52,13 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
 /// vertices' centroid on that boundary plane (Yade's getCellBarycenter). NaN for a pore of
 /// boundary vertices only.
 Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore);
+
+/// Force on each pore's four vertices per unit pressure in the pore (Yade's unitForceVectors):
+/// the pressure on the sphere sectors cut by the pore's facets, on a wall facing a facet (its
+/// projected area), and the facet's fluid area shared among the facet's three vertices by
+/// `shares[throat]` (FlowEngine: their solid surfaces in the throat; TwoPhaseFlowEngine: their
+/// solid lines in the facet).
+std::vector<std::array<Vec3, 4>> unitForceVectors(const PoreNetwork& net, const std::vector<std::array<double, 3>>& shares);
 
 class PoreFlow
 {
@@ -96,6 +103,13 @@ public:
   [[nodiscard]] int invertedPores() const { return inverted_; }
   /// Rate of volume change of each pore from the last moveVertices (Yade's dv()).
   [[nodiscard]] const std::vector<double>& volumeRates() const { return dv_; }
+  /// Rates of change of the pores' fluid volume from other causes than the motion (thermal
+  /// expansion of the fluid and of the particles: a positive rate draws fluid in, as a growing
+  /// pore), one per pore, added to the motion's at every solve until replaced; a new network
+  /// drops them (its pores are others).
+  /// @throws std::invalid_argument if not one finite value per pore of the current network
+  void setExtraVolumeRates(std::vector<double> rates);
+  [[nodiscard]] const std::vector<double>& extraVolumeRates() const { return extraDv_; }
   [[nodiscard]] const PressureSolver::Counters& solverCounters() const { return solver_.counters(); }
   /// Recompute conductances after a change of the parameters (same mesh; drops the factor).
   void updateConductances();
@@ -178,6 +192,7 @@ private:
   std::vector<char> imposed_;
   std::vector<double> p_;
   std::vector<double> dv_;        ///< dV/dt per pore since the last moveVertices (0 after a build)
+  std::vector<double> extraDv_;   ///< setExtraVolumeRates (empty: none)
   std::vector<double> meshVolume_; ///< pore volumes at the triangulation
   std::vector<double> meshVoidVolume_; ///< void volumes at the triangulation (storage term)
   double maxStrain_ = 0;

@@ -121,6 +121,18 @@ void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const s
   }
 }
 
+void indexCells(Triangulation& tri, std::size_t vertices)
+{
+  tri.cells.clear();
+  tri.cellAtVertex.assign(vertices, -1);
+  for (auto c = tri.rt.finite_cells_begin(); c != tri.rt.finite_cells_end(); ++c)
+  {
+    tri.cells.push_back(c);
+    for (int k = 0; k < 4; ++k)
+      tri.cellAtVertex[static_cast<std::size_t>(c->vertex(k)->info())] = c->info();
+  }
+}
+
 Vec3 weightedCentre(const Regular& rt, Regular::Cell_handle c, const std::vector<int>& rank)
 {
   std::array<Regular::Vertex_handle, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};
@@ -190,6 +202,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   int n = 0;
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
     c->info() = n++;
+  detail::indexCells(*owner, net.vertices.size());
   net.pores.resize(static_cast<std::size_t>(n));
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
   {
@@ -230,16 +243,33 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   return net;
 }
 
-int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period)
+int cellAtVertex(const PoreNetwork& net, int vertex)
+{
+  if (!net.triangulation || vertex < 0 || static_cast<std::size_t>(vertex) >= net.triangulation->cellAtVertex.size())
+    return -1;
+  return net.triangulation->cellAtVertex[static_cast<std::size_t>(vertex)];
+}
+
+int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period, int* near)
 {
   if (period)
     *period = Vec3i::Zero();
   if (!net.triangulation)
     return -1;
   const Triangulation& tri = *net.triangulation;
+  // CGAL walks from the hint to x: from an arbitrary cell that crosses the triangulation
+  const auto walk = [&](const Vec3& y) {
+    const bool hinted = near && *near >= 0 && static_cast<std::size_t>(*near) < tri.cells.size();
+    const Regular::Cell_handle c =
+        tri.rt.locate(Weighted(Point(y.x(), y.y(), y.z()), 0.0),
+                      hinted ? tri.cells[static_cast<std::size_t>(*near)] : Regular::Cell_handle());
+    if (near && !tri.rt.is_infinite(c))
+      *near = c->info();
+    return c;
+  };
   if (!net.periodic)
   {
-    const Regular::Cell_handle c = tri.rt.locate(Weighted(Point(x.x(), x.y(), x.z()), 0.0));
+    const Regular::Cell_handle c = walk(x);
     return tri.rt.is_infinite(c) ? -1 : c->info();
   }
   // periodic: wrap x into the cell along the periodic axes, then undo the wrap in `period`
@@ -247,8 +277,7 @@ int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period)
   for (int a = 0; a < 3; ++a)
     if (net.periodicAxis(a))
       wrap[a] = static_cast<int>(std::floor(x[a] / net.cellSize[a]));
-  const Vec3 w = x - net.shift(wrap);
-  const Regular::Cell_handle c = tri.rt.locate(Weighted(Point(w.x(), w.y(), w.z()), 0.0));
+  const Regular::Cell_handle c = walk(x - net.shift(wrap));
   if (tri.rt.is_infinite(c))
     return -1;
   const auto i = static_cast<std::size_t>(c->info());

@@ -165,5 +165,12 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
 
 /// The pore containing point x (Yade's Tri.locate), -1 outside the triangulated region. In a
 /// periodic network, `period` (if given) receives how many cells x is from that pore's frame.
-int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period = nullptr);
+/// `near` (if given): where the search starts, a cell from an earlier call or cellAtVertex (-1:
+/// anywhere), and on return the cell x is in. From a cell near x the search walks a few cells
+/// instead of across the triangulation.
+int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period = nullptr, int* near = nullptr);
+
+/// A cell of the triangulation around vertex `vertex` (index into net.vertices), for locatePore's
+/// `near`; -1 if there is none.
+int cellAtVertex(const PoreNetwork& net, int vertex);
 } // namespace talus::flow::pore

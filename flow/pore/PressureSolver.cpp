@@ -18,23 +18,20 @@ namespace talus::flow::pore
 namespace
 {
 // The factor is simplicial below PressureSolver::supernodalFrom (2 500) unknowns, supernodal
-// above. Measured (CPU time of ordering + analysis + factorisation + solve, loaded 2-core
-// machine, bench clouds, nested dissection below, the supernodal factor on one thread): 1 729
-// pores 2.9-3.2 ms simplicial against 3.3-3.5 ms supernodal, 2 981 pores 5.7-8.3 against 5.7-7.0
-// ms, 4 166 pores 12-16 against 9.4-10.7 ms, 6 102 pores 24-25 against 14 ms.
+// above: the two cost alike near that size, the supernodal one ever less above it (docs/flow.md,
+// "Measurements behind the code").
 /// Supernodal factors of fewer unknowns amalgamate more columns into each supernode (CHOLMOD's
 /// nrelax 8, 32, 128 instead of its 4, 16, 48): fewer, larger supernodes, at the price of more
 /// explicit zeros. A small factorisation is bound by the per-supernode overhead (each supernode
 /// and each update opens CHOLMOD OpenMP regions, a team allocation and a futex call each even
 /// on one thread, and makes small BLAS calls), not by its flops: at 1 000 spheres (5 758
-/// unknowns) 783 supernodes become 504 (counted in round 5). Measured (CPU ms, min of 20-40
-/// compressible steps, i.e. numeric factorisation + solve, alternating, load 2-4; bench clouds
-/// and the first 2 000 / 4 000 spheres of the 10k one): 1 000 spheres 7.9-8.9 -> 6.6-8.0 over
-/// eight pairs (each pair lower), 2 000 21.8-26.1 -> 20.4-23.9,
-/// 4 000 61.4-72.6 -> 54.4-61.0; the back-substitution with the kept factor 0.34 -> 0.36-0.47
-/// at 1 000. At 10 000 spheres (62 000 unknowns) the two were alike (compressible step
-/// 227-260 against 231-239 ms, solve 21-23 against 19-20 ms), and the default is kept there.
+/// unknowns) 783 supernodes become 504. The coarser factors are faster up to a few thousand
+/// spheres; at 10 000 spheres the two are alike, and CHOLMOD's default is kept there
+/// (docs/flow.md, "Measurements behind the code").
 constexpr int kCoarseBelow = 20000;
+/// Conjugate gradients give up after this many multigrid cycles (they take some tens; many more
+/// mean a group of pores connected to no imposed pressure).
+constexpr int kMultigridIterations = 1000;
 /// Nested dissection stops at this many unknowns (their order inside does not matter).
 constexpr std::size_t kDissectionLeaf = 16;
 
@@ -44,20 +41,12 @@ constexpr std::size_t kDissectionLeaf = 16;
 /// cut (König's theorem on a maximum matching of the bipartite graph they form: the smallest set
 /// of rows, from either half, that touches every one of them), ordered after both halves, which
 /// are ordered the same way. The pore network is a 3D mesh whose geometry is known, so plane
-/// cuts give good separators at almost no cost. Measured (CPU, loaded) on 33 800 unknowns:
-/// ordering + symbolic analysis 0.02 s, factorisation 0.20 s (nnz(L) 3.1 M, 1.2 Gflop) against
-/// METIS's 0.21 s + 0.19 s (2.5 M, 0.9 Gflop) and AMD's 0.03 s + 0.28 s (4.6 M, 3.5 Gflop); the
-/// one-sided separator (the lower half's rows coupled to the upper half) gave 3.6 M, 1.5 Gflop.
-/// On 5 758 unknowns (1 000 spheres; CPU, loaded, ms, min of 12): ours 1.1 ordering + 1.6
-/// CHOLMOD analysis, nnz(L) 264 k, 32.9 Mflop, factorisation 8.3; METIS 27 in all for 208 k,
-/// 22.8 Mflop and a factorisation no faster (9.9); CHOLMOD's NESDIS alike (25, 23.3 Mflop, 7.6);
-/// AMD 4.2 in all, 294 k, 57.9 Mflop, 9.2: at this size the factorisation is overhead-bound
-/// (783 supernodes, each a few OpenMP parallel regions of CHOLMOD's, 0.4 us and a futex call
-/// each even for a team of one, and small BLAS calls). Kept out, measured there: the cut axis
-/// chosen among the three by the smallest separator (3.6 % fewer flops, +5.4 ms of ordering);
-/// CAMD on the leaves and separators as constraint sets (leaves of 16 to 200 rows: 4.1-4.7 %
-/// fewer flops, +2.5 ms of CAMD). The coarser supernodal amalgamation first measured here (7.7 ->
-/// 6.8 ms at best, alike in the median of a loaded machine) is now used below kCoarseBelow.
+/// cuts give good separators at almost no cost: the ordering takes a tenth of METIS's time for a
+/// factor about as cheap, and AMD's factors take more flops. The minimum vertex cover gives
+/// smaller factors than the one-sided separator (the lower half's rows coupled to the upper
+/// half). Choosing the cut axis by the smallest separator, and CAMD on the leaves and
+/// separators, saved a few per cent of flops for more ordering time than they saved: kept out
+/// (docs/flow.md, "Measurements behind the code").
 class NestedDissection
 {
 public:
@@ -78,8 +67,8 @@ public:
 
 private:
   /// A row with its centre beside it: the splits reorder these in place, reading the centres
-  /// in sequence (ordering 1 000 spheres' 5 758 rows took 1.7 ms CPU with the rows as indices
-  /// into the centres, whose reads missed the cache at every split).
+  /// in sequence (with the rows as indices into the centres, the reads missed the cache at
+  /// every split).
   struct Item
   {
     Vec3 centre;
@@ -260,9 +249,8 @@ private:
 /// set to one (omp_get_max_threads() == 1, e.g. OMP_NUM_THREADS=1). CHOLMOD's supernodal
 /// factorisation (SuiteSparse 5) opens teams with a fixed num_threads(4) clause, which overrides
 /// OMP_NUM_THREADS: a "single-threaded" run had three more threads spinning in every
-/// factorisation. Measured (CPU time, 2-core machine at load ~9, bench clouds): numeric
-/// factorisation of 1 000 spheres (5 758 unknowns) 18-26 ms -> 8.8 ms, of 10 000 (61 912)
-/// 0.41-0.57 s -> 0.29-0.30 s.
+/// factorisation, which cost a single-threaded run two to three times its CPU time on a loaded
+/// machine (docs/flow.md, "Measurements behind the code").
 class OneThreadIfAsked
 {
 public:
@@ -332,6 +320,48 @@ void PressureSolver::prepare(SolverKind kind)
 {
   if (kind == SolverKind::Cholmod && !numeric_ && nUnknown_ > 0)
     factorize();
+  if (kind == SolverKind::Multigrid && !multigrid_ && nUnknown_ > 0)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    multigrid_ = std::make_unique<Multigrid>(fullRows());
+    counters_.multigridSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++counters_.multigridSetups;
+  }
+}
+
+SparseRows PressureSolver::fullRows() const
+{
+  // as the triangle given to CHOLMOD (factorize): couplings to the same row summed, a coupling
+  // of a row to itself cancelling on the diagonal
+  SparseRows a;
+  a.n = nUnknown_;
+  a.start.reserve(static_cast<std::size_t>(nUnknown_) + 1);
+  a.column.reserve(neighbour_.size() + static_cast<std::size_t>(nUnknown_));
+  a.value.reserve(neighbour_.size() + static_cast<std::size_t>(nUnknown_));
+  std::vector<std::pair<int, double>> row;
+  for (std::size_t r = 0; r < static_cast<std::size_t>(nUnknown_); ++r)
+  {
+    row.assign(1, {static_cast<int>(r), diag_[r]});
+    for (int e = start_[r]; e < start_[r + 1]; ++e)
+    {
+      const int column = rowOfPore_[static_cast<std::size_t>(neighbour_[static_cast<std::size_t>(e)])];
+      if (column < 0)
+        continue;
+      const auto same = std::find_if(row.begin(), row.end(), [&](const auto& entry) { return entry.first == column; });
+      if (same != row.end())
+        same->second -= k_[static_cast<std::size_t>(e)];
+      else
+        row.emplace_back(column, -k_[static_cast<std::size_t>(e)]);
+    }
+    std::sort(row.begin(), row.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+    for (const auto& [column, value] : row)
+    {
+      a.column.push_back(column);
+      a.value.push_back(value);
+    }
+    a.start.push_back(static_cast<int>(a.column.size()));
+  }
+  return a;
 }
 
 void PressureSolver::addCounters(const Counters& earlier)
@@ -340,6 +370,9 @@ void PressureSolver::addCounters(const Counters& earlier)
   counters_.factorizations += earlier.factorizations;
   counters_.analyseSeconds += earlier.analyseSeconds;
   counters_.factorizeSeconds += earlier.factorizeSeconds;
+  counters_.multigridSetups += earlier.multigridSetups;
+  counters_.multigridIterations += earlier.multigridIterations;
+  counters_.multigridSeconds += earlier.multigridSeconds;
 }
 
 void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& imposed, const std::vector<double>& diagonal)
@@ -349,14 +382,16 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
     throw std::invalid_argument("pressure system: imposed-pressure flags do not match the pores");
   if (!diagonal.empty() && diagonal.size() != n)
     throw std::invalid_argument("pressure system: diagonal terms do not match the pores");
-  if (std::find(imposed.begin(), imposed.end(), 1) == imposed.end())
+  // a storage term (compressible fluid) makes the system definite without an imposed pressure
+  if (diagonal.empty() && std::find(imposed.begin(), imposed.end(), 1) == imposed.end())
     throw std::invalid_argument("pressure system is singular: no pressure is imposed anywhere (set "
-                                "bndCondIsPressure on at least one boundary)");
+                                "bndCondIsPressure on at least one boundary, or fluidBulkModulus > 0)");
   // The pattern is kept to compare: same rows and same couplings keep the symbolic analysis.
   const std::vector<int> oldRows = std::move(rowOfPore_);
   const std::vector<int> oldStart = std::move(start_);
   const std::vector<int> oldNeighbour = std::move(neighbour_);
   numeric_ = false;
+  multigrid_.reset();
   if (cholmod_->a)
     cholmod_free_sparse(&cholmod_->a, &cholmod_->common);
   rowOfPore_.assign(n, -1);
@@ -376,7 +411,7 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
   start_.assign(1, 0);
   start_.reserve(poreOfRow_.size() + 1);
   // the old arrays were moved out above: without the reservation every push_back below grows
-  // them again from nothing (copies and fresh pages; 9 % of a 1 000-sphere remesh's page faults)
+  // them again from nothing (copies and fresh pages, which page faults make dear)
   neighbour_.clear();
   neighbour_.reserve(4 * poreOfRow_.size());
   k_.clear();
@@ -407,8 +442,8 @@ void PressureSolver::factorize()
   const auto n = static_cast<std::size_t>(nUnknown_);
   // CHOLMOD permutes the matrix before factorising it; it takes one transpose for the upper
   // triangle of a supernodal factor and for the lower one of a simplicial factor, two otherwise
-  // (cholmod_factorize). Measured on the 1 000-sphere bench cloud (5 758 unknowns): with the lower
-  // triangle given to the supernodal factor, cholmod_transpose_sym took 3 % of the remesh.
+  // (cholmod_factorize): with the lower triangle given to the supernodal factor, the transpose is
+  // a visible part of a remesh (docs/flow.md, "Measurements behind the code").
   // the kind is decided with the analysis and kept with it (the triangle must match the factor's)
   const bool supernodal = c.factor ? c.factor->is_super != 0 : nUnknown_ >= supernodalFrom;
   // That triangle in compressed columns, built directly: column j holds row j's couplings to the
@@ -550,6 +585,20 @@ void PressureSolver::solve(SolverKind kind, std::vector<double>& p, const std::v
     for (std::size_t r = 0; r < n; ++r)
       p[static_cast<std::size_t>(poreOfRow_[r])] = xv[r];
     iterations_ = 1;
+    return;
+  }
+  if (kind == SolverKind::Multigrid)
+  {
+    prepare(kind);
+    const auto start = std::chrono::steady_clock::now();
+    std::vector<double> x(n);
+    for (std::size_t r = 0; r < n; ++r)
+      x[r] = p[static_cast<std::size_t>(poreOfRow_[r])];
+    iterations_ = multigrid_->solve(b, x, multigridTolerance, kMultigridIterations);
+    for (std::size_t r = 0; r < n; ++r)
+      p[static_cast<std::size_t>(poreOfRow_[r])] = x[r];
+    counters_.multigridSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    counters_.multigridIterations += iterations_;
     return;
   }
   // Gauss-Seidel with over-relaxation, in place on p.

@@ -3,9 +3,12 @@
 //   sum_j k_ij (p_i - p_j) = q_i
 // over its finite neighbours j (k_ij: throat conductance, q_i: imposed source). Symmetric positive
 // definite as soon as every connected group of unknown pores touches an imposed pressure.
-// Two solvers: CHOLMOD Cholesky (simplicial for small systems, supernodal above; the factor is
-// kept until the matrix changes, ordered by nested dissection on the pore centres) and
-// Gauss-Seidel with over-relaxation (Yade's useSolver=0) for comparison.
+// Three solvers: CHOLMOD Cholesky (simplicial for small systems, supernodal above; the factor is
+// kept until the matrix changes, ordered by nested dissection on the pore centres), conjugate
+// gradients preconditioned by algebraic multigrid (for systems whose factor costs more than the
+// solves it would serve: large networks remeshed often, or too large for a factor to fit in
+// memory) and Gauss-Seidel with over-relaxation (Yade's useSolver=0) for comparison.
+#include "flow/pore/Multigrid.h"
 #include "flow/pore/PoreNetwork.h"
 
 #include <memory>
@@ -17,6 +20,10 @@ enum class SolverKind
 {
   GaussSeidel = 0, ///< Yade's useSolver=0
   Cholmod = 3,     ///< Yade's useSolver=3
+  /// Talus: conjugate gradients preconditioned by algebraic multigrid (Multigrid.h), from the
+  /// last pressures, to a relative residual of PressureSolver::multigridTolerance. No factor:
+  /// a new matrix costs a cheap set-up, every solve some tens of cycles.
+  Multigrid = 4,
 };
 
 class PressureSolver
@@ -47,10 +54,14 @@ public:
   /// symbolic analysis.
   int supernodalFrom = 2500;
   double tolerance = 1e-7; ///< Gauss-Seidel: relative change of the pressure field
+  /// Multigrid: ||b - A p|| <= multigridTolerance ||b|| (the boundary fluxes then agree with
+  /// CHOLMOD's to about 1e-12)
+  double multigridTolerance = 1e-10;
   double relax = 1.9;      ///< Gauss-Seidel over-relaxation (Yade's relax)
   int maxIterations = 100000;
 
-  /// Factorise now (CHOLMOD) instead of at the next solve; nothing for Gauss-Seidel.
+  /// Factorise now (CHOLMOD) or build the multigrid hierarchy instead of at the next solve;
+  /// nothing for Gauss-Seidel.
   void prepare(SolverKind kind);
   [[nodiscard]] bool factorized() const;
   /// How many symbolic analyses and numeric factorisations CHOLMOD has done, and their times.
@@ -60,6 +71,9 @@ public:
     int factorizations = 0;
     double analyseSeconds = 0;
     double factorizeSeconds = 0;
+    int multigridSetups = 0;
+    int multigridIterations = 0; ///< conjugate-gradient iterations over all multigrid solves
+    double multigridSeconds = 0; ///< set-ups and solves
   };
   [[nodiscard]] const Counters& counters() const { return counters_; }
   /// Add the work of an earlier solver to the counters (a model that replaced its network).
@@ -70,6 +84,8 @@ public:
 private:
   struct Cholmod;
   void factorize();
+  /// The matrix of the unknown rows with both triangles (the multigrid's input).
+  [[nodiscard]] SparseRows fullRows() const;
 
   std::vector<int> rowOfPore_;  ///< -1 for imposed pores
   std::vector<int> poreOfRow_;
@@ -83,6 +99,7 @@ private:
   std::vector<double> k_;
   std::unique_ptr<Cholmod> cholmod_;
   bool numeric_ = false; ///< the factor holds the current matrix's values
+  std::unique_ptr<Multigrid> multigrid_; ///< the current matrix's hierarchy (null: not built)
   int iterations_ = 0;
   Counters counters_;
 };

@@ -1,6 +1,6 @@
 // Python bindings of the pore-scale flow (flow/pore/): no logic, only the mapping of C++ names to
 // Python. The typed, documented API with Yade's names is talus.flow.pore.FlowEngine.
-#include "dem/Scene.h"
+#include "dem/core/Scene.h"
 #include "flow/pore/FlowCoupling.h"
 #include "flow/pore/PoreFlow.h"
 #include "flow/pore/VtkOutput.h"
@@ -103,7 +103,10 @@ void registerPoreFlow(py::module_& m)
       .def_readonly("analyses", &PressureSolver::Counters::analyses)
       .def_readonly("factorizations", &PressureSolver::Counters::factorizations)
       .def_readonly("analyseSeconds", &PressureSolver::Counters::analyseSeconds)
-      .def_readonly("factorizeSeconds", &PressureSolver::Counters::factorizeSeconds);
+      .def_readonly("factorizeSeconds", &PressureSolver::Counters::factorizeSeconds)
+      .def_readonly("multigridSetups", &PressureSolver::Counters::multigridSetups)
+      .def_readonly("multigridIterations", &PressureSolver::Counters::multigridIterations)
+      .def_readonly("multigridSeconds", &PressureSolver::Counters::multigridSeconds);
 
   py::class_<PoreFlow, std::shared_ptr<PoreFlow>>(m, "PoreFlow")
       .def(py::init<>())

@@ -27,14 +27,16 @@ def yade_available() -> bool:
     return shutil.which("yade") is not None
 
 
-def run(script: str | os.PathLike, params: dict, program: str = "talus", timeout: float = 3600) -> dict:
-    """Run ``script`` with ``params`` in ``program`` ("talus" or "yade"); returns its RESULT."""
+def run(script: str | os.PathLike, params: dict, program: str = "talus", timeout: float = 3600,
+        threads: int = 1) -> dict:
+    """Run ``script`` with ``params`` in ``program`` ("talus" or "yade") on ``threads`` threads
+    (Yade's ``-j``, OMP_NUM_THREADS); returns its RESULT."""
     script = Path(script).resolve()
-    env = {**os.environ, ENV: json.dumps(params), "OMP_NUM_THREADS": "1"}
+    env = {**os.environ, ENV: json.dumps(params), "OMP_NUM_THREADS": str(threads)}
     if program == "yade":
         if not yade_available():
             raise ScenarioFailed("yade is not installed")
-        command = [shutil.which("yade"), "-n", "-j1", "-x", str(script)]
+        command = [shutil.which("yade"), "-n", f"-j{threads}", "-x", str(script)]
     elif program == "talus":
         import talus
         package_parent = str(Path(talus.__file__).resolve().parent.parent)

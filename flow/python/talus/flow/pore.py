@@ -12,7 +12,9 @@ between the facet and the two pore centres, L the distance between the pore cent
 [minKdivKmean, maxKdivKmean] × a global reference value when ``clampKValues``. The pore
 pressures solve Σ_j k_ij (p_i − p_j) = 0 with imposed pressures on the boundaries whose
 ``bndCondIsPressure`` is set (no flux on the others), by CHOLMOD (``useSolver=3``, the factor is
-kept until the mesh or the boundary types change) or Gauss–Seidel (``useSolver=0``).
+kept until the mesh or the boundary types change), Gauss–Seidel (``useSolver=0``) or, a Talus
+addition, conjugate gradients preconditioned by algebraic multigrid (``useSolver=4``: no factor,
+for large networks remeshed often or too large for a factor).
 
 Attribute and method names are Yade's. Boundaries are numbered as Yade's ``wallIds``: 0 xmin,
 1 xmax, 2 ymin, 3 ymax, 4 zmin, 5 zmax. Sign convention of ``getBoundaryFlux`` as Yade: the sum of
@@ -126,7 +128,7 @@ class FlowEngine(Engine):
     ``boundaryUseMaxMin`` [1]*6 (boundary at the packing's extreme x±r; else at
     ``wallPosition[k]``), ``permeabilityFactor`` 1, ``viscosity`` 1, ``clampKValues`` True,
     ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
-    solid surface in the hydraulic radius), ``useSolver`` 3, ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
+    solid surface in the hydraulic radius), ``useSolver`` 3 (Talus: 4 multigrid), ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
     ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), ``yadeInsertionOrder``
     False (Talus: True inserts the spheres one by one and keeps CGAL's vertex order as Yade does, slower, the
     same numbers as Yade to round-off; False inserts them as one spatially sorted range and takes the facet
@@ -204,8 +206,8 @@ class FlowEngine(Engine):
         if name in _BOUNDARY_LISTS:
             setattr(params, name, _boundary_list(name, value))
         elif name in _SCALARS:
-            if name == "useSolver" and int(value) not in (0, 3):
-                raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD)")
+            if name == "useSolver" and int(value) not in (0, 3, 4):
+                raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), or Talus's 4 (multigrid)")
             setattr(params, name, _finite_number(name, value) if name in _REALS else value)
         elif name in _THERMAL_ATTRIBUTES:
             self._thermal[name] = _thermal_value(name, value)
@@ -348,10 +350,14 @@ class FlowEngine(Engine):
         return list(self._flow.boundaryPositions())
 
     def solverStats(self) -> dict:
-        """CHOLMOD work so far: symbolic analyses, numeric factorisations and their seconds."""
+        """Solver work so far: CHOLMOD's symbolic analyses, numeric factorisations and their
+        seconds; the multigrid's (``useSolver=4``) set-ups, conjugate-gradient iterations and
+        seconds."""
         c = self._flow.solverCounters()
         return dict(analyses=c.analyses, factorizations=c.factorizations,
-                    analyseSeconds=c.analyseSeconds, factorizeSeconds=c.factorizeSeconds)
+                    analyseSeconds=c.analyseSeconds, factorizeSeconds=c.factorizeSeconds,
+                    multigridSetups=c.multigridSetups, multigridIterations=c.multigridIterations,
+                    multigridSeconds=c.multigridSeconds)
 
     def remeshCount(self) -> tuple[int, int]:
         """(all rebuilds, rebuilds triggered by defTolerance or an inverted pore) of the engine."""
