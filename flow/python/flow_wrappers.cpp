@@ -68,6 +68,7 @@ PYBIND11_MODULE(_flow, m)
 {
   void registerPoreFlow(py::module_&); registerPoreFlow(m); // pore flow: pore_wrappers.cpp
   void registerThermal(py::module_&); registerThermal(m); // heat conduction: thermal_wrappers.cpp
+  void registerTwoPhase(py::module_&); registerTwoPhase(m); // two-phase flow: twophase_wrappers.cpp
   m.doc() = "Compiled core of talus.flow (use the talus package, not this module)";
 
   py::enum_<MixingLengthModel>(m, "MixingLengthModel")

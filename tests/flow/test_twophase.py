@@ -178,3 +178,14 @@ def test_yade_namespace_and_script_options():
     assert tp.meshUpdateInterval > 10 ** 9
     with pytest.raises(NotImplementedError, match="isCellLabelActivated"):
         tp.isCellLabelActivated = True
+
+
+def test_capillary_force_on_walls():
+    """fluidForce of a wall body (wallIds, Yade's 0..5) is its boundary's capillary force: the
+    non-wetting reservoir's wall is pushed outwards (+y) by the positive gas pressure."""
+    tp = engine()
+    pcs = REF["pcs"]
+    tp.bndCondValue = [0, 0, 0, pcs[10], 0, 0]  # the same capillary pressure, gas pressure positive
+    tp.invasion()
+    tp.computeCapillaryForce()
+    assert tp.fluidForce(3)[1] > 0 and tp.fluidForce(2)[1] == pytest.approx(0, abs=1e-12)

@@ -23,7 +23,9 @@ RULES: list[tuple[str, str]] = [
      r"\.(advection|fluidConduction|thermoMech|solidThermoMech|fluidThermoMech)\s*=\s*(True|1)\b",
      "thermal coupling with the pore fluid and thermal expansion (ThermalEngine's advection, fluidConduction, "
      "thermoMech; planned)"),
-    (r"TwoPhaseFlowEngine|UnsaturatedEngine|PhaseCluster", "two-phase pore flow (TwoPhaseFlowEngine; planned)"),
+    # TwoPhaseFlowEngine's quasi-static invasion is implemented; its dynamic clusters are not
+    (r"PhaseCluster|getClusters|clusterOutvadePore|clusterInvadePore",
+     "two-phase clusters and dynamic injection (TwoPhaseFlowEngine's PhaseCluster; planned)"),
     (r"Cpm", "concrete (CPM) model"),
     (r"WireMat|WirePhys|WireState", "wire mesh model"),
     (r"L6Geom|L3Geom", "local-coordinates contact geometry (L3Geom/L6Geom)"),

@@ -2,7 +2,8 @@
 
 Available now: the pore-scale flow ``FlowEngine`` (Yade's FlowEngine, ``talus.flow.pore``), its
 periodic variant ``PeriodicFlowEngine`` (``talus.flow.periodic``), heat conduction between
-particles ``ThermalEngine`` (Yade's, ``talus.flow.thermal``) and
+particles ``ThermalEngine`` (Yade's, ``talus.flow.thermal``), quasi-static two-phase flow
+``TwoPhaseFlowEngine`` (Yade's, ``talus.flow.twophase``) and
 the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
 ``HydroForceEngine``; see ``talus.flow.vans`` and ``docs/flow.md``)::
 
@@ -17,7 +18,8 @@ from talus.flow.hydro import HydroForceEngine, averageProfile, yade_run_defaults
 from talus.flow.pore import FlowEngine, HiddenSphereWarning
 from talus.flow.periodic import PeriodicFlowEngine
 from talus.flow.thermal import ThermalEngine
+from talus.flow.twophase import TwoPhaseFlowEngine, UnsaturatedEngine
 from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansFluid, slope_gravity
 
-__all__ = ["FlowEngine", "PeriodicFlowEngine", "ThermalEngine", "HiddenSphereWarning", "HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid",
+__all__ = ["FlowEngine", "PeriodicFlowEngine", "ThermalEngine", "TwoPhaseFlowEngine", "UnsaturatedEngine", "HiddenSphereWarning", "HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid",
            "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]

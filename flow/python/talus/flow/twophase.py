@@ -251,30 +251,26 @@ class TwoPhaseFlowEngine(FlowEngine):
     def computeCapillaryForce(self, addForces: bool = False, permanently: bool = False):
         """The forces of the phase pressures on the spheres and walls (Yade's scheme: each
         pore's pressure on the sphere sectors in its facets plus its share of the facet's fluid
-        area); read them with ``fluidForce``. ``addForces`` adds them to the scene's bodies for
-        the next step (``permanently``: as permanent forces)."""
+        area); read them with ``fluidForce``. ``addForces`` adds them to the scene's bodies (the
+        walls: ``wallIds``) for the next step (``permanently``: as permanent forces)."""
         forces = self._model().capillaryForces()
         ids = self._flow.vertexIds()
+        # vertices 0..5 are the boundaries: their bodies are wallIds (Yade: bodies 0..5)
         self._capillary = {int(ids[k]): forces[k] for k in range(6, len(forces))}
+        self._capillary.update({body: forces[k] for k, body in enumerate(self.wallIds) if body >= 0})
         if addForces:
             from talus.dem import O
-            scene = self._scene or O
+            forcesOf = (self._scene or O).forces
             for body, f in self._capillary.items():
-                if permanently:
-                    scene.forces.setPermF(body, tuple(f))
-                else:
-                    scene.forces.addF(body, tuple(f))
-            for k, body in enumerate(self._wall_ids(scene)):
-                if body >= 0:
-                    (scene.forces.setPermF if permanently else scene.forces.addF)(body, tuple(forces[k]))
+                (forcesOf.setPermF if permanently else forcesOf.addF)(body, tuple(f))
 
     def fluidForce(self, id: int):
-        """Capillary force on sphere ``id`` from the last computeCapillaryForce (before any:
-        FlowEngine's fluid force of the single-phase solve)."""
+        """Capillary force on body ``id`` (a sphere, or a wall of wallIds) from the last
+        computeCapillaryForce (before any: FlowEngine's fluid force of the single-phase solve)."""
         if self._capillary is None:
             return super().fluidForce(id)
         if id not in self._capillary:
-            return (0.0, 0.0, 0.0)  # a wall or a sphere out of the network, as Yade's zero force
+            return (0.0, 0.0, 0.0)  # a body out of the network, as Yade's zero force
         return tuple(self._capillary[id])
 
     def savePhaseVtk(self, folder: str = "./phaseVtk", withBoundaries: bool = True) -> str:
