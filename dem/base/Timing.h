@@ -38,6 +38,14 @@ public:
     last_ = now;
   }
 
+  /// Add `nanoseconds` to stage `label` as one pass (a stage timed by the step's scheduler).
+  void add(const char* label, std::int64_t nanoseconds)
+  {
+    const std::size_t k = slot(label);
+    nsec[k] += nanoseconds;
+    ++count[k];
+  }
+
   void reset()
   {
     labels.clear();

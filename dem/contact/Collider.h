@@ -36,6 +36,12 @@ class Collider : public Engine
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "Collider"; }
+  /// The skin check per body (displacementsIn, combined over ranges), the re-detection serial
+  /// (rebuild, whose loops are parallel).
+  [[nodiscard]] Stages stages() const override
+  {
+    return Stages{}.with(StagePoint::SkinCheck, Grain::PerBody).with(StagePoint::Detection, Grain::Serial);
+  }
 
   /// Skin width; negative: that fraction of the smallest sphere radius (Yade's default -0.5).
   double verletDist = -0.5;

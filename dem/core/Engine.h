@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/base/Timing.h"
+#include "dem/core/Stage.h"
 
 #include <cstdint>
 #include <string>
@@ -27,6 +28,11 @@ public:
   /// Whether an exception from run() leaves the scene as the engines before this one left it
   /// (true for a Python callback), so that the step can go on with the next engine.
   [[nodiscard]] virtual bool resumableAfterError() const { return false; }
+  /// The stages of the step this engine takes part in and how each splits among threads; the
+  /// step's scheduler runs the declared stages of the usual engines in shared parallel regions
+  /// through their range functions. Nothing declared (the default): run() is called at the
+  /// engine's place in the list, between parallel regions.
+  [[nodiscard]] virtual Stages stages() const { return {}; }
 
   std::string label; ///< optional user label
   bool dead = false; ///< skipped when true

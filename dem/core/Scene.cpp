@@ -1,10 +1,8 @@
 #include "dem/core/Scene.h"
-#include "dem/measure/Energy.h"
 
 #include "dem/core/Clump.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -309,15 +307,7 @@ void Scene::runEngine(std::size_t k)
     return;
   try
   {
-    if (!timingEnabled)
-    {
-      engine.run(*this);
-      return;
-    }
-    const auto start = std::chrono::steady_clock::now();
     engine.run(*this);
-    engine.execTime += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start).count();
-    ++engine.execCount;
   }
   catch (const std::exception& e)
   {
@@ -333,8 +323,7 @@ void Scene::endStep()
 {
   try
   {
-    if (energy.enabled && maxEnergyGrowth > 0 && iter % energyGrowthCheckPeriod == 0)
-      checkEnergyGrowth(*this);
+    stepLoop().endStep(*this);
   }
   catch (const std::exception& e)
   {
@@ -358,7 +347,7 @@ void Scene::setEngines(std::vector<std::shared_ptr<Engine>> list)
 
 void Scene::step()
 {
-  fused.forgetAhead(); // the caller may have moved bodies since the last step
+  stepLoop().forgetAhead(); // the caller may have moved bodies since the last step
   advance();
 }
 
@@ -385,13 +374,13 @@ void Scene::advance()
     subStep = -1;
   }
   const int n = static_cast<int>(engines.size());
+  const StepLoop::EngineRunner runner = [this](std::size_t k) { runEngine(k); };
   if (!subStepping && subStep < 0)
   {
     subStep = 0;
-    bool fusedRan = false;
     try
     {
-      fusedRan = fused.run(*this, [this](std::size_t k) { runEngine(k); });
+      stepLoop().runStep(*this, runner);
     }
     catch (const std::exception& e)
     {
@@ -399,9 +388,6 @@ void Scene::advance()
         failedStep_ = e.what();
       throw;
     }
-    if (!fusedRan)
-      for (int k = 0; k < n; ++k)
-        runEngine(static_cast<std::size_t>(k));
     endStep();
     subStep = -1;
     return;
@@ -413,7 +399,7 @@ void Scene::advance()
   for (int k = subStep; k <= last; ++k)
   {
     if (k >= 0 && k < n)
-      runEngine(static_cast<std::size_t>(k));
+      stepLoop().runSubStep(*this, static_cast<std::size_t>(k), runner);
     else if (k == n)
     {
       endStep();
@@ -426,7 +412,7 @@ void Scene::advance()
 void Scene::run(std::int64_t steps, const std::function<void()>& poll)
 {
   pauseRequested_ = false;
-  fused.forgetAhead(); // the caller may have moved bodies since the last step
+  stepLoop().forgetAhead(); // the caller may have moved bodies since the last step
   for (std::int64_t k = 0; steps < 0 || k < steps; ++k)
   {
     advance();
@@ -435,7 +421,7 @@ void Scene::run(std::int64_t steps, const std::function<void()>& poll)
     if (poll && k % 64 == 63)
     {
       poll();
-      fused.forgetAhead(); // a signal handler may have run Python
+      stepLoop().forgetAhead(); // a signal handler may have run Python
     }
   }
   pauseRequested_ = false;

@@ -6,8 +6,8 @@
 #include "dem/core/Domain.h"
 #include "dem/core/EnergyTracker.h"
 #include "dem/core/Engine.h"
-#include "dem/step/FusedStep.h"
 #include "dem/core/Material.h"
+#include "dem/core/StepLoop.h"
 
 #include <cstdint>
 #include <deque>
@@ -39,8 +39,8 @@ public:
   /// Energy tracking (O.trackEnergy / O.energy); off by default.
   EnergyTracker energy;
 
-  /// Time every engine's run() (and the stages engines label) per step (Yade's
-  /// O.timingEnabled; talus.dem.timing.stats() prints them); off by default.
+  /// Time every engine's stages per step (Yade's O.timingEnabled; talus.dem.timing.stats()
+  /// prints them); off by default. Timing does not change how the step runs.
   bool timingEnabled = false;
 
   bool periodic = false; ///< space is the periodic repetition of `cell`
@@ -203,17 +203,18 @@ public:
   /// @throws std::out_of_range naming the id if it is not a live body
   void checkBody(BodyId id) const;
 
-  /// Runs the usual engines' step in one parallel region when it can (see FusedStep).
-  FusedStep fused;
+  /// How the engines run in a step (dem/step/'s scheduler).
+  [[nodiscard]] StepLoop& stepLoop() { return stepLoop_.get(); }
 
 private:
   bool pauseRequested_ = false;
   bool stepping_ = false; ///< a step is running (its engines may not start another)
-  /// step() without forgetting what the fused step knows of the previous one (run()'s steps,
+  StepLoopHolder stepLoop_;
+  /// step() without forgetting what the step loop prepared for the next step (run()'s steps,
   /// between which nothing else touches the scene).
   void advance();
-  /// Engine k (skipped if dead; timed when timingEnabled). If it throws, the step is marked
-  /// for finishing from engine k + 1 or as failed (see step()).
+  /// Engine k (skipped if dead). If it throws, the step is marked for finishing from engine
+  /// k + 1 or as failed (see step()).
   void runEngine(std::size_t k);
   /// The rest of a step: the energy check, then the clock.
   void endStep();

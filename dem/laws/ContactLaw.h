@@ -60,7 +60,7 @@ public:
   /// smaller radius, or -1
   virtual std::int64_t computeAll(Scene& scene) = 0;
   /// computeAll's work on the contacts [first, last) only, for a caller that runs the loop in its
-  /// own parallel region (the fused step) and calls stepDone() after the last range;
+  /// own parallel region (the step scheduler) and calls stepDone() after the last range;
   /// Contacts::extra must already be aligned when needsExtra().
   /// @param energyBlocks null: no energy tracking; else `first` is a multiple of energyBlock
   /// and what contact k dissipates is added to energyBlocks[k / energyBlock] (the blocks of

@@ -2,6 +2,7 @@
 #include "dem/core/Clump.h"
 #include "dem/step/InteractionLoop.h"
 #include "dem/core/Scene.h"
+#include "dem/core/StepLoop.h"
 #include "dem/base/Threads.h"
 
 #include <cmath>
@@ -89,6 +90,17 @@ double elasticPotential(const Scene& scene)
         total += loop->laws[k]->elasticEnergy(scene, static_cast<std::uint8_t>(k));
   return total;
 }
+
+namespace
+{
+/// The energy-growth check at the end of the steps it is due at (see Scene::maxEnergyGrowth).
+void checkEnergyGrowthWhenDue(Scene& scene)
+{
+  if (scene.energy.enabled && scene.maxEnergyGrowth > 0 && scene.iter % energyGrowthCheckPeriod == 0)
+    checkEnergyGrowth(scene);
+}
+[[maybe_unused]] const bool energyGrowthChecked = addStepCheck(&checkEnergyGrowthWhenDue);
+} // namespace
 
 void checkEnergyGrowth(Scene& scene)
 {

@@ -276,8 +276,8 @@ PYBIND11_MODULE(_dem, m)
       .def_readonly("firstOverlap", &Scene::firstOverlap)
       .def_readwrite("maxEnergyGrowth", &Scene::maxEnergyGrowth)
       .def_readwrite("timingEnabled", &Scene::timingEnabled)
-      .def_property_readonly("fusedSteps", [](const Scene& s) { return s.fused.steps; })
-      .def_property_readonly("fusedOtherEnginesSeconds", [](const Scene& s) { return s.fused.otherEnginesSeconds; })
+      .def_property_readonly("fusedSteps", [](Scene& s) { return s.stepLoop().sharedSteps(); })
+      .def_property_readonly("fusedOtherEnginesSeconds", [](Scene& s) { return s.stepLoop().serialSeconds(); })
       .def("step", &Scene::step, py::call_guard<py::gil_scoped_release>())
       .def(
           "run",

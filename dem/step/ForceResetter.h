@@ -14,7 +14,9 @@ class ForceResetter : public Engine
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "ForceResetter"; }
-  /// run()'s work on the bodies [first, last) (for the fused step's parallel region).
+  /// The reset, per body.
+  [[nodiscard]] Stages stages() const override { return Stages{}.with(StagePoint::Reset, Grain::PerBody); }
+  /// run()'s work on the bodies [first, last) (for the step scheduler's parallel regions).
   static void resetIn(Bodies& bodies, std::int64_t first, std::int64_t last);
 
 private:

@@ -105,10 +105,24 @@ void InteractionLoop::prepare(Scene& scene)
   }
 }
 
+Stages InteractionLoop::stages() const
+{
+  const Grain contacts = laws.size() == 1 && callbacks.empty() ? Grain::PerContact : Grain::Serial;
+  return Stages{}.with(StagePoint::Contacts, contacts).with(StagePoint::Gather, Grain::PerBody);
+}
+
 void InteractionLoop::run(Scene& scene)
 {
   prepare(scene);
   timingDeltas.start(scene.timingEnabled);
+  computeContacts(scene);
+  timingDeltas.checkpoint("geometry, physics, law");
+  sumForcesPerBody(scene);
+  timingDeltas.checkpoint("forces per body");
+}
+
+void InteractionLoop::computeContacts(Scene& scene)
+{
   for (const auto& callback : callbacks)
     callback->stepInit();
   std::int64_t bad = -1;
@@ -124,15 +138,12 @@ void InteractionLoop::run(Scene& scene)
   }
   if (scene.energy.enabled && !scene.energy.grownBy.empty())
     addGrownContactsEnergy(scene, *this);
-  timingDeltas.checkpoint("geometry, physics, law");
   if (bad >= 0)
     overlapFound(scene, scene.contacts.list[static_cast<std::size_t>(bad)]);
   for (const auto& callback : callbacks)
     for (const Contact& c : scene.contacts.list)
       if (c.real)
         callback->go(c);
-  sumForcesPerBody(scene);
-  timingDeltas.checkpoint("forces per body");
 }
 
 void InteractionLoop::computeWithSeveralLaws(Scene& scene) const
@@ -202,9 +213,9 @@ void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, st
       const Contact& c = list[static_cast<std::size_t>(entry >> 1)];
       // The records come in a few interleaved runs (a body's contacts with its lower and higher
       // neighbours), one cache line each: the hardware prefetchers miss that pattern, and
-      // without this hint that layout made the gather about three times slower than the old
-      // three-lines-per-record one on a 16k-sphere bed; with it, 1.4 times faster there and 2.2
-      // times on a 65k bed.
+      // without this hint the one-line layout made the gather slower than the old
+      // three-lines-per-record one; with it, faster (docs/dem.md, Speed: what the large beds
+      // taught).
       if (e + prefetchDistance < entryCount)
         __builtin_prefetch(&list[static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1)]);
       // No test of c.real and no branch on the side: a contact that is not real carries a zero

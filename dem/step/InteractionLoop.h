@@ -17,16 +17,23 @@ class InteractionLoop : public Engine
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "InteractionLoop"; }
+  /// Contacts per contact with one law and no callbacks, else serial (computeContacts, whose
+  /// loops are parallel); the gather per body.
+  [[nodiscard]] Stages stages() const override;
 
   std::vector<std::shared_ptr<ContactLaw>> laws;
-  /// Yade's InteractionLoop.callbacks (a loop with callbacks is not fused, see FusedStep).
+  /// Yade's InteractionLoop.callbacks (called for every real contact after the forces).
   std::vector<std::shared_ptr<IntrCallback>> callbacks;
 
-  // The pieces of run() for the fused step, which runs the loops in its own parallel region.
+  // The pieces of run() for the step's scheduler, which runs them in its own parallel regions.
   /// The checks run() makes before touching the contacts.
   /// @throws std::runtime_error without laws, with more than 255, or (single law) with
   ///         materials or shapes the law cannot handle
   void prepare(Scene& scene);
+  /// The contacts stage as one serial call (after prepare): every contact's geometry and force,
+  /// law by law, the growth's energy, the overlap check and the callbacks.
+  /// @throws std::runtime_error for a contact no law handles or one overlapping too much
+  void computeContacts(Scene& scene);
   /// Add the forces and moments of the contacts of bodies [first, last) to those bodies.
   void gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const;
   /// The error message for a contact overlapping beyond scene.maxOverlapRatio.

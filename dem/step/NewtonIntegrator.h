@@ -30,6 +30,8 @@ class NewtonIntegrator : public Engine
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "NewtonIntegrator"; }
+  /// The integration, per body.
+  [[nodiscard]] Stages stages() const override { return Stages{}.with(StagePoint::Integration, Grain::PerBody); }
 
   Vec3 gravity = Vec3::Zero();
   double damping = 0.2; ///< Yade's default
@@ -38,7 +40,7 @@ public:
   /// their position, orientation and velocities (Yade's NewtonIntegrator.mask; default -1: all).
   int mask = -1;
 
-  // The pieces of run() for the fused step, which runs the loop in its own parallel region.
+  // The pieces of run() for the step's scheduler, which runs the loop in its own parallel regions.
   /// Refresh what the step reads of the bodies if they changed.
   void prepare(Scene& scene);
   /// Integrate the bodies [first, last); the first of them with a non-finite force or torque, or -1.

@@ -1,7 +1,7 @@
 """Settle a small random packing in a box of walls and print a hash of the final state
 (run by test_threads.py with different OMP_NUM_THREADS). Options: --clumps (every other
-sphere in a clump with its neighbour), --engines-one-by-one (timing on: the engines' own
-path instead of the fused step), --verlet=D (the collider's verletDist; 0 re-detects at every
+sphere in a clump with its neighbour), --engines-one-by-one (Yade's sub-steps: each engine's
+own run() in turn, instead of the scheduler's shared stages), --timing (O.timingEnabled), --verlet=D (the collider's verletDist; 0 re-detects at every
 step), --moving-wall (the wall at x = 1 moves inwards at 5 cm/s), --lifted (the packing starts
 0.1 above the floor), --other-engines (a PyRunner before the usual engines, gravity from a
 GravityEngine between the loop and the integrator, and a PyRunner after them nudging a sphere
@@ -56,9 +56,14 @@ if "--other-engines" in options:
 O.dt = 0.5 * PWaveTimeStep()
 if "--moving-wall" in options:
     O.velocities()[2] = (-0.05, 0, 0)  # the wall at x = 1 pushes into the packing
-O.timingEnabled = "--engines-one-by-one" in options
+O.timingEnabled = "--timing" in options
 O.trackEnergy = "--energy" in options
-O.run(steps)
+if "--engines-one-by-one" in options:
+    O.subStepping = True   # a step is the engines' count plus two sub-steps: its start and its end
+    for _ in range(steps * (len(O.engines) + 2)):
+        O.step()
+else:
+    O.run(steps)
 state = np.concatenate([O.positions().ravel(), O.velocities().ravel(), O.angular_velocities().ravel()])
 print("contacts", O._cpp.realContactCount())
 print("hash", hashlib.sha256(state.tobytes()).hexdigest())

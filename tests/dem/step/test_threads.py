@@ -1,6 +1,7 @@
 """Results do not depend on the number of OpenMP threads, nor on whether the usual engines run
-fused in one parallel region (FusedStep) or one by one: bit-identical states after a
-contact-rich deposition run (forces are summed per body in a fixed order)."""
+as the scheduler's shared stages (dem/step/Scheduler) or one by one (Yade's sub-steps: each
+engine's own run()), nor on timing: bit-identical states after a contact-rich deposition run
+(forces are summed per body in a fixed order)."""
 import os
 import subprocess
 import sys
@@ -51,6 +52,15 @@ def test_fused_step_equals_the_engines_one_by_one(build_dir, clumps):
     assert (fused, fused_engines) == (STEPS, 0)
     assert contacts_fused > 300     # contact-rich in both variants (433 with clumps)
     assert (contacts_fused, hash_fused) == (contacts_engines, hash_engines)
+
+
+@needs_openmp
+def test_timing_keeps_the_shared_stages_and_the_bits(build_dir):
+    """O.timingEnabled times the scheduler's stages without changing how the step runs."""
+    timed = outputs(2, build_dir, "--timing", "--other-engines")
+    plain = outputs(2, build_dir, "--other-engines")
+    assert int(timed["fused"]) == int(plain["fused"]) == STEPS
+    assert (timed["contacts"], timed["hash"]) == (plain["contacts"], plain["hash"])
 
 
 @needs_openmp
@@ -170,11 +180,14 @@ def test_a_failing_pyrunner_around_the_fused_step_resumes_as_the_engines_do(plac
         at = {"before": 0, "between": 3, "after": 4}[place]
         S.engines = engines[:at] + [failing] + engines[at:]
         S.dt = 1e-4
-        S.timingEnabled = engines_one_by_one
+        S.subStepping = engines_one_by_one   # Yade's sub-steps: each engine's own run() in turn
         errors = 0
         while S.iter < 20:
             try:
-                S.run(20 - S.iter, wait=True)
+                if engines_one_by_one:
+                    S.step()
+                else:
+                    S.run(20 - S.iter, wait=True)
             except RuntimeError as e:
                 assert "failing on purpose" in str(e)
                 errors += 1

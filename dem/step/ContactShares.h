@@ -1,0 +1,53 @@
+#pragma once
+
+#include "dem/base/Threads.h"
+#include "dem/core/EnergyTracker.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+namespace talus::dem
+{
+class Scene;
+class ContactLaw;
+struct Contacts;
+
+/// A thread's share [first, last) of n items with its ends moved to multiples of energyBlock
+/// (n stays n): the shares of the threads still tile the items, and each block of energy sums
+/// lies in one of them.
+std::pair<std::int64_t, std::int64_t> blockAligned(std::pair<std::int64_t, std::int64_t> share, std::int64_t n);
+
+/// How the contacts stage splits the contact list among the threads of a region.
+///
+/// The contacts of each wall, facet or box (runs of the list, each sorted by the sphere's id)
+/// are computed by the threads that integrate their spheres, not by whichever thread's range of
+/// the list they fall in: they lie at the list's end when the boundary was created last, and the
+/// last thread then read the state of the other threads' spheres along the boundary, whose next
+/// integration had to wait for those cache lines. Beyond maxBoundaryRuns runs (a large mesh)
+/// every thread takes one contiguous range of the list.
+class ContactShares
+{
+public:
+  /// Find the boundary runs of the current contact list (once per list).
+  void update(const Contacts& contacts);
+  /// Compute the contacts of thread `thread` of `threads` with `law`; `myBodies` are the bodies
+  /// the thread integrates. With `energy` (blocks of energyBlock contacts) the shares are block-aligned
+  /// ranges instead. The first bad contact's index (overlapping too much), or the contact count.
+  std::int64_t compute(Scene& scene, ContactLaw& law, int thread, int threads,
+                       std::pair<std::int64_t, std::int64_t> myBodies, ContactEnergy* energy) const;
+
+  BalancedRanges ranges; ///< contacts per thread
+
+private:
+  /// Thread `thread`'s part of the boundary runs: the contacts of the bodies it integrates.
+  void computeRuns(Scene& scene, int thread, int threads, std::pair<std::int64_t, std::int64_t> bodies,
+                   const auto& compute) const;
+
+  std::vector<std::pair<std::int64_t, std::int64_t>> boundaryRuns_;
+  std::int64_t boundaryContacts_ = 0; ///< contacts in boundaryRuns_
+  std::uint64_t runsVersion_ = 0;     ///< the Contacts::version boundaryRuns_ was found for
+  static constexpr std::size_t maxBoundaryRuns = 64;
+};
+} // namespace talus::dem

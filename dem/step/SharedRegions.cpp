@@ -1,0 +1,391 @@
+#include "dem/step/SharedRegions.h"
+
+#include "dem/core/Scene.h"
+#include "dem/laws/ContactLawKernel.h"
+#include "dem/step/ForceResetter.h"
+#include "dem/step/InteractionLoop.h"
+#include "dem/step/NewtonIntegrator.h"
+
+#include <algorithm>
+
+namespace talus::dem
+{
+namespace
+{
+int threadNumber()
+{
+#ifdef _OPENMP
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
+}
+
+int teamSize()
+{
+#ifdef _OPENMP
+  return std::min(omp_get_num_threads(), BalancedRanges::maxThreads);
+#else
+  return 1;
+#endif
+}
+
+/// Threads a region asks for: no more than the team's slots.
+int teamLimit()
+{
+#ifdef _OPENMP
+  return std::min(omp_get_max_threads(), BalancedRanges::maxThreads);
+#else
+  return 1;
+#endif
+}
+
+double now()
+{
+#ifdef _OPENMP
+  return omp_get_wtime();
+#else
+  return 0;
+#endif
+}
+
+std::size_t at(StagePoint point) { return static_cast<std::size_t>(point); }
+} // namespace
+
+std::int64_t SharedRegions::Team::first(std::int64_t Member::*field) const
+{
+  std::int64_t found = -1;
+  for (int t = 0; t < used; ++t)
+  {
+    const std::int64_t theirs = members[static_cast<std::size_t>(t)].*field;
+    if (theirs >= 0 && (found < 0 || theirs < found))
+      found = theirs;
+  }
+  return found;
+}
+
+void SharedRegions::Team::lap(Member& m, StagePoint point) const
+{
+  if (!timing)
+    return;
+  const double t = now();
+  m.stage[at(point)] += t - m.mark;
+  m.mark = t;
+}
+
+void SharedRegions::serialLap(StagePoint point, double start)
+{
+  if (team_.timing)
+    stageSeconds[at(point)] += now() - start;
+}
+
+template <class Body>
+void SharedRegions::region(Scene& scene, const Body& body)
+{
+  const bool parallel = static_cast<std::int64_t>(scene.ownedBodies()) >= parallelLoopMinimum;
+  ++regions;
+#pragma omp parallel if (parallel) num_threads(teamLimit())
+  {
+    const int thread = threadNumber(), threads = teamSize();
+    if (team_.timing)
+      team_.members[static_cast<std::size_t>(thread)].mark = now();
+    body(thread, threads);
+    if (thread == 0)
+      team_.used = threads;
+  }
+}
+
+void SharedRegions::begin(const Scene& scene)
+{
+  team_ = Team{};
+  team_.timing = scene.timingEnabled;
+  stageSeconds.fill(0);
+  regions = barriers = 0;
+}
+
+void SharedRegions::reset(Scene& scene)
+{
+  const auto owned = static_cast<std::int64_t>(scene.ownedBodies());
+  region(scene, [&](int thread, int threads) {
+    Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
+    const auto [first, last] = bodyRanges_.range(owned, thread, threads);
+    const double start = now();
+    ForceResetter::resetIn(scene.bodies, first, last);
+    my.bodySeconds += now() - start;
+    team_.lap(my, StagePoint::Reset);
+  });
+}
+
+void SharedRegions::forces(Scene& scene, const Engines& engines, Flow flow)
+{
+  const bool integrate = flow.integrate;
+  const double start = now();
+  engines.loop.prepare(scene);
+  if (integrate)
+    engines.newton.prepare(scene);
+  ContactLaw* law = flow.contactsInRegion ? engines.loop.laws[0].get() : nullptr;
+  // Contacts in the region and no reduction over processes: the skin check's verdict is known
+  // inside the region, which goes on to the contacts unless it calls for a re-detection.
+  const bool oneRegion = law && !scene.domain;
+  Skin skin;
+  skin.check = engines.collider.skinCheck(scene);
+  // In an open scene the skin check depends on the positions only, so each thread may check
+  // its bodies right after moving them, for the next step. Not with clumps (a clump moves its
+  // members, which may be another thread's bodies), nor with other engines (they may move
+  // bodies between this check and the next step).
+  skin.checkAhead = integrate && flow.alone && oneRegion && !scene.periodic && !engines.newton.hasClumps();
+  const bool knownAhead = skin.checkAhead && aheadFor_ == scene.iter;
+  aheadFor_ = -1;
+  const bool redetectFirst = oneRegion && (skin.check.rebuild || (knownAhead && movedAhead_));
+  serialLap(StagePoint::SkinCheck, start);
+  skin.checkNow = !redetectFirst && !knownAhead && !skin.check.rebuild;
+  if (redetectFirst)
+    redetect(scene, engines.collider, law, skin);
+  else
+    listChanged(scene, law);
+  resetAndCheck(scene, engines, law, flow, skin, oneRegion);
+  if (!oneRegion)
+    settleSkin(scene, engines, law, skin);
+  else if (skin.moved)
+    redetect(scene, engines.collider, law, skin);
+  if (!oneRegion || skin.moved)
+    region(scene, [&](int thread, int threads) {
+      contactsThenBodies(scene, engines, law, integrate, skin, skin.check, thread, threads);
+    });
+  contactsDone(scene, engines, law);
+  if (integrate)
+    integrationDone(scene, engines, skin);
+}
+
+void SharedRegions::resetAndCheck(Scene& scene, const Engines& engines, ContactLaw* law, Flow flow, Skin& skin,
+                                  bool rest)
+{
+  const auto owned = static_cast<std::int64_t>(scene.ownedBodies());
+  region(scene, [&](int thread, int threads) {
+    Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
+    const auto [first, last] = bodyRanges_.range(owned, thread, threads);
+    const double start = now();
+    if (flow.reset)
+    {
+      ForceResetter::resetIn(scene.bodies, first, last);
+      team_.lap(my, StagePoint::Reset);
+    }
+    if (skin.checkNow)
+      my.moved = engines.collider.displacementsIn(scene, skin.check, first, last);
+    my.bodySeconds += now() - start;
+    if (!rest)
+    {
+      team_.lap(my, StagePoint::SkinCheck);
+      return;
+    }
+    bool moved = false;
+    Collider::SkinCheck ahead = skin.check;
+    Collider::Displacements all;
+    if (skin.checkNow)
+    {
+#pragma omp barrier
+      if (thread == 0)
+        ++barriers;
+      for (int t = 0; t < threads; ++t)
+        all.add(team_.members[static_cast<std::size_t>(t)].moved);
+      moved = Collider::mustRebuild(skin.check, all);
+      ahead.common = Collider::commonOf(all); // what the collider keeps after this check
+    }
+    team_.lap(my, StagePoint::SkinCheck);
+    if (!moved)
+      contactsThenBodies(scene, engines, law, flow.integrate, skin, ahead, thread, threads);
+    if (thread == 0)
+    {
+      skin.moved = moved;
+      skin.measured = all;
+    }
+  });
+  if (rest && skin.checkNow && !skin.moved)
+    engines.collider.noteDisplacements(skin.measured);
+}
+
+void SharedRegions::settleSkin(Scene& scene, const Engines& engines, ContactLaw* law, Skin& skin)
+{
+  const double start = now();
+  if (skin.checkNow)
+  {
+    for (int t = 0; t < team_.used; ++t)
+      skin.measured.add(team_.members[static_cast<std::size_t>(t)].moved);
+    skin.moved = Collider::mustRebuild(skin.check, skin.measured);
+  }
+  // Split over processes, all decide from everyone's displacements and re-detect together,
+  // after the bodies that left this process's region moved to their new owners.
+  if (scene.domain)
+    skin.moved = Collider::acrossProcesses(*scene.domain, skin.check.rebuild, skin.measured)
+                 || Collider::mustRebuild(skin.check, skin.measured);
+  const bool redetecting = skin.check.rebuild || skin.moved;
+  if (!redetecting)
+    engines.collider.noteDisplacements(skin.measured);
+  serialLap(StagePoint::SkinCheck, start);
+  if (redetecting && scene.domain)
+  {
+    const double migration = now();
+    scene.domain->beforeDetection(scene);
+    serialLap(StagePoint::Detection, migration);
+  }
+  if (redetecting)
+    redetect(scene, engines.collider, law, skin);
+  if (!law)
+  {
+    const double contacts = now();
+    engines.loop.computeContacts(scene);
+    serialLap(StagePoint::Contacts, contacts);
+  }
+}
+
+void SharedRegions::contactsThenBodies(Scene& scene, const Engines& engines, ContactLaw* law, bool integrate,
+                                       const Skin& skin, const Collider::SkinCheck& ahead, int thread, int threads)
+{
+  Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
+  const auto owned = static_cast<std::int64_t>(scene.ownedBodies());
+  const auto [first, last] = bodyRanges_.range(owned, thread, threads);
+  if (law)
+  {
+    const double start = now();
+    const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
+    ContactEnergy* energy = scene.energy.enabled ? contactEnergy_.data() : nullptr;
+    const std::int64_t bad = contactShares_.compute(scene, *law, thread, threads, {first, last}, energy);
+    my.badContact = bad < contacts ? bad : -1;
+    my.contactSeconds = now() - start;
+#pragma omp barrier
+    if (thread == 0)
+        ++barriers;
+    team_.lap(my, StagePoint::Contacts);
+    // A contact overlapping too much stops the step before any body moves, as the engines do,
+    // unless the scene only counts such overlaps.
+    if (scene.overlapStops)
+      for (int t = 0; t < threads; ++t)
+        if (team_.members[static_cast<std::size_t>(t)].badContact >= 0)
+          return;
+  }
+  const double start = now();
+  engines.loop.gatherIn(scene, first, last);
+  team_.lap(my, StagePoint::Gather);
+  if (integrate)
+  {
+    if (engines.newton.hasClumps())
+    {
+      // A clump reads its members' forces and moves them, whichever thread gathered them.
+#pragma omp barrier
+      if (thread == 0)
+        ++barriers;
+    }
+    my.badBody = engines.newton.integrateIn(scene, first, last, nullptr);
+    if (skin.checkAhead)
+      my.movedAhead = engines.collider.displacementsIn(scene, ahead, first, last);
+    team_.lap(my, StagePoint::Integration);
+  }
+  my.bodySeconds += now() - start;
+}
+
+void SharedRegions::listChanged(Scene& scene, ContactLaw* law)
+{
+  if (!law)
+    return;
+  if (law->needsExtra())
+    alignContactExtra(scene.contacts);
+  contactShares_.update(scene.contacts);
+  if (scene.energy.enabled)
+    contactEnergy_.assign(static_cast<std::size_t>((scene.contacts.list.size() + energyBlock - 1) / energyBlock),
+                          ContactEnergy{});
+}
+
+void SharedRegions::redetect(Scene& scene, Collider& collider, ContactLaw* law, Skin& skin)
+{
+  const double start = now();
+  collider.timingDeltas.start(scene.timingEnabled); // the re-detection labels its own stages
+  collider.rebuild(scene);
+  skin.check = collider.skinCheck(scene); // the next step's, around the new references
+  serialLap(StagePoint::Detection, start);
+  listChanged(scene, law);
+}
+
+void SharedRegions::contactsDone(Scene& scene, const Engines& engines, ContactLaw* law)
+{
+  if (!law)
+    return; // computeContacts did it all
+  law->stepDone();
+  if (scene.energy.enabled)
+  {
+    detail::addContactEnergy(scene, contactEnergy_);
+    if (!scene.energy.grownBy.empty())
+      addGrownContactsEnergy(scene, engines.loop);
+  }
+  if (const std::int64_t bad = team_.first(&Team::Member::badContact); bad >= 0)
+    InteractionLoop::overlapFound(scene, scene.contacts.list[static_cast<std::size_t>(bad)]);
+}
+
+void SharedRegions::integrationDone(Scene& scene, const Engines& engines, const Skin& skin)
+{
+  const double start = now();
+  engines.newton.finish(scene, team_.first(&Team::Member::badBody));
+  if (skin.checkAhead)
+  {
+    Collider::Displacements movedAhead;
+    for (int t = 0; t < team_.used; ++t)
+      movedAhead.add(team_.members[static_cast<std::size_t>(t)].movedAhead);
+    movedAhead_ = Collider::mustRebuild(skin.check, movedAhead);
+    engines.collider.noteDisplacements(movedAhead);
+    aheadFor_ = scene.iter + 1;
+  }
+  if (scene.domain)
+    scene.domain->afterIntegration(scene);
+  serialLap(StagePoint::Integration, start);
+}
+
+void SharedRegions::integrate(Scene& scene, NewtonIntegrator& newton)
+{
+  const double start = now();
+  newton.prepare(scene);
+  const auto owned = static_cast<std::int64_t>(scene.ownedBodies());
+  const bool tracking = scene.energy.enabled;
+  if (tracking)
+  {
+    addImposedMotionWork(scene);
+    bodyEnergy_.assign(static_cast<std::size_t>((owned + energyBlock - 1) / energyBlock), {});
+  }
+  serialLap(StagePoint::Integration, start);
+  region(scene, [&](int thread, int threads) {
+    Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
+    const auto share = bodyRanges_.range(owned, thread, threads);
+    const auto [first, last] = tracking ? blockAligned(share, owned) : share;
+    const double begin = now();
+    my.badBody = newton.integrateIn(scene, first, last, tracking ? bodyEnergy_.data() : nullptr);
+    my.bodySeconds += now() - begin;
+    team_.lap(my, StagePoint::Integration);
+  });
+  const double end = now();
+  if (tracking)
+    NewtonIntegrator::addEnergy(scene, bodyEnergy_);
+  newton.finish(scene, team_.first(&Team::Member::badBody));
+  if (scene.domain)
+    scene.domain->afterIntegration(scene);
+  serialLap(StagePoint::Integration, end);
+}
+
+void SharedRegions::stepDone()
+{
+  for (int t = 0; t < team_.used; ++t)
+  {
+    const Team::Member& m = team_.members[static_cast<std::size_t>(t)];
+    bodyRanges_.record(t, m.bodySeconds);
+    contactShares_.ranges.record(t, m.contactSeconds);
+  }
+  bodyRanges_.rebalance(team_.used);
+  contactShares_.ranges.rebalance(team_.used);
+  if (!team_.timing)
+    return;
+  for (std::size_t p = 0; p < stagePoints; ++p)
+  {
+    double longest = 0;
+    for (int t = 0; t < team_.used; ++t)
+      longest = std::max(longest, team_.members[static_cast<std::size_t>(t)].stage[p]);
+    stageSeconds[p] += longest;
+  }
+}
+} // namespace talus::dem
