@@ -143,7 +143,7 @@ def _dem_cases():
 
 def _flow_cases():
     import numpy as np
-    from talus.flow import FlowEngine, HydroForceEngine, VansCoupling, VansFluid
+    from talus.flow import FlowEngine, HydroForceEngine, TwoPhaseFlowEngine, VansCoupling, VansFluid
     C = lambda name, run, error, words: Case("flow", name, run, error, words)  # noqa: E731
 
     def solve(**bad):
@@ -162,6 +162,9 @@ def _flow_cases():
         C("FlowEngine 2D positions", lambda t: FlowEngine().triangulate(np.zeros((5, 2)), np.ones(5)), ValueError, r"positions must be \(n, 3\)"),
         C("FlowEngine negative radius", lambda t: FlowEngine().triangulate(np.random.default_rng(1).random((10, 3)), -np.ones(10)), ValueError, r"body 0 has a non-positive radius"),
         C("FlowEngine solve before triangulate", lambda t: FlowEngine().solve(), RuntimeError, r"no pore network yet \(triangulate first\)"),
+        C("TwoPhaseFlowEngine entry pressure method 4", lambda t: TwoPhaseFlowEngine(entryPressureMethod=4), ValueError, r"TwoPhaseFlowEngine.entryPressureMethod must be 1 \(MS-P"),
+        C("TwoPhaseFlowEngine negative surfaceTension", lambda t: TwoPhaseFlowEngine(surfaceTension=-0.07), ValueError, r"TwoPhaseFlowEngine.surfaceTension must be a finite number >= 0"),
+        C("TwoPhaseFlowEngine 5 boundary values", lambda t: TwoPhaseFlowEngine(bndCondValue=[0, 0, 1, 0, 0]), ValueError, r"TwoPhaseFlowEngine.bndCondValue needs a list of 6 values"),
         C("VansFluid one cell", lambda t: VansFluid(nCell=1, deltaZ=0.01).fluidResolution(0.1, 1e-3), ValueError, r"nCell must be at least 2"),
         C("VansFluid negative deltaZ", lambda t: VansFluid(nCell=10, deltaZ=-1), ValueError, r"VansFluid: deltaZ must be positive"),
         C("VansFluid phiMax 2", lambda t: VansFluid(nCell=10, deltaZ=0.01, phiMax=2), ValueError, r"VansFluid: phiMax must be in \(0, 1\]"),
