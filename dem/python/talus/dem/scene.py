@@ -259,16 +259,16 @@ class Scene(OmegaMethods, CheckpointMethods):
 
     @property
     def fusedSteps(self) -> int:
-        """Steps run fused: ForceResetter, collider, InteractionLoop (one law) and
-        NewtonIntegrator in one parallel region (two with engines between the loop and the
-        integrator or with energy tracked), other engines in their place; timing off, at least
-        1024 bodies. The same results as the engines one by one, faster."""
+        """Steps whose usual engines (ForceResetter, collider, InteractionLoop,
+        NewtonIntegrator) ran as the shared stages of the step's scheduler, in parallel regions
+        entered once for all of them (docs/dem.md, "The step"); every step of a scene with
+        those engines, whatever the other engines, the laws, the timing or the size."""
         return self._cpp.fusedSteps
 
     @property
     def fusedOtherEnginesSeconds(self) -> float:
-        """Wall seconds the other engines (PyRunners, couplings, controllers...) took in fused
-        steps: the rest of those steps' time is the DEM's own."""
+        """Wall seconds the serial stages (PyRunners, couplings, controllers...: the engines
+        that declare no stage) took: the rest of the steps' time is the DEM's own."""
         return self._cpp.fusedOtherEnginesSeconds
 
     def _set_dt(self, value: float):
