@@ -47,7 +47,7 @@ class TwoPhaseFlow
 public:
   /// Entry radii, pore bodies and the initial phases of `net` (geometry computed; Yade's
   /// initialization). bndCondIsPressure[2] and [3] must be set: the reservoirs.
-  /// @throws std::invalid_argument naming the parameter (surfaceTension <= 0 or not finite,
+  /// @throws std::invalid_argument naming the parameter (surfaceTension < 0 or not finite,
   ///         entryPressureMethod, the reservoirs not pressure boundaries, non-finite bndCondValue)
   void initialize(const pore::PoreNetwork& net, const TwoPhaseParameters& params,
                   const std::array<bool, kBoundaries>& bndCondIsPressure,

@@ -149,6 +149,9 @@ class TwoPhaseFlowEngine(FlowEngine):
     def _model(self):
         if not self._tp.initialized():
             raise RuntimeError(f"{_OWNER}: call initialization() first")
+        if len(self._tp.saturations()) != self._flow.nCells():
+            raise RuntimeError(f"{_OWNER}: the pore network was rebuilt since initialization() (the engine remeshed): "
+                               "call initialization() again")
         self._tp.setParameters(self._params)  # the options as they are now (Yade reads them at each call)
         return self._tp
 
