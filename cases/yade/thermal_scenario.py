@@ -8,6 +8,7 @@
 #           "flow": spheres and water at 333.15 K, water at 343.15 K entering through xmin
 #           (pressure 10 Pa there, 0 at xmax; FlowEngine's bndCondIsTemperature on xmin)
 #   steps   DEM steps (O.dt 1e-5 s noflow, 1e-4 s flow, as the examples)
+#   packing optional sphere file (x y z r per line) instead of the examples' one
 # Differences from the examples, in both programs: uniformReynolds = 10 (the flow example leaves
 # Yade's -1, Reynolds numbers from the pore velocities), tsSafetyFactor = 0 (a thermal step of
 # O.dt), no TriaxialStressController, time stepper or output. Prints RESULT with the sphere
@@ -25,7 +26,7 @@ except NameError:
 
 params = json.loads(os.environ["TALUS_SCENARIO"])
 flowing = params["mode"] == "flow"
-PACKING = "/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres"
+PACKING = params.get("packing", "/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres")
 t0 = 333.15
 mn, mx = Vector3(0, 0, 0), Vector3(0.05, 0.05, 0.05)
 O.materials.append(FrictMat(young=1e9, poisson=0.5, frictionAngle=radians(3), density=2600, label='spheres'))

@@ -157,3 +157,29 @@ def test_drained_pressure_decays_and_checkpoint_keeps_expansion_state(tmp_path):
     alphas = [b.state.alpha for b in O.bodies if type(b.shape).__name__ == "Sphere"]
     O.load(str(path))
     assert [b.state.alpha for b in O.bodies if type(b.shape).__name__ == "Sphere"] == alphas
+
+
+@pytest.mark.skipif(not PACKING.exists(), reason="Yade's examples (the packing of its ThermalEngine scripts) are not installed")
+def test_checkpoint_keeps_the_pore_temperatures(tmp_path):
+    """Hot water flowing in, saved half-way: the run reloaded goes on as the uninterrupted one
+    (the pores take their saved temperatures once the FlowEngine has rebuilt its network)."""
+    flow, thermal = packing(alpha=0, drained=True)
+    flow.bndCondIsPressure = [1, 1, 0, 0, 0, 0]
+    flow.bndCondValue = [10, 0, 0, 0, 0, 0]
+    flow.bndCondIsTemperature = [1, 0, 0, 0, 0, 0]
+    flow.thermalBndCondValue = [70, 0, 0, 0, 0, 0]
+    flow.fluidBulkModulus = 0
+    thermal.thermoMech = False
+    O.dt = 1e-4
+    O.run(30, True)
+    path = tmp_path / "pores.h5"
+    O.save(str(path))
+    O.run(30, True)
+    pores = np.array(O.engines[3].cellTemperatures)
+    spheres = [b.state.temp for b in O.bodies if type(b.shape).__name__ == "Sphere"]
+    assert pores.max() > 25
+    O.load(str(path))
+    O.run(30, True)
+    np.testing.assert_allclose(O.engines[3].cellTemperatures, pores, rtol=0, atol=1e-9)
+    np.testing.assert_allclose([b.state.temp for b in O.bodies if type(b.shape).__name__ == "Sphere"], spheres,
+                               rtol=0, atol=1e-9)

@@ -176,6 +176,7 @@ class ThermalEngine(Engine):
         self._userSet: set[int] = set()     # bodies whose fields were set before the first step
         self._pendingState = None    # a checkpoint's state, applied once the scene is known
         self._poreHeat = None        # (FlowEngine, its pore temperatures) with advection
+        self._pendingPores = None    # a checkpoint's pore centres and temperatures
         # every refusal comes before any temperature changes: a failed step can be resumed
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp
         for name, value in attrs.items():
@@ -359,6 +360,9 @@ class ThermalEngine(Engine):
             heat.initialTemperature = flow.tZero
             self._poreHeat = (flow, heat)
             flow._poreHeat = heat
+            if self._pendingPores is not None:
+                self._restore_pores(flow, heat, *self._pendingPores)
+                self._pendingPores = None
         heat, p = self._poreHeat[1], self._params
         fluid = heat.params
         fluid.fluidK, fluid.fluidCp, fluid.fluidRho = p["fluidK"], flow.fluidCp, flow.fluidRho
@@ -453,7 +457,29 @@ class ThermalEngine(Engine):
                 "values": list(self._params["thermalBndCondValue"]),
                 "counters": [n.runs, n.sinceRun, n.period, n.timeSinceRun, n.thermalDT, n.maxTimeStep],
                 "alpha": _encode(self._expansion.alphas()), "marks": _encode(self._expansion.marks()),
-                "marked": self._marked}
+                "marked": self._marked, **self._io_pores()}
+
+    def _io_pores(self) -> dict:
+        """The pore temperatures with a point inside each pore: the FlowEngine rebuilds its network
+        after a load, and each new pore takes the temperature of the saved pore whose point is
+        nearest to its own (the same pore when the spheres are where they were saved; not the
+        pores' circumcentres, which cospherical spheres share)."""
+        if self._poreHeat is None:
+            return {}
+        flow, heat = self._poreHeat
+        return {"poreTemp": _encode(heat.temperatures()), "poreCentre": _encode(np.ravel(self._pore_points(flow)))}
+
+    @staticmethod
+    def _pore_points(flow) -> np.ndarray:
+        return np.array([flow._flow.poreBarycentre(i) for i in range(flow.nCells())])
+
+    @staticmethod
+    def _restore_pores(flow, heat, centres, temps):
+        from scipy.spatial import cKDTree
+        heat.sync()
+        nearest = cKDTree(centres).query(ThermalEngine._pore_points(flow))[1]
+        for i, j in enumerate(nearest):
+            heat.setTemperature(i, float(temps[j]))
 
     def _io_restore(self, state):
         if state:
@@ -488,5 +514,7 @@ class ThermalEngine(Engine):
             if len(saved) != n:
                 raise ValueError(f"ThermalEngine: the checkpoint holds {key} for {len(saved)} bodies, the scene has {n}")
             setter(saved)
+        if "poreTemp" in state:
+            self._pendingPores = (_decode(state["poreCentre"]).reshape(-1, 3), _decode(state["poreTemp"]))
         # the pores' reference temperatures are not kept: the first run after a load marks them anew
         self._marked = state["marked"] and not self._params["fluidThermoMech"]
