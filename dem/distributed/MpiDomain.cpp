@@ -7,6 +7,7 @@
 #include "dem/distributed/Migration.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -22,6 +23,22 @@ namespace
 /// orientation, angular momentum (what the contacts and the skin check read of it).
 constexpr std::size_t stateDoubles = 16;
 constexpr int updateTag = 7301;
+
+/// Copy the state a ghost update carries of body `i` into the stateDoubles at `buffer`
+/// (`out`), or from them into the body.
+void copyState(Bodies& b, std::size_t i, double* buffer, bool out)
+{
+  const std::array<std::pair<double*, std::size_t>, 5> fields{{{b.pos[i].data(), 3},
+                                                                {b.vel[i].data(), 3},
+                                                                {b.angVel[i].data(), 3},
+                                                                {b.ori[i].coeffs().data(), 4},
+                                                                {b.angMom[i].data(), 3}}};
+  for (const auto& [field, count] : fields)
+  {
+    std::memcpy(out ? buffer : field, out ? field : buffer, count * sizeof(double));
+    buffer += count;
+  }
+}
 
 /// Call f(a_field, b_field) for each per-body array of `a` and the same array of `b`.
 template <class F>
@@ -464,15 +481,7 @@ void MpiDomain::afterIntegration(Scene& scene)
                 updateTag, comm_, &requests.back());
     }
   for (std::size_t k = 0; k < sendRows_.size(); ++k)
-  {
-    const auto i = static_cast<std::size_t>(sendRows_[k]);
-    double* s = sendBuffer_.data() + k * stateDoubles;
-    std::memcpy(s, b.pos[i].data(), 3 * sizeof(double));
-    std::memcpy(s + 3, b.vel[i].data(), 3 * sizeof(double));
-    std::memcpy(s + 6, b.angVel[i].data(), 3 * sizeof(double));
-    std::memcpy(s + 9, b.ori[i].coeffs().data(), 4 * sizeof(double));
-    std::memcpy(s + 13, b.angMom[i].data(), 3 * sizeof(double));
-  }
+    copyState(b, static_cast<std::size_t>(sendRows_[k]), sendBuffer_.data() + k * stateDoubles, true);
   for (std::size_t r = 0; r < P; ++r)
     if (const std::int64_t count = sendStart_[r + 1] - sendStart_[r]; count > 0)
     {
@@ -485,15 +494,7 @@ void MpiDomain::afterIntegration(Scene& scene)
     }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   for (std::size_t k = 0; k < recvRows_.size(); ++k)
-  {
-    const auto i = static_cast<std::size_t>(recvRows_[k]);
-    const double* s = recvBuffer_.data() + k * stateDoubles;
-    std::memcpy(b.pos[i].data(), s, 3 * sizeof(double));
-    std::memcpy(b.vel[i].data(), s + 3, 3 * sizeof(double));
-    std::memcpy(b.angVel[i].data(), s + 6, 3 * sizeof(double));
-    std::memcpy(b.ori[i].coeffs().data(), s + 9, 4 * sizeof(double));
-    std::memcpy(b.angMom[i].data(), s + 13, 3 * sizeof(double));
-  }
+    copyState(b, static_cast<std::size_t>(recvRows_[k]), recvBuffer_.data() + k * stateDoubles, false);
   ++traffic_.updates;
 }
 } // namespace talus::dem::distributed
