@@ -189,3 +189,14 @@ def test_capillary_force_on_walls():
     tp.invasion()
     tp.computeCapillaryForce()
     assert tp.fluidForce(3)[1] > 0 and tp.fluidForce(2)[1] == pytest.approx(0, abs=1e-12)
+
+
+@pytest.mark.parametrize("name", sorted(REF["variants"]))
+def test_option_variants_as_yade(name):
+    """isInvadeBoundary off (throats between boundary pores closed), recursiveInvasion off (one
+    pore deep per invasion), and a non-wetting start imbibed by decreasing capillary pressure."""
+    variant = REF["variants"][name]
+    tp = engine(**variant["attrs"])
+    sw = drain(tp, variant["pcs"])
+    assert abs(sw[-1] - sw[0]) > 0.1
+    np.testing.assert_allclose(sw, variant["saturations"], rtol=0, atol=1e-9)

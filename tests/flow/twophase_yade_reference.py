@@ -5,8 +5,10 @@
 # each entry-pressure method and with and without trapping: the saturation after invasion() at
 # each capillary pressure of a drainage then (MS-P, trapped) an imbibition; the capillary forces
 # (computeCapillaryForce, fluidForce) of a few spheres mid-drainage; the saturation with the
-# boundary pores (getSaturation(True)) after the drainage; the pore-body radii of all pores; and the MS-P and inscribed
-# radii of a few sphere triplets (getMSPRcByPosRadius, getEffRcByPosRadius). Written as JSON to
+# boundary pores (getSaturation(True)) after the drainage; the pore-body radii of all pores; the
+# MS-P and inscribed radii of a few sphere triplets (getMSPRcByPosRadius, getEffRcByPosRadius);
+# drainages with isInvadeBoundary or recursiveInvasion off and an imbibition from a non-wetting
+# start. Written as JSON to
 # data/twophase_yade_reference.json.
 import json
 
@@ -60,6 +62,26 @@ for method in (1, 2, 3):
         runs[f"{method}-{int(trapped)}"] = {"drainage": drainage, "imbibition": imbibition,
                                            "sideIncluded": sideIncluded, "nCells": tp.nCells()}
 
+# option variants of the drainage (MS-P, trapped): attribute settings -> saturations; the last
+# starts non-wetting and imbibes with decreasing capillary pressure
+variants = {}
+for name, attrs, pcs in (("isInvadeBoundary=0", {"isInvadeBoundary": False}, PCS),
+                         ("recursiveInvasion=0", {"recursiveInvasion": False}, PCS),
+                         ("drainageFirst=0", {"drainageFirst": False, "isDrainageActivated": False,
+                                              "isImbibitionActivated": True}, PCS[::-1])):
+    O.reset()
+    O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
+    for x, y, z, r in spheres:
+        O.bodies.append(sphere((x, y, z), r, fixed=True))
+    tp = TwoPhaseFlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], surfaceTension=GAMMA, **attrs)
+    tp.initialization()
+    saturations = []
+    for pc in pcs:
+        tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
+        tp.invasion()
+        saturations.append(tp.getSaturation(False))
+    variants[name] = {"attrs": attrs, "pcs": pcs, "saturations": saturations}
+
 triplets = [((0, 0, 0), 1.0, (2, 0, 0), 1.0, (1, 3 ** 0.5, 0), 1.0),
             ((0, 0, 0), 1.0, (2.2, 0, 0), 0.9, (1.1, 1.9, 0.2), 1.1),
             ((0, 0, 0), 0.5, (1.4, 0.1, 0), 0.7, (0.6, 1.3, 0), 0.6)]
@@ -67,5 +89,5 @@ radii = [{"msp": tp.getMSPRcByPosRadius(Vector3(*a), ra, Vector3(*b), rb, Vector
           "inscribed": tp.getEffRcByPosRadius(Vector3(*a), ra, Vector3(*b), rb, Vector3(*c), rc),
           "spheres": [a, ra, b, rb, c, rc]} for a, ra, b, rb, c, rc in triplets]
 json.dump({"surfaceTension": GAMMA, "pcs": PCS, "runs": runs, "forceStep": FORCE_STEP, "forces": forces,
-           "triplets": radii, "bodyRadii": bodyRadii}, open("data/twophase_yade_reference.json", "w"), indent=1)
+           "triplets": radii, "bodyRadii": bodyRadii, "variants": variants}, open("data/twophase_yade_reference.json", "w"), indent=1)
 print("written", {k: v["drainage"][-1] for k, v in runs.items()})
