@@ -200,3 +200,9 @@ def test_option_variants_as_yade(name):
     sw = drain(tp, variant["pcs"])
     assert abs(sw[-1] - sw[0]) > 0.1
     np.testing.assert_allclose(sw, variant["saturations"], rtol=0, atol=1e-9)
+
+
+def test_initialization_options_set_later_warn():
+    tp = engine()
+    with pytest.warns(RuntimeWarning, match="entryPressureMethod acts at the next initialization"):
+        tp.entryPressureMethod = 2

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 
 import numpy as np
 
@@ -85,11 +86,14 @@ class TwoPhaseFlowEngine(FlowEngine):
                 raise ValueError(f"{_OWNER}.entryPressureMethod must be 1 (MS-P, Yuan & Chareyre 2017), 2 (inscribed "
                                  f"circle) or 3 (circle of the throat's fluid area), got {value!r}")
             self._params.entryPressureMethod = int(value)
+            self._warn_if_initialized(name)
             return
         if name in _FLAGS:
             if not isinstance(value, (bool, int, np.integer, np.bool_)) or value not in (0, 1):
                 raise TypeError(f"{_OWNER}.{name} must be True or False, got {value!r}")
             setattr(self._params, name, bool(value))
+            if name in ("isInvadeBoundary", "drainageFirst"):
+                self._warn_if_initialized(name)
             return
         if name == "isCellLabelActivated" and value:
             raise NotImplementedError(f"{_OWNER}.isCellLabelActivated: the wetting clusters (Yade's cell labels and "
@@ -110,6 +114,12 @@ class TwoPhaseFlowEngine(FlowEngine):
         except (ValueError, TypeError, AttributeError) as error:
             # FlowEngine's messages name FlowEngine: name the engine the user has
             raise type(error)(str(error).replace("FlowEngine", _OWNER, 1)) from None
+
+    def _warn_if_initialized(self, name):
+        """Options read by initialization() only (as in Yade): say so when set after it."""
+        if self._tp.initialized():
+            warnings.warn(f"{_OWNER}.{name} acts at the next initialization() (the entry radii and the initial "
+                          "phases are set there)", RuntimeWarning, stacklevel=3)
 
     def __getattr__(self, name):
         if name == "surfaceTension" or name == "entryPressureMethod" or name in _FLAGS:
