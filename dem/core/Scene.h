@@ -70,15 +70,23 @@ public:
   /// engines caching them (the integrator's inverse masses) refresh.
   std::int64_t bodyPropertiesVersion = 0;
 
-  /// Add a material after checking it; returns its index.
+  /// Add a material after checking it.
+  /// @return its index, for the bodies' `material`
+  /// @throws std::invalid_argument naming the material and the parameter out of range
   int addMaterial(const Material& material);
   /// Add a sphere with mass and inertia from its material's density.
+  /// @param center, radius where and how large (m)
+  /// @param material index into `materials`
+  /// @return the new body's id
   /// @throws std::invalid_argument naming the offending value (radius, centre, material)
   BodyId addSphere(const Vec3& center, double radius, int material);
   /// Add an infinite wall x[axis] = position, interacting on side `sense` (-1, 0, +1); fixed.
   /// In a periodic scene a wall meets the bodies themselves, never their periodic images: put it
   /// across a direction in which the cell is wider than the sample (a bed in a tall cell, the
   /// side walls of a channel in a wide one), as Yade's periodic scenes with walls do.
+  /// @return the new body's id
+  /// @throws std::invalid_argument naming the wall for an axis not 0, 1 or 2, a sense not -1, 0
+  ///         or 1, a position not finite or an unknown material
   BodyId addWall(double position, int axis, int sense, int material);
   /// Add a fixed triangular facet with vertices a, b, c (world coordinates).
   /// @throws std::invalid_argument if the triangle is degenerate or not finite
@@ -118,6 +126,8 @@ public:
   void addToClump(BodyId clump, const std::vector<BodyId>& ids, int discretization = 0);
   /// Yade's releaseFromClump: `member` leaves `clump` (which keeps at least 2 members) and
   /// moves on its own; the clump's properties are recomputed.
+  /// @throws std::invalid_argument if `member` is not a member of `clump`, the clump would keep
+  ///         fewer than 2 members, or discretization < 0
   void releaseFromClump(BodyId member, BodyId clump, int discretization = 0);
   /// Recompute a clump's centroid, mass, principal inertia and member placement from its
   /// members' current state (the clump is left at rest).
@@ -130,20 +140,26 @@ public:
   /// @throws std::invalid_argument naming a Potential Block or Particle
   void setPeriodic(bool on);
   /// Set the cell's edges (columns of h); the cell must be non-degenerate with positive volume.
+  /// @throws std::invalid_argument if h is not finite or its determinant not positive
   void setCellSize(const Mat3& h);
 
   /// Set the blocked degrees of freedom of a body (Dof bits).
+  /// @throws std::out_of_range for an id that is not a live body
+  /// @throws std::invalid_argument for a mask outside 0..63
   void setBlockedDofs(BodyId id, std::uint8_t mask);
   /// Make a body dynamic (moved by forces) or not (moved only by its imposed velocity).
+  /// @throws std::out_of_range for an id that is not a live body
   void setDynamic(BodyId id, bool dynamic);
   /// Replace a body's mass (kg) and principal inertia (kg m^2), as Yade's `state.mass = ...`.
-  /// @throws std::invalid_argument for a dead id, a negative or non-finite value.
+  /// @throws std::out_of_range for an id that is not a live body
+  /// @throws std::invalid_argument for a negative or non-finite value
   void setMass(BodyId id, double mass);
   void setInertia(BodyId id, const Vec3& inertia);
   /// Remove a body and its contacts; its id is not reused (Yade's O.bodies.erase). Erasing a
   /// clump frees its members (or erases them too with `eraseClumpMembers`); erasing a member
   /// removes it from its clump, which keeps its mass, inertia and the other members' placement
   /// (as in Yade) and goes with its last member.
+  /// @throws std::out_of_range for an id that is not a live body
   void erase(BodyId id, bool eraseClumpMembers = false);
   /// Remove every body and contact (Yade's O.bodies.clear): ids start again at 0. Materials,
   /// engines, the cell and the clock stay; engines holding body ids keep them, as in Yade.

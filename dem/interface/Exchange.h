@@ -37,7 +37,11 @@ public:
     AfterStep,    ///< after integration: read the new positions and velocities
   };
 
+  /// @param scene the scene exchanged with; it must outlive this object
   explicit ParticleExchange(Scene& scene) : scene_(scene) {}
+
+  /// Per body id: positions (m), velocities (m/s), angular velocities (rad/s), radii (m, 0 for
+  /// shapes other than spheres) and masses (kg); valid until bodies are added.
 
   [[nodiscard]] std::span<const Vec3> positions() const { return scene_.bodies.pos; }
   [[nodiscard]] std::span<const Vec3> velocities() const { return scene_.bodies.vel; }
@@ -45,6 +49,7 @@ public:
   [[nodiscard]] std::span<const double> radii() const { return scene_.bodies.radius; }
   [[nodiscard]] std::span<const double> masses() const { return scene_.bodies.mass; }
   /// True for ids that are live spheres (the particles couplings act on).
+  /// @param id any id (out of range: false)
   [[nodiscard]] bool isSphere(BodyId id) const
   {
     const auto i = static_cast<std::size_t>(id);
@@ -82,19 +87,28 @@ public:
     ++scene_.bodiesVersion;
   }
 
+  /// Per body id, writable: the persistent force and torque (N, N m; kept until changed) and
+  /// this step's accumulators (reset by the ForceResetter from the persistent ones).
   [[nodiscard]] std::span<Vec3> persistentForces() { return scene_.bodies.extForce; }
   [[nodiscard]] std::span<Vec3> persistentTorques() { return scene_.bodies.extTorque; }
   [[nodiscard]] std::span<Vec3> stepForces() { return scene_.bodies.force; }
   [[nodiscard]] std::span<Vec3> stepTorques() { return scene_.bodies.torque; }
 
+  /// The clock: simulated time (s), time step (s), step count; the periodic cell, if any.
   [[nodiscard]] double time() const { return scene_.time; }
   [[nodiscard]] double dt() const { return scene_.dt; }
   [[nodiscard]] std::int64_t iter() const { return scene_.iter; }
   [[nodiscard]] bool periodic() const { return scene_.periodic; }
   [[nodiscard]] const Cell& cell() const { return scene_.cell; }
 
-  /// Insert a hook engine calling `f` every `period` steps at `point`; returns it (remove it by
-  /// setting `dead`). @throws std::logic_error if the engine list lacks the anchor engine
+  /// Insert a hook engine calling `f` every `period` steps at `point` (remove it by setting its
+  /// `dead`).
+  /// @param point where in the step: after the ForceResetter, or before or after the
+  ///        NewtonIntegrator
+  /// @param f the coupling's call
+  /// @param period steps between two calls, from the first step on
+  /// @return the hook engine, already in the scene's engine list
+  /// @throws std::logic_error if the engine list lacks the anchor engine
   std::shared_ptr<CallbackEngine> addHook(HookPoint point, std::function<void()> f, std::int64_t period = 1)
   {
     auto hook = std::make_shared<CallbackEngine>();
