@@ -20,11 +20,15 @@ std::ofstream open(const std::string& path)
 void vector(std::ostream& out, const Vec3& v) { out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n'; }
 } // namespace
 
-std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base)
+std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base, const std::vector<PoreField>& poreFields)
 {
   const PoreNetwork& net = flow.network();
   const std::vector<double>& p = flow.pressures();
   const std::array<std::string, 2> paths{base + ".pores.vtk", base + ".throats.vtk"};
+  for (const auto& [name, values] : poreFields)
+    if (values.size() != net.pores.size())
+      throw std::invalid_argument("saveVtk: the pore field " + name + " has " + std::to_string(values.size()) +
+                                  " values for " + std::to_string(net.pores.size()) + " pores");
 
   // Points: the spheres (vertex 6+i is point i), then one point per wall vertex of a boundary
   // pore, at the projection of the pore's spheres' centroid on the wall.
@@ -86,6 +90,12 @@ std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base
     out << "VECTORS velocity double\n";
     for (const Vec3& v : velocity)
       vector(out, v);
+    for (const auto& [name, values] : poreFields)
+    {
+      out << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
+      for (double x : values)
+        out << x << '\n';
+    }
     out << "POINT_DATA " << points.size() << "\nSCALARS radius double 1\nLOOKUP_TABLE default\n";
     for (std::size_t i = 0; i < points.size(); ++i)
       out << (i < net.sphereCount() ? net.vertices[kBoundaries + i].radius : 0.0) << '\n';

@@ -183,3 +183,16 @@ def test_checkpoint_keeps_the_pore_temperatures(tmp_path):
     np.testing.assert_allclose(O.engines[3].cellTemperatures, pores, rtol=0, atol=1e-9)
     np.testing.assert_allclose([b.state.temp for b in O.bodies if type(b.shape).__name__ == "Sphere"], spheres,
                                rtol=0, atol=1e-9)
+
+
+@pytest.mark.skipif(not PACKING.exists(), reason="Yade's examples (the packing of its ThermalEngine scripts) are not installed")
+def test_pore_temperatures_in_the_flow_vtk(tmp_path):
+    flow, thermal = packing(alpha=0, drained=True)
+    O.run(2, True)
+    heat_everything(flow, 5.0)
+    O.run(1, True)
+    pores, _ = flow.saveVtk(str(tmp_path / "net"))
+    text = Path(pores).read_text().split("SCALARS temperature double 1\nLOOKUP_TABLE default\n")[1].split()
+    written = np.array([float(v) for v in text[:flow.nCells()]])
+    np.testing.assert_allclose(written, flow.cellTemperatures, rtol=1e-5)
+    assert written.min() > 24.9

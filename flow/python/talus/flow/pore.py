@@ -397,11 +397,12 @@ class FlowEngine(Engine):
 
     def saveVtk(self, base: str = "pores") -> list[str]:
         """ParaView output (legacy VTK): ``<base>.pores.vtk``, the pores as tetrahedra with
-        pressure, volume, voidVolume and velocity per pore, radius and fluidForce per sphere
-        (boundary pores drawn with their wall vertices projected on the wall), and
-        ``<base>.throats.vtk``, one line per throat between the pore centres with flux,
-        conductance, fluidArea, hydraulicRadius. Returns the two paths."""
-        return list(self._flow.saveVtk(str(base)))
+        pressure, volume, voidVolume and velocity per pore (and temperature, with a ThermalEngine's
+        pore temperatures), radius and fluidForce per sphere (boundary pores drawn with their wall
+        vertices projected on the wall), and ``<base>.throats.vtk``, one line per throat between
+        the pore centres with flux, conductance, fluidArea, hydraulicRadius. Returns the two paths."""
+        fields = [] if self._poreHeat is None else [("temperature", list(self._poreHeat.temperatures()))]
+        return list(self._flow.saveVtk(str(base), fields))
 
     @property
     def poreVelocities(self) -> np.ndarray:
