@@ -23,8 +23,9 @@ import talus
 
 def _warn_if_oversubscribed(threads: int) -> None:
     """OpenMP threads spin at every barrier waiting for each other: when other processes keep the
-    cores busy, a descheduled thread stalls the rest and 2 threads can run 10x slower than 1
-    (measured). Say so at the start instead of leaving the user with a mysteriously slow run."""
+    cores busy, a descheduled thread stalls the rest and 2 threads can run many times slower than
+    1 (docs/dem.md, "Measurements behind the code"). Say so at the start instead of leaving the
+    user with a mysteriously slow run."""
     cores = os.cpu_count() or 1
     busy = os.getloadavg()[0]
     if threads > 1 and busy + threads > cores + 0.5:
