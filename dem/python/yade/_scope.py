@@ -18,11 +18,9 @@ RULES: list[tuple[str, str]] = [
     (r"LevelSet|FastMarchingMethod", "level-set shapes"),
     (r"Tetra|DeformableElement|deformableelementsutils|DeformableCohesive|\bNode\b|_Node_|InternalForce|LinIsoElastMat|"
      r"LinIsoRayleighDampElastMat|LinCohesive", "tetrahedra and deformable elements"),
-    # ThermalEngine conducts between particles; its couplings with the pore fluid are planned
-    (r"ThermalState|\bthermalEngine\s*=\s*(True|1)\b|"
-     r"\.(advection|fluidConduction|thermoMech|solidThermoMech|fluidThermoMech)\s*=\s*(True|1)\b",
-     "thermal coupling with the pore fluid and thermal expansion (ThermalEngine's advection, fluidConduction, "
-     "thermoMech; planned)"),
+    # ThermalEngine has conduction, the pore fluid and thermal expansion; the state class is not a
+    # Talus one (the engine holds every body's thermal fields)
+    (r"ThermalState", "Yade's ThermalState class (Talus's ThermalEngine holds the thermal fields; planned)"),
     # TwoPhaseFlowEngine's quasi-static invasion is implemented; its dynamic clusters are not
     (r"PhaseCluster|getClusters|clusterOutvadePore|clusterInvadePore",
      "two-phase clusters and dynamic injection (TwoPhaseFlowEngine's PhaseCluster; planned)"),

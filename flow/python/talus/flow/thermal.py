@@ -18,9 +18,14 @@ With ``advection`` (and ``fluidConduction``), as Yade: one temperature per pore 
 network (starting at its ``tZero``), advected upwind by the pore fluxes, exchanging heat with the
 spheres that bound it (h A (T_pore - T_sphere), h = Nu fluidK / 2r with Nu from
 ``uniformReynolds``, A the sphere's spherical triangle in the pore) and conducted between
-neighbouring pores (fluidK x throat fluid area / distance). Thermal expansion is planned: its
-switches (``thermoMech``, ``solidThermoMech``, ``fluidThermoMech``, on by default in Yade) must be
-set False, and a run stops at its first step naming those left on. See ``docs/thermal.md``.
+neighbouring pores (fluidK x throat fluid area / distance).
+
+Thermal expansion (``thermoMech``, on by default as in Yade): after each thermal run the free
+spheres' radii grow by ``state.alpha`` r dT (``particleAlpha`` at the first step); with a
+FlowEngine the pores' fluid volume changes by V ``fluidBeta`` dT (``fluidThermoMech``, pore
+temperatures from ``advection``) and by the spheres' growth (``solidThermoMech``), which the
+FlowEngine's next solves turn into pore pressure (stored by a compressible fluid,
+``FlowEngine.fluidBulkModulus`` > 0). See ``docs/thermal.md``.
 
     thermal = ThermalEngine(label="thermal", advection=False, fluidConduction=False, thermoMech=False,
                             solidThermoMech=False, fluidThermoMech=False, particleT0=400, particleK=2,
