@@ -12,42 +12,19 @@ namespace talus::dem
 {
 namespace
 {
-int threadNumber()
-{
 #ifdef _OPENMP
-  return omp_get_thread_num();
-#else
-  return 0;
-#endif
-}
-
-int teamSize()
-{
-#ifdef _OPENMP
-  return std::min(omp_get_num_threads(), BalancedRanges::maxThreads);
-#else
-  return 1;
-#endif
-}
-
+int threadNumber() { return omp_get_thread_num(); }
+/// Threads of the running region, no more than the team's slots.
+int teamSize() { return std::min(omp_get_num_threads(), BalancedRanges::maxThreads); }
 /// Threads a region asks for: no more than the team's slots.
-int teamLimit()
-{
-#ifdef _OPENMP
-  return std::min(omp_get_max_threads(), BalancedRanges::maxThreads);
+int teamLimit() { return std::min(omp_get_max_threads(), BalancedRanges::maxThreads); }
+double now() { return omp_get_wtime(); }
 #else
-  return 1;
+int threadNumber() { return 0; }
+int teamSize() { return 1; }
+[[maybe_unused]] int teamLimit() { return 1; } // named only by the OpenMP pragma
+double now() { return 0; }
 #endif
-}
-
-double now()
-{
-#ifdef _OPENMP
-  return omp_get_wtime();
-#else
-  return 0;
-#endif
-}
 
 std::size_t at(StagePoint point) { return static_cast<std::size_t>(point); }
 } // namespace

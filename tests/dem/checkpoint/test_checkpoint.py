@@ -80,10 +80,11 @@ def assert_identical(a: dict, b: dict):
 def test_layout_is_covered():
     """Every field of these structures is written by dem/checkpoint/Checkpoint.cpp (Scene: all but its
     engines and the transient pauseRequested_, failedStep_, the sub-stepping state (subStep,
-    subStepping, nextEngines, stepping_: how the steps are run, reset by loading) and fused: the fused step's
-    per-thread ranges, its step count, its skin check made ahead, forgotten at every run(), and
-    its runs of boundary contacts, found again for every new contact list, its energy sums per block
-and the time of the other engines; and the contact list's
+    subStepping, nextEngines, stepping_: how the steps are run, reset by loading) and stepLoop_:
+    the step's scheduler, made at the first step (its plan, made again when the engines change,
+    per-thread ranges, step count, skin check made ahead, forgotten at every run(), runs of
+    boundary contacts, found again for every new contact list, energy sums per block and the
+    time of the serial stages); and the contact list's
     version, renewed by the index built on loading), which change speed and diagnostics only).
     When one changes size, a field was added: store
     it there (save, load, validate; bump checkpointFormatVersion if the layout changes) unless it
@@ -92,7 +93,7 @@ and the time of the other engines; and the contact list's
     # Ig2_PP_PP_ScGeom's settings, restored with the engines) and ContactExtra::contactArea
     # (recomputed by the geometry every step before the law reads it).
     assert _dem.layout_sizes() == {"Contact": 256, "Material": 216, "Bodies": 744, "WallShape": 8,
-                                   "FacetShape": 104, "Cell": 296, "Scene": 2776, "ContactExtra": 288,
+                                   "FacetShape": 104, "Cell": 296, "Scene": 1608, "ContactExtra": 288,
                                    "EnergyTracker": 144}
 
 
