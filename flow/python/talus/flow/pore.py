@@ -265,15 +265,21 @@ class FlowEngine(Engine):
         warning: Yade would give the boundary forces to whatever bodies 0..5 are."""
         if self._wallIds is not None:
             return self._wallIds
+        # looked up again only when bodies were added or erased (each step it cost as much as the solve)
+        version = scene._cpp.bodiesVersion
+        if getattr(self, "_defaultWalls", (None, None))[0] == version:
+            return self._defaultWalls[1]
         kinds = [type(scene.bodies[i].shape).__name__ if i < len(scene.bodies) and scene.bodies[i] is not None
                  else None for i in range(6)]
         if all(kind in ("Wall", "Box") for kind in kinds):
+            self._defaultWalls = (version, list(range(6)))
             return list(range(6))
         if not getattr(self, "_warnedNoWalls", False):
             self._warnedNoWalls = True
             warnings.warn("FlowEngine: bodies 0..5 are not six walls or boxes (" + ", ".join(map(str, kinds))
                           + "), as Yade's default wallIds assume: no body receives the boundary forces "
                           "(set FlowEngine.wallIds)", RuntimeWarning, stacklevel=2)
+        self._defaultWalls = (version, [-1] * 6)
         return [-1] * 6
 
     def _step(self):
