@@ -59,7 +59,9 @@ void SharedRegions::serialLap(StagePoint point, double start)
 template <class Body>
 void SharedRegions::region(Scene& scene, const Body& body)
 {
-  const bool parallel = static_cast<std::int64_t>(scene.ownedBodies()) >= parallelLoopMinimum;
+  // As the engines' own loops: threads when the bodies or the contacts are many enough.
+  const bool parallel = static_cast<std::int64_t>(scene.ownedBodies()) >= parallelLoopMinimum
+                        || static_cast<std::int64_t>(scene.contacts.list.size()) >= parallelLoopMinimum;
   ++regions;
 #pragma omp parallel if (parallel) num_threads(teamLimit())
   {

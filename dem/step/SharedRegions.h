@@ -38,8 +38,8 @@ class NewtonIntegrator;
 /// Per-body stages take the rows [0, scene.ownedBodies()); detection and contacts all rows.
 ///
 /// The engines' own range functions do the work, item by item as their run() does, so the
-/// step gives the same bits whatever the threads (tests/dem/test_threads.py). Scenes of fewer
-/// bodies than parallelLoopMinimum run the same regions with one thread.
+/// step gives the same bits whatever the threads (tests/dem/step/test_threads.py). Scenes of
+/// fewer bodies and contacts than parallelLoopMinimum run the same regions with one thread.
 class SharedRegions
 {
 public:
