@@ -21,13 +21,13 @@ constexpr double kMinCoarsening = 0.7;
 /// (Ruge-Stueben's measure, symmetrised). The conductances span six orders of magnitude
 /// (Yade's clamping at 1e-4 and 100 times the reference): aggregates follow the strong ones.
 /// Vanek's measure, |a_ij| against sqrt(a_ii a_jj), let the coarse matrices fill in on these
-/// networks; the choices here are measured in docs/flow.md ("Multigrid").
+/// networks (docs/flow.md, "Measurements behind the code").
 constexpr double kStrength = 0.5;
 /// Gauss-Seidel sweeps before and after the coarse correction (two cost more per cycle than one
 /// and save more than that in iterations).
 constexpr int kSweeps = 2;
 
-/// Rows of `entries` (column, value) sorted by column, appended to m's last row.
+/// One row of `entries` (column, value), sorted by column, appended to m as its next row.
 void appendSorted(SparseRows& m, std::vector<std::pair<int, double>>& entries)
 {
   std::sort(entries.begin(), entries.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
