@@ -1,6 +1,6 @@
 #pragma once
 
-#include "dem/RVE.h"
+#include "dem/interface/RVE.h"
 
 #include <cstddef>
 #include <memory>

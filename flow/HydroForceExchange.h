@@ -3,7 +3,7 @@
 // The C++ route of HydroForce into a DEM scene: through the particle exchange interface only.
 // Header-only so that talus_flow itself does not depend on talus_dem; a program using it links
 // both (Talus::flow and Talus::dem).
-#include "dem/Exchange.h"
+#include "dem/interface/Exchange.h"
 #include "flow/HydroForce.h"
 
 #include <cstdint>

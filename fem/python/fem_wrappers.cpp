@@ -1,6 +1,6 @@
 // Python bindings of fem/ (talus._fem): mapping only. The Python-side API is talus.fem.
 #include "fem/GaussPointRVEs.h"
-#include "dem/Checkpoint.h"
+#include "dem/checkpoint/Checkpoint.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>

@@ -3,7 +3,7 @@
 // the live spheres' positions and radii, rebuilds the pore network when due, solves the
 // pressures and adds the fluid forces to this step's forces (Yade's FlowEngine in the engine
 // list, before the NewtonIntegrator).
-#include "dem/Exchange.h"
+#include "dem/interface/Exchange.h"
 #include "flow/pore/PoreFlow.h"
 
 #include <array>
