@@ -2,6 +2,7 @@
 
 from talus.dem.ymport import *  # noqa: F401,F403
 from talus.dem.clumps import importTextClumps as textClumps  # noqa: F401
+from talus.dem.text_import import textExt, text  # noqa: F401
 
 from yade._scope import module_getattr  # noqa: E402
 
