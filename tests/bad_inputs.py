@@ -156,7 +156,7 @@ def _flow_cases():
         C("FlowEngine negative viscosity", lambda t: solve(viscosity=-1), ValueError, r"FlowEngine.viscosity must be positive"),
         C("FlowEngine infinite permeabilityFactor", lambda t: FlowEngine(permeabilityFactor=INF), ValueError, r"FlowEngine.permeabilityFactor must be a finite number"),
         C("FlowEngine solver 2", lambda t: FlowEngine(useSolver=2), ValueError, r"FlowEngine.useSolver must be 0 \(Gauss-Seidel\) or 3"),
-        C("FlowEngine meshUpdateInterval 0", lambda t: FlowEngine(meshUpdateInterval=0), ValueError, r"FlowEngine.meshUpdateInterval must be >= 1"),
+        C("FlowEngine permeabilityMap True", lambda t: FlowEngine(permeabilityMap=True), ValueError, r"FlowEngine.permeabilityMap = True .* not implemented"),
         C("FlowEngine NaN boundary value", lambda t: FlowEngine(bndCondValue=[0, 0, NAN, 0, 0, 0]), ValueError, r"FlowEngine.bndCondValue must be 6 finite numbers"),
         C("FlowEngine 2 spheres", lambda t: FlowEngine().triangulate(np.zeros((2, 3)), np.ones(2)), ValueError, r"needs at least 4 spheres, got 2"),
         C("FlowEngine 2D positions", lambda t: FlowEngine().triangulate(np.zeros((5, 2)), np.ones(5)), ValueError, r"positions must be \(n, 3\)"),

@@ -146,8 +146,6 @@ void FlowCoupling::step()
       throw std::invalid_argument("FlowEngine.wallIds[" + std::to_string(k) + "] = " + std::to_string(id) +
                                   " is a sphere, not a wall");
   }
-  if (meshUpdateInterval < 1)
-    throw std::invalid_argument("FlowEngine.meshUpdateInterval must be >= 1");
   if (backgroundSteps < 0)
     throw std::invalid_argument("FlowEngine.backgroundSteps must be >= 0");
   // Spheres added or erased since the last mesh: the network no longer matches the bodies.
@@ -180,12 +178,15 @@ void FlowCoupling::step()
   torques_.assign(nBodies, Vec3::Zero());
   if (flow_->params.any())
     addViscousForces();
-  auto out = exchange_.stepForces();
-  auto outTorque = exchange_.stepTorques();
-  for (std::size_t i = 0; i < nBodies; ++i)
+  if (!decoupleForces)
   {
-    out[i] += forces_[i];
-    outTorque[i] += torques_[i];
+    auto out = exchange_.stepForces();
+    auto outTorque = exchange_.stepTorques();
+    for (std::size_t i = 0; i < nBodies; ++i)
+    {
+      out[i] += forces_[i];
+      outTorque[i] += torques_[i];
+    }
   }
   const bool inverted = flow_->invertedPores() > 0;
   const bool strained = inverted || (defTolerance > 0 && flow_->maxVolumetricStrain() > defTolerance);
@@ -200,7 +201,7 @@ void FlowCoupling::step()
     if (++pending_->age >= backgroundSteps)
       adoptRebuild();
   }
-  else if (sinceBuild_ >= meshUpdateInterval || strained)
+  else if ((meshUpdateInterval > 0 && sinceBuild_ >= meshUpdateInterval) || strained)
   {
     strainRebuilds_ += strained ? 1 : 0;
     if (multithread && !inverted)

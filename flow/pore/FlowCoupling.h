@@ -22,7 +22,8 @@ public:
 
   /// Body receiving the force on boundary k (Yade's wallIds); -1: none. Must not be a sphere.
   std::array<dem::BodyId, kBoundaries> wallIds{-1, -1, -1, -1, -1, -1};
-  /// Rebuild the pore network every this many calls (Yade's meshUpdateInterval).
+  /// Rebuild the pore network every this many calls (Yade's meshUpdateInterval); <= 0: never
+  /// by count (Yade: a negative value never re-triangulates).
   int meshUpdateInterval = 1000;
   /// Rebuild as soon as a pore's volume changed by more than this fraction since the last mesh
   /// (Yade's defTolerance; <= 0: only every meshUpdateInterval). An inverted pore always
@@ -40,6 +41,9 @@ public:
   /// Steps the old mesh stays in use after a background rebuild started (0: the same results
   /// as without multithread, the build merely runs in the other thread).
   int backgroundSteps = 10;
+  /// The fluid forces (pressure and viscous) are computed but not added to the bodies (Yade's
+  /// decoupleForces): the skeleton moves the fluid, not the other way round.
+  bool decoupleForces = false;
 
   /// One coupling step: move the network's spheres (volume changes), solve, add the fluid
   /// forces (with the viscous options also the forces and torques between neighbouring spheres

@@ -104,7 +104,7 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
 
 std::vector<double> PoreFlow::carriedPressures(const PoreNetwork& fresh) const
 {
-  std::vector<double> p(fresh.pores.size(), 0.0);
+  std::vector<double> p(fresh.pores.size(), params.pZero);
   if (!net_ || net_->pores.empty())
     return p;
   for (std::size_t i = 0; i < fresh.pores.size(); ++i)

@@ -30,6 +30,9 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
   /// pore stores fluid, V_void / (K_f dt) (p - p_old) (V_void of the mesh, as Yade), and the
   /// solve is transient.
   double fluidBulkModulus = 0;
+  /// Pressure of the pores of the first network, and of new pores no old one covers (Yade's
+  /// pZero); it matters for a compressible fluid only.
+  double pZero = 0;
 
   // --- periodic variant (Yade's PeriodicFlowEngine) ---
   bool periodic = false;
@@ -173,7 +176,7 @@ public:
 
 private:
   std::array<Boundary, kBoundaries> boundaries(const std::vector<PoreSphere>& spheres) const;
-  /// The pressures of the current network carried to the pores of `fresh` (0 where none).
+  /// The pressures of the current network carried to the pores of `fresh` (pZero where none).
   [[nodiscard]] std::vector<double> carriedPressures(const PoreNetwork& fresh) const;
   /// Move the network's spheres and boundaries (checked first), recompute the pore volumes,
   /// the strain since the mesh and the inverted pores; no volume-change source.

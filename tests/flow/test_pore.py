@@ -531,8 +531,6 @@ def test_bad_input_of_the_transient_solve():
         fresh.blockHook = 3
     with pytest.raises(ValueError, match="backgroundSteps must be >= 0"):
         fresh.backgroundSteps = -1
-    with pytest.raises(ValueError, match="meshUpdateInterval must be >= 1"):
-        fresh.meshUpdateInterval = 0
 
 
 @pytest.fixture(scope="module")

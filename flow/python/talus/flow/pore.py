@@ -40,11 +40,16 @@ from talus import _flow
 from talus.dem.engines import Engine, PyRunner, asCallback
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
-# engine step counts and their smallest allowed values
-_ENGINE_COUNTS = {"meshUpdateInterval": 1, "backgroundSteps": 0}
+# engine step counts and their smallest allowed values (None: any; meshUpdateInterval <= 0 never
+# remeshes by count, as Yade)
+_ENGINE_COUNTS = {"meshUpdateInterval": None, "backgroundSteps": 0}
+# engine flags and their defaults: decoupleForces keeps the fluid forces off the bodies; debug
+# (Yade's debug messages) prints nothing more; permeabilityMap (Yade's per-pore permeability in
+# the cell data) is not implemented, True is refused
+_ENGINE_FLAGS = {"decoupleForces": False, "debug": False, "permeabilityMap": False}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
-            "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness")
+            "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness", "pZero")
 
 # Yade's FlowEngine attributes of the thermal coupling (the pore temperatures ThermalEngine
 # advances when its ``advection`` is on) and their defaults
@@ -54,7 +59,7 @@ _THERMAL_ATTRIBUTES = {"thermalEngine": False, "tZero": 0.0, "fluidRho": 1000.0,
 
 # the real numbers among them (the others are flags and the solver's number)
 _REALS = ("permeabilityFactor", "viscosity", "minKdivKmean", "maxKdivKmean", "tolerance", "relax",
-          "fluidBulkModulus", "eps", "stiffness")
+          "fluidBulkModulus", "eps", "stiffness", "pZero")
 
 
 def _finite_number(name: str, value) -> float:
@@ -133,7 +138,9 @@ class FlowEngine(Engine):
     False (Talus: True inserts the spheres one by one and keeps CGAL's vertex order as Yade does, slower, the
     same numbers as Yade to round-off; False inserts them as one spatially sorted range and takes the facet
     vertices in a canonical order, within 0.4 % of Yade on the most affected throat), and for the engine
-    ``meshUpdateInterval`` 1000, ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
+    ``meshUpdateInterval`` 1000 (<= 0: never by count), ``decoupleForces`` False (True: the fluid forces are
+    not added to the bodies), ``pZero`` 0 (pressure of the first network's pores: the initial pressure of
+    a compressible fluid), ``debug`` False (no effect), ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
     fraction since the mesh; an inverted pore always remeshes), ``blockHook`` (callable or command string run
     after each remesh, before the solve), ``multithread`` False (Yade's name: build due meshes and their
     CHOLMOD factor in a second thread while the old mesh keeps being used) with ``backgroundSteps`` 10 (Talus:
@@ -165,6 +172,7 @@ class FlowEngine(Engine):
         self._multithread = False
         self._backgroundSteps = 10
         self._rebuild = False
+        self._flags = dict(_ENGINE_FLAGS)
         self._thermal = {k: (list(v) if isinstance(v, list) else v) for k, v in _THERMAL_ATTRIBUTES.items()}
         self._poreHeat = None       # the pore temperatures, attached by a ThermalEngine with advection
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp  # from the first step on, as Yade's FlowEngine
@@ -184,9 +192,15 @@ class FlowEngine(Engine):
             self._wallIds = ids
             return
         if name in _ENGINE_COUNTS:
-            if int(value) < _ENGINE_COUNTS[name]:
+            if _ENGINE_COUNTS[name] is not None and int(value) < _ENGINE_COUNTS[name]:
                 raise ValueError(f"FlowEngine.{name} must be >= {_ENGINE_COUNTS[name]}")
             object.__setattr__(self, "_" + name, int(value))
+            return
+        if name in _ENGINE_FLAGS:
+            if name == "permeabilityMap" and value:
+                raise ValueError("FlowEngine.permeabilityMap = True (Yade's average permeability stored per pore) "
+                                 "is not implemented in Talus")
+            self._flags[name] = bool(value)
             return
         if name == "updateTriangulation":
             self._rebuild = bool(value)
@@ -224,6 +238,8 @@ class FlowEngine(Engine):
             return self._meshUpdateInterval
         if name == "updateTriangulation":
             return self._rebuild
+        if name in _ENGINE_FLAGS:
+            return object.__getattribute__(self, "_flags")[name]
         if name in ("defTolerance", "blockHook", "multithread", "backgroundSteps"):
             return object.__getattribute__(self, "_" + name)
         if name in _THERMAL_ATTRIBUTES:
@@ -292,6 +308,7 @@ class FlowEngine(Engine):
         self._coupling.defTolerance = self._defTolerance
         self._coupling.multithread = self._multithread
         self._coupling.backgroundSteps = self._backgroundSteps
+        self._coupling.decoupleForces = self._flags["decoupleForces"]
         self._coupling.blockHook = asCallback(self._blockHook, "blockHook")
         if self._rebuild:
             self._coupling.requestRebuild()
@@ -306,7 +323,8 @@ class FlowEngine(Engine):
     def _io_params(self):
         """What rebuilds the engine from a checkpoint: its label and parameters (the network is
         rebuilt at its next step)."""
-        names = (*_BOUNDARY_LISTS, *_SCALARS, *_ENGINE_COUNTS, "defTolerance", "multithread", *_THERMAL_ATTRIBUTES)
+        names = (*_BOUNDARY_LISTS, *_SCALARS, *_ENGINE_COUNTS, *_ENGINE_FLAGS, "defTolerance", "multithread",
+                 *_THERMAL_ATTRIBUTES)
         params = {name: getattr(self, name) for name in names}
         if self._wallIds is not None:
             params["wallIds"] = list(self._wallIds)
