@@ -124,7 +124,11 @@ void SharedRegions::forces(Scene& scene, const Engines& engines, Flow flow)
     listChanged(scene, law);
   resetAndCheck(scene, engines, law, flow, skin, oneRegion);
   if (!oneRegion)
+  {
     settleSkin(scene, engines, law, skin);
+    if (integrate && scene.domain)
+      engines.newton.prepare(scene); // the rows change when bodies migrate
+  }
   else if (skin.moved)
     redetect(scene, engines.collider, law, skin);
   if (!oneRegion || skin.moved)
