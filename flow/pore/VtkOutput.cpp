@@ -1,5 +1,6 @@
 #include "flow/pore/VtkOutput.h"
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 #include <stdexcept>
@@ -20,7 +21,8 @@ std::ofstream open(const std::string& path)
 void vector(std::ostream& out, const Vec3& v) { out << v[0] << ' ' << v[1] << ' ' << v[2] << '\n'; }
 } // namespace
 
-std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base, const std::vector<PoreField>& poreFields)
+std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base, const std::vector<PoreField>& poreFields,
+                                   bool withBoundaries)
 {
   const PoreNetwork& net = flow.network();
   const std::vector<double>& p = flow.pressures();
@@ -35,10 +37,17 @@ std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base
   std::vector<Vec3> points;
   for (std::size_t v = kBoundaries; v < net.vertices.size(); ++v)
     points.push_back(net.vertices[v].pos);
-  std::vector<std::array<std::size_t, 4>> cells(net.pores.size());
+  // the pores drawn: all, or those with four spheres
+  std::vector<std::size_t> drawn;
   for (std::size_t c = 0; c < net.pores.size(); ++c)
+    if (withBoundaries || std::none_of(net.pores[c].vertices.begin(), net.pores[c].vertices.end(), [&](int v) {
+          return net.vertices[static_cast<std::size_t>(v)].fictitious;
+        }))
+      drawn.push_back(c);
+  std::vector<std::array<std::size_t, 4>> cells(drawn.size());
+  for (std::size_t d = 0; d < drawn.size(); ++d)
   {
-    const Pore& pore = net.pores[c];
+    const Pore& pore = net.pores[drawn[d]];
     Vec3 centroid = Vec3::Zero();
     int real = 0;
     for (int v : pore.vertices)
@@ -54,13 +63,13 @@ std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base
       const Vertex& vx = net.vertices[static_cast<std::size_t>(pore.vertices[k])];
       if (!vx.fictitious)
       {
-        cells[c][k] = static_cast<std::size_t>(pore.vertices[k]) - kBoundaries;
+        cells[d][k] = static_cast<std::size_t>(pore.vertices[k]) - kBoundaries;
         continue;
       }
       const Boundary& b = net.boundaries[static_cast<std::size_t>(vx.id)];
       Vec3 q = centroid;
       q[b.coordinate] = b.position;
-      cells[c][k] = points.size();
+      cells[d][k] = points.size();
       points.push_back(q);
     }
   }
@@ -78,24 +87,20 @@ std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base
     out << "CELL_TYPES " << cells.size() << '\n';
     for (std::size_t c = 0; c < cells.size(); ++c)
       out << "10\n"; // VTK_TETRA
-    out << "CELL_DATA " << cells.size() << "\nSCALARS pressure double 1\nLOOKUP_TABLE default\n";
-    for (double x : p)
-      out << x << '\n';
-    out << "SCALARS volume double 1\nLOOKUP_TABLE default\n";
-    for (const Pore& pore : net.pores)
-      out << std::abs(pore.volume) << '\n';
-    out << "SCALARS voidVolume double 1\nLOOKUP_TABLE default\n";
-    for (const Pore& pore : net.pores)
-      out << pore.voidVolume << '\n';
-    out << "VECTORS velocity double\n";
-    for (const Vec3& v : velocity)
-      vector(out, v);
-    for (const auto& [name, values] : poreFields)
-    {
+    out << "CELL_DATA " << cells.size() << '\n';
+    const auto column = [&](const std::string& name, auto value) {
       out << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
-      for (double x : values)
-        out << x << '\n';
-    }
+      for (std::size_t c : drawn)
+        out << value(c) << '\n';
+    };
+    column("pressure", [&](std::size_t c) { return p[c]; });
+    column("volume", [&](std::size_t c) { return std::abs(net.pores[c].volume); });
+    column("voidVolume", [&](std::size_t c) { return net.pores[c].voidVolume; });
+    out << "VECTORS velocity double\n";
+    for (std::size_t c : drawn)
+      vector(out, velocity[c]);
+    for (const auto& [name, values] : poreFields)
+      column(name, [&](std::size_t c) { return values[c]; });
     out << "POINT_DATA " << points.size() << "\nSCALARS radius double 1\nLOOKUP_TABLE default\n";
     for (std::size_t i = 0; i < points.size(); ++i)
       out << (i < net.sphereCount() ? net.vertices[kBoundaries + i].radius : 0.0) << '\n';

@@ -23,9 +23,11 @@ using PoreField = std::pair<std::string, std::vector<double>>;
 /// @param flow the solved pore flow
 /// @param base the files' path without the ending
 /// @param poreFields more cell data of the pores' file
+/// @param withBoundaries false: the pores' file leaves out the pores with a wall vertex (Yade's
+/// saveVtk withBoundaries; the throats' file keeps all pores)
 /// @return the two paths
 /// @throws std::runtime_error if a file cannot be written
 /// @throws std::invalid_argument if a field has not one value per pore
 std::array<std::string, 2> saveVtk(const PoreFlow& flow, const std::string& base,
-                                   const std::vector<PoreField>& poreFields = {});
+                                   const std::vector<PoreField>& poreFields = {}, bool withBoundaries = true);
 } // namespace talus::flow::pore

@@ -137,8 +137,8 @@ void registerPoreFlow(py::module_& m)
       .def("setImposedPressure", &PoreFlow::setImposedPressure)
       .def("imposeFlux", &PoreFlow::imposeFlux)
       .def("clearImposedFlux", &PoreFlow::clearImposedFlux)
-      .def("saveVtk", [](const PoreFlow& f, const std::string& base, const std::vector<PoreField>& fields) { return saveVtk(f, base, fields); },
-           py::arg("base"), py::arg("poreFields") = std::vector<PoreField>{})
+      .def("saveVtk", [](const PoreFlow& f, const std::string& base, const std::vector<PoreField>& fields, bool withBoundaries) { return saveVtk(f, base, fields, withBoundaries); },
+           py::arg("base"), py::arg("poreFields") = std::vector<PoreField>{}, py::arg("withBoundaries") = true)
       .def("poreVelocities", [](const PoreFlow& f) { return rows(f.poreVelocities()); })
       .def("clearImposedPressure", &PoreFlow::clearImposedPressure)
       .def("getCellFlux", &PoreFlow::getCellFlux)

@@ -71,3 +71,22 @@ def test_debug_is_accepted_and_permeabilityMap_is_refused():
         flow.permeabilityMap = True
     with pytest.raises(AttributeError, match="no attribute 'permeabilityMaps'"):
         flow.permeabilityMaps = True
+
+
+def test_saveVtk_without_the_boundary_pores_into_a_folder(tmp_path):
+    from talus.dem import Scene
+    a = np.loadtxt(DATA / "pore_packing.txt")
+    flow = FlowEngine(scene=Scene(), **DRAINED)
+    flow.bndCondValue = [0, 0, 1, 0, 0, 0]
+    flow.triangulate(a[:, :3], a[:, 3], np.arange(6, 6 + len(a)))    # vertex ids 0..5: the walls
+    flow.solve()
+    inner = [c for c in range(flow.nCells()) if min(flow.getVertices(c)) >= 6]
+    assert 0 < len(inner) < flow.nCells()
+    pores, _ = flow.saveVtk(str(tmp_path / "VTK") + "/", withBoundaries=False)
+    assert pores == str(tmp_path / "VTK" / "pores_0.pores.vtk")     # Yade's folder form, at iteration 0
+    lines = open(pores).read().splitlines()
+    assert f"CELLS {len(inner)} {5 * len(inner)}" in lines
+    start = lines.index("SCALARS pressure double 1") + 2
+    assert np.allclose([float(x) for x in lines[start:start + len(inner)]], flow.pressures[inner], rtol=1e-12)
+    every, _ = flow.saveVtk(str(tmp_path / "all"))
+    assert f"CELLS {flow.nCells()} {5 * flow.nCells()}" in open(every).read().splitlines()

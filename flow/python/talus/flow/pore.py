@@ -31,6 +31,7 @@ section "Pore-scale flow".
 from __future__ import annotations
 
 import math
+import os
 import warnings
 from typing import Sequence
 
@@ -44,9 +45,10 @@ _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wa
 # remeshes by count, as Yade)
 _ENGINE_COUNTS = {"meshUpdateInterval": None, "backgroundSteps": 0}
 # engine flags and their defaults: decoupleForces keeps the fluid forces off the bodies; debug
-# (Yade's debug messages) prints nothing more; permeabilityMap (Yade's per-pore permeability in
+# (Yade's debug messages) and getCHOLMODPerfTimings (Yade prints its CHOLMOD timings; Talus's
+# are in solverStats()) print nothing; permeabilityMap (Yade's per-pore permeability in
 # the cell data) is not implemented, True is refused
-_ENGINE_FLAGS = {"decoupleForces": False, "debug": False, "permeabilityMap": False}
+_ENGINE_FLAGS = {"decoupleForces": False, "debug": False, "getCHOLMODPerfTimings": False, "permeabilityMap": False}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
             "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness", "pZero")
@@ -419,14 +421,22 @@ class FlowEngine(Engine):
     def clearImposedFlux(self):
         self._flow.clearImposedFlux()
 
-    def saveVtk(self, base: str = "pores") -> list[str]:
+    def saveVtk(self, base: str = "pores", withBoundaries: bool = True) -> list[str]:
         """ParaView output (legacy VTK): ``<base>.pores.vtk``, the pores as tetrahedra with
         pressure, volume, voidVolume and velocity per pore (and temperature, with a ThermalEngine's
         pore temperatures), radius and fluidForce per sphere (boundary pores drawn with their wall
         vertices projected on the wall), and ``<base>.throats.vtk``, one line per throat between
-        the pore centres with flux, conductance, fluidArea, hydraulicRadius. Returns the two paths."""
+        the pore centres with flux, conductance, fluidArea, hydraulicRadius. Returns the two paths.
+        ``withBoundaries`` False leaves the pores with a wall vertex out of the pores' file (Yade's
+        option, whose default there is False). A ``base`` ending with '/' is a folder, as Yade's
+        ``saveVtk(folder)``: it is created and the files are ``<folder>/pores_<iteration>.*``."""
+        base = str(base)
+        if base.endswith(("/", os.sep)):
+            from talus.dem import O
+            os.makedirs(base, exist_ok=True)
+            base = os.path.join(base, f"pores_{(self._scene or O).iter}")
         fields = [] if self._poreHeat is None else [("temperature", list(self._poreHeat.temperatures()))]
-        return list(self._flow.saveVtk(str(base), fields))
+        return list(self._flow.saveVtk(base, fields, bool(withBoundaries)))
 
     @property
     def poreVelocities(self) -> np.ndarray:

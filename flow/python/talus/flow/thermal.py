@@ -65,11 +65,14 @@ _PLANNED_SWITCHES = {
     "tempDependentFluidBeta": (False, "a temperature-dependent fluid expansion coefficient"),
 }
 # Accepted (and checked) so that scripts setting them run: Yade 2023.02a reads none of them either
-# (the fluid's bulk modulus that acts is FlowEngine.fluidBulkModulus).
-_PLANNED_NUMBERS = {"fluidBulkModulus": 0.0}
+# (the fluid's bulk modulus that acts is FlowEngine.fluidBulkModulus). minimumThermalCondDist is
+# not even one of its attributes: its thermoHydroMechanical_coupling example sets it, and Yade
+# keeps it as a plain Python attribute that nothing reads.
+_PLANNED_NUMBERS = {"fluidBulkModulus": 0.0, "minimumThermalCondDist": 0.0}
 _PLANNED_FLAGS = {"unboundCavityBodies": True, "flowTempBoundarySet": True}
 _NONNEGATIVE = ("particleK", "particleDensity", "fluidK", "fluidBulkModulus", "porosityFactor",
-                "fluidConductionAreaFactor", "minimumFluidCondDist", "particleAlpha", "fluidBeta")
+                "fluidConductionAreaFactor", "minimumFluidCondDist", "particleAlpha", "fluidBeta",
+                "minimumThermalCondDist")
 _BOUNDARY_NAMES = "xmin, xmax, ymin, ymax, zmin, zmax"
 
 
