@@ -90,3 +90,9 @@ def test_saveVtk_without_the_boundary_pores_into_a_folder(tmp_path):
     assert np.allclose([float(x) for x in lines[start:start + len(inner)]], flow.pressures[inner], rtol=1e-12)
     every, _ = flow.saveVtk(str(tmp_path / "all"))
     assert f"CELLS {flow.nCells()} {5 * flow.nCells()}" in open(every).read().splitlines()
+
+
+def test_a_misspelt_attribute_is_refused_with_the_close_name():
+    # Yade's flowScenario.py sets minKdivmean, which Yade stores without effect
+    with pytest.raises(AttributeError, match="no attribute 'minKdivmean' \\(did you mean 'minKdivKmean'\\?\\)"):
+        FlowEngine().minKdivmean = 1e-4

@@ -30,6 +30,7 @@ section "Pore-scale flow".
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
 import warnings
@@ -229,7 +230,12 @@ class FlowEngine(Engine):
             self._thermal[name] = _thermal_value(name, value)
             return
         else:
-            raise AttributeError(f"FlowEngine has no attribute {name!r}")
+            # Yade keeps a misspelt attribute as a plain Python one that nothing reads
+            known = (*_BOUNDARY_LISTS, *_SCALARS, *_ENGINE_COUNTS, *_ENGINE_FLAGS, *_THERMAL_ATTRIBUTES, "wallIds",
+                     "updateTriangulation", "defTolerance", "multithread", "blockHook")
+            close = difflib.get_close_matches(name, known, n=1)
+            raise AttributeError(f"FlowEngine has no attribute {name!r}"
+                                 + (f" (did you mean {close[0]!r}?)" if close else ""))
         self._flow.params = params
 
     def __getattr__(self, name):
