@@ -9,8 +9,12 @@
 #           (pressure 10 Pa there, 0 at xmax; FlowEngine's bndCondIsTemperature on xmin)
 #   steps   DEM steps (O.dt 1e-5 s noflow, 1e-4 s flow, as the examples)
 #   packing optional sphere file (x y z r per line) instead of the examples' one
-# Differences from the examples, in both programs: uniformReynolds = 10 (the flow example leaves
-# Yade's -1, Reynolds numbers from the pore velocities), tsSafetyFactor = 0 (a thermal step of
+#   uniformReynolds optional, default 10 (-1, the flow example's: each pore's own Reynolds number)
+#   yadeInsertionOrder optional: Talus's FlowEngine option (Yade keeps it as an unread attribute);
+#           each pore's Reynolds number takes the length to its last inner neighbour in the
+#           triangulation's vertex order, which then is Yade's
+# Differences from the examples, in both programs: uniformReynolds = 10 by default (the flow example
+# leaves Yade's -1), tsSafetyFactor = 0 (a thermal step of
 # O.dt), no TriaxialStressController, time stepper or output. Prints RESULT with the sphere
 # temperatures (by id), the pore temperatures at probe points (inner pores), the volume flux
 # through xmax and the wall and CPU time of the steps.
@@ -44,6 +48,7 @@ O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Box_
                              [Law2_ScGeom_FrictPhys_CundallStrack()]),
              flow, thermal, NewtonIntegrator(damping=0.2)]
 flow.permeabilityFactor = 1
+flow.yadeInsertionOrder = params.get("yadeInsertionOrder", False)
 flow.viscosity = 0.001
 flow.thermalEngine = True
 flow.fluidRho = 997
@@ -72,7 +77,7 @@ thermal.bndCondIsTemperature = [0, 0, 0, 0, 0, 0]
 thermal.thermalBndCondValue = [0, 0, 0, 0, 0, 0]
 thermal.fluidK = 0.6069
 thermal.fluidConductionAreaFactor = 1.
-thermal.uniformReynolds = 10
+thermal.uniformReynolds = params.get("uniformReynolds", 10)
 thermal.particleT0 = t0
 thermal.particleDensity = 2600.
 thermal.particleK = 2.

@@ -94,6 +94,8 @@ void registerThermal(py::module_& m)
       .def_readwrite("fluidCp", &FluidHeatParameters::fluidCp)
       .def_readwrite("fluidRho", &FluidHeatParameters::fluidRho)
       .def_readwrite("nusseltK", &FluidHeatParameters::nusseltK)
+      .def_readwrite("poreReynolds", &FluidHeatParameters::poreReynolds)
+      .def_readwrite("porosity", &FluidHeatParameters::porosity)
       .def_readwrite("advection", &FluidHeatParameters::advection)
       .def_readwrite("fluidConduction", &FluidHeatParameters::fluidConduction)
       .def_readwrite("ignoreFictitious", &FluidHeatParameters::ignoreFictitious)
@@ -117,6 +119,8 @@ void registerThermal(py::module_& m)
         return copy(h.temperatures());
       })
       .def("setTemperature", &PoreHeat::setTemperature, py::arg("pore"), py::arg("value"))
+      .def("poreNusseltK", [](const PoreHeat& h) { return copy(h.poreNusseltK()); })
+      .def("resetPoreNusselt", &PoreHeat::resetPoreNusselt)
       .def("temperatureAt", &PoreHeat::temperatureAt, py::arg("x"));
 
   py::class_<ExpansionParameters>(m, "ExpansionParameters")

@@ -60,6 +60,35 @@ void PoreHeat::sync()
   for (int k = 0; k < pore::kBoundaries; ++k)
     setBoundary(k, boundaryHeld_[static_cast<std::size_t>(k)], boundaryValue_[static_cast<std::size_t>(k)]);
   computeGeometry();
+  poreNusseltK_.clear(); // due again on the new network, as Yade's after a remesh
+}
+
+void PoreHeat::computePoreNusselt()
+{
+  const pore::PoreNetwork& net = *mesh_;
+  const std::vector<pore::Vec3> velocity = flow_->poreVelocities();
+  if (velocity.size() != net.pores.size())
+    throw std::logic_error("PoreHeat: the pore velocities belong to another network");
+  const double viscosity = flow_->params.viscosity;
+  const double prandtl = params.fluidCp * viscosity / params.fluidK;
+  const double phi = params.porosity;
+  poreNusseltK_.resize(net.pores.size());
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+  {
+    double length = 1e-6;
+    for (const int n : net.pores[i].neighbours)
+      if (n >= 0 && net.pores[static_cast<std::size_t>(n)].nFictitious == 0)
+        length = (net.pores[i].centre - net.pores[static_cast<std::size_t>(n)].centre).norm();
+    double re = params.fluidRho * velocity[i].norm() * length / viscosity;
+    if (!(re >= 0))
+      re = 0;
+    const double nusselt =
+        re > 1000 || phi < 0.35
+            ? 2 + 0.6 * std::sqrt(re) * std::pow(prandtl, 0.33333)
+            : (7 - 10 * phi + 5 * phi * phi) * (1 + 0.1 * std::pow(re, 0.2) * std::pow(prandtl, 0.333)) +
+                  (1.33 - 2.19 * phi + 1.15 * phi * phi) * std::pow(re, 0.7) * std::pow(prandtl, 0.333);
+    poreNusseltK_[i] = nusselt * params.fluidK;
+  }
 }
 
 void PoreHeat::computeGeometry()
@@ -116,6 +145,8 @@ void PoreHeat::computeRates()
 {
   sync();
   const pore::PoreNetwork& net = *mesh_;
+  if (params.poreReynolds && poreNusseltK_.empty())
+    computePoreNusselt();
   particles_.computeRates();
   rate_.assign(net.pores.size(), 0.0);
   conductance_.assign(net.pores.size(), 0.0);
@@ -151,7 +182,8 @@ void PoreHeat::computeRates()
       if (s.fictitious)
         continue;
       const auto id = static_cast<dem::BodyId>(s.id);
-      const double g = params.nusseltK / (2 * s.radius) * sphereArea_[i][k];
+      const double nusseltK = params.poreReynolds ? poreNusseltK_[i] : params.nusseltK;
+      const double g = nusseltK / (2 * s.radius) * sphereArea_[i][k];
       const double q = g * (temperature_[i] - particles_.temperature[static_cast<std::size_t>(id)]); // into the sphere
       if (free(i))
       {

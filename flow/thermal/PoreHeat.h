@@ -23,6 +23,10 @@ struct FluidHeatParameters
   double fluidRho = 1000;       ///< density, kg/m^3 (FlowEngine.fluidRho)
   /// Nusselt number times fluidK: h = nusseltK / (2 r) on the sphere surface in each pore
   double nusseltK = 0;
+  /// Instead of nusseltK, one per pore from the pore's Reynolds number (Yade's uniformReynolds
+  /// = -1), computed at the first step and on each new network (see PoreHeat::poreNusseltK).
+  bool poreReynolds = false;
+  double porosity = 0.4; ///< porosity of the packing, which selects and enters the correlation
   bool advection = true;        ///< transport by the pore fluxes (ThermalEngine.advection)
   bool fluidConduction = true;  ///< conduction between neighbouring pores (ThermalEngine.fluidConduction)
   bool ignoreFictitious = false; ///< no sphere-fluid exchange in boundary pores (ignoreFictiousConduction)
@@ -75,6 +79,16 @@ public:
   [[nodiscard]] double temperatureAt(const pore::Vec3& x);
   /// Follow the flow's network (the pore list after a remesh) and re-apply the boundaries.
   void sync();
+  /// With params.poreReynolds, Nusselt number times fluidK of each pore (Yade's
+  /// setReynoldsNumbers): Re = fluidRho |v| L / viscosity, v the pore's Darcy velocity, L the
+  /// distance from its centre to that of its last neighbour touching no boundary (1e-6 m if
+  /// none); Nu = 2 + 0.6 Re^0.5 Pr^0.33333 (Ranz-Marshall) if Re > 1000 or the porosity is below
+  /// 0.35, else Tavassoli et al.'s (2015) correlation for fixed random arrays,
+  /// (7 - 10 phi + 5 phi^2)(1 + 0.1 Re^0.2 Pr^0.333) + (1.33 - 2.19 phi + 1.15 phi^2) Re^0.7 Pr^0.333.
+  /// Empty before the first step and without params.poreReynolds.
+  [[nodiscard]] const std::vector<double>& poreNusseltK() const { return poreNusseltK_; }
+  /// Compute poreNusseltK again at the next step (Yade's setReynoldsNumbers).
+  void resetPoreNusselt() { poreNusseltK_.clear(); }
   /// The triangulation the temperatures belong to (null before the first sync).
   [[nodiscard]] const void* mesh() const { return mesh_ ? mesh_->triangulation.get() : nullptr; }
 
@@ -82,6 +96,7 @@ private:
   [[nodiscard]] bool free(std::size_t pore) const;
   [[nodiscard]] double heatCapacity(std::size_t pore) const;
   void computeGeometry();
+  void computePoreNusselt();
 
   ParticleConduction& particles_;
   std::shared_ptr<const pore::PoreFlow> flow_;
@@ -92,6 +107,7 @@ private:
   std::array<double, pore::kBoundaries> boundaryValue_{};
   std::vector<std::array<double, 4>> sphereArea_; ///< spherical triangle of each pore vertex (0: boundary)
   std::vector<double> fluidConductance_;          ///< per throat: fluidK A / L (0 with a boundary pore)
+  std::vector<double> poreNusseltK_;              ///< per pore, with params.poreReynolds (empty: due)
   double stableStep_ = 0;
   int limitingPore_ = -1;
 };

@@ -85,10 +85,10 @@ def chain(thermal, n=5, radius=0.01, flow=None):
     return thermal
 
 
-def test_yade_defaults_stop_at_the_first_step_naming_uniform_reynolds():
+def test_yade_defaults_without_a_flow_engine_stop_at_the_first_step_naming_advection():
     chain(ThermalEngine())
     O.dt = 1e-3
-    with pytest.raises(NotImplementedError, match=r"ThermalEngine.uniformReynolds = -1 .* not implemented"):
+    with pytest.raises(ValueError, match=r"ThermalEngine.advection: .* O.engines has no FlowEngine"):
         O.step()
 
 
@@ -102,7 +102,6 @@ def test_per_body_alpha_refused_naming_it():
 
 @pytest.mark.parametrize("settings, error, message", [
     (dict(advection=False), ValueError, r"ThermalEngine.fluidConduction needs advection=True"),
-    (dict(), NotImplementedError, r"ThermalEngine.uniformReynolds = -1 .* not implemented"),
     (dict(uniformReynolds=10, fluidK=0), ValueError, r"ThermalEngine.fluidK = 0.0: .* must be > 0 with advection"),
     (dict(uniformReynolds=10), ValueError, r"ThermalEngine.advection: .* O.engines has no FlowEngine"),
 ])

@@ -16,9 +16,12 @@ hold the spheres that share a pore with that boundary in the triangulation of th
 
 With ``advection`` (and ``fluidConduction``), as Yade: one temperature per pore of the FlowEngine
 network (starting at its ``tZero``), advected upwind by the pore fluxes, exchanging heat with the
-spheres that bound it (h A (T_pore - T_sphere), h = Nu fluidK / 2r with Nu from
-``uniformReynolds``, A the sphere's spherical triangle in the pore) and conducted between
-neighbouring pores (fluidK x throat fluid area / distance).
+spheres that bound it (h A (T_pore - T_sphere), h = Nu fluidK / 2r, A the sphere's spherical
+triangle in the pore) and conducted between neighbouring pores (fluidK x throat fluid area /
+distance). Nu = 2 + 0.6 Re^0.5 Pr^0.33333 with Re = ``uniformReynolds`` in every pore or, with
+``uniformReynolds`` = -1 (Yade's default), from each pore's own Reynolds number (its Darcy
+velocity and size) by Yade's correlations, which use the packing's porosity (spheres' volume in
+their bounding box); as Yade, these are computed at the first step and after each remesh.
 
 Thermal expansion (``thermoMech``, on by default as in Yade): after each thermal run the free
 spheres' radii grow by ``state.alpha`` r dT (``particleAlpha`` at the first step); with a
@@ -126,6 +129,8 @@ def _check(name: str, value):
         raise ValueError(f"ThermalEngine.particleCp must be > 0 (J/(kg K)), got {number}")
     if name in _NONNEGATIVE and number < 0:
         raise ValueError(f"ThermalEngine.{name} must be >= 0, got {number}")
+    if name == "uniformReynolds" and number < 0 and number != -1:
+        raise ValueError(f"ThermalEngine.uniformReynolds must be >= 0, or -1 for each pore's own, got {number}")
     if name == "tsSafetyFactor" and number > 1:
         raise ValueError(f"ThermalEngine.tsSafetyFactor = {number}: above 1 the explicit conduction step overshoots "
                          "the stable one; use (0, 1], or <= 0 for a thermal step equal to O.dt")
@@ -138,6 +143,15 @@ def _per_body(field: str, parameter: str, value) -> float:
         return _check(parameter, value)
     except (TypeError, ValueError) as e:
         raise type(e)(str(e).replace(f"ThermalEngine.{parameter}", f"state.{field}")) from None
+
+
+def _porosity(scene) -> float:
+    """Porosity of the spheres in their bounding box (Yade's Shop::getPorosityAlt, which its
+    per-pore Nusselt correlation uses)."""
+    ids = np.asarray(scene.sphere_ids(), dtype=int)
+    pos, radius = np.asarray(scene._cpp.pos())[ids], np.asarray(scene._cpp.radius())[ids]
+    size = (pos + radius[:, None]).max(axis=0) - (pos - radius[:, None]).min(axis=0)
+    return float(1 - (4 / 3 * np.pi * radius ** 3).sum() / np.prod(size))
 
 
 def _planned(name: str) -> NotImplementedError:
@@ -245,8 +259,11 @@ class ThermalEngine(Engine):
         """Yade's: give bodies thermal states. Nothing to do in Talus (see checkThermal)."""
 
     def setReynoldsNumbers(self) -> None:
-        """Yade's: the pores' Nusselt numbers. Talus takes them from ``uniformReynolds`` at each
-        step: nothing to do."""
+        """Yade's: with ``uniformReynolds`` = -1, compute the pores' Reynolds and Nusselt numbers
+        again (from the current velocities) at the next step; otherwise nothing to do (the
+        uniform number is applied at each step)."""
+        if self._poreHeat is not None:
+            self._poreHeat[1].resetPoreNusselt()
 
     # --- the engine's action --------------------------------------------------------------
     def _scene_(self):
@@ -295,11 +312,6 @@ class ThermalEngine(Engine):
                              "the pore temperatures, which exist with advection (Yade does nothing then); set "
                              "fluidConduction=False, or advection=True")
         if self._params["advection"]:
-            if self._params["uniformReynolds"] < 0:
-                raise NotImplementedError(
-                    "ThermalEngine.uniformReynolds = -1 (Yade's default: Reynolds numbers from the pore velocities) is "
-                    "not implemented yet in Talus: set uniformReynolds to the pores' Reynolds number (for creeping "
-                    "flow a small value, e.g. 10 as Yade's noFlowScenario.py)")
             if self._params["fluidK"] <= 0:
                 raise ValueError(f"ThermalEngine.fluidK = {self._params['fluidK']}: the fluid's conductivity must be > 0 "
                                  "with advection (its Prandtl number divides by it)")
@@ -375,8 +387,12 @@ class ThermalEngine(Engine):
         fluid = heat.params
         fluid.fluidK, fluid.fluidCp, fluid.fluidRho = p["fluidK"], flow.fluidCp, flow.fluidRho
         prandtl = flow.fluidCp * flow.viscosity / p["fluidK"]
-        # Yade's Nusselt number for uniformReynolds (Ranz-Marshall, with its exponent 0.33333)
-        fluid.nusseltK = (2 + 0.6 * p["uniformReynolds"] ** 0.5 * prandtl ** 0.33333) * p["fluidK"]
+        fluid.poreReynolds = p["uniformReynolds"] < 0
+        if fluid.poreReynolds:
+            fluid.porosity = _porosity(scene)
+        else:
+            # Yade's Nusselt number for uniformReynolds (Ranz-Marshall, with its exponent 0.33333)
+            fluid.nusseltK = (2 + 0.6 * p["uniformReynolds"] ** 0.5 * prandtl ** 0.33333) * p["fluidK"]
         fluid.advection, fluid.fluidConduction = True, p["fluidConduction"]
         fluid.ignoreFictitious = p["ignoreFictiousConduction"]
         fluid.areaFactor, fluid.minimumDistance = p["fluidConductionAreaFactor"], p["minimumFluidCondDist"]
