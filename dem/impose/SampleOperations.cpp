@@ -14,11 +14,7 @@ namespace talus::dem
 {
 void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynamicOnly)
 {
-  if (!(multiplier > 0 && std::isfinite(multiplier)))
-    throw std::invalid_argument("growParticles: the multiplier must be positive and finite, got " + std::to_string(multiplier));
   Bodies& b = scene.bodies;
-  const bool track = scene.energy.enabled;
-  const double before = track ? kineticEnergy(scene) + elasticPotential(scene) : 0.0;
   // A clump grows as one rigid body, homothetically about its centroid, when the clump itself
   // passes the dynamic test; its members follow it whatever their own flags (Yade tests each
   // member and the clump separately, which can grow the members of a clump whose mass it keeps).
@@ -26,6 +22,17 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
   auto grows = [&](std::size_t i) {
     return b.shape[i] == ShapeKind::Sphere && (b.clumpId[i] >= 0 ? passes(static_cast<std::size_t>(b.clumpId[i])) : passes(i));
   };
+  // Nothing grows, whatever the multiplier, when no body passes, as in Yade (a
+  // TriaxialStressController compacting fixed spheres towards a goal of 0 asks for -inf).
+  bool any = false;
+  for (std::size_t i = 0; i < b.size() && !any; ++i)
+    any = grows(i) || (b.shape[i] == ShapeKind::Clump && passes(i));
+  if (!any)
+    return;
+  if (!(multiplier > 0 && std::isfinite(multiplier)))
+    throw std::invalid_argument("growParticles: the multiplier must be positive and finite, got " + std::to_string(multiplier));
+  const bool track = scene.energy.enabled;
+  const double before = track ? kineticEnergy(scene) + elasticPotential(scene) : 0.0;
   // How far each member's centre moves: (multiplier - 1) times its offset from the centroid.
   std::vector<Vec3> moved(b.size(), Vec3::Zero());
   for (std::size_t i = 0; i < b.size(); ++i)
