@@ -39,4 +39,4 @@ def test_find_package_from_another_cmake_project(prefix, repo_dir, tmp_path):
     import talus
     assert f"talus {talus.__version__}" in out
     assert "component dem ON" in out
-    assert (prefix / "include" / "talus" / "dem" / "build_config.h").is_file()
+    assert (prefix / "include" / "talus" / "dem" / "base" / "build_config.h").is_file()
