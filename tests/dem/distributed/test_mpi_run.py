@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import talus
 
 SCENE = Path(__file__).resolve().parents[3] / "cases" / "scenes" / "deposition.py"
 
@@ -26,7 +27,10 @@ def talus_run(script, *args, processes=None, env=None, timeout=60):
     command = [sys.executable, "-m", "talus", "run", "-j", "1", str(script), *map(str, args)]
     if processes:
         command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(processes), *command]
-    environment = {**os.environ, "OMP_NUM_THREADS": "1", **(env or {})}
+    # the processes mpirun starts find the package the tests import, wherever it was built
+    package_root = str(Path(talus.__file__).resolve().parents[1])
+    path = os.pathsep.join(filter(None, [package_root, os.environ.get("PYTHONPATH")]))
+    environment = {**os.environ, "OMP_NUM_THREADS": "1", "PYTHONPATH": path, **(env or {})}
     return subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=environment)
 
 
