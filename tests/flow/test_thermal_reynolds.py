@@ -33,7 +33,9 @@ def test_pore_reynolds_numbers_as_yade(runs):
     assert np.abs(y_spheres - runs[("yade", 10)][0]).max() > 0.5 * np.abs(y_spheres).max()
     assert np.abs(spheres - y_spheres).max() < 1e-2 * np.abs(y_spheres).max()
     assert np.abs(pores - y_pores).max() < 1e-3 * np.abs(y_pores).max()
-    assert spheres.sum() == pytest.approx(y_spheres.sum(), rel=1e-3)
+    # Yade's own runs of this scenario differ from each other by up to 1.6e-3 in this sum
+    # (three runs of the same input gave 1.21608, 1.21808, 1.21808)
+    assert spheres.sum() == pytest.approx(y_spheres.sum(), rel=5e-3)
 
 
 def test_a_negative_uniformReynolds_other_than_minus_one_is_refused():
