@@ -33,10 +33,6 @@ public:
   /// body), and a body every process holds (a wall) meets only the bodies owned here.
   virtual bool computesPair(std::size_t row1, std::size_t row2) const = 0;
 
-  /// The skin check's answer for the whole run: true on every process when any needs a
-  /// re-detection (all processes re-detect together).
-  virtual bool anyProcess(bool local) const = 0;
-
   /// Before the collider re-detects: bodies that left this process's region move to their new
   /// owner with their contacts' state, and the ghost layer is rebuilt (rebalancing when due).
   /// @throws std::runtime_error naming the body when one moved further than the ghost layer allows

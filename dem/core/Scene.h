@@ -33,7 +33,7 @@ public:
 
   /// The split over processes (null: the whole scene is here). See Domain.
   std::shared_ptr<Domain> domain;
-  /// Rows [0, ownedBodies()) are this process's bodies, the rest ghosts (all rows when serial).
+  /// The rows the step resets, gathers and integrates (Domain::ownedBodies; all rows when serial).
   std::size_t ownedBodies() const { return domain ? domain->ownedBodies(*this) : bodies.size(); }
 
   /// Energy tracking (O.trackEnergy / O.energy); off by default.

@@ -215,13 +215,6 @@ int MpiDomain::regionOf(const Vec3& x) const
   return -1;
 }
 
-bool MpiDomain::anyProcess(bool local) const
-{
-  int any = local ? 1 : 0;
-  MPI_Allreduce(MPI_IN_PLACE, &any, 1, MPI_INT, MPI_LOR, comm_);
-  return any != 0;
-}
-
 void MpiDomain::sum(std::span<double> values) const
 {
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, comm_);

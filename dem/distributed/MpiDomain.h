@@ -40,7 +40,6 @@ public:
   /// Whether row `row` is a body every rank holds (a wall): counted once in sums of states.
   [[nodiscard]] bool replicated(std::size_t row) const { return replicated_[row] != 0; }
   bool computesPair(std::size_t row1, std::size_t row2) const override;
-  bool anyProcess(bool local) const override;
   void beforeDetection(Scene& scene) override;
   void afterIntegration(Scene& scene) override;
   void sum(std::span<double> values) const override;

@@ -84,7 +84,6 @@ public:
   std::size_t ownedBodies(const Scene& scene) const override { return scene.bodies.size(); }
   bool owns(std::size_t) const override { return true; }
   bool computesPair(std::size_t, std::size_t) const override { return true; }
-  bool anyProcess(bool local) const override { return local; }
   void beforeDetection(Scene&) override { ++migrations; }
   void afterIntegration(Scene&) override { ++ghostUpdates; }
   void sum(std::span<double>) const override {}
