@@ -16,6 +16,8 @@ namespace talus::dem
 class CallbackEngine : public Engine
 {
 public:
+  /// Call the callback if a period has passed (or at the first step with initRun).
+  /// @throws std::invalid_argument if no period is set (all three 0) or one is negative
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "PyRunner"; }
   [[nodiscard]] bool resumableAfterError() const override { return resumable; }

@@ -17,6 +17,9 @@ struct Contacts;
 /// A thread's share [first, last) of n items with its ends moved to multiples of energyBlock
 /// (n stays n): the shares of the threads still tile the items, and each block of energy sums
 /// lies in one of them.
+/// @param share the thread's [first, last) before alignment
+/// @param n the item count (an end at or past n stays n)
+/// @return the aligned [first, last)
 std::pair<std::int64_t, std::int64_t> blockAligned(std::pair<std::int64_t, std::int64_t> share, std::int64_t n);
 
 /// How the contacts stage splits the contact list among the threads of a region.
@@ -30,11 +33,19 @@ std::pair<std::int64_t, std::int64_t> blockAligned(std::pair<std::int64_t, std::
 class ContactShares
 {
 public:
-  /// Find the boundary runs of the current contact list (once per list).
+  /// Find the boundary runs of the current contact list; does nothing until Contacts::version
+  /// changes (once per re-detection).
   void update(const Contacts& contacts);
   /// Compute the contacts of thread `thread` of `threads` with `law`; `myBodies` are the bodies
   /// the thread integrates. With `energy` (blocks of energyBlock contacts) the shares are block-aligned
-  /// ranges instead. The first bad contact's index (overlapping too much), or the contact count.
+  /// ranges instead. Called by every thread of the region after update() on the current list.
+  /// @param law the region's single contact law
+  /// @param thread this thread's number, 0 to threads - 1
+  /// @param threads the region's thread count
+  /// @param myBodies the body ids [first, last) this thread integrates (its boundary contacts)
+  /// @param energy null without energy tracking, else the per-block dissipation sums
+  /// @return the index of the first contact of this share overlapping too much, or the contact
+  ///         count if none does
   std::int64_t compute(Scene& scene, ContactLaw& law, int thread, int threads,
                        std::pair<std::int64_t, std::int64_t> myBodies, ContactEnergy* energy) const;
 

@@ -17,6 +17,8 @@ public:
   /// The reset, per body.
   [[nodiscard]] Stages stages() const override { return Stages{}.with(StagePoint::Reset, Grain::PerBody); }
   /// run()'s work on the bodies [first, last) (for the step scheduler's parallel regions).
+  /// @param first first body id of the share
+  /// @param last one past the last body id (at most bodies.size())
   static void resetIn(Bodies& bodies, std::int64_t first, std::int64_t last);
 
 private:

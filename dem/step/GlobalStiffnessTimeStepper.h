@@ -31,7 +31,8 @@ public:
   [[nodiscard]] std::string typeName() const override { return "GlobalStiffnessTimeStepper"; }
 
   /// The step that the current contacts allow (timestepSafetyCoefficient included), +inf if no
-  /// body has a loaded contact.
+  /// body has a loaded contact. Reads the contacts as they are; changes nothing.
+  /// @return the time step (s)
   [[nodiscard]] double stiffnessTimeStep(const Scene& scene) const;
 
   bool active = true;
@@ -46,5 +47,6 @@ public:
 
 /// Yade's RayleighWaveTimeStep: min over spheres of pi r / (0.1631 nu + 0.876605) sqrt(rho / G),
 /// G = E / (2 (1 + nu)), rho from the sphere's mass. +inf without spheres.
+/// @return the time step (s), no safety factor applied
 double rayleighWaveTimeStep(const Scene& scene);
 } // namespace talus::dem

@@ -34,12 +34,21 @@ public:
   /// law by law, the growth's energy, the overlap check and the callbacks.
   /// @throws std::runtime_error for a contact no law handles or one overlapping too much
   void computeContacts(Scene& scene);
-  /// Add the forces and moments of the contacts of bodies [first, last) to those bodies.
+  /// Add the forces and moments of the contacts of bodies [first, last) to those bodies, each
+  /// body's contacts in index order (the sums do not depend on the thread count).
+  /// @param first first body id of the share
+  /// @param last one past the last; bodies added since the last detection are skipped (no
+  ///        contacts yet)
   void gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const;
   /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
+  /// @param c the contact, its penetration that of this step
+  /// @return the message: step, body ids, overlap as a fraction of the smaller radius, the time
+  ///         step and the contact's and P-wave critical steps
   static std::string overlapReport(const Scene& scene, const Contact& c);
   /// A step had contact c overlapping beyond scene.maxOverlapRatio: throw its report, or, when
   /// scene.overlapStops is false, count the step and keep the first report.
+  /// @param c the contact overlapping too much
+  /// @throws std::runtime_error (overlapReport's message) if scene.overlapStops
   static void overlapFound(Scene& scene, const Contact& c);
 
 private:
@@ -65,5 +74,6 @@ private:
 /// spheres grown into each other overlap by the growth at once, the energy of that overlap is the
 /// growth's work, not the dynamics' (a contact that motion alone would have made real keeps the
 /// energy of its overlap without the growth, as any new contact). Clears grownBy.
+/// @param loop the loop whose laws' contacts are looked at (after its contacts pass)
 void addGrownContactsEnergy(Scene& scene, const InteractionLoop& loop);
 } // namespace talus::dem

@@ -43,14 +43,21 @@ public:
   // The pieces of run() for the step's scheduler, which runs the loop in its own parallel regions.
   /// Refresh what the step reads of the bodies if they changed.
   void prepare(Scene& scene);
-  /// Integrate the bodies [first, last); the first of them with a non-finite force or torque, or -1.
+  /// Integrate the bodies [first, last) (after prepare; a region's threads take disjoint ranges).
+  /// @param first first body id; a multiple of energyBlock when tracking energy
+  /// @param last one past the last body id
   /// @param energyBlocks null: no energy tracking; else `first` is a multiple of energyBlock and
   /// body i's terms are added to energyBlocks[i / energyBlock] (run()'s blocks)
+  /// @return the first body of the range with a non-finite force or torque, or -1 (the caller
+  ///         hands the smallest over all ranges to finish)
   std::int64_t integrateIn(Scene& scene, std::int64_t first, std::int64_t last, BodyEnergy* energyBlocks) const;
   /// Add the blocks' energies to the scene's tracker, in block order (as run() does).
+  /// @param blocks gravity's work and the damping's dissipation (J) per block of energyBlock
+  ///        bodies, filled by integrateIn
   static void addEnergy(Scene& scene, const std::vector<BodyEnergy>& blocks);
   /// After every range: stop the run if a body had a non-finite force (firstBad >= 0), else move
   /// the periodic cell.
+  /// @param firstBad the smallest integrateIn result over all ranges that found a bad body, or -1
   /// @throws std::runtime_error naming the body, the time step and the P-wave estimate
   void finish(Scene& scene, std::int64_t firstBad);
   /// A clump sums its members' forces and moves them: bodies other than its own (after prepare).

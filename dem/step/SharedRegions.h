@@ -65,8 +65,14 @@ public:
   /// The reset alone, before the serial stages between it and the skin check.
   void reset(Scene& scene);
   /// Reset, skin check (and re-detection when due), contacts, gather and integration, as `flow` says.
+  /// @param engines the plan's collider, loop and integrator, prepared for this step
+  /// @param flow which of the stages the regions include (from the plan)
+  /// @throws std::runtime_error as the engines' run() would: a contact overlapping too much
+  ///         (scene.overlapStops), a body with a non-finite force
   void forces(Scene& scene, const Engines& engines, Flow flow);
   /// The integration alone, after the serial stages between the gather and the integration.
+  /// @param newton the plan's integrator
+  /// @throws std::runtime_error for a body with a non-finite force or torque (NewtonIntegrator::finish)
   void integrate(Scene& scene, NewtonIntegrator& newton);
   /// After a step's shared stages: the stages' times, and the threads' ranges balanced by the
   /// time each took.

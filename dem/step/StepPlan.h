@@ -53,11 +53,14 @@ struct StepPlan
   /// parallel regions entered, barriers inside them, serial stages.
   int regions = 0, barriers = 0, serialStages = 0;
 
+  /// The list has the shared group (a resetter, collider, loop and integrator in that order).
   [[nodiscard]] bool shared() const { return newton != none; }
   /// The integration has a region of its own (an Integration entry).
   [[nodiscard]] bool separateIntegration() const { return has(Item::Integration); }
   /// So has the reset (a Reset entry).
   [[nodiscard]] bool separateReset() const { return has(Item::Reset); }
+  /// @param item the kind of entry looked for
+  /// @return whether some entry is an `item`
   [[nodiscard]] bool has(Item item) const;
   /// One line per entry, for tests and diagnostics ("serial 0", "forces+integration", ...).
   [[nodiscard]] std::string describe() const;
@@ -72,5 +75,10 @@ struct PlanConditions
 };
 
 /// The plan for the live engines of `engines` from index `from` on.
+/// @param engines the scene's engine list (dead engines are left out of the plan)
+/// @param from the first index planned (a step resumed after a sub-step starts later)
+/// @param conditions energy tracking and distribution, which move the integration or the skin
+///        check out of the forces' region
+/// @return the plan; without the shared group every engine is a serial entry
 StepPlan planStep(const std::vector<std::shared_ptr<Engine>>& engines, std::size_t from, PlanConditions conditions);
 } // namespace talus::dem
