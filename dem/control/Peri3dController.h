@@ -55,6 +55,7 @@ public:
   Vec6i ps = Vec6i::Zero(), pe = Vec6i::Zero(), pathSizes = Vec6i::Zero(), pathsCounter = Vec6i::Zero();
   int lenPs = 0, lenPe = 0;
 
+  /// Every path the single point (1, 1): each component goes linearly to its goal (Yade's default).
   Peri3dController();
 
 private:

@@ -43,8 +43,12 @@ public:
 
   /// Go to `next`, with Yade's side effects (goals, friction, reference sizes, wall switches);
   /// a transition Yade does not define throws std::logic_error naming both states.
+  /// @param next the state to enter (a State value)
+  /// @throws std::logic_error for a transition from currentState that Yade does not define
   void doStateTransition(Scene& scene, int next);
   /// Yade's state name ("STATE_ISO_COMPACTION", ...).
+  /// @param state a State value
+  /// @return its name; "<unknown state N>" for a value outside State
   static std::string stateName(int state);
 
   // parameters (Yade's names and defaults)
