@@ -23,8 +23,11 @@ public:
   using EngineRunner = std::function<void(std::size_t)>;
 
   /// Run every engine of the scene's list for one step, the serial ones through `runEngine`.
+  /// @param runEngine Scene's wrapper, which records a failure before passing the exception on
   virtual void runStep(Scene& scene, const EngineRunner& runEngine) = 0;
   /// Run engine k alone (one of Yade's sub-steps), through `runEngine`.
+  /// @param k the engine's index in scene.engines
+  /// @param runEngine Scene's wrapper, as for runStep
   virtual void runSubStep(Scene& scene, std::size_t k, const EngineRunner& runEngine) = 0;
   /// The checks of a step's end, after its engines, before the clock advances.
   /// @throws std::runtime_error when one fails (the energy-growth check)
@@ -40,6 +43,7 @@ public:
 };
 
 /// The step loop every scene uses (defined in dem/step/).
+/// @return a new Scheduler, owned by the caller
 std::unique_ptr<StepLoop> makeStepLoop();
 
 /// A scene's step loop, made at its first use. A copy of the scene starts with a new one: the
@@ -54,6 +58,7 @@ public:
     loop_.reset();
     return *this;
   }
+  /// @return the loop, made by makeStepLoop on the first call; owned by the holder
   StepLoop& get()
   {
     if (!loop_)
@@ -69,8 +74,11 @@ private:
 /// that stops the run by throwing. The layers above the step register theirs (measure/'s
 /// energy-growth check), so that neither the scene nor the step includes them.
 using StepCheck = void (*)(Scene&);
-/// Register a check (at load time); returns true.
+/// Register a check (at load time, through a namespace-scope initialiser).
+/// @param check called with the scene at every step's end; throws to stop the run
+/// @return true (so that the registration can initialise a constant)
 bool addStepCheck(StepCheck check);
 /// The registered checks, in the order registered.
+/// @return the list, alive for the program's lifetime
 const std::vector<StepCheck>& stepChecks();
 } // namespace talus::dem
