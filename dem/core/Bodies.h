@@ -25,6 +25,7 @@ enum class ShapeKind : std::uint8_t
 };
 
 /// Yade's class name of a shape kind ("Sphere", "PotentialBlock", ...), for messages.
+/// @param kind any ShapeKind value
 /// @return a static string, never null
 const char* shapeName(ShapeKind kind);
 
@@ -128,7 +129,10 @@ struct Bodies
   {
     return (clumpId[i] < 0 || clumpId[i] != clumpId[j]) && masksAllow(i, j, avoidSelfInteractionMask);
   }
-  /// The masks' part of mayCollide (the same parameters and result).
+  /// The masks' part of mayCollide (the clump test left out, for callers that made it).
+  /// @param i, j the bodies' ids
+  /// @param avoidSelfInteractionMask the collider's (0: none)
+  /// @return false if the masks forbid the pair
   [[nodiscard]] bool masksAllow(std::size_t i, std::size_t j, int avoidSelfInteractionMask) const
   {
     const int mi = groupMask[i], mj = groupMask[j];
@@ -138,6 +142,7 @@ struct Bodies
   /// (clumps, boxes, blocks and potential particles with unequal principal moments, as Yade's
   /// isAspherical).
   /// @param i the body's id
+  /// @return whether it rotates by the exact aspherical integration
   [[nodiscard]] bool aspherical(std::size_t i) const
   {
     return (shape[i] == ShapeKind::Clump || shape[i] == ShapeKind::Box || shape[i] == ShapeKind::PotentialBlock

@@ -28,6 +28,7 @@ struct Cell
   Mat3 trsf = Mat3::Identity();       ///< deformation gradient accumulated since the reference
   bool homoDeform = true;
 
+  /// The cell's volume (m^3), positive for a right-handed cell.
   [[nodiscard]] double volume() const { return hSize.determinant(); }
   /// Shift of the periodic image with integer offset c.
   /// @param c the image's cell offset along each edge
@@ -35,6 +36,7 @@ struct Cell
   [[nodiscard]] Vec3 shift(const Eigen::Vector3i& c) const { return hSize * c.cast<double>(); }
   /// Velocity of that image relative to the original (the affine field over the shift).
   /// @param c the image's cell offset along each edge
+  /// @return the velocity difference (m/s)
   [[nodiscard]] Vec3 shiftVelocity(const Eigen::Vector3i& c) const { return velGrad * shift(c); }
 
   /// Advance the cell by one step of the current velocity gradient.

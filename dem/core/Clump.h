@@ -37,6 +37,8 @@ inline void addClumpMemberForces(const Bodies& b, std::size_t i, Vec3& force, Ve
 }
 
 /// Mass of the rigid body that body `i` moves with: its clump's for a member.
+/// @param b the scene's bodies
+/// @param i a body id
 /// @return the mass (kg)
 inline double rigidMass(const Bodies& b, std::size_t i)
 {
@@ -44,6 +46,9 @@ inline double rigidMass(const Bodies& b, std::size_t i)
 }
 
 /// Whether body `i` moves under forces, or with its clump's for a member.
+/// @param b the scene's bodies
+/// @param i a body id
+/// @return the body's dynamic flag, its clump's for a member
 inline bool rigidDynamic(const Bodies& b, std::size_t i)
 {
   return b.clumpId[i] >= 0 ? b.dynamic[static_cast<std::size_t>(b.clumpId[i])] != 0 : b.dynamic[i] != 0;

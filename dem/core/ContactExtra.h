@@ -22,6 +22,8 @@ struct StateField
   bool stored = true;       ///< checkpointed; false: the geometry sets it again at every step
 
   /// The same field shown in Python under Yade's name.
+  /// @param yadeName the Python key (a string literal: the pointer is kept)
+  /// @return a copy with `python` replaced
   [[nodiscard]] constexpr StateField yade(const char* yadeName) const
   {
     StateField f = *this;
@@ -38,12 +40,18 @@ struct StateField
 };
 
 /// A field of a part's state (Part::fields() lists them).
+/// @param name the member's name (a string literal: the pointer is kept), also its Python key
+/// @param member the member pointer
+/// @return the field, checkpointed, not a flag
 template <class Part, class T>
 constexpr StateField<Part, T> field(const char* name, T Part::*member)
 {
   return {name, member, name};
 }
 /// A yes/no byte of a part's state.
+/// @param name the member's name (a string literal: the pointer is kept), also its Python key
+/// @param member the member pointer
+/// @return the field, checkpointed, a bool in Python
 template <class Part>
 constexpr StateField<Part, std::uint8_t> flag(const char* name, std::uint8_t Part::*member)
 {
@@ -58,6 +66,7 @@ constexpr StateField<Part, std::uint8_t> flag(const char* name, std::uint8_t Par
 struct HertzState
 {
   double kno = 0, kso = 0, betan = 0, betas = 0;
+  /// @return the part's StateFields, in the checkpoint's and Python's order
   static constexpr auto fields()
   {
     return std::tuple{field("kno", &HertzState::kno), field("kso", &HertzState::kso),
@@ -73,6 +82,7 @@ struct RotationState
   Quat initialOrientation1 = Quat::Identity(), initialOrientation2 = Quat::Identity();
   Vec3 bending = Vec3::Zero();
   double twist = 0;
+  /// @return the part's StateFields, in the checkpoint's and Python's order
   static constexpr auto fields()
   {
     return std::tuple{field("twist", &RotationState::twist), field("bending", &RotationState::bending),
@@ -92,6 +102,7 @@ struct BondState
   std::uint8_t tensionBroken = 1;
   std::uint8_t fragile = 1;
   std::uint8_t cohesionDisablesFriction = 0;
+  /// @return the part's StateFields, in the checkpoint's and Python's order
   static constexpr auto fields()
   {
     return std::tuple{field("normalAdhesion", &BondState::normalAdhesion),
@@ -111,6 +122,7 @@ struct MomentState
   double kr = 0, ktw = 0, maxRollPl = -1, maxTwistPl = -1;
   Vec3 momentBending = Vec3::Zero(), momentTwist = Vec3::Zero();
   std::uint8_t momentRotationLaw = 0;
+  /// @return the part's StateFields, in the checkpoint's and Python's order
   static constexpr auto fields()
   {
     return std::tuple{field("kr", &MomentState::kr), field("ktw", &MomentState::ktw),
@@ -126,6 +138,7 @@ struct RollingResistanceState
 {
   double mR = 0;
   std::uint8_t mRtype = 1;
+  /// @return the part's StateFields, in the checkpoint's and Python's order
   static constexpr auto fields()
   {
     return std::tuple{field("mR", &RollingResistanceState::mR), field("mRtype", &RollingResistanceState::mRtype)};
@@ -139,6 +152,7 @@ struct AreaState
 {
   double contactArea = 0;
   std::uint8_t intactRock = 0;
+  /// @return the part's StateFields, in the checkpoint's and Python's order
   static constexpr auto fields()
   {
     return std::tuple{field("contactArea", &AreaState::contactArea).transient(),
@@ -165,6 +179,8 @@ using ContactStateParts
     = PartList<HertzState, RotationState, BondState, MomentState, RollingResistanceState, AreaState>;
 
 /// A part's field as a field of ContactExtra.
+/// @param f a field of one of ContactExtra's bases
+/// @return the same field, its member pointer converted to ContactExtra's
 template <class Part, class T>
 constexpr StateField<ContactExtra, T> asContactExtraField(const StateField<Part, T>& f)
 {

@@ -23,14 +23,19 @@ public:
   /// orientation and every body sums its contacts in the order of the serial scene (the same
   /// bits): its ownedBodies is every row, a ghost's integration (with part of its forces) being
   /// overwritten by its owner's state in afterIntegration. Which rows are whose: owns().
+  /// @return the number of rows the per-body stages take
   virtual std::size_t ownedBodies(const Scene& scene) const = 0;
 
   /// Whether row `row` is this process's body (false: a ghost). Measurements count owned rows.
+  /// @param row a row of scene.bodies
+  /// @return true for an owned body (or one every process holds)
   virtual bool owns(std::size_t row) const = 0;
 
   /// Whether this process computes the contact of rows `row1` and `row2`: one of them is its own
   /// (a contact across two processes is computed by both, each applying the force to its own
   /// body), and a body every process holds (a wall) meets only the bodies owned here.
+  /// @param row1, row2 the contact's two rows
+  /// @return whether the contact is computed here
   virtual bool computesPair(std::size_t row1, std::size_t row2) const = 0;
 
   /// Before the collider re-detects: bodies that left this process's region move to their new
@@ -42,13 +47,17 @@ public:
   virtual void afterIntegration(Scene& scene) = 0;
 
   /// Element-wise sums over processes, in place (energies, unbalanced force, stresses).
+  /// @param values this process's values, replaced by the sums; the same length on every process
   virtual void sum(std::span<double> values) const = 0;
 
-  /// The smallest value over processes (critical time steps).
+  /// The smallest value over processes (critical time steps). Every process must call it.
+  /// @param value this process's value
+  /// @return the minimum over all processes
   virtual double min(double value) const = 0;
 
   /// Element-wise minima over processes, in place (maxima as minima of the negated values): the
   /// skin check's displacements in one reduction per step.
+  /// @param values this process's values, replaced by the minima; the same length on every process
   virtual void min(std::span<double> values) const = 0;
 };
 } // namespace talus::dem

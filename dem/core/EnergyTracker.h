@@ -65,6 +65,10 @@ struct EnergyTracker
 struct ContactEnergy
 {
   double plastDissip = 0, viscDamp = 0;
+  /// Add another block's sums (the blocks are added in block order: the same sums whatever
+  /// the threads).
+  /// @param o the other block's energies (J)
+  /// @return this
   ContactEnergy& operator+=(const ContactEnergy& o)
   {
     plastDissip += o.plastDissip;

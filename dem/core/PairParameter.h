@@ -23,6 +23,8 @@ struct PairParameter
   std::optional<double> fallback;
 
   /// The value for materials a and b; empty if the pair has none.
+  /// @param a, b material indices, either order
+  /// @return the listed value, else the fallback, else empty
   [[nodiscard]] std::optional<double> at(int a, int b) const
   {
     const auto it = matches.find({std::min(a, b), std::max(a, b)});
@@ -41,12 +43,16 @@ struct DeferredFailure
   std::mutex failureLock;
   std::string failure;
 
+  /// Record an error (thread-safe); only the first one is kept.
+  /// @param what the message thrown later
   void fail(const std::string& what)
   {
     std::lock_guard<std::mutex> lock(failureLock);
     if (!failed.exchange(true))
       failure = what;
   }
+  /// Report the recorded error, if any, and clear it (called serially after the loop).
+  /// @throws std::runtime_error with the first recorded message
   void throwIfFailed()
   {
     if (failed.exchange(false))

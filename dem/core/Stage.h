@@ -35,10 +35,18 @@ struct Stages
 {
   std::array<Grain, stagePoints> grain{};
 
+  /// @param point a point of the step
+  /// @return how the engine works there (Grain::None: not at all)
   [[nodiscard]] Grain at(StagePoint point) const { return grain[static_cast<std::size_t>(point)]; }
+  /// @param point a point of the step
+  /// @return whether the engine works there
   [[nodiscard]] bool has(StagePoint point) const { return at(point) != Grain::None; }
+  /// No stage declared: the engine runs whole as a serial stage at its place in the list.
   [[nodiscard]] bool empty() const { return *this == Stages{}; }
   /// This declaration with `grain` at `point`.
+  /// @param point a point of the step
+  /// @param g how the engine works there (replacing what was declared)
+  /// @return the new declaration (this one is unchanged), for chaining
   [[nodiscard]] Stages with(StagePoint point, Grain g) const
   {
     Stages s = *this;
