@@ -153,8 +153,9 @@ def main():
 
         sizes = [1000, 4000, 16000, 32000] if quick else [1000, 4000, 16000, 64000, 200000]
         # Each size `repeat` times, the sizes in turn, and the median per size: one run of the
-        # smallest bed lasts about a second, and a single one has come out 1.5 times slower
-        # than its neighbours when the host took the vCPU for a moment.
+        # smallest bed lasts about a second, and a single one can come out much slower than its
+        # neighbours when the host takes the vCPU for a moment (docs/dem.md, "Measurements behind
+        # the code").
         samples: dict[int, list[float]] = {}
         for _ in range(repeat):
             for n in sizes:

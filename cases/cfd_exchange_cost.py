@@ -209,9 +209,10 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    # The DEM on one thread throughout: OpenMP threads spin at every barrier, and on the loaded
-    # machine two of them ran the overhead's sub-steps 50 times slower than one (320 ms against
-    # 6.6 ms, measured), which made the coupling's share look 30 times smaller than it is.
+    # The DEM on one thread throughout: OpenMP threads spin at every barrier, and on a loaded
+    # machine two of them ran the overhead's sub-steps many times slower than one, which made the
+    # coupling's share look much smaller than it is (docs/coupling.md, "Measurements behind the
+    # code").
     talus._dem.setThreadCount(1)
     name = "cfd.exchange_cost" + ("" if args.solver == "talusPointForceFoam" else "_va")
     case = results.Case(name + ("" if args.envelope_method is None else "_" + args.envelope_method),

@@ -318,8 +318,9 @@ def side_by_side(case, quick):
     out["rest_times"] = [0.02 * (k + 1) for k in range(len(ours["history"]))]
     out["rest_talus"], out["rest_yade"] = ours["history"], theirs["history"]
 
-    # Yade's particle contact costs about 1.5 ms per contact and step here: a small packing; 100
-    # timed steps, so that Talus's side (about 10 us per contact) lasts longer than a time slice.
+    # Yade's particle contact costs tens to hundreds of times Talus's (docs/blocks.md, "Cost"):
+    # a small packing, so that Yade's side stays short; 100 timed steps, so that Talus's side
+    # lasts longer than a time slice.
     n, per_row = (8, 2) if quick else (27, 3)
     params = dict(mode="packing", shapes=shapes, n=n, perRow=per_row, spacing=1.3, box=box, height=height,
                   dt=5e-4, steps=2500 if quick else 4000, timedSteps=100, seed=7, Knormal=KN, Kshear=KS)
