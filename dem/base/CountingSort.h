@@ -17,6 +17,13 @@ namespace talus::dem
 /// Each thread counts, then files, one contiguous run of items (the entries it writes are those
 /// of the items it read): the linked cells of the collider and the per-body contact index are
 /// built this way, and both were serial parts of a re-detection.
+/// @param items the item count
+/// @param buckets the bucket count (keys lie in [0, buckets))
+/// @param start resized to buckets + 1 and filled with the buckets' first slots (start[buckets]:
+///        the total number of keys)
+/// @param forEachKey forEachKey(i, emit): emit(bucket, tag) for each key of item i, the same
+///        keys in both passes (it is called twice per item)
+/// @param place place(i, tag, slot) once per key
 template <class ForEachKey, class Place>
 void stableCountingSort(std::int64_t items, std::int64_t buckets, std::vector<std::int64_t>& start,
                         ForEachKey&& forEachKey, Place&& place)

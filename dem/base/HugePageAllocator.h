@@ -26,12 +26,18 @@ struct HugePageAllocator
   using value_type = T;
   static constexpr std::size_t hugePage = std::size_t{2} << 20;
 
+  /// Stateless: every instance can free what any other allocated.
   HugePageAllocator() = default;
+  /// The rebinding constructor the standard containers need (no state to copy).
   template <class U>
   HugePageAllocator(const HugePageAllocator<U>&) noexcept // NOLINT(google-explicit-constructor): rebinding
   {
   }
 
+  /// @param n the number of T
+  /// @return storage for n T, 2 MiB-aligned and advised as huge pages from 2 MiB on (the size
+  ///         rounded up to whole huge pages), plain aligned new below
+  /// @throws std::bad_alloc when the memory cannot be had
   T* allocate(std::size_t n)
   {
     const std::size_t bytes = n * sizeof(T);
@@ -47,6 +53,8 @@ struct HugePageAllocator
     return static_cast<T*>(block);
   }
 
+  /// @param block what allocate(n) returned
+  /// @param n the same count as given to allocate (it chooses how the block was obtained)
   void deallocate(T* block, std::size_t n) noexcept
   {
     if (n * sizeof(T) < hugePage)
@@ -55,11 +63,13 @@ struct HugePageAllocator
       std::free(block);
   }
 
+  /// Always equal (stateless), so containers may swap and move their storage.
   template <class U>
   bool operator==(const HugePageAllocator<U>&) const noexcept
   {
     return true;
   }
+  /// Never unequal (stateless).
   template <class U>
   bool operator!=(const HugePageAllocator<U>&) const noexcept
   {

@@ -20,6 +20,7 @@ namespace talus::dem
 inline constexpr std::int64_t parallelLoopMinimum = 1024;
 
 /// Number of OpenMP threads the DEM loops use (1 without OpenMP).
+/// @return omp_get_max_threads(), at least 1
 inline int threadCount()
 {
 #ifdef _OPENMP
@@ -32,6 +33,7 @@ inline int threadCount()
 /// Set the number of OpenMP threads for the following steps. Needed because OMP_NUM_THREADS is
 /// read once, when the OpenMP runtime starts (at `import talus`), so changing the environment
 /// afterwards (`talus run -j N`) has no effect by itself.
+/// @param threads the count, >= 1 (OpenMP's own rules for other values); ignored without OpenMP
 inline void setThreadCount(int threads)
 {
 #ifdef _OPENMP
@@ -56,6 +58,10 @@ public:
   static constexpr int maxThreads = 64;
 
   /// The items [first, second) of thread `thread` of `threads` in a loop over n items.
+  /// @param n the loop's item count
+  /// @param thread this thread's number, 0 to threads - 1
+  /// @param threads the team's size; equal shares until rebalance has seen this count
+  /// @return the thread's range; the ranges of all threads tile [0, n)
   [[nodiscard]] std::pair<std::int64_t, std::int64_t> range(std::int64_t n, int thread, int threads) const
   {
     if (threads != static_cast<int>(bounds_.size()) - 1)
@@ -64,8 +70,11 @@ public:
             thread + 1 == threads ? n : static_cast<std::int64_t>(bounds_[static_cast<std::size_t>(thread + 1)] * static_cast<double>(n))};
   }
   /// Called by each thread with the seconds its range took.
+  /// @param thread the thread's number, below maxThreads
+  /// @param seconds the wall time of its range (s)
   void record(int thread, double seconds) { times_[static_cast<std::size_t>(thread)] = seconds; }
   /// Called after the loop by one thread: move the boundaries towards equal times.
+  /// @param threads the team's size; 1 or more than maxThreads leaves the ranges as they are
   void rebalance(int threads)
   {
     if (threads < 2 || threads > maxThreads)
@@ -95,6 +104,12 @@ private:
 /// Run body(first, last) on contiguous ranges of [0, n) in parallel (one thread below
 /// parallelLoopMinimum items), the ranges balanced by `ranges`; returns the per-range results
 /// combined in range order with `combine`, so the result does not depend on the ranges.
+/// @param ranges the loop's own ranges, rebalanced by the threads' times after the loop
+/// @param n the item count
+/// @param init each range's result before body runs (and combine's first argument)
+/// @param body body(first, last) returns the range's Result
+/// @param combine combine(total, rangeResult), called in range order
+/// @return the combined result
 template <class Result, class Body, class Combine>
 Result balancedFor(BalancedRanges& ranges, std::int64_t n, Result init, Body&& body, Combine&& combine)
 {
@@ -128,6 +143,9 @@ Result balancedFor(BalancedRanges& ranges, std::int64_t n, Result init, Body&& b
 }
 
 /// balancedFor for a body with no result.
+/// @param ranges the loop's own ranges
+/// @param n the item count
+/// @param body body(first, last) for each range
 template <class Body>
 void balancedFor(BalancedRanges& ranges, std::int64_t n, Body&& body)
 {

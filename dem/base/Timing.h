@@ -13,6 +13,8 @@ namespace talus::dem
 class TimingDeltas
 {
 public:
+  /// Mark the engine's entry.
+  /// @param enabled the scene's timingEnabled: false makes checkpoint() return at once
   void start(bool enabled)
   {
     on_ = enabled;
@@ -25,6 +27,7 @@ public:
 
   /// Add the time since the previous checkpoint (or start) to stage `label`. Stages are kept
   /// in the order an engine passes them; a label is looked up at its usual position first.
+  /// @param label the stage's name (compared by content; a new one is appended)
   void checkpoint(const char* label)
   {
     if (!on_)
@@ -39,6 +42,8 @@ public:
   }
 
   /// Add `nanoseconds` to stage `label` as one pass (a stage timed by the step's scheduler).
+  /// @param label the stage's name (a new one is appended)
+  /// @param nanoseconds the stage's wall time (ns)
   void add(const char* label, std::int64_t nanoseconds)
   {
     const std::size_t k = slot(label);
@@ -46,6 +51,7 @@ public:
     ++count[k];
   }
 
+  /// Forget every stage (Yade's timing.reset()).
   void reset()
   {
     labels.clear();
