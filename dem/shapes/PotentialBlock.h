@@ -64,6 +64,7 @@ PotentialBlockShape makePotentialBlock(const std::vector<double>& a, const std::
                                        PotentialBlockPlacement* placement);
 
 /// Give the faces of s their rock-joint properties, one entry per plane (empty: keep them).
+/// @param s the block's shape, changed in place
 /// @param cohesion, tension the faces' strengths (Pa), >= 0
 /// @param intactRock whether each face is intact rock (bonded to its neighbour)
 /// @param jointType each face's joint type
@@ -77,6 +78,7 @@ void setBlockFaceProperties(PotentialBlockShape& s, const std::vector<double>& c
 /// Direction of the gradient of the inner potential at y (body frame), and the number of planes
 /// active there; if y is inside the inner potential (gradient zero), the normal of the nearest
 /// plane with `active` = 0.
+/// @param s the block's shape
 /// @param y the point, body frame
 /// @param active set, when not null, to the number of active planes
 /// @return the unit normal: the gradient's direction, or the nearest plane's normal

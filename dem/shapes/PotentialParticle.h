@@ -43,6 +43,10 @@ struct PlacedPotential
   double length = 1; ///< R: the scale of lengths for tolerances
 
   /// Value of f at x; gradient and Hessian if asked.
+  /// @param x the point, in this potential's frame (relative to its origin)
+  /// @param grad set to the gradient when not null
+  /// @param hess set to the Hessian when not null (piecewise constant: active planes and sphere)
+  /// @return f(x): negative inside, 0 on the surface
   double eval(const Vec3& x, Vec3* grad = nullptr, Mat3* hess = nullptr) const;
 };
 
@@ -70,6 +74,9 @@ PotentialParticleShape makePotentialParticle(const std::vector<double>& a, const
 
 /// The particle's potential in world coordinates relative to `origin`, for a body at `pos`
 /// turned by `ori` (the body frame is the principal frame).
+/// @param s the particle's shape
+/// @param pos, ori the body's position (m) and orientation
+/// @param origin the frame's origin (m): a point near the pair, so coordinates stay small
 /// @return the potential, evaluated with eval() at points relative to `origin`
 PlacedPotential placePotential(const PotentialParticleShape& s, const Vec3& pos, const Quat& ori, const Vec3& origin);
 
@@ -77,12 +84,24 @@ PlacedPotential placePotential(const PotentialParticleShape& s, const Vec3& pos,
 /// backtracking line search from x (updated in place): f is piecewise quadratic and strongly
 /// convex, so this converges, and in one step once the active planes are right.
 /// `hessian` (optional): the Hessian there. Stops once a step is below `tol` f1.length.
+/// @param f1, w1 the first potential and its weight
+/// @param f2, w2 the second potential (null: none) and its weight
+/// @param c the linear term (a Lagrange multiplier times a direction)
+/// @param x the starting point, replaced by the minimiser
+/// @param hessian set, when not null, to the weighted Hessian at the minimiser
+/// @param tol the step below which it stops, relative to f1.length
 void minimisePotentials(const PlacedPotential& f1, double w1, const PlacedPotential* f2, double w2, const Vec3& c,
                         Vec3& x, Mat3* hessian = nullptr, double tol = 1e-14);
 
 /// Where the ray x + t u (t > 0) leaves {max(f1, f2) <= 0}, from x inside (f2 may be null):
 /// Newton steps from outside, which for a convex function approach the root monotonically.
 /// `guess`: a length to try first (<= 0: `scale`); stops once a step is below `tol` scale.
+/// @param f1, f2 the potentials (f2 null: f1 alone)
+/// @param x the ray's origin, inside
+/// @param u the ray's unit direction
+/// @param guess a first t to try (m); <= 0: scale
+/// @param scale the length scale of the tolerance (m)
+/// @param tol the step below which it stops, relative to scale
 /// @return t at the exit
 double rayExit(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3& x, const Vec3& u, double guess,
                double scale, double tol = 1e-14);
@@ -93,12 +112,22 @@ double rayExit(const PlacedPotential& f1, const PlacedPotential* f2, const Vec3&
 /// `x`: a starting point inside, replaced by the support point. With `nearby` (a surface point
 /// whose outward normal is close to e), Newton steps on the Lagrange system
 /// (grad f = s e, f = 0) are tried first, kept if they converge to a valid support point.
+/// @param f the particle's placed potential
+/// @param e the unit direction
+/// @param x a point inside on entry; the support point on return
+/// @param nearby a surface point whose normal is close to e, or null
 void supportPoint(const PlacedPotential& f, const Vec3& e, Vec3& x, const Vec3* nearby = nullptr);
 
 /// A root of a decreasing function g on [lo, hi] by Newton steps (g returns the value and its
 /// derivative), falling back to bisection whenever a step leaves the bracket; stops when
 /// |g| <= tol, or the bracket or a step is below `width` (Newton converges from one side, so
 /// the bracket alone need not shrink).
+/// @param g g(x, slope) returns g(x) and sets slope to g'(x)
+/// @param lo, hi the bracket: g(lo) >= 0 >= g(hi)
+/// @param start the first point, inside the bracket
+/// @param tol the |g| at which x is a root
+/// @param width the bracket or step width at which it stops
+/// @param maxIter evaluations at most
 /// @return the last point evaluated, whose state the callers read
 template <class G>
 double decreasingRoot(G&& g, double lo, double hi, double start, double tol, double width, int maxIter = 100)

@@ -36,6 +36,17 @@ struct SpherePack
   /// reach is tested, whatever the shear and the sizes (Yade's test for a sheared cell looks at
   /// the nearest image in fractional coordinates only, which is exact while two radii stay below
   /// half the distance between the cell's faces, and checks no sphere against its own image).
+  /// @param minCorner, maxCorner the box's corners (m)
+  /// @param rMean, rRelFuzz the mean radius (m; < 0 with num > 0: from porosity) and the radii's
+  ///        relative spread
+  /// @param num the number of spheres; < 0: as many as the tries place
+  /// @param periodic fill a periodic cell (images tested for overlaps)
+  /// @param porosity the porosity that sets rMean when rMean < 0
+  /// @param psdSizes, psdCumm a size distribution (diameters in m, cumulative fractions from 0
+  ///        to 1); empty: none
+  /// @param distributeMass psdCumm counts mass, not number
+  /// @param seed the random seed (< 0: random_device)
+  /// @param cell the sheared cell's edges as columns (m); zero: the box
   /// @return the number of spheres created (may be below num when rMean is given)
   /// @throws std::invalid_argument naming the inconsistent parameter, when the largest
   /// sphere asked for does not fit in the cell (its diameter reaches the shortest period), or
