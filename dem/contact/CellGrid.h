@@ -24,6 +24,12 @@ public:
   using Cell = std::array<int, 3>;
 
   /// Bin `spheres` (ids into `b`); `range` is the largest centre distance that can interact.
+  /// @param b the scene's bodies (positions and radii are copied into the grid)
+  /// @param spheres the ids binned; kept by reference nowhere
+  /// @param range the smallest cell width (m); cells grow by 1.5 until there are at most about
+  ///        8 per sphere
+  /// @throws std::runtime_error naming a body whose centre is not finite, or the two extreme
+  ///         bodies when the centres' extent overflows
   void build(const Bodies& b, const std::vector<BodyId>& spheres, double range)
   {
     const auto n = static_cast<std::int64_t>(spheres.size());
@@ -68,6 +74,8 @@ public:
   /// in the 3x3x3 cells around the cell of the s-th sphere given to build(): one run per row of
   /// three cells along x, which lie next to each other in cell order. Runs come in the order
   /// of forEachInBox over the same cells.
+  /// @param s the sphere's index in the list given to build() (not its body id)
+  /// @param f f(first, last) for each run of entries
   template <class F>
   void forEachRunAround(std::size_t s, F&& f) const
   {
@@ -80,13 +88,19 @@ public:
       for (int y = std::max(cy - 1, 0); y <= std::min(cy + 1, dims_[1] - 1); ++y)
         f(start_[static_cast<std::size_t>(flat({x0, y, z}))], start_[static_cast<std::size_t>(flat({x1, y, z})) + 1]);
   }
+  /// @param e a binned entry, from a run of forEachRunAround
+  /// @return the entry's body id
   [[nodiscard]] BodyId entry(std::int64_t e) const { return sorted_[static_cast<std::size_t>(e)]; }
+  /// @param e a binned entry, from a run of forEachRunAround
+  /// @return the entry's centre and radius as they were at build()
   [[nodiscard]] const Packed& packed(std::int64_t e) const { return packed_[static_cast<std::size_t>(e)]; }
 
   /// Cell width.
   [[nodiscard]] double width() const { return h_; }
 
   /// Call f(sphere id) for every sphere binned in cells overlapping the box [a, b].
+  /// @param a, b the box's low and high corners (m); parts outside the grid fall in its edge cells
+  /// @param f f(id), in cell order
   template <class F>
   void forEachInBox(const Vec3& a, const Vec3& b, F&& f) const
   {
@@ -150,6 +164,10 @@ private:
 
 public:
   /// The error for body `id`, whose position (`what`) a step made absurd.
+  /// @param b the scene's bodies (the message gives the body's position and velocity)
+  /// @param id the body
+  /// @param what what is wrong with its position ("has a non-finite position", ...)
+  /// @return the exception, for the caller to throw
   static std::runtime_error lostBody(const Bodies& b, BodyId id, const std::string& what)
   {
     const auto i = static_cast<std::size_t>(id);

@@ -64,6 +64,8 @@ public:
     Vec3 min, max, refPos;
     double sweepLength;
   };
+  /// @param id any body id
+  /// @return its bound (m), or none as said above
   [[nodiscard]] std::optional<Bound> boundOf(const Scene& scene, BodyId id) const;
 
   /// The skin check's verdict before the per-body test: `rebuild` when it is already known
@@ -87,6 +89,7 @@ public:
     Vec3 common = Vec3::Zero(); ///< displacement subtracted for sphere pairs
     bool otherPairs = false;    ///< pairs of two bodies other than spheres exist (blocks, particles)
   };
+  /// @return the verdict for the scene as it is now (changes nothing)
   [[nodiscard]] SkinCheck skinCheck(const Scene& scene) const;
   /// Displacements since the last re-detection, summarised for the skin check; combined over
   /// ranges of bodies with add() (maxima and minima: the same for every thread count).
@@ -100,19 +103,33 @@ public:
     /// A body's position is not finite (written so from Python, or a diverged run): the
     /// re-detection it forces names the body.
     bool nonFinite = false;
+    /// @param d another range's (or process's) summary, merged into this one
     void add(const Displacements& d);
   };
   /// The displacements of the bodies of [first, last) (check.rebuild false).
+  /// @param check skinCheck's verdict for this step
+  /// @param first, last the body ids of one thread's range
+  /// @return the range's summary, to be merged with add()
   [[nodiscard]] Displacements displacementsIn(const Scene& scene, const SkinCheck& check, std::int64_t first,
                                               std::int64_t last) const;
   /// The displacements `all` of every process (maxima and minima over them, in one reduction);
   /// true when some process must re-detect whatever they are (`rebuild`: its bodies changed).
+  /// Every process must call it at the same point of the step.
+  /// @param rebuild this process's check.rebuild
+  /// @param all this process's summary, replaced by the summary over all processes
+  /// @return true if some process's rebuild was true
   static bool acrossProcesses(const Domain& domain, bool rebuild, Displacements& all);
   /// Whether the displacements of all bodies call for a re-detection.
+  /// @param check skinCheck's verdict
+  /// @param all the summary over all bodies (and processes)
+  /// @return true when some pair may have come within reach (or a position is not finite)
   [[nodiscard]] static bool mustRebuild(const SkinCheck& check, const Displacements& all);
   /// The common displacement a check after the one that measured `all` subtracts.
+  /// @param all the summary over all bodies
+  /// @return the middle of the spheres' smallest and largest displacements (m), zero without spheres
   [[nodiscard]] static Vec3 commonOf(const Displacements& all);
   /// Keep commonOf(all) for the next check.
+  /// @param all the summary of the check that did not re-detect
   void noteDisplacements(const Displacements& all) { common_ = commonOf(all); }
   /// Re-detect the candidate pairs now.
   void rebuild(Scene& scene);
@@ -122,6 +139,9 @@ public:
   {
     int avoidSelfInteractionMask = 0;
     bool masks = false; ///< some pair may be refused by the masks (else only clumps refuse pairs)
+    /// @param b the scene's bodies
+    /// @param i, j the pair's body ids
+    /// @return whether the pair may become a contact
     bool operator()(const Bodies& b, std::size_t i, std::size_t j) const
     {
       return b.mayCollide(i, j, avoidSelfInteractionMask);

@@ -51,6 +51,7 @@ inline Vec3 closestPointOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, 
 
 /// World coordinates of a facet's vertices.
 /// @param i the facet body's id
+/// @return the three vertices (m), in the order given to addFacet
 inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 {
   const FacetShape& f = b.facets[static_cast<std::size_t>(b.shapeIndex[i])];
@@ -64,6 +65,9 @@ inline std::array<Vec3, 3> facetVertices(const Bodies& b, std::size_t i)
 /// and -refR2 n (avoidGranularRatcheting, and a wall's noRatch); facet- and box-sphere contacts
 /// the true arms to the contact point, so a boundary turned by a kinematic engine shears its
 /// contacts with its velocity there.
+/// @param normal the current unit normal, from body 1 to body 2
+/// @param shift2, shiftVel body 2's periodic image's offset (m) and velocity (m/s) relative to
+///        body 2; zero outside a periodic cell
 /// @return the relative velocity (m/s), world frame
 inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& normal, const Vec3& shift2, const Vec3& shiftVel)
 {
@@ -81,6 +85,9 @@ inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Vec3& norm
 /// body 2's periodic image is relative to body 2 (a sphere meeting a facet or box across the
 /// boundary of a periodic cell; zero otherwise). The overlap section's area of Potential
 /// Blocks and Particles goes to `x` when given.
+/// @param holds an unbroken bond keeps the contact real when the shapes are apart
+/// @param x the contact's extra state (the overlap's area is written there), or null
+/// @param shift2 body 2's periodic image's offset (m), zero outside a periodic cell
 /// @param normal, penetration, contactPoint, r1, r2 written when the shapes touch (or the bond
 ///        holds)
 /// @return whether the contact is (still) real
@@ -196,12 +203,18 @@ template <bool SpheresOnly = false>
 }
 
 /// contactGeometry for any pair (out of line where the compiler chooses).
+/// @param c the contact, its geometry and shear force updated
+/// @param cell the periodic cell, or null
+/// @param dt the time step (s)
+/// @param x the contact's extra state, or null
+/// @return whether the contact is real after the update
 inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x = nullptr)
 {
   return contactGeometry<false>(c, b, cell, dt, x);
 }
 
 /// The same for a contact whose geometry is up to date (`cell`: the periodic cell, or null).
+/// @return the relative velocity (m/s), world frame
 inline Vec3 incidentVelocity(const Contact& c, const Bodies& b, const Cell* cell)
 {
   if (cell && c.cellDist != Eigen::Vector3i::Zero())

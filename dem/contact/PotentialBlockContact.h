@@ -26,7 +26,9 @@ namespace talus::dem
 /// below it (the chord and the area are exact for the point and normal found).
 /// @param b the scene's bodies
 /// @param i1, i2 the bodies' ids (i1 may be a wall)
+/// @param previous the last step's contact point (world, m), or null
 /// @param out the contact's normal, penetration, point and area when they overlap
+/// @param accuracyTol the analytic centre's Newton decrement at which it stops
 /// @return false if the shapes do not overlap
 bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                            ConvexContactGeometry& out, double accuracyTol = defaultBlockAccuracyTol);
@@ -34,11 +36,15 @@ bool potentialBlockContact(const Bodies& b, std::size_t i1, std::size_t i2, cons
 /// Deepest point x of the half-spaces normals_j . x <= h_j (unit normals), the centre of the
 /// largest ball inside them: maximise s subject to normals_j . x + s <= h_j (CLP), with x
 /// bounded by `bound` in each coordinate to keep the program well posed.
+/// @param normals, h the half-spaces' unit normals and offsets (m)
+/// @param bound the box |x_k| <= bound (m) the point is kept in
 /// @param x set to the deepest point
 /// @return the depth s (the ball's radius; <= 0: the region is empty or flat)
+/// @throws std::logic_error in a build without CLP
 double deepestPoint(const std::vector<Vec3>& normals, const std::vector<double>& h, double bound, Vec3& x);
 
 /// World-frame axis-aligned bounding box of block i, from its turned vertices.
+/// @param i the block's body id
 /// @param lo, hi set to the box's corners
 void potentialBlockAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi);
 } // namespace talus::dem

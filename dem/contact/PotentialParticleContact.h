@@ -32,13 +32,16 @@ constexpr double defaultParticleAccuracyTol = 1e-8;
 /// a contact is reported only once its point is inside both (however loose the tolerance).
 /// @param b the scene's bodies
 /// @param i1, i2 the bodies' ids (i1 may be a wall)
+/// @param previous the last step's contact point (world, m), or null
 /// @param out the contact's normal, penetration, point and area when they overlap
+/// @param accuracyTol the dual iteration's tolerance on |f1 - f2| (dimensionless)
 /// @return false if the shapes do not overlap
 bool potentialParticleContact(const Bodies& b, std::size_t i1, std::size_t i2, const Vec3* previous,
                               ConvexContactGeometry& out, double accuracyTol = defaultParticleAccuracyTol);
 
 /// World-frame axis-aligned bounding box of particle i: its support points along +-x, y, z
 /// (exact for any orientation).
+/// @param i the particle's body id
 /// @param lo, hi set to the box's corners
 void potentialParticleAabb(const Bodies& b, std::size_t i, Vec3& lo, Vec3& hi);
 } // namespace talus::dem
