@@ -47,9 +47,12 @@ public:
   }
   ~Id() { close(); }
 
+  /// @return the identifier (H5I_INVALID_HID once closed or moved from); still owned here
   [[nodiscard]] hid_t get() const { return id_; }
+  /// @return whether it holds an identifier
   [[nodiscard]] bool valid() const { return id_ >= 0; }
-  /// Close now; returns HDF5's status (negative on failure).
+  /// Close now (later calls do nothing).
+  /// @return HDF5's status, negative on failure
   herr_t close()
   {
     herr_t status = 0;
@@ -82,6 +85,7 @@ inline void skipExitHandler()
 class QuietErrors
 {
 public:
+  /// Turn the printing off, remembering HDF5's handler (skipExitHandler too).
   QuietErrors()
   {
     skipExitHandler();
@@ -98,6 +102,7 @@ private:
 };
 
 /// The most specific message of HDF5's current error stack, or "" if it is empty.
+/// @return the message, with its minor code's text; the stack is cleared
 inline std::string hdf5Detail()
 {
   std::string detail;
@@ -121,9 +126,13 @@ inline std::string hdf5Detail()
 class Context
 {
 public:
+  /// @param what how messages name the checkpoint ("checkpoint 'run.h5'")
   explicit Context(std::string what) : what_(std::move(what)) {}
 
   /// Throw CheckpointError with our message and, if any, HDF5's innermost one.
+  /// @param message what failed ("cannot read /bodies/pos")
+  /// @param withHdf5 append HDF5's message (false for our own checks of a readable file)
+  /// @throws CheckpointError always
   [[noreturn]] void fail(const std::string& message, bool withHdf5 = true) const
   {
     std::string text = what_ + ": " + message;
@@ -136,6 +145,10 @@ public:
     throw CheckpointError(text);
   }
   /// Fail unless an HDF5 status or identifier is non-negative.
+  /// @param status the HDF5 call's result
+  /// @param doing the message if it failed
+  /// @return status
+  /// @throws CheckpointError if status < 0
   template <class T>
   T check(T status, const std::string& doing) const
   {
@@ -143,36 +156,59 @@ public:
       fail(doing);
     return status;
   }
+  /// Own an identifier an HDF5 call returned, failing if it is invalid.
+  /// @param id the call's result
+  /// @param closer the H5?close function for its kind
+  /// @param doing the message if it failed
+  /// @return the owned identifier
+  /// @throws CheckpointError if id < 0
   Id checkId(hid_t id, Id::Closer closer, const std::string& doing) const
   {
     if (id < 0)
       fail(doing);
     return Id(id, closer);
   }
+  /// @return how messages name the checkpoint
   [[nodiscard]] const std::string& what() const { return what_; }
 
 private:
   std::string what_;
 };
 
+/// @param s a name
+/// @return s in single quotes, for messages
 inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 // ----------------------------------------------------------------------------------------------
 // Writing.
 
+/// Writes the datasets and attributes of a checkpoint into an open file. Every member throws
+/// CheckpointError naming the path, with HDF5's message, when HDF5 refuses.
 class Writer
 {
 public:
   /// `checksums`: numeric datasets chunked with a Fletcher-32 checksum (files), or contiguous
   /// (in-memory images, which nothing can damage).
+  /// @param file the open file, not owned (it must outlive the writer)
+  /// @param ctx names the checkpoint in errors; must outlive the writer
+  /// @param checksums chunk numeric datasets with a Fletcher-32 checksum
   Writer(hid_t file, const Context& ctx, bool checksums) : file_(file), ctx_(ctx), checksums_(checksums) {}
 
+  /// @param path the new group's absolute path; its parent must exist
+  /// @return the group, open
+  /// @throws CheckpointError if it cannot be created (it exists already, no parent)
   Id group(const std::string& path) const
   {
     return ctx_.checkId(H5Gcreate2(file_, path.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                         "cannot create group " + path);
   }
 
+  /// A scalar attribute of `obj` (the three overloads below: double, int64, string).
+  /// @param obj the group or dataset it is attached to
+  /// @param name its name (must not exist yet)
+  /// @param fileType, memType its type in the file and of `value` in memory
+  /// @param value the value
+  /// @throws CheckpointError if HDF5 refuses
   void attribute(hid_t obj, const char* name, hid_t fileType, hid_t memType, const void* value) const
   {
     const Id space = ctx_.checkId(H5Screate(H5S_SCALAR), H5Sclose, "cannot create a dataspace");
@@ -180,14 +216,20 @@ public:
                                  std::string("cannot create attribute ") + name);
     ctx_.check(H5Awrite(attr.get(), memType, value), std::string("cannot write attribute ") + name);
   }
+  /// @param obj, name, value as above, stored as a little-endian 64-bit float
+  /// @throws CheckpointError if HDF5 refuses
   void attribute(hid_t obj, const char* name, double value) const
   {
     attribute(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value);
   }
+  /// @param obj, name, value as above, stored as a little-endian 64-bit integer
+  /// @throws CheckpointError if HDF5 refuses
   void attribute(hid_t obj, const char* name, std::int64_t value) const
   {
     attribute(obj, name, H5T_STD_I64LE, H5T_NATIVE_INT64, &value);
   }
+  /// @param obj, name, value as above, stored as a fixed-length UTF-8 string (at least 1 byte)
+  /// @throws CheckpointError if HDF5 refuses
   void attribute(hid_t obj, const char* name, const std::string& value) const
   {
     const Id type = stringType(value.size());
@@ -198,6 +240,9 @@ public:
 
   /// A 1-D dataset of fixed-length UTF-8 strings (as long as the longest, NUL-padded), so that
   /// text is checksummed like numbers. One string of any length holds a text record.
+  /// @param path the dataset's absolute path
+  /// @param values the strings (any bytes but NUL)
+  /// @throws CheckpointError if HDF5 refuses
   void strings(const std::string& path, const std::vector<std::string>& values) const
   {
     std::size_t width = 1;
@@ -212,6 +257,11 @@ public:
 
   /// A numeric dataset of shape `dims`, chunked with a Fletcher-32 checksum when not empty
   /// (and checksums are on).
+  /// @param path the dataset's absolute path
+  /// @param fileType, memType the element type in the file and in memory
+  /// @param dims the shape (row-major)
+  /// @param data the elements, as many as the shape's product (may be null if 0)
+  /// @throws CheckpointError if HDF5 refuses
   void array(const std::string& path, hid_t fileType, hid_t memType, std::vector<hsize_t> dims, const void* data) const
   {
     const int rank = static_cast<int>(dims.size());
@@ -235,18 +285,33 @@ public:
     if (total > 0)
       ctx_.check(H5Dwrite(set.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + path);
   }
+  /// array() of little-endian 64-bit floats.
+  /// @param path, dims, data as array()'s
+  /// @throws CheckpointError if HDF5 refuses
   void doubles(const std::string& path, std::vector<hsize_t> dims, const double* data) const
   {
     array(path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, std::move(dims), data);
   }
+  /// A 1-D dataset of n little-endian 32-bit integers.
+  /// @param path the dataset's absolute path
+  /// @param data, n the values
+  /// @throws CheckpointError if HDF5 refuses
   void int32s(const std::string& path, const std::int32_t* data, std::size_t n) const
   {
     array(path, H5T_STD_I32LE, H5T_NATIVE_INT32, {n}, data);
   }
+  /// A 1-D dataset of n bytes (flags, shape kinds).
+  /// @param path the dataset's absolute path
+  /// @param data, n the values
+  /// @throws CheckpointError if HDF5 refuses
   void uint8s(const std::string& path, const std::uint8_t* data, std::size_t n) const
   {
     array(path, H5T_STD_U8LE, H5T_NATIVE_UINT8, {n}, data);
   }
+  /// An (n, 3) dataset of doubles.
+  /// @param path the dataset's absolute path
+  /// @param v the vectors
+  /// @throws CheckpointError if HDF5 refuses
   void vec3s(const std::string& path, const std::vector<Vec3>& v) const
   {
     doubles(path, {v.size(), 3}, v.empty() ? nullptr : v.front().data());
@@ -267,12 +332,21 @@ private:
   bool checksums_;
 };
 
+/// Reads a checkpoint's datasets and attributes from an open file, checking shapes and types.
+/// Every member throws CheckpointError naming the path: missing objects ("not a complete Talus
+/// checkpoint"), wrong shapes or types, and what HDF5 refuses (a checksum that fails: corrupted
+/// data).
 class Reader
 {
 public:
+  /// @param file the open file, not owned (it must outlive the reader)
+  /// @param ctx names the checkpoint in errors; must outlive the reader
   Reader(hid_t file, const Context& ctx) : file_(file), ctx_(ctx) {}
 
   /// True if the object at `path` exists (every parent group checked first).
+  /// @param path an absolute path
+  /// @return whether it exists
+  /// @throws CheckpointError if HDF5 cannot tell
   [[nodiscard]] bool exists(const std::string& path) const
   {
     if (path == "/")
@@ -283,6 +357,9 @@ public:
         return false;
     return ctx_.check(H5Lexists(file_, path.c_str(), H5P_DEFAULT), "cannot read " + path) > 0;
   }
+  /// @param path an absolute path
+  /// @return the object (group or dataset), open
+  /// @throws CheckpointError if it is missing or cannot be opened
   Id open(const std::string& path) const
   {
     if (!exists(path))
@@ -290,10 +367,18 @@ public:
     return ctx_.checkId(H5Oopen(file_, path.c_str(), H5P_DEFAULT), H5Oclose, "cannot open " + path);
   }
 
+  /// @param objPath the object's absolute path
+  /// @param name the attribute's name
+  /// @return whether the object has it
+  /// @throws CheckpointError if the object is missing
   bool hasAttribute(const std::string& objPath, const char* name) const
   {
     return ctx_.check(H5Aexists(open(objPath).get(), name), "cannot read attributes of " + objPath) > 0;
   }
+  /// @param objPath the object's absolute path
+  /// @param name the attribute's name
+  /// @return the attribute, open
+  /// @throws CheckpointError if the object or the attribute is missing
   Id openAttribute(const std::string& objPath, const char* name) const
   {
     const Id obj = open(objPath);
@@ -306,6 +391,12 @@ public:
   }
 
   /// A scalar numeric attribute, of class `cls`, converted to the memory type.
+  /// @param objPath the object's absolute path
+  /// @param name the attribute's name
+  /// @param cls the class it must have (H5T_FLOAT, H5T_INTEGER)
+  /// @param memType the memory type of T
+  /// @return the value
+  /// @throws CheckpointError if it is missing, not a scalar of that class, or unreadable
   template <class T>
   T number(const std::string& objPath, const char* name, H5T_class_t cls, hid_t memType) const
   {
@@ -319,16 +410,26 @@ public:
     ctx_.check(H5Aread(attr.get(), memType, &value), "cannot read " + what);
     return value;
   }
+  /// @param objPath, name as number()'s
+  /// @return a float attribute's value
+  /// @throws CheckpointError as number()
   double real(const std::string& objPath, const char* name) const
   {
     return number<double>(objPath, name, H5T_FLOAT, H5T_NATIVE_DOUBLE);
   }
+  /// @param objPath, name as number()'s
+  /// @return an integer attribute's value
+  /// @throws CheckpointError as number()
   std::int64_t integer(const std::string& objPath, const char* name) const
   {
     return number<std::int64_t>(objPath, name, H5T_INTEGER, H5T_NATIVE_INT64);
   }
 
   /// A string attribute (fixed or variable length).
+  /// @param objPath the object's absolute path
+  /// @param name the attribute's name
+  /// @return the string, up to its first NUL
+  /// @throws CheckpointError if it is missing or not a single string
   std::string stringAttribute(const std::string& objPath, const char* name) const
   {
     const std::string what = "attribute " + std::string(name) + " of " + objPath;
@@ -354,6 +455,9 @@ public:
   }
 
   /// Strings of a 1-D dataset of fixed-length strings (as Writer::strings writes them).
+  /// @param path the dataset's absolute path
+  /// @return the strings, NUL padding removed
+  /// @throws CheckpointError if it is missing, not such a dataset, or corrupted
   std::vector<std::string> strings(const std::string& path) const
   {
     const std::vector<hsize_t> d = dims(path);
@@ -373,6 +477,9 @@ public:
   }
 
   /// Shape of a dataset.
+  /// @param path the dataset's absolute path
+  /// @return its dimensions (row-major)
+  /// @throws CheckpointError if it is missing
   std::vector<hsize_t> dims(const std::string& path) const
   {
     const Id set = open(path);
@@ -384,6 +491,12 @@ public:
   }
 
   /// A numeric dataset that must have shape `expect` and type class `cls`, read into `out`.
+  /// @param path the dataset's absolute path
+  /// @param cls the class it must have (H5T_FLOAT, H5T_INTEGER)
+  /// @param memType the memory type of `out`'s elements
+  /// @param expect the shape it must have
+  /// @param out room for the product of `expect` elements
+  /// @throws CheckpointError for another shape or class, or corrupted data
   void array(const std::string& path, H5T_class_t cls, hid_t memType, const std::vector<hsize_t>& expect, void* out) const
   {
     const std::vector<hsize_t> found = dims(path);
@@ -400,26 +513,44 @@ public:
       ctx_.check(H5Dread(set.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, out),
                  "cannot read " + path + " (corrupted data)");
   }
+  /// array() of doubles.
+  /// @param path, expect, out as array()'s
+  /// @throws CheckpointError as array()
   void doubles(const std::string& path, const std::vector<hsize_t>& expect, double* out) const
   {
     array(path, H5T_FLOAT, H5T_NATIVE_DOUBLE, expect, out);
   }
   template <class T>
+  /// A 1-D dataset of 32-bit integers of out.size() elements.
+  /// @param path the dataset's absolute path
+  /// @param out sized by the caller (the expected length), filled
+  /// @throws CheckpointError as array()
   void int32s(const std::string& path, std::vector<T>& out) const
   {
     static_assert(sizeof(T) == 4);
     array(path, H5T_INTEGER, H5T_NATIVE_INT32, {out.size()}, out.data());
   }
   template <class T>
+  /// A 1-D dataset of bytes of out.size() elements.
+  /// @param path the dataset's absolute path
+  /// @param out sized by the caller (the expected length), filled
+  /// @throws CheckpointError as array()
   void uint8s(const std::string& path, std::vector<T>& out) const
   {
     static_assert(sizeof(T) == 1);
     array(path, H5T_INTEGER, H5T_NATIVE_UINT8, {out.size()}, out.data());
   }
+  /// An (out.size(), 3) dataset of doubles.
+  /// @param path the dataset's absolute path
+  /// @param out sized by the caller (the expected count), filled
+  /// @throws CheckpointError as array()
   void vec3s(const std::string& path, std::vector<Vec3>& out) const
   {
     doubles(path, {out.size(), 3}, out.empty() ? nullptr : out.front().data());
   }
+  /// @param path a (3, 3) dataset of doubles, row-major
+  /// @return the matrix
+  /// @throws CheckpointError as array()
   Mat3 matrix(const std::string& path) const
   {
     std::array<double, 9> a{};
@@ -432,6 +563,9 @@ public:
   }
 
   /// Names of the members of a group.
+  /// @param path the group's absolute path
+  /// @return the names, in name order
+  /// @throws CheckpointError if the group is missing or cannot be listed
   std::vector<std::string> members(const std::string& path) const
   {
     const Id group = ctx_.checkId(H5Gopen2(file_, path.c_str(), H5P_DEFAULT), H5Gclose, "cannot open " + path);
