@@ -42,7 +42,6 @@ public:
 
   /// Per body id: positions (m), velocities (m/s), angular velocities (rad/s), radii (m, 0 for
   /// shapes other than spheres) and masses (kg); valid until bodies are added.
-
   [[nodiscard]] std::span<const Vec3> positions() const { return scene_.bodies.pos; }
   [[nodiscard]] std::span<const Vec3> velocities() const { return scene_.bodies.vel; }
   [[nodiscard]] std::span<const Vec3> angularVelocities() const { return scene_.bodies.angVel; }
@@ -50,6 +49,7 @@ public:
   [[nodiscard]] std::span<const double> masses() const { return scene_.bodies.mass; }
   /// True for ids that are live spheres (the particles couplings act on).
   /// @param id any id (out of range: false)
+  /// @return whether it is a live sphere
   [[nodiscard]] bool isSphere(BodyId id) const
   {
     const auto i = static_cast<std::size_t>(id);
@@ -63,6 +63,7 @@ public:
   /// Add `change[i]` to the radius of each live sphere i (one value per body id, the others
   /// ignored) at fixed positions and masses (thermal expansion: Yade keeps the mass). The next
   /// contact pass sees the new overlaps; contacts are re-detected with the new sizes.
+  /// @param change one radius change (m) per body id
   /// @throws std::invalid_argument for a size mismatch or a radius that would not stay positive
   void growSpheres(std::span<const double> change)
   {
@@ -89,6 +90,7 @@ public:
 
   /// Per body id, writable: the persistent force and torque (N, N m; kept until changed) and
   /// this step's accumulators (reset by the ForceResetter from the persistent ones).
+  /// @return spans over the core's storage, one entry per body id, valid until bodies are added
   [[nodiscard]] std::span<Vec3> persistentForces() { return scene_.bodies.extForce; }
   [[nodiscard]] std::span<Vec3> persistentTorques() { return scene_.bodies.extTorque; }
   [[nodiscard]] std::span<Vec3> stepForces() { return scene_.bodies.force; }

@@ -99,7 +99,9 @@ public:
   /// @return porosity, void ratio, coordination, fabric and mean rotation of the current state
   [[nodiscard]] RVEState state() const;
 
+  /// The RVE's own scene, read only (the RVE owns it; its state is the trial or committed one).
   [[nodiscard]] const Scene& scene() const { return scene_; }
+  /// The name given at creation, used in error messages.
   [[nodiscard]] const std::string& name() const { return name_; }
 
 private:
