@@ -67,6 +67,7 @@ public:
   FoamLink(const FoamLink&) = delete;
   FoamLink& operator=(const FoamLink&) = delete;
 
+  /// The fluid's time step (s), as its case sets it (read at the handshake).
   [[nodiscard]] double fluidDt() const { return fluidDt_; }
   /// The particle Reynolds number up to which the solver's drag law (its dragModel) holds.
   [[nodiscard]] double dragReynoldsLimit() const { return dragReynoldsLimit_; }
