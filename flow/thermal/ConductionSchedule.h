@@ -21,6 +21,9 @@ public:
   double tsSafetyFactor = 0.8;
 
   /// One DEM step of `dt` seconds.
+  /// @param model the heat model advanced (computeRates, then applyRates over the span or its
+  ///        sub-steps when a conduction run is due)
+  /// @param dt the DEM step (s)
   /// @throws std::domain_error if tsSafetyFactor <= 0 and dt exceeds the stable step
   void step(HeatModel& model, double dt);
 
@@ -40,7 +43,10 @@ public:
     int sinceRun = 0, period = 1;
     double timeSinceRun = 0, thermalDT = 0, maxTimeStep = 0;
   };
+  /// The schedule's state, to be stored with a checkpoint.
   [[nodiscard]] Counters counters() const;
+  /// Restore the state counters() gave (a checkpoint loaded): the next run comes when it would have.
+  /// @param c the stored counters
   void setCounters(const Counters& c);
 
 private:

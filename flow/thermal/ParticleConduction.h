@@ -40,6 +40,7 @@ enum class ContactConductance : std::uint8_t
 class ParticleConduction : public HeatModel
 {
 public:
+  /// @param exchange the scene's particle exchange (copied; the scene must outlive this model)
   explicit ParticleConduction(dem::ParticleExchange exchange) : exchange_(exchange) {}
 
   /// Values new spheres start with (Yade's particleT0, particleK, particleCp).
@@ -56,6 +57,9 @@ public:
   /// Give every body an entry (new ones get the defaults above).
   void resize();
   /// Hold `ids` at `value` as particles of boundary `k` (0..5).
+  /// @param k the boundary, 0..5 (Yade's wall order: xmin, xmax, ymin, ymax, zmin, zmax)
+  /// @param ids the spheres held
+  /// @param value their temperature (the user's unit)
   /// @throws std::invalid_argument for a boundary outside 0..5 or an id that is not a live sphere
   void imposeTemperature(int k, const std::vector<dem::BodyId>& ids, double value);
   /// Release every particle held by a boundary.
@@ -67,13 +71,20 @@ public:
   /// Add an exchange with something else than a sphere (the pore fluid) to sphere `id`'s rate
   /// of the last computeRates: `rate` W into it through conductance `g` (W/K). Call
   /// computeStableStep after the last one.
+  /// @param id a live sphere
+  /// @param rate the heat rate into it (W)
+  /// @param g the conductance of the exchange (W/K), added to its sum for the stable step
   void addExchange(dem::BodyId id, double rate, double g);
   /// stableTimeStep and limitingBody from the conductance sums (computeRates calls it).
+  /// @throws std::invalid_argument naming a conducting sphere without heat capacity (no mass
+  ///         and no particleDensity, or particleCp 0)
   void computeStableStep();
   /// Advance the temperatures by `dt` (s) with the rates of the last computeRates (explicit
   /// Euler); the heat rate into each boundary during it is kept (boundaryFlux).
   void applyRates(double dt) override;
   /// computeRates then applyRates(dt).
+  /// @param dt the step (s)
+  /// @throws std::invalid_argument as computeStableStep
   void advance(double dt)
   {
     computeRates();
@@ -92,11 +103,15 @@ public:
   [[nodiscard]] const std::array<double, kBoundaries>& boundaryFlux() const { return boundaryFlux_; }
   /// Heat (J) received by each boundary since the start (Talus: the energy balance).
   [[nodiscard]] const std::array<double, kBoundaries>& boundaryHeat() const { return boundaryHeat_; }
+  /// @return the same sums, writable (Python's setBoundaryHeat sets them back)
   std::array<double, kBoundaries>& boundaryHeat() { return boundaryHeat_; }
 
   /// Heat capacity C_i (J/K) of sphere `id`.
+  /// @param id a body id with an entry (after resize())
+  /// @return m_i Cp_i, or rho V_i Cp_i with particleDensity > 0
   [[nodiscard]] double heatCapacityOf(dem::BodyId id) const;
   /// Conductance (W/K) of a real sphere-sphere contact (see ContactConductance).
+  /// @return the conductance (W/K), from the two spheres' conductivities and the contact's size
   [[nodiscard]] double contactConductance(const dem::Contact& c) const;
 
 private:

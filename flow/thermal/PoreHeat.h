@@ -54,6 +54,9 @@ struct FluidHeatParameters
 class PoreHeat : public HeatModel
 {
 public:
+  /// @param particles the spheres' conduction, whose rates the fluid exchange adds to; it must
+  ///        outlive this model
+  /// @param flow the pore flow whose network and pressures carry the heat (shared ownership)
   PoreHeat(ParticleConduction& particles, std::shared_ptr<const pore::PoreFlow> flow)
       : particles_(particles), flow_(std::move(flow))
   {
@@ -65,6 +68,10 @@ public:
 
   /// Hold the pores of boundary k (0..5) at `value` (FlowEngine.bndCondIsTemperature); the held
   /// pores are found again after each remesh.
+  /// @param k the boundary, 0..5 (xmin, xmax, ymin, ymax, zmin, zmax)
+  /// @param held hold it (false: its pores follow the heat balance again)
+  /// @param value its temperature (the user's unit)
+  /// @throws std::invalid_argument for k outside 0..5
   void setBoundary(int k, bool held, double value);
 
   void computeRates() override;
@@ -74,10 +81,18 @@ public:
 
   /// Per pore of the current network (after `sync`).
   [[nodiscard]] const std::vector<double>& temperatures() const { return temperature_; }
+  /// Set one pore's temperature (after a sync with the flow's current network).
+  /// @param pore the pore's index in the current network
+  /// @param value the temperature (the user's unit)
+  /// @throws std::out_of_range for an index outside the network; as sync()
   void setTemperature(int pore, double value);
   /// Temperature of the pore containing x (Yade's getPoreTemperature); NaN outside the network.
+  /// @param x a point (m)
+  /// @return the temperature, or NaN
+  /// @throws std::invalid_argument as sync()
   [[nodiscard]] double temperatureAt(const pore::Vec3& x);
   /// Follow the flow's network (the pore list after a remesh) and re-apply the boundaries.
+  /// @throws std::invalid_argument if the flow has no network yet, or a periodic one
   void sync();
   /// With params.poreReynolds, Nusselt number times fluidK of each pore (Yade's
   /// setReynoldsNumbers): Re = fluidRho |v| L / viscosity, v the pore's Darcy velocity, L the

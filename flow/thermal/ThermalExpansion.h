@@ -41,6 +41,9 @@ struct ExpansionParameters
 class ThermalExpansion
 {
 public:
+  /// @param particles the spheres' temperatures; it must outlive this object
+  /// @param exchange the scene's particle exchange, through which radii grow (copied; the scene
+  ///        must outlive this object)
   ThermalExpansion(ParticleConduction& particles, dem::ParticleExchange exchange)
       : particles_(particles), exchange_(exchange)
   {
@@ -57,10 +60,14 @@ public:
   /// Give every body an entry (new ones get defaultAlpha and their current temperature).
   void resize();
   /// Take the current temperatures (spheres, and pores of `fluid` if given) as the reference.
+  /// @param fluid the pore temperatures, or null (spheres only)
   void mark(const PoreHeat* fluid);
   /// Expand by the change since the mark over a thermal run of `span` s (> 0), then mark again.
   /// `flow`: the pore flow receiving the volume rates (null: spheres only); `fluid`: its pore
   /// temperatures (null: no fluid expansion).
+  /// @param span the thermal run's duration (s), > 0: the volume rates are changes over it
+  /// @param fluid the pore temperatures, or null
+  /// @param flow the pore flow given the rates (setExtraVolumeRates), or null
   /// @throws std::invalid_argument if a sphere would reach a non-positive radius
   void apply(double span, const PoreHeat* fluid, pore::PoreFlow* flow);
 
