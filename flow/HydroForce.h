@@ -75,11 +75,16 @@ struct SolidProfile
 class HydroForce
 {
 public:
+  /// @param parameters the model's parameters (copied); the profiles start as zeros (nCell + 1
+  ///        velocities, nCell fractions and stresses)
   /// @throws std::invalid_argument naming the offending parameter
   explicit HydroForce(const HydroForceParameters& parameters);
 
+  /// The current parameters.
   [[nodiscard]] const HydroForceParameters& parameters() const noexcept { return m_parameters; }
-  /// Changing nCell resets the profiles to zeros. @throws std::invalid_argument
+  /// Replace the parameters. Changing nCell resets the profiles to zeros.
+  /// @param parameters the new parameters (copied)
+  /// @throws std::invalid_argument naming the offending parameter; nothing is changed then
   void setParameters(const HydroForceParameters& parameters);
 
   /// Fluid velocity at the nCell + 1 velocity nodes (VansFluid's layout).
@@ -94,6 +99,7 @@ public:
   /// @param stresses nCell values [Pa]
   /// @throws std::invalid_argument on another count or a value not finite
   void setReynoldStresses(std::span<const double> stresses);
+  /// The profiles last set (views into this object, valid until the next set or nCell change).
   [[nodiscard]] std::span<const double> vxFluid() const noexcept { return m_vxFluid; }
   [[nodiscard]] std::span<const double> phiPart() const noexcept { return m_phiPart; }
   [[nodiscard]] std::span<const double> reynoldStresses() const noexcept { return m_reynoldStresses; }
@@ -111,6 +117,8 @@ public:
               double dt);
 
   /// The fluid force action() would add to particle `id`.
+  /// @param particles the scene's particle arrays, by body id
+  /// @param id the body
   /// @return the force [N], zero outside the grid
   /// @throws std::invalid_argument if id is not a body of the arrays or has no positive radius
   [[nodiscard]] std::array<double, 3> force(const ParticleArrays& particles, std::int64_t id) const;
@@ -126,13 +134,16 @@ public:
 
   /// Draw a new fluctuation for every particle of `ids` now (Yade's turbulentFluctuation), and
   /// restart its eddy life. Deterministic for a given seed and call sequence.
+  /// @param particles the scene's particle arrays, by body id
+  /// @param ids the bodies given a new fluctuation
   /// @throws std::invalid_argument if an id is not a body of the arrays or has no positive radius
   void turbulentFluctuation(const ParticleArrays& particles, std::span<const std::int64_t> ids);
   /// Current fluctuation (u'_x, u'_y, u'_z) of each body, 3 values per body (zero if none).
   [[nodiscard]] std::span<const double> fluctuations() const noexcept { return m_fluct; }
   /// Remaining eddy life of each body's fluctuation [s].
   [[nodiscard]] std::span<const double> fluctuationLife() const noexcept { return m_life; }
-  /// Restart the random number generator.
+  /// Restart the random number generator (std::mt19937_64, seeded 0 at construction).
+  /// @param value the seed
   void seed(std::uint64_t value) { m_random.seed(value); }
 
   /// Volume of the part of a sphere of radius r between heights a and b from its centre.

@@ -35,12 +35,14 @@ namespace talus::flow
 class VansFluid
 {
 public:
+  /// @param parameters the model's parameters (copied); profiles start as zeros
   /// @throws std::invalid_argument naming the offending parameter (see VansParameters::validate)
   explicit VansFluid(const VansParameters& parameters);
 
   /// The current parameters.
   [[nodiscard]] const VansParameters& parameters() const noexcept { return m_parameters; }
   /// Replace the parameters. Changing nCell resets every profile to zeros of the new size.
+  /// @param parameters the new parameters (copied)
   /// @throws std::invalid_argument naming the offending parameter; nothing is changed then
   void setParameters(const VansParameters& parameters);
 
@@ -66,6 +68,7 @@ public:
   /// @throws std::invalid_argument on another count or a value not finite
   void setVxFluid(std::span<const double> vxFluid);
 
+  /// The solid profiles last set (views into this object, valid until the next set or nCell change).
   [[nodiscard]] std::span<const double> phiPart() const noexcept { return m_phiPart; }
   [[nodiscard]] std::span<const double> vxPart() const noexcept { return m_vxPart; }
   [[nodiscard]] std::span<const double> averageDrag() const noexcept { return m_averageDrag; }
