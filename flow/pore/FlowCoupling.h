@@ -15,9 +15,13 @@
 
 namespace talus::flow::pore
 {
+/// The pore flow's side of a coupled DEM step (Yade's FlowEngine as an engine): see step().
 class FlowCoupling
 {
 public:
+  /// @param exchange the scene's particle exchange (copied; the scene must outlive the coupling)
+  /// @param flow the flow model, shared: Python keeps it to impose conditions and read results
+  /// @throws std::invalid_argument if flow is null
   FlowCoupling(dem::ParticleExchange exchange, std::shared_ptr<PoreFlow> flow);
 
   /// Body receiving the force on boundary k (Yade's wallIds); -1: none. Must not be a sphere.
@@ -58,16 +62,22 @@ public:
   /// Rebuild at the next step (after moving walls or changing boundary types).
   void requestRebuild() { sinceBuild_ = -1; }
 
+  /// The flow model: the same object throughout (a rebuild replaces its network in place).
   [[nodiscard]] const PoreFlow& flow() const { return *flow_; }
   /// The fluid forces of the last step, by body id (zero for bodies the flow does not see).
   [[nodiscard]] const std::vector<Vec3>& forces() const { return forces_; }
   /// The fluid torques of the last step (viscous shear or shear lubrication; zero without).
   [[nodiscard]] const std::vector<Vec3>& torques() const { return torques_; }
+  /// Meshes built so far, the first included.
   [[nodiscard]] int rebuilds() const { return rebuilds_; }
   /// Rebuilds triggered by defTolerance or inverted pores (a subset of rebuilds()).
   [[nodiscard]] int strainRebuilds() const { return strainRebuilds_; }
 
   /// Insert the coupling in the scene's step (before the contact forces), every step.
+  /// @param coupling the coupling; the hook holds a reference, so it lives as long as the hook
+  ///        stays in the engine list
+  /// @return the hook engine (set `dead` to stop the coupling)
+  /// @throws std::logic_error if the engine list has no ForceResetter
   static std::shared_ptr<dem::CallbackEngine> attach(const std::shared_ptr<FlowCoupling>& coupling);
 
   /// A background rebuild is running or waiting to be adopted.

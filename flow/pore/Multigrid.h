@@ -21,11 +21,16 @@ struct SparseRows
   std::vector<double> value;
 };
 
+/// Algebraic multigrid for the pressure system of a large network (useSolver=4): a hierarchy
+/// of coarser matrices built once per matrix, used as the preconditioner of conjugate gradients.
 class Multigrid
 {
 public:
   /// Build the hierarchy of `a` (symmetric positive definite, in compressed rows with both
   /// triangles).
+  /// @param a the matrix, taken over
+  /// @throws std::runtime_error if a row has no positive diagonal or the coarsest matrix is not
+  ///         positive definite (a group of pores connected to no imposed pressure)
   explicit Multigrid(SparseRows a);
   ~Multigrid();
   Multigrid(const Multigrid&) = delete;
@@ -33,10 +38,15 @@ public:
 
   /// Solve A x = b by preconditioned conjugate gradients from the initial guess in x, until
   /// ||b - A x|| <= tolerance ||b||.
+  /// @param b the right-hand side, n values
+  /// @param x the initial guess on entry, the solution on return (n values)
+  /// @param tolerance the relative residual to reach
+  /// @param maxIterations the conjugate gradient iterations allowed
   /// @returns the iterations taken
   /// @throws std::runtime_error when it does not converge in maxIterations
   int solve(const std::vector<double>& b, std::vector<double>& x, double tolerance, int maxIterations) const;
 
+  /// The number of levels, the finest (the matrix given) and the coarsest (factorised) included.
   [[nodiscard]] std::size_t levels() const { return levels_.size(); }
   /// Sum of the nonzeros of all levels' matrices over the finest one's.
   [[nodiscard]] double operatorComplexity() const;

@@ -42,5 +42,6 @@ void updatePoreVolumes(PoreNetwork& net, bool voids);
 /// @param net the network, its throats' conductances written
 /// @param params Yade's FlowEngine options that enter them
 /// @return the reference value the clamping used (Yade's "globalK")
+/// @throws std::invalid_argument if the viscosity is not positive or permeabilityFactor is 0
 double computeConductances(PoreNetwork& net, const ConductanceParameters& params);
 } // namespace talus::flow::pore

@@ -114,13 +114,18 @@ struct PoreNetwork
   std::size_t nSpheres = 0;          ///< real spheres (vertices kBoundaries .. kBoundaries + nSpheres)
   std::vector<Vec3i> wrap;           ///< periodic: cells each sphere was moved by to enter the cell
 
+  /// The real spheres' count (images of a periodic network left out).
   [[nodiscard]] std::size_t sphereCount() const { return nSpheres; }
   /// Periodic networks: axis a (0..2) is periodic when it has no boundary on either side.
+  /// @param a the axis, 0..2
+  /// @return whether it is periodic (always false for a non-periodic network)
   [[nodiscard]] bool periodicAxis(int a) const
   {
     return periodic && !hasBoundary[static_cast<std::size_t>(2 * a)] && !hasBoundary[static_cast<std::size_t>(2 * a + 1)];
   }
   /// The shift of `period` cells (zero vector for non-periodic networks).
+  /// @param period whole cells along each axis
+  /// @return the displacement (m)
   [[nodiscard]] Vec3 shift(const Vec3i& period) const { return cellSize.cwiseProduct(period.cast<double>()); }
 };
 
@@ -143,10 +148,16 @@ enum class InsertionOrder
 };
 
 /// The box of a packing: Yade's boundaryUseMaxMin, the extremes of x-r .. x+r over the spheres.
+/// @param spheres the packing's spheres
+/// @return the six boundaries at the box's faces
 std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSphere>& spheres);
 
 /// Triangulate `spheres` inside `boundaries` (the pores, their neighbours and centres; no
 /// hydraulic geometry yet, see computeGeometry).
+/// @param spheres the spheres (positions and radii in m, with their body ids)
+/// @param boundaries the six boundaries (walls or the packing's box)
+/// @param order how the spheres enter CGAL (see InsertionOrder)
+/// @return the network: vertices, pores, throats, the pores along each boundary
 /// @throws std::invalid_argument fewer than 4 spheres, a non-finite position or radius, a
 ///         non-positive radius or a sphere centre outside the boundaries (naming the body id)
 PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
@@ -156,6 +167,12 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
 /// the periodic axes) in the orthorhombic cell [0, cellSize); images of the spheres closer than
 /// radius + duplicateThreshold to a cell face are added so that the pores of the cell are complete;
 /// boundary k is used only if `hasBoundary[k]` (its axis then is neither wrapped nor duplicated).
+/// @param spheres, boundaries, order as triangulate's
+/// @param hasBoundary which of the six boundaries exist
+/// @param cellSize the cell's edges (m), each > 0
+/// @param duplicateThreshold the distance (m) beyond its radius within which a sphere is imaged
+///        across a cell face
+/// @return the network, one pore per periodic pore
 /// @throws std::invalid_argument on bad input (as triangulate, plus a non-positive cell size)
 /// @throws std::runtime_error if a pore of the cell has a neighbour with no periodic counterpart
 ///         (duplicateThreshold too small for the packing)
@@ -168,9 +185,17 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
 /// `near` (if given): where the search starts, a cell from an earlier call or cellAtVertex (-1:
 /// anywhere), and on return the cell x is in. From a cell near x the search walks a few cells
 /// instead of across the triangulation.
+/// @param net a triangulated network
+/// @param x the point (m)
+/// @param period receives the cells between x and the pore's frame, or null
+/// @param near the search's start and, on return, x's cell; or null
+/// @return the pore's index, or -1
 int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period = nullptr, int* near = nullptr);
 
 /// A cell of the triangulation around vertex `vertex` (index into net.vertices), for locatePore's
 /// `near`; -1 if there is none.
+/// @param net a triangulated network
+/// @param vertex an index into net.vertices
+/// @return a cell index for locatePore's `near`, or -1
 int cellAtVertex(const PoreNetwork& net, int vertex);
 } // namespace talus::flow::pore
