@@ -26,9 +26,12 @@ enum class SolverKind
   Multigrid = 4,
 };
 
+/// The pressure system of a pore network, sum_j k_ij (p_j - p_i) = q_i over the pores of
+/// unknown pressure, and its solution by one of SolverKind.
 class PressureSolver
 {
 public:
+  /// An empty solver: setSystem gives it its matrix.
   PressureSolver();
   ~PressureSolver();
   PressureSolver(const PressureSolver&) = delete;
@@ -40,13 +43,21 @@ public:
   /// `diagonal[i]` (may be empty) is added to pore i's diagonal (the storage term of a
   /// compressible fluid). Drops the numeric factor; the symbolic analysis (fill-reducing ordering
   /// and supernodes, CHOLMOD's dominant cost) is kept when the sparsity pattern is unchanged.
-  /// @throws std::invalid_argument when no pressure is imposed anywhere
+  /// @param net the network, its throats' conductances computed (m^3/(Pa s))
+  /// @param imposed one flag per pore: its pressure is known
+  /// @param diagonal empty, or one storage term per pore (m^3/Pa per step)
+  /// @throws std::invalid_argument when no pressure is imposed anywhere, or `imposed` or
+  ///         `diagonal` do not have one entry per pore
   void setSystem(const PoreNetwork& net, const std::vector<char>& imposed, const std::vector<double>& diagonal = {});
 
   /// Solve for the unknown pressures; `p` holds the imposed values on entry (and the initial
   /// guess for Gauss-Seidel), the full field on exit. `source[i]` is q_i (may be empty).
-  /// @throws std::runtime_error on a singular system (a group of pores with no imposed pressure)
-  ///         or when Gauss-Seidel does not converge
+  /// @param kind the method (Gauss-Seidel, CHOLMOD or multigrid)
+  /// @param p one pressure per pore (Pa): imposed values in, the field out
+  /// @param source empty, or one volume rate per pore (m^3/s)
+  /// @throws std::runtime_error on a singular system (a group of pores with no imposed pressure),
+  ///         a CHOLMOD failure, or when Gauss-Seidel diverges or does not converge
+  /// @throws std::invalid_argument if `p` has not one entry per pore
   void solve(SolverKind kind, std::vector<double>& p, const std::vector<double>& source = {});
 
   /// CHOLMOD's factor is simplicial below this many unknowns, supernodal from it (the default
@@ -62,6 +73,8 @@ public:
 
   /// Factorise now (CHOLMOD) or build the multigrid hierarchy instead of at the next solve;
   /// nothing for Gauss-Seidel.
+  /// @param kind the method the next solves use
+  /// @throws std::runtime_error for a singular system or a CHOLMOD failure
   void prepare(SolverKind kind);
   [[nodiscard]] bool factorized() const;
   /// How many symbolic analyses and numeric factorisations CHOLMOD has done, and their times.
@@ -75,8 +88,10 @@ public:
     int multigridIterations = 0; ///< conjugate-gradient iterations over all multigrid solves
     double multigridSeconds = 0; ///< set-ups and solves
   };
+  /// The work done so far (this solver's and what addCounters added).
   [[nodiscard]] const Counters& counters() const { return counters_; }
   /// Add the work of an earlier solver to the counters (a model that replaced its network).
+  /// @param earlier the replaced solver's counters
   void addCounters(const Counters& earlier);
   [[nodiscard]] int lastIterations() const { return iterations_; }
   [[nodiscard]] std::size_t unknowns() const { return rowOfPore_.empty() ? 0 : static_cast<std::size_t>(nUnknown_); }

@@ -28,6 +28,7 @@ struct ViscousParameters
   /// normal lubrication: contact stiffness per unit radius in series with the fluid (<= 0: none)
   double stiffness = 10000;
 
+  /// Some viscous force between spheres is asked for (else nothing is computed).
   [[nodiscard]] bool any() const { return viscousShear || shearLubrication || normalLubrication; }
 };
 
@@ -39,23 +40,32 @@ struct SpherePair
   double normalForce = 0;    ///< last normal lubrication force: the spring's state
 };
 
+/// The viscous forces between neighbouring spheres (Yade's viscousShear, shearLubrication,
+/// normalLubrication of FlowEngine), over the sphere pairs of the pore network.
 class SphereLubrication
 {
 public:
   /// Find the sphere pairs of `net` and their face areas. The normal lubrication force of a pair
   /// of the previous network (same two body ids) is carried over: the spring keeps its load
   /// across a remesh, as in Yade.
+  /// @param net the new network (its sphere pairs and their face areas are copied)
   /// @throws std::invalid_argument for a periodic network (not supported)
   void setNetwork(const PoreNetwork& net);
 
   /// The forces for the spheres' velocities and angular velocities (index as the network's
   /// spheres) at their current positions (the network's vertices); dt is the step over which the
   /// normal lubrication spring relaxes.
+  /// @param net the network given to setNetwork, its vertices at the current positions
+  /// @param params which forces, roughness and spring stiffness
+  /// @param viscosity the fluid's dynamic viscosity (Pa s)
+  /// @param velocities, angularVelocities one per network sphere (m/s, rad/s)
+  /// @param dt the time step (s)
   /// @throws std::invalid_argument on a size mismatch, non-finite velocities, or a normal
   ///         lubrication spring with dt <= 0
   void compute(const PoreNetwork& net, const ViscousParameters& params, double viscosity,
                const std::vector<Vec3>& velocities, const std::vector<Vec3>& angularVelocities, double dt);
 
+  /// The sphere pairs of the current network, with their lubrication springs' state.
   [[nodiscard]] const std::vector<SpherePair>& pairs() const { return pairs_; }
   /// Per sphere of the network, from the last compute (Yade's shearLubForce, shearLubTorque,
   /// normalLubForce): tangential force (viscous shear or lubrication), its torque, normal force.
