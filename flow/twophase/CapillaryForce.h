@@ -12,6 +12,8 @@
 namespace talus::flow::twophase
 {
 /// The share of each facet vertex in its solid line, per throat (zero for a facet of three walls).
+/// @param net the network, its geometry computed
+/// @return per throat (index as PoreNetwork::throats), the three vertices' shares, summing to 1
 std::vector<std::array<double, 3>> solidLineShares(const pore::PoreNetwork& net);
 
 } // namespace talus::flow::twophase

@@ -24,26 +24,39 @@ enum class EntryPressureMethod
   EquivalentArea = 3,
 };
 
-/// The method of Yade's number. @throws std::invalid_argument naming entryPressureMethod otherwise
+/// The method of Yade's number.
+/// @param number 1, 2 or 3 (Yade's entryPressureMethod)
+/// @return the method
+/// @throws std::invalid_argument naming entryPressureMethod for another number
 EntryPressureMethod entryPressureMethod(int number);
 
 /// Radius of the circle tangent to the three circles the spheres cut in the plane of their
 /// centres (Yade's computeEffectiveRadiusByPosRadius; NaN when there is none).
+/// @param a, ra, b, rb, c, rc the spheres' centres and radii (m)
+/// @return the radius (m), or NaN
 double inscribedRadius(const Vec3& a, double ra, const Vec3& b, double rb, const Vec3& c, double rc);
 
 /// The MS-P entry radius of the throat between three spheres: the root of the force balance
 /// between the smallest gap and the inscribed radius, by bisection to 1e-6 of the inscribed
 /// radius (Yade's computeMSPRcByPosRadius).
+/// @param a, ra, b, rb, c, rc the spheres' centres and radii (m)
+/// @return the entry radius (m)
 double mspRadius(const Vec3& a, double ra, const Vec3& b, double rb, const Vec3& c, double rc);
 
 /// The entry radius of every throat (index as PoreNetwork::throats). MSP on a throat with a
 /// boundary vertex takes the inscribed radius. `invadeBoundary` false (Yade's isInvadeBoundary,
 /// MS-P only, as Yade): throats between two boundary pores get -1, closed to invasion.
+/// @param net the network, its geometry computed
+/// @param method how each radius is computed
+/// @param invadeBoundary whether throats between two boundary pores may be invaded
+/// @return one radius per throat (m; -1: closed)
 std::vector<double> throatEntryRadii(const pore::PoreNetwork& net, EntryPressureMethod method, bool invadeBoundary);
 
 /// Radius of the sphere inscribed between the four spheres of each pore (Yade's
 /// computePoreBodyRadius, Mackay et al. 1972): the largest multiple of min(r)/50 (from twice
 /// that) at which the sign of the tangency determinant has not changed yet, the walls entering
 /// as their fictitious spheres.
+/// @param net the network
+/// @return one radius per pore (m)
 std::vector<double> poreBodyRadii(const pore::PoreNetwork& net);
 } // namespace talus::flow::twophase
