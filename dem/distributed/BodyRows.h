@@ -20,6 +20,7 @@ struct RankBodies
   Bodies bodies;
   std::vector<GlobalId> globalId; ///< entry k: the global id of row k
 
+  /// The number of rows (bodies held by the rank).
   [[nodiscard]] std::size_t size() const { return globalId.size(); }
 };
 
@@ -27,6 +28,8 @@ struct RankBodies
 /// list of them: packing, unpacking and compacting rows all go through it, so a field added to
 /// Bodies and not listed here is caught at compile time (BodyRows.cpp) instead of being lost
 /// silently when a body changes rank.
+/// @param bodies a Bodies, const or not
+/// @param f called once per per-body vector, in a fixed order (the packed row's)
 template <class B, class F>
 void forEachBodyField(B& bodies, F&& f)
 {
@@ -54,20 +57,30 @@ void forEachBodyField(B& bodies, F&& f)
 }
 
 /// Bytes of one packed row: every per-body field, then the global id.
+/// @return the size (bytes), the same on every rank of one build
 std::size_t rowBytes();
 
 /// Append the rows `rows` of `from` to `out`, packed (rowBytes() each).
+/// @param from the rank's bodies
+/// @param rows the rows packed, in this order
+/// @param out appended to
 void packRows(const RankBodies& from, std::span<const std::int64_t> rows, std::vector<std::byte>& out);
 
 /// Append the packed rows in `in` (a multiple of rowBytes()) to `into`.
+/// @param in packed rows (from packRows, possibly of another rank)
+/// @param into the rank's bodies, grown
 /// @throws std::invalid_argument if the size of `in` is not a whole number of rows
 void unpackRows(std::span<const std::byte> in, RankBodies& into);
 
 /// Keep the rows whose `keep` entry is nonzero, in order, dropping the others.
+/// @param bodies compacted in place (rows renumbered)
+/// @param keep one flag per row
 /// @throws std::invalid_argument if `keep` does not have one entry per row
 void keepRows(RankBodies& bodies, std::span<const std::uint8_t> keep);
 
 /// The first row of `bodies` this increment cannot distribute (not a sphere, or a clump member),
 /// or -1 when all can be.
+/// @param bodies a rank's bodies
+/// @return the row, or -1
 [[nodiscard]] std::int64_t firstUndistributable(const RankBodies& bodies);
 } // namespace talus::dem::distributed

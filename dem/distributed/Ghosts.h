@@ -25,6 +25,11 @@ struct Ghosts
 /// (distanceToBox <= distance) to that rank as a ghost, every per-body field with it
 /// (collective). For spheres, `distance` is twice the largest radius plus the collider's skin:
 /// the farthest a centre can be from a body it may touch before the next re-detection.
+/// @param comm the ranks exchanging (collective)
+/// @param local this rank's own bodies
+/// @param boxes every rank's region (index = rank), from the partition's plan
+/// @param distance the ghost layer's width (m)
+/// @return the ghosts received and the lists of rows sent
 /// @throws std::invalid_argument on every rank if `distance` is negative or not a number, or
 ///         `boxes` does not hold one box per rank
 [[nodiscard]] Ghosts exchangeGhosts(MPI_Comm comm, const RankBodies& local, std::span<const Box> boxes,

@@ -24,6 +24,8 @@ enum class Method
 };
 
 /// The method of a name ("RCB", "HSFC", as Zoltan's LB_METHOD).
+/// @param name "RCB" or "HSFC" (case-sensitive)
+/// @return the method
 /// @throws std::invalid_argument naming `name` and the valid names
 [[nodiscard]] Method methodNamed(std::string_view name);
 
@@ -34,6 +36,8 @@ struct Box
 };
 
 /// Distance from `x` to the box (0 inside it): the test that decides which bodies are ghosts.
+/// @param x a point (m)
+/// @return the Euclidean distance (m)
 [[nodiscard]] double distanceToBox(const Vec3& x, const Box& box);
 
 /// How the bodies of every rank are to be spread: what leaves this rank, what arrives, and
@@ -60,6 +64,11 @@ struct PartitionSettings
 /// Partition the bodies of all ranks (collective over `comm`), weighted by `weights` (one per
 /// local row, for instance contactWeights'; empty: 1 each). The bodies stay where they are:
 /// migrate() moves them.
+/// @param comm the ranks partitioned (collective)
+/// @param local this rank's bodies
+/// @param weights one weight per row (>= 0), or empty
+/// @param settings the method and tolerance, the same on every rank
+/// @return this rank's part of the plan and every rank's region
 /// @throws std::invalid_argument on every rank, before any other communication, for an
 ///         unknown method, a tolerance below 1, a wrong number of weights or a negative one,
 ///         or a body that cannot be distributed yet (not a sphere, or a clump member), naming
@@ -70,5 +79,7 @@ struct PartitionSettings
 
 /// Per-body cost from the contact list: the number of contacts of each body, plus one (the
 /// body's own integration), for the first `bodyCount` bodies.
+/// @param bodyCount the rows weighted (contacts of other rows are ignored)
+/// @return one weight per row
 [[nodiscard]] std::vector<double> contactWeights(const Contacts& contacts, std::size_t bodyCount);
 } // namespace talus::dem::distributed
