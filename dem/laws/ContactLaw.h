@@ -37,11 +37,15 @@ public:
   /// Yade's Ip2 name that creates this law's physics, e.g. "Ip2_FrictMat_FrictMat_FrictPhys".
   [[nodiscard]] virtual std::string physicsName() const = 0;
   /// 0 if the law cannot handle this material pair; otherwise a specificity (higher wins).
+  /// @param m1, m2 the two bodies' materials, either order
+  /// @return 0, or the specificity (a law for these material types exactly beats a general one)
   [[nodiscard]] virtual int handles(const Material& m1, const Material& m2) const = 0;
   /// Whether the law's model applies to contacts of this geometry (in an InteractionLoop with
   /// several laws, a contact goes to the most specific law among those that do): by default
   /// the spheres' contacts (with spheres, walls, facets, boxes); the Potential Blocks' and
   /// Particles' laws take their own.
+  /// @param kind the contact's geometry kind
+  /// @return whether this law computes such contacts
   [[nodiscard]] virtual bool handlesGeometry(ContactGeometryKind kind) const
   {
     return kind == ContactGeometryKind::SphereSphere || kind == ContactGeometryKind::WallSphere
@@ -51,8 +55,11 @@ public:
   [[nodiscard]] virtual bool needsExtra() const = 0;
   /// Set the physics (stiffness, damping, friction) of a contact that just became real; `x` is
   /// its ContactExtra (null unless needsExtra()).
+  /// @param c the new contact (geometry set, ids and law index assigned)
+  /// @param x its ContactExtra, or null
   virtual void initialize(Contact& c, ContactExtra* x, const Scene& scene) const = 0;
   /// Set c.force of every real contact whose c.law == lawIndex (geometry already updated).
+  /// @param lawIndex this law's index in its InteractionLoop's `laws`
   virtual void computeForces(Scene& scene, std::uint8_t lawIndex) = 0;
   /// The law is the only one of its InteractionLoop: update the geometry of every candidate
   /// pair, initialise new contacts and compute forces, in one pass over the contacts.
@@ -65,6 +72,7 @@ public:
   /// @param energyBlocks null: no energy tracking; else `first` is a multiple of energyBlock
   /// and what contact k dissipates is added to energyBlocks[k / energyBlock] (the blocks of
   /// computeAll, so the sums do not depend on how the contacts are split)
+  /// @param first, last the contacts [first, last) of the list
   /// @return the index of the first contact of the range overlapping too much, or the number
   /// of contacts
   virtual std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last,
@@ -75,19 +83,31 @@ public:
   /// Called once per step after the law's contacts were processed (one-shot settings reset).
   virtual void stepDone() {}
   /// Elastic energy stored in the real contacts whose c.law == lawIndex.
+  /// @param lawIndex this law's index in its InteractionLoop's `laws`
+  /// @return the energy (J)
   [[nodiscard]] virtual double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const = 0;
   /// Of the contacts of this law that became real this step, the part of their elastic energy
   /// that the growth of their bodies' radii (grownBy, per body id) put in: E(u) - E(max(u - g, 0)),
   /// u the penetration and g the growth of the pair (see addGrownContactsEnergy).
+  /// @param lawIndex this law's index in its InteractionLoop's `laws`
+  /// @param grownBy the radius growth (m) per body id since the last contacts pass
+  /// @return the energy (J)
   [[nodiscard]] virtual double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
                                                   const std::vector<double>& grownBy) const = 0;
 
   /// Parameters of the law and of its physics functor (Yade's Ip2/Law2 attributes), by name.
+  /// @param name Yade's attribute name (one of parameterNames())
+  /// @param value the new value
   /// @throws std::invalid_argument naming the law and the parameter if it has no such one or
   ///         the value is out of range
   virtual void setParameter(const std::string& name, double value);
+  /// @param name Yade's attribute name (one of parameterNames())
+  /// @return its current value
+  /// @throws std::invalid_argument naming the law and the parameter if it has no such one
   [[nodiscard]] virtual double parameter(const std::string& name) const;
   /// A parameter of the physics functor given per pair of materials (Yade's MatchMaker).
+  /// @param name Yade's attribute name
+  /// @param value the values per material pair and the fallback
   /// @throws std::invalid_argument naming the law and the parameter if it takes none such
   virtual void setPairParameter(const std::string& name, const PairParameter& value);
   /// Names accepted by setParameter.
@@ -110,6 +130,8 @@ struct StepContext
 /// 1/2 kn u^2 + 1/2 Fs^2/ks: the energy of a contact's linear springs, the normal one compressed
 /// by u. Taken from the compression rather than from the last normal force (the same after a force
 /// pass) so that it follows radii changed at fixed positions (growParticles) at once.
+/// @param compression the normal spring's compression u (m)
+/// @return the energy (J)
 inline double springEnergy(const Contact& c, double compression)
 {
   return 0.5 * c.kn * compression * compression + (c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0);
@@ -119,6 +141,8 @@ inline double springEnergy(const Contact& c, double compression)
 /// A contact without force at that overlap (no stiffness: a material of young 0, which Yade's
 /// scripts give to bodies that only show something) cannot blow up and is let through, as is one
 /// between two bodies that forces do not move (a fixed floor box in fixed bed spheres).
+/// @param ratio scene.maxOverlapRatio (<= 0: no check)
+/// @return whether the contact must be reported
 inline bool overlapsTooMuch(const Contact& c, double ratio, const Bodies& b)
 {
   return ratio > 0 && c.penetration > ratio * std::min(c.refR1, c.refR2) && c.force != Vec3::Zero()
@@ -159,10 +183,17 @@ private:
 void alignContactExtra(Contacts& contacts);
 
 /// Register a contact law factory under its Law2 name (and optional aliases).
+/// @param names the names it is made by (a name registered again takes the new factory)
+/// @param factory makes a new law with its default parameters
+/// @return true (so that the registration can initialise a constant: TALUS_REGISTER_CONTACT_LAW)
 bool registerContactLaw(const std::vector<std::string>& names, std::function<std::unique_ptr<ContactLaw>()> factory);
-/// Create a registered contact law. @throws std::invalid_argument listing the known names
+/// Create a registered contact law.
+/// @param name a registered name
+/// @return a new law, owned by the caller
+/// @throws std::invalid_argument listing the known names
 std::unique_ptr<ContactLaw> makeContactLaw(const std::string& name);
 /// Names of every registered contact law.
+/// @return the names, sorted
 std::vector<std::string> contactLawNames();
 } // namespace talus::dem
 

@@ -13,8 +13,12 @@ class IntrCallback
 {
 public:
   virtual ~IntrCallback() = default;
+  /// Called once per step, before the first contact.
   virtual void stepInit() = 0;
+  /// Called for every real contact after the forces (serially, in list order).
+  /// @param c the contact, its force of this step
   virtual void go(const Contact& c) = 0;
+  /// Yade's class name, e.g. "SumIntrForcesCb".
   [[nodiscard]] virtual std::string typeName() const = 0;
 };
 
