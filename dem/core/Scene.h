@@ -176,7 +176,8 @@ public:
   /// The members and their placement of a live clump.
   /// @param clump the clump's id
   /// @return its shape, stored in `bodies` (valid until clumps are added or erased)
-  /// @throws std::invalid_argument if `clump` is not one
+  /// @throws std::out_of_range for an id that is not a live body
+  /// @throws std::invalid_argument if `clump` is not a clump
   ClumpShape& clumpShape(BodyId clump);
   /// Make space periodic (or not). Positions stay as they are (the cell need not hold them,
   /// as in Yade); spheres, clumps, walls, facets and boxes can be periodic.
