@@ -37,6 +37,8 @@ from typing import Callable, Iterable
 
 import numpy as np
 
+from talus.atomic import write_atomically
+
 __all__ = ["data", "plots", "labels", "addData", "addAutoData", "reset", "resetData", "plot", "savePlot",
            "saveDataTxt", "saveDataHdf5", "loadDataTxt", "saveGnuplot"]
 
@@ -243,20 +245,8 @@ def savePlot(path: str | os.PathLike, dpi: int = 120) -> None:
     """Draw ``plots`` (all subplots in one figure) and write it as an image (PNG by suffix)."""
     import matplotlib.pyplot as plt
     figure = plot(noShow=True)
-    _atomic(path, lambda tmp: figure.savefig(tmp, dpi=dpi, format=os.path.splitext(str(path))[1][1:] or "png"))
+    write_atomically(path, lambda tmp: figure.savefig(tmp, dpi=dpi, format=os.path.splitext(str(path))[1][1:] or "png"))
     plt.close(figure)
-
-
-def _atomic(path: str | os.PathLike, write: Callable[[str], None]) -> None:
-    path = os.fspath(path)
-    tmp = os.path.join(os.path.dirname(os.path.abspath(path)), f".{os.path.basename(path)}.tmp-{os.getpid()}")
-    try:
-        write(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
 
 
 def _open_text(path: str, mode: str):
@@ -294,7 +284,7 @@ def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None, 
             for row in zip(*columns):
                 out.write((",".join if csv else "\t".join)(_text(v) for v in row) + "\n")
 
-    _atomic(name, write)
+    write_atomically(name, write)
 
 
 def loadDataTxt(fileName: str | os.PathLike) -> dict[str, list[float]]:
@@ -326,7 +316,7 @@ def saveDataHdf5(fileName: str | os.PathLike) -> None:
             for column in sorted(data):
                 out.create_dataset(column, data=_column(column))
 
-    _atomic(fileName, write)
+    write_atomically(fileName, write)
 
 
 def saveGnuplot(baseName: str, term: str = "wxt", extension: str | None = None, timestamp: bool = False,
@@ -367,5 +357,5 @@ def saveGnuplot(baseName: str, term: str = "wxt", extension: str | None = None, 
         with open(tmp, "w", encoding="utf-8") as out:
             out.write("\n".join(lines) + "\n")
 
-    _atomic(script, write)
+    write_atomically(script, write)
     return script

@@ -31,10 +31,11 @@ import math
 import os
 import re
 import subprocess
-import tempfile
 import time
 from pathlib import Path
 from typing import Any
+
+from talus.atomic import write_atomically
 
 _NAME = re.compile(r"^[a-z0-9][a-z0-9_-]*(\.[a-z0-9][a-z0-9_-]*)+$")
 _COMPARISONS = {"<=": lambda v, t: v <= t, ">=": lambda v, t: v >= t}
@@ -80,22 +81,6 @@ def _finite(label: str, x: Any) -> float:
     return value
 
 
-def write_json_atomically(path: Path, data: dict) -> None:
-    """Write ``data`` to ``path`` so that a reader sees the old file or the whole new one."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w") as f:
-            json.dump(data, f, indent=2, sort_keys=False)
-            f.write("\n")
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-
-
 def make_record(name: str, metric: str, value: float, reference: str, tolerance: float, *,
                 wall_s: float, quick: bool, comparison: str = "<=", **extra: Any) -> dict:
     """Build a record; ``pass`` is ``value <= tolerance`` (or ``>=`` with ``comparison=">="``,
@@ -128,7 +113,12 @@ def write_record(record: dict, folder: Path | str | None = None) -> Path:
     if missing:
         raise ValueError(f"record {record.get('name', '?')!r} lacks fields {missing}")
     path = folder / f"{check_name(record['name'])}.json"
-    write_json_atomically(path, record)
+    def write(temporary: str) -> None:
+        with open(temporary, "x") as f:
+            json.dump(record, f, indent=2, sort_keys=False)
+            f.write("\n")
+
+    write_atomically(path, write, fsync=True)
     return path
 
 

@@ -34,11 +34,12 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from talus import _dem
+from talus.atomic import write_atomically
 from talus.dem.engines import PyRunner
 from talus.dem.io import owner_scene
 from talus.dem.linalg import Quaternion
 from talus.dem.scenes import default_scene
-from talus.dem.vtu import vtu_bytes, write_atomically
+from talus.dem.vtu import vtu_bytes
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene

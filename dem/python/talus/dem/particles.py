@@ -23,12 +23,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from talus import _dem
+from talus.atomic import write_atomically
 from talus.dem.bodies import BodySpec
 from talus.dem.convex_contact import geometry_functor, two_dimension
 from talus.dem.engines import Functor, LawFunctor
 from talus.dem.masks import group_mask
 from talus.dem.shape_registry import ShapeKind, register
-from talus.dem.vtu import vtu_bytes, write_atomically
+from talus.dem.vtu import vtu_bytes
 
 if TYPE_CHECKING:
     from talus.dem.scene import Scene

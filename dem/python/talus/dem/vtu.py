@@ -1,37 +1,15 @@
-"""VTK XML unstructured grids (``.vtu``) written with numpy alone, and the atomic file write every
-Talus output uses: talus.dem.export (spheres, facets, walls, contacts, cell), and the Potential
-Blocks' and Potential Particles' own writers."""
+"""VTK XML unstructured grids (``.vtu``) written with numpy alone, for talus.dem.export (spheres,
+facets, walls, contacts, cell) and the Potential Blocks' and Potential Particles' own writers."""
 
 from __future__ import annotations
 
 import base64
-import itertools
-import os
 from xml.sax.saxutils import quoteattr
 
 import numpy as np
 
 _VTK_TYPES = {np.dtype(np.float64): "Float64", np.dtype(np.float32): "Float32", np.dtype(np.int64): "Int64",
               np.dtype(np.int32): "Int32", np.dtype(np.uint8): "UInt8"}
-
-_counter = itertools.count()
-
-
-def write_atomically(path: str, data: bytes) -> None:
-    """Write ``data`` to ``path`` through a temporary file in the same folder and a rename."""
-    folder = os.path.dirname(os.path.abspath(path))
-    os.makedirs(folder, exist_ok=True)
-    temporary = os.path.join(folder, f".{os.path.basename(path)}.tmp-{os.getpid()}-{next(_counter)}")
-    try:
-        with open(temporary, "wb") as f:
-            f.write(data)
-        os.replace(temporary, path)
-    except BaseException:
-        try:
-            os.unlink(temporary)
-        except OSError:
-            pass
-        raise
 
 
 def _data_array(array: np.ndarray, name: str | None, indent: str) -> str:
