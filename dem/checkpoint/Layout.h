@@ -93,6 +93,75 @@ inline constexpr std::pair<const char*, Vec3 PotentialParticleShape::*> particle
 inline constexpr std::pair<const char*, std::vector<Vec3> PotentialParticleShape::*> particleVectorLists[] = {
     {"normals", &PotentialParticleShape::normals}, {"samples", &PotentialParticleShape::samples}};
 
+/// How a contact state field of type T is stored, for the writer and the reader alike: `width`
+/// values of type `Stored` per contact (a dataset of shape (rows) for one value, (rows, width)
+/// otherwise), `put` writes a value into its row and `get` makes it back from the row.
+template <class T>
+struct StateColumn;
+template <>
+struct StateColumn<double>
+{
+  using Stored = double;
+  static constexpr std::size_t width = 1;
+  static void put(double value, double* row) { row[0] = value; }
+  static double get(const double* row) { return row[0]; }
+};
+template <>
+struct StateColumn<Vec3>
+{
+  using Stored = double;
+  static constexpr std::size_t width = 3;
+  static void put(const Vec3& value, double* row) { row[0] = value.x(), row[1] = value.y(), row[2] = value.z(); }
+  static Vec3 get(const double* row) { return Vec3(row[0], row[1], row[2]); }
+};
+template <>
+struct StateColumn<Quat>
+{
+  using Stored = double;
+  static constexpr std::size_t width = 4;
+  static void put(const Quat& value, double* row)
+  {
+    row[0] = value.w(), row[1] = value.x(), row[2] = value.y(), row[3] = value.z();
+  }
+  static Quat get(const double* row) { return Quat(row[0], row[1], row[2], row[3]); }
+};
+template <>
+struct StateColumn<std::uint8_t>
+{
+  using Stored = std::uint8_t;
+  static constexpr std::size_t width = 1;
+  static void put(std::uint8_t value, std::uint8_t* row) { row[0] = value; }
+  static std::uint8_t get(const std::uint8_t* row) { return row[0]; }
+};
+
+/// The HDF5 types of a stored value: in the file, in memory, and the class the reader accepts.
+template <class Stored>
+struct StoredType;
+template <>
+struct StoredType<double>
+{
+  static hid_t file() { return H5T_IEEE_F64LE; }
+  static hid_t memory() { return H5T_NATIVE_DOUBLE; }
+  static constexpr H5T_class_t typeClass = H5T_FLOAT;
+};
+template <>
+struct StoredType<std::uint8_t>
+{
+  static hid_t file() { return H5T_STD_U8LE; }
+  static hid_t memory() { return H5T_NATIVE_UINT8; }
+  static constexpr H5T_class_t typeClass = H5T_INTEGER;
+};
+
+/// The dataset shape of `rows` values of type T.
+template <class T>
+std::vector<hsize_t> stateColumnShape(std::size_t rows)
+{
+  if constexpr (StateColumn<T>::width == 1)
+    return {rows};
+  else
+    return {rows, StateColumn<T>::width};
+}
+
 /// Everything a checkpoint holds, read and checked before the scene is touched.
 struct Loaded
 {

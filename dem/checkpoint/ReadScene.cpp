@@ -369,35 +369,16 @@ void readContacts(const Reader& r, Loaded& in, const Context& ctx)
   const std::size_t e = de[0];
   ContactExtraList& extra = in.contactExtra;
   extra.resize(e);
-  column.resize(e);
-  column3.resize(e);
-  bytes.resize(e);
-  std::vector<double> quats(4 * e);
   forEachContactStateField([&](const auto& f) {
     using T = std::remove_cvref_t<decltype(extra[0].*f.member)>;
+    using Column = StateColumn<T>;
+    using Stored = StoredType<typename Column::Stored>;
     if (!f.stored)
       return;
-    const std::string name = at("/contacts/extra/", f.name);
-    if constexpr (std::is_same_v<T, double>)
-      r.doubles(name, {e}, column.data());
-    else if constexpr (std::is_same_v<T, Vec3>)
-      r.vec3s(name, column3);
-    else if constexpr (std::is_same_v<T, Quat>)
-      r.doubles(name, {e, 4}, quats.data());
-    else
-      r.uint8s(name, bytes);
+    std::vector<typename Column::Stored> rows(e * Column::width);
+    r.array(at("/contacts/extra/", f.name), Stored::typeClass, Stored::memory(), stateColumnShape<T>(e), rows.data());
     for (std::size_t k = 0; k < e; ++k)
-    {
-      T& value = extra[k].*f.member;
-      if constexpr (std::is_same_v<T, double>)
-        value = column[k];
-      else if constexpr (std::is_same_v<T, Vec3>)
-        value = column3[k];
-      else if constexpr (std::is_same_v<T, Quat>)
-        value = Quat(quats[4 * k], quats[4 * k + 1], quats[4 * k + 2], quats[4 * k + 3]);
-      else
-        value = bytes[k];
-    }
+      extra[k].*f.member = Column::get(rows.data() + k * Column::width);
   });
 }
 

@@ -276,38 +276,16 @@ void writeContacts(const Writer& w, const Scene& scene)
   const std::size_t e = state ? c : 0;
   auto extra = [&](std::size_t k) -> const ContactExtra& { return state[live[k]]; };
   const Id ge = w.group("/contacts/extra");
-  column.resize(e);
-  column3.resize(e);
-  bytes.resize(e);
-  std::vector<double> quats(4 * e);
   forEachContactStateField([&](const auto& f) {
     using T = std::remove_cvref_t<decltype(extra(0).*f.member)>;
+    using Column = StateColumn<T>;
+    using Stored = StoredType<typename Column::Stored>;
     if (!f.stored)
       return;
+    std::vector<typename Column::Stored> rows(e * Column::width);
     for (std::size_t k = 0; k < e; ++k)
-    {
-      const T& value = extra(k).*f.member;
-      if constexpr (std::is_same_v<T, double>)
-        column[k] = value;
-      else if constexpr (std::is_same_v<T, Vec3>)
-        column3[k] = value;
-      else if constexpr (std::is_same_v<T, Quat>)
-        quats[4 * k] = value.w(), quats[4 * k + 1] = value.x(), quats[4 * k + 2] = value.y(), quats[4 * k + 3] = value.z();
-      else
-        bytes[k] = value;
-    }
-    const std::string name = at("/contacts/extra/", f.name);
-    if constexpr (std::is_same_v<T, double>)
-      w.doubles(name, {e}, column.data());
-    else if constexpr (std::is_same_v<T, Vec3>)
-      w.vec3s(name, column3);
-    else if constexpr (std::is_same_v<T, Quat>)
-      w.doubles(name, {e, 4}, quats.data());
-    else
-    {
-      static_assert(std::is_same_v<T, std::uint8_t>, "a contact state field of a type the checkpoint cannot store");
-      w.uint8s(name, bytes.data(), e);
-    }
+      Column::put(extra(k).*f.member, rows.data() + k * Column::width);
+    w.array(at("/contacts/extra/", f.name), Stored::file(), Stored::memory(), stateColumnShape<T>(e), rows.data());
   });
 }
 
