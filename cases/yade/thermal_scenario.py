@@ -20,39 +20,25 @@
 # through xmax and the wall and CPU time of the steps.
 import json
 import os
+import sys
 import time
-from math import radians
 
 try:
     O
 except NameError:
     from yade import *
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # thermal_examples.py, under Yade's -x too
+from thermal_examples import EXAMPLE_PACKING, packing_spheres, static_box, water_and_particles  # noqa: E402
+
 params = json.loads(os.environ["TALUS_SCENARIO"])
 flowing = params["mode"] == "flow"
-PACKING = params.get("packing", "/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres")
+PACKING = params.get("packing", EXAMPLE_PACKING)
 t0 = 333.15
-mn, mx = Vector3(0, 0, 0), Vector3(0.05, 0.05, 0.05)
-O.materials.append(FrictMat(young=1e9, poisson=0.5, frictionAngle=radians(3), density=2600, label='spheres'))
-O.materials.append(FrictMat(young=1e9, poisson=0.5, frictionAngle=0, density=0, label='walls'))
-O.bodies.append(aabbWalls([mn, mx], thickness=0, material='walls'))
-with open(PACKING) as f:   # the examples' ymport.textExt(PACKING, 'x_y_z_r'), read by hand
-    rows = [[float(v) for v in line.split()] for line in f if line.strip() and not line.startswith('#')]
-O.bodies.append([sphere((x, y, z), r, material='spheres') for x, y, z, r in rows])
-for b in O.bodies:
-    b.dynamic = False
-flow = FlowEngine(label="flow")
-thermal = ThermalEngine(label="thermal")
-O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Box_Aabb()]),
-             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                             [Law2_ScGeom_FrictPhys_CundallStrack()]),
-             flow, thermal, NewtonIntegrator(damping=0.2)]
-flow.permeabilityFactor = 1
+flow, thermal = static_box(Vector3(0, 0, 0), Vector3(0.05, 0.05, 0.05), 1e9,
+                           lambda material: packing_spheres(PACKING, material))
+water_and_particles(flow, thermal)
 flow.yadeInsertionOrder = params.get("yadeInsertionOrder", False)
-flow.viscosity = 0.001
-flow.thermalEngine = True
-flow.fluidRho = 997
-flow.fluidCp = 4181.7
 if flowing:
     flow.bndCondIsPressure = [1, 1, 0, 0, 0, 0]
     flow.bndCondValue = [10, 0, 0, 0, 0, 0]
@@ -68,22 +54,10 @@ else:
     flow.thermalBndCondValue = [0, 0, 0, 0, 0, 0]
     flow.tZero = 343.15
 thermal.fluidConduction = True
-thermal.ignoreFictiousConduction = True
-thermal.thermoMech = False
-thermal.solidThermoMech = False
-thermal.fluidThermoMech = False
-thermal.advection = True
 thermal.bndCondIsTemperature = [0, 0, 0, 0, 0, 0]
 thermal.thermalBndCondValue = [0, 0, 0, 0, 0, 0]
-thermal.fluidK = 0.6069
 thermal.fluidConductionAreaFactor = 1.
 thermal.uniformReynolds = params.get("uniformReynolds", 10)
-thermal.particleT0 = t0
-thermal.particleDensity = 2600.
-thermal.particleK = 2.
-thermal.particleCp = 710.
-thermal.tsSafetyFactor = 0
-thermal.useKernMethod = True
 O.dt = 1e-4 if flowing else 1e-5
 probes = [(x, y, z) for x in (0.01, 0.02, 0.03, 0.04) for y in (0.015, 0.025, 0.035) for z in (0.015, 0.035)]
 O.run(1, True)   # triangulation and first solve, not timed

@@ -15,47 +15,27 @@
 # the wall and CPU time of initialization() + the drainage steps, the cell count.
 import json
 import os
+import sys
 import time
 
-try:
-    O
-except NameError:  # not in Yade: Talus's names
-    from talus.dem import *
-    from talus.flow import TwoPhaseFlowEngine
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # twophase_scene.py, under Yade's -x too
+from twophase_scene import invade, read_spheres, reservoir_engine  # noqa: E402
 
 params = json.loads(os.environ["TALUS_SCENARIO"])
-spheres = [tuple(map(float, l.split()[:4])) for l in open(params["packing"]) if l.strip() and not l.startswith("#")]
-lo = [min(s[k] - s[3] for s in spheres) for k in range(3)]
-hi = [max(s[k] + s[3] for s in spheres) for k in range(3)]
+spheres, lo, hi = read_spheres(params["packing"])
 
 
 def drainage():
-    O.reset()
-    O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
-    for x, y, z, r in spheres:
-        O.bodies.append(sphere((x, y, z), r, fixed=True))
-    tp = TwoPhaseFlowEngine()
-    tp.bndCondIsPressure = [0, 0, 1, 1, 0, 0]
-    tp.bndCondValue = [0, 0, 0, 0, 0, 0]
-    tp.surfaceTension = float(params["surfaceTension"])
-    tp.entryPressureMethod = int(params["entryPressureMethod"])
-    tp.isPhaseTrapped = bool(params["isPhaseTrapped"])
+    tp = reservoir_engine(spheres, lo, hi, surfaceTension=float(params["surfaceTension"]),
+                          entryPressureMethod=int(params["entryPressureMethod"]),
+                          isPhaseTrapped=bool(params["isPhaseTrapped"]))
     t0, c0 = time.perf_counter(), time.process_time()
     tp.initialization()
-    saturations = []
-    for pc in params["pcs"]:
-        tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
-        tp.invasion()
-        saturations.append(tp.getSaturation(False))
+    saturations = invade(tp, params["pcs"])
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     tp.isDrainageActivated = False
     tp.isImbibitionActivated = True
-    imbibition = []
-    for pc in params.get("imbibition_pcs", []):
-        tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
-        tp.invasion()
-        imbibition.append(tp.getSaturation(False))
-    return wall, cpu, saturations, tp.nCells(), imbibition
+    return wall, cpu, saturations, tp.nCells(), invade(tp, params.get("imbibition_pcs", []))
 
 
 runs = [drainage() for _ in range(int(params.get("repeats", 1)))]

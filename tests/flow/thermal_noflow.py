@@ -8,51 +8,26 @@
 # with none the pressure system is singular and Yade 2023.02a's temperatures are all NaN; no
 # TriaxialStressController, GlobalStiffnessTimeStepper or output (they change nothing here).
 # Settings by environment: NF_STEPS (2000), NF_FLUIDCOND (fluidConduction, 1). Writes the sphere
-# temperatures and the pore temperatures at a few points, at the end and a step before.
+# temperatures and the pore temperatures at a few points, at the end and a step before. The set-up
+# the thermal examples share is cases/yade/thermal_examples.py.
 import json
 import os
 import sys
 
-PACKING = "/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres"
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "cases", "yade"))
+from thermal_examples import EXAMPLE_PACKING, packing_spheres, static_box, water_and_particles  # noqa: E402
+
 steps = int(os.environ.get("NF_STEPS", "2000"))
-mn, mx = Vector3(0, 0, 0), Vector3(0.05, 0.05, 0.05)
-O.materials.append(FrictMat(young=1e9, poisson=0.5, frictionAngle=radians(3), density=2600, label='spheres'))
-O.materials.append(FrictMat(young=1e9, poisson=0.5, frictionAngle=0, density=0, label='walls'))
-O.bodies.append(aabbWalls([mn, mx], thickness=0, material='walls'))
-with open(PACKING) as f:   # the example's ymport.textExt(PACKING, 'x_y_z_r'), read by hand
-    rows = [[float(v) for v in line.split()] for line in f if line.strip() and not line.startswith('#')]
-O.bodies.append([sphere((x, y, z), r, material='spheres') for x, y, z, r in rows])
-for b in O.bodies:
-    b.dynamic = False
-flow = FlowEngine(label="flow")
-thermal = ThermalEngine(label="thermal")
-O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Box_Aabb()]),
-             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                             [Law2_ScGeom_FrictPhys_CundallStrack()]),
-             flow, thermal, NewtonIntegrator(damping=0.2)]
-flow.permeabilityFactor = 1
-flow.viscosity = 0.001
+flow, thermal = static_box(Vector3(0, 0, 0), Vector3(0.05, 0.05, 0.05), 1e9,
+                           lambda material: packing_spheres(EXAMPLE_PACKING, material))
+water_and_particles(flow, thermal)
 flow.bndCondIsPressure = [1, 0, 0, 0, 0, 0]
 flow.bndCondValue = [0, 0, 0, 0, 0, 0]
-flow.thermalEngine = True
-flow.fluidRho = 997
-flow.fluidCp = 4181.7
 flow.bndCondIsTemperature = [0, 0, 0, 0, 0, 0]
 flow.thermalBndCondValue = [0, 0, 0, 0, 0, 0]
 flow.tZero = 343.15
 thermal.fluidConduction = bool(int(os.environ.get("NF_FLUIDCOND", "1")))
-thermal.ignoreFictiousConduction = True
-for name in ("thermoMech", "solidThermoMech", "fluidThermoMech"):
-    setattr(thermal, name, False)
-thermal.advection = True
-thermal.fluidK = 0.6069
 thermal.uniformReynolds = 10
-thermal.particleT0 = 333.15
-thermal.particleDensity = 2600.
-thermal.particleK = 2.
-thermal.particleCp = 710.
-thermal.tsSafetyFactor = 0
-thermal.useKernMethod = True
 O.dt = 1e-5
 probes = [(0.025, 0.025, 0.025), (0.0125, 0.025, 0.025), (0.0375, 0.02, 0.03), (0.02, 0.035, 0.015),
           (0.03, 0.015, 0.035)]

@@ -7,28 +7,22 @@
 # ROD_TSF (tsSafetyFactor, 0), ROD_KERN (useKernMethod, 0); Talus only: ROD_SAVE (a checkpoint
 # path: saves half-way, runs on, reloads and runs the second half again), ROD_VTK (a VTKRecorder
 # file prefix with the thermal recorder). Writes the sphere ids, positions and temperatures, the
-# boundary fluxes every 100 steps, the scheme's step numbers and Talus's heat per boundary.
+# boundary fluxes every 100 steps, the scheme's step numbers and Talus's heat per boundary. The set-up
+# the thermal examples share is cases/yade/thermal_examples.py.
 import json
 import os
 import sys
 
 from yade import pack
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "cases", "yade"))
+from thermal_examples import static_box  # noqa: E402
+
 steps = int(os.environ.get("ROD_STEPS", "2000"))
 rad = 0.003
 mn, mx = Vector3(0, 0, 0), Vector3(1.0, 0.008, 0.008)
-O.materials.append(FrictMat(young=1e6, poisson=0.5, frictionAngle=radians(3), density=2600, label='spheres'))
-O.materials.append(FrictMat(young=1e6, poisson=0.5, frictionAngle=0, density=0, label='walls'))
-O.bodies.append(aabbWalls([mn, mx], thickness=0, material='walls'))
-O.bodies.append(pack.regularOrtho(pack.inAlignedBox(mn, mx), radius=rad, gap=-1e-8, material='spheres'))
-for b in O.bodies:
-    b.dynamic = False
-flow = FlowEngine(label="flow")
-thermal = ThermalEngine(label="thermal")
-O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Box_Aabb()]),
-             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                             [Law2_ScGeom_FrictPhys_CundallStrack()]),
-             flow, thermal, NewtonIntegrator(damping=0.2)]
+flow, thermal = static_box(mn, mx, 1e6, lambda material: pack.regularOrtho(pack.inAlignedBox(mn, mx), radius=rad,
+                                                                            gap=-1e-8, material=material))
 for name in ("thermoMech", "advection", "fluidThermoMech", "solidThermoMech", "fluidConduction"):
     setattr(thermal, name, False)
 thermal.bndCondIsTemperature = [1, 1, 0, 0, 0, 0]

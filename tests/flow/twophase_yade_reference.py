@@ -11,10 +11,13 @@
 # start. Written as JSON to
 # data/twophase_yade_reference.json.
 import json
+import os
+import sys
 
-spheres = [tuple(map(float, l.split())) for l in open("data/pore_packing.txt") if l.strip() and not l.startswith("#")]
-lo = [min(s[k] - s[3] for s in spheres) for k in range(3)]
-hi = [max(s[k] + s[3] for s in spheres) for k in range(3)]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "cases", "yade"))
+from twophase_scene import invade, read_spheres, reservoir_engine  # noqa: E402
+
+spheres, lo, hi = read_spheres("data/pore_packing.txt")
 GAMMA = 0.0728
 PCS = [GAMMA / 0.1 * (0.2 + 0.1 * i) for i in range(40)]  # pc d / gamma from 0.2 to 4.1, d the mean diameter
 FORCE_STEP = 20                                            # forces after this many drainage steps
@@ -22,16 +25,7 @@ FORCE_BODIES = [6, 50, 100, 200, 300, 405]
 
 
 def engine(method, trapped):
-    O.reset()
-    O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
-    for x, y, z, r in spheres:
-        O.bodies.append(sphere((x, y, z), r, fixed=True))
-    tp = TwoPhaseFlowEngine()
-    tp.bndCondIsPressure = [0, 0, 1, 1, 0, 0]
-    tp.bndCondValue = [0, 0, 0, 0, 0, 0]
-    tp.surfaceTension = GAMMA
-    tp.entryPressureMethod = method
-    tp.isPhaseTrapped = trapped
+    tp = reservoir_engine(spheres, lo, hi, surfaceTension=GAMMA, entryPressureMethod=method, isPhaseTrapped=trapped)
     tp.initialization()
     return tp
 
@@ -43,22 +37,16 @@ forces = {}
 for method in (1, 2, 3):
     for trapped in (True, False):
         tp = engine(method, trapped)
-        drainage, imbibition = [], []
-        for step, pc in enumerate(PCS):
-            tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
-            tp.invasion()
-            drainage.append(tp.getSaturation(False))
-            if method == 1 and trapped and step + 1 == FORCE_STEP:
-                tp.computeCapillaryForce()
-                forces = {str(b): list(tp.fluidForce(b)) for b in FORCE_BODIES}
+        drainage, imbibition = invade(tp, PCS[:FORCE_STEP]), []
+        if method == 1 and trapped:
+            tp.computeCapillaryForce()
+            forces = {str(b): list(tp.fluidForce(b)) for b in FORCE_BODIES}
+        drainage += invade(tp, PCS[FORCE_STEP:])
         sideIncluded = tp.getSaturation(True)
         if method == 1:
             tp.isDrainageActivated = False
             tp.isImbibitionActivated = True
-            for pc in reversed(PCS):
-                tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
-                tp.invasion()
-                imbibition.append(tp.getSaturation(False))
+            imbibition = invade(tp, reversed(PCS))
         runs[f"{method}-{int(trapped)}"] = {"drainage": drainage, "imbibition": imbibition,
                                            "sideIncluded": sideIncluded, "nCells": tp.nCells()}
 
@@ -69,18 +57,9 @@ for name, attrs, pcs in (("isInvadeBoundary=0", {"isInvadeBoundary": False}, PCS
                          ("recursiveInvasion=0", {"recursiveInvasion": False}, PCS),
                          ("drainageFirst=0", {"drainageFirst": False, "isDrainageActivated": False,
                                               "isImbibitionActivated": True}, PCS[::-1])):
-    O.reset()
-    O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
-    for x, y, z, r in spheres:
-        O.bodies.append(sphere((x, y, z), r, fixed=True))
-    tp = TwoPhaseFlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], surfaceTension=GAMMA, **attrs)
+    tp = reservoir_engine(spheres, lo, hi, surfaceTension=GAMMA, **attrs)
     tp.initialization()
-    saturations = []
-    for pc in pcs:
-        tp.bndCondValue = [0, 0, -pc, 0, 0, 0]
-        tp.invasion()
-        saturations.append(tp.getSaturation(False))
-    variants[name] = {"attrs": attrs, "pcs": pcs, "saturations": saturations}
+    variants[name] = {"attrs": attrs, "pcs": pcs, "saturations": invade(tp, pcs)}
 
 triplets = [((0, 0, 0), 1.0, (2, 0, 0), 1.0, (1, 3 ** 0.5, 0), 1.0),
             ((0, 0, 0), 1.0, (2.2, 0, 0), 0.9, (1.1, 1.9, 0.2), 1.1),
