@@ -4,6 +4,8 @@ periodic_packing.json without the periodic cell, each given a deterministic velo
 step (fresh contacts get their first shear increment from the velocities). Prints one JSON
 line `RESULT {...}` (talus.dem.twin) (the volume is the packing's bounding box)."""
 import json
+import os
+import sys
 
 import numpy as np
 
@@ -14,19 +16,14 @@ except NameError:
     from talus.dem import *  # noqa: F401,F403
     talus = True
 
-data = json.load(open("periodic_packing.json"))  # run from this folder (Yade has no __file__ of the script)
-O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
-O.bodies.append([sphere(tuple(c), r) for c, r in zip(data["pos"], data["radius"])])
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # packing_scene.py, under Yade's -x too
+from packing_scene import linear_engines, load_packing  # noqa: E402
+
+data = load_packing(periodic=False)
 velocities = np.sin(np.arange(3 * len(data["pos"])).reshape(-1, 3) * 1.7) * 0.05
 for b, v in zip(O.bodies, velocities):
     b.state.vel = Vector3(*v) if not talus else v
-O.engines = [
-    ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb()]),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
-    NewtonIntegrator(damping=0.0),
-]
+linear_engines()
 O.dt = 1e-5
 O.run(1, True)
 pos = np.array([list(b.state.pos) for b in O.bodies])

@@ -8,17 +8,17 @@ strain, progress and the cell's trsf (one RESULT line, talus.dem.twin). Paramete
 controlled, multi-point paths, shear, rates capped)."""
 import json
 import os
+import sys
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
 except NameError:
     from talus.dem import *  # noqa: F401,F403
 
-data = json.load(open("periodic_packing.json"))  # run from this folder (Yade has no __file__ of the script)
-O.periodic = True
-O.cell.hSize = Matrix3(*[x for row in data["hSize"] for x in row])
-O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
-O.bodies.append([sphere(tuple(c), r) for c, r in zip(data["pos"], data["radius"])])
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # packing_scene.py, under Yade's -x too
+from packing_scene import load_packing  # noqa: E402
+
+load_packing()
 O.dt = 2e-5
 rows, hooks = [], []
 
