@@ -8,6 +8,7 @@
 namespace talus::dem::checkpoint
 {
 /// Row-major copy of 3x3 matrices (Eigen stores them by column).
+/// @return m(0,0), m(0,1), ..., m(2,2)
 inline std::array<double, 9> rowMajor(const Mat3& m)
 {
   std::array<double, 9> out{};
@@ -17,6 +18,9 @@ inline std::array<double, 9> rowMajor(const Mat3& m)
   return out;
 }
 
+/// Whether a user's checkpoint extra may have this name (it becomes an HDF5 path component).
+/// @param name the extra's name
+/// @return true for a non-empty name of ASCII letters, digits, '_' and '-'
 inline bool validExtraName(const std::string& name)
 {
   return !name.empty() && std::all_of(name.begin(), name.end(), [](char ch) {
@@ -72,6 +76,9 @@ inline constexpr std::pair<const char*, std::vector<std::uint8_t> Bodies::*> bod
     {"damped", &Bodies::damped}};
 static_assert(sizeof(int) == 4 && sizeof(BodyId) == 4, "int arrays are written as 32-bit integers");
 
+/// @param group a group's path ending in '/' ("/bodies/")
+/// @param name a dataset's name
+/// @return the dataset's path
 inline std::string at(const char* group, const char* name) { return std::string(group) + name; }
 
 // Potential Blocks and Particles: every field of their shapes, derived ones included (vertices,
@@ -103,7 +110,11 @@ struct StateColumn<double>
 {
   using Stored = double;
   static constexpr std::size_t width = 1;
+  /// @param value the field's value
+  /// @param row its `width` stored values, written
   static void put(double value, double* row) { row[0] = value; }
+  /// @param row the `width` stored values
+  /// @return the field's value
   static double get(const double* row) { return row[0]; }
 };
 template <>
@@ -111,7 +122,11 @@ struct StateColumn<Vec3>
 {
   using Stored = double;
   static constexpr std::size_t width = 3;
+  /// @param value the field's value
+  /// @param row its `width` stored values, written
   static void put(const Vec3& value, double* row) { row[0] = value.x(), row[1] = value.y(), row[2] = value.z(); }
+  /// @param row the `width` stored values
+  /// @return the field's value
   static Vec3 get(const double* row) { return Vec3(row[0], row[1], row[2]); }
 };
 template <>
@@ -119,10 +134,14 @@ struct StateColumn<Quat>
 {
   using Stored = double;
   static constexpr std::size_t width = 4;
+  /// @param value the field's value
+  /// @param row its `width` stored values, written
   static void put(const Quat& value, double* row)
   {
     row[0] = value.w(), row[1] = value.x(), row[2] = value.y(), row[3] = value.z();
   }
+  /// @param row the `width` stored values (w, x, y, z)
+  /// @return the field's value
   static Quat get(const double* row) { return Quat(row[0], row[1], row[2], row[3]); }
 };
 template <>
@@ -130,7 +149,11 @@ struct StateColumn<std::uint8_t>
 {
   using Stored = std::uint8_t;
   static constexpr std::size_t width = 1;
+  /// @param value the field's value
+  /// @param row its `width` stored values, written
   static void put(std::uint8_t value, std::uint8_t* row) { row[0] = value; }
+  /// @param row the `width` stored values
+  /// @return the field's value
   static std::uint8_t get(const std::uint8_t* row) { return row[0]; }
 };
 
@@ -140,19 +163,25 @@ struct StoredType;
 template <>
 struct StoredType<double>
 {
+  /// @return the type in the file (little-endian, whatever the machine)
   static hid_t file() { return H5T_IEEE_F64LE; }
+  /// @return the type in memory (native)
   static hid_t memory() { return H5T_NATIVE_DOUBLE; }
   static constexpr H5T_class_t typeClass = H5T_FLOAT;
 };
 template <>
 struct StoredType<std::uint8_t>
 {
+  /// @return the type in the file (little-endian, whatever the machine)
   static hid_t file() { return H5T_STD_U8LE; }
+  /// @return the type in memory (native)
   static hid_t memory() { return H5T_NATIVE_UINT8; }
   static constexpr H5T_class_t typeClass = H5T_INTEGER;
 };
 
 /// The dataset shape of `rows` values of type T.
+/// @param rows the number of contacts
+/// @return (rows) for one value per contact, else (rows, width)
 template <class T>
 std::vector<hsize_t> stateColumnShape(std::size_t rows)
 {
@@ -181,10 +210,22 @@ struct Loaded
 
 /// Write every part of the scene (bodies, shapes, materials, contacts, cell, clock, energy,
 /// extras) into the open file; `checksums`: numeric datasets checksummed (files, not images).
+/// @param file the open file (or in-memory image), not owned
+/// @param extras the user's extra datasets saved with the scene
+/// @param ctx names the checkpoint in errors
+/// @param checksums chunk numeric datasets with a Fletcher-32 checksum
+/// @throws CheckpointError naming the path when HDF5 refuses
 void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx, bool checksums);
 /// Read every part into `in` (shapes and lists checked as they are read).
+/// @param file the open file (or in-memory image), not owned
+/// @param in filled; the scene is not touched
+/// @param ctx names the checkpoint in errors
+/// @throws CheckpointError for a missing or malformed part, or corrupted data
 void readScene(hid_t file, Loaded& in, const Context& ctx);
 /// Consistency of what was read: every index in range, the contact list sorted, the
 /// materials valid. Catches damage that checksums cannot (a file edited by hand).
+/// @param in what readScene read
+/// @param ctx names the checkpoint in errors
+/// @throws CheckpointError naming the first inconsistency
 void validate(const Loaded& in, const Context& ctx);
 } // namespace talus::dem::checkpoint
