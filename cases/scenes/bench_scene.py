@@ -1,5 +1,7 @@
 """What the benchmark scenes of this folder share, importable by the same text under Yade
-(`yade -x`) and Talus: reading the packing a case wrote, and timing the steps.
+(`yade -x`) and Talus (`talus run`): reading the packing a case wrote, the frictional bodies, the
+periodic scenes and timing the steps. Yade's names come from the `yade` module, which is Yade's
+own under `yade -x` and Talus's namespace of Yade's names under `talus run`.
 
 A packing file: a first line of numbers (the scene's parameters), then one line per sphere
 `x y z r`, or, in files that also hold a mesh, `S x y z r` and `F x1 y1 z1 x2 y2 z2 x3 y3 z3` per
@@ -22,6 +24,32 @@ def read_packing(path):
             else:
                 spheres.append(tuple(float(v) for v in (fields[1:] if fields[0] == "S" else fields)))
     return parameters, spheres, triangles
+
+
+def frictional_bodies(O, young, density, spheres, triangles=()):
+    """The scenes' one FrictMat (poisson 0.3, friction 0.5 rad) and the bodies made of it: the
+    facets of `triangles` and the `spheres`. Returns (facet ids, sphere ids)."""
+    from yade import FrictMat, utils
+    material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
+    facets = O.bodies.append([utils.facet((t[0:3], t[3:6], t[6:9]), material=material) for t in triangles])
+    return facets, O.bodies.append([utils.sphere((x, y, z), r, material=material) for x, y, z, r in spheres])
+
+
+def periodic_linear(O, sides, young, density, spheres, controllers=()):
+    """The periodic scenes: a cell of `sides`, the spheres (frictional_bodies), linear
+    Cundall-Strack with Coulomb friction, the `controllers`, Cundall damping 0.2, no gravity."""
+    import yade
+    O.periodic = True
+    O.cell.setBox(*sides)
+    frictional_bodies(O, young, density, spheres)
+    O.engines = [
+        yade.ForceResetter(),
+        yade.InsertionSortCollider([yade.Bo1_Sphere_Aabb()]),
+        yade.InteractionLoop([yade.Ig2_Sphere_Sphere_ScGeom()], [yade.Ip2_FrictMat_FrictMat_FrictPhys()],
+                             [yade.Law2_ScGeom_FrictPhys_CundallStrack()]),
+        *controllers,
+        yade.NewtonIntegrator(damping=0.2),
+    ]
 
 
 def real_contacts(O):

@@ -15,7 +15,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # bench_scene.py, under Yade's -x too
-from bench_scene import read_packing, timed  # noqa: E402
+from bench_scene import periodic_linear, read_packing, timed  # noqa: E402
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
@@ -25,18 +25,8 @@ except NameError:
 packing_file, steps = sys.argv[1], int(sys.argv[2])
 (dt, young, density, size), spheres, _ = read_packing(packing_file)
 
-O.periodic = True
-O.cell.setBox(size, size, size)
-material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
-O.bodies.append([sphere((x, y, z), r, material=material) for x, y, z, r in spheres])
-O.engines = [
-    ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb()]),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
-    PeriTriaxController(goal=(-1e5, -1e5, -1e5), stressMask=7, dynCell=True, maxStrainRate=(10, 10, 10),
-                        maxUnbalanced=0.1, relStressTol=1e-3),
-    NewtonIntegrator(damping=0.2),
-]
+periodic_linear(O, (size, size, size), young, density, spheres,
+                [PeriTriaxController(goal=(-1e5, -1e5, -1e5), stressMask=7, dynCell=True, maxStrainRate=(10, 10, 10),
+                                     maxUnbalanced=0.1, relStressTol=1e-3)])
 O.dt = dt
 timed(O, steps)

@@ -16,7 +16,7 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # bench_scene.py, under Yade's -x too
-from bench_scene import read_packing, timed  # noqa: E402
+from bench_scene import periodic_linear, read_packing, timed  # noqa: E402
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
@@ -26,17 +26,7 @@ except NameError:
 packing_file, calls, steps = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
 (dt, young, density, sx, sy, sz), spheres, _ = read_packing(packing_file)
 
-O.periodic = True
-O.cell.setBox(sx, sy, sz)
-material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
-O.bodies.append([sphere((x, y, z), r, material=material) for x, y, z, r in spheres])
-O.engines = [
-    ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb()]),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom()], [Ip2_FrictMat_FrictMat_FrictPhys()],
-                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
-    NewtonIntegrator(damping=0.2),
-]
+periodic_linear(O, (sx, sy, sz), young, density, spheres)
 O.dt = dt
 rate = 1.0 / (steps * dt)
 

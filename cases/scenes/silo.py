@@ -16,22 +16,16 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # bench_scene.py, under Yade's -x too
-from bench_scene import read_packing, timed, write_spheres  # noqa: E402
+from bench_scene import frictional_bodies, read_packing, timed, write_spheres  # noqa: E402
 
 try:
     O  # noqa: B018  (defined when Yade runs the script)
-    import yade.utils as _utils
-    _facet = _utils.facet
 except NameError:
     from talus.dem import *  # noqa: F401,F403
-    _facet = facet
 
 packing_file, steps = sys.argv[1], int(sys.argv[2])
 (dt, young, density, exit_z), spheres, triangles = read_packing(packing_file)
-
-material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
-O.bodies.append([_facet((t[0:3], t[3:6], t[6:9]), material=material) for t in triangles])
-falling = set(O.bodies.append([sphere((x, y, z), r, material=material) for x, y, z, r in spheres]))
+falling = set(frictional_bodies(O, young, density, spheres, triangles)[1])
 
 
 def eraseFallen():
