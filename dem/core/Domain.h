@@ -21,12 +21,13 @@ public:
   /// see all rows. The MPI domain interleaves its ghosts (read-only copies of bodies other
   /// processes own) with its own bodies in global-id order, so that every contact has the
   /// orientation and every body sums its contacts in the order of the serial scene (the same
-  /// bits): its ownedBodies is every row, a ghost's integration (with part of its forces) being
-  /// overwritten by its owner's state in afterIntegration. Which rows are whose: owns().
+  /// bits): its ownedBodies is every row; the integrator leaves out the rows it does not own
+  /// (owns()), whose state their owners send in afterIntegration.
   /// @return the number of rows the per-body stages take
   virtual std::size_t ownedBodies(const Scene& scene) const = 0;
 
-  /// Whether row `row` is this process's body (false: a ghost). Measurements count owned rows.
+  /// Whether row `row` is this process's body (false: a ghost, not integrated here).
+  /// Measurements count owned rows.
   /// @param row a row of scene.bodies
   /// @return true for an owned body (or one every process holds)
   virtual bool owns(std::size_t row) const = 0;

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -91,6 +92,10 @@ std::vector<std::byte> exchangeBytes(MPI_Comm comm, const std::vector<std::vecto
 }
 #pragma GCC diagnostic pop
 
+/// The CPU seconds of this process so far (a rank waiting in MPI polls: its CPU time, unlike its
+/// wall time, is what the wait costs the machine).
+double cpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
 template <class T>
 void appendBytes(std::vector<std::byte>& out, const T& x)
 {
@@ -110,6 +115,7 @@ const std::byte* readBytes(const std::byte* in, T& x)
 MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings)
     : comm_(comm), settings_(settings), method_(Method::RCB)
 {
+  const double start = MPI_Wtime();
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &ranks_);
   const Bodies& b = scene.bodies;
@@ -160,7 +166,7 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   RankBodies whole{std::move(scene.bodies), {}};
   whole.globalId.resize(whole.bodies.size());
   std::iota(whole.globalId.begin(), whole.globalId.end(), GlobalId{0});
-  rowOf_.assign(whole.bodies.size(), -1);
+  globalCount_ = static_cast<std::int64_t>(whole.bodies.size());
   globalId_ = whole.globalId;
   const auto P = static_cast<std::size_t>(ranks_), me = static_cast<std::size_t>(rank_);
   const std::vector<std::int64_t> slice(spheres.begin() + static_cast<std::ptrdiff_t>(spheres.size() * me / P),
@@ -189,6 +195,11 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
     replicated_[i] = scene.bodies.shape[i] == ShapeKind::Wall;
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
+  // Of the whole scene every rank built, only this rank's rows are left: its memory goes back.
+  forEachBodyField(scene.bodies, [](auto& field) { field.shrink_to_fit(); });
+  scene.contacts.list.shrink_to_fit();
+  scene.contacts.extra.shrink_to_fit();
+  traffic_.splitSeconds = MPI_Wtime() - start;
 }
 
 std::size_t MpiDomain::ownedBodies(const Scene& scene) const { return scene.bodies.size(); }
@@ -202,7 +213,9 @@ bool MpiDomain::computesPair(std::size_t row1, std::size_t row2) const
 
 std::int64_t MpiDomain::rowOf(GlobalId id) const
 {
-  return id >= 0 && id < globalCount() ? rowOf_[static_cast<std::size_t>(id)] : -1;
+  // Rows are in ascending global id: no table over the whole scene.
+  const auto at = std::lower_bound(globalId_.begin(), globalId_.end(), id);
+  return at != globalId_.end() && *at == id ? at - globalId_.begin() : -1;
 }
 
 int MpiDomain::regionOf(const Vec3& x) const
@@ -217,22 +230,29 @@ int MpiDomain::regionOf(const Vec3& x) const
 
 void MpiDomain::sum(std::span<double> values) const
 {
+  const double start = MPI_Wtime(), cpu = cpuSeconds();
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, comm_);
+  traffic_.reductionSeconds += MPI_Wtime() - start;
+  traffic_.waitCpuSeconds += cpuSeconds() - cpu;
 }
 
 double MpiDomain::min(double value) const
 {
-  MPI_Allreduce(MPI_IN_PLACE, &value, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  min(std::span<double>(&value, 1));
   return value;
 }
 
 void MpiDomain::min(std::span<double> values) const
 {
+  const double start = MPI_Wtime(), cpu = cpuSeconds();
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN, comm_);
+  traffic_.reductionSeconds += MPI_Wtime() - start;
+  traffic_.waitCpuSeconds += cpuSeconds() - cpu;
 }
 
 void MpiDomain::beforeDetection(Scene& scene)
 {
+  const double start = MPI_Wtime();
   const Bodies& b = scene.bodies;
   const std::size_t n = b.size();
   // A body that moved, since the last re-detection, further from the others' common drift than
@@ -356,6 +376,7 @@ void MpiDomain::beforeDetection(Scene& scene)
   traffic_.rebuilds += 1;
   traffic_.rebuildBytes += sent + static_cast<std::int64_t>(plan.exportRows.size() * rowBytes());
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
+  traffic_.rebuildSeconds += MPI_Wtime() - start;
 }
 
 void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& contacts,
@@ -397,7 +418,6 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
     for (std::size_t k = 0; k < n; ++k)
       field[k] = from[order[k]];
   });
-  std::fill(rowOf_.begin(), rowOf_.end(), -1);
   globalId_.resize(n);
   owned_.resize(n);
   replicated_.resize(n);
@@ -406,11 +426,10 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
     globalId_[k] = pool.globalId[order[k]];
     owned_[k] = order[k] < ownedEnd;
     replicated_[k] = order[k] < walls;
-    rowOf_[static_cast<std::size_t>(globalId_[k])] = static_cast<std::int64_t>(k);
   }
 
   // Ghost updates: the rows sent to each rank, the rows each rank's updates land in.
-  auto rowOfId = [&](GlobalId id) { return rowOf_[static_cast<std::size_t>(id)]; };
+  auto rowOfId = [&](GlobalId id) { return rowOf(id); };
   sendRows_.resize(ghosts.sentRows.size());
   for (std::size_t k = 0; k < sendRows_.size(); ++k)
     sendRows_[k] = rowOfId(mine.globalId[static_cast<std::size_t>(ghosts.sentRows[k])]);
@@ -462,6 +481,7 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
 
 void MpiDomain::afterIntegration(Scene& scene)
 {
+  const double start = MPI_Wtime();
   Bodies& b = scene.bodies;
   std::vector<MPI_Request> requests;
   const auto P = static_cast<std::size_t>(ranks_);
@@ -485,9 +505,12 @@ void MpiDomain::afterIntegration(Scene& scene)
       ++traffic_.updateMessages;
       traffic_.updateBytes += count * static_cast<std::int64_t>(stateDoubles * sizeof(double));
     }
+  const double cpu = cpuSeconds();
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  traffic_.waitCpuSeconds += cpuSeconds() - cpu;
   for (std::size_t k = 0; k < recvRows_.size(); ++k)
     copyState(b, static_cast<std::size_t>(recvRows_[k]), recvBuffer_.data() + k * stateDoubles, false);
   ++traffic_.updates;
+  traffic_.updateSeconds += MPI_Wtime() - start;
 }
 } // namespace talus::dem::distributed

@@ -49,7 +49,7 @@ public:
   [[nodiscard]] int rank() const { return rank_; }
   [[nodiscard]] int ranks() const { return ranks_; }
   /// Bodies of the whole scene (global ids 0 .. globalCount - 1).
-  [[nodiscard]] std::int64_t globalCount() const { return static_cast<std::int64_t>(rowOf_.size()); }
+  [[nodiscard]] std::int64_t globalCount() const { return globalCount_; }
   /// The row of global id `id` here, -1 if this rank holds no copy of it.
   [[nodiscard]] std::int64_t rowOf(GlobalId id) const;
   [[nodiscard]] GlobalId globalIdOf(std::size_t row) const { return globalId_[row]; }
@@ -58,13 +58,18 @@ public:
   [[nodiscard]] double ghostDistance() const { return ghostDistance_; }
 
   /// What the halo moved: ghost updates (one per step) and re-detections (migration and ghost
-  /// rebuild), bytes and messages this rank sent.
+  /// rebuild), bytes and messages this rank sent, and the seconds this rank spent in them, in
+  /// the reductions and in splitting the scene (waiting for the other ranks included); of those,
+  /// the CPU seconds spent waiting in the ghost updates' and the reductions' MPI calls.
   struct Traffic
   {
     std::int64_t updates = 0, updateBytes = 0, updateMessages = 0;
     std::int64_t rebuilds = 0, rebuildBytes = 0;
+    double updateSeconds = 0, rebuildSeconds = 0, reductionSeconds = 0, splitSeconds = 0, waitCpuSeconds = 0;
   };
   [[nodiscard]] const Traffic& traffic() const { return traffic_; }
+  /// Zero what the steps counted (the split's seconds stay).
+  void resetTraffic() { traffic_ = Traffic{.splitSeconds = traffic_.splitSeconds}; }
 
 private:
   /// Lay the scene out again from this rank's spheres `mine` (global ids ascending): walls, mine
@@ -81,14 +86,14 @@ private:
   Method method_;
   std::vector<Box> boxes_;
   double ghostDistance_ = 0;
-  std::vector<GlobalId> globalId_; ///< per row
+  std::int64_t globalCount_ = 0;
+  std::vector<GlobalId> globalId_; ///< per row, ascending (rowOf searches it)
   std::vector<std::uint8_t> owned_, replicated_; ///< per row: this rank's; a wall (every rank's)
-  std::vector<std::int64_t> rowOf_; ///< per global id: its row here, -1 if none
   /// Ghost updates: rows sent to rank r are sendRows_[sendStart_[r] .. sendStart_[r+1]), the
   /// rows receiving from rank r are recvRows_[recvStart_[r] .. recvStart_[r+1]), in that order.
   std::vector<std::int64_t> sendRows_, sendStart_, recvRows_, recvStart_;
   std::vector<double> sendBuffer_, recvBuffer_;
   std::vector<Vec3> detectedAt_; ///< per row: its position at the last re-detection
-  Traffic traffic_;
+  mutable Traffic traffic_; ///< mutable: the reductions (const) count their seconds
 };
 } // namespace talus::dem::distributed

@@ -84,8 +84,14 @@ PYBIND11_MODULE(_distributed, m)
         out["update_messages"] = t.updateMessages;
         out["rebuilds"] = t.rebuilds;
         out["rebuild_bytes"] = t.rebuildBytes;
+        out["update_seconds"] = t.updateSeconds;
+        out["rebuild_seconds"] = t.rebuildSeconds;
+        out["reduction_seconds"] = t.reductionSeconds;
+        out["split_seconds"] = t.splitSeconds;
+        out["wait_cpu_seconds"] = t.waitCpuSeconds;
         return out;
       })
+      .def("resetTraffic", &MpiDomain::resetTraffic)
       .def("positions", [](const MpiDomain& d, const Scene& s) {
         std::vector<double> all = byGlobalId(d, s, [&](std::size_t i, double* out) {
           for (int k = 0; k < 3; ++k)

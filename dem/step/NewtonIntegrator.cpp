@@ -1,6 +1,7 @@
 #include "dem/step/NewtonIntegrator.h"
 
 #include "dem/core/Clump.h"
+#include "dem/core/Domain.h"
 #include "dem/core/Scene.h"
 #include "dem/base/Threads.h"
 
@@ -73,7 +74,9 @@ void NewtonIntegrator::refreshInverses(const Scene& scene)
   {
     if (!b.alive[i])
       continue;
-    if (mask > 0 && (b.groupMask[i] & mask) == 0)
+    // A ghost (a copy of another process's body, Domain::owns) takes its owner's new state
+    // after the step: moving it here would be wasted work.
+    if ((mask > 0 && (b.groupMask[i] & mask) == 0) || (scene.domain && !scene.domain->owns(i)))
     {
       mode_[i] = Masked;
       continue;

@@ -103,3 +103,27 @@ def test_a_body_moved_beyond_the_ghost_layer_is_named_with_the_step(tmp_path):
     done = talus_run(_script(tmp_path, body), processes=2)
     assert done.returncode != 0
     assert done.stderr.count("beyond the ghost layer") == 1 and "step 10: body " in done.stderr, done.stderr
+
+
+def test_each_process_keeps_only_its_spheres_the_walls_and_its_ghosts(tmp_path):
+    # After the split, of the scene every process built whole only its own spheres, the walls
+    # and the ghosts are left; the halo's time is reported with its traffic.
+    body = ("O.run(10, True)\n"
+            "from talus.dem import distributed\n"
+            "d = distributed.domain(O)\n"
+            "rows = len(O.positions())\n"
+            "mine = sum(1 for r in range(rows) if d.owns(r)) - 1\n"          # less the wall
+            "table = distributed.per_process({'rows': rows, 'mine': mine})\n"
+            "traffic = distributed.traffic()\n"
+            "import json\n"
+            "print('RESULT', json.dumps({'table': table, 'traffic': traffic}))\n")
+    done = talus_run(_script(tmp_path, body), processes=2)
+    assert done.returncode == 0, done.stderr
+    result = json.loads(done.stdout.split("RESULT", 1)[1])
+    assert sum(p["mine"] for p in result["table"]) == 20
+    for p in result["table"]:
+        ghosts = p["rows"] - p["mine"] - 1
+        assert 0 < ghosts < p["mine"] and p["rows"] < 21, result
+    for t in result["traffic"]:
+        assert t["updates"] == 10 and t["update_seconds"] > 0 and t["split_seconds"] > 0
+        assert 0 <= t["wait_cpu_seconds"] <= t["update_seconds"] + t["reduction_seconds"] + 0.1

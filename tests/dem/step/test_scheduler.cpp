@@ -258,3 +258,28 @@ TEST(Scheduler, ADomainIsCalledAtItsCommunicationStages)
   EXPECT_EQ(split.stepLoop().sharedSteps(), 200);
   EXPECT_EQ(plain.bodies.pos, split.bodies.pos);
 }
+
+TEST(Scheduler, GhostsAreLeftToTheirOwners)
+{
+  // Every third sphere a ghost: its owner (elsewhere) moves it, not this process's integrator,
+  // in the shared step and in Yade's sub-steps alike.
+  struct ThirdsGhosts : WholeDomain
+  {
+    bool owns(std::size_t row) const override { return row % 3 != 1; }
+  };
+  for (bool oneByOne : {false, true})
+  {
+    Scene split = bed();
+    split.domain = std::make_shared<ThirdsGhosts>();
+    const std::vector<Vec3> start = split.bodies.pos;
+    if (oneByOne)
+      runOneByOne(split, 20);
+    else
+      split.run(20);
+    for (std::size_t i = 1; i < start.size(); ++i)
+      if (i % 3 == 1)
+        EXPECT_EQ(split.bodies.pos[i], start[i]) << i;
+      else
+        EXPECT_NE(split.bodies.pos[i], start[i]) << i;
+  }
+}

@@ -108,22 +108,42 @@ def rank() -> int:
     return _rank
 
 
+def per_process(values: dict[str, float], scene=None) -> list[dict[str, float]]:
+    """Every process's ``values`` (the same keys on every process), a dict per process, on every
+    process (collective); in one process, ``[values]``."""
+    if scene is None:
+        scene = default_scene()
+    d = domain(scene)
+    if d is None:
+        return [dict(values)]
+    keys = sorted(values)
+    table = [0.0] * (len(keys) * d.ranks)
+    for k, key in enumerate(keys):
+        table[d.rank * len(keys) + k] = float(values[key])
+    table = d.sum(table)
+    return [{key: table[r * len(keys) + k] for k, key in enumerate(keys)} for r in range(d.ranks)]
+
+
 def traffic(scene=None) -> list[dict]:
     """What each process's halo sent (ghost updates at every step, migrations and ghost
-    rebuilds at re-detections), a dict per process, on every process (collective); empty in one
-    process."""
+    rebuilds at re-detections) and the seconds it spent in them and in the reductions, a dict
+    per process, on every process (collective); empty in one process."""
     if scene is None:
         scene = default_scene()
     d = domain(scene)
     if d is None:
         return []
-    mine = d.traffic()
-    keys = sorted(mine)
-    table = [0.0] * (len(keys) * d.ranks)
-    for k, key in enumerate(keys):
-        table[d.rank * len(keys) + k] = float(mine[key])
-    table = d.sum(table)
-    return [{key: int(table[r * len(keys) + k]) for k, key in enumerate(keys)} for r in range(d.ranks)]
+    return [{k: (v if k.endswith("seconds") else int(v)) for k, v in t.items()}
+            for t in per_process(d.traffic(), scene)]
+
+
+def reset_traffic(scene=None) -> None:
+    """Zero what traffic() reports of the steps so far (to measure from a given step on)."""
+    if scene is None:
+        scene = default_scene()
+    d = domain(scene)
+    if d is not None:
+        d.resetTraffic()
 
 
 def is_collective(exc: BaseException) -> bool:
