@@ -404,8 +404,8 @@ void PoreFlow::applyBoundaryTypes()
       throw std::invalid_argument("imposePressure: point " + std::to_string(n) + " is outside the pore network");
     imposed_[static_cast<std::size_t>(points_[n].pore)] = 1;
   }
-  reference_ = net_->periodic && params.fluidBulkModulus <= 0 &&
-               std::find(imposed_.begin(), imposed_.end(), 1) == imposed_.end() && !imposed_.empty();
+  reference_ = params.fluidBulkModulus <= 0 && std::find(imposed_.begin(), imposed_.end(), 1) == imposed_.end() &&
+               !imposed_.empty();
   if (reference_)
     imposed_[0] = 1;
   builtTypes_ = params.bndCondIsPressure;
@@ -452,6 +452,18 @@ void PoreFlow::solve()
   for (const PointPressure& pt : points_)
     p_[static_cast<std::size_t>(pt.pore)] = pt.value;
   const PoreNetwork& net = *net_;
+  if (reference_)
+  {
+    // Nothing fixes the pressure level: only a net source of zero has a solution (what enters
+    // the closed network must leave it), and then only its level is free.
+    checkClosedBalance(source);
+    if (!net.periodic && std::all_of(source.begin(), source.end(), [](double s) { return s == 0; }))
+    {
+      p_.assign(p_.size(), params.pZero); // fluid at rest: no need to solve
+      return;
+    }
+    p_[0] = 0;
+  }
   if (net.periodic)
   {
     // the macroscopic gradient: a neighbour's image across the period is at p_j + g . shift
@@ -460,27 +472,46 @@ void PoreFlow::solve()
         if (net.pores[i].throats[f] >= 0)
           source[i] += net.throats[static_cast<std::size_t>(net.pores[i].throats[f])].conductance *
                        pressureJump(net.pores[i].neighbourPeriod[f]);
-    if (reference_)
-      p_[0] = 0;
   }
   solver_.tolerance = params.tolerance;
   solver_.relax = params.relax;
   solver_.solve(static_cast<SolverKind>(params.useSolver), p_, source);
   if (reference_)
   {
-    // zero volume-weighted mean of the periodic part p - g . x
+    // the level: volume-weighted mean of p - g . x equal to pZero (g . x only when periodic)
+    const Vec3 g = net.periodic ? params.gradP : Vec3::Zero();
     double sum = 0;
     double volume = 0;
     for (std::size_t i = 0; i < net.pores.size(); ++i)
     {
       const double v = std::abs(net.pores[i].volume);
-      sum += v * (p_[i] - params.gradP.dot(net.pores[i].centre));
+      sum += v * (p_[i] - g.dot(net.pores[i].centre));
       volume += v;
     }
-    const double mean = volume > 0 ? sum / volume : 0.0;
+    const double shift = (volume > 0 ? sum / volume : 0.0) - params.pZero;
     for (double& x : p_)
-      x -= mean;
+      x -= shift;
   }
+}
+
+void PoreFlow::checkClosedBalance(const std::vector<double>& source) const
+{
+  double net = 0;
+  double scale = 0;
+  for (const double s : source)
+  {
+    net += s;
+    scale += std::abs(s);
+  }
+  // round-off of the volume rates leaves a net source of the order of 1e-16 of their sum; 1e-9
+  // of it is far above that and far below any real change of the fluid's volume
+  if (std::abs(net) > 1e-9 * scale)
+    throw std::invalid_argument(
+        "FlowEngine: the pore network is closed (no boundary imposes a pressure: bndCondIsPressure all off, no "
+        "imposePressure point) and the fluid is incompressible (fluidBulkModulus = 0), but the fluid volume "
+        "the pores take changes by a net " + std::to_string(-net) +
+        " m^3/s (moving walls or spheres, imposeFlux, thermal expansion): it has nowhere to go. Drain a side "
+        "(bndCondIsPressure[k] = True with its bndCondValue) or make the fluid compressible (fluidBulkModulus > 0)");
 }
 
 int PoreFlow::imposePressure(const Vec3& pos, double p)

@@ -31,7 +31,8 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
   /// solve is transient.
   double fluidBulkModulus = 0;
   /// Pressure of the pores of the first network, and of new pores no old one covers (Yade's
-  /// pZero); it matters for a compressible fluid only.
+  /// pZero); it matters for a compressible fluid, and for an incompressible one where no
+  /// pressure is imposed: it is then the mean pressure (see reference_).
   double pZero = 0;
 
   // --- periodic variant (Yade's PeriodicFlowEngine) ---
@@ -190,6 +191,9 @@ private:
   [[nodiscard]] double facetFlux(std::size_t i, int f) const;
   /// The storage term V_void / (K_f dt) per pore (empty when incompressible).
   std::vector<double> storage() const;
+  /// A closed network (reference_): the sources must sum to zero.
+  /// @throws std::invalid_argument naming what to set when they do not
+  void checkClosedBalance(const std::vector<double>& source) const;
 
   std::optional<PoreNetwork> net_;
   std::vector<char> imposed_;
@@ -215,8 +219,11 @@ private:
   std::vector<PointPressure> points_;
   std::vector<PointPressure> fluxPoints_; ///< value: the imposed outflux
   bool pointsChanged_ = false;
-  /// A periodic network with nothing imposed is singular (pressure known up to a constant):
-  /// pore 0 is held at 0 for the solve, then the field is shifted to a zero-mean periodic part.
+  /// With nothing imposed and an incompressible fluid the system is singular (the pressure is
+  /// known up to a constant, and exists only if the sources sum to zero): pore 0 is held at 0
+  /// for the solve, then the field is shifted so that its volume-weighted mean (of the periodic
+  /// part p - gradP . x on a periodic network) is pZero. Zero sources on a bounded network: all
+  /// pores at pZero, no solve.
   bool reference_ = false;
   PressureSolver solver_;
   double globalK_ = 0;

@@ -211,8 +211,13 @@ def test_bad_input():
     bad[5, 1] = np.nan
     with pytest.raises(ValueError, match="body 11"):
         flow.triangulate(bad, rad, ids)
-    with pytest.raises(ValueError, match="singular"):
-        FlowEngine().triangulate(pos, rad, ids)
+    closed = FlowEngine(pZero=2.0)      # no pressure imposed: the fluid at rest at pZero
+    closed.triangulate(pos, rad, ids)
+    closed.solve()
+    assert np.all(np.asarray(closed.pressures) == 2.0)
+    closed.imposeFlux(pos[0] + [1e-4, 0, 0], 1e-9)
+    with pytest.raises(ValueError, match="nowhere to go"):
+        closed.solve()
     with pytest.raises(ValueError, match="6 values"):
         flow.bndCondValue = [1, 2]
     with pytest.raises(AttributeError):

@@ -11,7 +11,8 @@ between them. Each throat gets Yade's conductance
 between the facet and the two pore centres, L the distance between the pore centres), clamped to
 [minKdivKmean, maxKdivKmean] × a global reference value when ``clampKValues``. The pore
 pressures solve Σ_j k_ij (p_i − p_j) = 0 with imposed pressures on the boundaries whose
-``bndCondIsPressure`` is set (no flux on the others), by CHOLMOD (``useSolver=3``, the factor is
+``bndCondIsPressure`` is set (no flux on the others; with none and an incompressible fluid the
+net volume change must be zero and the mean pressure is ``pZero``), by CHOLMOD (``useSolver=3``, the factor is
 kept until the mesh or the boundary types change), Gauss–Seidel (``useSolver=0``) or, a Talus
 addition, conjugate gradients preconditioned by algebraic multigrid (``useSolver=4``: no factor,
 for large networks remeshed often or too large for a factor).
@@ -143,7 +144,7 @@ class FlowEngine(Engine):
     vertices in a canonical order, within 0.4 % of Yade on the most affected throat), and for the engine
     ``meshUpdateInterval`` 1000 (<= 0: never by count), ``decoupleForces`` False (True: the fluid forces are
     not added to the bodies), ``pZero`` 0 (pressure of the first network's pores: the initial pressure of
-    a compressible fluid), ``debug`` False (no effect), ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
+    a compressible fluid; the mean pressure of an incompressible one that no boundary drains), ``debug`` False (no effect), ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
     fraction since the mesh; an inverted pore always remeshes), ``blockHook`` (callable or command string run
     after each remesh, before the solve), ``multithread`` False (Yade's name: build due meshes and their
     CHOLMOD factor in a second thread while the old mesh keeps being used) with ``backgroundSteps`` 10 (Talus:
@@ -340,24 +341,7 @@ class FlowEngine(Engine):
 
     def emulateAction(self):
         """Run the engine's action once now (Yade's): triangulate (at the first call or when
-        ``updateTriangulation`` is set), solve, add the fluid forces. With no pressure imposed on
-        any boundary and an incompressible fluid (a FlowEngine kept for its triangulation only, as
-        in Yade's ThermalEngine examples, where Yade's solve fails and goes on) the network is
-        built and no pressure is solved, with a warning."""
-        if not any(self.bndCondIsPressure) and self.fluidBulkModulus == 0:
-            from talus.dem import O
-            # the build sets up the pressure system, which needs an imposed pressure: one for the
-            # build only (the next solve sees the boundary types changed and sets it up again)
-            types = self.bndCondIsPressure
-            self.bndCondIsPressure = [True] + types[1:]
-            try:
-                self.triangulateScene(self._scene or O)
-            finally:
-                self.bndCondIsPressure = types
-            self._rebuild = False
-            warnings.warn("FlowEngine.emulateAction: no boundary imposes a pressure (bndCondIsPressure all off): "
-                          "the pore network is built, no pressure is solved", RuntimeWarning, stacklevel=2)
-            return
+        ``updateTriangulation`` is set), solve, add the fluid forces."""
         self._step()
 
     def moveVertices(self, positions, dt: float, boundaryPositions=None):
@@ -402,8 +386,9 @@ class FlowEngine(Engine):
         self._flow.updateConductances()
 
     def solve(self):
-        """Solve the pore pressures for the current boundary values. Raises ValueError when no
-        pressure is imposed anywhere (singular system)."""
+        """Solve the pore pressures for the current boundary values. With no pressure imposed
+        anywhere and an incompressible fluid the mean pressure is ``pZero``; raises ValueError
+        when the pores' volume changes then sum to a net gain or loss (no solution)."""
         self._flow.solve()
 
     def imposePressure(self, pos, p: float) -> int:
