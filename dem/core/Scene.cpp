@@ -16,6 +16,20 @@ std::string str(const Vec3& v)
 {
   return "(" + std::to_string(v[0]) + ", " + std::to_string(v[1]) + ", " + std::to_string(v[2]) + ")";
 }
+
+/// @throws std::invalid_argument naming the body `which` unless `material` indexes one of `count` materials
+void checkMaterial(const std::string& which, int material, std::size_t count)
+{
+  if (material < 0 || material >= static_cast<int>(count))
+    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+}
+
+/// Yade's fixed=True: body i is not dynamic and has every degree of freedom blocked.
+void fix(Bodies& bodies, std::size_t i)
+{
+  bodies.dynamic[i] = 0;
+  bodies.blockedDofs[i] = DofAll;
+}
 } // namespace
 
 int Scene::addMaterial(const Material& material)
@@ -56,14 +70,12 @@ BodyId Scene::addWall(double position, int axis, int sense, int material)
     throw std::invalid_argument(which + ": sense must be -1, 0 or 1, got " + std::to_string(sense));
   if (!std::isfinite(position))
     throw std::invalid_argument(which + ": position is not finite");
-  if (material < 0 || material >= static_cast<int>(materials.size()))
-    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  checkMaterial(which, material, materials.size());
   bodies.walls.push_back({axis, sense});
   const BodyId id = bodies.append(ShapeKind::Wall, static_cast<int>(bodies.walls.size()) - 1, material);
   const auto i = static_cast<std::size_t>(id);
   bodies.pos[i][axis] = position;
-  bodies.dynamic[i] = 0;
-  bodies.blockedDofs[i] = DofAll;
+  fix(bodies, i);
   ++bodiesVersion;
   return id;
 }
@@ -77,16 +89,14 @@ BodyId Scene::addFacet(const Vec3& a, const Vec3& b, const Vec3& c, int material
   const double la = (c - b).norm(), lb = (a - c).norm(), lc = (b - a).norm();
   if (!(n.norm() > 1e-12 * (la + lb + lc) * (la + lb + lc)))
     throw std::invalid_argument(which + ": the three vertices are (nearly) collinear " + str(a) + " " + str(b) + " " + str(c));
-  if (material < 0 || material >= static_cast<int>(materials.size()))
-    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  checkMaterial(which, material, materials.size());
   // Incentre: vertices weighted by the lengths of the opposite sides.
   const Vec3 centre = (la * a + lb * b + lc * c) / (la + lb + lc);
   bodies.facets.push_back({{a - centre, b - centre, c - centre}, n.normalized(), bounded});
   const BodyId id = bodies.append(ShapeKind::Facet, static_cast<int>(bodies.facets.size()) - 1, material);
   const auto i = static_cast<std::size_t>(id);
   bodies.pos[i] = centre;
-  bodies.dynamic[i] = 0;
-  bodies.blockedDofs[i] = DofAll;
+  fix(bodies, i);
   ++bodiesVersion;
   return id;
 }
@@ -102,8 +112,7 @@ BodyId Scene::addBox(const Vec3& center, const Vec3& extents, const Quat& orient
     throw std::invalid_argument(which + ": extents (half-sizes) must be finite and >= 0, got " + str(extents));
   if (!orientation.coeffs().allFinite() || !(orientation.norm() > 0))
     throw std::invalid_argument(which + ": orientation is not a finite non-zero quaternion");
-  if (material < 0 || material >= static_cast<int>(materials.size()))
-    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  checkMaterial(which, material, materials.size());
   bodies.boxes.push_back({extents});
   const BodyId id = bodies.append(ShapeKind::Box, static_cast<int>(bodies.boxes.size()) - 1, material);
   const auto i = static_cast<std::size_t>(id);
@@ -113,10 +122,7 @@ BodyId Scene::addBox(const Vec3& center, const Vec3& extents, const Quat& orient
   bodies.mass[i] = materials[static_cast<std::size_t>(material)].density * 8 * extents.prod();
   bodies.inertia[i] = bodies.mass[i] / 3 * Vec3(e2[1] + e2[2], e2[0] + e2[2], e2[0] + e2[1]);
   if (fixed)
-  {
-    bodies.dynamic[i] = 0;
-    bodies.blockedDofs[i] = DofAll;
-  }
+    fix(bodies, i);
   ++bodiesVersion;
   return id;
 }
@@ -138,8 +144,7 @@ BodyId Scene::addPotentialBlock(const std::vector<double>& a, const std::vector<
     throw std::invalid_argument(which + ": centre is not finite " + str(*center));
   if (!orientation.coeffs().allFinite() || !(orientation.norm() > 0))
     throw std::invalid_argument(which + ": orientation is not a finite non-zero quaternion");
-  if (material < 0 || material >= static_cast<int>(materials.size()))
-    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  checkMaterial(which, material, materials.size());
   PotentialBlockPlacement placement;
   bodies.blocks.push_back(makePotentialBlock(a, b, c, d, r, R, isBoundary, which, &placement));
   const BodyId id = bodies.append(ShapeKind::PotentialBlock, static_cast<int>(bodies.blocks.size()) - 1, material);
@@ -150,10 +155,7 @@ BodyId Scene::addPotentialBlock(const std::vector<double>& a, const std::vector<
   bodies.mass[i] = density * bodies.blocks.back().volume;
   bodies.inertia[i] = density * placement.inertiaPerDensity;
   if (fixed)
-  {
-    bodies.dynamic[i] = 0;
-    bodies.blockedDofs[i] = DofAll;
-  }
+    fix(bodies, i);
   ++bodiesVersion;
   return id;
 #endif
@@ -171,8 +173,7 @@ BodyId Scene::addPotentialParticle(const std::vector<double>& a, const std::vect
     throw std::invalid_argument(which + ": position is not finite " + str(position));
   if (!orientation.coeffs().allFinite() || !(orientation.norm() > 0))
     throw std::invalid_argument(which + ": orientation is not a finite non-zero quaternion");
-  if (material < 0 || material >= static_cast<int>(materials.size()))
-    throw std::invalid_argument(which + ": unknown material index " + std::to_string(material));
+  checkMaterial(which, material, materials.size());
   bodies.particles.push_back(makePotentialParticle(a, b, c, d, r, k, R, isBoundary, which));
   const PotentialParticleShape& s = bodies.particles.back();
   const BodyId id = bodies.append(ShapeKind::PotentialParticle, static_cast<int>(bodies.particles.size()) - 1, material);
@@ -184,10 +185,7 @@ BodyId Scene::addPotentialParticle(const std::vector<double>& a, const std::vect
   bodies.mass[i] = density * s.volume;
   bodies.inertia[i] = density * s.inertiaPerDensity;
   if (fixed)
-  {
-    bodies.dynamic[i] = 0;
-    bodies.blockedDofs[i] = DofAll;
-  }
+    fix(bodies, i);
   ++bodiesVersion;
   return id;
 }

@@ -23,11 +23,7 @@ namespace
 {
 const PotentialBlockShape& blockOf(const Scene& s, BodyId id)
 {
-  s.checkBody(id);
-  const auto i = static_cast<std::size_t>(id);
-  if (s.bodies.shape[i] != ShapeKind::PotentialBlock)
-    throw std::invalid_argument("body " + std::to_string(id) + " is not a PotentialBlock");
-  return s.bodies.blocks[static_cast<std::size_t>(s.bodies.shapeIndex[i])];
+  return convexShapeOf(s, id, ShapeKind::PotentialBlock, &Bodies::blocks, "PotentialBlock");
 }
 } // namespace
 

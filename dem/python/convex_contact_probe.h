@@ -1,7 +1,7 @@
 #pragma once
 
-// The contact probe and the 2D-mode check that the Potential Block and Potential Particle
-// bindings share (blocks_wrappers.cpp, particles_wrappers.cpp).
+// The shape lookup, the contact probe and the 2D-mode check that the Potential Block and
+// Potential Particle bindings share (blocks_wrappers.cpp, particles_wrappers.cpp).
 #include "dem/shapes/ConvexContact.h"
 #include "dem/core/Scene.h"
 
@@ -13,9 +13,24 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace talus::dem
 {
+/// The shape of body `id`, one of `list` (Bodies::blocks or Bodies::particles: the shapes of
+/// kind `kind`, called `name` in the error).
+/// @throws std::invalid_argument naming the body unless it exists and is of that kind
+template <class Shape>
+const Shape& convexShapeOf(const Scene& s, BodyId id, ShapeKind kind, std::vector<Shape> Bodies::*list,
+                           const char* name)
+{
+  s.checkBody(id);
+  const auto i = static_cast<std::size_t>(id);
+  if (s.bodies.shape[i] != kind)
+    throw std::invalid_argument("body " + std::to_string(id) + " is not a " + name);
+  return (s.bodies.*list)[static_cast<std::size_t>(s.bodies.shapeIndex[i])];
+}
+
 /// The 2D mode's settings of a geometry functor (`functor`, e.g. "Ig2_PP_PP_ScGeom"): twoDdir a
 /// finite non-zero vector, unitWidth2D finite and > 0.
 /// @throws std::invalid_argument naming the functor's attribute otherwise

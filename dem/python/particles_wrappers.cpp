@@ -23,11 +23,7 @@ namespace
 {
 const PotentialParticleShape& particleOf(const Scene& s, BodyId id)
 {
-  s.checkBody(id);
-  const auto i = static_cast<std::size_t>(id);
-  if (s.bodies.shape[i] != ShapeKind::PotentialParticle)
-    throw std::invalid_argument("body " + std::to_string(id) + " is not a PotentialParticle");
-  return s.bodies.particles[static_cast<std::size_t>(s.bodies.shapeIndex[i])];
+  return convexShapeOf(s, id, ShapeKind::PotentialParticle, &Bodies::particles, "PotentialParticle");
 }
 
 py::dict describe(const PotentialParticleShape& p)
