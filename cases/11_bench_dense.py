@@ -31,6 +31,8 @@ import numpy as np
 
 from talus import bench, results
 
+import dem_bench_kinds   # the LIGGGHTS input of the dense bed, shared with its kinds
+
 HERE = Path(__file__).resolve().parent
 SCENE = HERE / "scenes" / "dense_bed.py"
 RADIUS, DENSITY, YOUNG = 0.005, 2600.0, 1e7
@@ -60,56 +62,6 @@ def write_packing(path: Path, n: int) -> int:
     return len(centres)
 
 
-def liggghts_input(folder: Path, packing: Path, steps: int) -> Path:
-    """The same bed for LIGGGHTS: a data file from the packing and an input script."""
-    lines = packing.read_text().splitlines()
-    dt, young, density, box_x, box_y = (float(v) for v in lines[0].split())
-    spheres = np.array([[float(v) for v in line.split()] for line in lines[1:]])
-    top = spheres[:, 2].max() + 4 * RADIUS
-    data = folder / "bed.data"
-    with open(data, "w") as out:
-        out.write(f"LIGGGHTS data file\n\n{len(spheres)} atoms\n1 atom types\n\n")
-        out.write(f"0 {box_x!r} xlo xhi\n0 {box_y!r} ylo yhi\n0 {top!r} zlo zhi\n\nAtoms\n\n")
-        for n, (x, y, z, r) in enumerate(spheres, start=1):
-            out.write(f"{n} 1 {2 * r!r} {density!r} {x!r} {y!r} {z!r}\n")
-    # Yade's linear stiffnesses for equal spheres (kn = E r, ks = 0.3 kn) and a viscous damping of
-    # 0.2 of the critical one per contact, in place of Cundall's non-viscous damping.
-    kn = young * RADIUS
-    mass = density * 4 / 3 * math.pi * RADIUS**3
-    gamma = 2 * 0.2 * math.sqrt(kn / (mass / 2))
-    script = folder / "in.bed"
-    script.write_text(f"""atom_style granular
-atom_modify map array
-boundary f f f
-newton off
-communicate single vel yes
-units si
-read_data {data}
-neighbor {0.5 * RADIUS} bin
-neigh_modify delay 0
-fix m1 all property/global kn peratomtypepair 1 {kn}
-fix m2 all property/global kt peratomtypepair 1 {0.3 * kn}
-fix m3 all property/global gamman peratomtypepair 1 {gamma}
-fix m4 all property/global gammat peratomtypepair 1 {gamma}
-fix m5 all property/global coefficientFriction peratomtypepair 1 {math.tan(0.5)}
-pair_style gran model hooke/stiffness tangential history
-pair_coeff * *
-timestep {dt}
-fix gravity all gravity 9.81 vector 0.0 0.0 -1.0
-fix floor all wall/gran model hooke/stiffness tangential history primitive type 1 zplane 0.0
-fix xlo all wall/gran model hooke/stiffness tangential history primitive type 1 xplane 0.0
-fix xhi all wall/gran model hooke/stiffness tangential history primitive type 1 xplane {box_x}
-fix ylo all wall/gran model hooke/stiffness tangential history primitive type 1 yplane 0.0
-fix yhi all wall/gran model hooke/stiffness tangential history primitive type 1 yplane {box_y}
-fix integrate all nve/sphere
-thermo_style custom step atoms
-thermo 100000
-run 1
-run {steps}
-""")
-    return script
-
-
 def talus_seconds_per_step(n: int, steps: int, folder: Path) -> float:
     packing = folder / f"bed-{n}.txt"
     count = write_packing(packing, n)
@@ -134,7 +86,7 @@ def main():
             peers.append(("yade", bench.Side("yade -j1", ["yade", "-n", "-j1", "-x", str(SCENE), str(packing), str(steps)],
                                               figure, cwd=scratch), 5.0))
         if shutil.which("liggghts"):
-            script = liggghts_input(folder, packing, steps)
+            script = dem_bench_kinds.dense_liggghts_script(folder, "bed", packing, dem_bench_kinds.linear_model(), steps)
             peers.append(("liggghts", bench.Side("liggghts", ["liggghts", "-in", str(script), "-log", "none"],
                                                   r"Loop time of ([0-9.e+-]+) on", cwd=scratch), 1.0))
         if not peers:

@@ -294,6 +294,16 @@ def dense_walls(box_x: float, box_y: float) -> str:
                     ("ylo", "yplane", 0.0), ("yhi", "yplane", box_y)))
 
 
+def dense_liggghts_script(folder: Path, name: str, packing: Path, model, steps: int) -> Path:
+    """The dense bed of a packing file of case 11 (scenes/dense_bed.py's format) for LIGGGHTS:
+    its five walls, gravity along -z and `model`."""
+    lines = packing.read_text().splitlines()
+    dt, _, _, box_x, box_y = (float(v) for v in lines[0].split())
+    spheres = np.array([[float(v) for v in line.split()] for line in lines[1:]])
+    box = (0.0, box_x, 0.0, box_y, 0.0, spheres[:, 2].max() + 4 * RADIUS)
+    return liggghts_script(folder, name, spheres, box, dt, model, dense_walls(box_x, box_y), "0.0 0.0 -1.0", steps)
+
+
 def mesh_walls(stl: Path, motion: str = "") -> str:
     return (f"fix mesh all mesh/surface file {stl} type 1\n{motion}"
             "fix walls all wall/gran MODEL mesh n_meshes 1 meshes mesh\n")
@@ -328,12 +338,7 @@ def prepare(kind: Kind, folder: Path, quick: bool):
         args, ligg = [str(packing), str(steps), law], None
         model = {"linear": linear_model, "hertz": hertz_model, "viscoelastic": viscoelastic_model}.get(law)
         if model:
-            lines = packing.read_text().splitlines()
-            dt, _, _, box_x, box_y = (float(v) for v in lines[0].split())
-            spheres = np.array([[float(v) for v in line.split()] for line in lines[1:]])
-            box = (0.0, box_x, 0.0, box_y, 0.0, spheres[:, 2].max() + 4 * RADIUS)
-            ligg = liggghts_script(folder, kind.name, spheres, box, dt, model(), dense_walls(box_x, box_y),
-                                   "0.0 0.0 -1.0", steps)
+            ligg = dense_liggghts_script(folder, kind.name, packing, model(), steps)
         return args, n, n * steps, ligg
     if kind.name in ("silo", "drum"):
         steps = 500 if quick else 4000
