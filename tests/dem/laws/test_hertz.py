@@ -6,22 +6,16 @@ import math
 import pytest
 
 from talus.dem.analytic import hertz_contact_time, hertz_restitution, thornton_damping_ratio
-from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
-                       Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker,
-                       NewtonIntegrator, Scene, sphere, wall)
+from talus.dem import (FrictMat, InteractionLoop, Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin,
+                       MatchMaker, Scene, sphere)
 
-from test_contact_physics import run_collision
+from test_contact_physics import engines, run_collision, slide_on_incline
 
 E, NU, RHO, R = 1e8, 0.3, 2600.0, 0.01
 
 
 def hertz(**ip2):
     return ([Ip2_FrictMat_FrictMat_MindlinPhys(**ip2)], [Law2_ScGeom_MindlinPhys_Mindlin()])
-
-
-def engines(laws, gravity=(0, 0, 0)):
-    return [ForceResetter(), InsertionSortCollider(), InteractionLoop([], *laws),
-            NewtonIntegrator(gravity=gravity, damping=0.0)]
 
 
 def single_collision(en=None, betan=None, v0=1.0):
@@ -118,24 +112,12 @@ def test_incline_slides_exactly_above_the_friction_angle(angle_deg, slides):
     # `angle` from the wall's normal: it sticks below the friction angle of 29 deg and slides
     # with acceleration g (sin a - cos a tan phi) above it.
     phi, a = math.radians(29.0), math.radians(angle_deg)
-    S = Scene()
-    m = S.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=phi, density=2000))
-    S.bodies.append([wall(0, axis=2, material=m), sphere((0, 0, 1.0), 0.1, material=m)])
-    mass = S.bodies[1].state.mass
     estar = 1e7 / (2 * (1 - 0.3 ** 2))
     kno = 4 / 3 * estar * math.sqrt(0.05)      # against a wall Yade's geometry gives R* = r / 2
-    overlap = (mass * 9.81 * math.cos(a) / kno) ** (2 / 3)
-    S.bodies[1].state.pos = (0, 0, 0.1 - overlap)
-    S.bodies[1].state.blockedDOFs = "XYZ"
-    S.engines = engines(hertz(), gravity=(9.81 * math.sin(a), 0, -9.81 * math.cos(a)))
-    S.dt = 1e-5
-    S.run(20000)
-    x1, v1, t1 = S.bodies[1].state.pos[0], S.bodies[1].state.vel[0], S.time
-    S.run(30000)
-    x2, v2, t2 = S.bodies[1].state.pos[0], S.bodies[1].state.vel[0], S.time
+    mass, overlap, drift, acceleration = slide_on_incline(
+        hertz(), a, phi, lambda mass: (mass * 9.81 * math.cos(a) / kno) ** (2 / 3))
     if slides:
-        expected = 9.81 * (math.sin(a) - math.cos(a) * math.tan(phi))
-        assert (v2 - v1) / (t2 - t1) == pytest.approx(expected, rel=1e-6)
+        assert acceleration == pytest.approx(9.81 * (math.sin(a) - math.cos(a) * math.tan(phi)), rel=1e-6)
     else:
         ks = 8 * math.sqrt(0.05) * (1e7 / 2.6 / 2 / 1.7) * math.sqrt(overlap)
-        assert abs(x2 - x1) <= 2 * mass * 9.81 * math.sin(a) / ks
+        assert abs(drift) <= 2 * mass * 9.81 * math.sin(a) / ks

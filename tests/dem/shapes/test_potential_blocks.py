@@ -11,22 +11,13 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortC
                        PotentialBlock, PotentialBlock2AABB, Scene, blockContact, blockShape, blockVertices,
                        potentialBlock, wall, write_blocks)
 
+from test_potential_particles import quat, scene
+
 pytestmark = pytest.mark.skipif(not _dem.have_potential_blocks, reason="built without CLP")
 
 T = math.sqrt(1 / 3)
 # The corner tetrahedron x, y, z >= 0, x + y + z <= 1.
 TETRA = dict(a=[-1, 0, 0, T], b=[0, -1, 0, T], c=[0, 0, -1, T], d=[0, 0, 0, T])
-
-
-def scene(density=1000.0, friction=0.5):
-    S = Scene()
-    m = S.materials.append(FrictMat(density=density, frictionAngle=friction))
-    return S, m
-
-
-def quat(axis, angle):
-    axis = np.asarray(axis, float) / np.linalg.norm(axis)
-    return (math.cos(angle / 2), *(math.sin(angle / 2) * axis))
 
 
 def test_tetrahedron_volume_centroid_and_principal_inertia():
