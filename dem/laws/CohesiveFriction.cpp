@@ -42,17 +42,10 @@ struct CohFrictPhys
 
   // Bond every cohesive contact at the next step (one shot), bond new contacts.
   bool setCohesionNow = false, setCohesionOnNewContacts = false;
-
-  [[nodiscard]] std::vector<std::string> parameterNames() const { return {"setCohesionNow", "setCohesionOnNewContacts"}; }
-  template <class Unknown>
-  void setParameter(const std::string& name, double value, const Unknown& unknown)
+  static constexpr auto parameters()
   {
-    *flag(*this, name, unknown) = value != 0;
-  }
-  template <class Unknown>
-  [[nodiscard]] double parameter(const std::string& name, const Unknown& unknown) const
-  {
-    return *flag(*this, name, unknown) ? 1.0 : 0.0;
+    return std::tuple{parts::parameter("setCohesionNow", &CohFrictPhys::setCohesionNow),
+                      parts::parameter("setCohesionOnNewContacts", &CohFrictPhys::setCohesionOnNewContacts)};
   }
   void stepDone() { setCohesionNow = false; }
 
@@ -91,17 +84,6 @@ struct CohFrictPhys
       bond(c, x, material(step.materials, step.bodies, c.id1), material(step.materials, step.bodies, c.id2));
       parts::startRotations(c, x, step.bodies);
     }
-  }
-
-private:
-  template <class Self, class Unknown> // CohFrictPhys or const CohFrictPhys
-  static auto* flag(Self& self, const std::string& name, const Unknown& unknown)
-  {
-    if (name == "setCohesionNow")
-      return &self.setCohesionNow;
-    if (name == "setCohesionOnNewContacts")
-      return &self.setCohesionOnNewContacts;
-    unknown(name);
   }
 };
 

@@ -1,14 +1,18 @@
 // Linear visco-elastic contact (spring-dashpot) with Coulomb friction and rolling resistance,
-// as Yade's Ip2_ViscElMat_ViscElMat_ViscElPhys + Law2_ScGeom_ViscElPhys_Basic.
-#include "dem/laws/ContactLawKernel.h"
-#include "dem/laws/parts/Coulomb.h"
+// as Yade's Ip2_ViscElMat_ViscElMat_ViscElPhys + Law2_ScGeom_ViscElPhys_Basic: the motion at
+// Yade's contact point, a linear spring, a normal dashpot that cannot pull, the shear spring
+// driven by the contact point's velocity with its dashpot while it sticks, and rolling
+// resistance once a material asks for it.
+#include "dem/laws/PartsLaw.h"
+#include "dem/laws/StateOnDemand.h"
+#include "dem/laws/parts/ContactPointMotion.h"
+#include "dem/laws/parts/NormalDashpot.h"
+#include "dem/laws/parts/RollingResistance.h"
+#include "dem/laws/parts/VelocityShear.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <mutex>
-#include <stdexcept>
 
 namespace talus::dem
 {
@@ -74,58 +78,35 @@ double inSeries(double a, double b)
   return compliance != 0 ? 1 / compliance : 0;
 }
 
-/// Velocity v of body 1 relative to body 2 (or its periodic image) at the contact point, and the
-/// arms c1x, c2x from their centres to it (Yade's Law2 takes these, not ScGeom's incident
-/// velocity with the radii as arms). The contact point is Yade's: against a wall, the sphere's
-/// centre projected on the wall's plane (Yade's Ig2_Wall_Sphere_ScGeom), not mid-overlap.
-struct RelativeMotion
+/// Ip2_ViscElMat_ViscElMat_ViscElPhys: pairs of ViscElMat; its per-pair parameters (Yade's
+/// MatchMakers tc, en, et, frictAngle).
+struct ViscElPhys
 {
-  Vec3 point, c1x, c2x, v;
-  RelativeMotion(const Contact& c, const Bodies& b, const Cell* cell)
-  {
-    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
-    Vec3 shift2 = Vec3::Zero(), shiftVel = Vec3::Zero();
-    if (cell && c.cellDist != Eigen::Vector3i::Zero())
-    {
-      shift2 = cell->shift(c.cellDist);
-      shiftVel = cell->shiftVelocity(c.cellDist);
-    }
-    point = c.contactPoint;
-    if (c.kind == ContactGeometryKind::WallSphere)
-    {
-      const int axis = b.walls[static_cast<std::size_t>(b.shapeIndex[i1])].axis;
-      point = b.pos[i2] + shift2;
-      point[axis] = b.pos[i1][axis];
-    }
-    c1x = point - b.pos[i1];
-    c2x = point - b.pos[i2] - shift2;
-    v = (b.vel[i1] + b.angVel[i1].cross(c1x)) - (b.vel[i2] + shiftVel + b.angVel[i2].cross(c2x));
-  }
-};
-
-/// The functor's per-pair parameters (Yade's MatchMakers tc, en, et, frictAngle) and the first
-/// error met while setting up a contact.
-struct ViscElSettings : DeferredFailure
-{
-  PairParameter tc, en, et, frictAngle;
-};
-
-/// The law's loops, without (Rolling false) or with rolling resistance, whose moments live in
-/// Contacts::extra: scenes without it keep the plain contact records of the fast path.
-template <bool Rolling>
-class ViscoElasticKernel : public ContactLawKernel<ViscoElasticKernel<Rolling>>
-{
-public:
-  static constexpr bool usesExtra = Rolling;
-  explicit ViscoElasticKernel(ViscElSettings& settings) : settings_(settings) {}
-
-  [[nodiscard]] std::string typeName() const override { return "Law2_ScGeom_ViscElPhys_Basic"; }
-  [[nodiscard]] std::string physicsName() const override { return "Ip2_ViscElMat_ViscElMat_ViscElPhys"; }
-  [[nodiscard]] int handles(const Material& m1, const Material& m2) const override
+  static constexpr const char* ip2 = "Ip2_ViscElMat_ViscElMat_ViscElPhys";
+  static constexpr bool usesExtra = false;
+  [[nodiscard]] int handles(const Material& m1, const Material& m2) const
   {
     return m1.kind == MaterialKind::ViscEl && m2.kind == MaterialKind::ViscEl ? 2 : 0;
   }
-  void stepDone() override { settings_.throwIfFailed(); }
+
+  PairParameter tc, en, et, frictAngle;
+  mutable DeferredFailure setupFailure; ///< the first error met while making contacts, reported after the step
+  void stepDone() { setupFailure.throwIfFailed(); }
+
+  [[nodiscard]] std::vector<std::string> parameterNames() const { return {"tc", "en", "et", "frictAngle"}; }
+  template <class Unknown>
+  void setPairParameter(const std::string& name, const PairParameter& value, const Unknown& unknown)
+  {
+    PairParameter* p = name == "tc"           ? &tc
+                       : name == "en"         ? &en
+                       : name == "et"         ? &et
+                       : name == "frictAngle" ? &frictAngle
+                                              : nullptr;
+    if (!p)
+      unknown(name);
+    *p = value;
+    p->given = true;
+  }
 
   /// Yade's Ip2: kn, cn, ks, cs of each side from the first form both materials (or the
   /// functor) give, then in series. The mass m of the collision is the reduced mass of the two
@@ -137,7 +118,7 @@ public:
   ///  - young, poisson: per side 2 E R and 2 E R poisson (R the sphere's reference radius, a
   ///    wall's the sphere's), with cn, cs as given or cn from en (the restitution of the
   ///    never-pulling spring-dashpot, lowered by lubrication) and no shear dashpot.
-  void initialize(Contact& c, ContactExtra* x, const Scene& scene) const override
+  void initialize(Contact& c, ContactExtra* /*x*/, const Scene& scene) const
   {
     const Bodies& b = scene.bodies;
     const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
@@ -151,10 +132,10 @@ public:
     auto same = [](double a, double b2) { return std::isfinite(a) == std::isfinite(b2); };
     if (!(same(m1.tc, m2.tc) && same(m1.en, m2.en) && same(m1.et, m2.et) && same(m1.kn, m2.kn)
           && same(m1.cn, m2.cn) && same(m1.ks, m2.ks) && same(m1.cs, m2.cs)))
-      return settings_.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: both ViscElMat must give the same set of tc, en, "
-                            "et, kn, cn, ks, cs" + where());
+      return setupFailure.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: both ViscElMat must give the same set of tc, "
+                               "en, et, kn, cn, ks, cs" + where());
     if (m1.mRtype != m2.mRtype)
-      return settings_.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: mRtype differs between the materials" + where());
+      return setupFailure.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: mRtype differs between the materials" + where());
     // The functor's value for the pair if it was given one, else the materials' mean.
     bool missing = false;
     auto pick = [&](const PairParameter& p, double v1, double v2) {
@@ -174,14 +155,13 @@ public:
     const double r1 = c.refR1 > 0 ? c.refR1 : c.refR2, r2 = c.refR2 > 0 ? c.refR2 : c.refR1;
 
     double kn1 = 0, kn2 = 0, cn1 = 0, cn2 = 0, ks1 = 0, ks2 = 0, cs1 = 0, cs2 = 0;
-    const Settings& s = settings_;
-    if ((std::isfinite(m1.tc) && std::isfinite(m1.en) && std::isfinite(m1.et)) || (s.tc.given && s.en.given && s.et.given))
+    if ((std::isfinite(m1.tc) && std::isfinite(m1.en) && std::isfinite(m1.et)) || (tc.given && en.given && et.given))
     {
-      const double tc = pick(s.tc, m1.tc, m2.tc), en = pick(s.en, m1.en, m2.en), et = pick(s.et, m1.et, m2.et);
-      kn1 = kn2 = 1 / tc / tc * (M_PI * M_PI + std::pow(std::log(en), 2)) * massR * 2;
-      cn1 = cn2 = -2.0 / tc * std::log(en) * massR * 2;
-      ks1 = ks2 = 2.0 / 7.0 / tc / tc * (M_PI * M_PI + std::pow(std::log(et), 2)) * massR * 2;
-      cs1 = cs2 = -4.0 / 7.0 / tc * std::log(et) * massR * 2;
+      const double time = pick(tc, m1.tc, m2.tc), normal = pick(en, m1.en, m2.en), shear = pick(et, m1.et, m2.et);
+      kn1 = kn2 = 1 / time / time * (M_PI * M_PI + std::pow(std::log(normal), 2)) * massR * 2;
+      cn1 = cn2 = -2.0 / time * std::log(normal) * massR * 2;
+      ks1 = ks2 = 2.0 / 7.0 / time / time * (M_PI * M_PI + std::pow(std::log(shear), 2)) * massR * 2;
+      cs1 = cs2 = -4.0 / 7.0 / time * std::log(shear) * massR * 2;
     }
     else if (std::isfinite(m1.kn) && std::isfinite(m1.ks) && std::isfinite(m1.cn) && std::isfinite(m1.cs))
     {
@@ -197,95 +177,25 @@ public:
         cn1 = m1.cn, cn2 = m2.cn, cs1 = m1.cs, cs2 = m2.cs;
       else if (std::isfinite(m1.en))
       {
-        double en = pick(s.en, m1.en, m2.en);
+        double restitution = pick(en, m1.en, m2.en);
         if (m1.lubrication && m2.lubrication)
-          en = lubricated(en, c, b, scene.periodic ? &scene.cell : nullptr, m1, m2, r1, r2);
-        cn1 = cn2 = 2.0 * dashpotFor(en, massR, inSeries(kn1, kn2), c.id1, c.id2);
+          restitution = lubricated(restitution, c, b, scene.periodic ? &scene.cell : nullptr, m1, m2, r1, r2);
+        cn1 = cn2 = 2.0 * dashpotFor(restitution, massR, inSeries(kn1, kn2), c.id1, c.id2);
       }
       else
-        return settings_.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: a ViscElMat without tc or kn needs en (or cn "
-                              "and cs) besides young and poisson" + where());
+        return setupFailure.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: a ViscElMat without tc or kn needs en (or "
+                                 "cn and cs) besides young and poisson" + where());
     }
     c.kn = inSeries(kn1, kn2);
     c.ks = inSeries(ks1, ks2);
     c.cn = inSeries(cn1, cn2);
     c.cs = inSeries(cs1, cs2);
-    c.tanPhi = std::tan(s.frictAngle.given ? pick(s.frictAngle, 0, 0) : std::min(m1.frictionAngle, m2.frictionAngle));
+    c.tanPhi = std::tan(frictAngle.given ? pick(frictAngle, 0, 0) : std::min(m1.frictionAngle, m2.frictionAngle));
     if (missing)
-      return settings_.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: a MatchMaker (tc, en, et or frictAngle) has no value "
-                            "for this pair of materials: list the pair in its matches, or give algo='val' with val"
-                            + where());
-    if constexpr (Rolling)
-    {
-      // Twice the harmonic mean of the materials' mR > 0 (one alone: twice it), as Yade.
-      x->mR = m1.mR > 0 || m2.mR > 0 ? 2.0 / ((m1.mR > 0 ? 1 / m1.mR : 0) + (m2.mR > 0 ? 1 / m2.mR : 0)) : 0;
-      x->mRtype = static_cast<std::uint8_t>(m1.mRtype);
-    }
+      return setupFailure.fail("Ip2_ViscElMat_ViscElMat_ViscElPhys: a MatchMaker (tc, en, et or frictAngle) has no "
+                               "value for this pair of materials: list the pair in its matches, or give algo='val' "
+                               "with val" + where());
   }
-
-  /// Yade's Law2: F_n = kn u_n + cn v_n along the normal, never attractive (the dashpot cannot
-  /// pull); elastic shear incremental, F_s += ks v_s dt, capped at |F_n| tan(phi), plus the shear
-  /// dashpot cs v_s only while not sliding; v the velocity of body 1 relative to body 2 at the
-  /// contact point (v_n > 0 approaching). Rolling resistance (mR > 0): a moment on body 1 of
-  /// -mR |F_n| (w1 - w2) (mRtype 1), times also |c1 x w1 - c2 x w2| (mRtype 2), the opposite on
-  /// body 2.
-  /// Energy: what the contact force does beyond its springs, (F_n - kn u_n) v_n dt (the normal
-  /// dashpot, and while it would pull the spring's release) plus cs |v_s|^2 dt; while sliding,
-  /// friction dissipates its work less the change of the spring's energy; the rolling moment
-  /// dissipates its power.
-  template <bool Track>
-  void force(Contact& c, std::size_t k, const StepContext& step, ContactEnergy& e) const
-  {
-    const Bodies& b = step.bodies;
-    const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
-    const double dt = step.dt;
-    const RelativeMotion r(c, b, step.cell);
-    c.contactPoint = r.point; // the point the forces act at, for the bodies' torques
-    const Vec3 &c1x = r.c1x, &c2x = r.c2x;
-    const double vn = c.normal.dot(r.v);
-    const Vec3 vs = r.v - vn * c.normal;
-
-    const Vec3 before = c.shearForce;
-    c.shearForce += c.ks * dt * vs;
-    const double fn = c.kn * c.penetration + c.cn * vn;
-    c.normalForce = fn < 0 ? Vec3::Zero() : Vec3(fn * c.normal);
-    const double normal = std::max(fn, 0.0);
-    const double maxFs2 = normal * normal * c.tanPhi * c.tanPhi;
-    Vec3 viscous = Vec3::Zero();
-    if (c.shearForce.squaredNorm() > maxFs2)
-    {
-      const Vec3 trial = parts::cap(c.shearForce, std::sqrt(maxFs2) / c.shearForce.norm());
-      if constexpr (Track)
-        if (c.ks > 0)
-          e.plastDissip += (c.shearForce.dot(trial - before) - 0.5 * (c.shearForce.squaredNorm() - before.squaredNorm())) / c.ks;
-    }
-    else
-      viscous = c.cs * vs;
-    c.force = c.normalForce + c.shearForce + viscous;
-    if constexpr (Track)
-      e.viscDamp += ((normal - c.kn * c.penetration) * vn + viscous.dot(vs)) * dt;
-    if constexpr (Rolling)
-    {
-      ContactExtra& x = step.extra[k];
-      x.momentBending.setZero();
-      if (x.mR > 0)
-      {
-        const Vec3 relAngVel = b.angVel[i1] - b.angVel[i2];
-        double scale = x.mR * normal;
-        if (x.mRtype == 2)
-          scale *= (c1x.cross(b.angVel[i1]) - c2x.cross(b.angVel[i2])).norm();
-        x.momentBending = scale * relAngVel; // the moment on body 2 (body 1 gets the opposite)
-        if constexpr (Track)
-          e.viscDamp += x.momentBending.dot(relAngVel) * dt;
-      }
-    }
-  }
-
-  /// 1/2 kn u^2 + 1/2 Fs^2 / ks (the dashpots store nothing).
-  double elastic(const Contact& c, const ContactExtra* /*x*/) const { return springEnergy(c, c.penetration); }
-
-private:
-  using Settings = ViscElSettings;
 
   /// Yade's lubricated restitution: en (1 + ln(roughness / mean radius) / St), at least 1e-3,
   /// with St = rho |v_n| (r1 + r2) / eta the Stokes number of the approach (means of the two
@@ -293,76 +203,40 @@ private:
   static double lubricated(double en, const Contact& c, const Bodies& b, const Cell* cell, const Material& m1,
                            const Material& m2, double r1, double r2)
   {
-    const double vn = c.normal.dot(RelativeMotion(c, b, cell).v);
+    const double vn = parts::ContactPointMotion(c, b, cell).vn;
     const double density = (m1.density + m2.density) / 2., viscosity = (m1.viscoDyn + m2.viscoDyn) / 2.;
     const double roughness = (m1.roughnessScale + m2.roughnessScale) / 2.;
     const double stokes = density * std::abs(vn) * (r1 + r2) / viscosity;
     return std::max(1e-3, en * (1 + 1 / stokes * std::log(roughness / ((r1 + r2) * 0.5))));
   }
 
-  ViscElSettings& settings_;
 };
+
+struct ViscoElasticNames
+{
+  static constexpr const char* law = "Law2_ScGeom_ViscElPhys_Basic";
+};
+
+/// F_n = kn u_n + cn v_n along the normal, never attractive; elastic shear incremental,
+/// F_s += ks v_s dt, capped at |F_n| tan(phi), plus the shear dashpot cs v_s only while not
+/// sliding; v the velocity of body 1 relative to body 2 at Yade's contact point; rolling
+/// resistance (mR > 0) with the Moments part. Elastic energy 1/2 kn u^2 + 1/2 Fs^2 / ks.
+template <class Moments>
+using ViscoElasticWith = PartsLaw<ViscoElasticNames, ViscElPhys, parts::LinearSpring, parts::NormalDashpot,
+                                  parts::VelocityShear, Moments, parts::ContactPointMotion>;
+
+/// Some visco-elastic material has rolling resistance.
+bool rollingResistance(const Scene& scene)
+{
+  return std::any_of(scene.materials.begin(), scene.materials.end(),
+                     [](const Material& m) { return m.kind == MaterialKind::ViscEl && m.mR > 0; });
+}
 } // namespace
 
-/// The law Yade scripts name: the plain kernel, or the rolling one from the first step any
+/// The law Yade scripts name: without rolling resistance, or with it from the first step any
 /// visco-elastic material has mR > 0 (and from then on: contacts made before keep their mR).
-class ViscoElastic : public ContactLaw
-{
-public:
-  [[nodiscard]] std::string typeName() const override { return plain_.typeName(); }
-  [[nodiscard]] std::string physicsName() const override { return plain_.physicsName(); }
-  [[nodiscard]] int handles(const Material& m1, const Material& m2) const override { return plain_.handles(m1, m2); }
-  [[nodiscard]] bool needsExtra() const override { return rolling_; }
-  void prepare(Scene& scene) override
-  {
-    if (!rolling_)
-      rolling_ = std::any_of(scene.materials.begin(), scene.materials.end(),
-                             [](const Material& m) { return m.kind == MaterialKind::ViscEl && m.mR > 0; });
-    if (rolling_)
-      alignContactExtra(scene.contacts);
-  }
-  void initialize(Contact& c, ContactExtra* x, const Scene& scene) const override { active().initialize(c, x, scene); }
-  void computeForces(Scene& scene, std::uint8_t lawIndex) override { active().computeForces(scene, lawIndex); }
-  std::int64_t computeAll(Scene& scene) override { return active().computeAll(scene); }
-  std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last, ContactEnergy* energyBlocks) override
-  {
-    return active().computeAllIn(scene, first, last, energyBlocks);
-  }
-  void stepDone() override { active().stepDone(); }
-  [[nodiscard]] double elasticEnergy(const Scene& scene, std::uint8_t lawIndex) const override
-  {
-    return active().elasticEnergy(scene, lawIndex);
-  }
-  [[nodiscard]] double grownElasticEnergy(const Scene& scene, std::uint8_t lawIndex,
-                                          const std::vector<double>& grownBy) const override
-  {
-    return active().grownElasticEnergy(scene, lawIndex, grownBy);
-  }
-  [[nodiscard]] std::vector<std::string> parameterNames() const override { return {"tc", "en", "et", "frictAngle"}; }
-  void setPairParameter(const std::string& name, const PairParameter& value) override
-  {
-    PairParameter* p = name == "tc"           ? &settings_.tc
-                       : name == "en"         ? &settings_.en
-                       : name == "et"         ? &settings_.et
-                       : name == "frictAngle" ? &settings_.frictAngle
-                                              : nullptr;
-    if (!p)
-      unknownParameter(name);
-    *p = value;
-    p->given = true;
-  }
+using ViscoElastic = StateOnDemand<ViscoElasticWith<parts::NoMoments>, ViscoElasticWith<parts::RollingResistance>,
+                                   rollingResistance>;
 
-private:
-  [[nodiscard]] ContactLaw& active() { return rolling_ ? static_cast<ContactLaw&>(withRolling_) : plain_; }
-  [[nodiscard]] const ContactLaw& active() const
-  {
-    return rolling_ ? static_cast<const ContactLaw&>(withRolling_) : plain_;
-  }
-  ViscElSettings settings_;
-  ViscoElasticKernel<false> plain_{settings_};
-  ViscoElasticKernel<true> withRolling_{settings_};
-  bool rolling_ = false;
-};
-
-TALUS_REGISTER_CONTACT_LAW(ViscoElastic, "Law2_ScGeom_ViscElPhys_Basic", "viscoelastic")
+TALUS_REGISTER_PARTS_LAW(ViscoElastic, "viscoelastic")
 } // namespace talus::dem

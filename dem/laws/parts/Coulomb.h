@@ -34,4 +34,16 @@ inline void slide(Contact& c, double ratio, ContactEnergy& energy)
   if constexpr (Track)
     energy.plastDissip += plasticWork(trial, c.shearForce, c.ks);
 }
+
+/// The shear force's magnitude against a strength maxFs: over it, the force slides at the cap
+/// `exceeded(maxFs)` gives (a bond that breaks there lowers it). Returns whether it slid.
+template <bool Track, class Exceeded>
+inline bool slideOver(Contact& c, double maxFs, Exceeded&& exceeded, ContactEnergy& energy)
+{
+  const double fs = c.shearForce.norm();
+  if (!(fs > maxFs))
+    return false;
+  slide<Track>(c, exceeded(maxFs) / fs, energy);
+  return true;
+}
 } // namespace talus::dem::parts

@@ -3,9 +3,10 @@
 // Damping parts of the contact laws: a dashpot on the normal force and the shear dashpot's
 // coefficient (which the tangential part applies while the contact sticks). Each:
 //   static constexpr bool usesExtra;
-//   template <bool Track> static double normal(Contact&, const ContactExtra*, const StepContext&,
-//                                              double elastic, ContactEnergy&);
-//       // the normal force's magnitude from the elastic one; sets c.cn, c.cs
+//   template <bool Track, class Motion> static double normal(Contact&, const ContactExtra*,
+//       const StepContext&, const Motion&, double elastic, ContactEnergy&);
+//       // sets c.normalForce (and c.cn, c.cs) from the elastic force; returns the signed normal
+//       // force the tangential part's strength is taken from
 #include "dem/laws/ContactLaw.h"
 
 #include <algorithm>
@@ -17,10 +18,11 @@ namespace talus::dem::parts
 struct NoDamping
 {
   static constexpr bool usesExtra = false;
-  template <bool Track>
-  static double normal(Contact& /*c*/, const ContactExtra* /*x*/, const StepContext& /*step*/, double elastic,
-                       ContactEnergy& /*energy*/)
+  template <bool Track, class Motion>
+  static double normal(Contact& c, const ContactExtra* /*x*/, const StepContext& /*step*/, const Motion& /*motion*/,
+                       double elastic, ContactEnergy& /*energy*/)
   {
+    c.normalForce = elastic * c.normal;
     return elastic;
   }
 };
@@ -34,8 +36,9 @@ struct NoDamping
 struct ThorntonDamping
 {
   static constexpr bool usesExtra = true;
-  template <bool Track>
-  static double normal(Contact& c, const ContactExtra* x, const StepContext& step, double elastic, ContactEnergy& energy)
+  template <bool Track, class Motion>
+  static double normal(Contact& c, const ContactExtra* x, const StepContext& step, const Motion& /*motion*/,
+                       double elastic, ContactEnergy& energy)
   {
     const Bodies& b = step.bodies;
     const double vn = c.normal.dot(incidentVelocity(c, b, step.cell));
@@ -52,6 +55,7 @@ struct ThorntonDamping
     }
     if constexpr (Track) // the normal dashpot's force is elastic - fn
       energy.viscDamp += (elastic - fn) * vn * step.dt;
+    c.normalForce = fn * c.normal;
     return fn;
   }
 };

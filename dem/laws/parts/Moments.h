@@ -8,10 +8,9 @@
 #include "dem/core/EnergyTracker.h"
 #include "dem/laws/ContactLaw.h"
 #include "dem/laws/parts/Coulomb.h"
+#include "dem/laws/parts/Parameters.h"
 
 #include <cmath>
-#include <string>
-#include <vector>
 
 namespace talus::dem::parts
 {
@@ -76,42 +75,43 @@ inline void capMoment(Vec3& moment, double plastic, double normal, double stiffn
       energy.plastDissip += plasticWork(trial, moment, stiffness);
 }
 
-// Moments parts of a law (PartsLaw's last part), objects with the Law2's parameters:
-//   template <bool Track> void force(Contact&, ContactExtra*, const StepContext&, ContactEnergy&) const;
+// Moments parts of a law (PartsLaw's last part), objects with the Law2's parameters
+// (parts/Parameters.h):
+//   template <bool Track, class Motion> void force(Contact&, ContactExtra*, double fn,
+//       const StepContext&, const Motion&, ContactEnergy&) const;   // fn: the damping part's
 //   double addElastic(double elastic, const ContactExtra*) const;   // plus what its springs store
-//   template <class Self> static auto* flag(Self&, const std::string& name);   // its parameters
-//       // (bool* or const bool*; null: not one of them)
-//   std::vector<std::string> parameterNames() const;
 
 /// No moments.
 struct NoMoments
 {
   static constexpr bool usesExtra = false;
-  template <bool Track>
-  void force(Contact& /*c*/, ContactExtra* /*x*/, const StepContext& /*step*/, ContactEnergy& /*energy*/) const
+  template <bool Track, class Motion>
+  void force(Contact& /*c*/, ContactExtra* /*x*/, double /*fn*/, const StepContext& /*step*/,
+             const Motion& /*motion*/, ContactEnergy& /*energy*/) const
   {
   }
   [[nodiscard]] double addElastic(double elastic, const ContactExtra* /*x*/) const { return elastic; }
-  template <class Self>
-  static bool* flag(Self& /*self*/, const std::string& /*name*/)
-  {
-    return nullptr;
-  }
-  [[nodiscard]] std::vector<std::string> parameterNames() const { return {}; }
 };
 
 /// Bending and twisting springs kr, ktw on the relative rotation (Yade's CohFrictPhys moments)
 /// of a contact with momentRotationLaw while it is bonded (always_use_moment_law: also after),
-/// capped at maxRollPl |F_n| and maxTwistPl |F_n| when those are >= 0; no moment otherwise.
+/// capped at maxRollPl |F_n| and maxTwistPl |F_n| when those are >= 0 (|F_n| of the normal
+/// force vector, which a sliding bond in tension has dropped); no moment otherwise.
 struct RotationMoments
 {
   static constexpr bool usesExtra = true;
   // Law2 parameters: moments from incremental rotations (plastic limits are then exact) rather
   // than from the total rotation since the bond; keep moments after the bond broke.
   bool useIncrementalForm = false, alwaysUseMomentLaw = false;
+  static constexpr auto parameters()
+  {
+    return std::tuple{parameter("useIncrementalForm", &RotationMoments::useIncrementalForm),
+                      parameter("always_use_moment_law", &RotationMoments::alwaysUseMomentLaw)};
+  }
 
-  template <bool Track>
-  void force(Contact& c, ContactExtra* x, const StepContext& step, ContactEnergy& energy) const
+  template <bool Track, class Motion>
+  void force(Contact& c, ContactExtra* x, double /*fn*/, const StepContext& step, const Motion& /*motion*/,
+             ContactEnergy& energy) const
   {
     if (!x->momentRotationLaw || (x->cohesionBroken && !alwaysUseMomentLaw))
     {
@@ -136,13 +136,5 @@ struct RotationMoments
       elastic += 0.5 * x->momentTwist.squaredNorm() / x->ktw;
     return elastic;
   }
-  template <class Self> // RotationMoments or const RotationMoments
-  static auto* flag(Self& self, const std::string& name)
-  {
-    return name == "useIncrementalForm"      ? &self.useIncrementalForm
-           : name == "always_use_moment_law" ? &self.alwaysUseMomentLaw
-                                             : nullptr;
-  }
-  [[nodiscard]] std::vector<std::string> parameterNames() const { return {"useIncrementalForm", "always_use_moment_law"}; }
 };
 } // namespace talus::dem::parts

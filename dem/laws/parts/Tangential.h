@@ -3,8 +3,8 @@
 // Tangential parts of the contact laws: the shear force, capped by the one Coulomb cap
 // (Coulomb.h). Each:
 //   static constexpr bool usesExtra;
-//   template <bool Track> static void force(Contact&, ContactExtra*, double fn, const StepContext&,
-//                                           ContactEnergy&);
+//   template <bool Track, class Motion> static void force(Contact&, ContactExtra*, double fn,
+//       const StepContext&, const Motion&, ContactEnergy&);
 //       // c.shearForce and c.force (= c.normalForce + the shear force), fn the normal force's
 //       // signed magnitude
 //   static double elastic(const Contact&);   // the energy the shear spring stores
@@ -34,8 +34,9 @@ template <CoulombLimit Limit, bool Dashpot>
 struct IncrementalCoulomb
 {
   static constexpr bool usesExtra = false;
-  template <bool Track>
-  static void force(Contact& c, ContactExtra* /*x*/, double fn, const StepContext& step, ContactEnergy& energy)
+  template <bool Track, class Motion>
+  static void force(Contact& c, ContactExtra* /*x*/, double fn, const StepContext& step, const Motion& /*motion*/,
+                    ContactEnergy& energy)
   {
     c.shearForce -= c.ks * c.shearIncrement;
     bool sliding = false;
@@ -77,23 +78,20 @@ struct IncrementalCoulomb
 struct BondedCoulomb
 {
   static constexpr bool usesExtra = true;
-  template <bool Track>
-  static void force(Contact& c, ContactExtra* x, double fn, const StepContext& /*step*/, ContactEnergy& energy)
+  template <bool Track, class Motion>
+  static void force(Contact& c, ContactExtra* x, double fn, const StepContext& /*step*/, const Motion& /*motion*/,
+                    ContactEnergy& energy)
   {
     c.shearForce -= c.ks * c.shearIncrement;
-    double maxFs = bondedShearStrength(x->shearAdhesion, fn, c.tanPhi, x->cohesionDisablesFriction);
-    const double fs = c.shearForce.norm();
-    if (fs > maxFs)
-    {
-      if (x->fragile && !x->cohesionBroken)
-      {
-        breakBond(*x);
-        maxFs = frictionStrength(fn, c.tanPhi);
-      }
-      slide<Track>(c, maxFs / fs, energy);
-      if (fn < 0)
-        c.normalForce.setZero();
-    }
+    const double strength = bondedShearStrength(x->shearAdhesion, fn, c.tanPhi, x->cohesionDisablesFriction);
+    const bool slid = slideOver<Track>(c, strength, [&](double maxFs) {
+      if (!x->fragile || x->cohesionBroken)
+        return maxFs;
+      breakBond(*x);
+      return frictionStrength(fn, c.tanPhi);
+    }, energy);
+    if (slid && fn < 0)
+      c.normalForce.setZero();
     c.force = c.normalForce + c.shearForce;
   }
   static double elastic(const Contact& c) { return shearSpringEnergy(c); }
