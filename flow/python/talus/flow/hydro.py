@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike
 
 from talus import _flow
 from talus.dem.engines import Engine, PyRunner
-from talus.flow.vans import VansFluid
+from talus.flow.vans import VansFluid, core_parameter
 
 __all__ = ["HydroForceEngine", "averageProfile"]
 
@@ -59,28 +59,14 @@ _FLUID_ONLY = ("radiusPart", "iturbu", "ilm", "phiMax", "viscousSubLayer", "irhe
                "dpdx", "fluidWallFriction", "channelWidth", "fluidFrictionCoef")
 
 
-def _particle_parameter(name: str, doc: str, convert=float):
-    def get(self):
-        return getattr(self._core.parameters(), name)
-
-    def set(self, value):
-        p = self._core.parameters()
-        setattr(p, name, convert(value))
-        self._core.setParameters(p)
-    return property(get, set, doc=doc)
-
-
 def _shared_parameter(name: str, doc: str, convert=float):
     """A parameter of both the particle side and the fluid resolution (kept equal)."""
-    def get(self):
-        return getattr(self._core.parameters(), name)
+    particle = core_parameter(name, doc, convert)
 
     def set(self, value):
         setattr(self.fluid, name, value)          # validated there first
-        p = self._core.parameters()
-        setattr(p, name, convert(value))
-        self._core.setParameters(p)
-    return property(get, set, doc=doc)
+        particle.fset(self, value)
+    return property(particle.fget, set, doc=doc)
 
 
 def _fluid_parameter(name: str):
@@ -228,11 +214,11 @@ class HydroForceEngine(Engine):
     densFluid = _shared_parameter("densFluid", "Fluid density [kg/m^3].")
     viscoDyn = _shared_parameter("viscoDyn", "Fluid dynamic viscosity [Pa s].")
     kappa = _shared_parameter("kappa", "Von Karman constant (mixing length and eddy time scale).")
-    zRef = _particle_parameter("zRef", "Elevation of the bottom of the grid [m].")
-    expoRZ = _particle_parameter("expoRZ", "Richardson-Zaki exponent of the drag hindrance.")
-    lift = _particle_parameter("lift", "Lift force on/off.", bool)
-    Cl = _particle_parameter("Cl", "Lift coefficient.")
-    steadyFlow = _particle_parameter("steadyFlow", "No streamwise buoyancy (steady flow).", bool)
+    zRef = core_parameter("zRef", "Elevation of the bottom of the grid [m].")
+    expoRZ = core_parameter("expoRZ", "Richardson-Zaki exponent of the drag hindrance.")
+    lift = core_parameter("lift", "Lift force on/off.", bool)
+    Cl = core_parameter("Cl", "Lift coefficient.")
+    steadyFlow = core_parameter("steadyFlow", "No streamwise buoyancy (steady flow).", bool)
 
     @property
     def vCell(self) -> float:
@@ -247,12 +233,12 @@ class HydroForceEngine(Engine):
             raise ValueError(f"HydroForceEngine: vCell must be finite and >= 0, got {value}")
         self._vCell = value
 
-    velFluct = _particle_parameter("velFluct", "Turbulent velocity fluctuations on/off.", bool)
-    bedElevation = _particle_parameter("bedElevation", "Elevation above zRef below which there are no "
+    velFluct = core_parameter("velFluct", "Turbulent velocity fluctuations on/off.", bool)
+    bedElevation = core_parameter("bedElevation", "Elevation above zRef below which there are no "
                                                        "fluctuations [m].")
-    unCorrelatedFluctuations = _particle_parameter("unCorrelatedFluctuations",
+    unCorrelatedFluctuations = core_parameter("unCorrelatedFluctuations",
                                                    "Streamwise and wall-normal fluctuations independent.", bool)
-    ignoreOutside = _particle_parameter("ignoreOutside", "Particles centred below zRef or above the grid get no "
+    ignoreOutside = core_parameter("ignoreOutside", "Particles centred below zRef or above the grid get no "
                                                          "fluid force (instead of an error).", bool)
     for _name in _FLUID_ONLY:
         locals()[_name] = _fluid_parameter(_name)

@@ -89,8 +89,9 @@ def _flag(value: bool | int, name: str) -> bool:
     return bool(value)
 
 
-def _parameter(cxx_name: str, doc: str, convert=float):
-    """A property stored in the C++ parameter set (validated there when set)."""
+def core_parameter(cxx_name: str, doc: str, convert=float):
+    """A property stored in the C++ parameter set of the object's ``_core`` (validated there when
+    set); HydroForceEngine's particle parameters are made the same way."""
     def get(self):
         return getattr(self._core.parameters(), cxx_name)
 
@@ -192,23 +193,23 @@ class VansFluid:
         return g  # type: ignore[return-value]
 
     # -- parameters (Yade's names) -----------------------------------------------------------
-    nCell = _parameter("nCell", "Number of cells; changing it resets every profile to zeros.", _cell_count)
+    nCell = core_parameter("nCell", "Number of cells; changing it resets every profile to zeros.", _cell_count)
     ndimz = nCell
-    deltaZ = _parameter("deltaZ", "Cell height [m].")
-    densFluid = _parameter("densFluid", "Fluid density [kg/m^3].")
-    viscoDyn = _parameter("viscoDyn", "Fluid dynamic viscosity [Pa s].")
-    dpdx = _parameter("dpdx", "Imposed streamwise pressure gradient [Pa/m].")
-    kappa = _parameter("kappa", "Von Karman constant of the mixing length.")
-    phiMax = _parameter("phiMax", "Maximum solid fraction (Li-Sawamoto mixing length).")
-    uTop = _parameter("uTop", "Imposed top velocity [m/s] (iusl = 0).")
-    channelWidth = _parameter("channelWidth", "Channel width [m] for the side-wall friction.")
-    fluidFrictionCoef = _parameter("fluidFrictionCoef", "Fitting factor of the wall friction.")
-    radiusPart = _parameter("radiusPart", "Particle radius [m] for the drag per unit volume.")
-    iturbu = _parameter("turbulence", "1: mixing-length eddy viscosity, 0: laminar.",
+    deltaZ = core_parameter("deltaZ", "Cell height [m].")
+    densFluid = core_parameter("densFluid", "Fluid density [kg/m^3].")
+    viscoDyn = core_parameter("viscoDyn", "Fluid dynamic viscosity [Pa s].")
+    dpdx = core_parameter("dpdx", "Imposed streamwise pressure gradient [Pa/m].")
+    kappa = core_parameter("kappa", "Von Karman constant of the mixing length.")
+    phiMax = core_parameter("phiMax", "Maximum solid fraction (Li-Sawamoto mixing length).")
+    uTop = core_parameter("uTop", "Imposed top velocity [m/s] (iusl = 0).")
+    channelWidth = core_parameter("channelWidth", "Channel width [m] for the side-wall friction.")
+    fluidFrictionCoef = core_parameter("fluidFrictionCoef", "Fitting factor of the wall friction.")
+    radiusPart = core_parameter("radiusPart", "Particle radius [m] for the drag per unit volume.")
+    iturbu = core_parameter("turbulence", "1: mixing-length eddy viscosity, 0: laminar.",
                         lambda v: _flag(v, "iturbu"))
-    viscousSubLayer = _parameter("viscousSubLayer", "1: no eddy viscosity below z+ = 11.3.",
+    viscousSubLayer = core_parameter("viscousSubLayer", "1: no eddy viscosity below z+ = 11.3.",
                                  lambda v: _flag(v, "viscousSubLayer"))
-    fluidWallFriction = _parameter("fluidWallFriction", "Side-wall friction sink term on/off.",
+    fluidWallFriction = core_parameter("fluidWallFriction", "Side-wall friction sink term on/off.",
                                    lambda v: _flag(v, "fluidWallFriction"))
 
     def _get_option(self, name: str) -> enum.IntEnum:
