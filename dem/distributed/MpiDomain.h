@@ -33,6 +33,8 @@ public:
   /// @throws std::invalid_argument on every rank, naming what is not distributed yet (a shape,
   ///         a periodic cell, an engine or contact law other than the linear one, energy
   ///         tracking), an unknown partition method, or more ranks than spheres
+  /// @param comm the ranks sharing the scene (kept, not duplicated: it must outlive the domain)
+  /// @param settings the partition's method and imbalance tolerance, the same on every rank
   MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings);
 
   std::size_t ownedBodies(const Scene& scene) const override;
@@ -46,12 +48,18 @@ public:
   double min(double value) const override;
   void min(std::span<double> values) const override;
 
+  /// This process's rank in the domain's communicator.
   [[nodiscard]] int rank() const { return rank_; }
+  /// The communicator's size.
   [[nodiscard]] int ranks() const { return ranks_; }
   /// Bodies of the whole scene (global ids 0 .. globalCount - 1).
   [[nodiscard]] std::int64_t globalCount() const { return globalCount_; }
   /// The row of global id `id` here, -1 if this rank holds no copy of it.
+  /// @param id a global id (the body's id in the scene the user built)
+  /// @return the local row, or -1
   [[nodiscard]] std::int64_t rowOf(GlobalId id) const;
+  /// @param row a local row, below scene.bodies.size()
+  /// @return its body's global id
   [[nodiscard]] GlobalId globalIdOf(std::size_t row) const { return globalId_[row]; }
   /// Distance within which a sphere of another rank is a ghost here: twice the largest radius
   /// plus the collider's skin.
@@ -67,6 +75,7 @@ public:
     std::int64_t rebuilds = 0, rebuildBytes = 0;
     double updateSeconds = 0, rebuildSeconds = 0, reductionSeconds = 0, splitSeconds = 0, waitCpuSeconds = 0;
   };
+  /// What this rank's halo moved so far (since resetTraffic).
   [[nodiscard]] const Traffic& traffic() const { return traffic_; }
   /// Zero what the steps counted (the split's seconds stay).
   void resetTraffic() { traffic_ = Traffic{.splitSeconds = traffic_.splitSeconds}; }
