@@ -55,6 +55,8 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
 /// centroid of its vertices, a boundary vertex standing for the projection of the real
 /// vertices' centroid on that boundary plane (Yade's getCellBarycenter). NaN for a pore of
 /// boundary vertices only.
+/// @param net the network the pore belongs to
+/// @return the point (m)
 Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore);
 
 /// Force on each pore's four vertices per unit pressure in the pore (Yade's unitForceVectors):
@@ -62,8 +64,13 @@ Vec3 interiorPoint(const PoreNetwork& net, const Pore& pore);
 /// projected area), and the facet's fluid area shared among the facet's three vertices by
 /// `shares[throat]` (FlowEngine: their solid surfaces in the throat; TwoPhaseFlowEngine: their
 /// solid lines in the facet).
+/// @param net the network, its geometry computed
+/// @param shares per throat, the fluid area's share of each facet vertex (summing to 1)
+/// @return per pore, the force on each of its four vertices per unit pressure (m^2)
 std::vector<std::array<Vec3, 4>> unitForceVectors(const PoreNetwork& net, const std::vector<std::array<double, 3>>& shares);
 
+/// Pore-scale flow in a sphere packing (Yade's FlowEngine): the network of pores and throats,
+/// the pressure solve and the fluid forces on the solids.
 class PoreFlow
 {
 public:
@@ -72,11 +79,17 @@ public:
   /// Triangulate the packing and compute geometry and conductances (drops the factor). The
   /// pressures of a previous network are carried over: each new pore takes the pressure of the
   /// old pore containing its centre (Yade's interpolate), so a transient solve continues.
+  /// @param spheres the packing (positions and radii in m, body ids)
+  /// @throws std::invalid_argument as triangulate (too few spheres, bad positions or radii)
   void build(const std::vector<PoreSphere>& spheres);
   /// Move the spheres (same order as in build) and the boundaries without remeshing, over the
   /// time step dt: pore volumes are recomputed and their rates of change dV/dt become the source
   /// of the next solve (fluid expelled from shrinking pores; Yade's updateVolumes).
+  /// @param spherePositions one per sphere given to build (m)
+  /// @param boundaryPositions the six boundaries' coordinates along their axes (m)
+  /// @param dt the time since the last move (s), > 0
   /// @throws std::invalid_argument on a size mismatch, non-finite positions or dt <= 0
+  /// @throws std::logic_error before the first build
   void moveVertices(const std::vector<Vec3>& spherePositions, const std::array<double, kBoundaries>& boundaryPositions,
                     double dt);
   // --- background remeshing (Yade's FlowEngine.multithread) ---
@@ -92,6 +105,10 @@ public:
   /// given current positions with no volume-change source for that motion (it happened while
   /// the old mesh gave the sources), this model's parameters, time step and imposed points kept
   /// (imposed pressure points moved since the copy are located again, refactorising).
+  /// @param fresh the built copy, taken over
+  /// @param spherePositions, boundaryPositions the current positions, as for moveVertices
+  /// @throws std::logic_error if `fresh` is null
+  /// @throws std::invalid_argument as moveVertices for the positions
   void adopt(std::unique_ptr<PoreFlow> fresh, const std::vector<Vec3>& spherePositions,
              const std::array<double, kBoundaries>& boundaryPositions);
 
@@ -99,6 +116,8 @@ public:
   /// storage term uses the mesh's void volumes, as Yade).
   void updateVoidVolumes();
   /// Time step of the transient (compressible) solve when no motion was given.
+  /// @param dt the step (s), > 0
+  /// @throws std::invalid_argument for dt <= 0 (or not a number)
   void setTimeStep(double dt);
   /// Largest relative change of a pore volume since the last triangulation, |V - V_mesh| / |V_mesh|
   /// (infinite once a pore has turned inside out: the mesh is invalid).
@@ -111,54 +130,100 @@ public:
   /// expansion of the fluid and of the particles: a positive rate draws fluid in, as a growing
   /// pore), one per pore, added to the motion's at every solve until replaced; a new network
   /// drops them (its pores are others).
-  /// @throws std::invalid_argument if not one finite value per pore of the current network
+  /// @param rates one rate per pore (m^3/s)
+  /// @throws std::invalid_argument if not one finite value per pore of the current network (or
+  ///         no network yet)
   void setExtraVolumeRates(std::vector<double> rates);
+  /// The rates setExtraVolumeRates gave (empty: none).
   [[nodiscard]] const std::vector<double>& extraVolumeRates() const { return extraDv_; }
+  /// The solver's work so far (analyses, factorisations, multigrid set-ups and their times).
   [[nodiscard]] const PressureSolver::Counters& solverCounters() const { return solver_.counters(); }
   /// Recompute conductances after a change of the parameters (same mesh; drops the factor).
   void updateConductances();
   /// Solve the pressures for the current boundary values (re-using the factor if the mesh and
   /// boundary types are unchanged).
+  /// @throws std::logic_error before the first build
+  /// @throws std::invalid_argument for useSolver not 0, 3 or 4, a negative fluidBulkModulus, a
+  ///         compressible fluid without a time step, or a closed network of incompressible fluid
+  ///         whose volume sources do not sum to zero
+  /// @throws std::runtime_error from the solver (a singular system, no convergence)
   void solve();
 
   /// Impose pressure p in the pore containing `pos` (Yade's imposePressure), re-located at each
-  /// triangulation; overrides the boundary values. @returns its index ("cond")
+  /// triangulation; overrides the boundary values.
+  /// @param pos the point (m)
+  /// @param p the pressure (Pa)
+  /// @returns its index ("cond")
+  /// @throws std::invalid_argument for a non-finite position or pressure; at the next solve, for
+  ///         a point outside the network
   int imposePressure(const Vec3& pos, double p);
   /// Change the value of imposed point `cond` (keeps the factor).
+  /// @param cond an index imposePressure returned
+  /// @param p the new pressure (Pa)
+  /// @throws std::out_of_range for an unknown index
   void setImposedPressure(int cond, double p);
+  /// Forget every imposed pressure point (the boundaries' values apply again).
   void clearImposedPressure();
   /// Impose the flux q at the pore containing `pos`, a source term (Yade's imposeFlux: outflux
-  /// positive, influx negative), located again after each triangulation. @returns its index
+  /// positive, influx negative), located again after each triangulation.
+  /// @param pos the point (m)
+  /// @param q the flux (m^3/s)
+  /// @returns its index
+  /// @throws std::invalid_argument for a non-finite position or flux; at the next solve, for a
+  ///         point outside the network
   int imposeFlux(const Vec3& pos, double q);
+  /// Forget every imposed flux.
   void clearImposedFlux();
   /// Flux leaving the pore of imposed point `cond` into the network, sum k (p_cell - p_j)
   /// (Yade's getCellFlux; positive for injection).
+  /// @param cond an index imposePressure returned
+  /// @return the flux (m^3/s)
+  /// @throws std::out_of_range for an unknown index or a point not located yet (solve first)
   [[nodiscard]] double getCellFlux(int cond) const;
 
+  /// A network has been built.
   [[nodiscard]] bool built() const { return net_.has_value(); }
+  /// @return the current network (owned here; replaced by the next build or adopt)
+  /// @throws std::logic_error before the first build
   [[nodiscard]] const PoreNetwork& network() const;
+  /// The pressure of each pore of the current network (Pa), from the last solve.
   [[nodiscard]] const std::vector<double>& pressures() const { return p_; }
 
   /// Yade's getBoundaryFlux: sum over the pores touching boundary k of the flux they receive,
   /// sum k_ij (p_j - p_i); negative where fluid enters. Meaningful on pressure boundaries (a
   /// no-flux boundary gives the flux crossing its first layer of pores, not zero).
+  /// @param k the boundary, 0..5
+  /// @return the flux (m^3/s)
+  /// @throws std::out_of_range for k outside 0..5
   [[nodiscard]] double boundaryFlux(int k) const;
   /// Pressure of the pore containing x (Yade's getPorePressure); 0 outside.
+  /// @param x a point (m)
+  /// @return the pressure (Pa)
   [[nodiscard]] double porePressure(const Vec3& x) const;
   /// Darcy permeability of the sample between two opposite pressure boundaries along their
   /// axis: K = Q mu L / (A dP) with the flux Q through boundary `lo`, the sample length L and
-  /// cross-section A from the box. @throws if lo/hi are not opposite pressure boundaries
+  /// cross-section A from the box.
+  /// @param lo, hi two opposite boundaries (2k and 2k + 1, either order)
+  /// @return K (m^2)
+  /// @throws std::invalid_argument if they are not opposite pressure boundaries of different
+  ///         pressures
   [[nodiscard]] double samplePermeability(int lo, int hi) const;
   /// Periodic networks: Darcy permeability along the imposed gradient, K = -mu (v . g) / |g|^2
-  /// with v the volume-averaged Darcy velocity. @throws if not periodic or gradP is zero
+  /// with v the volume-averaged Darcy velocity.
+  /// @return K (m^2)
+  /// @throws std::logic_error if the network is not periodic
+  /// @throws std::invalid_argument if gradP is zero
   [[nodiscard]] double periodicPermeability() const;
   /// Periodic networks: the pressure drop g . shift across `period` cells (0 otherwise).
+  /// @param period whole cells along each axis
+  /// @return the drop (Pa)
   [[nodiscard]] double pressureJump(const Vec3i& period) const;
   /// Darcy velocity of each pore: sum over its facets of the outgoing flux times the facet
   /// position relative to the pore centre, over the pore volume (the terms of averageVelocity).
   [[nodiscard]] std::vector<Vec3> poreVelocities() const;
   /// Volume-averaged Darcy velocity over all pores (Yade's averageVelocity).
   [[nodiscard]] Vec3 averageVelocity() const;
+  /// The reference conductance of the clamping (Yade's globalK), from the last computation.
   [[nodiscard]] double globalConductance() const { return globalK_; }
   /// Fluid force on each vertex of the network (index as PoreNetwork::vertices: 0..5 the
   /// boundaries, then the spheres), Yade's computeFacetForcesWithCache: for each pore and throat,
@@ -168,11 +233,16 @@ public:
   /// The viscous forces between neighbouring spheres (params.viscousShear, shearLubrication,
   /// normalLubrication) for the spheres' velocities and angular velocities (same order as in
   /// build) over the step dt; the sphere pairs are found at the first call after a build.
+  /// @param velocities, angularVelocities one per sphere (m/s, rad/s)
+  /// @param dt the step (s)
   /// @throws std::invalid_argument see SphereLubrication::compute, or if no option is set
   void computeViscousForces(const std::vector<Vec3>& velocities, const std::vector<Vec3>& angularVelocities, double dt);
   /// The pairs and the forces of the last computeViscousForces.
   [[nodiscard]] const SphereLubrication& lubrication() const { return lubrication_; }
+  /// Iterations of the last solve (Gauss-Seidel sweeps, conjugate-gradient iterations; 1 for
+  /// CHOLMOD).
   [[nodiscard]] int lastIterations() const { return solver_.lastIterations(); }
+  /// The solver holds a CHOLMOD factor of the current matrix.
   [[nodiscard]] bool factorized() const { return solver_.factorized(); }
 
 private:
