@@ -16,7 +16,6 @@ Checked:  dem.gravity-deposition.porosity: relative difference of the final poro
           at 0.05; Talus).
 Produces: the records and chart dem.gravity-deposition.png (porosity and coordination per seed).
 """
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -35,13 +34,7 @@ def main():
     case = results.Case("dem.gravity-deposition", quick=args.quick, folder=args.results)
     r_mean, duration = (.05, 3.0) if args.quick else (.03, 4.0)
     seeds = [1, 2, 3, 4]
-    programs = ["talus", "yade"] if twin.yade_available() else ["talus"]
-    jobs = [(program, seed) for seed in seeds for program in programs]
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        done = list(pool.map(lambda job: twin.run(SCENARIO, {"rMean": r_mean, "seed": job[1], "time": duration},
-                                                  job[0]), jobs))
-    ours = [r for (program, _), r in zip(jobs, done) if program == "talus"]
-    theirs = [r for (program, _), r in zip(jobs, done) if program == "yade"]
+    ours, theirs = twin.run_seeds(SCENARIO, lambda seed: {"rMean": r_mean, "seed": seed, "time": duration}, seeds)
     for k, seed in enumerate(seeds):
         for label, runs in (("Talus", ours), ("Yade ", theirs)):
             if runs:

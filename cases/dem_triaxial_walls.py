@@ -23,7 +23,6 @@ Checked:  dem.triaxial-walls.peak: relative difference of the peak stress ratio 
 Produces: the records and chart dem.triaxial-walls.png (stress ratio and volumetric strain
           against axial strain, Talus and Yade).
 """
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -66,13 +65,8 @@ def main():
     case = results.Case("dem.triaxial-walls", quick=args.quick, folder=args.results)
     num, end = (500 if args.quick else 2000), -0.15
     seeds = [1, 2, 3, 4]
-    programs = ["talus", "yade"] if twin.yade_available() else ["talus"]
-    jobs = [(program, seed) for seed in seeds for program in programs]
-    with ThreadPoolExecutor(max_workers=2) as pool:   # the scenarios run as single-threaded processes
-        done = list(pool.map(lambda job: analyse(twin.run(SCENARIO, {"num": num, "seed": job[1], "eyyEnd": end},
-                                                          job[0])), jobs))
-    ours = [r for (program, _), r in zip(jobs, done) if program == "talus"]
-    theirs = [r for (program, _), r in zip(jobs, done) if program == "yade"]
+    ours, theirs = twin.run_seeds(SCENARIO, lambda seed: {"num": num, "seed": seed, "eyyEnd": end}, seeds)
+    ours, theirs = [analyse(r) for r in ours], [analyse(r) for r in theirs]
     for k, seed in enumerate(seeds):
         for label, runs in (("Talus", ours), ("Yade ", theirs)):
             if runs:

@@ -14,6 +14,7 @@ import os
 import shutil
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 ENV = "TALUS_SCENARIO"
@@ -50,3 +51,15 @@ def run(script: str | os.PathLike, params: dict, program: str = "talus", timeout
         raise ScenarioFailed(f"{program} {script.name} failed (exit {done.returncode}):\n"
                              + done.stdout[-3000:] + done.stderr[-3000:])
     return json.loads(lines[-1][len("RESULT "):])
+
+
+def run_seeds(script: str | os.PathLike, params_of, seeds, workers: int = 2) -> tuple[list[dict], list[dict]]:
+    """Run ``script`` with ``params_of(seed)`` for every seed in Talus and, where Yade is installed,
+    in Yade, ``workers`` single-threaded runs at a time; returns Talus's RESULTs and Yade's (empty
+    without Yade), each in the order of ``seeds``."""
+    programs = ["talus", "yade"] if yade_available() else ["talus"]
+    jobs = [(program, seed) for seed in seeds for program in programs]
+    with ThreadPoolExecutor(max_workers=workers) as pool:
+        done = list(pool.map(lambda job: run(script, params_of(job[1]), job[0]), jobs))
+    return ([r for (program, _), r in zip(jobs, done) if program == "talus"],
+            [r for (program, _), r in zip(jobs, done) if program == "yade"])
