@@ -14,6 +14,11 @@ namespace talus::dem::parts
 /// Mohr-Coulomb with a tension cut-off: the bond's cohesion (a force) plus fn tan(phi), fn the
 /// signed normal force, never below 0; `cohesionOnly` (Yade's cohesionDisablesFriction): the
 /// cohesion alone while there is one.
+/// @param cohesion the bond's shear strength (N); 0 without a bond
+/// @param fn the signed normal force (N, negative when pulled)
+/// @param tanPhi the contact's friction coefficient
+/// @param cohesionOnly friction left out while the cohesion is not 0
+/// @return the strength (N), >= 0
 inline double bondedShearStrength(double cohesion, double fn, double tanPhi, bool cohesionOnly = false)
 {
   double strength = cohesion;
@@ -23,9 +28,13 @@ inline double bondedShearStrength(double cohesion, double fn, double tanPhi, boo
 }
 
 /// Friction alone (no bond, or a broken one): fn tan(phi) when pressed, 0 when pulled.
+/// @param fn the signed normal force (N)
+/// @param tanPhi the contact's friction coefficient
+/// @return the strength (N), >= 0
 inline double frictionStrength(double fn, double tanPhi) { return std::max(0.0, fn * tanPhi); }
 
 /// The bond breaks: the bodies interact by contact only from now on.
+/// @param x the contact's bond state: broken, its strengths zeroed
 inline void breakBond(BondState& x)
 {
   x.cohesionBroken = 1;
@@ -33,6 +42,7 @@ inline void breakBond(BondState& x)
 }
 
 /// The contact ends (Yade erases the interaction): forces, bond and moments are dropped.
+/// @param x the contact's state: bond broken, moments zeroed
 inline void endContact(Contact& c, ContactExtra& x)
 {
   c.reset();
@@ -48,6 +58,9 @@ struct BondedSpring
 {
   static constexpr bool usesExtra = true;
   static constexpr bool mayEnd = true; ///< the contact may end here (c.real false)
+  /// @param x the contact's BondState (unp, normalAdhesion, fragile, unpMax), updated on yield
+  ///        or breakage
+  /// @return the signed normal force (N; negative: tension), 0 if the contact ended
   template <bool Track>
   static double force(Contact& c, ContactExtra* x, ContactEnergy& /*energy*/)
   {
@@ -70,6 +83,8 @@ struct BondedSpring
     return fn;
   }
   /// 1/2 kn (u - unp)^2.
+  /// @param x the contact's state (null: unp taken as 0)
+  /// @return the energy (J)
   static double elastic(const Contact& c, const ContactExtra* x)
   {
     const double v = c.penetration - (x ? x->unp : 0.0);

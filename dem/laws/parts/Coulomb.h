@@ -9,6 +9,9 @@ namespace talus::dem::parts
 {
 /// Bring a force (or moment) back onto its cap along its own direction: `ratio` is the cap over
 /// its trial magnitude (< 1). Returns the trial value.
+/// @param value the force (N) or moment (N m), scaled in place
+/// @param ratio the scale, cap / |value|
+/// @return the value before scaling
 inline Vec3 cap(Vec3& value, double ratio)
 {
   const Vec3 trial = value;
@@ -19,6 +22,9 @@ inline Vec3 cap(Vec3& value, double ratio)
 /// What the slip from `trial` to `capped` dissipates in a spring of that stiffness:
 /// (trial - capped) . capped / stiffness, the work of the capped force over the spring's plastic
 /// slip (0 without a spring).
+/// @param trial, capped the force before and after the cap (N)
+/// @param stiffness the spring's stiffness (N/m); <= 0: no spring
+/// @return the work (J)
 inline double plasticWork(const Vec3& trial, const Vec3& capped, double stiffness)
 {
   return stiffness > 0 ? (trial - capped).dot(capped) / stiffness : 0.0;
@@ -27,6 +33,8 @@ inline double plasticWork(const Vec3& trial, const Vec3& capped, double stiffnes
 /// The Coulomb cap of the shear force, its dissipation booked when Track: the laws whose shear
 /// spring is incremental from its last capped value (all but the visco-elastic one, which books
 /// the work of its own increment and calls cap()).
+/// @param ratio the cap over the trial shear force's magnitude (< 1)
+/// @param energy with Track, the slip's work added to plastDissip
 template <bool Track>
 inline void slide(Contact& c, double ratio, ContactEnergy& energy)
 {
@@ -37,6 +45,10 @@ inline void slide(Contact& c, double ratio, ContactEnergy& energy)
 
 /// The shear force's magnitude against a strength maxFs: over it, the force slides at the cap
 /// `exceeded(maxFs)` gives (a bond that breaks there lowers it). Returns whether it slid.
+/// @param maxFs the strength (N)
+/// @param exceeded exceeded(maxFs) returns the cap (N) once the force is over it (called only then)
+/// @param energy with Track, the slip's work added to plastDissip
+/// @return whether the force was over maxFs (and slid)
 template <bool Track, class Exceeded>
 inline bool slideOver(Contact& c, double maxFs, Exceeded&& exceeded, ContactEnergy& energy)
 {

@@ -18,6 +18,8 @@ namespace talus::dem::parts
 struct NoDamping
 {
   static constexpr bool usesExtra = false;
+  /// @param elastic the normal part's force (N)
+  /// @return elastic: the normal force (N)
   template <bool Track, class Motion>
   static double normal(Contact& c, const ContactExtra* /*x*/, const StepContext& /*step*/, const Motion& /*motion*/,
                        double elastic, ContactEnergy& /*energy*/)
@@ -36,6 +38,11 @@ struct NoDamping
 struct ThorntonDamping
 {
   static constexpr bool usesExtra = true;
+  /// @param x the contact's state (HertzState's betan, betas)
+  /// @param step the bodies' masses and velocities, the cell, dt
+  /// @param elastic the normal part's force (N)
+  /// @param energy with Track, the dashpot's dissipation added to viscDamp
+  /// @return the damped normal force (N), >= 0
   template <bool Track, class Motion>
   static double normal(Contact& c, const ContactExtra* x, const StepContext& step, const Motion& /*motion*/,
                        double elastic, ContactEnergy& energy)

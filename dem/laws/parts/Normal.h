@@ -20,12 +20,14 @@ struct LinearSpring
 {
   static constexpr bool usesExtra = false;
   static constexpr bool mayEnd = false;
+  /// @return kn u (N), negative when the bodies are apart within the skin (the contact is kept)
   template <bool Track>
   static double force(Contact& c, ContactExtra* /*x*/, ContactEnergy& /*energy*/)
   {
     return c.kn * c.penetration;
   }
   /// 1/2 kn u^2.
+  /// @return the energy (J)
   static double elastic(const Contact& c, const ContactExtra* /*x*/) { return 0.5 * c.kn * c.penetration * c.penetration; }
 };
 
@@ -35,6 +37,11 @@ struct HertzSpring
 {
   static constexpr bool usesExtra = true;
   static constexpr bool mayEnd = false;
+  /// Sets c.kn and c.ks to the tangent stiffnesses of the current overlap.
+  /// @param x the contact's state (its HertzState's kno, kso)
+  /// @param energy with Track, the change of the shear spring's energy as its stiffness changes
+  ///        is added to plastDissip
+  /// @return kno u^1.5 (N), 0 when apart
   template <bool Track>
   static double force(Contact& c, ContactExtra* x, ContactEnergy& energy)
   {
@@ -53,6 +60,8 @@ struct HertzSpring
     return x->kno * u * sqrtU;
   }
   /// 2/5 kno u^2.5.
+  /// @param x the contact's state (null: 0)
+  /// @return the energy (J)
   static double elastic(const Contact& c, const ContactExtra* x)
   {
     const double u = std::max(c.penetration, 0.0);

@@ -17,6 +17,7 @@
 namespace talus::dem::parts
 {
 /// What an elastic shear spring stores, 1/2 Fs^2 / ks.
+/// @return the energy (J), 0 without a shear stiffness
 inline double shearSpringEnergy(const Contact& c) { return c.ks > 0 ? 0.5 * c.shearForce.squaredNorm() / c.ks : 0.0; }
 
 /// How the Coulomb limit tan(phi) F_n is compared with the shear force: from the normal force
@@ -34,6 +35,9 @@ template <CoulombLimit Limit, bool Dashpot>
 struct IncrementalCoulomb
 {
   static constexpr bool usesExtra = false;
+  /// @param fn the damping part's signed normal force (N)
+  /// @param step dt, for the shear dashpot's velocity
+  /// @param energy with Track, the slip's work to plastDissip, the dashpot's to viscDamp
   template <bool Track, class Motion>
   static void force(Contact& c, ContactExtra* /*x*/, double fn, const StepContext& step, const Motion& /*motion*/,
                     ContactEnergy& energy)
@@ -70,6 +74,7 @@ struct IncrementalCoulomb
       }
     c.force = c.normalForce + shear;
   }
+  /// @return the shear spring's energy (J)
   static double elastic(const Contact& c) { return shearSpringEnergy(c); }
 };
 /// An incremental elastic shear spring capped at the bond's strength (bondedShearStrength, with
@@ -78,6 +83,10 @@ struct IncrementalCoulomb
 struct BondedCoulomb
 {
   static constexpr bool usesExtra = true;
+  /// @param x the contact's BondState (shearAdhesion, fragile, cohesionDisablesFriction); the
+  ///        bond breaks here when a fragile one is exceeded
+  /// @param fn the damping part's signed normal force (N)
+  /// @param energy with Track, the slip's work added to plastDissip
   template <bool Track, class Motion>
   static void force(Contact& c, ContactExtra* x, double fn, const StepContext& /*step*/, const Motion& /*motion*/,
                     ContactEnergy& energy)
@@ -94,6 +103,7 @@ struct BondedCoulomb
       c.normalForce.setZero();
     c.force = c.normalForce + c.shearForce;
   }
+  /// @return the shear spring's energy (J)
   static double elastic(const Contact& c) { return shearSpringEnergy(c); }
 };
 } // namespace talus::dem::parts
