@@ -75,6 +75,12 @@ public:
     });
   }
 
+  /// One contact's forces, part by part (ContactLawKernel's per-contact call; inline, no
+  /// virtual call).
+  /// @param c the contact, its geometry of this step
+  /// @param k its index in the contact list (its ContactExtra's)
+  /// @param step what the parts read besides the contact
+  /// @param energy with Track, what the parts dissipate is added to it
   template <bool Track>
   void force(Contact& c, std::size_t k, const StepContext& step, ContactEnergy& energy) const
   {
@@ -92,6 +98,8 @@ public:
     tangential_.template force<Track>(c, x, fn, step, motion, energy);
     moments_.template force<Track>(c, x, fn, step, motion, energy);
   }
+  /// @param x the contact's state (null when the law keeps none)
+  /// @return the elastic energy (J) of the normal, tangential and moments parts
   double elastic(const Contact& c, const ContactExtra* x) const
   {
     return moments_.addElastic(normal_.elastic(c, x) + tangential_.elastic(c), x);

@@ -22,12 +22,18 @@ struct AreaDashpot
   // allowViscousAttraction.
   double viscousDamping = 0;
   bool allowViscousAttraction = false;
+  /// @return the part's declared parameters (Yade's names), see parts/Parameters.h
   static constexpr auto parameters()
   {
     return std::tuple{parameter("viscousDamping", &AreaDashpot::viscousDamping),
                       parameter("allowViscousAttraction", &AreaDashpot::allowViscousAttraction)};
   }
 
+  /// Sets c.normalForce and c.cn.
+  /// @param step the bodies' masses and velocities, dt
+  /// @param elastic the normal part's signed force (N)
+  /// @param energy with Track, the dashpot's dissipation added to viscDamp
+  /// @return elastic (the spring's force, undamped)
   template <bool Track, class Motion>
   double normal(Contact& c, const ContactExtra* /*x*/, const StepContext& step, const Motion& /*motion*/,
                 double elastic, ContactEnergy& energy) const

@@ -17,6 +17,8 @@ struct ContactPointMotion
 {
   Vec3 point, c1x, c2x, v, vs;
   double vn;
+  /// @param c the contact, its geometry of this step
+  /// @param cell the periodic cell, or null
   ContactPointMotion(const Contact& c, const Bodies& b, const Cell* cell)
   {
     const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
@@ -40,6 +42,8 @@ struct ContactPointMotion
     vs = v - vn * c.normal;
   }
   /// The law's part: the forces act at this point (the bodies' torques take it).
+  /// @param c the contact; its contactPoint is moved to the law's point
+  /// @param step the bodies and the cell
   ContactPointMotion(Contact& c, const StepContext& step) : ContactPointMotion(c, step.bodies, step.cell)
   {
     c.contactPoint = point;

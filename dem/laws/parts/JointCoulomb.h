@@ -23,6 +23,7 @@ struct JointCoulomb
 {
   static constexpr bool usesExtra = RockJoints;
   bool allowBreakage = false; ///< Law2's, RockJoints only
+  /// @return the part's declared parameters (Yade's names), see parts/Parameters.h
   static constexpr auto parameters()
   {
     if constexpr (RockJoints)
@@ -31,6 +32,10 @@ struct JointCoulomb
       return std::tuple{};
   }
 
+  /// Sets c.shearForce and c.force.
+  /// @param x the contact's BondState and AreaState (RockJoints; the bond may break here)
+  /// @param fn the damping part's signed normal force (N)
+  /// @param energy with Track, the slip's work added to plastDissip
   template <bool Track, class Motion>
   void force(Contact& c, ContactExtra* x, double fn, const StepContext& /*step*/, const Motion& /*motion*/,
              ContactEnergy& energy) const
@@ -52,6 +57,7 @@ struct JointCoulomb
       slideOver<Track>(c, c.normalForce.norm() * c.tanPhi, [](double maxFs) { return maxFs; }, energy);
     c.force = c.normalForce + c.shearForce;
   }
+  /// @return the shear spring's energy (J)
   static double elastic(const Contact& c) { return shearSpringEnergy(c); }
 };
 } // namespace talus::dem::parts

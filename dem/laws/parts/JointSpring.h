@@ -23,6 +23,7 @@ struct JointSpring
   static constexpr bool usesExtra = RockJoints;
   static constexpr bool mayEnd = false;
   double initialOverlapDistance = 0; ///< Law2's, RockJoints only
+  /// @return the part's declared parameters (Yade's names), see parts/Parameters.h
   static constexpr auto parameters()
   {
     if constexpr (RockJoints)
@@ -31,6 +32,8 @@ struct JointSpring
       return std::tuple{};
   }
 
+  /// @param x the contact's BondState and AreaState (RockJoints: the bond may break here)
+  /// @return the signed normal force (N; negative only across a bond holding tension)
   template <bool Track>
   double force(Contact& c, ContactExtra* x, ContactEnergy& /*energy*/) const
   {
@@ -49,6 +52,7 @@ struct JointSpring
       return fn;
     }
   }
+  /// @return 1/2 kn u^2 (J)
   static double elastic(const Contact& c, const ContactExtra* x) { return LinearSpring::elastic(c, x); }
 };
 } // namespace talus::dem::parts

@@ -15,6 +15,7 @@
 namespace talus::dem::parts
 {
 /// Rotation vector (angle times unit axis, angle in [0, pi]) of a unit quaternion.
+/// @return the vector (rad); zero for the identity
 inline Vec3 rotationVector(Quat q)
 {
   if (q.w() < 0)
@@ -26,6 +27,7 @@ inline Vec3 rotationVector(Quat q)
 }
 
 /// Rotations count from now (ScGeom6D's reference orientations).
+/// @param x the contact's state: reference orientations set, twist and bending zeroed
 inline void startRotations(const Contact& c, RotationState& x, const Bodies& b)
 {
   x.initialOrientation1 = b.ori[static_cast<std::size_t>(c.id1)];
@@ -36,6 +38,7 @@ inline void startRotations(const Contact& c, RotationState& x, const Bodies& b)
 
 /// Moments of springs kr, ktw on the rotation of body 1 relative to body 2 since the start
 /// (ScGeom6D's twist and bending): ktw twist n and kr bending.
+/// @param x the contact's state: twist, bending and both moments (N m) set
 inline void totalRotationMoments(const Contact& c, ContactExtra& x, const Bodies& b)
 {
   const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
@@ -49,6 +52,8 @@ inline void totalRotationMoments(const Contact& c, ContactExtra& x, const Bodies
 
 /// The same springs incrementally: the moments lose kr, ktw times this step's relative
 /// rotation (w2 - w1) dt, split into its bending and twisting parts.
+/// @param x the contact's state: both moments (N m) updated
+/// @param dt the time step (s)
 inline void incrementalRotationMoments(const Contact& c, MomentState& x, const Bodies& b, double dt)
 {
   const Vec3 relativeRotation
@@ -60,6 +65,12 @@ inline void incrementalRotationMoments(const Contact& c, MomentState& x, const B
 
 /// Cap a moment at plastic * normal (plastic < 0: no cap); with `dissipates`, the excess is a
 /// plastic slip of the moment's spring (the incremental form) whose work is booked when Track.
+/// @param moment the moment (N m), capped in place
+/// @param plastic the limit per unit normal force (m); < 0: none
+/// @param normal the normal force's magnitude (N)
+/// @param stiffness the moment spring's stiffness (N m/rad), for the dissipated work
+/// @param dissipates book the excess's work (the incremental form only)
+/// @param energy with Track and dissipates, the work added to plastDissip
 template <bool Track>
 inline void capMoment(Vec3& moment, double plastic, double normal, double stiffness, bool dissipates,
                       ContactEnergy& energy)
@@ -85,11 +96,14 @@ inline void capMoment(Vec3& moment, double plastic, double normal, double stiffn
 struct NoMoments
 {
   static constexpr bool usesExtra = false;
+  /// Nothing to do.
   template <bool Track, class Motion>
   void force(Contact& /*c*/, ContactExtra* /*x*/, double /*fn*/, const StepContext& /*step*/,
              const Motion& /*motion*/, ContactEnergy& /*energy*/) const
   {
   }
+  /// @param elastic the other parts' energy (J)
+  /// @return elastic unchanged
   [[nodiscard]] double addElastic(double elastic, const ContactExtra* /*x*/) const { return elastic; }
 };
 
@@ -103,12 +117,18 @@ struct RotationMoments
   // Law2 parameters: moments from incremental rotations (plastic limits are then exact) rather
   // than from the total rotation since the bond; keep moments after the bond broke.
   bool useIncrementalForm = false, alwaysUseMomentLaw = false;
+  /// @return the part's declared parameters (Yade's names), see parts/Parameters.h
   static constexpr auto parameters()
   {
     return std::tuple{parameter("useIncrementalForm", &RotationMoments::useIncrementalForm),
                       parameter("always_use_moment_law", &RotationMoments::alwaysUseMomentLaw)};
   }
 
+  /// Sets x's momentBending and momentTwist (the moments on body 2, N m; body 1 takes the
+  /// opposite), capped by the normal force c.normalForce.
+  /// @param x the contact's MomentState and RotationState
+  /// @param step the bodies' orientations or angular velocities, dt
+  /// @param energy with Track and the incremental form, the caps' work added to plastDissip
   template <bool Track, class Motion>
   void force(Contact& c, ContactExtra* x, double /*fn*/, const StepContext& step, const Motion& /*motion*/,
              ContactEnergy& energy) const
@@ -128,6 +148,9 @@ struct RotationMoments
     capMoment<Track>(x->momentTwist, x->maxTwistPl, normal, x->ktw, useIncrementalForm, energy);
   }
   /// Plus 1/2 M^2 / k of each spring.
+  /// @param elastic the other parts' energy (J)
+  /// @param x the contact's state (null: nothing added)
+  /// @return the sum (J)
   [[nodiscard]] double addElastic(double elastic, const ContactExtra* x) const
   {
     if (x && x->kr > 0)

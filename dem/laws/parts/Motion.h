@@ -11,6 +11,7 @@ namespace talus::dem::parts
 /// Nothing beyond the geometry's kinematics.
 struct NoMotion
 {
+  /// Reads nothing.
   NoMotion(const Contact& /*c*/, const StepContext& /*step*/) {}
 };
 } // namespace talus::dem::parts

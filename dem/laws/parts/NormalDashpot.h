@@ -15,6 +15,12 @@ namespace talus::dem::parts
 struct NormalDashpot
 {
   static constexpr bool usesExtra = false;
+  /// Sets c.normalForce.
+  /// @param step dt, for the dissipated work
+  /// @param motion vn, the normal velocity (m/s, > 0 approaching)
+  /// @param elastic the normal spring's force (N)
+  /// @param energy with Track, the dashpot's work added to viscDamp
+  /// @return the normal force (N), >= 0
   template <bool Track, class Motion>
   static double normal(Contact& c, const ContactExtra* /*x*/, const StepContext& step, const Motion& motion,
                        double elastic, ContactEnergy& energy)

@@ -18,6 +18,9 @@ struct Parameter
 };
 
 /// The parameter `name` held by `member`.
+/// @param name Yade's attribute name (a string literal: the pointer is kept)
+/// @param member the part's bool or double member
+/// @return the declaration, for a part's parameters() tuple
 template <class Part, class T>
 constexpr Parameter<Part, T> parameter(const char* name, T Part::*member)
 {

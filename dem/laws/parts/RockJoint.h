@@ -14,12 +14,16 @@
 namespace talus::dem::parts
 {
 /// The Potential Block shape of body i.
+/// @param i a Potential Block's body id
+/// @return its shape, stored in `b`
 inline const PotentialBlockShape& blockOf(const Bodies& b, std::size_t i)
 {
   return b.blocks[static_cast<std::size_t>(b.shapeIndex[i])];
 }
 
 /// Body i is a boundary block (Yade's isBoundary: its own stiffnesses kn_i, ks_i, no bond).
+/// @param i any body id
+/// @return false for bodies that are not Potential Blocks
 inline bool isBoundaryBlock(const Bodies& b, std::size_t i)
 {
   return b.shape[i] == ShapeKind::PotentialBlock && blockOf(b, i).isBoundary;
@@ -27,6 +31,10 @@ inline bool isBoundaryBlock(const Bodies& b, std::size_t i)
 
 /// The face of block s (orientation ori) whose outward normal is within 1 degree of `outward`,
 /// or -1.
+/// @param s the block's shape
+/// @param ori the block's orientation
+/// @param outward a unit direction, world frame
+/// @return the face's plane index, or -1
 inline int contactFace(const PotentialBlockShape& s, const Quat& ori, const Vec3& outward)
 {
   const Vec3 local = ori.conjugate() * outward;
@@ -43,6 +51,10 @@ inline int contactFace(const PotentialBlockShape& s, const Quat& ori, const Vec3
 /// for body 2) both intact rock gives a bond of the smaller cohesion and tension times A0, its
 /// flags as given (Yade's functor's cohesionBroken, tensionBroken); anything else (an edge or
 /// a corner, a wall, a boundary block) is frictional.
+/// @param x the new contact's state: intactRock, strengths and flags set
+/// @param area the contact's area A0 (m^2)
+/// @param useFaceProperties the physics' option: faces' cohesion and tension used at all
+/// @param cohesionBroken, tensionBroken the flags a bond starts with
 inline void bondFaces(const Contact& c, ContactExtra& x, const Bodies& b, double area, bool useFaceProperties,
                       bool cohesionBroken, bool tensionBroken)
 {

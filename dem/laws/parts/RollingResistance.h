@@ -15,6 +15,7 @@ struct RollingResistance
 {
   static constexpr bool usesExtra = true;
   /// mR: twice the harmonic mean of the materials' mR > 0 (one alone: twice it), as Yade.
+  /// @param x the new contact's state: mR, mRtype set (mRtype: body 1's material's)
   void initialize(Contact& c, ContactExtra* x, const Scene& scene) const
   {
     const Material& m1 = scene.materials[static_cast<std::size_t>(scene.bodies.material[static_cast<std::size_t>(c.id1)])];
@@ -22,6 +23,11 @@ struct RollingResistance
     x->mR = m1.mR > 0 || m2.mR > 0 ? 2.0 / ((m1.mR > 0 ? 1 / m1.mR : 0) + (m2.mR > 0 ? 1 / m2.mR : 0)) : 0;
     x->mRtype = static_cast<std::uint8_t>(m1.mRtype);
   }
+  /// Sets x's momentBending (N m, the moment on body 2).
+  /// @param x the contact's RollingResistanceState and MomentState
+  /// @param fn the damping part's normal force (N)
+  /// @param step the bodies' angular velocities, dt
+  /// @param energy with Track, the moment's work added to viscDamp
   template <bool Track, class Motion>
   void force(Contact& c, ContactExtra* x, double fn, const StepContext& step, const Motion& motion,
              ContactEnergy& energy) const
@@ -40,6 +46,8 @@ struct RollingResistance
     if constexpr (Track)
       energy.viscDamp += x->momentBending.dot(relAngVel) * step.dt;
   }
+  /// @param elastic the other parts' energy (J)
+  /// @return elastic unchanged: the resistance stores nothing
   [[nodiscard]] double addElastic(double elastic, const ContactExtra* /*x*/) const { return elastic; }
 };
 } // namespace talus::dem::parts

@@ -17,6 +17,10 @@ namespace talus::dem::parts
 struct VelocityShear
 {
   static constexpr bool usesExtra = false;
+  /// Sets c.shearForce and c.force.
+  /// @param fn the damping part's normal force (N), >= 0
+  /// @param step dt
+  /// @param energy with Track, the slip's work to plastDissip, the dashpot's to viscDamp
   template <bool Track, class Motion>
   static void force(Contact& c, ContactExtra* /*x*/, double fn, const StepContext& step, const Motion& motion,
                     ContactEnergy& energy)
@@ -40,6 +44,7 @@ struct VelocityShear
     if constexpr (Track)
       energy.viscDamp += viscous.dot(motion.vs) * step.dt;
   }
+  /// @return the shear spring's energy (J)
   static double elastic(const Contact& c) { return shearSpringEnergy(c); }
 };
 } // namespace talus::dem::parts
