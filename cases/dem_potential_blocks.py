@@ -54,7 +54,8 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortC
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, Joint, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
                        PotentialBlock, PotentialBlock2AABB, Scene, generateBlocks, potentialBlock)
 from talus.dem.blockgen import dipNormal
-from talus.dem.sliding import coulombAcceleration, fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity, slide, tilted
+from talus.dem.sliding import (coulombAcceleration, fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity,
+                               restingForce, slide, tilted)
 
 KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
 CUBE = PotentialBlock.cuboid((0.5, 0.5, 0.5), r=0.02)
@@ -106,13 +107,7 @@ def resting(seconds):
     S, m = make_scene(damping=0.3, viscous=0.5)
     S.bodies.append(plate(m))
     S.bodies.append(potentialBlock(CUBE, pos=(0, 0, 0.501), material=m))
-    times, forces = [], []
-    for _ in range(int(seconds / S.dt / 20)):
-        S.run(20, True)
-        c = S._cpp.contacts()
-        times.append(S.time)
-        forces.append(float(c[0]["normalForce"][2]) if c else 0.0)
-    return S, times, forces
+    return (S, *restingForce(S, seconds))
 
 
 def resting_2d(seconds, width):

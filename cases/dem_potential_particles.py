@@ -48,7 +48,7 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PP_PP_ScGeom, InsertionSortC
                        Ip2_FrictMat_FrictMat_KnKsPhys, Law2_SCG_KnKsPhys_KnKsLaw, NewtonIntegrator,
                        PotentialParticle, PotentialParticle2AABB, Scene, potentialParticle, twin, wall)
 from talus import _dem
-from talus.dem.sliding import fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity, slide, tilted
+from talus.dem.sliding import fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity, restingForce, slide, tilted
 
 KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
 HALF, R_ROUND, K_SPH = 0.5, 0.05, 0.2
@@ -137,13 +137,7 @@ def resting(seconds):
     S, m = make_scene(damping=0.3, viscous=0.5)
     S.bodies.append(wall(0, axis=2, sense=1, material=m))
     i = S.bodies.append(potentialParticle(CUBE, pos=(0, 0, face_centre(CUBE) + 1e-4), material=m))
-    times, forces = [], []
-    for _ in range(int(seconds / S.dt / 20)):
-        S.run(20, True)
-        c = S._cpp.contacts()
-        times.append(S.time)
-        forces.append(float(c[0]["normalForce"][2]) if c else 0.0)
-    return S, i, times, forces
+    return (S, i, *restingForce(S, seconds))
 
 
 def incline(theta, seconds):

@@ -1,6 +1,7 @@
 """Sliding-block experiments as the block and particle cases run them: load a body nearly
 statically by ramping gravity up (or turning it), let it go, and fit its acceleration; a sweep
-of slope angles against Coulomb's g (sin theta - cos theta tan phi)."""
+of slope angles against Coulomb's g (sin theta - cos theta tan phi); the contact force of a body
+settling on its support."""
 
 from __future__ import annotations
 
@@ -35,6 +36,18 @@ def slide(scene, body: int, seconds: float, direction=(1.0, 0.0, 0.0), every: in
         times.append(scene.time)
         moved.append(float((np.array(scene.bodies[body].state.pos) - start) @ along))
     return np.array(times), np.array(moved)
+
+
+def restingForce(scene, seconds: float, every: int = 20):
+    """Run ``seconds`` in runs of ``every`` steps; returns the times and, after each run, the
+    vertical normal force of the scene's first contact (0 while there is none)."""
+    times, forces = [], []
+    for _ in range(int(seconds / scene.dt / every)):
+        scene.run(every, True)
+        c = scene._cpp.contacts()
+        times.append(scene.time)
+        forces.append(float(c[0]["normalForce"][2]) if c else 0.0)
+    return times, forces
 
 
 def fittedAcceleration(times, moved) -> float:
