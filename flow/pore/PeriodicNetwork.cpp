@@ -166,7 +166,7 @@ std::vector<Cell> groupCellsByTranslation(const PoreNetwork& net, Triangulation&
   int nCells = 0;
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
     c->info() = nCells++;
-  detail::indexCells(owner, net.vertices.size());
+  detail::indexCells(owner, rt, owner.cells, net.vertices.size());
   std::vector<PoreKey> keys(static_cast<std::size_t>(nCells));
   std::vector<Vec3i> shiftOf(static_cast<std::size_t>(nCells), Vec3i::Zero());
   std::vector<char> isReal(static_cast<std::size_t>(nCells), 0);

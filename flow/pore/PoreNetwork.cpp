@@ -9,6 +9,14 @@
 #include <stdexcept>
 #include <tuple>
 
+#ifdef CGAL_LINKED_WITH_TBB
+#include <tbb/parallel_sort.h>
+#include <tbb/task_arena.h>
+#endif
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace talus::flow::pore
 {
 namespace
@@ -22,6 +30,161 @@ using cgal::Weighted;
 constexpr double kFar = 50000;
 
 std::string bodyName(std::int64_t id) { return "body " + std::to_string(id); }
+
+/// Pores and throats of the finite cells `cells` (pore i is cells[i], whose info() is i), pore
+/// i's vertex k being its cell's vertex local[i][k] (the cell's own order when `local` is empty).
+template <class Rt>
+void buildPores(PoreNetwork& net, const Rt& rt, const std::vector<typename Rt::Cell_handle>& cells,
+                const std::vector<std::array<int, 4>>& local, const std::vector<int>& rank)
+{
+  net.pores.resize(cells.size());
+  for (std::size_t i = 0; i < cells.size(); ++i)
+  {
+    const typename Rt::Cell_handle c = cells[i];
+    Pore& p = net.pores[i];
+    for (int k = 0; k < 4; ++k)
+    {
+      const int y = local.empty() ? k : local[i][static_cast<std::size_t>(k)];
+      p.vertices[k] = c->vertex(y)->info();
+      p.neighbours[k] = rt.is_infinite(c->neighbor(y)) ? -1 : c->neighbor(y)->info();
+      p.throats[k] = -1;
+      p.nFictitious += net.vertices[static_cast<std::size_t>(p.vertices[k])].fictitious ? 1 : 0;
+    }
+    p.centre = detail::weightedCentre(rt, c, rank);
+  }
+  net.throats.reserve(2 * net.pores.size()); // four facets per pore, each shared by two
+  for (std::size_t i = 0; i < net.pores.size(); ++i)
+    for (int k = 0; k < 4; ++k)
+    {
+      const std::array<int, 4>& vertices = net.pores[i].vertices;
+      const int other = net.pores[i].neighbours[k];
+      if (other < 0 || other < static_cast<int>(i))
+        continue;
+      Pore& q = net.pores[static_cast<std::size_t>(other)];
+      Throat t;
+      t.pores = {static_cast<int>(i), other};
+      t.facet = k;
+      // where each facet vertex is in the other pore; the one left is opposite the facet there
+      int mirror = 0 + 1 + 2 + 3;
+      for (int y = 0, m = 0; y < 4; ++y)
+        if (y != k)
+        {
+          const auto in = static_cast<int>(std::find(q.vertices.begin(), q.vertices.end(), vertices[y]) - q.vertices.begin());
+          t.mirrorLocal[static_cast<std::size_t>(m++)] = in;
+          mirror -= in;
+        }
+      detail::setFacetVertices(t, vertices, rank);
+      net.pores[i].throats[k] = static_cast<int>(net.throats.size());
+      q.throats[mirror] = static_cast<int>(net.throats.size());
+      net.throats.push_back(t);
+    }
+}
+
+/// The finite cell (its info()) holding y, -1 outside; CGAL walks from the cell `near` points
+/// to (if given and valid; from an arbitrary cell otherwise, across the triangulation) and
+/// leaves the cell found there.
+template <class Rt>
+int walkTo(const Rt& rt, const std::vector<typename Rt::Cell_handle>& cells, const Vec3& y, int* near)
+{
+  const bool hinted = near && *near >= 0 && static_cast<std::size_t>(*near) < cells.size();
+  const typename Rt::Cell_handle c = rt.locate(Weighted(Point(y.x(), y.y(), y.z()), 0.0),
+                                               hinted ? cells[static_cast<std::size_t>(*near)] : typename Rt::Cell_handle());
+  if (rt.is_infinite(c))
+    return -1;
+  if (near)
+    *near = c->info();
+  return c->info();
+}
+
+#ifdef CGAL_LINKED_WITH_TBB
+using cgal::ParallelRegular;
+
+/// Cells per axis of the grid whose cells the threads of a parallel insertion lock (CGAL's
+/// meshes use 50).
+constexpr int kLockGridCells = 50;
+
+/// How many threads the caller asked for (OpenMP's setting, which the rest of the pore flow
+/// follows).
+int callerThreads()
+{
+#ifdef _OPENMP
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+/// Numbers (info()) the finite cells of a triangulation built by several threads, whose cell
+/// order depends on how the threads met: along a Morton curve through the centroid of each
+/// cell's spheres (neighbouring pores stay close in memory), ties broken by the vertices'
+/// canonical ranks (a cell is its four vertices). Returns for each pore the cell's local index
+/// of each of its vertices, in rank order, the last two swapped when that is an odd permutation
+/// of the cell's (a pore stays positively oriented, as CGAL's cells are). Pores, throats and
+/// solver then come out the same whatever order the threads left.
+std::vector<std::array<int, 4>> numberCellsCanonically(ParallelRegular& rt, const PoreNetwork& net,
+                                                       const std::vector<int>& rank, const Vec3& lo, const Vec3& hi)
+{
+  struct Entry
+  {
+    std::uint64_t morton = 0;
+    std::array<int, 4> ranks{};
+    std::array<int, 4> local{};
+    ParallelRegular::Cell_handle cell;
+  };
+  // 21 bits a coordinate: interleaved into 63
+  const auto spread = [](std::uint64_t x) {
+    x &= 0x1fffff;
+    x = (x | x << 32) & 0x1f00000000ffffULL;
+    x = (x | x << 16) & 0x1f0000ff0000ffULL;
+    x = (x | x << 8) & 0x100f00f00f00f00fULL;
+    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+    return (x | x << 2) & 0x1249249249249249ULL;
+  };
+  std::vector<Entry> entries;
+  entries.reserve(rt.number_of_finite_cells());
+  for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
+  {
+    Entry e;
+    e.cell = c;
+    e.local = {0, 1, 2, 3};
+    const auto rankOf = [&](int y) { return rank[static_cast<std::size_t>(c->vertex(y)->info())]; };
+    std::sort(e.local.begin(), e.local.end(), [&](int a, int b) { return rankOf(a) < rankOf(b); });
+    int inversions = 0;
+    for (std::size_t a = 0; a < 4; ++a)
+      for (std::size_t b = a + 1; b < 4; ++b)
+        inversions += e.local[a] > e.local[b] ? 1 : 0;
+    Vec3 centroid = Vec3::Zero();
+    int spheres = 0;
+    for (std::size_t k = 0; k < 4; ++k)
+    {
+      e.ranks[k] = rankOf(e.local[k]);
+      const Vertex& v = net.vertices[static_cast<std::size_t>(c->vertex(e.local[k])->info())];
+      if (!v.fictitious)
+      {
+        centroid += v.pos;
+        ++spheres;
+      }
+    }
+    if (inversions % 2 != 0)
+      std::swap(e.local[2], e.local[3]);
+    const Vec3 at = spheres > 0 ? Vec3(centroid / spheres) : lo;
+    const Eigen::Array3d unit = ((at - lo).array() / (hi - lo).array()).max(0.0).min(1.0);
+    for (int a = 0; a < 3; ++a)
+      e.morton |= spread(static_cast<std::uint64_t>(unit[a] * 0x1fffff)) << a;
+    entries.push_back(e);
+  }
+  tbb::parallel_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return std::tie(a.morton, a.ranks) < std::tie(b.morton, b.ranks);
+  });
+  std::vector<std::array<int, 4>> local(entries.size());
+  for (std::size_t i = 0; i < entries.size(); ++i)
+  {
+    entries[i].cell->info() = static_cast<int>(i);
+    local[i] = entries[i].local;
+  }
+  return local;
+}
+#endif
 } // namespace
 
 namespace detail
@@ -53,7 +216,8 @@ Vertex boundaryVertex(const std::array<Boundary, kBoundaries>& boundaries, int k
   return v;
 }
 
-void insertVertices(PoreNetwork& net, Regular& rt, const std::vector<int>& order, InsertionOrder insertion)
+template <class Rt>
+void insertVertices(PoreNetwork& net, Rt& rt, const std::vector<int>& order, InsertionOrder insertion)
 {
   std::vector<char> inserted(net.vertices.size(), 0);
   std::vector<std::pair<Weighted, int>> range;
@@ -70,8 +234,8 @@ void insertVertices(PoreNetwork& net, Regular& rt, const std::vector<int>& order
     }
     // the six boundaries first, one by one (they enclose the sample, the spheres' range goes
     // inside them); everything one by one in Yade's order
-    const Regular::Vertex_handle h = rt.insert(w);
-    if (h != Regular::Vertex_handle())
+    const typename Rt::Vertex_handle h = rt.insert(w);
+    if (h != typename Rt::Vertex_handle())
       h->info() = i;
   }
   rt.insert(range.begin(), range.end());
@@ -121,29 +285,36 @@ void setFacetVertices(Throat& t, const std::array<int, 4>& poreVertices, const s
   }
 }
 
-void indexCells(Triangulation& tri, std::size_t vertices)
+template <class Rt>
+void indexCells(Triangulation& tri, const Rt& rt, std::vector<typename Rt::Cell_handle>& cells, std::size_t vertices)
 {
-  tri.cells.clear();
+  cells.resize(rt.number_of_finite_cells());
+  for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
+    cells[static_cast<std::size_t>(c->info())] = c;
   tri.cellAtVertex.assign(vertices, -1);
-  for (auto c = tri.rt.finite_cells_begin(); c != tri.rt.finite_cells_end(); ++c)
-  {
-    tri.cells.push_back(c);
+  for (const typename Rt::Cell_handle c : cells)
     for (int k = 0; k < 4; ++k)
       tri.cellAtVertex[static_cast<std::size_t>(c->vertex(k)->info())] = c->info();
-  }
 }
 
-Vec3 weightedCentre(const Regular& rt, Regular::Cell_handle c, const std::vector<int>& rank)
+template <class Rt>
+Vec3 weightedCentre(const Rt& rt, typename Rt::Cell_handle c, const std::vector<int>& rank)
 {
-  std::array<Regular::Vertex_handle, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};
+  using Vertex_handle = typename Rt::Vertex_handle;
+  std::array<Vertex_handle, 4> v{c->vertex(0), c->vertex(1), c->vertex(2), c->vertex(3)};
   if (!rank.empty())
-    std::sort(v.begin(), v.end(), [&](Regular::Vertex_handle a, Regular::Vertex_handle b) {
+    std::sort(v.begin(), v.end(), [&](Vertex_handle a, Vertex_handle b) {
       return rank[static_cast<std::size_t>(a->info())] < rank[static_cast<std::size_t>(b->info())];
     });
   const auto centre = rt.geom_traits().construct_weighted_circumcenter_3_object();
   const Point q = centre(v[0]->point(), v[1]->point(), v[2]->point(), v[3]->point());
   return {q.x(), q.y(), q.z()};
 }
+
+// the periodic variant's (PeriodicNetwork.cpp)
+template void insertVertices(PoreNetwork&, Regular&, const std::vector<int>&, InsertionOrder);
+template void indexCells(Triangulation&, const Regular&, std::vector<Regular::Cell_handle>&, std::size_t);
+template Vec3 weightedCentre(const Regular&, Regular::Cell_handle, const std::vector<int>&);
 } // namespace detail
 
 std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSphere>& spheres)
@@ -187,7 +358,6 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   const Vec3 lo(boundaries[0].position, boundaries[2].position, boundaries[4].position);
   const Vec3 hi(boundaries[1].position, boundaries[3].position, boundaries[5].position);
   auto owner = std::make_shared<Triangulation>();
-  Regular& rt = owner->rt;
   // Boundaries first, then the spheres (see insertVertices).
   for (int k = 0; k < kBoundaries; ++k)
     net.vertices.push_back(detail::boundaryVertex(boundaries, k, lo, hi));
@@ -196,45 +366,32 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   std::vector<int> order(net.vertices.size());
   for (std::size_t i = 0; i < order.size(); ++i)
     order[i] = static_cast<int>(i);
-  detail::insertVertices(net, rt, order, insertion);
-  const std::vector<int> rank = detail::canonicalRanks(net.vertices, insertion);
-
-  int n = 0;
-  for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
-    c->info() = n++;
-  detail::indexCells(*owner, net.vertices.size());
-  net.pores.resize(static_cast<std::size_t>(n));
-  for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
+#ifdef CGAL_LINKED_WITH_TBB
+  if (const int threads = callerThreads(); insertion == InsertionOrder::Sorted && threads > 1)
   {
-    Pore& p = net.pores[static_cast<std::size_t>(c->info())];
-    for (int k = 0; k < 4; ++k)
-    {
-      p.vertices[k] = c->vertex(k)->info();
-      p.neighbours[k] = rt.is_infinite(c->neighbor(k)) ? -1 : c->neighbor(k)->info();
-      p.throats[k] = -1;
-      p.nFictitious += net.vertices[static_cast<std::size_t>(p.vertices[k])].fictitious ? 1 : 0;
-    }
-    p.centre = detail::weightedCentre(rt, c, rank);
+    ParallelRegular::Lock_data_structure locks(CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()),
+                                                     kLockGridCells);
+    owner->parallelRt = std::make_unique<ParallelRegular>(cgal::Kernel(), &locks);
+    ParallelRegular& rt = *owner->parallelRt;
+    tbb::task_arena(threads).execute([&] { detail::insertVertices(net, rt, order, insertion); });
+    rt.set_lock_data_structure(nullptr); // later uses (point location) are sequential
+    const std::vector<int> rank = detail::canonicalRanks(net.vertices, insertion);
+    const std::vector<std::array<int, 4>> local = numberCellsCanonically(rt, net, rank, lo, hi);
+    detail::indexCells(*owner, rt, owner->parallelCells, net.vertices.size());
+    buildPores(net, rt, owner->parallelCells, local, rank);
   }
-  net.throats.reserve(2 * net.pores.size()); // four facets per pore, each shared by two
-  for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
-    for (int k = 0; k < 4; ++k)
-    {
-      const int other = net.pores[static_cast<std::size_t>(c->info())].neighbours[k];
-      if (other < 0 || other < c->info())
-        continue;
-      Throat t;
-      t.pores = {c->info(), other};
-      t.facet = k;
-      const int mirror = rt.mirror_index(c, k);
-      for (int y = 0, m = 0; y < 4; ++y)
-        if (y != k)
-          t.mirrorLocal[static_cast<std::size_t>(m++)] = c->neighbor(k)->index(c->vertex(y));
-      detail::setFacetVertices(t, net.pores[static_cast<std::size_t>(c->info())].vertices, rank);
-      net.pores[static_cast<std::size_t>(c->info())].throats[k] = static_cast<int>(net.throats.size());
-      net.pores[static_cast<std::size_t>(other)].throats[mirror] = static_cast<int>(net.throats.size());
-      net.throats.push_back(t);
-    }
+  else
+#endif
+  {
+    Regular& rt = owner->rt;
+    detail::insertVertices(net, rt, order, insertion);
+    const std::vector<int> rank = detail::canonicalRanks(net.vertices, insertion);
+    int n = 0;
+    for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
+      c->info() = n++;
+    detail::indexCells(*owner, rt, owner->cells, net.vertices.size());
+    buildPores(net, rt, owner->cells, {}, rank);
+  }
   for (std::size_t pi = 0; pi < net.pores.size(); ++pi)
     for (int v : net.pores[pi].vertices)
       if (v < kBoundaries)
@@ -257,30 +414,21 @@ int locatePore(const PoreNetwork& net, const Vec3& x, Vec3i* period, int* near)
   if (!net.triangulation)
     return -1;
   const Triangulation& tri = *net.triangulation;
-  // CGAL walks from the hint to x: from an arbitrary cell that crosses the triangulation
-  const auto walk = [&](const Vec3& y) {
-    const bool hinted = near && *near >= 0 && static_cast<std::size_t>(*near) < tri.cells.size();
-    const Regular::Cell_handle c =
-        tri.rt.locate(Weighted(Point(y.x(), y.y(), y.z()), 0.0),
-                      hinted ? tri.cells[static_cast<std::size_t>(*near)] : Regular::Cell_handle());
-    if (near && !tri.rt.is_infinite(c))
-      *near = c->info();
-    return c;
-  };
+#ifdef CGAL_LINKED_WITH_TBB
+  if (tri.parallelRt)
+    return walkTo(*tri.parallelRt, tri.parallelCells, x, near);
+#endif
   if (!net.periodic)
-  {
-    const Regular::Cell_handle c = walk(x);
-    return tri.rt.is_infinite(c) ? -1 : c->info();
-  }
+    return walkTo(tri.rt, tri.cells, x, near);
   // periodic: wrap x into the cell along the periodic axes, then undo the wrap in `period`
   Vec3i wrap = Vec3i::Zero();
   for (int a = 0; a < 3; ++a)
     if (net.periodicAxis(a))
       wrap[a] = static_cast<int>(std::floor(x[a] / net.cellSize[a]));
-  const Regular::Cell_handle c = walk(x - net.shift(wrap));
-  if (tri.rt.is_infinite(c))
+  const int cell = walkTo(tri.rt, tri.cells, x - net.shift(wrap), near);
+  if (cell < 0)
     return -1;
-  const auto i = static_cast<std::size_t>(c->info());
+  const auto i = static_cast<std::size_t>(cell);
   if (period)
     *period = tri.periodOf[i] + wrap;
   return tri.poreOf[i];

@@ -153,7 +153,10 @@ enum class InsertionOrder
 std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSphere>& spheres);
 
 /// Triangulate `spheres` inside `boundaries` (the pores, their neighbours and centres; no
-/// hydraulic geometry yet, see computeGeometry).
+/// hydraulic geometry yet, see computeGeometry). With InsertionOrder::Sorted, a caller running
+/// more than one OpenMP thread and a build with TBB, CGAL inserts the spheres on that many
+/// threads; the pores are then numbered in a canonical order (the same pores, numbered alike from
+/// run to run; results differ from a one-thread run's by round-off only).
 /// @param spheres the spheres (positions and radii in m, with their body ids)
 /// @param boundaries the six boundaries (walls or the packing's box)
 /// @param order how the spheres enter CGAL (see InsertionOrder)
