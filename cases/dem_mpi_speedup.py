@@ -141,8 +141,9 @@ def main():
             ax.bar(labels, heights, bottom=bottom, label=label)
             bottom += heights
     ax.set_ylabel(f"seconds for {steps} steps")
-    ax.set_title(f"dense bed of {spheres} spheres: time per stage and process "
-                 f"(2 x 1 over 1 x 1: {speedup:.2f})")
+    loads = ", ".join(f"{r['load']:.1f}" for r in best.values())
+    ax.set_title(f"dense bed of {spheres} spheres: time per stage and process (2 x 1 over 1 x 1: "
+                 f"{speedup:.2f})\nload averages before the runs: {loads}", fontsize=10)
     ax.legend(fontsize=8, loc="upper right")
     fig.tight_layout()
     case.save_chart(fig)
