@@ -254,6 +254,16 @@ void PoreFlow::placeVertices(const std::vector<Vec3>& spherePositions,
   for (int k = 0; k < kBoundaries; ++k)
     if (!std::isfinite(boundaryPositions[static_cast<std::size_t>(k)]))
       throw std::invalid_argument("FlowEngine: non-finite position of boundary " + std::to_string(k));
+  // nothing moved (a static packing): the volumes, the strain and the inverted pores are those
+  // computed already
+  bool moved = net.periodic && net.cellSize != params.cellSize;
+  for (std::size_t i = 0; i < spherePositions.size() && !moved; ++i)
+    moved = net.vertices[kBoundaries + i].pos !=
+            (net.periodic ? Vec3(spherePositions[i] - net.shift(net.wrap[i])) : spherePositions[i]);
+  for (int k = 0; k < kBoundaries && !moved; ++k)
+    moved = net.boundaries[static_cast<std::size_t>(k)].position != boundaryPositions[static_cast<std::size_t>(k)];
+  if (!moved)
+    return;
   if (net.periodic)
     net.cellSize = params.cellSize; // the cell may deform between remeshes
   for (std::size_t i = 0; i < spherePositions.size(); ++i)

@@ -438,6 +438,7 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
 
 void PressureSolver::factorize()
 {
+  solvedRhs_.clear();
   Cholmod& c = *cholmod_;
   const auto n = static_cast<std::size_t>(nUnknown_);
   // CHOLMOD permutes the matrix before factorising it; it takes one transpose for the upper
@@ -578,9 +579,13 @@ void PressureSolver::solve(SolverKind kind, std::vector<double>& p, const std::v
       cholmod_free_dense(&c.b, &c.common);
     if (!c.b)
       c.b = cholmod_allocate_dense(n, 1, n, CHOLMOD_REAL, &c.common);
-    std::copy(b.begin(), b.end(), static_cast<double*>(c.b->x));
-    // cholmod_solve2 re-uses x, y and e when their sizes fit
-    cholmod_solve2(CHOLMOD_A, c.factor, c.b, nullptr, &c.x, nullptr, &c.y, &c.e, &c.common);
+    if (b != solvedRhs_)
+    {
+      std::copy(b.begin(), b.end(), static_cast<double*>(c.b->x));
+      // cholmod_solve2 re-uses x, y and e when their sizes fit
+      cholmod_solve2(CHOLMOD_A, c.factor, c.b, nullptr, &c.x, nullptr, &c.y, &c.e, &c.common);
+      solvedRhs_ = std::move(b);
+    }
     const auto* xv = static_cast<const double*>(c.x->x);
     for (std::size_t r = 0; r < n; ++r)
       p[static_cast<std::size_t>(poreOfRow_[r])] = xv[r];

@@ -114,6 +114,9 @@ private:
   std::vector<double> k_;
   std::unique_ptr<Cholmod> cholmod_;
   bool numeric_ = false; ///< the factor holds the current matrix's values
+  /// Right-hand side of the last CHOLMOD solve with the current factor (empty: none): the same
+  /// one again has the same solution, still in the solver's x (a static packing's every step).
+  std::vector<double> solvedRhs_;
   std::unique_ptr<Multigrid> multigrid_; ///< the current matrix's hierarchy (null: not built)
   int iterations_ = 0;
   Counters counters_;

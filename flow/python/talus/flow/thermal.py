@@ -199,6 +199,10 @@ class ThermalEngine(Engine):
         self._pendingState = None    # a checkpoint's state, applied once the scene is known
         self._poreHeat = None        # (FlowEngine, its pore temperatures) with advection
         self._pendingPores = None    # a checkpoint's pore centres and temperatures
+        # each step reads many parameters: they go to the C++ state only when they changed since
+        self._version = 0            # changes of the attributes so far
+        self._pushed = -1            # the version the C++ state has
+        self._fluidKey = None        # what the pore fluid's parameters were made of
         # every refusal comes before any temperature changes: a failed step can be resumed
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp
         for name, value in attrs.items():
@@ -215,6 +219,7 @@ class ThermalEngine(Engine):
         if name in _PLANNED_SWITCHES and value:
             raise _planned(name)
         self._params[name] = value
+        object.__setattr__(self, "_version", self._version + 1)
 
     def __getattr__(self, name):
         params = object.__getattribute__(self, "_params")
@@ -283,6 +288,7 @@ class ThermalEngine(Engine):
         return self._conduction
 
     def _push_parameters(self):
+        self._pushed = self._version
         p, c = self._params, self._conduction
         c.initialTemperature = p["particleT0"]
         c.defaultConductivity = p["particleK"]
@@ -379,11 +385,19 @@ class ThermalEngine(Engine):
             heat = _flow.PoreHeat(c, flow._flow)
             heat.initialTemperature = flow.tZero
             self._poreHeat = (flow, heat)
+            self._fluidKey = None
             flow._poreHeat = heat
             if self._pendingPores is not None:
                 self._restore_pores(flow, heat, *self._pendingPores)
                 self._pendingPores = None
         heat, p = self._poreHeat[1], self._params
+        held, values = flow.bndCondIsTemperature, flow.thermalBndCondValue
+        key = (self._version, flow.fluidCp, flow.fluidRho, flow.viscosity, flow.thermalPorosity, *held, *values)
+        for k in range(6):   # in this order at every step: a pore of two sides follows the later one
+            heat.setBoundary(k, held[k], values[k])
+        if key == self._fluidKey and p["uniformReynolds"] >= 0:
+            return heat
+        self._fluidKey = key
         fluid = heat.params
         fluid.fluidK, fluid.fluidCp, fluid.fluidRho = p["fluidK"], flow.fluidCp, flow.fluidRho
         prandtl = flow.fluidCp * flow.viscosity / p["fluidK"]
@@ -398,14 +412,13 @@ class ThermalEngine(Engine):
         fluid.areaFactor, fluid.minimumDistance = p["fluidConductionAreaFactor"], p["minimumFluidCondDist"]
         fluid.thermalPorosity = flow.thermalPorosity
         heat.params = fluid
-        for k, (held, value) in enumerate(zip(flow.bndCondIsTemperature, flow.thermalBndCondValue)):
-            heat.setBoundary(k, held, value)
         return heat
 
     def _step(self):
         scene = self._scene_()
         c = self._state()
-        self._push_parameters()
+        if self._pushed != self._version:
+            self._push_parameters()
         if not self._started:
             self._start(scene)
         if not self._params["boundarySet"]:
