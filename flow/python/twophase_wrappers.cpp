@@ -25,6 +25,17 @@ Array copy(const std::vector<double>& v)
   return Array(static_cast<py::ssize_t>(v.size()), v.data());
 }
 
+/// Vectors as an (n, 3) array.
+Array rows(const std::vector<Vec3>& v)
+{
+  Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
+  auto out = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (py::ssize_t d = 0; d < 3; ++d)
+      out(static_cast<py::ssize_t>(i), d) = v[i][d];
+  return a;
+}
+
 /// A per-pore flag or value of the pore states as numpy.
 template <class F>
 Array perPore(const TwoPhaseFlow& t, F f)
@@ -47,7 +58,16 @@ void registerTwoPhase(py::module_& m)
       .def_readwrite("drainageFirst", &TwoPhaseParameters::drainageFirst)
       .def_readwrite("isDrainageActivated", &TwoPhaseParameters::isDrainageActivated)
       .def_readwrite("isImbibitionActivated", &TwoPhaseParameters::isImbibitionActivated)
-      .def_readwrite("recursiveInvasion", &TwoPhaseParameters::recursiveInvasion);
+      .def_readwrite("recursiveInvasion", &TwoPhaseParameters::recursiveInvasion)
+      .def_readwrite("isCellLabelActivated", &TwoPhaseParameters::isCellLabelActivated);
+
+  py::class_<Interface>(m, "PhaseInterface")
+      .def_readonly("inner", &Interface::inner)
+      .def_readonly("outer", &Interface::outer)
+      .def_readonly("area", &Interface::area)
+      .def_readonly("facet", &Interface::facet)
+      .def_readwrite("volume", &Interface::volume)
+      .def_readwrite("capillaryPressure", &Interface::capillaryPressure);
 
   m.def("mspRadius", &mspRadius);
   m.def("inscribedRadius", &inscribedRadius);
@@ -82,13 +102,32 @@ void registerTwoPhase(py::module_& m)
           return perPore(t, [](const PoreState& s) { return double(s.imposed); });
         throw py::value_error("unknown pore flag " + which);
       })
-      .def("capillaryForces", [](const TwoPhaseFlow& t) {
-        const std::vector<Vec3> f = t.capillaryForces();
-        Array a({static_cast<py::ssize_t>(f.size()), py::ssize_t{3}});
-        auto out = a.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < f.size(); ++i)
-          for (py::ssize_t d = 0; d < 3; ++d)
-            out(static_cast<py::ssize_t>(i), d) = f[i][d];
-        return a;
-      });
+      .def("poreCount", [](const TwoPhaseFlow& t) { return t.pores().size(); })
+      .def("labels", [](const TwoPhaseFlow& t) { return t.labels(); })
+      .def("label", [](const TwoPhaseFlow& t, std::size_t i) { return t.labels().at(i); })
+      .def("barycentres", [](const TwoPhaseFlow& t) { return rows(t.barycentres()); })
+      .def("updateCellLabels", &TwoPhaseFlow::updateCellLabels)
+      .def("clusterCount", [](const TwoPhaseFlow& t) { return t.clusters().size(); })
+      .def("cluster", [](const TwoPhaseFlow& t, int k) {
+        // the scalars and pores of cluster k; its interfaces through interface()
+        if (k < 0 || static_cast<std::size_t>(k) >= t.clusters().size())
+          throw py::index_error("cluster index " + std::to_string(k) + " out of range");
+        const PhaseCluster& c = t.clusters()[static_cast<std::size_t>(k)];
+        return py::dict(py::arg("label") = c.label, py::arg("volume") = c.volume, py::arg("entryRadius") = c.entryRadius,
+                        py::arg("entryPore") = c.entryPore, py::arg("interfacialArea") = c.interfacialArea,
+                        py::arg("pores") = c.pores, py::arg("nInterfaces") = c.interfaces.size());
+      })
+      .def("interfaces", [](const TwoPhaseFlow& t, int k) {
+        if (k < 0 || static_cast<std::size_t>(k) >= t.clusters().size())
+          throw py::index_error("cluster index " + std::to_string(k) + " out of range");
+        return t.clusters()[static_cast<std::size_t>(k)].interfaces;
+      })
+      .def("interface", py::overload_cast<int, int>(&TwoPhaseFlow::interface), py::return_value_policy::reference_internal)
+      .def("outvadePore", &TwoPhaseFlow::outvadePore)
+      .def("solveClusterPressure", &TwoPhaseFlow::solveClusterPressure)
+      .def("interfaceConductance", &TwoPhaseFlow::interfaceConductance)
+      .def("interfaceFlux", &TwoPhaseFlow::interfaceFlux)
+      .def("updateInterfaceVolumes", &TwoPhaseFlow::updateInterfaceVolumes)
+      .def("boundaryFlux", &TwoPhaseFlow::boundaryFlux)
+      .def("capillaryForces", [](const TwoPhaseFlow& t) { return rows(t.capillaryForces()); });
 }

@@ -43,9 +43,11 @@ void TwoPhaseFlow::initialize(const pore::PoreNetwork& net, const TwoPhaseParame
 {
   setParameters(params);
   const EntryPressureMethod method = entryPressureMethod(params.entryPressureMethod);
-  checks::require(bndCondIsPressure[kWetting] && bndCondIsPressure[kNonWetting], kOwner, "bndCondIsPressure",
+  // the clusters' dynamics needs only the wetting reservoir imposed (Yade's injection example)
+  checks::require(bndCondIsPressure[kWetting] && (bndCondIsPressure[kNonWetting] || params.isCellLabelActivated),
+                  kOwner, "bndCondIsPressure",
                   "must impose the pressure on boundaries 2 (ymin, the wetting reservoir) and 3 (ymax, the "
-                  "non-wetting reservoir), as Yade's TwoPhaseFlowEngine assumes");
+                  "non-wetting reservoir; optional with isCellLabelActivated), as Yade's TwoPhaseFlowEngine assumes");
   checkValues(bndCondValue);
   if (net.periodic)
     throw std::invalid_argument("TwoPhaseFlowEngine: periodic networks are not supported");
@@ -56,6 +58,13 @@ void TwoPhaseFlow::initialize(const pore::PoreNetwork& net, const TwoPhaseParame
   bodyRadius_ = poreBodyRadii(net);
   const std::size_t n = net.pores.size();
   bodyVolume_.resize(n);
+  conductance_.resize(net.throats.size());
+  fluidArea_.resize(net.throats.size());
+  for (std::size_t t = 0; t < net.throats.size(); ++t)
+  {
+    conductance_[t] = net.throats[t].conductance;
+    fluidArea_[t] = net.throats[t].fluidArea;
+  }
   neighbours_.resize(n);
   throats_.resize(n);
   boundaryPore_.resize(n);
@@ -70,8 +79,13 @@ void TwoPhaseFlow::initialize(const pore::PoreNetwork& net, const TwoPhaseParame
   }
   boundaryPores_ = net.boundaryPores;
   poreVertices_.resize(n);
+  barycentre_.assign(n, pore::Vec3::Zero());
   for (std::size_t c = 0; c < n; ++c)
+  {
     poreVertices_[c] = net.pores[c].vertices;
+    for (int v : poreVertices_[c])
+      barycentre_[c] += 0.25 * net.vertices[static_cast<std::size_t>(v)].pos;
+  }
   nVertices_ = net.vertices.size();
   unitForces_ = pore::unitForceVectors(net, solidLineShares(net));
 
@@ -83,10 +97,22 @@ void TwoPhaseFlow::initialize(const pore::PoreNetwork& net, const TwoPhaseParame
         pores_[static_cast<std::size_t>(c)].imposed = true;
         pores_[static_cast<std::size_t>(c)].pressure = bndCondValue[k];
       }
+  // the reservoirs' pores keep their phase where their pressure is imposed; the others take the
+  // initial phase below, as in Yade
   for (int c : boundaryPores_[kWetting])
-    pores_[static_cast<std::size_t>(c)] = {1, bndCondValue[kWetting], true, true, false, false, false, 0};
+  {
+    PoreState& s = pores_[static_cast<std::size_t>(c)];
+    s.saturation = 1;
+    s.wReservoir = true;
+    s.nwReservoir = false;
+  }
   for (int c : boundaryPores_[kNonWetting])
-    pores_[static_cast<std::size_t>(c)] = {0, bndCondValue[kNonWetting], true, false, true, false, false, 0};
+  {
+    PoreState& s = pores_[static_cast<std::size_t>(c)];
+    s.saturation = 0;
+    s.wReservoir = false;
+    s.nwReservoir = true;
+  }
   for (PoreState& s : pores_)
     if (!s.imposed)
     {
@@ -95,6 +121,11 @@ void TwoPhaseFlow::initialize(const pore::PoreNetwork& net, const TwoPhaseParame
       s.wReservoir = params.drainageFirst;
       s.nwReservoir = !params.drainageFirst;
     }
+  label_.assign(n, -1);
+  clusters_.clear();
+  systems_.clear();
+  if (params.isCellLabelActivated)
+    updateCellLabels();
 }
 
 void TwoPhaseFlow::applyPressures()
@@ -230,7 +261,11 @@ void TwoPhaseFlow::invasion(const std::array<double, kBoundaries>& bndCondValue)
   if (!initialized())
     throw std::logic_error("TwoPhaseFlowEngine.invasion: call initialization() first");
   checkValues(bndCondValue);
+  checks::require(isPressure_[kWetting] && isPressure_[kNonWetting], kOwner, "bndCondIsPressure",
+                  "invasion() needs the pressure imposed on boundaries 2 and 3 (the two reservoirs)");
   bnd_ = bndCondValue;
+  for (auto& system : systems_)
+    system.reset(); // the phases change: the clusters' pressure systems too
   applyPressures();
   if (params_.isDrainageActivated)
     for (std::size_t c = 0; c < pores_.size(); ++c)
@@ -241,6 +276,8 @@ void TwoPhaseFlow::invasion(const std::array<double, kBoundaries>& bndCondValue)
       if (pores_[c].wReservoir)
         invadeFrom(static_cast<int>(c));
   updateReservoirs(bnd_[kNonWetting] - bnd_[kWetting]);
+  if (params_.isCellLabelActivated)
+    updateCellLabels();
 }
 
 double TwoPhaseFlow::saturation(bool sideBoundaryIncluded) const

@@ -8,8 +8,10 @@
 // phase cut from its reservoir is trapped at the capillary pressure of the moment it was cut.
 #include "flow/pore/PoreNetwork.h"
 #include "flow/twophase/EntryRadius.h"
+#include "flow/twophase/PhaseCluster.h"
 
 #include <array>
+#include <memory>
 #include <vector>
 
 namespace talus::flow::twophase
@@ -27,6 +29,7 @@ struct TwoPhaseParameters
   bool isDrainageActivated = true;
   bool isImbibitionActivated = false;
   bool recursiveInvasion = true;  ///< false: one pore deep per invasion()
+  bool isCellLabelActivated = false; ///< label the pores by cluster (PhaseCluster) at initialize and invasion
 };
 
 /// The state of one pore.
@@ -69,6 +72,9 @@ public:
   [[nodiscard]] const std::vector<double>& throatRadii() const { return throatRadius_; }
   [[nodiscard]] const std::vector<double>& bodyRadii() const { return bodyRadius_; }
   [[nodiscard]] const std::vector<double>& bodyVolumes() const { return bodyVolume_; }
+  /// Mean of each pore's four vertices, a wall's being its fictitious sphere's far centre (Yade's
+  /// cellBarycenter, which TwoPhaseFlowInjection.py compares with a height).
+  [[nodiscard]] const std::vector<pore::Vec3>& barycentres() const { return barycentre_; }
   /// Pore pressures (the phase pressure of each pore).
   [[nodiscard]] std::vector<double> pressures() const;
   /// Force of the phase pressures on each vertex of the network (0..5 the walls, then the
@@ -79,6 +85,33 @@ public:
   /// entry-pressure method and isInvadeBoundary act at initialize only, as in Yade).
   /// @throws std::invalid_argument as initialize
   void setParameters(const TwoPhaseParameters& params);
+
+  // --- clusters of pores (Yade's cell labels and PhaseCluster; PhaseClusters.cpp) ---
+  /// Label every pore by cluster: 0 the non-wetting pores, 1 the wetting reservoir, new clusters
+  /// for the other wetting pores, with their interfaces (Yade's updateCellLabel).
+  void updateCellLabels();
+  [[nodiscard]] const std::vector<int>& labels() const { return label_; }
+  [[nodiscard]] const std::vector<PhaseCluster>& clusters() const { return clusters_; }
+  /// The interface `index` of cluster `cluster`. @throws std::out_of_range naming the index
+  [[nodiscard]] const Interface& interface(int cluster, int index) const;
+  [[nodiscard]] Interface& interface(int cluster, int index);
+  /// Pore `imbibedId` (non-wetting) joins the cluster of pore `startingId`, merging the clusters
+  /// it touches; returns the labels of the cluster and of those merged into it (Yade's
+  /// clusterOutvadePore). @throws std::out_of_range / std::invalid_argument naming the argument
+  std::vector<int> outvadePore(int startingId, int imbibedId);
+  /// Pressures of the pores of cluster `cluster` (those not on a pressure boundary): Darcy flow
+  /// in the cluster, the non-wetting and imposed pores' pressures plus the interfaces' capillary
+  /// pressures as conditions (PhaseCluster.solvePressure).
+  void solveClusterPressure(int cluster);
+  /// Conductance of the throat of an interface, and the flux through it from the cluster,
+  /// conductance (p_inner + capillaryPressure - p_outer).
+  [[nodiscard]] double interfaceConductance(int cluster, int index) const;
+  [[nodiscard]] double interfaceFlux(int cluster, int index) const;
+  /// Every interface of the cluster: volume += dt * flux (PhaseCluster.updateCapVolList).
+  void updateInterfaceVolumes(int cluster, double dt);
+  /// Yade's getBoundaryFlux on the phase pressures: the flux the pores of boundary k receive
+  /// from their neighbours, negative where fluid enters.
+  [[nodiscard]] double boundaryFlux(int k) const;
 
 private:
   /// Spread the phase of pore `start` to its neighbours as the entry pressures allow.
@@ -107,5 +140,19 @@ private:
   std::vector<double> throatRadius_;
   std::vector<double> bodyRadius_;
   std::vector<double> bodyVolume_;
+  std::vector<pore::Vec3> barycentre_;
+  std::vector<double> conductance_; ///< per throat, as the network had it at initialize (Yade's kNorm)
+  std::vector<double> fluidArea_;   ///< per throat
+  std::vector<int> label_;          ///< cluster of each pore, -1: none
+  std::vector<PhaseCluster> clusters_;
+  struct ClusterSystem;             ///< the factorised pressure system of a cluster (PhaseClusters.cpp)
+  std::vector<std::shared_ptr<ClusterSystem>> systems_; ///< per cluster; null: to factorise again
+
+  /// Yade's clusterGetPore / clusterGetFacet / updateSingleCellLabelRecursion.
+  void addPore(int cluster, int pore);
+  void addInterface(int cluster, int pore, int facet);
+  void labelFrom(int cluster, int pore);
+  [[nodiscard]] const PhaseCluster& checkedCluster(int cluster) const;
+  [[nodiscard]] double conductanceOf(const Interface& i) const;
 };
 } // namespace talus::flow::twophase

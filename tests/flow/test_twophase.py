@@ -159,25 +159,22 @@ def test_invasion_before_initialization():
         TwoPhaseFlowEngine().invasion()
 
 
-def test_dynamic_clusters_not_implemented():
-    with pytest.raises(NotImplementedError, match="getClusters"):
-        TwoPhaseFlowEngine().getClusters()
-
-
 def test_yade_namespace_and_script_options():
     """The Yade names in the drop-in namespace, and the options Yade's example scripts set:
-    meshUpdateInterval -1 (never remesh), the cluster labels refused by name."""
+    meshUpdateInterval -1 (never remesh), the cluster labels; invading a pore out of a cluster
+    (clusterInvadePore) is named as out of scope."""
     import yade
     from yade._scope import out_of_scope
     namespace = {}
     exec("from yade import *", namespace)
     assert namespace["TwoPhaseFlowEngine"] is TwoPhaseFlowEngine and namespace["UnsaturatedEngine"] is UnsaturatedEngine
     assert yade is not None and out_of_scope("TwoPhaseFlowEngine") is None
-    assert "PhaseCluster" in out_of_scope("c0 = flow.getClusters()")
+    assert out_of_scope("c0 = flow.getClusters(); flow.clusterOutvadePore(1, 2)") is None
+    assert "clusterInvadePore" in out_of_scope("flow.clusterInvadePore(3)")
     tp = TwoPhaseFlowEngine(meshUpdateInterval=-1, isCellLabelActivated=False, iniVoidVolumes=True)
     assert tp.meshUpdateInterval > 10 ** 9
-    with pytest.raises(NotImplementedError, match="isCellLabelActivated"):
-        tp.isCellLabelActivated = True
+    tp.isCellLabelActivated = True
+    assert tp.isCellLabelActivated is True
 
 
 def test_capillary_force_on_walls():

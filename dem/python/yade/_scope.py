@@ -21,9 +21,9 @@ RULES: list[tuple[str, str]] = [
     # ThermalEngine has conduction, the pore fluid and thermal expansion; the state class is not a
     # Talus one (the engine holds every body's thermal fields)
     (r"ThermalState", "Yade's ThermalState class (Talus's ThermalEngine holds the thermal fields; planned)"),
-    # TwoPhaseFlowEngine's quasi-static invasion is implemented; its dynamic clusters are not
-    (r"PhaseCluster|getClusters|clusterOutvadePore|clusterInvadePore",
-     "two-phase clusters and dynamic injection (TwoPhaseFlowEngine's PhaseCluster; planned)"),
+    # TwoPhaseFlowEngine has its clusters (PhaseCluster, clusterOutvadePore) but not the
+    # invasion of a pore out of a cluster
+    (r"clusterInvadePore", "invading a pore out of a two-phase cluster (TwoPhaseFlowEngine's clusterInvadePore; planned)"),
     (r"Cpm", "concrete (CPM) model"),
     (r"WireMat|WirePhys|WireState", "wire mesh model"),
     (r"L6Geom|L3Geom", "local-coordinates contact geometry (L3Geom/L6Geom)"),

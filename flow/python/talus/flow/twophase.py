@@ -36,16 +36,25 @@ import warnings
 import numpy as np
 
 from talus import _flow
+from talus.flow.phasecluster import PhaseCluster
 from talus.flow.pore import FlowEngine
 
 _OWNER = "TwoPhaseFlowEngine"
 # the options of the C++ model (TwoPhaseParameters), Yade's names and defaults
 _FLAGS = ("isPhaseTrapped", "isInvadeBoundary", "drainageFirst", "isDrainageActivated", "isImbibitionActivated",
-          "recursiveInvasion")
+          "recursiveInvasion", "isCellLabelActivated")
+# Yade's FlowEngine names of the boundary indices (wallIds[flow.ymin] ...)
+_BOUNDARY_NAMES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
 # Yade's attributes kept for its scripts; no physics of this model depends on them (iniVoidVolumes:
 # Talus always has the void volumes)
 _STORED = {"bndCondIsWaterReservoir": [False] * 6, "computeForceActivated": True, "keepTriangulation": False,
-           "iniVoidVolumes": False, "isCellLabelActivated": False}
+           "iniVoidVolumes": False}
+
+
+def _pore_index(name: str, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{_OWNER}.clusterOutvadePore: {name} must be a pore index (int), got {value!r}")
+    return int(value)
 
 
 def _triplet(*values):
@@ -71,6 +80,7 @@ class TwoPhaseFlowEngine(FlowEngine):
         object.__setattr__(self, "_spheres", None)
         object.__setattr__(self, "_capillary", None)
         object.__setattr__(self, "_vtkCount", 0)
+        object.__setattr__(self, "_barycentres", None)
         super().__init__(scene, **attrs)
 
     # --- parameters ---------------------------------------------------------------------------
@@ -95,10 +105,6 @@ class TwoPhaseFlowEngine(FlowEngine):
             if name in ("isInvadeBoundary", "drainageFirst"):
                 self._warn_if_initialized(name)
             return
-        if name == "isCellLabelActivated" and value:
-            raise NotImplementedError(f"{_OWNER}.isCellLabelActivated: the wetting clusters (Yade's cell labels and "
-                                      "PhaseCluster, for the dynamic injection of TwoPhaseFlowInjection.py) are not "
-                                      "implemented in Talus yet")
         if name == "meshUpdateInterval" and value == -1:
             value = 2 ** 31 - 1  # Yade's -1: never remesh
         if name in _STORED:
@@ -127,6 +133,8 @@ class TwoPhaseFlowEngine(FlowEngine):
         if name in _STORED:
             value = self._stored[name]
             return list(value) if isinstance(value, list) else value
+        if name in _BOUNDARY_NAMES:
+            return _BOUNDARY_NAMES.index(name)
         return super().__getattr__(name)
 
     # --- network ------------------------------------------------------------------------------
@@ -142,27 +150,46 @@ class TwoPhaseFlowEngine(FlowEngine):
         """Build the network (from the scene's spheres, or the one of ``triangulate``), the entry
         radii of the throats, the pore bodies and the initial phases: all wetting with
         ``drainageFirst`` (else all non-wetting), the pores on boundary 2 wetting and those on
-        boundary 3 non-wetting (Yade's initialization)."""
-        if not (self.bndCondIsPressure[2] and self.bndCondIsPressure[3]):
+        boundary 3 non-wetting (Yade's initialization); with ``isCellLabelActivated`` the pores
+        labelled by cluster (``getClusters``)."""
+        if not (self.bndCondIsPressure[2] and (self.bndCondIsPressure[3] or self.isCellLabelActivated)):
             raise ValueError(f"{_OWNER}.bndCondIsPressure must impose the pressure on boundaries 2 (ymin, the wetting "
-                             f"reservoir) and 3 (ymax, the non-wetting reservoir), got {self.bndCondIsPressure}")
+                             f"reservoir) and 3 (ymax, the non-wetting reservoir; optional with isCellLabelActivated), "
+                             f"got {self.bndCondIsPressure}")
         if not self._userNetwork:
             from talus.dem import O
             scene = self._scene or O
             ids = scene.sphere_ids()
-            positions = np.asarray(scene.positions())[ids]
+            everything = np.asarray(scene.positions())
+            positions = everything[ids]
+            # boundaries not at the packing's extremes are at their wall bodies, as in Yade
+            walls, useMaxMin = self._wall_ids(scene), self.boundaryUseMaxMin
+            self.wallPosition = [p if useMaxMin[k] or walls[k] < 0 else everything[walls[k]][k // 2]
+                                 for k, p in enumerate(self.wallPosition)]
             FlowEngine.triangulate(self, positions, np.asarray(scene.radii())[ids], ids)
             self._spheres = dict(zip((int(i) for i in ids), positions))
         self._tp.initialize(self._flow, self._params)
         self._capillary = None
+        self._barycentres = None
+
+    def _step(self):
+        """In an engine list the engine does nothing each step, as Yade's TwoPhaseFlowEngine (its
+        action is empty): scripts call its functions."""
 
     def _model(self):
+        """The C++ model with the options as they are now (Yade reads them at each call)."""
+        model = self._state()
+        model.setParameters(self._params)
+        return model
+
+    def _state(self):
+        """The C++ model for the queries and cluster operations, which read no option (called
+        per pore and per interface by injection scripts: kept light)."""
         if not self._tp.initialized():
             raise RuntimeError(f"{_OWNER}: call initialization() first")
-        if len(self._tp.saturations()) != self._flow.nCells():
+        if self._tp.poreCount() != self._flow.nCells():
             raise RuntimeError(f"{_OWNER}: the pore network was rebuilt since initialization() (the engine remeshed): "
                                "call initialization() again")
-        self._tp.setParameters(self._params)  # the options as they are now (Yade reads them at each call)
         return self._tp
 
     # --- invasion -----------------------------------------------------------------------------
@@ -324,13 +351,56 @@ class TwoPhaseFlowEngine(FlowEngine):
                 out.writelines(f"{values[c]:.9g}\n" for c in cells)
         return path
 
-    def getClusters(self):
-        raise NotImplementedError(f"{_OWNER}.getClusters: the wetting clusters and their interfaces (Yade's "
-                                  "PhaseCluster, used by the dynamic injection of TwoPhaseFlowInjection.py) are not "
-                                  "implemented in Talus yet")
+    # --- clusters (isCellLabelActivated; Yade's cell labels and PhaseCluster) ------------------
+    def getClusters(self) -> list[PhaseCluster]:
+        """The clusters, indexed by label: 0 the non-wetting pores, 1 the wetting reservoir, then
+        the other wetting clusters (empty ones stay after a merge, as in Yade). Needs
+        ``isCellLabelActivated`` at ``initialization()``."""
+        model = self._model()
+        if not self.isCellLabelActivated and model.clusterCount() == 0:
+            raise RuntimeError(f"{_OWNER}.getClusters: set isCellLabelActivated = True before initialization()")
+        return [PhaseCluster(self, k) for k in range(model.clusterCount())]
 
-    def clusterOutvadePore(self, *args, **kwargs):
-        self.getClusters()
+    def clusterOutvadePore(self, startingId: int, imbibedId: int, index: int = -1) -> list[int]:
+        """Non-wetting pore ``imbibedId`` joins the wetting cluster of pore ``startingId``: it
+        takes the cluster's label, its throats to non-wetting pores become interfaces of the
+        cluster (volume 0), the cluster's interfaces onto it go, and the wetting clusters it
+        touches merge into this one. Returns the label of the cluster and of those merged.
+        ``index`` (the rank of the interface crossed) is accepted and unused, as in Yade."""
+        return list(self._state().outvadePore(_pore_index("startingId", startingId),
+                                              _pore_index("imbibedId", imbibedId)))
+
+    def getCellLabel(self, id: int) -> int:
+        """Cluster label of pore ``id`` (-1 without isCellLabelActivated)."""
+        model = self._state()
+        return model.label(self._cell(id, model))
+
+    def getCellInvVoidVolume(self, id: int) -> float:
+        """1 / pore-body volume of pore ``id`` (Yade's invVoidVolume with iniVoidVolumes)."""
+        model = self._state()
+        return 1.0 / float(model.bodyVolumes()[self._cell(id, model)])
+
+    def getCellBarycenter(self, id: int):
+        """Mean of the four vertices of pore ``id``, a wall's vertex being its fictitious sphere's
+        far centre (Yade's cellBarycenter: far away for pores on a wall, mid-box across the
+        other axes), unlike FlowEngine.getCellBarycenter's point inside the pore."""
+        model = self._state()
+        if self._barycentres is None:
+            self._barycentres = model.barycentres()
+        return tuple(self._barycentres[self._cell(id, model)])
+
+    def getBoundaryFlux(self, boundary: int) -> float:
+        """Flux the pores of ``boundary`` (its wall id, Yade's argument, or its index 0..5)
+        receive from their neighbours at the phase pressures; negative where fluid enters."""
+        walls = self.wallIds
+        k = walls.index(boundary) if boundary in walls else boundary
+        return self._model().boundaryFlux(k)
+
+    def _cell(self, id, model) -> int:
+        n = model.poreCount()
+        if isinstance(id, bool) or not isinstance(id, (int, np.integer)) or not 0 <= id < n:
+            raise IndexError(f"{_OWNER}: cell id must be an integer in 0..{n - 1}, got {id!r}")
+        return int(id)
 
 
 class UnsaturatedEngine(TwoPhaseFlowEngine):

@@ -1,0 +1,306 @@
+// The clusters of TwoPhaseFlow (Yade's cell labels and PhaseCluster): labelling, a non-wetting
+// pore joining a wetting cluster (clusterOutvadePore), the pressure of a cluster and the fluxes
+// through its interfaces. The order of pores and interfaces in a cluster is Yade's (pores in
+// labelling order, interfaces appended as found and erased in place), since scripts address
+// interfaces by their rank.
+#include "flow/twophase/TwoPhaseFlow.h"
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace talus::flow::twophase
+{
+namespace
+{
+constexpr int kNonWettingLabel = 0;
+constexpr int kReservoirLabel = 1;
+} // namespace
+
+/// A cluster's pressure matrix, factorised: it changes only when the cluster or the phases do.
+struct TwoPhaseFlow::ClusterSystem
+{
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor;
+};
+
+const PhaseCluster& TwoPhaseFlow::checkedCluster(int cluster) const
+{
+  if (cluster < 0 || static_cast<std::size_t>(cluster) >= clusters_.size())
+    throw std::out_of_range("TwoPhaseFlowEngine: cluster index " + std::to_string(cluster) + " out of range (0.."
+                            + std::to_string(static_cast<int>(clusters_.size()) - 1) + ")");
+  return clusters_[static_cast<std::size_t>(cluster)];
+}
+
+const Interface& TwoPhaseFlow::interface(int cluster, int index) const
+{
+  const std::vector<Interface>& list = checkedCluster(cluster).interfaces;
+  if (index < 0 || static_cast<std::size_t>(index) >= list.size())
+    throw std::out_of_range("PhaseCluster: interface index " + std::to_string(index) + " out of range (cluster "
+                            + std::to_string(cluster) + " has " + std::to_string(list.size()) + " interfaces)");
+  return list[static_cast<std::size_t>(index)];
+}
+
+Interface& TwoPhaseFlow::interface(int cluster, int index)
+{
+  return const_cast<Interface&>(std::as_const(*this).interface(cluster, index));
+}
+
+double TwoPhaseFlow::conductanceOf(const Interface& i) const
+{
+  return conductance_[static_cast<std::size_t>(throats_[static_cast<std::size_t>(i.inner)][static_cast<std::size_t>(i.facet)])];
+}
+
+void TwoPhaseFlow::addPore(int cluster, int pore)
+{
+  PhaseCluster& k = clusters_[static_cast<std::size_t>(cluster)];
+  PoreState& s = pores_[static_cast<std::size_t>(pore)];
+  label_[static_cast<std::size_t>(pore)] = k.label;
+  // every cluster but the non-wetting one is wetting, as Yade flags it
+  s.saturation = k.label == kNonWettingLabel ? 0 : 1;
+  s.nwReservoir = k.label == kNonWettingLabel;
+  s.wReservoir = k.label != kNonWettingLabel;
+  k.volume += bodyVolume_[static_cast<std::size_t>(pore)];
+  k.pores.push_back(pore);
+}
+
+void TwoPhaseFlow::addInterface(int cluster, int pore, int facet)
+{
+  PhaseCluster& k = clusters_[static_cast<std::size_t>(cluster)];
+  const auto c = static_cast<std::size_t>(pore);
+  const auto f = static_cast<std::size_t>(facet);
+  const auto t = static_cast<std::size_t>(throats_[c][f]);
+  k.interfaces.push_back({pore, neighbours_[c][f], fluidArea_[t], facet, 0, 0});
+  k.interfacialArea += fluidArea_[t];
+  if (k.entryRadius < throatRadius_[t])
+  {
+    k.entryRadius = throatRadius_[t];
+    k.entryPore = pore;
+  }
+}
+
+void TwoPhaseFlow::labelFrom(int cluster, int pore)
+{
+  // depth first as Yade's recursion (the order of the pores and interfaces is its): each frame
+  // is a pore and the next facet to look across
+  std::vector<std::pair<int, int>> stack{{pore, 0}};
+  addPore(cluster, pore);
+  while (!stack.empty())
+  {
+    auto& [c, f] = stack.back();
+    if (f == 4)
+    {
+      stack.pop_back();
+      continue;
+    }
+    const auto cu = static_cast<std::size_t>(c);
+    const int facet = f++;
+    const int j = neighbours_[cu][static_cast<std::size_t>(facet)];
+    if (j < 0)
+      continue;
+    const auto ju = static_cast<std::size_t>(j);
+    if (pores_[ju].saturation == pores_[cu].saturation && label_[ju] != label_[cu])
+    {
+      addPore(cluster, j);
+      stack.emplace_back(j, 0);
+    }
+    else if (pores_[ju].nwReservoir)
+      addInterface(cluster, c, facet);
+  }
+}
+
+void TwoPhaseFlow::updateCellLabels()
+{
+  if (clusters_.size() < 2)
+  {
+    clusters_.resize(2);
+    systems_.resize(2);
+  }
+  for (int k : {kNonWettingLabel, kReservoirLabel})
+  {
+    clusters_[static_cast<std::size_t>(k)] = PhaseCluster{};
+    clusters_[static_cast<std::size_t>(k)].label = k;
+  }
+  for (auto& system : systems_)
+    system.reset(); // the phases of the pores around the clusters may have changed
+  const int n = static_cast<int>(pores_.size());
+  for (int c = 0; c < n; ++c)
+  {
+    const PoreState& s = pores_[static_cast<std::size_t>(c)];
+    if (s.nwReservoir)
+      addPore(kNonWettingLabel, c);
+    else if (s.wReservoir)
+    {
+      addPore(kReservoirLabel, c);
+      for (int f = 0; f < 4; ++f)
+      {
+        const int j = neighbours_[static_cast<std::size_t>(c)][static_cast<std::size_t>(f)];
+        if (j >= 0 && !pores_[static_cast<std::size_t>(j)].wReservoir)
+          addInterface(kReservoirLabel, c, f);
+      }
+    }
+    else if (label_[static_cast<std::size_t>(c)] <= kReservoirLabel)
+      label_[static_cast<std::size_t>(c)] = -1; // a trapped pore not yet in a cluster of its own
+  }
+  for (int c = 0; c < n; ++c)
+    if (label_[static_cast<std::size_t>(c)] == -1)
+    {
+      PhaseCluster k;
+      k.label = static_cast<int>(clusters_.size());
+      clusters_.push_back(std::move(k));
+      systems_.emplace_back();
+      labelFrom(clusters_.back().label, c);
+    }
+}
+
+std::vector<int> TwoPhaseFlow::outvadePore(int startingId, int imbibedId)
+{
+  const int n = static_cast<int>(pores_.size());
+  if (startingId < 0 || startingId >= n)
+    throw std::out_of_range("clusterOutvadePore: startingId " + std::to_string(startingId) + " out of range (0.."
+                            + std::to_string(n - 1) + ")");
+  if (imbibedId < 0 || imbibedId >= n)
+    throw std::out_of_range("clusterOutvadePore: imbibedId " + std::to_string(imbibedId) + " out of range (0.."
+                            + std::to_string(n - 1) + ")");
+  const int label = label_[static_cast<std::size_t>(startingId)];
+  if (label <= kNonWettingLabel)
+    throw std::invalid_argument("clusterOutvadePore: startingId " + std::to_string(startingId)
+                                + " is not in a wetting cluster (label " + std::to_string(label)
+                                + "; isCellLabelActivated must be set before initialization())");
+  if (label_[static_cast<std::size_t>(imbibedId)] != kNonWettingLabel)
+    throw std::invalid_argument("clusterOutvadePore: imbibedId " + std::to_string(imbibedId)
+                                + " is not a non-wetting pore (label "
+                                + std::to_string(label_[static_cast<std::size_t>(imbibedId)]) + ")");
+  systems_[static_cast<std::size_t>(label)].reset();
+  addPore(label, imbibedId);
+  std::vector<int> merged{label};
+  const auto im = static_cast<std::size_t>(imbibedId);
+  for (int f = 0; f < 4; ++f)
+  {
+    const int j = neighbours_[im][static_cast<std::size_t>(f)];
+    if (j < 0 || j == startingId)
+      continue;
+    const int other = label_[static_cast<std::size_t>(j)];
+    if (other == kNonWettingLabel)
+      addInterface(label, imbibedId, f);
+    else if (other != label && other > kNonWettingLabel)
+    {
+      // the wetting cluster met: its pores and interfaces (but those onto the imbibed pore) join
+      merged.push_back(other);
+      PhaseCluster& absorbed = clusters_[static_cast<std::size_t>(other)];
+      PhaseCluster& into = clusters_[static_cast<std::size_t>(label)];
+      for (int p : absorbed.pores)
+        label_[static_cast<std::size_t>(p)] = label;
+      into.pores.insert(into.pores.end(), absorbed.pores.begin(), absorbed.pores.end());
+      for (const Interface& i : absorbed.interfaces)
+        if (i.outer != imbibedId)
+          into.interfaces.push_back(i);
+      absorbed = PhaseCluster{};
+      systems_[static_cast<std::size_t>(other)].reset();
+    }
+  }
+  std::vector<int>& nonWetting = clusters_[kNonWettingLabel].pores;
+  nonWetting.erase(std::find(nonWetting.begin(), nonWetting.end(), imbibedId));
+  // the interfaces now inside the cluster go (erased in place: the others keep their order)
+  std::vector<Interface>& list = clusters_[static_cast<std::size_t>(label)].interfaces;
+  list.erase(std::remove_if(list.begin(), list.end(),
+                            [&](const Interface& i) { return label_[static_cast<std::size_t>(i.outer)] == label; }),
+             list.end());
+  return merged;
+}
+
+void TwoPhaseFlow::solveClusterPressure(int cluster)
+{
+  const PhaseCluster& k = checkedCluster(cluster);
+  if (k.pores.empty())
+    throw std::invalid_argument("PhaseCluster.solvePressure: cluster " + std::to_string(cluster) + " has no pores");
+  std::shared_ptr<ClusterSystem>& system = systems_[static_cast<std::size_t>(cluster)];
+  std::vector<int> index(pores_.size(), -1); // matrix row of each unknown pore
+  std::vector<int> unknowns;
+  for (int p : k.pores)
+    if (!pores_[static_cast<std::size_t>(p)].imposed)
+    {
+      index[static_cast<std::size_t>(p)] = static_cast<int>(unknowns.size());
+      unknowns.push_back(p);
+    }
+  const auto m = static_cast<Eigen::Index>(unknowns.size());
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(m);
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index row = 0; row < m; ++row)
+  {
+    const auto c = static_cast<std::size_t>(unknowns[static_cast<std::size_t>(row)]);
+    double diagonal = 0;
+    for (std::size_t f = 0; f < 4; ++f)
+    {
+      const int j = neighbours_[c][f];
+      if (j < 0)
+        continue;
+      const auto ju = static_cast<std::size_t>(j);
+      const double kf = conductance_[static_cast<std::size_t>(throats_[c][f])];
+      diagonal += kf;
+      if (pores_[ju].imposed || pores_[ju].nwReservoir)
+        rhs[row] += kf * pores_[ju].pressure; // a condition: imposed or non-wetting pressure
+      else if (label_[ju] == cluster)
+        entries.emplace_back(row, index[ju], -kf);
+      // a pore of another wetting cluster: as a zero pressure, as Yade (which warns)
+    }
+    entries.emplace_back(row, row, diagonal);
+  }
+  for (const Interface& i : k.interfaces)
+    if (!pores_[static_cast<std::size_t>(i.inner)].imposed)
+      rhs[index[static_cast<std::size_t>(i.inner)]] -= conductanceOf(i) * i.capillaryPressure;
+  if (m == 0)
+    return; // only imposed pores: nothing to solve
+  if (!system)
+  {
+    system = std::make_shared<ClusterSystem>();
+    Eigen::SparseMatrix<double> a(m, m);
+    a.setFromTriplets(entries.begin(), entries.end());
+    system->factor.compute(a);
+    if (system->factor.info() != Eigen::Success)
+      throw std::runtime_error("PhaseCluster.solvePressure: the pressure matrix of cluster " + std::to_string(cluster)
+                               + " could not be factorised (a cluster without any pressure condition?)");
+  }
+  const Eigen::VectorXd p = system->factor.solve(rhs);
+  for (Eigen::Index row = 0; row < m; ++row)
+    pores_[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(row)])].pressure = p[row];
+}
+
+double TwoPhaseFlow::interfaceConductance(int cluster, int index) const
+{
+  return conductanceOf(interface(cluster, index));
+}
+
+double TwoPhaseFlow::interfaceFlux(int cluster, int index) const
+{
+  const Interface& i = interface(cluster, index);
+  return conductanceOf(i) * (pores_[static_cast<std::size_t>(i.inner)].pressure + i.capillaryPressure -
+                             pores_[static_cast<std::size_t>(i.outer)].pressure);
+}
+
+void TwoPhaseFlow::updateInterfaceVolumes(int cluster, double dt)
+{
+  const int n = static_cast<int>(checkedCluster(cluster).interfaces.size());
+  for (int i = 0; i < n; ++i)
+    interface(cluster, i).volume += dt * interfaceFlux(cluster, i);
+}
+
+double TwoPhaseFlow::boundaryFlux(int k) const
+{
+  if (k < 0 || k >= static_cast<int>(kBoundaries))
+    throw std::out_of_range("getBoundaryFlux: boundary index must be 0..5, got " + std::to_string(k));
+  double q = 0;
+  for (int c : boundaryPores_[static_cast<std::size_t>(k)])
+    for (std::size_t f = 0; f < 4; ++f)
+    {
+      const int j = neighbours_[static_cast<std::size_t>(c)][f];
+      if (j >= 0)
+        q += conductance_[static_cast<std::size_t>(throats_[static_cast<std::size_t>(c)][f])] *
+             (pores_[static_cast<std::size_t>(j)].pressure - pores_[static_cast<std::size_t>(c)].pressure);
+    }
+  return q;
+}
+} // namespace talus::flow::twophase
