@@ -46,11 +46,10 @@ def main():
     if theirs:
         for key, what in (("porosity", "porosity of the slab 0.05 < z < 0.2"),
                           ("coordination", "sphere-sphere coordination number 2C/N")):
-            o, t = float(np.mean([r[key] for r in ours])), float(np.mean([r[key] for r in theirs]))
-            case.record(f"relative difference of the mean {what} from Yade's", abs(o / t - 1),
-                        "yade 2023.02a on the same scenario file (same seeded clouds)", 0.01, suffix=key, ours=o,
-                        theirs=t, ours_each=[r[key] for r in ours], theirs_each=[r[key] for r in theirs],
-                        seeds=seeds, spheres=[r["spheres"] for r in ours])
+            twin.record_mean_difference(case, f"relative difference of the mean {what} from Yade's", key, ours, theirs,
+                                        0.01, key, "yade 2023.02a on the same scenario file (same seeded clouds)",
+                                        ours_each=[r[key] for r in ours], theirs_each=[r[key] for r in theirs],
+                                        seeds=seeds, spheres=[r["spheres"] for r in ours])
 
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
     for ax, key in zip(axes, ("porosity", "coordination")):

@@ -82,14 +82,10 @@ def main():
                 max(o["lateral"] for o in ours), "confinement -100 kPa (stressMask 3)", 0.10, suffix="lateral",
                 final_ezz=[o["final_ezz"] for o in ours])
     if theirs:
-        peak_o, peak_t = np.mean([o["peak"] for o in ours]), np.mean([t["peak"] for t in theirs])
-        case.record("relative difference of the peak sin(phi) from Yade's (mean over seeds)",
-                    abs(peak_o / peak_t - 1), "yade 2023.02a on the same scenario file", 0.05, suffix="peak",
-                    ours=float(peak_o), theirs=float(peak_t), seeds=seeds)
-        por_o, por_t = np.mean([o["porosity"] for o in ours]), np.mean([t["porosity"] for t in theirs])
-        case.record("relative difference of the porosity after compaction from Yade's", abs(por_o / por_t - 1),
-                    "yade 2023.02a on the same scenario file", 0.01, suffix="porosity", ours=float(por_o),
-                    theirs=float(por_t))
+        twin.record_mean_difference(case, "relative difference of the peak sin(phi) from Yade's (mean over seeds)",
+                                    "peak", ours, theirs, 0.05, "peak", seeds=seeds)
+        twin.record_mean_difference(case, "relative difference of the porosity after compaction from Yade's",
+                                    "porosity", ours, theirs, 0.01, "porosity")
 
     fig, axes = plt.subplots(1, 2, figsize=(11, 4))
     for runs, style, label in ((ours, "-", "Talus"), (theirs, "--", "Yade")):

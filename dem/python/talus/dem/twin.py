@@ -17,6 +17,8 @@ import sys
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import numpy as np
+
 ENV = "TALUS_SCENARIO"
 
 
@@ -63,3 +65,12 @@ def run_seeds(script: str | os.PathLike, params_of, seeds, workers: int = 2) -> 
         done = list(pool.map(lambda job: run(script, params_of(job[1]), job[0]), jobs))
     return ([r for (program, _), r in zip(jobs, done) if program == "talus"],
             [r for (program, _), r in zip(jobs, done) if program == "yade"])
+
+
+def record_mean_difference(case, metric: str, key: str, ours: list[dict], theirs: list[dict], tolerance: float,
+                           suffix: str, reference: str = "yade 2023.02a on the same scenario file", **extra) -> None:
+    """Record in ``case`` (talus.results.Case) the relative difference of the mean of ``r[key]`` over
+    Talus's results ``ours`` from that over Yade's ``theirs`` (the seeds of run_seeds), with both
+    means; ``metric`` is the record's metric."""
+    o, t = float(np.mean([r[key] for r in ours])), float(np.mean([r[key] for r in theirs]))
+    case.record(metric, abs(o / t - 1), reference, tolerance, suffix=suffix, ours=o, theirs=t, **extra)
