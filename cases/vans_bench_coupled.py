@@ -114,17 +114,9 @@ def block_mean(t, q, start, block=BLOCK):
 
 
 def start_coupled(s, hydro, newton, vx_fluid=None):
-    """Switch the fluid on as Yade's example does: no damping, the engine alive, the solid phase
-    averaged; then either the start-up fluid resolution from those profiles or, for a developed
-    flow handed over from an earlier run, that run's fluid velocity profile."""
-    newton.damping = 0.0
-    hydro.dead = False
-    hydro.ReynoldStresses = np.full(st.N_CELL, 1e-4)
-    hydro.averageProfile()
-    if vx_fluid is None:
-        hydro.fluidResolution(INITIAL_FLUID, st.DT_FLUID)
-    else:
-        hydro.vxFluid = vx_fluid
+    """The fluid switched on (st.start_fluid: the start-up resolution or, for a developed flow
+    handed over from an earlier run, that run's fluid velocity profile) and the coupling attached."""
+    st.start_fluid(hydro, newton, st.DT_FLUID, INITIAL_FLUID, vx_fluid)
     coupling = st.VansCoupling(hydro, st.PERIOD, st.DT_FLUID, densPart=st.RHO_P, diameterPart=st.D, changeLimit=0)
     coupling.attach()
     return coupling

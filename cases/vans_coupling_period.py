@@ -36,13 +36,9 @@ STARTUP = 0.1   # s of the coupled window left out (start-up of the coupling)
 def run(period: float, dt_fluid: float, window: float) -> dict:
     s, hydro, newton, mobile = st.build()
     s.run(round(0.3 / s.dt))
-    newton.damping = 0.0
-    hydro.dead = False
-    hydro.ReynoldStresses = np.full(st.N_CELL, 1e-4)
-    hydro.averageProfile()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)      # taufsi caps at start-up
-        hydro.fluidResolution(1.0, dt_fluid)
+        st.start_fluid(hydro, newton, dt_fluid)
     # The start-up (the fluid in the bed, free during the drag-free initial resolution, is slowed
     # over a few tens of milliseconds) is excluded from the check and from the measurement.
     warmup = max(1, round(STARTUP / period))

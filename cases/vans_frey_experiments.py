@@ -49,9 +49,10 @@ import time
 import numpy as np
 
 from talus import results
-from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_ViscElMat_ViscElMat_ViscElPhys,
-                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, PyRunner, Scene, ViscElMat, sphere, wall)
+from talus.dem import PyRunner, Scene, ViscElMat, sphere, wall
 from talus.flow import HydroForceEngine, VansCoupling
+
+from vans_sediment_transport import engines, start_fluid   # the engines and the fluid's start as in Yade's example
 
 DATA = "/usr/share/doc/yade/examples/FluidCouplingVANS1D/twoWayCoupling/shapeVariation/data-exp"
 D, RHO_P, EN, FRICTION = 6e-3, 2500.0, 0.5, math.atan(0.4)
@@ -150,12 +151,7 @@ def build(length_d: int, hs_d: float, depth: float, seed: int = 1, fluctuations:
                              velFluct=fluctuations == "zdep", bedElevation=hs_d * D, seed=seed, ignoreOutside=True,
                              ids=mobile, scene=s,
                              dead=True)   # a grain leaping out of the water gets no fluid force, as in Yade
-    newton = NewtonIntegrator(damping=0.2, gravity=GRAVITY)
-    s.engines = [ForceResetter(), InsertionSortCollider(),
-                 InteractionLoop([], [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]),
-                 hydro, newton]
-    s.dt = 2e-5
-    return s, hydro, newton, mobile
+    return s, hydro, engines(s, hydro, GRAVITY), mobile
 
 
 def run_experiment(exp: int, length_d: int, deposition: float, transport: float, seed: int,
@@ -164,11 +160,7 @@ def run_experiment(exp: int, length_d: int, deposition: float, transport: float,
     s, hydro, newton, mobile = build(length_d, hs_d, depth, seed, fluctuations)
     start = time.perf_counter()
     s.run(round(deposition / s.dt))
-    newton.damping = 0.0
-    hydro.dead = False
-    hydro.ReynoldStresses = np.full(N_CELL, 1e-4)
-    hydro.averageProfile()
-    hydro.fluidResolution(1.0, DT_FLUID)
+    start_fluid(hydro, newton, DT_FLUID)
     coupling = VansCoupling(hydro, PERIOD, DT_FLUID, densPart=RHO_P, diameterPart=D)
     coupling.attach()
     refresh = None

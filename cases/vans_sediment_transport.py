@@ -83,12 +83,34 @@ def build(seed: int = 1):
     hydro = HydroForceEngine(densFluid=RHO_F, viscoDyn=NU * RHO_F, zRef=GROUND, gravity=GRAVITY, deltaZ=dz,
                              expoRZ=3.1, lift=False, nCell=N_CELL, vCell=LENGTH * WIDTH * dz, radiusPart=D / 2,
                              phiMax=PHI_MAX, ids=mobile, scene=s, dead=True, label="")
-    newton = NewtonIntegrator(damping=0.2, gravity=GRAVITY)
+    return s, hydro, engines(s, hydro, GRAVITY), mobile
+
+
+def engines(s, hydro, gravity):
+    """The engines of Yade's example: the visco-elastic contacts, `hydro` and Cundall damping 0.2
+    (for the deposition; start_fluid turns it off); dt 2e-5 s. Returns the NewtonIntegrator."""
+    newton = NewtonIntegrator(damping=0.2, gravity=gravity)
     s.engines = [ForceResetter(), InsertionSortCollider(),
                  InteractionLoop([], [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]),
                  hydro, newton]
     s.dt = 2e-5
-    return s, hydro, newton, mobile
+    return newton
+
+
+def start_fluid(hydro, newton, dt_fluid=DT_FLUID, initial=1.0, vx_fluid=None):
+    """Switch the fluid on as Yade's gravityDeposition() does: no damping, the engine alive, a
+    Reynolds stress of 1e-4 in every cell, the solid phase averaged; then the start-up fluid
+    resolution over `initial` seconds from those profiles or, for a developed flow handed over
+    from an earlier run, that run's fluid velocity profile `vx_fluid`. The coupling is the
+    caller's."""
+    newton.damping = 0.0
+    hydro.dead = False
+    hydro.ReynoldStresses = np.full(hydro.nCell, 1e-4)
+    hydro.averageProfile()
+    if vx_fluid is None:
+        hydro.fluidResolution(initial, dt_fluid)
+    else:
+        hydro.vxFluid = vx_fluid
 
 
 def main():
@@ -105,12 +127,7 @@ def main():
     wall_depo = time.perf_counter() - start
     print(f"{len(mobile)} grains deposited in {wall_depo:.1f} s wall ({s.iter} steps)")
 
-    # Activate the fluid as Yade's gravityDeposition() does.
-    newton.damping = 0.0
-    hydro.dead = False
-    hydro.ReynoldStresses = np.full(N_CELL, 1e-4)
-    hydro.averageProfile()
-    hydro.fluidResolution(1.0, DT_FLUID)
+    start_fluid(hydro, newton)
     coupling = VansCoupling(hydro, PERIOD, DT_FLUID, densPart=RHO_P, diameterPart=D)
     coupling.attach()
     profiles = {"phi": [], "vx": [], "u": []}
