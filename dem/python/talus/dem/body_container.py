@@ -27,7 +27,13 @@ class BodyContainer:
         """Add one body (returns its id) or a list of bodies (returns their ids)."""
         if isinstance(spec, BodySpec):
             return self._add(spec)
-        return [self._add(s) for s in spec]
+        specs = list(spec)
+        # Room for all of them at once: the per-body tables grown body by body would be copied
+        # at each one (a scene of N bodies built in N^2 time).
+        count = self._scene._cpp.bodyCount() + len(specs)
+        self._scene._appearance.ensure(count)
+        self._scene._reference.ensure(count)
+        return [self._add(s) for s in specs]
 
     def _add(self, spec: BodySpec) -> int:
         if spec._scene is not None:
