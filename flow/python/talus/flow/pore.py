@@ -312,22 +312,27 @@ class FlowEngine(Engine):
         from talus.dem import O
         if self._coupling is None:
             self._coupling = _flow.PoreFlowCoupling((self._scene or O)._cpp, self._flow)
-        self._coupling.wallIds = self._wall_ids(self._scene or O)
-        self._coupling.meshUpdateInterval = self._meshUpdateInterval
-        self._coupling.defTolerance = self._defTolerance
-        self._coupling.multithread = self._multithread
-        self._coupling.backgroundSteps = self._backgroundSteps
-        self._coupling.decoupleForces = self._flags["decoupleForces"]
-        self._coupling.blockHook = asCallback(self._blockHook, "blockHook")
+            self._couplingSettings = None
+        # given to the coupling when they changed (each step costs as much as a small solve)
+        settings = (self._wall_ids(self._scene or O), self._meshUpdateInterval, self._defTolerance, self._multithread,
+                    self._backgroundSteps, self._flags["decoupleForces"], self._blockHook)
+        if settings != self._couplingSettings:
+            c = self._coupling
+            c.wallIds, c.meshUpdateInterval, c.defTolerance, c.multithread, c.backgroundSteps = settings[:5]
+            c.decoupleForces = settings[5]
+            c.blockHook = asCallback(self._blockHook, "blockHook")
+            self._couplingSettings = settings
         if self._rebuild:
             self._coupling.requestRebuild()
             self._rebuild = False
         self._coupling.step()
-        hidden = self._flow.hiddenSpheres() if self._coupling.rebuilds() != getattr(self, "_warned", 0) else []
-        self._warned = self._coupling.rebuilds()
-        if hidden:
-            warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
-                          "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
+        rebuilds = self._coupling.rebuilds()
+        if rebuilds != getattr(self, "_warned", 0):
+            self._warned = rebuilds
+            hidden = self._flow.hiddenSpheres()
+            if hidden:
+                warnings.warn(f"FlowEngine: the regular triangulation dropped hidden spheres (body ids {hidden}); "
+                              "they get no pore and no fluid force", HiddenSphereWarning, stacklevel=2)
 
     def _io_params(self):
         """What rebuilds the engine from a checkpoint: its label and parameters (the network is

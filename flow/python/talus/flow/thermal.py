@@ -391,8 +391,10 @@ class ThermalEngine(Engine):
                 self._restore_pores(flow, heat, *self._pendingPores)
                 self._pendingPores = None
         heat, p = self._poreHeat[1], self._params
-        held, values = flow.bndCondIsTemperature, flow.thermalBndCondValue
-        key = (self._version, flow.fluidCp, flow.fluidRho, flow.viscosity, flow.thermalPorosity, *held, *values)
+        fluidAttributes = flow._thermal   # FlowEngine's own values (its attributes return copies)
+        held, values = fluidAttributes["bndCondIsTemperature"], fluidAttributes["thermalBndCondValue"]
+        key = (self._version, flow.viscosity, fluidAttributes["fluidCp"], fluidAttributes["fluidRho"],
+               fluidAttributes["thermalPorosity"], *held, *values)
         for k in range(6):   # in this order at every step: a pore of two sides follows the later one
             heat.setBoundary(k, held[k], values[k])
         if key == self._fluidKey and p["uniformReynolds"] >= 0:
