@@ -23,7 +23,6 @@ Checked:  the velocity after 10 tau on the coarsest mesh (d/dx = 0.067) against 
 Produces: record cfd.settling_sphere; chart cfd.settling_sphere.png (velocity against time, one
           curve per d/dx).
 """
-import shutil
 import tempfile
 
 import numpy as np
@@ -53,12 +52,8 @@ def prepare_case(procs: int, cells: tuple[int, int], solver: str = "talusPointFo
 
 def settle(procs: int, cells: tuple[int, int], fluid_steps: int, solver: str = "talusPointForceFoam"):
     """One run; returns times, velocities, the coupling, the wall time."""
-    fluid = prepare_case(procs, cells, solver)
-    try:
-        run = settle_sphere(fluid, diameter=D, density=RHO_P, position=(0.0, 0.0, 0.06), dt=2e-6,
-                            fluid_steps=fluid_steps)
-    finally:
-        shutil.rmtree(fluid.path, ignore_errors=True)
+    run = settle_sphere(prepare_case(procs, cells, solver), diameter=D, density=RHO_P, position=(0.0, 0.0, 0.06),
+                        dt=2e-6, fluid_steps=fluid_steps, remove_case=True)
     return run.t, run.v, run.coupling, run.elapsed
 
 

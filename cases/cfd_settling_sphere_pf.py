@@ -23,7 +23,6 @@ Checked:  the final velocity on the d/dx = 0.05 mesh against the Schiller-Nauman
 Produces: records cfd.settling_sphere_pf_re20 and cfd.settling_sphere_pf_re450; charts of the
           same names (velocity against time, one curve per d/dx, and the equation of motion).
 """
-import shutil
 import tempfile
 
 
@@ -55,12 +54,8 @@ def settle(re: int, d_over_dx: float, fluid_steps: int, procs: int = 1, drag_mod
     """One run; returns times, velocities, the coupling, the wall time."""
     d, fluid_dt, _ = SETTINGS[re]
     dx = d / d_over_dx
-    fluid = prepare_case(procs, dx, fluid_dt, drag_model)
-    try:
-        run = settle_sphere(fluid, diameter=d, density=RHO_P, position=(0.0, 0.0, 18.5 * dx), dt=fluid_dt / 10,
-                            fluid_steps=fluid_steps)
-    finally:
-        shutil.rmtree(fluid.path, ignore_errors=True)
+    run = settle_sphere(prepare_case(procs, dx, fluid_dt, drag_model), diameter=d, density=RHO_P,
+                        position=(0.0, 0.0, 18.5 * dx), dt=fluid_dt / 10, fluid_steps=fluid_steps, remove_case=True)
     return run.t, run.v, run.coupling, run.elapsed
 
 

@@ -22,7 +22,6 @@ Checked:  the final velocity against the Schiller-Naumann terminal velocity with
 Produces: records cfd.settling_sphere_va and cfd.settling_sphere_va.ranks; chart
           cfd.settling_sphere_va.png.
 """
-import shutil
 import tempfile
 
 import numpy as np
@@ -49,12 +48,8 @@ def prepare_case(procs: int, dx: float, envelope: str) -> FoamCase:
 
 
 def settle(procs: int, dx: float, fluid_steps: int, envelope: str):
-    fluid = prepare_case(procs, dx, envelope)
-    try:
-        run = settle_sphere(fluid, diameter=D, density=RHO_P, position=(0.0, 0.0, 12.5 * dx), dt=1e-4,
-                            fluid_steps=fluid_steps)
-    finally:
-        shutil.rmtree(fluid.path, ignore_errors=True)
+    run = settle_sphere(prepare_case(procs, dx, envelope), diameter=D, density=RHO_P, position=(0.0, 0.0, 12.5 * dx),
+                        dt=1e-4, fluid_steps=fluid_steps, remove_case=True)
     return run.t, run.v, run.coupling, run.elapsed
 
 

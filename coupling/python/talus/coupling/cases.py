@@ -5,6 +5,7 @@ and the coupled run of one sphere settling from rest (its case written by
 from __future__ import annotations
 
 import os
+import shutil
 import time
 from dataclasses import dataclass
 
@@ -29,27 +30,32 @@ class SettlingRun:
 
 
 def settle_sphere(case, *, diameter: float, density: float, position, dt: float,
-                  fluid_steps: int) -> SettlingRun:
+                  fluid_steps: int, remove_case: bool = False) -> SettlingRun:
     """One sphere released from rest at ``position`` in the fluid at rest of ``case`` (a
     :class:`~talus.coupling.case_builder.FoamCase`: its fluid, gravity, solver and ranks),
     coupled for ``fluid_steps`` fluid steps; DEM step ``dt`` (lowered so that it divides the
-    fluid step)."""
+    fluid step). ``remove_case``: the case's folder (a temporary one) is removed afterwards, also
+    when the run fails."""
     from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
 
-    s = Scene()
-    s.materials.append(FrictMat(density=density))
-    s.bodies.append(sphere(tuple(position), diameter / 2))
-    s.engines = [ForceResetter(), NewtonIntegrator(gravity=case.gravity, damping=0.0)]
-    s.dt = dt
-    coupling = case.coupling(s).start()
-    t, v = [0.0], [0.0]
-    start = time.perf_counter()
     try:
-        for _ in range(fluid_steps):
-            s.run(coupling.substeps, True)
-            t.append(s.time)
-            v.append(-float(s.velocities()[0][2]))
-        elapsed = time.perf_counter() - start
+        s = Scene()
+        s.materials.append(FrictMat(density=density))
+        s.bodies.append(sphere(tuple(position), diameter / 2))
+        s.engines = [ForceResetter(), NewtonIntegrator(gravity=case.gravity, damping=0.0)]
+        s.dt = dt
+        coupling = case.coupling(s).start()
+        t, v = [0.0], [0.0]
+        start = time.perf_counter()
+        try:
+            for _ in range(fluid_steps):
+                s.run(coupling.substeps, True)
+                t.append(s.time)
+                v.append(-float(s.velocities()[0][2]))
+            elapsed = time.perf_counter() - start
+        finally:
+            coupling.stop()
+        return SettlingRun(np.array(t), np.array(v), coupling, elapsed)
     finally:
-        coupling.stop()
-    return SettlingRun(np.array(t), np.array(v), coupling, elapsed)
+        if remove_case:
+            shutil.rmtree(case.path, ignore_errors=True)
