@@ -21,6 +21,7 @@ struct Interface
   double capillaryPressure = 0; ///< pressure jump from inner to outer side
 };
 
+/// One cluster: its pores, its interfaces and what Yade's PhaseCluster reports of them.
 struct PhaseCluster
 {
   int label = -1;

@@ -45,32 +45,50 @@ struct PoreState
   double trapCapillaryPressure = 0; ///< Pn - Pw when the phase was cut from its reservoir
 };
 
+/// The phases of the pores of one network and their invasion (Yade's TwoPhaseFlowEngine).
 class TwoPhaseFlow
 {
 public:
   /// Entry radii, pore bodies and the initial phases of `net` (geometry computed; Yade's
-  /// initialization). bndCondIsPressure[2] and [3] must be set: the reservoirs.
+  /// initialization). bndCondIsPressure[2] and [3] must be set: the reservoirs ([3] optional
+  /// with isCellLabelActivated).
+  /// @param net the network (its connectivity is copied: it may be rebuilt afterwards)
+  /// @param params the options (copied)
+  /// @param bndCondIsPressure which of the six boundaries impose a pressure
+  /// @param bndCondValue the six boundaries' pressures (Pa)
   /// @throws std::invalid_argument naming the parameter (surfaceTension < 0 or not finite,
   ///         entryPressureMethod, the reservoirs not pressure boundaries, non-finite bndCondValue)
+  ///         or for a periodic network
   void initialize(const pore::PoreNetwork& net, const TwoPhaseParameters& params,
                   const std::array<bool, kBoundaries>& bndCondIsPressure,
                   const std::array<double, kBoundaries>& bndCondValue);
   /// One invasion at the boundary values (capillary pressure bndCondValue[3] - bndCondValue[2]):
   /// drainage from the non-wetting reservoir then imbibition from the wetting one, as activated,
   /// then the reservoirs and trapped phases updated (Yade's invasion).
+  /// @param bndCondValue the six boundaries' pressures (Pa)
+  /// @throws std::logic_error before initialize
+  /// @throws std::invalid_argument for a non-finite value, or boundaries 2 and 3 not both
+  ///         pressure boundaries
   void invasion(const std::array<double, kBoundaries>& bndCondValue);
   /// Wetting saturation: wetting pore-body volume over pore-body volume, pores on pressure
   /// boundaries left out, boundary pores too unless `sideBoundaryIncluded` (Yade's getSaturation).
+  /// @param sideBoundaryIncluded count the pores touching the other boundaries
+  /// @return the saturation, in [0, 1]
   [[nodiscard]] double saturation(bool sideBoundaryIncluded) const;
   /// The smallest capillary pressure that drains one more pore (0 when none can; Yade's getMinDrainagePc).
   [[nodiscard]] double minDrainagePc() const;
   /// The largest capillary pressure at which one more pore imbibes (0 when none; getMaxImbibitionPc).
   [[nodiscard]] double maxImbibitionPc() const;
 
+  /// initialize was called (with a network of at least one pore).
   [[nodiscard]] bool initialized() const { return !pores_.empty(); }
+  /// Each pore's phase, pressure and reservoir and trapping flags (index as the network's pores).
   [[nodiscard]] const std::vector<PoreState>& pores() const { return pores_; }
+  /// Each throat's entry radius (m; -1: closed to invasion), index as the network's throats.
   [[nodiscard]] const std::vector<double>& throatRadii() const { return throatRadius_; }
+  /// Each pore's inscribed-sphere radius (m), its pore-body entry radius.
   [[nodiscard]] const std::vector<double>& bodyRadii() const { return bodyRadius_; }
+  /// Each pore's body volume (m^3), the weights of saturation().
   [[nodiscard]] const std::vector<double>& bodyVolumes() const { return bodyVolume_; }
   /// Mean of each pore's four vertices, a wall's being its fictitious sphere's far centre (Yade's
   /// cellBarycenter, which TwoPhaseFlowInjection.py compares with a height).
@@ -80,9 +98,11 @@ public:
   /// Force of the phase pressures on each vertex of the network (0..5 the walls, then the
   /// spheres; Yade's computeCapillaryForce, see CapillaryForce.h).
   [[nodiscard]] std::vector<pore::Vec3> capillaryForces() const;
+  /// The current options.
   [[nodiscard]] const TwoPhaseParameters& parameters() const { return params_; }
   /// Change the options between invasions (surfaceTension scales the entry pressures; the
   /// entry-pressure method and isInvadeBoundary act at initialize only, as in Yade).
+  /// @param params the new options (copied)
   /// @throws std::invalid_argument as initialize
   void setParameters(const TwoPhaseParameters& params);
 
@@ -90,27 +110,56 @@ public:
   /// Label every pore by cluster: 0 the non-wetting pores, 1 the wetting reservoir, new clusters
   /// for the other wetting pores, with their interfaces (Yade's updateCellLabel).
   void updateCellLabels();
+  /// Each pore's cluster label (Yade's getCellLabel), from the last updateCellLabels.
   [[nodiscard]] const std::vector<int>& labels() const { return label_; }
+  /// The clusters, index = label.
   [[nodiscard]] const std::vector<PhaseCluster>& clusters() const { return clusters_; }
-  /// The interface `index` of cluster `cluster`. @throws std::out_of_range naming the index
+  /// The interface `index` of cluster `cluster` (the second form writable: a script sets its
+  /// volume or capillary pressure).
+  /// @param cluster a label, 0 .. clusters().size() - 1
+  /// @param index an index into that cluster's interfaces
+  /// @return the interface, stored here (valid until the labels change)
+  /// @throws std::out_of_range naming the cluster or the index
   [[nodiscard]] const Interface& interface(int cluster, int index) const;
   [[nodiscard]] Interface& interface(int cluster, int index);
   /// Pore `imbibedId` (non-wetting) joins the cluster of pore `startingId`, merging the clusters
   /// it touches; returns the labels of the cluster and of those merged into it (Yade's
-  /// clusterOutvadePore). @throws std::out_of_range / std::invalid_argument naming the argument
+  /// clusterOutvadePore).
+  /// @param startingId a pore of a wetting cluster
+  /// @param imbibedId a non-wetting pore
+  /// @return the cluster's label first, then the labels merged into it
+  /// @throws std::out_of_range for a pore index outside the network
+  /// @throws std::invalid_argument if startingId is not in a wetting cluster (isCellLabelActivated
+  ///         not set) or imbibedId is not non-wetting
   std::vector<int> outvadePore(int startingId, int imbibedId);
   /// Pressures of the pores of cluster `cluster` (those not on a pressure boundary): Darcy flow
   /// in the cluster, the non-wetting and imposed pores' pressures plus the interfaces' capillary
   /// pressures as conditions (PhaseCluster.solvePressure).
+  /// @param cluster a label
+  /// @throws std::out_of_range for an unknown label
+  /// @throws std::invalid_argument for a cluster without pores
+  /// @throws std::runtime_error if the cluster's pressure matrix cannot be factorised
   void solveClusterPressure(int cluster);
   /// Conductance of the throat of an interface, and the flux through it from the cluster,
   /// conductance (p_inner + capillaryPressure - p_outer).
+  /// @param cluster, index as interface()'s
+  /// @return the conductance (m^3/(Pa s))
+  /// @throws std::out_of_range as interface()
   [[nodiscard]] double interfaceConductance(int cluster, int index) const;
+  /// @param cluster, index as interface()'s
+  /// @return the flux (m^3/s), positive out of the cluster
+  /// @throws std::out_of_range as interface()
   [[nodiscard]] double interfaceFlux(int cluster, int index) const;
   /// Every interface of the cluster: volume += dt * flux (PhaseCluster.updateCapVolList).
+  /// @param cluster a label
+  /// @param dt the time step (s)
+  /// @throws std::out_of_range for an unknown label
   void updateInterfaceVolumes(int cluster, double dt);
   /// Yade's getBoundaryFlux on the phase pressures: the flux the pores of boundary k receive
   /// from their neighbours, negative where fluid enters.
+  /// @param k the boundary, 0..5
+  /// @return the flux (m^3/s)
+  /// @throws std::out_of_range for k outside 0..5
   [[nodiscard]] double boundaryFlux(int k) const;
 
 private:
