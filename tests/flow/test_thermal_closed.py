@@ -10,14 +10,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import (O, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
-                       Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, aabbWalls, sphere)
-from talus.flow import FlowEngine, ThermalEngine
+from talus.dem import O
+from test_thermal_expansion import packing
 
 HERE = Path(__file__).resolve().parent
 EXAMPLE = Path("/usr/share/doc/yade/examples/ThermalEngine")
-PACKING = EXAMPLE / "5cmEdge_1mm.spheres"
 needs_example = pytest.mark.skipif(not (EXAMPLE / "noFlowScenario.py").exists(),
                                    reason="Yade's ThermalEngine examples are not installed")
 
@@ -41,22 +38,12 @@ def test_noflow_example_runs_unchanged_with_the_twins_temperatures(talus_cmd, tm
     np.testing.assert_allclose(ours["poreTempBefore"], yade["poreTemp"], rtol=0, atol=1e-8)
 
 
-def closed_packing(fluidThermoMech=False, **flow):
+def closed_packing(fluidThermoMech=False, pZero=0.0):
     """The example's packing, fixed, in a closed box of incompressible water."""
-    O.reset()
-    O.materials.append(FrictMat(young=1e9, poisson=0.5, density=2600, label="spheres"))
-    O.bodies.append(aabbWalls([(0, 0, 0), (0.05, 0.05, 0.05)], thickness=0))
-    rows = [[float(v) for v in line.split()] for line in PACKING.read_text().splitlines()
-            if line.strip() and not line.startswith("#")]
-    O.bodies.append([sphere((x, y, z), r, material="spheres", fixed=True) for x, y, z, r in rows])
-    flow = FlowEngine(viscosity=1e-3, tZero=20, **flow)
-    thermal = ThermalEngine(advection=True, uniformReynolds=10, thermoMech=fluidThermoMech,
-                            fluidThermoMech=fluidThermoMech, solidThermoMech=False, particleT0=20, tsSafetyFactor=0)
-    O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
-                 InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
-                                 [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
-                 flow, thermal, NewtonIntegrator(damping=0)]
-    O.dt = 1e-5
+    flow, thermal = packing(alpha=0)
+    flow.fluidBulkModulus, flow.pZero = 0, pZero
+    for name in ("thermoMech", "solidThermoMech", "fluidThermoMech"):
+        setattr(thermal, name, fluidThermoMech)
     return flow
 
 
