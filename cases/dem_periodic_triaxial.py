@@ -57,7 +57,6 @@ def main():
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     name = "dem.periodic-triaxial-clumps" if args.clumps else "dem.periodic-triaxial"
     case = results.Case(name, quick=args.quick, folder=args.results)
     seeds = [1] if args.quick else [1, 2, 3, 4]
@@ -87,20 +86,10 @@ def main():
         twin.record_mean_difference(case, "relative difference of the porosity after compaction from Yade's",
                                     "porosity", ours, theirs, 0.01, "porosity")
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    for runs, style, label in ((ours, "-", "Talus"), (theirs, "--", "Yade")):
-        for k, r in enumerate(runs):
-            axes[0].plot(-r["ezz"], r["sinphi"], style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
-            axes[1].plot(-r["ezz"], -r["s3"] / 1e3, style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
-    axes[0].set_xlabel("axial strain -ezz (log)")
-    axes[0].set_ylabel("sin(phi) = (s1 - s3) / (s1 + s3)")
-    axes[0].set_title("periodic triaxial: mobilised friction")
-    axes[1].set_xlabel("axial strain -ezz (log)")
-    axes[1].set_ylabel("lateral stress (kPa, compression)")
+    fig, axes = twin.plot_seeds(seeds, ours, theirs, lambda r: -r["ezz"], "axial strain -ezz (log)", [
+        (lambda r: r["sinphi"], "sin(phi) = (s1 - s3) / (s1 + s3)", "periodic triaxial: mobilised friction"),
+        (lambda r: -r["s3"] / 1e3, "lateral stress (kPa, compression)", "confinement held by PeriTriaxController")])
     axes[1].axhline(100, color="gray", lw=.8)
-    axes[1].set_title("confinement held by PeriTriaxController")
-    axes[0].legend(fontsize=7)
-    fig.tight_layout()
     case.save_chart(fig)
 
 

@@ -61,7 +61,6 @@ def main():
     args = results.case_arguments(__doc__).parse_args()
     import matplotlib
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     case = results.Case("dem.triaxial-walls", quick=args.quick, folder=args.results)
     num, end = (500 if args.quick else 2000), -0.15
     seeds = [1, 2, 3, 4]
@@ -91,19 +90,9 @@ def main():
         twin.record_mean_difference(case, "relative difference of the porosity after compaction from Yade's",
                                     "porosity", ours, theirs, 0.01, "porosity")
 
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
-    for runs, style, label in ((ours, "-", "Talus"), (theirs, "--", "Yade")):
-        for k, r in enumerate(runs):
-            axes[0].plot(-r["eyy"], r["ratio"], style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
-            axes[1].plot(-r["eyy"], -r["evol"], style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
-    axes[0].set_xlabel("axial strain -eyy (log)")
-    axes[0].set_ylabel("stress ratio s1/s3")
-    axes[0].set_title("six-wall triaxial: peak and softening")
-    axes[1].set_xlabel("axial strain -eyy (log)")
-    axes[1].set_ylabel("volumetric strain (compression positive)")
-    axes[1].set_title("contraction then dilatancy")
-    axes[0].legend(fontsize=7)
-    fig.tight_layout()
+    fig, _ = twin.plot_seeds(seeds, ours, theirs, lambda r: -r["eyy"], "axial strain -eyy (log)", [
+        (lambda r: r["ratio"], "stress ratio s1/s3", "six-wall triaxial: peak and softening"),
+        (lambda r: -r["evol"], "volumetric strain (compression positive)", "contraction then dilatancy")])
     case.save_chart(fig)
 
 

@@ -74,3 +74,22 @@ def record_mean_difference(case, metric: str, key: str, ours: list[dict], theirs
     means; ``metric`` is the record's metric."""
     o, t = float(np.mean([r[key] for r in ours])), float(np.mean([r[key] for r in theirs]))
     case.record(metric, abs(o / t - 1), reference, tolerance, suffix=suffix, ours=o, theirs=t, **extra)
+
+
+def plot_seeds(seeds, ours: list[dict], theirs: list[dict], x, xlabel: str, panels):
+    """A chart of one panel per ``(y, ylabel, title)`` of ``panels``: ``y(r)`` against ``x(r)`` for
+    every seed's result ``r`` of Talus (solid) and Yade (dashed), a colour per seed, the legend on
+    the first panel. Returns the figure and its axes."""
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.5 * len(panels), 4))
+    for runs, style, label in ((ours, "-", "Talus"), (theirs, "--", "Yade")):
+        for k, r in enumerate(runs):
+            for ax, (y, _, _) in zip(axes, panels):
+                ax.plot(x(r), y(r), style, color=f"C{k}", label=f"{label}, seed {seeds[k]}")
+    for ax, (_, ylabel, title) in zip(axes, panels):
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.set_title(title)
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    return fig, axes
