@@ -35,12 +35,8 @@ def main():
     r_mean, duration = (.05, 3.0) if args.quick else (.03, 4.0)
     seeds = [1, 2, 3, 4]
     ours, theirs = twin.run_seeds(SCENARIO, lambda seed: {"rMean": r_mean, "seed": seed, "time": duration}, seeds)
-    for k, seed in enumerate(seeds):
-        for label, runs in (("Talus", ours), ("Yade ", theirs)):
-            if runs:
-                r = runs[k]
-                print(f"seed {seed}: {label} {r['spheres']} spheres, {r['iter']} steps, porosity {r['porosity']:.4f}, "
-                      f"coordination {r['coordination']:.3f}")
+    twin.print_seeds(seeds, ours, theirs, lambda r: f"{r['spheres']} spheres, {r['iter']} steps, porosity "
+                     f"{r['porosity']:.4f}, coordination {r['coordination']:.3f}")
     case.record("largest unbalanced force at the end of the deposition", max(o["unbalanced"] for o in ours),
                 "a settled deposit (the tutorial stops at unbalancedForce() < 0.05)", 0.1, suffix="settled")
     if theirs:

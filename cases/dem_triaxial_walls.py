@@ -66,12 +66,8 @@ def main():
     seeds = [1, 2, 3, 4]
     ours, theirs = twin.run_seeds(SCENARIO, lambda seed: {"num": num, "seed": seed, "eyyEnd": end}, seeds)
     ours, theirs = [analyse(r) for r in ours], [analyse(r) for r in theirs]
-    for k, seed in enumerate(seeds):
-        for label, runs in (("Talus", ours), ("Yade ", theirs)):
-            if runs:
-                r = runs[k]
-                print(f"seed {seed}: {label} porosity {r['porosity']:.4f}, peak s1/s3 {r['peak']:.4f} "
-                      f"(phi {r['phi']:.2f} deg) at {r['peak_at']:.2f} of the final strain")
+    twin.print_seeds(seeds, ours, theirs, lambda r: f"porosity {r['porosity']:.4f}, peak s1/s3 {r['peak']:.4f} "
+                     f"(phi {r['phi']:.2f} deg) at {r['peak_at']:.2f} of the final strain")
     # The peak and softening of the seeds' mean curve: a single sample's stress ratio fluctuates
     # at large strain by as much as it softens (500 spheres: 2 of 4 Talus seeds have their largest
     # value on a late fluctuation of a plateau), so its argmax says little; the mean, as for the

@@ -67,6 +67,14 @@ def run_seeds(script: str | os.PathLike, params_of, seeds, workers: int = 2) -> 
             [r for (program, _), r in zip(jobs, done) if program == "yade"])
 
 
+def print_seeds(seeds, ours: list[dict], theirs: list[dict], describe) -> None:
+    """One line per seed and program, ``seed <seed>: Talus|Yade  <describe(result)>``."""
+    for k, seed in enumerate(seeds):
+        for label, runs in (("Talus", ours), ("Yade ", theirs)):
+            if runs:
+                print(f"seed {seed}: {label} {describe(runs[k])}")
+
+
 def record_mean_difference(case, metric: str, key: str, ours: list[dict], theirs: list[dict], tolerance: float,
                            suffix: str, reference: str = "yade 2023.02a on the same scenario file", **extra) -> None:
     """Record in ``case`` (talus.results.Case) the relative difference of the mean of ``r[key]`` over
