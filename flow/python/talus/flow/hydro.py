@@ -235,11 +235,11 @@ class HydroForceEngine(Engine):
 
     velFluct = core_parameter("velFluct", "Turbulent velocity fluctuations on/off.", bool)
     bedElevation = core_parameter("bedElevation", "Elevation above zRef below which there are no "
-                                                       "fluctuations [m].")
+                                                  "fluctuations [m].")
     unCorrelatedFluctuations = core_parameter("unCorrelatedFluctuations",
-                                                   "Streamwise and wall-normal fluctuations independent.", bool)
+                                              "Streamwise and wall-normal fluctuations independent.", bool)
     ignoreOutside = core_parameter("ignoreOutside", "Particles centred below zRef or above the grid get no "
-                                                         "fluid force (instead of an error).", bool)
+                                                    "fluid force (instead of an error).", bool)
     for _name in _FLUID_ONLY:
         locals()[_name] = _fluid_parameter(_name)
     del _name

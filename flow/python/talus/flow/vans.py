@@ -206,11 +206,11 @@ class VansFluid:
     fluidFrictionCoef = core_parameter("fluidFrictionCoef", "Fitting factor of the wall friction.")
     radiusPart = core_parameter("radiusPart", "Particle radius [m] for the drag per unit volume.")
     iturbu = core_parameter("turbulence", "1: mixing-length eddy viscosity, 0: laminar.",
-                        lambda v: _flag(v, "iturbu"))
+                            lambda v: _flag(v, "iturbu"))
     viscousSubLayer = core_parameter("viscousSubLayer", "1: no eddy viscosity below z+ = 11.3.",
-                                 lambda v: _flag(v, "viscousSubLayer"))
+                                     lambda v: _flag(v, "viscousSubLayer"))
     fluidWallFriction = core_parameter("fluidWallFriction", "Side-wall friction sink term on/off.",
-                                   lambda v: _flag(v, "fluidWallFriction"))
+                                       lambda v: _flag(v, "fluidWallFriction"))
 
     def _get_option(self, name: str) -> enum.IntEnum:
         cxx_name, py_enum, _ = _CXX_OPTIONS[name]
