@@ -1,4 +1,4 @@
-# The injection scenario of cases/twophase_drainage.py (--injection) and of
+# The injection scenario of cases/twophase_injection.py and of
 # tests/flow/test_twophase_injection.py, one script for both programs: run by
 # talus.dem.twin.run(script, params, "yade" or "talus") with the parameters as JSON in
 # $TALUS_SCENARIO:
@@ -21,38 +21,20 @@
 # the pore count, the interfaces at the start; the capillary force on the ymin wall at the end.
 import json
 import os
+import sys
 
-try:
-    O
-    TALUS = False
-except NameError:  # not in Yade: Talus's names
-    from talus.dem import *
-    from talus.flow import TwoPhaseFlowEngine
-    TALUS = True
+sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # twophase_scene.py, under Yade's -x too
+from twophase_scene import read_spheres, reservoir_engine  # noqa: E402
 
 params = json.loads(os.environ["TALUS_SCENARIO"])
-spheres = [tuple(map(float, l.split()[:4])) for l in open(params["packing"]) if l.strip() and not l.startswith("#")]
-lo = [min(s[k] - s[3] for s in spheres) for k in range(3)]
-hi = [max(s[k] + s[3] for s in spheres) for k in range(3)]
-
-O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
-for x, y, z, r in spheres:
-    O.bodies.append(sphere((x, y, z), r, fixed=True))
-flow = TwoPhaseFlowEngine()
-if TALUS:
-    flow.yadeInsertionOrder = True  # Yade's vertex order in the cells: its throat geometry to round-off
-flow.useSolver = 3
-flow.permeabilityFactor = 1
-flow.viscosity = float(params["viscosity"])
-flow.bndCondIsPressure = [0, 0, 1, 0, 0, 0]
-flow.bndCondValue = [0, 0, float(params["pressure"]), 0, 0, 0]
-flow.boundaryUseMaxMin = [0, 0, 0, 0, 0, 0]
-flow.iniVoidVolumes = True
-flow.surfaceTension = 0.0
-flow.drainageFirst = False
-flow.isDrainageActivated = False
-flow.isImbibitionActivated = True
-flow.isCellLabelActivated = True
+spheres, lo, hi = read_spheres(params["packing"])
+# yadeInsertionOrder: Talus's option for Yade's vertex order in the cells, hence its throat
+# geometry to round-off (Yade keeps it as an attribute it does not read)
+flow = reservoir_engine(spheres, lo, hi, yadeInsertionOrder=True, useSolver=3, permeabilityFactor=1,
+                        viscosity=float(params["viscosity"]), bndCondIsPressure=[0, 0, 1, 0, 0, 0],
+                        bndCondValue=[0, 0, float(params["pressure"]), 0, 0, 0], boundaryUseMaxMin=[0] * 6,
+                        iniVoidVolumes=True, surfaceTension=0.0, drainageFirst=False, isDrainageActivated=False,
+                        isImbibitionActivated=True, isCellLabelActivated=True)
 flow.initialization()
 reservoir = flow.getClusters()[1]
 n = flow.nCells()

@@ -126,5 +126,10 @@ def test_bad_input():
         tp.invasion()
     with pytest.raises(ValueError, match="optional with isCellLabelActivated"):
         engine(isCellLabelActivated=False)
+    with pytest.raises(RuntimeError, match=r"call initialization\(\) first"):
+        TwoPhaseFlowEngine().getCellLabel(0)
+    tp.triangulate(SPHERES[:, :3], SPHERES[:, 3])
+    with pytest.raises(RuntimeError, match="rebuilt since initialization"):
+        reservoir.getCapVol(0)
     with pytest.raises(RuntimeError, match="set isCellLabelActivated = True"):
         engine(isCellLabelActivated=False, pressure=(0, 0, 1, 1, 0, 0)).getClusters()

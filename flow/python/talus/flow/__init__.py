@@ -17,9 +17,10 @@ from talus.flow.coupling import VansCoupling
 from talus.flow.hydro import HydroForceEngine, averageProfile, yade_run_defaults
 from talus.flow.pore import FlowEngine, HiddenSphereWarning
 from talus.flow.periodic import PeriodicFlowEngine
+from talus.flow.phasecluster import PhaseCluster
 from talus.flow.thermal import ThermalEngine
 from talus.flow.twophase import TwoPhaseFlowEngine, UnsaturatedEngine
 from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansFluid, slope_gravity
 
-__all__ = ["FlowEngine", "PeriodicFlowEngine", "ThermalEngine", "TwoPhaseFlowEngine", "UnsaturatedEngine", "HiddenSphereWarning", "HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid",
+__all__ = ["FlowEngine", "PeriodicFlowEngine", "ThermalEngine", "TwoPhaseFlowEngine", "UnsaturatedEngine", "PhaseCluster", "HiddenSphereWarning", "HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid",
            "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]

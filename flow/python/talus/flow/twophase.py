@@ -81,6 +81,7 @@ class TwoPhaseFlowEngine(FlowEngine):
         object.__setattr__(self, "_capillary", None)
         object.__setattr__(self, "_vtkCount", 0)
         object.__setattr__(self, "_barycentres", None)
+        object.__setattr__(self, "_current", False)  # the model is of the network as it is
         super().__init__(scene, **attrs)
 
     # --- parameters ---------------------------------------------------------------------------
@@ -145,6 +146,7 @@ class TwoPhaseFlowEngine(FlowEngine):
         ident = np.arange(len(radii)) if ids is None else np.asarray(ids)
         self._spheres = dict(zip((int(i) for i in ident), np.asarray(positions, dtype=float).reshape(-1, 3)))
         self._userNetwork = True
+        self._current = False
 
     def initialization(self):
         """Build the network (from the scene's spheres, or the one of ``triangulate``), the entry
@@ -166,11 +168,13 @@ class TwoPhaseFlowEngine(FlowEngine):
             walls, useMaxMin = self._wall_ids(scene), self.boundaryUseMaxMin
             self.wallPosition = [p if useMaxMin[k] or walls[k] < 0 else everything[walls[k]][k // 2]
                                  for k, p in enumerate(self.wallPosition)]
+            self._current = False
             FlowEngine.triangulate(self, positions, np.asarray(scene.radii())[ids], ids)
             self._spheres = dict(zip((int(i) for i in ids), positions))
         self._tp.initialize(self._flow, self._params)
         self._capillary = None
         self._barycentres = None
+        self._current = True
 
     def _step(self):
         """In an engine list the engine does nothing each step, as Yade's TwoPhaseFlowEngine (its
@@ -184,11 +188,12 @@ class TwoPhaseFlowEngine(FlowEngine):
 
     def _state(self):
         """The C++ model for the queries and cluster operations, which read no option (called
-        per pore and per interface by injection scripts: kept light)."""
-        if not self._tp.initialized():
-            raise RuntimeError(f"{_OWNER}: call initialization() first")
-        if self._tp.poreCount() != self._flow.nCells():
-            raise RuntimeError(f"{_OWNER}: the pore network was rebuilt since initialization() (the engine remeshed): "
+        per pore and per interface by injection scripts: kept light). Only triangulate() changes
+        the network (the engine does nothing per step)."""
+        if not self._current:
+            if not self._tp.initialized():
+                raise RuntimeError(f"{_OWNER}: call initialization() first")
+            raise RuntimeError(f"{_OWNER}: the pore network was rebuilt since initialization() (triangulate): "
                                "call initialization() again")
         return self._tp
 
