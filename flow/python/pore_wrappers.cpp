@@ -4,6 +4,7 @@
 #include "flow/pore/FlowCoupling.h"
 #include "flow/pore/PoreFlow.h"
 #include "flow/pore/VtkOutput.h"
+#include "flow/python/ArrayRows.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -15,6 +16,7 @@
 #include <string>
 
 namespace py = pybind11;
+using talus::flow::python::rows;
 using namespace talus::flow::pore;
 
 namespace
@@ -44,17 +46,6 @@ std::vector<Vec3> vectors(const Array& a, const char* what)
   for (std::size_t i = 0; i < v.size(); ++i)
     v[i] = Vec3(a.at(i, 0), a.at(i, 1), a.at(i, 2));
   return v;
-}
-
-/// Vectors as an (n, 3) array.
-Array rows(const std::vector<Vec3>& v)
-{
-  Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-  auto out = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (py::ssize_t d = 0; d < 3; ++d)
-      out(static_cast<py::ssize_t>(i), d) = v[i][d];
-  return a;
 }
 
 /// Per-pore or per-throat values as a numpy array.

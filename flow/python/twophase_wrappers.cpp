@@ -3,6 +3,7 @@
 // talus.flow.twophase.TwoPhaseFlowEngine.
 #include "flow/pore/PoreFlow.h"
 #include "flow/twophase/TwoPhaseFlow.h"
+#include "flow/python/ArrayRows.h"
 
 #include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
@@ -12,6 +13,7 @@
 #include <vector>
 
 namespace py = pybind11;
+using talus::flow::python::rows;
 using namespace talus::flow::twophase;
 using talus::flow::pore::PoreFlow;
 using talus::flow::pore::Vec3;
@@ -23,17 +25,6 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 Array copy(const std::vector<double>& v)
 {
   return Array(static_cast<py::ssize_t>(v.size()), v.data());
-}
-
-/// Vectors as an (n, 3) array.
-Array rows(const std::vector<Vec3>& v)
-{
-  Array a({static_cast<py::ssize_t>(v.size()), py::ssize_t{3}});
-  auto out = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < v.size(); ++i)
-    for (py::ssize_t d = 0; d < 3; ++d)
-      out(static_cast<py::ssize_t>(i), d) = v[i][d];
-  return a;
 }
 
 /// A per-pore flag or value of the pore states as numpy.
