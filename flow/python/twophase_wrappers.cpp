@@ -114,6 +114,9 @@ void registerTwoPhase(py::module_& m)
         return t.clusters()[static_cast<std::size_t>(k)].interfaces;
       })
       .def("interface", py::overload_cast<int, int>(&TwoPhaseFlow::interface), py::return_value_policy::reference_internal)
+      // the meniscus volume, read and set once per interface and step by injection scripts
+      .def("interfaceVolume", [](const TwoPhaseFlow& t, int k, int i) { return t.interface(k, i).volume; })
+      .def("setInterfaceVolume", [](TwoPhaseFlow& t, int k, int i, double v) { t.interface(k, i).volume = v; })
       .def("outvadePore", &TwoPhaseFlow::outvadePore)
       .def("solveClusterPressure", &TwoPhaseFlow::solveClusterPressure)
       .def("interfaceConductance", &TwoPhaseFlow::interfaceConductance)

@@ -22,7 +22,9 @@ class PhaseCluster:
         self._index = index
 
     def _tp(self):
-        return self._engine._state()
+        engine = self._engine
+        # the engine's check, inlined: scripts call these once per interface and step
+        return engine._tp if engine._current else engine._state()
 
     def _number(self, numf) -> int:
         """The interface rank ``numf`` checked (an int; the range is checked in C++)."""
@@ -89,10 +91,10 @@ class PhaseCluster:
 
     def setCapVol(self, numf: int, vCap: float):
         """Volume that crossed the interface (the meniscus position)."""
-        self._interface(numf).volume = _finite("vCap", vCap)
+        self._tp().setInterfaceVolume(self._index, self._number(numf), _finite("vCap", vCap))
 
     def getCapVol(self, numf: int) -> float:
-        return self._interface(numf).volume
+        return self._tp().interfaceVolume(self._index, self._number(numf))
 
     def updateCapVol(self, numf: int, dt: float) -> float:
         """Add flux * dt to the interface's volume; returns it."""
