@@ -1,6 +1,7 @@
 #include "flow/pore/PressureSolver.h"
 
 #include <cholmod.h>
+#include <dlfcn.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -270,6 +271,36 @@ public:
   OneThreadIfAsked& operator=(const OneThreadIfAsked&) = delete;
 };
 
+/// For its lifetime, OpenBLAS runs its calls on the calling thread, as Yade's FlowEngine has it
+/// for the factorisation and the solve (numFactorizeThreads and numSolveThreads, both 1 by
+/// default). A supernodal factor makes many small BLAS calls, between which OpenBLAS's own
+/// threads spin: on two threads they cost more CPU time than they saved wall time (docs/flow.md,
+/// "Measurements behind the code"). OpenBLAS is looked up at run time: another BLAS is left as
+/// it is.
+class OneBlasThread
+{
+public:
+  OneBlasThread()
+  {
+    if (kSet && kGet && (threads_ = kGet()) != 1)
+      kSet(1);
+  }
+  ~OneBlasThread()
+  {
+    if (kSet && kGet && threads_ != 1)
+      kSet(threads_);
+  }
+  OneBlasThread(const OneBlasThread&) = delete;
+  OneBlasThread& operator=(const OneBlasThread&) = delete;
+
+private:
+  using Set = void (*)(int);
+  using Get = int (*)();
+  inline static const Set kSet = reinterpret_cast<Set>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  inline static const Get kGet = reinterpret_cast<Get>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  int threads_ = 1;
+};
+
 /// CHOLMOD's workspace and the factor of the current matrix.
 struct PressureSolver::Cholmod
 {
@@ -528,6 +559,7 @@ void PressureSolver::factorize()
   const auto start = Clock::now();
   {
     const OneThreadIfAsked oneThread;
+    const OneBlasThread oneBlasThread;
     cholmod_factorize(c.a, c.factor, &c.common);
   }
   counters_.factorizeSeconds += std::chrono::duration<double>(Clock::now() - start).count();
@@ -583,6 +615,7 @@ void PressureSolver::solve(SolverKind kind, std::vector<double>& p, const std::v
     {
       std::copy(b.begin(), b.end(), static_cast<double*>(c.b->x));
       // cholmod_solve2 re-uses x, y and e when their sizes fit
+      const OneBlasThread oneBlasThread;
       cholmod_solve2(CHOLMOD_A, c.factor, c.b, nullptr, &c.x, nullptr, &c.y, &c.e, &c.common);
       solvedRhs_ = std::move(b);
     }
