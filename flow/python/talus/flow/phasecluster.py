@@ -11,6 +11,7 @@ field (``solvePressure``) and lets the pores they fill join the cluster
 from __future__ import annotations
 
 import math
+import numbers
 
 
 class PhaseCluster:
@@ -27,10 +28,12 @@ class PhaseCluster:
         return engine._tp if engine._current else engine._state()
 
     def _number(self, numf) -> int:
-        """The interface rank ``numf`` checked (an int; the range is checked in C++)."""
-        if isinstance(numf, bool) or not isinstance(numf, int):
+        """The interface rank ``numf`` checked (an integer, numpy's too; the range is checked in C++)."""
+        if type(numf) is int:
+            return numf
+        if isinstance(numf, bool) or not isinstance(numf, numbers.Integral):
             raise TypeError(f"PhaseCluster: interface index (numf) must be an integer, got {numf!r}")
-        return numf
+        return int(numf)
 
     def _summary(self) -> dict:
         return self._tp().cluster(self._index)
