@@ -28,7 +28,8 @@ RULES: list[tuple[str, str]] = [
     (r"WireMat|WirePhys|WireState", "wire mesh model"),
     (r"L6Geom|L3Geom", "local-coordinates contact geometry (L3Geom/L6Geom)"),
     (r"Bubble", "bubble model"),
-    (r"Capillar|ViscElCap|MeasureCapStress|Law2_ScGeom_CapillaryPhys|MeniscusPhysicalDataFactory", "capillary bridges"),
+    # (not TwoPhaseFlowEngine's computeCapillaryForce: the forces of its phase pressures)
+    (r"(?<!compute)Capillar|ViscElCap|MeasureCapStress|Law2_ScGeom_CapillaryPhys|MeniscusPhysicalDataFactory", "capillary bridges"),
     (r"GridNode|GridConnection|GridCoGrid|PFacet|gridpfacet", "grid and PFacet elements"),
     (r"ChainedCylinder|\bCylinder\b|_Cylinder|Cylinder_|\bcylinder(\(|$)", "cylinders"),
     (r"Tori|Torus", "tori"),
