@@ -75,7 +75,7 @@ using Vector = double __attribute__((vector_size(lanes * sizeof(double))));
 
 void flops(int repetitions)
 {
-  const long iterations = 20'000'000 / lanes;
+  const long iterations = 4'000'000 / lanes; // a few milliseconds: short repetitions, more of them unpaused
   double best = 0, sink = 0;
   for (int r = 0; r < repetitions; ++r)
   {
