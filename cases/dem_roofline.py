@@ -117,14 +117,14 @@ def run_bed(packing: str, steps: int) -> None:
     print("ROOFLINE " + json.dumps({
         "steps": steps, "wall_s": wall, "seconds": {k: v * 1e-9 / steps for k, v in seconds.items()},
         "bodies": len(O.bodies), "spheres": sum(1 for b in O.bodies if b.shape.__class__.__name__ == "Sphere"),
-        "candidates": O.interactions.__len__(), "real": O.interactions.countReal()}))
+        "candidates": len(O.interactions), "real": O.interactions.countReal()}))
 
 
 def measure_bed(packing: Path, steps: int, threads: int, runs: int) -> dict:
     best = None
     for _ in range(runs):
-        out = subprocess.run(bench.realtime_prefix() + bench.talus_command("run", "-j", str(threads), __file__, "--bed", str(packing), "--steps",
-                                                 str(steps)), capture_output=True, text=True, timeout=3600)
+        command = bench.talus_command("run", "-j", str(threads), __file__, "--bed", str(packing), "--steps", str(steps))
+        out = subprocess.run(bench.realtime_prefix() + command, capture_output=True, text=True, timeout=3600)
         found = re.search(r"^ROOFLINE (.*)$", out.stdout, re.M)
         if out.returncode != 0 or not found:
             raise RuntimeError(f"the dense bed at {threads} threads failed:\n{out.stdout[-2000:]}\n{out.stderr[-2000:]}")
@@ -151,8 +151,7 @@ def probe(exe: Path, threads: int, *args) -> dict:
     return {m.group(1): [float(v) for v in m.group(2).split()] for m in re.finditer(r"^(\w+) (.*)$", out, re.M)}
 
 
-def machine(folder: Path, threads: int, bed_bytes: int, repetitions: int) -> dict:
-    plain, native = compile_probe(folder, False), compile_probe(folder, True)
+def machine(plain: Path, native: Path, threads: int, bed_bytes: int, repetitions: int) -> dict:
     at_bed = probe(plain, threads, "bandwidth", bed_bytes, repetitions)
     dram = probe(plain, threads, "bandwidth", DRAM_BYTES, repetitions)
     return {"threads": threads, "triad_bed_gbs": at_bed["TRIAD"][0], "copy_bed_gbs": at_bed["COPY"][0],
@@ -234,9 +233,10 @@ def main():
         folder = Path(scratch)
         packing = folder / "bed.txt"
         bench_dense.write_packing(packing, spheres)
+        probes = compile_probe(folder, False), compile_probe(folder, True)
         for threads in (1, 2):
             bed = measure_bed(packing, steps, threads, runs)
-            roofs = machine(folder, threads, max(1 << 20, working_set(bed["bodies"], bed["candidates"])), repetitions)
+            roofs = machine(*probes, threads, max(1 << 20, working_set(bed["bodies"], bed["candidates"])), repetitions)
             measured[threads] = (roofs, roofline(bed, roofs))
             step = measured[threads][1]["step"]
             print(f"{threads} thread(s), load {load:.1f}: triad {roofs['triad_bed_gbs']:.1f} GB/s at "
