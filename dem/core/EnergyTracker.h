@@ -77,10 +77,12 @@ struct ContactEnergy
   }
 };
 
-/// Gravity's work and the damping's dissipation, summed over a block of bodies by NewtonIntegrator.
+/// Gravity's work, the damping's dissipation and the work of imposed motions (kinematicWork,
+/// and cellPower: the power of a deforming cell's field, booked times dt), summed over a block
+/// of bodies by NewtonIntegrator.
 struct BodyEnergy
 {
-  double gravWork = 0, damp = 0;
+  double gravWork = 0, damp = 0, kinematicWork = 0, cellPower = 0;
 };
 
 /// Number of contacts or bodies summed together before the per-block sums are added in order.

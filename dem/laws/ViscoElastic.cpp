@@ -209,7 +209,6 @@ struct ViscElPhys
     const double stokes = density * std::abs(vn) * (r1 + r2) / viscosity;
     return std::max(1e-3, en * (1 + 1 / stokes * std::log(roughness / ((r1 + r2) * 0.5))));
   }
-
 };
 
 struct ViscoElasticNames

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -60,6 +61,70 @@ void requirePositive(const Scene& scene, std::size_t i, const char* what, double
                               + "): give the material a positive density (or the body its own: b.state.mass, "
                                 "b.state.inertia), or make the body non-dynamic "
                                 "(b.dynamic = False) or block its free DOFs (b.state.blockedDOFs)");
+}
+/// Book into `block` the work that imposed motions do on the bodies [first, last) over the step
+/// about to be integrated (forces of this step, velocities the integrator is about to apply).
+/// For each body, the force and torque on it times the imposed part of its velocity: with
+/// homoDeform, the affine field L x and its spin of every dynamic body (cellPower, the power of
+/// the cell's field); the whole velocity of a non-dynamic body; the blocked components of a
+/// dynamic body's (fluctuating) velocity (kinematicWork). The cell's field is taken as the mean
+/// of the previous and the current step's, as gravity's work is taken over the mean velocity; a
+/// kinematic body's velocity as it is now (the previous one is not kept). A body touches only
+/// its own entries of the tracker's memory (sized by prepare), so ranges may run in parallel.
+void addImposedMotionWorkIn(Scene& scene, std::int64_t first, std::int64_t last, BodyEnergy& block)
+{
+  const Bodies& b = scene.bodies;
+  const Cell& cell = scene.cell;
+  const double dt = scene.dt;
+  const bool homogeneous = scene.periodic && cell.homoDeform;
+  const Mat3& L = cell.velGrad;
+  const Mat3& previousL = cell.prevVelGrad;
+  const Vec3 meanSpin = 0.5 * (spin(L) + spin(previousL));
+  EnergyTracker& tracker = scene.energy;
+  // The mean of an imposed displacement over this step and the previous one; remembers this one.
+  auto meanImposed = [dt](Vec3& previous, const Vec3& velocity) {
+    const Vec3 now = velocity * dt;
+    const Vec3 mean = previous.allFinite() ? Vec3(0.5 * (previous + now)) : now;
+    previous = now;
+    return mean;
+  };
+  for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
+  {
+    if (!b.alive[i] || b.clumpId[i] >= 0) // a member's force acts on its clump
+      continue;
+    Vec3 force = b.force[i], torque = b.torque[i];
+    if (b.shape[i] == ShapeKind::Clump)
+      addClumpMemberForces(b, i, force, torque);
+    if (!b.dynamic[i])
+    {
+      block.kinematicWork += force.dot(meanImposed(tracker.previousDisplacement[i], b.vel[i]))
+                             + torque.dot(meanImposed(tracker.previousRotation[i], b.angVel[i]));
+      continue;
+    }
+    Vec3 fluctuation = b.vel[i], angularFluctuation = b.angVel[i];
+    if (homogeneous)
+    {
+      // the field at this step's and the previous step's displacement (the integrator's
+      // previous position x - v dt), averaged
+      const Vec3 previousPosition = b.pos[i] - dt * b.vel[i];
+      const Vec3 field = 0.5 * (L * b.pos[i] + previousL * previousPosition);
+      block.cellPower += force.dot(field) + torque.dot(meanSpin);
+      fluctuation -= previousL * previousPosition;
+      angularFluctuation -= spin(previousL);
+    }
+    const std::uint8_t blocked = b.blockedDofs[i];
+    if (blocked == 0)
+      continue;
+    const Vec3 displacement = meanImposed(tracker.previousDisplacement[i], fluctuation);
+    const Vec3 rotation = meanImposed(tracker.previousRotation[i], angularFluctuation);
+    for (int d = 0; d < 3; ++d)
+    {
+      if (blocked & (1u << d))
+        block.kinematicWork += force[d] * displacement[d];
+      if (blocked & (8u << d))
+        block.kinematicWork += torque[d] * rotation[d];
+    }
+  }
 }
 } // namespace
 
@@ -222,13 +287,18 @@ void NewtonIntegrator::prepare(Scene& scene)
   if (scene.bodiesVersion != seenBodiesVersion_ || scene.bodyPropertiesVersion != seenPropertiesVersion_
       || mask != seenMask_)
     refreshInverses(scene);
+  if (scene.energy.enabled)
+  {
+    const Vec3 unknown = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+    scene.energy.previousDisplacement.resize(scene.bodies.size(), unknown);
+    scene.energy.previousRotation.resize(scene.bodies.size(), unknown);
+  }
 }
 
 void NewtonIntegrator::run(Scene& scene)
 {
   prepare(scene);
-  if (scene.energy.enabled)
-    addImposedMotionWork(scene);
+  addPeriodicImageWork(scene);
   finish(scene, scene.energy.enabled ? integrate<true>(scene) : integrate<false>(scene));
   if (scene.domain) // split over processes: the ghosts take their owners' new state
     scene.domain->afterIntegration(scene);
@@ -248,8 +318,9 @@ std::int64_t NewtonIntegrator::integrateIn(Scene& scene, std::int64_t first, std
     for (std::int64_t start = first; start < last; start += energyBlock)
     {
       BodyEnergy& block = energyBlocks[start / energyBlock];
-      bad = std::min(bad, integrateRange<true>(scene, start, std::min(last, start + energyBlock), block.gravWork,
-                                               block.damp));
+      const std::int64_t end = std::min(last, start + energyBlock);
+      addImposedMotionWorkIn(scene, start, end, block);
+      bad = std::min(bad, integrateRange<true>(scene, start, end, block.gravWork, block.damp));
     }
   return bad < n ? bad : -1;
 }
@@ -260,6 +331,8 @@ void NewtonIntegrator::addEnergy(Scene& scene, const std::vector<BodyEnergy>& bl
   {
     scene.energy.gravWork += block.gravWork;
     scene.energy.nonviscDamp += block.damp;
+    scene.energy.kinematicWork += block.kinematicWork;
+    scene.energy.velGradWork += block.cellPower * scene.dt;
   }
 }
 
@@ -397,8 +470,9 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
     for (std::int64_t blk = 0; blk < blocks; ++blk)
     {
       BodyEnergy& block = energy[static_cast<std::size_t>(blk)];
-      firstBad = std::min(firstBad, integrateRange<true>(scene, blk * energyBlock, std::min(n, (blk + 1) * energyBlock),
-                                                         block.gravWork, block.damp));
+      const std::int64_t start = blk * energyBlock, end = std::min(n, start + energyBlock);
+      addImposedMotionWorkIn(scene, start, end, block);
+      firstBad = std::min(firstBad, integrateRange<true>(scene, start, end, block.gravWork, block.damp));
     }
     addEnergy(scene, energy);
   }
@@ -413,74 +487,16 @@ std::int64_t NewtonIntegrator::integrate(Scene& scene) const
   return firstBad < n ? firstBad : -1;
 }
 
-void addImposedMotionWork(Scene& scene)
+void addPeriodicImageWork(Scene& scene)
 {
-  const Bodies& b = scene.bodies;
+  if (!scene.energy.enabled || !scene.periodic)
+    return;
   const Cell& cell = scene.cell;
-  const double dt = scene.dt;
-  const bool homogeneous = scene.periodic && cell.homoDeform;
-  const Mat3& L = cell.velGrad;
-  const Mat3& previousL = cell.prevVelGrad;
-  const Vec3 meanSpin = 0.5 * (spin(L) + spin(previousL));
-  EnergyTracker& tracker = scene.energy;
-  const Vec3 unknown = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
-  tracker.previousDisplacement.resize(b.size(), unknown);
-  tracker.previousRotation.resize(b.size(), unknown);
-  // The mean of an imposed displacement over this step and the previous one; remembers this one.
-  auto meanImposed = [dt](Vec3& previous, const Vec3& velocity) {
-    const Vec3 now = velocity * dt;
-    const Vec3 mean = previous.allFinite() ? Vec3(0.5 * (previous + now)) : now;
-    previous = now;
-    return mean;
-  };
-  double cellWork = 0, kinematicWork = 0; // power of the cell's field; work of the imposed motions
-  for (std::size_t i = 0; i < b.size(); ++i)
-  {
-    if (!b.alive[i] || b.clumpId[i] >= 0) // a member's force acts on its clump
-      continue;
-    Vec3 force = b.force[i], torque = b.torque[i];
-    if (b.shape[i] == ShapeKind::Clump)
-      addClumpMemberForces(b, i, force, torque);
-    if (!b.dynamic[i])
-    {
-      kinematicWork += force.dot(meanImposed(tracker.previousDisplacement[i], b.vel[i]))
-                       + torque.dot(meanImposed(tracker.previousRotation[i], b.angVel[i]));
-      continue;
-    }
-    Vec3 fluctuation = b.vel[i], angularFluctuation = b.angVel[i];
-    if (homogeneous)
-    {
-      // the field at this step's and the previous step's displacement (the integrator's
-      // previous position x - v dt), averaged
-      const Vec3 previousPosition = b.pos[i] - dt * b.vel[i];
-      const Vec3 field = 0.5 * (L * b.pos[i] + previousL * previousPosition);
-      cellWork += force.dot(field) + torque.dot(meanSpin);
-      fluctuation -= previousL * previousPosition;
-      angularFluctuation -= spin(previousL);
-    }
-    const std::uint8_t blocked = b.blockedDofs[i];
-    if (blocked == 0)
-      continue;
-    const Vec3 displacement = meanImposed(tracker.previousDisplacement[i], fluctuation);
-    const Vec3 rotation = meanImposed(tracker.previousRotation[i], angularFluctuation);
-    for (int d = 0; d < 3; ++d)
-    {
-      if (blocked & (1u << d))
-        kinematicWork += force[d] * displacement[d];
-      if (blocked & (8u << d))
-        kinematicWork += torque[d] * rotation[d];
-    }
-  }
-  // A contact with a periodic image: the image moves with the cell, H c changing by L H c dt
-  // (with or without homoDeform). The force on body 2 is the contact's.
-  if (scene.periodic)
-  {
-    const Mat3 meanL = 0.5 * (L + previousL);
-    for (const Contact& c : scene.contacts.list)
-      if (c.real && c.cellDist != Eigen::Vector3i::Zero())
-        cellWork += c.force.dot(meanL * cell.shift(c.cellDist));
-  }
-  tracker.velGradWork += cellWork * dt;
-  tracker.kinematicWork += kinematicWork;
+  const Mat3 meanL = 0.5 * (cell.velGrad + cell.prevVelGrad);
+  double power = 0;
+  for (const Contact& c : scene.contacts.list)
+    if (c.real && c.cellDist != Eigen::Vector3i::Zero())
+      power += c.force.dot(meanL * cell.shift(c.cellDist));
+  scene.energy.velGradWork += power * scene.dt;
 }
 } // namespace talus::dem

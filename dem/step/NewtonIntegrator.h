@@ -41,19 +41,20 @@ public:
   int mask = -1;
 
   // The pieces of run() for the step's scheduler, which runs the loop in its own parallel regions.
-  /// Refresh what the step reads of the bodies if they changed.
+  /// Refresh what the step reads of the bodies if they changed; tracking energy, size the
+  /// tracker's memory of the bodies' imposed displacements.
   void prepare(Scene& scene);
   /// Integrate the bodies [first, last) (after prepare; a region's threads take disjoint ranges).
   /// @param first first body id; a multiple of energyBlock when tracking energy
   /// @param last one past the last body id
   /// @param energyBlocks null: no energy tracking; else `first` is a multiple of energyBlock and
-  /// body i's terms are added to energyBlocks[i / energyBlock] (run()'s blocks)
+  /// body i's terms (gravity's work, the damping's dissipation, the imposed motions' work over
+  /// the step) are added to energyBlocks[i / energyBlock] (run()'s blocks)
   /// @return the first body of the range with a non-finite force or torque, or -1 (the caller
   ///         hands the smallest over all ranges to finish)
   std::int64_t integrateIn(Scene& scene, std::int64_t first, std::int64_t last, BodyEnergy* energyBlocks) const;
   /// Add the blocks' energies to the scene's tracker, in block order (as run() does).
-  /// @param blocks gravity's work and the damping's dissipation (J) per block of energyBlock
-  ///        bodies, filled by integrateIn
+  /// @param blocks the energy terms per block of energyBlock bodies, filled by integrateIn
   static void addEnergy(Scene& scene, const std::vector<BodyEnergy>& blocks);
   /// After every range: stop the run if a body had a non-finite force (firstBad >= 0), else move
   /// the periodic cell.
@@ -96,14 +97,11 @@ private:
   mutable BalancedRanges ranges_; ///< bodies per thread (their timing only)
 };
 
-/// Book the work that imposed motions do over the step about to be integrated (forces of this
-/// step, velocities the integrator is about to apply) into velGradWork and kinematicWork. For
-/// each body, the force and torque on it times the imposed part of its velocity: with
-/// homoDeform, the affine field L x and its spin of every dynamic body, plus L H c for a contact
-/// with a periodic image (the image moves with the cell); the whole velocity of a non-dynamic
-/// body; the blocked components of a dynamic body's (fluctuating) velocity. The cell's field is
-/// taken as the mean of the previous and the current step's, as gravity's work is taken over
-/// the mean velocity; a kinematic body's velocity as it is now (the previous one is not kept).
-/// Called by NewtonIntegrator while tracking energy.
-void addImposedMotionWork(Scene& scene);
+/// Book the work that the cell's motion does on the contacts with a periodic image over the step
+/// about to be integrated: L H c times the force on body 2 of each (the image moves with the
+/// cell), L the mean of the previous and the current step's velocity gradient, into
+/// velGradWork. The bodies' share of the imposed motions' work is the integration's (its energy
+/// blocks, integrateIn); both before the cell is integrated (finish).
+/// @param scene a periodic scene tracking energy (nothing is booked otherwise)
+void addPeriodicImageWork(Scene& scene);
 } // namespace talus::dem

@@ -11,7 +11,7 @@ namespace talus::dem
 {
 namespace
 {
-PlanConditions conditionsOf(const Scene& scene) { return {scene.energy.enabled, scene.domain != nullptr}; }
+PlanConditions conditionsOf(const Scene& scene) { return {scene.domain != nullptr}; }
 
 std::vector<StepCheck>& checks()
 {

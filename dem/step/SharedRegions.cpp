@@ -27,6 +27,8 @@ double now() { return 0; }
 #endif
 
 std::size_t at(StagePoint point) { return static_cast<std::size_t>(point); }
+/// How many blocks of energyBlock hold `items` contacts or bodies.
+std::size_t energyBlocks(std::int64_t items) { return static_cast<std::size_t>((items + energyBlock - 1) / energyBlock); }
 } // namespace
 
 std::int64_t SharedRegions::Team::first(std::int64_t Member::*field) const
@@ -101,7 +103,7 @@ void SharedRegions::forces(Scene& scene, const Engines& engines, Flow flow)
   const double start = now();
   engines.loop.prepare(scene);
   if (integrate)
-    engines.newton.prepare(scene);
+    prepareIntegration(scene, engines.newton);
   ContactLaw* law = flow.contactsInRegion ? engines.loop.laws[0].get() : nullptr;
   // Contacts in the region and no reduction over processes: the skin check's verdict is known
   // inside the region, which goes on to the contacts unless it calls for a re-detection.
@@ -127,7 +129,7 @@ void SharedRegions::forces(Scene& scene, const Engines& engines, Flow flow)
   {
     settleSkin(scene, engines, law, skin);
     if (integrate && scene.domain)
-      engines.newton.prepare(scene); // the rows change when bodies migrate
+      prepareIntegration(scene, engines.newton); // the rows change when bodies migrate
   }
   else if (skin.moved)
     redetect(scene, engines.collider, law, skin);
@@ -226,7 +228,10 @@ void SharedRegions::contactsThenBodies(Scene& scene, const Engines& engines, Con
 {
   Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
   const auto owned = static_cast<std::int64_t>(scene.ownedBodies());
-  const auto [first, last] = bodyRanges_.range(owned, thread, threads);
+  // Tracking energy, the integration sums the bodies' terms in whole blocks.
+  BodyEnergy* bodyEnergy = integrate && scene.energy.enabled ? bodyEnergy_.data() : nullptr;
+  const auto share = bodyRanges_.range(owned, thread, threads);
+  const auto [first, last] = bodyEnergy ? blockAligned(share, owned) : share;
   if (law)
   {
     const double start = now();
@@ -258,7 +263,7 @@ void SharedRegions::contactsThenBodies(Scene& scene, const Engines& engines, Con
       if (thread == 0)
         ++barriers;
     }
-    my.badBody = engines.newton.integrateIn(scene, first, last, nullptr);
+    my.badBody = engines.newton.integrateIn(scene, first, last, bodyEnergy);
     if (skin.checkAhead)
       my.movedAhead = engines.collider.displacementsIn(scene, ahead, first, last);
     team_.lap(my, StagePoint::Integration);
@@ -274,8 +279,7 @@ void SharedRegions::listChanged(Scene& scene, ContactLaw* law)
     alignContactExtra(scene.contacts);
   contactShares_.update(scene.contacts);
   if (scene.energy.enabled)
-    contactEnergy_.assign(static_cast<std::size_t>((scene.contacts.list.size() + energyBlock - 1) / energyBlock),
-                          ContactEnergy{});
+    contactEnergy_.assign(energyBlocks(static_cast<std::int64_t>(scene.contacts.list.size())), ContactEnergy{});
 }
 
 void SharedRegions::redetect(Scene& scene, Collider& collider, ContactLaw* law, Skin& skin)
@@ -306,6 +310,7 @@ void SharedRegions::contactsDone(Scene& scene, const Engines& engines, ContactLa
 void SharedRegions::integrationDone(Scene& scene, const Engines& engines, const Skin& skin)
 {
   const double start = now();
+  bodyEnergyDone(scene);
   engines.newton.finish(scene, team_.first(&Team::Member::badBody));
   if (skin.checkAhead)
   {
@@ -324,14 +329,9 @@ void SharedRegions::integrationDone(Scene& scene, const Engines& engines, const 
 void SharedRegions::integrate(Scene& scene, NewtonIntegrator& newton)
 {
   const double start = now();
-  newton.prepare(scene);
+  prepareIntegration(scene, newton);
   const auto owned = static_cast<std::int64_t>(scene.ownedBodies());
   const bool tracking = scene.energy.enabled;
-  if (tracking)
-  {
-    addImposedMotionWork(scene);
-    bodyEnergy_.assign(static_cast<std::size_t>((owned + energyBlock - 1) / energyBlock), {});
-  }
   serialLap(StagePoint::Integration, start);
   region(scene, [&](int thread, int threads) {
     Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
@@ -343,12 +343,26 @@ void SharedRegions::integrate(Scene& scene, NewtonIntegrator& newton)
     team_.lap(my, StagePoint::Integration);
   });
   const double end = now();
-  if (tracking)
-    NewtonIntegrator::addEnergy(scene, bodyEnergy_);
+  bodyEnergyDone(scene);
   newton.finish(scene, team_.first(&Team::Member::badBody));
   if (scene.domain)
     scene.domain->afterIntegration(scene);
   serialLap(StagePoint::Integration, end);
+}
+
+void SharedRegions::prepareIntegration(Scene& scene, NewtonIntegrator& newton)
+{
+  newton.prepare(scene);
+  if (scene.energy.enabled)
+    bodyEnergy_.assign(energyBlocks(static_cast<std::int64_t>(scene.ownedBodies())), {});
+}
+
+void SharedRegions::bodyEnergyDone(Scene& scene)
+{
+  if (!scene.energy.enabled)
+    return;
+  addPeriodicImageWork(scene);
+  NewtonIntegrator::addEnergy(scene, bodyEnergy_);
 }
 
 void SharedRegions::stepDone()

@@ -133,6 +133,12 @@ private:
   void contactsDone(Scene& scene, const Engines& engines, ContactLaw* law);
   /// After the integration: a body's non-finite force, the ahead check, the ghosts' update.
   void integrationDone(Scene& scene, const Engines& engines, const Skin& skin);
+  /// Before the integration: the integrator's view of the bodies and, with energy tracked, one
+  /// energy block per energyBlock owned bodies.
+  void prepareIntegration(Scene& scene, NewtonIntegrator& newton);
+  /// With energy tracked, the integration's energy blocks and the periodic images' work into
+  /// the tracker (before the cell moves).
+  void bodyEnergyDone(Scene& scene);
   /// Enter a parallel region running body(thread, threads) on every thread of the team.
   template <class Body>
   void region(Scene& scene, const Body& body);

@@ -108,7 +108,7 @@ StepPlan planStep(const std::vector<std::shared_ptr<Engine>>& engines, std::size
       plan.entries.push_back({resetApart ? StepPlan::Item::Reset : StepPlan::Item::Forces, StepPlan::none});
     else if (k == plan.collider && resetApart)
       plan.entries.push_back({StepPlan::Item::Forces, StepPlan::none});
-    else if (k == plan.newton && (middle || conditions.energy))
+    else if (k == plan.newton && middle)
       plan.entries.push_back({StepPlan::Item::Integration, StepPlan::none});
   }
   plan.alone = group && plan.entries.size() == 1 && !conditions.distributed && plan.contactsInRegion;

@@ -29,8 +29,8 @@ struct StepPlan
     Serial,      ///< engine `engine` runs whole
     Reset,       ///< the reset, in a region of its own (serial stages follow it)
     Forces,      ///< reset (unless a Reset entry came before), skin check (and detection),
-                 ///< contacts, gather; and the integration when no serial stage or energy
-                 ///< book-keeping comes between
+                 ///< contacts, gather; and the integration when no serial stage comes
+                 ///< between
     Integration, ///< the integration, in a region of its own
   };
   struct Entry
@@ -69,7 +69,6 @@ struct StepPlan
 /// What the plan of a step depends on besides the engines.
 struct PlanConditions
 {
-  bool energy = false;      ///< energy tracked: the integration books its work after the imposed motions'
   bool distributed = false; ///< Scene::domain set: the skin check is reduced over processes between regions
   bool operator==(const PlanConditions&) const = default;
 };
@@ -77,8 +76,7 @@ struct PlanConditions
 /// The plan for the live engines of `engines` from index `from` on.
 /// @param engines the scene's engine list (dead engines are left out of the plan)
 /// @param from the first index planned (a step resumed after a sub-step starts later)
-/// @param conditions energy tracking and distribution, which move the integration or the skin
-///        check out of the forces' region
+/// @param conditions distribution, which moves the skin check out of the forces' region
 /// @return the plan; without the shared group every engine is a serial entry
 StepPlan planStep(const std::vector<std::shared_ptr<Engine>>& engines, std::size_t from, PlanConditions conditions);
 } // namespace talus::dem

@@ -132,7 +132,7 @@ TEST(StepPlan, ACoupledSceneSplitsTheRegionsAroundItsHooks)
   EXPECT_EQ(plan.serialStages, 3);
 }
 
-TEST(StepPlan, SeveralLawsEnergyAndDomainsStayOnTheSharedStages)
+TEST(StepPlan, SeveralLawsAndDomainsStayOnTheSharedStages)
 {
   EngineList severalLaws = usualEngines();
   severalLaws[2] = loopWith({"linear", "hertz"});
@@ -141,10 +141,6 @@ TEST(StepPlan, SeveralLawsEnergyAndDomainsStayOnTheSharedStages)
   EXPECT_FALSE(laws.contactsInRegion); // one serial call between the two regions
   EXPECT_EQ(laws.regions, 2);
   EXPECT_EQ(laws.barriers, 0);
-
-  const StepPlan energy = planOf(usualEngines(), {.energy = true});
-  EXPECT_EQ(energy.describe(), "forces | integration");
-  EXPECT_EQ(energy.regions, 2);
 
   const StepPlan distributed = planOf(usualEngines(), {.distributed = true});
   EXPECT_EQ(distributed.describe(), "forces+integration");
@@ -176,6 +172,33 @@ TEST(Scheduler, AStepEntersTheRegionsAndBarriersPlanned)
     EXPECT_EQ(scheduler.barriersPassed(), scheduler.plan().barriers) << pyRunner;
     EXPECT_EQ(scheduler.sharedSteps(), 5);
   }
+}
+
+TEST(Scheduler, TrackedEnergyStaysInTheOneRegionAndGivesTheEnginesBits)
+{
+  // Each body's terms (gravity, damping, the imposed motions' work) are summed in the blocks of
+  // the engines' loops, whichever thread integrates them.
+  Scene shared = bed(), oneByOne = bed();
+  for (Scene* scene : {&shared, &oneByOne})
+  {
+    scene->energy.enabled = true;
+    scene->bodies.dynamic[3] = 0; // an imposed motion
+    scene->bodies.vel[3] = Vec3(0, 0, -0.01);
+    scene->bodies.blockedDofs[4] = 1; // a blocked direction of a dynamic body
+    scene->bodies.vel[4] = Vec3(0.01, 0, 0);
+  }
+  shared.run(300);
+  runOneByOne(oneByOne, 300);
+  auto& scheduler = dynamic_cast<Scheduler&>(shared.stepLoop());
+  EXPECT_EQ(scheduler.plan().describe(), "forces+integration");
+  EXPECT_EQ(scheduler.plan().regions, 1);
+  EXPECT_EQ(scheduler.plan().barriers, 1);
+  EXPECT_EQ(shared.bodies.pos, oneByOne.bodies.pos);
+  for (double EnergyTracker::*term : {&EnergyTracker::gravWork, &EnergyTracker::nonviscDamp,
+                                      &EnergyTracker::kinematicWork, &EnergyTracker::plastDissip})
+    EXPECT_EQ(shared.energy.*term, oneByOne.energy.*term);
+  EXPECT_NE(shared.energy.kinematicWork, 0.0);
+  EXPECT_NE(shared.energy.gravWork, 0.0);
 }
 
 TEST(Scheduler, SerialStagesSeeTheStepAtTheirPlace)
