@@ -81,7 +81,8 @@ QUICK = ["billiard.py", "ViscElMatchMaker.py", "simple-scene/simple-scene.py",
          "simple-scene/simple-scene-default-engines.py", "PeriodicBoundaries/periodic-simple.py",
          "clumps/clump-viscoelastic.py", "clumps/addToClump-example.py", "test/facet-sphere.py",
          "test/kinematic.py", "test/pack-predicates.py", "test/triax-basic.py",
-         "FluidCouplingVANS1D/oneWayCoupling/sedimentTransportExample.py"]
+         "FluidCouplingVANS1D/oneWayCoupling/sedimentTransportExample.py",
+         "FluidCouplingPFV/TwoPhaseFlowInjection.py"]
 
 
 def population() -> list[str]:

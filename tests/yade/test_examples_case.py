@@ -1,7 +1,8 @@
 """The shim-free status in CI: the examples case's quick mode runs a fixed subset of Yade
 2023.02a's own example scripts unchanged under `talus run` (cases/yade_examples.py QUICK, one
 script of each kind: plain scenes, default engines, periodic cells, clumps, facets, kinematic
-engines, pack predicates, a triaxial test, the VANS coupling) and every one must finish."""
+engines, pack predicates, a triaxial test, the VANS coupling, the two-phase injection through
+TwoPhaseFlowEngine's clusters) and every one must finish."""
 import json
 import os
 import subprocess
