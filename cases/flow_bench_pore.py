@@ -28,7 +28,8 @@ Set-up:   loose seeded clouds (makeCloud, rMean 0.035, rRelFuzz 0.3, side (n / 1
 Checked:  nothing is timed as a test; records flow.bench.remesh-<n>[-2t] (Yade's remesh + solve
           over Talus's with CHOLMOD; the issue's target >= 4; 1 thread on process CPU time, which
           the load of a shared machine disturbs least, 2 threads on wall time), remesh-mg-<n>[-2t]
-          (the same with the multigrid), solve-<n>[-2t] (a solve; target >= 1), flux (both give the
+          (the same with the multigrid), each with the load average and, for two threads, the CPU-time
+          ratio (ratio_cpu), solve-<n>[-2t] (a solve; target >= 1), flux (both give the
           same flux: relative difference <= 1e-2 as before; the sorted insertion's canonical facet
           order puts it at 2.4e-6 at 10 000 spheres and 2.1e-4 at 100 000, see docs/flow.md; the
           multigrid's from CHOLMOD's is kept in the record, 2e-13), symbolic-reuse (analysis share of a
@@ -149,6 +150,10 @@ def record_row(case, row):
     y["pair"] = median(y[remesh_key]) + median(y[solve_key])
     label = f"{row['spheres']} spheres, {row['threads']} thread{'s' if row['threads'] > 1 else ''}, {what}"
     peer = f"Yade 2023.02a FlowEngine -j{row['threads']}, same packing, same invocation"
+    # the machine's load when the size was measured; on two threads the CPU-time pair beside the
+    # wall-time one (a loaded machine's wall time measures the load more than the programs)
+    load = os.getloadavg()[0]
+    cpu_pair = {k: median(row[k]["remesh_cpu_s"]) + median(row[k]["solve_cpu_s"]) for k in ("talus", "mg", "yade")}
     for key, suffix, solver in (("talus", "remesh", "CHOLMOD"), ("mg", "remesh-mg", "multigrid")):
         ours = row[key]
         case.record(f"speed ratio Yade / Talus ({solver}), remesh + the solve after it ({label})",
@@ -157,7 +162,9 @@ def record_row(case, row):
                     ours=ours["pair"], theirs=y["pair"], unit="s", ours_remesh=median(ours[remesh_key]),
                     ours_solve=median(ours[solve_key]), theirs_remesh=median(y[remesh_key]),
                     theirs_solve=median(y[solve_key]), nCells=ours["nCells"], ours_samples=ours[remesh_key],
-                    theirs_samples=y[remesh_key], flux_rel_diff=abs(ours["flux"] - y["flux"]) / abs(y["flux"]))
+                    theirs_samples=y[remesh_key], flux_rel_diff=abs(ours["flux"] - y["flux"]) / abs(y["flux"]),
+                    load_average=load, ours_cpu=cpu_pair[key], theirs_cpu=cpu_pair["yade"],
+                    ratio_cpu=cpu_pair["yade"] / cpu_pair[key])
     ours, theirs = median(row["talus"][solve_key]), median(y[solve_key])
     case.record(f"speed ratio Yade / Talus (CHOLMOD), a solve ({label})", theirs / ours, peer, 1.0,
                 suffix=f"solve-{tag}", comparison=">=", peer=f"yade 2023.02a -j{row['threads']}",
@@ -165,7 +172,9 @@ def record_row(case, row):
     print(f"{label}: remesh + solve Talus {row['talus']['pair']:.3f} s (multigrid {row['mg']['pair']:.3f}), "
           f"Yade {y['pair']:.3f} s: ratio {y['pair'] / row['talus']['pair']:.2f} "
           f"(multigrid {y['pair'] / row['mg']['pair']:.2f}); solve {ours * 1e3:.1f} ms "
-          f"(multigrid {median(row['mg'][solve_key]) * 1e3:.1f}) against {theirs * 1e3:.1f} ms", flush=True)
+          f"(multigrid {median(row['mg'][solve_key]) * 1e3:.1f}) against {theirs * 1e3:.1f} ms; CPU time: Talus "
+          f"{cpu_pair['talus']:.3f} s (multigrid {cpu_pair['mg']:.3f}), Yade {cpu_pair['yade']:.3f} s; load {load:.1f}",
+          flush=True)
 
 
 def main():
