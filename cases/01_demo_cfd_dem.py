@@ -103,8 +103,8 @@ def run_coupled(folder: Path, procs: int, fluid_steps: int):
     """The coupled run: velocities of the beads at every fluid step, with a progress line; the
     beads written for ParaView when the fluid writes its fields."""
     from talus.coupling.case_builder import cfd_case
-    from talus.dem.export import PvdCollection, write_spheres
-    from talus.dem.progress import Progress
+    from talus.dem.files.export import PvdCollection, write_spheres
+    from talus.dem.analysis.progress import Progress
     fluid = cfd_case(folder, solver="volumeaveraged", box=TANK, cell_size=DX, rho=RHO, nu=NU, gravity=(0, 0, -G),
                      coupling_interval=DT, procs=procs, write_every=WRITE_EVERY)
     s = build_scene()

@@ -34,8 +34,10 @@ THREAD_PAIRS = 9  # pairs of 1- and 2-thread runs of ours behind the speed-up (3
 def run_scene(steps: int) -> float:
     """Build the scene, run it, return iterations per second over the timed steps."""
     from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop,
-                           Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic,
-                           NewtonIntegrator, O, ViscElMat, geom, pack)
+                           Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator,
+                           O, ViscElMat)
+    from talus.dem.geometry import geom
+    from talus.dem.packing import pack
     import numpy as np
     tc = 1e-3
     mat = O.materials.append(ViscElMat(density=2300, frictionAngle=math.radians(35), tc=tc, en=0.003, et=0.003))

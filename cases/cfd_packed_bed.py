@@ -46,10 +46,11 @@ from talus import results
 from talus.coupling.case_builder import PERIODIC, SLIP, FoamCase, Inlet, Outlet, cfd_case
 from talus.coupling.cases import foam_environment
 from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
-                       Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                       Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_ScGeom_FrictPhys_CundallStrack,
-                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, PWaveTimeStep, Scene, ViscElMat, aabbWalls,
-                       pack, sphere, unbalancedForce, wall)
+                       Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Ip2_ViscElMat_ViscElMat_ViscElPhys,
+                       Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator,
+                       PWaveTimeStep, Scene, ViscElMat, aabbWalls, sphere, unbalancedForce, wall)
+from talus.dem.packing import pack
 
 RHO, NU, RHO_P, D, G = 1000.0, 1e-4, 2500.0, 1e-3, 9.81
 MU = RHO * NU

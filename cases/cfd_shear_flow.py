@@ -45,9 +45,11 @@ from talus import results
 from talus.coupling.case_builder import PERIODIC, Wall, cfd_case
 from talus.coupling.cases import foam_environment
 from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
-                       Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, pack, wall)
-from talus.dem.export import PvdCollection, write_spheres
+                       Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
+                       PWaveTimeStep, Scene, wall)
+from talus.dem.packing import pack
+from talus.dem.files.export import PvdCollection, write_spheres
 
 RHO, NU, RHO_P, H, U_WALL = 1000.0, 1e-4, 1000.0, 0.1, 0.05
 MU = RHO * NU

@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from talus import results
-from talus.dem import twin
+from talus import twin
 
 SCENARIO = Path(__file__).with_name("yade") / "bouncing_sphere.py"
 CONTACT = 1.0          # height at which the spheres touch (sum of the radii)

@@ -53,8 +53,8 @@ from talus import _dem, results
 from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, Joint, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
                        PotentialBlock, PotentialBlock2AABB, Scene, generateBlocks, potentialBlock)
-from talus.dem.blockgen import dipNormal
-from talus.dem.sliding import (coulombAcceleration, fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity,
+from talus.dem.geometry.blockgen import dipNormal
+from talus.dem.analysis.sliding import (coulombAcceleration, fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity,
                                restingForce, slide, tilted)
 
 KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)

@@ -46,9 +46,10 @@ import numpy as np
 from talus import results
 from talus.dem import (ForceResetter, FrictMat, Ig2_PP_PP_ScGeom, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_KnKsPhys, Law2_SCG_KnKsPhys_KnKsLaw, NewtonIntegrator,
-                       PotentialParticle, PotentialParticle2AABB, Scene, potentialParticle, twin, wall)
+                       PotentialParticle, PotentialParticle2AABB, Scene, potentialParticle, wall)
+from talus import twin
 from talus import _dem
-from talus.dem.sliding import fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity, restingForce, slide, tilted
+from talus.dem.analysis.sliding import fittedAcceleration, inclineSweep, plotInclineSweep, rampGravity, restingForce, slide, tilted
 
 KN, KS, RHO, G, PHI = 1e8, 1e7, 1000.0, 9.81, math.radians(30)
 HALF, R_ROUND, K_SPH = 0.5, 0.05, 0.2

@@ -6,7 +6,7 @@ Set-up:   N head-on collisions at once (pairs of spheres, radius 1 cm, density 2
           1. visco-elastic contacts (ViscElMat tc = 1 ms, en = et = 0.5): reference en itself;
           2. Hertz-Mindlin (FrictMat young 1e8, poisson 0.3, Ip2_FrictMat_FrictMat_MindlinPhys
              en = 0.5): reference the same contact model integrated to 1e-12
-             (talus.dem.analytic.hertz_restitution);
+             (talus.dem.analysis.analytic.hertz_restitution);
           3. elastic Hertz (no damping): the kinetic energy after the collision, reference 1.
           dt = tc / n for n = 5 ... 2000 (quick ... 500), tc the contact duration.
 Checked:  dem.restitution-dt-sweep.viscoelastic: observed order of the restitution error in dt
@@ -28,7 +28,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        Ip2_FrictMat_FrictMat_MindlinPhys, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_MindlinPhys_Mindlin, Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, Scene,
                        ViscElMat, sphere)
-from talus.dem.analytic import hertz_contact_time, hertz_restitution, thornton_damping_ratio
+from talus.dem.analysis.analytic import hertz_contact_time, hertz_restitution, thornton_damping_ratio
 
 R, RHO, V0 = 0.01, 2600.0, 1.0
 YOUNG, POISSON, EN = 1e8, 0.3, 0.5
@@ -109,7 +109,7 @@ def main():
                 dt_over_tc=[1 / k for k in n], errors=err, wall_s_per_collision=cost, steps_per_s=rate, pairs=pairs)
     n, err, cost, rate = map(list, zip(*runs["hertz"]))
     case.record(f"relative restitution error of Hertz-Mindlin (en = {EN}) at dt = tc/{n[-1]}", err[-1],
-                "the damped Hertz contact integrated to 1e-12 (talus.dem.analytic.hertz_restitution)", 1e-3,
+                "the damped Hertz contact integrated to 1e-12 (talus.dem.analysis.analytic.hertz_restitution)", 1e-3,
                 suffix="hertz", dt_over_tc=[1 / k for k in n], errors=err, wall_s_per_collision=cost,
                 steps_per_s=rate, pairs=pairs)
     n, err, cost, rate = map(list, zip(*runs["elastic"]))

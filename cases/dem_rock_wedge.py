@@ -28,7 +28,7 @@ Set-up:   as WedgeYADE.py (x north, y east, z down, gravity (0, 0, 9.81) m/s^2):
             critical block moves more than 5 cm (the strength reduction tan phi = tan 50 / F).
           Reference: for every block left, its contact faces (all but the top z = 0 and the cut
           face; those on the plates frictionless) and its weight give Goodman & Shi's sliding
-          mode with Hoek & Bray's limit equilibrium (talus.dem.analytic.block_sliding_mode,
+          mode with Hoek & Bray's limit equilibrium (talus.dem.analysis.analytic.block_sliding_mode,
           friction only): lift-off, sliding on one face, or on two (a wedge, along their
           intersection line), and the friction phi_c at which it is at the limit; "freed" blocks
           are those with a mode. The slope's factor of safety at the script's 50 deg is
@@ -59,9 +59,9 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortC
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
                        PotentialBlock, PotentialBlock2AABB, Scene, blockShape, generateBlocks, potentialBlock,
                        readJoints, write_blocks)
-from talus.dem.analytic import block_sliding_mode
-from talus.dem.blockgen import dipNormal
-from talus.dem.sliding import rampGravity
+from talus.dem.analysis.analytic import block_sliding_mode
+from talus.dem.geometry.blockgen import dipNormal
+from talus.dem.analysis.sliding import rampGravity
 
 JOINTS = "/usr/share/doc/yade/examples/PotentialBlocks/joints/jointC.csv"
 HALF, DEPTH, R = 20.0, 40.0, 0.2            # boundarySizeX/Y 20 m each way, Z 0 ... 40 m; rForPP

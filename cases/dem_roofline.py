@@ -99,7 +99,8 @@ def run_bed(packing: str, steps: int) -> None:
     sys.argv = [str(SCENE), packing, str(SETTLE_STEPS)]
     runpy.run_path(str(SCENE), init_globals=dict(globals()), run_name="__main__")   # the names `talus run` gives a script
     import time
-    from talus.dem import O, timing
+    from talus.dem import O
+    from talus.dem.analysis import timing
     O.timingEnabled = True
     timing.reset()
     start = time.perf_counter()

@@ -23,7 +23,8 @@ import numpy as np
 from talus import results
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
-                       PWaveTimeStep, Scene, aabbWalls, pack)
+                       PWaveTimeStep, Scene, aabbWalls)
+from talus.dem.packing import pack
 
 FACTORS = (0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 1.0, 1.5, 2.0, 3.0, 5.0, 8.0)
 DURATION = 0.25   # s of simulated time: the cloud falls and piles up on the floor

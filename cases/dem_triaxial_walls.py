@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from talus import results
-from talus.dem import twin
+from talus import twin
 
 SCENARIO = Path(__file__).with_name("yade") / "triaxial_walls.py"
 SIGMA = -1e4

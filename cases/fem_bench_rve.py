@@ -22,7 +22,7 @@ import tempfile
 from pathlib import Path
 
 from talus import results
-from talus.dem import twin
+from talus import twin
 
 SCENARIO = Path(__file__).resolve().with_name("yade") / "fem_rve_call.py"
 

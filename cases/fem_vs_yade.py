@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 
 from talus import results
-from talus.dem import twin
+from talus import twin
 
 SCENARIO = Path(__file__).resolve().with_name("yade") / "fem_rve_tangent.py"
 

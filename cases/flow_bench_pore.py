@@ -48,8 +48,8 @@ from pathlib import Path
 import numpy as np
 
 from talus import results
-from talus.dem import twin
-from talus.dem.pack import SpherePack
+from talus import twin
+from talus.dem.packing.pack import SpherePack
 
 YADE_SCRIPT = Path(__file__).resolve().parent / "yade" / "pore_flow.py"
 SOLVES = 3

@@ -4,7 +4,7 @@ against Kozeny-Carman and against Yade's FlowEngine on the identical packings.
 Run:      build/bin/talus run cases/flow_permeability.py [--quick] [--results DIR]
 Set-up:   periodic clouds (Yade's makeCloud, fixed seeds) of two size distributions -- narrow
           (rRelFuzz 0.1) and wide (rRelFuzz 0.5, uniform radii from 0.5 to 1.5 rMean) --
-          compressed homothetically (talus.dem.pack.compressedCloud, frictionless) to cell
+          compressed homothetically (talus.dem.packing.pack.compressedCloud, frictionless) to cell
           porosities from 0.34 to 0.45 (quick: three), then taken out of the periodic cell
           (centres wrapped into it) and put between six walls on the cell's faces
           (boundaryUseMaxMin off; the walls cut the spheres crossing them, so that the sample has
@@ -35,8 +35,8 @@ from pathlib import Path
 import numpy as np
 
 from talus import results
-from talus.dem import twin
-from talus.dem.pack import SpherePack, compressedCloud
+from talus import twin
+from talus.dem.packing.pack import SpherePack, compressedCloud
 from talus.flow import FlowEngine, PeriodicFlowEngine
 
 DISTRIBUTIONS = {"narrow": 0.1, "wide": 0.5}

@@ -37,10 +37,10 @@ import numpy as np
 from talus import results
 from talus.dem import (FrictMat, GlobalStiffnessTimeStepper, InsertionSortCollider, InteractionLoop, NewtonIntegrator,
                        O, TriaxialStressController, setContactFriction, unbalancedForce, wall)
-from talus.dem.engines import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom,
+from talus.dem.step.engines import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom,
                                Ig2_Wall_Sphere_ScGeom, Ip2_FrictMat_FrictMat_FrictPhys,
                                Law2_ScGeom_FrictPhys_CundallStrack)
-from talus.dem.pack import SpherePack
+from talus.dem.packing.pack import SpherePack
 from talus.flow import FlowEngine
 
 SIGMA0, DSIGMA, YOUNG = -1e4, -1e3, 1e6

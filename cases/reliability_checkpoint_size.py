@@ -16,9 +16,11 @@ import os
 import tempfile
 
 from talus import results
-from talus.dem import (Bo1_Sphere_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom,
-                       InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_MindlinPhys,
-                       Law2_ScGeom_MindlinPhys_Mindlin, NewtonIntegrator, PWaveTimeStep, Scene, pack, wall)
+from talus.dem import (Bo1_Sphere_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
+                       Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, NewtonIntegrator,
+                       PWaveTimeStep, Scene, wall)
+from talus.dem.packing import pack
 
 
 def settled_bed(spheres: int, steps: int) -> Scene:

@@ -32,8 +32,10 @@ import numpy as np
 
 from talus import results
 from talus.dem import (O, Bo1_Box_Aabb, Bo1_Sphere_Aabb, ForceResetter, FrictMat, Ig2_Box_Sphere_ScGeom,
-                       Ig2_Sphere_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, aabbWalls, pack)
+                       Ig2_Sphere_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
+                       aabbWalls)
+from talus.dem.packing import pack
 from talus.flow import FlowEngine, ThermalEngine
 
 T0, K, CP, RHO = 400.0, 2.0, 710.0, 2600.0

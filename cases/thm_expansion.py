@@ -38,7 +38,7 @@ from talus import results
 from talus.dem import (O, Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, Ig2_Sphere_Sphere_ScGeom,
                        Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, aabbWalls, sphere)
-from talus.dem.engines import PyRunner
+from talus.dem.step.engines import PyRunner
 from talus.flow import FlowEngine, ThermalEngine
 
 PACKING = Path("/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres")

@@ -3,7 +3,7 @@ packing and parameters (the set-ups of Yade's examples/ThermalEngine/noFlowScena
 flowScenario.py), and the speed of a coupled step.
 
 Run:      build/bin/talus run cases/thm_vs_yade.py [--quick] [--results DIR]
-Set-up:   cases/yade/thermal_scenario.py, the same text run by both programs (talus.dem.twin, one
+Set-up:   cases/yade/thermal_scenario.py, the same text run by both programs (talus.twin, one
           thread each): the examples' 210 spheres of 4 mm in a 5 cm box, mechanically static,
           each centre moved by up to 2 um at random (seeded, the same file for both). The
           examples' packing is a regular lattice: its spheres are cospherical by fours, so its
@@ -31,7 +31,7 @@ import numpy as np
 import tempfile
 
 from talus import results
-from talus.dem import twin
+from talus import twin
 
 SCRIPT = Path(__file__).resolve().parent / "yade" / "thermal_scenario.py"
 PACKING = Path("/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres")

@@ -25,8 +25,8 @@ from pathlib import Path
 import numpy as np
 
 from talus import results
-from talus.dem import twin
-from talus.dem.pack import SpherePack
+from talus import twin
+from talus.dem.packing.pack import SpherePack
 
 SCENARIO = Path(__file__).with_name("yade") / "twophase_drainage.py"
 GAMMA = 0.0728

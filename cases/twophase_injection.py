@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from talus import results
-from talus.dem import twin
+from talus import twin
 from twophase_drainage import cloud  # the drainage case's packing
 
 SCENARIO = Path(__file__).with_name("yade") / "twophase_injection.py"

@@ -110,9 +110,11 @@ def _time_step(p):
 
 def _peri_triax(p):
     """A periodic cloud of 20 spheres compressed by a PeriTriaxController for 30 steps."""
-    from talus.dem import (ForceResetter, FrictMat, InsertionSortCollider, InteractionLoop, Ig2_Sphere_Sphere_ScGeom,
-                           Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
-                           PeriTriaxController, PWaveTimeStep, Scene, pack)
+    from talus.dem import (ForceResetter, FrictMat, InsertionSortCollider, InteractionLoop,
+                           Ig2_Sphere_Sphere_ScGeom, Ip2_FrictMat_FrictMat_FrictPhys,
+                           Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PeriTriaxController,
+                           PWaveTimeStep, Scene)
+    from talus.dem.packing import pack
     S = Scene()
     S.periodic = True
     S.cell.setBox(1, 1, 1)

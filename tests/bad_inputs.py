@@ -83,7 +83,8 @@ def _lattice():
 
 def _dem_cases():
     import talus.dem as d
-    from talus.dem import CheckpointError, pack
+    from talus.dem import CheckpointError
+    from talus.dem.packing import pack
     C = lambda name, run, error, words: Case("dem", name, run, error, words)  # noqa: E731
     return [
         # materials

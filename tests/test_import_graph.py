@@ -6,8 +6,8 @@ The graph is read from the sources with ``ast``, without importing anything, so 
 build without some components too. Every import statement counts, at module level or inside a
 function (a deferred import is still a dependency, only a later one), except under
 ``if TYPE_CHECKING:``, which never runs. ``from talus.dem import O`` depends on the package
-``talus.dem`` (its ``__init__``), ``from talus.dem import clumps`` on the module
-``talus.dem.clumps``. The parent packages Python imports before a module are not counted: a
+``talus.dem`` (its ``__init__``), ``from talus.dem.core import clumps`` on the module
+``talus.dem.core.clumps``. The parent packages Python imports before a module are not counted: a
 package's ``__init__`` may import its own modules, its modules may not import it back.
 """
 import ast
@@ -142,7 +142,7 @@ def describe(graph, found) -> str:
 
 def test_no_import_cycle():
     modules = source_modules(ROOTS)
-    assert "talus" in modules and "talus.dem.bodies" in modules and "yade" in modules
+    assert "talus" in modules and "talus.dem.core.bodies" in modules and "yade" in modules
     graph = import_graph(modules, built_modules(REPO))
     found = cycles(graph)
     assert not found, "import cycles among the Python modules:\n" + describe(graph, found)

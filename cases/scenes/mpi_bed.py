@@ -14,7 +14,8 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
 from bench_scene import read_packing  # noqa: E402
-from talus.dem import distributed, timing  # noqa: E402
+from talus.dem import distributed  # noqa: E402
+from talus.dem.analysis import timing
 
 started = time.perf_counter()
 packing, steps, output = sys.argv[1], int(sys.argv[2]), sys.argv[3]

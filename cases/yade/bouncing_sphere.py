@@ -2,7 +2,7 @@
 one, FrictMat defaults, damping 0.1), written so that the same file runs in Yade (`yade -n -x`)
 and in Talus (`talus run`); `steps` from $TALUS_SCENARIO (JSON, default 30001). Prints the height
 of the falling sphere after 101, 201, 301, ... integrations (a PyRunner after the integrator, first
-run at iteration 100) as one `RESULT {json}` line (see talus.dem.twin)."""
+run at iteration 100) as one `RESULT {json}` line (see talus.twin)."""
 import json
 import os
 

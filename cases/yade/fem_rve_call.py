@@ -1,4 +1,4 @@
-"""Scenario: the Gauss-point call on one RVE packing, timed, in Yade and in Talus (talus.dem.twin).
+"""Scenario: the Gauss-point call on one RVE packing, timed, in Yade and in Talus (talus.twin).
 Parameters ($TALUS_SCENARIO): `packing` (JSON of talus.fem.exportRVE), `points`, `calls`, `nSteps`,
 `rveSceneDir` (talus.fem.rve_scene.FOLDER: the scene builder shared with cases/yade/fem_rve_tangent.py).
 

@@ -1,4 +1,4 @@
-"""Scenario (talus.dem.twin): an exported RVE packing (parameter `packing`: the JSON of
+"""Scenario (talus.twin): an exported RVE packing (parameter `packing`: the JSON of
 talus.fem.exportRVE; `rveSceneDir`: talus.fem.rve_scene.FOLDER) built as a periodic scene in Yade
 and in Talus, each sphere given a deterministic velocity, one step
 (fresh contacts get a first shear increment, so Yade's shear term is exercised; the method of

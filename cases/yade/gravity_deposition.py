@@ -3,7 +3,7 @@
 damping 0.4, dt 0.5 P-wave) for the simulated time `time` (the same steps in both programs), or,
 without it, until the unbalanced force is below `unbalanced` (checked every 200 steps, after
 `minIter`). Runs unchanged in Yade (`yade -n -x`) and in Talus; parameters from
-$TALUS_SCENARIO (JSON), result printed as one `RESULT {json}` line (see talus.dem.twin).
+$TALUS_SCENARIO (JSON), result printed as one `RESULT {json}` line (see talus.twin).
 
 Measured, the same way in both programs: the porosity of the slab z in [zLow, zHigh] (sphere volume
 inside it, exact caps, over the slab volume) and the sphere-sphere coordination 2 C / N.

@@ -1,7 +1,7 @@
 """Scenario: the seed's periodic triaxial tutorial (06-periodic-triaxial-test, uniform cloud, or with
 `clumps` > 0 the tutorial's variant: that many clumps of its three-sphere template by makeClumpCloud).
 Runs unchanged in Yade (`yade -n -x`) and in Talus; parameters from $TALUS_SCENARIO (JSON), result
-printed as one `RESULT {json}` line (see talus.dem.twin).
+printed as one `RESULT {json}` line (see talus.twin).
 
 1. A periodic cloud (makeCloud, seeded) compacted isotropically to sigmaIso by PeriTriaxController
    (dynCell, maxUnbalanced 0.1, relStressTol 1e-3); the doneHook ends the stage.

@@ -1,5 +1,5 @@
 # Yade side of the pore-flow cases (cases/flow_permeability.py, cases/flow_bench_pore.py): run by
-# talus.dem.twin.run(script, params, "yade"), i.e. `yade -n -j1 -x pore_flow.py` with the
+# talus.twin.run(script, params, "yade"), i.e. `yade -n -j1 -x pore_flow.py` with the
 # parameters as JSON in $TALUS_SCENARIO:
 #   packings   list of sphere files (x y z r per line, talus SpherePack.save format)
 #   boxes      optional, one [lo, hi] per packing: the corners of the six walls (default: the

@@ -1,5 +1,5 @@
 """Potential Particles on identical input in Yade (`yade -n -x`) and in Talus (twin runs, see
-talus.dem.twin): parameters from the JSON in TALUS_SCENARIO, one line `RESULT {json}` out.
+talus.twin): parameters from the JSON in TALUS_SCENARIO, one line `RESULT {json}` out.
 
 mode "pressing": two fixed cubes face to face at centre distance `D`, one step: contact normal,
     overlap, area and normal force (`twoDimension`, `unitWidth2D`: Ig2_PP_PP_ScGeom's 2D mode).

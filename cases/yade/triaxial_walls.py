@@ -1,6 +1,6 @@
 """Scenario: drained triaxial compression in a box of six walls (Yade's triax-tutorial, session 1).
 Runs unchanged in Yade (`yade -n -x`) and in Talus; parameters from $TALUS_SCENARIO (JSON), result
-printed as one `RESULT {json}` line (see talus.dem.twin).
+printed as one `RESULT {json}` line (see talus.twin).
 
 1. A loose seeded cloud (makeCloud, porosity 0.95) between six frictionless walls is compacted
    isotropically to `sigma` by growing the spheres (TriaxialStressController, internalCompaction)

@@ -1,5 +1,5 @@
 # The drainage scenario of cases/twophase_drainage.py, one script for both programs: run by
-# talus.dem.twin.run(script, params, "yade" or "talus") (Yade: `yade -n -j1 -x twophase_drainage.py`;
+# talus.twin.run(script, params, "yade" or "talus") (Yade: `yade -n -j1 -x twophase_drainage.py`;
 # Talus: its Yade names) with the parameters as JSON in $TALUS_SCENARIO:
 #   packing              sphere file (x y z r per line)
 #   pcs                  capillary pressures of the drainage steps, in order

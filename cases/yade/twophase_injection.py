@@ -1,6 +1,6 @@
 # The injection scenario of cases/twophase_injection.py and of
 # tests/flow/test_twophase_injection.py, one script for both programs: run by
-# talus.dem.twin.run(script, params, "yade" or "talus") with the parameters as JSON in
+# talus.twin.run(script, params, "yade" or "talus") with the parameters as JSON in
 # $TALUS_SCENARIO:
 #   packing       sphere file (x y z r per line)
 #   steps, dt     number and length of the time steps

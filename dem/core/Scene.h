@@ -39,7 +39,7 @@ public:
   /// Energy tracking (O.trackEnergy / O.energy); off by default.
   EnergyTracker energy;
 
-  /// Time every engine's stages per step (Yade's O.timingEnabled; talus.dem.timing.stats()
+  /// Time every engine's stages per step (Yade's O.timingEnabled; talus.dem.analysis.timing.stats()
   /// prints them); off by default. Timing does not change how the step runs.
   bool timingEnabled = false;
 

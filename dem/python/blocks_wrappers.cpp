@@ -1,6 +1,6 @@
 // Python bindings of Potential Blocks (shape, contact geometry probe). Compiled into
 // talus._dem; `talus_wrap_blocks(m)` is called from dem_wrappers.cpp. The Python API (Yade's
-// names) is talus.dem.blocks.
+// names) is talus.dem.geometry.blocks.
 #include "dem/contact/PotentialBlockContact.h"
 #include "dem/core/Scene.h"
 #include "dem/python/convex_contact_probe.h"

@@ -1,6 +1,6 @@
 // Python bindings of dem/'s body types and kinematics: kinematic engines, clumps, boxes.
 // Compiled into talus._dem; `talus_wrap_bodies(m)` is called from dem_wrappers.cpp. The Python
-// API (Yade's names, defaults, docstrings) is talus.dem.kinematic and talus.dem.bodies.
+// API (Yade's names, defaults, docstrings) is talus.dem.step.kinematic and talus.dem.core.bodies.
 #include "dem/impose/KinematicEngines.h"
 #include "dem/core/Scene.h"
 #include "dem/control/ServoPIDController.h"
@@ -103,7 +103,7 @@ void talus_wrap_bodies(py::module_& m)
       ori.emplace_back(q.w(), q.x(), q.y(), q.z());
     return py::make_tuple(clump.members, clump.relPos, ori);
   });
-  // What a script reads as `b.shape.<attribute>` (talus.dem.shapes): the per-kind geometry.
+  // What a script reads as `b.shape.<attribute>` (talus.dem.geometry.shapes): the per-kind geometry.
   m.def("shape_data", [](const Scene& s, BodyId id) {
     s.checkBody(id);
     const auto i = static_cast<std::size_t>(id);

@@ -1,6 +1,6 @@
 // Python bindings of the force engines and the InteractionLoop's callbacks. Compiled into
 // talus._dem; `talus_wrap_force_engines(m)` is called from dem_wrappers.cpp. The Python API
-// (Yade's names, defaults, docstrings) is talus.dem.force_engines.
+// (Yade's names, defaults, docstrings) is talus.dem.step.force_engines.
 #include "dem/impose/ForceEngines.h"
 #include "dem/step/InteractionLoop.h"
 #include "dem/laws/IntrCallback.h"

@@ -1,6 +1,6 @@
 // Python bindings of dem/'s I/O: checkpoints (HDF5) and the array copies that the ParaView
 // export reads. Compiled into talus._dem; `talus_wrap_io(m)` is called from dem_wrappers.cpp.
-// The Python API (defaults, docstrings, engine lists) is talus.dem.io and talus.dem.export.
+// The Python API (defaults, docstrings, engine lists) is talus.dem.files.io and talus.dem.files.export.
 #include "dem/checkpoint/Checkpoint.h"
 #include "dem/contact/ContactGeometry.h"
 #include "dem/core/Scene.h"

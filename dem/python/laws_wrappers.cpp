@@ -1,6 +1,6 @@
 // Python bindings of the contact models' parameters and state and of the energy tracker.
 // Compiled into talus._dem; `talus_wrap_laws(m)` is called from dem_wrappers.cpp. The Python
-// API (Yade's functor classes, O.energy) is talus.dem.engines and talus.dem.energy.
+// API (Yade's functor classes, O.energy) is talus.dem.step.engines and talus.dem.analysis.energy.
 #include "dem/laws/ContactLaw.h"
 #include "dem/measure/Energy.h"
 #include "dem/core/Scene.h"

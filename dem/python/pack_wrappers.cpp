@@ -1,5 +1,5 @@
 // Python bindings of dem/SpherePack (Yade's SpherePack.makeCloud). Compiled into talus._dem;
-// `talus_wrap_pack(m)` is called from dem_wrappers.cpp. The Python API is talus.dem.pack.
+// `talus_wrap_pack(m)` is called from dem_wrappers.cpp. The Python API is talus.dem.packing.pack.
 #include "dem/shapes/SpherePack.h"
 
 #include <pybind11/eigen.h>

@@ -1,6 +1,6 @@
 // Python bindings of Potential Particles (shape, contact geometry probe, surface for output).
 // Compiled into talus._dem; `talus_wrap_particles(m)` is called from dem_wrappers.cpp. The Python
-// API (Yade's names) is talus.dem.particles.
+// API (Yade's names) is talus.dem.geometry.particles.
 #include "dem/contact/PotentialParticleContact.h"
 #include "dem/core/Scene.h"
 #include "dem/python/convex_contact_probe.h"

@@ -1,6 +1,6 @@
 // Python bindings of Yade's triaxial test engines built on the TriaxialStressController.
 // Compiled into talus._dem; `talus_wrap_triaxial(m)` is called from dem_wrappers.cpp after the
-// controllers. The Python API (Yade's names, defaults, files) is talus.dem.triaxial.
+// controllers. The Python API (Yade's names, defaults, files) is talus.dem.control.triaxial.
 #include "dem/core/Scene.h"
 #include "dem/control/ThreeDTriaxialEngine.h"
 #include "dem/control/TriaxialCompressionEngine.h"

@@ -64,7 +64,7 @@ def _run(args: argparse.Namespace) -> int:
         talus._dem.setThreadCount(args.threads)             # this one's runtime already started
     _warn_if_oversubscribed(talus._dem.threadCount())
     if args.trust_checkpoints:
-        from talus.dem import trust
+        from talus.dem.files import trust
         os.environ[trust.ENVIRONMENT] = "1"                  # child processes (batch jobs) too
     sys.argv = [str(script), *args.script_args]
     sys.path.insert(0, str(script.resolve().parent))

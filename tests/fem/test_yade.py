@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
+from talus import twin
 
 SCENARIO = Path(__file__).resolve().parents[2] / "cases" / "yade" / "fem_rve_tangent.py"
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
+from talus import twin
 
 HERE = Path(__file__).parent
 LOAD = 1000.0   # Pa, the load increment

@@ -4,7 +4,7 @@ networks: same pressures to its tolerance, in steady and transient solves."""
 import numpy as np
 import pytest
 
-from talus.dem.pack import SpherePack
+from talus.dem.packing.pack import SpherePack
 from talus.flow import FlowEngine
 
 

@@ -6,7 +6,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
+from talus import twin
 
 ROOT = Path(__file__).resolve().parents[2]
 PACKING = Path("/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres")

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
+from talus import twin
 from talus.flow import TwoPhaseFlowEngine
 
 HERE = Path(__file__).resolve().parent

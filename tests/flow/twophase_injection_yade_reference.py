@@ -1,12 +1,12 @@
 # Yade side of tests/flow/test_twophase_injection.py: run with
 #   PYTHONPATH=build/python python3 tests/flow/twophase_injection_yade_reference.py
 # Runs the injection scenario cases/yade/twophase_injection.py in Yade 2023.02a (yade -n -j1 -x,
-# through talus.dem.twin) on the 400-sphere cloud of data/pore_packing.txt with the parameters
+# through talus.twin) on the 400-sphere cloud of data/pore_packing.txt with the parameters
 # below and writes its result, with the parameters, to data/twophase_injection_yade_reference.json.
 import json
 from pathlib import Path
 
-from talus.dem import twin
+from talus import twin
 
 HERE = Path(__file__).resolve().parent
 SCENARIO = HERE.parent.parent / "cases" / "yade" / "twophase_injection.py"

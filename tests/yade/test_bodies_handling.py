@@ -4,7 +4,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
+from talus import twin
 
 HERE = Path(__file__).parent
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from talus.dem import Body, Facet, Scene, Sphere, sphere
-from talus.dem import twin
+from talus import twin
 
 HERE = Path(__file__).parent
 

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 from talus.dem import (BoundDispatcher, Bo1_Sphere_Aabb, ForceResetter, IGeomDispatcher, IPhysDispatcher,
-                       Ig2_Sphere_Sphere_ScGeom, Ip2_FrictMat_FrictMat_FrictPhys, Scene, twin)
+                       Ig2_Sphere_Sphere_ScGeom, Ip2_FrictMat_FrictMat_FrictPhys, Scene)
+from talus import twin
 
 HERE = Path(__file__).parent
 

@@ -4,9 +4,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import (CohFrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, Ig2_Sphere_Sphere_ScGeom6D,
-                       Ip2_CohFrictMat_CohFrictMat_CohFrictPhys, Law2_ScGeom6D_CohFrictPhys_CohesionMoment,
-                       NewtonIntegrator, Scene, sphere, twin)
+from talus.dem import (CohFrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ig2_Sphere_Sphere_ScGeom6D, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
+                       Law2_ScGeom6D_CohFrictPhys_CohesionMoment, NewtonIntegrator, Scene, sphere)
+from talus import twin
 
 HERE = Path(__file__).parent
 

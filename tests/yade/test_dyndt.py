@@ -6,7 +6,7 @@ from pathlib import Path
 import pytest
 
 from talus.dem import ForceResetter, GlobalStiffnessTimeStepper, NewtonIntegrator, Scene
-from talus.dem import twin
+from talus import twin
 
 HERE = Path(__file__).parent
 

@@ -5,8 +5,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import Scene, export, sphere, twin
-from talus.dem import text_export
+from talus.dem import Scene, sphere
+from talus.dem.files import export
+from talus import twin
+from talus.dem.files import text_export
 
 HERE = Path(__file__).parent
 

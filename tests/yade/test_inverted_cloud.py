@@ -4,8 +4,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
-from talus.dem.pack import SpherePack
+from talus import twin
+from talus.dem.packing.pack import SpherePack
 
 HERE = Path(__file__).parent
 

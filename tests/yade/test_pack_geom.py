@@ -6,7 +6,9 @@ import sqlite3
 import numpy as np
 import pytest
 
-from talus.dem import densepack, gts, pack, twin
+from talus.dem.packing import densepack, pack
+from talus.dem.geometry import gts
+from talus import twin
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent

@@ -3,7 +3,7 @@ from pathlib import Path
 
 import pytest
 
-from talus.dem import twin
+from talus import twin
 
 HERE = Path(__file__).parent
 

@@ -6,7 +6,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import Scene, io, sphere, twin
+from talus.dem import Scene, sphere
+from talus.dem.files import io
+from talus import twin
 
 HERE = Path(__file__).parent
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from talus.dem import ForceResetter, NewtonIntegrator, PyRunner, Scene, sphere
-from talus.dem import twin
+from talus import twin
 
 HERE = Path(__file__).parent
 

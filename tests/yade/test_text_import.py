@@ -5,8 +5,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
-from talus.dem.text_import import TextImportError, textExt
+from talus import twin
+from talus.dem.files.text_import import TextImportError, textExt
 
 HERE = Path(__file__).parent
 

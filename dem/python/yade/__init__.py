@@ -68,7 +68,7 @@ def yade_run_defaults() -> None:
       from now on.
     - An empty O gets Yade's default engines (O.reset() empties them, as in Yade).
     - The other components' own differences (their ``yade_run_defaults``)."""
-    from talus.dem import scene
+    from talus.dem.core import scene
     scene.OVERLAP_STOPS = False
     O.overlapStops = False
     _components.run_defaults()

@@ -4,7 +4,7 @@ the first one says so once (ParaView reads Talus's VTK output)."""
 
 import sys
 
-from talus.dem.engines import PyRunner
+from talus.dem.step.engines import PyRunner
 
 _told = False
 

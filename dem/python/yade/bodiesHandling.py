@@ -1,7 +1,7 @@
 """``yade.bodiesHandling``: extents of spheres and facets, moving, scaling and copying spheres
-(talus.dem.bodies_handling)."""
+(talus.dem.packing.bodies_handling)."""
 
-from talus.dem.bodies_handling import *  # noqa: F401,F403
+from talus.dem.packing.bodies_handling import *  # noqa: F401,F403
 
 from yade._scope import module_getattr  # noqa: E402
 

@@ -20,7 +20,7 @@ confDir = os.path.join(os.path.expanduser("~"), ".config", "talus")
 
 def _features() -> list[str]:
     components = talus.components()
-    found = {"VTK": True,  # talus.dem.export writes VTK files itself
+    found = {"VTK": True,  # talus.dem.files.export writes VTK files itself
              "OPENMP": _build_config.FEATURES.get("openmp", (False,))[0],
              "CGAL": components.get("flow", False),
              "PFVFLOW": components.get("flow", False),

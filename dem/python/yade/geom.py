@@ -1,6 +1,6 @@
-"""``yade.geom``: facet boxes and cylinders (talus.dem.geom)."""
+"""``yade.geom``: facet boxes and cylinders (talus.dem.geometry.geom)."""
 
-from talus.dem.geom import *  # noqa: F401,F403
+from talus.dem.geometry.geom import *  # noqa: F401,F403
 
 from yade._scope import module_getattr  # noqa: E402
 

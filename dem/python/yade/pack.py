@@ -1,9 +1,9 @@
-"""``yade.pack``: packings and predicates (talus.dem.pack, talus.dem.densepack)."""
+"""``yade.pack``: packings and predicates (talus.dem.packing.pack, talus.dem.packing.densepack)."""
 
-from talus.dem import densepack
-from talus.dem import pack as _pack
-from talus.dem.densepack import *  # noqa: F401,F403
-from talus.dem.pack import *  # noqa: F401,F403
+from talus.dem.packing import densepack
+from talus.dem.packing import pack as _pack
+from talus.dem.packing.densepack import *  # noqa: F401,F403
+from talus.dem.packing.pack import *  # noqa: F401,F403
 
 __all__ = [*_pack.__all__, *densepack.__all__]
 

@@ -1,6 +1,6 @@
-"""``yade.timing``: per-engine timing (talus.dem.timing)."""
+"""``yade.timing``: per-engine timing (talus.dem.analysis.timing)."""
 
-from talus.dem.timing import *  # noqa: F401,F403
+from talus.dem.analysis.timing import *  # noqa: F401,F403
 
 from yade._scope import module_getattr  # noqa: E402
 

@@ -6,11 +6,11 @@ from talus.dem import (PWaveTimeStep, RayleighWaveTimeStep, aabbWalls, avgNumInt
                        facet, fabricTensor, getStress, getStressAndTangent, growParticles, porosity,
                        setContactFriction, sphere, unbalancedForce, wall)
 from talus.dem import O
-from talus.dem.geom import facetBox, facetCylinder
-from talus.dem.scene import SpherePWaveTimeStep
-from talus.dem.clumps import clumpTemplate
-from talus.dem.linalg import Quaternion
-from talus.dem.measure import (aabbDim, aabbExtrema, angularMomentum, getSpheresMass, getSpheresVolume,
+from talus.dem.geometry.geom import facetBox, facetCylinder
+from talus.dem.core.scene import SpherePWaveTimeStep
+from talus.dem.core.clumps import clumpTemplate
+from talus.dem.core.linalg import Quaternion
+from talus.dem.analysis.measure import (aabbDim, aabbExtrema, angularMomentum, getSpheresMass, getSpheresVolume,
                                kineticEnergy, momentum, sumForces, totalForceInVolume)
 from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,
                          waitIfBatch)

@@ -2,7 +2,8 @@
 from pathlib import Path
 from typing import Callable
 
-from talus.dem import Scene, io
+from talus.dem import Scene
+from talus.dem.files import io
 
 
 def load_flipped_copies(source: Path, path: Path, places: int, new_scene: Callable[[], Scene],

@@ -7,7 +7,8 @@ import textwrap
 
 import pytest
 
-from talus.dem import FrictMat, Scene, io, sphere, wall
+from talus.dem import FrictMat, Scene, sphere, wall
+from talus.dem.files import io
 
 EDITS = {
     "negative radius": ("bodies/radius", 1, "-0.1", r"body 1: radius -0.100000 is not positive and finite"),

@@ -19,8 +19,9 @@ from talus.dem import (CohFrictMat, FrictMat, ForceResetter, Ip2_CohFrictMat_Coh
                        Ip2_FrictMat_FrictMat_FrictPhys, Ip2_FrictMat_FrictMat_MindlinPhys,
                        Law2_ScGeom_MindlinPhys_Mindlin, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic, Matrix3,
-                       NewtonIntegrator, PWaveTimeStep, PyRunner, Scene, TranslationEngine, ViscElMat, box, facet, io,
-                       sphere, wall)
+                       NewtonIntegrator, PWaveTimeStep, PyRunner, Scene, TranslationEngine, ViscElMat, box,
+                       facet, sphere, wall)
+from talus.dem.files import io
 
 pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the packing the Yade twins read
@@ -265,7 +266,8 @@ def leftovers(folder: Path) -> list[str]:
 FULL_DISK = """
 import resource, signal, sys
 import numpy as np
-from talus.dem import Scene, sphere, io
+from talus.dem import Scene, sphere
+from talus.dem.files import io
 signal.signal(signal.SIGXFSZ, signal.SIG_IGN)       # writes past the limit fail with EFBIG
 S = Scene()
 S.bodies.append([sphere((i, 0, 0), 0.4) for i in range(2000)])
@@ -493,3 +495,12 @@ def test_scene_methods(tmp_path):
     S.run(3)
     S.load(tmp_path / "m.h5", engines="current")
     assert S.iter == 0
+
+
+def test_class_paths_written_before_the_sub_packages_still_load():
+    # Checkpoints of earlier versions name the engines' module flat: talus.dem.engines.
+    from talus.dem.files import io
+    from talus.dem.step.engines import ForceResetter
+    assert io._import_class("talus.dem.engines:ForceResetter") is ForceResetter
+    with pytest.raises(ModuleNotFoundError):
+        io._import_class("talus.dem.no_such_module:Thing")

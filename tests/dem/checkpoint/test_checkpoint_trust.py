@@ -10,7 +10,8 @@ import warnings
 
 import pytest
 
-from talus.dem import ForceResetter, NewtonIntegrator, PeriTriaxController, PyRunner, Scene, io, sphere, trust
+from talus.dem import ForceResetter, NewtonIntegrator, PeriTriaxController, PyRunner, Scene, sphere
+from talus.dem.files import io, trust
 
 pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
 

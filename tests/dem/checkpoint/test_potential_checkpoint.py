@@ -14,9 +14,10 @@ from flipped_bytes import load_flipped_copies
 from talus import _dem
 from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, Ig2_PP_PP_ScGeom, InsertionSortCollider,
                        InteractionLoop, Ip2_FrictMat_FrictMat_KnKsPBPhys, Ip2_FrictMat_FrictMat_KnKsPhys,
-                       Law2_SCG_KnKsPBPhys_KnKsPBLaw, Law2_SCG_KnKsPhys_KnKsLaw, NewtonIntegrator, PotentialBlock,
-                       PotentialBlock2AABB, PotentialParticle, PotentialParticle2AABB, Scene, blockShape, io,
-                       particleShape, potentialBlock, potentialParticle, wall)
+                       Law2_SCG_KnKsPBPhys_KnKsPBLaw, Law2_SCG_KnKsPhys_KnKsLaw, NewtonIntegrator,
+                       PotentialBlock, PotentialBlock2AABB, PotentialParticle, PotentialParticle2AABB, Scene,
+                       blockShape, particleShape, potentialBlock, potentialParticle, wall)
+from talus.dem.files import io
 
 pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
 HALF = 0.25

@@ -5,7 +5,8 @@ import math
 
 import pytest
 
-from talus.dem import ForceResetter, InsertionSortCollider, NewtonIntegrator, Scene, box, facet, io, sphere, wall
+from talus.dem import ForceResetter, InsertionSortCollider, NewtonIntegrator, Scene, box, facet, sphere, wall
+from talus.dem.files import io
 
 
 def scene():

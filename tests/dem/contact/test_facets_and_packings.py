@@ -4,7 +4,9 @@ import numpy as np
 import pytest
 
 from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, Scene, facet, geom, pack, sphere)
+                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, Scene, facet, sphere)
+from talus.dem.geometry import geom
+from talus.dem.packing import pack
 
 
 def test_sphere_facet_contacts_match_yade():

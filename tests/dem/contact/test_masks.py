@@ -5,8 +5,9 @@ from pathlib import Path
 
 import pytest
 
-from talus.dem import Scene, box, facet, sphere, twin, wall
-from talus.dem import io
+from talus.dem import Scene, box, facet, sphere, wall
+from talus import twin
+from talus.dem.files import io
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 SCRIPT = TWINS / "masks_side_by_side.py"

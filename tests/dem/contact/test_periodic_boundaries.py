@@ -5,9 +5,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom, InsertionSortCollider,
-                       InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
-                       NewtonIntegrator, Scene, facet, sphere, twin)
+from talus.dem import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, ForceResetter, Ig2_Facet_Sphere_ScGeom,
+                       InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
+                       Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, Scene, facet, sphere)
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 

@@ -5,7 +5,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import Peri3dController, twin
+from talus.dem import Peri3dController
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 needs_yade = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")

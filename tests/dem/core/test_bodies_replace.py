@@ -5,8 +5,9 @@ import numpy as np
 import pytest
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
-                       Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, NewtonIntegrator, Scene,
-                       export, facet, io, sphere)
+                       Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, NewtonIntegrator,
+                       Scene, facet, sphere)
+from talus.dem.files import export, io
 
 
 def floor_and_spheres(m: int, seed: int) -> list:

@@ -9,8 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import FrictMat, Quaternion, Scene, Vector3, facet, sphere, twin
-from talus.dem.clumps import clumpTemplate
+from talus.dem import FrictMat, Quaternion, Scene, Vector3, facet, sphere
+from talus import twin
+from talus.dem.core.clumps import clumpTemplate
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")

@@ -7,7 +7,8 @@ import pytest
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
-                       NewtonIntegrator, Scene, facet, getStress, sphere, twin, wall)
+                       NewtonIntegrator, Scene, facet, getStress, sphere, wall)
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])

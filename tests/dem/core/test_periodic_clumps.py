@@ -4,9 +4,12 @@ periodic images, a PeriTriaxController compression of a clump cloud, bit-identic
 import numpy as np
 import pytest
 
-from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                       Law2_ScGeom_FrictPhys_CundallStrack, Matrix3, NewtonIntegrator, PeriTriaxController,
-                       PWaveTimeStep, Scene, getStress, io, pack, sphere, unbalancedForce)
+from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
+                       NewtonIntegrator, PeriTriaxController, PWaveTimeStep, Scene, getStress, sphere,
+                       unbalancedForce)
+from talus.dem.files import io
+from talus.dem.packing import pack
 
 # The seed's tutorial template: a sphere with two smaller ones stuck on it.
 C1 = [((0, 0, 0), .03333), ((.03, 0, 0), .017), ((0, .03, 0), .017)]

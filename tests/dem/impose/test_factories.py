@@ -8,8 +8,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import (BoxFactory, CircularFactory, DomainLimiter, ForceResetter, FrictMat, InsertionSortCollider,
-                       InteractionLoop, NewtonIntegrator, O, SpheresFactory, sphere, twin)
+from talus.dem import (BoxFactory, CircularFactory, DomainLimiter, ForceResetter, FrictMat,
+                       InsertionSortCollider, InteractionLoop, NewtonIntegrator, O, SpheresFactory, sphere)
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 

@@ -7,10 +7,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
+from talus import twin
 from talus.dem import (FrictMat, ForceResetter, HarmonicMotionEngine, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
-                       PWaveTimeStep, PyRunner, RotationEngine, Scene, TranslationEngine, box, facet, geom, sphere)
+                       PWaveTimeStep, PyRunner, RotationEngine, Scene, TranslationEngine, box, facet, sphere)
+from talus.dem.geometry import geom
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")

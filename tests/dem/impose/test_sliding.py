@@ -1,4 +1,4 @@
-"""talus.dem.sliding, the sliding-block experiments of the block and particle cases: a free
+"""talus.dem.analysis.sliding, the sliding-block experiments of the block and particle cases: a free
 sphere under a gravity ramp and a tilted gravity against the closed forms of its motion."""
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from talus.dem import ForceResetter, FrictMat, NewtonIntegrator, Scene, sphere
-from talus.dem.sliding import coulombAcceleration, fittedAcceleration, rampGravity, slide, tilted
+from talus.dem.analysis.sliding import coulombAcceleration, fittedAcceleration, rampGravity, slide, tilted
 
 
 def free_sphere():

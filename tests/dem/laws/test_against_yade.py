@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import twin
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 yade_missing = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")

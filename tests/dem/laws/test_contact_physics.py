@@ -8,7 +8,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        Ip2_FrictMat_FrictMat_FrictPhys, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic,
                        NewtonIntegrator, Scene, ViscElMat, sphere, wall)
-from talus.dem.analytic import spring_dashpot_restitution
+from talus.dem.analysis.analytic import spring_dashpot_restitution
 
 LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
 

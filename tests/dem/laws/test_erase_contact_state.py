@@ -152,7 +152,9 @@ def test_a_silo_that_erases_the_spheres_leaving_it_runs_on():
     it, every 50 steps: the run goes on without overlap errors, every real contact keeping a
     positive stiffness (erasing used to hand contacts the state of others, kn = 0, until a step
     failed with an overlap blamed on the time step)."""
-    from talus.dem import Bo1_Facet_Aabb, Ig2_Facet_Sphere_ScGeom, PWaveTimeStep, facet, geom, pack
+    from talus.dem import Bo1_Facet_Aabb, Ig2_Facet_Sphere_ScGeom, PWaveTimeStep, facet
+    from talus.dem.geometry import geom
+    from talus.dem.packing import pack
     S = Scene()
     S.materials.append(FrictMat(young=1e7, poisson=0.3, density=2600, frictionAngle=0.4))
     a, hole = 0.1, 0.05

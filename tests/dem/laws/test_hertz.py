@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from talus.dem.analytic import hertz_contact_time, hertz_restitution, thornton_damping_ratio
+from talus.dem.analysis.analytic import hertz_contact_time, hertz_restitution, thornton_damping_ratio
 from talus.dem import (FrictMat, InteractionLoop, Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin,
                        MatchMaker, Scene, sphere)
 

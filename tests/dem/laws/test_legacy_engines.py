@@ -1,4 +1,4 @@
-"""Yade's older spellings of the interaction loop (talus.dem.legacy): ElasticContactLaw after
+"""Yade's older spellings of the interaction loop (talus.dem.step.legacy): ElasticContactLaw after
 IGeomDispatcher and IPhysDispatcher, and the deprecated dispatcher names."""
 from pathlib import Path
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from talus.dem import *  # noqa: F401,F403
-from talus.dem import twin
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 

@@ -4,8 +4,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_MindlinPhys,
-                       Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker, NewtonIntegrator, Scene, sphere, twin)
+from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
+                       Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin, MatchMaker,
+                       NewtonIntegrator, Scene, sphere)
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 

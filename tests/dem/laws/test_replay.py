@@ -30,11 +30,13 @@ from talus.dem import (CohFrictMat, ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, I
                        InsertionSortCollider, InteractionLoop, Ip2_CohFrictMat_CohFrictMat_CohFrictPhys,
                        Ip2_FrictMat_FrictMat_FrictPhys, Ip2_FrictMat_FrictMat_KnKsPBPhys,
                        Ip2_FrictMat_FrictMat_KnKsPhys, Ip2_FrictMat_FrictMat_MindlinPhys,
-                       Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_SCG_KnKsPBPhys_KnKsPBLaw, Law2_SCG_KnKsPhys_KnKsLaw,
-                       Law2_ScGeom6D_CohFrictPhys_CohesionMoment, Law2_ScGeom_FrictPhys_CundallStrack,
-                       Law2_ScGeom_MindlinPhys_Mindlin, Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, PotentialBlock,
-                       PotentialBlock2AABB, PotentialParticle, PotentialParticle2AABB, Scene, ViscElMat, io,
-                       potentialBlock, potentialParticle, sphere, wall)
+                       Ip2_ViscElMat_ViscElMat_ViscElPhys, Law2_SCG_KnKsPBPhys_KnKsPBLaw,
+                       Law2_SCG_KnKsPhys_KnKsLaw, Law2_ScGeom6D_CohFrictPhys_CohesionMoment,
+                       Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_MindlinPhys_Mindlin,
+                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, PotentialBlock, PotentialBlock2AABB,
+                       PotentialParticle, PotentialParticle2AABB, Scene, ViscElMat, potentialBlock,
+                       potentialParticle, sphere, wall)
+from talus.dem.files import io
 
 REFERENCES = Path(__file__).parent / "reference"
 REGENERATE = os.environ.get("TALUS_REGENERATE_REFERENCES", "") not in ("", "0")

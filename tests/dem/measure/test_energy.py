@@ -12,8 +12,10 @@ import numpy as np
 import pytest
 
 import talus
-from talus.dem import (FrictMat, HarmonicMotionEngine, NewtonIntegrator, PeriTriaxController, PWaveTimeStep, Scene, geom,
-                       pack, sphere)
+from talus.dem import (FrictMat, HarmonicMotionEngine, NewtonIntegrator, PeriTriaxController, PWaveTimeStep,
+                       Scene, sphere)
+from talus.dem.geometry import geom
+from talus.dem.packing import pack
 
 from energy_deposition import scene as deposition
 from laws.test_contact_physics import LINEAR, engines

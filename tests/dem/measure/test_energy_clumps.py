@@ -8,7 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from talus.dem import NewtonIntegrator, Scene, FrictMat, sphere, twin
+from talus.dem import NewtonIntegrator, Scene, FrictMat, sphere
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 SCRIPT = TWINS / "clump_energy_deposition.py"

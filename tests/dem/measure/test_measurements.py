@@ -56,7 +56,7 @@ def test_kinetic_energy_in_a_deforming_cell_counts_the_fluctuations():
     cell's field and spin, utils.kineticEnergy only what they had of their own, which nothing
     changes (Yade 2023.02a gives the same bits on this scene: 6846.049802157553)."""
     from talus.dem import Matrix3, NewtonIntegrator, Scene, Vector3, sphere
-    from talus.dem.measure import kineticEnergy
+    from talus.dem.analysis.measure import kineticEnergy
     S = Scene()
     S.periodic = True
     S.cell.setBox(2.5, 2.5, 3)

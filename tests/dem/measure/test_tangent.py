@@ -8,7 +8,8 @@ import pytest
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
-                       NewtonIntegrator, Scene, getStress, getStressAndTangent, sphere, twin)
+                       NewtonIntegrator, Scene, getStress, getStressAndTangent, sphere)
+from talus import twin
 
 TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
 

@@ -1,9 +1,9 @@
-"""Per-engine timing (O.timingEnabled, Engine.execTime/execCount/timingDeltas, talus.dem.timing):
+"""Per-engine timing (O.timingEnabled, Engine.execTime/execCount/timingDeltas, talus.dem.analysis.timing):
 counts match the steps taken while it is on, stages add up to their engine, and timing changes
 nothing in the physics."""
 import numpy as np
 
-from talus.dem import timing
+from talus.dem.analysis import timing
 
 from energy_deposition import scene as deposition
 

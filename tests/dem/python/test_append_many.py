@@ -4,8 +4,8 @@ take N^2 time: minutes at 200 000 spheres), and every body gets its own look and
 import numpy as np
 
 from talus.dem import Scene, sphere
-from talus.dem.appearance import Appearance
-from talus.dem.reference import ReferenceStates
+from talus.dem.geometry.appearance import Appearance
+from talus.dem.core.reference import ReferenceStates
 
 
 def test_a_list_grows_the_tables_once_and_each_body_gets_its_own_entries(monkeypatch):

@@ -12,7 +12,9 @@ import pytest
 from talus import _dem
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
-                       PWaveTimeStep, Scene, export, facet, io, progress, sphere, wall)
+                       PWaveTimeStep, Scene, facet, sphere, wall)
+from talus.dem.files import export, io
+from talus.dem.analysis import progress
 
 LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
 TYPES = {"Float64": np.float64, "Float32": np.float32, "Int64": np.int64, "Int32": np.int32, "UInt8": np.uint8}

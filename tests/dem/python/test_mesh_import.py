@@ -5,7 +5,8 @@ import struct
 import numpy as np
 import pytest
 
-from talus.dem import Facet, FrictMat, Scene, ymport
+from talus.dem import Facet, FrictMat, Scene
+from talus.dem.files import ymport
 
 TETRA = np.array([[(0, 0, 0), (0, 1, 0), (1, 0, 0)], [(0, 0, 0), (1, 0, 0), (0, 0, 1)],
                   [(0, 0, 0), (0, 0, 1), (0, 1, 0)], [(1, 0, 0), (0, 1, 0), (0, 0, 1)]], dtype=float)

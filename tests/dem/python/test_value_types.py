@@ -1,4 +1,4 @@
-"""Yade's value types (talus.dem.linalg) against real minieigen: every expression below is
+"""Yade's value types (talus.dem.core.linalg) against real minieigen: every expression below is
 evaluated by Yade 2023 (``yade -n -x``, in a subprocess) and by Talus, and the results compared;
 then what Talus does on purpose otherwise (numpy's meaning where minieigen has none), what
 minieigen cannot be asked (its pruned, svd and polarDecomposition crash or are wrong in Yade
@@ -17,7 +17,7 @@ import pytest
 from talus.dem import (Matrix3, Matrix6, NewtonIntegrator, Quaternion, Scene, Vector2, Vector2i, Vector3,
                        Vector3i, Vector6, Vector6i, bodyStressTensors, box, facet, fabricTensor, getStress,
                        getStressAndTangent, sphere)
-from talus.dem.kinematic import RotationEngine
+from talus.dem.step.kinematic import RotationEngine
 
 # The same names on both sides; helpers for what an expression cannot say (in-place operators).
 SETUP = textwrap.dedent("""

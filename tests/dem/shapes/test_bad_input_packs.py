@@ -3,9 +3,9 @@ limit (SpherePack's maxSpheres, 1e8): a radius too small for the box, a mistyped
 import pytest
 
 from talus import _dem
-from talus.dem import pack
-from talus.dem.densepack import randomDensePack
-from talus.dem.pack import SpherePack, inAlignedBox
+from talus.dem.packing import pack
+from talus.dem.packing.densepack import randomDensePack
+from talus.dem.packing.pack import SpherePack, inAlignedBox
 
 BOX = inAlignedBox((0, 0, 0), (1, 1, 1))
 

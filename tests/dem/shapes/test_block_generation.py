@@ -1,4 +1,4 @@
-"""Block generation by joint planes (talus.dem.blockgen) and its joint file."""
+"""Block generation by joint planes (talus.dem.geometry.blockgen) and its joint file."""
 import math
 
 import numpy as np
@@ -9,7 +9,7 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortC
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, JointFileError, Law2_SCG_KnKsPBPhys_KnKsPBLaw,
                        NewtonIntegrator, PotentialBlock, PotentialBlock2AABB, Scene, blockShape, generateBlocks,
                        potentialBlock, readJoints, wall)
-from talus.dem.blockgen import dipNormal
+from talus.dem.geometry.blockgen import dipNormal
 
 pytestmark = pytest.mark.skipif(not _dem.have_potential_blocks, reason="built without CLP")
 

@@ -13,8 +13,9 @@ import pytest
 from talus import _dem
 from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, JointFileError, Law2_SCG_KnKsPBPhys_KnKsPBLaw,
-                       NewtonIntegrator, PotentialBlock, PotentialBlock2AABB, Scene, blockShape, generateBlocks, io,
-                       potentialBlock, readJoints)
+                       NewtonIntegrator, PotentialBlock, PotentialBlock2AABB, Scene, blockShape,
+                       generateBlocks, potentialBlock, readJoints)
+from talus.dem.files import io
 
 pytestmark = pytest.mark.skipif(not _dem.have_potential_blocks, reason="built without CLP")
 

@@ -2,7 +2,7 @@
 box from the vertices. The unit cube's answers are what Yade 2023.02a prints for the same calls."""
 import pytest
 
-from talus.dem.pack import inConvexPolyhedron
+from talus.dem.packing.pack import inConvexPolyhedron
 
 CUBE = [((0, 0, 0), (1, 0, 0)), ((1, 0, 0), (-1, 0, 0)), ((0, 0, 0), (0, 1, 0)), ((0, 1, 0), (0, -1, 0)),
         ((0, 0, 0), (0, 0, 1)), ((0, 0, 1), (0, 0, -1))]

@@ -1,6 +1,6 @@
 """The seed's rock wedge (cases/dem_rock_wedge.py) in small: blocks generated from joints of
 jointC.csv partition the rock, Yade's minSize pruning, the limit equilibrium of a block
-(talus.dem.analytic.block_sliding_mode) against Hoek & Bray's closed forms, and a wedge freed by
+(talus.dem.analysis.analytic.block_sliding_mode) against Hoek & Bray's closed forms, and a wedge freed by
 a cut that holds above and slides below its critical friction."""
 import math
 
@@ -12,8 +12,8 @@ from talus.dem import (ForceResetter, FrictMat, Ig2_PB_PB_ScGeom, InsertionSortC
                        Ip2_FrictMat_FrictMat_KnKsPBPhys, Law2_SCG_KnKsPBPhys_KnKsPBLaw, NewtonIntegrator,
                        PotentialBlock, PotentialBlock2AABB, Scene, blockShape, generateBlocks, potentialBlock,
                        readJoints)
-from talus.dem.analytic import block_sliding_mode
-from talus.dem.blockgen import Joint, dipNormal
+from talus.dem.analysis.analytic import block_sliding_mode
+from talus.dem.geometry.blockgen import Joint, dipNormal
 
 pytestmark = pytest.mark.skipif(not _dem.have_potential_blocks, reason="built without CLP")
 

@@ -8,8 +8,9 @@ import sys
 import numpy as np
 
 from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop, O,
-                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack,
-                       NewtonIntegrator, PWaveTimeStep, pack)
+                       Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator,
+                       PWaveTimeStep)
+from talus.dem.packing import pack
 
 O.periodic = True
 O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))

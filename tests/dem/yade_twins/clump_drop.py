@@ -12,7 +12,7 @@ except NameError:
 
 # Frictionless by default: the landing, tipping and rocking are decided by normal forces, member
 # torques and the aspherical rotation alone. With {"friction": true} in $TALUS_SCENARIO
-# (talus.dem.twin), FrictMat's default friction: the shear history at the wall then matters too.
+# (talus.twin), FrictMat's default friction: the shear history at the wall then matters too.
 friction = json.loads(os.environ.get("TALUS_SCENARIO", "{}")).get("friction", False)
 O.materials.append(FrictMat(young=1e9, poisson=0.25, density=1000, frictionAngle=0.5 if friction else 0.0))
 O.bodies.append(wall(0, axis=2, sense=1))

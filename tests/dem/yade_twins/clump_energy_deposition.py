@@ -1,5 +1,5 @@
 """Clumps of two and three spheres falling onto a wall in a loose grid, with friction and Cundall
-damping, energy tracked. Runs unchanged in Yade (`yade -n -x`) and in Talus (talus.dem.twin);
+damping, energy tracked. Runs unchanged in Yade (`yade -n -x`) and in Talus (talus.twin);
 prints the energies (O.energy), the clumps' kinetic energy computed here from their state as rigid
 bodies (1/2 m v^2 + 1/2 w.R I R^T w, principal moments I), the real contact count and the iteration
 as JSON. $TALUS_SCENARIO: {"steps": n, "damping": d, "dt": dt}."""

@@ -2,7 +2,7 @@
 (`yade -n -x`, getStressAndTangent) and in Talus (form="yade" and the full form): the spheres of
 periodic_packing.json without the periodic cell, each given a deterministic velocity, after one
 step (fresh contacts get their first shear increment from the velocities). Prints one JSON
-line `RESULT {...}` (talus.dem.twin) (the volume is the packing's bounding box)."""
+line `RESULT {...}` (talus.twin) (the volume is the packing's bounding box)."""
 import json
 import os
 import sys

@@ -3,7 +3,7 @@ the same file runs in Yade (`yade -n -x`) and in Talus: an all-stress stage (fir
 the compliance estimate, then the predictor), then a mixed stage (strains and stresses, multi-
 point paths in relative and absolute values, shear, rates capped by maxStrainRate) continuing
 from the first one's strain and ideal stress. Prints, every step, the controller's stress,
-strain, progress and the cell's trsf (one RESULT line, talus.dem.twin). Parameter
+strain, progress and the cell's trsf (one RESULT line, talus.twin). Parameter
 (TALUS_SCENARIO) "case": "stress" (the two stages above) or "strain" (every component strain-
 controlled, multi-point paths, shear, rates capped)."""
 import json

@@ -1,6 +1,6 @@
 """A dense periodic packing (150 spheres, stored in periodic_packing.json, sheared cell): one
 step of contact forces and the homogenised stress, written so the same file runs in Yade
-(`yade -n -x`) and in Talus. Prints getStress() and the number of contacts as `RESULT {...}` (talus.dem.twin)."""
+(`yade -n -x`) and in Talus. Prints getStress() and the number of contacts as `RESULT {...}` (talus.twin)."""
 import json
 import os
 import sys

@@ -96,7 +96,7 @@ class CouplingTimes:
         return CouplingTimes(**vars(self))
 
 
-from talus.dem.engines import Engine as _Engine  # noqa: E402
+from talus.dem.step.engines import Engine as _Engine  # noqa: E402
 
 
 class FoamCoupling(_Engine):
@@ -153,7 +153,7 @@ class FoamCoupling(_Engine):
                  checkpointInterval: int = 100, implicitDrag: bool = False, interfaces: str | None = "lo",
                  label: str = ""):
         # The engine Yade's scripts put in O.engines (a callback every step, see _engine_step).
-        from talus.dem.engines import PyRunner
+        from talus.dem.step.engines import PyRunner
         import weakref
         me = weakref.ref(self)  # no cycle through the C++ engine's callback
 
@@ -318,7 +318,7 @@ class FoamCoupling(_Engine):
                           RuntimeWarning, stacklevel=3)
         self.rhoFluid, self.nu, self.nProcs = case["rhoFluid"], case["nu"], case["nProcs"]
         self.gravity = tuple(case["gravity"])
-        from talus.dem.engines import NewtonIntegrator
+        from talus.dem.step.engines import NewtonIntegrator
         for e in self.scene.engines:
             if isinstance(e, NewtonIntegrator) and not np.allclose(e.gravity, self.gravity, rtol=1e-12, atol=0):
                 warnings.warn(f"FoamCoupling: the NewtonIntegrator's gravity {tuple(e.gravity)} differs from the "
@@ -421,7 +421,7 @@ class FoamCoupling(_Engine):
             raise ValueError(f"FoamCoupling: ids: body {i} is {what}, not a sphere")
 
     def _check_gravity(self):
-        from talus.dem.engines import NewtonIntegrator
+        from talus.dem.step.engines import NewtonIntegrator
         for e in self.scene.engines:
             if isinstance(e, NewtonIntegrator) and not np.allclose(e.gravity, self.gravity, rtol=1e-12, atol=0):
                 raise ValueError(f"FoamCoupling: gravity {self.gravity} differs from the NewtonIntegrator's "

@@ -14,43 +14,46 @@
 """
 
 from talus import plot
-from talus.dem import geom, pack, progress, timing, ymport
-from talus.dem.bodies import Body, BodySpec, aabbWalls, box, facet, sphere, wall
-from talus.dem.shapes import Box, Clump, Facet, Shape, Sphere, Wall
-from talus.dem.blocks import *  # noqa: F401,F403  (Potential Blocks, Yade's names)
-from talus.dem.blocks import __all__ as _block_names
-from talus.dem.particles import *  # noqa: F401,F403  (Potential Particles, Yade's names)
-from talus.dem.particles import __all__ as _particle_names
-from talus.dem.blockgen import Joint, JointFileError, generateBlocks, readJoints
-from talus.dem.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
-from talus.dem.engines import __all__ as _engine_names
-from talus.dem.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
+from talus.dem.geometry import geom
+from talus.dem.packing import pack
+from talus.dem.analysis import progress, timing
+from talus.dem.files import ymport
+from talus.dem.core.bodies import Body, BodySpec, aabbWalls, box, facet, sphere, wall
+from talus.dem.geometry.shapes import Box, Clump, Facet, Shape, Sphere, Wall
+from talus.dem.geometry.blocks import *  # noqa: F401,F403  (Potential Blocks, Yade's names)
+from talus.dem.geometry.blocks import __all__ as _block_names
+from talus.dem.geometry.particles import *  # noqa: F401,F403  (Potential Particles, Yade's names)
+from talus.dem.geometry.particles import __all__ as _particle_names
+from talus.dem.geometry.blockgen import Joint, JointFileError, generateBlocks, readJoints
+from talus.dem.step.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
+from talus.dem.step.engines import __all__ as _engine_names
+from talus.dem.core.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
                               Vector6, Vector6i)
-from talus.dem.controllers import PeriIsoCompressor
-from talus.dem.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
+from talus.dem.control.controllers import PeriIsoCompressor
+from talus.dem.control.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,
                                    TriaxialStressController, growParticles, setContactFriction)
-from talus.dem.energy import EnergyTracker
-from talus.dem.triaxial import ThreeDTriaxialEngine, TriaxialCompressionEngine, TriaxialStateRecorder
-from talus.dem.legacy import *  # noqa: F401,F403  (Yade's older names of the interaction loop)
-from talus.dem.legacy import __all__ as _legacy_names
-from talus.dem.preprocessors import TriaxialTest
-from talus.dem.export import VTKExporter, VTKRecorder
-from talus.dem.kinematic import *  # noqa: F401,F403  (Yade's kinematic engines)
-from talus.dem.kinematic import __all__ as _kinematic_names
-from talus.dem.force_engines import *  # noqa: F401,F403  (Yade's force engines, interaction callbacks)
-from talus.dem.force_engines import __all__ as _force_engine_names
-from talus.dem.factories import BoxFactory, CircularFactory, SpheresFactory
-from talus.dem.domain_limiter import DomainLimiter
-from talus.dem.reset_random_position import ResetRandomPosition
-from talus.dem.servo import ServoPIDController
-from talus.dem.peri3d import Peri3dController
-from talus.dem.interactions import Interaction
-from talus.dem.io import CheckpointError
-from talus.dem.materials import CohFrictMat, ElastMat, FrictMat, Material, ViscElMat
-from talus.dem.measure import (avgNumInteractions, bodyStressTensors, fabricTensor, getStress, getStressAndTangent,
+from talus.dem.analysis.energy import EnergyTracker
+from talus.dem.control.triaxial import ThreeDTriaxialEngine, TriaxialCompressionEngine, TriaxialStateRecorder
+from talus.dem.step.legacy import *  # noqa: F401,F403  (Yade's older names of the interaction loop)
+from talus.dem.step.legacy import __all__ as _legacy_names
+from talus.dem.control.preprocessors import TriaxialTest
+from talus.dem.files.export import VTKExporter, VTKRecorder
+from talus.dem.step.kinematic import *  # noqa: F401,F403  (Yade's kinematic engines)
+from talus.dem.step.kinematic import __all__ as _kinematic_names
+from talus.dem.step.force_engines import *  # noqa: F401,F403  (Yade's force engines, interaction callbacks)
+from talus.dem.step.force_engines import __all__ as _force_engine_names
+from talus.dem.packing.factories import BoxFactory, CircularFactory, SpheresFactory
+from talus.dem.step.domain_limiter import DomainLimiter
+from talus.dem.packing.reset_random_position import ResetRandomPosition
+from talus.dem.control.servo import ServoPIDController
+from talus.dem.control.peri3d import Peri3dController
+from talus.dem.core.interactions import Interaction
+from talus.dem.files.io import CheckpointError
+from talus.dem.core.materials import CohFrictMat, ElastMat, FrictMat, Material, ViscElMat
+from talus.dem.analysis.measure import (avgNumInteractions, bodyStressTensors, fabricTensor, getStress, getStressAndTangent,
                                porosity, unbalancedForce)
-from talus.dem.scene import PWaveTimeStep, Scene, contactTimeStep
-from talus.dem.scenes import set_default_scene
+from talus.dem.core.scene import PWaveTimeStep, Scene, contactTimeStep
+from talus.dem.core.scenes import set_default_scene
 
 O = Scene()
 set_default_scene(O)

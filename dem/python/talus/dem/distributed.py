@@ -24,7 +24,7 @@ import atexit
 import os
 import sys
 
-from talus.dem.scenes import default_scene
+from talus.dem.core.scenes import default_scene
 
 #: Processes of the run (Open MPI's mpirun tells each process); above 1 the scene is split.
 RANKS = int(os.environ.get("OMPI_COMM_WORLD_SIZE", "1"))

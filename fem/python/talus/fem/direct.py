@@ -23,8 +23,9 @@ def replay(path: str | os.PathLike, grads, nSteps, law: str = "Law2_ScGeom_Frict
     displacement gradients `grads` (each 2x2 or 3x3, relative to the previous configuration)
     one after the other, each over `nSteps` DEM steps (one count, or one per gradient: a
     driver's StepReport.nSteps); returns the Scene and the Love-Weber stress (3x3) after each."""
-    from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_FrictMat_FrictMat_FrictPhys,
-                           Matrix3, NewtonIntegrator, Scene, engines, getStress)
+    from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop,
+                           Ip2_FrictMat_FrictMat_FrictPhys, Matrix3, NewtonIntegrator, Scene, getStress)
+    from talus.dem.step import engines
     S = Scene()
     S.load(os.fspath(path))
     S.engines = [ForceResetter(), InsertionSortCollider(),

@@ -40,8 +40,9 @@ def prepareRVE(path: str | os.PathLike, size: float = 1.0, rMean: float = 0.1, r
     """
     from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, InteractionLoop,
                            Ip2_FrictMat_FrictMat_FrictPhys, Law2_ScGeom_FrictPhys_CundallStrack, Matrix3,
-                           NewtonIntegrator, PeriTriaxController, PWaveTimeStep, Scene, avgNumInteractions, pack,
+                           NewtonIntegrator, PeriTriaxController, PWaveTimeStep, Scene, avgNumInteractions,
                            porosity, setContactFriction)
+    from talus.dem.packing import pack
     for name, value in (("size", size), ("rMean", rMean), ("young", young), ("density", density)):
         if not 0 < float(value) < math.inf:
             raise ValueError(f"prepareRVE: {name} must be positive and finite, got {value!r}")

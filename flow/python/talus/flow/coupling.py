@@ -19,7 +19,7 @@ import warnings
 
 import numpy as np
 
-from talus.dem.engines import PyRunner
+from talus.dem.step.engines import PyRunner
 from talus.flow.hydro import HydroForceEngine
 
 __all__ = ["VansCoupling"]

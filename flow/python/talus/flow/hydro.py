@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from talus import _flow
-from talus.dem.engines import Engine, PyRunner
+from talus.dem.step.engines import Engine, PyRunner
 from talus.flow.vans import VansFluid, core_parameter
 
 __all__ = ["HydroForceEngine", "averageProfile"]

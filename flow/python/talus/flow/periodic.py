@@ -28,7 +28,7 @@ from typing import Sequence
 import numpy as np
 
 from talus.flow.pore import FlowEngine
-from talus.dem.shapes import Sphere
+from talus.dem.geometry.shapes import Sphere
 
 
 class PeriodicFlowEngine(FlowEngine):

@@ -4,7 +4,7 @@
 Run:      build/bin/talus run permeability.py   (in the folder it was written to)
 What:     for each porosity of study.json, a periodic cloud of `spheres` spheres (radii uniform
           within rMean (1 +- rRelFuzz)) compressed homothetically to that porosity
-          (talus.dem.pack.compressedCloud, frictionless), then PeriodicFlowEngine on the periodic
+          (talus.dem.packing.pack.compressedCloud, frictionless), then PeriodicFlowEngine on the periodic
           packing with a unit macroscopic pressure gradient along `axis`: K = -mu <v> / gradP.
 Produces: permeability.csv (porosity, K, K / d32^2, Kozeny-Carman's K, their ratio) and
           permeability.png (K / d32^2 against the porosity, with Kozeny-Carman
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from talus.dem.pack import compressedCloud
+from talus.dem.packing.pack import compressedCloud
 from talus.flow import PeriodicFlowEngine
 
 HERE = Path(__file__).resolve().parent

@@ -40,7 +40,7 @@ from typing import Sequence
 import numpy as np
 
 from talus import _flow
-from talus.dem.engines import Engine, PyRunner, asCallback
+from talus.dem.step.engines import Engine, PyRunner, asCallback
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
 # engine step counts and their smallest allowed values (None: any; meshUpdateInterval <= 0 never

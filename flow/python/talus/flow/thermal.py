@@ -47,7 +47,7 @@ import warnings
 import numpy as np
 
 from talus import _flow
-from talus.dem.engines import Engine, PyRunner
+from talus.dem.step.engines import Engine, PyRunner
 
 ABSOLUTE_ZERO = -273.15   # °C: Yade's scripts use °C or K, so no temperature may go below it
 

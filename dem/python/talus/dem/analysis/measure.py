@@ -1,0 +1,205 @@
+"""Measurements with Yade's names: unbalancedForce, getStress, avgNumInteractions,
+fabricTensor, bodyStressTensors, porosity, getStressAndTangent. Tensors come as Yade's
+Matrix3 (the tangent as a Matrix6)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from talus import _dem
+from talus.dem import distributed
+from talus.dem.core.linalg import Matrix3, Matrix6, Vector3
+from talus.dem.core.scenes import default_scene
+
+
+def _scene(scene):
+    if scene is None:
+        O = default_scene()
+        return O
+    return scene
+
+
+def _gravity(scene) -> np.ndarray:
+    from talus.dem.step.engines import NewtonIntegrator
+    for e in scene.engines:
+        if isinstance(e, NewtonIntegrator):
+            return np.asarray(e.gravity, dtype=float)
+    return np.zeros(3)
+
+
+def unbalancedForce(useMaxForce: bool = False, scene=None) -> float:
+    """Mean (or largest) total force on dynamic bodies, gravity included, over the mean
+    contact force: tends to 0 at equilibrium."""
+    scene = _scene(scene)
+    if (split := distributed.domain(scene)) is not None:     # under mpirun: the whole scene's
+        return split.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)
+    return _dem.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)
+
+
+def getStress(volume: float = -1, scene=None) -> Matrix3:
+    """Love-Weber stress -(1/V) sum f (x) l (compression negative, as Yade); `volume` defaults
+    to the periodic cell's."""
+    scene = _scene(scene)
+    return Matrix3(_dem.loveWeberStress(scene._cpp, float(volume)))
+
+
+def getStressAndTangent(volume: float = -1, symmetry: bool = True, form: str = "full",
+                        scene=None) -> tuple[Matrix3, Matrix6]:
+    """Love-Weber stress (as getStress) and the 6x6 contact-stiffness tangent operator in Voigt
+    order xx, yy, zz, yz, xz, xy with engineering shear strains: d(stress) ~ tangent @ d(strain)
+    for an affine strain increment without sliding (docs/dem.md gives the formula).
+    ``form="yade"`` gives Yade's getStressAndTangent operator instead (shear stiffness only along
+    the current shear force), to reproduce Yade's numbers."""
+    if not symmetry:
+        raise ValueError("getStressAndTangent: only the symmetric (Voigt) tangent is provided; use symmetry=True")
+    if form not in ("full", "yade"):
+        raise ValueError(f"getStressAndTangent: form must be 'full' or 'yade', got {form!r}")
+    scene = _scene(scene)
+    return (Matrix3(_dem.loveWeberStress(scene._cpp, float(volume))),
+            Matrix6(_dem.contactStiffnessTangent(scene._cpp, float(volume), form == "yade")))
+
+
+def avgNumInteractions(skipFree: bool = False, scene=None) -> float:
+    """Mean coordination number 2 Nc / N of the spheres."""
+    return _dem.coordinationNumber(_scene(scene)._cpp, skipFree)
+
+
+def fabricTensor(scene=None) -> Matrix3:
+    """(1/Nc) sum of n (x) n over sphere-sphere contacts."""
+    return Matrix3(_dem.fabricTensor(_scene(scene)._cpp))
+
+
+def bodyStressTensors(revertSign: bool = False, scene=None) -> list[Matrix3]:
+    """Per body id, the mean stress in the solid sphere from its contact forces,
+    (1/V) sum of force (x) arm over its contacts (Yade's bodyStressTensors: compression negative,
+    the opposite with ``revertSign``); zero for bodies that are not spheres."""
+    sign = -1.0 if revertSign else 1.0
+    return [sign * Matrix3(s) for s in _dem.bodyStressTensors(_scene(scene)._cpp)]
+
+
+def porosity(volume: float = -1, scene=None) -> float:
+    """1 - (sphere volume) / volume; `volume` defaults to the periodic cell's, else to the
+    bounding box of the spheres."""
+    scene = _scene(scene)
+    if volume <= 0:
+        if scene.periodic:
+            volume = scene.cell.volume
+        else:
+            alive = np.asarray(scene._cpp.alive(), dtype=bool)
+            r = scene.radii()
+            spheres = alive & (r > 0)
+            if not spheres.any():
+                raise ValueError("porosity: the scene has no spheres")
+            pos = scene.positions()[spheres]
+            lo, hi = (pos - r[spheres, None]).min(axis=0), (pos + r[spheres, None]).max(axis=0)
+            volume = float(np.prod(hi - lo))
+    return 1.0 - _dem.sphereVolume(scene._cpp) / volume
+
+
+def _moving(scene) -> np.ndarray:
+    """Ids of the bodies that carry momentum: alive, dynamic, not clump members (their clump does)."""
+    cpp = scene._cpp
+    ids = np.flatnonzero(np.asarray(cpp.alive(), dtype=bool) & np.asarray(cpp.dynamic(), dtype=bool))
+    return np.array([i for i in ids if not scene.bodies[int(i)].isClumpMember], dtype=int)
+
+
+def kineticEnergy(findMaxId: bool = False, scene=None):
+    """Total kinetic energy of the dynamic bodies, 1/2 m v^2 + 1/2 w.I w, summed in id order as
+    Yade's utils.kineticEnergy; with ``findMaxId``, ``(energy, id of the body with the most)``.
+    In a periodic cell with homoDeform, of the fluctuations only, as Yade's and as O.energy's
+    kinetic term: the velocity less the cell's field L x at the position the last step started
+    from (x - dt v), the angular velocity less the cell's spin (L: Cell.prevVelGrad)."""
+    scene = _scene(scene)
+    if (split := distributed.domain(scene)) is not None:     # under mpirun: the whole scene's
+        if findMaxId:
+            distributed.refuse("utils.kineticEnergy(findMaxId=True)")
+        return split.kineticEnergy(scene._cpp)
+    per_body = np.asarray(_dem.body_kinetic_energies(scene._cpp))
+    ids = np.flatnonzero(per_body)
+    per_body = per_body[ids]
+    total = float(np.add.accumulate(per_body)[-1]) if len(per_body) else 0.0   # in order, as Yade
+    if findMaxId:
+        return total, (int(ids[np.argmax(per_body)]) if len(ids) else -1)
+    return total
+
+
+def momentum(scene=None) -> Vector3:
+    """Total linear momentum of the dynamic bodies."""
+    scene = _scene(scene)
+    ids = _moving(scene)
+    cpp = scene._cpp
+    return Vector3((np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]).sum(axis=0))
+
+
+def angularMomentum(origin=(0.0, 0.0, 0.0), scene=None) -> Vector3:
+    """Total angular momentum of the dynamic bodies about ``origin`` (spin with principal inertia
+    and world-frame angular velocity: exact for spheres)."""
+    scene = _scene(scene)
+    ids = _moving(scene)
+    cpp = scene._cpp
+    r = np.asarray(cpp.pos())[ids] - np.asarray(origin, dtype=float)
+    p = np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]
+    spin = np.asarray(cpp.inertia())[ids] * np.asarray(cpp.angVel())[ids]
+    return Vector3((np.cross(r, p) + spin).sum(axis=0))
+
+
+def totalForceInVolume(scene=None) -> tuple[Vector3, float]:
+    """Yade's totalForceInVolume: the sum over real contacts of the absolute components of each
+    contact's force (normal + shear), and the contacts' mean isotropic stiffness kn/3 + 2 ks/3
+    (-1 without contacts)."""
+    scene = _scene(scene)
+    total, stiffness, count = np.zeros(3), 0.0, 0
+    for i in scene.interactions:
+        total += np.abs(np.asarray(i.phys.normalForce) + np.asarray(i.phys.shearForce))
+        stiffness += i.phys.kn / 3 + 2 * i.phys.ks / 3
+        count += 1
+    return Vector3(total), (stiffness / count if count else -1.0)
+
+
+def sumForces(ids, direction, scene=None) -> float:
+    """Sum over ``ids`` of the force on each body projected on ``direction``."""
+    scene = _scene(scene)
+    f = np.asarray(scene._cpp.force())[np.asarray(list(ids), dtype=int)]
+    return float((f @ np.asarray(direction, dtype=float)).sum())
+
+
+def aabbExtrema(cutoff: float = 0.0, centers: bool = False, scene=None) -> tuple[Vector3, Vector3]:
+    """Corners of the box enclosing the spheres (their centres only with ``centers``), shrunk
+    by the fraction ``cutoff`` of its size on each side, as Yade's utils.aabbExtrema."""
+    scene = _scene(scene)
+    ids = scene.sphere_ids()
+    if not len(ids):
+        raise ValueError("aabbExtrema: the scene has no spheres")
+    pos = np.asarray(scene._cpp.pos())[ids]
+    r = np.zeros(len(ids)) if centers else np.asarray(scene._cpp.radius())[ids]
+    lo, hi = (pos - r[:, None]).min(axis=0), (pos + r[:, None]).max(axis=0)
+    shrink = cutoff * (hi - lo)
+    return Vector3(lo + shrink), Vector3(hi - shrink)
+
+
+def aabbDim(cutoff: float = 0.0, centers: bool = False, scene=None) -> Vector3:
+    """Size of the box of ``aabbExtrema``."""
+    lo, hi = aabbExtrema(cutoff, centers, scene)
+    return Vector3(hi - lo)
+
+
+def _spheres(mask: int, scene) -> tuple:
+    """The scene and its spheres (clump members included) that ``mask`` selects: with mask > 0
+    those whose mask shares a bit with it, otherwise all (Yade's)."""
+    scene = _scene(scene)
+    ids = scene.sphere_ids()
+    if mask > 0:
+        ids = np.array([i for i in ids if scene.bodies[int(i)].mask & mask], dtype=int)
+    return scene, ids
+
+
+def getSpheresVolume(mask: int = -1, scene=None) -> float:
+    """Total volume of the spheres ``mask`` selects, as Yade's."""
+    scene, ids = _spheres(mask, scene)
+    return float(sum(4.0 / 3.0 * np.pi * r ** 3 for r in scene._cpp.radius()[ids]))
+
+
+def getSpheresMass(mask: int = -1, scene=None) -> float:
+    """Total mass of the spheres ``mask`` selects, as Yade's."""
+    scene, ids = _spheres(mask, scene)
+    return float(sum(scene._cpp.mass()[ids]))      # in id order, as Yade adds them

@@ -1,0 +1,175 @@
+"""``O.bodies``: the scene's bodies as Yade scripts use them (append, index, erase, clump)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Iterable
+
+import numpy as np
+
+from talus import _dem
+from talus.dem import distributed
+from talus.dem.core import clumps
+from talus.dem.geometry.appearance import Appearance
+from talus.dem.core.bodies import Body, BodySpec
+from talus.dem.core.reference import ReferenceStates
+from talus.dem.geometry.shape_registry import shape_kind
+
+if TYPE_CHECKING:
+    from talus.dem.core.scene import Scene
+
+
+class BodyContainer:
+    """``O.bodies``: append specs, index bodies by id, erase; bulk arrays for couplings."""
+
+    def __init__(self, scene: "Scene"):
+        self._scene = scene
+
+    def append(self, spec: BodySpec | Iterable[BodySpec]):
+        """Add one body (returns its id) or a list of bodies (returns their ids)."""
+        if isinstance(spec, BodySpec):
+            return self._add(spec)
+        specs = list(spec)
+        # Room for all of them at once: the per-body tables grown body by body would be copied
+        # at each one (a scene of N bodies built in N^2 time).
+        count = self._scene._cpp.bodyCount() + len(specs)
+        self._scene._appearance.ensure(count)
+        self._scene._reference.ensure(count)
+        return [self._add(s) for s in specs]
+
+    def _add(self, spec: BodySpec) -> int:
+        if spec._scene is not None:
+            raise ValueError(f"this body is already body {spec.id} of a scene; make another one to append")
+        scene = self._scene
+        scene._views.before_adding(scene._cpp)
+        id = self._create(spec, scene.materials.resolve(-1 if spec.material is None else spec.material))
+        if spec.group_mask != 1:
+            scene.bodies[id].mask = spec.group_mask
+        state = scene.bodies[id].state
+        state.refPos, state.refOri = state.pos, state.ori     # Yade's reference: as made
+        for name, value in spec.initial.items():
+            if name in ("highlight", "wire"):
+                continue
+            setattr(state, name, value)
+        look = scene._appearance
+        look.ensure(scene._cpp.bodyCount())
+        look.color[id] = spec.color
+        look.highlight[id] = spec.initial.get("highlight", False)
+        look.wire[id] = spec.initial.get("wire", False)
+        spec.id, spec._scene = id, scene
+        return id
+
+    def _create(self, spec: BodySpec, material: int) -> int:
+        try:
+            add = shape_kind(spec.kind).add
+        except KeyError:
+            add = None
+        if add is None:
+            raise ValueError(f"O.bodies.append: a body without a shape Talus can add ({spec.kind or 'none'}): give "
+                             "it one (b.shape = Sphere(radius=r)), or make it with utils.sphere, facet, box, wall")
+        return add(self._scene, spec, material)
+
+    def appendClumped(self, specs: Iterable[BodySpec], discretization: int = 0) -> tuple[int, list[int]]:
+        """Add bodies (spheres, facets, boxes) and make them one clump (Yade's appendClumped);
+        returns (clump id, member ids). Mass and inertia as :meth:`clump`."""
+        specs = list(specs)
+        scene = self._scene
+        if not scene.periodic:
+            ids = self.append(specs)
+            return self.clump(ids, discretization), ids
+        # In a periodic cell members may stick out of it, only the clump's centre must be inside:
+        # the members are added with the cell's check off, the clump's centre checked after (on
+        # failure everything added is removed again).
+        scene._cpp.setPeriodic(False)
+        ids, clump = [], None
+        try:
+            for spec in specs:
+                ids.append(self._add(spec))
+            clump = self.clump(ids, discretization)
+            scene._cpp.setPeriodic(True)
+        except ValueError as e:
+            if clump is not None:
+                self.erase(clump, eraseClumpMembers=True)
+            else:
+                for i in ids:
+                    self.erase(i)
+            scene._cpp.setPeriodic(True)
+            raise ValueError(f"appendClumped: {e}") from None
+        return clump, ids
+
+    def clump(self, ids: Iterable[int], discretization: int = 0) -> int:
+        """Make existing bodies (spheres, facets, boxes) one clump (Yade's O.bodies.clump);
+        returns its id. A member of another clump leaves it. Mass and inertia as Yade's: the
+        members summed whole (a sphere from its material's density), or, with
+        ``discretization`` > 0 and overlapping spheres, the spheres' union integrated on a grid
+        of cubes of edge (shortest side of their bounding box) / discretization."""
+        self._scene._views.before_adding(self._scene._cpp)
+        return int(_dem.add_clump(self._scene._cpp, [int(i) for i in ids], int(discretization)))
+
+    def addToClump(self, bids, cid: int, discretization: int = 0) -> None:
+        """Yade's addToClump (talus.dem.core.clumps.addToClump)."""
+        clumps.addToClump(self, bids, cid, discretization)
+
+    def releaseFromClump(self, bid: int, cid: int, discretization: int = 0) -> None:
+        """Yade's releaseFromClump (talus.dem.core.clumps.releaseFromClump)."""
+        clumps.releaseFromClump(self, bid, cid, discretization)
+
+    def replaceByClumps(self, ctList, amounts, discretization: int = 0, seed: int | None = None) -> list:
+        """Yade's replaceByClumps (talus.dem.core.clumps.replaceByClumps)."""
+        return clumps.replaceByClumps(self, ctList, amounts, discretization, seed)
+
+    def getRoundness(self, excludeList=()) -> float:
+        """Yade's roundness coefficient (talus.dem.core.clumps.getRoundness)."""
+        return clumps.getRoundness(self, excludeList)
+
+    def erase(self, id: int, eraseClumpMembers: bool = False) -> bool:
+        """Remove a body and its contacts (its id is not reused); False if it was already
+        erased (Yade's). Erasing a clump frees its members unless ``eraseClumpMembers``; erasing
+        a member takes it out of its clump, which keeps its mass and inertia (as in Yade) and
+        goes with its last member."""
+        if self[id] is None:
+            return False
+        _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))
+        return True
+
+    def clear(self) -> None:
+        """Remove every body and its contacts; the next body appended gets id 0 (Yade's
+        O.bodies.clear, which also leaves the old contacts in O.interactions: Talus removes them).
+        Per-body arrays taken before (positions(), ...) no longer follow the bodies."""
+        scene = self._scene
+        scene._cpp.clearBodies()
+        scene._views.forget()
+        scene._appearance = Appearance()
+        scene._reference = ReferenceStates()
+
+    def replace(self, specs: BodySpec | Iterable[BodySpec]):
+        """Remove every body, then append ``specs`` (Yade's O.bodies.replace); returns their ids,
+        which start at 0."""
+        specs = [specs] if isinstance(specs, BodySpec) else list(specs)
+        for spec in specs:
+            if not isinstance(spec, BodySpec):
+                raise TypeError(f"O.bodies.replace: takes bodies (utils.sphere(...), ...), got {spec!r}")
+        self.clear()
+        return self.append(specs)
+
+    def __getitem__(self, id: int) -> Body | None:
+        """Body ``id`` (negative: counted from the end), None if it was erased (Yade's)."""
+        if not isinstance(id, (int, np.integer)):
+            raise TypeError(f"body ids are integers, got {id!r}")
+        n = len(self)
+        i = int(id) + n if id < 0 else int(id)
+        if not 0 <= i < n:
+            raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
+        i = distributed.row_of(self._scene, i)     # under mpirun: its row here, if owned here
+        if not self._scene._cpp.alive()[i]:
+            return None
+        return Body(self._scene, i)
+
+    def __len__(self) -> int:
+        split = distributed.domain(self._scene)
+        return self._scene._cpp.bodyCount() if split is None else split.globalCount
+
+    def __iter__(self):
+        if distributed.domain(self._scene) is not None:
+            distributed.refuse("iterating over O.bodies (each process holds its own bodies)")
+        alive = self._scene._cpp.alive()
+        return (Body(self._scene, i) for i in range(len(self)) if alive[i])
