@@ -53,6 +53,10 @@ public:
   }
   /// The law keeps state in Contacts::extra (which is then allocated and kept aligned).
   [[nodiscard]] virtual bool needsExtra() const = 0;
+  /// The law may leave moments (ContactExtra's momentBending, momentTwist) on its contacts, which
+  /// the gather of forces per body adds to the bodies' torques; a law that never does spares the
+  /// gather a read of each contact's state.
+  [[nodiscard]] virtual bool keepsMoments() const = 0;
   /// Set the physics (stiffness, damping, friction) of a contact that just became real; `x` is
   /// its ContactExtra (null unless needsExtra()).
   /// @param c the new contact (geometry set, ids and law index assigned)
@@ -153,13 +157,16 @@ inline bool overlapsTooMuch(const Contact& c, double ratio, const Bodies& b)
 /// `template <bool Track> void force(Contact&, std::size_t k, const StepContext&, ContactEnergy&) const`
 /// (k: the contact's index; energies dissipated are added to the last argument when Track) and
 /// `double elastic(const Contact&, const ContactExtra*) const` (no virtual call per contact).
-/// A law that keeps state in Contacts::extra declares `static constexpr bool usesExtra = true`.
+/// A law that keeps state in Contacts::extra declares `static constexpr bool usesExtra = true`;
+/// every law declares `geometryUsesExtra` (the contact geometry reads or turns that state: a
+/// bond, moments, an overlap's area) and `keepsMomentState` (its contacts may carry moments).
 template <class Law>
 class ContactLawKernel : public ContactLaw
 {
 public:
   static constexpr bool usesExtra = false;
   [[nodiscard]] bool needsExtra() const override { return Law::usesExtra; }
+  [[nodiscard]] bool keepsMoments() const override { return Law::keepsMomentState; }
   void computeForces(Scene& scene, std::uint8_t lawIndex) override;
   std::int64_t computeAll(Scene& scene) override;
   std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last, ContactEnergy* energyBlocks) override;

@@ -37,6 +37,7 @@ struct MindlinPhys
 {
   static constexpr const char* ip2 = "Ip2_FrictMat_FrictMat_MindlinPhys";
   static constexpr bool usesExtra = true;
+  static constexpr bool stateForForcesOnly = true; ///< sets only what the parts' forces read
   [[nodiscard]] int handles(const Material& /*m1*/, const Material& /*m2*/) const { return 1; }
 
   // Restitution coefficients (normal, shear) or damping ratios, one value for all pairs of

@@ -22,6 +22,19 @@
 
 namespace talus::dem
 {
+namespace detail
+{
+/// Whether the contact geometry needs a part's state (PartsLaw::geometryUsesExtra).
+template <class Part>
+constexpr bool geometryReads()
+{
+  if constexpr (requires { Part::stateForForcesOnly; })
+    return Part::usesExtra && !Part::stateForForcesOnly;
+  else
+    return Part::usesExtra;
+}
+} // namespace detail
+
 /// The law made of Physics, Normal, Damping, Tangential, Moments and Motion; Names gives Yade's
 /// Law2 name (`static constexpr const char* law`).
 ///
@@ -52,6 +65,15 @@ class PartsLaw final
 public:
   static constexpr bool usesExtra = Physics::usesExtra || Normal::usesExtra || Damping::usesExtra
                                     || Tangential::usesExtra || Moments::usesExtra;
+  /// Whether the contact geometry needs the state: a part's state counts unless the part
+  /// declares `stateForForcesOnly` (stiffnesses or damping ratios its own force reads: no bond
+  /// that keeps the contact, no moment that turns with it, no overlap's area). Hertz-Mindlin's
+  /// contacts thus take the geometry of the stateless laws, spheres' fast path included.
+  static constexpr bool geometryUsesExtra = detail::geometryReads<Physics>() || detail::geometryReads<Normal>()
+                                            || detail::geometryReads<Damping>() || detail::geometryReads<Tangential>()
+                                            || detail::geometryReads<Moments>();
+  /// Only the moments part leaves moments on the contacts.
+  static constexpr bool keepsMomentState = Moments::usesExtra;
 
   [[nodiscard]] std::string typeName() const override { return Names::law; }
   [[nodiscard]] std::string physicsName() const override { return Physics::ip2; }

@@ -22,6 +22,7 @@ public:
   [[nodiscard]] int handles(const Material& m1, const Material& m2) const override { return plain_.handles(m1, m2); }
   [[nodiscard]] bool handlesGeometry(ContactGeometryKind kind) const override { return plain_.handlesGeometry(kind); }
   [[nodiscard]] bool needsExtra() const override { return withState_; }
+  [[nodiscard]] bool keepsMoments() const override { return active().keepsMoments(); }
   void prepare(Scene& scene) override
   {
     withState_ = withState_ || needed(scene);

@@ -249,12 +249,13 @@ void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, st
   }
 }
 
-/// Contact moments (rolling and twisting resistance) of the richer models, if any.
-const ContactExtra* contactMoments(const Contacts& contacts)
-{
-  return contacts.extraState();
-}
 } // namespace
+
+const ContactExtra* InteractionLoop::contactMoments(const Contacts& contacts) const
+{
+  const bool moments = std::any_of(laws.begin(), laws.end(), [](const auto& law) { return law->keepsMoments(); });
+  return moments ? contacts.extraState() : nullptr;
+}
 
 void InteractionLoop::gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const
 {

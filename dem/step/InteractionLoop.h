@@ -64,6 +64,9 @@ private:
   /// Add every contact's force and moment to its two bodies, body by body in a fixed order,
   /// so the sums do not depend on the number of threads.
   void sumForcesPerBody(Scene& scene);
+  /// The contacts' state when one of the laws may leave moments (rolling and twisting
+  /// resistance) for the gather to add to the torques, else null.
+  const ContactExtra* contactMoments(const Contacts& contacts) const;
   std::size_t checkedMaterials_ = 0;
   std::int64_t checkedBodiesVersion_ = -1;
   BalancedRanges gatherRanges_; ///< the gather's bodies per thread

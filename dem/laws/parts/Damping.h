@@ -38,6 +38,7 @@ struct NoDamping
 struct ThorntonDamping
 {
   static constexpr bool usesExtra = true;
+  static constexpr bool stateForForcesOnly = true; ///< betan, betas: read by its force alone
   /// @param x the contact's state (HertzState's betan, betas)
   /// @param step the bodies' masses and velocities, the cell, dt
   /// @param elastic the normal part's force (N)

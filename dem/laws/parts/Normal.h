@@ -36,6 +36,7 @@ struct LinearSpring
 struct HertzSpring
 {
   static constexpr bool usesExtra = true;
+  static constexpr bool stateForForcesOnly = true; ///< kno, kso: read by its force alone
   static constexpr bool mayEnd = false;
   /// Sets c.kn and c.ks to the tangent stiffnesses of the current overlap.
   /// @param x the contact's state (its HertzState's kno, kso)
