@@ -108,10 +108,17 @@ void registerTwoPhase(py::module_& m)
                         py::arg("entryPore") = c.entryPore, py::arg("interfacialArea") = c.interfacialArea,
                         py::arg("pores") = c.pores, py::arg("nInterfaces") = c.interfaces.size());
       })
-      .def("interfaces", [](const TwoPhaseFlow& t, int k) {
+      .def("interfaces", [](const TwoPhaseFlow& t, int k, int cellId) {
+        // Yade's getInterfaces() rows (inner, outer, area, rank), those of inner pore cellId (-1: all),
+        // built here: scripts call it every step
         if (k < 0 || static_cast<std::size_t>(k) >= t.clusters().size())
           throw py::index_error("cluster index " + std::to_string(k) + " out of range");
-        return t.clusters()[static_cast<std::size_t>(k)].interfaces;
+        const std::vector<Interface>& list = t.clusters()[static_cast<std::size_t>(k)].interfaces;
+        py::list rows;
+        for (std::size_t rank = 0; rank < list.size(); ++rank)
+          if (cellId == -1 || list[rank].inner == cellId)
+            rows.append(py::make_tuple(list[rank].inner, list[rank].outer, list[rank].area, rank));
+        return rows;
       })
       .def("interface", py::overload_cast<int, int>(&TwoPhaseFlow::interface), py::return_value_policy::reference_internal)
       // the meniscus volume, read and set once per interface and step by injection scripts

@@ -5,6 +5,7 @@
 // interfaces by their rank.
 #include "flow/twophase/TwoPhaseFlow.h"
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
@@ -21,10 +22,68 @@ constexpr int kNonWettingLabel = 0;
 constexpr int kReservoirLabel = 1;
 } // namespace
 
-/// A cluster's pressure matrix, factorised: it changes only when the cluster or the phases do.
+/// A cluster's pressure matrix, factorised, and the pores joined since. A pore joining the
+/// cluster borders the matrix with one row and column and leaves the rest as it was (a row's
+/// diagonal sums all its throats, members or not), so the factor of the matrix the cluster had is
+/// kept and the joined pores are solved through the Schur complement of the bordered system:
+/// one solve with the kept factor per joined pore, once, instead of a new factorisation (of its
+/// ordering too) after every pore. The kept block is checked to be the current matrix's, exactly;
+/// after kMaxBorder joined pores, or any other change, the whole matrix is factorised again.
 struct TwoPhaseFlow::ClusterSystem
 {
+  static constexpr Eigen::Index kMaxBorder = 64;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor;
+  Eigen::SparseMatrix<double> matrix; ///< the matrix of the last solve (factorised block first)
+  std::vector<int> unknowns;          ///< its pores, in its row order
+  Eigen::Index factorised = 0;        ///< rows of the factorised block
+  Eigen::MatrixXd coupling;           ///< factor^-1 times the columns of the joined pores (their rows cut)
+
+  /// Whether `a` over `pores` is this system's matrix bordered by rows and columns of further pores.
+  bool borders(const Eigen::SparseMatrix<double>& a, const std::vector<int>& pores) const
+  {
+    const Eigen::Index kept = matrix.rows();
+    if (pores.size() < unknowns.size() || a.rows() - factorised > kMaxBorder
+        || !std::equal(unknowns.begin(), unknowns.end(), pores.begin()))
+      return false;
+    const Eigen::SparseMatrix<double> block = a.topLeftCorner(kept, kept);
+    if (block.nonZeros() != matrix.nonZeros())
+      return false;
+    return std::equal(block.valuePtr(), block.valuePtr() + block.nonZeros(), matrix.valuePtr())
+           && std::equal(block.innerIndexPtr(), block.innerIndexPtr() + block.nonZeros(), matrix.innerIndexPtr())
+           && std::equal(block.outerIndexPtr(), block.outerIndexPtr() + kept + 1, matrix.outerIndexPtr());
+  }
+
+  void factorise(Eigen::SparseMatrix<double> a, std::vector<int> pores, int cluster)
+  {
+    factor.compute(a);
+    if (factor.info() != Eigen::Success)
+      throw std::runtime_error("PhaseCluster.solvePressure: the pressure matrix of cluster " + std::to_string(cluster)
+                               + " could not be factorised (a cluster without any pressure condition?)");
+    factorised = a.rows();
+    coupling.resize(factorised, 0);
+    matrix = std::move(a);
+    unknowns = std::move(pores);
+  }
+
+  /// The solution of `a` x = rhs, `a` being the factorised block bordered (borders() true).
+  Eigen::VectorXd solve(const Eigen::SparseMatrix<double>& a, const Eigen::VectorXd& rhs)
+  {
+    const Eigen::Index n = factorised;
+    const Eigen::Index border = a.rows() - n;
+    const Eigen::Index known = coupling.cols();
+    const Eigen::SparseMatrix<double> b = a.block(0, n, n, border); // the joined pores' columns, block rows
+    coupling.conservativeResize(n, border);
+    for (Eigen::Index j = known; j < border; ++j)
+      coupling.col(j) = factor.solve(Eigen::VectorXd(b.col(j)));
+    const Eigen::MatrixXd schur =
+        Eigen::MatrixXd(Eigen::SparseMatrix<double>(a.bottomRightCorner(border, border))) - b.transpose() * coupling;
+    const Eigen::VectorXd y = factor.solve(rhs.head(n));
+    const Eigen::VectorXd tail = schur.ldlt().solve(rhs.tail(border) - b.transpose() * y);
+    Eigen::VectorXd x(a.rows());
+    x.head(n) = y - coupling * tail;
+    x.tail(border) = tail;
+    return x;
+  }
 };
 
 const PhaseCluster& TwoPhaseFlow::checkedCluster(int cluster) const
@@ -174,8 +233,7 @@ std::vector<int> TwoPhaseFlow::outvadePore(int startingId, int imbibedId)
     throw std::invalid_argument("clusterOutvadePore: imbibedId " + std::to_string(imbibedId)
                                 + " is not a non-wetting pore (label "
                                 + std::to_string(label_[static_cast<std::size_t>(imbibedId)]) + ")");
-  systems_[static_cast<std::size_t>(label)].reset();
-  addPore(label, imbibedId);
+  addPore(label, imbibedId); // the cluster's system is kept: solveClusterPressure borders it
   std::vector<int> merged{label};
   const auto im = static_cast<std::size_t>(imbibedId);
   for (int f = 0; f < 4; ++f)
@@ -254,17 +312,22 @@ void TwoPhaseFlow::solveClusterPressure(int cluster)
       rhs[index[static_cast<std::size_t>(i.inner)]] -= conductanceOf(i) * i.capillaryPressure;
   if (m == 0)
     return; // only imposed pores: nothing to solve
-  if (!system)
+  Eigen::SparseMatrix<double> a(m, m);
+  a.setFromTriplets(entries.begin(), entries.end());
+  Eigen::VectorXd p;
+  if (system && system->borders(a, unknowns))
   {
-    system = std::make_shared<ClusterSystem>();
-    Eigen::SparseMatrix<double> a(m, m);
-    a.setFromTriplets(entries.begin(), entries.end());
-    system->factor.compute(a);
-    if (system->factor.info() != Eigen::Success)
-      throw std::runtime_error("PhaseCluster.solvePressure: the pressure matrix of cluster " + std::to_string(cluster)
-                               + " could not be factorised (a cluster without any pressure condition?)");
+    p = system->solve(a, rhs);
+    system->matrix = std::move(a);
+    system->unknowns = unknowns;
   }
-  const Eigen::VectorXd p = system->factor.solve(rhs);
+  else
+  {
+    if (!system)
+      system = std::make_shared<ClusterSystem>();
+    system->factorise(std::move(a), unknowns, cluster);
+    p = system->factor.solve(rhs);
+  }
   for (Eigen::Index row = 0; row < m; ++row)
     pores_[static_cast<std::size_t>(unknowns[static_cast<std::size_t>(row)])].pressure = p[row];
 }

@@ -71,8 +71,7 @@ class PhaseCluster:
             if set(kwargs) != {"CellId"}:
                 raise TypeError(f"PhaseCluster.getInterfaces() got unexpected arguments {sorted(kwargs)}")
             cellId = kwargs["CellId"]
-        return [(i.inner, i.outer, i.area, rank) for rank, i in enumerate(self._tp().interfaces(self._index))
-                if cellId == -1 or i.inner == cellId]
+        return self._tp().interfaces(self._index, self._number(cellId))
 
     def _interface(self, numf):
         return self._tp().interface(self._index, self._number(numf))
@@ -97,7 +96,10 @@ class PhaseCluster:
         self._tp().setInterfaceVolume(self._index, self._number(numf), _finite("vCap", vCap))
 
     def getCapVol(self, numf: int) -> float:
-        return self._tp().interfaceVolume(self._index, self._number(numf))
+        # the checks inlined: scripts call it once per interface and step
+        engine = self._engine
+        return (engine._tp if engine._current else engine._state()).interfaceVolume(
+            self._index, numf if type(numf) is int else self._number(numf))
 
     def updateCapVol(self, numf: int, dt: float) -> float:
         """Add flux * dt to the interface's volume; returns it."""
