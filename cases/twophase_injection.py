@@ -17,8 +17,12 @@ Checked:  twophase.injection: the largest difference over the records (every 20 
           from Yade's (absolute, <= 0.01, as twophase.drainage's saturations), with the injected
           volumes (getBoundaryFlux integrated) and the wet pore counts of both. Without yade the
           record is skipped.
+          twophase.injection.speed: Yade's CPU time over the injection steps over Talus's (each one
+          thread, same invocation; the scenario's own Python loop, which both programs run, is in
+          both), >= 3.
 Produces: the record and twophase.injection.png (imbibed fraction and injected volume over time).
 """
+import os
 import tempfile
 import time
 from pathlib import Path
@@ -71,6 +75,13 @@ def main():
                 wet_pores_equal=wet["talus"] == wet["yade"], talus_wet=wet["talus"], yade_wet=wet["yade"],
                 talus_fraction=fraction["talus"].tolist(), yade_fraction=fraction["yade"].tolist(),
                 talus_run_s=t1 - t0, yade_run_s=t2 - t1)
+    speed = theirs["stepsCpu"] / ours["stepsCpu"]
+    print(f"CPU over the injection steps: Talus {ours['stepsCpu']:.3f} s, Yade {theirs['stepsCpu']:.3f} s, "
+          f"ratio {speed:.2f}")
+    case.record("Yade CPU time over Talus's, injection steps (clusters' solves, scenario loop), 1 thread each", speed,
+                "yade 2023.02a TwoPhaseFlowEngine clusters, same scenario and packing, same invocation", 3.0,
+                suffix="speed", comparison=">=", steps=steps, talus_cpu_s=ours["stepsCpu"],
+                yade_cpu_s=theirs["stepsCpu"], load_average=list(os.getloadavg()))
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
     ax.plot(t, fraction["talus"], "-", label="Talus, imbibed fraction")
     ax.plot(t, fraction["yade"], "o", ms=3, mfc="none", label="Yade, imbibed fraction")

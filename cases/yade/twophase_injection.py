@@ -18,10 +18,12 @@
 # repeated until no pore is full; then the cluster's pressures (solvePressure). Printed as one
 # line `RESULT {json}`: per record the step, the injected volume through ymin (getBoundaryFlux),
 # the volume stored (imbibed pores + menisci), the lost (trapped) volume and the wet pore count;
-# the pore count, the interfaces at the start; the capillary force on the ymin wall at the end.
+# the pore count, the interfaces at the start; the capillary force on the ymin wall at the end;
+# the CPU time of the steps (stepsCpu: the scenario's own loop and the engine's calls).
 import json
 import os
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))   # twophase_scene.py, under Yade's -x too
 from twophase_scene import read_spheres, reservoir_engine  # noqa: E402
@@ -96,11 +98,13 @@ def record(k):
 
 
 records = []
+cpu = time.process_time()
 for k in range(int(params["steps"])):
     step(float(params["dt"]))
     if (k + 1) % int(params["every"]) == 0 or k + 1 == int(params["steps"]):
         records.append(record(k + 1))
+cpu = time.process_time() - cpu
 flow.computeCapillaryForce(addForces=False, permanently=False)
-print("RESULT " + json.dumps({"records": records, "nCells": n, "dry0": len(dry0), "interfaces0": interfaces0,
+print("RESULT " + json.dumps({"records": records, "stepsCpu": cpu, "nCells": n, "dry0": len(dry0), "interfaces0": interfaces0,
                               "dryVolume": sum(capacity[i] for i in dry0),
                               "wallForce": list(flow.fluidForce(flow.wallIds[flow.ymin]))}))
