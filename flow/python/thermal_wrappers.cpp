@@ -79,6 +79,12 @@ void registerThermal(py::module_& m)
       .def("boundaryAt", [](const ParticleConduction& c, std::size_t i) { return static_cast<int>(c.boundary.at(i)); })
       .def("boundaries", [](const ParticleConduction& c) { return std::vector<int>(c.boundary.begin(), c.boundary.end()); })
       .def("imposeTemperature", &ParticleConduction::imposeTemperature, py::arg("boundary"), py::arg("ids"), py::arg("value"))
+      .def("imposeHeatFlux", &ParticleConduction::imposeHeatFlux, py::arg("boundary"), py::arg("ids"), py::arg("rates"))
+      .def("heatFlux", [](const ParticleConduction& c, int k) {
+        if (k < 0 || k >= kBoundaries)
+          throw py::index_error("boundary index must be 0..5");
+        return c.heatFlux(k);
+      })
       .def("clearBoundaries", &ParticleConduction::clearBoundaries)
       .def("computeRates", &ParticleConduction::computeRates)
       .def("advance", &ParticleConduction::advance, py::arg("dt"))

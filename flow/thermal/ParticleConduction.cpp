@@ -36,9 +36,33 @@ void ParticleConduction::imposeTemperature(int k, const std::vector<dem::BodyId>
   }
 }
 
+void ParticleConduction::imposeHeatFlux(int k, const std::vector<dem::BodyId>& ids, const std::vector<double>& rates)
+{
+  if (k < 0 || k >= kBoundaries)
+    throw std::invalid_argument("ThermalEngine: boundary " + std::to_string(k) + " is not one of 0..5");
+  if (ids.size() != rates.size())
+    throw std::invalid_argument("ThermalEngine: heat flux of boundary " + std::to_string(k) + ": " +
+                                std::to_string(ids.size()) + " spheres but " + std::to_string(rates.size()) + " rates");
+  resize();
+  auto& flux = heatFlux_[static_cast<std::size_t>(k)];
+  flux.clear();
+  for (std::size_t j = 0; j < ids.size(); ++j)
+  {
+    if (!exchange_.isSphere(ids[j]))
+      throw std::invalid_argument("ThermalEngine: body " + std::to_string(ids[j]) + " of boundary " +
+                                  std::to_string(k) + " is not a live sphere");
+    if (!std::isfinite(rates[j]))
+      throw std::invalid_argument("ThermalEngine.thermalBndCondValue[" + std::to_string(k) +
+                                  "]: the heat flux must be finite");
+    flux.emplace_back(ids[j], rates[j]);
+  }
+}
+
 void ParticleConduction::clearBoundaries()
 {
   std::fill(boundary.begin(), boundary.end(), std::int8_t{-1});
+  for (auto& flux : heatFlux_)
+    flux.clear();
 }
 
 bool ParticleConduction::conducts(const dem::Contact& c) const
@@ -92,6 +116,10 @@ void ParticleConduction::computeRates()
     conductance_[i1] += g;
     conductance_[i2] += g;
   }
+  for (const auto& flux : heatFlux_)
+    for (const auto& [id, rate] : flux)
+      if (boundary[static_cast<std::size_t>(id)] < 0) // a held sphere keeps its temperature
+        rate_[static_cast<std::size_t>(id)] += rate;
   computeStableStep();
 }
 
@@ -126,10 +154,14 @@ void ParticleConduction::computeStableStep()
 void ParticleConduction::applyRates(double dt)
 {
   boundaryFlux_.fill(0.0);
+  for (std::size_t k = 0; k < kBoundaries; ++k)
+    for (const auto& [id, rate] : heatFlux_[k])
+      if (boundary[static_cast<std::size_t>(id)] < 0)
+        boundaryFlux_[k] += rate; // the heat given through a flux boundary (W, into the packing)
   for (std::size_t i = 0; i < rate_.size(); ++i)
   {
-    if (conductance_[i] <= 0)
-      continue; // no conducting contact (not a live sphere, or isolated)
+    if (conductance_[i] <= 0 && rate_[i] == 0)
+      continue; // no conducting contact nor flux (not a live sphere, or isolated)
     if (boundary[i] >= 0)
       boundaryFlux_[static_cast<std::size_t>(boundary[i])] += rate_[i];
     else

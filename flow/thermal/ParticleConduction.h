@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace talus::flow::thermal
@@ -62,7 +63,21 @@ public:
   /// @param value their temperature (the user's unit)
   /// @throws std::invalid_argument for a boundary outside 0..5 or an id that is not a live sphere
   void imposeTemperature(int k, const std::vector<dem::BodyId>& ids, double value);
-  /// Release every particle held by a boundary.
+  /// Heat `rates` (W, positive into the particle) into spheres `ids` through boundary `k`, at
+  /// every step (a flux boundary; Talus's addition to Yade's insulated non-temperature sides).
+  /// Replaces the earlier flux of that boundary; boundaryFlux reports the sum of the rates.
+  /// @param k the boundary, 0..5
+  /// @param ids live spheres (one held at a temperature takes none)
+  /// @param rates one per id (W), finite
+  /// @throws std::invalid_argument for a boundary outside 0..5, an id that is not a live sphere,
+  ///         sizes that differ or a non-finite rate
+  void imposeHeatFlux(int k, const std::vector<dem::BodyId>& ids, const std::vector<double>& rates);
+  /// The spheres and rates of boundary k's flux (empty: none).
+  [[nodiscard]] const std::vector<std::pair<dem::BodyId, double>>& heatFlux(int k) const
+  {
+    return heatFlux_.at(static_cast<std::size_t>(k));
+  }
+  /// Release every particle held by a boundary and remove every flux.
   void clearBoundaries();
 
   /// Heat rates and conductance sums of the current contacts and temperatures (the first half
@@ -99,7 +114,8 @@ public:
   [[nodiscard]] dem::BodyId limitingBody() const { return limitingBody_; }
 
   /// Heat rate (W) from the packing into each boundary's particles during the last step
-  /// (Yade's thermalBndFlux: positive when the packing is hotter than the boundary).
+  /// (Yade's thermalBndFlux: positive when the packing is hotter than the boundary); for a
+  /// flux boundary, the heat rate it gives to the packing.
   [[nodiscard]] const std::array<double, kBoundaries>& boundaryFlux() const { return boundaryFlux_; }
   /// Heat (J) received by each boundary since the start (Talus: the energy balance).
   [[nodiscard]] const std::array<double, kBoundaries>& boundaryHeat() const { return boundaryHeat_; }
@@ -124,6 +140,7 @@ private:
   double stableStep_ = 0;
   std::array<double, kBoundaries> boundaryFlux_{};
   std::array<double, kBoundaries> boundaryHeat_{};
+  std::array<std::vector<std::pair<dem::BodyId, double>>, kBoundaries> heatFlux_{};
   dem::BodyId limitingBody_ = -1;
 };
 } // namespace talus::flow::thermal

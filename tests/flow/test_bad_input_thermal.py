@@ -24,7 +24,7 @@ PLANNED_OFF = dict(advection=False, fluidConduction=False, thermoMech=False, sol
     ("particleK", math.nan, r"ThermalEngine.particleK must be finite"),
     ("tsSafetyFactor", 1.5, r"ThermalEngine.tsSafetyFactor = 1.5: above 1"),
     ("thermalBndCondValue", [0, 0, 0], r"ThermalEngine.thermalBndCondValue needs 6 values"),
-    ("thermalBndCondValue", [0, -274, 0, 0, 0, 0], r"ThermalEngine.thermalBndCondValue\[1\] = -274.0 is below absolute zero"),
+    ("thermalBndCondValue", [0, math.inf, 0, 0, 0, 0], r"ThermalEngine.thermalBndCondValue\[1\] must be finite"),
     ("bndCondIsTemperature", [1, 1, 0, 0, 0], r"ThermalEngine.bndCondIsTemperature needs 6 values"),
     ("bndCondIsTemperature", "abcdef", r"ThermalEngine.bndCondIsTemperature needs 6 values"),
     ("bndCondIsTemperature", [1, 2, 0, 0, 0, 0], r"ThermalEngine.bndCondIsTemperature must be 6 booleans"),

@@ -13,6 +13,8 @@ when ``particleDensity`` > 0. Temperature boundaries (``bndCondIsTemperature``,
 ``thermalBndCondValue``, numbered as Yade's ``wallIds``: xmin, xmax, ymin, ymax, zmin, zmax)
 hold the spheres that share a pore with that boundary in the triangulation of the scene's
 ``FlowEngine``, as Yade does; without boundaries no FlowEngine is needed (DEM-only conduction).
+On a side that is not a temperature boundary a non-zero ``thermalBndCondValue`` is a heat flux
+(W/m² into the packing; Talus's addition, Yade leaves the side insulated) given to the same spheres.
 
 With ``advection`` (and ``fluidConduction``), as Yade: one temperature per pore of the FlowEngine
 network (starting at its ``tZero``), advected upwind by the pore fluxes, exchanging heat with the
@@ -116,8 +118,8 @@ def _check(name: str, value):
         if not all(isinstance(v, (bool, int, np.integer, np.bool_)) and v in (0, 1) for v in flags):
             raise TypeError(f"ThermalEngine.{name} must be 6 booleans (True/False or 1/0), got {value!r}")
         return [bool(v) for v in flags]
-    if name == "thermalBndCondValue":
-        return [_temperature(f"ThermalEngine.{name}[{k}]", v) for k, v in enumerate(_six(name, value))]
+    if name == "thermalBndCondValue":   # temperatures or heat fluxes: see _check_sides
+        return [_number(f"{name}[{k}]", v) for k, v in enumerate(_six(name, value))]
     if name == "particleT0":
         return _temperature("ThermalEngine.particleT0", value)
     if name in _PLANNED_SWITCHES or name in _PLANNED_FLAGS or isinstance(_IMPLEMENTED.get(name), bool):
@@ -135,6 +137,14 @@ def _check(name: str, value):
         raise ValueError(f"ThermalEngine.tsSafetyFactor = {number}: above 1 the explicit conduction step overshoots "
                          "the stable one; use (0, 1], or <= 0 for a thermal step equal to O.dt")
     return number
+
+
+def _check_sides(bndCondIsTemperature, thermalBndCondValue):
+    """A temperature side's value is a temperature; another side's is a heat flux (W/m², any
+    finite value: _check has seen to that)."""
+    for k, (held, value) in enumerate(zip(bndCondIsTemperature, thermalBndCondValue)):
+        if held:
+            _temperature(f"ThermalEngine.thermalBndCondValue[{k}]", value)
 
 
 def _per_body(field: str, parameter: str, value) -> float:
@@ -218,6 +228,9 @@ class ThermalEngine(Engine):
         value = _check(name, value)
         if name in _PLANNED_SWITCHES and value:
             raise _planned(name)
+        if name in ("bndCondIsTemperature", "thermalBndCondValue"):
+            _check_sides(**{**{n: self._params[n] for n in ("bndCondIsTemperature", "thermalBndCondValue")},
+                            name: value})
         self._params[name] = value
         object.__setattr__(self, "_version", self._version + 1)
 
@@ -347,15 +360,37 @@ class ThermalEngine(Engine):
                           "volume changes; set solidThermoMech=False to silence this", RuntimeWarning, stacklevel=3)
 
     def _set_boundaries(self, scene):
-        """Hold the spheres of each temperature boundary (Yade's setConductionBoundary)."""
+        """Hold the spheres of each temperature boundary (Yade's setConductionBoundary), and give
+        the heat flux of the others with a non-zero value (Talus's addition: Yade leaves them
+        insulated) to the same spheres, shared in proportion to their cross-sections pi r²: side
+        k receives thermalBndCondValue[k] x its area, that of the FlowEngine's box face."""
         c = self._state()
         c.clearBoundaries()
-        wanted = [k for k in range(6) if self._params["bndCondIsTemperature"][k]]
+        held, values = self._params["bndCondIsTemperature"], self._params["thermalBndCondValue"]
+        wanted = [k for k in range(6) if held[k] or values[k] != 0]
         if wanted:
             flow = self._flow_engine(scene)
             for k in wanted:
-                c.imposeTemperature(k, flow._flow.boundarySphereIds(k), self._params["thermalBndCondValue"][k])
+                ids = flow._flow.boundarySphereIds(k)
+                if held[k]:
+                    c.imposeTemperature(k, ids, values[k])
+                else:
+                    c.imposeHeatFlux(k, ids, self._flux_rates(scene, flow, k, ids))
         self._params["boundarySet"] = True
+
+    _warned_flux = False   # the flux boundary's warning is printed once per session
+
+    def _flux_rates(self, scene, flow, k, ids) -> np.ndarray:
+        if not ThermalEngine._warned_flux:
+            ThermalEngine._warned_flux = True
+            warnings.warn("ThermalEngine.thermalBndCondValue on a side with bndCondIsTemperature False is applied as a "
+                          "heat flux, W/m² into the packing (Talus's addition: Yade ignores it)", RuntimeWarning,
+                          stacklevel=4)
+        position = np.asarray(flow._flow.boundaryPositions())
+        others = [a for a in range(3) if a != k // 2]
+        area = np.prod([position[2 * a + 1] - position[2 * a] for a in others])
+        weight = np.asarray(scene._cpp.radius())[np.asarray(ids, dtype=int)] ** 2
+        return self._params["thermalBndCondValue"][k] * area * weight / weight.sum()
 
     @staticmethod
     def _has_flow(scene) -> bool:
@@ -492,6 +527,7 @@ class ThermalEngine(Engine):
         c, n = self._conduction, self._schedule.counters()
         return {"temp": _encode(c.temperatures()), "k": _encode(c.conductivities()), "Cp": _encode(c.heatCapacities()),
                 "boundary": [int(b) for b in c.boundaries()], "heat": list(c.boundaryHeat()),
+                "heatFlux": [[[int(i), float(q)] for i, q in c.heatFlux(k)] for k in range(6)],
                 "started": self._started, "boundarySet": self._params["boundarySet"],
                 "values": list(self._params["thermalBndCondValue"]),
                 "counters": [n.runs, n.sinceRun, n.period, n.timeSinceRun, n.thermalDT, n.maxTimeStep],
@@ -539,6 +575,9 @@ class ThermalEngine(Engine):
             ids = [int(i) for i in np.flatnonzero(boundary == k)]
             if ids:
                 c.imposeTemperature(k, ids, state["values"][k])
+        for k, flux in enumerate(state.get("heatFlux", [])):
+            if flux:
+                c.imposeHeatFlux(k, [int(i) for i, _ in flux], [q for _, q in flux])
         c.setBoundaryHeat(state["heat"])
         counters = _flow.ConductionCounters()
         (counters.runs, counters.sinceRun, counters.period, counters.timeSinceRun, counters.thermalDT,
