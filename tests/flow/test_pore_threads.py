@@ -6,9 +6,12 @@ import os
 import subprocess
 import sys
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
+import talus
 from talus.dem.packing.pack import SpherePack
 
 BUILD = """
@@ -25,7 +28,9 @@ print(json.dumps({"pores": flow._flow.poreVertexIds().tolist(), "flux": flow.get
 
 
 def build(packing, threads):
-    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_THREAD_LIMIT=str(threads))
+    # The suite puts the tested package on sys.path only; the child gets it through PYTHONPATH.
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_THREAD_LIMIT=str(threads),
+               PYTHONPATH=str(Path(talus.__file__).resolve().parents[1]))
     done = subprocess.run([sys.executable, "-c", BUILD, str(packing)], env=env, capture_output=True, text=True,
                           check=False)
     assert done.returncode == 0, done.stderr
