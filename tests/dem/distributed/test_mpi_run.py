@@ -127,3 +127,26 @@ def test_each_process_keeps_only_its_spheres_the_walls_and_its_ghosts(tmp_path):
     for t in result["traffic"]:
         assert t["updates"] == 10 and t["update_seconds"] > 0 and t["split_seconds"] > 0
         assert 0 <= t["wait_cpu_seconds"] <= t["update_seconds"] + t["reduction_seconds"] + 0.1
+
+
+@pytest.mark.skipif(len(os.sched_getaffinity(0)) < 2, reason="one CPU: bound or not, the same set")
+@pytest.mark.parametrize("binding", [None, "core"])
+def test_processes_are_unbound_unless_a_binding_is_asked_for(tmp_path, binding):
+    # Open MPI binds 2 processes to a core each by default; talus run gives them every CPU back,
+    # threads included, but keeps a binding the user asked for with --bind-to.
+    script = tmp_path / "cpus.py"
+    script.write_text(
+        "import json, os\n"
+        "threads = {int(t): sorted(os.sched_getaffinity(int(t))) for t in os.listdir('/proc/self/task')}\n"
+        "rank = os.environ['OMPI_COMM_WORLD_RANK']\n"
+        f"open(os.path.join({str(tmp_path)!r}, 'cpus' + rank + '.json'), 'w').write(json.dumps(threads))\n")
+    env = {"OMPI_MCA_hwloc_base_binding_policy": binding} if binding else {}
+    done = talus_run(script, processes=2, env=env)
+    assert done.returncode == 0, done.stderr
+    everything = sorted(os.sched_getaffinity(0))
+    for rank in (0, 1):
+        sets = json.loads((tmp_path / f"cpus{rank}.json").read_text()).values()
+        if binding:
+            assert all(len(cpus) == 1 for cpus in sets)
+        else:
+            assert all(cpus == everything for cpus in sets)

@@ -45,10 +45,29 @@ def start() -> None:
     only, MPI finalised at exit."""
     global _rank
     from talus import _distributed
+    _release_default_binding()
     _rank, _ = _distributed.init()
     atexit.register(_distributed.finalize)
     if _rank != 0:
         sys.stdout = open(os.devnull, "w")
+
+
+def _release_default_binding() -> None:
+    """Give every thread of this process the CPUs mpirun may use, unless the user asked for a
+    binding (``--bind-to`` sets OMPI_MCA_hwloc_base_binding_policy). Open MPI binds up to two
+    processes to one core each by default: a process cannot then leave a core that other work
+    keeps busy while every step waits for it, and the OpenMP threads of ``-j N`` share its one
+    core. Threads already started get the wider set too (Linux sets it per thread)."""
+    if "OMPI_COMM_WORLD_SIZE" not in os.environ or "OMPI_MCA_hwloc_base_binding_policy" in os.environ:
+        return
+    try:
+        allowed = os.sched_getaffinity(os.getppid())
+        if allowed <= os.sched_getaffinity(0):
+            return
+        for thread in os.listdir("/proc/self/task"):
+            os.sched_setaffinity(int(thread), allowed)
+    except OSError:     # a thread that ended meanwhile, or a set the system refuses: keep mpirun's
+        pass
 
 
 def refuse(what: str) -> None:
