@@ -60,8 +60,9 @@ def _run(args: argparse.Namespace) -> int:
         if args.threads < 1:
             print(f"talus run: -j must be at least 1, got {args.threads}", file=sys.stderr)
             return 2
-        os.environ["OMP_NUM_THREADS"] = str(args.threads)   # for child processes
         talus._dem.setThreadCount(args.threads)             # this one's runtime already started
+    # As under yade -x, scripts (Yade's checkPerf.py) and child processes read the thread count here.
+    os.environ["OMP_NUM_THREADS"] = str(talus._dem.threadCount())
     _warn_if_oversubscribed(talus._dem.threadCount())
     if args.trust_checkpoints:
         from talus.dem.files import trust

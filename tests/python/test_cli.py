@@ -29,6 +29,9 @@ def test_run_sets_thread_count(talus_cmd, tmp_path):
     import talus
     expected = "threads 3 3" if talus.build_info()["features"]["openmp"][0] else "threads 3 1"
     assert expected in talus_cmd("run", "-j", "3", script).stdout
+    # Without -j the variable still says how many threads run, as yade -x sets it.
+    count = talus_cmd("run", script).stdout.split()
+    assert count[0] == "threads" and count[1] == count[2]
 
 
 def test_run_propagates_exit_status_and_errors(talus_cmd, tmp_path):
