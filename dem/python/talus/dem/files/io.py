@@ -26,8 +26,10 @@ import inspect
 import json
 import math
 import os
+import pkgutil
 import warnings
 import weakref
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -89,17 +91,15 @@ def _class_path(cls: type) -> str:
     return f"{cls.__module__}:{cls.__qualname__}"
 
 
-# Checkpoints written before talus.dem had sub-packages name a class's module flat
-# (talus.dem.step.engines:ForceResetter); such a module is found in the sub-package that holds it now.
-_SUBPACKAGES = ("core", "geometry", "packing", "step", "control", "files", "analysis")
-
-
 def _import_module(name: str):
+    """Checkpoints written before talus.dem had sub-packages name a class's module flat
+    (talus.dem.engines:ForceResetter); such a module is found in the sub-package holding it now."""
     package, _, leaf = name.rpartition(".")
     if package == "talus.dem" and importlib.util.find_spec(name) is None:
-        for sub in _SUBPACKAGES:
-            if importlib.util.find_spec(f"talus.dem.{sub}.{leaf}") is not None:
-                return importlib.import_module(f"talus.dem.{sub}.{leaf}")
+        dem_folder = str(Path(__file__).resolve().parents[1])
+        for sub in pkgutil.iter_modules([dem_folder]):
+            if sub.ispkg and importlib.util.find_spec(f"talus.dem.{sub.name}.{leaf}") is not None:
+                return importlib.import_module(f"talus.dem.{sub.name}.{leaf}")
     return importlib.import_module(name)
 
 
