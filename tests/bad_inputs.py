@@ -3,7 +3,7 @@ exception and the words that must tell the user what is wrong (the parameter, bo
 The tests (tests/<component>/test_bad_input_suite.py) and cases/reliability_bad_inputs.py (the
 record reliability.bad-inputs: the fraction of these cases that end in such a clear error) both
 read it. The inputs Yade runs silently, or that failed with a misleading message, have their own
-tests (tests/dem/*/test_bad_input_*.py, tests/flow/test_bad_input_flow.py); the random parameters
+tests (tests/dem/*/test_bad_input_*.py, tests/flow/pore/test_bad_input_flow.py); the random parameters
 are drawn by bad_input_generator.py."""
 from __future__ import annotations
 

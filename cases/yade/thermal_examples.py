@@ -1,5 +1,5 @@
 # What the set-ups of Yade's examples/ThermalEngine share, for the scripts that run them by the same
-# text in Yade and Talus (cases/yade/thermal_scenario.py, tests/flow/thermal_noflow.py and
+# text in Yade and Talus (cases/yade/thermal_scenario.py, tests/flow/thermal/thermal_noflow.py and
 # thermal_rod.py). Yade's `-x` puts no script folder on sys.path: a script first adds this folder.
 from math import radians
 

@@ -1,5 +1,5 @@
 # The injection scenario of cases/twophase_injection.py and of
-# tests/flow/test_twophase_injection.py, one script for both programs: run by
+# tests/flow/twophase/test_twophase_injection.py, one script for both programs: run by
 # talus.twin.run(script, params, "yade" or "talus") with the parameters as JSON in
 # $TALUS_SCENARIO:
 #   packing       sphere file (x y z r per line)

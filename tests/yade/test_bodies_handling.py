@@ -17,7 +17,7 @@ def close(a, b):
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_bodies_handling_as_yade():
-    ours, theirs = (twin.run(HERE / "bodies_handling_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "bodies_handling_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["ids"]["number"] == 6 and theirs["facets"]["number"] == 12 and theirs["moved"] is True
     assert theirs["by mask"]["number"] == 6 and theirs["list and mask"]["number"] == 4   # copies included
     for key in theirs:

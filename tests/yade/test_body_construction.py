@@ -12,7 +12,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_bodies_made_the_long_way_as_yade():
-    ours, theirs = (twin.run(HERE / "body_construction_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "body_construction_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["appended"][3:6] == [0.5, [1.0, 0.0, 0.0], True]
     positions = [ours.pop("positions"), theirs.pop("positions")]
     assert str(theirs["shapes"][:2]) == "[nan, [1.0, 1.0, 1.0]]"     # Yade's Sphere()

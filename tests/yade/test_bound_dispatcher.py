@@ -13,7 +13,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_bound_dispatcher_alone_as_yade():
-    ours, theirs = (twin.run(HERE / "bound_dispatcher_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "bound_dispatcher_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["alone"] == ours["alone"] == ["BoundDispatcher"] and ours["iter"] == theirs["iter"] == 2003
     assert np.allclose(ours["positions"], theirs["positions"], rtol=0, atol=1e-10)
     assert min(p[2] for p in theirs["positions"]) < 0.13       # they fell on the floor

@@ -14,7 +14,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_elastic_energies_as_yade():
-    ours, theirs = (twin.run(HERE / "cohesive_energy_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "cohesive_energy_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["contacts"] == ours["contacts"] == 2
     assert theirs["keys"] == ours["keys"] == ["kinRot", "kinTrans"]
     assert min(theirs["energies"]) > 0            # every spring is loaded

@@ -13,7 +13,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_dyndt_as_yade():
-    ours, theirs = (twin.run(HERE / "dyndt_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "dyndt_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert ours["trace"] == theirs["trace"]
     steps = {row[0]: row[1] for row in ours["trace"]}
     assert steps["overridden while active"] != 1e-6 and steps["kept"] == 1e-6

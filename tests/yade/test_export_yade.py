@@ -15,7 +15,7 @@ HERE = Path(__file__).parent
 
 @pytest.fixture(scope="module")
 def both():
-    return {who: twin.run(HERE / "export_side_by_side.py", {}, who) for who in ("talus", "yade")}
+    return {who: twin.run(HERE / "side_by_side" / "export_side_by_side.py", {}, who) for who in ("talus", "yade")}
 
 
 def geometry(vtk: dict) -> tuple[np.ndarray, list]:

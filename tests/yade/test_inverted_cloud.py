@@ -12,7 +12,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_inverted_box_as_yade():
-    ours, theirs = (twin.run(HERE / "inverted_cloud_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "inverted_cloud_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert ours["count"] == theirs["count"] > 100
     np.testing.assert_allclose(ours["spheres"], theirs["spheres"], rtol=0, atol=1e-12)
     y = np.array(theirs["spheres"])[:, 1]

@@ -17,8 +17,8 @@ yade_missing = pytest.mark.skipif(not twin.yade_available(), reason="yade is not
 
 @yade_missing
 def test_predicates_lattices_facets_and_unv_match_yade():
-    ours = twin.run(HERE / "pack_geom_side_by_side.py", {}, "talus")
-    theirs = twin.run(HERE / "pack_geom_side_by_side.py", {}, "yade")
+    ours = twin.run(HERE / "side_by_side" / "pack_geom_side_by_side.py", {}, "talus")
+    theirs = twin.run(HERE / "side_by_side" / "pack_geom_side_by_side.py", {}, "yade")
     assert ours["inside"] == theirs["inside"]          # every point, pad 0 and a pad
     assert sum(map(sum, theirs["inside"]["notch"])) > 0
     for key in ("aabb", "dim", "center", "hexa", "ortho", "facetBox", "flatBox", "facetCylinder", "facetCone",

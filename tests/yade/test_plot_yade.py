@@ -10,7 +10,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_plot_data_as_yade():
-    ours, theirs = (twin.run(HERE / "plot_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "plot_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["added"]["a"] == ["1", "nan", "3"]          # ints stay ints
     assert "c_z" in theirs["added"] and "d_yx" in theirs["added"]
     assert theirs["auto"]["n"] == ["0", "1"]

@@ -10,7 +10,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_dict_as_yade():
-    ours, theirs = (twin.run(HERE / "serializable_dict_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "serializable_dict_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["FrictMat"]["young"] == 1e9 and theirs["appended"]["id"] == 0
     assert ours["clump material"] == theirs["clump material"] == [True, 0]
     for key in ("FrictMat", "ViscElMat", "CohFrictMat", "ElastMat", "appended", "shape 0", "shape 1", "shape 2",

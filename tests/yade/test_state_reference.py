@@ -15,7 +15,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_reference_as_yade():
-    ours, theirs = (twin.run(HERE / "state_reference_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "state_reference_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["after run"][0] == [1, 2, 3] and theirs["clump"][0] == [0, 0, 0]
     assert theirs["references"][0][0] == 5 and theirs["references"][4][2] != 70   # vel a reference, pos a copy
     assert ours.keys() == theirs.keys()

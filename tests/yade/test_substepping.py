@@ -13,7 +13,7 @@ HERE = Path(__file__).parent
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 def test_substepping_and_interrupted_steps_as_yade():
-    ours, theirs = (twin.run(HERE / "substepping_side_by_side.py", {}, who) for who in ("talus", "yade"))
+    ours, theirs = (twin.run(HERE / "side_by_side" / "substepping_side_by_side.py", {}, who) for who in ("talus", "yade"))
     assert theirs["errors"] == ["PyRunner error."] * 3
     # After the error Yade's O.subStep is 0 (its next step runs the step's engines again from
     # the first); Talus's is the sub-step after the PyRunner that raised, where it goes on.

@@ -13,7 +13,7 @@ HERE = Path(__file__).parent
 
 @pytest.fixture(scope="module")
 def both():
-    return {who: twin.run(HERE / "text_import_side_by_side.py", {}, who) for who in ("talus", "yade")}
+    return {who: twin.run(HERE / "side_by_side" / "text_import_side_by_side.py", {}, who) for who in ("talus", "yade")}
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")

@@ -1,5 +1,5 @@
-# Yade side of the pore-flow comparison (tests/flow/test_pore.py): run with
-#   cd tests/flow && yade -n -x pore_yade_reference.py [packing.txt] [out.json]
+# Yade side of the pore-flow comparison (tests/flow/pore/test_pore.py): run with
+#   cd tests/flow/pore && yade -n -x pore_yade_reference.py [packing.txt] [out.json]
 # Reads a sphere list (x y z r per line), puts it in the six walls of its bounding box, runs Yade's
 # FlowEngine once (CHOLMOD, pressure 1 at ymin, 0 at ymax, no flux elsewhere) and writes the pore
 # network and the solution as JSON: cells keyed by their vertex ids (walls are ids 0..5, the
@@ -9,8 +9,8 @@ import json
 import sys
 
 args = [a for a in sys.argv[1:] if not a.startswith("-")]
-packing = args[0] if args else "data/pore_packing.txt"
-out = args[1] if len(args) > 1 else "data/pore_yade_reference.json"
+packing = args[0] if args else "../data/pore_packing.txt"
+out = args[1] if len(args) > 1 else "../data/pore_yade_reference.json"
 spheres = [tuple(map(float, l.split())) for l in open(packing) if l.strip() and not l.startswith("#")]
 lo = [min(s[k] - s[3] for s in spheres) for k in range(3)]
 hi = [max(s[k] + s[3] for s in spheres) for k in range(3)]

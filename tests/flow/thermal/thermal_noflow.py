@@ -3,7 +3,7 @@
 # spheres, sphere-fluid exchange in each pore and conduction through the fluid), shortened and run
 # by the same text in Yade and Talus:
 #   yade -n -x thermal_noflow.py out.json      (the reference: data/thermal_noflow_yade.json)
-#   talus run thermal_noflow.py out.json       (tests/flow/test_thermal_fluid.py)
+#   talus run thermal_noflow.py out.json       (tests/flow/thermal/test_thermal_fluid.py)
 # Differences from the example: one boundary imposes the pressure (0, as the others' fluxes):
 # with none the pressure system is singular and Yade 2023.02a's temperatures are all NaN; no
 # TriaxialStressController, GlobalStiffnessTimeStepper or output (they change nothing here).
@@ -14,7 +14,7 @@ import json
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "cases", "yade"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "..", "cases", "yade"))
 from thermal_examples import EXAMPLE_PACKING, packing_spheres, static_box, water_and_particles  # noqa: E402
 
 steps = int(os.environ.get("NF_STEPS", "2000"))

@@ -2,7 +2,7 @@
 # r = 3 mm, along a 1 m box, the end spheres held at 0 by the xmin and xmax temperature
 # boundaries, the others starting at 400), run by the same text in Yade and Talus:
 #   yade -n -x thermal_rod.py out.json          (the reference: data/thermal_rod_yade.json)
-#   talus run thermal_rod.py out.json           (tests/flow/test_thermal.py)
+#   talus run thermal_rod.py out.json           (tests/flow/thermal/test_thermal.py)
 # Settings by environment: ROD_STEPS (2000), ROD_DT (1 s), ROD_K (particleK, 2 W/(m K)),
 # ROD_TSF (tsSafetyFactor, 0), ROD_KERN (useKernMethod, 0); Talus only: ROD_SAVE (a checkpoint
 # path: saves half-way, runs on, reloads and runs the second half again), ROD_VTK (a VTKRecorder
@@ -15,7 +15,7 @@ import sys
 
 from yade import pack
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "cases", "yade"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "..", "cases", "yade"))
 from thermal_examples import static_box  # noqa: E402
 
 steps = int(os.environ.get("ROD_STEPS", "2000"))

@@ -3,7 +3,7 @@ fixed packing, written so that the same file runs in Yade (`yade -n -x`) and in 
 spheres compacted to 10 kPa (data/consolidation_packing.txt, made by Yade 2023.02a as the
 example makes its 1000), drained at the top, loaded to 11 kPa by the top wall with O.dt fixed at
 1e-4 and no damping. Prints one RESULT line: the top wall's position, the pore pressure near the
-bottom and the largest fluid force on a sphere, every 50 steps (tests/flow/test_consolidation.py)."""
+bottom and the largest fluid force on a sphere, every 50 steps (tests/flow/pore/test_consolidation.py)."""
 import json
 import math
 import os
@@ -14,7 +14,7 @@ except NameError:
     from yade import *  # noqa: F401,F403  (Talus's drop-in namespace: talus.dem and FlowEngine)
 
 STEPS = json.loads(os.environ.get("TALUS_SCENARIO", "{}")).get("steps", 1000)   # run in this folder
-rows = [l.split() for l in open(os.path.join("data", "consolidation_packing.txt")) if not l.startswith("#")]
+rows = [l.split() for l in open(os.path.join("..", "data", "consolidation_packing.txt")) if not l.startswith("#")]
 O.materials.append(FrictMat(young=1e6, poisson=0.5, frictionAngle=math.radians(30), density=2600, label="spheres"))
 O.materials.append(FrictMat(young=1e6, poisson=0.5, frictionAngle=0, density=0, label="walls"))
 O.bodies.append(aabbWalls([Vector3(0, 0, 0), Vector3(1, 1, 1)], thickness=0, material="walls"))

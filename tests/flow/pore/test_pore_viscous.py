@@ -15,7 +15,7 @@ import pytest
 from talus.flow import FlowEngine
 
 HERE = Path(__file__).resolve().parent
-DATA = HERE / "data"
+DATA = HERE.parent / "data"
 YADE = shutil.which("yade")
 OPTIONS = {
     "viscousShear": dict(viscousShear=True),

@@ -9,7 +9,7 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 PACKING = Path("/usr/share/doc/yade/examples/ThermalEngine/5cmEdge_1mm.spheres")
-YADE = json.loads((HERE / "data" / "thermal_noflow_yade.json").read_text())
+YADE = json.loads((HERE.parent / "data" / "thermal_noflow_yade.json").read_text())
 T_SPHERES, T_FLUID = 333.15, 343.15
 
 

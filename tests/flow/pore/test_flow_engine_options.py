@@ -8,7 +8,7 @@ import pytest
 
 from talus.flow import FlowEngine
 
-DATA = Path(__file__).resolve().parent / "data"
+DATA = Path(__file__).resolve().parents[1] / "data"
 
 
 def _sample(steps, velocity=0.5, **engine):

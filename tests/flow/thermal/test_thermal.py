@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 HERE = Path(__file__).resolve().parent
-YADE = json.loads((HERE / "data" / "thermal_rod_yade.json").read_text())
+YADE = json.loads((HERE.parent / "data" / "thermal_rod_yade.json").read_text())
 T0, RADIUS, DENSITY, CP = 400.0, 0.003, 2600.0, 710.0
 
 

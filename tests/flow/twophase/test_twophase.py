@@ -10,7 +10,7 @@ import pytest
 
 from talus.flow import TwoPhaseFlowEngine, UnsaturatedEngine
 
-DATA = Path(__file__).with_name("data")
+DATA = Path(__file__).resolve().parents[1] / "data"
 REF = json.loads((DATA / "twophase_yade_reference.json").read_text())
 SPHERES = np.loadtxt(DATA / "pore_packing.txt")
 

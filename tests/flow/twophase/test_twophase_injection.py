@@ -14,14 +14,14 @@ from talus import twin
 from talus.flow import TwoPhaseFlowEngine
 
 HERE = Path(__file__).resolve().parent
-REF = json.loads((HERE / "data" / "twophase_injection_yade_reference.json").read_text())
-SCENARIO = HERE.parent.parent / "cases" / "yade" / "twophase_injection.py"
-SPHERES = np.loadtxt(HERE / "data" / "pore_packing.txt")
+REF = json.loads((HERE.parent / "data" / "twophase_injection_yade_reference.json").read_text())
+SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase_injection.py"
+SPHERES = np.loadtxt(HERE.parent / "data" / "pore_packing.txt")
 
 
 @pytest.fixture(scope="module")
 def injection():
-    return twin.run(SCENARIO, {**REF["params"], "packing": str(HERE / "data" / "pore_packing.txt")}, "talus")
+    return twin.run(SCENARIO, {**REF["params"], "packing": str(HERE.parent / "data" / "pore_packing.txt")}, "talus")
 
 
 def test_injection_as_yade(injection):

@@ -13,7 +13,7 @@ import pytest
 from talus.flow import FlowEngine, PeriodicFlowEngine
 
 HERE = Path(__file__).resolve().parent
-DATA = HERE / "data"
+DATA = HERE.parent / "data"
 YADE = shutil.which("yade")
 CELL = np.array([1.0, 1.0, 1.0])
 THRESHOLD = 0.25

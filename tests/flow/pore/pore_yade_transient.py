@@ -1,5 +1,5 @@
-# Yade side of the transient pore-flow comparison (tests/flow/test_pore.py): run with
-#   cd tests/flow && yade -n -x pore_yade_transient.py packing.txt out.json bulkModulus [bulkModulus ...]
+# Yade side of the transient pore-flow comparison (tests/flow/pore/test_pore.py): run with
+#   cd tests/flow/pore && yade -n -x pore_yade_transient.py packing.txt out.json bulkModulus [bulkModulus ...]
 # The 400 spheres of packing.txt in the walls of their bounding box (boundaryUseMaxMin), each
 # moving at a constant velocity towards the box centre (blockedDOFs keep it: x1 = x0 + v dt),
 # pressure 1 at ymin, 0 at ymax. Step 1 meshes and solves at x0; step 2 moves the spheres to x1,

@@ -29,7 +29,7 @@ def test_noflow_example_runs_unchanged_with_the_twins_temperatures(talus_cmd, tm
     out = tmp_path / "example.json"
     talus_cmd("run", "-j", "1", HERE / "noflow_example_driver.py", out, cwd=tmp_path, timeout=300)
     ours = json.loads(out.read_text())
-    yade = json.loads((HERE / "data" / "thermal_noflow_yade.json").read_text())
+    yade = json.loads((HERE.parent / "data" / "thermal_noflow_yade.json").read_text())
     assert ours["steps"] == 2000 and ours["ids"] == yade["ids"] and ours["contacts"] == yade["contacts"]
     assert np.all(np.array(ours["pressures"]) == 0)
     spheres = np.array(ours["temp"])

@@ -1,5 +1,5 @@
-# Yade side of the two-phase tests (tests/flow/test_twophase.py): run with
-#   cd tests/flow && yade -n -x twophase_yade_reference.py
+# Yade side of the two-phase tests (tests/flow/twophase/test_twophase.py): run with
+#   cd tests/flow/twophase && yade -n -x twophase_yade_reference.py
 # On the 400-sphere cloud of data/pore_packing.txt in the walls of its bounding box, Yade's
 # TwoPhaseFlowEngine (wetting reservoir ymin, non-wetting ymax at 0, surfaceTension 0.0728) for
 # each entry-pressure method and with and without trapping: the saturation after invasion() at
@@ -14,10 +14,10 @@ import json
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "cases", "yade"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "..", "cases", "yade"))
 from twophase_scene import invade, read_spheres, reservoir_engine  # noqa: E402
 
-spheres, lo, hi = read_spheres("data/pore_packing.txt")
+spheres, lo, hi = read_spheres("../data/pore_packing.txt")
 GAMMA = 0.0728
 PCS = [GAMMA / 0.1 * (0.2 + 0.1 * i) for i in range(40)]  # pc d / gamma from 0.2 to 4.1, d the mean diameter
 FORCE_STEP = 20                                            # forces after this many drainage steps
@@ -68,5 +68,5 @@ radii = [{"msp": tp.getMSPRcByPosRadius(Vector3(*a), ra, Vector3(*b), rb, Vector
           "inscribed": tp.getEffRcByPosRadius(Vector3(*a), ra, Vector3(*b), rb, Vector3(*c), rc),
           "spheres": [a, ra, b, rb, c, rc]} for a, ra, b, rb, c, rc in triplets]
 json.dump({"surfaceTension": GAMMA, "pcs": PCS, "runs": runs, "forceStep": FORCE_STEP, "forces": forces,
-           "triplets": radii, "bodyRadii": bodyRadii, "variants": variants}, open("data/twophase_yade_reference.json", "w"), indent=1)
+           "triplets": radii, "bodyRadii": bodyRadii, "variants": variants}, open("../data/twophase_yade_reference.json", "w"), indent=1)
 print("written", {k: v["drainage"][-1] for k, v in runs.items()})

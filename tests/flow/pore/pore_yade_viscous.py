@@ -1,5 +1,5 @@
-# Yade side of the viscous-force comparison (tests/flow/test_pore_viscous.py): run with
-#   cd tests/flow && yade -n -x pore_yade_viscous.py packing.txt out.json
+# Yade side of the viscous-force comparison (tests/flow/pore/test_pore_viscous.py): run with
+#   cd tests/flow/pore && yade -n -x pore_yade_viscous.py packing.txt out.json
 # The spheres of packing.txt (x y z r per line) in the walls of their bounding box, fixed, each
 # with a velocity and an angular velocity drawn from random.Random(5) (written to the output so
 # that Talus uses the same). No integrator in the engine list: the spheres keep their positions

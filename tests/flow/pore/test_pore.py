@@ -13,7 +13,7 @@ import pytest
 from talus.flow import FlowEngine, HiddenSphereWarning
 
 HERE = Path(__file__).resolve().parent
-DATA = HERE / "data"
+DATA = HERE.parent / "data"
 YADE = shutil.which("yade")
 
 
