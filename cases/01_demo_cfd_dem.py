@@ -215,8 +215,8 @@ def main():
     print(f"records:  {case.folder}/demo.cfd_dem*.json")
     print("\nNext, each in one line (docs/getting-started.md walks through them):")
     talus = "build/bin/talus"
-    print(f"  {talus} run cases/dem_gravity_deposition.py --quick        # plain DEM")
-    print(f"  {talus} run cases/vans_sediment_transport.py --quick       # 1D VANS sediment transport")
+    print(f"  {talus} run cases/dem/dem_gravity_deposition.py --quick        # plain DEM")
+    print(f"  {talus} run cases/vans/vans_sediment_transport.py --quick       # 1D VANS sediment transport")
     print(f"  {talus} case permeability --out perm && {talus} run perm/permeability.py        # pore flow")
     print(f"  {talus} case femxdem --out femxdem && {talus} run femxdem/femxdem.py         # FEM x DEM")
     print(f"  {talus} case cfd --help                                    # your own CFD-DEM case")

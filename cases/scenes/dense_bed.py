@@ -2,7 +2,7 @@
 
     yade -n -j1 -x dense_bed.py PACKING STEPS [LAW]   |   talus run dense_bed.py PACKING STEPS [LAW]
 
-PACKING is a text file written by cases/11_bench_dense.py: a first line `dt young density box_x
+PACKING is a text file written by cases/bench/11_bench_dense.py: a first line `dt young density box_x
 box_y` and then `x y z r` per sphere. The spheres rest on the floor of a box of five walls under
 gravity -9.81 along z (Verlet skin half the smallest radius, Yade's default). LAW (default
 linear) is the contact model, poisson 0.3 and friction 0.5 rad throughout:

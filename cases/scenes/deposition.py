@@ -1,6 +1,6 @@
 """Spheres falling onto the walls of a box under gravity: a script written for one process, run
 as it is by `talus run` and by `mpirun -np N talus run` (the distributed DEM's parity case,
-cases/dem_mpi_parity.py).
+cases/dem/dem_mpi_parity.py).
 
 Arguments: spheres, steps, output file (JSON: the positions of every body by id every 100 steps,
 the halo traffic per process, the final unbalanced force).

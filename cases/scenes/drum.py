@@ -2,7 +2,7 @@
 
     yade -n -j1 -x drum.py PACKING STEPS [SAVE]   |   talus run drum.py PACKING STEPS [SAVE]
 
-PACKING is a text file written by cases/dem_bench_kinds.py: a first line `dt young density
+PACKING is a text file written by cases/bench/dem_bench_kinds.py: a first line `dt young density
 omega`, then the drum's triangles (`F x1 y1 z1 x2 y2 z2 x3 y3 z3`: a closed cylinder of facets,
 axis z through the origin) and the spheres (`S x y z r`, a lattice filling its lower part).
 A RotationEngine turns the facets at omega rad/s about z; FrictMat (poisson 0.3, friction

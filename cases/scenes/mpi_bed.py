@@ -1,6 +1,6 @@
-"""The dense bed of case 11 (cases/11_bench_dense.py: spheres on a cubic lattice resting on the
+"""The dense bed of case 11 (cases/bench/11_bench_dense.py: spheres on a cubic lattice resting on the
 floor of a five-wall box, linear Cundall-Strack law) with the time of each stage per process: the
-distributed DEM's speed-up case (cases/dem_mpi_speedup.py). A script written for one process, run
+distributed DEM's speed-up case (cases/bench/dem_mpi_speedup.py). A script written for one process, run
 as it is by `talus run` and by `mpirun -np N talus run`.
 
 Arguments: PACKING (written by case 11's write_packing), STEPS, OUTPUT (JSON written by process

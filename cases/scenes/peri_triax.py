@@ -3,7 +3,7 @@ same file runs in Yade and in Talus.
 
     yade -n -j1 -x peri_triax.py PACKING STEPS   |   talus run peri_triax.py PACKING STEPS
 
-PACKING is a text file written by cases/dem_bench_kinds.py: a first line `dt young density size`
+PACKING is a text file written by cases/bench/dem_bench_kinds.py: a first line `dt young density size`
 (the cubic cell's side) and then `x y z r` per sphere (a loose cloud). FrictMat (poisson 0.3,
 friction 0.5 rad), linear Cundall-Strack with Coulomb friction, Cundall damping 0.2, no gravity;
 PeriTriaxController as in the periodic triaxial tutorial (goal -100 kPa on the three axes,

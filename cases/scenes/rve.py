@@ -3,7 +3,7 @@ comparisons; the same file runs in Yade and in Talus.
 
     yade -n -j1 -x rve.py PACKING CALLS STEPS   |   talus run rve.py PACKING CALLS STEPS
 
-PACKING is a text file written by cases/dem_bench_kinds.py: a first line `dt young density sx sy
+PACKING is a text file written by cases/bench/dem_bench_kinds.py: a first line `dt young density sx sy
 sz` (the cell's sides) and then `x y z r` per sphere (a dense packing, its contacts loaded).
 FrictMat (poisson 0.3, friction 0.5 rad), linear Cundall-Strack with Coulomb friction, Cundall
 damping 0.2, no gravity. Each of CALLS calls sets the cell's velocity gradient for a small strain

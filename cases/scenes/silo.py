@@ -3,7 +3,7 @@ Yade and in Talus.
 
     yade -n -j1 -x silo.py PACKING STEPS [SAVE]   |   talus run silo.py PACKING STEPS [SAVE]
 
-PACKING is a text file written by cases/dem_bench_kinds.py: a first line `dt young density exit_z`,
+PACKING is a text file written by cases/bench/dem_bench_kinds.py: a first line `dt young density exit_z`,
 then the silo's triangles (`F x1 y1 z1 x2 y2 z2 x3 y3 z3`: a square box of facets open at the top,
 its floor with a square orifice) and the spheres (`S x y z r`, a loose lattice filling it).
 FrictMat (poisson 0.3, friction 0.5 rad), Hertz-Mindlin, Cundall damping 0.2, gravity -9.81

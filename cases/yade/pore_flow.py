@@ -1,4 +1,4 @@
-# Yade side of the pore-flow cases (cases/flow_permeability.py, cases/flow_bench_pore.py): run by
+# Yade side of the pore-flow cases (cases/pore/flow_permeability.py, cases/pore/flow_bench_pore.py): run by
 # talus.twin.run(script, params, "yade"), i.e. `yade -n -j1 -x pore_flow.py` with the
 # parameters as JSON in $TALUS_SCENARIO:
 #   packings   list of sphere files (x y z r per line, talus SpherePack.save format)

@@ -1,4 +1,4 @@
-# Yade side of the periodic pore-flow comparison in cases/flow_permeability.py: run by
+# Yade side of the periodic pore-flow comparison in cases/pore/flow_permeability.py: run by
 # talus.twin.run(script, params, "yade"), i.e. `yade -n -j1 -x pore_flow_periodic.py` with the
 # parameters as JSON in $TALUS_SCENARIO:
 #   packings   list of sphere files (x y z r per line)

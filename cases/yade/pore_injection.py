@@ -1,4 +1,4 @@
-# Yade side of cases/flow_injection.py: run by talus.twin.run(script, params, "yade"), i.e.
+# Yade side of cases/pore/flow_injection.py: run by talus.twin.run(script, params, "yade"), i.e.
 # `yade -n -j1 -x pore_injection.py` with the parameters as JSON in $TALUS_SCENARIO:
 #   packing     sphere file (x y z r per line), the deposited layer
 #   cell        the periodic cell's edges [Lx, Ly, Lz]

@@ -1,4 +1,4 @@
-# Twin scenario of cases/thm_vs_yade.py, the same text in Yade and Talus (talus.twin.run):
+# Twin scenario of cases/pore/thm_vs_yade.py, the same text in Yade and Talus (talus.twin.run):
 # the set-ups of Yade's examples/ThermalEngine/noFlowScenario.py and flowScenario.py on their
 # packing (5cmEdge_1mm.spheres, 210 spheres of 4 mm in a 5 cm box, mechanically static),
 # parameters as JSON in $TALUS_SCENARIO:

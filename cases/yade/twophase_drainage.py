@@ -1,4 +1,4 @@
-# The drainage scenario of cases/twophase_drainage.py, one script for both programs: run by
+# The drainage scenario of cases/pore/twophase_drainage.py, one script for both programs: run by
 # talus.twin.run(script, params, "yade" or "talus") (Yade: `yade -n -j1 -x twophase_drainage.py`;
 # Talus: its Yade names) with the parameters as JSON in $TALUS_SCENARIO:
 #   packing              sphere file (x y z r per line)

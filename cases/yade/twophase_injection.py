@@ -1,4 +1,4 @@
-# The injection scenario of cases/twophase_injection.py and of
+# The injection scenario of cases/pore/twophase_injection.py and of
 # tests/flow/twophase/test_twophase_injection.py, one script for both programs: run by
 # talus.twin.run(script, params, "yade" or "talus") with the parameters as JSON in
 # $TALUS_SCENARIO:

@@ -6,7 +6,7 @@
 namespace talus::dem
 {
 /// The Potential Particles' default solver tolerance (see potentialParticleContact): the
-/// overlap is then as accurate as at 1e-13 (cases/dem_potential_accuracy.py), while tighter
+/// overlap is then as accurate as at 1e-13 (cases/dem/dem_potential_accuracy.py), while tighter
 /// values cost many more iterations where a small k leaves the potentials nearly flat.
 constexpr double defaultParticleAccuracyTol = 1e-8;
 

@@ -1,5 +1,5 @@
 """coupling: a coupled case leaves what ParaView opens (fluid fields and particles both open in
-ParaView): cases/cfd_shear_flow.py with --vtk keeps the OpenFOAM case folder
+ParaView): cases/cfd/cfd_shear_flow.py with --vtk keeps the OpenFOAM case folder
 (mesh, fields every 10 fluid steps, case.foam for ParaView's OpenFOAM reader) and the spheres
 written by the DEM at the same steps (VTK/particles-spheres.pvd).
 
@@ -21,7 +21,7 @@ def test_shear_flow_case_writes_fluid_fields_and_spheres_at_the_same_times(tmp_p
     out = tmp_path / "paraview"
     script = f"""
 import importlib.util, sys
-spec = importlib.util.spec_from_file_location("shear", {str(REPO / "cases" / "cfd_shear_flow.py")!r})
+spec = importlib.util.spec_from_file_location("shear", {str(REPO / "cases" / "cfd" / "cfd_shear_flow.py")!r})
 m = importlib.util.module_from_spec(spec); spec.loader.exec_module(m)
 m.run(1, 10, 20, m.Path(sys.argv[1]))
 """

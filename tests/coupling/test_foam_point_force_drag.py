@@ -5,7 +5,7 @@ Checked: with dragModel SchillerNaumann the first exchange (fluid at rest) retur
 3 pi mu d (1 + 0.15 Re^0.687) times the slip plus the buoyancy (1e-12 relative) on the tiny case
 of test_foam_coupling.py; an unknown dragModel stops the run before the first step with a message
 naming the option, the name given and the valid names; the settling sphere of
-cases/cfd_settling_sphere_pf.py at Re_p ~ 20 (its quick mode) ends within 2 % of the
+cases/cfd/cfd_settling_sphere_pf.py at Re_p ~ 20 (its quick mode) ends within 2 % of the
 Schiller-Naumann terminal velocity, while with dragModel Stokes it settles more than twice as fast
 and the DEM side warns that the drag law is exceeded, naming dragModel."""
 import importlib.util
@@ -59,9 +59,9 @@ def test_unknown_drag_model_stops_before_the_first_step_naming_the_valid_ones(tm
 
 
 def settle_re20(tmp_path: Path, drag: str) -> dict:
-    """The quick run of cases/cfd_settling_sphere_pf.py at Re_p ~ 20 with ``drag``, in its own
+    """The quick run of cases/cfd/cfd_settling_sphere_pf.py at Re_p ~ 20 with ``drag``, in its own
     process (it starts MPI)."""
-    path = REPO / "cases" / "cfd_settling_sphere_pf.py"
+    path = REPO / "cases" / "cfd" / "cfd_settling_sphere_pf.py"
     script = f"""
 import importlib.util, json, sys, warnings
 spec = importlib.util.spec_from_file_location("settling_pf", {str(path)!r})

@@ -128,7 +128,7 @@ def test_envelope_cutoff_defaults_to_three_sigma_and_is_read(tmp_path):
 
 
 def test_settling_sphere_reaches_schiller_naumann_terminal_velocity(tmp_path):
-    spec = importlib.util.spec_from_file_location("settling_va", REPO / "cases" / "cfd_settling_sphere_va.py")
+    spec = importlib.util.spec_from_file_location("settling_va", REPO / "cases" / "cfd" / "cfd_settling_sphere_va.py")
     script = f"""
 import importlib.util, json, sys
 spec = importlib.util.spec_from_file_location("settling_va", {str(spec.origin)!r})

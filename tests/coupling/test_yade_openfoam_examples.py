@@ -14,7 +14,7 @@ import pytest
 from foam_case import BUILD, needs_solver
 
 EXAMPLES = Path("/usr/share/doc/yade/examples/openfoam")
-CASE_SCRIPT = Path(__file__).resolve().parents[2] / "cases" / "cfd_yade_openfoam_examples.py"
+CASE_SCRIPT = Path(__file__).resolve().parents[2] / "cases" / "cfd" / "cfd_yade_openfoam_examples.py"
 
 pytestmark = [
     needs_solver("icoFoamYade"),

@@ -1,5 +1,5 @@
 """escript client (run-escript): one finley element, drained biaxial plane-strain loading as in
-cases/fem_one_element.py (left ux = 0, bottom uy = 0, top lowered to the axial strain in equal
+cases/fem/fem_one_element.py (left ux = 0, bottom uy = 0, top lowered to the axial strain in equal
 load steps, right edge under 100 kPa), with the Newton rules of the FEniCSx driver
 (talus.fem.newton); argv: RVE file, load steps, axial strain, DEM steps per call, Newton tolerance.
 Prints `stress <sxx> <syy> iterations <n>` (Gauss point 0) after each step."""

@@ -1,6 +1,6 @@
 """Against Yade: on the same exported RVE packing (one step of deterministic particle velocities, as
 tests/dem/measure/test_tangent.py; the scenario cases/yade/fem_rve_tangent.py, also run by
-cases/fem_vs_yade.py), the Gauss-point stress and tangent (form="yade") equal Yade's
+cases/fem/fem_vs_yade.py), the Gauss-point stress and tangent (form="yade") equal Yade's
 getStressAndTangent within 1e-6."""
 from pathlib import Path
 

@@ -99,11 +99,11 @@ def test_a_side_keeps_the_output_of_its_latest_run(tmp_path):
 
 
 def test_the_scene_kinds_benchmark_runs_a_small_drum(talus_cmd, tmp_path):
-    """cases/dem_bench_kinds.py --quick on its smallest facet scene: Talus's figure and each
+    """cases/bench/dem_bench_kinds.py --quick on its smallest facet scene: Talus's figure and each
     installed peer's (Yade's process time, LIGGGHTS's from /proc) are positive CPU times."""
     import shutil
     from pathlib import Path
-    case = Path(__file__).resolve().parents[2] / "cases" / "dem_bench_kinds.py"
+    case = Path(__file__).resolve().parents[2] / "cases" / "bench" / "dem_bench_kinds.py"
     talus_cmd("run", "-j", "1", case, "--quick", "--only", "drum", "--results", tmp_path, timeout=300)
     peers = [p for p in ("yade", "liggghts") if shutil.which(p)]
     if not peers:

@@ -1,4 +1,4 @@
-"""cases/dem_roofline.py: its counting model, and its quick mode on a tiny bed writes the records
+"""cases/bench/dem_roofline.py: its counting model, and its quick mode on a tiny bed writes the records
 and the chart, with fractions of the roofs in (0, 1]."""
 import importlib.util
 import json
@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-CASE = Path(__file__).resolve().parents[2] / "cases" / "dem_roofline.py"
+CASE = Path(__file__).resolve().parents[2] / "cases" / "bench" / "dem_roofline.py"
 
 
 def load_case():

@@ -1,7 +1,7 @@
 """Potential Particles: shape properties (volume, inertia, Aabb), contact geometry and the KnKs
 law against analytic values and an independent voxel integration; bad input. (Degenerate
 contacts: test_convex_degenerate_contacts.py; the side-by-side runs with Yade are in
-cases/dem_potential_particles.py.)"""
+cases/dem/dem_potential_particles.py.)"""
 import math
 
 import numpy as np

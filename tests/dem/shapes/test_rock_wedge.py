@@ -1,4 +1,4 @@
-"""The seed's rock wedge (cases/dem_rock_wedge.py) in small: blocks generated from joints of
+"""The seed's rock wedge (cases/dem/dem_rock_wedge.py) in small: blocks generated from joints of
 jointC.csv partition the rock, Yade's minSize pruning, the limit equilibrium of a block
 (talus.dem.analysis.analytic.block_sliding_mode) against Hoek & Bray's closed forms, and a wedge freed by
 a cut that holds above and slides below its critical friction."""

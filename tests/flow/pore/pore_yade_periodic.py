@@ -1,5 +1,5 @@
 # Yade side of the periodic pore-flow comparison (tests/flow/pore/test_pore_periodic.py,
-# cases/flow_permeability.py): run with
+# cases/pore/flow_permeability.py): run with
 #   cd tests/flow/pore && yade -n -x pore_yade_periodic.py packing.txt out.json Lx Ly Lz gx gy gz threshold
 # Reads a sphere list (x y z r per line), puts it in the periodic cell [0, L), runs Yade's
 # PeriodicFlowEngine once (CHOLMOD, macroscopic gradient g, no boundary) and writes as JSON: the

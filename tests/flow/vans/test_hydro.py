@@ -319,7 +319,7 @@ def warnings_as_list():
 
 
 def test_settling_case_quick_mode(talus_cmd, repo_dir, tmp_path):
-    talus_cmd("run", repo_dir / "cases" / "vans_settling.py", "--quick", "--results", tmp_path)
+    talus_cmd("run", repo_dir / "cases" / "vans" / "vans_settling.py", "--quick", "--results", tmp_path)
     record = json.loads((tmp_path / "vans.settling.json").read_text())
     assert record["pass"] and record["value"] < 1e-6, record
     assert (tmp_path / "vans.settling.png").exists()
@@ -340,7 +340,7 @@ def test_frey_case_redraws_fluctuations_every_eddy_turnover_time(repo_dir, monke
     # The Frey-experiment case's fluctuation scheme (Yade's validMaurin2015.py): the bed is the
     # first layer from the top above phi = 0.5 that still rises downwards; all fluctuations are
     # redrawn at once, then kept for (water depth above the bed) / (mean fluid velocity there).
-    monkeypatch.syspath_prepend(str(repo_dir / "cases"))
+    monkeypatch.syspath_prepend(str(repo_dir / "cases" / "vans"))
     from vans_frey_experiments import TurnoverFluctuations
     s = scene_with([((0, 0, 0.0035), 5e-4, (0, 0, 0)), ((0, 0, 0.0155), 5e-4, (0, 0, 0))])
     e = engine(s)

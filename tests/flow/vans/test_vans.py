@@ -15,7 +15,7 @@ YADE = shutil.which("yade")
 
 
 def load_case(repo_dir, name):
-    spec = importlib.util.spec_from_file_location(name, repo_dir / "cases" / f"{name}.py")
+    spec = importlib.util.spec_from_file_location(name, repo_dir / "cases" / "vans" / f"{name}.py")
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -231,7 +231,7 @@ def test_overflow_is_detected_and_the_profile_left_unchanged():
     ("vans_vs_yade", ["vans.yade-parity", "vans.bench.fluid-resolution"]),
 ])
 def test_case_quick_mode(talus_cmd, repo_dir, tmp_path, case, records):
-    done = talus_cmd("run", repo_dir / "cases" / f"{case}.py", "--quick", "--results", tmp_path)
+    done = talus_cmd("run", repo_dir / "cases" / "vans" / f"{case}.py", "--quick", "--results", tmp_path)
     if case == "vans_vs_yade" and YADE is None:
         assert "yade is not installed" in done.stdout
         assert not list(tmp_path.glob("*.json"))

@@ -364,7 +364,7 @@ class FoamCoupling(_Engine):
 
     def _write_summary(self, path):
         """A JSON summary of the coupled run (Yade's interface; written at stop() when
-        TALUS_FOAM_SUMMARY names a file): what cases/cfd_yade_openfoam_examples.py checks."""
+        TALUS_FOAM_SUMMARY names a file): what cases/cfd/cfd_yade_openfoam_examples.py checks."""
         import json
         rows = self._rows
         r = np.array(self.scene.radii()[rows])

@@ -1,5 +1,5 @@
 """What one sphere settling from rest in a fluid at rest should do, the reference of the coupled
-settling cases (cases/cfd_settling_sphere_va.py, cases/cfd_settling_sphere_pf.py): the
+settling cases (cases/cfd/cfd_settling_sphere_va.py, cases/cfd/cfd_settling_sphere_pf.py): the
 Schiller-Naumann drag with Newton's C_d = 0.44 from Re = 1000 (the solvers' `SchillerNaumann`,
 foam-solvers/talusCouplingCommon/dragClosure.H), its terminal velocity, and the equation of
 motion integrated in time."""

@@ -131,7 +131,7 @@ class NewtonLoadStepping:
         its share of the step (rounded, at least 1), so a DEM step strains the RVEs by as much as
         in an uncut step. With the whole ``nSteps`` per part, a part would be loaded at a fraction
         of the rate, and small RVEs answer that: a step cut in two at nSteps 50 ended 6.9 % lower
-        in axial stress (cases/fem_speed_accuracy.py). ``_span``: the size of the step asked (the
+        in axial stress (cases/fem/fem_speed_accuracy.py). ``_span``: the size of the step asked (the
         recursion for the rest of a cut step)."""
         t0 = self.t
         span = t1 - t0 if _span is None else _span
