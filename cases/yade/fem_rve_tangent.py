@@ -2,7 +2,7 @@
 talus.fem.exportRVE; `rveSceneDir`: talus.fem.rve_scene.FOLDER) built as a periodic scene in Yade
 and in Talus, each sphere given a deterministic velocity, one step
 (fresh contacts get a first shear increment, so Yade's shear term is exercised; the method of
-tests/dem/yade_twins/packing_tangent.py on a periodic RVE). Yade prints its getStressAndTangent; Talus hands
+tests/dem/yade_twins/periodic/packing_tangent.py on a periodic RVE). Yade prints its getStressAndTangent; Talus hands
 the scene to talus.fem.MultiscaleRVEs (a C++ RVE holding a copy of it) and prints the Gauss-point
 getStressAndTangent with form="yade". Output: `RESULT {stress, tangent, shearing}`."""
 import json

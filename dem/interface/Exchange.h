@@ -1,6 +1,6 @@
 #pragma once
 
-#include "dem/step/CallbackEngine.h"
+#include "dem/engines/CallbackEngine.h"
 #include "dem/core/Scene.h"
 
 #include <cmath>

@@ -3,9 +3,9 @@
 #include "dem/checkpoint/Checkpoint.h"
 #include "dem/contact/Collider.h"
 #include "dem/laws/ContactLaw.h"
-#include "dem/step/ForceResetter.h"
-#include "dem/step/InteractionLoop.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/InteractionLoop.h"
+#include "dem/engines/NewtonIntegrator.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,6 +1,6 @@
 #include "dem/measure/Energy.h"
 #include "dem/core/Clump.h"
-#include "dem/step/InteractionLoop.h"
+#include "dem/engines/InteractionLoop.h"
 #include "dem/core/Scene.h"
 #include "dem/core/StepLoop.h"
 #include "dem/base/Threads.h"

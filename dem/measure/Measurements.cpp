@@ -1,7 +1,7 @@
 #include "dem/measure/Measurements.h"
 
 #include "dem/core/Clump.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/NewtonIntegrator.h"
 #include "dem/core/Scene.h"
 
 #include <cmath>

@@ -1,7 +1,7 @@
 // Python bindings of the time stepper and the stress/strain controllers. Compiled into
 // talus._dem; `talus_wrap_controllers(m)` is called from dem_wrappers.cpp. The Python API
 // (Yade's names, defaults, doneHook strings) is talus.dem.control.controllers.
-#include "dem/step/GlobalStiffnessTimeStepper.h"
+#include "dem/engines/GlobalStiffnessTimeStepper.h"
 #include "dem/control/Peri3dController.h"
 #include "dem/control/PeriIsoCompressor.h"
 #include "dem/control/PeriTriaxController.h"

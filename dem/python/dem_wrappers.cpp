@@ -1,13 +1,13 @@
 // Python bindings of dem/: no logic here, only the mapping of C++ names to Python. Defaults,
 // docstrings and Yade-style conveniences live in the talus.dem Python layer.
-#include "dem/step/CallbackEngine.h"
-#include "dem/step/ParallelEngine.h"
+#include "dem/engines/CallbackEngine.h"
+#include "dem/engines/ParallelEngine.h"
 #include "dem/contact/Collider.h"
 #include "dem/laws/ContactLaw.h"
-#include "dem/step/ForceResetter.h"
-#include "dem/step/InteractionLoop.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/InteractionLoop.h"
 #include "dem/measure/Measurements.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/NewtonIntegrator.h"
 #include "dem/measure/Probe.h"
 #include "dem/core/Scene.h"
 #include "dem/base/Threads.h"

@@ -2,7 +2,7 @@
 // talus._dem; `talus_wrap_force_engines(m)` is called from dem_wrappers.cpp. The Python API
 // (Yade's names, defaults, docstrings) is talus.dem.step.force_engines.
 #include "dem/impose/ForceEngines.h"
-#include "dem/step/InteractionLoop.h"
+#include "dem/engines/InteractionLoop.h"
 #include "dem/laws/IntrCallback.h"
 
 #include <pybind11/eigen.h>

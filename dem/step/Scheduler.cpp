@@ -2,8 +2,8 @@
 
 #include "dem/contact/Collider.h"
 #include "dem/core/Scene.h"
-#include "dem/step/InteractionLoop.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/InteractionLoop.h"
+#include "dem/engines/NewtonIntegrator.h"
 
 #include <chrono>
 

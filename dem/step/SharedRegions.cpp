@@ -2,9 +2,9 @@
 
 #include "dem/core/Scene.h"
 #include "dem/laws/ContactLawKernel.h"
-#include "dem/step/ForceResetter.h"
-#include "dem/step/InteractionLoop.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/InteractionLoop.h"
+#include "dem/engines/NewtonIntegrator.h"
 
 #include <algorithm>
 

@@ -1,9 +1,9 @@
 #include "dem/step/StepPlan.h"
 
 #include "dem/contact/Collider.h"
-#include "dem/step/ForceResetter.h"
-#include "dem/step/InteractionLoop.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/InteractionLoop.h"
+#include "dem/engines/NewtonIntegrator.h"
 
 #include <algorithm>
 #include <optional>

@@ -24,7 +24,7 @@ from talus.dem import (CohFrictMat, FrictMat, ForceResetter, Ip2_CohFrictMat_Coh
 from talus.dem.files import io
 
 pytestmark = pytest.mark.skipif(not io.available(), reason="built without HDF5")
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the packing the Yade twins read
+TWINS = Path(__file__).parents[1] / "yade_twins" / "periodic"  # the packing the Yade twins read
 
 
 def deposition(visco, m: int = 7) -> Scene:

@@ -9,7 +9,7 @@ from talus.dem import Scene, box, facet, sphere, wall
 from talus import twin
 from talus.dem.files import io
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "engines"  # the scripts Yade and Talus both run
 SCRIPT = TWINS / "masks_side_by_side.py"
 needs_yade = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 

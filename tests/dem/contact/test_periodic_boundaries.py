@@ -10,7 +10,7 @@ from talus.dem import (Bo1_Facet_Aabb, Bo1_Sphere_Aabb, ForceResetter, Ig2_Facet
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, Scene, facet, sphere)
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "periodic"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")

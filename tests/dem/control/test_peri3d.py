@@ -8,7 +8,7 @@ import pytest
 from talus.dem import Peri3dController
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "periodic"  # the scripts Yade and Talus both run
 needs_yade = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")
 STRESS, STRAIN, PROGRESS, TRSF = slice(0, 6), slice(6, 12), 12, slice(13, 22)
 

@@ -8,7 +8,7 @@ import pytest
 from talus.dem import ServoPIDController
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "control"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")

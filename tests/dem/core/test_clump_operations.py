@@ -1,7 +1,7 @@
 """Yade's clump and body-container API: addToClump, releaseFromClump, replaceByClumps with
 clumpTemplate, getRoundness, shape.members as a dict, clumps with facets and boxes, erased ids
 (None, as Yade), textClumps, checkpoints of changed clumps; compared with Yade 2023.02a on
-fixed inputs (tests/dem/yade_twins/clump_operations.py)."""
+fixed inputs (tests/dem/yade_twins/clumps/clump_operations.py)."""
 import shutil
 import warnings
 from pathlib import Path
@@ -13,7 +13,7 @@ from talus.dem import FrictMat, Quaternion, Scene, Vector3, facet, sphere
 from talus import twin
 from talus.dem.core.clumps import clumpTemplate
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "clumps"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")
 
 

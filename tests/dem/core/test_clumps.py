@@ -12,7 +12,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        Law2_ScGeom_FrictPhys_CundallStrack, NewtonIntegrator, PWaveTimeStep, Scene, growParticles, sphere,
                        wall)
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "clumps"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")
 
 

@@ -10,7 +10,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        NewtonIntegrator, Scene, facet, getStress, sphere, wall)
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "periodic"  # the scripts Yade and Talus both run
 LINEAR = ([Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()])
 
 

@@ -12,7 +12,7 @@ from talus.dem import (BoxFactory, CircularFactory, DomainLimiter, ForceResetter
                        InsertionSortCollider, InteractionLoop, NewtonIntegrator, O, SpheresFactory, sphere)
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "engines"  # the scripts Yade and Talus both run
 
 
 @pytest.fixture(scope="module")

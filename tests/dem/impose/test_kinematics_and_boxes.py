@@ -13,7 +13,7 @@ from talus.dem import (FrictMat, ForceResetter, HarmonicMotionEngine, InsertionS
                        PWaveTimeStep, PyRunner, RotationEngine, Scene, TranslationEngine, box, facet, sphere)
 from talus.dem.geometry import geom
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "engines"  # the scripts Yade and Talus both run
 yade = shutil.which("yade")
 
 

@@ -2,9 +2,9 @@
 // per-step forces, hook into the step.
 #include "dem/interface/Exchange.h"
 #include "dem/laws/ContactLaw.h"
-#include "dem/step/ForceResetter.h"
-#include "dem/step/InteractionLoop.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/InteractionLoop.h"
+#include "dem/engines/NewtonIntegrator.h"
 #include "dem/contact/Collider.h"
 
 #include <gtest/gtest.h>

@@ -7,7 +7,7 @@ import pytest
 
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "laws"  # the scripts Yade and Talus both run
 yade_missing = pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")
 
 

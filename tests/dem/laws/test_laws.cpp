@@ -14,9 +14,9 @@
 #include "dem/laws/parts/NormalDashpot.h"
 #include "dem/laws/parts/RollingResistance.h"
 #include "dem/laws/parts/VelocityShear.h"
-#include "dem/step/ForceResetter.h"
-#include "dem/step/InteractionLoop.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/InteractionLoop.h"
+#include "dem/engines/NewtonIntegrator.h"
 
 #include <gtest/gtest.h>
 

@@ -8,7 +8,7 @@ import pytest
 from talus.dem import *  # noqa: F401,F403
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "laws"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed (./setup.sh installs it)")

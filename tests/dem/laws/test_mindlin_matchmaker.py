@@ -9,7 +9,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        NewtonIntegrator, Scene, sphere)
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "laws"  # the scripts Yade and Talus both run
 
 
 @pytest.mark.skipif(not twin.yade_available(), reason="yade is not installed")

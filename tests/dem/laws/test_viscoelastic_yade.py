@@ -14,7 +14,7 @@ import pytest
 from talus.dem import (ForceResetter, InsertionSortCollider, InteractionLoop, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_ViscElPhys_Basic, MatchMaker, NewtonIntegrator, Scene, ViscElMat, sphere)
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "laws"  # the scripts Yade and Talus both run
 YADE = shutil.which("yade")
 
 

@@ -11,7 +11,7 @@ import pytest
 from talus.dem import NewtonIntegrator, Scene, FrictMat, sphere
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "clumps"  # the scripts Yade and Talus both run
 SCRIPT = TWINS / "clump_energy_deposition.py"
 yade = shutil.which("yade")
 

@@ -11,7 +11,7 @@ from talus.dem import (FrictMat, ForceResetter, InsertionSortCollider, Interacti
                        NewtonIntegrator, Scene, getStress, getStressAndTangent, sphere)
 from talus import twin
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "periodic"  # the scripts Yade and Talus both run
 
 
 def periodic(hsize, centres, radii):

@@ -1,8 +1,8 @@
 // Pore-scale flow (flow/pore/): geometry against analytic values, the pressure solvers against
 // each other, flux conservation, and the bad-input errors. The comparison with Yade's FlowEngine
 // on the same packing is tests/flow/pore/test_pore.py.
-#include "dem/step/ForceResetter.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/NewtonIntegrator.h"
 #include "flow/pore/FlowCoupling.h"
 #include "flow/pore/PoreFlow.h"
 

@@ -2,8 +2,8 @@
 // a sphere settling in still fluid reaches the Dallavalle terminal velocity.
 #include "flow/HydroForceExchange.h"
 
-#include "dem/step/ForceResetter.h"
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/ForceResetter.h"
+#include "dem/engines/NewtonIntegrator.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "dem/step/GlobalStiffnessTimeStepper.h"
+#include "dem/engines/GlobalStiffnessTimeStepper.h"
 
 #include "dem/core/Scene.h"
 

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 EXAMPLES = Path("/usr/share/doc/yade/examples")
-CASE = Path(__file__).resolve().parents[2] / "cases" / "yade_examples.py"
+CASE = Path(__file__).resolve().parents[3] / "cases" / "yade_examples.py"
 
 
 @pytest.mark.skipif(not EXAMPLES.is_dir(), reason="Yade's examples not installed (./setup.sh installs the yade package)")

@@ -10,7 +10,7 @@ import pytest
 from talus import twin
 from talus.dem import *  # noqa: F401,F403
 
-TWINS = Path(__file__).parents[1] / "yade_twins"  # the scripts Yade and Talus both run
+TWINS = Path(__file__).parents[1] / "yade_twins" / "engines"  # the scripts Yade and Talus both run
 
 
 def sphere_on_wall(coefficient=0.5, **kw):

@@ -1,4 +1,4 @@
-#include "dem/step/ParallelEngine.h"
+#include "dem/engines/ParallelEngine.h"
 
 namespace talus::dem
 {

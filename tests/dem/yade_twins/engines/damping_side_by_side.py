@@ -1,7 +1,7 @@
 """NewtonIntegrator's damping per body (state.isDamped) and dampGravity, written so that the same
 file runs in Yade (`yade -n -x`) and in Talus: the scene of Yade's NumericalDampingGravity.py, two
 spheres thrown up that fall on a box, one of them not damped; spheres rotate too. Parameters
-(TALUS_SCENARIO): dampGravity. Prints one RESULT line (tests/dem/step/test_damping.py)."""
+(TALUS_SCENARIO): dampGravity. Prints one RESULT line (tests/dem/engines/test_damping.py)."""
 import json
 import os
 

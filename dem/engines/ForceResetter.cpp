@@ -1,4 +1,4 @@
-#include "dem/step/ForceResetter.h"
+#include "dem/engines/ForceResetter.h"
 #include "dem/core/Scene.h"
 
 #include "dem/base/Threads.h"

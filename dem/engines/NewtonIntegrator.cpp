@@ -1,4 +1,4 @@
-#include "dem/step/NewtonIntegrator.h"
+#include "dem/engines/NewtonIntegrator.h"
 
 #include "dem/core/Clump.h"
 #include "dem/core/Domain.h"

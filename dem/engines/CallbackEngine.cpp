@@ -1,4 +1,4 @@
-#include "dem/step/CallbackEngine.h"
+#include "dem/engines/CallbackEngine.h"
 
 #include "dem/core/Scene.h"
 

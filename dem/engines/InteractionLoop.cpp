@@ -1,4 +1,4 @@
-#include "dem/step/InteractionLoop.h"
+#include "dem/engines/InteractionLoop.h"
 #include "dem/contact/ContactGeometry.h"
 
 #include "dem/core/Scene.h"
