@@ -270,6 +270,48 @@ std::vector<int> TwoPhaseFlow::outvadePore(int startingId, int imbibedId)
   return merged;
 }
 
+std::vector<int> TwoPhaseFlow::invadePore(int cellId)
+{
+  const int n = static_cast<int>(pores_.size());
+  if (cellId < 0 || cellId >= n)
+    throw std::out_of_range("clusterInvadePore: cellId " + std::to_string(cellId) + " out of range (0.."
+                            + std::to_string(n - 1) + ")");
+  const auto cell = static_cast<std::size_t>(cellId);
+  const int label = label_[cell];
+  if (label <= kNonWettingLabel)
+    throw std::invalid_argument("clusterInvadePore: cellId " + std::to_string(cellId)
+                                + " is not in a wetting cluster (label " + std::to_string(label)
+                                + "; isCellLabelActivated must be set before initialization())");
+  PhaseCluster& cluster = clusters_[static_cast<std::size_t>(label)];
+  const std::vector<int> members = std::move(cluster.pores);
+  cluster = PhaseCluster{};
+  cluster.label = label;
+  systems_[static_cast<std::size_t>(label)].reset();
+  addPore(kNonWettingLabel, cellId);
+  if (members.size() == 1)
+    return {};
+  // the cluster's other pores unlabelled, then found again from the drained pore's neighbours
+  for (int p : members)
+    if (p != cellId)
+      label_[static_cast<std::size_t>(p)] = -1;
+  std::vector<int> result;
+  for (int j : neighbours_[cell])
+  {
+    if (j < 0 || label_[static_cast<std::size_t>(j)] != -1)
+      continue; // not of the cluster, or reached from an earlier neighbour
+    int into = label;
+    if (!result.empty())
+    {
+      into = static_cast<int>(clusters_.size());
+      clusters_.emplace_back().label = into;
+      systems_.emplace_back();
+    }
+    labelFrom(into, j);
+    result.push_back(into);
+  }
+  return result;
+}
+
 void TwoPhaseFlow::solveClusterPressure(int cluster)
 {
   const PhaseCluster& k = checkedCluster(cluster);

@@ -132,6 +132,16 @@ public:
   /// @throws std::invalid_argument if startingId is not in a wetting cluster (isCellLabelActivated
   ///         not set) or imbibedId is not non-wetting
   std::vector<int> outvadePore(int startingId, int imbibedId);
+  /// Wetting pore `cellId` drains: it joins the non-wetting pores (label 0) and its cluster is
+  /// labelled again from its neighbours, in their order: the first keeps the cluster's label,
+  /// each other neighbour it no longer reaches starts a new cluster (Yade's clusterInvadePore).
+  /// The clusters rebuilt get their interfaces anew (volume and capillary pressure 0).
+  /// @param cellId a pore of a wetting cluster
+  /// @return the cluster's label then the new clusters' labels; empty if the pore was its
+  ///         cluster's last (the cluster stays, empty)
+  /// @throws std::out_of_range for a pore index outside the network
+  /// @throws std::invalid_argument if cellId is not in a wetting cluster
+  std::vector<int> invadePore(int cellId);
   /// Pressures of the pores of cluster `cluster` (those not on a pressure boundary): Darcy flow
   /// in the cluster, the non-wetting and imposed pores' pressures plus the interfaces' capillary
   /// pressures as conditions (PhaseCluster.solvePressure).

@@ -51,9 +51,9 @@ _STORED = {"bndCondIsWaterReservoir": [False] * 6, "computeForceActivated": True
            "iniVoidVolumes": False}
 
 
-def _pore_index(name: str, value) -> int:
+def _pore_index(name: str, value, function: str = "clusterOutvadePore") -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{_OWNER}.clusterOutvadePore: {name} must be a pore index (int), got {value!r}")
+        raise TypeError(f"{_OWNER}.{function}: {name} must be a pore index (int), got {value!r}")
     return int(value)
 
 
@@ -374,6 +374,15 @@ class TwoPhaseFlowEngine(FlowEngine):
         ``index`` (the rank of the interface crossed) is accepted and unused, as in Yade."""
         return list(self._state().outvadePore(_pore_index("startingId", startingId),
                                               _pore_index("imbibedId", imbibedId)))
+
+    def clusterInvadePore(self, cellId: int) -> list[int]:
+        """Wetting pore ``cellId`` drains: it joins the non-wetting pores (label 0) and its
+        cluster is found again from the pore's neighbours in turn, the first keeping the label,
+        each other neighbour it no longer reaches starting a new cluster (the cluster split).
+        The clusters rebuilt get their interfaces anew (volume and capillary pressure 0).
+        Returns the cluster's label then the new labels; empty if the pore was its cluster's
+        last. A pore not in a wetting cluster is an error (Yade warns and does nothing)."""
+        return list(self._state().invadePore(_pore_index("cellId", cellId, "clusterInvadePore")))
 
     def getCellLabel(self, id: int) -> int:
         """Cluster label of pore ``id`` (-1 without isCellLabelActivated)."""
