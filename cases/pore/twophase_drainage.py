@@ -15,7 +15,11 @@ Set-up:   a seeded loose cloud (makeCloud, rMean 0.035, rRelFuzz 0.3) of 1 000 s
 Checked:  twophase.drainage: the largest difference of the saturation from Yade's over the steps
           (absolute, saturation being a fraction; <= 0.01); twophase.drainage.imbibition: the same
           over the imbibition steps; twophase.drainage.speed-<n>: Yade's time over Talus's for the
-          drainage (>= 3). Without yade the records are skipped.
+          drainage (>= 3); twophase.drainage.clusters: on the 1 000-sphere cloud, an invasion() at
+          pc = 2 surfaceTension / d with isCellLabelActivated then 400 pores drained one at a time
+          by clusterInvadePore (cases/yade/twophase_cluster_invasion.py): the share of the steps
+          (pore drained, labels returned), final pore labels and cluster pore/interface lists that
+          differ from Yade's (= 0). Without yade the records are skipped.
 Produces: the records and twophase.drainage.png (the capillary pressure-saturation curves of both).
 """
 import tempfile
@@ -29,6 +33,7 @@ from talus import twin
 from talus.dem.packing.pack import SpherePack
 
 SCENARIO = Path(__file__).resolve().parents[1] / "yade" / "twophase_drainage.py"
+CLUSTERS = Path(__file__).resolve().parents[1] / "yade" / "twophase_cluster_invasion.py"
 GAMMA = 0.0728
 R_MEAN = 0.035
 STEPS = 60
@@ -43,6 +48,26 @@ def cloud(num: int, folder: Path) -> Path:
     path = folder / f"cloud{num}.txt"
     sp.save(str(path))
     return path
+
+
+def record_cluster_invasion(case, packing: str, pc: float, invasions: int = 400):
+    """Pores drained one at a time through the clusters (clusterInvadePore, with the splits)
+    after an invasion() at `pc`, in both programs: the share of the steps and of the final pore
+    labels and cluster lists that differ from Yade's."""
+    params = {"packing": packing, "pc": pc, "invasions": invasions}
+    ours, theirs = twin.run(CLUSTERS, params, "talus"), twin.run(CLUSTERS, params, "yade")
+    steps = [a != b for a, b in zip(ours["steps"], theirs["steps"])] + [len(ours["steps"]) != len(theirs["steps"])]
+    labels = [ours["labels"].get(k) != v for k, v in theirs["labels"].items()]
+    clusters = [(a["pores"], a["interfaces"]) != (b["pores"], b["interfaces"])
+                for a, b in zip(ours["clusters"], theirs["clusters"])] + [len(ours["clusters"]) != len(theirs["clusters"])]
+    splits = sum(len(s["returned"]) > 1 for s in theirs["steps"])
+    differing = (sum(steps) + sum(labels) + sum(clusters)) / (len(steps) + len(labels) + len(clusters))
+    print(f"  clusterInvadePore: {len(theirs['steps'])} pores drained ({splits} splits), {len(theirs['clusters'])} "
+          f"clusters; differing steps {sum(steps)}, labels {sum(labels)}, clusters {sum(clusters)}")
+    case.record(f"share of clusterInvadePore steps, pore labels and cluster pore/interface lists differing from Yade's "
+                f"({invasions} pores drained after invasion at pc = 2 surfaceTension / d)", differing,
+                "yade 2023.02a TwoPhaseFlowEngine clusters, same scenario and packing", 0.0, suffix="clusters",
+                invasions=len(theirs["steps"]), splits=splits, clusters=len(theirs["clusters"]), pores=len(labels))
 
 
 def main():
@@ -87,6 +112,8 @@ def main():
                         "CPU time)", ratio, "yade 2023.02a TwoPhaseFlowEngine, same scenario file", 3.0,
                         comparison=">=", suffix=f"speed-{n}", talus_cpu_s=ours["cpu_s"], yade_cpu_s=theirs["cpu_s"],
                         talus_wall_s=ours["wall_s"], yade_wall_s=theirs["wall_s"])
+            if n == sizes[0]:
+                record_cluster_invasion(case, params["packing"], 2 * scale)
             ax.plot(sw, np.array(pcs) / scale, "-", label=f"Talus drainage, {n} spheres")
             ax.plot(sy, np.array(pcs) / scale, "o", ms=3, mfc="none", label=f"Yade drainage, {n} spheres")
             ax.plot(iw, np.array(pcs[::-1]) / scale, "-", label=f"Talus imbibition, {n} spheres")
