@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace talus::flow::twophase
 {
@@ -278,6 +279,59 @@ void TwoPhaseFlow::invasion(const std::array<double, kBoundaries>& bndCondValue)
   updateReservoirs(bnd_[kNonWetting] - bnd_[kWetting]);
   if (params_.isCellLabelActivated)
     updateCellLabels();
+}
+
+void TwoPhaseFlow::updatePressure(const std::array<double, kBoundaries>& bndCondValue)
+{
+  if (!initialized())
+    throw std::logic_error("TwoPhaseFlowEngine.updatePressure: call initialization() first");
+  checkValues(bndCondValue);
+  bnd_ = bndCondValue;
+  for (auto& system : systems_)
+    system.reset(); // the conditions of the clusters' pressures change
+  applyPressures();
+}
+
+PoreState& TwoPhaseFlow::checkedPore(int pore, const char* function)
+{
+  if (pore < 0 || static_cast<std::size_t>(pore) >= pores_.size())
+    throw std::out_of_range(std::string(kOwner) + "." + function + ": cell id " + std::to_string(pore)
+                            + " out of range (0.." + std::to_string(static_cast<int>(pores_.size()) - 1) + ")");
+  return pores_[static_cast<std::size_t>(pore)];
+}
+
+void TwoPhaseFlow::setSaturation(int pore, double saturation)
+{
+  PoreState& s = checkedPore(pore, "setCellSaturation");
+  checks::require(saturation >= 0 && saturation <= 1, kOwner, "setCellSaturation",
+                  "the saturation must be in [0, 1], got " + checks::str(saturation));
+  s.saturation = saturation;
+  for (auto& system : systems_)
+    system.reset();
+}
+
+void TwoPhaseFlow::setReservoir(int pore, bool wetting, bool value)
+{
+  PoreState& s = checkedPore(pore, wetting ? "setCellIsWRes" : "setCellIsNWRes");
+  (wetting ? s.wReservoir : s.nwReservoir) = value;
+}
+
+void TwoPhaseFlow::setBodyRadius(int pore, double radius)
+{
+  checkedPore(pore, "setPoreBodyRadius");
+  checks::require(std::isfinite(radius) && radius > 0, kOwner, "setPoreBodyRadius",
+                  "the radius must be finite and > 0, got " + checks::str(radius));
+  bodyRadius_[static_cast<std::size_t>(pore)] = radius;
+}
+
+void TwoPhaseFlow::setThroatRadius(int throat, double radius)
+{
+  if (throat < 0 || static_cast<std::size_t>(throat) >= throatRadius_.size())
+    throw std::out_of_range(std::string(kOwner) + ".setPoreThroatRadius: throat " + std::to_string(throat)
+                            + " out of range (0.." + std::to_string(static_cast<int>(throatRadius_.size()) - 1) + ")");
+  checks::require(std::isfinite(radius), kOwner, "setPoreThroatRadius",
+                  "the radius must be finite (negative: closed), got " + checks::str(radius));
+  throatRadius_[static_cast<std::size_t>(throat)] = radius;
 }
 
 double TwoPhaseFlow::saturation(bool sideBoundaryIncluded) const

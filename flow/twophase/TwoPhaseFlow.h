@@ -80,6 +80,32 @@ public:
   /// The largest capillary pressure at which one more pore imbibes (0 when none; getMaxImbibitionPc).
   [[nodiscard]] double maxImbibitionPc() const;
 
+  /// Yade's updatePressure: each pore's pressure from the boundary values and its reservoir and
+  /// trapping flags (what invasion() starts with).
+  /// @param bndCondValue the six boundaries' pressures (Pa)
+  /// @throws std::logic_error before initialize
+  /// @throws std::invalid_argument for a non-finite value
+  void updatePressure(const std::array<double, kBoundaries>& bndCondValue);
+  // Yade's per-pore setters, for set-ups a script makes itself: the state is changed as given
+  // (no label or reservoir is recomputed; the next invasion() or updatePressure() reads it).
+  /// @param pore a pore index
+  /// @param saturation in [0, 1] (setCellSaturation)
+  /// @throws std::out_of_range for the pore, std::invalid_argument for the saturation
+  void setSaturation(int pore, double saturation);
+  /// @param pore a pore index
+  /// @param wetting the flag of the wetting reservoir (setCellIsWRes), else the non-wetting one's (setCellIsNWRes)
+  /// @param value the flag
+  /// @throws std::out_of_range for the pore
+  void setReservoir(int pore, bool wetting, bool value);
+  /// @param pore a pore index
+  /// @param radius its pore-body entry radius, > 0 (setPoreBodyRadius)
+  /// @throws std::out_of_range for the pore, std::invalid_argument for the radius
+  void setBodyRadius(int pore, double radius);
+  /// @param throat a throat index (the network's)
+  /// @param radius its entry radius, finite; negative closes it to invasion (setPoreThroatRadius)
+  /// @throws std::out_of_range for the throat, std::invalid_argument for the radius
+  void setThroatRadius(int throat, double radius);
+
   /// initialize was called (with a network of at least one pore).
   [[nodiscard]] bool initialized() const { return !pores_.empty(); }
   /// Each pore's phase, pressure and reservoir and trapping flags (index as the network's pores).
@@ -173,6 +199,8 @@ public:
   [[nodiscard]] double boundaryFlux(int k) const;
 
 private:
+  /// The state of pore `pore`, its index checked (`function` names the caller in the message).
+  PoreState& checkedPore(int pore, const char* function);
   /// Spread the phase of pore `start` to its neighbours as the entry pressures allow.
   void invadeFrom(int start);
   /// Reservoir flags from connectivity to boundaries 2 and 3 (isPhaseTrapped) or from the

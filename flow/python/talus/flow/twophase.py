@@ -248,6 +248,14 @@ class TwoPhaseFlowEngine(FlowEngine):
     def getCellIsTrapNW(self, cell: int) -> bool:
         return bool(self._model().flags("isTrapNW")[cell])
 
+    def getCellPressure(self, cell: int) -> float:
+        """The pressure of pore ``cell``'s phase (Yade keeps one pressure per pore, which the
+        two-phase model sets); before initialization() FlowEngine's."""
+        if not self._tp.initialized():
+            return super().getCellPressure(cell)
+        model = self._state()
+        return float(model.pressures()[self._cell(cell, model)])
+
     def getCellInSphereRadius(self, cell: int) -> float:
         """Radius of the sphere inscribed in pore ``cell`` (its body radius)."""
         return float(self._model().bodyRadii()[cell])
@@ -258,11 +266,43 @@ class TwoPhaseFlowEngine(FlowEngine):
 
     def getPoreThroatRadius(self, cell1: int, cell2: int) -> float:
         """Entry radius of the throat between pores ``cell1`` and ``cell2``."""
+        return float(self._model().throatRadii()[self._throat(cell1, cell2, "getPoreThroatRadius")])
+
+    # --- per-pore setters (Yade's), for set-ups a script makes itself -------------------------
+    # They change the state as given; no label or reservoir is recomputed (the next invasion()
+    # floods the reservoirs again from boundaries 2 and 3; updatePressure() applies the pressures).
+    def setCellSaturation(self, cell: int, saturation: float):
+        model = self._model()
+        model.setSaturation(self._cell(cell, model), float(saturation))
+
+    def setCellIsWRes(self, cell: int, value: bool):
+        model = self._model()
+        model.setReservoir(self._cell(cell, model), True, bool(value))
+
+    def setCellIsNWRes(self, cell: int, value: bool):
+        model = self._model()
+        model.setReservoir(self._cell(cell, model), False, bool(value))
+
+    def setPoreBodyRadius(self, cell: int, radius: float):
+        """The pore-body entry radius of pore ``cell`` (its entry pressure surfaceTension / radius)."""
+        model = self._model()
+        model.setBodyRadius(self._cell(cell, model), float(radius))
+
+    def setPoreThroatRadius(self, cell1: int, cell2: int, radius: float):
+        """The entry radius of the throat between pores ``cell1`` and ``cell2`` (negative: closed)."""
+        self._model().setThroatRadius(self._throat(cell1, cell2, "setPoreThroatRadius"), float(radius))
+
+    def updatePressure(self):
+        """Each pore's pressure from ``bndCondValue`` and its reservoir and trapping flags (what
+        ``invasion()`` starts with)."""
+        self._model().updatePressure(self.bndCondValue)
+
+    def _throat(self, cell1, cell2, function) -> int:
         pairs = self._flow.throatPores()
         hit = np.nonzero(((pairs[:, 0] == cell1) & (pairs[:, 1] == cell2)) | ((pairs[:, 0] == cell2) & (pairs[:, 1] == cell1)))[0]
         if len(hit) == 0:
-            raise ValueError(f"{_OWNER}.getPoreThroatRadius: pores {cell1} and {cell2} are not neighbours")
-        return float(self._model().throatRadii()[hit[0]])
+            raise ValueError(f"{_OWNER}.{function}: pores {cell1} and {cell2} are not neighbours")
+        return int(hit[0])
 
     def getMSPRcByPosRadius(self, position1, radius1, position2, radius2, position3, radius3) -> float:
         """The MS-P entry radius of the throat between three spheres (Yade's)."""
