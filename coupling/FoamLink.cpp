@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -88,17 +89,31 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   if (nParticles < 0)
     throw std::runtime_error("FoamCoupling: negative particle count");
   ensureMpi();
+  if (settings_.demAcrossProcesses)
+    MPI_Comm_dup(MPI_COMM_WORLD, &dem_); // the coupling's own collectives, apart from the DEM's
+  MPI_Comm_rank(dem_, &demRank_);
+  MPI_Comm_size(dem_, &demRanks_);
 
   std::string timeout = std::to_string(settings_.timeout);
-  std::vector<char*> argv{const_cast<char*>("-case"), settings_.caseDir.data(),
-                          const_cast<char*>("-couplingTimeout"), timeout.data()};
+  std::string command = settings_.solver;
+  std::vector<char*> argv;
+  if (!settings_.environment.empty())
+  {
+    command = "/usr/bin/env"; // which then runs the solver in this process, with the settings
+    for (auto& setting : settings_.environment)
+      argv.push_back(setting.data());
+    argv.push_back(settings_.solver.data());
+  }
+  for (char* a : {const_cast<char*>("-case"), settings_.caseDir.data(), const_cast<char*>("-couplingTimeout"),
+                  timeout.data()})
+    argv.push_back(a);
   if (settings_.nProcs > 1)
     argv.push_back(const_cast<char*>("-parallel"));
   argv.push_back(nullptr);
   std::vector<int> errors(static_cast<std::size_t>(settings_.nProcs));
-  MPI_Comm_set_errhandler(MPI_COMM_SELF, MPI_ERRORS_RETURN);
-  const int rc = MPI_Comm_spawn(settings_.solver.c_str(), argv.data(), settings_.nProcs,
-                                MPI_INFO_NULL, 0, MPI_COMM_SELF, &inter_, errors.data());
+  MPI_Comm_set_errhandler(dem_, MPI_ERRORS_RETURN);
+  const int rc = MPI_Comm_spawn(command.c_str(), argv.data(), settings_.nProcs,
+                                MPI_INFO_NULL, 0, dem_, &inter_, errors.data());
   if (rc != MPI_SUCCESS || inter_ == MPI_COMM_NULL)
   {
     char text[MPI_MAX_ERROR_STRING];
@@ -124,24 +139,28 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
   // The fluid ranks' pids come first (before they read the case), so that a solver dying on a
   // bad case file is noticed at once rather than after the timeout.
   std::vector<int> pids(2 * static_cast<std::size_t>(fluidProcs_));
-  std::vector<MPI_Request> pidRequests(static_cast<std::size_t>(fluidProcs_));
-  for (int p = 0; p < fluidProcs_; ++p)
-    MPI_Irecv(&pids[2 * static_cast<std::size_t>(p)], 2, MPI_INT, p, proto::kTagPid, inter_,
-              &pidRequests[static_cast<std::size_t>(p)]);
-  wait(pidRequests, "the fluid ranks' process ids");
-  for (int p = 0; p < fluidProcs_; ++p)
-    if (pids[2 * static_cast<std::size_t>(p) + 1] == thisHost())
-      peers_.push_back({p, pids[2 * static_cast<std::size_t>(p)]});
-
   boxes_.assign(proto::kBoxDoubles * static_cast<std::size_t>(fluidProcs_), 0.0);
-  std::vector<MPI_Request> rq(3 + static_cast<std::size_t>(fluidProcs_));
-  MPI_Irecv(reply, proto::kReplyInts, MPI_INT, 0, proto::kTagHelloReply, inter_, &rq[0]);
-  MPI_Irecv(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, proto::kTagHelloReplyD, inter_, &rq[1]);
-  MPI_Irecv(message.data(), proto::kMessageChars, MPI_CHAR, 0, proto::kTagMessage, inter_, &rq[2]);
-  for (int p = 0; p < fluidProcs_; ++p)
-    MPI_Irecv(&boxes_[proto::kBoxDoubles * static_cast<std::size_t>(p)], proto::kBoxDoubles, MPI_DOUBLE, p,
-              proto::kTagBox, inter_, &rq[3 + static_cast<std::size_t>(p)]);
-  wait(rq, "the fluid side's handshake (is the case readable? see the solver's output)");
+  if (demRank_ == 0)
+  {
+    std::vector<MPI_Request> pidRequests(static_cast<std::size_t>(fluidProcs_));
+    for (int p = 0; p < fluidProcs_; ++p)
+      MPI_Irecv(&pids[2 * static_cast<std::size_t>(p)], 2, MPI_INT, p, proto::kTagPid, inter_,
+                &pidRequests[static_cast<std::size_t>(p)]);
+    wait(pidRequests, "the fluid ranks' process ids");
+    for (int p = 0; p < fluidProcs_; ++p)
+      if (pids[2 * static_cast<std::size_t>(p) + 1] == thisHost())
+        peers_.push_back({p, pids[2 * static_cast<std::size_t>(p)]});
+
+    std::vector<MPI_Request> rq(3 + static_cast<std::size_t>(fluidProcs_));
+    MPI_Irecv(reply, proto::kReplyInts, MPI_INT, 0, proto::kTagHelloReply, inter_, &rq[0]);
+    MPI_Irecv(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, proto::kTagHelloReplyD, inter_, &rq[1]);
+    MPI_Irecv(message.data(), proto::kMessageChars, MPI_CHAR, 0, proto::kTagMessage, inter_, &rq[2]);
+    for (int p = 0; p < fluidProcs_; ++p)
+      MPI_Irecv(&boxes_[proto::kBoxDoubles * static_cast<std::size_t>(p)], proto::kBoxDoubles, MPI_DOUBLE, p,
+                proto::kTagBox, inter_, &rq[3 + static_cast<std::size_t>(p)]);
+    wait(rq, "the fluid side's handshake (is the case readable? see the solver's output)");
+  }
+  shareHandshake(pids, reply, replyD, message);
   message.back() = '\0';
 
   std::string why;
@@ -161,12 +180,15 @@ FoamLink::FoamLink(const FoamSettings& settings, int nParticles)
       << "the coupling interval " << settings_.couplingInterval << " s";
     why = s.str();
     // The fluid waits for a command: stop it cleanly.
-    const int stopCommand[2] = {proto::kCommandStop, 0};
-    sendAll(stopCommand, 2, MPI_INT, proto::kTagCommand, "the stop command");
+    std::vector<int> stopCommand(static_cast<std::size_t>(proto::commandInts(demRanks_)), 0);
+    stopCommand[0] = proto::kCommandStop;
+    sendAll(stopCommand.data(), proto::commandInts(demRanks_), MPI_INT, proto::kTagCommand, "the stop command");
   }
   if (!why.empty())
   {
     MPI_Comm_disconnect(&inter_);
+    if (dem_ != MPI_COMM_SELF)
+      MPI_Comm_free(&dem_);
     throw std::runtime_error("FoamCoupling: " + why);
   }
   replies_.assign(static_cast<std::size_t>(fluidProcs_), {});
@@ -324,8 +346,25 @@ void FoamLink::stopWatchdog()
   watchdog_.join();
 }
 
+void FoamLink::shareHandshake(std::vector<int>& pids, int* reply, double* replyD, std::vector<char>& message)
+{
+  if (demRanks_ == 1)
+    return;
+  MPI_Bcast(pids.data(), static_cast<int>(pids.size()), MPI_INT, 0, dem_);
+  MPI_Bcast(boxes_.data(), static_cast<int>(boxes_.size()), MPI_DOUBLE, 0, dem_);
+  MPI_Bcast(reply, proto::kReplyInts, MPI_INT, 0, dem_);
+  MPI_Bcast(replyD, proto::kReplyDoubles, MPI_DOUBLE, 0, dem_);
+  MPI_Bcast(message.data(), static_cast<int>(message.size()), MPI_CHAR, 0, dem_);
+  if (demRank_ != 0)
+    for (int p = 0; p < fluidProcs_; ++p)
+      if (pids[2 * static_cast<std::size_t>(p) + 1] == thisHost())
+        peers_.push_back({p, pids[2 * static_cast<std::size_t>(p)]});
+}
+
 void FoamLink::sendAll(const void* data, int count, MPI_Datatype type, int tag, const char* what)
 {
+  if (demRank_ != 0)
+    return;
   std::vector<MPI_Request> rq(static_cast<std::size_t>(fluidProcs_));
   for (int p = 0; p < fluidProcs_; ++p)
     MPI_Isend(data, count, type, p, tag, inter_, &rq[static_cast<std::size_t>(p)]);
@@ -334,15 +373,17 @@ void FoamLink::sendAll(const void* data, int count, MPI_Datatype type, int tag, 
 
 double FoamLink::exchange(std::span<const double> positions, std::span<const double> velocities,
                           std::span<const double> radii, std::span<double> forces, std::span<double> beta,
-                          std::span<double> fluidVelocities)
+                          std::span<double> fluidVelocities, std::span<const std::int64_t> indices)
 {
   if (!running())
     throw std::runtime_error("FoamCoupling: the fluid solver is not running");
-  const auto n = static_cast<std::size_t>(nParticles_);
-  if (positions.size() != 3 * n || velocities.size() != 3 * n || radii.size() != n || forces.size() != 3 * n ||
-      beta.size() != n || fluidVelocities.size() != 3 * n)
-    throw std::runtime_error("FoamCoupling: particle arrays do not match the " +
-                             std::to_string(nParticles_) + " particles of the handshake");
+  const std::size_t n = radii.size();
+  if ((demRanks_ == 1 && n != static_cast<std::size_t>(nParticles_)) || positions.size() != 3 * n ||
+      velocities.size() != 3 * n || forces.size() != 3 * n || beta.size() != n || fluidVelocities.size() != 3 * n ||
+      (!indices.empty() && indices.size() != n) || (demRanks_ > 1 && indices.size() != n))
+    throw std::runtime_error("FoamCoupling: particle arrays do not match the " + std::to_string(nParticles_) +
+                             " particles of the handshake" +
+                             (demRanks_ > 1 ? " (or each other, or have no indices)" : ""));
   if (const double silent = steadySeconds() - heard_; silent > settings_.timeout)
     fluidGaveUp(silent); // sending would only find the fluid gone
   const auto start = std::chrono::steady_clock::now();
@@ -350,6 +391,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
   // The arrays keep room for every particle (no allocation, no capacity test per value, which
   // made push_back a visible part of an exchange; docs/coupling.md, "Measurements behind the
   // code").
+  counts_.resize(static_cast<std::size_t>(fluidProcs_));
   for (int p = 0; p < fluidProcs_; ++p)
   {
     const double* box = &boxes_[proto::kBoxDoubles * static_cast<std::size_t>(p)];
@@ -368,28 +410,60 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
       d[0] = x[0], d[1] = x[1], d[2] = x[2];
       d[3] = v[0], d[4] = v[1], d[5] = v[2];
       d[6] = radii[i];
-      d[7] = static_cast<double>(i);
+      d[7] = static_cast<double>(indices.empty() ? static_cast<std::int64_t>(i) : indices[i]);
       members[count++] = i;
     }
     memberCount_[static_cast<std::size_t>(p)] = count;
+    counts_[static_cast<std::size_t>(p)] = static_cast<int>(count);
   }
-  std::vector<MPI_Request> rq(static_cast<std::size_t>(3 * fluidProcs_));
-  std::vector<std::array<int, 2>> commands(static_cast<std::size_t>(fluidProcs_));
+  // DEM rank 0 tells each fluid rank how many particles each DEM process sends it.
+  const auto procs = static_cast<std::size_t>(fluidProcs_);
+  allCounts_.resize(procs * static_cast<std::size_t>(demRanks_));
+  if (demRanks_ > 1)
+    MPI_Gather(counts_.data(), fluidProcs_, MPI_INT, allCounts_.data(), fluidProcs_, MPI_INT, 0, dem_);
+  else
+    allCounts_ = counts_;
+  const auto commandSize = static_cast<std::size_t>(proto::commandInts(demRanks_));
+  std::vector<int> commands(demRank_ == 0 ? procs * commandSize : 0);
+  std::vector<MPI_Request> rq;
+  rq.reserve(3 * procs);
   long doubles = 0;
-  for (int p = 0; p < fluidProcs_; ++p)
+  long messages = 0;
+  stats_.fluidPeers = 0;
+  for (std::size_t p = 0; demRank_ == 0 && p < procs; ++p)
   {
-    const auto q = static_cast<std::size_t>(p);
-    const auto count = memberCount_[q];
-    commands[q] = {proto::kCommandStep, static_cast<int>(count)};
-    auto& reply = replies_[q];
+    int* command = &commands[p * commandSize];
+    command[0] = proto::kCommandStep;
+    command[1] = 0;
+    for (std::size_t d = 0; d < static_cast<std::size_t>(demRanks_); ++d)
+    {
+      command[2 + d] = allCounts_[d * procs + p];
+      command[1] += command[2 + d];
+    }
+    rq.emplace_back();
+    MPI_Isend(command, static_cast<int>(commandSize), MPI_INT, static_cast<int>(p), proto::kTagCommand, inter_,
+              &rq.back());
+    ++messages;
+  }
+  // A DEM process exchanges with the fluid ranks it has particles for; rank 0 with all of them.
+  const auto exchanges = [&](std::size_t p) { return demRank_ == 0 || memberCount_[p] > 0; };
+  for (std::size_t p = 0; p < procs; ++p)
+  {
+    if (!exchanges(p))
+      continue;
+    const auto count = memberCount_[p];
+    auto& reply = replies_[p];
     reply.resize(proto::kReplyHeader + proto::kForceDoubles * count);
-    MPI_Irecv(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, p, proto::kTagForces, inter_,
-              &rq[2 * q + static_cast<std::size_t>(fluidProcs_)]);
-    MPI_Isend(commands[q].data(), 2, MPI_INT, p, proto::kTagCommand, inter_, &rq[q]);
+    rq.emplace_back();
+    MPI_Irecv(reply.data(), static_cast<int>(reply.size()), MPI_DOUBLE, static_cast<int>(p), proto::kTagForces,
+              inter_, &rq.back());
     const auto sentDoubles = static_cast<int>(proto::kParticleDoubles * count);
-    MPI_Isend(sent_[q].data(), sentDoubles, MPI_DOUBLE, p, proto::kTagParticles, inter_,
-              &rq[2 * q + 1 + static_cast<std::size_t>(fluidProcs_)]);
+    rq.emplace_back();
+    MPI_Isend(sent_[p].data(), sentDoubles, MPI_DOUBLE, static_cast<int>(p), proto::kTagParticles, inter_,
+              &rq.back());
+    messages += 2;
     doubles += static_cast<long>(sentDoubles + reply.size());
+    ++stats_.fluidPeers;
   }
   const auto sent = std::chrono::steady_clock::now();
   const double sentCpu = threadCpuSeconds();
@@ -417,11 +491,14 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     owned_[i] = (add ? owned_[i] : 0.0) + f[3];
     beta[i] = (add ? beta[i] : 0.0) + f[4];
   };
-  for (int p = 0; p < fluidProcs_; ++p)
+  bool first = true;
+  for (std::size_t p = 0; p < procs; ++p)
   {
-    const auto& reply = replies_[static_cast<std::size_t>(p)];
-    const auto& members = members_[static_cast<std::size_t>(p)];
-    const auto count = memberCount_[static_cast<std::size_t>(p)];
+    if (!exchanges(p))
+      continue;
+    const auto& reply = replies_[p];
+    const auto& members = members_[p];
+    const auto count = memberCount_[p];
     maxRe = std::max(maxRe, reply[1]);
     fluidMessages += std::lround(reply[2]);
     stats_.fluidExchangeSeconds = std::max(stats_.fluidExchangeSeconds, reply[3]);
@@ -429,7 +506,7 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     stats_.fluidExchangeCpuSeconds = std::max(stats_.fluidExchangeCpuSeconds, reply[5]);
     stats_.fluidStepCpuSeconds = std::max(stats_.fluidStepCpuSeconds, reply[6]);
     const double* values = &reply[proto::kReplyHeader];
-    if (p == 0)
+    if (first)
       for (std::size_t i = 0, j = 0; i < n; ++i)
       {
         const bool given = j < count && members[j] == i;
@@ -438,23 +515,47 @@ double FoamLink::exchange(std::span<const double> positions, std::span<const dou
     else
       for (std::size_t j = 0; j < count; ++j)
         put(members[j], values + proto::kForceDoubles * j, true);
+    first = false;
   }
-  stats_.messages = 3L * fluidProcs_ + fluidMessages;
+  for (std::size_t i = 0; first && i < n; ++i) // no fluid rank's box holds a particle here
+    put(i, nothing.data(), false);
+  if (demRanks_ > 1)
+    MPI_Allreduce(MPI_IN_PLACE, &maxRe, 1, MPI_DOUBLE, MPI_MAX, dem_);
+  stats_.messages = messages + fluidMessages;
   stats_.demDoubles = doubles;
   stats_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_.waitSeconds = std::chrono::duration<double>(received - sent).count();
-  for (std::size_t i = 0; i < n; ++i)
-    if (owned_[i] < 0.5)
-    {
-      std::ostringstream s;
-      s << "FoamCoupling: particle " << i << " at (" << positions[3 * i] << ", "
-        << positions[3 * i + 1] << ", " << positions[3 * i + 2]
-        << ") is outside the fluid mesh of case '" << settings_.caseDir
-        << "'; the fluid solver was stopped";
-      stop();
-      throw std::runtime_error(s.str());
-    }
+  if (const std::string lost = lostParticle(positions, indices); !lost.empty())
+  {
+    stop();
+    throw std::runtime_error("FoamCoupling: particle " + lost + " is outside the fluid mesh of case '" +
+                             settings_.caseDir + "'; the fluid solver was stopped");
+  }
   return maxRe;
+}
+
+std::string FoamLink::lostParticle(std::span<const double> positions, std::span<const std::int64_t> indices)
+{
+  // The lowest index lost here, then over the DEM processes, and its position from its process.
+  const auto n = owned_.size();
+  std::size_t k = n;
+  for (std::size_t i = 0; i < n && k == n; ++i)
+    if (owned_[i] < 0.5)
+      k = i;
+  const auto indexOf = [&](std::size_t i) { return indices.empty() ? static_cast<std::int64_t>(i) : indices[i]; };
+  std::int64_t lowest = k < n ? indexOf(k) : std::numeric_limits<std::int64_t>::max();
+  if (demRanks_ > 1)
+    MPI_Allreduce(MPI_IN_PLACE, &lowest, 1, MPI_INT64_T, MPI_MIN, dem_);
+  if (lowest == std::numeric_limits<std::int64_t>::max())
+    return {};
+  std::array<double, 3> x{};
+  if (k < n && indexOf(k) == lowest)
+    x = {positions[3 * k], positions[3 * k + 1], positions[3 * k + 2]};
+  if (demRanks_ > 1)
+    MPI_Allreduce(MPI_IN_PLACE, x.data(), 3, MPI_DOUBLE, MPI_SUM, dem_);
+  std::ostringstream s;
+  s << lowest << " at (" << x[0] << ", " << x[1] << ", " << x[2] << ")";
+  return s.str();
 }
 
 void FoamLink::stop()
@@ -462,9 +563,12 @@ void FoamLink::stop()
   stopWatchdog(); // the fluid ranks are about to exit
   if (!running())
     return;
-  const int command[2] = {proto::kCommandStop, 0};
-  sendAll(command, 2, MPI_INT, proto::kTagCommand, "the stop command");
+  std::vector<int> command(static_cast<std::size_t>(proto::commandInts(demRanks_)), 0);
+  command[0] = proto::kCommandStop;
+  sendAll(command.data(), proto::commandInts(demRanks_), MPI_INT, proto::kTagCommand, "the stop command");
   MPI_Comm_disconnect(&inter_);
+  if (dem_ != MPI_COMM_SELF)
+    MPI_Comm_free(&dem_);
 }
 
 void addForceChange(std::span<const double> forces, std::span<const double> applied,

@@ -26,6 +26,13 @@ struct FoamSettings
   /// Longest wait [s] of either side for the other before the run is stopped: the DEM for the
   /// fluid's forces, the fluid for the DEM's next command (-couplingTimeout).
   double timeout = 60;
+  /// The DEM runs decomposed over every process of MPI_COMM_WORLD (talus run under mpirun):
+  /// the solver ranks are started by all of them together, and each exchanges its own
+  /// particles (FoamProtocol.h). Otherwise this process is the whole DEM.
+  bool demAcrossProcesses = false;
+  /// NAME=value settings the solver ranks get besides their inherited environment (started
+  /// through env(1)); under mpirun they inherit mpirun's environment, not this process's.
+  std::vector<std::string> environment;
 };
 
 /// What the last exchange cost.
@@ -33,6 +40,7 @@ struct ExchangeStats
 {
   long messages = 0;    ///< point-to-point messages: 3 per fluid rank with the DEM + between fluid ranks
   long demDoubles = 0;  ///< doubles sent and received by the DEM process
+  int fluidPeers = 0;   ///< fluid ranks this DEM process exchanged particles with
   double seconds = 0;   ///< wall time of the exchange seen by the DEM (sending to last reply)
   double waitSeconds = 0; ///< of which waiting for the replies (the rest is the DEM's own work)
   double waitCpuSeconds = 0; ///< CPU time of this thread while it waited (polling)
@@ -49,6 +57,10 @@ struct ExchangeStats
 /// The constructor spawns the solver ranks and does the handshake; each exchange() sends each
 /// fluid rank the particles inside its sub-mesh's widened box and gets one force array back from
 /// each (2P + P messages; the fluid ranks add one message per neighbour and reduction).
+/// With a decomposed DEM (FoamSettings::demAcrossProcesses) every DEM process holds a link:
+/// the constructor, exchange() and stop() are collective over the DEM processes; DEM rank 0
+/// does the handshake and sends the commands, and each process exchanges its own particles with
+/// the fluid ranks whose boxes hold some of them only (rank 0 with every fluid rank).
 /// A fluid side gone silent for `timeout` seconds aborts every process with a message. The other
 /// way round, the fluid gives up on a DEM process that sends nothing for `timeout` seconds
 /// (stuck between two exchanges, or stopped); a watchdog thread of this process then stops it
@@ -58,7 +70,8 @@ class FoamLink
 public:
   /// Spawns the solver and checks the case against `settings`.
   /// @param settings the solver, its case and what the DEM side states about it
-  /// @param nParticles the coupled particles, the same at every exchange
+  /// @param nParticles the coupled particles, the same at every exchange (of the whole DEM when
+  ///        it is decomposed: each process then exchanges a varying part of them)
   /// @throws std::runtime_error naming the setting or the file: a solver or case file missing,
   ///         a case not meshed or not decomposed into nProcs, a setting out of range, the spawn
   ///         failed, or the fluid side's reason on a mismatch with its case
@@ -79,7 +92,8 @@ public:
   /// Each fluid rank's {xmin, ymin, zmin, xmax, ymax, zmax, margin}.
   [[nodiscard]] const std::vector<double>& boxes() const { return boxes_; }
 
-  /// One fluid step: sends positions (3N), velocities (3N) and radii (N); writes the
+  /// One fluid step: sends positions (3N), velocities (3N) and radii (N) of this process's
+  /// particles (N = nParticles() unless the DEM is decomposed); writes the
   /// hydrodynamic force on each particle into `forces` (3N), its drag coefficient beta (N) and
   /// the fluid velocity the drag uses (3N): the drag in `forces` is beta (uf - v) with the
   /// velocities sent. The fluid then advances one step.
@@ -88,13 +102,16 @@ public:
   /// @param forces 3 values per particle, written [N]
   /// @param beta one value per particle, written [kg/s]
   /// @param fluidVelocities 3 values per particle, written [m/s]
-  /// @return the largest particle Reynolds number seen by the fluid
+  /// @param indices each particle's index for the fluid (FoamProtocol.h: unique over the DEM
+  ///        processes, increasing); empty: 0 .. N-1 (one DEM process only)
+  /// @return the largest particle Reynolds number seen by the fluid (over every DEM process)
   /// @throws std::runtime_error if the fluid is not running, the arrays do not hold
-  ///         nParticles() particles, or a particle is outside the fluid mesh (the fluid is
-  ///         stopped)
+  ///         nParticles() particles (or, decomposed, do not agree in size, or no indices), or a
+  ///         particle is outside the fluid mesh (the fluid is stopped; on every DEM process,
+  ///         with the same message)
   double exchange(std::span<const double> positions, std::span<const double> velocities,
                   std::span<const double> radii, std::span<double> forces, std::span<double> beta,
-                  std::span<double> fluidVelocities);
+                  std::span<double> fluidVelocities, std::span<const std::int64_t> indices = {});
 
   /// Tells the fluid to write its fields and exit, then disconnects. Idempotent.
   void stop();
@@ -118,10 +135,20 @@ private:
   [[noreturn]] void endRun(int code, const std::string& message);
   /// Records a pause of this process (stopped, or starved of CPU) longer than the timeout.
   void notePause(double now, double& previous);
+  /// From DEM rank 0 (which speaks for the DEM) to every fluid rank; nothing elsewhere.
   void sendAll(const void* data, int count, MPI_Datatype type, int tag, const char* what);
+  /// The handshake's results from DEM rank 0 to the other DEM processes.
+  void shareHandshake(std::vector<int>& pids, int* reply, double* replyD, std::vector<char>& message);
+  /// The lowest index of a particle outside the mesh on any DEM process, with its position, or
+  /// an empty string if none (collective when decomposed).
+  std::string lostParticle(std::span<const double> positions, std::span<const std::int64_t> indices);
 
   FoamSettings settings_;
   MPI_Comm inter_ = MPI_COMM_NULL;
+  MPI_Comm dem_ = MPI_COMM_SELF; ///< the DEM's processes (a duplicate of MPI_COMM_WORLD when decomposed)
+  int demRank_ = 0, demRanks_ = 1;
+  std::vector<int> counts_;   ///< per fluid rank: this process's particles for it
+  std::vector<int> allCounts_; ///< DEM rank 0: per DEM rank, its counts_
   int fluidProcs_ = 0;
   int nParticles_ = 0;
   long nCells_ = 0;

@@ -3,17 +3,22 @@
 // (foam-solvers/). This header is the protocol's description: plain constants, no OpenFOAM and
 // no Talus types, so both sides include it without depending on each other's code.
 //
-// Processes: one DEM process (rank 0 of its MPI_COMM_WORLD) and P fluid ranks started by it with
-// MPI_Comm_spawn; every message below travels on the intercommunicator (the DEM side's result of
-// MPI_Comm_spawn, the fluid side's MPI_Comm_get_parent). Fluid ranks are addressed by their rank
-// in the spawned world (0 .. P-1). All messages are bulk arrays: per exchange 2 messages to each
-// fluid rank and 1 back from each, whatever the particle count. Each fluid rank gets only the
-// particles inside its sub-mesh's bounding box widened by its margin (inBox below, the same test
-// on both sides), so the data per rank is O(N/P) plus a halo; the fluid ranks settle the
-// particles they share (ownership, envelope sums) with one message per neighbouring rank per
-// reduction.
+// Processes: P_DEM DEM processes (the DEM's communicator: one process, or every process of a
+// DEM decomposed over MPI ranks; "DEM rank d" below is its rank there) and P fluid ranks started
+// by them with MPI_Comm_spawn, collective over the DEM processes (root: DEM rank 0); every message
+// below travels on the intercommunicator (the DEM side's result of MPI_Comm_spawn, the fluid
+// side's MPI_Comm_get_parent). Fluid ranks are addressed by their rank in the spawned world
+// (0 .. P-1), DEM ranks by theirs in the DEM's communicator (0 .. P_DEM-1). All messages are bulk
+// arrays, whatever the particle count. Each fluid rank gets only the particles inside its
+// sub-mesh's bounding box widened by its margin (inBox below, the same test on both sides), so
+// the data per rank is O(N/P) plus a halo; each particle is sent by one DEM rank only (the rank
+// owning it), and a DEM rank exchanges particles only with the fluid ranks it has particles for
+// (rank 0 with every fluid rank: it carries the commands and collects the fluid ranks' reports).
+// The fluid ranks settle the particles they share (ownership, envelope sums) with one message
+// per neighbouring rank per reduction.
 //
-// 1. Handshake (once, before the fluid's first step)
+// 1. Handshake (once, before the fluid's first step), between DEM rank 0 and every fluid rank
+//    (DEM rank 0 passes what it learns on to the other DEM ranks)
 //    DEM -> every fluid rank, tag kTagHello:   int[kHelloInts] = {kMagic, kVersion, nParticles,
 //                                               pid, hostHash(hostname)}
 //                             tag kTagHelloD:  double[kHelloDoubles] = {rhoFluid [kg/m3],
@@ -39,25 +44,33 @@
 //    the coupling interval: it then sends kCommandStop.
 //
 // 2. Each fluid step (the DEM drives the fluid's time loop)
-//    DEM -> every fluid rank, tag kTagCommand: int[2] = {kCommandStep | kCommandStop, n}, n the
-//             number of particles for that rank (those inside its widened box)
+//    DEM rank 0 -> every fluid rank, tag kTagCommand: int[commandInts(P_DEM)] = {kCommandStep |
+//             kCommandStop, n, n_0, ..., n_(P_DEM-1)}: n the number of particles for that rank
+//             (those inside its widened box), n_d of them from DEM rank d (the DEM ranks tell
+//             rank 0 their counts first, among themselves)
 //    if kCommandStep:
-//      DEM -> every fluid rank, tag kTagParticles: double[kParticleDoubles * n],
-//             per particle {x, y, z, vx, vy, vz, radius, global index}, in increasing index
-//      every fluid rank -> DEM, tag kTagForces: double[kReplyHeader + kForceDoubles * n]:
+//      DEM rank d -> the fluid rank, tag kTagParticles, if n_d > 0 or d = 0:
+//             double[kParticleDoubles * n_d], per particle {x, y, z, vx, vy, vz, radius, index},
+//             in increasing index; the index is a particle's own, unique over the DEM ranks and
+//             the same from exchange to exchange (the coupled particle's number in one DEM
+//             process, its body id in a decomposed DEM). The fluid rank orders the particles of
+//             all its senders by index (what it computes does not depend on the DEM's ranks).
+//      the fluid rank -> every DEM rank d that sent it particles (d = 0 always), tag kTagForces:
+//             double[kReplyHeader + kForceDoubles * n_d]:
 //             {status (kStatusOk), the largest particle Reynolds number on the rank, messages
 //             this rank sent to other fluid ranks in this exchange, the wall time [s] of this
 //             rank's previous exchange (from the command's arrival to the forces sent: receiving
 //             the particles, locating them, the forces, the halo messages, the reply), the wall
 //             time [s] of its previous fluid step (solution and output), then the same two as
 //             the rank's CPU time [s]; all 0 before the first, and the previous ones because a
-//             reply cannot carry the time of its own sending}, then per particle, in the order received, {fx, fy, fz, owned, beta,
+//             reply cannot carry the time of its own sending}, then per particle, in the order DEM
+//             rank d sent them, {fx, fy, fz, owned, beta,
 //             ufx, ufy, ufz}: the hydrodynamic force on the particle from the one rank that
 //             owns the particle's cell (the lowest rank finding it), zeros and owned = 0 on the
 //             other ranks; the drag in it is
 //             beta (uf - u_p) with u_p the velocity sent, so that the DEM side may re-evaluate it
 //             with the particle's current velocity at each of its sub-steps. A particle owned nowhere has left the mesh (the DEM
-//             then sends kCommandStop and reports it).
+//             ranks, which learn it together, then send kCommandStop and report it).
 //    After the reply the fluid advances one deltaT with the reaction of the drag as a source.
 //    kCommandStop: the fluid writes its fields, disconnects and exits.
 //    kStatusError is reserved for fluid-side errors reported in the reply (not sent yet: a
@@ -72,7 +85,7 @@
 namespace talus::foam_protocol
 {
 constexpr int kMagic = 0x54414c53; // "TALS"
-constexpr int kVersion = 4;
+constexpr int kVersion = 5;
 
 constexpr int kTagHello = 6101;
 constexpr int kTagHelloD = 6102;
@@ -103,6 +116,12 @@ constexpr int kStatusError = 2;
 
 constexpr int kCommandStop = 0;
 constexpr int kCommandStep = 1;
+
+/// Length of a command (kTagCommand) with `demRanks` DEM ranks.
+constexpr int commandInts(int demRanks)
+{
+  return 2 + demRanks;
+}
 
 /// A non-negative hash of a host name (FNV-1a), to tell whether a peer runs on this host.
 /// @param name the host name, null-terminated

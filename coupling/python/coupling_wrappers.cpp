@@ -1,11 +1,14 @@
 // Python bindings of coupling/: only the mapping of C++ names to Python. The engine logic
 // (hooks, sub-stepping, checks) lives in talus.coupling.foam.
 #include "coupling/FoamLink.h"
+#include "coupling/ParticleRecords.h"
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -37,7 +40,9 @@ PYBIND11_MODULE(_coupling, m)
     .def_readwrite("nu", &FoamSettings::nu)
     .def_readwrite("gravity", &FoamSettings::gravity)
     .def_readwrite("couplingInterval", &FoamSettings::couplingInterval)
-    .def_readwrite("timeout", &FoamSettings::timeout);
+    .def_readwrite("timeout", &FoamSettings::timeout)
+    .def_readwrite("demAcrossProcesses", &FoamSettings::demAcrossProcesses)
+    .def_readwrite("environment", &FoamSettings::environment);
 
   py::class_<FoamLink>(m, "FoamLink")
     .def(py::init<const FoamSettings&, int>(), py::arg("settings"), py::arg("nParticles"))
@@ -48,19 +53,24 @@ PYBIND11_MODULE(_coupling, m)
     .def_property_readonly("nParticles", &FoamLink::nParticles)
     .def_property_readonly("running", &FoamLink::running)
     .def("exchange",
-         [](FoamLink& link, const Array& pos, const Array& vel, const Array& radius) {
-           const auto n = static_cast<py::ssize_t>(link.nParticles());
+         [](FoamLink& link, const Array& pos, const Array& vel, const Array& radius,
+            const std::optional<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>& indices) {
+           const auto n = static_cast<py::ssize_t>(radius.size());
            Array forces({n, py::ssize_t{3}}), fluid({n, py::ssize_t{3}}), beta(n);
+           std::span<const std::int64_t> index;
+           if (indices)
+             index = {indices->data(), static_cast<std::size_t>(indices->size())};
            const double re = link.exchange(values(pos, 3, "positions"), values(vel, 3, "velocities"),
                                            values(radius, 1, "radii"),
                                            {forces.mutable_data(), static_cast<std::size_t>(forces.size())},
                                            {beta.mutable_data(), static_cast<std::size_t>(beta.size())},
-                                           {fluid.mutable_data(), static_cast<std::size_t>(fluid.size())});
+                                           {fluid.mutable_data(), static_cast<std::size_t>(fluid.size())}, index);
            return py::make_tuple(forces, re, beta, fluid);
          },
-         py::arg("positions"), py::arg("velocities"), py::arg("radii"))
+         py::arg("positions"), py::arg("velocities"), py::arg("radii"), py::arg("indices") = py::none())
     .def_property_readonly("boxes", &FoamLink::boxes)
     .def_property_readonly("lastMessages", [](const FoamLink& l) { return l.lastExchange().messages; })
+    .def_property_readonly("lastFluidPeers", [](const FoamLink& l) { return l.lastExchange().fluidPeers; })
     .def_property_readonly("lastDemDoubles", [](const FoamLink& l) { return l.lastExchange().demDoubles; })
     .def_property_readonly("lastExchangeSeconds", [](const FoamLink& l) { return l.lastExchange().seconds; })
     .def_property_readonly("lastWaitSeconds", [](const FoamLink& l) { return l.lastExchange().waitSeconds; })
@@ -73,6 +83,27 @@ PYBIND11_MODULE(_coupling, m)
     .def_property_readonly("lastFluidStepCpuSeconds",
                            [](const FoamLink& l) { return l.lastExchange().fluidStepCpuSeconds; })
     .def("stop", &FoamLink::stop);
+
+  using Ids = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+  py::class_<ParticleRecords>(m, "ParticleRecords")
+    .def(py::init<int>(), py::arg("width"))
+    .def("store",
+         [](ParticleRecords& r, const Ids& ids, const Array& values) {
+           r.store({ids.data(), static_cast<std::size_t>(ids.size())},
+                   {values.data(), static_cast<std::size_t>(values.size())});
+         },
+         py::arg("ids"), py::arg("values"))
+    .def("hand_over",
+         [](ParticleRecords& r, const Ids& ids) { r.handOver({ids.data(), static_cast<std::size_t>(ids.size())}); },
+         py::arg("ids"))
+    .def_property_readonly("values",
+                           [](const ParticleRecords& r) {
+                             const auto n = static_cast<py::ssize_t>(r.ids().size());
+                             Array a({n, static_cast<py::ssize_t>(r.width())});
+                             std::copy(r.values().begin(), r.values().end(), a.mutable_data());
+                             return a;
+                           })
+    .def_property_readonly("lastSent", &ParticleRecords::lastSent);
 
   // noconvert: the per-body arrays are the scene's own storage, never a converted copy.
   m.def(

@@ -75,6 +75,7 @@ int main(int argc, char *argv[])
 
     talusFoam::ParticleLocator locator(mesh);
     talusFoam::ExchangeTimer exchangeTimer;
+    talusFoam::ParticleInbox inbox(link);
     std::vector<double> particles;    // per particle x y z vx vy vz r index
     std::vector<double> reply;        // header (FoamProtocol.h), then per particle fx fy fz owned beta uf
     // Per particle the drag closure's inputs (fluid fraction 1, slip speed, diameter) and its K.
@@ -132,7 +133,7 @@ int main(int argc, char *argv[])
             f[6] = U[celli].y();
             f[7] = U[celli].z();
         }
-        talusFoam::sendForces(link, reply, maxRe, halo, exchangeTimer);
+        talusFoam::sendForces(inbox, reply, maxRe, halo, exchangeTimer);
         S.correctBoundaryConditions();
 
         #include "CourantNo.H"

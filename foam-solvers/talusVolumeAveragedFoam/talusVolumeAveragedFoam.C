@@ -117,6 +117,7 @@ int main(int argc, char *argv[])
 
     talusFoam::ParticleLocator locator(mesh);
     talusFoam::ExchangeTimer exchangeTimer;
+    talusFoam::ParticleInbox inbox(link);
     talusFoam::PhaseTimer phases
     (
         {"location", "envelope", "volumes", "fields", "gather", "forces", "reactions"}
@@ -321,7 +322,7 @@ int main(int argc, char *argv[])
         }
         phases.done(6);
         ++exchange;
-        talusFoam::sendForces(link, reply, maxRe, halo, exchangeTimer);
+        talusFoam::sendForces(inbox, reply, maxRe, halo, exchangeTimer);
 
         runTime++;
         Info<< "Time = " << runTime.timeName() << nl << endl;

@@ -254,11 +254,11 @@ def _span_in_cells(cells: int, low, high) -> int:
     return round(span.max() / (np.prod(span) / cells) ** (1 / 3))
 
 
-def _pressure_solver(cells: int, span: int, tolerance: float) -> str:
+def _pressure_solver(cells: int, span: int, tolerance: float, relative: float) -> str:
     if cells >= GAMG_FROM_CELLS or span >= GAMG_FROM_SPAN:
-        p = f"solver GAMG; smoother GaussSeidel; tolerance {tolerance:g}; relTol 0.01;"
+        p = f"solver GAMG; smoother GaussSeidel; tolerance {tolerance:g}; relTol {relative:g};"
     else:
-        p = f"solver PCG; preconditioner DIC; tolerance {tolerance:g}; relTol 0.01;"
+        p = f"solver PCG; preconditioner DIC; tolerance {tolerance:g}; relTol {relative:g};"
     return (f"    p {{ {p} }}\n    pFinal {{ $p; relTol 0; }}\n"
             "    U { solver smoothSolver; smoother symGaussSeidel; tolerance 1e-12; relTol 0; }\n"
             "    UFinal { $U; }\n")
@@ -285,7 +285,8 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
              grading=(1.0, 1.0, 1.0), mesh=None, rho: float, nu: float, gravity=(0.0, 0.0, -9.81), boundaries: Mapping | None = None,
              default_boundary="wall", coupling_interval: float, procs: int = 1, decomposition=None,
              coupling_properties: Mapping | None = None, initial_velocity=None, write_every: int = 100,
-             write_precision: int = 8, pressure_tolerance: float = 1e-8, run_mesh: bool = True) -> FoamCase:
+             write_precision: int = 8, pressure_tolerance: float = 1e-8, pressure_relative_tolerance: float = 0.01,
+             run_mesh: bool = True) -> FoamCase:
     """Write an OpenFOAM case for a coupled run in the folder ``out`` (created; an existing
     folder must be empty) and mesh it.
 
@@ -308,8 +309,9 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
             the cell centres (n x 3 array) returning n x 3 velocities.
         write_every: the fluid fields are written every so many fluid steps (and at the end),
             with ``write_precision`` significant digits.
-        pressure_tolerance: absolute tolerance of the pressure solver (relTol 0.01, 0 in the
-            last corrector): GAMG from GAMG_FROM_CELLS cells or GAMG_FROM_SPAN cells along the
+        pressure_tolerance, pressure_relative_tolerance: absolute and relative (relTol, 0 in the
+            last corrector) tolerances of the pressure solver (a relative one of 0 in every
+            corrector makes a decomposed fluid differ from a serial one by rounding only): GAMG from GAMG_FROM_CELLS cells or GAMG_FROM_SPAN cells along the
             longest side, PCG with DIC below.
         run_mesh: run blockMesh (box) and decomposePar (procs > 1) now.
     """
@@ -417,7 +419,8 @@ def cfd_case(out, *, solver: str = "pointforce", box=None, cells=None, cell_size
         controls += ["pRefCell 0;", "pRefValue 0;"]
     (out / "system" / "fvSolution").write_text(
         _header("dictionary", "system", "fvSolution")
-        + "solvers\n{\n" + _pressure_solver(n_cells, _span_in_cells(n_cells, low, high), pressure_tolerance)
+        + "solvers\n{\n" + _pressure_solver(n_cells, _span_in_cells(n_cells, low, high), pressure_tolerance,
+                                            pressure_relative_tolerance)
         + "}\n\n"
         + f"{algorithm}\n{{\n" + "".join(f"    {c}\n" for c in controls) + "}\n")
     counts = _decomposition(procs, decomposition, conditions, low, high)

@@ -24,7 +24,9 @@ from pathlib import Path
 
 import numpy as np
 
+from talus.coupling.decomposed import OwnedParticles
 from talus.coupling.foam_case import YADE_SOLVERS, case_settings, find_solver
+from talus.dem import distributed
 from talus.coupling.network import apply_network_settings, network_settings
 
 __all__ = ["CouplingTimes", "FoamCoupling", "find_solver", "initMPI"]
@@ -200,6 +202,7 @@ class FoamCoupling(_Engine):
         self.exchanges = 0
         self.times = CouplingTimes()
         self._applied = None
+        self._owned = None   # under mpirun: this process's particles (talus.coupling.decomposed)
         # Yade's interface (FoamCoupling()): see _engine_step.
         self.isGaussianInterp = False
         self.couplingModeParallel = False
@@ -435,6 +438,8 @@ class FoamCoupling(_Engine):
         if self.link is not None:
             raise RuntimeError("FoamCoupling.start: already started")
         self._check_gravity()
+        if distributed.ACTIVE:
+            return self._start_decomposed()
         ids = self._coupled_ids()
         if len(ids) == 0:
             raise ValueError("FoamCoupling: no sphere to couple")
@@ -446,14 +451,34 @@ class FoamCoupling(_Engine):
         contiguous = np.array_equal(ids, np.arange(ids[0], ids[0] + len(ids)))
         self._rows = slice(int(ids[0]), int(ids[0]) + len(ids)) if contiguous else ids
         self._start_link(ids)
+        self._applied = np.zeros((len(ids), 3))
+        return self._add_hooks(ids)
+
+    def _start_decomposed(self):
+        """start() under mpirun (the DEM split over the processes, talus.dem.distributed): every
+        process starts the fluid ranks with the others and exchanges the particles it owns
+        (talus.coupling.decomposed). Collective."""
+        if self.checkpoint is not None:
+            distributed.refuse("FoamCoupling's checkpoints")
+        if self.ids is not None and distributed.domain(self.scene) is None:
+            self._check_ids(self.ids)
+        self._owned = OwnedParticles(self.scene, self.ids, _module())
+        self._owned.refresh()
+        count = int(self._owned.total([len(self._owned.ids)])[0])
+        if count == 0:
+            raise ValueError("FoamCoupling: no sphere to couple")
+        self._start_link(self._owned.rows, count, self._owned.ids)
+        return self._add_hooks(self._owned.rows)
+
+    def _add_hooks(self, rows):
+        """Sub-steps and O.dt from the fluid's step, the hooks (after the link has started)."""
         m = _module()
         dt_fluid = self.link.fluidDt
         if not self.scene.dt > 0:
             raise ValueError("FoamCoupling: set O.dt (the DEM time step) before start()")
         self.substeps = max(1, math.ceil(dt_fluid / self.scene.dt * (1 - 1e-12)))
         self.scene.dt = dt_fluid / self.substeps
-        self._warn_relaxation(dt_fluid, ids)
-        self._applied = np.zeros((len(ids), 3))
+        self._warn_relaxation(dt_fluid, rows)
         self._add_force_change = m.add_force_change
         self.hook = self.scene.add_hook("before_forces", self.exchange, self.substeps)
         if self.implicitDrag:
@@ -464,8 +489,10 @@ class FoamCoupling(_Engine):
                                                         self.substeps * self.checkpointInterval)
         return self
 
-    def _start_link(self, ids):
-        """Start the fluid ranks (handshake), refuse particles outside the mesh."""
+    def _start_link(self, rows, count=None, names=None):
+        """Start the fluid ranks (handshake), refuse particles outside the mesh. ``rows``: the
+        particles' rows here; ``count``: of the whole DEM (default: the rows'); ``names``: their
+        ids in messages (default: the rows)."""
         os.environ.setdefault("WM_PROJECT_DIR", "/usr/share/openfoam")  # OpenFOAM's etc/ files
         # The DEM process plus the fluid ranks usually outnumber the cores; Open MPI refuses to
         # spawn more processes than slots unless told (read when MPI starts, below).
@@ -476,47 +503,61 @@ class FoamCoupling(_Engine):
         s.solver, s.caseDir, s.nProcs = find_solver(self.solver), self.case, self.nProcs
         s.rhoFluid, s.nu, s.gravity = self.rhoFluid, self.nu, self.gravity
         s.couplingInterval, s.timeout = float(self.couplingInterval or 0.0), self.timeout
-        self.link = m.FoamLink(s, len(ids))
+        s.demAcrossProcesses = distributed.ACTIVE
+        if distributed.ACTIVE:   # the solver ranks get mpirun's environment, not this process's
+            s.environment = [f"WM_PROJECT_DIR={os.environ['WM_PROJECT_DIR']}"]
+        self.link = m.FoamLink(s, len(rows) if count is None else count)
         _links.append(self.link)
         if self.reynoldsLimit is None:
             self.reynoldsLimit = self.link.dragReynoldsLimit
-        self._check_inside_mesh(ids)
+        self._check_inside_mesh(rows, rows if names is None else names)
 
-    def _check_inside_mesh(self, ids):
+    def _check_inside_mesh(self, rows, names):
         """Refuse (before the first step) a particle outside the bounding box of the fluid mesh,
         the union of the ranks' sub-mesh boxes; one inside the box but outside a non-convex
-        mesh is found by the fluid ranks at the first exchange."""
+        mesh is found by the fluid ranks at the first exchange. Under mpirun every process
+        checks its own particles and all raise the same error."""
         boxes = np.array(self.link.boxes).reshape(-1, 7)[:, :6]
         boxes = boxes[np.all(boxes[:, :3] <= boxes[:, 3:], axis=1)]  # ranks without cells send an empty box
         low, high = boxes[:, :3].min(axis=0), boxes[:, 3:].max(axis=0)
         tolerance = 1e-9 * np.linalg.norm(high - low)
-        x = self._positions(ids)
+        x = self._positions(rows)
         outside = np.flatnonzero(np.any((x < low - tolerance) | (x > high + tolerance), axis=1))
-        if len(outside):
-            k = outside[0]
+        reduce = self._owned if self._owned is not None else None
+        total = len(outside) if reduce is None else int(reduce.total([len(outside)])[0])
+        if total:
+            # the lowest id outside, and its position from its process
+            first = float(names[outside[0]]) if len(outside) else math.inf
+            first = first if reduce is None else reduce.smallest(first)
+            where = np.zeros(3)
+            if len(outside) and names[outside[0]] == first:
+                where = x[outside[0]]
+            where = where if reduce is None else np.array(reduce.total(where))
             self.link.stop()
-            raise ValueError(f"FoamCoupling: particle {int(ids[k])} at ({x[k, 0]:g}, {x[k, 1]:g}, {x[k, 2]:g}) is "
+            raise ValueError(f"FoamCoupling: particle {int(first)} at ({where[0]:g}, {where[1]:g}, {where[2]:g}) is "
                              f"outside the fluid mesh of case '{self.case}' (its bounding box is "
                              f"({low[0]:g}, {low[1]:g}, {low[2]:g}) - ({high[0]:g}, {high[1]:g}, {high[2]:g})); "
-                             f"{len(outside)} particle(s) outside, nothing was run")
+                             f"{total} particle(s) outside, nothing was run")
 
     def save_checkpoint(self):
         """Write the DEM checkpoint (O.save, atomic; the engines are not stored: the coupling's
         hooks cannot be)."""
         self.scene.save(self.checkpoint, engines=False)
 
-    def _warn_relaxation(self, dt_fluid, ids):
-        r = self.scene.radii()[ids]
-        m = self.scene.masses()[ids]
+    def _warn_relaxation(self, dt_fluid, rows):
+        r = self.scene.radii()[rows]
+        m = self.scene.masses()[rows]
         rho_p = m / (4 / 3 * math.pi * r ** 3)
-        tau = float(np.min(rho_p * (2 * r) ** 2 / (18 * self.rhoFluid * self.nu)))
+        tau = float(np.min(rho_p * (2 * r) ** 2 / (18 * self.rhoFluid * self.nu), initial=math.inf))
+        if self._owned is not None:
+            tau = self._owned.smallest(tau)
         self.relaxationTime = tau
         if dt_fluid > tau:
             warnings.warn(f"FoamCoupling: the fluid step {dt_fluid:g} s exceeds the particle relaxation time "
                           f"{tau:g} s: the explicit drag held over a fluid step is inaccurate or unstable; "
                           f"lower deltaT in system/controlDict", RuntimeWarning, stacklevel=3)
 
-    def _warn_drag_relaxation(self, ids):
+    def _warn_drag_relaxation(self, ids, names=None):
         """The relaxation time m / beta with the drag the fluid actually applies (with the
         volume-averaged solver: Schiller-Naumann and the hindrance factor, up to ~20 times shorter
         than the Stokes estimate of start() in a dense bed)."""
@@ -533,12 +574,14 @@ class FoamCoupling(_Engine):
                 return  # start() has warned already
         if step > tau[k]:
             warnings.warn(f"FoamCoupling: the {what} {step:g} s exceeds the relaxation time m/beta = {tau[k]:g} s of "
-                          f"body {int(ids[k])} with the drag of the first exchange (hindrance included): the drag "
+                          f"body {int((ids if names is None else names)[k])} with the drag of the first exchange (hindrance included): the drag "
                           f"is inaccurate or unstable; {fix}", RuntimeWarning, stacklevel=3)
 
     # -- exchange ------------------------------------------------------------------------------
     def exchange(self):
         """One fluid step: send the particles, replace last step's forces by the new ones."""
+        if self._owned is not None:
+            return self._exchange_decomposed()
         start, start_cpu = time.perf_counter(), time.thread_time()
         ids, rows = self.ids, self._rows
         velocities = self.scene.velocities()[rows]  # a view when rows is a slice: no copy sent
@@ -552,6 +595,24 @@ class FoamCoupling(_Engine):
         # already filled from them by the ForceResetter, so it gets the change too.
         self._add_force_change(forces, self._applied, ids, self.scene.persistent_forces(), self.scene.forces())
         self._applied = forces
+        self._received(forces, re)
+        self._count_times(time.perf_counter() - start, time.thread_time() - start_cpu)
+
+    def _exchange_decomposed(self):
+        """exchange() under mpirun: this process's particles (collective)."""
+        start, start_cpu = time.perf_counter(), time.thread_time()
+        owned = self._owned
+        owned.refresh()
+        rows = owned.rows
+        velocities = self.scene.velocities()[rows]
+        forces, re, beta, self._fluid_velocity = self.link.exchange(self._positions(rows), velocities,
+                                                                    self.scene.radii()[rows], owned.ids)
+        # The same sums as in one process: the change from the force applied at the last exchange.
+        self._add_force_change(forces, owned.applied, rows, self.scene.persistent_forces(), self.scene.forces())
+        owned.store(forces, beta, velocities)
+        self._beta = beta
+        if self.exchanges == 0:
+            self._warn_drag_relaxation(rows, owned.ids)
         self._received(forces, re)
         self._count_times(time.perf_counter() - start, time.thread_time() - start_cpu)
 
@@ -595,8 +656,12 @@ class FoamCoupling(_Engine):
         if self._beta is None:
             return
         start, start_cpu = time.perf_counter(), time.thread_time()
-        rows = self._rows
-        self.scene.forces()[rows] += self._beta[:, None] * (self._sent_velocity - self.scene.velocities()[rows])
+        if self._owned is not None:   # under mpirun: after a migration, the particles' new rows (collective)
+            self._owned.refresh()
+            rows, beta, sent = self._owned.rows, self._owned.beta, self._owned.sent_velocity
+        else:
+            rows, beta, sent = self._rows, self._beta, self._sent_velocity
+        self.scene.forces()[rows] += beta[:, None] * (sent - self.scene.velocities()[rows])
         self.times.dem += time.perf_counter() - start
         self.times.demCpu += time.thread_time() - start_cpu
 

@@ -1,0 +1,115 @@
+"""CFD-DEM case: the DEM and the fluid both decomposed give the run of one DEM process and one
+fluid rank (the coupling's many-to-many exchange, docs/coupling.md).
+
+Run:      build/bin/talus run cases/cfd/cfd_mpi_parity.py [--quick] [--results DIR]
+Set-up:   cases/scenes/fluidised_column.py, unchanged in every run (a smaller variant of
+          cfd_fluidised_bed.py that the distributed DEM runs: 288 spheres d = 1 mm, quick, 432
+          full, on a jittered lattice in an 8 x 8 mm column with walls, the linear law, falling
+          through an upward flow ramped to 5 mm/s over 5 ms; talusVolumeAveragedFoam, cells 0.8
+          mm, Gaussian envelope 1.5 mm, implicit drag), run as DEM processes + fluid ranks
+          1 + 1 and 1 + 2 by `talus run`, 2 + 1 and 2 + 2 by `mpirun --oversubscribe -np 2 talus
+          run -j 1` (2 cores here: the 2 + 2 run has 4 processes); the fluid's pressure solved to
+          1e-13 in every corrector (the case builder's pressure_tolerance and
+          pressure_relative_tolerance 0), so that a decomposed fluid differs from the serial one by
+          rounding only (with relTol 0.01 in the first corrector it differs by the solver's
+          tolerance: 2.4e-10 in the positions after 20 fluid steps). Quick: 100 fluid steps; full: 400.
+Checked:  cfd.mpi.parity: the largest difference of a body's position in the 2 + 2 run from the
+          1 + 1 run's, every 20 fluid steps and after the last, over the largest coordinate
+          (relative; <= 1e-9: round-off amplified by the contacts, as the DEM's own parity
+          case allows 1e-10 over 1000 steps). The details hold the same for 1 + 2, 2 + 1 and 2 + 2
+          against 1 + 2 (a decomposed DEM against one process with the same fluid ranks: 0, the
+          same bits), and each DEM process's particles and messages at the last exchange.
+Produces: the record and chart cfd.mpi.parity.png (the differences over the run).
+"""
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+from talus import results
+from talus.coupling.case_builder import Inlet, Outlet, cfd_case
+
+SCENE = Path(__file__).resolve().parents[1] / "scenes" / "fluidised_column.py"
+L, DX, HEIGHT = 8e-3, 0.8e-3, 16e-3
+
+
+def fluid_case(folder: Path, procs: int):
+    """The column's fluid (the mesh's walls at the DEM's), decomposed into ``procs`` slabs along z."""
+    return cfd_case(folder, solver="volumeaveraged", box=((0, 0, 0), (L, L, HEIGHT)),
+                    cells=(round(L / DX), round(L / DX), round(HEIGHT / DX)), rho=1000.0, nu=1e-5,
+                    gravity=(0, 0, -9.81), coupling_interval=1e-4, procs=procs, write_every=100000,
+                    pressure_tolerance=1e-13, pressure_relative_tolerance=0,
+                    boundaries={"z0": Inlet((0, 0, 5e-3), ramp=5e-3), "z1": Outlet()},
+                    coupling_properties={"envelope": "gaussian", "envelopeWidth": 1.5e-3, "addedMassCoefficient": 0})
+
+
+def run(dem: int, fluid: int, steps: int, layers: int, folder: Path) -> dict:
+    """The scene with ``dem`` processes and ``fluid`` fluid ranks; its JSON output."""
+    name = f"run-{dem}-{fluid}"
+    case = fluid_case(folder / name, fluid)
+    out = folder / f"{name}.json"
+    talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENE), str(case.path), str(fluid), str(steps),
+             str(out), str(layers)]
+    # the loopback for every process's traffic, as FoamCoupling asks for in one process
+    command = talus if dem == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "btl_tcp_if_include",
+                                      "lo", "--mca", "oob_tcp_if_include", "lo", "-np", str(dem), *talus]
+    env = {**os.environ, "OMP_NUM_THREADS": "1"}
+    done = subprocess.run(command, capture_output=True, text=True, timeout=1800, env=env)
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{done.stdout}\n{done.stderr}")
+    shutil.rmtree(case.path, ignore_errors=True)
+    return json.loads(out.read_text())
+
+
+def difference(a: dict, b: dict) -> np.ndarray:
+    """Per sample, the largest position difference over the largest coordinate."""
+    x, y = np.asarray(a["positions"]), np.asarray(b["positions"])
+    return np.abs(x - y).reshape(len(x), -1).max(axis=1) / np.abs(x).max()
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    case = results.Case("cfd.mpi.parity", quick=args.quick, folder=args.results)
+    steps, layers = (100, 8) if args.quick else (400, 12)
+    with tempfile.TemporaryDirectory() as tmp:
+        runs = {(d, f): run(d, f, steps, layers, Path(tmp)) for d, f in [(1, 1), (1, 2), (2, 1), (2, 2)]}
+    serial = runs[1, 1]
+    pairs = {"2+2 vs 1+1": (runs[2, 2], serial), "1+2 vs 1+1": (runs[1, 2], serial),
+             "2+1 vs 1+1": (runs[2, 1], serial), "2+2 vs 1+2": (runs[2, 2], runs[1, 2])}
+    curves = {label: difference(a, b) for label, (a, b) in pairs.items()}
+    worst = {label: float(c.max()) for label, c in curves.items()}
+    lift = np.asarray(serial["lift"])
+    print(f"{len(serial['positions'][0]) - 5} spheres, {steps} fluid steps x {serial['substeps']} DEM steps; "
+          f"hydrodynamic lift {lift[0]:.3e} .. {lift[-1]:.3e} N")
+    for label, value in worst.items():
+        print(f"{label}: largest position difference / largest coordinate {value:.3e}")
+    for (d, f), r in runs.items():
+        print(f"{d} + {f}: per DEM process, particles and messages of the last exchange {r['processes']}")
+
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    samples = np.arange(len(serial["positions"])) * 20
+    samples[-1] = steps
+    for label, c in curves.items():
+        ax.semilogy(samples, np.maximum(c, 1e-18), "o-", ms=3, label=label)
+    ax.axhline(1e-9, color="grey", lw=0.8, ls=":", label="checked bound")
+    ax.set_xlabel("fluid step")
+    ax.set_ylabel("max |x - x_ref| / max |x| (0 drawn at 1e-18)")
+    ax.set_title("Coupled fluidised column: DEM processes + fluid ranks")
+    ax.legend(fontsize=7)
+    case.record("largest position difference of the 2 DEM + 2 fluid ranks run from the 1 + 1 run, over the "
+                "largest coordinate", worst["2+2 vs 1+1"], "the 1 + 1 run (round-off)", 1e-9,
+                differences=worst, spheres=len(serial["positions"][0]) - 5, fluid_steps=steps,
+                processes={f"{d}+{f}": r["processes"] for (d, f), r in runs.items()})
+    case.save_chart(fig)
+
+
+if __name__ == "__main__":
+    main()

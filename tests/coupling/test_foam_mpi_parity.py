@@ -1,0 +1,49 @@
+"""coupling: the DEM decomposed under mpirun and the fluid over its own ranks exchange
+many-to-many (each DEM process its own particles, with the fluid ranks whose boxes hold some).
+
+Checked on a short run of cases/scenes/fluidised_column.py (144 spheres falling through an upward
+flow, talusVolumeAveragedFoam, 10 fluid steps): 2 DEM processes + 2 fluid ranks give the 1 + 2
+run's positions bit for bit (the fluid orders the particles of all senders by index, so it
+computes the same numbers) and the 1 + 1 run's within 1e-12; every process holds part of the
+particles (none all of them); the bed lies below the upper fluid rank's box, so one DEM process
+exchanges with one fluid rank only while the other (rank 0, which sends the commands) exchanges
+with both — no process waits for a message nobody sends."""
+import shutil
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from foam_case import REPO, needs_solver
+
+sys.path.insert(0, str(REPO / "cases" / "cfd"))
+import cfd_mpi_parity as parity  # noqa: E402
+
+try:
+    from talus import _distributed  # noqa: F401  (built with the mpi_dem feature only)
+except ImportError:
+    _distributed = None
+
+pytestmark = [needs_solver("talusVolumeAveragedFoam"),
+              pytest.mark.skipif(_distributed is None or shutil.which("mpirun") is None,
+                                 reason="the mpi_dem feature is off or mpirun is missing")]
+
+STEPS, LAYERS = 10, 4
+
+
+def test_two_dem_processes_and_two_fluid_ranks_give_the_one_process_run(tmp_path):
+    runs = {(d, f): parity.run(d, f, STEPS, LAYERS, tmp_path) for d, f in [(1, 1), (1, 2), (2, 2)]}
+    split = runs[2, 2]
+    assert split["exchanges"] == STEPS
+    assert np.array_equal(np.asarray(split["positions"]), np.asarray(runs[1, 2]["positions"]))
+    # each process's forces summed apart, then over the processes: the same up to that sum's rounding
+    assert split["lift"] == pytest.approx(runs[1, 2]["lift"], rel=1e-14)
+    assert parity.difference(split, runs[1, 1]).max() < 1e-12
+    # the flow and the particles changed over the run (the runs are not trivially the same)
+    assert abs(split["lift"][-1] - split["lift"][0]) > 0.05 * abs(split["lift"][0])
+    processes = split["processes"]
+    spheres = 36 * LAYERS
+    assert [p["particles"] > 0 for p in processes] == [True, True]
+    assert sum(p["particles"] for p in processes) == spheres
+    assert [p["fluid_ranks"] for p in processes] == [2, 1]
