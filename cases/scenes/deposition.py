@@ -3,7 +3,10 @@ as it is by `talus run` and by `mpirun -np N talus run` (the distributed DEM's p
 cases/dem/dem_mpi_parity.py).
 
 Arguments: spheres, steps, output file (JSON: the positions of every body by id every 100 steps,
-the halo traffic per process, the final unbalanced force).
+the halo traffic per process, the final unbalanced force), and optionally the contact law: linear
+(FrictMat, Cundall-Strack; the default), hertz (Hertz-Mindlin with restitution 0.5),
+viscoelastic (ViscElMat with rolling resistance) or cohesive (CohFrictMat bonding new contacts,
+with rolling and twisting moments): each law with contact state exercises its state's migration.
 """
 import json
 import sys
@@ -12,7 +15,21 @@ from yade import pack
 from talus.dem import distributed
 
 spheres, steps, output = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
-O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
+law = sys.argv[4] if len(sys.argv) > 4 else "linear"
+sixD = law == "cohesive"      # the cohesive law's geometry keeps the bodies' relative rotation
+material, physics, contactLaw = {
+    "linear": (FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600),
+               Ip2_FrictMat_FrictMat_FrictPhys(), Law2_ScGeom_FrictPhys_CundallStrack()),
+    "hertz": (FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600),
+              Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5), Law2_ScGeom_MindlinPhys_Mindlin()),
+    "viscoelastic": (ViscElMat(young=1e7, tc=5e-3, en=0.5, et=0.5, frictionAngle=0.5, density=2600, mR=0.01),
+                     Ip2_ViscElMat_ViscElMat_ViscElPhys(), Law2_ScGeom_ViscElPhys_Basic()),
+    "cohesive": (CohFrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600, isCohesive=True,
+                             normalCohesion=1e3, shearCohesion=1e3, momentRotationLaw=True),
+                 Ip2_CohFrictMat_CohFrictMat_CohFrictPhys(setCohesionOnNewContacts=True),
+                 Law2_ScGeom6D_CohFrictPhys_CohesionMoment(useIncrementalForm=True)),
+}[law]
+O.materials.append(material)
 side = (spheres / 400.0) ** (1 / 3.0)
 cloud = pack.SpherePack()
 cloud.makeCloud((0, 0, 0), (side, side, 2 * side), rMean=0.04, rRelFuzz=0.3, num=spheres, seed=1)
@@ -32,8 +49,8 @@ def sample():
 O.engines = [
     ForceResetter(),
     InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
-                    [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom6D(), Ig2_Wall_Sphere_ScGeom6D()] if sixD
+                    else [Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()], [physics], [contactLaw]),
     NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.4),
     PyRunner(command='sample()', iterPeriod=100),
 ]

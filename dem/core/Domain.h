@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 
 namespace talus::dem
@@ -39,6 +40,29 @@ public:
   /// @return whether the contact is computed here
   virtual bool computesPair(std::size_t row1, std::size_t row2) const = 0;
 
+  /// Whether sums over bodies (energies, extrema, critical steps) count row `row` here: each
+  /// body is counted by one process only. By default the rows this process owns.
+  /// @param row a row of scene.bodies
+  /// @return true if this process counts the body
+  virtual bool countsBody(std::size_t row) const { return owns(row); }
+
+  /// Whether sums over contacts (energies, stresses, fabric) count the contact of rows `row1`
+  /// and `row2` here: each contact is counted by one process only, although a contact across
+  /// two processes is computed by both. By default every contact this process computes.
+  /// @param row1, row2 the contact's two rows
+  /// @return true if this process counts the contact
+  virtual bool countsContact(std::size_t row1, std::size_t row2) const { return computesPair(row1, row2); }
+
+  /// What `rowOf` returns for a body another process holds, and for an id that names no live
+  /// body (never a body of the scene, or erased).
+  static constexpr std::int64_t elsewhere = -1, noBody = -2;
+
+  /// The row of body `id` (its id in the scene the user built) on this process, for what acts
+  /// on bodies named by id (kinematic and force engines). By default the rows are the ids.
+  /// @param id a body id
+  /// @return its row here (which may be a ghost: see owns), `elsewhere` or `noBody`
+  virtual std::int64_t rowOf(std::int64_t id) const { return id; }
+
   /// Before the collider re-detects: bodies that left this process's region move to their new
   /// owner with their contacts' state, and the ghost layer is rebuilt (rebalancing when due).
   /// @throws std::runtime_error naming the body when one moved further than the ghost layer allows
@@ -61,4 +85,13 @@ public:
   /// @param values this process's values, replaced by the minima; the same length on every process
   virtual void min(std::span<double> values) const = 0;
 };
+
+/// Domain::countsBody for a scene split by `domain`, every body when it is not split (null).
+inline bool countsBody(const Domain* domain, std::size_t row) { return !domain || domain->countsBody(row); }
+
+/// Domain::countsContact for a scene split by `domain`, every contact when it is not split (null).
+inline bool countsContact(const Domain* domain, std::size_t row1, std::size_t row2)
+{
+  return !domain || domain->countsContact(row1, row2);
+}
 } // namespace talus::dem

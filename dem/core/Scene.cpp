@@ -196,6 +196,23 @@ void Scene::checkBody(BodyId id) const
     throw std::out_of_range("no body with id " + std::to_string(id));
 }
 
+std::vector<BodyId> Scene::rowsActedOn(const std::vector<BodyId>& ids, const std::string& engine) const
+{
+  std::vector<BodyId> rows;
+  rows.reserve(ids.size());
+  for (const BodyId id : ids)
+  {
+    const std::int64_t row = domain ? domain->rowOf(id) : id;
+    if (row == Domain::elsewhere)
+      continue;
+    if (row < 0 || static_cast<std::size_t>(row) >= bodies.size() || !bodies.alive[static_cast<std::size_t>(row)])
+      throw std::out_of_range(engine + ": no body with id " + std::to_string(id));
+    if (!domain || domain->owns(static_cast<std::size_t>(row))) // a ghost moves with its owner
+      rows.push_back(static_cast<BodyId>(row));
+  }
+  return rows;
+}
+
 void Scene::setPeriodic(bool on)
 {
   // Positions are not wrapped, as in Yade: bodies may lie anywhere, the collider finds the

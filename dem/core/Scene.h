@@ -287,6 +287,15 @@ public:
   /// @throws std::out_of_range naming the id if it is not a live body
   void checkBody(BodyId id) const;
 
+  /// The rows an engine acting on the bodies `ids` (by the ids the user gave) acts on here: the
+  /// ids themselves in a whole scene; split over processes, the rows of the bodies this process
+  /// owns (walls and facets on every process), each other body left to the process owning it.
+  /// @param ids body ids
+  /// @param engine the engine, named in the error
+  /// @return the rows, in the order of `ids`
+  /// @throws std::out_of_range naming the engine and the id for an id that is not a live body
+  [[nodiscard]] std::vector<BodyId> rowsActedOn(const std::vector<BodyId>& ids, const std::string& engine) const;
+
   /// How the engines run in a step (dem/step/'s scheduler).
   /// @return the scene's step loop, made on first use and owned by the scene
   [[nodiscard]] StepLoop& stepLoop() { return stepLoop_.get(); }

@@ -16,14 +16,8 @@ namespace talus::dem
 {
 void ForceEngine::addToBodies(Scene& scene, const Vec3& f) const
 {
-  Bodies& b = scene.bodies;
-  for (BodyId id : ids)
-  {
-    if (id < 0 || static_cast<std::size_t>(id) >= b.size() || !b.alive[static_cast<std::size_t>(id)])
-      throw std::out_of_range(typeName() + (label.empty() ? "" : " '" + label + "'") + ": no body with id "
-                              + std::to_string(id));
-    b.force[static_cast<std::size_t>(id)] += f;
-  }
+  for (const BodyId row : scene.rowsActedOn(ids, typeName() + (label.empty() ? "" : " '" + label + "'")))
+    scene.bodies.force[static_cast<std::size_t>(row)] += f;
 }
 
 void ForceEngine::run(Scene& scene) { addToBodies(scene, force); }
@@ -61,7 +55,9 @@ void GravityEngine::run(Scene& scene)
     if (!b.alive[i] || b.shape[i] == ShapeKind::Clump || (mask != 0 && (b.groupMask[i] & mask) == 0))
       continue;
     b.force[i] += gravity * b.mass[i];
-    if (track) // the energy comes in from outside: its work counts negative, as Yade books it
+    // The energy comes in from outside: its work counts negative, as Yade books it (split over
+    // processes, by the process that counts the body).
+    if (track && countsBody(scene.domain.get(), i))
       work -= gravity.dot(b.vel[i]) * b.mass[i] * scene.dt;
   }
   scene.energy.gravWork += work;

@@ -22,15 +22,13 @@ Vec3 unit(const Vec3& axis, const std::string& engine, const char* name)
 
 void KinematicEngine::run(Scene& scene)
 {
-  for (BodyId id : ids)
+  const std::vector<BodyId> rows = scene.rowsActedOn(ids, typeName() + (label.empty() ? "" : " '" + label + "'"));
+  for (const BodyId row : rows)
   {
-    if (id < 0 || static_cast<std::size_t>(id) >= scene.bodies.size() || !scene.bodies.alive[static_cast<std::size_t>(id)])
-      throw std::out_of_range(typeName() + (label.empty() ? "" : " '" + label + "'") + ": no body with id "
-                              + std::to_string(id));
-    scene.bodies.vel[static_cast<std::size_t>(id)].setZero();
-    scene.bodies.angVel[static_cast<std::size_t>(id)].setZero();
+    scene.bodies.vel[static_cast<std::size_t>(row)].setZero();
+    scene.bodies.angVel[static_cast<std::size_t>(row)].setZero();
   }
-  apply(scene, ids);
+  apply(scene, rows);
 }
 
 void CombinedKinematicEngine::apply(Scene& scene, const std::vector<BodyId>& bodies)

@@ -21,7 +21,7 @@ public:
 
   /// Add this engine's velocities to the (zeroed) velocities of `bodies` (its own ids, or those
   /// of a CombinedKinematicEngine it is part of).
-  /// @param bodies the body ids moved (velocities in m/s and rad/s added, not set)
+  /// @param bodies the rows moved (Scene::rowsActedOn of the ids; velocities in m/s and rad/s added, not set)
   virtual void apply(Scene& scene, const std::vector<BodyId>& bodies) = 0;
 };
 
