@@ -66,7 +66,9 @@ double GlobalStiffnessTimeStepper::stiffnessTimeStep(const Scene& scene) const
   double best = huge;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
-    if (!b.alive[i] || !b.dynamic[i] || stiffness.translational[i].isZero(0))
+    // Split over processes, a ghost's sums lack the contacts its owner alone computes: the owner
+    // counts it.
+    if (!b.alive[i] || !b.dynamic[i] || stiffness.translational[i].isZero(0) || !countsBody(scene.domain.get(), i))
       continue;
     // The squared eigen-period of the springs; a dashpot's limit is linear in m / c.
     double dt = 1.41044 * timestepSafetyCoefficient * std::sqrt(stiffness.ratio(b, i, huge));
@@ -74,6 +76,8 @@ double GlobalStiffnessTimeStepper::stiffnessTimeStep(const Scene& scene) const
       dt = std::min(dt, 2 * timestepSafetyCoefficient * viscosity.ratio(b, i, huge));
     best = std::min(best, dt);
   }
+  if (scene.domain) // the smallest over processes: every process takes the same step
+    best = scene.domain->min(best);
   return best == huge ? std::numeric_limits<double>::infinity() : best;
 }
 
@@ -82,7 +86,7 @@ void GlobalStiffnessTimeStepper::run(Scene& scene)
   if (!active || !(!computedOnce || scene.iter % std::max<std::int64_t>(timeStepUpdateInterval, 1) == 0 || scene.iter < 2))
     return;
   if (defaultDt < 0)
-    defaultDt = timestepSafetyCoefficient * scene.pWaveTimeStep();
+    defaultDt = timestepSafetyCoefficient * (scene.domain ? scene.domain->min(scene.pWaveTimeStep()) : scene.pWaveTimeStep());
   const double dt = stiffnessTimeStep(scene);
   if (std::isfinite(dt))
   {

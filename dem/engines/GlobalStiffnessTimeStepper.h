@@ -31,7 +31,8 @@ public:
   [[nodiscard]] std::string typeName() const override { return "GlobalStiffnessTimeStepper"; }
 
   /// The step that the current contacts allow (timestepSafetyCoefficient included), +inf if no
-  /// body has a loaded contact. Reads the contacts as they are; changes nothing.
+  /// body has a loaded contact. Reads the contacts as they are; changes nothing. Split over
+  /// processes, the smallest over them (collective).
   /// @return the time step (s)
   [[nodiscard]] double stiffnessTimeStep(const Scene& scene) const;
 

@@ -88,16 +88,22 @@ void addImposedMotionWorkIn(Scene& scene, std::int64_t first, std::int64_t last,
     previous = now;
     return mean;
   };
+  // Split over processes, a ghost is booked by its owner (its copies still remember its imposed
+  // displacement, their velocity being the owner's: a ghost that becomes its process's own at a
+  // re-detection takes it along); a body every process holds (a wall) by each of them, with the
+  // force of its own contacts, which add up to the body's.
+  BodyEnergy uncounted;
   for (auto i = static_cast<std::size_t>(first); i < static_cast<std::size_t>(last); ++i)
   {
     if (!b.alive[i] || b.clumpId[i] >= 0) // a member's force acts on its clump
       continue;
+    BodyEnergy& into = scene.domain && !scene.domain->owns(i) ? uncounted : block;
     Vec3 force = b.force[i], torque = b.torque[i];
     if (b.shape[i] == ShapeKind::Clump)
       addClumpMemberForces(b, i, force, torque);
     if (!b.dynamic[i])
     {
-      block.kinematicWork += force.dot(meanImposed(tracker.previousDisplacement[i], b.vel[i]))
+      into.kinematicWork += force.dot(meanImposed(tracker.previousDisplacement[i], b.vel[i]))
                              + torque.dot(meanImposed(tracker.previousRotation[i], b.angVel[i]));
       continue;
     }
@@ -108,7 +114,7 @@ void addImposedMotionWorkIn(Scene& scene, std::int64_t first, std::int64_t last,
       // previous position x - v dt), averaged
       const Vec3 previousPosition = b.pos[i] - dt * b.vel[i];
       const Vec3 field = 0.5 * (L * b.pos[i] + previousL * previousPosition);
-      block.cellPower += force.dot(field) + torque.dot(meanSpin);
+      into.cellPower += force.dot(field) + torque.dot(meanSpin);
       fluctuation -= previousL * previousPosition;
       angularFluctuation -= spin(previousL);
     }
@@ -120,9 +126,9 @@ void addImposedMotionWorkIn(Scene& scene, std::int64_t first, std::int64_t last,
     for (int d = 0; d < 3; ++d)
     {
       if (blocked & (1u << d))
-        block.kinematicWork += force[d] * displacement[d];
+        into.kinematicWork += force[d] * displacement[d];
       if (blocked & (8u << d))
-        block.kinematicWork += torque[d] * rotation[d];
+        into.kinematicWork += torque[d] * rotation[d];
     }
   }
 }

@@ -53,10 +53,15 @@ void ContactLawKernel<Law>::loopForces(Scene& scene, std::uint8_t lawIndex)
   const StepContext step = detail::stepContext<Law>(scene);
   const auto n = static_cast<std::int64_t>(list.size());
   // Tracking energy: contacts in fixed blocks, each block's energies summed in order.
+  // Split over processes, a contact across two of them is computed by both and its energy
+  // counted by one (Domain::countsContact).
+  const Domain* domain = Track ? scene.domain.get() : nullptr;
   auto one = [&](std::int64_t k, ContactEnergy& e) {
     Contact& c = list[static_cast<std::size_t>(k)];
+    ContactEnergy uncounted;
     if (c.real && c.law == lawIndex)
-      law.template force<Track>(c, static_cast<std::size_t>(k), step, e);
+      law.template force<Track>(c, static_cast<std::size_t>(k), step,
+                                countsContact(domain, static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)) ? e : uncounted);
   };
   if constexpr (Track)
   {
@@ -96,6 +101,10 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
   const double ratio = scene.maxOverlapRatio;
   constexpr std::int64_t extraPrefetchDistance = 8; // contacts ahead: a few hundred nanoseconds of work
   std::int64_t bad = n;
+  // Split over processes, a contact across two of them is computed by both and its energy
+  // counted by one (Domain::countsContact).
+  const Domain* domain = Track ? scene.domain.get() : nullptr;
+  ContactEnergy uncounted;
   for (std::int64_t k = first; k < last; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
@@ -118,7 +127,8 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
       c.law = 0;
       law.initialize(c, x, scene);
     }
-    law.template force<Track>(c, static_cast<std::size_t>(k), step, energy);
+    law.template force<Track>(c, static_cast<std::size_t>(k), step,
+                              countsContact(domain, static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)) ? energy : uncounted);
     if (overlapsTooMuch(c, ratio, step.bodies))
       bad = std::min(bad, k);
   }
@@ -180,7 +190,8 @@ double ContactLawKernel<Law>::elasticEnergy(const Scene& scene, std::uint8_t law
   const ContactExtra* extra = Law::usesExtra ? scene.contacts.extraState() : nullptr;
   double sum = 0;
   for (std::size_t k = 0; k < list.size(); ++k)
-    if (list[k].real && list[k].law == lawIndex)
+    if (list[k].real && list[k].law == lawIndex
+        && countsContact(scene.domain.get(), static_cast<std::size_t>(list[k].id1), static_cast<std::size_t>(list[k].id2)))
       sum += law.elastic(list[k], extra ? extra + k : nullptr);
   return sum;
 }
@@ -196,7 +207,8 @@ double ContactLawKernel<Law>::grownElasticEnergy(const Scene& scene, std::uint8_
   for (std::size_t k = 0; k < list.size(); ++k)
   {
     const Contact& c = list[k];
-    if (!c.real || !c.fresh || c.law != lawIndex)
+    if (!c.real || !c.fresh || c.law != lawIndex
+        || !countsContact(scene.domain.get(), static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)))
       continue;
     const double growth = grownBy[static_cast<std::size_t>(c.id1)] + grownBy[static_cast<std::size_t>(c.id2)];
     if (growth <= 0)

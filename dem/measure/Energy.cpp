@@ -5,6 +5,7 @@
 #include "dem/core/StepLoop.h"
 #include "dem/base/Threads.h"
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -21,7 +22,7 @@ std::pair<double, double> bodyKinetic(const Scene& scene, std::size_t i)
 {
   const Bodies& b = scene.bodies;
   // clump members move with their clump, whose energy is the rigid body's
-  if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0)
+  if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0 || !countsBody(scene.domain.get(), i))
     return {0.0, 0.0};
   // With homoDeform the velocities carry the field of the step just made (prevVelGrad once the
   // cell has moved) at the positions it was applied to, x - v dt: the fluctuation is what is
@@ -93,6 +94,50 @@ double elasticPotential(const Scene& scene)
 
 namespace
 {
+/// The terms of EnergyValues: the balance's, in its order, then the kinetic parts.
+constexpr std::array<double EnergyValues::*, 11> energyTerms{
+    &EnergyValues::kinetic,     &EnergyValues::elastPotential, &EnergyValues::gravWork,    &EnergyValues::nonviscDamp,
+    &EnergyValues::plastDissip, &EnergyValues::viscDamp,       &EnergyValues::velGradWork, &EnergyValues::kinematicWork,
+    &EnergyValues::growthWork,  &EnergyValues::kinTrans,       &EnergyValues::kinRot};
+constexpr std::size_t balanceTerms = 9;
+} // namespace
+
+double EnergyValues::total() const
+{
+  double sum = 0;
+  for (std::size_t k = 0; k < balanceTerms; ++k)
+    sum += this->*energyTerms[k];
+  return sum;
+}
+
+double EnergyValues::flowed() const
+{
+  double sum = 0;
+  for (std::size_t k = 0; k < balanceTerms; ++k)
+    sum += std::abs(this->*energyTerms[k]);
+  return sum;
+}
+
+EnergyValues energyValues(const Scene& scene)
+{
+  const EnergyTracker& e = scene.energy;
+  const auto [translational, rotational] = kineticEnergyParts(scene);
+  EnergyValues v{kineticEnergy(scene), translational, rotational, elasticPotential(scene), e.gravWork,
+                 e.nonviscDamp, e.plastDissip, e.viscDamp, e.velGradWork, e.kinematicWork, e.growthWork};
+  if (scene.domain) // one sum over processes of every term
+  {
+    std::array<double, energyTerms.size()> all{};
+    for (std::size_t k = 0; k < all.size(); ++k)
+      all[k] = v.*energyTerms[k];
+    scene.domain->sum(all);
+    for (std::size_t k = 0; k < all.size(); ++k)
+      v.*energyTerms[k] = all[k];
+  }
+  return v;
+}
+
+namespace
+{
 /// The energy-growth check at the end of the steps it is due at (see Scene::maxEnergyGrowth).
 void checkEnergyGrowthWhenDue(Scene& scene)
 {
@@ -105,14 +150,8 @@ void checkEnergyGrowthWhenDue(Scene& scene)
 void checkEnergyGrowth(Scene& scene)
 {
   EnergyTracker& e = scene.energy;
-  const double kinetic = kineticEnergy(scene), elastic = elasticPotential(scene);
-  const double terms[] = {kinetic, elastic, e.gravWork, e.nonviscDamp, e.plastDissip, e.viscDamp, e.velGradWork, e.kinematicWork, e.growthWork};
-  double total = 0, flowed = 0;
-  for (double t : terms)
-  {
-    total += t;
-    flowed += std::abs(t);
-  }
+  const EnergyValues values = energyValues(scene);
+  const double total = values.total(), flowed = values.flowed();
   if (std::isnan(e.growthReference))
   {
     e.growthReference = total;

@@ -4,8 +4,10 @@
 #include "dem/engines/NewtonIntegrator.h"
 #include "dem/core/Scene.h"
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -45,6 +47,20 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
 
 namespace
 {
+/// Split over processes, `values` summed over them in place (each process's share of a sum over
+/// bodies or contacts, Domain::countsBody, countsContact); nothing when the scene is whole.
+void sumOverProcesses(const Scene& scene, std::span<double> values)
+{
+  if (scene.domain)
+    scene.domain->sum(values);
+}
+
+/// Whether sums over contacts count `c` here (each contact on one process when split).
+bool counted(const Scene& scene, const Contact& c)
+{
+  return c.real && countsContact(scene.domain.get(), static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2));
+}
+
 double sampleVolume(const Scene& scene, double volume, const char* caller)
 {
   if (volume > 0)
@@ -83,10 +99,11 @@ Mat3 loveWeberStress(const Scene& scene, double volume)
   Mat3 sum = Mat3::Zero();
   for (const Contact& c : scene.contacts.list)
   {
-    if (!c.real)
+    if (!counted(scene, c))
       continue;
     sum += c.force * branchVector(scene, c).transpose();
   }
+  sumOverProcesses(scene, std::span<double>(sum.data(), 9));
   return -sum / volume;
 }
 
@@ -106,7 +123,7 @@ Eigen::Matrix<double, 6, 6> yadeTangent(const Scene& scene)
   Eigen::Matrix<double, 6, 6> tangent = Eigen::Matrix<double, 6, 6>::Zero();
   for (const Contact& c : scene.contacts.list)
   {
-    if (!c.real)
+    if (!counted(scene, c))
       continue;
     const Vec3 l = branchVector(scene, c);
     const Eigen::Matrix<double, 6, 1> a = symmetricVoigt(c.normal, l);
@@ -118,6 +135,7 @@ Eigen::Matrix<double, 6, 6> yadeTangent(const Scene& scene)
       tangent += c.ks * b * b.transpose();
     }
   }
+  sumOverProcesses(scene, std::span<double>(tangent.data(), 36));
   return tangent;
 }
 } // namespace
@@ -132,7 +150,7 @@ Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double v
   Eigen::Matrix<double, 9, 9> d = Eigen::Matrix<double, 9, 9>::Zero();
   for (const Contact& c : scene.contacts.list)
   {
-    if (!c.real)
+    if (!counted(scene, c))
       continue;
     const Vec3 l = branchVector(scene, c);
     const Mat3 nn = c.normal * c.normal.transpose();
@@ -146,6 +164,7 @@ Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double v
       for (int kk = 0; kk < 3; ++kk)
         d.block<3, 3>(3 * i, 3 * kk) += k(i, kk) * ll;
   }
+  sumOverProcesses(scene, std::span<double>(d.data(), 81));
   static constexpr int voigtI[6] = {0, 1, 2, 1, 0, 0};
   static constexpr int voigtJ[6] = {0, 1, 2, 2, 2, 1};
   Eigen::Matrix<double, 6, 6> tangent;
@@ -169,27 +188,30 @@ double coordinationNumber(const Scene& scene, bool skipFree)
       ++count[static_cast<std::size_t>(c.id1)];
       ++count[static_cast<std::size_t>(c.id2)];
     }
-  double contacts = 0, spheres = 0;
+  // Split over processes, a process holds every contact of the bodies it owns.
+  std::array<double, 2> sums{}; // contacts, spheres
   for (std::size_t i = 0; i < b.size(); ++i)
-    if (b.alive[i] && b.shape[i] == ShapeKind::Sphere && (!skipFree || count[i] > 0))
+    if (b.alive[i] && b.shape[i] == ShapeKind::Sphere && (!skipFree || count[i] > 0) && countsBody(scene.domain.get(), i))
     {
-      contacts += count[i];
-      spheres += 1;
+      sums[0] += count[i];
+      sums[1] += 1;
     }
-  return spheres > 0 ? contacts / spheres : 0.0;
+  sumOverProcesses(scene, sums);
+  return sums[1] > 0 ? sums[0] / sums[1] : 0.0;
 }
 
 Mat3 fabricTensor(const Scene& scene)
 {
-  Mat3 sum = Mat3::Zero();
-  double n = 0;
+  std::array<double, 10> sums{}; // n (x) n, then the contacts
+  Eigen::Map<Mat3> sum(sums.data());
   for (const Contact& c : scene.contacts.list)
-    if (c.real && c.kind == ContactGeometryKind::SphereSphere)
+    if (counted(scene, c) && c.kind == ContactGeometryKind::SphereSphere)
     {
       sum += c.normal * c.normal.transpose();
-      n += 1;
+      sums[9] += 1;
     }
-  return n > 0 ? Mat3(sum / n) : Mat3::Zero();
+  sumOverProcesses(scene, sums);
+  return sums[9] > 0 ? Mat3(sum / sums[9]) : Mat3::Zero();
 }
 
 std::vector<Mat3> bodyStressTensors(const Scene& scene)
@@ -218,8 +240,9 @@ double sphereVolume(const Scene& scene)
   const Bodies& b = scene.bodies;
   double v = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
-    if (b.alive[i] && b.shape[i] == ShapeKind::Sphere)
+    if (b.alive[i] && b.shape[i] == ShapeKind::Sphere && countsBody(scene.domain.get(), i))
       v += 4.0 / 3.0 * M_PI * b.radius[i] * b.radius[i] * b.radius[i];
+  sumOverProcesses(scene, std::span<double>(&v, 1));
   return v;
 }
 } // namespace talus::dem

@@ -8,6 +8,12 @@ namespace talus::dem
 {
 class Scene;
 
+/// Split over processes (Scene::domain), loveWeberStress, contactStiffnessTangent,
+/// coordinationNumber, fabricTensor and sphereVolume give the whole scene's value on every
+/// process: each process sums the bodies and contacts it counts (Domain::countsBody,
+/// countsContact) and the sums are added over the processes (collective: every process calls
+/// them; within round-off of the serial values, the shares being added in another order).
+
 /// Yade's unbalancedForce: the mean (or, with useMaxForce, the largest) magnitude of the total
 /// force on dynamic bodies, gravity included, divided by the mean magnitude of contact forces.
 /// 0 for a scene at equilibrium; NaN when there is no contact force to compare with.
@@ -75,7 +81,8 @@ Mat3 fabricTensor(const Scene& scene);
 /// its centre to the contact point and V = 4/3 pi r^3 (exact for a sphere in static
 /// equilibrium loaded at points, where it is symmetric; Yade's index order otherwise);
 /// compression is negative. Contact moments are not included, as in Yade. Zero for bodies that
-/// are not spheres. Indexed by body id.
+/// are not spheres. Indexed by body id (split over processes: by row, right for the bodies the
+/// process owns, which have all their contacts there).
 /// @return one stress tensor (Pa) per body id
 std::vector<Mat3> bodyStressTensors(const Scene& scene);
 

@@ -39,22 +39,30 @@ void talus_wrap_laws(py::module_& m)
 
   m.def("track_energy", [](const Scene& s) { return s.energy.enabled; });
   m.def("set_track_energy", [](Scene& s, bool on) { s.energy.enabled = on; });
-  // The energies in Yade's names; kinetic and elastic energies are computed now.
-  m.def("energy", [](const Scene& s) {
+  // The energies in Yade's names (with `kinSplit`, the kinetic energy's two parts instead of
+  // it); kinetic and elastic energies are computed now. Split over processes, the whole scene's
+  // (collective).
+  m.def("energy", [](const Scene& s, bool kinSplit) {
+    const EnergyValues v = energyValues(s);
     py::dict d;
-    d["kinetic"] = kineticEnergy(s);
-    d["elastPotential"] = elasticPotential(s);
-    d["gravWork"] = s.energy.gravWork;
-    d["nonviscDamp"] = s.energy.nonviscDamp;
-    d["plastDissip"] = s.energy.plastDissip;
-    d["viscDamp"] = s.energy.viscDamp;
-    d["velGradWork"] = s.energy.velGradWork;
-    d["kinematicWork"] = s.energy.kinematicWork;
-    d["growthWork"] = s.energy.growthWork;
+    if (kinSplit)
+    {
+      d["kinTrans"] = v.kinTrans;
+      d["kinRot"] = v.kinRot;
+    }
+    else
+      d["kinetic"] = v.kinetic;
+    d["elastPotential"] = v.elastPotential;
+    d["gravWork"] = v.gravWork;
+    d["nonviscDamp"] = v.nonviscDamp;
+    d["plastDissip"] = v.plastDissip;
+    d["viscDamp"] = v.viscDamp;
+    d["velGradWork"] = v.velGradWork;
+    d["kinematicWork"] = v.kinematicWork;
+    d["growthWork"] = v.growthWork;
     return d;
-  });
+  }, py::arg("scene"), py::arg("kinSplit") = false);
   m.def("clear_energy", [](Scene& s) { s.energy.clear(); });
-  m.def("kinetic_energy_parts", [](const Scene& s) { return kineticEnergyParts(s); });
   m.def("body_kinetic_energies", [](const Scene& s) { return bodyKineticEnergies(s); });
 
   // State of the richer contact models, for the real contacts (same order as Scene.contacts()):

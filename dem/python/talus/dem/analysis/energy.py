@@ -13,6 +13,11 @@ DOFs; not in Yade, which does not book it) and ``growthWork`` (minus the energy 
 stiffnesses and the masses at fixed velocities; not in Yade either). Dissipations are positive; ``O.energy.total()`` is
 conserved (it starts at the initial kinetic plus elastic energy). The accumulated terms count from when tracking was switched on (or from
 ``O.energy.clear()``); they are deterministic and independent of the number of threads.
+
+Under ``mpirun -np N talus run``, every value is the whole scene's on every process (each body and
+each contact counted by one process, the processes' shares summed): reading ``O.energy`` is
+collective (every process reads it, as a PyRunner does), and the values equal the serial run's
+within round-off (the shares are added in another order).
 """
 
 from __future__ import annotations
@@ -38,11 +43,7 @@ class EnergyTracker(Mapping):
         return SPLIT_KEYS if any(getattr(e, "kinSplit", False) for e in self._scene.engines) else KEYS
 
     def _values(self) -> dict:
-        values = _dem.energy(self._scene._cpp)
-        if self._keys() is SPLIT_KEYS:
-            del values["kinetic"]
-            values["kinTrans"], values["kinRot"] = _dem.kinetic_energy_parts(self._scene._cpp)
-        return values
+        return _dem.energy(self._scene._cpp, self._keys() is SPLIT_KEYS)
 
     def __getitem__(self, key: str) -> float:
         values = self._values()
