@@ -38,23 +38,25 @@ SCENE = Path(__file__).resolve().parents[1] / "scenes" / "fluidised_column.py"
 L, DX, HEIGHT = 8e-3, 0.8e-3, 16e-3
 
 
-def fluid_case(folder: Path, procs: int):
-    """The column's fluid (the mesh's walls at the DEM's), decomposed into ``procs`` slabs along z."""
-    return cfd_case(folder, solver="volumeaveraged", box=((0, 0, 0), (L, L, HEIGHT)),
+def fluid_case(folder: Path, procs: int, solver: str = "volumeaveraged"):
+    """The column's fluid (the mesh's walls at the DEM's), decomposed into ``procs`` slabs along z,
+    for ``solver`` (the case builder's name: volumeaveraged or pointforce)."""
+    envelope = {"envelope": "gaussian", "envelopeWidth": 1.5e-3, "addedMassCoefficient": 0}
+    return cfd_case(folder, solver=solver, box=((0, 0, 0), (L, L, HEIGHT)),
                     cells=(round(L / DX), round(L / DX), round(HEIGHT / DX)), rho=1000.0, nu=1e-5,
                     gravity=(0, 0, -9.81), coupling_interval=1e-4, procs=procs, write_every=100000,
                     pressure_tolerance=1e-13, pressure_relative_tolerance=0,
                     boundaries={"z0": Inlet((0, 0, 5e-3), ramp=5e-3), "z1": Outlet()},
-                    coupling_properties={"envelope": "gaussian", "envelopeWidth": 1.5e-3, "addedMassCoefficient": 0})
+                    coupling_properties=envelope if solver == "volumeaveraged" else None)
 
 
-def run(dem: int, fluid: int, steps: int, layers: int, folder: Path) -> dict:
+def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str = "volumeaveraged") -> dict:
     """The scene with ``dem`` processes and ``fluid`` fluid ranks; its JSON output."""
-    name = f"run-{dem}-{fluid}"
-    case = fluid_case(folder / name, fluid)
+    name = f"run-{dem}-{fluid}-{solver}"
+    case = fluid_case(folder / name, fluid, solver)
     out = folder / f"{name}.json"
     talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENE), str(case.path), str(fluid), str(steps),
-             str(out), str(layers)]
+             str(out), str(layers), case.solver]
     # the loopback for every process's traffic, as FoamCoupling asks for in one process
     command = talus if dem == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "btl_tcp_if_include",
                                       "lo", "--mca", "oob_tcp_if_include", "lo", "-np", str(dem), *talus]

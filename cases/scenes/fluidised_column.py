@@ -1,4 +1,4 @@
-"""A small fluidised column coupled with talusVolumeAveragedFoam: a script written for one
+"""A small fluidised column coupled with OpenFOAM (talusVolumeAveragedFoam): a script written for one
 process, run as it is by `talus run` and by `mpirun -np N talus run` (the CFD-DEM parity case,
 cases/cfd/cfd_mpi_parity.py; the DEM split over the processes, the fluid over its own ranks).
 
@@ -9,7 +9,9 @@ and leaves at the top; the volume-averaged solver's drag is re-evaluated at ever
 (implicitDrag).
 
 Arguments: the fluid case folder (written, meshed and decomposed by the caller:
-cfd_mpi_parity.fluid_case), its fluid ranks, the fluid steps, the output file (JSON: every body's
+cfd_mpi_parity.fluid_case), its fluid ranks, the fluid steps, the output file, and optionally the
+layers of spheres (8: 288 spheres) and the solver (talusVolumeAveragedFoam, or
+talusPointForceFoam with a point-force case). The output (JSON): every body's
 position every 20 fluid steps and after the last, the hydrodynamic force on all particles after
 each exchange, each process's particles, messages and fluid ranks exchanged with at the last exchange).
 """
@@ -22,6 +24,7 @@ from talus.dem import distributed
 
 case, procs, steps, output = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
 L, D, SPACING, LAYERS = 8e-3, 1e-3, 1.25e-3, int(sys.argv[5]) if len(sys.argv) > 5 else 8
+SOLVER = sys.argv[6] if len(sys.argv) > 6 else "talusVolumeAveragedFoam"
 RHO, NU, G = 1000.0, 1e-5, 9.81
 
 O.materials.append(FrictMat(young=5e6, poisson=0.3, frictionAngle=0.3, density=2500))
@@ -45,7 +48,7 @@ O.engines = [
     NewtonIntegrator(gravity=(0, 0, -G), damping=0.2),
 ]
 O.dt = 0.5 * PWaveTimeStep()
-coupling = FoamCoupling(O, case, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), solver="talusVolumeAveragedFoam",
+coupling = FoamCoupling(O, case, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), solver=SOLVER,
                         nProcs=procs, implicitDrag=True).start()
 samples, lift = [], []
 

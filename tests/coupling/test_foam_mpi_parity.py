@@ -7,8 +7,12 @@ run's positions bit for bit (the fluid orders the particles of all senders by in
 computes the same numbers) and the 1 + 1 run's within 1e-12; every process holds part of the
 particles (none all of them); the bed lies below the upper fluid rank's box, so one DEM process
 exchanges with one fluid rank only while the other (rank 0, which sends the commands) exchanges
-with both — no process waits for a message nobody sends."""
+with both — no process waits for a message nobody sends. The point-force solver (talusPointForceFoam)
+goes through the same exchange: 2 + 2 gives its 1 + 2 run bit for bit. A fluid refusing the
+handshake is reported once, and every process exits."""
+import os
 import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -47,3 +51,22 @@ def test_two_dem_processes_and_two_fluid_ranks_give_the_one_process_run(tmp_path
     assert [p["particles"] > 0 for p in processes] == [True, True]
     assert sum(p["particles"] for p in processes) == spheres
     assert [p["fluid_ranks"] for p in processes] == [2, 1]
+
+
+def test_the_point_force_solver_exchanges_the_same_way(tmp_path):
+    runs = {(d, f): parity.run(d, f, STEPS, LAYERS, tmp_path, "pointforce") for d, f in [(1, 2), (2, 2)]}
+    assert np.array_equal(np.asarray(runs[2, 2]["positions"]), np.asarray(runs[1, 2]["positions"]))
+    assert runs[2, 2]["lift"] == pytest.approx(runs[1, 2]["lift"], rel=1e-14)
+    assert [p["fluid_ranks"] for p in runs[2, 2]["processes"]] == [2, 1]
+
+
+def test_a_refused_handshake_is_reported_once_and_every_process_exits(tmp_path):
+    # a fluid density the case does not have: every DEM process learns the fluid's refusal
+    scene = tmp_path / "scene.py"
+    scene.write_text(parity.SCENE.read_text().replace("rhoFluid=RHO,", "rhoFluid=999.0,"))
+    case = parity.fluid_case(tmp_path / "case", 2)
+    command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", sys.executable, "-m", "talus", "run",
+               "-j", "1", str(scene), str(case.path), "2", "5", str(tmp_path / "out.json"), "4"]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=120, env={**os.environ, "OMP_NUM_THREADS": "1"})
+    assert done.returncode != 0
+    assert done.stderr.count("fluid density mismatch: DEM side rhoFluid = 999") == 1, done.stderr

@@ -49,9 +49,8 @@ class OwnedParticles:
             self._take(np.zeros((len(ids), _WIDTH)))
             return
         rows, ids = split.ownedBodies(self.scene._cpp)
-        if self.coupled is not None:
-            keep = np.isin(ids, self.coupled)
-            rows, ids = rows[keep], ids[keep]
+        keep = np.isin(rows, self.scene.sphere_ids()) if self.coupled is None else np.isin(ids, self.coupled)
+        rows, ids = rows[keep], ids[keep]
         self.rows, self.ids = rows, ids
         self.records.hand_over(ids)
         self._take(self.records.values)
@@ -77,3 +76,11 @@ class OwnedParticles:
         """The smallest ``value`` over the processes (collective once the scene is split)."""
         split = distributed.domain(self.scene)
         return float(value) if split is None else split.min(float(value))
+
+
+def collective(error: Exception) -> Exception:
+    """``error``, raised on every process alike (a handshake's refusal, a particle outside the
+    mesh: the processes learn them together), as the error talus run reports once before every
+    process exits (any other error ends the run from the process that raised it)."""
+    from talus import _distributed
+    return _distributed.CollectiveError(f"{type(error).__name__}: {error}")

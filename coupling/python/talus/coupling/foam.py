@@ -24,7 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
-from talus.coupling.decomposed import OwnedParticles
+from talus.coupling.decomposed import OwnedParticles, collective
 from talus.coupling.foam_case import YADE_SOLVERS, case_settings, find_solver
 from talus.dem import distributed
 from talus.coupling.network import apply_network_settings, network_settings
@@ -506,7 +506,10 @@ class FoamCoupling(_Engine):
         s.demAcrossProcesses = distributed.ACTIVE
         if distributed.ACTIVE:   # the solver ranks get mpirun's environment, not this process's
             s.environment = [f"WM_PROJECT_DIR={os.environ['WM_PROJECT_DIR']}"]
-        self.link = m.FoamLink(s, len(rows) if count is None else count)
+        try:
+            self.link = m.FoamLink(s, len(rows) if count is None else count)
+        except RuntimeError as e:   # every DEM process has the same reason
+            raise (collective(e) if distributed.ACTIVE else e) from None
         _links.append(self.link)
         if self.reynoldsLimit is None:
             self.reynoldsLimit = self.link.dragReynoldsLimit
@@ -534,10 +537,11 @@ class FoamCoupling(_Engine):
                 where = x[outside[0]]
             where = where if reduce is None else np.array(reduce.total(where))
             self.link.stop()
-            raise ValueError(f"FoamCoupling: particle {int(first)} at ({where[0]:g}, {where[1]:g}, {where[2]:g}) is "
-                             f"outside the fluid mesh of case '{self.case}' (its bounding box is "
-                             f"({low[0]:g}, {low[1]:g}, {low[2]:g}) - ({high[0]:g}, {high[1]:g}, {high[2]:g})); "
-                             f"{total} particle(s) outside, nothing was run")
+            error = ValueError(f"FoamCoupling: particle {int(first)} at ({where[0]:g}, {where[1]:g}, {where[2]:g}) is "
+                               f"outside the fluid mesh of case '{self.case}' (its bounding box is "
+                               f"({low[0]:g}, {low[1]:g}, {low[2]:g}) - ({high[0]:g}, {high[1]:g}, {high[2]:g})); "
+                               f"{total} particle(s) outside, nothing was run")
+            raise collective(error) if reduce is not None else error
 
     def save_checkpoint(self):
         """Write the DEM checkpoint (O.save, atomic; the engines are not stored: the coupling's
@@ -605,8 +609,13 @@ class FoamCoupling(_Engine):
         owned.refresh()
         rows = owned.rows
         velocities = self.scene.velocities()[rows]
-        forces, re, beta, self._fluid_velocity = self.link.exchange(self._positions(rows), velocities,
-                                                                    self.scene.radii()[rows], owned.ids)
+        try:
+            forces, re, beta, self._fluid_velocity = self.link.exchange(self._positions(rows), velocities,
+                                                                        self.scene.radii()[rows], owned.ids)
+        except RuntimeError as e:
+            if "outside the fluid mesh" in str(e):  # found by every process together
+                raise collective(e) from None
+            raise
         # The same sums as in one process: the change from the force applied at the last exchange.
         self._add_force_change(forces, owned.applied, rows, self.scene.persistent_forces(), self.scene.forces())
         owned.store(forces, beta, velocities)
