@@ -48,11 +48,13 @@ struct ThorntonDamping
   static double normal(Contact& c, const ContactExtra* x, const StepContext& step, const Motion& /*motion*/,
                        double elastic, ContactEnergy& energy)
   {
-    const Bodies& b = step.bodies;
-    const double vn = c.normal.dot(incidentVelocity(c, b, step.cell));
+    // Without a dashpot (Yade's default: neither en nor betan given) the normal force is the
+    // spring's and the dashpot dissipates nothing: no incident velocity to compute.
     double fn = elastic;
     if (x->betan != 0 || x->betas != 0)
     {
+      const Bodies& b = step.bodies;
+      const double vn = c.normal.dot(incidentVelocity(c, b, step.cell));
       const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
       const double mass = !b.dynamic[i1] && b.dynamic[i2]   ? b.mass[i2]
                           : !b.dynamic[i2] && b.dynamic[i1] ? b.mass[i1]
@@ -60,9 +62,9 @@ struct ThorntonDamping
       c.cn = 2 * std::sqrt(mass * c.kn) * x->betan;
       c.cs = 2 * std::sqrt(mass * c.ks) * x->betas;
       fn = std::max(0.0, elastic - c.cn * vn);
+      if constexpr (Track) // the normal dashpot's force is elastic - fn
+        energy.viscDamp += (elastic - fn) * vn * step.dt;
     }
-    if constexpr (Track) // the normal dashpot's force is elastic - fn
-      energy.viscDamp += (elastic - fn) * vn * step.dt;
     c.normalForce = fn * c.normal;
     return fn;
   }
