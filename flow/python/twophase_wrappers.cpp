@@ -50,7 +50,8 @@ void registerTwoPhase(py::module_& m)
       .def_readwrite("isDrainageActivated", &TwoPhaseParameters::isDrainageActivated)
       .def_readwrite("isImbibitionActivated", &TwoPhaseParameters::isImbibitionActivated)
       .def_readwrite("recursiveInvasion", &TwoPhaseParameters::recursiveInvasion)
-      .def_readwrite("isCellLabelActivated", &TwoPhaseParameters::isCellLabelActivated);
+      .def_readwrite("isCellLabelActivated", &TwoPhaseParameters::isCellLabelActivated)
+      .def_readwrite("useFastInvasion", &TwoPhaseParameters::useFastInvasion);
 
   py::class_<Interface>(m, "PhaseInterface")
       .def_readonly("inner", &Interface::inner)
@@ -89,6 +90,8 @@ void registerTwoPhase(py::module_& m)
           return perPore(t, [](const PoreState& s) { return double(s.trappedW); });
         if (which == "isTrapNW")
           return perPore(t, [](const PoreState& s) { return double(s.trappedNW); });
+        if (which == "hasInterface")
+          return perPore(t, [](const PoreState& s) { return double(s.hasInterface); });
         if (which == "Pcondition")
           return perPore(t, [](const PoreState& s) { return double(s.imposed); });
         throw py::value_error("unknown pore flag " + which);
@@ -126,6 +129,8 @@ void registerTwoPhase(py::module_& m)
       .def("setInterfaceVolume", [](TwoPhaseFlow& t, int k, int i, double v) { t.interface(k, i).volume = v; })
       .def("outvadePore", &TwoPhaseFlow::outvadePore)
       .def("invadePore", &TwoPhaseFlow::invadePore)
+      .def("invadePoreFast", &TwoPhaseFlow::invadePoreFast)
+      .def("setHasInterface", &TwoPhaseFlow::setHasInterface)
       .def("updatePressure", &TwoPhaseFlow::updatePressure)
       .def("setSaturation", &TwoPhaseFlow::setSaturation)
       .def("setReservoir", &TwoPhaseFlow::setReservoir)

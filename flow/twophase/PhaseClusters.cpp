@@ -133,6 +133,7 @@ void TwoPhaseFlow::addInterface(int cluster, int pore, int facet)
   const auto f = static_cast<std::size_t>(facet);
   const auto t = static_cast<std::size_t>(throats_[c][f]);
   k.interfaces.push_back({pore, neighbours_[c][f], fluidArea_[t], facet, 0, 0});
+  pores_[c].hasInterface = true;
   k.interfacialArea += fluidArea_[t];
   if (k.entryRadius < throatRadius_[t])
   {
@@ -270,18 +271,24 @@ std::vector<int> TwoPhaseFlow::outvadePore(int startingId, int imbibedId)
   return merged;
 }
 
-std::vector<int> TwoPhaseFlow::invadePore(int cellId)
+int TwoPhaseFlow::wettingLabel(int cellId, const char* function) const
 {
   const int n = static_cast<int>(pores_.size());
   if (cellId < 0 || cellId >= n)
-    throw std::out_of_range("clusterInvadePore: cellId " + std::to_string(cellId) + " out of range (0.."
+    throw std::out_of_range(std::string(function) + ": cellId " + std::to_string(cellId) + " out of range (0.."
                             + std::to_string(n - 1) + ")");
-  const auto cell = static_cast<std::size_t>(cellId);
-  const int label = label_[cell];
+  const int label = label_[static_cast<std::size_t>(cellId)];
   if (label <= kNonWettingLabel)
-    throw std::invalid_argument("clusterInvadePore: cellId " + std::to_string(cellId)
+    throw std::invalid_argument(std::string(function) + ": cellId " + std::to_string(cellId)
                                 + " is not in a wetting cluster (label " + std::to_string(label)
                                 + "; isCellLabelActivated must be set before initialization())");
+  return label;
+}
+
+std::vector<int> TwoPhaseFlow::invadePore(int cellId)
+{
+  const int label = wettingLabel(cellId, "clusterInvadePore");
+  const auto cell = static_cast<std::size_t>(cellId);
   PhaseCluster& cluster = clusters_[static_cast<std::size_t>(label)];
   const std::vector<int> members = std::move(cluster.pores);
   cluster = PhaseCluster{};
@@ -310,6 +317,151 @@ std::vector<int> TwoPhaseFlow::invadePore(int cellId)
     result.push_back(into);
   }
   return result;
+}
+
+std::vector<int> TwoPhaseFlow::invadePoreFast(int cellId)
+{
+  const int label = wettingLabel(cellId, "clusterInvadePoreFast");
+  const auto cell = static_cast<std::size_t>(cellId);
+  if (pores_[cell].imposed)
+    return {label};
+  systems_[static_cast<std::size_t>(label)].reset();
+  addPore(kNonWettingLabel, cellId);
+  PhaseCluster& cluster = clusters_[static_cast<std::size_t>(label)];
+  if (cluster.pores.size() == 1)
+  {
+    cluster = PhaseCluster{};
+    cluster.label = label;
+    return {};
+  }
+  std::vector<int> facets; // of the pore, towards its neighbours in the cluster
+  for (int f = 0; f < 4; ++f)
+  {
+    const int j = neighbours_[cell][static_cast<std::size_t>(f)];
+    if (j >= 0 && label_[static_cast<std::size_t>(j)] == label)
+      facets.push_back(f);
+  }
+  // its own interfaces go (from the end, at most one per facet not towards the cluster)
+  std::vector<Interface>& list = cluster.interfaces;
+  std::size_t faces = 4 - facets.size();
+  for (auto k = static_cast<std::ptrdiff_t>(list.size()) - 1; k >= 0 && faces > 0; --k)
+    if (list[static_cast<std::size_t>(k)].inner == cellId)
+    {
+      cluster.interfacialArea -= list[static_cast<std::size_t>(k)].area;
+      list.erase(list.begin() + k);
+      --faces;
+    }
+  for (int f : facets)
+  {
+    const int j = neighbours_[cell][static_cast<std::size_t>(f)];
+    const std::array<int, 4>& across = neighbours_[static_cast<std::size_t>(j)];
+    addInterface(label, j, static_cast<int>(std::find(across.begin(), across.end(), cellId) - across.begin()));
+  }
+  cluster.pores.erase(std::find(cluster.pores.begin(), cluster.pores.end(), cellId));
+  // the cases where the neighbours are still joined next to the pore: no split
+  const std::size_t n = facets.size();
+  if (n == 1 || (n == 2 && connectedAroundEdge(cellId, facets[0], facets[1], label)))
+    return {label};
+  if (n == 3
+      && int(connectedAroundEdge(cellId, facets[0], facets[1], label)) + int(connectedAroundEdge(cellId, facets[1], facets[2], label))
+                 + int(connectedAroundEdge(cellId, facets[2], facets[0], label))
+             >= 2)
+    return {label};
+  // the wetting reservoir is rebuilt from its last imposed pore, so that it keeps label 1
+  int start = cluster.pores.front();
+  if (label == kReservoirLabel)
+  {
+    const auto imposed = std::find_if(cluster.pores.rbegin(), cluster.pores.rend(),
+                                      [&](int p) { return pores_[static_cast<std::size_t>(p)].imposed; });
+    if (imposed != cluster.pores.rend())
+      start = *imposed;
+  }
+  return splitCluster(label, start);
+}
+
+bool TwoPhaseFlow::connectedAroundEdge(int cell, int f1, int f2, int label) const
+{
+  // the edge's vertices: the cell's two vertices other than those opposite f1 and f2
+  std::array<int, 2> edge{};
+  for (int k = 0, e = 0; k < 4; ++k)
+    if (k != f1 && k != f2)
+      edge[static_cast<std::size_t>(e++)] = poreVertices_[static_cast<std::size_t>(cell)][static_cast<std::size_t>(k)];
+  int previous = cell;
+  int current = neighbours_[static_cast<std::size_t>(cell)][static_cast<std::size_t>(f1)];
+  while (current != cell)
+  {
+    if (current < 0 || label_[static_cast<std::size_t>(current)] != label)
+      return false;
+    // on to the cell across the other facet of `current` that holds the edge
+    const auto c = static_cast<std::size_t>(current);
+    int next = -1;
+    for (std::size_t k = 0; k < 4; ++k)
+    {
+      const int v = poreVertices_[c][k];
+      if (v != edge[0] && v != edge[1] && neighbours_[c][k] != previous)
+        next = neighbours_[c][k];
+    }
+    previous = current;
+    current = next;
+  }
+  return true;
+}
+
+std::vector<int> TwoPhaseFlow::splitCluster(int label, int start)
+{
+  const auto l = static_cast<std::size_t>(label);
+  const std::size_t size = clusters_[l].pores.size();
+  const int next = static_cast<int>(clusters_.size());
+  for (int p : clusters_[l].pores)
+    label_[static_cast<std::size_t>(p)] = next;
+  // what `start` reaches through the cluster takes the label back
+  std::size_t reached = 1;
+  label_[static_cast<std::size_t>(start)] = label;
+  std::vector<int> stack{start};
+  while (!stack.empty())
+  {
+    const auto c = static_cast<std::size_t>(stack.back());
+    stack.pop_back();
+    for (int j : neighbours_[c])
+      if (j >= 0 && label_[static_cast<std::size_t>(j)] == next)
+      {
+        label_[static_cast<std::size_t>(j)] = label;
+        ++reached;
+        stack.push_back(j);
+      }
+  }
+  if (reached == size)
+    return {label};
+  clusters_.emplace_back().label = next;
+  systems_.emplace_back();
+  systems_[l].reset();
+  // the rest moves, taken from the end of the lists (Yade's order)
+  std::vector<int> kept;
+  std::size_t moved = 0;
+  const std::vector<int> pores = std::move(clusters_[l].pores);
+  for (auto p = pores.rbegin(); p != pores.rend(); ++p)
+    if (label_[static_cast<std::size_t>(*p)] == next)
+    {
+      clusters_[l].volume -= bodyVolume_[static_cast<std::size_t>(*p)];
+      addPore(next, *p);
+      ++moved;
+    }
+    else
+      kept.push_back(*p);
+  clusters_[l].pores.assign(kept.rbegin(), kept.rend());
+  std::vector<Interface>& from = clusters_[l].interfaces;
+  std::vector<Interface>& to = clusters_[static_cast<std::size_t>(next)].interfaces;
+  for (auto k = static_cast<std::ptrdiff_t>(from.size()) - 1; k >= 0; --k)
+    if (label_[static_cast<std::size_t>(from[static_cast<std::size_t>(k)].inner)] == next)
+    {
+      to.push_back(from[static_cast<std::size_t>(k)]);
+      from.erase(from.begin() + k);
+    }
+  if (moved == 1)
+    return {label, next};
+  std::vector<int> labels = splitCluster(next, clusters_[static_cast<std::size_t>(next)].pores.front());
+  labels.push_back(label);
+  return labels;
 }
 
 void TwoPhaseFlow::solveClusterPressure(int cluster)

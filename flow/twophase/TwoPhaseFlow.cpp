@@ -153,47 +153,67 @@ void TwoPhaseFlow::applyPressures()
 
 void TwoPhaseFlow::invadeFrom(int start)
 {
+  // depth first in Yade's order (its recursion: a pore invaded is visited at once, before the
+  // next facet of the pore that invaded it), which the clusters kept by useFastInvasion follow;
+  // a frame is a pore, its next facet and the phase and pressure it spreads
+  struct Frame
+  {
+    std::size_t pore;
+    std::size_t facet;
+    double pressure;
+    double saturation;
+  };
   const double gamma = params_.surfaceTension;
-  std::vector<int> stack{start};
+  std::vector<Frame> stack;
+  const auto enter = [&](int pore) {
+    const auto c = static_cast<std::size_t>(pore);
+    stack.push_back({c, 0, pores_[c].pressure, pores_[c].saturation});
+    if (params_.useFastInvasion && label_[c] > 0) // a pore of a wetting cluster
+      invadePoreFast(pore);
+  };
+  enter(start);
   while (!stack.empty())
   {
-    const auto c = static_cast<std::size_t>(stack.back());
-    stack.pop_back();
-    const double p = pores_[c].pressure;
-    const double s = pores_[c].saturation;
-    for (std::size_t f = 0; f < 4; ++f)
+    Frame& frame = stack.back();
+    if (frame.facet == 4)
     {
-      const int j = neighbours_[c][f];
-      if (j < 0)
-        continue;
-      PoreState& other = pores_[static_cast<std::size_t>(j)];
-      const double r = throatRadius_[static_cast<std::size_t>(throats_[c][f])];
-      if (other.imposed || r < 0)
-        continue;
-      const double throatPc = gamma / r;
-      const double bodyPc = gamma / bodyRadius_[static_cast<std::size_t>(j)];
-      bool invaded = false;
-      if (other.saturation == s)
-      {
-        // a trapped pocket of the same phase joins the invading one
-        if (other.pressure != p && (other.trappedW || other.trappedNW))
-        {
-          other.pressure = p;
-          stack.push_back(j);
-        }
-        continue;
-      }
-      if (other.saturation > s) // drainage: the non-wetting phase enters past both entry pressures
-        invaded = p - other.pressure > throatPc && p - other.pressure > bodyPc;
-      else // imbibition: the wetting phase returns below both
-        invaded = other.pressure - p < bodyPc && other.pressure - p < throatPc;
-      if (invaded)
+      stack.pop_back();
+      continue;
+    }
+    const std::size_t c = frame.pore;
+    const std::size_t f = frame.facet++;
+    const double p = frame.pressure;
+    const double s = frame.saturation;
+    const int j = neighbours_[c][f];
+    if (j < 0)
+      continue;
+    PoreState& other = pores_[static_cast<std::size_t>(j)];
+    const double r = throatRadius_[static_cast<std::size_t>(throats_[c][f])];
+    if (other.imposed || r < 0)
+      continue;
+    const double throatPc = gamma / r;
+    const double bodyPc = gamma / bodyRadius_[static_cast<std::size_t>(j)];
+    if (other.saturation == s)
+    {
+      // a trapped pocket of the same phase joins the invading one
+      if (other.pressure != p && (other.trappedW || other.trappedNW))
       {
         other.pressure = p;
-        other.saturation = s;
-        if (params_.recursiveInvasion)
-          stack.push_back(j);
+        enter(j);
       }
+      continue;
+    }
+    const bool drainage = other.saturation > s;
+    const bool invaded = drainage ? p - other.pressure > throatPc && p - other.pressure > bodyPc // past both entry pressures
+                                  : other.pressure - p < bodyPc && other.pressure - p < throatPc; // imbibition: below both
+    if (invaded)
+    {
+      other.pressure = p;
+      other.saturation = s;
+      if (drainage)
+        other.hasInterface = false;
+      if (params_.recursiveInvasion)
+        enter(j);
     }
   }
 }
@@ -264,6 +284,9 @@ void TwoPhaseFlow::invasion(const std::array<double, kBoundaries>& bndCondValue)
   checkValues(bndCondValue);
   checks::require(isPressure_[kWetting] && isPressure_[kNonWetting], kOwner, "bndCondIsPressure",
                   "invasion() needs the pressure imposed on boundaries 2 and 3 (the two reservoirs)");
+  checks::require(!(params_.useFastInvasion && params_.isImbibitionActivated), kOwner, "useFastInvasion",
+                  "keeps the clusters through drainage only: switch isImbibitionActivated off (Yade's fast "
+                  "cluster update would drain the wetting reservoir's pores)");
   bnd_ = bndCondValue;
   for (auto& system : systems_)
     system.reset(); // the phases change: the clusters' pressure systems too
@@ -277,7 +300,7 @@ void TwoPhaseFlow::invasion(const std::array<double, kBoundaries>& bndCondValue)
       if (pores_[c].wReservoir)
         invadeFrom(static_cast<int>(c));
   updateReservoirs(bnd_[kNonWetting] - bnd_[kWetting]);
-  if (params_.isCellLabelActivated)
+  if (params_.isCellLabelActivated && !params_.useFastInvasion)
     updateCellLabels();
 }
 
@@ -314,6 +337,11 @@ void TwoPhaseFlow::setReservoir(int pore, bool wetting, bool value)
 {
   PoreState& s = checkedPore(pore, wetting ? "setCellIsWRes" : "setCellIsNWRes");
   (wetting ? s.wReservoir : s.nwReservoir) = value;
+}
+
+void TwoPhaseFlow::setHasInterface(int pore, bool value)
+{
+  checkedPore(pore, "setCellHasInterface").hasInterface = value;
 }
 
 void TwoPhaseFlow::setBodyRadius(int pore, double radius)

@@ -30,6 +30,9 @@ struct TwoPhaseParameters
   bool isImbibitionActivated = false;
   bool recursiveInvasion = true;  ///< false: one pore deep per invasion()
   bool isCellLabelActivated = false; ///< label the pores by cluster (PhaseCluster) at initialize and invasion
+  /// drainage keeps the clusters by invadePoreFast on each pore it drains, in place of labelling
+  /// every pore again after each invasion (drainage only)
+  bool useFastInvasion = false;
 };
 
 /// The state of one pore.
@@ -43,6 +46,7 @@ struct PoreState
   bool trappedW = false;
   bool trappedNW = false;
   double trapCapillaryPressure = 0; ///< Pn - Pw when the phase was cut from its reservoir
+  bool hasInterface = false; ///< inner side of a cluster interface (set when one is added, cleared when it drains)
 };
 
 /// The phases of the pores of one network and their invasion (Yade's TwoPhaseFlowEngine).
@@ -105,6 +109,11 @@ public:
   /// @param radius its entry radius, finite; negative closes it to invasion (setPoreThroatRadius)
   /// @throws std::out_of_range for the throat, std::invalid_argument for the radius
   void setThroatRadius(int throat, double radius);
+  /// Yade's setCellHasInterface.
+  /// @param pore a pore index
+  /// @param value the flag
+  /// @throws std::out_of_range for the pore
+  void setHasInterface(int pore, bool value);
 
   /// initialize was called (with a network of at least one pore).
   [[nodiscard]] bool initialized() const { return !pores_.empty(); }
@@ -148,6 +157,19 @@ public:
   /// @throws std::out_of_range naming the cluster or the index
   [[nodiscard]] const Interface& interface(int cluster, int index) const;
   [[nodiscard]] Interface& interface(int cluster, int index);
+  /// Wetting pore `cellId` drains, its cluster kept in place (Yade's clusterInvadePoreFast): its
+  /// interfaces go, its neighbours in the cluster get interfaces onto it (added at the end, volume
+  /// 0; the others keep theirs), and the cluster is split only if those neighbours are no longer
+  /// joined: not if there is one, or if they meet around the edges they share with the pore (two:
+  /// around theirs; three: around two of their three); otherwise the pores it no longer reaches
+  /// from its first pore (from its last imposed pore for the wetting reservoir) form new
+  /// clusters. The cluster's volume, interfacial area and entry radius are not updated (as Yade).
+  /// A pore on a pressure boundary is left as it is.
+  /// @param cellId a pore of a wetting cluster
+  /// @return the cluster's label (and the new clusters' labels, in Yade's order); empty if the
+  ///         pore was its cluster's last
+  /// @throws std::out_of_range, std::invalid_argument as invadePore
+  std::vector<int> invadePoreFast(int cellId);
   /// Pore `imbibedId` (non-wetting) joins the cluster of pore `startingId`, merging the clusters
   /// it touches; returns the labels of the cluster and of those merged into it (Yade's
   /// clusterOutvadePore).
@@ -239,6 +261,16 @@ private:
   void addPore(int cluster, int pore);
   void addInterface(int cluster, int pore, int facet);
   void labelFrom(int cluster, int pore);
+  /// The label of wetting pore `cellId`, its index and cluster checked (`function` names the caller).
+  [[nodiscard]] int wettingLabel(int cellId, const char* function) const;
+  /// Whether the cells around the edge pore `cell` shares with its facets `f1` and `f2` (its two
+  /// vertices other than f1 and f2) are all pores of cluster `label` (Yade's connectedAroundEdge;
+  /// Yade's looks around another edge for the facet pairs (3, 0) and (3, 1), and can then keep
+  /// whole a cluster the pore has cut).
+  [[nodiscard]] bool connectedAroundEdge(int cell, int f1, int f2, int label) const;
+  /// Yade's splitCluster: the pores of cluster `label` no longer reached from pore `start` move
+  /// to a new cluster, split again the same way; returns the labels.
+  std::vector<int> splitCluster(int label, int start);
   [[nodiscard]] const PhaseCluster& checkedCluster(int cluster) const;
   [[nodiscard]] double conductanceOf(const Interface& i) const;
 };

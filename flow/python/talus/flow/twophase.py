@@ -42,7 +42,7 @@ from talus.flow.pore import FlowEngine
 _OWNER = "TwoPhaseFlowEngine"
 # the options of the C++ model (TwoPhaseParameters), Yade's names and defaults
 _FLAGS = ("isPhaseTrapped", "isInvadeBoundary", "drainageFirst", "isDrainageActivated", "isImbibitionActivated",
-          "recursiveInvasion", "isCellLabelActivated")
+          "recursiveInvasion", "isCellLabelActivated", "useFastInvasion")
 # Yade's FlowEngine names of the boundary indices (wallIds[flow.ymin] ...)
 _BOUNDARY_NAMES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
 # Yade's attributes kept for its scripts; no physics of this model depends on them (iniVoidVolumes:
@@ -423,6 +423,27 @@ class TwoPhaseFlowEngine(FlowEngine):
         Returns the cluster's label then the new labels; empty if the pore was its cluster's
         last. A pore not in a wetting cluster is an error (Yade warns and does nothing)."""
         return list(self._state().invadePore(_pore_index("cellId", cellId, "clusterInvadePore")))
+
+    def clusterInvadePoreFast(self, cellId: int) -> list[int]:
+        """Wetting pore ``cellId`` drains, its cluster kept in place: its interfaces go, its
+        neighbours in the cluster get interfaces onto it (appended; the others keep their volumes),
+        and the cluster is split only when those neighbours no longer meet around the pore's
+        edges (then what its first pore, or the wetting reservoir's last imposed pore, no longer
+        reaches becomes new clusters). The cluster's volume, interfacial area and entry radius are
+        not updated, as in Yade. A pore on a pressure boundary is left as it is. Returns the
+        cluster's label and the new ones. ``useFastInvasion`` makes ``invasion()`` call it on each
+        pore it drains (instead of labelling every pore again after it)."""
+        return list(self._state().invadePoreFast(_pore_index("cellId", cellId, "clusterInvadePoreFast")))
+
+    def getCellHasInterface(self, cell: int) -> bool:
+        """Whether pore ``cell`` is the inner side of a cluster interface (set when one is added,
+        cleared when the pore drains)."""
+        model = self._state()
+        return bool(model.flags("hasInterface")[self._cell(cell, model)])
+
+    def setCellHasInterface(self, cell: int, value: bool):
+        model = self._state()
+        model.setHasInterface(self._cell(cell, model), bool(value))
 
     def getCellLabel(self, id: int) -> int:
         """Cluster label of pore ``id`` (-1 without isCellLabelActivated)."""
