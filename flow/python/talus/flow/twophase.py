@@ -367,21 +367,22 @@ class TwoPhaseFlowEngine(FlowEngine):
         os.makedirs(folder, exist_ok=True)
         path = os.path.join(folder, f"out_{self._vtkCount}.vtk")
         self._vtkCount += 1
-        walls = self.boundaryPositions()
-        cells, points = [], []
-        for c, vertices in enumerate(self._flow.poreVertexIds()):
-            real = [self._spheres[int(v)] for v in vertices if v >= 6]
-            if len(real) < 4 and (not withBoundaries or not real):
-                continue
-            centre = np.mean(real, axis=0)
-            for v in vertices:
-                if v >= 6:
-                    points.append(self._spheres[int(v)])
-                else:
-                    projected = centre.copy()
-                    projected[int(v) // 2] = walls[int(v)]
-                    points.append(projected)
-            cells.append(c)
+        vertices = np.asarray(self._flow.poreVertexIds())
+        real = vertices >= 6
+        count = real.sum(axis=1)
+        cells = np.nonzero((count == 4) | ((count > 0) & bool(withBoundaries)))[0]
+        vertices, real, count = vertices[cells], real[cells], count[cells]
+        ids = np.fromiter(self._spheres.keys(), dtype=int, count=len(self._spheres))
+        table = np.zeros((max(ids.max(), 5) + 1, 3))  # position by body id
+        table[ids] = np.asarray(list(self._spheres.values()))
+        points = table[np.where(real, vertices, 0)]
+        # a wall vertex: the centre of the pore's spheres projected on the wall
+        centre = (points * real[..., None]).sum(axis=1) / count[:, None]
+        cell, corner = np.nonzero(~real)
+        wall = vertices[cell, corner]
+        points[cell, corner] = centre[cell]
+        points[cell, corner, wall // 2] = np.asarray(self.boundaryPositions())[wall]
+        points = points.reshape(-1, 3)
         sat, pressure, imposed = model.saturations(), model.pressures(), model.flags("Pcondition")
         with open(path, "w") as out:
             out.write("# vtk DataFile Version 3.0\nTalus TwoPhaseFlowEngine phases\nASCII\nDATASET UNSTRUCTURED_GRID\n")
