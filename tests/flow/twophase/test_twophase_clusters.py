@@ -169,3 +169,13 @@ def test_bad_input():
     tp.isImbibitionActivated = True
     with pytest.raises(ValueError, match="useFastInvasion.*drainage only"):
         tp.invasion()
+
+
+@pytest.mark.parametrize("name", ["primaryTPF", "actionTPF", "reTriangulateSpheres"])
+def test_dynamic_model_names_are_refused(name):
+    """Yade's dynamic two-phase model is not in Talus: its names say so, read or set."""
+    tp = TwoPhaseFlowEngine()
+    with pytest.raises(AttributeError, match=f"TwoPhaseFlowEngine.{name} belongs to Yade's dynamic two-phase flow"):
+        getattr(tp, name)
+    with pytest.raises(AttributeError, match=f"{name} belongs to Yade's dynamic"):
+        setattr(tp, name, False)

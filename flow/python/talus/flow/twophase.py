@@ -50,6 +50,21 @@ _BOUNDARY_NAMES = ("xmin", "xmax", "ymin", "ymax", "zmin", "zmax")
 _STORED = {"bndCondIsWaterReservoir": [False] * 6, "computeForceActivated": True, "keepTriangulation": False,
            "iniVoidVolumes": False}
 
+# Yade's dynamic two-phase flow (Sweijen et al.: actionTPF, pore units merged from tetrahedra,
+# partial saturations), which Talus does not have: its names get an error saying so
+_DYNAMIC = frozenset((
+    "actionTPF", "primaryTPF", "actionMergingAlgorithm", "reTriangulateSpheres", "calculateResidualSaturation",
+    "copyPoreDataToCells", "mergeCells", "entryMethodCorrection", "solvePressureSwitch", "firstDynTPF", "dtDynTPF",
+    "iterationTPF", "deformation", "remesh", "swelling", "truncationPrecision", "deltaTimeTruncation",
+    "waterBoundaryPressure", "maximumRatioPoreThroatoverPoreBody", "getCellMergedID", "getCellMergedVolume",
+    "getCellEntrySaturation", "getCellThresholdSaturation", "setCellDeltaVolume", "imposeDeformationFluxTPF"))
+
+
+def _dynamic(name: str) -> AttributeError:
+    return AttributeError(f"{_OWNER}.{name} belongs to Yade's dynamic two-phase flow (actionTPF: pore units merged "
+                          "from tetrahedra, partial saturations), which Talus does not have; the quasi-static model "
+                          "(invasion) and the clusters are there (docs/twophase.md)")
+
 
 def _pore_index(name: str, value, function: str = "clusterOutvadePore") -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
@@ -86,6 +101,8 @@ class TwoPhaseFlowEngine(FlowEngine):
 
     # --- parameters ---------------------------------------------------------------------------
     def __setattr__(self, name, value):
+        if name in _DYNAMIC:
+            raise _dynamic(name)
         if name == "surfaceTension":
             gamma = float(value) if isinstance(value, (int, float, np.number)) else math.nan
             if not math.isfinite(gamma) or gamma < 0:
@@ -129,6 +146,8 @@ class TwoPhaseFlowEngine(FlowEngine):
                           "phases are set there)", RuntimeWarning, stacklevel=3)
 
     def __getattr__(self, name):
+        if name in _DYNAMIC:
+            raise _dynamic(name)
         if name == "surfaceTension" or name == "entryPressureMethod" or name in _FLAGS:
             return getattr(self._params, name)
         if name in _STORED:
