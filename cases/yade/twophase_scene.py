@@ -14,15 +14,15 @@ def read_spheres(path):
     return spheres, lo, hi
 
 
-def reservoir_engine(spheres, lo, hi, **attributes):
+def reservoir_engine(spheres, lo, hi, engine=None, **attributes):
     """A fresh scene: the spheres, fixed, in the six walls of the box lo-hi, and a TwoPhaseFlowEngine
-    with the wetting reservoir at ymin and the non-wetting one at ymax (pressure 0), then the
-    `attributes` set in their order (not initialized)."""
+    (or the class `engine`) with the wetting reservoir at ymin and the non-wetting one at ymax
+    (pressure 0), then the `attributes` set in their order (not initialized)."""
     O.reset()
     O.bodies.append(aabbWalls([Vector3(*lo), Vector3(*hi)], thickness=0))
     for x, y, z, r in spheres:
         O.bodies.append(sphere((x, y, z), r, fixed=True))
-    tp = TwoPhaseFlowEngine()
+    tp = (engine or TwoPhaseFlowEngine)()
     tp.bndCondIsPressure = [0, 0, 1, 1, 0, 0]
     tp.bndCondValue = [0, 0, 0, 0, 0, 0]
     for name, value in attributes.items():

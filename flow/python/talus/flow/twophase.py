@@ -499,6 +499,57 @@ class TwoPhaseFlowEngine(FlowEngine):
 
 
 class UnsaturatedEngine(TwoPhaseFlowEngine):
-    """Yade's UnsaturatedEngine as its drainage script uses it (initialization, invasion,
-    getSaturation, savePhaseVtk, computeCapillaryForce, fluidForce): the same quasi-static
-    model as TwoPhaseFlowEngine."""
+    """Yade's UnsaturatedEngine: the same quasi-static model as TwoPhaseFlowEngine, with its
+    measures of parts of the packing (a pore belongs to a part by its centre, getCellCenter):
+    getCuboidSubdomainSaturation, getCuboidSubdomainPorosity, getSphericalSubdomainSaturation,
+    getInvadeDepth."""
+
+    def _pores(self, isSideBoundaryIncluded: bool):
+        """The pores the measures count (not on a pressure boundary; those touching a wall only
+        with ``isSideBoundaryIncluded``), their centres and pore-body volumes."""
+        model = self._model()
+        keep = model.flags("Pcondition") == 0
+        if not isSideBoundaryIncluded:
+            keep &= np.asarray(self._flow.poreVertexIds()).min(axis=1) >= 6
+        return keep, np.asarray(self._flow.poreCentres()), model.bodyVolumes()
+
+    def _inCuboid(self, pos1, pos2, isSideBoundaryIncluded):
+        keep, centres, volumes = self._pores(isSideBoundaryIncluded)
+        a, b = np.asarray(pos1, dtype=float), np.asarray(pos2, dtype=float)
+        inside = keep & np.all((a - centres) * (b - centres) < 0, axis=1)  # strictly between the corners
+        if not inside.any():
+            raise ValueError(f"{type(self).__name__}: no pore has its centre in the cuboid {tuple(a)} - {tuple(b)}")
+        return inside, volumes
+
+    def getCuboidSubdomainSaturation(self, pos1, pos2, isSideBoundaryIncluded: bool = False) -> float:
+        """Wetting saturation of the pores whose centres are inside the box of corners ``pos1``,
+        ``pos2``."""
+        inside, volumes = self._inCuboid(pos1, pos2, isSideBoundaryIncluded)
+        return float(np.sum(volumes[inside] * self._model().saturations()[inside]) / np.sum(volumes[inside]))
+
+    def getCuboidSubdomainPorosity(self, pos1, pos2, isSideBoundaryIncluded: bool = False) -> float:
+        """Pore-body volume over pore volume (solid included) of the pores whose centres are
+        inside the box of corners ``pos1``, ``pos2``."""
+        inside, volumes = self._inCuboid(pos1, pos2, isSideBoundaryIncluded)
+        return float(np.sum(volumes[inside]) / np.sum(np.abs(self._flow.poreVolumes())[inside]))
+
+    def getSphericalSubdomainSaturation(self, pos, radius: float) -> float:
+        """Wetting saturation of the pores whose centres are within ``radius`` of ``pos``
+        (pressure-boundary pores left out); the sphere must not reach a pore touching a wall (Yade
+        returns -1 then)."""
+        _, centres, volumes = self._pores(True)
+        model = self._model()
+        inside = np.linalg.norm(centres - np.asarray(pos, dtype=float), axis=1) <= radius
+        if (inside & (np.asarray(self._flow.poreVertexIds()).min(axis=1) < 6)).any():
+            raise ValueError(f"{type(self).__name__}.getSphericalSubdomainSaturation: the sphere of radius {radius} "
+                             f"around {tuple(pos)} reaches pores touching a wall: make it smaller or move it inside")
+        if not inside.any():
+            raise ValueError(f"{type(self).__name__}.getSphericalSubdomainSaturation: no pore has its centre within "
+                             f"radius {radius} of {tuple(pos)}")
+        return float(np.sum(volumes[inside] * model.saturations()[inside]) / np.sum(volumes[inside]))
+
+    def getInvadeDepth(self) -> float:
+        """Extent along y of the pores of the non-wetting reservoir (from its boundary to the
+        front of the invasion)."""
+        y = np.asarray(self._flow.poreCentres())[self._model().flags("isNWRes") == 1, 1]
+        return float(y.max() - y.min()) if len(y) else 0.0
