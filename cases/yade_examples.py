@@ -8,7 +8,7 @@ Set-up:   the population is every script of these folders of Yade 2023.02a's ins
           have or input from the network; yade._scope.RULES gives the reason for each (the first
           matching rule of yade._scope.RULES), and modules that other scripts import are not scripts.
           Each in-scope script is copied with its example folder into a fresh temporary folder and
-          run in its own folder by `talus run SCRIPT` and by `yade -x SCRIPT` (on a virtual display), with a wall-time limit. Scripts
+          run in its own folder by `talus run -j 1 SCRIPT` and by `yade -x SCRIPT` (on a virtual display; both one thread), with a wall-time limit. Scripts
           are patched only where they need the GUI or never stop; PATCHES lists every patch and
           both programs get the same patched file.
 Checked:  yade-examples.completion: the fraction of in-scope scripts that finish under Talus
@@ -288,8 +288,10 @@ def main():
     if not EXAMPLES.is_dir():
         raise SystemExit(f"yade_examples: {EXAMPLES} not found (./setup.sh installs Debian's yade package)")
     case = results.Case("yade-examples.completion", quick=args.quick, folder=args.results)
-    # This very Talus: its package first on the path of `python -m talus run`.
-    talus_cmd = [sys.executable, "-m", "talus", "run"]
+    # This very Talus: its package first on the path of `python -m talus run`. One thread, as
+    # `yade -x` runs: the same work in both, and OpenMP threads on cores that other processes keep
+    # busy wait for each other at every barrier (small DEM steps then take many times longer).
+    talus_cmd = [sys.executable, "-m", "talus", "run", "-j", "1"]
     env_talus = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(Path(talus.__file__).resolve().parents[1]), os.environ.get("PYTHONPATH", "")]))
     yade_cmd = ["yade", "-x"]
