@@ -275,6 +275,48 @@ class TwoPhaseFlowEngine(FlowEngine):
         model = self._state()
         return float(model.pressures()[self._cell(cell, model)])
 
+    def getCellVolume(self, cell) -> float:
+        """Volume of pore ``cell`` (TwoPhaseFlowEngine takes a pore id, as Yade's); given a
+        position, FlowEngine's: the volume of the pore containing it."""
+        if np.ndim(cell) == 1:
+            return super().getCellVolume(cell)
+        model = self._state()
+        return float(abs(self._flow.poreVolumes()[self._cell(cell, model)]))
+
+    def getCellVoidVolume(self, cell: int) -> float:
+        """Pore-body volume of pore ``cell`` (its volume minus the solid in it)."""
+        model = self._state()
+        return float(model.bodyVolumes()[self._cell(cell, model)])
+
+    def getCellPorosity(self, cell: int) -> float:
+        """Pore-body volume over volume of pore ``cell``."""
+        return self.getCellVoidVolume(cell) / self.getCellVolume(cell)
+
+    def getCellIsFictious(self, cell: int) -> bool:
+        """Whether pore ``cell`` has a wall among its vertices."""
+        model = self._state()
+        return bool(min(self._flow.poreVertexIds()[self._cell(cell, model)]) < 6)
+
+    def isCellNeighbor(self, cell1_ID: int, cell2_ID: int) -> bool:
+        model = self._state()
+        return self._cell(cell2_ID, model) in self.getNeighbors(self._cell(cell1_ID, model))
+
+    def getPotentialPendularSpheresPair(self) -> list[tuple[int, int]]:
+        """The pairs of vertices (body ids; walls by wallIds) whose edge of the network has only
+        non-wetting pores around it: where a pendular bridge of the wetting phase may remain
+        (the space outside the walls' fictitious spheres counts as dry, as in Yade)."""
+        model = self._state()
+        wet = model.saturations() == 1
+        ring: dict[tuple[int, int], bool] = {}  # edge -> no wet pore around it so far
+        for c, corners in enumerate(np.asarray(self._flow.poreVertexIds())):
+            for i in range(4):
+                for j in range(i + 1, 4):
+                    edge = tuple(sorted((int(corners[i]), int(corners[j]))))
+                    ring[edge] = ring.get(edge, True) and not wet[c]
+        walls = self.wallIds
+        body = lambda v: walls[v] if v < 6 else v  # noqa: E731
+        return [(body(a), body(b)) for (a, b), dry in ring.items() if dry]
+
     def getCellInSphereRadius(self, cell: int) -> float:
         """Radius of the sphere inscribed in pore ``cell`` (its body radius)."""
         return float(self._model().bodyRadii()[cell])
