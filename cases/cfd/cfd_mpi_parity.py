@@ -56,13 +56,15 @@ def fluid_case(folder: Path, procs: int, solver: str = "volumeaveraged"):
                     coupling_properties=envelope if solver == "volumeaveraged" else None)
 
 
-def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str = "volumeaveraged") -> dict:
-    """The scene with ``dem`` processes and ``fluid`` fluid ranks; its JSON output."""
-    name = f"run-{dem}-{fluid}-{solver}"
+def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str = "volumeaveraged",
+        drop: float = 0.0) -> dict:
+    """The scene with ``dem`` processes and ``fluid`` fluid ranks (the spheres starting at ``drop``
+    m/s vertically); its JSON output."""
+    name = f"run-{dem}-{fluid}-{solver}-{drop}"
     case = fluid_case(folder / name, fluid, solver)
     out = folder / f"{name}.json"
     talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENE), str(case.path), str(fluid), str(steps),
-             str(out), str(layers), case.solver]
+             str(out), str(layers), case.solver, str(drop)]
     # the loopback for every process's traffic, as FoamCoupling asks for in one process
     command = talus if dem == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "btl_tcp_if_include",
                                       "lo", "--mca", "oob_tcp_if_include", "lo", "-np", str(dem), *talus]

@@ -10,10 +10,12 @@ and leaves at the top; the volume-averaged solver's drag is re-evaluated at ever
 
 Arguments: the fluid case folder (written, meshed and decomposed by the caller:
 cfd_mpi_parity.fluid_case), its fluid ranks, the fluid steps, the output file, and optionally the
-layers of spheres (8: 288 spheres) and the solver (talusVolumeAveragedFoam, or
-talusPointForceFoam with a point-force case). The output (JSON): every body's
+layers of spheres (8: 288 spheres), the solver (talusVolumeAveragedFoam, or
+talusPointForceFoam with a point-force case) and a vertical velocity the spheres start with
+(m/s, default 0: thrown down, they cross the DEM processes' boundaries within a few fluid steps). The output (JSON): every body's
 position every 20 fluid steps and after the last, the hydrodynamic force on all particles after
-each exchange, each process's particles, messages and fluid ranks exchanged with at the last exchange).
+each exchange, each process's particles, messages and fluid ranks exchanged with at the last exchange, and the
+particles whose coupling records it handed to another process after the DEM migrated them).
 """
 import json
 import sys
@@ -25,6 +27,7 @@ from talus.dem import distributed
 case, procs, steps, output = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
 L, D, SPACING, LAYERS = 8e-3, 1e-3, 1.25e-3, int(sys.argv[5]) if len(sys.argv) > 5 else 8
 SOLVER = sys.argv[6] if len(sys.argv) > 6 else "talusVolumeAveragedFoam"
+DROP = float(sys.argv[7]) if len(sys.argv) > 7 else 0.0
 RHO, NU, G = 1000.0, 1e-5, 9.81
 
 O.materials.append(FrictMat(young=5e6, poisson=0.3, frictionAngle=0.3, density=2500))
@@ -48,6 +51,7 @@ O.engines = [
     NewtonIntegrator(gravity=(0, 0, -G), damping=0.2),
 ]
 O.dt = 0.5 * PWaveTimeStep()
+O.velocities()[:6 * 6 * LAYERS, 2] = DROP   # the spheres thrown down at the start (default: at rest)
 coupling = FoamCoupling(O, case, rhoFluid=RHO, nu=NU, gravity=(0, 0, -G), solver=SOLVER,
                         nProcs=procs, implicitDrag=True).start()
 samples, lift = [], []
@@ -67,7 +71,8 @@ O.engines = O.engines + [PyRunner(command="sample()", iterPeriod=20 * coupling.s
 O.run(steps * coupling.substeps, True)
 sample()
 particles = distributed.per_process({"particles": len(coupling.lastForces), "messages": coupling.link.lastMessages,
-                                     "fluid_ranks": coupling.link.lastFluidPeers})
+                                     "fluid_ranks": coupling.link.lastFluidPeers,
+                                     "handed_over": coupling._owned.handedOver if coupling._owned else 0})
 coupling.stop()
 if distributed.rank() == 0:
     with open(output, "w") as f:

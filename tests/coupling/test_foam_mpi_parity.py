@@ -9,7 +9,10 @@ particles (none all of them); the bed lies below the upper fluid rank's box, so 
 exchanges with one fluid rank only while the other (rank 0, which sends the commands) exchanges
 with both — no process waits for a message nobody sends. The point-force solver (talusPointForceFoam)
 goes through the same exchange: 2 + 2 gives its 1 + 2 run bit for bit. A fluid refusing the
-handshake is reported once, and every process exits."""
+handshake is reported once, and every process exits. The coupling's per-particle records
+(ParticleRecords) follow particles that change process, alone and in a coupled run whose
+spheres, thrown down, cross from one DEM process to the other (still 1 + 2's bits)."""
+import json
 import os
 import shutil
 import subprocess
@@ -53,6 +56,14 @@ def test_two_dem_processes_and_two_fluid_ranks_give_the_one_process_run(tmp_path
     assert [p["fluid_ranks"] for p in processes] == [2, 1]
 
 
+def test_particles_changing_process_take_their_coupling_state_along(tmp_path):
+    # thrown down, the spheres cross the boundary between the DEM processes; the records of the
+    # force applied and of the implicit drag go with them, so the run stays 1 + 2's bit for bit
+    runs = {(d, f): parity.run(d, f, 20, 8, tmp_path, drop=-1.0) for d, f in [(1, 2), (2, 2)]}
+    assert np.array_equal(np.asarray(runs[2, 2]["positions"]), np.asarray(runs[1, 2]["positions"]))
+    assert sum(p["handed_over"] for p in runs[2, 2]["processes"]) > 0
+
+
 def test_the_point_force_solver_exchanges_the_same_way(tmp_path):
     runs = {(d, f): parity.run(d, f, STEPS, LAYERS, tmp_path, "pointforce") for d, f in [(1, 2), (2, 2)]}
     assert np.array_equal(np.asarray(runs[2, 2]["positions"]), np.asarray(runs[1, 2]["positions"]))
@@ -70,3 +81,14 @@ def test_a_refused_handshake_is_reported_once_and_every_process_exits(tmp_path):
     done = subprocess.run(command, capture_output=True, text=True, timeout=120, env={**os.environ, "OMP_NUM_THREADS": "1"})
     assert done.returncode != 0
     assert done.stderr.count("fluid density mismatch: DEM side rhoFluid = 999") == 1, done.stderr
+
+
+def test_coupling_records_follow_their_particles_to_their_new_process():
+    driver = Path(__file__).with_name("records_driver.py")
+    done = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", sys.executable, str(driver)],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 0, done.stderr
+    held = {r["rank"]: r for r in map(json.loads, done.stdout.splitlines())}
+    # each keeps its own, takes the particle that came over, and has zeros for the new one
+    assert held[0]["values"] == [[0, 0], [10, 100], [40, 400]] and held[0]["sent"] == 1
+    assert held[1]["values"] == [[20, 200], [30, 300], [0, 0]] and held[1]["sent"] == 1

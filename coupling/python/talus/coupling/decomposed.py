@@ -34,6 +34,7 @@ class OwnedParticles:
         self._version = None
         self.rows = self.ids = None
         self.applied = self.beta = self.sent_velocity = None
+        self.handedOver = 0   # records this process handed to others (particles that left it)
 
     def refresh(self) -> None:
         """The rows and ids again if the DEM's rows have changed since (collective then: the
@@ -53,6 +54,7 @@ class OwnedParticles:
         rows, ids = rows[keep], ids[keep]
         self.rows, self.ids = rows, ids
         self.records.hand_over(ids)
+        self.handedOver += self.records.lastSent
         self._take(self.records.values)
 
     def store(self, forces, beta, velocities) -> None:
