@@ -307,7 +307,8 @@ class FoamCoupling(_Engine):
     def _yade_start(self):
         if self.couplingModeParallel:
             raise NotImplementedError("FoamCoupling.couplingModeParallel (Yade-MPI's parallel DEM) is not "
-                                      "supported: Talus's DEM is one process")
+                                      "supported: Talus decomposes the DEM under mpirun -np N talus run, with "
+                                      "FoamCoupling(O, case, rhoFluid=..., nu=...).start() (docs/coupling.md)")
         case = case_settings(self.case)
         application = case["application"]
         if application in YADE_SOLVERS or application in YADE_SOLVERS.values():
