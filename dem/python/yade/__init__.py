@@ -113,7 +113,7 @@ def script_namespace() -> dict:
     ``yade``, ``from yade.utils import *``, ``from yade.pack import *``, ``from math import *``,
     the modules ``yade``, ``utils``, ``pack``, ``geom``, and what Yade's launcher itself imports
     (``os``, ``sys``, ``time``, ``math``, ``numpy``, ``random``, ``itertools``, ``warnings``,
-    ``argparse``, ``doctest``, ``execfile``, ``version``), as listed by a script under ``yade -x``."""
+    ``argparse``, ``doctest``, ``execfile``, ``version``, ``features``), as listed by a script under ``yade -x``."""
     import argparse
     import doctest
     import itertools
@@ -133,6 +133,7 @@ def script_namespace() -> dict:
                      numpy=numpy, random=random, itertools=itertools, warnings=warnings, argparse=argparse,
                      doctest=doctest, execfile=execfile)
     namespace["version"] = config.version     # Yade's launcher's global: the program's version
+    namespace["features"] = config.features   # and its optional parts (checks test 'PFVFLOW' in features)
     return namespace
 
 

@@ -24,6 +24,7 @@ def _features() -> list[str]:
              "OPENMP": _build_config.FEATURES.get("openmp", (False,))[0],
              "CGAL": components.get("flow", False),
              "PFVFLOW": components.get("flow", False),
+             "TWOPHASEFLOW": components.get("flow", False),
              "LINSOLV": components.get("flow", False),
              "MPI": components.get("coupling", False),
              "FEMLIKE": components.get("fem", False),

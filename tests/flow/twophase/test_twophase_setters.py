@@ -76,3 +76,11 @@ def test_bad_input():
         tp.setPoreThroatRadius(0, 0, 0.1)
     with pytest.raises(IndexError, match="cell id must be an integer"):
         tp.setCellIsWRes(tp.nCells(), True)
+
+
+def test_yade_check_gate(talus_cmd, tmp_path):
+    """Yade's check_TwoPhaseFlowEngine_PressureInjection.py runs only when its script globals
+    have 'PFVFLOW' and 'TWOPHASEFLOW' in `features` (as under yade -x)."""
+    script = tmp_path / "gate.py"
+    script.write_text("print('GATE', ('PFVFLOW' in features) and ('TWOPHASEFLOW' in features))\n")
+    assert "GATE True" in talus_cmd("run", script).stdout
