@@ -7,7 +7,7 @@
 # the network's numbering being each program's own) getCellVolume, getCellVoidVolume,
 # getCellPorosity, getCellIsFictious, and whether each of its neighbours is one (isCellNeighbor);
 # the vertex pairs of getPotentialPendularSpheresPair (sorted) after initialization() and after
-# invasion() at pc.
+# invasion() at pc; by pore, getCellFluxFromId in the injection's set-up (below).
 import json
 import os
 import sys
@@ -32,4 +32,19 @@ out = {"volume": {name[i]: flow.getCellVolume(i) for i in range(n)},
 flow.bndCondValue = [0, 0, -float(params["pc"]), 0, 0, 0]
 flow.invasion()
 out["pendular"] = sorted(sorted(p) for p in flow.getPotentialPendularSpheresPair())
+# the injection's set-up (cases/yade/twophase_injection.py): the wetting reservoir at 1000 Pa grown
+# through its first 40 interfaces, its pressures solved; every pore's flux (getCellFluxFromId)
+flow = reservoir_engine(spheres, lo, hi, yadeInsertionOrder=True, viscosity=0.1, bndCondIsPressure=[0, 0, 1, 0, 0, 0],
+                        bndCondValue=[0, 0, 1000.0, 0, 0, 0], boundaryUseMaxMin=[0] * 6, surfaceTension=0.0,
+                        drainageFirst=False, isDrainageActivated=False, isImbibitionActivated=True,
+                        isCellLabelActivated=True)
+flow.initialization()
+reservoir = flow.getClusters()[1]
+for inner, outer, area, rank in reservoir.getInterfaces()[:40]:
+    if flow.getCellLabel(outer) == 0:
+        flow.clusterOutvadePore(inner, outer)
+reservoir.solvePressure()
+flow.computeCapillaryForce()   # in Yade, makes the fluxes read the current triangulation
+name = [" ".join(map(str, sorted(flow.getVertices(i)))) for i in range(flow.nCells())]
+out["flux"] = {name[i]: flow.getCellFluxFromId(i) for i in range(flow.nCells())}
 print("RESULT " + json.dumps(out))

@@ -141,5 +141,6 @@ void registerTwoPhase(py::module_& m)
       .def("interfaceFlux", &TwoPhaseFlow::interfaceFlux)
       .def("updateInterfaceVolumes", &TwoPhaseFlow::updateInterfaceVolumes)
       .def("boundaryFlux", &TwoPhaseFlow::boundaryFlux)
+      .def("poreFlux", &TwoPhaseFlow::poreFlux)
       .def("capillaryForces", [](const TwoPhaseFlow& t) { return rows(t.capillaryForces()); });
 }

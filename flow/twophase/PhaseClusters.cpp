@@ -560,4 +560,21 @@ double TwoPhaseFlow::boundaryFlux(int k) const
     }
   return q;
 }
+
+double TwoPhaseFlow::poreFlux(int pore) const
+{
+  if (pore < 0 || static_cast<std::size_t>(pore) >= pores_.size())
+    throw std::out_of_range("getCellFluxFromId: cell id " + std::to_string(pore) + " out of range (0.."
+                            + std::to_string(static_cast<int>(pores_.size()) - 1) + ")");
+  const auto c = static_cast<std::size_t>(pore);
+  double q = 0;
+  for (std::size_t f = 0; f < 4; ++f)
+  {
+    const int j = neighbours_[c][f];
+    if (j >= 0)
+      q += conductance_[static_cast<std::size_t>(throats_[c][f])]
+           * (pores_[c].pressure - pores_[static_cast<std::size_t>(j)].pressure);
+  }
+  return q;
+}
 } // namespace talus::flow::twophase

@@ -219,6 +219,12 @@ public:
   /// @return the flux (m^3/s)
   /// @throws std::out_of_range for k outside 0..5
   [[nodiscard]] double boundaryFlux(int k) const;
+  /// Yade's getCellFluxFromId on the phase pressures: the flux pore `pore` sends to its
+  /// neighbours, sum of conductance (p_pore - p_neighbour); negative where fluid enters it.
+  /// @param pore a pore index
+  /// @return the flux (m^3/s)
+  /// @throws std::out_of_range for the pore
+  [[nodiscard]] double poreFlux(int pore) const;
 
 private:
   /// The state of pore `pore`, its index checked (`function` names the caller in the message).

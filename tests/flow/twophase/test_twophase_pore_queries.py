@@ -1,5 +1,6 @@
 """TwoPhaseFlowEngine's per-pore queries (getCellVolume by pore id, getCellVoidVolume,
-getCellPorosity, getCellIsFictious, isCellNeighbor) and getPotentialPendularSpheresPair: the
+getCellPorosity, getCellIsFictious, isCellNeighbor, getCellFluxFromId) and
+getPotentialPendularSpheresPair: the
 scenario cases/yade/twophase_pore_queries.py on the 400-sphere cloud of data/pore_packing.txt
 against Yade 2023.02a's run of it (data/twophase_pore_queries_yade_reference.json, written by
 twophase_pore_queries_yade_reference.py)."""
@@ -40,6 +41,15 @@ def test_pendular_pairs_as_yade(ours):
     edges) and after a drainage."""
     assert ours["pendular0"] == REF["pendular0"]
     assert ours["pendular"] == REF["pendular"] and len(REF["pendular"]) > 10 * len(REF["pendular0"])
+
+
+def test_pore_fluxes_as_yade(ours):
+    """getCellFluxFromId on the pressures of the wetting reservoir grown by 40 pores: every
+    pore's flux as Yade's (the dry pores along the cluster receive, negative)."""
+    assert ours["flux"].keys() == REF["flux"].keys()
+    got, theirs = np.array([ours["flux"][k] for k in REF["flux"]]), np.array(list(REF["flux"].values()))
+    np.testing.assert_allclose(got, theirs, rtol=1e-9, atol=1e-9 * np.abs(theirs).max())
+    assert (theirs < -1).sum() > 10
 
 
 def test_cell_volume_by_position_still_locates():

@@ -533,6 +533,12 @@ class TwoPhaseFlowEngine(FlowEngine):
         k = walls.index(boundary) if boundary in walls else boundary
         return self._model().boundaryFlux(k)
 
+    def getCellFluxFromId(self, id: int) -> float:
+        """Flux pore ``id`` sends to its neighbours at the phase pressures (sum of conductance
+        times its pressure minus theirs; negative where fluid enters it)."""
+        model = self._state()
+        return model.poreFlux(self._cell(id, model))
+
     def _cell(self, id, model) -> int:
         n = model.poreCount()
         if isinstance(id, bool) or not isinstance(id, (int, np.integer)) or not 0 <= id < n:
