@@ -87,16 +87,22 @@ def average(moved):
     e = HydroForceEngine(densFluid=1000.0, viscoDyn=1e-3, zRef=Z_REF, deltaZ=DZ, nCell=N_CELL,
                          vCell=0.02 * 0.02 * DZ, ids=ids, expoRZ=3.1)
     e.initialization()
+    e.enableMultiClassAverage = True   # as Yade's bi-disperse example: after initialization()
     e.vxFluid = vx
     e.phiPart = phi
     e.averageProfile()
+    # The per-class velocities are left out: Yade adds each slice's velocity to the layer of the
+    # sphere's centre (docs/flow.md).
+    classes = {"radiusParts": [float(r) for r in e.radiusParts],
+               "multiPhi": [[float(x) for x in c] for c in e.multiPhiPart],
+               "multiDrag": [[float(x) for x in c] for c in e.multiDragPart]}
     if TALUS:
         v = e.vPart
         return {"phi": list(map(float, e.phiPart)), "vx": list(map(float, v[:, 0])),
                 "vy": list(map(float, v[:, 1])), "vz": list(map(float, v[:, 2])),
-                "drag": list(map(float, e.averageDrag))}
+                "drag": list(map(float, e.averageDrag)), **classes}
     return {"phi": list(e.phiPart), "vx": [v[0] for v in e.vPart], "vy": [v[1] for v in e.vPart],
-            "vz": [v[2] for v in e.vPart], "drag": list(e.averageDrag)}
+            "vz": [v[2] for v in e.vPart], "drag": list(e.averageDrag), **classes}
 
 
 OPTION_SETS = {

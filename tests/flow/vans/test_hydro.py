@@ -45,6 +45,47 @@ def test_forces_and_average_match_yade(build_dir):
         a, b = np.array(ours["average"][q]), np.array(theirs["average"][q])
         assert np.abs(b).max() > 0
         assert np.abs(a - b).max() < 1e-10 * np.abs(b).max(), q
+    # enableMultiClassAverage: the classes (the radii of the engine's ids, not the scene's other
+    # three sizes) and each class's solid fraction and drag profiles
+    assert ours["average"]["radiusParts"] == theirs["average"]["radiusParts"] == [1.5e-3, 2.5e-3]
+    phi = np.array(theirs["average"]["multiPhi"])
+    # A sphere tangent to a layer's boundary leaves a round-off volume there (1e-32 in Yade, 0 in
+    # Talus): Yade then gives the layer that sphere's drag, Talus none. Compared where a class has
+    # volume.
+    holds = phi > 1e-12 * phi.max()
+    for q in ("multiPhi", "multiDrag"):
+        a, b = np.array(ours["average"][q]), np.array(theirs["average"][q])
+        assert a.shape == b.shape == (2, 60) and np.abs(b).max(axis=1).min() > 0
+        assert np.abs(a - b)[holds].max() < 1e-10 * np.abs(b).max(), q
+    assert np.abs(np.array(ours["average"]["multiPhi"]) - phi).max() < 1e-10 * phi.max()
+
+
+def test_class_profiles_add_up_to_the_total_and_need_known_radii():
+    """enableMultiClassAverage: the classes' solid fractions add up to phiPart and their
+    volume-weighted velocities to vPart; a sphere whose radius is not in radiusParts (added
+    after initialization) stops averageProfile, naming the body; the classes are the radii of
+    the engine's ids."""
+    s = scene_with([((0, 0, 0.0035 + 0.0013 * k), (5e-4, 1e-3)[k % 2], (0.1 * k, 0.02 * k, -0.01 * k))
+                    for k in range(7)])
+    e = HydroForceEngine(deltaZ=1e-3, nCell=20, vCell=1e-6, enableMultiClassAverage=True, scene=s,
+                         ids=range(7), dead=True)
+    e.initialization()
+    assert e.radiusParts == [5e-4, 1e-3]
+    e.averageProfile()
+    phi, vx = np.array(e.multiPhiPart), np.array(e.multiVxPart)
+    assert phi.shape == (2, 20) and (phi > 0).sum(axis=1).min() >= 3
+    assert np.allclose(phi.sum(axis=0), e.phiPart, rtol=1e-13, atol=0)
+    for k, v in enumerate((vx, np.array(e.multiVyPart), np.array(e.multiVzPart))):
+        assert np.allclose((phi * v).sum(axis=0), e.phiPart * e.vPart[:, k], rtol=1e-12, atol=1e-18)
+    s.bodies.append(sphere((0, 0, 0.01), 7e-4))
+    with pytest.raises(ValueError, match="body 7's radius 0.0007 is not in radiusParts"):
+        e.averageProfile()
+    e.computeRadiusParts()
+    assert e.radiusParts == [5e-4, 1e-3]
+    e.ids = range(8)
+    e.computeRadiusParts()
+    e.averageProfile()
+    assert e.radiusParts == [5e-4, 1e-3, 7e-4] and len(e.multiPhiPart) == 3
 
 
 def scene_with(spheres, periodic_box=None):
@@ -382,9 +423,8 @@ def test_an_imposed_profile_of_ncell_values_has_a_zero_top_node():
 def test_a_yade_attribute_it_lacks_is_refused_and_an_unknown_one_is_kept_with_a_warning():
     s = scene_with([((0, 0, 0.0105), 3e-4, (0, 0, 0))])
     e = engine(s)
-    with pytest.raises(AttributeError, match="enableMultiClassAverage: a Yade 2023.02a attribute that Talus does "
-                                             "not implement"):
-        e.enableMultiClassAverage = True
+    with pytest.raises(AttributeError, match="twoSize: a Yade 2023.02a attribute that Talus does not implement"):
+        e.twoSize = True
     with pytest.warns(RuntimeWarning, match="expoRz is not an attribute of HydroForceEngine"):
         e.expoRz = 3.0           # Yade too keeps it as a plain attribute
     assert e.expoRz == 3.0 and e.expoRZ == 3.1
@@ -393,9 +433,10 @@ def test_a_yade_attribute_it_lacks_is_refused_and_an_unknown_one_is_kept_with_a_
 
 
 def test_scripts_run_as_yades_leave_particles_outside_the_grid_without_force(monkeypatch):
-    from talus.flow import hydro
+    from talus.flow import hydro, stray_attributes
     from yade import _components
     monkeypatch.setattr(hydro, "OUTSIDE_IS_ERROR", True)      # restored after the test
+    monkeypatch.setattr(stray_attributes, "_accepted", False)  # run_defaults sets it too
     s = scene_with([((0, 0, 0.5), 1e-3, (0, 0, 0))])
     assert not engine(s).ignoreOutside
     _components.run_defaults()                                 # what yade.yade_run_defaults calls

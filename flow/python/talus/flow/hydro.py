@@ -48,11 +48,15 @@ def yade_run_defaults() -> None:
 # Yade 2023.02a's attributes of HydroForceEngine that Talus lacks: setting one is an error, not
 # a new Python attribute that changes nothing.
 _YADE_UNIMPLEMENTED = frozenset((
-    "enableMultiClassAverage", "twoSize", "radiusParts", "radiusPart1", "radiusPart2", "multiPhiPart", "multiVxPart",
-    "multiVyPart", "multiVzPart", "multiDragPart", "phiPart1", "phiPart2", "vxPart1", "vxPart2", "vyPart1",
+    "twoSize", "radiusPart1", "radiusPart2", "phiPart1", "phiPart2", "vxPart1", "vxPart2", "vyPart1",
     "vyPart2", "vzPart1", "vzPart2", "averageDrag1", "averageDrag2", "pointParticleAverage", "lubrication",
     "roughnessPartScale", "convAccOption", "convAcc", "compatibilityOldVersion", "nbAverageT", "phiBed", "dtFluct",
     "fluctTime", "vFluctX", "vFluctY", "vFluctZ", "ompThreads"))
+
+# The per-class profiles of averageProfile with enableMultiClassAverage: Yade's attribute name for
+# each profile of the one-class average.
+_CLASS_PROFILES = {"phiPart": "multiPhiPart", "vxPart": "multiVxPart", "vyPart": "multiVyPart",
+                   "vzPart": "multiVzPart", "averageDrag": "multiDragPart"}
 
 # Options of the fluid resolution that belong to the VansFluid alone.
 _FLUID_ONLY = ("radiusPart", "iturbu", "ilm", "phiMax", "viscousSubLayer", "irheolf", "iusl", "uTop",
@@ -102,6 +106,9 @@ class HydroForceEngine(Engine):
         ids: the particles receiving fluid forces.
         vCell: volume of a layer for averageProfile; 0 in a periodic cell means its horizontal
             area times deltaZ.
+        enableMultiClassAverage: averageProfile also gives the profiles of each class of
+            sphere radius (``radiusParts``, found by ``initialization`` or ``computeRadiusParts``):
+            ``multiPhiPart``, ``multiVxPart``, ``multiVyPart``, ``multiVzPart``, ``multiDragPart``.
         velFluct: turbulent velocity fluctuations (discrete random walk on an eddy time scale
             0.33 kappa z / u*, u* = sqrt(ReynoldStresses / rho)), reproducible with ``seed``;
             bedElevation (above zRef) and unCorrelatedFluctuations as in Yade.
@@ -119,7 +126,8 @@ class HydroForceEngine(Engine):
                  gravity: Sequence[float] = (0.0, 0.0, -9.81), expoRZ: float = 3.1, lift: bool = False,
                  Cl: float = 0.2, steadyFlow: bool = True, ids: Sequence[int] = (), vCell: float = 0.0,
                  velFluct: bool = False, bedElevation: float = 0.0, unCorrelatedFluctuations: bool = False,
-                 kappa: float = 0.41, seed: int = 0, ignoreOutside: bool | None = None, scene=None,
+                 kappa: float = 0.41, seed: int = 0, ignoreOutside: bool | None = None,
+                 enableMultiClassAverage: bool = False, scene=None,
                  label: str = "", dead: bool = False, **fluid_options):
         unknown = set(fluid_options) - set(_FLUID_ONLY)
         if unknown:
@@ -138,6 +146,9 @@ class HydroForceEngine(Engine):
         self._core.seed(int(seed))
         self._scene = scene
         self.vCell = vCell
+        self.enableMultiClassAverage = bool(enableMultiClassAverage)
+        self.radiusParts = []
+        self._multi: dict[str, list[list[float]]] = {name: [] for name in _CLASS_PROFILES.values()}
         self.ids = ids
         self._vy = np.zeros(self.nCell)
         self._vz = np.zeros(self.nCell)
@@ -323,6 +334,31 @@ class HydroForceEngine(Engine):
     def ReynoldStresses(self, values: ArrayLike):
         self._core.setReynoldStresses(_array(values, "ReynoldStresses"))
 
+    enableMultiClassAverage = False   # each engine sets its own in __init__
+
+    @property
+    def radiusParts(self) -> list[float]:
+        """The radius classes of enableMultiClassAverage [m] (``computeRadiusParts`` finds them)."""
+        return list(self._radiusParts)
+
+    @radiusParts.setter
+    def radiusParts(self, values: Sequence[float]):
+        radii = [float(r) for r in values]
+        if not all(r > 0 and math.isfinite(r) for r in radii):
+            raise ValueError(f"HydroForceEngine.radiusParts: radii must be positive and finite, got {radii}")
+        self._radiusParts = radii
+
+    multiPhiPart = property(lambda self: self._multi["multiPhiPart"],
+                            doc="Solid volume fraction per layer of each radius class (enableMultiClassAverage).")
+    multiVxPart = property(lambda self: self._multi["multiVxPart"],
+                           doc="Mean streamwise velocity per layer of each radius class [m/s].")
+    multiVyPart = property(lambda self: self._multi["multiVyPart"],
+                           doc="Mean spanwise velocity per layer of each radius class [m/s].")
+    multiVzPart = property(lambda self: self._multi["multiVzPart"],
+                           doc="Mean wall-normal velocity per layer of each radius class [m/s].")
+    multiDragPart = property(lambda self: self._multi["multiDragPart"],
+                             doc="Mean streamwise drag per particle in each layer of each radius class [N].")
+
     turbulentViscosity = property(lambda self: self.fluid.turbulentViscosity, doc="Eddy viscosity [m^2/s].")
     taufsi = property(lambda self: self.fluid.taufsi, doc="Drag exchange coefficient [1/s].")
 
@@ -333,13 +369,23 @@ class HydroForceEngine(Engine):
 
     # -- operations -------------------------------------------------------------------------------
     def initialization(self) -> None:
-        """Reset every profile to zeros (Yade's ``initialization()``)."""
+        """Reset every profile to zeros and find the classes of sphere radius (Yade's
+        ``initialization()``)."""
         self.fluid.initialization()
         n = self.nCell
         self._core.setVxFluid(np.zeros(n + 1))
         self._core.setPhiPart(np.zeros(n))
         self._core.setReynoldStresses(np.zeros(n))
         self._vy, self._vz = np.zeros(n), np.zeros(n)
+        self.computeRadiusParts()
+
+    def computeRadiusParts(self) -> None:
+        """``radiusParts``: each distinct radius among the spheres of ``ids``, in their order (the
+        classes of ``enableMultiClassAverage``; Yade 2023.02a takes them from ``ids`` too)."""
+        spheres = np.intersect1d(self._ids, self.scene.sphere_ids())
+        order = np.sort(np.searchsorted(self._ids, spheres, sorter=np.argsort(self._ids)))
+        radii = self.scene.radii()[self._ids[order]] if len(spheres) else np.zeros(0)
+        self.radiusParts = [float(r) for r in dict.fromkeys(radii.tolist())]
 
     def action(self) -> None:
         """Add this step's fluid forces to the particles of ``ids`` (called every step as an engine)."""
@@ -370,11 +416,32 @@ class HydroForceEngine(Engine):
         exact volume of its slices; over ``ids`` (default: every sphere, as Yade). Stores them
         (inputs of the next fluidResolution and of the hindrance) and returns them."""
         profile = self.measure(ids)
+        if self.enableMultiClassAverage:      # before phiPart changes: the drag's hindrance reads it
+            self._average_classes(ids)
         self.phiPart = profile["phiPart"]
         self.fluid.vxPart = profile["vxPart"]
         self.fluid.averageDrag = profile["averageDrag"]
         self._vy, self._vz = profile["vyPart"], profile["vzPart"]
         return profile
+
+    def _average_classes(self, ids: Sequence[int] | None) -> None:
+        """The profiles of each radius class: the one-class average over the spheres of that
+        radius. Yade adds each slice's velocity to the layer of the sphere's centre instead of the
+        slice's own layer (its per-class velocities differ from its total ones there); Talus
+        weighs them layer by layer as the total, so the classes' volume-weighted mean velocity
+        is ``vPart``."""
+        chosen = self.scene.sphere_ids() if ids is None else np.asarray(list(ids), dtype=np.int64)
+        radii = self.scene.radii()[chosen]
+        classes = np.asarray(self.radiusParts, dtype=float)
+        unknown = ~np.isin(radii, classes)
+        # A sphere of no class is an error where it has volume in the grid, as in Yade.
+        if unknown.any() and self.measure(chosen[unknown])["phiPart"].any():
+            body = int(chosen[np.argmax(unknown)])
+            raise ValueError(f"HydroForceEngine.averageProfile: body {body}'s radius {radii[unknown][0]:g} is not in "
+                             "radiusParts (enableMultiClassAverage): call initialization() or computeRadiusParts() "
+                             "after adding spheres")
+        per_class = [self.measure(chosen[radii == r]) for r in classes]
+        self._multi = {multi: [c[name].tolist() for c in per_class] for name, multi in _CLASS_PROFILES.items()}
 
     def fluidResolution(self, tfin: float, dt: float) -> None:
         """Advance ``vxFluid`` over ``tfin`` seconds with steps ``dt`` from the stored solid
