@@ -74,6 +74,9 @@ int locateInBox(const PoreNetwork& net, const Vec3& x)
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
 {
   // on bad input the old network stays
+  if (params.periodic && params.alphaBound >= 0)
+    throw std::invalid_argument("FlowEngine.alphaBound: the alpha-shape boundary needs a box network, not a periodic "
+                                "one (set alphaBound < 0)");
   const InsertionOrder order = params.yadeInsertionOrder ? InsertionOrder::Yade : InsertionOrder::Sorted;
   PoreNetwork fresh = params.periodic ? triangulatePeriodic(spheres, boundaries(spheres), params.hasBoundary,
                                                             params.cellSize, params.duplicateThreshold, order)
@@ -81,6 +84,7 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
   std::vector<double> p = carriedPressures(fresh);
   net_ = std::move(fresh);
   p_ = std::move(p);
+  alpha_ = AlphaBoundary{}; // the new network's alpha shape: at applyBoundaryTypes
   lubricationMeshed_ = false;
   const PoreNetwork& net = *net_;
   dv_.assign(net.pores.size(), 0.0);
@@ -403,10 +407,25 @@ void PoreFlow::applyBoundaryTypes()
   // As Yade's initializePressure: every pore touching a pressure boundary takes its value; a
   // pore touching two takes the later one in the order xmin .. zmax.
   imposed_.assign(net_->pores.size(), 0);
-  for (int k = 0; k < kBoundaries; ++k)
-    if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
-      for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
-        imposed_[static_cast<std::size_t>(pi)] = 1;
+  const bool alphaShaped = params.alphaBound >= 0;
+  if (alphaShaped)
+  {
+    // the alpha shape replaces the box: its walls' conditions do not apply
+    if (alphaBuilt_ != params.alphaBound || alpha_.exteriorPores.empty())
+      alpha_ = alphaBoundary(*net_, params.alphaBound);
+    imposed_ = alpha_.exteriorPores;
+  }
+  else
+  {
+    if (std::isnan(params.alphaBound))
+      throw std::invalid_argument("FlowEngine.alphaBound must be a number (negative: no alpha-shape boundary)");
+    alpha_ = AlphaBoundary{};
+    for (int k = 0; k < kBoundaries; ++k)
+      if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
+        for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
+          imposed_[static_cast<std::size_t>(pi)] = 1;
+  }
+  alphaBuilt_ = params.alphaBound;
   for (std::size_t n = 0; n < points_.size(); ++n)
   {
     points_[n].pore = locateInBox(*net_, points_[n].pos);
@@ -436,7 +455,7 @@ void PoreFlow::solve()
   if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
     throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
   const bool compressible = params.fluidBulkModulus > 0;
-  if (builtTypes_ != params.bndCondIsPressure)
+  if (builtTypes_ != params.bndCondIsPressure || alphaBuilt_ != params.alphaBound)
     updateConductances(); // boundary types enter the hydraulic radii and the matrix
   else if (pointsChanged_ || compressible || storageInMatrix_)
     applyBoundaryTypes(); // the storage term follows the void volumes and dt (same pattern: the
@@ -455,10 +474,19 @@ void PoreFlow::solve()
       throw std::invalid_argument("imposeFlux: point " + std::to_string(n) + " is outside the pore network");
     source[static_cast<std::size_t>(f.pore)] -= f.value;
   }
-  for (int k = 0; k < kBoundaries; ++k)
-    if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
-      for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
-        p_[static_cast<std::size_t>(pi)] = params.bndCondValue[static_cast<std::size_t>(k)];
+  if (params.alphaBound >= 0)
+  {
+    if (!std::isfinite(params.alphaBoundValue))
+      throw std::invalid_argument("FlowEngine.alphaBoundValue must be a finite pressure");
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      if (alpha_.exteriorPores[i])
+        p_[i] = params.alphaBoundValue;
+  }
+  else
+    for (int k = 0; k < kBoundaries; ++k)
+      if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
+        for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
+          p_[static_cast<std::size_t>(pi)] = params.bndCondValue[static_cast<std::size_t>(k)];
   for (const PointPressure& pt : points_)
     p_[static_cast<std::size_t>(pt.pore)] = pt.value;
   const PoreNetwork& net = *net_;

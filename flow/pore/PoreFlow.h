@@ -3,6 +3,7 @@
 // packing, its conductances and the pressure field for the six boundaries' conditions, and
 // reports fluxes, pressures and the sample permeability. No DEM here: the caller passes the
 // spheres (FlowCoupling.h connects it to a scene through the particle exchange interface).
+#include "flow/pore/AlphaBoundary.h"
 #include "flow/pore/PoreGeometry.h"
 #include "flow/pore/PoreNetwork.h"
 #include "flow/pore/PressureSolver.h"
@@ -49,6 +50,13 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
   /// Talus: insert the spheres one by one and keep CGAL's vertex order, as Yade (slower; the
   /// same numbers as Yade to round-off), instead of a sorted range (see InsertionOrder)
   bool yadeInsertionOrder = false;
+
+  // --- alpha-shape boundary (Yade's alphaBound, alphaBoundValue) ---
+  /// < 0 (default -1): the box's boundaries; >= 0: the pores outside the alpha shape of the
+  /// spheres (AlphaBoundary.h) take the pressure alphaBoundValue and the box's conditions are
+  /// ignored; 0 lets CGAL choose the smallest alpha giving one solid (m^2)
+  double alphaBound = -1;
+  double alphaBoundValue = 0;
 };
 
 /// A point inside the pore (its weighted circumcentre may lie outside the tetrahedron): the
@@ -244,6 +252,8 @@ public:
   [[nodiscard]] int lastIterations() const { return solver_.lastIterations(); }
   /// The solver holds a CHOLMOD factor of the current matrix.
   [[nodiscard]] bool factorized() const { return solver_.factorized(); }
+  /// The alpha-shape boundary of the current network (empty vectors when alphaBound < 0).
+  [[nodiscard]] const AlphaBoundary& alphaShape() const { return alpha_; }
 
 private:
   std::array<Boundary, kBoundaries> boundaries(const std::vector<PoreSphere>& spheres) const;
@@ -299,5 +309,7 @@ private:
   double globalK_ = 0;
   SphereLubrication lubrication_;
   bool lubricationMeshed_ = false; ///< lubrication_ has the pairs of the current network
+  AlphaBoundary alpha_;
+  double alphaBuilt_ = -1; ///< the alphaBound alpha_ and the system were set for
 };
 } // namespace talus::flow::pore

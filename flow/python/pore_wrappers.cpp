@@ -85,6 +85,8 @@ void registerPoreFlow(py::module_& m)
       .def_readwrite("gradP", &FlowParameters::gradP)
       .def_readwrite("hasBoundary", &FlowParameters::hasBoundary)
       .def_readwrite("yadeInsertionOrder", &FlowParameters::yadeInsertionOrder)
+      .def_readwrite("alphaBound", &FlowParameters::alphaBound)
+      .def_readwrite("alphaBoundValue", &FlowParameters::alphaBoundValue)
       .def_readwrite("viscousShear", &FlowParameters::viscousShear)
       .def_readwrite("shearLubrication", &FlowParameters::shearLubrication)
       .def_readwrite("normalLubrication", &FlowParameters::normalLubrication)
@@ -156,6 +158,26 @@ void registerPoreFlow(py::module_& m)
       .def("locate", [](const PoreFlow& f, const Vec3& x) { return locatePore(f.network(), x); })
       .def("pressures", [](const PoreFlow& f) { return Array(static_cast<py::ssize_t>(f.pressures().size()), f.pressures().data()); })
       .def("hiddenSpheres", [](const PoreFlow& f) { return f.network().hiddenSpheres; })
+      .def("vertexSpheres",
+           [](const PoreFlow& f) {
+             // x, y, z, radius of every vertex (boundaries first, then the spheres)
+             const auto& v = f.network().vertices;
+             Eigen::MatrixX4d out(static_cast<Eigen::Index>(v.size()), 4);
+             for (std::size_t i = 0; i < v.size(); ++i)
+               out.row(static_cast<Eigen::Index>(i)) << v[i].pos.x(), v[i].pos.y(), v[i].pos.z(), v[i].radius;
+             return out;
+           })
+      .def("alphaShape",
+           [](const PoreFlow& f) {
+             // the alpha used, the pores outside the shape, the body ids of the spheres on it
+             const AlphaBoundary& a = f.alphaShape();
+             std::vector<std::int64_t> onBoundary;
+             for (std::size_t v = 0; v < a.boundaryVertices.size(); ++v)
+               if (a.boundaryVertices[v])
+                 onBoundary.push_back(f.network().vertices[v].id);
+             return py::make_tuple(a.alpha, std::vector<bool>(a.exteriorPores.begin(), a.exteriorPores.end()),
+                                   onBoundary);
+           })
       .def("nCells", [](const PoreFlow& f) { return f.network().pores.size(); })
       .def("nThroats", [](const PoreFlow& f) { return f.network().throats.size(); })
       .def("poreVolumes", [](const PoreFlow& f) { return column(f.network().pores, [](const Pore& p) { return p.volume; }); })
