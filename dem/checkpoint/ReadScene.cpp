@@ -1,5 +1,6 @@
 // Reading a checkpoint: every part of a scene from an open HDF5 file, then the checks of what
 // was read (dem/checkpoint/Layout.h).
+#include "dem/checkpoint/BodyHeat.h"
 #include "dem/checkpoint/Layout.h"
 
 #include <type_traits>
@@ -220,6 +221,7 @@ void readBodies(const Reader& r, Loaded& in, const Context& ctx)
     (b.*field).resize(n);
     r.doubles(at("/bodies/", name), {n}, (b.*field).data());
   }
+  readBodyHeat(r, b, n);
   for (const auto& [name, field] : bodyInts)
   {
     (b.*field).resize(n);

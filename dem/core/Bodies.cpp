@@ -1,5 +1,7 @@
 #include "dem/core/Bodies.h"
 
+#include <limits>
+
 namespace talus::dem
 {
 const char* shapeName(ShapeKind kind)
@@ -50,6 +52,8 @@ BodyId Bodies::append(ShapeKind kind, int shapeIdx, int materialId)
   alive.push_back(1);
   clumpId.push_back(-1);
   groupMask.push_back(1);
+  for (std::vector<double>* heat : {&temperature, &heatCapacity, &conductivity, &thermalExpansion})
+    heat->push_back(std::numeric_limits<double>::quiet_NaN());
   return id;
 }
 

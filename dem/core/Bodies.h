@@ -95,6 +95,11 @@ struct Bodies
   /// Yade's Body.groupMask (b.mask): two bodies may touch only if their masks share a bit
   /// (see mayCollide); engines with a `mask` act on the bodies sharing a bit with it. Default 1.
   std::vector<int> groupMask;
+  /// Heat (Yade's ThermalState): temperature (K or °C, as the user's values), specific heat
+  /// capacity Cp (J/(kg K)), conductivity k (W/(m K)) and linear thermal expansion coefficient
+  /// alpha (1/K). NaN where not given: a scene without heat holds only NaN and nothing reads them
+  /// during a step; a heat model gives its defaults to the NaN entries of the bodies it covers.
+  std::vector<double> temperature, heatCapacity, conductivity, thermalExpansion;
   std::vector<WallShape> walls;
   std::vector<FacetShape> facets;
   std::vector<BoxShape> boxes;

@@ -8,11 +8,11 @@
 
 namespace talus::dem::distributed
 {
-// The per-body arrays are Bodies' first members, up to `walls`; forEachBodyField lists 21. A new
+// The per-body arrays are Bodies' first members, up to `walls`; forEachBodyField lists 25. A new
 // per-body array declared among them moves `walls` and stops the build here: list it there.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Winvalid-offsetof"
-static_assert(offsetof(Bodies, walls) == 21 * sizeof(std::vector<double>),
+static_assert(offsetof(Bodies, walls) == 25 * sizeof(std::vector<double>),
               "Bodies has a per-body array forEachBodyField does not list: add it there");
 #pragma GCC diagnostic pop
 

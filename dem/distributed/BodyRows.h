@@ -54,6 +54,10 @@ void forEachBodyField(B& bodies, F&& f)
   f(bodies.alive);
   f(bodies.clumpId);
   f(bodies.groupMask);
+  f(bodies.temperature);
+  f(bodies.heatCapacity);
+  f(bodies.conductivity);
+  f(bodies.thermalExpansion);
 }
 
 /// Bytes of one packed row: every per-body field, then the global id.

@@ -18,6 +18,8 @@ namespace talus::dem
 /// - read particle state as arrays indexed by body id (spans over the core's own storage, no
 ///   copies; valid until bodies are added): positions, velocities, angular velocities, radii,
 ///   masses, and which ids are live spheres; the contact list, read only;
+/// - read and write the bodies' heat (temperature, heat capacity, conductivity, expansion
+///   coefficient: Yade's ThermalState), one value per body id, NaN where not given;
 /// - change the spheres' radii (`growSpheres`: thermal expansion);
 /// - apply forces and torques: `persistentForces()` keeps a value until the coupling changes it
 ///   (Yade's permanent forces), `stepForces()` is this step's accumulator, reset by the
@@ -55,6 +57,20 @@ public:
     const auto i = static_cast<std::size_t>(id);
     return i < scene_.bodies.size() && scene_.bodies.alive[i] && scene_.bodies.shape[i] == ShapeKind::Sphere;
   }
+
+  /// Per body id, writable: temperature (K or °C, as the user's values), specific heat capacity
+  /// (J/(kg K)), conductivity (W/(m K)) and linear thermal expansion coefficient (1/K). NaN where
+  /// not given: a heat model gives its defaults to those of the bodies it covers, and every
+  /// component reads and changes the same values (a coupling heating the particles, output).
+  /// @return spans over the core's storage, one entry per body id, valid until bodies are added
+  [[nodiscard]] std::span<double> temperatures() { return scene_.bodies.temperature; }
+  [[nodiscard]] std::span<double> heatCapacities() { return scene_.bodies.heatCapacity; }
+  [[nodiscard]] std::span<double> conductivities() { return scene_.bodies.conductivity; }
+  [[nodiscard]] std::span<double> thermalExpansions() { return scene_.bodies.thermalExpansion; }
+  [[nodiscard]] std::span<const double> temperatures() const { return scene_.bodies.temperature; }
+  [[nodiscard]] std::span<const double> heatCapacities() const { return scene_.bodies.heatCapacity; }
+  [[nodiscard]] std::span<const double> conductivities() const { return scene_.bodies.conductivity; }
+  [[nodiscard]] std::span<const double> thermalExpansions() const { return scene_.bodies.thermalExpansion; }
 
   /// The contact list, read only (pairs, overlaps, forces): for exchanges through the contacts,
   /// such as heat conduction between particles.

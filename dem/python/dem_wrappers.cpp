@@ -305,6 +305,11 @@ PYBIND11_MODULE(_dem, m)
       .def("inertia", [](py::object self) { return readOnly(view3(self.cast<Scene&>().bodies.inertia, self)); })
       .def("mass", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.mass, self)); })
       .def("radius", [](py::object self) { return readOnly(view1(self.cast<Scene&>().bodies.radius, self)); })
+      // The bodies' heat (Yade's ThermalState: temp, Cp, k, alpha), NaN where not given.
+      .def("temperature", [](py::object self) { return view1(self.cast<Scene&>().bodies.temperature, self); })
+      .def("heatCapacity", [](py::object self) { return view1(self.cast<Scene&>().bodies.heatCapacity, self); })
+      .def("conductivity", [](py::object self) { return view1(self.cast<Scene&>().bodies.conductivity, self); })
+      .def("thermalExpansion", [](py::object self) { return view1(self.cast<Scene&>().bodies.thermalExpansion, self); })
       // Bodies the per-body arrays hold room for before their storage moves (and views go stale).
       .def("bodySpareCapacity",
            [](const Scene& s) {
@@ -312,7 +317,8 @@ PYBIND11_MODULE(_dem, m)
              std::size_t spare = b.pos.capacity() - b.pos.size();
              for (const std::vector<Vec3>* v : {&b.vel, &b.angVel, &b.force, &b.torque, &b.extForce, &b.extTorque})
                spare = std::min(spare, v->capacity() - v->size());
-             for (const std::vector<double>* v : {&b.mass, &b.radius})
+             for (const std::vector<double>* v :
+                  {&b.mass, &b.radius, &b.temperature, &b.heatCapacity, &b.conductivity, &b.thermalExpansion})
                spare = std::min(spare, v->capacity() - v->size());
              return spare;
            })

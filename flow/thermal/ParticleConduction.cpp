@@ -12,11 +12,14 @@ namespace talus::flow::thermal
 void ParticleConduction::resize()
 {
   const std::size_t n = exchange_.radii().size();
-  if (temperature.size() >= n)
+  if (boundary.size() >= n)
     return;
-  temperature.resize(n, initialTemperature);
-  conductivity.resize(n, defaultConductivity);
-  heatCapacity.resize(n, defaultHeatCapacity);
+  for (const auto& [field, value] : {std::pair{exchange_.temperatures(), initialTemperature},
+                                     std::pair{exchange_.conductivities(), defaultConductivity},
+                                     std::pair{exchange_.heatCapacities(), defaultHeatCapacity}})
+    for (std::size_t i = boundary.size(); i < n; ++i)
+      if (std::isnan(field[i]))
+        field[i] = value;
   boundary.resize(n, -1);
 }
 
@@ -32,7 +35,7 @@ void ParticleConduction::imposeTemperature(int k, const std::vector<dem::BodyId>
                                   " is not a live sphere");
     const auto i = static_cast<std::size_t>(id);
     boundary[i] = static_cast<std::int8_t>(k);
-    temperature[i] = value;
+    exchange_.temperatures()[i] = value;
   }
 }
 
@@ -76,6 +79,7 @@ double ParticleConduction::contactConductance(const dem::Contact& c) const
   const auto i1 = static_cast<std::size_t>(c.id1), i2 = static_cast<std::size_t>(c.id2);
   const auto radii = exchange_.radii();
   const double r1 = radii[i1], r2 = radii[i2];
+  const auto conductivity = exchange_.conductivities();
   const double k = conductivity[i1] + conductivity[i2];
   const double d = r1 + r2 - c.penetration; // distance between the centres
   if (d <= 0)
@@ -95,14 +99,15 @@ double ParticleConduction::heatCapacityOf(dem::BodyId id) const
   const double r = exchange_.radii()[i];
   const double mass = particleDensity > 0 ? particleDensity * 4.0 / 3.0 * std::numbers::pi * r * r * r
                                           : exchange_.masses()[i];
-  return mass * heatCapacity[i];
+  return mass * exchange_.heatCapacities()[i];
 }
 
 void ParticleConduction::computeRates()
 {
   resize();
-  rate_.assign(temperature.size(), 0.0);
-  conductance_.assign(temperature.size(), 0.0);
+  const auto temperature = exchange_.temperatures();
+  rate_.assign(boundary.size(), 0.0);
+  conductance_.assign(boundary.size(), 0.0);
   // Serial over the contact list (sorted by pair): the sums do not depend on threads.
   for (const dem::Contact& c : exchange_.contacts().list)
   {
@@ -134,7 +139,7 @@ void ParticleConduction::computeStableStep()
 {
   stableStep_ = std::numeric_limits<double>::infinity();
   limitingBody_ = -1;
-  for (std::size_t i = 0; i < temperature.size(); ++i)
+  for (std::size_t i = 0; i < boundary.size(); ++i)
   {
     if (conductance_[i] <= 0 || boundary[i] >= 0)
       continue;
@@ -142,7 +147,7 @@ void ParticleConduction::computeStableStep()
     if (!(capacity > 0))
       throw std::invalid_argument("ThermalEngine: sphere " + std::to_string(i) + " has no heat capacity (mass " +
                                   std::to_string(exchange_.masses()[i]) + " kg, particleCp " +
-                                  std::to_string(heatCapacity[i]) + " J/(kg K)): give it a mass or set particleDensity");
+                                  std::to_string(exchange_.heatCapacities()[i]) + " J/(kg K)): give it a mass or set particleDensity");
     if (capacity / conductance_[i] < stableStep_)
     {
       stableStep_ = capacity / conductance_[i];
@@ -158,6 +163,7 @@ void ParticleConduction::applyRates(double dt)
     for (const auto& [id, rate] : heatFlux_[k])
       if (boundary[static_cast<std::size_t>(id)] < 0)
         boundaryFlux_[k] += rate; // the heat given through a flux boundary (W, into the packing)
+  const auto temperature = exchange_.temperatures();
   for (std::size_t i = 0; i < rate_.size(); ++i)
   {
     if (conductance_[i] <= 0 && rate_[i] == 0)

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,8 +37,10 @@ enum class ContactConductance : std::uint8_t
 /// for scenes with scaled densities). Particles of a temperature boundary keep their
 /// temperature; the heat they receive is summed per boundary.
 ///
-/// Per-body arrays are indexed by body id and grow with the scene; bodies that are not live
-/// spheres are left out of every sum.
+/// The temperatures, conductivities and heat capacities are the DEM's per-body fields, read and
+/// written through the particle exchange interface (other components see and change the same
+/// values); this model gives its defaults to the bodies whose fields are NaN (not given) when it
+/// first covers them. Bodies that are not live spheres are left out of every sum.
 class ParticleConduction : public HeatModel
 {
 public:
@@ -50,12 +53,17 @@ public:
   double particleDensity = 0;
   ContactConductance conductance = ContactConductance::Radii;
 
-  /// Per body: temperature (K or °C, as the user's values), conductivity (W/(m K)) and specific
-  /// heat capacity (J/(kg K)); the boundary whose temperature it keeps, -1 for none.
-  std::vector<double> temperature, conductivity, heatCapacity;
+  /// Per body id (the DEM's fields): temperature (K or °C, as the user's values), conductivity
+  /// (W/(m K)) and specific heat capacity (J/(kg K)).
+  [[nodiscard]] std::span<double> temperatures() { return exchange_.temperatures(); }
+  [[nodiscard]] std::span<const double> temperatures() const { return exchange_.temperatures(); }
+  [[nodiscard]] std::span<const double> conductivities() const { return exchange_.conductivities(); }
+  [[nodiscard]] std::span<const double> heatCapacities() const { return exchange_.heatCapacities(); }
+  /// Per body covered: the boundary whose temperature it keeps, -1 for none.
   std::vector<std::int8_t> boundary;
 
-  /// Give every body an entry (new ones get the defaults above).
+  /// Cover the bodies added since the last call: give them a boundary entry, and the defaults
+  /// above to those of their fields that are NaN (not given); the others keep their values.
   void resize();
   /// Hold `ids` at `value` as particles of boundary `k` (0..5).
   /// @param k the boundary, 0..5 (Yade's wall order: xmin, xmax, ymin, ymax, zmin, zmax)

@@ -184,7 +184,7 @@ void PoreHeat::computeRates()
       const auto id = static_cast<dem::BodyId>(s.id);
       const double nusseltK = params.poreReynolds ? poreNusseltK_[i] : params.nusseltK;
       const double g = nusseltK / (2 * s.radius) * sphereArea_[i][k];
-      const double q = g * (temperature_[i] - particles_.temperature[static_cast<std::size_t>(id)]); // into the sphere
+      const double q = g * (temperature_[i] - particles_.temperatures()[static_cast<std::size_t>(id)]); // into the sphere
       if (free(i))
       {
         rate_[i] -= q;

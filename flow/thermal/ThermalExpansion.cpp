@@ -14,20 +14,26 @@ namespace talus::flow::thermal
 void ThermalExpansion::resize()
 {
   particles_.resize();
-  const std::size_t n = particles_.temperature.size();
-  if (alpha.size() < n)
-    alpha.resize(n, defaultAlpha);
+  const std::size_t n = particles_.boundary.size();
   if (sphereMark.size() < n)
+  {
+    const auto alpha = exchange_.thermalExpansions();
+    for (std::size_t i = sphereMark.size(); i < n; ++i)
+      if (std::isnan(alpha[i]))
+        alpha[i] = defaultAlpha;
     sphereMark.resize(n, std::numeric_limits<double>::quiet_NaN());
+  }
+  const auto temperature = particles_.temperatures();
   for (std::size_t i = 0; i < n; ++i)
     if (std::isnan(sphereMark[i]))
-      sphereMark[i] = particles_.temperature[i];
+      sphereMark[i] = temperature[i];
 }
 
 void ThermalExpansion::mark(const PoreHeat* fluid)
 {
   resize();
-  sphereMark.assign(particles_.temperature.begin(), particles_.temperature.end());
+  const auto temperature = particles_.temperatures();
+  sphereMark.assign(temperature.begin(), temperature.begin() + static_cast<std::ptrdiff_t>(sphereMark.size()));
   poreMark_ = fluid ? fluid->temperatures() : std::vector<double>{};
   markedMesh_ = fluid ? fluid->mesh() : nullptr;
 }
@@ -54,9 +60,13 @@ void ThermalExpansion::apply(double span, const PoreHeat* fluid, pore::PoreFlow*
   const auto radii = exchange_.radii();
   std::vector<double> change(radii.size(), 0.0);
   if (params.particles)
-    for (std::size_t i = 0; i < change.size() && i < particles_.temperature.size(); ++i)
+  {
+    const auto temperature = particles_.temperatures();
+    const auto alpha = exchange_.thermalExpansions();
+    for (std::size_t i = 0; i < change.size() && i < sphereMark.size(); ++i)
       if (exchange_.isSphere(static_cast<dem::BodyId>(i)) && particles_.boundary[i] < 0)
-        change[i] = alpha[i] * radii[i] * (particles_.temperature[i] - sphereMark[i]);
+        change[i] = alpha[i] * radii[i] * (temperature[i] - sphereMark[i]);
+  }
   // the volumes the spheres take before they grow (solid angles of the network's corners)
   rates_.clear();
   if (flow && flow->built() && (params.solidVolume || params.fluid))

@@ -52,12 +52,13 @@ public:
   ExpansionParameters params;
   /// Linear expansion coefficient of new spheres (Yade's particleAlpha), 1/K.
   double defaultAlpha = 1.16e-5;
-  /// Per body: linear expansion coefficient (Yade's state.alpha).
-  std::vector<double> alpha;
-  /// Per body: the temperature the radius corresponds to (NaN: not marked yet).
+  /// Per body covered: the temperature the radius corresponds to (NaN: not marked yet). The
+  /// linear expansion coefficients are the DEM's per-body field (state.alpha), read through the
+  /// particle exchange interface.
   std::vector<double> sphereMark;
 
-  /// Give every body an entry (new ones get defaultAlpha and their current temperature).
+  /// Cover the bodies added since the last call (defaultAlpha to those whose coefficient is NaN,
+  /// not given), and mark those not marked yet at their current temperature.
   void resize();
   /// Take the current temperatures (spheres, and pores of `fluid` if given) as the reference.
   /// @param fluid the pore temperatures, or null (spheres only)

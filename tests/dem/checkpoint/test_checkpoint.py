@@ -93,8 +93,8 @@ def test_layout_is_covered():
     # Not stored: Bodies::blockContact and particleContact (Ig2_PB_PB_ScGeom's and
     # Ig2_PP_PP_ScGeom's settings, restored with the engines) and ContactExtra::contactArea
     # (recomputed by the geometry every step before the law reads it).
-    assert _dem.layout_sizes() == {"Contact": 256, "Material": 216, "Bodies": 744, "WallShape": 8,
-                                   "FacetShape": 104, "Cell": 296, "Scene": 1608, "ContactExtra": 288,
+    assert _dem.layout_sizes() == {"Contact": 256, "Material": 216, "Bodies": 840, "WallShape": 8,
+                                   "FacetShape": 104, "Cell": 296, "Scene": 1704, "ContactExtra": 288,
                                    "EnergyTracker": 144}
 
 

@@ -64,6 +64,10 @@ void appendBody(RankBodies& into, GlobalId id)
   b.damped[i] = static_cast<std::uint8_t>(rng() % 2);
   b.alive[i] = static_cast<std::uint8_t>(1 + rng() % 2);
   b.groupMask[i] = static_cast<int>(1 + rng() % 255);
+  b.temperature[i] = 300.0 + 50.0 * u(rng);
+  b.heatCapacity[i] = 700.0 + u(rng);
+  b.conductivity[i] = 2.0 + u(rng);
+  b.thermalExpansion[i] = 1e-5 * (1.0 + u(rng));
   into.globalId.push_back(id);
 }
 
@@ -111,6 +115,8 @@ std::uint64_t checksum(const RankBodies& r, std::size_t i)
   add(&b.alive[i], 1);
   add(&b.clumpId[i], sizeof(BodyId));
   add(&b.groupMask[i], sizeof(int));
+  for (const double* heat : {&b.temperature[i], &b.heatCapacity[i], &b.conductivity[i], &b.thermalExpansion[i]})
+    add(heat, sizeof(double));
   add(&r.globalId[i], sizeof(GlobalId));
   return h;
 }
@@ -124,7 +130,8 @@ bool sizesAgree(const RankBodies& r)
        {b.pos.size(), b.vel.size(), b.angVel.size(), b.ori.size(), b.angMom.size(), b.force.size(), b.torque.size(),
         b.extForce.size(), b.extTorque.size(), b.mass.size(), b.inertia.size(), b.radius.size(), b.shape.size(),
         b.shapeIndex.size(), b.material.size(), b.blockedDofs.size(), b.dynamic.size(), b.damped.size(),
-        b.alive.size(), b.clumpId.size(), b.groupMask.size()})
+        b.alive.size(), b.clumpId.size(), b.groupMask.size(), b.temperature.size(), b.heatCapacity.size(),
+        b.conductivity.size(), b.thermalExpansion.size()})
     if (size != n)
       return false;
   return true;

@@ -75,3 +75,24 @@ TEST(Exchange, HooksRunAtTheirPeriodAndPlace)
   ParticleExchange none(empty);
   EXPECT_THROW(none.addHook(ParticleExchange::HookPoint::AfterForces, [] {}), std::logic_error);
 }
+
+TEST(Exchange, HeatIsNotGivenUntilAComponentWritesItAndEveryCopySeesIt)
+{
+  Scene scene = fallingSphere();
+  scene.addSphere(Vec3(0, 0, 2), 0.1, 0);
+  ParticleExchange heater(scene), reader(scene);
+  for (const auto field : {reader.temperatures(), reader.heatCapacities(), reader.conductivities(),
+                           reader.thermalExpansions()})
+    for (const double x : field)
+      EXPECT_TRUE(std::isnan(x)); // a scene without heat: nothing given
+  heater.temperatures()[1] = 350.0;
+  heater.conductivities()[0] = 2.0;
+  for (int k = 0; k < 10; ++k) // a step neither reads nor changes them
+    scene.step();
+  EXPECT_EQ(reader.temperatures()[1], 350.0);
+  EXPECT_TRUE(std::isnan(reader.temperatures()[0]));
+  EXPECT_EQ(reader.conductivities()[0], 2.0);
+  const BodyId added = scene.addSphere(Vec3(0, 0, 3), 0.1, 0);
+  EXPECT_EQ(reader.temperatures().size(), 3U);
+  EXPECT_TRUE(std::isnan(reader.temperatures()[static_cast<std::size_t>(added)]));
+}

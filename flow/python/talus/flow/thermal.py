@@ -49,9 +49,9 @@ import warnings
 import numpy as np
 
 from talus import _flow
+from talus.dem.core import heat as body_heat
 from talus.dem.step.engines import Engine, PyRunner
-
-ABSOLUTE_ZERO = -273.15   # °C: Yade's scripts use °C or K, so no temperature may go below it
+from talus.flow import stray_attributes
 
 # Yade 2023.02a's parameters of ThermalEngine and their defaults, by how Talus treats them.
 _IMPLEMENTED = {
@@ -99,8 +99,9 @@ def _number(name: str, value) -> float:
 
 def _temperature(name: str, value) -> float:
     t = _number(name, value)
-    if t < ABSOLUTE_ZERO:
-        raise ValueError(f"{name} = {t} is below absolute zero (-273.15 °C, 0 K)")
+    error = body_heat.below_absolute_zero(name, t)
+    if error is not None:
+        raise error
     return t
 
 
@@ -147,14 +148,6 @@ def _check_sides(bndCondIsTemperature, thermalBndCondValue):
             _temperature(f"ThermalEngine.thermalBndCondValue[{k}]", value)
 
 
-def _per_body(field: str, parameter: str, value) -> float:
-    """A per-body value (state.k, state.Cp) under the rule of the engine's parameter."""
-    try:
-        return _check(parameter, value)
-    except (TypeError, ValueError) as e:
-        raise type(e)(str(e).replace(f"ThermalEngine.{parameter}", f"state.{field}")) from None
-
-
 def _porosity(scene) -> float:
     """Porosity of the spheres in their bounding box (Yade's Shop::getPorosityAlt, which its
     per-pore Nusselt correlation uses)."""
@@ -180,8 +173,11 @@ def _decode(text: str) -> np.ndarray:
 class ThermalEngine(Engine):
     """Heat conduction between particles with Yade's ThermalEngine names (see the module
     docstring). Placed in ``O.engines`` after the FlowEngine (Yade's order) and before the
-    NewtonIntegrator; every sphere of the scene gets ``state.temp``, ``state.k``, ``state.Cp``
-    (Yade's ThermalState) and ``state.Tcondition`` (read only: held by a boundary).
+    NewtonIntegrator; every body of the scene whose ``state.temp``, ``state.k``, ``state.Cp``,
+    ``state.alpha`` (Yade's ThermalState: per-body fields of the DEM core, which other components
+    read and change too) are not given gets ``particleT0``, ``particleK``, ``particleCp``,
+    ``particleAlpha`` at its steps; ``state.Tcondition`` (read only) says a sphere is held by a
+    boundary.
 
     Time step (``tsSafetyFactor``): <= 0, conduction each step with O.dt, and a run whose O.dt is
     above the stable conduction step stops with a message; in (0, 1] (default 0.8, as Yade),
@@ -205,7 +201,6 @@ class ThermalEngine(Engine):
         self._schedule = _flow.ConductionSchedule()
         self._started = False
         self._marked = False         # the expansion's reference temperatures are taken
-        self._userSet: set[int] = set()     # bodies whose fields were set before the first step
         self._pendingState = None    # a checkpoint's state, applied once the scene is known
         self._poreHeat = None        # (FlowEngine, its pore temperatures) with advection
         self._pendingPores = None    # a checkpoint's pore centres and temperatures
@@ -217,6 +212,7 @@ class ThermalEngine(Engine):
         self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp
         for name, value in attrs.items():
             setattr(self, name, value)
+        self._constructed = True    # an unknown attribute from now on: see stray_attributes
 
     # --- Yade's attributes ----------------------------------------------------------------
     def __setattr__(self, name, value):
@@ -224,7 +220,8 @@ class ThermalEngine(Engine):
             object.__setattr__(self, name, value)
             return
         if name not in self._params:
-            raise AttributeError(f"ThermalEngine has no attribute {name!r}")
+            stray_attributes.refuse_or_keep(self, "ThermalEngine", name, value, self._params)
+            return
         value = _check(name, value)
         if name in _PLANNED_SWITCHES and value:
             raise _planned(name)
@@ -254,7 +251,7 @@ class ThermalEngine(Engine):
     @property
     def lenBodies(self) -> int:
         """Bodies the per-body arrays cover (Yade's)."""
-        return 0 if self._conduction is None else len(self._conduction.temperatures())
+        return 0 if self._conduction is None else len(self._conduction.boundaries())
 
     def getThermalDT(self) -> float:
         """Time covered by the last conduction run (Yade's)."""
@@ -269,8 +266,8 @@ class ThermalEngine(Engine):
         return self._schedule.conductionIterPeriod()
 
     def checkThermal(self) -> bool:
-        """Yade's: whether every body has a thermal state. Always True in Talus: the engine holds
-        the temperatures of every body."""
+        """Yade's: whether every body has a thermal state. Always True in Talus: every body has
+        the DEM's heat fields."""
         return True
 
     def makeThermal(self) -> None:
@@ -297,7 +294,6 @@ class ThermalEngine(Engine):
             if self._pendingState is not None:
                 self._restore(self._pendingState)
                 self._pendingState = None
-        self._expansion.resize()
         return self._conduction
 
     def _push_parameters(self):
@@ -318,8 +314,9 @@ class ThermalEngine(Engine):
         e.params = expansion
 
     def _start(self, scene):
-        """First step: refuse the planned physics left on, and give every sphere Yade's initial
-        values (particleT0, particleK, particleCp) except the fields set by hand before."""
+        """First step: refuse the planned physics left on, and give every body Yade's initial
+        values (particleT0, particleK, particleCp, particleAlpha) where its fields are not given
+        (Yade overwrites them all; Talus keeps values set by hand or by another component)."""
         on = [name for name in _PLANNED_SWITCHES if self._params[name]]
         if on:
             raise NotImplementedError(
@@ -335,14 +332,8 @@ class ThermalEngine(Engine):
                 raise ValueError(f"ThermalEngine.fluidK = {self._params['fluidK']}: the fluid's conductivity must be > 0 "
                                  "with advection (its Prandtl number divides by it)")
             self._flow_engine(scene, "ThermalEngine.advection")
-        c, e = self._state(), self._expansion
-        keep = np.zeros(len(c.temperatures()), dtype=bool)
-        keep[[i for i in self._userSet if i < len(keep)]] = True
-        for getter, setter, default in ((c.temperatures, c.setTemperatures, self._params["particleT0"]),
-                                        (c.conductivities, c.setConductivities, self._params["particleK"]),
-                                        (c.heatCapacities, c.setHeatCapacities, self._params["particleCp"]),
-                                        (e.alphas, e.setAlphas, self._params["particleAlpha"])):
-            setter(np.where(keep, getter(), default))
+        self._state()
+        self._expansion.resize()
         if self._params["thermoMech"]:
             self._warn_expansion_without_pores(scene)
         self._started = True
@@ -458,6 +449,7 @@ class ThermalEngine(Engine):
             self._push_parameters()
         if not self._started:
             self._start(scene)
+        self._expansion.resize()   # the bodies added since the last step get the defaults
         if not self._params["boundarySet"]:
             self._set_boundaries(scene)
         model = self._model(scene) if self._params["conduction"] else None
@@ -472,10 +464,8 @@ class ThermalEngine(Engine):
         if model is not None:
             self._schedule.step(model, scene.dt)
         if self._params["delT"] != 0:   # once, to the free spheres, after conduction (Yade's delT)
-            t = c.temperatures()
-            free = np.asarray(c.boundaries()) < 0
-            t[free] += self._params["delT"]
-            c.setTemperatures(t)
+            free = np.flatnonzero(np.asarray(c.boundaries()) < 0)
+            scene._cpp.temperature()[free] += self._params["delT"]
             self._params["delT"] = 0.0
         if expand and self._schedule.counters().runs != runs:
             # after the temperatures and delT of this run, as Yade's thermalExpansion
@@ -483,36 +473,23 @@ class ThermalEngine(Engine):
                 self._params["solidThermoMech"] and self._has_flow(scene)) else None
             self._expansion.apply(self._schedule.thermalDT(), fluid, flow._flow if flow is not None else None)
 
-    # --- per-body fields (state.temp, state.k, state.Cp, state.Tcondition) -------------------
+    # --- per-body fields ------------------------------------------------------------------
+    def _heatDefaults(self) -> dict:
+        """What a body whose heat field is not given has (talus.dem.core.heat): the values this
+        engine gives at its steps."""
+        p = self._params
+        return {"temp": p["particleT0"], "k": p["particleK"], "Cp": p["particleCp"], "alpha": p["particleAlpha"]}
+
     def _bodyFields(self):
-        def field(getter, setter, check):
-            def get(i):
-                self._scene_()._cpp.checkBody(i)
-                return getter(i)
-
-            def set(i, value):
-                self._scene_()._cpp.checkBody(i)
-                setter(i, check(value))
-                if not self._started:
-                    self._userSet.add(i)
-            return get, set
-
         def refuse(i, value):
             raise AttributeError("state.Tcondition is set by ThermalEngine.bndCondIsTemperature, not per body")
 
         c = self._state()
-        return {
-            "temp": field(c.temperatureAt, c.setTemperatureAt, lambda v: _temperature("state.temp", v)),
-            "k": field(c.conductivityAt, c.setConductivityAt, lambda v: _per_body("k", "particleK", v)),
-            "Cp": field(c.heatCapacityAt, c.setHeatCapacityAt, lambda v: _per_body("Cp", "particleCp", v)),
-            "alpha": field(self._expansion.alphaAt, self._expansion.setAlphaAt,
-                           lambda v: _per_body("alpha", "particleAlpha", v)),
-            "Tcondition": (lambda i: c.boundaryAt(i) >= 0, refuse),
-        }
 
-    def _vtkSphereArrays(self, ids):
-        c = self._state()
-        return {"temp": c.temperatures()[ids], "k": c.conductivities()[ids], "Cp": c.heatCapacities()[ids]}
+        def held(i):
+            self._scene_()._cpp.checkBody(i)
+            return c.boundaryAt(i) >= 0
+        return {"Tcondition": (held, refuse)}
 
     # --- checkpoints ------------------------------------------------------------------------
     def _io_params(self):
@@ -524,14 +501,15 @@ class ThermalEngine(Engine):
     def _io_state(self):
         if self._conduction is None:
             return {}
-        c, n = self._conduction, self._schedule.counters()
-        return {"temp": _encode(c.temperatures()), "k": _encode(c.conductivities()), "Cp": _encode(c.heatCapacities()),
+        # the temperatures, k, Cp and alpha are the DEM's; kept here until the DEM's checkpoint does
+        c, n, cpp = self._conduction, self._schedule.counters(), self._scene_()._cpp
+        return {**{key: _encode(getattr(cpp, field)()) for key, field in body_heat.FIELDS.items()},
                 "boundary": [int(b) for b in c.boundaries()], "heat": list(c.boundaryHeat()),
                 "heatFlux": [[[int(i), float(q)] for i, q in c.heatFlux(k)] for k in range(6)],
                 "started": self._started, "boundarySet": self._params["boundarySet"],
                 "values": list(self._params["thermalBndCondValue"]),
                 "counters": [n.runs, n.sinceRun, n.period, n.timeSinceRun, n.thermalDT, n.maxTimeStep],
-                "alpha": _encode(self._expansion.alphas()), "marks": _encode(self._expansion.marks()),
+                "marks": _encode(self._expansion.marks()),
                 "marked": self._marked, **self._io_pores()}
 
     def _io_pores(self) -> dict:
@@ -562,14 +540,17 @@ class ThermalEngine(Engine):
             self._conduction = None
 
     def _restore(self, state):
-        c = self._conduction
+        c, cpp = self._conduction, self._scene_()._cpp
+        # checkpoints written when the engine held the bodies' heat have it here
+        for key in ("temp", "k", "Cp", "alpha"):
+            if key in state:
+                saved, field = _decode(state[key]), getattr(cpp, body_heat.FIELDS[key])()
+                if len(saved) != len(field):
+                    raise ValueError(f"ThermalEngine: the checkpoint holds {key} for {len(saved)} bodies, the scene "
+                                     f"has {len(field)}")
+                field[:] = saved
         c.resize()
-        n = len(c.temperatures())
-        for key, setter in (("temp", c.setTemperatures), ("k", c.setConductivities), ("Cp", c.setHeatCapacities)):
-            saved = _decode(state[key])
-            if len(saved) != n:
-                raise ValueError(f"ThermalEngine: the checkpoint holds {key} for {len(saved)} bodies, the scene has {n}")
-            setter(saved)
+        n = len(c.boundaries())
         boundary = np.asarray(state["boundary"])
         for k in range(6):
             ids = [int(i) for i in np.flatnonzero(boundary == k)]
@@ -587,11 +568,10 @@ class ThermalEngine(Engine):
         self._params["boundarySet"] = state["boundarySet"]
         e = self._expansion
         e.resize()
-        for key, setter in (("alpha", e.setAlphas), ("marks", e.setMarks)):
-            saved = _decode(state[key])
-            if len(saved) != n:
-                raise ValueError(f"ThermalEngine: the checkpoint holds {key} for {len(saved)} bodies, the scene has {n}")
-            setter(saved)
+        saved = _decode(state["marks"])
+        if len(saved) != n:
+            raise ValueError(f"ThermalEngine: the checkpoint holds marks for {len(saved)} bodies, the scene has {n}")
+        e.setMarks(saved)
         if "poreTemp" in state:
             self._pendingPores = (_decode(state["poreCentre"]).reshape(-1, 3), _decode(state["poreTemp"]))
         # the pores' reference temperatures are not kept: the first run after a load marks them anew

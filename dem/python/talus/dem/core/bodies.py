@@ -9,6 +9,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.core.linalg import Quaternion, Vector3
+from talus.dem.core import heat
 from talus.dem.core.masks import group_mask
 from talus.dem.geometry.appearance import DEFAULT_COLOR, check_color
 from talus.dem.core.serializable import Serializable
@@ -330,15 +331,26 @@ class State(Serializable):
     # silently ignored assignment.
     __slots__ = ("_scene", "_id")
     _attributes = ("se3", "vel", "mass", "angVel", "angMom", "inertia", "refPos", "refOri", "blockedDOFs",
-                   "isDamped", "densityScaling")
+                   "isDamped", "densityScaling", "temp", "Cp", "k", "alpha")
 
     def __init__(self, scene: "Scene", id: int):
         object.__setattr__(self, "_scene", scene)
         object.__setattr__(self, "_id", id)
 
-    # Per-body fields an engine of the scene computes (ThermalEngine: temp, k, Cp): Yade keeps them
-    # in the body's state (ThermalState); Talus in the engine, which lists them in _bodyFields()
-    # as name -> (get(id), set(id, value)).
+    # The heat of Yade's ThermalState, per-body fields of the DEM core (talus.dem.core.heat): the
+    # value given, else the default of the scene's heat engine; checked when set.
+    temp = property(lambda s: heat.value_of(s._scene, s._id, "temp"), lambda s, v: heat.assign(s._scene, s._id, "temp", v),
+                    doc="temperature (K or °C, as the script's values); Yade's ThermalState.temp")
+    Cp = property(lambda s: heat.value_of(s._scene, s._id, "Cp"), lambda s, v: heat.assign(s._scene, s._id, "Cp", v),
+                  doc="specific heat capacity, J/(kg K); Yade's ThermalState.Cp")
+    k = property(lambda s: heat.value_of(s._scene, s._id, "k"), lambda s, v: heat.assign(s._scene, s._id, "k", v),
+                 doc="thermal conductivity, W/(m K); Yade's ThermalState.k")
+    alpha = property(lambda s: heat.value_of(s._scene, s._id, "alpha"),
+                     lambda s, v: heat.assign(s._scene, s._id, "alpha", v),
+                     doc="linear thermal expansion coefficient, 1/K; Yade's ThermalState.alpha")
+
+    # Per-body fields an engine of the scene keeps (ThermalEngine: Tcondition), listed by its
+    # _bodyFields() as name -> (get(id), set(id, value)).
     def _engine_field(self, name):
         for engine in self._scene.engines:
             fields = engine._bodyFields() if hasattr(engine, "_bodyFields") else {}
@@ -350,6 +362,8 @@ class State(Serializable):
     def __getattr__(self, name):
         if name.startswith("_"):
             raise AttributeError(name)
+        if name in heat.FIELDS:     # its property raised: the same error, not the generic one
+            return heat.value_of(self._scene, self._id, name)
         return self._engine_field(name)[0](self._id)
 
     def __setattr__(self, name, value):

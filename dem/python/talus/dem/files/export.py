@@ -37,6 +37,7 @@ from talus import _dem
 from talus.atomic import write_atomically
 from talus.dem.step.engines import PyRunner
 from talus.dem.files.io import owner_scene
+from talus.dem.core import heat
 from talus.dem.core.linalg import Quaternion
 from talus.dem.core.scenes import default_scene
 from talus.dem.files.vtu import vtu_bytes
@@ -225,7 +226,8 @@ class VTKRecorder(PyRunner):
     ``{fileName}spheres.pvd`` etc. for ParaView. ``recorders``: any of ``spheres``, ``facets``,
     ``walls``, ``boxes`` (Box bodies as hexahedra, and walls as Yade's ``boxes`` does), ``intr``,
     ``pericell`` (the periodic cell; nothing in a scene that is not periodic), ``thermal`` (the
-    sphere file gets the per-body fields of the scene's ThermalEngine: ``temp``, ``k``, ``Cp``), or
+    sphere file gets the bodies' heat, ``temp``, ``k``, ``Cp``: the values given, or the
+    ThermalEngine's defaults), or
     ``all`` (all but ``pericell``, as Yade's); Yade's ``velocity``, ``ids``, ``colors``,
     ``materialId``, ``mass``, ``force`` are accepted (the sphere file always has them).
     ``wallSize``: side of the squares drawn for walls (default: from the spheres' extent).
@@ -264,7 +266,7 @@ class VTKRecorder(PyRunner):
             if kind == "walls":
                 write_walls(scene, path, self.wallSize)
             elif kind == "spheres" and "thermal" in self.recorders:
-                write_spheres(scene, path, _engine_sphere_arrays(scene))
+                write_spheres(scene, path, heat.sphere_arrays(scene, scene.sphere_ids()))
             else:
                 _WRITERS[kind](scene, path)
             self._collection(kind).add(scene.time, path)
@@ -287,20 +289,6 @@ class VTKRecorder(PyRunner):
     def _io_restore(self, state):
         self._series = {kind: PvdCollection(f"{self.fileName}{kind}.pvd", [tuple(e) for e in entries])
                         for kind, entries in state.items()}
-
-
-def _engine_sphere_arrays(scene: "Scene") -> dict:
-    """The per-sphere arrays engines of ``scene`` add to the sphere file (``_vtkSphereArrays(ids)``:
-    name -> array over the live spheres in id order; ThermalEngine's temperatures)."""
-    ids = scene.sphere_ids()
-    arrays = {}
-    for engine in scene.engines:
-        if hasattr(engine, "_vtkSphereArrays"):
-            arrays.update(engine._vtkSphereArrays(ids))
-    if not arrays:
-        raise ValueError("VTKRecorder: the 'thermal' recorder needs a ThermalEngine in O.engines (no engine gives "
-                         "the spheres temperatures)")
-    return arrays
 
 
 class VTKExporter:
