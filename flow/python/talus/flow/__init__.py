@@ -13,8 +13,9 @@ the 1D vertical VANS fluid resolution (``VansFluid``, the fluid part of Yade's
     print(fluid.vxFluid)
 """
 
+from talus.flow import hydro, stray_attributes
 from talus.flow.coupling import VansCoupling
-from talus.flow.hydro import HydroForceEngine, averageProfile, yade_run_defaults
+from talus.flow.hydro import HydroForceEngine, averageProfile
 from talus.flow.pore import FlowEngine, HiddenSphereWarning
 from talus.flow.periodic import PeriodicFlowEngine
 from talus.flow.phasecluster import PhaseCluster
@@ -24,3 +25,11 @@ from talus.flow.vans import EffectiveViscosity, MixingLength, TopBoundary, VansF
 
 __all__ = ["FlowEngine", "PeriodicFlowEngine", "ThermalEngine", "TwoPhaseFlowEngine", "UnsaturatedEngine", "PhaseCluster", "HiddenSphereWarning", "HydroForceEngine", "averageProfile", "VansCoupling", "VansFluid",
            "MixingLength", "EffectiveViscosity", "TopBoundary", "slope_gravity"]
+
+
+def yade_run_defaults() -> None:
+    """Behave as Yade 2023.02a in a Yade script's run (yade.yade_run_defaults calls it): particles
+    leaving the VANS grid get no fluid force (talus.flow.hydro), and an attribute an engine does
+    not have is kept with a warning instead of refused (talus.flow.stray_attributes)."""
+    hydro.yade_run_defaults()
+    stray_attributes.accept()

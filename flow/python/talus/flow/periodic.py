@@ -37,12 +37,14 @@ class PeriodicFlowEngine(FlowEngine):
 
     def __init__(self, scene=None, **attrs):
         super().__init__(scene)
+        self._constructed = False   # its own keywords follow: an unknown one is an error, as in Yade
         params = self._flow.params
         params.periodic = True
         params.hasBoundary = [False] * 6
         self._flow.params = params
         for name, value in attrs.items():
             setattr(self, name, value)
+        self._constructed = True
 
     def __setattr__(self, name, value):
         if name in ("gradP", "cellSize"):
