@@ -83,12 +83,12 @@ def test_a_refused_handshake_is_reported_once_and_every_process_exits(tmp_path):
     assert done.stderr.count("fluid density mismatch: DEM side rhoFluid = 999") == 1, done.stderr
 
 
-def test_coupling_records_follow_their_particles_to_their_new_process():
+def test_coupling_records_follow_their_particles_to_their_new_process(tmp_path):
     driver = Path(__file__).with_name("records_driver.py")
-    done = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", sys.executable, str(driver)],
-                          capture_output=True, text=True, timeout=60)
+    done = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", sys.executable, str(driver),
+                           str(tmp_path)], capture_output=True, text=True, timeout=60)
     assert done.returncode == 0, done.stderr
-    held = {r["rank"]: r for r in map(json.loads, done.stdout.splitlines())}
+    held = [json.loads((tmp_path / f"records-{rank}.json").read_text()) for rank in (0, 1)]
     # each keeps its own, takes the particle that came over, and has zeros for the new one
     assert held[0]["values"] == [[0, 0], [10, 100], [40, 400]] and held[0]["sent"] == 1
     assert held[1]["values"] == [[20, 200], [30, 300], [0, 0]] and held[1]["sent"] == 1
