@@ -69,6 +69,11 @@ int locateInBox(const PoreNetwork& net, const Vec3& x)
       return -1;
   return locatePore(net, x);
 }
+/// Whether two alphaBound values give the same mesh (every negative value: none).
+bool sameAlphaBound(double a, double b)
+{
+  return (a < 0 && b < 0) || a == b;
+}
 } // namespace
 
 void PoreFlow::build(const std::vector<PoreSphere>& spheres)
@@ -77,14 +82,19 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
   if (params.periodic && params.alphaBound >= 0)
     throw std::invalid_argument("FlowEngine.alphaBound: the alpha-shape boundary needs a box network, not a periodic "
                                 "one (set alphaBound < 0)");
+  if (std::isnan(params.alphaBound))
+    throw std::invalid_argument("FlowEngine.alphaBound must be a number (negative: no alpha-shape boundary)");
   const InsertionOrder order = params.yadeInsertionOrder ? InsertionOrder::Yade : InsertionOrder::Sorted;
+  AlphaBoundary alpha;
   PoreNetwork fresh = params.periodic ? triangulatePeriodic(spheres, boundaries(spheres), params.hasBoundary,
                                                             params.cellSize, params.duplicateThreshold, order)
-                                      : triangulate(spheres, boundaries(spheres), order);
+                      : params.alphaBound >= 0 ? triangulateAlphaShape(spheres, params.alphaBound, alpha)
+                                               : triangulate(spheres, boundaries(spheres), order);
   std::vector<double> p = carriedPressures(fresh);
   net_ = std::move(fresh);
   p_ = std::move(p);
-  alpha_ = AlphaBoundary{}; // the new network's alpha shape: at applyBoundaryTypes
+  alpha_ = std::move(alpha);
+  alphaBuilt_ = params.alphaBound;
   lubricationMeshed_ = false;
   const PoreNetwork& net = *net_;
   dv_.assign(net.pores.size(), 0.0);
@@ -275,7 +285,8 @@ void PoreFlow::placeVertices(const std::vector<Vec3>& spherePositions,
   for (std::size_t v = kBoundaries + net.nSpheres; v < net.vertices.size(); ++v)
   {
     Vertex& image = net.vertices[v];
-    image.pos = net.vertices[static_cast<std::size_t>(image.image)].pos + net.shift(image.period);
+    if (image.image >= 0) // alpha vertices stay where the mesh put them
+      image.pos = net.vertices[static_cast<std::size_t>(image.image)].pos + net.shift(image.period);
   }
   for (int k = 0; k < kBoundaries; ++k)
     net.boundaries[static_cast<std::size_t>(k)].position = boundaryPositions[static_cast<std::size_t>(k)];
@@ -325,7 +336,7 @@ void PoreFlow::computeHydraulics()
   for (int k = 0; k < kBoundaries; ++k)
     net.boundaries[static_cast<std::size_t>(k)].imposedPressure = params.bndCondIsPressure[static_cast<std::size_t>(k)];
   computeGeometry(net, params.slipBoundary);
-  globalK_ = computeConductances(net, params);
+  globalK_ = computeConductances(net, params, alpha_.exteriorPores);
   computeUnitForces();
 }
 
@@ -397,8 +408,11 @@ std::vector<Vec3> PoreFlow::vertexForces() const
     }
   // images pass their force to the sphere they copy
   for (std::size_t v = kBoundaries + net.nSpheres; v < net.vertices.size(); ++v)
-    f[static_cast<std::size_t>(net.vertices[v].image)] += f[v];
-  f.resize(kBoundaries + net.nSpheres);
+    if (net.vertices[v].image >= 0)
+      f[static_cast<std::size_t>(net.vertices[v].image)] += f[v];
+  f.resize(kBoundaries + net.nSpheres); // alpha vertices are no bodies
+  if (alphaBuilt_ >= 0)
+    std::fill(f.begin(), f.begin() + kBoundaries, Vec3::Zero()); // the box is no boundary then
   return f;
 }
 
@@ -407,25 +421,16 @@ void PoreFlow::applyBoundaryTypes()
   // As Yade's initializePressure: every pore touching a pressure boundary takes its value; a
   // pore touching two takes the later one in the order xmin .. zmax.
   imposed_.assign(net_->pores.size(), 0);
-  const bool alphaShaped = params.alphaBound >= 0;
-  if (alphaShaped)
-  {
-    // the alpha shape replaces the box: its walls' conditions do not apply
-    if (alphaBuilt_ != params.alphaBound || alpha_.exteriorPores.empty())
-      alpha_ = alphaBoundary(*net_, params.alphaBound);
-    imposed_ = alpha_.exteriorPores;
-  }
+  if (!sameAlphaBound(alphaBuilt_, params.alphaBound))
+    throw std::invalid_argument("FlowEngine.alphaBound changed since the triangulation: triangulate again (the alpha "
+                                "vertices are part of the mesh)");
+  if (params.alphaBound >= 0)
+    imposed_ = alpha_.exteriorPores; // the alpha shape replaces the box: its conditions do not apply
   else
-  {
-    if (std::isnan(params.alphaBound))
-      throw std::invalid_argument("FlowEngine.alphaBound must be a number (negative: no alpha-shape boundary)");
-    alpha_ = AlphaBoundary{};
     for (int k = 0; k < kBoundaries; ++k)
       if (params.bndCondIsPressure[static_cast<std::size_t>(k)])
         for (int pi : net_->boundaryPores[static_cast<std::size_t>(k)])
           imposed_[static_cast<std::size_t>(pi)] = 1;
-  }
-  alphaBuilt_ = params.alphaBound;
   for (std::size_t n = 0; n < points_.size(); ++n)
   {
     points_[n].pore = locateInBox(*net_, points_[n].pos);
@@ -455,8 +460,8 @@ void PoreFlow::solve()
   if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
     throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
   const bool compressible = params.fluidBulkModulus > 0;
-  if (builtTypes_ != params.bndCondIsPressure || alphaBuilt_ != params.alphaBound)
-    updateConductances(); // boundary types enter the hydraulic radii and the matrix
+  if (builtTypes_ != params.bndCondIsPressure || !sameAlphaBound(alphaBuilt_, params.alphaBound))
+    updateConductances(); // (a changed alphaBound is refused there: it needs a new mesh) // boundary types enter the hydraulic radii and the matrix
   else if (pointsChanged_ || compressible || storageInMatrix_)
     applyBoundaryTypes(); // the storage term follows the void volumes and dt (same pattern: the
                           // symbolic analysis is kept, only the numeric factor is redone)

@@ -52,9 +52,10 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
   bool yadeInsertionOrder = false;
 
   // --- alpha-shape boundary (Yade's alphaBound, alphaBoundValue) ---
-  /// < 0 (default -1): the box's boundaries; >= 0: the pores outside the alpha shape of the
-  /// spheres (AlphaBoundary.h) take the pressure alphaBoundValue and the box's conditions are
-  /// ignored; 0 lets CGAL choose the smallest alpha giving one solid (m^2)
+  /// < 0 (default -1): the box's boundaries; >= 0: the network is triangulated with alpha
+  /// vertices over the alpha shape of the spheres (AlphaBoundary.h), the pores they touch take
+  /// the pressure alphaBoundValue and the box's conditions are ignored; 0 lets CGAL choose the
+  /// smallest alpha giving one solid (m^2). Read at the triangulation.
   double alphaBound = -1;
   double alphaBoundValue = 0;
 };

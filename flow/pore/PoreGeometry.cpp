@@ -344,8 +344,11 @@ void computeGeometry(PoreNetwork& net, bool slipBoundary)
   }
 }
 
-double computeConductances(PoreNetwork& net, const ConductanceParameters& params)
+double computeConductances(PoreNetwork& net, const ConductanceParameters& params, const std::vector<char>& outside)
 {
+  const auto between = [&outside](const Throat& t) {
+    return !outside.empty() && outside[static_cast<std::size_t>(t.pores[0])] && outside[static_cast<std::size_t>(t.pores[1])];
+  };
   if (!(params.viscosity > 0))
     throw std::invalid_argument("FlowEngine.viscosity must be positive");
   if (params.permeabilityFactor == 0)
@@ -354,8 +357,12 @@ double computeConductances(PoreNetwork& net, const ConductanceParameters& params
   double sumL = 0;
   double vPoral = 0;
   double sSolid = 0;
+  std::size_t counted = 0;
   for (Throat& t : net.throats)
   {
+    if (between(t))
+      continue;
+    ++counted;
     const double diameter = 2 * t.hydraulicRadius;
     if (params.permeabilityFactor > 0)
       t.conductance = params.permeabilityFactor * t.fluidArea * diameter * diameter / (8 * params.viscosity * t.length);
@@ -370,13 +377,15 @@ double computeConductances(PoreNetwork& net, const ConductanceParameters& params
     vPoral += t.poreVolume;
     sSolid += t.solidSurface;
   }
-  const double n = static_cast<double>(net.throats.size());
+  const double n = static_cast<double>(counted);
   const double globalK = params.permeabilityFactor > 0
                              ? params.permeabilityFactor * (sumL / n) * vPoral / (sSolid * 8 * params.viscosity)
                              : sumK / n;
   for (Throat& t : net.throats)
   {
-    if (params.clampKValues)
+    if (between(t))
+      t.conductance = 0;
+    else if (params.clampKValues)
       t.conductance = std::isnan(t.conductance)
                           ? params.minKdivKmean * globalK
                           : std::clamp(t.conductance, params.minKdivKmean * globalK, params.maxKdivKmean * globalK);

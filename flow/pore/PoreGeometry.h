@@ -41,7 +41,10 @@ void updatePoreVolumes(PoreNetwork& net, bool voids);
 /// Throat conductances k = permeabilityFactor * A_f * (2 R_h)^2 / (8 mu L), clamped as Yade does.
 /// @param net the network, its throats' conductances written
 /// @param params Yade's FlowEngine options that enter them
+/// @param outside per pore, 1 for a pore outside the packing (the alpha shape's exterior; empty:
+///        none): a throat between two such pores gets conductance 0 and stays out of the means
+///        (both pores are imposed; Yade computes no conductance there)
 /// @return the reference value the clamping used (Yade's "globalK")
 /// @throws std::invalid_argument if the viscosity is not positive or permeabilityFactor is 0
-double computeConductances(PoreNetwork& net, const ConductanceParameters& params);
+double computeConductances(PoreNetwork& net, const ConductanceParameters& params, const std::vector<char>& outside = {});
 } // namespace talus::flow::pore

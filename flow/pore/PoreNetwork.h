@@ -50,6 +50,9 @@ struct Vertex
   /// `period` cells (pos = vertices[image].pos + period * cell size).
   int image = -1;
   Vec3i period = Vec3i::Zero();
+  /// An alpha vertex (AlphaBoundary.h): a fictitious sphere over the alpha shape of the
+  /// packing, after the real spheres (and not counted in nSpheres); its pores are outside.
+  bool alpha = false;
 };
 
 /// A pore: a finite tetrahedron.
