@@ -31,7 +31,6 @@ section "Pore-scale flow".
 
 from __future__ import annotations
 
-import difflib
 import math
 import os
 import warnings
@@ -41,6 +40,7 @@ import numpy as np
 
 from talus import _flow
 from talus.dem.step.engines import Engine, PyRunner, asCallback
+from talus.flow import stray_attributes
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
 # engine step counts and their smallest allowed values (None: any; meshUpdateInterval <= 0 never
@@ -53,7 +53,8 @@ _ENGINE_COUNTS = {"meshUpdateInterval": None, "backgroundSteps": 0}
 _ENGINE_FLAGS = {"decoupleForces": False, "debug": False, "getCHOLMODPerfTimings": False, "permeabilityMap": False}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
-            "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness", "pZero")
+            "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness", "pZero",
+            "alphaBound", "alphaBoundValue")
 
 # Yade's FlowEngine attributes of the thermal coupling (the pore temperatures ThermalEngine
 # advances when its ``advection`` is on) and their defaults
@@ -63,7 +64,7 @@ _THERMAL_ATTRIBUTES = {"thermalEngine": False, "tZero": 0.0, "fluidRho": 1000.0,
 
 # the real numbers among them (the others are flags and the solver's number)
 _REALS = ("permeabilityFactor", "viscosity", "minKdivKmean", "maxKdivKmean", "tolerance", "relax",
-          "fluidBulkModulus", "eps", "stiffness", "pZero")
+          "fluidBulkModulus", "eps", "stiffness", "pZero", "alphaBound", "alphaBoundValue")
 
 
 def _finite_number(name: str, value) -> float:
@@ -174,6 +175,7 @@ class FlowEngine(Engine):
         self._defTolerance = 0.0
         self._blockHook = None
         self._multithread = False
+        self._fixedAlpha = False
         self._backgroundSteps = 10
         self._rebuild = False
         self._flags = dict(_ENGINE_FLAGS)
@@ -183,6 +185,7 @@ class FlowEngine(Engine):
         self._cpp.resumable = False   # a failed solve leaves the step without its fluid forces
         for name, value in attrs.items():
             setattr(self, name, value)
+        self._constructed = True    # an unknown attribute from now on: see stray_attributes
 
     # --- parameters: plain attributes mirrored into the C++ parameters -------------------
     def __setattr__(self, name, value):
@@ -215,6 +218,13 @@ class FlowEngine(Engine):
         if name == "multithread":
             self._multithread = bool(value)
             return
+        if name == "fixedAlpha":
+            # Yade's other sizing of the alpha vertices (one size, over every boundary facet)
+            if value:
+                raise ValueError("FlowEngine.fixedAlpha = True (Yade's constant-size alpha vertices) is not implemented "
+                                 "in Talus: its alpha vertices are those of fixedAlpha False (docs/flow.md)")
+            self._fixedAlpha = False
+            return
         if name == "blockHook":
             if value and not (callable(value) or isinstance(value, str)):
                 raise ValueError("FlowEngine.blockHook must be a callable or a Python command string")
@@ -231,13 +241,13 @@ class FlowEngine(Engine):
             self._thermal[name] = _thermal_value(name, value)
             return
         else:
-            # Yade keeps a misspelt attribute as a plain Python one that nothing reads
             known = (*_BOUNDARY_LISTS, *_SCALARS, *_ENGINE_COUNTS, *_ENGINE_FLAGS, *_THERMAL_ATTRIBUTES, "wallIds",
-                     "updateTriangulation", "defTolerance", "multithread", "blockHook")
-            close = difflib.get_close_matches(name, known, n=1)
-            raise AttributeError(f"FlowEngine has no attribute {name!r}"
-                                 + (f" (did you mean {close[0]!r}?)" if close else ""))
+                     "updateTriangulation", "defTolerance", "multithread", "blockHook", "fixedAlpha")
+            stray_attributes.refuse_or_keep(self, "FlowEngine", name, value, known)
+            return
         self._flow.params = params
+        if name == "alphaBound":
+            self._rebuild = True  # the alpha vertices are part of the mesh
 
     def __getattr__(self, name):
         if name == "wallIds":
@@ -249,7 +259,7 @@ class FlowEngine(Engine):
             return self._rebuild
         if name in _ENGINE_FLAGS:
             return object.__getattribute__(self, "_flags")[name]
-        if name in ("defTolerance", "blockHook", "multithread", "backgroundSteps"):
+        if name in ("defTolerance", "blockHook", "multithread", "backgroundSteps", "fixedAlpha"):
             return object.__getattribute__(self, "_" + name)
         if name in _THERMAL_ATTRIBUTES:
             value = object.__getattribute__(self, "_thermal")[name]
@@ -432,6 +442,8 @@ class FlowEngine(Engine):
             os.makedirs(base, exist_ok=True)
             base = os.path.join(base, f"pores_{(self._scene or O).iter}")
         fields = [] if self._poreHeat is None else [("temperature", list(self._poreHeat.temperatures()))]
+        if self.alphaBound >= 0:
+            fields.append(("alpha", [float(e) for e in self.alphaShape()[1]]))
         return list(self._flow.saveVtk(base, fields, bool(withBoundaries)))
 
     @property
@@ -498,6 +510,27 @@ class FlowEngine(Engine):
     def getCellVolume(self, pos) -> float:
         """Volume of the pore containing ``pos`` (Yade's signature)."""
         return float(self._flow.poreVolumes()[self.getCell(pos)])
+
+    def alphaShape(self) -> tuple[float, np.ndarray, list[int]]:
+        """The alpha-shape boundary of the current network (``alphaBound`` >= 0): the alpha used
+        (``alphaBound``, or CGAL's optimal one when 0), whether each pore lies outside the
+        packing (an alpha or a box vertex: its pressure is then ``alphaBoundValue``), the body
+        ids of the spheres in a pore with an alpha vertex."""
+        alpha, exterior, onShape = self._flow.alphaShape()
+        return float(alpha), np.asarray(exterior, dtype=bool), [int(i) for i in onShape]
+
+    def printVertices(self, path: str = "vertices.txt"):
+        """Yade's printVertices: ``vertices.txt`` with a line ``id x y z r alpha fictious`` per
+        sphere of the network, then per alpha vertex (ids -1, -2, ... where Yade numbers them
+        after the bodies) with ``alpha`` 1; ``fictious`` is 0 (as Yade's)."""
+        ids = self._flow.vertexIds()
+        spheres = self._flow.vertexSpheres()
+        with open(path, "w") as out:
+            out.write("id x y z r alpha fictious\n")
+            for k in range(6, len(spheres)):
+                x, y, z, r = spheres[k]
+                alpha = k >= len(ids)
+                out.write(f"{int(ids[k]) if not alpha else len(ids) - 1 - k} {x:g} {y:g} {z:g} {r:g} {int(alpha)} 0\n")
 
     def getVertices(self, cell: int) -> list[int]:
         """Vertex ids of a pore: boundaries 0..5, spheres by body id."""
