@@ -9,6 +9,7 @@
 
 #include "dem/checkpoint/Layout.h"
 #include "dem/checkpoint/Temporaries.h"
+#include "dem/checkpoint/Together.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -105,13 +106,12 @@ Loaded readFile(hid_t file, const Context& ctx)
   validate(in, ctx);
   return in;
 }
-} // namespace
 
-void saveCheckpoint(const Scene& scene, const std::string& path, const CheckpointExtras& extras)
+/// The folder a checkpoint is saved in, once the target is checked (a name, in a folder that
+/// exists, not itself a folder).
+std::filesystem::path targetFolder(const std::string& path, const Context& ctx)
 {
   namespace fs = std::filesystem;
-  const Context ctx("checkpoint " + quoted(path));
-  const QuietErrors quiet;
   if (path.empty())
     ctx.fail("the file name is empty", false);
   const fs::path target(path);
@@ -121,8 +121,27 @@ void saveCheckpoint(const Scene& scene, const std::string& path, const Checkpoin
     ctx.fail("cannot write: the folder " + quoted(folder.string()) + " does not exist", false);
   if (fs::is_directory(target, ec))
     ctx.fail("cannot write: it is a folder", false);
+  return folder;
+}
+
+/// Replace `path` by the written `temporary`: synced, renamed, the folder synced.
+void replaceWith(const std::string& temporary, const std::string& path, const std::filesystem::path& folder,
+                 const Context& ctx)
+{
+  syncPath(temporary, false, ctx);
+  if (std::rename(temporary.c_str(), path.c_str()) != 0)
+    ctx.fail("cannot replace the file with the new checkpoint: " + errnoText(errno), false);
+  syncPath(folder.string(), true, ctx);
+}
+} // namespace
+
+void saveCheckpoint(const Scene& scene, const std::string& path, const CheckpointExtras& extras)
+{
+  const Context ctx("checkpoint " + quoted(path));
+  const QuietErrors quiet;
+  const std::filesystem::path folder = targetFolder(path, ctx);
   removeStaleTemporaries(folder);
-  const std::string temporary = temporaryPath(folder, target);
+  const std::string temporary = temporaryPath(folder, std::filesystem::path(path));
   try
   {
     {
@@ -133,17 +152,94 @@ void saveCheckpoint(const Scene& scene, const std::string& path, const Checkpoin
       ctx.check(H5Fflush(file.get(), H5F_SCOPE_LOCAL), "cannot write (disk full?)");
       ctx.check(file.close(), "cannot finish writing (disk full?)");
     }
-    syncPath(temporary, false, ctx);
-    if (std::rename(temporary.c_str(), path.c_str()) != 0)
-      ctx.fail("cannot replace the file with the new checkpoint: " + errnoText(errno), false);
+    replaceWith(temporary, path, folder, ctx);
   }
   catch (...)
   {
     ::unlink(temporary.c_str());
     throw;
   }
-  syncPath(folder.string(), true, ctx);
 }
+
+#ifdef H5_HAVE_PARALLEL
+void checkpoint::saveCheckpointTogether(MPI_Comm comm, const Scene& part, const Slabs& slabs, const std::string& path,
+                                        const CheckpointExtras& extras, const Agree& agree)
+{
+  const Context ctx("checkpoint " + quoted(path));
+  const QuietErrors quiet;
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  // Process 0 checks the target and names the temporary file (its process id in the name).
+  std::string error, temporary;
+  std::filesystem::path folder;
+  auto attempt = [&](auto&& step) {
+    try
+    {
+      step();
+    }
+    catch (const CheckpointError& e)
+    {
+      error = e.what();
+    }
+  };
+  if (rank == 0)
+    attempt([&] {
+      folder = targetFolder(path, ctx);
+      removeStaleTemporaries(folder);
+      temporary = temporaryPath(folder, std::filesystem::path(path));
+    });
+  agree(error);
+  int length = static_cast<int>(temporary.size());
+  MPI_Bcast(&length, 1, MPI_INT, 0, comm);
+  temporary.resize(static_cast<std::size_t>(length));
+  MPI_Bcast(temporary.data(), length, MPI_CHAR, 0, comm);
+
+  // A process whose write failed removes the temporary file at once: the others may be held in
+  // HDF5's own collective calls, and the run may end before process 0 would.
+  const Agree afterEachDataset = [&](const std::string& localError) {
+    if (!localError.empty())
+      ::unlink(temporary.c_str());
+    agree(localError);
+  };
+  attempt([&] {
+    const Id fapl = fileAccess(ctx);
+    ctx.check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "cannot set up parallel writing");
+    Id file = ctx.checkId(H5Fcreate(temporary.c_str(), H5F_ACC_EXCL, H5P_DEFAULT, fapl.get()), H5Fclose,
+                          "cannot create the temporary file " + checkpoint::quoted(temporary));
+    // Collective transfers: the checksummed (filtered) datasets need them.
+    const Id transfer = ctx.checkId(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "cannot create a property list");
+    ctx.check(H5Pset_dxpl_mpio(transfer.get(), H5FD_MPIO_COLLECTIVE), "cannot set up collective writing");
+    writeScene(Writer(file.get(), ctx, true, transfer.get(), rank == 0, &afterEachDataset), file.get(), part, extras,
+               ctx, &slabs);
+    ctx.check(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "cannot write (disk full?)");
+    ctx.check(file.close(), "cannot finish writing (disk full?)");
+  });
+  // Every process has written and closed its part before the file replaces the old one.
+  try
+  {
+    agree(error);
+  }
+  catch (...)
+  {
+    if (rank == 0)
+      ::unlink(temporary.c_str());
+    throw;
+  }
+  if (rank == 0)
+    attempt([&] {
+      try
+      {
+        replaceWith(temporary, path, folder, ctx);
+      }
+      catch (...)
+      {
+        ::unlink(temporary.c_str());
+        throw;
+      }
+    });
+  agree(error);
+}
+#endif
 
 CheckpointExtras loadCheckpoint(Scene& scene, const std::string& path)
 {

@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -182,8 +183,24 @@ inline std::string quoted(const std::string& s) { return "'" + s + "'"; }
 // ----------------------------------------------------------------------------------------------
 // Writing.
 
+/// Raise one error on every process writing a file together when any has one (collective):
+/// each passes its own message (empty: none), and all throw CheckpointError with one of them.
+using Agree = std::function<void(const std::string& localError)>;
+
+/// The rows of a dataset one process writes when several processes write one file (parallel
+/// HDF5): rows [offset, offset + count) of `total`, count being the rows handed to the writer.
+struct Rows
+{
+  hsize_t offset = 0, total = 0;
+};
+
 /// Writes the datasets and attributes of a checkpoint into an open file. Every member throws
 /// CheckpointError naming the path, with HDF5's message, when HDF5 refuses.
+///
+/// Several processes may write one file together (parallel HDF5, collective transfers): each
+/// calls every member alike, in the same order, with the same attributes; a dataset of rows
+/// (bodies, contacts: a writer made by rows()) gets each process's rows at its offset, any
+/// other dataset is written by the one process that `writesWhole`.
 class Writer
 {
 public:
@@ -192,7 +209,28 @@ public:
   /// @param file the open file, not owned (it must outlive the writer)
   /// @param ctx names the checkpoint in errors; must outlive the writer
   /// @param checksums chunk numeric datasets with a Fletcher-32 checksum
-  Writer(hid_t file, const Context& ctx, bool checksums) : file_(file), ctx_(ctx), checksums_(checksums) {}
+  /// @param transfer the transfer property list of H5Dwrite (collective when several processes write)
+  /// @param writesWhole whether this process writes the datasets that are not split in rows
+  /// @param together when several processes write: the check after each dataset, so that a
+  ///        write failing on one process stops all before the next collective call (must
+  ///        outlive the writer)
+  Writer(hid_t file, const Context& ctx, bool checksums, hid_t transfer = H5P_DEFAULT, bool writesWhole = true,
+         const Agree* together = nullptr)
+      : file_(file), ctx_(ctx), checksums_(checksums), transfer_(transfer), writesWhole_(writesWhole),
+        together_(together)
+  {
+  }
+
+  /// A writer of datasets split in rows among the processes: each dataset's first axis has
+  /// `rows->total` entries, of which this process writes the ones given to it at `rows->offset`.
+  /// @param rows this process's rows; null: the datasets are whole (one process)
+  /// @return the writer, writing into the same file
+  [[nodiscard]] Writer rows(const Rows* rows) const
+  {
+    Writer w = *this;
+    w.rows_ = rows;
+    return w;
+  }
 
   /// @param path the new group's absolute path; its parent must exist
   /// @return the group, open
@@ -264,26 +302,18 @@ public:
   /// @throws CheckpointError if HDF5 refuses
   void array(const std::string& path, hid_t fileType, hid_t memType, std::vector<hsize_t> dims, const void* data) const
   {
-    const int rank = static_cast<int>(dims.size());
-    const Id space = ctx_.checkId(H5Screate_simple(rank, dims.data(), nullptr), H5Sclose, "cannot create a dataspace");
-    const Id plist = ctx_.checkId(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create a property list");
-    hsize_t total = 1;
-    for (hsize_t d : dims)
-      total *= d;
-    if (total > 0 && checksums_)
+    if (together_ == nullptr)
+      return arrayHere(path, fileType, memType, std::move(dims), data);
+    std::string error;
+    try
     {
-      // Chunks of at most ~4 MiB along the first axis, each with its checksum.
-      const hsize_t rowBytes = H5Tget_size(memType) * (total / dims[0]);
-      std::vector<hsize_t> chunk = dims;
-      chunk[0] = std::clamp<hsize_t>((hsize_t{4} << 20) / std::max<hsize_t>(rowBytes, 1), 1, dims[0]);
-      ctx_.check(H5Pset_chunk(plist.get(), rank, chunk.data()), "cannot set the chunks of " + path);
-      ctx_.check(H5Pset_fletcher32(plist.get()), "cannot set the checksum of " + path);
+      arrayHere(path, fileType, memType, std::move(dims), data);
     }
-    const Id set = ctx_.checkId(
-        H5Dcreate2(file_, path.c_str(), fileType, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Dclose,
-        "cannot create dataset " + path);
-    if (total > 0)
-      ctx_.check(H5Dwrite(set.get(), memType, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "cannot write dataset " + path);
+    catch (const CheckpointError& e)
+    {
+      error = e.what();
+    }
+    (*together_)(error);
   }
   /// array() of little-endian 64-bit floats.
   /// @param path, dims, data as array()'s
@@ -292,6 +322,64 @@ public:
   {
     array(path, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, std::move(dims), data);
   }
+
+private:
+  /// array() on this process alone.
+  void arrayHere(const std::string& path, hid_t fileType, hid_t memType, std::vector<hsize_t> dims, const void* data) const
+  {
+    const int rank = static_cast<int>(dims.size());
+    std::vector<hsize_t> fileDims = dims;
+    if (rows_)
+      fileDims[0] = rows_->total;
+    const Id space = ctx_.checkId(H5Screate_simple(rank, fileDims.data(), nullptr), H5Sclose, "cannot create a dataspace");
+    const Id plist = ctx_.checkId(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "cannot create a property list");
+    hsize_t total = 1;
+    for (hsize_t d : fileDims)
+      total *= d;
+    if (total > 0 && checksums_)
+    {
+      // Chunks of at most ~4 MiB along the first axis, each with its checksum.
+      const hsize_t rowBytes = H5Tget_size(memType) * (total / fileDims[0]);
+      std::vector<hsize_t> chunk = fileDims;
+      chunk[0] = std::clamp<hsize_t>((hsize_t{4} << 20) / std::max<hsize_t>(rowBytes, 1), 1, fileDims[0]);
+      ctx_.check(H5Pset_chunk(plist.get(), rank, chunk.data()), "cannot set the chunks of " + path);
+      ctx_.check(H5Pset_fletcher32(plist.get()), "cannot set the checksum of " + path);
+    }
+    // Every element is written: no fill values (which parallel HDF5 would write when the
+    // dataset is created, each process on its own, before the collective transfer).
+    ctx_.check(H5Pset_fill_time(plist.get(), H5D_FILL_TIME_NEVER), "cannot set the fill time of " + path);
+    const Id set = ctx_.checkId(
+        H5Dcreate2(file_, path.c_str(), fileType, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT), H5Dclose,
+        "cannot create dataset " + path);
+    if (total == 0)
+      return;
+    if (!rows_ && writesWhole_)
+    {
+      ctx_.check(H5Dwrite(set.get(), memType, H5S_ALL, H5S_ALL, transfer_, data), "cannot write dataset " + path);
+      return;
+    }
+    // This process's part (none, for a whole dataset another process writes): a transfer every
+    // process takes part in.
+    const bool mine = rows_ != nullptr && dims[0] > 0;
+    const Id memory = ctx_.checkId(H5Screate_simple(rank, dims.data(), nullptr), H5Sclose, "cannot create a dataspace");
+    if (mine)
+    {
+      std::vector<hsize_t> start(dims.size(), 0);
+      start[0] = rows_->offset;
+      ctx_.check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, dims.data(), nullptr),
+                 "cannot select the rows of " + path);
+    }
+    else
+    {
+      ctx_.check(H5Sselect_none(space.get()), "cannot select the rows of " + path);
+      ctx_.check(H5Sselect_none(memory.get()), "cannot select the rows of " + path);
+    }
+    const char none = 0;
+    ctx_.check(H5Dwrite(set.get(), memType, memory.get(), space.get(), transfer_, mine ? data : &none),
+               "cannot write dataset " + path);
+  }
+
+public:
   /// A 1-D dataset of n little-endian 32-bit integers.
   /// @param path the dataset's absolute path
   /// @param data, n the values
@@ -330,6 +418,10 @@ private:
   hid_t file_;
   const Context& ctx_;
   bool checksums_;
+  hid_t transfer_;
+  bool writesWhole_;
+  const Agree* together_;
+  const Rows* rows_ = nullptr;
 };
 
 /// Reads a checkpoint's datasets and attributes from an open file, checking shapes and types.

@@ -216,6 +216,25 @@ struct Loaded
 /// @param checksums chunk numeric datasets with a Fletcher-32 checksum
 /// @throws CheckpointError naming the path when HDF5 refuses
 void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx, bool checksums);
+
+/// How the processes writing one file together split its rows: each writes its bodies (global
+/// ids, ascending) at `bodies`, its contacts (sorted by (id1, id2), after those of the processes
+/// before it) at `contacts`, their richer state at `contactExtra` (of total 0 when the list
+/// keeps none, the contacts' rows otherwise); `energyHistory`: whether the energy tracker's
+/// per-body memory is written (decided alike on every process), in the bodies' rows.
+struct Slabs
+{
+  Rows bodies, contacts, contactExtra;
+  bool energyHistory = false;
+};
+/// writeScene by one of several processes writing one file (parallel HDF5): `scene` holds this
+/// process's rows (`slabs`) and what every process holds alike (clock, materials, shapes, cell).
+/// @param w the writer (collective transfers; the process writing the whole datasets)
+/// @param file, scene, extras, ctx as writeScene's
+/// @param slabs this process's rows; null: one process writes everything
+/// @throws CheckpointError naming the path when HDF5 refuses
+void writeScene(const Writer& w, hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx,
+                const Slabs* slabs);
 /// Read every part into `in` (shapes and lists checked as they are read).
 /// @param file the open file (or in-memory image), not owned
 /// @param in filled; the scene is not touched

@@ -1,4 +1,5 @@
 // Writing a checkpoint: every part of a scene into an open HDF5 file (dem/checkpoint/Layout.h).
+#include "dem/checkpoint/BodyHeat.h"
 #include "dem/checkpoint/Layout.h"
 
 #include <type_traits>
@@ -137,31 +138,34 @@ void writeMaterials(const Writer& w, const Scene& scene)
   }
 }
 
-/// Bodies: every array, erased slots included (ids are indices).
-void writeBodies(const Writer& w, const Scene& scene)
+/// Bodies: every array, erased slots included (ids are indices); `rows`: the bodies' rows this
+/// process writes when several write the file (the shape tables are whole).
+void writeBodies(const Writer& w, const Scene& scene, const Rows* rows)
 {
   const Bodies& b = scene.bodies;
   const std::size_t n = b.size();
   const Id g = w.group("/bodies");
+  const Writer rw = w.rows(rows);
   for (const auto& [name, field] : bodyVectors)
-    w.vec3s(at("/bodies/", name), b.*field);
+    rw.vec3s(at("/bodies/", name), b.*field);
   for (const auto& [name, field] : bodyScalars)
-    w.doubles(at("/bodies/", name), {n}, (b.*field).data());
+    rw.doubles(at("/bodies/", name), {n}, (b.*field).data());
+  writeBodyHeat(rw, b, rows != nullptr);
   for (const auto& [name, field] : bodyInts)
-    w.int32s(at("/bodies/", name), (b.*field).data(), n);
+    rw.int32s(at("/bodies/", name), (b.*field).data(), n);
   for (const auto& [name, field] : bodyBytes)
-    w.uint8s(at("/bodies/", name), (b.*field).data(), n);
+    rw.uint8s(at("/bodies/", name), (b.*field).data(), n);
   std::vector<double> ori(4 * n);
   for (std::size_t i = 0; i < n; ++i)
   {
     const Quat& q = b.ori[i];
     std::copy_n(std::array<double, 4>{q.w(), q.x(), q.y(), q.z()}.begin(), 4, ori.begin() + static_cast<std::ptrdiff_t>(4 * i));
   }
-  w.doubles("/bodies/ori", {n, 4}, ori.data());
+  rw.doubles("/bodies/ori", {n, 4}, ori.data());
   std::vector<std::uint8_t> shape(n);
   for (std::size_t i = 0; i < n; ++i)
     shape[i] = static_cast<std::uint8_t>(b.shape[i]);
-  w.uint8s("/bodies/shape", shape.data(), n);
+  rw.uint8s("/bodies/shape", shape.data(), n);
 
   const Id walls = w.group("/bodies/walls");
   std::vector<std::int32_t> axis, sense;
@@ -223,7 +227,8 @@ void writeBodies(const Writer& w, const Scene& scene)
 /// Contacts: the real ones in list order, every field of Contact. The others are candidate
 /// pairs inside the collider's skin, without history (Contact::reset), which the loaded scene's
 /// first re-detection finds again: a settled bed has several times more of them than contacts.
-void writeContacts(const Writer& w, const Scene& scene)
+/// `slabs`: the contacts' rows this process writes when several write the file.
+void writeContacts(const Writer& whole, const Scene& scene, const Slabs* slabs)
 {
   const ContactList& all = scene.contacts.list;
   std::vector<std::size_t> live;
@@ -232,7 +237,8 @@ void writeContacts(const Writer& w, const Scene& scene)
       live.push_back(k);
   const std::size_t c = live.size();
   auto list = [&](std::size_t k) -> const Contact& { return all[live[k]]; };
-  const Id g = w.group("/contacts");
+  const Id g = whole.group("/contacts");
+  const Writer w = whole.rows(slabs ? &slabs->contacts : nullptr);
   std::vector<std::int32_t> ids(c), cellDist(3 * c);
   for (const auto& [name, field] : contactIds)
   {
@@ -275,7 +281,8 @@ void writeContacts(const Writer& w, const Scene& scene)
   const ContactExtra* state = scene.contacts.extraState();
   const std::size_t e = state ? c : 0;
   auto extra = [&](std::size_t k) -> const ContactExtra& { return state[live[k]]; };
-  const Id ge = w.group("/contacts/extra");
+  const Id ge = whole.group("/contacts/extra");
+  const Writer we = whole.rows(slabs ? &slabs->contactExtra : nullptr);
   forEachContactStateField([&](const auto& f) {
     using T = std::remove_cvref_t<decltype(extra(0).*f.member)>;
     using Column = StateColumn<T>;
@@ -285,13 +292,18 @@ void writeContacts(const Writer& w, const Scene& scene)
     std::vector<typename Column::Stored> rows(e * Column::width);
     for (std::size_t k = 0; k < e; ++k)
       Column::put(extra(k).*f.member, rows.data() + k * Column::width);
-    w.array(at("/contacts/extra/", f.name), Stored::file(), Stored::memory(), stateColumnShape<T>(e), rows.data());
+    we.array(at("/contacts/extra/", f.name), Stored::file(), Stored::memory(), stateColumnShape<T>(e), rows.data());
   });
 }
 
 void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx, bool checksums)
 {
-  const Writer w(file, ctx, checksums);
+  writeScene(Writer(file, ctx, checksums), file, scene, extras, ctx, nullptr);
+}
+
+void writeScene(const Writer& w, hid_t file, const Scene& scene, const CheckpointExtras& extras, const Context& ctx,
+                const Slabs* slabs)
+{
   {
     const Id root = ctx.checkId(H5Gopen2(file, "/", H5P_DEFAULT), H5Gclose, "cannot open the root group");
     w.attribute(root.get(), "magic", std::string(checkpointMagic));
@@ -323,9 +335,11 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
     for (const auto& [name, field] : energyTerms)
       w.attribute(g.get(), name, scene.energy.*field);
     w.attribute(g.get(), "growthReference", scene.energy.growthReference);
+    // Per body, as the bodies' arrays (in rows when several processes write).
+    const Writer rw = w.rows(slabs ? &slabs->bodies : nullptr);
     for (const auto& [name, field] : energyHistory)
-      if (!(scene.energy.*field).empty())
-        w.vec3s(at("/energy/", name), scene.energy.*field);
+      if (slabs ? slabs->energyHistory : !(scene.energy.*field).empty())
+        rw.vec3s(at("/energy/", name), scene.energy.*field);
     if (const std::vector<double>& grown = scene.energy.grownBy; !grown.empty())
       w.doubles("/energy/grownBy", {grown.size()}, grown.data());
   }
@@ -347,8 +361,8 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
   }
 
   writeMaterials(w, scene);
-  writeBodies(w, scene);
-  writeContacts(w, scene);
+  writeBodies(w, scene, slabs ? &slabs->bodies : nullptr);
+  writeContacts(w, scene, slabs);
 
   // Extras: text records of the Python layer.
   {
