@@ -501,10 +501,9 @@ class ThermalEngine(Engine):
     def _io_state(self):
         if self._conduction is None:
             return {}
-        # the temperatures, k, Cp and alpha are the DEM's; kept here until the DEM's checkpoint does
-        c, n, cpp = self._conduction, self._schedule.counters(), self._scene_()._cpp
-        return {**{key: _encode(getattr(cpp, field)()) for key, field in body_heat.FIELDS.items()},
-                "boundary": [int(b) for b in c.boundaries()], "heat": list(c.boundaryHeat()),
+        # the temperatures, k, Cp and alpha are the DEM's, kept by its checkpoint
+        c, n = self._conduction, self._schedule.counters()
+        return {"boundary": [int(b) for b in c.boundaries()], "heat": list(c.boundaryHeat()),
                 "heatFlux": [[[int(i), float(q)] for i, q in c.heatFlux(k)] for k in range(6)],
                 "started": self._started, "boundarySet": self._params["boundarySet"],
                 "values": list(self._params["thermalBndCondValue"]),
