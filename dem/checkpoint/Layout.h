@@ -3,6 +3,7 @@
 // (write, read, check).
 #pragma once
 
+#include "dem/checkpoint/BodyHeat.h"
 #include "dem/checkpoint/Hdf5.h"
 
 namespace talus::dem::checkpoint
@@ -221,11 +222,13 @@ void writeScene(hid_t file, const Scene& scene, const CheckpointExtras& extras, 
 /// ids, ascending) at `bodies`, its contacts (sorted by (id1, id2), after those of the processes
 /// before it) at `contacts`, their richer state at `contactExtra` (of total 0 when the list
 /// keeps none, the contacts' rows otherwise); `energyHistory`: whether the energy tracker's
-/// per-body memory is written (decided alike on every process), in the bodies' rows.
+/// per-body memory is written (decided alike on every process), in the bodies' rows;
+/// `heat`: the heat fields written (those a body of any process has a value of), as bodyHeat.
 struct Slabs
 {
   Rows bodies, contacts, contactExtra;
   bool energyHistory = false;
+  std::array<bool, std::size(bodyHeat)> heat{};
 };
 /// writeScene by one of several processes writing one file (parallel HDF5): `scene` holds this
 /// process's rows (`slabs`) and what every process holds alike (clock, materials, shapes, cell).

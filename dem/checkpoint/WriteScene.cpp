@@ -138,19 +138,19 @@ void writeMaterials(const Writer& w, const Scene& scene)
   }
 }
 
-/// Bodies: every array, erased slots included (ids are indices); `rows`: the bodies' rows this
+/// Bodies: every array, erased slots included (ids are indices); `slabs`: the bodies' rows this
 /// process writes when several write the file (the shape tables are whole).
-void writeBodies(const Writer& w, const Scene& scene, const Rows* rows)
+void writeBodies(const Writer& w, const Scene& scene, const Slabs* slabs)
 {
   const Bodies& b = scene.bodies;
   const std::size_t n = b.size();
   const Id g = w.group("/bodies");
-  const Writer rw = w.rows(rows);
+  const Writer rw = w.rows(slabs ? &slabs->bodies : nullptr);
   for (const auto& [name, field] : bodyVectors)
     rw.vec3s(at("/bodies/", name), b.*field);
   for (const auto& [name, field] : bodyScalars)
     rw.doubles(at("/bodies/", name), {n}, (b.*field).data());
-  writeBodyHeat(rw, b, rows != nullptr);
+  writeBodyHeat(rw, b, slabs ? &slabs->heat : nullptr);
   for (const auto& [name, field] : bodyInts)
     rw.int32s(at("/bodies/", name), (b.*field).data(), n);
   for (const auto& [name, field] : bodyBytes)
@@ -361,7 +361,7 @@ void writeScene(const Writer& w, hid_t file, const Scene& scene, const Checkpoin
   }
 
   writeMaterials(w, scene);
-  writeBodies(w, scene, slabs ? &slabs->bodies : nullptr);
+  writeBodies(w, scene, slabs);
   writeContacts(w, scene, slabs);
 
   // Extras: text records of the Python layer.

@@ -8,6 +8,7 @@
 #include "dem/distributed/MpiDomain.h"
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <numeric>
@@ -319,6 +320,12 @@ void saveCheckpoint(MPI_Comm comm, const MpiDomain* split, Scene& scene, const s
   part.bodiesVersion = versions[0];
   part.bodyPropertiesVersion = versions[1];
   part.bodies = bodySlab(comm, domain, scene);
+  // The heat fields some body of the scene has a value of.
+  std::array<bool, std::size(checkpoint::bodyHeat)> heat = checkpoint::bodyHeatHeld(part.bodies);
+  std::array<int, std::size(checkpoint::bodyHeat)> anyHeat{};
+  std::copy(heat.begin(), heat.end(), anyHeat.begin());
+  MPI_Allreduce(MPI_IN_PLACE, anyHeat.data(), static_cast<int>(anyHeat.size()), MPI_INT, MPI_MAX, comm);
+  std::copy(anyHeat.begin(), anyHeat.end(), heat.begin());
   bool withExtra = false;
   contactSlab(comm, domain, scene, part.contacts, withExtra);
 
@@ -333,6 +340,7 @@ void saveCheckpoint(MPI_Comm comm, const MpiDomain* split, Scene& scene, const s
   slabs.contacts = {static_cast<hsize_t>(before), static_cast<hsize_t>(total)};
   slabs.contactExtra = {static_cast<hsize_t>(before), withExtra ? static_cast<hsize_t>(total) : 0};
   slabs.energyHistory = energyMemorySlab(comm, domain, scene, part.energy);
+  slabs.heat = heat;
   checkpoint::saveCheckpointTogether(comm, part, slabs, path, shared,
                                      [comm](const std::string& error) { agree(comm, error); });
 }
