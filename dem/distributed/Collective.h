@@ -4,6 +4,8 @@
 
 #include <mpi.h>
 
+#include <cstring>
+#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -17,6 +19,17 @@ struct CollectiveError : std::runtime_error
 {
   using std::runtime_error::runtime_error;
 };
+
+/// The lowest failing rank's error message, on every rank, or "" when no rank has one
+/// (collective). A rank with an error whose partners do not all join the check within
+/// `patience` seconds (they are held elsewhere, in a collective call it left by failing) prints
+/// its message to the standard error and ends the run (MPI_Abort) instead of waiting forever.
+/// @param comm the ranks that check together (every one of them calls it)
+/// @param localError this rank's error message, empty if none
+/// @param patience seconds a failing rank waits for the others (infinity: as long as it takes)
+/// @return the message, the same on every rank
+std::string lowestRankError(MPI_Comm comm, const std::string& localError,
+                            double patience = std::numeric_limits<double>::infinity());
 
 /// throwIfAnyRank's check, raising a CollectiveError on every rank.
 /// @param comm the ranks that check together (every one of them calls it)
@@ -45,4 +58,34 @@ void throwIfAnyRank(MPI_Comm comm, const std::string& localError);
 ///         that does not exist (on this rank only: a caller's bug, not bad input)
 std::vector<int> sendRows(MPI_Comm comm, const RankBodies& from, std::span<const std::int64_t> rows,
                           std::span<const int> to, RankBodies& into);
+
+/// Append the bytes of `x` to a message: a value that holds no pointers (Eigen's fixed-size
+/// vectors are not trivially copyable to the compiler, but their bytes are their value).
+/// @param out the message, grown by sizeof(T)
+/// @param x the value
+template <class T>
+void appendBytes(std::vector<std::byte>& out, const T& x)
+{
+  const std::size_t at = out.size();
+  out.resize(at + sizeof(T));
+  std::memcpy(out.data() + at, static_cast<const void*>(&x), sizeof(T));
+}
+
+/// Read a value appended by appendBytes.
+/// @param in where it starts in a message
+/// @param x the value, read
+/// @return where the next value starts
+template <class T>
+const std::byte* readBytes(const std::byte* in, T& x)
+{
+  std::memcpy(static_cast<void*>(&x), in, sizeof(T));
+  return in + sizeof(T);
+}
+
+/// Send the bytes `out[r]` to each rank r (collective, every rank calls it with one entry per
+/// rank, empty or not).
+/// @param comm the ranks exchanging
+/// @param out what goes to each rank
+/// @return what each rank sent here, concatenated by source rank
+std::vector<std::byte> sendBytes(MPI_Comm comm, const std::vector<std::vector<std::byte>>& out);
 } // namespace talus::dem::distributed

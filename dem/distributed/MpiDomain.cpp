@@ -5,6 +5,7 @@
 #include "dem/distributed/Collective.h"
 #include "dem/distributed/Ghosts.h"
 #include "dem/distributed/Migration.h"
+#include "dem/distributed/RowMemory.h"
 
 #include <algorithm>
 #include <array>
@@ -63,53 +64,10 @@ struct Travelling
   std::vector<GlobalId> ids; ///< two per record
 };
 
-// GCC 12 cannot see that out.size() (the rank count) is small and warns that the count vectors
-// might exceed the largest object.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Walloc-size-larger-than="
-/// Send the bytes of `out[r]` to each rank r, and return what each rank sent here,
-/// concatenated by source rank (collective).
-std::vector<std::byte> exchangeBytes(MPI_Comm comm, const std::vector<std::vector<std::byte>>& out)
-{
-  const std::size_t P = out.size();
-  if (P == 0)
-    return {};
-  std::vector<int> sendCounts(P), sendStart(P + 1, 0), recvCounts(P), recvStart(P + 1, 0);
-  for (std::size_t r = 0; r < P; ++r)
-  {
-    sendCounts[r] = static_cast<int>(out[r].size());
-    sendStart[r + 1] = sendStart[r] + sendCounts[r];
-  }
-  MPI_Alltoall(sendCounts.data(), 1, MPI_INT, recvCounts.data(), 1, MPI_INT, comm);
-  for (std::size_t r = 0; r < P; ++r)
-    recvStart[r + 1] = recvStart[r] + recvCounts[r];
-  std::vector<std::byte> sendBuffer(static_cast<std::size_t>(sendStart[P])), in(static_cast<std::size_t>(recvStart[P]));
-  for (std::size_t r = 0; r < P; ++r)
-    std::copy(out[r].begin(), out[r].end(), sendBuffer.begin() + sendStart[r]);
-  MPI_Alltoallv(sendBuffer.data(), sendCounts.data(), sendStart.data(), MPI_BYTE, in.data(), recvCounts.data(),
-                recvStart.data(), MPI_BYTE, comm);
-  return in;
-}
-#pragma GCC diagnostic pop
-
 /// The CPU seconds of this process so far (a rank waiting in MPI polls: its CPU time, unlike its
 /// wall time, is what the wait costs the machine).
 double cpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
-template <class T>
-void appendBytes(std::vector<std::byte>& out, const T& x)
-{
-  const std::size_t at = out.size();
-  out.resize(at + sizeof(T));
-  std::memcpy(out.data() + at, static_cast<const void*>(&x), sizeof(T));
-}
-
-template <class T>
-const std::byte* readBytes(const std::byte* in, T& x)
-{
-  std::memcpy(static_cast<void*>(&x), in, sizeof(T));
-  return in + sizeof(T);
-}
 } // namespace
 
 MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings)
@@ -125,17 +83,17 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   for (std::size_t i = 0; i < b.size() && error.empty(); ++i)
   {
     if (!b.alive[i])
-      error = "body " + std::to_string(i) + " was erased: the distributed DEM takes scenes without erased bodies so far";
+      erased_.push_back(static_cast<GlobalId>(i));
     else if (b.shape[i] == ShapeKind::Sphere && b.clumpId[i] < 0)
     {
       spheres.push_back(static_cast<std::int64_t>(i));
       rmin = std::min(rmin, b.radius[i]);
       rmax = std::max(rmax, b.radius[i]);
     }
-    else if (b.shape[i] != ShapeKind::Wall)
+    else if (b.shape[i] != ShapeKind::Wall && b.shape[i] != ShapeKind::Facet)
       error = "body " + std::to_string(i) + " is "
               + (b.clumpId[i] >= 0 ? std::string("a member of a clump") : std::string("a ") + shapeName(b.shape[i]))
-              + ": the distributed DEM takes spheres and walls only so far (no facets, boxes, clumps, blocks, "
+              + ": the distributed DEM takes spheres, walls and facets only so far (no boxes, clumps, blocks, "
                 "particles); run it in one process";
   }
   if (error.empty() && scene.periodic)
@@ -193,7 +151,7 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   scene.bodies = std::move(whole.bodies);
   replicated_.assign(scene.bodies.size(), 0);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-    replicated_[i] = scene.bodies.shape[i] == ShapeKind::Wall;
+    replicated_[i] = scene.bodies.alive[i] && (scene.bodies.shape[i] == ShapeKind::Wall || scene.bodies.shape[i] == ShapeKind::Facet);
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
   // Of the whole scene every rank built, only this rank's rows are left: its memory goes back.
   forEachBodyField(scene.bodies, [](auto& field) { field.shrink_to_fit(); });
@@ -211,11 +169,35 @@ bool MpiDomain::computesPair(std::size_t row1, std::size_t row2) const
   return owned_[row1] || owned_[row2];
 }
 
-std::int64_t MpiDomain::rowOf(GlobalId id) const
+std::int64_t MpiDomain::rowHeld(GlobalId id) const
 {
   // Rows are in ascending global id: no table over the whole scene.
   const auto at = std::lower_bound(globalId_.begin(), globalId_.end(), id);
   return at != globalId_.end() && *at == id ? at - globalId_.begin() : -1;
+}
+
+std::int64_t MpiDomain::rowOf(GlobalId id) const
+{
+  if (id < 0 || id >= globalCount_ || std::binary_search(erased_.begin(), erased_.end(), id))
+    return noBody;
+  const std::int64_t row = rowHeld(id);
+  return row >= 0 ? row : elsewhere;
+}
+
+bool MpiDomain::erase(Scene& scene, GlobalId id)
+{
+  if (id < 0 || id >= globalCount_)
+    throw std::out_of_range("no body with id " + std::to_string(id) + " (ids run from 0 to "
+                            + std::to_string(globalCount_ - 1) + ")");
+  const auto at = std::lower_bound(erased_.begin(), erased_.end(), id);
+  if (at != erased_.end() && *at == id)
+    return false;
+  erased_.insert(at, id);
+  // Until the next re-detection drops its rows, a copy here (owned, replicated or a ghost) is
+  // erased as in a whole scene: its contacts go at once.
+  if (const std::int64_t row = rowHeld(id); row >= 0 && scene.bodies.alive[static_cast<std::size_t>(row)])
+    scene.erase(static_cast<BodyId>(row));
+  return true;
 }
 
 int MpiDomain::regionOf(const Vec3& x) const
@@ -258,9 +240,17 @@ void MpiDomain::beforeDetection(Scene& scene)
   // A body that moved, since the last re-detection, further from the others' common drift than
   // the ghost layer reaches may have met bodies its rank had no copy of (a teleport from Python,
   // a diverged run): an error, not a wrong force.
-  std::vector<double> drift(6, std::numeric_limits<double>::infinity());
+  // With the drift, what each rank erased (count, sum of ids, each with its negation): the ranks
+  // must agree.
+  std::vector<double> drift(10, std::numeric_limits<double>::infinity());
+  const double erasedCount = static_cast<double>(erased_.size()),
+               erasedSum = static_cast<double>(std::accumulate(erased_.begin(), erased_.end(), GlobalId{0}));
+  drift[6] = erasedCount;
+  drift[7] = -erasedCount;
+  drift[8] = erasedSum;
+  drift[9] = -erasedSum;
   for (std::size_t i = 0; i < n; ++i)
-    if (owned_[i] && !replicated_[i])
+    if (owned_[i] && !replicated_[i] && b.alive[i])
       for (int d = 0; d < 3; ++d)
       {
         const double moved = b.pos[i][d] - detectedAt_[i][d];
@@ -270,9 +260,16 @@ void MpiDomain::beforeDetection(Scene& scene)
   min(drift);
   const Vec3 common = 0.5 * (Vec3(drift[0], drift[1], drift[2]) - Vec3(drift[3], drift[4], drift[5]));
   std::string error;
+  if (drift[6] != -drift[7] || drift[8] != -drift[9])
+    error = "step " + std::to_string(scene.iter) + ": the processes erased different bodies (" + std::to_string(erased_.size())
+            + " on process " + std::to_string(rank_) + "; from " + std::to_string(static_cast<std::int64_t>(drift[6]))
+            + " to " + std::to_string(static_cast<std::int64_t>(-drift[7]))
+            + " over the processes): under mpirun O.bodies.erase must be called on every process with the same ids "
+              "(from code every process runs alike, deciding from global values such as "
+              "talus.dem.distributed.positions())";
   for (std::size_t i = 0; i < n && error.empty(); ++i)
   {
-    if (!owned_[i] || replicated_[i])
+    if (!owned_[i] || replicated_[i] || !b.alive[i])
       continue;
     const double off = (b.pos[i] - detectedAt_[i] - common).norm();
     if (!(off <= ghostDistance_))
@@ -286,9 +283,9 @@ void MpiDomain::beforeDetection(Scene& scene)
   raiseOnEveryRank(comm_, error);
 
   // This rank's spheres, and where each goes.
-  std::vector<std::int64_t> mineRows;
+  std::vector<std::int64_t> mineRows; // erased bodies are left behind
   for (std::size_t i = 0; i < n; ++i)
-    if (owned_[i] && !replicated_[i])
+    if (owned_[i] && !replicated_[i] && b.alive[i])
       mineRows.push_back(static_cast<std::int64_t>(i));
   RankBodies current{std::move(scene.bodies), globalId_};
   RankBodies mine;
@@ -310,7 +307,7 @@ void MpiDomain::beforeDetection(Scene& scene)
     for (std::size_t k = 0; k < plan.exportRows.size(); ++k)
       appendBytes(out[static_cast<std::size_t>(plan.exportTo[k])],
                   mine.globalId[static_cast<std::size_t>(plan.exportRows[k])]);
-    const std::vector<std::byte> in = exchangeBytes(comm_, out);
+    const std::vector<std::byte> in = sendBytes(comm_, out);
     plan.importIds.resize(in.size() / sizeof(GlobalId));
     for (std::size_t k = 0; k < plan.importIds.size(); ++k)
       (void)readBytes(in.data() + k * sizeof(GlobalId), plan.importIds[k]);
@@ -345,6 +342,7 @@ void MpiDomain::beforeDetection(Scene& scene)
       if (to >= 0)
       {
         std::vector<std::byte>& o = out[static_cast<std::size_t>(to)];
+        ++traffic_.migratedContacts;
         appendBytes(o, c);
         appendBytes(o, g1);
         appendBytes(o, g2);
@@ -355,7 +353,7 @@ void MpiDomain::beforeDetection(Scene& scene)
   std::int64_t sent = 0;
   for (const auto& o : out)
     sent += static_cast<std::int64_t>(o.size());
-  const std::vector<std::byte> in = exchangeBytes(comm_, out);
+  const std::vector<std::byte> in = sendBytes(comm_, out);
   for (const std::byte* p = in.data(); p < in.data() + in.size();)
   {
     Contact c;
@@ -374,6 +372,7 @@ void MpiDomain::beforeDetection(Scene& scene)
 
   migrate(comm_, mine, plan);
   traffic_.rebuilds += 1;
+  traffic_.migratedBodies += static_cast<std::int64_t>(plan.exportRows.size());
   traffic_.rebuildBytes += sent + static_cast<std::int64_t>(plan.exportRows.size() * rowBytes());
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
   traffic_.rebuildSeconds += MPI_Wtime() - start;
@@ -390,7 +389,7 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
   {
     std::vector<std::int64_t> wallRows;
     for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-      if (replicated_[i])
+      if (replicated_[i] && scene.bodies.alive[i])
         wallRows.push_back(static_cast<std::int64_t>(i));
     RankBodies current{std::move(scene.bodies), globalId_};
     std::vector<std::byte> packed;
@@ -418,6 +417,7 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
     for (std::size_t k = 0; k < n; ++k)
       field[k] = from[order[k]];
   });
+  const std::vector<GlobalId> before = globalId_;
   globalId_.resize(n);
   owned_.resize(n);
   replicated_.resize(n);
@@ -427,9 +427,10 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
     owned_[k] = order[k] < ownedEnd;
     replicated_[k] = order[k] < walls;
   }
+  followRows(scene.energy, before, globalId_);
 
   // Ghost updates: the rows sent to each rank, the rows each rank's updates land in.
-  auto rowOfId = [&](GlobalId id) { return rowOf(id); };
+  auto rowOfId = [&](GlobalId id) { return rowHeld(id); };
   sendRows_.resize(ghosts.sentRows.size());
   for (std::size_t k = 0; k < sendRows_.size(); ++k)
     sendRows_[k] = rowOfId(mine.globalId[static_cast<std::size_t>(ghosts.sentRows[k])]);

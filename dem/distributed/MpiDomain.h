@@ -6,6 +6,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -15,8 +16,8 @@ namespace talus::dem::distributed
 {
 /// A scene split over the ranks of an MPI communicator (the Domain the step calls).
 ///
-/// Rows: the spheres this rank owns, the walls (replicated: every rank holds all of them, and
-/// computes their contacts with its own spheres only) and the ghosts (copies of the spheres of
+/// Rows: the spheres this rank owns, the walls and facets (replicated: every rank holds all of
+/// them, moves them alike, and computes their contacts with its own spheres only) and the ghosts (copies of the spheres of
 /// other ranks within reach of this rank's region), all in ascending global id, so that the
 /// collider orients every contact and the gather sums every body's contacts as in the serial
 /// scene: the owned bodies' forces are the serial ones bit for bit.
@@ -31,17 +32,27 @@ public:
   /// spheres are partitioned, each rank keeps its own, the walls and its ghosts, and the contacts
   /// it computes.
   /// @throws std::invalid_argument on every rank, naming what is not distributed yet (a shape,
-  ///         a periodic cell, an engine or contact law other than the linear one, energy
-  ///         tracking), an unknown partition method, or more ranks than spheres
+  ///         a periodic cell, an engine or contact law other than the linear one), an unknown
+  ///         partition method, or more ranks than spheres
   /// @param comm the ranks sharing the scene (kept, not duplicated: it must outlive the domain)
   /// @param settings the partition's method and imbalance tolerance, the same on every rank
   MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings);
 
   std::size_t ownedBodies(const Scene& scene) const override;
   bool owns(std::size_t row) const override { return owned_[row] != 0; }
-  /// Whether row `row` is a body every rank holds (a wall): counted once in sums of states.
+  /// Whether row `row` is a body every rank holds (a wall or facet): counted once in sums of states.
   [[nodiscard]] bool replicated(std::size_t row) const { return replicated_[row] != 0; }
   bool computesPair(std::size_t row1, std::size_t row2) const override;
+  /// A wall (every rank holds it) is counted by rank 0 only.
+  bool countsBody(std::size_t row) const override { return owned_[row] && (!replicated_[row] || rank_ == 0); }
+  /// A contact between spheres on the rank owning its lower global id (the lower row: rows are in
+  /// global-id order); a wall's contact where it is computed (the sphere's rank).
+  bool countsContact(std::size_t row1, std::size_t row2) const override
+  {
+    if (replicated_[row1] || replicated_[row2])
+      return computesPair(row1, row2);
+    return owned_[std::min(row1, row2)] != 0;
+  }
   void beforeDetection(Scene& scene) override;
   void afterIntegration(Scene& scene) override;
   void sum(std::span<double> values) const override;
@@ -54,10 +65,20 @@ public:
   [[nodiscard]] int ranks() const { return ranks_; }
   /// Bodies of the whole scene (global ids 0 .. globalCount - 1).
   [[nodiscard]] std::int64_t globalCount() const { return globalCount_; }
-  /// The row of global id `id` here, -1 if this rank holds no copy of it.
+  /// The row of global id `id` here.
   /// @param id a global id (the body's id in the scene the user built)
-  /// @return the local row, or -1
-  [[nodiscard]] std::int64_t rowOf(GlobalId id) const;
+  /// @return the local row; `elsewhere` if another rank holds it; `noBody` for an id out of the
+  ///         scene or erased
+  [[nodiscard]] std::int64_t rowOf(GlobalId id) const override;
+  /// Erase body `id` on every rank (collective by rule: every rank calls it with the same ids in
+  /// the same order, as a script running alike on every rank does): each rank erases its copy
+  /// (its own body, a wall or facet, or a ghost) with its contacts, so no contact with it is
+  /// computed anywhere, and every rank knows it was erased. A rank that erased other bodies than
+  /// the others is found at the next re-detection, which raises on every rank.
+  /// @param id a global id
+  /// @return false if it was erased already
+  /// @throws std::out_of_range for an id that is not a body of the scene
+  bool erase(Scene& scene, GlobalId id);
   /// @param row a local row, below scene.bodies.size()
   /// @return its body's global id
   [[nodiscard]] GlobalId globalIdOf(std::size_t row) const { return globalId_[row]; }
@@ -73,6 +94,8 @@ public:
   {
     std::int64_t updates = 0, updateBytes = 0, updateMessages = 0;
     std::int64_t rebuilds = 0, rebuildBytes = 0;
+    /// Bodies this rank sent to their new rank, and contacts (with their state) it sent with them.
+    std::int64_t migratedBodies = 0, migratedContacts = 0;
     double updateSeconds = 0, rebuildSeconds = 0, reductionSeconds = 0, splitSeconds = 0, waitCpuSeconds = 0;
   };
   /// What this rank's halo moved so far (since resetTraffic).
@@ -86,6 +109,8 @@ private:
   /// their bodies) become the contact list, keeping those this rank computes.
   void assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& contacts, std::vector<ContactExtra>& extra,
                 std::vector<GlobalId>& contactIds);
+  /// The row of global id `id` here, -1 if this rank holds no copy of it (erased or not).
+  [[nodiscard]] std::int64_t rowHeld(GlobalId id) const;
   /// The rank whose region holds `x` (RCB), -1 if none (not a finite position).
   [[nodiscard]] int regionOf(const Vec3& x) const;
 
@@ -103,6 +128,7 @@ private:
   std::vector<std::int64_t> sendRows_, sendStart_, recvRows_, recvStart_;
   std::vector<double> sendBuffer_, recvBuffer_;
   std::vector<Vec3> detectedAt_; ///< per row: its position at the last re-detection
+  std::vector<GlobalId> erased_; ///< the bodies erased, ascending (the same on every rank)
   mutable Traffic traffic_; ///< mutable: the reductions (const) count their seconds
 };
 } // namespace talus::dem::distributed

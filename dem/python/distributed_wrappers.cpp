@@ -2,6 +2,8 @@
 // (talus.dem.distributed sets it up and reads the global answers through it).
 #include "dem/core/Scene.h"
 #include "dem/distributed/Collective.h"
+#include "dem/distributed/Gather.h"
+#include "dem/measure/Measurements.h"
 #include "dem/distributed/MpiDomain.h"
 
 #include <pybind11/eigen.h>
@@ -25,7 +27,7 @@ std::vector<double> byGlobalId(const MpiDomain& d, const Scene& s, Value&& value
 {
   std::vector<double> total(static_cast<std::size_t>(d.globalCount()) * width, 0.0);
   for (std::size_t i = 0; i < s.bodies.size(); ++i)
-    if (d.owns(i) && (!d.replicated(i) || d.rank() == 0))
+    if (d.countsBody(i))
       value(i, total.data() + static_cast<std::size_t>(d.globalIdOf(i)) * width);
   d.sum(total);
   return total;
@@ -76,6 +78,10 @@ PYBIND11_MODULE(_distributed, m)
         return v;
       })
       .def("min", [](const MpiDomain& d, double v) { return d.min(v); })
+      .def("minima", [](const MpiDomain& d, std::vector<double> v) {
+        d.min(v);
+        return v;
+      }, "Element-wise minima over the ranks (collective)")
       .def("traffic", [](const MpiDomain& d) {
         const MpiDomain::Traffic& t = d.traffic();
         py::dict out;
@@ -84,6 +90,8 @@ PYBIND11_MODULE(_distributed, m)
         out["update_messages"] = t.updateMessages;
         out["rebuilds"] = t.rebuilds;
         out["rebuild_bytes"] = t.rebuildBytes;
+        out["migrated_bodies"] = t.migratedBodies;
+        out["migrated_contacts"] = t.migratedContacts;
         out["update_seconds"] = t.updateSeconds;
         out["rebuild_seconds"] = t.rebuildSeconds;
         out["reduction_seconds"] = t.reductionSeconds;
@@ -92,6 +100,20 @@ PYBIND11_MODULE(_distributed, m)
         return out;
       })
       .def("resetTraffic", &MpiDomain::resetTraffic)
+      .def("erase", [](MpiDomain& d, Scene& s, std::int64_t id) { return d.erase(s, id); },
+           "Erase body `id` on every rank (every rank calls it with the same ids); False if erased already")
+      .def("ownedBodies", [](const MpiDomain& d, const Scene& s) {
+        std::vector<std::int64_t> rows, ids;
+        for (std::size_t i = 0; i < s.bodies.size(); ++i)
+          if (d.owns(i) && !d.replicated(i))
+          {
+            rows.push_back(static_cast<std::int64_t>(i));
+            ids.push_back(d.globalIdOf(i));
+          }
+        return py::make_tuple(py::array_t<std::int64_t>(static_cast<py::ssize_t>(rows.size()), rows.data()),
+                              py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data()));
+      }, "The rows of the bodies this rank owns (the walls, which every rank holds, left out) and their global "
+         "ids, both ascending")
       .def("positions", [](const MpiDomain& d, const Scene& s) {
         std::vector<double> all = byGlobalId(d, s, [&](std::size_t i, double* out) {
           for (int k = 0; k < 3; ++k)
@@ -101,6 +123,23 @@ PYBIND11_MODULE(_distributed, m)
         std::copy(all.begin(), all.end(), a.mutable_data());
         return a;
       }, "Positions of every body by global id, on every rank (collective)")
+      .def("gather", [](const MpiDomain& d, const Scene& s, const std::vector<GlobalId>& ids) {
+        const std::vector<double> state = gatherBodies(d, s, ids);
+        py::array_t<double> a({static_cast<py::ssize_t>(ids.size()), static_cast<py::ssize_t>(gatheredDoubles)});
+        std::copy(state.begin(), state.end(), a.mutable_data());
+        return a;
+      }, "The state of bodies `ids`, a row of gatheredDoubles each, on every rank (collective)")
+      .def("bodyStressTensors", [](const MpiDomain& d, const Scene& s) {
+        // A rank holds every contact of the bodies it owns: their tensors are whole there.
+        const std::vector<Mat3> local = bodyStressTensors(s);
+        std::vector<double> all = byGlobalId(d, s, [&](std::size_t i, double* out) {
+          Eigen::Map<Mat3>{out} = local[i];
+        }, 9);
+        py::array_t<double> a({static_cast<py::ssize_t>(d.globalCount()), py::ssize_t{3}, py::ssize_t{3}});
+        for (std::size_t k = 0; k < static_cast<std::size_t>(d.globalCount()); ++k)
+          Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>>(a.mutable_data() + 9 * k) = Eigen::Map<const Mat3>(all.data() + 9 * k);
+        return a;
+      }, "Yade's bodyStressTensors of every body by global id, on every rank (collective)")
       .def("forceOf", [](const MpiDomain& d, const Scene& s, std::int64_t id) {
         // Walls are held by every rank, each with the force of its own spheres' contacts.
         std::vector<double> ft(6, 0.0);
@@ -129,7 +168,7 @@ PYBIND11_MODULE(_distributed, m)
             largest = std::max(largest, f);
           }
         for (const Contact& c : s.contacts.list)
-          if (c.real && d.owns(static_cast<std::size_t>(b.shape[static_cast<std::size_t>(c.id1)] == ShapeKind::Wall ? c.id2 : c.id1)))
+          if (c.real && d.owns(static_cast<std::size_t>(d.replicated(static_cast<std::size_t>(c.id1)) ? c.id2 : c.id1)))
           {
             sums[2] += c.force.norm();
             sums[3] += 1;

@@ -3,19 +3,35 @@
 Every process runs the whole script and builds the whole scene (fine for now: memory grows with
 the scene on every process). When the script's first ``O.run``/``O.step`` starts, the spheres
 are partitioned (Zoltan's RCB, or HSFC with ``TALUS_PARTITION=HSFC``) and each process keeps
-its own, the walls (every process holds them) and ghosts, copies of the spheres of its
-neighbours within reach (dem/distributed/, docs/distributed-dem.md). From then on:
+its own, the walls and facets (every process holds them, moves them alike and computes their
+contacts with its own spheres) and ghosts, copies of the spheres of its neighbours within reach
+(dem/distributed/, docs/distributed-dem.md); a contact's state (Hertz-Mindlin, visco-elastic,
+cohesive-frictional) moves with it. From then on:
 
-- ``unbalancedForce()``, ``utils.kineticEnergy()`` and ``O.forces.f(id)`` of a wall give the
-  whole scene's value on every process (reductions), so a PyRunner testing them acts alike on all;
+- ``unbalancedForce()``, ``utils.kineticEnergy()``, ``O.forces.f(id)`` of a wall, ``O.energy``,
+  ``getStress``, ``getStressAndTangent``, ``bodyStressTensors``, ``avgNumInteractions``,
+  ``fabricTensor``, ``porosity``, ``aabbExtrema``, ``PWaveTimeStep`` and the step
+  GlobalStiffnessTimeStepper sets give the whole scene's value on every process (reductions:
+  every process calls them), so a PyRunner testing them acts alike on all;
 - ``print`` writes from process 0 only (the others' standard output is discarded);
-- ``O.bodies[i]`` works for the bodies this process owns (and the walls); for another it raises,
-  naming the rule. ``positions()`` gathers every body's position, on every process.
+- ``O.bodies[i]`` works for the bodies this process owns (and the walls and facets); for another
+  it raises, naming the rule; an erased body is None on every process. ``positions()`` gathers
+  every body's position, ``O.bodies.gather(ids)`` snapshots of any bodies, on every process
+  (collective).
+- ``O.bodies.erase(i)`` must be called on every process with the same ids (from code every
+  process runs alike, deciding from global values such as ``positions()``): each process erases
+  its copy, whoever owns the body; a process that erased other bodies stops the run, naming the
+  rule, at the next re-detection.
+- kinematic engines (TranslationEngine, RotationEngine, ...) and force engines act on their
+  ``ids`` where each body is owned (walls and facets: on every process alike).
 
 What is not distributed yet is refused, on every process alike, with its name: shapes other than
-spheres and walls, clumps, periodic cells, engines other than ForceResetter,
-InsertionSortCollider, InteractionLoop (linear law), NewtonIntegrator and PyRunner, energy
-tracking, checkpoints, VTK output.
+spheres, walls and facets, clumps, periodic cells, engines other than ForceResetter,
+InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
+GlobalStiffnessTimeStepper and the kinematic and force engines, contact laws other than the
+linear, Hertz-Mindlin, visco-elastic and cohesive-frictional ones, force engines on walls or
+facets, VTK output. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
+(written at any process count) on every process; the scene is split again at its next step.
 """
 
 from __future__ import annotations
@@ -30,9 +46,16 @@ from talus.dem.core.scenes import default_scene
 RANKS = int(os.environ.get("OMPI_COMM_WORLD_SIZE", "1"))
 ACTIVE = RANKS > 1
 
-_ENGINES = ("ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator", "PyRunner")
-_LAWS = ("Law2_ScGeom_FrictPhys_CundallStrack",)
+#: Engines that act on bodies named by id: each process acts on those it owns (Scene::rowsActedOn).
+_KINEMATIC = ("TranslationEngine", "RotationEngine", "HarmonicMotionEngine", "HelixEngine", "InterpolatingHelixEngine",
+              "CombinedKinematicEngine")
+_FORCES = ("ForceEngine", "InterpolatingDirectedForceEngine", "HarmonicForceEngine")
+_ENGINES = ("ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator", "PyRunner",
+            "GravityEngine", "GlobalStiffnessTimeStepper", *_KINEMATIC, *_FORCES)
+_LAWS = ("Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_MindlinPhys_Mindlin", "Law2_ScGeom_ViscElPhys_Basic",
+         "Law2_ScGeom6D_CohFrictPhys_CohesionMoment")
 _rank = 0
+_NO_BODY = -2    # what Domain.rowOf gives for an id that is no live body (Domain::noBody)
 
 
 class NotDistributed(RuntimeError):
@@ -74,7 +97,8 @@ def refuse(what: str) -> None:
     """Raise NotDistributed for ``what`` when running under mpirun."""
     if ACTIVE:
         raise NotDistributed(f"{what} is not distributed yet: under mpirun ({RANKS} processes) the DEM runs "
-                             f"{', '.join(_ENGINES)} with spheres and walls and the linear contact law only; run "
+                             f"{', '.join(_ENGINES)} with spheres, walls and facets and the contact laws "
+                             f"{', '.join(_LAWS)} only; run "
                              f"this script in one process (talus run, without mpirun)")
 
 
@@ -94,23 +118,38 @@ def attach(scene) -> None:
         for law in getattr(e, "lawFunctors", ()):
             if type(law).__name__ not in _LAWS:
                 refuse(f"the contact law {type(law).__name__}")
-    if scene.trackEnergy:
-        refuse("energy tracking (O.trackEnergy)")
+        if name in _FORCES:     # on a wall or facet every process would add it: summed, it would count N times
+            for i in e.ids:
+                body = scene.bodies[i]
+                if body is not None and type(body.shape).__name__ != "Sphere":
+                    refuse(f"{name} on body {i}, a {type(body.shape).__name__} (a force engine acts on spheres "
+                           f"only under mpirun)")
     from talus import _distributed
     scene._domain = _distributed.attach(scene._cpp, os.environ.get("TALUS_PARTITION", "RCB"))
 
 
-def row_of(scene, id: int) -> int:
-    """The row of body ``id`` in this process's arrays; raises for a body owned elsewhere."""
+def row_of(scene, id: int) -> int | None:
+    """The row of body ``id`` in this process's arrays, None if it was erased; raises for a
+    body owned elsewhere."""
     d = domain(scene)
     if d is None:
         return id
     row = d.rowOf(int(id))
+    if row == _NO_BODY:
+        return None
     if not d.owns(row):
         raise IndexError(f"body {id} is owned by another process: under mpirun (rank {d.rank} of {d.ranks}) a "
                          f"body's state lives on the process that owns it; read the bodies of the whole scene "
                          f"with talus.dem.distributed.positions(), called on every process")
     return row
+
+
+def erase(scene, id: int) -> bool:
+    """O.bodies.erase under mpirun: every process calls it with the same ids (as code every
+    process runs alike does), and each erases its copy of the body, whichever process owns it;
+    False if it was erased already. A process that erased other bodies than the others stops
+    every process at the next re-detection, naming the rule."""
+    return domain(scene).erase(scene._cpp, int(id))
 
 
 def positions(scene=None):
@@ -125,6 +164,15 @@ def positions(scene=None):
 def rank() -> int:
     """This process's rank (0 in one process)."""
     return _rank
+
+
+def smallest(value: float, scene=None) -> float:
+    """The smallest of every process's ``value`` (critical time steps; collective under mpirun);
+    in one process, ``value``."""
+    if scene is None:
+        scene = default_scene()
+    d = domain(scene)
+    return value if d is None else d.min(float(value))
 
 
 def per_process(values: dict[str, float], scene=None) -> list[dict[str, float]]:
@@ -170,7 +218,13 @@ def is_collective(exc: BaseException) -> bool:
     if isinstance(exc, NotDistributed):
         return True
     from talus import _distributed
-    return isinstance(exc, _distributed.CollectiveError)
+    if isinstance(exc, _distributed.CollectiveError):
+        return True
+    try:
+        from talus import _distributed_checkpoint
+    except ImportError:     # built without parallel HDF5
+        return False
+    return isinstance(exc, _distributed_checkpoint.CollectiveCheckpointError)
 
 
 def stop_on_error(exc: BaseException, report) -> int:

@@ -1,6 +1,12 @@
 """Measurements with Yade's names: unbalancedForce, getStress, avgNumInteractions,
 fabricTensor, bodyStressTensors, porosity, getStressAndTangent. Tensors come as Yade's
-Matrix3 (the tangent as a Matrix6)."""
+Matrix3 (the tangent as a Matrix6).
+
+Under ``mpirun -np N talus run`` they give the whole scene's value on every process (each body
+and contact counted by one process, the shares summed over the processes, within round-off of
+the serial run's): every process calls them, as a PyRunner does. Those not distributed yet
+(momentum, angularMomentum, totalForceInVolume, sumForces, getSpheresVolume, getSpheresMass)
+are refused by name."""
 
 from __future__ import annotations
 
@@ -74,7 +80,10 @@ def bodyStressTensors(revertSign: bool = False, scene=None) -> list[Matrix3]:
     (1/V) sum of force (x) arm over its contacts (Yade's bodyStressTensors: compression negative,
     the opposite with ``revertSign``); zero for bodies that are not spheres."""
     sign = -1.0 if revertSign else 1.0
-    return [sign * Matrix3(s) for s in _dem.bodyStressTensors(_scene(scene)._cpp)]
+    scene = _scene(scene)
+    if (split := distributed.domain(scene)) is not None:     # under mpirun: every body's, by id
+        return [sign * Matrix3(s) for s in split.bodyStressTensors(scene._cpp)]
+    return [sign * Matrix3(s) for s in _dem.bodyStressTensors(scene._cpp)]
 
 
 def porosity(volume: float = -1, scene=None) -> float:
@@ -85,13 +94,7 @@ def porosity(volume: float = -1, scene=None) -> float:
         if scene.periodic:
             volume = scene.cell.volume
         else:
-            alive = np.asarray(scene._cpp.alive(), dtype=bool)
-            r = scene.radii()
-            spheres = alive & (r > 0)
-            if not spheres.any():
-                raise ValueError("porosity: the scene has no spheres")
-            pos = scene.positions()[spheres]
-            lo, hi = (pos - r[spheres, None]).min(axis=0), (pos + r[spheres, None]).max(axis=0)
+            lo, hi = _sphere_box(scene, False, "porosity")
             volume = float(np.prod(hi - lo))
     return 1.0 - _dem.sphereVolume(scene._cpp) / volume
 
@@ -123,9 +126,15 @@ def kineticEnergy(findMaxId: bool = False, scene=None):
     return total
 
 
+def _not_distributed(scene, name: str) -> None:
+    if distributed.domain(scene) is not None:
+        distributed.refuse(f"utils.{name}()")
+
+
 def momentum(scene=None) -> Vector3:
     """Total linear momentum of the dynamic bodies."""
     scene = _scene(scene)
+    _not_distributed(scene, "momentum")
     ids = _moving(scene)
     cpp = scene._cpp
     return Vector3((np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]).sum(axis=0))
@@ -135,6 +144,7 @@ def angularMomentum(origin=(0.0, 0.0, 0.0), scene=None) -> Vector3:
     """Total angular momentum of the dynamic bodies about ``origin`` (spin with principal inertia
     and world-frame angular velocity: exact for spheres)."""
     scene = _scene(scene)
+    _not_distributed(scene, "angularMomentum")
     ids = _moving(scene)
     cpp = scene._cpp
     r = np.asarray(cpp.pos())[ids] - np.asarray(origin, dtype=float)
@@ -148,6 +158,7 @@ def totalForceInVolume(scene=None) -> tuple[Vector3, float]:
     contact's force (normal + shear), and the contacts' mean isotropic stiffness kn/3 + 2 ks/3
     (-1 without contacts)."""
     scene = _scene(scene)
+    _not_distributed(scene, "totalForceInVolume")
     total, stiffness, count = np.zeros(3), 0.0, 0
     for i in scene.interactions:
         total += np.abs(np.asarray(i.phys.normalForce) + np.asarray(i.phys.shearForce))
@@ -159,6 +170,7 @@ def totalForceInVolume(scene=None) -> tuple[Vector3, float]:
 def sumForces(ids, direction, scene=None) -> float:
     """Sum over ``ids`` of the force on each body projected on ``direction``."""
     scene = _scene(scene)
+    _not_distributed(scene, "sumForces")
     f = np.asarray(scene._cpp.force())[np.asarray(list(ids), dtype=int)]
     return float((f @ np.asarray(direction, dtype=float)).sum())
 
@@ -166,15 +178,26 @@ def sumForces(ids, direction, scene=None) -> float:
 def aabbExtrema(cutoff: float = 0.0, centers: bool = False, scene=None) -> tuple[Vector3, Vector3]:
     """Corners of the box enclosing the spheres (their centres only with ``centers``), shrunk
     by the fraction ``cutoff`` of its size on each side, as Yade's utils.aabbExtrema."""
-    scene = _scene(scene)
-    ids = scene.sphere_ids()
-    if not len(ids):
-        raise ValueError("aabbExtrema: the scene has no spheres")
-    pos = np.asarray(scene._cpp.pos())[ids]
-    r = np.zeros(len(ids)) if centers else np.asarray(scene._cpp.radius())[ids]
-    lo, hi = (pos - r[:, None]).min(axis=0), (pos + r[:, None]).max(axis=0)
+    lo, hi = _sphere_box(_scene(scene), centers, "aabbExtrema")
     shrink = cutoff * (hi - lo)
     return Vector3(lo + shrink), Vector3(hi - shrink)
+
+
+def _sphere_box(scene, centers: bool, caller: str) -> tuple[np.ndarray, np.ndarray]:
+    """Lower and upper corners of the box enclosing the live spheres (their centres only with
+    ``centers``); under mpirun the whole scene's (the extrema over the processes: a ghost is a
+    copy of a sphere, inside the box its owner finds)."""
+    ids = scene.sphere_ids()
+    pos = np.asarray(scene._cpp.pos())[ids]
+    r = np.zeros(len(ids)) if centers else np.asarray(scene._cpp.radius())[ids]
+    lo = (pos - r[:, None]).min(axis=0) if len(ids) else np.full(3, np.inf)
+    hi = (pos + r[:, None]).max(axis=0) if len(ids) else np.full(3, -np.inf)
+    if (split := distributed.domain(scene)) is not None:
+        extrema = np.asarray(split.minima([*lo, *(-hi)]))
+        lo, hi = extrema[:3], -extrema[3:]
+    if not np.isfinite(lo).all():
+        raise ValueError(f"{caller}: the scene has no spheres")
+    return lo, hi
 
 
 def aabbDim(cutoff: float = 0.0, centers: bool = False, scene=None) -> Vector3:
@@ -195,11 +218,13 @@ def _spheres(mask: int, scene) -> tuple:
 
 def getSpheresVolume(mask: int = -1, scene=None) -> float:
     """Total volume of the spheres ``mask`` selects, as Yade's."""
+    _not_distributed(_scene(scene), "getSpheresVolume")
     scene, ids = _spheres(mask, scene)
     return float(sum(4.0 / 3.0 * np.pi * r ** 3 for r in scene._cpp.radius()[ids]))
 
 
 def getSpheresMass(mask: int = -1, scene=None) -> float:
     """Total mass of the spheres ``mask`` selects, as Yade's."""
+    _not_distributed(_scene(scene), "getSpheresMass")
     scene, ids = _spheres(mask, scene)
     return float(sum(scene._cpp.mass()[ids]))      # in id order, as Yade adds them

@@ -19,6 +19,7 @@ from typing import Callable
 import numpy as np
 
 from talus import _dem
+from talus.dem import distributed
 from talus.dem.step.engines import Engine, asCallback
 from talus.dem.core.linalg import Vector3, as_value
 from talus.dem.core.scenes import default_scene
@@ -332,9 +333,9 @@ class TriaxialStressController(Engine):
 
 def RayleighWaveTimeStep(scene=None) -> float:
     """Yade's Rayleigh-wave critical step: min over spheres of pi r / (0.1631 nu + 0.876605)
-    sqrt(rho / G), G = E / (2 (1 + nu))."""
-    O = default_scene()
-    value = _dem.rayleighWaveTimeStep((scene or O)._cpp)
+    sqrt(rho / G), G = E / (2 (1 + nu)) (under mpirun, the whole scene's: collective)."""
+    scene = scene or default_scene()
+    value = distributed.smallest(_dem.rayleighWaveTimeStep(scene._cpp), scene)
     if value == float("inf"):
         raise ValueError("RayleighWaveTimeStep: the scene has no spheres")
     return value

@@ -26,6 +26,8 @@ class BodyContainer:
 
     def append(self, spec: BodySpec | Iterable[BodySpec]):
         """Add one body (returns its id) or a list of bodies (returns their ids)."""
+        if distributed.domain(self._scene) is not None:
+            distributed.refuse("O.bodies.append after the scene was split (at its first step under mpirun)")
         if isinstance(spec, BodySpec):
             return self._add(spec)
         specs = list(spec)
@@ -126,6 +128,8 @@ class BodyContainer:
         erased (Yade's). Erasing a clump frees its members unless ``eraseClumpMembers``; erasing
         a member takes it out of its clump, which keeps its mass and inertia (as in Yade) and
         goes with its last member."""
+        if distributed.domain(self._scene) is not None:     # under mpirun: every process erases its copy
+            return distributed.erase(self._scene, int(id) + len(self) if id < 0 else int(id))
         if self[id] is None:
             return False
         _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))
@@ -160,9 +164,34 @@ class BodyContainer:
         if not 0 <= i < n:
             raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
         i = distributed.row_of(self._scene, i)     # under mpirun: its row here, if owned here
-        if not self._scene._cpp.alive()[i]:
+        if i is None or not self._scene._cpp.alive()[i]:
             return None
         return Body(self._scene, i)
+
+    def gather(self, ids: Iterable[int]) -> list:
+        """Snapshots of the bodies ``ids`` (talus.dem.core.gathered: ``id``, ``dynamic``,
+        ``radius``, ``state.pos``, ``vel``, ``angVel``, ``ori``, ``mass``, ``inertia``), in that
+        order, whichever process owns them. Under mpirun it is collective: every process calls it
+        with the same ids and gets the same snapshots. A negative id counts from the end; an
+        erased body is an error naming it."""
+        from talus.dem.core import gathered
+        n = len(self)
+        wanted = []
+        for id in ids:
+            if not isinstance(id, (int, np.integer)):
+                raise TypeError(f"O.bodies.gather: body ids are integers, got {id!r}")
+            wanted.append(int(id) + n if id < 0 else int(id))
+        split = distributed.domain(self._scene)
+        if split is not None:   # ids out of range and erased bodies are refused on every process alike
+            return gathered.from_table(wanted, split.gather(self._scene._cpp, wanted))
+        for i in wanted:
+            if not 0 <= i < n:
+                raise IndexError(f"O.bodies.gather: no body with id {i} (ids run from 0 to {n - 1})")
+        bodies = [self[i] for i in wanted]
+        for i, b in zip(wanted, bodies):
+            if b is None:
+                raise ValueError(f"O.bodies.gather: body {i} was erased")
+        return [gathered.of_body(b) for b in bodies]
 
     def __len__(self) -> int:
         split = distributed.domain(self._scene)

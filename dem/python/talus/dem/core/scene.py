@@ -196,8 +196,6 @@ class Scene(OmegaMethods, CheckpointMethods):
 
     @trackEnergy.setter
     def trackEnergy(self, value: bool):
-        if value:
-            distributed.refuse("energy tracking (O.trackEnergy)")
         _dem.set_track_energy(self._cpp, bool(value))
 
     @property
@@ -525,15 +523,30 @@ class Scene(OmegaMethods, CheckpointMethods):
     def masses(self):
         return self._views.track(self._cpp.mass())
 
+    # The bodies' heat (Yade's ThermalState: temp, Cp, k, alpha), writable, NaN where not given:
+    # what a heat engine and any other component read and change (talus.dem.core.heat).
+    def temperatures(self):
+        return self._views.track(self._cpp.temperature())
+
+    def heat_capacities(self):
+        return self._views.track(self._cpp.heatCapacity())
+
+    def conductivities(self):
+        return self._views.track(self._cpp.conductivity())
+
+    def thermal_expansions(self):
+        return self._views.track(self._cpp.thermalExpansion())
+
     def contacts(self) -> list[dict]:
         """A copy of the real contacts (ids, geometry, stiffness, forces), for inspection."""
         return self._cpp.contacts()
 
 
 def contactTimeStep(scene: Scene | None = None) -> float:
-    """Critical step of the stiffest current contact alone, 2 sqrt(m / kn)."""
-    O = default_scene()
-    return (scene or O)._cpp.contactTimeStep()
+    """Critical step of the stiffest current contact alone, 2 sqrt(m / kn) (under mpirun, the
+    whole scene's: collective)."""
+    scene = scene or default_scene()
+    return distributed.smallest(scene._cpp.contactTimeStep(), scene)
 
 
 def SpherePWaveTimeStep(radius: float, density: float, young: float) -> float:
@@ -542,9 +555,10 @@ def SpherePWaveTimeStep(radius: float, density: float, young: float) -> float:
 
 
 def PWaveTimeStep(scene: Scene | None = None) -> float:
-    """Yade's P-wave critical step estimate: min over spheres of r sqrt(density / young)."""
-    O = default_scene()
-    value = (scene or O)._cpp.pWaveTimeStep()
+    """Yade's P-wave critical step estimate: min over spheres of r sqrt(density / young) (under
+    mpirun, the whole scene's: collective)."""
+    scene = scene or default_scene()
+    value = distributed.smallest(scene._cpp.pWaveTimeStep(), scene)
     if value == float("inf"):
         raise ValueError("PWaveTimeStep: the scene has no spheres")
     return value
