@@ -376,9 +376,10 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
     Talus's) give a :class:`CheckpointWarning`; the state is saved all the same.
     Raises :class:`CheckpointError` naming the file if it cannot be written; a file already at
     ``path`` is then left as it was.
+
+    Under mpirun every process calls it (as every process runs the script): one file, written by
+    all of them, in the layout of a serial checkpoint (docs/distributed-dem.md, Checkpoints).
     """
-    from talus.dem import distributed
-    distributed.refuse("writing a checkpoint (O.save)")
     _require()
     path = os.fspath(path)
     extras = {}
@@ -393,8 +394,20 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
         if signature is not None:
             extras["engines_signature"] = signature
     extras.update(_body_data(scene))
-    _dem.save_checkpoint(scene._cpp, path, extras)
+    from talus.dem import distributed
+    if distributed.ACTIVE:
+        from talus import _distributed_checkpoint
+        _distributed_checkpoint.save(distributed.domain(scene), scene._cpp, path, extras)
+    else:
+        _dem.save_checkpoint(scene._cpp, path, extras)
     _scene_memory(scene)["last"] = path
+
+
+def _refuse_split(scene: "Scene", what: str) -> None:
+    """Memory slots hold one process's rows: refused once the scene is split over processes."""
+    from talus.dem import distributed
+    if distributed.domain(scene) is not None:
+        distributed.refuse(f"{what} (a memory slot; O.save and O.load work under mpirun)")
 
 
 def _engine_list(extras: dict, where: str) -> list[dict] | None:
@@ -425,15 +438,22 @@ def load(scene: "Scene", path: str | os.PathLike, *, engines: str = "auto", trus
     signature), or of every file under ``talus run --trust-checkpoints``; the others are loaded but held, with a
     :class:`CheckpointWarning` listing them, and one that comes due stops the run with
     :class:`talus.dem.files.trust.UntrustedCommandError` (see :mod:`talus.dem.files.trust`).
+
+    Under mpirun every process reads the whole file (written at any process count, or by a run
+    in one process) and the scene is split again when its next step starts.
     """
-    from talus.dem import distributed
-    distributed.refuse("reading a checkpoint (O.load)")
     _require()
     if engines not in _ENGINE_MODES:
         raise ValueError(f"O.load: engines must be one of {_ENGINE_MODES}, got {engines!r}")
     path = os.fspath(path)
     where = f"checkpoint {path!r}"
-    extras = _load_state(scene, lambda: _dem.load_checkpoint(scene._cpp, path))
+    from talus.dem import distributed
+    if distributed.ACTIVE:
+        from talus import _distributed_checkpoint
+        extras = _load_state(scene, lambda: _distributed_checkpoint.load(scene._cpp, path))
+        scene._domain = None      # the whole scene is here again: split at the next step
+    else:
+        extras = _load_state(scene, lambda: _dem.load_checkpoint(scene._cpp, path))
     if trusted is None:
         trusted = trust.trusted_by_default(extras.get("engines"), extras.get("engines_signature"))
     if trusted:
@@ -475,6 +495,7 @@ class _Slot(str):
 def saveTmp(scene: "Scene", slot: str = "") -> None:
     """Keep the scene's state and engines in memory slot ``slot`` (Yade's ``O.saveTmp``)."""
     _require()
+    _refuse_split(scene, "O.saveTmp")
     image = _dem.save_checkpoint_image(scene._cpp, _body_data(scene))
     _scene_memory(scene)["slots"][str(slot)] = (image, _engine_specs(scene, to_file=False))
     _scene_memory(scene)["last"] = _Slot(slot)
@@ -484,6 +505,7 @@ def loadTmp(scene: "Scene", slot: str = "", *, engines: str = "auto") -> None:
     """Restore the state and engines kept by :func:`saveTmp` in ``slot`` (Yade's ``O.loadTmp``).
     ``engines`` as for :func:`load`."""
     _require()
+    _refuse_split(scene, "O.loadTmp")
     if engines not in _ENGINE_MODES:
         raise ValueError(f"O.loadTmp: engines must be one of {_ENGINE_MODES}, got {engines!r}")
     slots = _scene_memory(scene)["slots"]
