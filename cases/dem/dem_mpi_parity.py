@@ -1,18 +1,27 @@
-"""DEM case: a script written for one process gives the serial run's positions under mpirun.
+"""DEM case: scripts written for one process give the serial run's positions under mpirun.
 
 Run:      build/bin/talus run cases/dem/dem_mpi_parity.py [--quick] [--results DIR]
-Set-up:   cases/scenes/deposition.py, unchanged in every run: spheres (makeCloud, rRelFuzz 0.3)
-          falling onto the walls of a box (FrictMat, linear Cundall-Strack law, damping 0.4,
-          dt 0.7 P-wave, a PyRunner printing unbalancedForce), 1000 steps, run by `talus run`
-          in one process and by `mpirun --oversubscribe -np N talus run -j 1` for N = 1, 2, 3, 4
-          (this machine has 2 cores: 3 and 4 processes are oversubscribed). Quick: 400 spheres;
-          full: 3000.
-Checked:  dem.mpi.parity: the largest difference of a body's position from the serial run's,
-          every 100 steps over the 1000, over the largest coordinate (relative; <= 1e-10), at
-          every process count. The details hold each count's difference and the halo traffic per
-          process and step (ghost-update bytes and messages; migration and ghost-rebuild bytes
-          per re-detection).
-Produces: the record and chart dem.mpi.parity.png (difference and halo bytes per process count).
+Set-up:   two scenes, each unchanged in every run, 1000 steps, run by `talus run` in one process
+          and by `mpirun --oversubscribe -np N talus run -j 1` (this machine has 2 cores: above 2
+          processes are oversubscribed):
+          - cases/scenes/deposition.py: spheres (makeCloud, rRelFuzz 0.3) falling onto the walls
+            of a box (FrictMat, linear Cundall-Strack law, damping 0.4, dt 0.7 P-wave, a PyRunner
+            printing unbalancedForce), N = 1, 2, 3, 4. Quick: 400 spheres; full: 3000.
+          - cases/scenes/silo_discharge.py: a square silo of 16 facets (held by every process)
+            discharging through its floor's orifice, Hertz-Mindlin with restitution 0.5, a
+            PyRunner erasing every 50 steps the spheres two radii below the floor (every process
+            erases the same ones, deciding from the gathered positions), N = 1, 2, 4. Quick: 400
+            spheres; full: 3000.
+Checked:  dem.mpi.parity (deposition) and dem.mpi.parity.silo: the largest difference of a body's
+          position from the serial run's, every 100 steps over the 1000, over the largest
+          coordinate (relative; <= 1e-10), at every process count; for the silo, the bodies
+          erased must be the same at every sample (an erased body counted as a difference of
+          1) and the details hold the spheres left every 100 steps. The details hold each
+          count's difference and the halo traffic per process and step (ghost-update bytes and
+          messages; migration and ghost-rebuild bytes per re-detection; bodies and contacts
+          migrated).
+Produces: the records and the chart dem.mpi.parity.png (differences and halo bytes per process
+          count).
 """
 import json
 import os
@@ -25,14 +34,15 @@ import numpy as np
 
 from talus import results
 
-SCENE = Path(__file__).resolve().parents[1] / "scenes" / "deposition.py"
+SCENES = Path(__file__).resolve().parents[1] / "scenes"
 STEPS = 1000
 
 
-def run(processes: int | None, spheres: int, folder: Path) -> dict:
+def run(scene: str, processes: int | None, spheres: int, folder: Path) -> dict:
     """The scene in one process (None) or under mpirun with `processes`; its JSON output."""
-    out = folder / f"run-{processes or 0}.json"
-    talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENE), str(spheres), str(STEPS), str(out)]
+    out = folder / f"{scene}-{processes or 0}.json"
+    talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENES / f"{scene}.py"), str(spheres), str(STEPS),
+             str(out)]
     command = talus if processes is None else ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
                                                str(processes), *talus]
     env = {**os.environ, "OMP_NUM_THREADS": "1"}
@@ -42,6 +52,42 @@ def run(processes: int | None, spheres: int, folder: Path) -> dict:
     return json.loads(out.read_text())
 
 
+def difference(serial: dict, split: dict) -> float:
+    """Largest difference of a body's position from the serial run's over every sample, relative
+    to the largest coordinate; 1 if a body erased in one run is not erased in the other."""
+    a, b = np.asarray(serial["positions"], float), np.asarray(split["positions"], float)
+    if not np.array_equal(np.isnan(a), np.isnan(b)):
+        return 1.0
+    kept = ~np.isnan(a)
+    return float(np.abs(a[kept] - b[kept]).max() / np.abs(a[kept]).max())
+
+
+def halo(traffic: list[dict]) -> dict:
+    """The halo traffic per process and step or re-detection."""
+    return {
+        "update_bytes_per_process_step": [t["update_bytes"] / max(t["updates"], 1) for t in traffic],
+        "update_messages_per_process_step": [t["update_messages"] / max(t["updates"], 1) for t in traffic],
+        "rebuild_bytes_per_process_redetection": [t["rebuild_bytes"] / max(t["rebuilds"], 1) for t in traffic],
+        "redetections": [t["rebuilds"] for t in traffic],
+        "migrated_bodies": [t["migrated_bodies"] for t in traffic],
+        "migrated_contacts": [t["migrated_contacts"] for t in traffic],
+    }
+
+
+def parity(scene: str, spheres: int, counts: list[int], folder: Path) -> tuple[dict, dict, dict, dict]:
+    """The serial run, and per process count its run, its difference and its halo."""
+    serial = run(scene, None, spheres, folder)
+    split = {n: run(scene, n, spheres, folder) for n in counts}
+    differences = {n: difference(serial, r) for n, r in split.items()}
+    halos = {n: halo(r["traffic"]) for n, r in split.items()}
+    for n in counts:
+        print(f"{scene}, {n} processes: largest relative position difference {differences[n]:.3g}, ghost updates "
+              f"{np.mean(halos[n]['update_bytes_per_process_step'] or [0]):.0f} bytes and "
+              f"{np.mean(halos[n]['update_messages_per_process_step'] or [0]):.2f} messages per process and step, "
+              f"{sum(halos[n]['migrated_bodies'])} bodies migrated with {sum(halos[n]['migrated_contacts'])} contacts")
+    return serial, split, differences, halos
+
+
 def main():
     args = results.case_arguments(__doc__).parse_args()
     import matplotlib
@@ -49,46 +95,43 @@ def main():
     import matplotlib.pyplot as plt
     case = results.Case("dem.mpi.parity", quick=args.quick, folder=args.results)
     spheres = 400 if args.quick else 3000
-    counts = [1, 2, 3, 4]
+    counts = {"deposition": [1, 2, 3, 4], "silo_discharge": [1, 2, 4]}
     with tempfile.TemporaryDirectory() as tmp:
-        serial = run(None, spheres, Path(tmp))
-        split = {n: run(n, spheres, Path(tmp)) for n in counts}
-    reference = np.asarray(serial["positions"])
-    scale = np.abs(reference).max()
-    differences, halo = {}, {}
-    for n, r in split.items():
-        differences[n] = float(np.abs(np.asarray(r["positions"]) - reference).max() / scale)
-        per_process = r["traffic"]
-        halo[n] = {
-            "update_bytes_per_process_step": [t["update_bytes"] / max(t["updates"], 1) for t in per_process],
-            "update_messages_per_process_step": [t["update_messages"] / max(t["updates"], 1) for t in per_process],
-            "rebuild_bytes_per_process_redetection": [t["rebuild_bytes"] / max(t["rebuilds"], 1) for t in per_process],
-            "redetections": [t["rebuilds"] for t in per_process],
-        }
-        print(f"{n} processes: largest relative position difference {differences[n]:.3g}, ghost updates "
-              f"{np.mean(halo[n]['update_bytes_per_process_step'] or [0]):.0f} bytes and "
-              f"{np.mean(halo[n]['update_messages_per_process_step'] or [0]):.2f} messages per process and step")
-    worst = max(differences.values())
+        runs = {scene: parity(scene, spheres, n, Path(tmp)) for scene, n in counts.items()}
+    serial, split, differences, halos = runs["deposition"]
     case.record("largest difference of a body's position from the serial run over 1000 steps, relative to the "
-                "largest coordinate, at 1 to 4 processes", worst,
+                "largest coordinate, at 1 to 4 processes", max(differences.values()),
                 "the same script in one process (talus run)", 1e-10, spheres=spheres, steps=STEPS,
-                differences={str(n): d for n, d in differences.items()}, halo={str(n): h for n, h in halo.items()},
+                differences={str(n): d for n, d in differences.items()}, halo={str(n): h for n, h in halos.items()},
+                floor_force_serial=serial["floor_force"],
+                floor_force={str(n): r["floor_force"] for n, r in split.items()})
+    serial, split, differences, halos = runs["silo_discharge"]
+    case.record("silo of facets discharging (Hertz-Mindlin, spheres erased as they leave): largest difference of a "
+                "body's position from the serial run over 1000 steps, relative to the largest coordinate (1 if other "
+                "bodies were erased), at 1, 2 and 4 processes", max(differences.values()),
+                "the same script in one process (talus run)", 1e-10, suffix="silo", spheres=spheres, steps=STEPS,
+                differences={str(n): d for n, d in differences.items()}, halo={str(n): h for n, h in halos.items()},
+                spheres_left_serial=serial["left"], spheres_left={str(n): r["left"] for n, r in split.items()},
                 floor_force_serial=serial["floor_force"],
                 floor_force={str(n): r["floor_force"] for n, r in split.items()})
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    axes[0].bar([str(n) for n in counts], [max(differences[n], 1e-18) for n in counts])
-    axes[0].axhline(1e-10, color="C3", ls="--", label="tolerance 1e-10")
-    axes[0].set_yscale("log")
-    axes[0].set_xlabel("MPI processes")
-    axes[0].set_ylabel("largest relative position difference")
-    axes[0].set_title(f"deposition of {spheres} spheres, 1000 steps (0: same bits)")
-    axes[0].legend()
-    axes[1].bar([str(n) for n in counts],
-                [np.mean(halo[n]["update_bytes_per_process_step"] or [0]) for n in counts])
-    axes[1].set_xlabel("MPI processes")
-    axes[1].set_ylabel("ghost-update bytes per process and step")
-    axes[1].set_title("halo traffic")
+    fig, axes = plt.subplots(1, 3, figsize=(14, 3.8))
+    titles = {"deposition": f"deposition of {spheres} spheres", "silo_discharge": f"silo of {spheres} spheres"}
+    for ax, (scene, (_, _, differences, _)) in zip(axes, runs.items()):
+        ax.bar([str(n) for n in counts[scene]], [max(differences[n], 1e-18) for n in counts[scene]])
+        ax.axhline(1e-10, color="C3", ls="--", label="tolerance 1e-10")
+        ax.set_yscale("log")
+        ax.set_xlabel("MPI processes")
+        ax.set_ylabel("largest relative position difference")
+        ax.set_title(f"{titles[scene]}, 1000 steps (1e-18: same bits)", fontsize=9)
+        ax.legend()
+    for scene, (_, _, _, halos) in runs.items():
+        axes[2].plot(counts[scene], [np.mean(halos[c]["update_bytes_per_process_step"] or [0]) for c in counts[scene]],
+                     marker="o", label=titles[scene])
+    axes[2].set_xlabel("MPI processes")
+    axes[2].set_ylabel("ghost-update bytes per process and step")
+    axes[2].set_title("halo traffic")
+    axes[2].legend()
     fig.tight_layout()
     case.save_chart(fig)
 

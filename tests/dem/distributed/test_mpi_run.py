@@ -66,8 +66,8 @@ def _script(tmp_path, body):
 
 
 @pytest.mark.parametrize("body, named", [
-    ("O.bodies.append(utils.facet(((0, 0, -1), (1, 0, -1), (0, 1, -1))))\nO.run(10, True)\n", "Facet"),
-    ("O.engines = O.engines + [GravityEngine(gravity=(0, 0, -1))]\nO.run(10, True)\n", "GravityEngine"),
+    ("O.bodies.append(utils.box((0, 0, -1), (1, 1, 0.1)))\nO.run(10, True)\n", "Box"),
+    ("O.engines = O.engines + [HdapsGravityEngine()]\nO.run(10, True)\n", "HdapsGravityEngine"),
 ])
 def test_what_is_not_distributed_is_refused_by_name_once(tmp_path, body, named):
     done = talus_run(_script(tmp_path, body), processes=2)
