@@ -89,7 +89,8 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
   PoreNetwork fresh = params.periodic ? triangulatePeriodic(spheres, boundaries(spheres), params.hasBoundary,
                                                             params.cellSize, params.duplicateThreshold, order)
                       : params.alphaBound >= 0 ? triangulateAlphaShape(spheres, params.alphaBound, alpha)
-                                               : triangulate(spheres, boundaries(spheres), order);
+                                               : triangulate(spheres, boundaries(spheres), order,
+                                                             params.concurrentTriangulation);
   std::vector<double> p = carriedPressures(fresh);
   net_ = std::move(fresh);
   p_ = std::move(p);

@@ -50,6 +50,11 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
   /// Talus: insert the spheres one by one and keep CGAL's vertex order, as Yade (slower; the
   /// same numbers as Yade to round-off), instead of a sorted range (see InsertionOrder)
   bool yadeInsertionOrder = false;
+  /// Talus: with more than one OpenMP thread and TBB, insert the spheres of a box network
+  /// concurrently (CGAL's Parallel_tag). Off by default: the pores are then numbered in another
+  /// canonical order, so the results differ from a one-thread run's by round-off, and on two
+  /// cores it is no faster; without it the results are the same bits at any thread count.
+  bool concurrentTriangulation = false;
 
   // --- alpha-shape boundary (Yade's alphaBound, alphaBoundValue) ---
   /// < 0 (default -1): the box's boundaries; >= 0: the network is triangulated with alpha

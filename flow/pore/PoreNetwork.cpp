@@ -340,7 +340,7 @@ std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSp
 }
 
 PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
-                        InsertionOrder insertion)
+                        InsertionOrder insertion, bool concurrent)
 {
   detail::checkSpheres(spheres);
   for (const PoreSphere& s : spheres)
@@ -367,7 +367,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
   for (std::size_t i = 0; i < order.size(); ++i)
     order[i] = static_cast<int>(i);
 #ifdef CGAL_LINKED_WITH_TBB
-  if (const int threads = callerThreads(); insertion == InsertionOrder::Sorted && threads > 1)
+  if (const int threads = callerThreads(); concurrent && insertion == InsertionOrder::Sorted && threads > 1)
   {
     ParallelRegular::Lock_data_structure locks(CGAL::Bbox_3(lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z()),
                                                      kLockGridCells);

@@ -156,18 +156,20 @@ enum class InsertionOrder
 std::array<Boundary, kBoundaries> boundingBoxBoundaries(const std::vector<PoreSphere>& spheres);
 
 /// Triangulate `spheres` inside `boundaries` (the pores, their neighbours and centres; no
-/// hydraulic geometry yet, see computeGeometry). With InsertionOrder::Sorted, a caller running
-/// more than one OpenMP thread and a build with TBB, CGAL inserts the spheres on that many
-/// threads; the pores are then numbered in a canonical order (the same pores, numbered alike from
-/// run to run; results differ from a one-thread run's by round-off only).
+/// hydraulic geometry yet, see computeGeometry). With `concurrent`, InsertionOrder::Sorted, a
+/// caller running more than one OpenMP thread and a build with TBB, CGAL inserts the spheres on
+/// that many threads; the pores are then numbered in a canonical order (the same pores, numbered
+/// alike from run to run; results differ from a one-thread run's by round-off only). Without it
+/// the network is the same bits at any thread count.
 /// @param spheres the spheres (positions and radii in m, with their body ids)
 /// @param boundaries the six boundaries (walls or the packing's box)
 /// @param order how the spheres enter CGAL (see InsertionOrder)
+/// @param concurrent allow the concurrent insertion (above)
 /// @return the network: vertices, pores, throats, the pores along each boundary
 /// @throws std::invalid_argument fewer than 4 spheres, a non-finite position or radius, a
 ///         non-positive radius or a sphere centre outside the boundaries (naming the body id)
 PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array<Boundary, kBoundaries>& boundaries,
-                        InsertionOrder order = InsertionOrder::Sorted);
+                        InsertionOrder order = InsertionOrder::Sorted, bool concurrent = false);
 
 /// Periodic variant (Yade's PeriodicFlowEngine): `spheres` (any positions, wrapped here along
 /// the periodic axes) in the orthorhombic cell [0, cellSize); images of the spheres closer than

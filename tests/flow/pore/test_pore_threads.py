@@ -1,6 +1,7 @@
-"""The pore network built on two threads (CGAL's concurrent insertion when Talus has TBB) against
-the one built on one: the same pores, numbered the same way from run to run, and the same flux
-to round-off. Each build runs in its own process, whose OMP_NUM_THREADS sets the thread count."""
+"""The pore network built on two threads against the one built on one: by default the same bits;
+with concurrentTriangulation (CGAL's concurrent insertion when Talus has TBB) the same pores,
+numbered the same way from run to run, and the same flux to round-off. Each build runs in its own
+process, whose OMP_NUM_THREADS sets the thread count."""
 import json
 import os
 import subprocess
@@ -19,7 +20,8 @@ import json, sys
 import numpy as np
 from talus.flow import FlowEngine
 data = np.loadtxt(sys.argv[1])
-flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0])
+flow = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0],
+                  concurrentTriangulation=sys.argv[2] == "concurrent")
 flow.triangulate(data[:, :3].copy(), data[:, 3].copy())
 flow.solve()
 print(json.dumps({"pores": flow._flow.poreVertexIds().tolist(), "flux": flow.getBoundaryFlux(2),
@@ -27,11 +29,11 @@ print(json.dumps({"pores": flow._flow.poreVertexIds().tolist(), "flux": flow.get
 """
 
 
-def build(packing, threads):
+def build(packing, threads, insertion="sequential"):
     # The suite puts the tested package on sys.path only; the child gets it through PYTHONPATH.
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_THREAD_LIMIT=str(threads),
                PYTHONPATH=str(Path(talus.__file__).resolve().parents[1]))
-    done = subprocess.run([sys.executable, "-c", BUILD, str(packing)], env=env, capture_output=True, text=True,
+    done = subprocess.run([sys.executable, "-c", BUILD, str(packing), insertion], env=env, capture_output=True, text=True,
                           check=False)
     assert done.returncode == 0, done.stderr
     return json.loads(done.stdout.splitlines()[-1])
@@ -46,8 +48,14 @@ def packing(tmp_path_factory):
     return path
 
 
-def test_two_threads_give_the_same_pores_numbered_alike_from_run_to_run(packing):
-    one, two, again = build(packing, 1), build(packing, 2), build(packing, 2)
+def test_the_network_and_its_solution_are_the_same_bits_at_any_thread_count(packing):
+    one = build(packing, 1)
+    assert len(one["pores"]) > 15000
+    assert build(packing, 2) == one
+
+
+def test_concurrent_insertion_gives_the_same_pores_numbered_alike_from_run_to_run(packing):
+    one, two, again = build(packing, 1), build(packing, 2, "concurrent"), build(packing, 2, "concurrent")
     assert len(one["pores"]) > 15000
     # the same cells (a cell is its four vertices), whatever order each build numbers them in
     assert sorted(tuple(sorted(p)) for p in two["pores"]) == sorted(tuple(sorted(p)) for p in one["pores"])

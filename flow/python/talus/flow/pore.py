@@ -53,6 +53,7 @@ _ENGINE_COUNTS = {"meshUpdateInterval": None, "backgroundSteps": 0}
 _ENGINE_FLAGS = {"decoupleForces": False, "debug": False, "getCHOLMODPerfTimings": False, "permeabilityMap": False}
 _SCALARS = ("permeabilityFactor", "viscosity", "clampKValues", "minKdivKmean", "maxKdivKmean",
             "slipBoundary", "useSolver", "tolerance", "relax", "fluidBulkModulus", "yadeInsertionOrder",
+            "concurrentTriangulation",
             "viscousShear", "shearLubrication", "normalLubrication", "eps", "stiffness", "pZero",
             "alphaBound", "alphaBoundValue")
 
@@ -142,7 +143,10 @@ class FlowEngine(Engine):
     ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), ``yadeInsertionOrder``
     False (Talus: True inserts the spheres one by one and keeps CGAL's vertex order as Yade does, slower, the
     same numbers as Yade to round-off; False inserts them as one spatially sorted range and takes the facet
-    vertices in a canonical order, within 0.4 % of Yade on the most affected throat), and for the engine
+    vertices in a canonical order, within 0.4 % of Yade on the most affected throat),
+    ``concurrentTriangulation`` False (Talus: True lets CGAL insert the spheres of a box network on
+    the OpenMP threads when there are several; the results then differ from a one-thread run's by
+    round-off; False gives the same bits at any thread count), and for the engine
     ``meshUpdateInterval`` 1000 (<= 0: never by count), ``decoupleForces`` False (True: the fluid forces are
     not added to the bodies), ``pZero`` 0 (pressure of the first network's pores: the initial pressure of
     a compressible fluid; the mean pressure of an incompressible one that no boundary drains), ``debug`` False (no effect), ``defTolerance`` 0 (off, as Yade; > 0: remesh when a pore's volume changed by more than this
