@@ -3,7 +3,7 @@ on the same packing, same invocation.
 
 Run:      build/bin/talus run cases/pore/twophase_drainage.py [--quick] [--results DIR]
 Set-up:   a seeded loose cloud (makeCloud, rMean 0.035, rRelFuzz 0.3) of 1 000 spheres (full mode:
-          also 5 000), written to a file; cases/yade/twophase_drainage.py, run unchanged by both
+          also 5 000), written to a file; cases/yade/twophase/twophase_drainage.py, run unchanged by both
           programs, puts the spheres in the walls of their bounding box, the wetting reservoir on
           ymin and the non-wetting one on ymax (pressure 0), surfaceTension 0.0728, MS-P entry
           pressures (entryPressureMethod 1), trapped wetting phase (isPhaseTrapped), and drains by
@@ -17,7 +17,7 @@ Checked:  twophase.drainage: the largest difference of the saturation from Yade'
           over the imbibition steps; twophase.drainage.speed-<n>: Yade's time over Talus's for the
           drainage (>= 3); twophase.drainage.clusters: on the 1 000-sphere cloud, an invasion() at
           pc = 2 surfaceTension / d with isCellLabelActivated then 400 pores drained one at a time
-          by clusterInvadePore (cases/yade/twophase_cluster_invasion.py): the share of the steps
+          by clusterInvadePore (cases/yade/twophase/twophase_cluster_invasion.py): the share of the steps
           (pore drained, labels returned), final pore labels and cluster pore/interface lists that
           differ from Yade's (= 0). Without yade the records are skipped.
 Produces: the records and twophase.drainage.png (the capillary pressure-saturation curves of both).
@@ -32,8 +32,8 @@ from talus import results
 from talus import twin
 from talus.dem.packing.pack import SpherePack
 
-SCENARIO = Path(__file__).resolve().parents[1] / "yade" / "twophase_drainage.py"
-CLUSTERS = Path(__file__).resolve().parents[1] / "yade" / "twophase_cluster_invasion.py"
+SCENARIO = Path(__file__).resolve().parents[1] / "yade" / "twophase" / "twophase_drainage.py"
+CLUSTERS = Path(__file__).resolve().parents[1] / "yade" / "twophase" / "twophase_cluster_invasion.py"
 GAMMA = 0.0728
 R_MEAN = 0.035
 STEPS = 60

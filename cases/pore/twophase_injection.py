@@ -4,7 +4,7 @@ same packing, same invocation.
 
 Run:      build/bin/talus run cases/pore/twophase_injection.py [--quick] [--results DIR]
 Set-up:   the seeded 1 000-sphere cloud of cases/pore/twophase_drainage.py (makeCloud, rMean 0.035,
-          rRelFuzz 0.3, unit cube); cases/yade/twophase_injection.py, run unchanged by both
+          rRelFuzz 0.3, unit cube); cases/yade/twophase/twophase_injection.py, run unchanged by both
           programs, puts it in the walls of its bounding box, imposes 1 000 Pa of wetting fluid
           (viscosity 0.1) on ymin, fills the pores below a third of the height through the
           reservoir cluster, then advances the menisci of the cluster's interfaces by their
@@ -33,7 +33,7 @@ from talus import results
 from talus import twin
 from twophase_drainage import cloud  # the drainage case's packing
 
-SCENARIO = Path(__file__).resolve().parents[1] / "yade" / "twophase_injection.py"
+SCENARIO = Path(__file__).resolve().parents[1] / "yade" / "twophase" / "twophase_injection.py"
 DT = 2e-5
 EVERY = 20
 

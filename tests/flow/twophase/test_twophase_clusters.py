@@ -1,7 +1,7 @@
 """TwoPhaseFlowEngine's clusters as a drainage changes them: clusterInvadePore (a wetting pore
 drains and its cluster is labelled again, split if need be), clusterInvadePoreFast and
 useFastInvasion (the cluster kept in place, split only when the pore's neighbours no longer meet
-around it). The scenario cases/yade/twophase_cluster_invasion.py on the 400-sphere cloud of
+around it). The scenario cases/yade/twophase/twophase_cluster_invasion.py on the 400-sphere cloud of
 data/pore_packing.txt against Yade 2023.02a's runs of it (data/twophase_clusters_yade_reference.json,
 written by twophase_clusters_yade_reference.py), the bookkeeping of one split, and bad input."""
 import json
@@ -16,7 +16,7 @@ from talus.flow import TwoPhaseFlowEngine
 HERE = Path(__file__).resolve().parent
 PACKING = HERE.parent / "data" / "pore_packing.txt"
 REF = json.loads((HERE.parent / "data" / "twophase_clusters_yade_reference.json").read_text())
-SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase_cluster_invasion.py"
+SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase" / "twophase_cluster_invasion.py"
 SPHERES = np.loadtxt(PACKING)
 
 

@@ -1,5 +1,5 @@
 """TwoPhaseFlowEngine's clusters (isCellLabelActivated, PhaseCluster, clusterOutvadePore): the
-dynamic injection of Yade's TwoPhaseFlowInjection.py (cases/yade/twophase_injection.py) on the
+dynamic injection of Yade's TwoPhaseFlowInjection.py (cases/yade/twophase/twophase_injection.py) on the
 400-sphere cloud of data/pore_packing.txt against Yade 2023.02a's run of the same scenario
 (data/twophase_injection_yade_reference.json, written by twophase_injection_yade_reference.py),
 the clusters' bookkeeping, and bad input."""
@@ -15,7 +15,7 @@ from talus.flow import TwoPhaseFlowEngine
 
 HERE = Path(__file__).resolve().parent
 REF = json.loads((HERE.parent / "data" / "twophase_injection_yade_reference.json").read_text())
-SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase_injection.py"
+SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase" / "twophase_injection.py"
 SPHERES = np.loadtxt(HERE.parent / "data" / "pore_packing.txt")
 
 

@@ -1,7 +1,7 @@
 """TwoPhaseFlowEngine's per-pore queries (getCellVolume by pore id, getCellVoidVolume,
 getCellPorosity, getCellIsFictious, isCellNeighbor, getCellFluxFromId) and
 getPotentialPendularSpheresPair: the
-scenario cases/yade/twophase_pore_queries.py on the 400-sphere cloud of data/pore_packing.txt
+scenario cases/yade/twophase/twophase_pore_queries.py on the 400-sphere cloud of data/pore_packing.txt
 against Yade 2023.02a's run of it (data/twophase_pore_queries_yade_reference.json, written by
 twophase_pore_queries_yade_reference.py)."""
 import json
@@ -16,7 +16,7 @@ from talus.flow import TwoPhaseFlowEngine
 HERE = Path(__file__).resolve().parent
 PACKING = HERE.parent / "data" / "pore_packing.txt"
 REF = json.loads((HERE.parent / "data" / "twophase_pore_queries_yade_reference.json").read_text())
-SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase_pore_queries.py"
+SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase" / "twophase_pore_queries.py"
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
 """TwoPhaseFlowEngine's per-pore setters (setPoreBodyRadius, setPoreThroatRadius,
 setCellSaturation, setCellIsWRes, setCellIsNWRes) and updatePressure: the drainage of
-cases/yade/twophase_setters.py from a state set pore by pore, on the 400-sphere cloud of
+cases/yade/twophase/twophase_setters.py from a state set pore by pore, on the 400-sphere cloud of
 data/pore_packing.txt, against Yade 2023.02a's run of it (data/twophase_setters_yade_reference.json,
 written by twophase_setters_yade_reference.py), and bad input."""
 import json
@@ -16,7 +16,7 @@ from talus.flow import TwoPhaseFlowEngine
 HERE = Path(__file__).resolve().parent
 PACKING = HERE.parent / "data" / "pore_packing.txt"
 REF = json.loads((HERE.parent / "data" / "twophase_setters_yade_reference.json").read_text())
-SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase_setters.py"
+SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase" / "twophase_setters.py"
 SPHERES = np.loadtxt(PACKING)
 
 

@@ -1,6 +1,6 @@
 """UnsaturatedEngine's measures of parts of the packing (getCuboidSubdomainSaturation,
 getCuboidSubdomainPorosity, getSphericalSubdomainSaturation, getInvadeDepth) along the drainage of
-cases/yade/twophase_subdomains.py on the 400-sphere cloud of data/pore_packing.txt, against Yade
+cases/yade/twophase/twophase_subdomains.py on the 400-sphere cloud of data/pore_packing.txt, against Yade
 2023.02a's run of it (data/twophase_subdomains_yade_reference.json, written by
 twophase_subdomains_yade_reference.py), and bad input."""
 import json
@@ -15,7 +15,7 @@ from talus.flow import UnsaturatedEngine
 HERE = Path(__file__).resolve().parent
 PACKING = HERE.parent / "data" / "pore_packing.txt"
 REF = json.loads((HERE.parent / "data" / "twophase_subdomains_yade_reference.json").read_text())
-SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase_subdomains.py"
+SCENARIO = HERE.parents[2] / "cases" / "yade" / "twophase" / "twophase_subdomains.py"
 SPHERES = np.loadtxt(PACKING)
 
 

@@ -14,7 +14,7 @@ import json
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "..", "cases", "yade"))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(sys.argv[0])), "..", "..", "..", "cases", "yade", "twophase"))
 from twophase_scene import invade, read_spheres, reservoir_engine  # noqa: E402
 
 spheres, lo, hi = read_spheres("../data/pore_packing.txt")

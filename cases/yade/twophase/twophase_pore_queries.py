@@ -32,7 +32,7 @@ out = {"volume": {name[i]: flow.getCellVolume(i) for i in range(n)},
 flow.bndCondValue = [0, 0, -float(params["pc"]), 0, 0, 0]
 flow.invasion()
 out["pendular"] = sorted(sorted(p) for p in flow.getPotentialPendularSpheresPair())
-# the injection's set-up (cases/yade/twophase_injection.py): the wetting reservoir at 1000 Pa grown
+# the injection's set-up (cases/yade/twophase/twophase_injection.py): the wetting reservoir at 1000 Pa grown
 # through its first 40 interfaces, its pressures solved; every pore's flux (getCellFluxFromId)
 flow = reservoir_engine(spheres, lo, hi, yadeInsertionOrder=True, viscosity=0.1, bndCondIsPressure=[0, 0, 1, 0, 0, 0],
                         bndCondValue=[0, 0, 1000.0, 0, 0, 0], boundaryUseMaxMin=[0] * 6, surfaceTension=0.0,

@@ -1,4 +1,4 @@
-# What the two-phase scripts run by Yade (and Talus) share: cases/yade/twophase_drainage.py,
+# What the two-phase scripts run by Yade (and Talus) share: cases/yade/twophase/twophase_drainage.py,
 # twophase_injection.py and tests/flow/twophase/twophase_yade_reference.py. Yade's `-x` puts no script folder on sys.path: a script
 # first adds this folder.
 from yade import *
