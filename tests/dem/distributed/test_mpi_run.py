@@ -89,6 +89,27 @@ def test_a_body_of_the_other_process_is_refused_naming_the_rule(tmp_path):
     assert "is owned by another process" in done.stderr and "positions()" in done.stderr, done.stderr
 
 
+def test_a_body_read_on_its_owner_gives_its_own_id_and_state(tmp_path):
+    # Each process reads the bodies it owns: b.id is the id the script gave (not the process's
+    # row), and the state is that body's (sphere k starts at x = 0.1 k).
+    body = ("O.run(10, True)\n"
+            "from talus import _distributed\n"
+            "seen = []\n"
+            "for k in range(20):\n"
+            "    try:\n"
+            "        b = O.bodies[k]\n"
+            "    except IndexError:\n"
+            "        continue\n"
+            "    assert b.id == k and abs(b.state.pos[0] - 0.1 * k) < 1e-9, (k, b.id, b.state.pos)\n"
+            "    seen.append(k)\n"
+            "import sys\n"
+            "sys.stderr.write('OWNED %s\\n' % seen)\n")
+    done = talus_run(_script(tmp_path, body), processes=2)
+    assert done.returncode == 0, done.stderr
+    owned = [eval(line[6:]) for line in done.stderr.splitlines() if line.startswith("OWNED ")]
+    assert len(owned) == 2 and sorted(owned[0] + owned[1]) == list(range(20)) and min(map(len, owned)) > 0
+
+
 def test_a_body_moved_beyond_the_ghost_layer_is_named_with_the_step(tmp_path):
     # Each process moves the first of its own spheres 5 m up between two runs (a teleport).
     body = ("O.run(10, True)\n"

@@ -461,24 +461,26 @@ class State(Serializable):
 class Body:
     """One body of a scene (Yade's Body): ``id``, ``state``, ``shape``, ``material``, ``dynamic``."""
 
-    __slots__ = ("_scene", "id", "state")   # unknown attributes are errors (see State)
+    # `id` is the body's id in the scene the script built; `_row` its row in this process's
+    # arrays (the same but under mpirun, where a process holds some bodies only)
+    __slots__ = ("_scene", "_row", "id", "state")   # unknown attributes are errors (see State)
 
     def __new__(cls, *view, **attributes):
         # Body(scene, id) is a view; Yade's Body(**attributes) a body of no scene yet.
         return super().__new__(cls) if view else BodySpec.blank(**attributes)
 
-    def __init__(self, scene: "Scene", id: int):
-        scene._cpp.checkBody(id)
-        self._scene, self.id = scene, id
-        self.state = State(scene, id)
+    def __init__(self, scene: "Scene", row: int, id: int | None = None):
+        scene._cpp.checkBody(row)
+        self._scene, self._row, self.id = scene, row, row if id is None else id
+        self.state = State(scene, row)
 
     @property
     def dynamic(self) -> bool:
-        return bool(self._scene._cpp.dynamic()[self.id])
+        return bool(self._scene._cpp.dynamic()[self._row])
 
     @dynamic.setter
     def dynamic(self, value: bool):
-        self._scene._cpp.setDynamic(self.id, bool(value))
+        self._scene._cpp.setDynamic(self._row, bool(value))
 
     @property
     def mask(self) -> int:
@@ -487,31 +489,31 @@ class Body:
         of one mask apart); GravityEngine.mask and NewtonIntegrator.mask act on the bodies
         sharing a bit with theirs. A change applies to the contacts that begin after it: as in
         Yade, a contact in progress lasts until it ends."""
-        return int(_dem.group_mask(self._scene._cpp, self.id))
+        return int(_dem.group_mask(self._scene._cpp, self._row))
 
     @mask.setter
     def mask(self, value):
-        _dem.set_group_mask(self._scene._cpp, self.id, group_mask(value, f"body {self.id}"))
+        _dem.set_group_mask(self._scene._cpp, self._row, group_mask(value, f"body {self.id}"))
 
     groupMask = mask   # Yade's C++ name
 
     @property
     def radius(self) -> float:
-        return float(self._scene._cpp.radius()[self.id])
+        return float(self._scene._cpp.radius()[self._row])
 
     @property
     def shape(self) -> Shape:
         """The body's shape (talus.dem.geometry.shapes): ``b.shape.radius``, ``isinstance(b.shape, Sphere)``."""
-        return shape_of(self._scene, self.id)
+        return shape_of(self._scene, self._row)
 
     @property
     def isClump(self) -> bool:
-        return self._scene._cpp.shapeKind(self.id) == "Clump"
+        return self._scene._cpp.shapeKind(self._row) == "Clump"
 
     @property
     def clumpId(self) -> int:
         """Id of the clump this body belongs to (its own id for a clump, -1 if standalone)."""
-        return self.id if self.isClump else int(_dem.clump_id(self._scene._cpp, self.id))
+        return self.id if self.isClump else int(_dem.clump_id(self._scene._cpp, self._row))
 
     @property
     def isClumpMember(self) -> bool:
@@ -526,7 +528,7 @@ class Body:
         """The body's material; None for a clump (Yade's: its members have theirs)."""
         if self.isClump:
             return None
-        return self._scene.materials[int(self._scene._cpp.materialIds()[self.id])]
+        return self._scene.materials[int(self._scene._cpp.materialIds()[self._row])]
 
     mat = material   # Yade's short name
 
@@ -542,7 +544,7 @@ class Body:
         for engine in self._scene.engines:
             cpp = getattr(engine, "_cpp", None)
             if isinstance(cpp, _dem.Collider) and not engine.dead:
-                found = cpp.boundOf(self._scene._cpp, self.id)
+                found = cpp.boundOf(self._scene._cpp, self._row)
                 if found is None:
                     nan = Vector3(float("nan"), float("nan"), float("nan"))
                     return Aabb(nan, nan, nan, float("nan"))
@@ -555,7 +557,7 @@ class Body:
         facets made with noBound."""
         if self.isClump:
             return False
-        return _dem.shape_data(self._scene._cpp, self.id).get("bounded", True)
+        return _dem.shape_data(self._scene._cpp, self._row).get("bounded", True)
 
     # Body objects are views made on each access: two views of one body are equal, as Yade's
     # shared pointers to the same body are.

@@ -163,10 +163,10 @@ class BodyContainer:
         i = int(id) + n if id < 0 else int(id)
         if not 0 <= i < n:
             raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
-        i = distributed.row_of(self._scene, i)     # under mpirun: its row here, if owned here
-        if i is None or not self._scene._cpp.alive()[i]:
+        row = distributed.row_of(self._scene, i)     # under mpirun: its row here, if owned here
+        if row is None or not self._scene._cpp.alive()[row]:
             return None
-        return Body(self._scene, i)
+        return Body(self._scene, row, i)
 
     def gather(self, ids: Iterable[int]) -> list:
         """Snapshots of the bodies ``ids`` (talus.dem.core.gathered: ``id``, ``dynamic``,
