@@ -159,14 +159,17 @@ class BodyContainer:
         """Body ``id`` (negative: counted from the end), None if it was erased (Yade's)."""
         if not isinstance(id, (int, np.integer)):
             raise TypeError(f"body ids are integers, got {id!r}")
-        n = len(self)
+        scene = self._scene
+        split = distributed.domain(scene)
+        # Scripts call this for one body at a time in their loops: one process reads its arrays directly.
+        n = scene._cpp.bodyCount() if split is None else split.globalCount
         i = int(id) + n if id < 0 else int(id)
         if not 0 <= i < n:
             raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
-        row = distributed.row_of(self._scene, i)     # under mpirun: its row here, if owned here
-        if row is None or not self._scene._cpp.alive()[row]:
+        row = i if split is None else distributed.row_of(scene, i)     # under mpirun: its row here, if owned here
+        if row is None or not scene._cpp.alive()[row]:
             return None
-        return Body(self._scene, row, i)
+        return Body(scene, row, i)
 
     def gather(self, ids: Iterable[int]) -> list:
         """Snapshots of the bodies ``ids`` (talus.dem.core.gathered: ``id``, ``dynamic``,
