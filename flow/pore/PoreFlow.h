@@ -6,7 +6,7 @@
 #include "flow/pore/AlphaBoundary.h"
 #include "flow/pore/PoreGeometry.h"
 #include "flow/pore/PoreNetwork.h"
-#include "flow/pore/PressureSolver.h"
+#include "flow/pore/solver/PressureSolver.h"
 #include "flow/pore/SphereLubrication.h"
 
 #include <array>

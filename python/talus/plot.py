@@ -78,7 +78,7 @@ def addData(*dicts: dict, **values) -> None:
 def _components(row: dict) -> dict:
     """The row with each vector or matrix value split into its components' columns (Yade's
     componentSuffixes), each value checked to be a number."""
-    from talus.dem.core.linalg import Matrix3, Vector2, Vector3
+    from talus.dem.base.linalg import Matrix3, Vector2, Vector3
     suffixes = {Vector2: "xy", Vector3: "xyz"}
     out = {}
     for name, value in row.items():

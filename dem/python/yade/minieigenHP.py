@@ -9,7 +9,7 @@ here ``HP1`` holds the same types as the module. The complex-valued types (``Vec
 
 from types import SimpleNamespace
 
-from talus.dem.core.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
+from talus.dem.base.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
                               Vector6, Vector6i)
 from yade import math as _math
 

@@ -9,7 +9,7 @@ from talus.dem import O
 from talus.dem.geometry.geom import facetBox, facetCylinder
 from talus.dem.core.scene import SpherePWaveTimeStep
 from talus.dem.core.clumps import clumpTemplate
-from talus.dem.core.linalg import Quaternion
+from talus.dem.base.linalg import Quaternion
 from talus.dem.analysis.measure import (aabbDim, aabbExtrema, angularMomentum, getSpheresMass, getSpheresVolume,
                                kineticEnergy, momentum, sumForces, totalForceInVolume)
 from talus.batch import (TableParamReader, loadVars, readParamsFromTable, runningInBatch, saveVars,

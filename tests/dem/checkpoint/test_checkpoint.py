@@ -502,5 +502,8 @@ def test_class_paths_written_before_the_sub_packages_still_load():
     from talus.dem.files import io
     from talus.dem.step.engines import ForceResetter
     assert io._import_class("talus.dem.engines:ForceResetter") is ForceResetter
+    # and modules that moved between sub-packages since (the value types left core for base)
+    from talus.dem.base.linalg import Vector3
+    assert io._import_class("talus.dem.core.linalg:Vector3") is Vector3
     with pytest.raises(ModuleNotFoundError):
         io._import_class("talus.dem.no_such_module:Thing")

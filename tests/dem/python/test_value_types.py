@@ -1,4 +1,4 @@
-"""Yade's value types (talus.dem.core.linalg) against real minieigen: every expression below is
+"""Yade's value types (talus.dem.base.linalg) against real minieigen: every expression below is
 evaluated by Yade 2023 (``yade -n -x``, in a subprocess) and by Talus, and the results compared;
 then what Talus does on purpose otherwise (numpy's meaning where minieigen has none), what
 minieigen cannot be asked (its pruned, svd and polarDecomposition crash or are wrong in Yade

@@ -27,7 +27,7 @@ from talus.dem.geometry.particles import __all__ as _particle_names
 from talus.dem.geometry.blockgen import Joint, JointFileError, generateBlocks, readJoints
 from talus.dem.step.engines import *  # noqa: F401,F403  (Yade's engine and functor names)
 from talus.dem.step.engines import __all__ as _engine_names
-from talus.dem.core.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
+from talus.dem.base.linalg import (Matrix3, Matrix6, Quaternion, Vector2, Vector2i, Vector3, Vector3i, Vector4,
                               Vector6, Vector6i)
 from talus.dem.control.controllers import PeriIsoCompressor
 from talus.dem.control.controllers import (GlobalStiffnessTimeStepper, PeriTriaxController, RayleighWaveTimeStep,

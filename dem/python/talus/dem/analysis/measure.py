@@ -14,7 +14,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem import distributed
-from talus.dem.core.linalg import Matrix3, Matrix6, Vector3
+from talus.dem.base.linalg import Matrix3, Matrix6, Vector3
 from talus.dem.core.scenes import default_scene
 
 

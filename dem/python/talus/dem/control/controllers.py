@@ -21,7 +21,7 @@ import numpy as np
 from talus import _dem
 from talus.dem import distributed
 from talus.dem.step.engines import Engine, asCallback
-from talus.dem.core.linalg import Vector3, as_value
+from talus.dem.base.linalg import Vector3, as_value
 from talus.dem.core.scenes import default_scene
 
 

@@ -10,7 +10,7 @@ import numpy as np
 from talus import _dem
 from talus.dem.control.controllers import cpp_attribute, done_hook_attribute
 from talus.dem.step.engines import Engine
-from talus.dem.core.linalg import Vector2
+from talus.dem.base.linalg import Vector2
 
 _PATHS = ("xxPath", "yyPath", "zzPath", "yzPath", "zxPath", "xyPath")
 _STATE = ("progress", "stress", "strain", "strainRate", "stressRate", "stressIdeal", "stressGoal", "strainGoal",

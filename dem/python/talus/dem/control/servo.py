@@ -7,7 +7,7 @@ from typing import Sequence
 from talus import _dem
 from talus.dem.step.engines import finite_vector
 from talus.dem.step.kinematic import KinematicEngine
-from talus.dem.core.linalg import Vector3
+from talus.dem.base.linalg import Vector3
 
 
 def _number(name: str, kind=float):

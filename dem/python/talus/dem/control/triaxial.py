@@ -28,7 +28,7 @@ from talus import _dem
 from talus.dem.control.controllers import TriaxialStressController, cpp_attribute, setContactFriction
 from talus.dem.step.engines import PyRunner
 from talus.dem.files.io import owner_scene
-from talus.dem.core.linalg import Vector3
+from talus.dem.base.linalg import Vector3
 from talus.dem.analysis.measure import kineticEnergy, unbalancedForce
 
 _CONTROLLER_PARAMS = tuple(inspect.signature(TriaxialStressController).parameters)

@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING, Sequence
 import numpy as np
 
 from talus import _dem
-from talus.dem.core.linalg import Quaternion, Vector3
+from talus.dem.base.linalg import Quaternion, Vector3
 from talus.dem.core import heat
 from talus.dem.core.masks import group_mask
 from talus.dem.geometry.appearance import DEFAULT_COLOR, check_color
-from talus.dem.core.serializable import Serializable
+from talus.dem.base.serializable import Serializable
 from talus.dem.geometry.shapes import Box, Shape, ShapeSpec, Sphere, Wall, shape_of, shape_of_spec
 from talus.dem.core.scenes import default_scene
 

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from talus.dem.core.linalg import Matrix3, Vector3
+from talus.dem.base.linalg import Matrix3, Vector3
 
 if TYPE_CHECKING:
     from talus.dem.core.scene import Scene

@@ -249,7 +249,7 @@ def importTextClumps(fileName: str, shift=(0.0, 0.0, 0.0), discretization: int =
     z)`` with radius ``scale * r``; ``kw`` goes to ``sphere`` (material, color). Lines starting
     with ``#`` are comments. Returns ``[(clumpId, [memberIds]), ...]``."""
     O = default_scene()
-    from talus.dem.core.linalg import Quaternion, Vector3
+    from talus.dem.base.linalg import Quaternion, Vector3
     scene = scene or O
     turn = Quaternion((0, 1, 0), 0.0) if orientation is None else orientation
     shift = Vector3(shift)

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from talus.dem.core.linalg import Quaternion, Vector3
+from talus.dem.base.linalg import Quaternion, Vector3
 
 
 @dataclass(frozen=True)

@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Iterator
 
 import numpy as np
 
-from talus.dem.core.linalg import Vector3
+from talus.dem.base.linalg import Vector3
 
 if TYPE_CHECKING:
     from talus.dem.core.scene import Scene

@@ -5,7 +5,7 @@ from __future__ import annotations
 import warnings
 
 from talus import _dem
-from talus.dem.core.serializable import Serializable
+from talus.dem.base.serializable import Serializable
 
 # Yade's ElastMat attributes (and their defaults), which FrictMat, ViscElMat and CohFrictMat have.
 _ELASTIC = ("young", "poisson")

@@ -38,7 +38,7 @@ from talus.atomic import write_atomically
 from talus.dem.step.engines import PyRunner
 from talus.dem.files.io import owner_scene
 from talus.dem.core import heat
-from talus.dem.core.linalg import Quaternion
+from talus.dem.base.linalg import Quaternion
 from talus.dem.core.scenes import default_scene
 from talus.dem.files.vtu import vtu_bytes
 

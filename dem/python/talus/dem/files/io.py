@@ -92,10 +92,11 @@ def _class_path(cls: type) -> str:
 
 
 def _import_module(name: str):
-    """Checkpoints written before talus.dem had sub-packages name a class's module flat
-    (talus.dem.engines:ForceResetter); such a module is found in the sub-package holding it now."""
+    """Checkpoints written before a module of talus.dem moved name its old place (flat,
+    talus.dem.engines:ForceResetter, or another sub-package, talus.dem.core.linalg:Vector3); such a
+    module is found in the sub-package holding it now."""
     package, _, leaf = name.rpartition(".")
-    if package == "talus.dem" and importlib.util.find_spec(name) is None:
+    if package.startswith("talus.dem") and importlib.util.find_spec(name) is None:
         dem_folder = str(Path(__file__).resolve().parents[1])
         for sub in pkgutil.iter_modules([dem_folder]):
             if sub.ispkg and importlib.util.find_spec(f"talus.dem.{sub.name}.{leaf}") is not None:

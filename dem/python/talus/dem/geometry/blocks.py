@@ -25,7 +25,7 @@ from talus.atomic import write_atomically
 from talus.dem.core.bodies import BodySpec
 from talus.dem.geometry.convex_contact import geometry_functor, two_dimension
 from talus.dem.step.engines import Functor, LawFunctor
-from talus.dem.core.linalg import Quaternion
+from talus.dem.base.linalg import Quaternion
 from talus.dem.core.masks import group_mask
 from talus.dem.geometry.shape_registry import ShapeKind, register
 from talus.dem.files.vtu import vtu_bytes

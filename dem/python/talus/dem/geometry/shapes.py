@@ -20,8 +20,8 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.geometry.appearance import DEFAULT_COLOR, check_color
-from talus.dem.core.linalg import Quaternion, Vector3
-from talus.dem.core.serializable import Serializable
+from talus.dem.base.linalg import Quaternion, Vector3
+from talus.dem.base.serializable import Serializable
 from talus.dem.geometry.shape_registry import ShapeKind, register, shape_kind
 
 

@@ -13,7 +13,7 @@ from numbers import Integral
 from typing import Iterable
 
 from talus.dem.core.bodies import sphere
-from talus.dem.core.linalg import Quaternion, Vector3
+from talus.dem.base.linalg import Quaternion, Vector3
 from talus.dem.geometry.shapes import Facet, Sphere
 from talus.dem.core.scenes import default_scene
 

@@ -32,7 +32,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.core.bodies import sphere
-from talus.dem.core.linalg import Quaternion, Vector3
+from talus.dem.base.linalg import Quaternion, Vector3
 from talus.dem.step.python_engines import PythonEngine, colliderSkin
 
 _ranks = itertools.count()   # default seeds

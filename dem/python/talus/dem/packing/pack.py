@@ -18,7 +18,7 @@ import numpy as np
 from talus import _dem
 from talus.dem.packing import predicates
 from talus.dem.core.bodies import BodySpec, facet, sphere
-from talus.dem.core.linalg import Vector3
+from talus.dem.base.linalg import Vector3
 from talus.dem.packing.predicates import *  # noqa: F401,F403  (Yade's pack module holds the predicates)
 from talus.dem.core.scenes import default_scene
 
@@ -230,7 +230,7 @@ class SpherePack:
     def rotate(self, axis, angle: float):
         """Rotate the spheres by ``angle`` about ``axis`` through the centre of their box. A
         periodic packing loses its cell, as in Yade (with Yade's warning)."""
-        from talus.dem.core.linalg import Quaternion
+        from talus.dem.base.linalg import Quaternion
         if self._hasCell:
             warnings.warn(f"SpherePack.rotate: the periodic cell {tuple(np.diag(self.hSize))} is dropped by the rotation",
                           stacklevel=2)
@@ -610,7 +610,7 @@ def revolutionSurfaceMeridians(sects, angles, origin=(0.0, 0.0, 0.0), orientatio
     """Meridians of a surface of revolution about z: section i (2D points (r, z)) turned by
     ``angles[i]``, then rotated by ``orientation`` (a quaternion) and moved to ``origin``; the
     result feeds :func:`sweptPolylines2gtsSurface`."""
-    from talus.dem.core.linalg import Quaternion
+    from talus.dem.base.linalg import Quaternion
     q = orientation if isinstance(orientation, Quaternion) else Quaternion(*orientation)
     R = np.asarray(q.toRotationMatrix(), float).reshape(3, 3)
     o = np.asarray(origin, float).reshape(3)

@@ -35,7 +35,7 @@ def _vec(value, what: str) -> np.ndarray:
 
 
 def _vector3(v):
-    from talus.dem.core.linalg import Vector3
+    from talus.dem.base.linalg import Vector3
     return Vector3(*(float(x) for x in v))
 
 

@@ -7,7 +7,7 @@ import math
 import numpy as np
 
 from talus import _dem
-from talus.dem.core.linalg import Vector3
+from talus.dem.base.linalg import Vector3
 from talus.dem.step.python_engines import PeriodicPythonEngine
 
 

@@ -27,7 +27,7 @@ from typing import Callable, Sequence
 import numpy as np
 
 from talus import _dem
-from talus.dem.core.linalg import Vector3
+from talus.dem.base.linalg import Vector3
 from talus.dem.core.masks import group_mask
 from talus.dem.core.scenes import default_scene
 

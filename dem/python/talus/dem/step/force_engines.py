@@ -17,7 +17,7 @@ import numpy as np
 from talus import _dem
 from talus.dem.step.engines import Engine, finite_vector as _vector
 from talus.dem.core.masks import group_mask
-from talus.dem.core.linalg import Vector2i, Vector3
+from talus.dem.base.linalg import Vector2i, Vector3
 
 
 def _table(value, what: str) -> list[float]:

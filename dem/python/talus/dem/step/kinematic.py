@@ -21,7 +21,7 @@ import numpy as np
 
 from talus import _dem
 from talus.dem.step.engines import Engine, finite_vector
-from talus.dem.core.linalg import Vector3
+from talus.dem.base.linalg import Vector3
 
 
 def _unit(value, what: str) -> list[float]:

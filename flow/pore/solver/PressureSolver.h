@@ -8,7 +8,7 @@
 // gradients preconditioned by algebraic multigrid (for systems whose factor costs more than the
 // solves it would serve: large networks remeshed often, or too large for a factor to fit in
 // memory) and Gauss-Seidel with over-relaxation (Yade's useSolver=0) for comparison.
-#include "flow/pore/Multigrid.h"
+#include "flow/pore/solver/Multigrid.h"
 #include "flow/pore/PoreNetwork.h"
 
 #include <memory>

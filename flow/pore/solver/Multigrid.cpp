@@ -1,4 +1,4 @@
-#include "flow/pore/Multigrid.h"
+#include "flow/pore/solver/Multigrid.h"
 
 #include <Eigen/Cholesky>
 

@@ -1,4 +1,4 @@
-#include "flow/pore/PressureSolver.h"
+#include "flow/pore/solver/PressureSolver.h"
 
 #include <cholmod.h>
 #include <dlfcn.h>
