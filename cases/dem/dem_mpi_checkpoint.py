@@ -15,31 +15,20 @@ Checked:  dem.mpi.checkpoint: the largest difference of a body's position after 
           size at each process count.
 Produces: the record and chart dem.mpi.checkpoint.png (save and load seconds, file size).
 """
-import json
 import os
-import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from talus import results
+from talus import bench, results
 
 SCENE = Path(__file__).resolve().parents[1] / "scenes" / "mpi_checkpoint.py"
 
 
 def run(mode: str, processes: int | None, spheres: int, steps: int, checkpoint: Path, output: Path) -> dict:
     """The scene in one process (None) or under mpirun with `processes`; its JSON output."""
-    talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENE), mode, str(spheres), str(steps),
-             str(checkpoint), str(output)]
-    command = talus if processes is None else ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
-                                               str(processes), *talus]
-    env = {**os.environ, "OMP_NUM_THREADS": "1"}
-    done = subprocess.run(command, capture_output=True, text=True, timeout=1800, env=env)
-    if done.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} failed:\n{done.stdout}\n{done.stderr}")
-    return json.loads(output.read_text())
+    return bench.run_talus_script([SCENE, mode, spheres, steps, checkpoint, output], output, processes)
 
 
 def main():

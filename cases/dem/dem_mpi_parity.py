@@ -23,16 +23,12 @@ Checked:  dem.mpi.parity (deposition) and dem.mpi.parity.silo: the largest diffe
 Produces: the records and the chart dem.mpi.parity.png (differences and halo bytes per process
           count).
 """
-import json
-import os
-import subprocess
-import sys
 import tempfile
 from pathlib import Path
 
 import numpy as np
 
-from talus import results
+from talus import bench, results
 
 SCENES = Path(__file__).resolve().parents[1] / "scenes"
 STEPS = 1000
@@ -41,15 +37,7 @@ STEPS = 1000
 def run(scene: str, processes: int | None, spheres: int, folder: Path) -> dict:
     """The scene in one process (None) or under mpirun with `processes`; its JSON output."""
     out = folder / f"{scene}-{processes or 0}.json"
-    talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENES / f"{scene}.py"), str(spheres), str(STEPS),
-             str(out)]
-    command = talus if processes is None else ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np",
-                                               str(processes), *talus]
-    env = {**os.environ, "OMP_NUM_THREADS": "1"}
-    done = subprocess.run(command, capture_output=True, text=True, timeout=1800, env=env)
-    if done.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} failed:\n{done.stdout}\n{done.stderr}")
-    return json.loads(out.read_text())
+    return bench.run_talus_script([SCENES / f"{scene}.py", spheres, STEPS, out], out, processes)
 
 
 def difference(serial: dict, split: dict) -> float:

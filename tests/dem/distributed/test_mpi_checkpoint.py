@@ -4,7 +4,6 @@ run's datasets), read at any process count; the run continued from it is the uni
 run's bit for bit at 4, 2 and 1 processes, and from a serial file at 2. Bad files are refused on
 every process with one message, and a save that fails leaves the previous file as it was."""
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -13,7 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import talus
+
+from test_mpi_run import talus_run as run_script
 
 SCENE = Path(__file__).resolve().parents[3] / "cases" / "scenes" / "mpi_checkpoint.py"
 
@@ -26,14 +26,8 @@ pytestmark = pytest.mark.skipif(_distributed_checkpoint is None or shutil.which(
 SPHERES, STEPS = 400, 1000
 
 
-def talus_run(*args, processes=None, timeout=120):
-    command = [sys.executable, "-m", "talus", "run", "-j", "1", *map(str, args)]
-    if processes:
-        command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(processes), *command]
-    package_root = str(Path(talus.__file__).resolve().parents[1])
-    path = os.pathsep.join(filter(None, [package_root, os.environ.get("PYTHONPATH")]))
-    environment = {**os.environ, "OMP_NUM_THREADS": "1", "PYTHONPATH": path}
-    return subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=environment)
+def talus_run(*args, processes=None):
+    return run_script(*args, processes=processes, timeout=120)      # a checkpoint's processes take longer
 
 
 def scene(mode, checkpoint, output, processes=None, law="linear", energy=""):
