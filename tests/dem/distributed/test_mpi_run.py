@@ -50,6 +50,14 @@ def test_two_processes_give_the_serial_positions_bit_for_bit(tmp_path, method):
     assert done.stdout.count("\n100 ") + done.stdout.startswith("100 ") == 1
 
 
+# A script's loop over the bodies of _script that this process owns (b: the body, k: its id).
+EACH_OWN_BODY = ("for k in range(20):\n"
+                 "    try:\n"
+                 "        b = O.bodies[k]\n"
+                 "    except IndexError:\n"
+                 "        continue\n")
+
+
 def _script(tmp_path, body):
     script = tmp_path / "script.py"
     script.write_text(
@@ -93,13 +101,8 @@ def test_a_body_read_on_its_owner_gives_its_own_id_and_state(tmp_path):
     # Each process reads the bodies it owns: b.id is the id the script gave (not the process's
     # row), and the state is that body's (sphere k starts at x = 0.1 k).
     body = ("O.run(10, True)\n"
-            "from talus import _distributed\n"
             "seen = []\n"
-            "for k in range(20):\n"
-            "    try:\n"
-            "        b = O.bodies[k]\n"
-            "    except IndexError:\n"
-            "        continue\n"
+            + EACH_OWN_BODY +
             "    assert b.id == k and abs(b.state.pos[0] - 0.1 * k) < 1e-9, (k, b.id, b.state.pos)\n"
             "    seen.append(k)\n"
             "import sys\n"
@@ -113,11 +116,7 @@ def test_a_body_read_on_its_owner_gives_its_own_id_and_state(tmp_path):
 def test_a_body_moved_beyond_the_ghost_layer_is_named_with_the_step(tmp_path):
     # Each process moves the first of its own spheres 5 m up between two runs (a teleport).
     body = ("O.run(10, True)\n"
-            "for k in range(20):\n"
-            "    try:\n"
-            "        b = O.bodies[k]\n"
-            "    except IndexError:\n"
-            "        continue\n"
+            + EACH_OWN_BODY +
             "    b.state.pos = b.state.pos + Vector3(0, 0, 5)\n"
             "    break\n"
             "O.run(10, True)\n")
