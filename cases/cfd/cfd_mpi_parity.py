@@ -28,7 +28,6 @@ Result:   quick (2026-12-07): 2 + 2 against 1 + 1 3.6e-16; 2 + 2 against 1 + 2 a
 Produces: the record and chart cfd.mpi.parity.png (the differences over the run).
 """
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -37,7 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
-from talus import results
+from talus import bench, results
 from talus.coupling.case_builder import Inlet, Outlet, cfd_case
 
 SCENE = Path(__file__).resolve().parents[1] / "scenes" / "fluidised_column.py"
@@ -68,8 +67,7 @@ def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str
     # the loopback for every process's traffic, as FoamCoupling asks for in one process
     command = talus if dem == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "btl_tcp_if_include",
                                       "lo", "--mca", "oob_tcp_if_include", "lo", "-np", str(dem), *talus]
-    env = {**os.environ, "OMP_NUM_THREADS": "1"}
-    done = subprocess.run(command, capture_output=True, text=True, timeout=1800, env=env)
+    done = subprocess.run(command, capture_output=True, text=True, timeout=1800, env=bench.child_environment())
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{done.stdout}\n{done.stderr}")
     shutil.rmtree(case.path, ignore_errors=True)

@@ -69,23 +69,30 @@ def talus_command(*args: str) -> list[str]:
     return [sys.executable, "-c", launcher, *args]
 
 
+def child_environment() -> dict:
+    """The environment for a process a case or test starts (``python -m talus``, under mpirun
+    too): this talus package on its PYTHONPATH, wherever it was imported from (a test run adds
+    it to sys.path only), and one OpenMP thread."""
+    import os
+
+    import talus
+    package_parent = os.path.dirname(os.path.dirname(os.path.abspath(talus.__file__)))
+    path = os.pathsep.join(filter(None, [package_parent, os.environ.get("PYTHONPATH")]))
+    return {**os.environ, "OMP_NUM_THREADS": "1", "PYTHONPATH": path}
+
+
 def run_talus_script(arguments: Sequence, output, processes: int | None = None, timeout: float = 1800) -> dict:
     """``talus run -j 1 ARGUMENTS`` in one process (``processes`` None) or under ``mpirun -np
     processes`` (oversubscribed; as root too), one OpenMP thread each, with this talus package;
     returns the JSON the script wrote to ``output``. Raises RuntimeError with its output if it fails."""
     import json
-    import os
     import subprocess
     import sys
 
-    import talus
     command = [sys.executable, "-m", "talus", "run", "-j", "1", *map(str, arguments)]
     if processes is not None:
         command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", str(processes), *command]
-    package_parent = os.path.dirname(os.path.dirname(os.path.abspath(talus.__file__)))
-    path = os.pathsep.join(filter(None, [package_parent, os.environ.get("PYTHONPATH")]))
-    env = {**os.environ, "OMP_NUM_THREADS": "1", "PYTHONPATH": path}
-    done = subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=env)
+    done = subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=child_environment())
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(command)} failed:\n{done.stdout}\n{done.stderr}")
     with open(output) as f:

@@ -71,7 +71,7 @@ def _run(args: argparse.Namespace) -> int:
     sys.path.insert(0, str(script.resolve().parent))
     import yade   # the namespace `yade -x` gives a script: Yade's classes, utils, pack, math
     from talus.dem import distributed
-    if distributed.ACTIVE:          # under mpirun: the scene is split over the processes
+    if distributed.RANKS > 1:       # under mpirun: the scene is split over the processes
         distributed.start()
     yade.yade_run_defaults()
     try:

@@ -13,7 +13,6 @@ handshake is reported once, and every process exits. The coupling's per-particle
 (ParticleRecords) follow particles that change process, alone and in a coupled run whose
 spheres, thrown down, cross from one DEM process to the other (still 1 + 2's bits)."""
 import json
-import os
 import shutil
 import subprocess
 import sys
@@ -23,6 +22,7 @@ import numpy as np
 import pytest
 
 from foam_case import REPO, needs_solver
+from talus import bench
 
 sys.path.insert(0, str(REPO / "cases" / "cfd"))
 import cfd_mpi_parity as parity  # noqa: E402
@@ -78,7 +78,7 @@ def test_a_refused_handshake_is_reported_once_and_every_process_exits(tmp_path):
     case = parity.fluid_case(tmp_path / "case", 2)
     command = ["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", sys.executable, "-m", "talus", "run",
                "-j", "1", str(scene), str(case.path), "2", "5", str(tmp_path / "out.json"), "4"]
-    done = subprocess.run(command, capture_output=True, text=True, timeout=120, env={**os.environ, "OMP_NUM_THREADS": "1"})
+    done = subprocess.run(command, capture_output=True, text=True, timeout=120, env=bench.child_environment())
     assert done.returncode != 0
     assert done.stderr.count("fluid density mismatch: DEM side rhoFluid = 999") == 1, done.stderr
 
@@ -86,7 +86,7 @@ def test_a_refused_handshake_is_reported_once_and_every_process_exits(tmp_path):
 def test_coupling_records_follow_their_particles_to_their_new_process(tmp_path):
     driver = Path(__file__).with_name("records_driver.py")
     done = subprocess.run(["mpirun", "--allow-run-as-root", "--oversubscribe", "-np", "2", sys.executable, str(driver),
-                           str(tmp_path)], capture_output=True, text=True, timeout=60)
+                           str(tmp_path)], capture_output=True, text=True, timeout=60, env=bench.child_environment())
     assert done.returncode == 0, done.stderr
     held = [json.loads((tmp_path / f"records-{rank}.json").read_text()) for rank in (0, 1)]
     # each keeps its own, takes the particle that came over, and has zeros for the new one

@@ -42,9 +42,12 @@ import sys
 
 from talus.dem.core.scenes import default_scene
 
-#: Processes of the run (Open MPI's mpirun tells each process); above 1 the scene is split.
+#: Processes of the run (Open MPI's mpirun tells each process).
 RANKS = int(os.environ.get("OMPI_COMM_WORLD_SIZE", "1"))
-ACTIVE = RANKS > 1
+#: Whether the script's scene is split over them: `talus run` under mpirun (start()) only. A
+#: program of its own under mpirun (an mpi4py driver of FEM x DEM RVEs, one scene per Gauss
+#: point) keeps each scene in its process, and no call here becomes collective.
+ACTIVE = False
 
 #: Engines that act on bodies named by id: each process acts on those it owns (Scene::rowsActedOn).
 _KINEMATIC = ("TranslationEngine", "RotationEngine", "HarmonicMotionEngine", "HelixEngine", "InterpolatingHelixEngine",
@@ -66,8 +69,9 @@ class NotDistributed(RuntimeError):
 def start() -> None:
     """Set up MPI for this process (``talus run`` under mpirun): standard output from process 0
     only, MPI finalised at exit."""
-    global _rank
+    global _rank, ACTIVE
     from talus import _distributed
+    ACTIVE = True
     _release_default_binding()
     _rank, _ = _distributed.init()
     atexit.register(_distributed.finalize)
