@@ -382,10 +382,8 @@ class HydroForceEngine(Engine):
     def computeRadiusParts(self) -> None:
         """``radiusParts``: each distinct radius among the spheres of ``ids``, in their order (the
         classes of ``enableMultiClassAverage``; Yade 2023.02a takes them from ``ids`` too)."""
-        spheres = np.intersect1d(self._ids, self.scene.sphere_ids())
-        order = np.sort(np.searchsorted(self._ids, spheres, sorter=np.argsort(self._ids)))
-        radii = self.scene.radii()[self._ids[order]] if len(spheres) else np.zeros(0)
-        self.radiusParts = [float(r) for r in dict.fromkeys(radii.tolist())]
+        spheres = self._ids[np.isin(self._ids, self.scene.sphere_ids())]
+        self.radiusParts = [float(r) for r in dict.fromkeys(self.scene.radii()[spheres].tolist())]
 
     def action(self) -> None:
         """Add this step's fluid forces to the particles of ``ids`` (called every step as an engine)."""
@@ -435,12 +433,13 @@ class HydroForceEngine(Engine):
         classes = np.asarray(self.radiusParts, dtype=float)
         unknown = ~np.isin(radii, classes)
         # A sphere of no class is an error where it has volume in the grid, as in Yade.
-        if unknown.any() and self.measure(chosen[unknown])["phiPart"].any():
+        arrays = self._arrays()        # the grid and layer volume are set: averageProfile measured first
+        if unknown.any() and self._core.averageProfile(*arrays, chosen[unknown])["phiPart"].any():
             body = int(chosen[np.argmax(unknown)])
             raise ValueError(f"HydroForceEngine.averageProfile: body {body}'s radius {radii[unknown][0]:g} is not in "
                              "radiusParts (enableMultiClassAverage): call initialization() or computeRadiusParts() "
                              "after adding spheres")
-        per_class = [self.measure(chosen[radii == r]) for r in classes]
+        per_class = [self._core.averageProfile(*arrays, chosen[radii == r]) for r in classes]
         self._multi = {multi: [c[name].tolist() for c in per_class] for name, multi in _CLASS_PROFILES.items()}
 
     def fluidResolution(self, tfin: float, dt: float) -> None:
