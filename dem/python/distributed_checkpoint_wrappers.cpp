@@ -1,7 +1,7 @@
 // talus._distributed_checkpoint: O.save / O.load of a scene under `mpirun -np N talus run`
 // (one file written by every rank; talus.dem.files.io calls it).
 #include "dem/core/Scene.h"
-#include "dem/distributed/Checkpoint.h"
+#include "dem/distributed/collect/Checkpoint.h"
 #include "dem/distributed/MpiDomain.h"
 
 #include <pybind11/pybind11.h>

@@ -2,7 +2,7 @@
 // (talus.dem.distributed sets it up and reads the global answers through it).
 #include "dem/core/Scene.h"
 #include "dem/distributed/Collective.h"
-#include "dem/distributed/Gather.h"
+#include "dem/distributed/collect/Gather.h"
 #include "dem/measure/Measurements.h"
 #include "dem/distributed/MpiDomain.h"
 

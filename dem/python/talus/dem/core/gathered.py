@@ -41,7 +41,7 @@ class GatheredBody:
 
 def from_table(ids, table: np.ndarray) -> list[GatheredBody]:
     """Snapshots from the domain's gather (a row per id: position, velocity, angular velocity,
-    orientation w x y z, mass, inertia, radius, dynamic; dem/distributed/Gather.h)."""
+    orientation w x y z, mass, inertia, radius, dynamic; dem/distributed/collect/Gather.h)."""
     out = []
     for id, row in zip(ids, np.asarray(table)):
         state = GatheredState(Vector3(row[0:3]), Vector3(row[3:6]), Vector3(row[6:9]), Quaternion(*row[9:13]),

@@ -1,6 +1,6 @@
 // Checkpoints of a scene split over MPI ranks: the rows put in I/O order, then one file written
 // by every rank (dem/checkpoint/Together.h); reading is the serial reader's on every rank.
-#include "dem/distributed/Checkpoint.h"
+#include "dem/distributed/collect/Checkpoint.h"
 
 #include "dem/checkpoint/Together.h"
 #include "dem/core/Scene.h"

@@ -1,4 +1,4 @@
-#include "dem/distributed/Gather.h"
+#include "dem/distributed/collect/Gather.h"
 
 #include "dem/core/Scene.h"
 #include "dem/distributed/Collective.h"
