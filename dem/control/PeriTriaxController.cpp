@@ -1,9 +1,11 @@
 #include "dem/control/PeriTriaxController.h"
 
 #include "dem/measure/Measurements.h"
+#include "dem/core/Domain.h"
 #include "dem/core/Scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -19,20 +21,25 @@ void PeriTriaxController::update(const Scene& scene)
 {
   for (int i = 0; i < 3; ++i)
     strain[i] = std::log(scene.cell.trsf(i, i));
-  Vec3 sum = Vec3::Zero();
-  int n = 0;
+  // The stiffness sums and the contact count, exact: the same bits split over processes (each
+  // contact counted on one), which the cell's update needs (it must be the serial one on all).
+  std::array<ExactSum, 4> sum;
   if (!dynCell)
+  {
     for (const Contact& c : scene.contacts.list)
     {
-      if (!c.real)
+      if (!c.real || !countsContact(scene.domain.get(), static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)))
         continue;
       for (int i = 0; i < 3; ++i)
-        sum[i] += std::abs(c.normal[i]) * c.kn + (1 - std::abs(c.normal[i])) * c.ks;
-      ++n;
+        sum[static_cast<std::size_t>(i)] += std::abs(c.normal[i]) * c.kn + (1 - std::abs(c.normal[i])) * c.ks;
+      sum[3] += 1;
     }
+    sumExactly(scene.domain.get(), sum);
+  }
   stressTensor = loveWeberStress(scene);
   stress = stressTensor.diagonal();
-  stiff = n > 0 ? Vec3(sum / n) : Vec3::Zero();
+  const double n = sum[3].value();
+  stiff = n > 0 ? Vec3(Vec3(sum[0].value(), sum[1].value(), sum[2].value()) / n) : Vec3::Zero();
 }
 
 void PeriTriaxController::run(Scene& scene)
@@ -45,9 +52,17 @@ void PeriTriaxController::run(Scene& scene)
   const Vec3 size = scene.cell.hSize.colwise().norm();
   const Vec3 area(size[1] * size[2], size[0] * size[2], size[0] * size[1]);
   if (maxBodySpan[0] <= 0)
+  {
     for (std::size_t i = 0; i < b.size(); ++i)
       if (b.alive[i] && b.shape[i] == ShapeKind::Sphere)
         maxBodySpan = maxBodySpan.cwiseMax(Vec3::Constant(2 * b.radius[i]));
+    if (scene.domain) // the largest over the processes' spheres
+    {
+      Vec3 negated = -maxBodySpan;
+      scene.domain->min(std::span<double>(negated.data(), 3));
+      maxBodySpan = -negated;
+    }
+  }
   for (int a = 0; a < 3; ++a)
     if (2.1 * maxBodySpan[a] > size[a])
       throw std::runtime_error("PeriTriaxController: the cell (size " + std::to_string(size[a]) + " along axis "
@@ -57,10 +72,12 @@ void PeriTriaxController::run(Scene& scene)
     update(scene);
   if (dynCell && std::isnan(mass))
   {
-    mass = 0;
+    std::array<ExactSum, 1> total; // the same bits split over processes
     for (std::size_t i = 0; i < b.size(); ++i)
-      if (b.alive[i])
-        mass += b.mass[i];
+      if (b.alive[i] && countsBody(scene.domain.get(), i))
+        total[0] += b.mass[i];
+    sumExactly(scene.domain.get(), total);
+    mass = total[0].value();
   }
   const double dt = scene.dt;
   bool allOk = true;

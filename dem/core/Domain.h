@@ -1,8 +1,11 @@
 #pragma once
 
+#include "dem/base/ExactSum.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace talus::dem
 {
@@ -88,6 +91,21 @@ public:
 
 /// Domain::countsBody for a scene split by `domain`, every body when it is not split (null).
 inline bool countsBody(const Domain* domain, std::size_t row) { return !domain || domain->countsBody(row); }
+
+/// Sums over the processes of a scene split by `domain` of each process's exact sums, in place
+/// (nothing when it is not split, null): the same bits at any process count.
+/// @param sums this process's shares, replaced by the totals; as many on every process
+inline void sumExactly(const Domain* domain, std::span<ExactSum> sums)
+{
+  if (!domain)
+    return;
+  std::vector<double> parts(sums.size() * ExactSum::partCount);
+  for (std::size_t k = 0; k < sums.size(); ++k)
+    sums[k].parts(std::span<double>(parts).subspan(k * ExactSum::partCount, ExactSum::partCount));
+  domain->sum(parts);
+  for (std::size_t k = 0; k < sums.size(); ++k)
+    sums[k] = ExactSum::fromParts(std::span<const double>(parts).subspan(k * ExactSum::partCount, ExactSum::partCount));
+}
 
 /// Domain::countsContact for a scene split by `domain`, every contact when it is not split (null).
 inline bool countsContact(const Domain* domain, std::size_t row1, std::size_t row2)

@@ -16,33 +16,40 @@ namespace talus::dem
 double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce)
 {
   const Bodies& b = scene.bodies;
-  double sumBodies = 0, maxBody = 0;
-  std::size_t bodies = 0;
+  const Domain* domain = scene.domain.get();
+  // The bodies' force magnitudes and count, the contacts' force magnitudes and count (summed
+  // over every process, each body and contact once).
+  std::array<double, 4> sums{};
+  double maxBody = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
     // A clump counts once, with its members' forces; its members do not count alone.
-    if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0)
+    if (!b.alive[i] || !b.dynamic[i] || b.clumpId[i] >= 0 || !countsBody(domain, i))
       continue;
     Vec3 force = b.force[i], torque = Vec3::Zero();
     if (b.shape[i] == ShapeKind::Clump)
       addClumpMemberForces(b, i, force, torque);
     const double f = (force + b.mass[i] * gravity).norm();
-    sumBodies += f;
+    sums[0] += f;
     maxBody = std::max(maxBody, f);
-    ++bodies;
+    sums[1] += 1;
   }
-  double sumContacts = 0;
-  std::size_t contacts = 0;
   for (const Contact& c : scene.contacts.list)
-    if (c.real)
+    if (c.real && countsContact(domain, static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)))
     {
-      sumContacts += c.force.norm();
-      ++contacts;
+      sums[2] += c.force.norm();
+      sums[3] += 1;
     }
+  if (domain)
+  {
+    domain->sum(sums);
+    maxBody = -domain->min(-maxBody);
+  }
+  const auto [sumBodies, bodies, sumContacts, contacts] = sums;
   if (contacts == 0 || sumContacts == 0 || bodies == 0)
     return std::numeric_limits<double>::quiet_NaN();
-  const double meanContact = sumContacts / static_cast<double>(contacts);
-  return (useMaxForce ? maxBody : sumBodies / static_cast<double>(bodies)) / meanContact;
+  const double meanContact = sumContacts / contacts;
+  return (useMaxForce ? maxBody : sumBodies / bodies) / meanContact;
 }
 
 namespace

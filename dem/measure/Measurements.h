@@ -16,7 +16,8 @@ class Scene;
 
 /// Yade's unbalancedForce: the mean (or, with useMaxForce, the largest) magnitude of the total
 /// force on dynamic bodies, gravity included, divided by the mean magnitude of contact forces.
-/// 0 for a scene at equilibrium; NaN when there is no contact force to compare with.
+/// 0 for a scene at equilibrium; NaN when there is no contact force to compare with. Split over
+/// processes, the whole scene's (collective: every process calls it).
 /// @param scene the scene, its forces those of the last step
 /// @param gravity the acceleration of gravity the integrator adds (sceneGravity(scene) for the
 ///        scene's own)
