@@ -103,14 +103,35 @@ Vec3 sceneGravity(const Scene& scene)
 Mat3 loveWeberStress(const Scene& scene, double volume)
 {
   volume = sampleVolume(scene, volume, "getStress");
-  Mat3 sum = Mat3::Zero();
+  // The contacts of one sphere as their first body (a run of the list, which is sorted by bodies)
+  // are summed in order, and the runs exactly (ExactSum): split over processes, each such run lies
+  // whole, in the same order, on the process owning its first sphere, so the stress is the same
+  // bits at any process count (the periodic cell's controllers read it). A wall's or facet's
+  // contacts, spread over the processes of their spheres, are added exactly one by one.
+  std::array<ExactSum, 9> total;
+  Mat3 run = Mat3::Zero();
+  BodyId first = -1;
+  auto flush = [&] {
+    for (std::size_t k = 0; k < 9; ++k)
+      total[k] += run.data()[k];
+    run.setZero();
+  };
   for (const Contact& c : scene.contacts.list)
   {
     if (!counted(scene, c))
       continue;
-    sum += c.force * branchVector(scene, c).transpose();
+    if (c.id1 != first || c.kind != ContactGeometryKind::SphereSphere)
+    {
+      flush();
+      first = c.id1;
+    }
+    run += c.force * branchVector(scene, c).transpose();
   }
-  sumOverProcesses(scene, std::span<double>(sum.data(), 9));
+  flush();
+  sumExactly(scene.domain.get(), total);
+  Mat3 sum;
+  for (std::size_t k = 0; k < 9; ++k)
+    sum.data()[k] = total[k].value();
   return -sum / volume;
 }
 
