@@ -148,7 +148,8 @@ void TriaxialCompressionEngine::run(Scene& scene)
   }
 
   Bodies& b = scene.bodies;
-  auto shift = [&](int wall, const Vec3& by) { b.pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(wall)])] += by; };
+  const std::array<std::size_t, 6> rows = wallRows(scene);
+  auto shift = [&](int wall, const Vec3& by) { b.pos[rows[static_cast<std::size_t>(wall)]] += by; };
   if (currentState == triaxLoading && std::abs(epsilonMax) > std::abs(strain[1]))
   {
     if (currentStrainRate != strainRate)

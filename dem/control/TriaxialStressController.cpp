@@ -1,5 +1,7 @@
 #include "dem/control/TriaxialStressController.h"
 
+#include "dem/base/ExactSum.h"
+#include "dem/core/Domain.h"
 #include "dem/core/Scene.h"
 
 #include <algorithm>
@@ -20,39 +22,81 @@ double sign(double x) { return x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0); }
 const std::array<Vec3, 6> TriaxialStressController::normal{Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0),
                                                            Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)};
 
-void TriaxialStressController::checkWalls(const Scene& scene) const
+std::array<std::size_t, 6> TriaxialStressController::wallRows(const Scene& scene) const
 {
+  std::array<std::size_t, 6> rows{};
   for (int w = 0; w < 6; ++w)
   {
     const BodyId id = wallIds[static_cast<std::size_t>(w)];
     const std::string which = std::string("TriaxialStressController: ") + wallNames[w] + " = " + std::to_string(id);
-    if (id < 0 || static_cast<std::size_t>(id) >= scene.bodies.size() || !scene.bodies.alive[static_cast<std::size_t>(id)])
+    // By the ids the user gave: split over processes, every process holds the walls at rows of its own.
+    const std::int64_t row = scene.domain ? scene.domain->rowOf(id) : id;
+    if (row == Domain::elsewhere)
+      throw std::invalid_argument(which + " must be a wall normal to axis " + std::to_string(wallAxis[w])
+                                  + " (a body every process holds)");
+    if (row < 0 || static_cast<std::size_t>(row) >= scene.bodies.size() || !scene.bodies.alive[static_cast<std::size_t>(row)])
       throw std::invalid_argument(which + " is not a body of the scene");
-    const auto i = static_cast<std::size_t>(id);
+    const auto i = static_cast<std::size_t>(row);
     if (scene.bodies.shape[i] != ShapeKind::Wall
         || scene.bodies.walls[static_cast<std::size_t>(scene.bodies.shapeIndex[i])].axis != wallAxis[w])
       throw std::invalid_argument(which + " must be a wall normal to axis " + std::to_string(wallAxis[w]));
+    rows[static_cast<std::size_t>(w)] = i;
   }
+  return rows;
 }
 
-void TriaxialStressController::updateStiffness(const Scene& scene)
+std::array<Vec3, 6> TriaxialStressController::wallForces(const Scene& scene, const std::array<std::size_t, 6>& rows,
+                                                         bool withStiffness, bool withVolume)
 {
-  stiffness.fill(0);
-  for (const Contact& c : scene.contacts.list)
+  // 18 force components, 6 stiffnesses, the volume
+  std::array<ExactSum, 25> sums;
+  const Contacts& contacts = scene.contacts;
+  // Each wall's contacts from the list's index by body (none before the first detection).
+  const auto indexed = static_cast<std::size_t>(contacts.indexedBodies());
+  for (std::size_t w = 0; w < 6; ++w)
+    for (std::int64_t e = rows[w] < indexed ? contacts.start[rows[w]] : 0; rows[w] < indexed && e < contacts.start[rows[w] + 1];
+         ++e)
+    {
+      const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
+      const Contact& c = contacts.list[static_cast<std::size_t>(entry >> 1)];
+      if (!c.real)
+        continue;
+      // the force on the wall: the contact's on its second body (as the force gather adds it)
+      const double sense = (entry & 1) ? 1.0 : -1.0;
+      for (std::size_t d = 0; d < 3; ++d)
+        sums[3 * w + d] += sense * c.force[static_cast<Eigen::Index>(d)];
+      if (withStiffness && c.normalForce.norm() != 0)
+        sums[18 + w] += c.kn;
+    }
+  const Bodies& b = scene.bodies;
+  if (withVolume)
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (b.alive[i] && b.dynamic[i] && b.shape[i] == ShapeKind::Sphere && countsBody(scene.domain.get(), i))
+        sums[24] += 4. / 3. * M_PI * std::pow(b.radius[i], 3);
+  sumExactly(scene.domain.get(), std::span<ExactSum>(sums.data(), withStiffness || withVolume ? sums.size() : 18));
+  std::array<Vec3, 6> forces;
+  for (std::size_t w = 0; w < 6; ++w)
   {
-    if (!c.real || c.normalForce.norm() == 0)
-      continue;
-    for (std::size_t w = 0; w < 6; ++w)
-      if (wallIds[w] == c.id1 || wallIds[w] == c.id2)
-        stiffness[w] += c.kn;
+    forces[w] = Vec3(sums[3 * w].value(), sums[3 * w + 1].value(), sums[3 * w + 2].value());
+    if (withStiffness)
+      stiffness[w] = sums[18 + w].value();
   }
+  if (withVolume)
+    particlesVolume = sums[24].value();
+  return forces;
 }
 
 void TriaxialStressController::computeStressStrain(const Scene& scene)
 {
-  checkWalls(scene); // also called from Python, with wall ids that may not be the scene's
+  const std::array<std::size_t, 6> rows = wallRows(scene); // also called from Python, with ids that may not be walls
+  stressStrainFrom(scene, rows, wallForces(scene, rows, false, false));
+}
+
+void TriaxialStressController::stressStrainFrom(const Scene& scene, const std::array<std::size_t, 6>& rows,
+                                                const std::array<Vec3, 6>& forces)
+{
   const Bodies& b = scene.bodies;
-  auto at = [&](int w) { return b.pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(w)])][wallAxis[w]]; };
+  auto at = [&](int w) { return b.pos[rows[static_cast<std::size_t>(w)]][wallAxis[w]]; };
   height = at(Top) - at(Bottom);
   width = at(Right) - at(Left);
   depth = at(Front) - at(Back);
@@ -69,7 +113,7 @@ void TriaxialStressController::computeStressStrain(const Scene& scene)
   for (int w = 0; w < 6; ++w)
   {
     const auto k = static_cast<std::size_t>(w);
-    force[k] = b.force[static_cast<std::size_t>(wallIds[k])];
+    force[k] = forces[k];
     // The force of the spheres on a wall, over its area; the sign makes tension positive.
     const double side = (w % 2 == 0) ? 1.0 : -1.0;
     stress[k] = side * force[k] * invArea[wallAxis[w]];
@@ -78,11 +122,10 @@ void TriaxialStressController::computeStressStrain(const Scene& scene)
   meanStress /= 6.;
 }
 
-void TriaxialStressController::controlExternalStress(Scene& scene, int wall, const Vec3& resultantForce, double maxVelocity)
+void TriaxialStressController::controlExternalStress(Scene& scene, std::size_t row, int wall, const Vec3& f,
+                                                     const Vec3& resultantForce, double maxVelocity)
 {
   const auto k = static_cast<std::size_t>(wall);
-  const auto id = static_cast<std::size_t>(wallIds[k]);
-  const Vec3& f = scene.bodies.force[id];
   double translation = normal[k].dot(f - resultantForce);
   if (translation != 0)
   {
@@ -94,18 +137,18 @@ void TriaxialStressController::controlExternalStress(Scene& scene, int wall, con
   // steady motion with the fluctuations damped
   previousTranslation[k] = (1 - stressDamping) * translation * normal[k] + 0.8 * previousTranslation[k];
   externalWork += previousTranslation[k].dot(f);
-  scene.bodies.vel[id] = previousTranslation[k] / scene.dt;
+  scene.bodies.vel[row] = previousTranslation[k] / scene.dt;
 }
 
 void TriaxialStressController::run(Scene& scene)
 {
-  checkWalls(scene);
+  const std::array<std::size_t, 6> rows = wallRows(scene);
   if (thickness < 0)
     thickness = 0; // Yade reads it from its box walls; Talus's walls are planes
   Bodies& b = scene.bodies;
   // The planes stand where Yade's boxes have their inner faces: the distance between two
   // planes is Yade's distance between box centres minus the thickness.
-  auto position = [&](int w) { return b.pos[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(w)])][wallAxis[w]]; };
+  auto position = [&](int w) { return b.pos[rows[static_cast<std::size_t>(w)]][wallAxis[w]]; };
   height = position(Top) - position(Bottom);
   width = position(Right) - position(Left);
   depth = position(Front) - position(Back);
@@ -113,24 +156,22 @@ void TriaxialStressController::run(Scene& scene)
     throw std::runtime_error("TriaxialStressController: the walls do not enclose a box (width " + std::to_string(width)
                              + ", height " + std::to_string(height) + ", depth " + std::to_string(depth) + ")");
   boxVolume = height * width * depth;
-  if (first || updatePorosity)
-  {
-    particlesVolume = 0;
-    for (std::size_t i = 0; i < b.size(); ++i)
-      if (b.alive[i] && b.dynamic[i] && b.shape[i] == ShapeKind::Sphere)
-        particlesVolume += 4. / 3. * M_PI * std::pow(b.radius[i], 3);
-    first = false;
-    updatePorosity = false;
-  }
+  // What this step reads of the walls' contacts and the spheres, in one sum (over the processes
+  // when split: every process decides alike from the step number and the state it shares).
+  const bool withVolume = first || updatePorosity;
+  const bool withStiffness = scene.iter % std::max(stiffnessUpdateInterval, 1u) == 0 || scene.iter < 100;
+  const bool radiusControl = scene.iter % std::max(radiusControlInterval, 1u) == 0;
+  const bool stressStrain = scene.iter % std::max(computeStressStrainInterval, 1u) == 0 || (internalCompaction && radiusControl);
+  std::array<Vec3, 6> forces{};
+  if (withVolume || withStiffness || stressStrain || !internalCompaction)
+    forces = wallForces(scene, rows, withStiffness, withVolume);
+  first = false;
+  updatePorosity = false;
   const double perimeter = height + width + depth;
   const double maxVel[3] = {3 * width / perimeter * max_vel, 3 * height / perimeter * max_vel, 3 * depth / perimeter * max_vel};
   porosity = (boxVolume - particlesVolume) / boxVolume;
-
-  if (scene.iter % std::max(stiffnessUpdateInterval, 1u) == 0 || scene.iter < 100)
-    updateStiffness(scene);
-  const bool radiusControl = scene.iter % std::max(radiusControlInterval, 1u) == 0;
-  if (scene.iter % std::max(computeStressStrainInterval, 1u) == 0 || (internalCompaction && radiusControl))
-    computeStressStrain(scene);
+  if (stressStrain)
+    stressStrainFrom(scene, rows, forces);
 
   if (!internalCompaction)
   {
@@ -141,7 +182,7 @@ void TriaxialStressController::run(Scene& scene)
     {
       const auto k = static_cast<std::size_t>(w);
       const int axis = wallAxis[w];
-      Vec3& v = b.vel[static_cast<std::size_t>(wallIds[k])];
+      Vec3& v = b.vel[rows[k]];
       if (!wallActivated[k])
       {
         v.setZero();
@@ -151,20 +192,20 @@ void TriaxialStressController::run(Scene& scene)
       {
         Vec3 target = Vec3::Zero();
         target[axis] = goals[axis] * areas[axis] * (w % 2 == 0 ? 1.0 : -1.0);
-        controlExternalStress(scene, w, target, maxVel[axis]);
+        controlExternalStress(scene, rows[k], w, forces[k], target, maxVel[axis]);
       }
       else
       {
         // relax towards the velocity giving strain rate goal (each wall moves half of it)
         v[axis] += (-normal[k][axis] * 0.5 * goals[axis] * sizes[axis] - v[axis]) * (1 - strainDamping);
-        externalWork += v.dot(b.force[static_cast<std::size_t>(wallIds[k])]) * scene.dt;
+        externalWork += v.dot(forces[k]) * scene.dt;
       }
     }
   }
   else
   {
     for (int w = 0; w < 6; ++w)
-      b.vel[static_cast<std::size_t>(wallIds[static_cast<std::size_t>(w)])].setZero();
+      b.vel[rows[static_cast<std::size_t>(w)]].setZero();
     if (radiusControl)
     {
       const int axes = bool(stressMask & 1) + bool(stressMask & 2) + bool(stressMask & 4);

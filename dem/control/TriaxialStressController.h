@@ -37,13 +37,19 @@ enum TriaxialWall
 /// with strainDamping. internalCompaction: walls stay, the spheres grow (by at most
 /// maxMultiplier per radiusControlInterval steps, finalMaxMultiplier once the mean stress
 /// exceeds the goal) until the mean stress reaches the goal.
+///
+/// The walls' forces, their stiffnesses and the spheres' volume are exact sums (dem/base/ExactSum.h)
+/// over the walls' contacts and the spheres: split over processes (each holding the walls and
+/// computing their contacts with its own spheres) the shares add up to the bits of one process,
+/// so every process moves the walls alike, as one process would.
 class TriaxialStressController : public Engine
 {
 public:
   void run(Scene& scene) override;
   [[nodiscard]] std::string typeName() const override { return "TriaxialStressController"; }
 
-  /// Stresses, strains, sizes from the walls' positions and forces now.
+  /// Stresses, strains, sizes from the walls' positions and forces now (collective when the
+  /// scene is split over processes).
   void computeStressStrain(const Scene& scene);
 
   // parameters (Yade's names and defaults)
@@ -77,10 +83,21 @@ public:
   /// Inward unit normals of the six walls, in Yade's order.
   static const std::array<Vec3, 6> normal;
 
+protected:
+  /// The walls' rows (split over processes every process holds them, at rows of its own).
+  /// @throws std::invalid_argument naming the wall for an id that is not a wall on its axis
+  [[nodiscard]] std::array<std::size_t, 6> wallRows(const Scene& scene) const;
+
 private:
-  void checkWalls(const Scene& scene) const;
-  void updateStiffness(const Scene& scene);
-  void controlExternalStress(Scene& scene, int wall, const Vec3& resultantForce, double maxVelocity);
+  /// The walls' forces, and with `withStiffness` their stiffnesses into `stiffness`, and with
+  /// `withVolume` the dynamic spheres' volume into particlesVolume: exact sums over the walls'
+  /// contacts and the spheres, over every process (collective when split).
+  [[nodiscard]] std::array<Vec3, 6> wallForces(const Scene& scene, const std::array<std::size_t, 6>& rows,
+                                               bool withStiffness, bool withVolume);
+  void stressStrainFrom(const Scene& scene, const std::array<std::size_t, 6>& rows,
+                        const std::array<Vec3, 6>& forces);
+  void controlExternalStress(Scene& scene, std::size_t row, int wall, const Vec3& wallForce, const Vec3& resultantForce,
+                             double maxVelocity);
 };
 
 } // namespace talus::dem
