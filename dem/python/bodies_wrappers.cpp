@@ -6,14 +6,39 @@
 #include "dem/control/ServoPIDController.h"
 
 #include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
 namespace py = pybind11;
 using namespace talus::dem;
+
+namespace
+{
+/// Row `row` of a per-body array, copied into a new 3-array of `type`, a subclass of numpy's
+/// ndarray (Yade's Vector3 of talus.dem.base.linalg). Scripts read bodies one at a time in their
+/// loops: made here in one call, the vector costs a fraction of a view of the whole array
+/// indexed and copied in Python (docs/dem.md, "Measurements behind the code").
+py::object rowVector(const std::vector<Vec3>& rows, BodyId row, const py::handle& type)
+{
+  if (row < 0 || static_cast<std::size_t>(row) >= rows.size())
+    throw py::index_error("no body " + std::to_string(row) + " (the scene has " + std::to_string(rows.size()) + ")");
+  auto& api = py::detail::npy_api::get();
+  if (!PyType_Check(type.ptr()) || !PyType_IsSubtype(reinterpret_cast<PyTypeObject*>(type.ptr()), api.PyArray_Type_))
+    throw py::type_error("rowVector: the type must be a subclass of numpy.ndarray");
+  Py_intptr_t shape[1] = {3};
+  PyObject* array = api.PyArray_NewFromDescr_(reinterpret_cast<PyTypeObject*>(type.ptr()),
+                                              py::dtype::of<double>().release().ptr(), 1, shape, nullptr, nullptr, 0, nullptr);
+  if (array == nullptr)
+    throw py::error_already_set();
+  std::memcpy(py::detail::array_proxy(array)->data, rows[static_cast<std::size_t>(row)].data(), 3 * sizeof(double));
+  return py::reinterpret_steal<py::object>(array);
+}
+} // namespace
 
 void talus_wrap_bodies(py::module_& m)
 {
@@ -141,5 +166,17 @@ void talus_wrap_bodies(py::module_& m)
     s.checkBody(id);
     return s.bodies.angMom[static_cast<std::size_t>(id)];
   });
+  // O.bodies[id] of a scene in one process: its row (the id, counted from the end if negative),
+  // -1 if the body was erased.
+  m.def("body_row", [](const Scene& s, std::int64_t id) {
+    const auto n = static_cast<std::int64_t>(s.bodies.size());
+    const std::int64_t row = id < 0 ? id + n : id;
+    if (row < 0 || row >= n)
+      throw py::index_error("no body with id " + std::to_string(id) + " (ids run from 0 to " + std::to_string(n - 1) + ")");
+    return s.bodies.alive[static_cast<std::size_t>(row)] ? row : std::int64_t{-1};
+  });
+  m.def("body_pos", [](const Scene& s, BodyId row, py::handle type) { return rowVector(s.bodies.pos, row, type); });
+  m.def("body_vel", [](const Scene& s, BodyId row, py::handle type) { return rowVector(s.bodies.vel, row, type); });
+  m.def("body_ang_vel", [](const Scene& s, BodyId row, py::handle type) { return rowVector(s.bodies.angVel, row, type); });
   m.def("erase", &Scene::erase, py::arg("scene"), py::arg("id"), py::arg("eraseClumpMembers") = false);
 }

@@ -119,6 +119,9 @@ def _refit_methods(cls, names):
         setattr(cls, name, refit)
 
 
+_ndarray_getitem = np.ndarray.__getitem__
+
+
 class _Dense(np.ndarray):
     """What the vectors and matrices share: construction, printing, equality, the numpy
     plumbing that keeps the type only while the shape and dtype are the type's."""
@@ -168,7 +171,8 @@ class _Dense(np.ndarray):
         return _fit(super().__array_function__(func, types, args, kwargs))
 
     def __getitem__(self, key):
-        return _fit(super().__getitem__(key))
+        item = _ndarray_getitem(self, key)
+        return _fit(item) if isinstance(item, np.ndarray) else item     # a component as it is: quick
 
     # -- printing and comparison ------------------------------------------------------------
     def __repr__(self):

@@ -319,7 +319,10 @@ class _StateVector3(Vector3):
 
 
 def _reference(state: "State", name: str, values) -> _StateVector3:
-    vector = np.array(values, dtype=float).view(_StateVector3)
+    return _owned(np.array(values, dtype=float).view(_StateVector3), state, name)
+
+
+def _owned(vector: _StateVector3, state: "State", name: str) -> _StateVector3:
     vector._owner = (state, name)
     return vector
 
@@ -383,8 +386,10 @@ class State(Serializable):
 
     # As Yade hands them: pos a copy (changing the Vector3 one got does not move the body;
     # assigning it does), vel, angVel, inertia and refPos references (see _StateVector3).
-    pos = property(lambda s: Vector3(s._row("pos")), lambda s, v: s._set("pos", v))
-    vel = property(lambda s: _reference(s, "vel", s._row("vel")), lambda s, v: s._set("vel", v))
+    # (Scripts read them body by body in their loops: the core copies the row into the vector.)
+    pos = property(lambda s: _dem.body_pos(s._scene._cpp, s._id, Vector3), lambda s, v: s._set("pos", v))
+    vel = property(lambda s: _owned(_dem.body_vel(s._scene._cpp, s._id, _StateVector3), s, "vel"),
+                   lambda s, v: s._set("vel", v))
     inertia = property(lambda s: _reference(s, "inertia", s._row("inertia")),
                        lambda s, v: s._scene._cpp.setInertia(s._id, np.asarray(v, dtype=float).reshape(3)),
                        doc="principal inertia (kg m^2); settable, as in Yade")
@@ -396,7 +401,7 @@ class State(Serializable):
 
     @property
     def angVel(self):
-        return _reference(self, "angVel", self._row("angVel"))
+        return _owned(_dem.body_ang_vel(self._scene._cpp, self._id, _StateVector3), self, "angVel")
 
     @angVel.setter
     def angVel(self, value):
@@ -471,8 +476,18 @@ class Body:
 
     def __init__(self, scene: "Scene", row: int, id: int | None = None):
         scene._cpp.checkBody(row)
-        self._scene, self._row, self.id = scene, row, row if id is None else id
-        self.state = State(scene, row)
+        for name, value in (("_scene", scene), ("_row", row), ("id", row if id is None else id),
+                            ("state", State(scene, row))):
+            object.__setattr__(self, name, value)
+
+    def __setattr__(self, name, value):
+        # O.bodies hands one view per body: its id and state are not the script's to replace.
+        if name == "id":
+            raise AttributeError("Body.id cannot be set (Yade's is read-only too)")
+        if name == "state":
+            raise AttributeError("Body.state cannot be replaced in Talus: set its attributes instead "
+                                 "(b.state.pos = ..., b.state.vel = ...)")
+        object.__setattr__(self, name, value)
 
     @property
     def dynamic(self) -> bool:
@@ -513,7 +528,11 @@ class Body:
     @property
     def clumpId(self) -> int:
         """Id of the clump this body belongs to (its own id for a clump, -1 if standalone)."""
-        return self.id if self.isClump else int(_dem.clump_id(self._scene._cpp, self._row))
+        if self.isClump:
+            return self.id
+        from talus.dem import distributed     # (imports this module's package)
+        clump = int(_dem.clump_id(self._scene._cpp, self._row))
+        return distributed.global_ids(self._scene, [clump])[0] if clump >= 0 else -1   # a row under mpirun
 
     @property
     def isClumpMember(self) -> bool:

@@ -125,6 +125,10 @@ def _labelled(engines):
 class Scene(OmegaMethods, CheckpointMethods):
     """A simulation. ``talus.dem.O`` is the default one, as Yade's ``O``."""
 
+    # The scene's split over processes under mpirun (talus.dem.distributed.domain), None in one
+    # process: an attribute of the class, so that asking costs no AttributeError from __getattr__.
+    _domain = None
+
     def __init__(self):
         self._cpp = _dem.Scene()
         add_scene(self)
