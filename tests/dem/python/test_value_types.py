@@ -360,3 +360,16 @@ def test_engine_vectors_are_vector3():
     assert newton.gravity == Vector3(0, -1, 0)
     engine = RotationEngine(rotationAxis=(0, 0, 1), zeroPoint=(1, 2, 3))
     assert type(engine.rotationAxis) is Vector3 and engine.zeroPoint == Vector3(1, 2, 3)
+
+
+def test_norms_are_numpys_sums_bit_for_bit():
+    """norm() and squaredNorm() add the squares in numpy's order (a quick path below eight
+    components): the same bits as numpy's sum, for every size."""
+    rng = np.random.default_rng(4)
+    for cls, size in ((Vector2, 2), (Vector3, 3), (Vector6, 6), (Matrix3, 9)):
+        for _ in range(2000):
+            values = rng.standard_normal(size) * 10.0 ** rng.uniform(-8, 8, size)
+            v = cls(*values)
+            assert v.squaredNorm() == float(np.sum(values ** 2)), cls.__name__
+            assert v.norm() == float(np.sqrt(np.sum(values ** 2))), cls.__name__
+    assert Vector3(3, 4, 0).norm() == 5.0 and type(Vector3(1, 2, 3).norm()) is float
