@@ -8,6 +8,7 @@
 // gradients preconditioned by algebraic multigrid (for systems whose factor costs more than the
 // solves it would serve: large networks remeshed often, or too large for a factor to fit in
 // memory) and Gauss-Seidel with over-relaxation (Yade's useSolver=0) for comparison.
+#include "flow/pore/solver/FactorMemory.h"
 #include "flow/pore/solver/Multigrid.h"
 #include "flow/pore/PoreNetwork.h"
 
@@ -102,6 +103,8 @@ private:
   /// The matrix of the unknown rows with both triangles (the multigrid's input).
   [[nodiscard]] SparseRows fullRows() const;
 
+  /// keeps the large blocks of a freed factor for the next one while this solver exists
+  FactorMemory::User memoryUser_;
   std::vector<int> rowOfPore_;  ///< -1 for imposed pores
   std::vector<int> poreOfRow_;
   std::vector<Vec3> centreOfRow_; ///< pore centres, for the fill-reducing ordering

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <numeric>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -177,6 +178,55 @@ TEST(PressureSolver, SymbolicAnalysisIsKeptWhileThePatternIsUnchanged)
   solver.setSystem(net, imposed);
   solver.solve(SolverKind::Cholmod, p);
   EXPECT_EQ(solver.counters().analyses, 2);
+}
+
+namespace
+{
+/// side^3 spheres on a unit cubic lattice, centres moved and radii drawn (0.3 to 0.4) from a
+/// fixed seed.
+std::vector<PoreSphere> latticeSpheres(int side)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> shift(-0.05, 0.05);
+  std::uniform_real_distribution<double> radius(0.3, 0.4);
+  std::vector<PoreSphere> s;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j)
+      for (int k = 0; k < side; ++k)
+      {
+        PoreSphere p;
+        p.pos = Vec3(i + shift(random), j + shift(random), k + shift(random));
+        p.radius = radius(random);
+        p.id = static_cast<std::int64_t>(s.size());
+        s.push_back(p);
+      }
+  return s;
+}
+} // namespace
+
+// A new factor (a remesh, here a new pattern) takes the large blocks the previous one freed,
+// instead of fresh pages the kernel faults in one by one; the kept blocks go back to the system
+// with the last solver.
+TEST(FactorMemory, ANewFactorTakesTheFreedFactorsBlocksAndTheLastSolverReturnsThem)
+{
+  {
+    PoreFlow f = yFlow();
+    f.build(latticeSpheres(20)); // 8 000 spheres: a factor of some tens of MB
+    const PoreNetwork& net = f.network();
+    std::vector<char> imposed = yImposed(net);
+    PressureSolver solver;
+    solver.setSystem(net, imposed);
+    solver.prepare(SolverKind::Cholmod);
+    const std::size_t workspace = FactorMemory::keptBytes();
+    imposed[static_cast<std::size_t>(std::find(imposed.begin(), imposed.end(), 0) - imposed.begin())] = 1;
+    solver.setSystem(net, imposed); // another pattern: the factor is freed
+    const std::size_t freed = FactorMemory::keptBytes();
+    EXPECT_GT(freed, workspace + 2 * FactorMemory::kLargeBlock);
+    solver.prepare(SolverKind::Cholmod);
+    EXPECT_LE(FactorMemory::keptBytes(), workspace + FactorMemory::kLargeBlock);
+    EXPECT_EQ(solver.counters().analyses, 2);
+  }
+  EXPECT_EQ(FactorMemory::keptBytes(), 0U);
 }
 
 namespace

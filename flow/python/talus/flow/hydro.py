@@ -28,6 +28,7 @@ from numpy.typing import ArrayLike
 
 from talus import _flow
 from talus.dem.step.engines import Engine, PyRunner
+from talus.flow.step_callback import step_of
 from talus.flow.vans import VansFluid, core_parameter
 
 __all__ = ["HydroForceEngine", "averageProfile"]
@@ -152,7 +153,7 @@ class HydroForceEngine(Engine):
         self.ids = ids
         self._vy = np.zeros(self.nCell)
         self._vz = np.zeros(self.nCell)
-        self._cpp = PyRunner(self.action, iterPeriod=1, initRun=True)._cpp   # every step, the first one included
+        self._cpp = PyRunner(step_of(self, "action"), iterPeriod=1, initRun=True)._cpp   # every step, the first one included
         self._cpp.resumable = False   # a failure leaves the step without its hydrodynamic forces
         self.label = label
         self.dead = dead

@@ -41,6 +41,7 @@ import numpy as np
 from talus import _flow
 from talus.dem.step.engines import Engine, PyRunner, asCallback
 from talus.flow import stray_attributes
+from talus.flow.step_callback import step_of
 
 _BOUNDARY_LISTS = ("bndCondIsPressure", "bndCondValue", "boundaryUseMaxMin", "wallPosition")
 # engine step counts and their smallest allowed values (None: any; meshUpdateInterval <= 0 never
@@ -185,7 +186,7 @@ class FlowEngine(Engine):
         self._flags = dict(_ENGINE_FLAGS)
         self._thermal = {k: (list(v) if isinstance(v, list) else v) for k, v in _THERMAL_ATTRIBUTES.items()}
         self._poreHeat = None       # the pore temperatures, attached by a ThermalEngine with advection
-        self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp  # from the first step on, as Yade's FlowEngine
+        self._cpp = PyRunner(step_of(self, "_step"), iterPeriod=1, initRun=True)._cpp  # from the first step on, as Yade's FlowEngine
         self._cpp.resumable = False   # a failed solve leaves the step without its fluid forces
         for name, value in attrs.items():
             setattr(self, name, value)

@@ -52,6 +52,7 @@ from talus import _flow
 from talus.dem.core import heat as body_heat
 from talus.dem.step.engines import Engine, PyRunner
 from talus.flow import stray_attributes
+from talus.flow.step_callback import step_of
 
 # Yade 2023.02a's parameters of ThermalEngine and their defaults, by how Talus treats them.
 _IMPLEMENTED = {
@@ -209,7 +210,7 @@ class ThermalEngine(Engine):
         self._pushed = -1            # the version the C++ state has
         self._fluidKey = None        # what the pore fluid's parameters were made of
         # every refusal comes before any temperature changes: a failed step can be resumed
-        self._cpp = PyRunner(self._step, iterPeriod=1, initRun=True)._cpp
+        self._cpp = PyRunner(step_of(self, "_step"), iterPeriod=1, initRun=True)._cpp
         for name, value in attrs.items():
             setattr(self, name, value)
         self._constructed = True    # an unknown attribute from now on: see stray_attributes
