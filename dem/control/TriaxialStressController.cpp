@@ -3,6 +3,7 @@
 #include "dem/base/ExactSum.h"
 #include "dem/core/Domain.h"
 #include "dem/core/Scene.h"
+#include "dem/measure/Measurements.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,24 +51,8 @@ std::array<Vec3, 6> TriaxialStressController::wallForces(const Scene& scene, con
 {
   // 18 force components, 6 stiffnesses, the volume
   std::array<ExactSum, 25> sums;
-  const Contacts& contacts = scene.contacts;
-  // Each wall's contacts from the list's index by body (none before the first detection).
-  const auto indexed = static_cast<std::size_t>(contacts.indexedBodies());
   for (std::size_t w = 0; w < 6; ++w)
-    for (std::int64_t e = rows[w] < indexed ? contacts.start[rows[w]] : 0; rows[w] < indexed && e < contacts.start[rows[w] + 1];
-         ++e)
-    {
-      const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
-      const Contact& c = contacts.list[static_cast<std::size_t>(entry >> 1)];
-      if (!c.real)
-        continue;
-      // the force on the wall: the contact's on its second body (as the force gather adds it)
-      const double sense = (entry & 1) ? 1.0 : -1.0;
-      for (std::size_t d = 0; d < 3; ++d)
-        sums[3 * w + d] += sense * c.force[static_cast<Eigen::Index>(d)];
-      if (withStiffness && c.normalForce.norm() != 0)
-        sums[18 + w] += c.kn;
-    }
+    addContactForce(scene, rows[w], std::span<ExactSum, 3>(sums.data() + 3 * w, 3), withStiffness ? &sums[18 + w] : nullptr);
   const Bodies& b = scene.bodies;
   if (withVolume)
     for (std::size_t i = 0; i < b.size(); ++i)

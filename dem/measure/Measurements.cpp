@@ -92,6 +92,25 @@ Vec3 branchVector(const Scene& scene, const Contact& c)
 }
 } // namespace
 
+void addContactForce(const Scene& scene, std::size_t row, std::span<ExactSum, 3> force, ExactSum* stiffness)
+{
+  const Contacts& contacts = scene.contacts;
+  if (row >= static_cast<std::size_t>(contacts.indexedBodies())) // no contact index yet (before the first detection)
+    return;
+  for (std::int64_t e = contacts.start[row]; e < contacts.start[row + 1]; ++e)
+  {
+    const std::int64_t entry = contacts.entries[static_cast<std::size_t>(e)];
+    const Contact& c = contacts.list[static_cast<std::size_t>(entry >> 1)];
+    if (!c.real)
+      continue;
+    const double sense = (entry & 1) ? 1.0 : -1.0; // the contact's force acts on its second body
+    for (std::size_t d = 0; d < 3; ++d)
+      force[d] += sense * c.force[static_cast<Eigen::Index>(d)];
+    if (stiffness && c.normalForce.norm() != 0)
+      *stiffness += c.kn;
+  }
+}
+
 Vec3 sceneGravity(const Scene& scene)
 {
   for (const auto& e : scene.engines)

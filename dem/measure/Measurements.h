@@ -1,7 +1,9 @@
 #pragma once
 
+#include "dem/base/ExactSum.h"
 #include "dem/base/types.h"
 
+#include <span>
 #include <vector>
 
 namespace talus::dem
@@ -24,6 +26,17 @@ class Scene;
 /// @param useMaxForce the largest total force instead of the mean
 /// @return the ratio, dimensionless
 double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce = false);
+
+/// Add the force the contacts put on body `row` (the contacts' part of its force, each contact's
+/// as the step's gather adds it) to `force` exactly, a sum per component, and with `stiffness`
+/// the normal stiffness of those of its contacts carrying a normal force. Split over processes,
+/// a body every process holds (a wall) has this process's contacts only: summed exactly over
+/// the processes (sumExactly), the shares give the bits of one process.
+/// @param scene the scene, its contact index by body that of the last detection
+/// @param row the body's row
+/// @param force three exact sums, added to (N)
+/// @param stiffness added to (N/m), or null
+void addContactForce(const Scene& scene, std::size_t row, std::span<ExactSum, 3> force, ExactSum* stiffness = nullptr);
 
 /// Gravity of the scene's (first) NewtonIntegrator, zero without one: what unbalancedForce
 /// needs when an engine calls it.
