@@ -25,6 +25,12 @@ def serial_and_split(tmp_path, scene, *args, processes):
     return out[1], out[processes]
 
 
+def same_sum(split, serial):
+    """A force summed over the processes: each process's share in the serial order, the shares
+    grouped as the partition has them, which rebalancing moves (round-off, not the same bits)."""
+    return split == pytest.approx(serial, rel=1e-12)
+
+
 def assert_same_positions(a, b):
     # NaN where a body was erased: the same bodies erased at the same samples
     assert np.array_equal(np.asarray(a["positions"], float), np.asarray(b["positions"], float), equal_nan=True)
@@ -35,7 +41,7 @@ def assert_same_positions(a, b):
 def test_contact_laws_with_state_give_the_serial_positions(tmp_path, law, processes):
     serial, split = serial_and_split(tmp_path, SCENES / "deposition.py", 200, 1000, law, processes=processes)
     assert_same_positions(serial, split)
-    assert split["floor_force"] == serial["floor_force"] < 0
+    assert same_sum(split["floor_force"], serial["floor_force"]) and serial["floor_force"] < 0
     # Spheres changed process with their contacts (and the contacts' state) on the way down.
     assert sum(t["migrated_contacts"] for t in split["traffic"]) > 0
 
@@ -45,15 +51,15 @@ def test_a_silo_of_facets_erasing_the_spheres_that_leave(tmp_path, processes):
     serial, split = serial_and_split(tmp_path, SCENES / "silo_discharge.py", 400, 1000, processes=processes)
     assert_same_positions(serial, split)
     assert split["left"] == serial["left"] and serial["left"][-1][1] < 400 - 20   # spheres left through the orifice
-    assert split["floor_force"] == serial["floor_force"] < 0                      # summed over facets and processes
+    assert same_sum(split["floor_force"], serial["floor_force"]) and serial["floor_force"] < 0  # facets, processes
 
 
 @pytest.mark.parametrize("processes", [2, 3])
 def test_kinematic_gravity_and_force_engines_on_replicated_boundaries(tmp_path, processes):
     serial, split = serial_and_split(tmp_path, SCENES / "moving_boundaries.py", 300, 1000, processes=processes)
     assert_same_positions(serial, split)
-    assert split["floor_force"] == serial["floor_force"] < 0
-    assert split["pusher_force"] == serial["pusher_force"] != 0
+    assert same_sum(split["floor_force"], serial["floor_force"]) and serial["floor_force"] < 0
+    assert same_sum(split["pusher_force"], serial["pusher_force"]) and serial["pusher_force"] != 0
     # the paddle (the last two bodies) turned about the box's centre
     paddle = np.asarray(serial["positions"])[:, -2:, :2]
     assert np.abs(paddle[-1] - paddle[0]).max() > 0.05
