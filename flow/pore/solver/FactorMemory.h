@@ -2,7 +2,7 @@
 // The memory of CHOLMOD's factors. A remesh frees the old factor and allocates a new one of about
 // the same size; the C library hands such large blocks back to the system when they are freed
 // and takes fresh pages for the next one, which the kernel then faults in and zeroes one page at
-// a time (a tenth of a remesh's time at tens of thousands of spheres, docs/flow.md). Here the
+// a time, a visible part of a remesh (docs/flow.md, "Measurements behind the code"). Here the
 // large blocks SuiteSparse frees are kept, while a pressure solver exists, for its next factor.
 #include <cstddef>
 
