@@ -1,0 +1,78 @@
+"""DEM case: clumps, boxes and a triaxial box of walls give the serial run's positions under mpirun.
+
+Run:      build/bin/talus run cases/dem/dem_mpi_parity_walls.py [--quick] [--results DIR]
+Set-up:   two scenes, each unchanged in every run, 1000 steps, run by `talus run` in one process
+          and by `mpirun --oversubscribe -np N talus run -j 1`, N = 1, 2, 3 (this machine has 2
+          cores: 3 processes are oversubscribed), as cases/dem/dem_mpi_parity.py runs its scenes:
+          - cases/scenes/triax_box.py: Yade's triaxial tutorial, small: spheres (makeCloud,
+            rRelFuzz 0.3333) in a box of six walls (aabbWalls), grown by a
+            TriaxialStressController to -10 kPa for 400 steps, then compressed by the walls to
+            -20 kPa (internalCompaction off: each wall moved by the force on it, summed exactly
+            over the processes), GlobalStiffnessTimeStepper, damping 0.2. Quick: 300 spheres;
+            full: 2000.
+          - cases/scenes/clump_deposition.py: clumps of two and three spheres and free spheres
+            (every fourth) falling into a box of walls onto a fixed box (utils.box, held by every
+            process); a clump and its members owned by the process of its centre of mass. Quick:
+            200 clumps and spheres; full: 1500.
+Checked:  dem.mpi.parity.triax-box and dem.mpi.parity.clumps: the largest difference of a body's
+          position from the serial run's, every 100 steps over the 1000, over the largest
+          coordinate (relative; <= 1e-10), at every process count. The details hold each count's
+          difference, the halo traffic per process and step, and for the triaxial box the walls'
+          stresses, the porosity and the mean stress the controller read at the end.
+Produces: the records and the chart dem.mpi.parity.walls.png (differences per process count).
+"""
+import sys
+import tempfile
+from pathlib import Path
+
+from talus import results
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import dem_mpi_parity  # noqa: E402  (the runs, differences and halo of the parity case)
+
+COUNTS = [1, 2, 3]
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    case = results.Case("dem.mpi.parity", quick=args.quick, folder=args.results)
+    sizes = {"triax_box": 300 if args.quick else 2000, "clump_deposition": 200 if args.quick else 1500}
+    with tempfile.TemporaryDirectory() as tmp:
+        runs = {scene: dem_mpi_parity.parity(scene, n, COUNTS, Path(tmp)) for scene, n in sizes.items()}
+    serial, split, differences, halos = runs["triax_box"]
+    case.record("triaxial box of walls (TriaxialStressController growing the spheres, then moving the walls by the "
+                "force on each): largest difference of a body's position from the serial run over 1000 steps, "
+                "relative to the largest coordinate, at 1 to 3 processes", max(differences.values()),
+                "the same script in one process (talus run)", 1e-10, suffix="triax-box", spheres=sizes["triax_box"],
+                steps=dem_mpi_parity.STEPS, differences={str(n): d for n, d in differences.items()},
+                halo={str(n): h for n, h in halos.items()},
+                read_serial={k: serial[k] for k in ("stress", "porosity", "meanStress")},
+                read={str(n): {k: r[k] for k in ("stress", "porosity", "meanStress")} for n, r in split.items()})
+    serial, split, differences, halos = runs["clump_deposition"]
+    case.record("clumps and spheres falling onto a fixed box (clumps owned with their members): largest difference "
+                "of a body's position from the serial run over 1000 steps, relative to the largest coordinate, at 1 "
+                "to 3 processes", max(differences.values()), "the same script in one process (talus run)", 1e-10,
+                suffix="clumps", clumps_and_spheres=sizes["clump_deposition"], steps=dem_mpi_parity.STEPS,
+                differences={str(n): d for n, d in differences.items()}, halo={str(n): h for n, h in halos.items()},
+                box_force_serial=serial["box_force"], box_force={str(n): r["box_force"] for n, r in split.items()})
+
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.8))
+    titles = {"triax_box": f"triaxial box, {sizes['triax_box']} spheres",
+              "clump_deposition": f"clumps onto a box, {sizes['clump_deposition']} clumps and spheres"}
+    for ax, (scene, (_, _, differences, _)) in zip(axes, runs.items()):
+        ax.bar([str(n) for n in COUNTS], [max(differences[n], 1e-18) for n in COUNTS])
+        ax.axhline(1e-10, color="C3", ls="--", label="tolerance 1e-10")
+        ax.set_yscale("log")
+        ax.set_xlabel("MPI processes")
+        ax.set_ylabel("largest relative position difference")
+        ax.set_title(f"{titles[scene]}, 1000 steps (1e-18: same bits)", fontsize=9)
+        ax.legend()
+    fig.tight_layout()
+    case.save_chart(fig, suffix="walls")
+
+
+if __name__ == "__main__":
+    main()
