@@ -230,10 +230,10 @@ void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, st
       {
         // Only contacts across the boundary have an image to shift to, and they are few: a
         // predictable test spares the others the shift's matrix product.
-        Vec3 centre = b.pos[i];
-        if (c.cellDist != Eigen::Vector3i::Zero())
-          centre += static_cast<double>(second) * cell.shift(c.cellDist);
-        t += (c.contactPoint - centre).cross(force);
+        const Vec3 lever = c.cellDist == Eigen::Vector3i::Zero()
+                               ? Vec3(c.contactPoint - b.pos[i])
+                               : Vec3(c.contactPoint - (b.pos[i] + static_cast<double>(second) * cell.shift(c.cellDist)));
+        t += lever.cross(force);
       }
       else
         t += (c.contactPoint - b.pos[i]).cross(force);
