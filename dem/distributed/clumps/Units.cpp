@@ -25,7 +25,8 @@ Units unitsOf(const RankBodies& local)
       headOfId.emplace_back(local.globalId[i], units.unitOf[i]);
       units.head.push_back(static_cast<std::int64_t>(i));
     }
-  std::sort(headOfId.begin(), headOfId.end());
+  if (units.size() < n) // members to find their clumps for (a scene without clumps needs no search)
+    std::sort(headOfId.begin(), headOfId.end());
   units.start.assign(units.size() + 1, 0);
   for (std::size_t i = 0; i < n; ++i)
   {
