@@ -1,7 +1,7 @@
 """DEM case: scripts written for one process give the serial run's positions under mpirun.
 
 Run:      build/bin/talus run cases/dem/dem_mpi_parity.py [--quick] [--results DIR]
-Set-up:   two scenes, each unchanged in every run, 1000 steps, run by `talus run` in one process
+Set-up:   three scenes, each unchanged in every run, 1000 steps, run by `talus run` in one process
           and by `mpirun --oversubscribe -np N talus run -j 1` (this machine has 2 cores: above 2
           processes are oversubscribed):
           - cases/scenes/deposition.py: spheres (makeCloud, rRelFuzz 0.3) falling onto the walls
@@ -12,6 +12,12 @@ Set-up:   two scenes, each unchanged in every run, 1000 steps, run by `talus run
             PyRunner erasing every 50 steps the spheres two radii below the floor (every process
             erases the same ones, deciding from the gathered positions), N = 1, 2, 4. Quick: 400
             spheres; full: 3000.
+          - cases/scenes/periodic_cell.py triax: the periodic triaxial test (a loose periodic cloud
+            compacted to -100 kPa by PeriTriaxController with dynCell, which reads the stress every
+            step, then compressed along z to a log strain of -0.2 with -100 kPa kept on x and y;
+            the processes' regions in the cell's reduced coordinates, ghosts across its faces),
+            N = 1, 2, 3, 4, run on past the 1000 steps to the end of the compression. Quick: 400
+            spheres; full: 3000.
 Checked:  dem.mpi.parity (deposition) and dem.mpi.parity.silo: the largest difference of a body's
           position from the serial run's, every 100 steps over the 1000, over the largest
           coordinate (relative; <= 1e-10), at every process count; for the silo, the bodies
@@ -20,6 +26,9 @@ Checked:  dem.mpi.parity (deposition) and dem.mpi.parity.silo: the largest diffe
           count's difference and the halo traffic per process and step (ghost-update bytes and
           messages; migration and ghost-rebuild bytes per re-detection; bodies and contacts
           migrated).
+          dem.mpi.parity.peri-triax: the positions as above over the first 1000 steps (1 to 4
+          processes); dem.mpi.parity.peri-triax-peak: the largest relative difference of the peak
+          stress ratio (s1 - s3) / (s1 + s3) of the compression from the serial run's (<= 1 %).
 Produces: the records and the chart dem.mpi.parity.png (differences and halo bytes per process
           count).
 """
@@ -32,12 +41,23 @@ from talus import bench, results
 
 SCENES = Path(__file__).resolve().parents[1] / "scenes"
 STEPS = 1000
+#: Each scene's arguments after its spheres, steps and output file.
+ARGUMENTS = {"periodic_cell": ["triax", "finish"]}
 
 
 def run(scene: str, processes: int | None, spheres: int, folder: Path) -> dict:
     """The scene in one process (None) or under mpirun with `processes`; its JSON output."""
     out = folder / f"{scene}-{processes or 0}.json"
-    return bench.run_talus_script([SCENES / f"{scene}.py", spheres, STEPS, out], out, processes)
+    return bench.run_talus_script([SCENES / f"{scene}.py", spheres, STEPS, out, *ARGUMENTS.get(scene, [])], out,
+                                  processes)
+
+
+def peak_ratio(result: dict) -> float:
+    """The peak stress ratio (s1 - s3) / (s1 + s3) of the periodic triaxial's compression."""
+    h = {k: np.asarray(v, float) for k, v in result["history"].items()}
+    shear = h["stage"] == 1
+    s1, s3 = -h["szz"][shear], -(h["sxx"][shear] + h["syy"][shear]) / 2
+    return float(((s1 - s3) / (s1 + s3)).max())
 
 
 def difference(serial: dict, split: dict) -> float:
@@ -83,7 +103,7 @@ def main():
     import matplotlib.pyplot as plt
     case = results.Case("dem.mpi.parity", quick=args.quick, folder=args.results)
     spheres = 400 if args.quick else 3000
-    counts = {"deposition": [1, 2, 3, 4], "silo_discharge": [1, 2, 4]}
+    counts = {"deposition": [1, 2, 3, 4], "silo_discharge": [1, 2, 4], "periodic_cell": [1, 2, 3, 4]}
     with tempfile.TemporaryDirectory() as tmp:
         runs = {scene: parity(scene, spheres, n, Path(tmp)) for scene, n in counts.items()}
     serial, split, differences, halos = runs["deposition"]
@@ -102,9 +122,27 @@ def main():
                 spheres_left_serial=serial["left"], spheres_left={str(n): r["left"] for n, r in split.items()},
                 floor_force_serial=serial["floor_force"],
                 floor_force={str(n): r["floor_force"] for n, r in split.items()})
+    serial, split, differences, halos = runs["periodic_cell"]
+    case.record("periodic triaxial (PeriTriaxController, deforming cell): largest difference of a body's position "
+                "from the serial run over 1000 steps, relative to the largest coordinate, at 1 to 4 processes",
+                max(differences.values()), "the same script in one process (talus run)", 1e-10, suffix="peri-triax",
+                spheres=spheres, steps=STEPS, differences={str(n): d for n, d in differences.items()},
+                halo={str(n): h for n, h in halos.items()}, cells_serial=serial["cells"][-1],
+                cells={str(n): r["cells"][-1] for n, r in split.items()})
+    peaks = {n: peak_ratio(r) for n, r in split.items()}
+    print(f"periodic triaxial: peak stress ratio {peak_ratio(serial):.6f} serial, "
+          + ", ".join(f"{p:.6f} at {n}" for n, p in peaks.items()))
+    case.record("periodic triaxial: largest relative difference of the peak stress ratio (s1 - s3) / (s1 + s3) of "
+                "the compression from the serial run's, at 1 to 4 processes",
+                max(abs(p - peak_ratio(serial)) / peak_ratio(serial) for p in peaks.values()),
+                "the same script in one process (talus run)", 0.01, suffix="peri-triax-peak", spheres=spheres,
+                peak_serial=peak_ratio(serial), peaks={str(n): p for n, p in peaks.items()},
+                steps_serial=serial["iter"], steps={str(n): r["iter"] for n, r in split.items()},
+                compacted_serial=serial["compacted"], compacted={str(n): r["compacted"] for n, r in split.items()})
 
-    fig, axes = plt.subplots(1, 3, figsize=(14, 3.8))
-    titles = {"deposition": f"deposition of {spheres} spheres", "silo_discharge": f"silo of {spheres} spheres"}
+    fig, axes = plt.subplots(1, 4, figsize=(18, 3.8))
+    titles = {"deposition": f"deposition of {spheres} spheres", "silo_discharge": f"silo of {spheres} spheres",
+              "periodic_cell": f"periodic triaxial of {spheres} spheres"}
     for ax, (scene, (_, _, differences, _)) in zip(axes, runs.items()):
         ax.bar([str(n) for n in counts[scene]], [max(differences[n], 1e-18) for n in counts[scene]])
         ax.axhline(1e-10, color="C3", ls="--", label="tolerance 1e-10")
@@ -114,12 +152,12 @@ def main():
         ax.set_title(f"{titles[scene]}, 1000 steps (1e-18: same bits)", fontsize=9)
         ax.legend()
     for scene, (_, _, _, halos) in runs.items():
-        axes[2].plot(counts[scene], [np.mean(halos[c]["update_bytes_per_process_step"] or [0]) for c in counts[scene]],
+        axes[3].plot(counts[scene], [np.mean(halos[c]["update_bytes_per_process_step"] or [0]) for c in counts[scene]],
                      marker="o", label=titles[scene])
-    axes[2].set_xlabel("MPI processes")
-    axes[2].set_ylabel("ghost-update bytes per process and step")
-    axes[2].set_title("halo traffic")
-    axes[2].legend()
+    axes[3].set_xlabel("MPI processes")
+    axes[3].set_ylabel("ghost-update bytes per process and step")
+    axes[3].set_title("halo traffic")
+    axes[3].legend()
     fig.tight_layout()
     case.save_chart(fig)
 
