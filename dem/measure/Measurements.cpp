@@ -111,6 +111,24 @@ void addContactForce(const Scene& scene, std::size_t row, std::span<ExactSum, 3>
   }
 }
 
+std::pair<Vec3, double> totalForceInVolume(const Scene& scene)
+{
+  // the force's absolute components, the stiffness, the contacts: this process's shares
+  std::array<double, 5> sums{};
+  for (const Contact& c : scene.contacts.list)
+  {
+    if (!counted(scene, c))
+      continue;
+    const Vec3 f = c.normalForce + c.shearForce;
+    for (std::size_t d = 0; d < 3; ++d)
+      sums[d] += std::abs(f[static_cast<Eigen::Index>(d)]);
+    sums[3] += c.kn / 3 + 2 * c.ks / 3;
+    sums[4] += 1;
+  }
+  sumOverProcesses(scene, sums);
+  return {Vec3(sums[0], sums[1], sums[2]), sums[4] > 0 ? sums[3] / sums[4] : -1.0};
+}
+
 Vec3 sceneGravity(const Scene& scene)
 {
   for (const auto& e : scene.engines)

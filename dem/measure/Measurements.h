@@ -4,6 +4,7 @@
 #include "dem/base/types.h"
 
 #include <span>
+#include <utility>
 #include <vector>
 
 namespace talus::dem
@@ -37,6 +38,12 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
 /// @param force three exact sums, added to (N)
 /// @param stiffness added to (N/m), or null
 void addContactForce(const Scene& scene, std::size_t row, std::span<ExactSum, 3> force, ExactSum* stiffness = nullptr);
+
+/// Yade's totalForceInVolume: the sum over real contacts of the absolute components of each
+/// contact's force (normal + shear), and the contacts' mean isotropic stiffness kn/3 + 2 ks/3.
+/// Split over processes, the whole scene's (each contact counted once; collective).
+/// @return the summed absolute force components (N) and the mean stiffness (N/m), -1 without contacts
+std::pair<Vec3, double> totalForceInVolume(const Scene& scene);
 
 /// Gravity of the scene's (first) NewtonIntegrator, zero without one: what unbalancedForce
 /// needs when an engine calls it.

@@ -218,6 +218,10 @@ PYBIND11_MODULE(_dem, m)
 
   m.def("unbalancedForce", &unbalancedForce);
   m.def("loveWeberStress", &loveWeberStress);
+  m.def("totalForceInVolume", [](const Scene& s) {
+    const auto [force, stiffness] = totalForceInVolume(s);
+    return py::make_tuple(force, stiffness);
+  });
   m.def("contactStiffnessTangent", [](const Scene& s, double volume, bool yadeForm) {
     return contactStiffnessTangent(s, volume, yadeForm ? TangentForm::Yade : TangentForm::Full);
   });
