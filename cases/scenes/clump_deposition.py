@@ -6,7 +6,8 @@ tests/dem/distributed/test_mpi_clumps_walls.py).
 
 Arguments: clumps and free spheres (every fourth a sphere), steps, output file (JSON: every
 body's position by id every 100 steps, the halo traffic per process, the floor's and the box's
-force summed over the processes, the kinetic energy and the unbalanced force at the end).
+force summed over the processes, the kinetic energy, the energy terms (O.energy) and the
+unbalanced force at the end).
 """
 import json
 import random
@@ -50,12 +51,13 @@ O.engines = [
     PyRunner(command='sample()', iterPeriod=100),
 ]
 O.dt = 0.8 * PWaveTimeStep()
+O.trackEnergy = True
 O.run(steps, True)
 sample()                                               # the state after the last step
 # Collective reads (every process calls them), then the file from process 0.
 result = {"positions": samples, "traffic": distributed.traffic(), "unbalanced": unbalancedForce(),
           "floor_force": list(O.forces.f(walls[2])), "box_force": list(O.forces.f(obstacle)),
-          "kinetic": utils.kineticEnergy()}
+          "kinetic": utils.kineticEnergy(), "energy": {k: O.energy[k] for k in O.energy.keys()}}
 if distributed.rank() == 0:
     with open(output, "w") as f:
         json.dump(result, f)
