@@ -167,17 +167,23 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
     int& widest = *std::max_element(bins.begin(), bins.end());
     widest = std::max(3, widest * 2 / 3);
   }
+  // Only members of a clump, or any sphere when masks are in play, may be refused a partner.
+  const bool anyClump = std::any_of(spheres.begin(), spheres.end(),
+                                    [&](BodyId id) { return b.clumpId[static_cast<std::size_t>(id)] >= 0; });
+  const bool filtered = filter.masks || anyClump;
   auto consider = [&](std::size_t s, std::size_t t) {
     const BodyId a = spheres[s], c = spheres[t];
-    if (!filter(b, static_cast<std::size_t>(a), static_cast<std::size_t>(c)))
-      return; // not even through an image
     const std::size_t first = a < c ? s : t, second = a < c ? t : s;
     const Vec3 delta = wrapped[second] - wrapped[first];
-    const Eigen::Vector3i image = -(delta.array().round().cast<int>()).matrix();
+    // The nearest image: minus delta rounded half away from zero, which for delta in (-1, 1)
+    // (both wrapped into [0, 1)) is -1, 0 or 1 by two comparisons; std::round is a library call
+    // per component without SSE4.1, and this loop runs for every pair of neighbouring spheres.
+    const Eigen::Vector3i image((delta[0] <= -0.5) - (delta[0] >= 0.5), (delta[1] <= -0.5) - (delta[1] >= 0.5),
+                                (delta[2] <= -0.5) - (delta[2] >= 0.5));
     const Vec3 d = cell.hSize * (delta + image.cast<double>());
     const auto i = static_cast<std::size_t>(spheres[first]), j = static_cast<std::size_t>(spheres[second]);
     const double reach = b.radius[i] + b.radius[j] + skin;
-    if (d.squaredNorm() < reach * reach)
+    if (d.squaredNorm() < reach * reach && (!filtered || filter(b, i, j)))
       pairs.push_back({key(spheres[first], spheres[second]), image + period[first] - period[second]});
   };
   if (*std::min_element(bins.begin(), bins.end()) < 3)
@@ -208,21 +214,29 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
   std::vector<std::size_t> sorted(n), fill(start.begin(), start.end() - 1);
   for (std::size_t s = 0; s < n; ++s)
     sorted[fill[flat(binOf(wrapped[s]))]++] = s;
-  for (std::size_t s = 0; s < n; ++s)
-  {
-    const std::array<int, 3> c = binOf(wrapped[s]);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx)
-        {
-          const std::array<int, 3> nc{(c[0] + dx + bins[0]) % bins[0], (c[1] + dy + bins[1]) % bins[1],
-                                      (c[2] + dz + bins[2]) % bins[2]};
-          const std::size_t k = flat(nc);
-          for (std::size_t e = start[k]; e < start[k + 1]; ++e)
-            if (sorted[e] > s)
-              consider(s, sorted[e]);
-        }
-  }
+  // Bin by bin: the pairs inside it, then those with the 13 neighbours of one half of the 26
+  // (the other half sees it from theirs; with 3 bins or more along each axis the 26 are
+  // distinct), so each pair is met once and no test asks which of its two spheres comes first.
+  // The pairs' order does not matter: the caller sorts them.
+  for (int cz = 0; cz < bins[2]; ++cz)
+    for (int cy = 0; cy < bins[1]; ++cy)
+      for (int cx = 0; cx < bins[0]; ++cx)
+      {
+        const std::size_t k = flat({cx, cy, cz});
+        for (std::size_t e = start[k]; e < start[k + 1]; ++e)
+          for (std::size_t f = e + 1; f < start[k + 1]; ++f)
+            consider(sorted[e], sorted[f]);
+        for (int dz = 0; dz <= 1; ++dz)
+          for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
+            for (int dx = dz == 0 && dy == 0 ? 1 : -1; dx <= 1; ++dx)
+            {
+              const std::size_t m = flat({(cx + dx + bins[0]) % bins[0], (cy + dy + bins[1]) % bins[1],
+                                          (cz + dz + bins[2]) % bins[2]});
+              for (std::size_t e = start[k]; e < start[k + 1]; ++e)
+                for (std::size_t f = start[m]; f < start[m + 1]; ++f)
+                  consider(sorted[e], sorted[f]);
+            }
+      }
 }
 
 /// Candidate box-sphere pairs: spheres whose centre is within r + skin of the box.
@@ -728,7 +742,9 @@ void Collider::rebuild(Scene& scene)
   for (std::size_t i = 0; i < b.size() && !filter.masks; ++i)
     filter.masks = b.alive[i] && b.groupMask[i] != 1;
   // Without spheres, a negative verletDist is a fraction of the smallest block's or particle's R.
-  const double smallest = spheres.empty() ? blockRmin : rmin;
+  // Split over processes, rmin is every process's: one left without spheres (a silo's top
+  // emptied) keeps their skin, not none, which would have every process re-detect at every step.
+  const double smallest = std::isfinite(rmin) ? rmin : blockRmin;
   skin_ = verletDist >= 0 ? verletDist : (std::isfinite(smallest) ? -verletDist * smallest : 0.0);
 
   // Not cleared for the open scene: its merge overwrites every entry, and resizing a cleared
