@@ -78,9 +78,13 @@ def _script(tmp_path, body):
     ("O.engines = O.engines + [HdapsGravityEngine()]\nO.run(10, True)\n", "HdapsGravityEngine"),
 ])
 def test_what_is_not_distributed_is_refused_by_name_once(tmp_path, body, named):
-    done = talus_run(_script(tmp_path, body), processes=2)
+    assert_refused_by_name_once(talus_run(_script(tmp_path, body), processes=2), named)
+
+
+def assert_refused_by_name_once(done, named):
+    """A run under mpirun stopped, the refusal naming `named` reported by process 0 only."""
     assert done.returncode != 0
-    assert done.stderr.count(named) == 1, done.stderr      # reported by process 0 only
+    assert done.stderr.count(named) == 1, done.stderr
     assert "not distributed yet" in done.stderr or "in one process" in done.stderr, done.stderr
 
 
