@@ -45,8 +45,8 @@ def bed_shape(n: int) -> tuple[int, int, int]:
     return nx, nx, nz
 
 
-def write_packing(path: Path, n: int) -> int:
-    """Write the lattice of about n spheres in dense_bed.py's format; return the sphere count."""
+def bed_lattice(n: int) -> tuple[np.ndarray, float, float, float]:
+    """The lattice of about n spheres: (centres, time step, box_x, box_y)."""
     nx, ny, nz = bed_shape(n)
     spacing = 2 * RADIUS * (1 - 1e-4)
     rng = np.random.default_rng(12345)
@@ -54,7 +54,12 @@ def write_packing(path: Path, n: int) -> int:
     centres = np.stack([i.ravel(), j.ravel(), k.ravel()], axis=1) * spacing + RADIUS
     centres += rng.uniform(-1e-5, 1e-5, centres.shape) * RADIUS
     dt = 0.5 * RADIUS * math.sqrt(DENSITY / YOUNG)
-    box_x, box_y = nx * spacing + 2 * RADIUS * 1e-4, ny * spacing + 2 * RADIUS * 1e-4
+    return centres, dt, nx * spacing + 2 * RADIUS * 1e-4, ny * spacing + 2 * RADIUS * 1e-4
+
+
+def write_packing(path: Path, n: int) -> int:
+    """Write the lattice of about n spheres in dense_bed.py's format; return the sphere count."""
+    centres, dt, box_x, box_y = bed_lattice(n)
     with open(path, "w") as out:
         out.write(f"{dt!r} {YOUNG!r} {DENSITY!r} {box_x!r} {box_y!r}\n")
         for x, y, z in centres:

@@ -35,6 +35,25 @@ def frictional_bodies(O, young, density, spheres, triangles=()):
     return facets, O.bodies.append([utils.sphere((x, y, z), r, material=material) for x, y, z, r in spheres])
 
 
+def walled_bed(O, material, box_x, box_y):
+    """The dense bed's box and engines (cases 11 and the MPI beds): five walls of `material` (the
+    floor at z = 0, the sides at 0 and `box_x`, `box_y`), linear Cundall-Strack with Coulomb
+    friction, Cundall damping 0.2, gravity."""
+    import yade
+    from yade import utils
+    O.bodies.append([utils.wall(0, axis=2, sense=1, material=material), utils.wall(0, axis=0, sense=1, material=material),
+                     utils.wall(box_x, axis=0, sense=-1, material=material),
+                     utils.wall(0, axis=1, sense=1, material=material),
+                     utils.wall(box_y, axis=1, sense=-1, material=material)])
+    O.engines = [
+        yade.ForceResetter(),
+        yade.InsertionSortCollider([yade.Bo1_Sphere_Aabb(), yade.Bo1_Wall_Aabb()]),
+        yade.InteractionLoop([yade.Ig2_Sphere_Sphere_ScGeom(), yade.Ig2_Wall_Sphere_ScGeom()],
+                             [yade.Ip2_FrictMat_FrictMat_FrictPhys()], [yade.Law2_ScGeom_FrictPhys_CundallStrack()]),
+        yade.NewtonIntegrator(damping=0.2, gravity=(0, 0, -9.81)),
+    ]
+
+
 def periodic_linear(O, sides, young, density, spheres, controllers=()):
     """The periodic scenes: a cell of `sides`, the spheres (frictional_bodies), linear
     Cundall-Strack with Coulomb friction, the `controllers`, Cundall damping 0.2, no gravity."""

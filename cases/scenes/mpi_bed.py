@@ -5,7 +5,8 @@ as it is by `talus run` and by `mpirun -np N talus run`.
 
 Arguments: PACKING (written by case 11's write_packing), STEPS, OUTPUT (JSON written by process
 0: per process the seconds of the set-up, of the timed steps (wall and CPU) and of each stage,
-the halo traffic, and every body's position after the last step).
+the halo traffic, the load (talus.dem.distributed.balance(): spheres, ghosts, contacts, regions)
+and every body's position after the last step).
 """
 import json
 import os
@@ -13,7 +14,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(sys.argv[0])))
-from bench_scene import read_packing  # noqa: E402
+from bench_scene import read_packing, walled_bed  # noqa: E402
 from talus.dem import distributed  # noqa: E402
 from talus.dem.analysis import timing
 
@@ -22,16 +23,7 @@ packing, steps, output = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 (dt, young, density, box_x, box_y), spheres, _ = read_packing(packing)
 material = O.materials.append(FrictMat(young=young, poisson=0.3, frictionAngle=0.5, density=density))
 O.bodies.append([utils.sphere((x, y, z), r, material=material) for x, y, z, r in spheres])
-O.bodies.append([utils.wall(0, axis=2, sense=1, material=material), utils.wall(0, axis=0, sense=1, material=material),
-                 utils.wall(box_x, axis=0, sense=-1, material=material), utils.wall(0, axis=1, sense=1, material=material),
-                 utils.wall(box_y, axis=1, sense=-1, material=material)])
-O.engines = [
-    ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
-                    [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
-    NewtonIntegrator(damping=0.2, gravity=(0, 0, -9.81)),
-]
+walled_bed(O, material, box_x, box_y)
 O.dt = dt
 O.run(1, True)                           # the split over the processes and the first detection
 distributed.reset_traffic()
@@ -45,6 +37,7 @@ for engine in timing.rows():
     for stage in engine["stages"]:
         mine[f"{engine['name']}: {stage['name']}"] = stage["nsec"] * 1e-9
 result = {"steps": steps, "processes": distributed.per_process(mine), "traffic": distributed.traffic(),
+          "balance": distributed.balance(),
           "positions": distributed.positions().tolist()}
 if distributed.rank() == 0:
     with open(output, "w") as f:

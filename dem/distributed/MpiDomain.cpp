@@ -6,6 +6,9 @@
 #include "dem/distributed/Ghosts.h"
 #include "dem/distributed/Migration.h"
 #include "dem/distributed/RowMemory.h"
+#include "dem/distributed/clumps/Units.h"
+#include "dem/distributed/periodic/Regions.h"
+#include "dem/distributed/slabs/HeldRows.h"
 
 #include <algorithm>
 #include <array>
@@ -64,14 +67,27 @@ struct Travelling
   std::vector<GlobalId> ids; ///< two per record
 };
 
+/// Zoltan's partition of `mine` in the space of `regions` (a periodic cell's reduced
+/// coordinates: the bodies handed to Zoltan at those coordinates; an open scene's as they are).
+Plan partitionIn(MPI_Comm comm, const Regions& regions, bool periodic, const RankBodies& mine,
+                 std::span<const double> weights, const PartitionSettings& settings)
+{
+  if (!periodic)
+    return partition(comm, mine, weights, settings);
+  RankBodies located = mine;
+  for (Vec3& x : located.bodies.pos)
+    x = regions.coordinates(x);
+  return partition(comm, located, weights, settings);
+}
+
 /// The CPU seconds of this process so far (a rank waiting in MPI polls: its CPU time, unlike its
 /// wall time, is what the wait costs the machine).
 double cpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 } // namespace
 
-MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings)
-    : comm_(comm), settings_(settings), method_(Method::RCB)
+MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings, const HeldRows* held)
+    : comm_(comm), settings_(settings), method_(Method::RCB), balance_(settings.rebalanceThreshold)
 {
   const double start = MPI_Wtime();
   MPI_Comm_rank(comm_, &rank_);
@@ -80,26 +96,47 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   std::vector<std::int64_t> spheres;
   double rmin = std::numeric_limits<double>::infinity(), rmax = 0;
   std::string error;
+  const auto idOf = [held](std::size_t row) { return held ? held->globalId[row] : static_cast<GlobalId>(row); };
   for (std::size_t i = 0; i < b.size() && error.empty(); ++i)
   {
     if (!b.alive[i])
-      erased_.push_back(static_cast<GlobalId>(i));
-    else if (b.shape[i] == ShapeKind::Sphere && b.clumpId[i] < 0)
+      erased_.push_back(idOf(i));
+    else if (b.shape[i] == ShapeKind::Sphere || b.shape[i] == ShapeKind::Clump)
     {
-      spheres.push_back(static_cast<std::int64_t>(i));
-      rmin = std::min(rmin, b.radius[i]);
-      rmax = std::max(rmax, b.radius[i]);
+      // What Zoltan places: free spheres and clumps (their members go with them).
+      if (b.clumpId[i] < 0)
+        spheres.push_back(static_cast<std::int64_t>(i));
+      if (b.shape[i] == ShapeKind::Sphere)
+      {
+        rmin = std::min(rmin, b.radius[i]);
+        rmax = std::max(rmax, b.radius[i]);
+      }
+      if (b.shape[i] == ShapeKind::Clump || b.clumpId[i] >= 0)
+        clumped_.push_back(idOf(i));
     }
-    else if (b.shape[i] != ShapeKind::Wall && b.shape[i] != ShapeKind::Facet)
-      error = "body " + std::to_string(i) + " is "
-              + (b.clumpId[i] >= 0 ? std::string("a member of a clump") : std::string("a ") + shapeName(b.shape[i]))
-              + ": the distributed DEM takes spheres, walls and facets only so far (no boxes, clumps, blocks, "
-                "particles); run it in one process";
+    else if (b.shape[i] != ShapeKind::Wall && b.shape[i] != ShapeKind::Facet && b.shape[i] != ShapeKind::Box)
+      error = "body " + std::to_string(idOf(i)) + " is a " + shapeName(b.shape[i])
+              + (b.clumpId[i] >= 0 ? " member of a clump" : "")
+              + ": the distributed DEM takes spheres, clumps of spheres, walls, facets and boxes only so far (no "
+                "blocks, particles); run it in one process";
+    else if (b.dynamic[i])
+      error = "body " + std::to_string(idOf(i)) + " is a " + shapeName(b.shape[i])
+              + " moved by forces (dynamic): under mpirun every process holds the walls, facets and boxes and "
+                "moves them alike by their velocities (set by engines); make it fixed (dynamic=False) or run it "
+                "in one process";
   }
-  if (error.empty() && scene.periodic)
-    error = "the scene is periodic: the distributed DEM has no periodic cells yet; run it in one process";
-  if (error.empty() && static_cast<int>(spheres.size()) < ranks_)
-    error = "the scene has " + std::to_string(spheres.size()) + " spheres for " + std::to_string(ranks_)
+  hasClumps_ = !clumped_.empty();
+  if (hasClumps_ && error.empty() && (scene.periodic || held))
+    error = std::string("the scene has clumps ") + (held ? "and is read in slabs" : "in a periodic cell")
+            + ": the distributed DEM takes clumps in open scenes built whole on every process only so far; run "
+              "it in one process";
+  for (std::size_t i = 0; i < b.size() && error.empty() && scene.periodic; ++i)
+    if (b.alive[i] && (b.shape[i] == ShapeKind::Wall || b.shape[i] == ShapeKind::Facet))
+      error = "body " + std::to_string(i) + " is a " + shapeName(b.shape[i])
+              + " in a periodic cell: the distributed DEM takes periodic cells of spheres only so far; run it in "
+                "one process";
+  if (const std::int64_t count = sceneSpheres(comm_, spheres, held); error.empty() && count < ranks_)
+    error = "the scene has " + std::to_string(count) + " spheres for " + std::to_string(ranks_)
             + " processes: each process needs at least one; run it on fewer (mpirun -np)";
   const Collider* collider = nullptr;
   for (const auto& engine : scene.engines)
@@ -120,22 +157,32 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   const double skin = collider->verletDist >= 0 ? collider->verletDist : -collider->verletDist * rmin;
   ghostDistance_ = 2 * rmax + skin;
 
-  // Every rank holds the whole scene: rank r offers the r-th slice of the spheres to Zoltan.
+  // Rank r offers Zoltan the r-th slice of the spheres every rank holds, and its own slab of a
+  // packing read in slabs.
   RankBodies whole{std::move(scene.bodies), {}};
   whole.globalId.resize(whole.bodies.size());
   std::iota(whole.globalId.begin(), whole.globalId.end(), GlobalId{0});
-  globalCount_ = static_cast<std::int64_t>(whole.bodies.size());
+  if (held)
+    whole.globalId = held->globalId;
+  globalCount_ = held ? held->count : static_cast<std::int64_t>(whole.bodies.size());
   globalId_ = whole.globalId;
-  const auto P = static_cast<std::size_t>(ranks_), me = static_cast<std::size_t>(rank_);
-  const std::vector<std::int64_t> slice(spheres.begin() + static_cast<std::ptrdiff_t>(spheres.size() * me / P),
-                                        spheres.begin() + static_cast<std::ptrdiff_t>(spheres.size() * (me + 1) / P));
+  std::vector<std::int64_t> slice = offeredRows(spheres, held, rank_, ranks_);
+  for (const ClumpShape& clump : whole.bodies.clumps) // by global id: the scene is whole, its rows its ids
+    clumpMembers_.emplace_back(clump.members.begin(), clump.members.end());
+  for (std::size_t k = 0, heads = slice.size(); k < heads; ++k) // a clump's members go with it
+    if (const auto i = static_cast<std::size_t>(slice[k]); whole.bodies.shape[i] == ShapeKind::Clump)
+    {
+      const std::vector<GlobalId>& members = clumpMembers_[static_cast<std::size_t>(whole.bodies.shapeIndex[i])];
+      slice.insert(slice.end(), members.begin(), members.end());
+    }
   RankBodies mine;
   std::vector<std::byte> rows;
   packRows(whole, slice, rows);
   unpackRows(rows, mine);
-  const Plan plan = partition(comm_, mine, {}, settings_);
+  if (scene.periodic)
+    regions_ = Regions(scene.cell);
+  const Plan plan = placeUnits(scene, mine, {}, true);
   migrate(comm_, mine, plan);
-  boxes_ = plan.boxes;
 
   // Contacts made before the domain (steps run in one process): every rank has them all.
   Travelling contacts;
@@ -151,13 +198,21 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   scene.bodies = std::move(whole.bodies);
   replicated_.assign(scene.bodies.size(), 0);
   for (std::size_t i = 0; i < scene.bodies.size(); ++i)
-    replicated_[i] = scene.bodies.alive[i] && (scene.bodies.shape[i] == ShapeKind::Wall || scene.bodies.shape[i] == ShapeKind::Facet);
+    replicated_[i] = scene.bodies.alive[i]
+                     && (scene.bodies.shape[i] == ShapeKind::Wall || scene.bodies.shape[i] == ShapeKind::Facet
+                         || scene.bodies.shape[i] == ShapeKind::Box);
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
   // Of the whole scene every rank built, only this rank's rows are left: its memory goes back.
   forEachBodyField(scene.bodies, [](auto& field) { field.shrink_to_fit(); });
   scene.contacts.list.shrink_to_fit();
   scene.contacts.extra.shrink_to_fit();
   traffic_.splitSeconds = MPI_Wtime() - start;
+  balance_.begin(cpuSeconds(), waitedCpu_, scene.iter);
+}
+
+double MpiDomain::computeSeconds() const
+{
+  return balance_.stats().computeSeconds + balance_.openSeconds(cpuSeconds(), waitedCpu_);
 }
 
 std::size_t MpiDomain::ownedBodies(const Scene& scene) const { return scene.bodies.size(); }
@@ -189,6 +244,10 @@ bool MpiDomain::erase(Scene& scene, GlobalId id)
   if (id < 0 || id >= globalCount_)
     throw std::out_of_range("no body with id " + std::to_string(id) + " (ids run from 0 to "
                             + std::to_string(globalCount_ - 1) + ")");
+  if (std::binary_search(clumped_.begin(), clumped_.end(), id))
+    throw CollectiveError("O.bodies.erase(" + std::to_string(id)
+                          + "): the body is a clump or a member of one, and erasing clumps is not distributed yet "
+                            "(a clump and its members are held together); run it in one process");
   const auto at = std::lower_bound(erased_.begin(), erased_.end(), id);
   if (at != erased_.end() && *at == id)
     return false;
@@ -200,10 +259,11 @@ bool MpiDomain::erase(Scene& scene, GlobalId id)
   return true;
 }
 
-int MpiDomain::regionOf(const Vec3& x) const
+int MpiDomain::regionOf(const Vec3& position) const
 {
-  if (!x.allFinite())
+  if (!position.allFinite())
     return -1;
+  const Vec3 x = regions_.coordinates(position);
   for (std::size_t r = 0; r < boxes_.size(); ++r)
     if ((x.array() >= boxes_[r].min.array()).all() && (x.array() <= boxes_[r].max.array()).all())
       return static_cast<int>(r);
@@ -216,6 +276,7 @@ void MpiDomain::sum(std::span<double> values) const
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_SUM, comm_);
   traffic_.reductionSeconds += MPI_Wtime() - start;
   traffic_.waitCpuSeconds += cpuSeconds() - cpu;
+  waitedCpu_ += cpuSeconds() - cpu;
 }
 
 double MpiDomain::min(double value) const
@@ -230,11 +291,12 @@ void MpiDomain::min(std::span<double> values) const
   MPI_Allreduce(MPI_IN_PLACE, values.data(), static_cast<int>(values.size()), MPI_DOUBLE, MPI_MIN, comm_);
   traffic_.reductionSeconds += MPI_Wtime() - start;
   traffic_.waitCpuSeconds += cpuSeconds() - cpu;
+  waitedCpu_ += cpuSeconds() - cpu;
 }
 
 void MpiDomain::beforeDetection(Scene& scene)
 {
-  const double start = MPI_Wtime();
+  const double start = MPI_Wtime(), cpuAtStart = cpuSeconds(), waitedAtStart = waitedCpu_;
   const Bodies& b = scene.bodies;
   const std::size_t n = b.size();
   // A body that moved, since the last re-detection, further from the others' common drift than
@@ -242,23 +304,42 @@ void MpiDomain::beforeDetection(Scene& scene)
   // a diverged run): an error, not a wrong force.
   // With the drift, what each rank erased (count, sum of ids, each with its negation): the ranks
   // must agree.
-  std::vector<double> drift(10, std::numeric_limits<double>::infinity());
+  // And the periodic cell, which every rank updates alike (the same velocity gradient from the
+  // same reductions): a rank whose cell differs would compute other contacts.
+  // In a periodic cell the motion is measured twice: from where the cell's affine map A =
+  // H H_detected^-1 carried each body's position at the last re-detection (the bodies follow it
+  // as velGrad deforms the cell, which the collider's skin check takes as no motion), and from
+  // that position itself (O.cell.hSize set from a script moves no body); a body is out of reach
+  // when it is far by both (drift[28..33]: the common drift of the second).
+  std::vector<double> drift(34, std::numeric_limits<double>::infinity());
   const double erasedCount = static_cast<double>(erased_.size()),
                erasedSum = static_cast<double>(std::accumulate(erased_.begin(), erased_.end(), GlobalId{0}));
   drift[6] = erasedCount;
   drift[7] = -erasedCount;
   drift[8] = erasedSum;
   drift[9] = -erasedSum;
+  for (int k = 0; k < 9; ++k)
+  {
+    drift[10 + static_cast<std::size_t>(k)] = scene.cell.hSize.data()[k];
+    drift[19 + static_cast<std::size_t>(k)] = -scene.cell.hSize.data()[k];
+  }
+  const Mat3 affine = scene.periodic ? Mat3(scene.cell.hSize * detectedCell_.inverse()) : Mat3::Identity();
+  auto extremes = [&](const Vec3& moved, std::size_t at) {
+    for (int d = 0; d < 3; ++d)
+    {
+      drift[at + static_cast<std::size_t>(d)] = std::min(drift[at + static_cast<std::size_t>(d)], moved[d]);
+      drift[at + static_cast<std::size_t>(d) + 3] = std::min(drift[at + static_cast<std::size_t>(d) + 3], -moved[d]);
+    }
+  };
   for (std::size_t i = 0; i < n; ++i)
     if (owned_[i] && !replicated_[i] && b.alive[i])
-      for (int d = 0; d < 3; ++d)
-      {
-        const double moved = b.pos[i][d] - detectedAt_[i][d];
-        drift[static_cast<std::size_t>(d)] = std::min(drift[static_cast<std::size_t>(d)], moved);
-        drift[static_cast<std::size_t>(d) + 3] = std::min(drift[static_cast<std::size_t>(d) + 3], -moved);
-      }
+    {
+      extremes(b.pos[i] - affine * detectedAt_[i], 0);
+      extremes(b.pos[i] - detectedAt_[i], 28);
+    }
   min(drift);
-  const Vec3 common = 0.5 * (Vec3(drift[0], drift[1], drift[2]) - Vec3(drift[3], drift[4], drift[5]));
+  const Vec3 common = 0.5 * (Vec3(drift[0], drift[1], drift[2]) - Vec3(drift[3], drift[4], drift[5])),
+             still = 0.5 * (Vec3(drift[28], drift[29], drift[30]) - Vec3(drift[31], drift[32], drift[33]));
   std::string error;
   if (drift[6] != -drift[7] || drift[8] != -drift[9])
     error = "step " + std::to_string(scene.iter) + ": the processes erased different bodies (" + std::to_string(erased_.size())
@@ -267,11 +348,17 @@ void MpiDomain::beforeDetection(Scene& scene)
             + " over the processes): under mpirun O.bodies.erase must be called on every process with the same ids "
               "(from code every process runs alike, deciding from global values such as "
               "talus.dem.distributed.positions())";
+  for (int k = 0; k < 9 && error.empty(); ++k)
+    if (drift[10 + static_cast<std::size_t>(k)] != -drift[19 + static_cast<std::size_t>(k)])
+      error = "step " + std::to_string(scene.iter)
+              + ": the periodic cell (O.cell.hSize) differs between the processes: under mpirun every process must "
+                "change the cell alike (from code every process runs alike, deciding from global values)";
   for (std::size_t i = 0; i < n && error.empty(); ++i)
   {
     if (!owned_[i] || replicated_[i] || !b.alive[i])
       continue;
-    const double off = (b.pos[i] - detectedAt_[i] - common).norm();
+    const double off = std::min((b.pos[i] - affine * detectedAt_[i] - common).norm(),
+                                (b.pos[i] - detectedAt_[i] - still).norm());
     if (!(off <= ghostDistance_))
       error = "step " + std::to_string(scene.iter) + ": body " + std::to_string(globalId_[i]) + " moved "
               + std::to_string(off) + " apart from the others since the last re-detection, beyond the ghost layer ("
@@ -282,42 +369,31 @@ void MpiDomain::beforeDetection(Scene& scene)
   }
   raiseOnEveryRank(comm_, error);
 
-  // This rank's spheres, and where each goes.
+  // This rank's spheres, and where each goes (in the cell as it is now).
+  if (scene.periodic)
+    regions_ = Regions(scene.cell);
   std::vector<std::int64_t> mineRows; // erased bodies are left behind
   for (std::size_t i = 0; i < n; ++i)
     if (owned_[i] && !replicated_[i] && b.alive[i])
       mineRows.push_back(static_cast<std::int64_t>(i));
+  // The load since the last re-detection; partition again, weighted by the measured costs, when
+  // the ranks' compute times differ too much.
+  const bool rebalance = balance_.measure(comm_, cpuAtStart, waitedAtStart, scene.iter,
+                                          static_cast<std::int64_t>(mineRows.size()),
+                                          static_cast<std::int64_t>(scene.contacts.list.size()));
   RankBodies current{std::move(scene.bodies), globalId_};
   RankBodies mine;
   std::vector<std::byte> packed;
   packRows(current, mineRows, packed);
   unpackRows(packed, mine);
   scene.bodies = std::move(current.bodies);
-  Plan plan;
-  if (method_ == Method::RCB)
-  {
-    for (std::size_t k = 0; k < mine.size(); ++k)
-      if (const int to = regionOf(mine.bodies.pos[k]); to != rank_)
-      {
-        plan.exportRows.push_back(static_cast<std::int64_t>(k));
-        plan.exportTo.push_back(to);
-      }
-    // What arrives here: every rank's leavers for this rank (their ids).
-    std::vector<std::vector<std::byte>> out(static_cast<std::size_t>(ranks_));
-    for (std::size_t k = 0; k < plan.exportRows.size(); ++k)
-      appendBytes(out[static_cast<std::size_t>(plan.exportTo[k])],
-                  mine.globalId[static_cast<std::size_t>(plan.exportRows[k])]);
-    const std::vector<std::byte> in = sendBytes(comm_, out);
-    plan.importIds.resize(in.size() / sizeof(GlobalId));
-    for (std::size_t k = 0; k < plan.importIds.size(); ++k)
-      (void)readBytes(in.data() + k * sizeof(GlobalId), plan.importIds[k]);
-    plan.boxes = boxes_;
-  }
-  else
-  {
-    plan = partition(comm_, mine, {}, settings_);
-    boxes_ = plan.boxes;
-  }
+  for (BodyId& clump : mine.bodies.clumpId) // while rows travel, a member names its clump by global id
+    if (clump >= 0)
+      clump = static_cast<BodyId>(globalId_[static_cast<std::size_t>(clump)]);
+  const bool partitionAgain = method_ != Method::RCB || rebalance;
+  const Plan plan = placeUnits(scene, mine, partitionAgain ? balance_.weights(scene.contacts, mineRows, replicated_)
+                                                           : std::vector<double>{},
+                               partitionAgain);
 
   // Contacts: each rank keeps its own, and sends each contact of a body leaving it to the
   // body's new rank, which may not have held it (both ranks computing a contact hold it).
@@ -376,12 +452,50 @@ void MpiDomain::beforeDetection(Scene& scene)
   traffic_.rebuildBytes += sent + static_cast<std::int64_t>(plan.exportRows.size() * rowBytes());
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
   traffic_.rebuildSeconds += MPI_Wtime() - start;
+  balance_.begin(cpuSeconds(), waitedCpu_, scene.iter);
+}
+
+Plan MpiDomain::placeUnits(const Scene& scene, const RankBodies& mine, std::span<const double> rowWeights,
+                           bool partitionAgain)
+{
+  const Units units = unitsOf(mine);
+  RankBodies heads;
+  if (hasClumps_)
+    heads = unitHeads(mine, units);
+  const RankBodies& placed = hasClumps_ ? heads : mine; // without clumps, unit k is row k
+  Plan plan;
+  if (!partitionAgain) // RCB's boxes stay: a unit whose head left its rank's box goes to the box holding it
+  {
+    for (std::size_t k = 0; k < placed.size(); ++k)
+      if (const int to = regionOf(placed.bodies.pos[k]); to != rank_)
+      {
+        plan.exportRows.push_back(static_cast<std::int64_t>(k));
+        plan.exportTo.push_back(to);
+      }
+    plan.boxes = boxes_;
+  }
+  else
+  {
+    plan = partitionIn(comm_, regions_, scene.periodic, placed, unitWeights(units, rowWeights), settings_);
+    boxes_ = plan.boxes;
+  }
+  return unitPlanRows(comm_, mine, units, plan);
 }
 
 void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& contacts,
                          std::vector<ContactExtra>& extra, std::vector<GlobalId>& contactIds)
 {
-  Ghosts ghosts = exchangeGhosts(comm_, mine, boxes_, ghostDistance_);
+  // In a periodic cell a ghost keeps its owner's unwrapped position: the collider finds the
+  // image through which it touches, and the contact's cellDist, as in the serial scene.
+  // A clump is a ghost whole wherever one of its members reaches (its members stick out of its
+  // rank's box: the regions are grown to hold them).
+  const std::vector<std::int64_t> groups = hasClumps_ ? unitsOf(mine).unitOf : std::vector<std::int64_t>{};
+  const std::vector<Box> reach = hasClumps_ ? reachingBoxes(comm_, boxes_, mine) : boxes_;
+  Ghosts ghosts = scene.periodic ? exchangeGhosts(comm_, mine, boxes_,
+                                                  [this](const Vec3& x, const Box& box) {
+                                                    return regions_.reaches(x, box, ghostDistance_);
+                                                  })
+                                 : exchangeGhosts(comm_, mine, reach, ghostDistance_, groups);
   traffic_.rebuildBytes += static_cast<std::int64_t>(ghosts.sentRows.size() * rowBytes());
 
   // The pool of rows: the walls, this rank's spheres, the ghosts; then in global-id order.
@@ -428,6 +542,8 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
     replicated_[k] = order[k] < walls;
   }
   followRows(scene.energy, before, globalId_);
+  if (hasClumps_)
+    linkClumps(scene.bodies, globalId_, clumpMembers_);
 
   // Ghost updates: the rows sent to each rank, the rows each rank's updates land in.
   auto rowOfId = [&](GlobalId id) { return rowHeld(id); };
@@ -472,6 +588,7 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
   list.index(n);
 
   detectedAt_ = scene.bodies.pos;
+  detectedCell_ = scene.cell.hSize;
   sendBuffer_.resize(sendRows_.size() * stateDoubles);
   recvBuffer_.resize(recvRows_.size() * stateDoubles);
   // The rows changed: what engines cached per row (inverse masses, the collider's references)
@@ -509,6 +626,7 @@ void MpiDomain::afterIntegration(Scene& scene)
   const double cpu = cpuSeconds();
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
   traffic_.waitCpuSeconds += cpuSeconds() - cpu;
+  waitedCpu_ += cpuSeconds() - cpu;
   for (std::size_t k = 0; k < recvRows_.size(); ++k)
     copyState(b, static_cast<std::size_t>(recvRows_[k]), recvBuffer_.data() + k * stateDoubles, false);
   ++traffic_.updates;

@@ -3,6 +3,9 @@
 #include "dem/core/Contacts.h"
 #include "dem/core/Domain.h"
 #include "dem/distributed/Partition.h"
+#include "dem/distributed/balance/Balance.h"
+#include "dem/distributed/periodic/Regions.h"
+#include "dem/distributed/slabs/HeldRows.h"
 
 #include <mpi.h>
 
@@ -24,19 +27,25 @@ namespace talus::dem::distributed
 ///
 /// Regions: Zoltan's partition of the spheres when the domain is made; at each re-detection a
 /// sphere that left its rank's region moves to the rank whose region holds it (RCB's boxes tile
-/// space), or, with HSFC, Zoltan partitions again. Contacts move with their bodies.
+/// space), or, with HSFC, Zoltan partitions again. Contacts move with their bodies. In a
+/// periodic cell the regions are boxes of the cell's reduced coordinates (periodic/Regions.h),
+/// which move with the cell as it deforms, and a body near a face of the cell is a ghost on the
+/// ranks across it.
 class MpiDomain final : public Domain
 {
 public:
-  /// Split `scene`, built whole and identically on every rank of `comm` (collective): the
+  /// Split `scene`, built whole and identically on every rank of `comm`, or in slabs (`held`)
+  /// (collective): the
   /// spheres are partitioned, each rank keeps its own, the walls and its ghosts, and the contacts
   /// it computes.
   /// @throws std::invalid_argument on every rank, naming what is not distributed yet (a shape,
-  ///         a periodic cell, an engine or contact law other than the linear one), an unknown
+  ///         a wall or facet in a periodic cell), an unknown
   ///         partition method, or more ranks than spheres
   /// @param comm the ranks sharing the scene (kept, not duplicated: it must outlive the domain)
   /// @param settings the partition's method and imbalance tolerance, the same on every rank
-  MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings);
+  /// @param held the global ids of the rows when the scene was built in slabs (no rank holding
+  ///        all of it), null when every rank built it whole
+  MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& settings, const HeldRows* held = nullptr);
 
   std::size_t ownedBodies(const Scene& scene) const override;
   bool owns(std::size_t row) const override { return owned_[row] != 0; }
@@ -78,10 +87,13 @@ public:
   /// @param id a global id
   /// @return false if it was erased already
   /// @throws std::out_of_range for an id that is not a body of the scene
+  /// @throws CollectiveError (on every rank alike) for a clump or a clump member
   bool erase(Scene& scene, GlobalId id);
   /// @param row a local row, below scene.bodies.size()
   /// @return its body's global id
   [[nodiscard]] GlobalId globalIdOf(std::size_t row) const { return globalId_[row]; }
+  /// Whether the scene has clumps (each held whole by the rank of its centre of mass).
+  [[nodiscard]] bool hasClumps() const { return hasClumps_; }
   /// Distance within which a sphere of another rank is a ghost here: twice the largest radius
   /// plus the collider's skin.
   [[nodiscard]] double ghostDistance() const { return ghostDistance_; }
@@ -102,6 +114,18 @@ public:
   [[nodiscard]] const Traffic& traffic() const { return traffic_; }
   /// Zero what the steps counted (the split's seconds stay).
   void resetTraffic() { traffic_ = Traffic{.splitSeconds = traffic_.splitSeconds}; }
+  /// The load measured at each re-detection and the rebalances it set off.
+  [[nodiscard]] const Balance& balance() const { return balance_; }
+  /// This rank's compute seconds since the split: CPU seconds not spent waiting in MPI calls nor
+  /// in the re-detections' migration (the measured intervals and the one still open).
+  [[nodiscard]] double computeSeconds() const;
+  /// PartitionSettings::rebalanceThreshold from now on (every rank sets the same).
+  /// @throws std::invalid_argument below 1
+  void setRebalanceThreshold(double threshold) { balance_.setThreshold(threshold); }
+  /// Each rank's region (index = rank), as the last partition left them.
+  [[nodiscard]] const std::vector<Box>& regions() const { return boxes_; }
+  /// Rows of ghosts here (copies of other ranks' spheres).
+  [[nodiscard]] std::size_t ghosts() const { return recvRows_.size(); }
 
 private:
   /// Lay the scene out again from this rank's spheres `mine` (global ids ascending): walls, mine
@@ -109,16 +133,24 @@ private:
   /// their bodies) become the contact list, keeping those this rank computes.
   void assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& contacts, std::vector<ContactExtra>& extra,
                 std::vector<GlobalId>& contactIds);
+  /// Where this rank's units (a free sphere, or a clump with its members: clumps/Units.h) go, as
+  /// a plan over the rows of `mine` (their clumpId entries global ids), placing each unit by its
+  /// head: into the RCB box holding it, or by Zoltan partitioning again.
+  /// @param rowWeights per row of `mine`, for Zoltan (a unit weighs its rows' sum); empty: 1 each
+  /// @param partitionAgain whether Zoltan partitions again (the regions change), else RCB's boxes stay
+  [[nodiscard]] Plan placeUnits(const Scene& scene, const RankBodies& mine, std::span<const double> rowWeights,
+                                bool partitionAgain);
   /// The row of global id `id` here, -1 if this rank holds no copy of it (erased or not).
   [[nodiscard]] std::int64_t rowHeld(GlobalId id) const;
-  /// The rank whose region holds `x` (RCB), -1 if none (not a finite position).
-  [[nodiscard]] int regionOf(const Vec3& x) const;
+  /// The rank whose region holds a body at `position` (RCB), -1 if none (not a finite position).
+  [[nodiscard]] int regionOf(const Vec3& position) const;
 
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
   PartitionSettings settings_;
   Method method_;
   std::vector<Box> boxes_;
+  Regions regions_; ///< the space boxes_ tile: a periodic cell's reduced coordinates at the last re-detection
   double ghostDistance_ = 0;
   std::int64_t globalCount_ = 0;
   std::vector<GlobalId> globalId_; ///< per row, ascending (rowOf searches it)
@@ -128,7 +160,13 @@ private:
   std::vector<std::int64_t> sendRows_, sendStart_, recvRows_, recvStart_;
   std::vector<double> sendBuffer_, recvBuffer_;
   std::vector<Vec3> detectedAt_; ///< per row: its position at the last re-detection
+  Mat3 detectedCell_ = Mat3::Identity(); ///< the periodic cell's hSize then
   std::vector<GlobalId> erased_; ///< the bodies erased, ascending (the same on every rank)
+  bool hasClumps_ = false;       ///< the scene has clumps (the same on every rank)
+  std::vector<GlobalId> clumped_; ///< the clumps and their members, ascending
+  std::vector<std::vector<GlobalId>> clumpMembers_; ///< per clump (its shape index), its members' global ids
   mutable Traffic traffic_; ///< mutable: the reductions (const) count their seconds
+  mutable double waitedCpu_ = 0; ///< CPU seconds waiting in MPI calls since the split (resetTraffic keeps it)
+  Balance balance_;
 };
 } // namespace talus::dem::distributed

@@ -3,6 +3,7 @@
 #include "dem/core/Scene.h"
 #include "dem/distributed/Collective.h"
 #include "dem/distributed/collect/Gather.h"
+#include "dem/measure/Energy.h"
 #include "dem/measure/Measurements.h"
 #include "dem/distributed/MpiDomain.h"
 
@@ -13,6 +14,8 @@
 
 #include <limits>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 
 namespace py = pybind11;
 using namespace talus::dem;
@@ -71,6 +74,7 @@ PYBIND11_MODULE(_distributed, m)
       .def_property_readonly("ranks", &MpiDomain::ranks)
       .def_property_readonly("globalCount", &MpiDomain::globalCount)
       .def_property_readonly("ghostDistance", &MpiDomain::ghostDistance)
+      .def_property_readonly("hasClumps", &MpiDomain::hasClumps)
       .def("rowOf", &MpiDomain::rowOf)
       .def("owns", [](const MpiDomain& d, std::int64_t row) { return row >= 0 && d.owns(static_cast<std::size_t>(row)); })
       .def("sum", [](const MpiDomain& d, std::vector<double> v) {
@@ -100,6 +104,46 @@ PYBIND11_MODULE(_distributed, m)
         return out;
       })
       .def("resetTraffic", &MpiDomain::resetTraffic)
+      .def_property("rebalanceThreshold", [](const MpiDomain& d) { return d.balance().threshold(); },
+                    &MpiDomain::setRebalanceThreshold,
+                    "Measured imbalance above which the ranks partition again (every rank sets the same)")
+      .def("balance", [](const MpiDomain& d) {
+        const Balance::Stats& b = d.balance().stats();
+        py::dict out;
+        out["compute_seconds"] = d.computeSeconds();
+        out["slowest_seconds"] = b.slowestSeconds;
+        out["mean_seconds"] = b.meanSeconds;
+        out["rebalances"] = b.rebalances;
+        out["imbalance_before"] = b.imbalanceBefore;
+        out["imbalance_after"] = b.imbalanceAfter;
+        out["per_body_seconds"] = b.perBody;
+        out["per_contact_seconds"] = b.perContact;
+        out["threshold"] = d.balance().threshold();
+        py::list intervals;
+        for (const Balance::Interval& i : b.intervals)
+          intervals.append(py::make_tuple(i.iter, i.steps, i.imbalance, i.rebalanced));
+        out["intervals"] = intervals;
+        return out;
+      }, "The load measured at the re-detections: this rank's compute seconds, the rest the same on every rank")
+      .def("load", [](const MpiDomain& d, const Scene& s) {
+        // What this rank holds and computes now: its spheres, its ghosts, the contacts it computes
+        // and, of those, the ones with a ghost (computed by its owner too).
+        py::dict out;
+        std::int64_t spheres = 0, withGhost = 0;
+        for (std::size_t i = 0; i < s.bodies.size(); ++i)
+          spheres += d.owns(i) && !d.replicated(i) && s.bodies.alive[i] ? 1 : 0;
+        for (const Contact& c : s.contacts.list)
+          withGhost += !d.owns(static_cast<std::size_t>(c.id1)) || !d.owns(static_cast<std::size_t>(c.id2)) ? 1 : 0;
+        out["spheres"] = spheres;
+        out["ghosts"] = static_cast<std::int64_t>(d.ghosts());
+        out["contacts"] = static_cast<std::int64_t>(s.contacts.list.size());
+        out["ghost_contacts"] = withGhost;
+        py::list regions;
+        for (const Box& r : d.regions())
+          regions.append(py::make_tuple(r.min, r.max));
+        out["regions"] = regions;
+        return out;
+      }, "This rank's spheres, ghosts, contacts computed (with a ghost among them) and every rank's region")
       .def("erase", [](MpiDomain& d, Scene& s, std::int64_t id) { return d.erase(s, id); },
            "Erase body `id` on every rank (every rank calls it with the same ids); False if erased already")
       .def("ownedBodies", [](const MpiDomain& d, const Scene& s) {
@@ -153,48 +197,41 @@ PYBIND11_MODULE(_distributed, m)
         d.sum(ft);
         return ft;
       }, "Force and torque of body `id` summed over the ranks holding it as their own (collective)")
-      .def("unbalancedForce", [](const MpiDomain& d, const Scene& s, const Vec3& gravity, bool useMaxForce) {
-        // Yade's unbalancedForce over the whole scene: bodies where owned, contacts once (a
-        // contact of two ranks' bodies on the rank of its first body).
-        const Bodies& b = s.bodies;
-        std::vector<double> sums(4, 0.0); // body forces, bodies, contact forces, contacts
-        double largest = 0;
-        for (std::size_t i = 0; i < b.size(); ++i)
-          if (d.owns(i) && b.alive[i] && b.dynamic[i])
-          {
-            const double f = (b.force[i] + b.mass[i] * gravity).norm();
-            sums[0] += f;
-            sums[1] += 1;
-            largest = std::max(largest, f);
-          }
-        for (const Contact& c : s.contacts.list)
-          if (c.real && d.owns(static_cast<std::size_t>(d.replicated(static_cast<std::size_t>(c.id1)) ? c.id2 : c.id1)))
-          {
-            sums[2] += c.force.norm();
-            sums[3] += 1;
-          }
-        d.sum(sums);
-        largest = -d.min(-largest);
-        if (sums[3] == 0 || sums[2] == 0 || sums[1] == 0)
-          return std::numeric_limits<double>::quiet_NaN();
-        return (useMaxForce ? largest : sums[0] / sums[1]) / (sums[2] / sums[3]);
-      })
+      .def("globalIds", [](const MpiDomain& d, std::vector<std::int64_t> rows) {
+        for (std::int64_t& r : rows)
+          r = r >= 0 ? d.globalIdOf(static_cast<std::size_t>(r)) : r;
+        return rows;
+      }, "The global ids of rows `rows` here (a negative entry, no row, stays)")
+      .def("counted", [](const MpiDomain& d, const Scene& s) {
+        py::array_t<bool> out(static_cast<py::ssize_t>(s.bodies.size()));
+        for (std::size_t i = 0; i < s.bodies.size(); ++i)
+          out.mutable_data()[i] = d.countsBody(i);
+        return out;
+      }, "Per row, whether sums over bodies count it on this rank (each body on one rank)")
       .def("kineticEnergy", [](const MpiDomain& d, const Scene& s) {
-        const Bodies& b = s.bodies;
-        std::vector<double> e(1, 0.0);
-        for (std::size_t i = 0; i < b.size(); ++i)
-          if (d.owns(i) && b.alive[i] && b.dynamic[i])
-            e[0] += 0.5 * b.mass[i] * b.vel[i].squaredNorm() + 0.5 * b.angVel[i].dot(b.inertia[i].cwiseProduct(b.angVel[i]));
+        std::vector<double> e{kineticEnergy(s)}; // the bodies this rank counts (a clump with its members once)
         d.sum(e);
         return e[0];
       }, "Total kinetic energy of the dynamic bodies (collective)");
 
-  m.def("attach", [](const std::shared_ptr<Scene>& scene, const std::string& method) {
+  m.def("attach", [](const std::shared_ptr<Scene>& scene, const std::string& method,
+                     const std::optional<py::array_t<std::int64_t>>& globalIds,
+                     const std::optional<py::array_t<std::uint8_t>>& own, std::int64_t count) {
     PartitionSettings settings;
     settings.method = method;
-    auto domain = std::make_shared<MpiDomain>(MPI_COMM_WORLD, *scene, settings);
+    std::optional<HeldRows> held;
+    if (globalIds)
+    {
+      if (!own || own->size() != globalIds->size() || globalIds->size() != static_cast<py::ssize_t>(scene->bodies.size()))
+        throw std::invalid_argument("attach: global_ids and own need one entry per row of the scene");
+      held = HeldRows{{globalIds->data(), globalIds->data() + globalIds->size()}, {own->data(), own->data() + own->size()},
+                      count};
+    }
+    auto domain = std::make_shared<MpiDomain>(MPI_COMM_WORLD, *scene, settings, held ? &*held : nullptr);
     scene->domain = domain;
     return domain;
-  }, py::arg("scene"), py::arg("method") = "RCB",
-        "Split `scene` (built whole on every rank) over the ranks of MPI_COMM_WORLD (collective)");
+  }, py::arg("scene"), py::arg("method") = "RCB", py::arg("global_ids") = py::none(), py::arg("own") = py::none(),
+        py::arg("count") = 0,
+        "Split `scene` over the ranks of MPI_COMM_WORLD (collective): built whole on every rank, or in slabs "
+        "(each row's global id, whether it is of this rank's slab only, and the whole scene's body count)");
 }

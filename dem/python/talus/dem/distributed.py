@@ -1,18 +1,23 @@
 """The same script under ``mpirun -np N talus run script.py``: the DEM split over MPI processes.
 
-Every process runs the whole script and builds the whole scene (fine for now: memory grows with
-the scene on every process). When the script's first ``O.run``/``O.step`` starts, the spheres
-are partitioned (Zoltan's RCB, or HSFC with ``TALUS_PARTITION=HSFC``) and each process keeps
-its own, the walls and facets (every process holds them, moves them alike and computes their
-contacts with its own spheres) and ghosts, copies of the spheres of its neighbours within reach
+Every process runs the whole script and builds the scene it makes, except a packing read from a
+file by ``ymport.text``/``textExt``, of which each process makes only its own slab
+(talus.dem.files.slabs; until the first step, what needs the whole scene is refused). When the
+script's first ``O.run``/``O.step`` starts, the spheres and clumps are partitioned (Zoltan's RCB,
+or HSFC with ``TALUS_PARTITION=HSFC``; a clump by its centre of mass, its members going with it) and each process keeps its own, the walls, facets
+and fixed boxes (every process holds them, moves them alike and computes their contacts with
+its own spheres) and ghosts, copies of the spheres (and whole clumps) of its neighbours within reach
 (dem/distributed/, docs/distributed-dem.md); a contact's state (Hertz-Mindlin, visco-elastic,
 cohesive-frictional) moves with it. From then on:
 
-- ``unbalancedForce()``, ``utils.kineticEnergy()``, ``O.forces.f(id)`` of a wall, ``O.energy``,
-  ``getStress``, ``getStressAndTangent``, ``bodyStressTensors``, ``avgNumInteractions``,
-  ``fabricTensor``, ``porosity``, ``aabbExtrema``, ``PWaveTimeStep`` and the step
-  GlobalStiffnessTimeStepper sets give the whole scene's value on every process (reductions:
-  every process calls them), so a PyRunner testing them acts alike on all;
+- ``unbalancedForce()``, ``utils.kineticEnergy()`` (with ``findMaxId``), ``O.forces.f(id)`` of
+  a wall, ``O.energy``, ``getStress``, ``getStressAndTangent``, ``bodyStressTensors``,
+  ``avgNumInteractions``, ``fabricTensor``, ``porosity``, ``aabbExtrema``, ``PWaveTimeStep``,
+  ``momentum``, ``angularMomentum``, ``sumForces``, ``totalForceInVolume``, ``getSpheresVolume``,
+  ``getSpheresMass`` and the step GlobalStiffnessTimeStepper sets give the whole scene's value on
+  every process (reductions: every process calls them), so a PyRunner testing them acts alike on
+  all; TriaxialStressController and ServoPIDController move the walls alike on every process
+  (the walls' forces summed exactly: the serial bits);
 - ``print`` writes from process 0 only (the others' standard output is discarded);
 - ``O.bodies[i]`` works for the bodies this process owns (and the walls and facets); for another
   it raises, naming the rule; an erased body is None on every process. ``positions()`` gathers
@@ -24,13 +29,21 @@ cohesive-frictional) moves with it. From then on:
   rule, at the next re-detection.
 - kinematic engines (TranslationEngine, RotationEngine, ...) and force engines act on their
   ``ids`` where each body is owned (walls and facets: on every process alike).
+- a periodic cell of spheres is split in its reduced coordinates (the processes' regions move
+  with the cell as ``O.cell.velGrad`` or PeriTriaxController deforms it; ghosts across its
+  faces); every process updates the cell alike, from the same reductions (PeriTriaxController's
+  stress, stiffness and mass are exact sums: the serial bits), and a script must change
+  ``O.cell`` alike on every process.
 
 What is not distributed yet is refused, on every process alike, with its name: shapes other than
-spheres, walls and facets, clumps, periodic cells, engines other than ForceResetter,
+spheres, clumps of spheres, walls, facets and fixed boxes, a wall, facet or box moved by forces,
+clumps in a periodic cell or a scene read in slabs, erasing a clump, walls and facets in a periodic cell, engines other than ForceResetter,
 InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
-GlobalStiffnessTimeStepper and the kinematic and force engines, contact laws other than the
+GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, ServoPIDController
+and the kinematic and force engines (so
+PeriIsoCompressor and Peri3dController), contact laws other than the
 linear, Hertz-Mindlin, visco-elastic and cohesive-frictional ones, force engines on walls or
-facets, VTK output. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
+facets, VTK output, ``O.save`` of a scene with clumps. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
 (written at any process count) on every process; the scene is split again at its next step.
 """
 
@@ -54,9 +67,16 @@ _KINEMATIC = ("TranslationEngine", "RotationEngine", "HarmonicMotionEngine", "He
               "CombinedKinematicEngine")
 _FORCES = ("ForceEngine", "InterpolatingDirectedForceEngine", "HarmonicForceEngine")
 _ENGINES = ("ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator", "PyRunner",
-            "GravityEngine", "GlobalStiffnessTimeStepper", *_KINEMATIC, *_FORCES)
+            "GravityEngine", "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController",
+            "ServoPIDController",
+            *_KINEMATIC, *_FORCES)
 _LAWS = ("Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_MindlinPhys_Mindlin", "Law2_ScGeom_ViscElPhys_Basic",
          "Law2_ScGeom6D_CohFrictPhys_CohesionMoment")
+#: The measured imbalance (the slowest process's compute time over the mean between two
+#: re-detections) above which the processes partition again, each body weighted by its measured
+#: cost, at the next re-detection (as the weights and the regions change, positions do not: the
+#: same bits). At least 1; None: never. Read when the scene is split (its first step).
+rebalanceThreshold = 1.1
 _rank = 0
 _NO_BODY = -2    # what Domain.rowOf gives for an id that is no live body (Domain::noBody)
 
@@ -101,19 +121,91 @@ def refuse(what: str) -> None:
     """Raise NotDistributed for ``what`` when running under mpirun."""
     if ACTIVE:
         raise NotDistributed(f"{what} is not distributed yet: under mpirun ({RANKS} processes) the DEM runs "
-                             f"{', '.join(_ENGINES)} with spheres, walls and facets and the contact laws "
+                             f"{', '.join(_ENGINES)} with spheres, clumps, walls, facets and boxes and the contact laws "
                              f"{', '.join(_LAWS)} only; run "
                              f"this script in one process (talus run, without mpirun)")
 
 
 def domain(scene):
-    """The MPI domain of ``scene``, None when it runs in one process."""
+    """The MPI domain of ``scene``, None when it runs in one process (before its split: None, or
+    the ids of its rows when it holds a slab of a packing, HeldRows)."""
     return getattr(scene, "_domain", None)
+
+
+def is_split(scene) -> bool:
+    """Whether ``scene`` was split over the processes (its first step under mpirun has started)."""
+    return domain(scene) is not None and not isinstance(domain(scene), HeldRows)
+
+
+class HeldRows:
+    """The rows of a scene built in slabs under mpirun, before its split (the domain of it until
+    then): every process holds the bodies appended one by one and its own slab of each packing
+    read in slabs (talus.dem.files.slabs), each row with the id it has in one process. Only
+    what needs no other process's bodies works (O.bodies[id] of a body held here, len); the
+    rest is refused by name until the first step splits the scene."""
+
+    def __init__(self, rows: int):
+        from array import array
+        self.rank, self.ranks = _rank, RANKS
+        self.globalId = array("q", range(rows))     # per row, ascending
+        self.own = array("B", bytes(rows))          # per row: of this process's slab only
+        self.globalCount = rows
+
+    def added(self, row: int, id: int | None) -> int:
+        """Record row ``row`` just added, as body ``id`` of this process's slab, or (None) as
+        the next body, which every process adds; returns its id."""
+        if row != len(self.globalId):
+            raise RuntimeError(f"row {row} added out of order (expected {len(self.globalId)})")
+        self.globalId.append(self.globalCount if id is None else id)
+        self.own.append(id is not None)
+        self.globalCount = max(self.globalCount, self.globalId[-1] + 1)
+        return self.globalId[-1]
+
+    def rowOf(self, id: int) -> int:
+        import bisect
+        row = bisect.bisect_left(self.globalId, id)
+        return row if row < len(self.globalId) and self.globalId[row] == id else -1    # Domain::elsewhere
+
+    def owns(self, row: int) -> bool:
+        return row >= 0
+
+    def __getattr__(self, name):
+        if name.startswith("__"):
+            raise AttributeError(name)
+        raise NotDistributed(f"{name} of a scene holding a packing read in slabs, before its first step, "
+                             f"is not distributed: each of the {RANKS} processes holds its own slab of the "
+                             f"file until the first step splits the scene; call it after the first step")
+
+
+def added(scene, row: int, id: int | None = None) -> int:
+    """The id of the body just added at row ``row`` (``id`` for a sphere of a slab): the row in
+    a scene built whole."""
+    held = domain(scene)
+    return held.added(row, id) if isinstance(held, HeldRows) else row
+
+
+def append_slab(bodies, slab) -> range:
+    """O.bodies.append of a slab of a file's spheres (talus.dem.files.slabs): the file's count of
+    ids, of which this process adds its slab's; returns the ids (as a list of them would be)."""
+    scene = bodies._scene
+    if not isinstance(domain(scene), HeldRows):
+        scene._domain = HeldRows(scene._cpp.bodyCount())
+    held = domain(scene)
+    start = held.globalCount
+    next_id = start + slab.first
+    rows = scene._cpp.bodyCount() + slab.size   # the per-row tables grown once, not chunk by chunk
+    scene._appearance.ensure(rows)
+    scene._reference.ensure(rows)
+    for chunk in slab.chunks():
+        bodies._append_specs(chunk, range(next_id, next_id + len(chunk)))
+        next_id += len(chunk)
+    held.globalCount = start + slab.count
+    return range(start, start + slab.count)
 
 
 def attach(scene) -> None:
     """Split ``scene`` over the processes (at its first step under mpirun; collective)."""
-    if not ACTIVE or domain(scene) is not None:
+    if not ACTIVE or is_split(scene):
         return
     for e in scene.engines:
         name = type(e).__name__
@@ -124,28 +216,58 @@ def attach(scene) -> None:
                 refuse(f"the contact law {type(law).__name__}")
         if name in _FORCES:     # on a wall or facet every process would add it: summed, it would count N times
             for i in e.ids:
+                if row_of(scene, i, missing=None) is None:  # erased, or a sphere of another slab
+                    continue
                 body = scene.bodies[i]
                 if body is not None and type(body.shape).__name__ != "Sphere":
                     refuse(f"{name} on body {i}, a {type(body.shape).__name__} (a force engine acts on spheres "
                            f"only under mpirun)")
     from talus import _distributed
-    scene._domain = _distributed.attach(scene._cpp, os.environ.get("TALUS_PARTITION", "RCB"))
+    import numpy as np
+    method = os.environ.get("TALUS_PARTITION", "RCB")
+    held = domain(scene)
+    if isinstance(held, HeldRows):
+        scene._domain = _distributed.attach(scene._cpp, method, np.frombuffer(held.globalId, dtype=np.int64),
+                                            np.frombuffer(held.own, dtype=np.uint8), held.globalCount)
+    else:
+        scene._domain = _distributed.attach(scene._cpp, method)
+    scene._domain.rebalanceThreshold = _rebalance_threshold()
 
 
-def row_of(scene, id: int) -> int | None:
+def _rebalance_threshold() -> float:
+    """rebalanceThreshold checked (the same on every process: the script is): infinity for None."""
+    threshold = float("inf") if rebalanceThreshold is None else float(rebalanceThreshold)
+    if not threshold >= 1:
+        from talus import _distributed
+        raise _distributed.CollectiveError(
+            f"talus.dem.distributed.rebalanceThreshold {rebalanceThreshold} is below 1: it is the slowest "
+            f"process's compute time over the mean above which the processes partition again (None: never)")
+    return threshold
+
+
+def row_of(scene, id: int, missing=IndexError) -> int | None:
     """The row of body ``id`` in this process's arrays, None if it was erased; raises for a
-    body owned elsewhere."""
+    body owned elsewhere (returns None if ``missing`` is None)."""
     d = domain(scene)
     if d is None:
         return id
     row = d.rowOf(int(id))
     if row == _NO_BODY:
         return None
+    if missing is None and not d.owns(row):
+        return None
     if not d.owns(row):
         raise IndexError(f"body {id} is owned by another process: under mpirun (rank {d.rank} of {d.ranks}) a "
                          f"body's state lives on the process that owns it; read the bodies of the whole scene "
                          f"with talus.dem.distributed.positions(), called on every process")
     return row
+
+
+def global_ids(scene, rows) -> list[int]:
+    """The ids, in the scene the script built, of rows ``rows`` of this process's arrays (what a
+    clump's member list and a member's clumpId hold); the rows themselves in one process."""
+    d = domain(scene)
+    return [int(r) for r in rows] if d is None else d.globalIds([int(r) for r in rows])
 
 
 def erase(scene, id: int) -> bool:
@@ -215,6 +337,32 @@ def reset_traffic(scene=None) -> None:
     d = domain(scene)
     if d is not None:
         d.resetTraffic()
+
+
+def balance(scene=None) -> dict:
+    """The load measured at each re-detection, on every process (collective); empty in one process:
+    ``processes`` (per process: its compute seconds, those CPU seconds not spent waiting in MPI
+    calls; its spheres, ghosts and contacts now), ``rebalances``, ``imbalance`` (the slowest
+    process's compute seconds over the mean, summed over the run), ``imbalance_before`` and
+    ``imbalance_after`` (of the last rebalance), the fitted cost per body and per contact of a step
+    (``per_body_seconds``, ``per_contact_seconds``), ``threshold`` and ``intervals`` (step,
+    steps, imbalance, rebalanced), ``regions`` (each process's box: lower and upper corners) and
+    ``ghost_distance``."""
+    if scene is None:
+        scene = default_scene()
+    if not is_split(scene):
+        return {}
+    d = domain(scene)
+    stats = d.balance()
+    load = d.load(scene._cpp)
+    mine = {"compute_seconds": stats.pop("compute_seconds"),
+            **{k: load[k] for k in ("spheres", "ghosts", "contacts", "ghost_contacts")}}
+    stats["processes"] = [{k: (v if k.endswith("seconds") else int(v)) for k, v in p.items()}
+                          for p in per_process(mine, scene)]
+    stats["imbalance"] = stats["slowest_seconds"] / stats["mean_seconds"] if stats["mean_seconds"] > 0 else 1.0
+    stats["regions"] = [(list(lo), list(hi)) for lo, hi in load["regions"]]
+    stats["ghost_distance"] = d.ghostDistance
+    return stats
 
 
 def is_collective(exc: BaseException) -> bool:

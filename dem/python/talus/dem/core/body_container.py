@@ -12,6 +12,7 @@ from talus.dem.core import clumps
 from talus.dem.geometry.appearance import Appearance
 from talus.dem.core.bodies import Body, BodySpec
 from talus.dem.core.reference import ReferenceStates
+from talus.dem.files import slabs
 from talus.dem.geometry.shape_registry import shape_kind
 
 if TYPE_CHECKING:
@@ -23,27 +24,63 @@ class BodyContainer:
 
     def __init__(self, scene: "Scene"):
         self._scene = scene
+        self._views: list[Body | None] = []     # by row, see _view
 
     def append(self, spec: BodySpec | Iterable[BodySpec]):
         """Add one body (returns its id) or a list of bodies (returns their ids)."""
-        if distributed.domain(self._scene) is not None:
+        if distributed.is_split(self._scene):
             distributed.refuse("O.bodies.append after the scene was split (at its first step under mpirun)")
         if isinstance(spec, BodySpec):
             return self._add(spec)
-        specs = list(spec)
+        if slabs.is_slab(spec):     # under mpirun: this process's part of a file's spheres
+            return distributed.append_slab(self, spec)
+        return self._append_specs(list(spec))
+
+    def _append_specs(self, specs: list[BodySpec], ids: Iterable[int] | None = None) -> list[int]:
+        """Append ``specs`` (as bodies ``ids`` of this process's slab of a packing, when given)."""
         # Room for all of them at once: the per-body tables grown body by body would be copied
         # at each one (a scene of N bodies built in N^2 time).
         count = self._scene._cpp.bodyCount() + len(specs)
         self._scene._appearance.ensure(count)
         self._scene._reference.ensure(count)
-        return [self._add(s) for s in specs]
+        if ids is None:
+            return [self._add(s) for s in specs]
+        if all(s.kind == "Sphere" and s._scene is None and s.group_mask == 1 and s.initial.keys() <= {"highlight", "wire"}
+               for s in specs):
+            return self._append_plain_spheres(specs, ids)
+        return [self._add(s, id) for s, id in zip(specs, ids)]
 
-    def _add(self, spec: BodySpec) -> int:
+    def _append_plain_spheres(self, specs: list[BodySpec], ids: Iterable[int]) -> list[int]:
+        """What ``_add`` does for each of ``specs``, spheres that set nothing but their centre,
+        radius, material, colour, look and fixedness (a slab of a sphere file: millions of them),
+        with the per-row tables written once for all (reference state: as made)."""
+        scene = self._scene
+        scene._views.before_adding(scene._cpp, len(specs))
+        materials = {}
+        rows = []
+        for spec in specs:
+            key = spec.material if isinstance(spec.material, (int, str, type(None))) else id(spec.material)
+            if key not in materials:
+                materials[key] = scene.materials.resolve(-1 if spec.material is None else spec.material)
+            rows.append(self._create(spec, materials[key]))
+        added = [distributed.added(scene, row, id) for row, id in zip(rows, ids)]
+        rows = np.asarray(rows)
+        scene._reference.pos[rows] = scene._cpp.pos()[rows]     # new spheres: not rotated, refOri as made
+        look = scene._appearance
+        look.color[rows] = [spec.color for spec in specs]
+        look.highlight[rows] = [spec.initial.get("highlight", False) for spec in specs]
+        look.wire[rows] = [spec.initial.get("wire", False) for spec in specs]
+        for spec, id in zip(specs, added):
+            spec.id, spec._scene = id, scene
+        return added
+
+    def _add(self, spec: BodySpec, slab_id: int | None = None) -> int:
         if spec._scene is not None:
             raise ValueError(f"this body is already body {spec.id} of a scene; make another one to append")
         scene = self._scene
         scene._views.before_adding(scene._cpp)
-        id = self._create(spec, scene.materials.resolve(-1 if spec.material is None else spec.material))
+        row = self._create(spec, scene.materials.resolve(-1 if spec.material is None else spec.material))
+        id = distributed.added(scene, row, slab_id)     # the row, unless the scene is built in slabs
         if spec.group_mask != 1:
             scene.bodies[id].mask = spec.group_mask
         state = scene.bodies[id].state
@@ -54,9 +91,9 @@ class BodyContainer:
             setattr(state, name, value)
         look = scene._appearance
         look.ensure(scene._cpp.bodyCount())
-        look.color[id] = spec.color
-        look.highlight[id] = spec.initial.get("highlight", False)
-        look.wire[id] = spec.initial.get("wire", False)
+        look.color[row] = spec.color
+        look.highlight[row] = spec.initial.get("highlight", False)
+        look.wire[row] = spec.initial.get("wire", False)
         spec.id, spec._scene = id, scene
         return id
 
@@ -140,6 +177,8 @@ class BodyContainer:
         O.bodies.clear, which also leaves the old contacts in O.interactions: Talus removes them).
         Per-body arrays taken before (positions(), ...) no longer follow the bodies."""
         scene = self._scene
+        if isinstance(distributed.domain(scene), distributed.HeldRows):    # no slab left
+            scene._domain = None
         scene._cpp.clearBodies()
         scene._views.forget()
         scene._appearance = Appearance()
@@ -157,19 +196,33 @@ class BodyContainer:
 
     def __getitem__(self, id: int) -> Body | None:
         """Body ``id`` (negative: counted from the end), None if it was erased (Yade's)."""
-        if not isinstance(id, (int, np.integer)):
+        if type(id) is not int and not isinstance(id, (int, np.integer)):
             raise TypeError(f"body ids are integers, got {id!r}")
         scene = self._scene
         split = distributed.domain(scene)
-        # Scripts call this for one body at a time in their loops: one process reads its arrays directly.
-        n = scene._cpp.bodyCount() if split is None else split.globalCount
+        if split is None:   # scripts call this for one body at a time in their loops: one call to the core
+            row = _dem.body_row(scene._cpp, id)
+            return None if row < 0 else self._view(row)
+        n = split.globalCount
         i = int(id) + n if id < 0 else int(id)
         if not 0 <= i < n:
             raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
-        row = i if split is None else distributed.row_of(scene, i)     # under mpirun: its row here, if owned here
+        row = distributed.row_of(scene, i)     # under mpirun: its row here, if owned here
         if row is None or not scene._cpp.alive()[row]:
             return None
         return Body(scene, row, i)
+
+    def _view(self, row: int) -> Body:
+        """The body in ``row`` of a scene in one process, made once per row: a view holds its row
+        only, so it stays right whichever body the row holds, and ``O.bodies[i] is O.bodies[i]``
+        as in Yade."""
+        views = self._views
+        if row >= len(views):
+            views.extend([None] * (row + 1 - len(views)))
+        body = views[row]
+        if body is None:
+            body = views[row] = Body(self._scene, row)
+        return body
 
     def gather(self, ids: Iterable[int]) -> list:
         """Snapshots of the bodies ``ids`` (talus.dem.core.gathered: ``id``, ``dynamic``,
@@ -204,4 +257,4 @@ class BodyContainer:
         if distributed.domain(self._scene) is not None:
             distributed.refuse("iterating over O.bodies (each process holds its own bodies)")
         alive = self._scene._cpp.alive()
-        return (Body(self._scene, i) for i in range(len(self)) if alive[i])
+        return (self._view(i) for i in range(len(self)) if alive[i])

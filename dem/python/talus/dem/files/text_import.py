@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import math
 
+from talus.dem import distributed
 from talus.dem.core.bodies import BodySpec, sphere
+from talus.dem.files import slabs
 
 __all__ = ["TextImportError", "textExt", "text"]
 
@@ -55,14 +57,31 @@ def _sphere(words: list[str], format: str, where: str, shift, scale: float, kw: 
     return sphere(center, scale * numbers[3], material=material, **kw)
 
 
+def _line(words: list[str], format: str, where: str, shift, scale: float, kw: dict) -> BodySpec:
+    """The sphere of a line's ``words`` in ``format``."""
+    if format not in _COLUMNS:
+        raise TextImportError(f"{where}: format {format!r} is not one of {', '.join(_COLUMNS)}")
+    if _COLUMNS[format][2] is not None and "material" in kw:
+        raise TypeError(f"textExt: format {format} takes the material from the file; do not pass material=")
+    return _sphere(words, format, where, shift, scale, kw)
+
+
 def textExt(fileName: str, format: str = "x_y_z_r", shift=(0.0, 0.0, 0.0), scale: float = 1.0,
             attrs: list | None = None, **kw) -> list[BodySpec]:
     """The spheres of ``fileName`` in ``format`` (or the format its ``#format`` line names),
     centres scaled by ``scale`` then shifted by ``shift``, radii scaled; ``kw`` go to
-    ``utils.sphere`` (material, color, fixed, mask...). Append them to ``O.bodies``."""
+    ``utils.sphere`` (material, color, fixed, mask...). Append them to ``O.bodies``. Under
+    mpirun (without ``attrs``) each process reads its own slab of the file
+    (talus.dem.files.slabs.SphereSlab), which O.bodies.append takes as it takes the list."""
     shift = tuple(float(s) for s in shift)
     if len(shift) != 3:
         raise ValueError(f"textExt: shift must have 3 components, got {len(shift)}")
+    if distributed.ACTIVE and attrs is None:    # under mpirun each process reads its own slab only
+        try:
+            return slabs.read(fileName, format, distributed.rank(), distributed.RANKS,
+                              lambda words, format, where: _line(words, format, where, shift, float(scale), kw))
+        except OSError as e:
+            raise TextImportError(f"{fileName}: cannot read ({e.strerror or e})") from None
     try:
         with open(fileName) as f:
             lines = f.read().splitlines()
@@ -81,11 +100,7 @@ def textExt(fileName: str, format: str = "x_y_z_r", shift=(0.0, 0.0, 0.0), scale
             continue
         if words[0].startswith("#"):
             continue
-        if format not in _COLUMNS:
-            raise TextImportError(f"{where}: format {format!r} is not one of {', '.join(_COLUMNS)}")
-        if _COLUMNS[format][2] is not None and "material" in kw:
-            raise TypeError(f"textExt: format {format} takes the material from the file; do not pass material=")
-        spheres.append(_sphere(words, format, where, shift, float(scale), kw))
+        spheres.append(_line(words, format, where, shift, float(scale), kw))
         if format == "x_y_z_r_attrs" and attrs is not None:
             attrs.append(words[4:])
     return spheres
