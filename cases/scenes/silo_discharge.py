@@ -4,7 +4,11 @@ script written for one process, run as it is by `talus run` and by `mpirun -np N
 
 Arguments: spheres, steps, output file (JSON: the positions of every body by id every 100 steps,
 NaN for the erased ones; the spheres left and the steps they were counted at; the halo traffic
-per process; the floor's vertical force summed over its facets).
+per process; the floor's vertical force summed over its facets; under mpirun the load measured
+per process and the rebalances, talus.dem.distributed.balance()); then optionally `side=N`, the
+spheres along a side of the lattice (default: enough for eight layers, at least 8: a wide silo;
+fewer make it tall), and `rebalance=X`, talus.dem.distributed.rebalanceThreshold (a number, or
+`none`).
 
 A square box of facets open at the top (16 triangles), its floor with a square orifice four
 diameters wide; spheres of radii 0.9-1 r on a jittered lattice above the floor, falling from
@@ -23,10 +27,13 @@ import numpy as np
 from talus.dem import distributed
 
 spheres, steps, output = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3]
+options = dict(a.split("=", 1) for a in sys.argv[4:])
+if "rebalance" in options:
+    distributed.rebalanceThreshold = None if options["rebalance"] == "none" else float(options["rebalance"])
 radius, young, density = 0.005, 1e6, 2600.0
 rng = np.random.default_rng(7)
 spacing = 2.1 * radius
-side = max(8, math.ceil(math.sqrt(spheres / 8)))
+side = int(options.get("side", max(8, math.ceil(math.sqrt(spheres / 8)))))
 layers = math.ceil(spheres / side**2)
 i, j, k = np.meshgrid(np.arange(side), np.arange(side), np.arange(layers), indexing="ij")
 centres = (np.stack([i.ravel(), j.ravel(), k.ravel()], axis=1) + 0.5) * spacing
@@ -85,7 +92,8 @@ O.dt = 0.5 * radii.min() * math.sqrt(density / young)
 O.run(steps, True)
 sample()                                            # the state after the last step
 result = {"positions": samples, "left": counts, "traffic": distributed.traffic(),
-          "floor_force": sum(O.forces.f(i)[2] for i in floor_ids)}     # each summed over the processes
+          "floor_force": sum(O.forces.f(i)[2] for i in floor_ids),     # each summed over the processes
+          "balance": distributed.balance()}
 if distributed.rank() == 0:
     with open(output, "w") as f:
         json.dump(result, f)

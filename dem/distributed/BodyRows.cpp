@@ -117,7 +117,7 @@ std::int64_t firstUndistributable(const RankBodies& bodies)
 {
   const Bodies& b = bodies.bodies;
   for (std::size_t i = 0; i < bodies.size(); ++i)
-    if (b.shape[i] != ShapeKind::Sphere || b.clumpId[i] >= 0)
+    if ((b.shape[i] != ShapeKind::Sphere && b.shape[i] != ShapeKind::Clump) || b.clumpId[i] >= 0)
       return static_cast<std::int64_t>(i);
   return -1;
 }

@@ -82,8 +82,8 @@ void unpackRows(std::span<const std::byte> in, RankBodies& into);
 /// @throws std::invalid_argument if `keep` does not have one entry per row
 void keepRows(RankBodies& bodies, std::span<const std::uint8_t> keep);
 
-/// The first row of `bodies` this increment cannot distribute (not a sphere, or a clump member),
-/// or -1 when all can be.
+/// The first row of `bodies` the partition cannot place (not a sphere or a clump, or a clump
+/// member: members go with their clump, which is placed), or -1 when all can be.
 /// @param bodies a rank's bodies
 /// @return the row, or -1
 [[nodiscard]] std::int64_t firstUndistributable(const RankBodies& bodies);

@@ -81,6 +81,10 @@ std::string localError(const RankBodies& local, std::span<const double> weights,
   if (!(settings.imbalanceTolerance >= 1.0))
     return "partition: imbalanceTolerance " + std::to_string(settings.imbalanceTolerance)
            + " is below 1 (the ratio of the heaviest rank's weight to the average)";
+  if (!(settings.rebalanceThreshold >= 1.0))
+    return "partition: rebalanceThreshold " + std::to_string(settings.rebalanceThreshold)
+           + " is below 1 (the slowest rank's compute time over the mean above which the ranks partition again; "
+             "infinity: never)";
   if (!weights.empty() && weights.size() != local.size())
     return "partition: rank " + std::to_string(rank) + " passed " + std::to_string(weights.size())
            + " weights for " + std::to_string(local.size()) + " bodies";
@@ -95,7 +99,8 @@ std::string localError(const RankBodies& local, std::span<const double> weights,
     const std::string what = b.shape[i] != ShapeKind::Sphere ? std::string("a ") + shapeName(b.shape[i])
                                                              : "a member of a clump";
     return "partition: body " + std::to_string(local.globalId[i]) + " (on rank " + std::to_string(rank) + ") is "
-           + what + "; the distributed DEM takes spheres only so far (no walls, facets, boxes, clumps, blocks)";
+           + what + "; the partition places spheres and clumps only (a clump's members go with it; walls, facets and "
+                    "boxes are every rank's)";
   }
   return {};
 }

@@ -59,6 +59,10 @@ struct PartitionSettings
   std::string method = "RCB"; ///< a name methodNamed knows
   /// Largest ratio of a rank's weight to the average Zoltan may leave (its IMBALANCE_TOL).
   double imbalanceTolerance = 1.1;
+  /// Measured imbalance (the slowest rank's compute time over the mean between two
+  /// re-detections) above which the domain partitions again with the measured costs (>= 1;
+  /// infinity: never). Not read by partition() itself.
+  double rebalanceThreshold = 1.1;
 };
 
 /// Partition the bodies of all ranks (collective over `comm`), weighted by `weights` (one per
@@ -71,7 +75,7 @@ struct PartitionSettings
 /// @return this rank's part of the plan and every rank's region
 /// @throws std::invalid_argument on every rank, before any other communication, for an
 ///         unknown method, a tolerance below 1, a wrong number of weights or a negative one,
-///         or a body that cannot be distributed yet (not a sphere, or a clump member), naming
+///         or a body the partition cannot place (not a sphere or clump, or a clump member), naming
 ///         the body's global id and shape
 /// @throws std::runtime_error if Zoltan fails
 [[nodiscard]] Plan partition(MPI_Comm comm, const RankBodies& local, std::span<const double> weights,

@@ -4,9 +4,7 @@ Matrix3 (the tangent as a Matrix6).
 
 Under ``mpirun -np N talus run`` they give the whole scene's value on every process (each body
 and contact counted by one process, the shares summed over the processes, within round-off of
-the serial run's): every process calls them, as a PyRunner does. Those not distributed yet
-(momentum, angularMomentum, totalForceInVolume, sumForces, getSpheresVolume, getSpheresMass)
-are refused by name."""
+the serial run's): every process calls them, as a PyRunner does."""
 
 from __future__ import annotations
 
@@ -37,9 +35,7 @@ def unbalancedForce(useMaxForce: bool = False, scene=None) -> float:
     """Mean (or largest) total force on dynamic bodies, gravity included, over the mean
     contact force: tends to 0 at equilibrium."""
     scene = _scene(scene)
-    if (split := distributed.domain(scene)) is not None:     # under mpirun: the whole scene's
-        return split.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)
-    return _dem.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)
+    return _dem.unbalancedForce(scene._cpp, _gravity(scene), useMaxForce)     # under mpirun: the whole scene's
 
 
 def getStress(volume: float = -1, scene=None) -> Matrix3:
@@ -99,11 +95,31 @@ def porosity(volume: float = -1, scene=None) -> float:
     return 1.0 - _dem.sphereVolume(scene._cpp) / volume
 
 
+def _counted(scene) -> np.ndarray:
+    """Per row, whether this process counts the body in sums over bodies (under mpirun each body
+    on one process: its own bodies, the walls on process 0; in one process all)."""
+    split = distributed.domain(scene)
+    if split is None:
+        return np.ones(len(scene._cpp.alive()), dtype=bool)
+    return np.asarray(split.counted(scene._cpp), dtype=bool)
+
+
+def _whole(scene, values) -> np.ndarray:
+    """``values``, this process's shares of sums, summed over the processes under mpirun
+    (collective); as they are in one process."""
+    values = np.asarray(values, dtype=float)
+    split = distributed.domain(scene)
+    if split is None:
+        return values
+    return np.asarray(split.sum(values.ravel().tolist()), dtype=float).reshape(values.shape)
+
+
 def _moving(scene) -> np.ndarray:
-    """Ids of the bodies that carry momentum: alive, dynamic, not clump members (their clump does)."""
+    """Rows of the bodies that carry momentum: alive, dynamic, not clump members (their clump
+    does), of those this process counts."""
     cpp = scene._cpp
-    ids = np.flatnonzero(np.asarray(cpp.alive(), dtype=bool) & np.asarray(cpp.dynamic(), dtype=bool))
-    return np.array([i for i in ids if not scene.bodies[int(i)].isClumpMember], dtype=int)
+    rows = np.flatnonzero(np.asarray(cpp.alive(), dtype=bool) & np.asarray(cpp.dynamic(), dtype=bool) & _counted(scene))
+    return np.array([i for i in rows if _dem.clump_id(cpp, int(i)) < 0], dtype=int)
 
 
 def kineticEnergy(findMaxId: bool = False, scene=None):
@@ -114,9 +130,15 @@ def kineticEnergy(findMaxId: bool = False, scene=None):
     from (x - dt v), the angular velocity less the cell's spin (L: Cell.prevVelGrad)."""
     scene = _scene(scene)
     if (split := distributed.domain(scene)) is not None:     # under mpirun: the whole scene's
-        if findMaxId:
-            distributed.refuse("utils.kineticEnergy(findMaxId=True)")
-        return split.kineticEnergy(scene._cpp)
+        if not findMaxId:
+            return split.kineticEnergy(scene._cpp)
+        # the largest over the processes, and the lowest id having it (the serial run's first)
+        per_body = np.asarray(_dem.body_kinetic_energies(scene._cpp))     # 0 for bodies counted elsewhere
+        rows = np.flatnonzero(per_body)
+        largest = -split.min(-float(per_body[rows].max())) if len(rows) else -split.min(0.0)
+        mine = [split.globalIds([int(r)])[0] for r in rows if per_body[r] == largest]
+        first = split.min(float(min(mine)) if mine and largest > 0 else np.inf)
+        return split.kineticEnergy(scene._cpp), (int(first) if np.isfinite(first) else -1)
     per_body = np.asarray(_dem.body_kinetic_energies(scene._cpp))
     ids = np.flatnonzero(per_body)
     per_body = per_body[ids]
@@ -126,53 +148,43 @@ def kineticEnergy(findMaxId: bool = False, scene=None):
     return total
 
 
-def _not_distributed(scene, name: str) -> None:
-    if distributed.domain(scene) is not None:
-        distributed.refuse(f"utils.{name}()")
-
-
 def momentum(scene=None) -> Vector3:
     """Total linear momentum of the dynamic bodies."""
     scene = _scene(scene)
-    _not_distributed(scene, "momentum")
     ids = _moving(scene)
     cpp = scene._cpp
-    return Vector3((np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]).sum(axis=0))
+    return Vector3(_whole(scene, (np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]).sum(axis=0)))
 
 
 def angularMomentum(origin=(0.0, 0.0, 0.0), scene=None) -> Vector3:
     """Total angular momentum of the dynamic bodies about ``origin`` (spin with principal inertia
     and world-frame angular velocity: exact for spheres)."""
     scene = _scene(scene)
-    _not_distributed(scene, "angularMomentum")
     ids = _moving(scene)
     cpp = scene._cpp
     r = np.asarray(cpp.pos())[ids] - np.asarray(origin, dtype=float)
     p = np.asarray(cpp.mass())[ids, None] * np.asarray(cpp.vel())[ids]
     spin = np.asarray(cpp.inertia())[ids] * np.asarray(cpp.angVel())[ids]
-    return Vector3((np.cross(r, p) + spin).sum(axis=0))
+    return Vector3(_whole(scene, (np.cross(r, p) + spin).sum(axis=0)))
 
 
 def totalForceInVolume(scene=None) -> tuple[Vector3, float]:
     """Yade's totalForceInVolume: the sum over real contacts of the absolute components of each
     contact's force (normal + shear), and the contacts' mean isotropic stiffness kn/3 + 2 ks/3
     (-1 without contacts)."""
-    scene = _scene(scene)
-    _not_distributed(scene, "totalForceInVolume")
-    total, stiffness, count = np.zeros(3), 0.0, 0
-    for i in scene.interactions:
-        total += np.abs(np.asarray(i.phys.normalForce) + np.asarray(i.phys.shearForce))
-        stiffness += i.phys.kn / 3 + 2 * i.phys.ks / 3
-        count += 1
-    return Vector3(total), (stiffness / count if count else -1.0)
+    total, stiffness = _dem.totalForceInVolume(_scene(scene)._cpp)
+    return Vector3(total), float(stiffness)
 
 
 def sumForces(ids, direction, scene=None) -> float:
-    """Sum over ``ids`` of the force on each body projected on ``direction``."""
+    """Sum over ``ids`` of the force on each body projected on ``direction`` (under mpirun a
+    body's force on the process owning it, a wall's summed over the processes)."""
     scene = _scene(scene)
-    _not_distributed(scene, "sumForces")
-    f = np.asarray(scene._cpp.force())[np.asarray(list(ids), dtype=int)]
-    return float((f @ np.asarray(direction, dtype=float)).sum())
+    rows = np.asarray(list(ids), dtype=int)
+    if (split := distributed.domain(scene)) is not None:
+        rows = np.array([r for r in map(split.rowOf, map(int, rows)) if split.owns(r)], dtype=int)
+    f = np.asarray(scene._cpp.force())[rows]
+    return float(_whole(scene, (f @ np.asarray(direction, dtype=float)).sum()))
 
 
 def aabbExtrema(cutoff: float = 0.0, centers: bool = False, scene=None) -> tuple[Vector3, Vector3]:
@@ -208,23 +220,22 @@ def aabbDim(cutoff: float = 0.0, centers: bool = False, scene=None) -> Vector3:
 
 def _spheres(mask: int, scene) -> tuple:
     """The scene and its spheres (clump members included) that ``mask`` selects: with mask > 0
-    those whose mask shares a bit with it, otherwise all (Yade's)."""
+    those whose mask shares a bit with it, otherwise all (Yade's); of those this process counts."""
     scene = _scene(scene)
     ids = scene.sphere_ids()
+    ids = ids[_counted(scene)[ids]]
     if mask > 0:
-        ids = np.array([i for i in ids if scene.bodies[int(i)].mask & mask], dtype=int)
+        ids = np.array([i for i in ids if _dem.group_mask(scene._cpp, int(i)) & mask], dtype=int)
     return scene, ids
 
 
 def getSpheresVolume(mask: int = -1, scene=None) -> float:
     """Total volume of the spheres ``mask`` selects, as Yade's."""
-    _not_distributed(_scene(scene), "getSpheresVolume")
     scene, ids = _spheres(mask, scene)
-    return float(sum(4.0 / 3.0 * np.pi * r ** 3 for r in scene._cpp.radius()[ids]))
+    return float(_whole(scene, sum(4.0 / 3.0 * np.pi * r ** 3 for r in scene._cpp.radius()[ids])))
 
 
 def getSpheresMass(mask: int = -1, scene=None) -> float:
     """Total mass of the spheres ``mask`` selects, as Yade's."""
-    _not_distributed(_scene(scene), "getSpheresMass")
     scene, ids = _spheres(mask, scene)
-    return float(sum(scene._cpp.mass()[ids]))      # in id order, as Yade adds them
+    return float(_whole(scene, sum(scene._cpp.mass()[ids])))      # in id order, as Yade adds them

@@ -397,6 +397,9 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
     extras.update(_body_data(scene))
     from talus.dem import distributed
     if distributed.ACTIVE:
+        if (split := distributed.domain(scene)) is not None and split.hasClumps:
+            # each process holds its clumps' member lists by its own rows: not the file's ids
+            distributed.refuse("O.save of a scene with clumps")
         from talus import _distributed_checkpoint
         _distributed_checkpoint.save(distributed.domain(scene), scene._cpp, path, extras)
     else:

@@ -255,6 +255,8 @@ class Clump(Shape):
         if where is None:
             return {}     # a clump of no scene has no members (Yade's Clump())
         ids, relPos, relOri = _dem.clump_members(where[0]._cpp, where[1])
+        from talus.dem import distributed     # under mpirun the rows hold other ids
+        ids = distributed.global_ids(where[0], ids)
         return {int(i): (Vector3(p), Quaternion(*q)) for i, p, q in zip(ids, relPos, relOri)}
 
 
