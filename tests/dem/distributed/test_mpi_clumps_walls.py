@@ -1,0 +1,161 @@
+"""Clumps, boxes and the engines reading the summed force of a wall under mpirun, each against
+the serial run of the same script at 2 and 3 processes (oversubscribed on this machine): a clump
+and its members owned by one process and moved whole, boxes and walls held by every process, a
+TriaxialStressController moving the walls of a box by the force on each (summed exactly over
+the processes), the measurements that sum over bodies; and what stays refused by name."""
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from test_mpi_run import pytestmark, talus_run  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
+from test_mpi_scope import serial_and_split
+
+SCENES = Path(__file__).resolve().parents[3] / "cases" / "scenes"
+
+
+@pytest.mark.parametrize("processes", [2, 3])
+def test_clumps_falling_onto_a_box_give_the_serial_positions(tmp_path, processes):
+    serial, split = serial_and_split(tmp_path, SCENES / "clump_deposition.py", 200, 1000, processes=processes)
+    # every body (clumps, their members, free spheres) at every 100 steps, bit for bit
+    assert np.array_equal(np.asarray(serial["positions"]), np.asarray(split["positions"]))
+    # the clumps fell onto the floor and the box, whose forces are summed over the processes
+    assert split["floor_force"][2] == pytest.approx(serial["floor_force"][2], rel=1e-12) and serial["floor_force"][2] < 0
+    assert split["box_force"][2] == pytest.approx(serial["box_force"][2], rel=1e-12) and serial["box_force"][2] < 0
+    # a clump counted once with its members (not each member again)
+    assert split["kinetic"] == pytest.approx(serial["kinetic"], rel=1e-12)
+    assert split["unbalanced"] == pytest.approx(serial["unbalanced"], rel=1e-12)
+    # the energy terms (a clump's kinetic energy with its inertia, the gravity's work on it, ...)
+    largest = max(abs(v) for v in serial["energy"].values())
+    assert all(abs(split["energy"][k] - v) <= 1e-12 * largest for k, v in serial["energy"].items())
+    assert serial["energy"]["gravWork"] < 0 and serial["energy"]["plastDissip"] > 0
+    # bodies (clumps with their members) changed process on the way down
+    assert sum(t["migrated_bodies"] for t in split["traffic"]) > 0
+
+
+@pytest.mark.parametrize("processes", [2, 3])
+def test_a_triaxial_compaction_in_a_box_of_walls_gives_the_serial_positions(tmp_path, processes):
+    serial, split = serial_and_split(tmp_path, SCENES / "triax_box.py", 300, 1000, processes=processes)
+    assert np.array_equal(np.asarray(serial["positions"]), np.asarray(split["positions"]))
+    # the walls' stresses, the porosity and the mean stress the controller read: the same bits
+    assert split["stress"] == serial["stress"] and split["porosity"] == serial["porosity"]
+    assert split["meanStress"] == serial["meanStress"] and serial["meanStress"] == pytest.approx(-20000, rel=0.01)
+    assert split["dt"] == serial["dt"]
+
+
+CLUMPS = ("O.materials.append(FrictMat(young=1e7, density=2600))\n"
+          "for k in range(12):\n"
+          "    O.bodies.appendClumped([utils.sphere((0.2 * k, 0, 0), 0.04), utils.sphere((0.2 * k + 0.05, 0, 0), 0.03)])\n"
+          "O.bodies.append(utils.wall(-0.0399, axis=2, sense=1))\n"   # touching the larger members
+          "O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),\n"
+          "             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],\n"
+          "                             [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),\n"
+          "             NewtonIntegrator(gravity=(0, 0, -9.81))]\n"
+          "O.dt = 1e-5\n")
+
+
+def _run(tmp_path, body, processes=2):
+    script = tmp_path / "script.py"
+    script.write_text(CLUMPS + body)
+    return talus_run(script, processes=processes)
+
+
+def test_a_clump_read_on_its_owner_names_its_members_by_their_ids(tmp_path):
+    # Clump k is body 3k + 2 with members 3k and 3k + 1: under mpirun its shape and its members'
+    # clumpId give the ids the script built (not the process's rows).
+    body = ("O.run(10, True)\n"
+            "seen = 0\n"
+            "for k in range(12):\n"
+            "    try:\n"
+            "        c = O.bodies[3 * k + 2]\n"
+            "    except IndexError:\n"
+            "        continue\n"
+            "    assert c.isClump and sorted(c.shape.members) == [3 * k, 3 * k + 1], (k, c.shape.members)\n"
+            "    assert O.bodies[3 * k].clumpId == 3 * k + 2 and O.bodies[3 * k + 1].isClumpMember\n"
+            "    seen += 1\n"
+            "from talus.dem import distributed\n"
+            "import sys\n"
+            "sys.stderr.write('SEEN %d\\n' % seen)\n")
+    done = _run(tmp_path, body)
+    assert done.returncode == 0, done.stderr
+    seen = [int(line.split()[1]) for line in done.stderr.splitlines() if line.startswith("SEEN ")]
+    assert sorted(seen) == sorted(seen) and sum(seen) == 12 and min(seen) > 0
+
+
+def test_the_measurements_over_bodies_are_the_whole_scenes(tmp_path):
+    # momentum, angular momentum, the spheres' volume and mass, sumForces on the wall, the body
+    # with the most kinetic energy and totalForceInVolume: the serial run's on every process
+    # (within round-off)
+    body = ("O.run(20, True)\n"     # the clumps still on the wall
+            "import json, sys\n"
+            "from talus.dem import distributed\n"
+            "values = {'momentum': list(utils.momentum()), 'angular': list(utils.angularMomentum((0.1, 0.2, 0))),\n"
+            "          'volume': utils.getSpheresVolume(), 'mass': utils.getSpheresMass(),\n"
+            "          'wall': utils.sumForces([36], (0, 0, 1)), 'kinetic': list(utils.kineticEnergy(findMaxId=True)),\n"
+            "          'inVolume': [*utils.totalForceInVolume()[0], utils.totalForceInVolume()[1]]}\n"
+            "if distributed.rank() == 0:\n"
+            "    open(sys.argv[1], 'w').write(json.dumps(values))\n")
+    script = tmp_path / "script.py"
+    script.write_text(CLUMPS + "O.bodies.append(utils.sphere((0.3, 0.1, 0.3), 0.05))\n" + body)
+    out = {}
+    for processes in (None, 2):
+        done = talus_run(script, tmp_path / f"values-{processes}.json", processes=processes)
+        assert done.returncode == 0, done.stderr
+        out[processes] = json.loads((tmp_path / f"values-{processes}.json").read_text())
+    serial, split = out[None], out[2]
+    for key in ("momentum", "angular", "inVolume"):
+        assert np.allclose(split[key], serial[key], rtol=1e-12, atol=1e-14 * np.abs(serial[key]).max()), key
+    for key in ("volume", "mass", "wall"):
+        assert split[key] == pytest.approx(serial[key], rel=1e-12) and serial[key] != 0, key
+    assert split["kinetic"][0] == pytest.approx(serial["kinetic"][0], rel=1e-12)
+    assert split["kinetic"][1] == serial["kinetic"][1] >= 0
+
+
+@pytest.mark.parametrize("body, named", [
+    ("O.run(10, True)\nO.bodies.erase(2)\n", "erase(2): the body is a clump"),   # a clump
+    ("O.run(10, True)\nO.bodies.erase(0)\n", "erase(0): the body is a clump"),   # a member
+    ("O.bodies.append(utils.box((0, 0, -2), (1, 1, 0.1)))\nO.run(10, True)\n", "Box moved by forces"),
+    ("O.run(10, True)\nO.save('clumps.h5')\n", "O.save of a scene with clumps is not"),
+    ("O.bodies.erase(36)\nO.periodic = True\nO.cell.hSize = Matrix3(3, 0, 0, 0, 3, 0, 0, 0, 3)\nO.run(10, True)\n",
+     "clumps in a periodic cell"),
+])
+def test_what_is_not_distributed_with_clumps_and_boxes_is_refused_by_name_once(tmp_path, body, named):
+    done = _run(tmp_path, body)
+    assert done.returncode != 0
+    assert done.stderr.count(named) == 1, done.stderr      # reported by process 0 only
+    assert "in one process" in done.stderr, done.stderr
+
+
+def test_a_servo_controlled_plate_of_facets_moves_as_in_one_process(tmp_path):
+    # Yade's PIDController.py, small (the plate starting lower, to press within the run): a plate
+    # of two facets pressed down on a layer of spheres by a ServoPIDController (the plate's force
+    # summed exactly over the processes), turning.
+    script = tmp_path / "servo.py"
+    script.write_text(
+        "import json, sys\n"
+        "from talus.dem import distributed\n"
+        "mat = O.materials.append(ViscElMat(frictionAngle=0.3, density=2000, tc=1e-3, en=0.3, et=0.3))\n"
+        "O.bodies.append([facet([(-1, -1, 0), (1, -1, 0), (1, 1, 0)], material=mat),\n"
+        "                 facet([(-1, -1, 0), (1, 1, 0), (-1, 1, 0)], material=mat)])\n"
+        "plate = O.bodies.append([facet([(-1, -1, 0.201), (1, -1, 0.201), (1, 1, 0.201)], material=mat),\n"
+        "                         facet([(-1, -1, 0.201), (1, 1, 0.201), (-1, 1, 0.201)], material=mat)])\n"
+        "O.bodies.append([sphere((0.3 * i - 0.6, 0.3 * j - 0.6, 0.1), 0.1, material=mat) for i in range(5) for j in range(5)])\n"
+        "O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb()]),\n"
+        "    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()], [Ip2_ViscElMat_ViscElMat_ViscElPhys()],\n"
+        "                    [Law2_ScGeom_ViscElPhys_Basic()]),\n"
+        "    NewtonIntegrator(damping=0, gravity=(0, 0, -9.81)),\n"
+        "    ServoPIDController(axis=(0, 0, 1), maxVelocity=0.5, iterPeriod=20, ids=plate, target=2e4, kP=1e-5, kI=2e-6,\n"
+        "                       kD=1e-6, label='servo')\n"
+        "    + RotationEngine(rotationAxis=(0, 0, 1), angularVelocity=0.5, rotateAroundZero=True, zeroPoint=(0, 0, 0))]\n"
+        "O.dt = 2e-5\n"
+        "O.run(3000, True)\n"
+        "result = {'positions': distributed.positions().tolist(), 'current': list(servo.current), 'vel': servo.curVel}\n"
+        "if distributed.rank() == 0:\n"
+        "    open(sys.argv[1], 'w').write(json.dumps(result))\n")
+    out = {}
+    for processes in (None, 2):
+        done = talus_run(script, tmp_path / f"servo-{processes}.json", processes=processes)
+        assert done.returncode == 0, done.stderr
+        out[processes] = json.loads((tmp_path / f"servo-{processes}.json").read_text())
+    assert out[2] == out[None] and out[None]["current"][2] != 0     # the plate pressed on the spheres, bit for bit
