@@ -14,7 +14,7 @@ Measured: (1) the dense bed of case 11 (cases/scenes/mpi_bed.py: spheres on a cu
           4`, without rebalancing (talus.dem.distributed.rebalanceThreshold None) and with the
           default threshold (1.1): the imbalance, the slowest process's compute seconds over the
           mean (CPU seconds not spent waiting in MPI calls) summed over the run, and the
-          rebalances. Full: 1500 spheres, 8000 steps; quick: 400, 3000.
+          rebalances. Full: 1500 spheres, 8000 steps; quick: 1000, 4000.
 Model:    one step of a process holding n of N spheres among P processes takes
             t(P) = I c n (1 + dup(n)) + m alpha + 128 g(n) / beta + 2 log2(P) alpha
           - g(n) ghosts: its region a cube of side L = (n / rho)^(1/3) among cubes (rho spheres per
@@ -182,7 +182,7 @@ def main():
     import matplotlib.pyplot as plt
     case = results.Case("dem.mpi.scaling-model", quick=args.quick, folder=args.results)
     bed_spheres, bed_steps = (20_000, 50) if args.quick else (200_000, 100)
-    silo_spheres, silo_steps = (400, 3000) if args.quick else (1500, 8000)
+    silo_spheres, silo_steps = (1000, 4000) if args.quick else (1500, 8000)
     with tempfile.TemporaryDirectory() as tmp:
         model = measure_bed(Path(tmp), bed_spheres, bed_steps)
         silo = measure_silo(Path(tmp), silo_spheres, silo_steps)

@@ -40,7 +40,8 @@ bool Balance::measure(MPI_Comm comm, double cpu, double waitCpu, std::int64_t it
   // was computed since. `steps` is the same on every rank, so all skip alike.
   if (steps <= 0)
     return false;
-  int ranks = 1;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
   const double seconds = openSeconds(cpu, waitCpu);
   const std::array<double, 3> mine{seconds, static_cast<double>(spheres), static_cast<double>(contacts)};
@@ -59,6 +60,7 @@ bool Balance::measure(MPI_Comm comm, double cpu, double waitCpu, std::int64_t it
   if (recent_.size() > kept)
     recent_.erase(recent_.begin(), recent_.end() - static_cast<std::ptrdiff_t>(kept));
   fit();
+  calibrate(all, steps, rank);
 
   const double mean = total / ranks;
   Interval interval{iter, steps, mean > 0 ? slowest / mean : 1.0, false};
@@ -110,6 +112,27 @@ void Balance::fit()
   stats_.perContact = contactRatio_ * stats_.perBody;
 }
 
+void Balance::calibrate(std::span<const double> all, std::int64_t steps, int rank)
+{
+  // Within a factor of 2 either way: one short interval's noise moves the cuts a little, not far.
+  const std::size_t ranks = all.size() / 3;
+  std::vector<double> factor(ranks, 0.0);
+  double sum = 0;
+  std::size_t counted = 0;
+  for (std::size_t r = 0; r < ranks; ++r)
+  {
+    const double modelled = stats_.perBody * all[3 * r + 1] + stats_.perContact * all[3 * r + 2];
+    if (modelled > 0 && all[3 * r] > 0)
+    {
+      factor[r] = all[3 * r] / static_cast<double>(steps) / modelled;
+      sum += factor[r];
+      ++counted;
+    }
+  }
+  const double mine = factor[static_cast<std::size_t>(rank)];
+  ownFactor_ = counted > 0 && mine > 0 ? std::clamp(mine * static_cast<double>(counted) / sum, 0.5, 2.0) : 1.0;
+}
+
 std::vector<double> Balance::weights(const Contacts& contacts, std::span<const std::int64_t> rows,
                                      std::span<const std::uint8_t> replicated) const
 {
@@ -125,6 +148,8 @@ std::vector<double> Balance::weights(const Contacts& contacts, std::span<const s
       if (slot[r] >= 0)
         w[static_cast<std::size_t>(slot[r])] += contactRatio_ * share;
   }
+  for (double& x : w)
+    x *= ownFactor_;
   return w;
 }
 } // namespace talus::dem::distributed

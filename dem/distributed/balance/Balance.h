@@ -71,10 +71,12 @@ public:
   bool measure(MPI_Comm comm, double cpu, double waitCpu, std::int64_t iter, std::int64_t spheres,
                std::int64_t contacts);
 
-  /// The modelled cost of each of the given rows' bodies (Zoltan's weights): perBody plus
-  /// perContact for each contact with a replicated body (a wall, a facet: computed by this
-  /// rank alone) and half of it for each contact with another sphere (a contact computed once
-  /// between two bodies of one rank), relative to perBody.
+  /// The cost of each of the given rows' bodies (Zoltan's weights): perBody plus perContact for
+  /// each contact with a replicated body (a wall, a facet: computed by this rank alone) and half
+  /// of it for each contact with another sphere (a contact computed once between two bodies of
+  /// one rank), relative to perBody; times this rank's last measured time over its modelled
+  /// cost, relative to the other ranks' (what the model leaves out: the contacts computed twice
+  /// across a region's faces, a slower core), so that Zoltan evens the measured times.
   /// @param contacts the scene's contact list (its records' rows)
   /// @param rows the rows weighted, ascending
   /// @param replicated per row of the scene: whether it is a wall or facet
@@ -103,6 +105,8 @@ private:
   /// Least squares of the model over the recent samples; kept when the samples cannot tell the
   /// two costs apart (every rank with the same contacts per sphere) or give a negative cost.
   void fit();
+  /// ownFactor_ from the ranks' gathered (seconds, spheres, contacts), after fit().
+  void calibrate(std::span<const double> all, std::int64_t steps, int rank);
 
   double threshold_;
   double cpu0_ = 0, wait0_ = 0;
@@ -110,6 +114,8 @@ private:
   std::vector<Sample> recent_; ///< the last intervals' samples, every rank's
   /// A contact's cost in bodies' costs until the samples tell: as contactWeights (1 + contacts).
   double contactRatio_ = 1;
+  /// This rank's measured time over its modelled cost, over the mean of the ranks' (1 until measured).
+  double ownFactor_ = 1;
   Stats stats_;
 };
 } // namespace talus::dem::distributed
