@@ -109,3 +109,12 @@ def test_a_bad_line_in_one_slab_names_the_file_and_line_and_ends_every_process(t
     done = talus_run(SCENE, packing, 10, tmp_path / "out.json", processes=2, timeout=60)
     assert done.returncode != 0
     assert f"{packing}, line {len(lines) - 2}" in done.stderr
+
+
+def test_reference_states_after_the_split_are_refused_not_another_bodys(tmp_path):
+    # refPos is kept by row in each process, and the rows change at the split: reading it after
+    # would give another body's (body 10 read body 0's on process 1); refused by name instead.
+    _, done = run_script(tmp_path, "O.dt = 1e-6\nO.engines = [InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()])]\n"
+                                   "O.run(1, True)\n"
+                                   "b = O.bodies[wall]\nprint(b.state.refPos)")
+    assert done.returncode != 0 and "State.refPos and refOri once the scene is split" in done.stderr, done.stderr

@@ -440,6 +440,10 @@ class State(Serializable):
         self._reference().ori[self._id] = (q.w, q.x, q.y, q.z)
 
     def _reference(self):
+        from talus.dem import distributed     # (imports this module's package)
+        if distributed.is_split(self._scene):   # the table is by row, and the rows change at the split
+            distributed.refuse("State.refPos and refOri once the scene is split (they are kept by row in this "
+                               "process and do not follow the bodies between processes)")
         states = self._scene._reference
         states.ensure(self._scene._cpp.bodyCount())
         return states
