@@ -93,6 +93,12 @@ def test_ids_are_the_serial_ones_and_whole_scene_reads_wait_for_the_split(tmp_pa
     assert done.stderr.count("not distributed") == 1      # reported once, by process 0
 
 
+def test_a_scene_read_in_slabs_is_saved_after_its_first_step_only(tmp_path):
+    _, done = run_script(tmp_path, "O.save({!r})".format(str(tmp_path / "early.h5")))
+    assert done.returncode != 0 and "O.save of a scene holding a packing read in slabs" in done.stderr, done.stderr
+    assert not (tmp_path / "early.h5").exists()
+
+
 def test_a_slab_cannot_be_iterated(tmp_path):
     _, done = run_script(tmp_path, "print([b for b in ymport.text({!r})])".format(str(tmp_path / "bed.txt")))
     assert done.returncode != 0 and "read in slabs" in done.stderr and "O.bodies.append" in done.stderr

@@ -397,6 +397,9 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
     extras.update(_body_data(scene))
     from talus.dem import distributed
     if distributed.ACTIVE:
+        if isinstance(distributed.domain(scene), distributed.HeldRows):
+            distributed.refuse("O.save of a scene holding a packing read in slabs, before its first step (save it "
+                               "after the first step, once the scene is split)")
         if (split := distributed.domain(scene)) is not None and split.hasClumps:
             # each process holds its clumps' member lists by its own rows: not the file's ids
             distributed.refuse("O.save of a scene with clumps")
