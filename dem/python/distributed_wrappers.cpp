@@ -68,6 +68,10 @@ PYBIND11_MODULE(_distributed, m)
     MPI_Allreduce(MPI_IN_PLACE, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
     return all != 0;
   }, "True on every rank when `local` is true on all (collective)");
+  m.def("smallest", [](double local) {
+    MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
+    return local;
+  }, "The smallest of every rank's `local` (collective): a scene not split yet (built in slabs)");
 
   py::class_<MpiDomain, std::shared_ptr<MpiDomain>>(m, "Domain")
       .def_property_readonly("rank", &MpiDomain::rank)

@@ -93,6 +93,14 @@ def test_ids_are_the_serial_ones_and_whole_scene_reads_wait_for_the_split(tmp_pa
     assert done.stderr.count("not distributed") == 1      # reported once, by process 0
 
 
+def test_the_p_wave_step_before_the_split_is_the_whole_scenes(tmp_path):
+    # a minimum over the bodies each process holds, taken over the processes: the serial value
+    steps = [run_script(tmp_path, "print('dt %r' % PWaveTimeStep())", processes=p)[1] for p in (None, 2, 3)]
+    assert all(done.returncode == 0 for done in steps), [done.stderr for done in steps]
+    values = [[line for line in done.stdout.splitlines() if line.startswith("dt ")] for done in steps]
+    assert values[0] == values[1] == values[2] and len(values[0]) == 1
+
+
 def test_a_scene_read_in_slabs_is_saved_after_its_first_step_only(tmp_path):
     _, done = run_script(tmp_path, "O.save({!r})".format(str(tmp_path / "early.h5")))
     assert done.returncode != 0 and "O.save of a scene holding a packing read in slabs" in done.stderr, done.stderr

@@ -39,8 +39,8 @@ What is not distributed yet is refused, on every process alike, with its name: s
 spheres, clumps of spheres, walls, facets and fixed boxes, a wall, facet or box moved by forces,
 clumps in a periodic cell or a scene read in slabs, erasing a clump, walls and facets in a periodic cell, engines other than ForceResetter,
 InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
-GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, ServoPIDController
-and the kinematic and force engines (so
+GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine,
+ServoPIDController and the kinematic and force engines (so
 PeriIsoCompressor and Peri3dController), contact laws other than the
 linear, Hertz-Mindlin, visco-elastic and cohesive-frictional ones, force engines on walls or
 facets, VTK output, ``O.save`` of a scene with clumps. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
@@ -68,7 +68,7 @@ _KINEMATIC = ("TranslationEngine", "RotationEngine", "HarmonicMotionEngine", "He
 _FORCES = ("ForceEngine", "InterpolatingDirectedForceEngine", "HarmonicForceEngine")
 _ENGINES = ("ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator", "PyRunner",
             "GravityEngine", "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController",
-            "ServoPIDController",
+            "ServoPIDController", "TriaxialCompressionEngine",
             *_KINEMATIC, *_FORCES)
 _LAWS = ("Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_MindlinPhys_Mindlin", "Law2_ScGeom_ViscElPhys_Basic",
          "Law2_ScGeom6D_CohFrictPhys_CohesionMoment")
@@ -168,6 +168,12 @@ class HeldRows:
 
     def owns(self, row: int) -> bool:
         return row >= 0
+
+    def min(self, value: float) -> float:
+        """The smallest of every process's ``value`` (collective): a minimum over the bodies each
+        holds is the whole scene's (PWaveTimeStep before the first step)."""
+        from talus import _distributed
+        return _distributed.smallest(float(value))
 
     def __getattr__(self, name):
         if name.startswith("__"):
