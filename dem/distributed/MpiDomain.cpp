@@ -80,6 +80,22 @@ Plan partitionIn(MPI_Comm comm, const Regions& regions, bool periodic, const Ran
   return partition(comm, located, weights, settings);
 }
 
+/// Whether the bodies' positions and radii are the same bits on every rank of `comm` (collective):
+/// a hash of them, its minimum and maximum over the ranks compared.
+bool sameOnEveryRank(MPI_Comm comm, const Bodies& b)
+{
+  std::uint64_t hash = 14695981039346656037ULL; // FNV-1a over the bytes
+  auto add = [&](const void* data, std::size_t bytes) {
+    for (std::size_t k = 0; k < bytes; ++k)
+      hash = (hash ^ static_cast<const unsigned char*>(data)[k]) * 1099511628211ULL;
+  };
+  add(b.pos.data(), b.pos.size() * sizeof(Vec3));
+  add(b.radius.data(), b.radius.size() * sizeof(double));
+  std::uint64_t extremes[2] = {hash, ~hash}; // the minimum of ~hash is ~(the maximum of hash)
+  MPI_Allreduce(MPI_IN_PLACE, extremes, 2, MPI_UINT64_T, MPI_MIN, comm);
+  return extremes[0] == ~extremes[1];
+}
+
 /// The CPU seconds of this process so far (a rank waiting in MPI polls: its CPU time, unlike its
 /// wall time, is what the wait costs the machine).
 double cpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
@@ -131,13 +147,19 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
             + ": the distributed DEM takes clumps in open scenes built whole on every process only so far; run "
               "it in one process";
   for (std::size_t i = 0; i < b.size() && error.empty() && scene.periodic; ++i)
-    if (b.alive[i] && (b.shape[i] == ShapeKind::Wall || b.shape[i] == ShapeKind::Facet))
+    if (b.alive[i] && (b.shape[i] == ShapeKind::Wall || b.shape[i] == ShapeKind::Facet || b.shape[i] == ShapeKind::Box))
       error = "body " + std::to_string(i) + " is a " + shapeName(b.shape[i])
               + " in a periodic cell: the distributed DEM takes periodic cells of spheres only so far; run it in "
                 "one process";
   if (const std::int64_t count = sceneSpheres(comm_, spheres, held); error.empty() && count < ranks_)
     error = "the scene has " + std::to_string(count) + " spheres for " + std::to_string(ranks_)
             + " processes: each process needs at least one; run it on fewer (mpirun -np)";
+  // Every process built the scene from the script: the same bodies, or the split would mix
+  // several scenes (a random packing made without a seed differs on each).
+  if (!held && !sameOnEveryRank(comm_, b) && error.empty())
+    error = "the scene differs between the processes (its bodies' positions or sizes): under mpirun every process "
+            "builds it from the script, which must make the same scene on each; a random packing needs a seed "
+            "(makeCloud(..., seed=1)), a TriaxialTest radiusMean > 0 with its seed";
   const Collider* collider = nullptr;
   for (const auto& engine : scene.engines)
     if (const auto* c = dynamic_cast<const Collider*>(engine.get()); c && !engine->dead)
@@ -154,8 +176,8 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
       error = e.what();
   }
   raiseOnEveryRank(comm_, error);
-  const double skin = collider->verletDist >= 0 ? collider->verletDist : -collider->verletDist * rmin;
-  ghostDistance_ = 2 * rmax + skin;
+  verletDist_ = collider->verletDist;
+  ghostDistance_ = ghostLayer(rmin, rmax);
 
   // Rank r offers Zoltan the r-th slice of the spheres every rank holds, and its own slab of a
   // packing read in slabs.
@@ -216,6 +238,12 @@ double MpiDomain::computeSeconds() const
 }
 
 std::size_t MpiDomain::ownedBodies(const Scene& scene) const { return scene.bodies.size(); }
+
+double MpiDomain::ghostLayer(double rmin, double rmax) const
+{
+  const double skin = verletDist_ >= 0 ? verletDist_ : -verletDist_ * rmin; // as the collider takes it
+  return 2 * rmax + skin;
+}
 
 bool MpiDomain::computesPair(std::size_t row1, std::size_t row2) const
 {
@@ -311,7 +339,10 @@ void MpiDomain::beforeDetection(Scene& scene)
   // as velGrad deforms the cell, which the collider's skin check takes as no motion), and from
   // that position itself (O.cell.hSize set from a script moves no body); a body is out of reach
   // when it is far by both (drift[28..33]: the common drift of the second).
-  std::vector<double> drift(34, std::numeric_limits<double>::infinity());
+  // And the largest and smallest radii, negated and not (drift[34], drift[35]): spheres grown
+  // since (growParticles, a TriaxialStressController's compaction) reach further, and the next
+  // ghost layer must reach as far.
+  std::vector<double> drift(36, std::numeric_limits<double>::infinity());
   const double erasedCount = static_cast<double>(erased_.size()),
                erasedSum = static_cast<double>(std::accumulate(erased_.begin(), erased_.end(), GlobalId{0}));
   drift[6] = erasedCount;
@@ -336,6 +367,11 @@ void MpiDomain::beforeDetection(Scene& scene)
     {
       extremes(b.pos[i] - affine * detectedAt_[i], 0);
       extremes(b.pos[i] - detectedAt_[i], 28);
+      if (b.shape[i] == ShapeKind::Sphere)
+      {
+        drift[34] = std::min(drift[34], -b.radius[i]);
+        drift[35] = std::min(drift[35], b.radius[i]);
+      }
     }
   min(drift);
   const Vec3 common = 0.5 * (Vec3(drift[0], drift[1], drift[2]) - Vec3(drift[3], drift[4], drift[5])),
@@ -368,6 +404,7 @@ void MpiDomain::beforeDetection(Scene& scene)
                 "diverged run)";
   }
   raiseOnEveryRank(comm_, error);
+  ghostDistance_ = ghostLayer(drift[35], -drift[34]); // the layer of the ghosts taken now
 
   // This rank's spheres, and where each goes (in the cell as it is now).
   if (scene.periodic)

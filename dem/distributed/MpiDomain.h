@@ -95,7 +95,7 @@ public:
   /// Whether the scene has clumps (each held whole by the rank of its centre of mass).
   [[nodiscard]] bool hasClumps() const { return hasClumps_; }
   /// Distance within which a sphere of another rank is a ghost here: twice the largest radius
-  /// plus the collider's skin.
+  /// plus the collider's skin, taken again at each re-detection (spheres may have grown).
   [[nodiscard]] double ghostDistance() const { return ghostDistance_; }
 
   /// What the halo moved: ghost updates (one per step) and re-detections (migration and ghost
@@ -140,6 +140,8 @@ private:
   /// @param partitionAgain whether Zoltan partitions again (the regions change), else RCB's boxes stay
   [[nodiscard]] Plan placeUnits(const Scene& scene, const RankBodies& mine, std::span<const double> rowWeights,
                                 bool partitionAgain);
+  /// The ghost layer for spheres of radii rmin to rmax: twice rmax plus the collider's skin.
+  [[nodiscard]] double ghostLayer(double rmin, double rmax) const;
   /// The row of global id `id` here, -1 if this rank holds no copy of it (erased or not).
   [[nodiscard]] std::int64_t rowHeld(GlobalId id) const;
   /// The rank whose region holds a body at `position` (RCB), -1 if none (not a finite position).
@@ -152,6 +154,7 @@ private:
   std::vector<Box> boxes_;
   Regions regions_; ///< the space boxes_ tile: a periodic cell's reduced coordinates at the last re-detection
   double ghostDistance_ = 0;
+  double verletDist_ = 0; ///< the collider's skin: absolute, or relative to the smallest radius when negative
   std::int64_t globalCount_ = 0;
   std::vector<GlobalId> globalId_; ///< per row, ascending (rowOf searches it)
   std::vector<std::uint8_t> owned_, replicated_; ///< per row: this rank's; a wall (every rank's)

@@ -68,6 +68,8 @@ def _periodic_script(tmp_path, body):
 
 @pytest.mark.parametrize("body, named", [
     ("O.bodies.append(utils.wall(0.5, axis=2))\nO.run(10, True)\n", "a Wall in a periodic cell"),
+    ("O.bodies.append(utils.box((0.5, 0.5, 0.5), (0.05, 0.05, 0.05), fixed=True))\nO.run(10, True)\n",
+     "a Box in a periodic cell"),
     ("O.engines = O.engines + [PeriIsoCompressor(stresses=[-1e3])]\nO.run(10, True)\n", "PeriIsoCompressor"),
     ("O.engines = O.engines + [Peri3dController()]\nO.run(10, True)\n", "Peri3dController"),
 ])
