@@ -37,8 +37,8 @@ cohesive-frictional) moves with it. From then on:
 
 What is not distributed yet is refused, on every process alike, with its name: shapes other than
 spheres, clumps of spheres, walls, facets and fixed boxes, a wall, facet or box moved by forces,
-clumps in a periodic cell or a scene read in slabs, erasing a clump, walls and facets in a periodic cell, engines other than ForceResetter,
-InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
+clumps in a periodic cell or a scene read in slabs, erasing a clump, walls, facets and boxes in a
+periodic cell, engines other than ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
 GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine,
 ServoPIDController and the kinematic and force engines (so
 PeriIsoCompressor and Peri3dController), contact laws other than the
