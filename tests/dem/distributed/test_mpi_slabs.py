@@ -83,7 +83,7 @@ def run_script(tmp_path, then, processes=2):
 
 
 def test_ids_are_the_serial_ones_and_whole_scene_reads_wait_for_the_split(tmp_path):
-    spheres, done = run_script(tmp_path, "print(aabbExtrema())")
+    spheres, done = run_script(tmp_path, "print(kineticEnergy())")
     # ids as in one process: the file's spheres first, the wall after them
     assert f"ids 0 {spheres - 1} {spheres}" in done.stdout
     assert f"wall {spheres} {spheres}" in done.stdout
@@ -99,6 +99,16 @@ def test_the_p_wave_step_before_the_split_is_the_whole_scenes(tmp_path):
     assert all(done.returncode == 0 for done in steps), [done.stderr for done in steps]
     values = [[line for line in done.stdout.splitlines() if line.startswith("dt ")] for done in steps]
     assert values[0] == values[1] == values[2] and len(values[0]) == 1
+
+
+def test_the_box_of_the_spheres_before_the_split_is_the_whole_scenes(tmp_path):
+    # extrema over the bodies each process holds, taken over the processes: the serial values
+    # (aabbWalls around a packing read from a file, as Yade's triaxial tutorial builds its box)
+    script = "print('box %r %r' % tuple(aabbExtrema())); print('walls', len(aabbWalls()))"
+    runs = [run_script(tmp_path, script, processes=p)[1] for p in (None, 2, 3)]
+    assert all(done.returncode == 0 for done in runs), [done.stderr for done in runs]
+    boxes = [[line for line in done.stdout.splitlines() if line.startswith(("box ", "walls "))] for done in runs]
+    assert boxes[0] == boxes[1] == boxes[2] and len(boxes[0]) == 2, boxes
 
 
 def test_a_scene_read_in_slabs_is_saved_after_its_first_step_only(tmp_path):

@@ -175,6 +175,11 @@ class HeldRows:
         from talus import _distributed
         return _distributed.smallest(float(value))
 
+    def minima(self, values) -> list[float]:
+        """Each of ``values``' smallest over the processes (collective), as ``min``: a body every
+        process holds counts once or more alike (aabbExtrema and aabbWalls before the first step)."""
+        return [self.min(value) for value in values]
+
     def __getattr__(self, name):
         if name.startswith("__"):
             raise AttributeError(name)
