@@ -159,3 +159,47 @@ def test_a_servo_controlled_plate_of_facets_moves_as_in_one_process(tmp_path):
         assert done.returncode == 0, done.stderr
         out[processes] = json.loads((tmp_path / f"servo-{processes}.json").read_text())
     assert out[2] == out[None] and out[None]["current"][2] != 0     # the plate pressed on the spheres, bit for bit
+
+
+def test_yades_triaxial_test_moves_its_walls_as_in_one_process(tmp_path):
+    # Yade's TriaxialTest preprocessor (walls, GlobalStiffnessTimeStepper, a
+    # TriaxialCompressionEngine compacting isotropically, then loading at a strain rate once the
+    # packing is stable), a seeded cloud (radiusMean: the cloud that takes the seed)
+    script = tmp_path / "triaxial_test.py"
+    script.write_text(
+        "import json, sys\n"
+        "from talus.dem import distributed\n"
+        "TriaxialTest(numberOfGrains=400, noFiles=True, sigmaIsoCompaction=-60e3, sigmaLateralConfinement=-60e3,\n"
+        "             StabilityCriterion=0.05, seed=3, radiusMean=0.04).load()\n"
+        "triax = O.engines[4]\n"
+        "states = []\n"
+        "O.engines = O.engines + [PyRunner(command='states.append(triax.currentState)', iterPeriod=100)]\n"
+        "O.run(3000, True)\n"
+        "out = {'positions': distributed.positions().tolist(), 'states': states, 'strain': list(triax.strain),\n"
+        "       'stress': [list(triax.stress(k)) for k in range(6)], 'dt': O.dt}\n"
+        "if distributed.rank() == 0:\n"
+        "    open(sys.argv[1], 'w').write(json.dumps(out))\n")
+    out = {}
+    for processes in (None, 2):
+        done = talus_run(script, tmp_path / f"triaxial-{processes}.json", processes=processes, timeout=300)
+        assert done.returncode == 0, done.stderr
+        out[processes] = json.loads((tmp_path / f"triaxial-{processes}.json").read_text())
+    assert out[2] == out[None]                         # positions, walls' stresses, strain, time step: the same bits
+    states = out[None]["states"]
+    assert states[0] == 1 and states[-1] == 3          # isotropic compaction, then the loading
+    assert out[None]["strain"][1] < -0.01              # the top and bottom walls moved in
+
+
+def test_a_scene_that_differs_between_the_processes_is_refused_naming_the_seed(tmp_path):
+    # makeCloud without a seed makes another packing on each process: the split would mix them
+    script = tmp_path / "unseeded.py"
+    script.write_text("from yade import pack\n"
+                      "cloud = pack.SpherePack()\n"
+                      "cloud.makeCloud((0, 0, 0), (1, 1, 1), rMean=0.05, num=100)\n"
+                      "cloud.toSimulation()\n"
+                      "O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb()]), NewtonIntegrator()]\n"
+                      "O.dt = 1e-5\n"
+                      "O.run(10, True)\n")
+    done = talus_run(script, processes=2)
+    assert done.returncode != 0
+    assert done.stderr.count("the scene differs between the processes") == 1 and "seed" in done.stderr, done.stderr
