@@ -1,5 +1,5 @@
 """Run under `mpirun -np 2`: coupling records handed between two processes as their particles
-change process (test_foam_mpi_parity.py). Process 0 starts with particles 0, 1, 2 and process 1
+change process (test_foam_mpi.py). Process 0 starts with particles 0, 1, 2 and process 1
 with 3, 4 (each record: the id times 10, 100, ...); then 2 and 4 change sides, 5 is new. Writes
 the records each process holds afterwards to <folder>/records-<rank>.json (argument: the folder)."""
 import json
