@@ -6,17 +6,17 @@ Set-up:   three scenes, each unchanged in every run, 1000 steps, run by `talus r
           processes are oversubscribed):
           - cases/scenes/deposition.py: spheres (makeCloud, rRelFuzz 0.3) falling onto the walls
             of a box (FrictMat, linear Cundall-Strack law, damping 0.4, dt 0.7 P-wave, a PyRunner
-            printing unbalancedForce), N = 1, 2, 3, 4. Quick: 400 spheres; full: 3000.
+            printing unbalancedForce), N = 1, 2, 3, 4, 8. Quick: 400 spheres; full: 3000.
           - cases/scenes/silo_discharge.py: a square silo of 16 facets (held by every process)
             discharging through its floor's orifice, Hertz-Mindlin with restitution 0.5, a
             PyRunner erasing every 50 steps the spheres two radii below the floor (every process
-            erases the same ones, deciding from the gathered positions), N = 1, 2, 4. Quick: 400
+            erases the same ones, deciding from the gathered positions), N = 1, 2, 4, 8. Quick: 400
             spheres; full: 3000.
           - cases/scenes/periodic_cell.py triax: the periodic triaxial test (a loose periodic cloud
             compacted to -100 kPa by PeriTriaxController with dynCell, which reads the stress every
             step, then compressed along z to a log strain of -0.2 with -100 kPa kept on x and y;
             the processes' regions in the cell's reduced coordinates, ghosts across its faces),
-            N = 1, 2, 3, 4, run on past the 1000 steps to the end of the compression. Quick: 400
+            N = 1, 2, 3, 4, 8, run on past the 1000 steps to the end of the compression. Quick: 400
             spheres; full: 3000.
 Checked:  dem.mpi.parity (deposition) and dem.mpi.parity.silo: the largest difference of a body's
           position from the serial run's, every 100 steps over the 1000, over the largest
@@ -27,7 +27,7 @@ Checked:  dem.mpi.parity (deposition) and dem.mpi.parity.silo: the largest diffe
           messages; migration and ghost-rebuild bytes per re-detection; bodies and contacts
           migrated).
           dem.mpi.parity.peri-triax: the positions as above over the first 1000 steps (1 to 4
-          processes); dem.mpi.parity.peri-triax-peak: the largest relative difference of the peak
+          and 8 processes); dem.mpi.parity.peri-triax-peak: the largest relative difference of the peak
           stress ratio (s1 - s3) / (s1 + s3) of the compression from the serial run's (<= 1 %).
 Produces: the records and the chart dem.mpi.parity.png (differences and halo bytes per process
           count).
@@ -103,12 +103,12 @@ def main():
     import matplotlib.pyplot as plt
     case = results.Case("dem.mpi.parity", quick=args.quick, folder=args.results)
     spheres = 400 if args.quick else 3000
-    counts = {"deposition": [1, 2, 3, 4], "silo_discharge": [1, 2, 4], "periodic_cell": [1, 2, 3, 4]}
+    counts = {"deposition": [1, 2, 3, 4, 8], "silo_discharge": [1, 2, 4, 8], "periodic_cell": [1, 2, 3, 4, 8]}
     with tempfile.TemporaryDirectory() as tmp:
         runs = {scene: parity(scene, spheres, n, Path(tmp)) for scene, n in counts.items()}
     serial, split, differences, halos = runs["deposition"]
     case.record("largest difference of a body's position from the serial run over 1000 steps, relative to the "
-                "largest coordinate, at 1 to 4 processes", max(differences.values()),
+                "largest coordinate, at 1 to 4 and 8 processes", max(differences.values()),
                 "the same script in one process (talus run)", 1e-10, spheres=spheres, steps=STEPS,
                 differences={str(n): d for n, d in differences.items()}, halo={str(n): h for n, h in halos.items()},
                 floor_force_serial=serial["floor_force"],
@@ -116,7 +116,7 @@ def main():
     serial, split, differences, halos = runs["silo_discharge"]
     case.record("silo of facets discharging (Hertz-Mindlin, spheres erased as they leave): largest difference of a "
                 "body's position from the serial run over 1000 steps, relative to the largest coordinate (1 if other "
-                "bodies were erased), at 1, 2 and 4 processes", max(differences.values()),
+                "bodies were erased), at 1, 2, 4 and 8 processes", max(differences.values()),
                 "the same script in one process (talus run)", 1e-10, suffix="silo", spheres=spheres, steps=STEPS,
                 differences={str(n): d for n, d in differences.items()}, halo={str(n): h for n, h in halos.items()},
                 spheres_left_serial=serial["left"], spheres_left={str(n): r["left"] for n, r in split.items()},
@@ -124,7 +124,7 @@ def main():
                 floor_force={str(n): r["floor_force"] for n, r in split.items()})
     serial, split, differences, halos = runs["periodic_cell"]
     case.record("periodic triaxial (PeriTriaxController, deforming cell): largest difference of a body's position "
-                "from the serial run over 1000 steps, relative to the largest coordinate, at 1 to 4 processes",
+                "from the serial run over 1000 steps, relative to the largest coordinate, at 1 to 4 and 8 processes",
                 max(differences.values()), "the same script in one process (talus run)", 1e-10, suffix="peri-triax",
                 spheres=spheres, steps=STEPS, differences={str(n): d for n, d in differences.items()},
                 halo={str(n): h for n, h in halos.items()}, cells_serial=serial["cells"][-1],
@@ -133,7 +133,7 @@ def main():
     print(f"periodic triaxial: peak stress ratio {peak_ratio(serial):.6f} serial, "
           + ", ".join(f"{p:.6f} at {n}" for n, p in peaks.items()))
     case.record("periodic triaxial: largest relative difference of the peak stress ratio (s1 - s3) / (s1 + s3) of "
-                "the compression from the serial run's, at 1 to 4 processes",
+                "the compression from the serial run's, at 1 to 4 and 8 processes",
                 max(abs(p - peak_ratio(serial)) / peak_ratio(serial) for p in peaks.values()),
                 "the same script in one process (talus run)", 0.01, suffix="peri-triax-peak", spheres=spheres,
                 peak_serial=peak_ratio(serial), peaks={str(n): p for n, p in peaks.items()},
