@@ -28,7 +28,7 @@ void PeriTriaxController::update(const Scene& scene)
   {
     for (const Contact& c : scene.contacts.list)
     {
-      if (!c.real || !countsContact(scene.domain.get(), static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)))
+      if (!countsInSums(scene, c))
         continue;
       for (int i = 0; i < 3; ++i)
         sum[static_cast<std::size_t>(i)] += std::abs(c.normal[i]) * c.kn + (1 - std::abs(c.normal[i])) * c.ks;

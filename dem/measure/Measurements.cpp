@@ -13,6 +13,11 @@
 
 namespace talus::dem
 {
+bool countsInSums(const Scene& scene, const Contact& c)
+{
+  return c.real && countsContact(scene.domain.get(), static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2));
+}
+
 double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce)
 {
   const Bodies& b = scene.bodies;
@@ -35,7 +40,7 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
     sums[1] += 1;
   }
   for (const Contact& c : scene.contacts.list)
-    if (c.real && countsContact(domain, static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)))
+    if (countsInSums(scene, c))
     {
       sums[2] += c.force.norm();
       sums[3] += 1;
@@ -60,12 +65,6 @@ void sumOverProcesses(const Scene& scene, std::span<double> values)
 {
   if (scene.domain)
     scene.domain->sum(values);
-}
-
-/// Whether sums over contacts count `c` here (each contact on one process when split).
-bool counted(const Scene& scene, const Contact& c)
-{
-  return c.real && countsContact(scene.domain.get(), static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2));
 }
 
 double sampleVolume(const Scene& scene, double volume, const char* caller)
@@ -117,7 +116,7 @@ std::pair<Vec3, double> totalForceInVolume(const Scene& scene)
   std::array<double, 5> sums{};
   for (const Contact& c : scene.contacts.list)
   {
-    if (!counted(scene, c))
+    if (!countsInSums(scene, c))
       continue;
     const Vec3 f = c.normalForce + c.shearForce;
     for (std::size_t d = 0; d < 3; ++d)
@@ -155,7 +154,7 @@ Mat3 loveWeberStress(const Scene& scene, double volume)
   };
   for (const Contact& c : scene.contacts.list)
   {
-    if (!counted(scene, c))
+    if (!countsInSums(scene, c))
       continue;
     if (c.id1 != first || c.kind != ContactGeometryKind::SphereSphere)
     {
@@ -188,7 +187,7 @@ Eigen::Matrix<double, 6, 6> yadeTangent(const Scene& scene)
   Eigen::Matrix<double, 6, 6> tangent = Eigen::Matrix<double, 6, 6>::Zero();
   for (const Contact& c : scene.contacts.list)
   {
-    if (!counted(scene, c))
+    if (!countsInSums(scene, c))
       continue;
     const Vec3 l = branchVector(scene, c);
     const Eigen::Matrix<double, 6, 1> a = symmetricVoigt(c.normal, l);
@@ -215,7 +214,7 @@ Eigen::Matrix<double, 6, 6> contactStiffnessTangent(const Scene& scene, double v
   Eigen::Matrix<double, 9, 9> d = Eigen::Matrix<double, 9, 9>::Zero();
   for (const Contact& c : scene.contacts.list)
   {
-    if (!counted(scene, c))
+    if (!countsInSums(scene, c))
       continue;
     const Vec3 l = branchVector(scene, c);
     const Mat3 nn = c.normal * c.normal.transpose();
@@ -270,7 +269,7 @@ Mat3 fabricTensor(const Scene& scene)
   std::array<double, 10> sums{}; // n (x) n, then the contacts
   Eigen::Map<Mat3> sum(sums.data());
   for (const Contact& c : scene.contacts.list)
-    if (counted(scene, c) && c.kind == ContactGeometryKind::SphereSphere)
+    if (countsInSums(scene, c) && c.kind == ContactGeometryKind::SphereSphere)
     {
       sum += c.normal * c.normal.transpose();
       sums[9] += 1;

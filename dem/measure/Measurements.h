@@ -10,6 +10,11 @@
 namespace talus::dem
 {
 class Scene;
+struct Contact;
+
+/// Whether this process counts contact `c` in a sum over contacts: a real contact, counted by one
+/// process when the scene is split (Domain::countsContact), always when it is whole.
+bool countsInSums(const Scene& scene, const Contact& c);
 
 /// Split over processes (Scene::domain), loveWeberStress, contactStiffnessTangent,
 /// coordinationNumber, fabricTensor and sphereVolume give the whole scene's value on every
