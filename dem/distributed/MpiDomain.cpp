@@ -148,7 +148,7 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
               "it in one process";
   for (std::size_t i = 0; i < b.size() && error.empty() && scene.periodic; ++i)
     if (b.alive[i] && (b.shape[i] == ShapeKind::Wall || b.shape[i] == ShapeKind::Facet || b.shape[i] == ShapeKind::Box))
-      error = "body " + std::to_string(i) + " is a " + shapeName(b.shape[i])
+      error = "body " + std::to_string(idOf(i)) + " is a " + shapeName(b.shape[i])
               + " in a periodic cell: the distributed DEM takes periodic cells of spheres only so far; run it in "
                 "one process";
   if (const std::int64_t count = sceneSpheres(comm_, spheres, held); error.empty() && count < ranks_)
