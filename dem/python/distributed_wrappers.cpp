@@ -72,6 +72,42 @@ PYBIND11_MODULE(_distributed, m)
     MPI_Allreduce(MPI_IN_PLACE, &local, 1, MPI_DOUBLE, MPI_MIN, MPI_COMM_WORLD);
     return local;
   }, "The smallest of every rank's `local` (collective): a scene not split yet (built in slabs)");
+  m.def("gather_rows", [](const py::array_t<double, py::array::c_style | py::array::forcecast>& local, int root) {
+    // Every rank's rows of one width, one after the other in rank order: what each rank holds of
+    // the whole scene (its own bodies) put together where it is written or read whole.
+    if (local.ndim() != 2)
+      throw std::invalid_argument("gather_rows: a table of rows (2 dimensions) is needed");
+    int rank = 0, ranks = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    const auto width = static_cast<int>(local.shape(1));
+    const int mine = static_cast<int>(local.size());
+    std::vector<int> counts(static_cast<std::size_t>(ranks)), starts(static_cast<std::size_t>(ranks), 0);
+    const bool everyRank = root < 0;
+    if (everyRank)
+      MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    else
+      MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, root, MPI_COMM_WORLD);
+    std::int64_t total = 0;
+    for (std::size_t r = 0; r < counts.size(); ++r)
+    {
+      starts[r] = static_cast<int>(total);
+      total += counts[r];
+    }
+    if (total > std::numeric_limits<int>::max())
+      throw std::overflow_error("gather_rows: more than 2^31 numbers");
+    const bool receives = everyRank || rank == root;
+    py::array_t<double> all({static_cast<py::ssize_t>(receives && width ? total / width : 0), static_cast<py::ssize_t>(width)});
+    if (everyRank)
+      MPI_Allgatherv(local.data(), mine, MPI_DOUBLE, all.mutable_data(), counts.data(), starts.data(), MPI_DOUBLE,
+                     MPI_COMM_WORLD);
+    else
+      MPI_Gatherv(local.data(), mine, MPI_DOUBLE, receives ? all.mutable_data() : nullptr, counts.data(), starts.data(),
+                  MPI_DOUBLE, root, MPI_COMM_WORLD);
+    return all;
+  }, py::arg("local"), py::arg("root"),
+     "Every rank's rows (a table of one width) in rank order, on rank `root` (an empty table elsewhere) or on "
+     "every rank when `root` is negative (collective)");
 
   py::class_<MpiDomain, std::shared_ptr<MpiDomain>>(m, "Domain")
       .def_property_readonly("rank", &MpiDomain::rank)

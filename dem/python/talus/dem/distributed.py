@@ -238,11 +238,33 @@ def attach(scene) -> None:
     method = os.environ.get("TALUS_PARTITION", "RCB")
     held = domain(scene)
     if isinstance(held, HeldRows):
+        _looks_by_id(scene, held)
         scene._domain = _distributed.attach(scene._cpp, method, np.frombuffer(held.globalId, dtype=np.int64),
                                             np.frombuffer(held.own, dtype=np.uint8), held.globalCount)
     else:
         scene._domain = _distributed.attach(scene._cpp, method)
     scene._domain.rebalanceThreshold = _rebalance_threshold()
+
+
+def _looks_by_id(scene, held: HeldRows) -> None:
+    """Key the looks (colour, highlight, wire) of a scene built in slabs by body id, as they are
+    once it is split (talus.dem.geometry.appearance), every process holding every body's: each
+    process's own slab's looks other than the default are sent to all (collective)."""
+    from talus import _distributed
+    import numpy as np
+    from talus.dem.geometry.appearance import DEFAULT_COLOR, Appearance
+    ids = np.frombuffer(held.globalId, dtype=np.int64)
+    scene._appearance.ensure(len(ids))
+    color, highlight, wire = (getattr(scene._appearance, name)[:len(ids)] for name in ("color", "highlight", "wire"))
+    new = Appearance()
+    new.ensure(held.globalCount)
+    new.color[ids], new.highlight[ids], new.wire[ids] = color, highlight, wire
+    own = np.frombuffer(held.own, dtype=np.uint8).astype(bool)
+    changed = own & ((color != DEFAULT_COLOR).any(axis=1) | highlight | wire)
+    table = np.column_stack([ids[changed], color[changed], highlight[changed], wire[changed]])
+    for row in _distributed.gather_rows(table, -1):
+        new.color[int(row[0])], new.highlight[int(row[0])], new.wire[int(row[0])] = row[1:4], row[4], row[5]
+    scene._appearance = new
 
 
 def _rebalance_threshold() -> float:

@@ -254,7 +254,11 @@ class BodyContainer:
         return self._scene._cpp.bodyCount() if split is None else split.globalCount
 
     def __iter__(self):
+        if distributed.is_split(self._scene):   # collective: every body, owned elsewhere as a snapshot
+            from talus.dem.core import remote
+            return remote.every_body(self._scene, lambda row, id: Body(self._scene, row, id))
         if distributed.domain(self._scene) is not None:
-            distributed.refuse("iterating over O.bodies (each process holds its own bodies)")
+            distributed.refuse("iterating over O.bodies before the first step of a scene holding a packing read in "
+                               "slabs (each process holds its own slab until the split)")
         alive = self._scene._cpp.alive()
         return (self._view(i) for i in range(len(self)) if alive[i])

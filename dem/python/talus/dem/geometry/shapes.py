@@ -80,8 +80,11 @@ class Shape(Serializable):
     def _look(self, name: str):
         """Appearance ``name`` (color, highlight, wire): (array, index) of a body in a scene."""
         scene, id = self._body()
+        from talus.dem import distributed     # under mpirun the looks are kept by body id, not by row
+        if distributed.is_split(scene):
+            id = distributed.global_ids(scene, [id])[0]
         look = scene._appearance
-        look.ensure(scene._cpp.bodyCount())
+        look.ensure(len(scene.bodies))
         return getattr(look, name), id
 
     def _own(self, name: str, value=None):
