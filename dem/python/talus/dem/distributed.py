@@ -43,7 +43,7 @@ GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, Triax
 ServoPIDController and the kinematic and force engines (so
 PeriIsoCompressor and Peri3dController), contact laws other than the
 linear, Hertz-Mindlin, visco-elastic and cohesive-frictional ones, force engines on walls or
-facets, VTK output, ``O.save`` of a scene with clumps. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
+facets, ``O.save`` of a scene with clumps. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
 (written at any process count) on every process; the scene is split again at its next step.
 """
 
@@ -68,7 +68,7 @@ _KINEMATIC = ("TranslationEngine", "RotationEngine", "HarmonicMotionEngine", "He
 _FORCES = ("ForceEngine", "InterpolatingDirectedForceEngine", "HarmonicForceEngine")
 _ENGINES = ("ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator", "PyRunner",
             "GravityEngine", "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController",
-            "ServoPIDController", "TriaxialCompressionEngine",
+            "ServoPIDController", "TriaxialCompressionEngine", "VTKRecorder",
             *_KINEMATIC, *_FORCES)
 _LAWS = ("Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_MindlinPhys_Mindlin", "Law2_ScGeom_ViscElPhys_Basic",
          "Law2_ScGeom6D_CohFrictPhys_CohesionMoment")

@@ -40,12 +40,13 @@ from talus.dem.files.io import owner_scene
 from talus.dem.core import heat
 from talus.dem.base.linalg import Quaternion
 from talus.dem.core.scenes import default_scene
+from talus.dem.files import vtk_split
 from talus.dem.files.vtu import vtu_bytes
 
 if TYPE_CHECKING:
     from talus.dem.core.scene import Scene
 
-__all__ = ["VTKWarning", "write_spheres", "write_facets", "write_walls", "write_boxes", "write_contacts", "PvdCollection",
+__all__ = ["VTKWarning", "sphere_rows", "write_spheres", "write_facets", "write_walls", "write_boxes", "write_contacts", "PvdCollection",
            "write_periodic_cell", "VTKRecorder", "VTKExporter"]
 
 # VTK cell types.
@@ -82,59 +83,76 @@ def _flag_nonfinite(what: str, ids: np.ndarray, arrays: Iterable[np.ndarray]) ->
     return bad.astype(np.uint8)
 
 
+def sphere_rows(scene: "Scene") -> np.ndarray:
+    """The rows of the spheres a sphere file holds: the live spheres; under mpirun, those this
+    process owns (talus.dem.files.vtk_split)."""
+    return vtk_split.owned(scene, scene.sphere_ids())
+
+
 def write_spheres(scene: "Scene", path: str, extra: dict | None = None) -> int:
     """Write the live spheres of ``scene`` to ``path`` (.vtu); returns their number. ``extra``:
-    more point arrays (name -> array over the written spheres, in id order)."""
-    ids = scene.sphere_ids()
+    more point arrays (name -> array over the spheres of :func:`sphere_rows`, in that order).
+    Under mpirun every process calls it and process 0 writes every sphere (vtk_split)."""
+    rows = sphere_rows(scene)
+    ids = vtk_split.global_ids(scene, rows)
     cpp = scene._cpp
     data = {
-        "radius": cpp.radius()[ids], "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids],
-        "force": cpp.force()[ids], "torque": cpp.torque()[ids], "id": ids.astype(np.int32),
-        "materialId": cpp.materialIds()[ids].astype(np.int32), "mass": cpp.mass()[ids],
-        "color": scene._appearance.of(ids, cpp.bodyCount()),
+        "position": cpp.pos()[rows],
+        "radius": cpp.radius()[rows], "velocity": cpp.vel()[rows], "angVel": cpp.angVel()[rows],
+        "force": cpp.force()[rows], "torque": cpp.torque()[rows], "id": ids.astype(np.int32),
+        "materialId": cpp.materialIds()[rows].astype(np.int32), "mass": cpp.mass()[rows],
+        "color": scene._appearance.of(ids, len(scene.bodies)),
     }
     data.update(extra or {})
-    positions = cpp.pos()[ids]
-    data["nonfinite"] = _flag_nonfinite("spheres", ids, [positions, *data.values()])
-    write_atomically(path, vtu_bytes(positions, *_cells(len(ids), 1, VTK_VERTEX), point_data=data, time=cpp.time))
-    return len(ids)
+    data = vtk_split.gather(scene, data, ("id",))
+    if data is None:    # another process writes
+        return vtk_split.total(scene, len(rows))
+    positions = data.pop("position")
+    data["nonfinite"] = _flag_nonfinite("spheres", data["id"], [positions, *data.values()])
+    write_atomically(path, vtu_bytes(positions, *_cells(len(positions), 1, VTK_VERTEX), point_data=data,
+                                     time=cpp.time))
+    return vtk_split.total(scene, len(rows))
 
 
 def write_facets(scene: "Scene", path: str) -> int:
     """Write the live facets of ``scene`` to ``path`` as triangles; returns their number."""
     f = _dem.facet_arrays(scene._cpp)
-    ids = f["id"]
-    data = {"id": ids, "materialId": f["material"], "normal": f["normal"],
-            "force": scene._cpp.force()[ids], "velocity": scene._cpp.vel()[ids],
-            "color": scene._appearance.of(ids, scene._cpp.bodyCount())}
-    write_atomically(path, vtu_bytes(f["vertices"].reshape(-1, 3), *_cells(len(ids), 3, VTK_TRIANGLE),
-                                  cell_data=data, time=scene._cpp.time))
+    rows = f["id"]
+    ids = vtk_split.global_ids(scene, rows)     # every process holds every facet: process 0 writes them
+    data = {"id": ids.astype(f["id"].dtype), "materialId": f["material"], "normal": f["normal"],
+            "force": vtk_split.summed(scene, scene._cpp.force()[rows]), "velocity": scene._cpp.vel()[rows],
+            "color": scene._appearance.of(ids, len(scene.bodies))}
+    if vtk_split.writes(scene):
+        write_atomically(path, vtu_bytes(f["vertices"].reshape(-1, 3), *_cells(len(ids), 3, VTK_TRIANGLE),
+                                         cell_data=data, time=scene._cpp.time))
     return len(ids)
 
 
 def write_boxes(scene: "Scene", path: str) -> int:
     """Write the live boxes of ``scene`` to ``path`` as hexahedra; returns their number."""
-    ids = _dem.live_ids(scene._cpp, "Box")
+    rows = _dem.live_ids(scene._cpp, "Box")
+    ids = vtk_split.global_ids(scene, rows)     # every process holds every box: process 0 writes them
     cpp = scene._cpp
     corners = [cpp.pos()[i] + (_HEX_CORNERS * _dem.box_extents(cpp, int(i))) @ Quaternion(*cpp.ori(int(i))).toRotationMatrix().T
-               for i in ids]
-    data = {"id": ids.astype(np.int32), "materialId": cpp.materialIds()[ids].astype(np.int32),
-            "velocity": cpp.vel()[ids], "angVel": cpp.angVel()[ids], "force": cpp.force()[ids],
-            "color": scene._appearance.of(ids, cpp.bodyCount())}
-    write_atomically(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 8, VTK_HEXAHEDRON),
-                                  cell_data=data, time=cpp.time))
+               for i in rows]
+    data = {"id": ids.astype(np.int32), "materialId": cpp.materialIds()[rows].astype(np.int32),
+            "velocity": cpp.vel()[rows], "angVel": cpp.angVel()[rows],
+            "force": vtk_split.summed(scene, cpp.force()[rows]), "color": scene._appearance.of(ids, len(scene.bodies))}
+    if vtk_split.writes(scene):
+        write_atomically(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 8, VTK_HEXAHEDRON),
+                                         cell_data=data, time=cpp.time))
     return len(ids)
 
 
 def _sphere_box(scene: "Scene"):
-    ids = scene.sphere_ids()
-    if not len(ids):
-        return np.zeros(3), np.ones(3)
-    pos, r = scene._cpp.pos()[ids], scene._cpp.radius()[ids]
+    rows = sphere_rows(scene)
+    pos, r = scene._cpp.pos()[rows], scene._cpp.radius()[rows]
     finite = np.isfinite(pos).all(axis=1)
-    if not finite.any():
-        return np.zeros(3), np.ones(3)
-    return (pos[finite] - r[finite, None]).min(axis=0), (pos[finite] + r[finite, None]).max(axis=0)
+    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
+    if finite.any():
+        lo, hi = (pos[finite] - r[finite, None]).min(axis=0), (pos[finite] + r[finite, None]).max(axis=0)
+    lo, hi = vtk_split.extremes(scene, lo, hi)    # every process's spheres
+    return (lo, hi) if np.isfinite(lo).all() else (np.zeros(3), np.ones(3))
 
 
 def write_walls(scene: "Scene", path: str, size: float | None = None) -> int:
@@ -151,12 +169,13 @@ def write_walls(scene: "Scene", path: str, size: float | None = None) -> int:
             p = centre.copy()
             p[axis], p[u], p[v] = position, centre[u] + su * half, centre[v] + sv * half
             corners.append(p)
-    ids = w["id"]
-    data = {"id": ids, "materialId": w["material"], "axis": w["axis"], "sense": w["sense"],
-            "force": scene._cpp.force()[ids]}
-    write_atomically(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(ids), 4, VTK_QUAD),
-                                  cell_data=data, time=scene._cpp.time))
-    return len(ids)
+    rows = w["id"]
+    data = {"id": vtk_split.global_ids(scene, rows).astype(rows.dtype), "materialId": w["material"], "axis": w["axis"],
+            "sense": w["sense"], "force": vtk_split.summed(scene, scene._cpp.force()[rows])}
+    if vtk_split.writes(scene):
+        write_atomically(path, vtu_bytes(np.array(corners).reshape(-1, 3), *_cells(len(rows), 4, VTK_QUAD),
+                                         cell_data=data, time=scene._cpp.time))
+    return len(rows)
 
 
 def write_periodic_cell(scene: "Scene", path: str) -> int:
@@ -164,25 +183,33 @@ def write_periodic_cell(scene: "Scene", path: str) -> int:
     if not scene.periodic:
         raise ValueError("write_periodic_cell: the scene is not periodic (O.periodic is False)")
     corners = _CELL_CORNERS @ np.asarray(scene.cell.hSize, dtype=float).T
-    write_atomically(path, vtu_bytes(corners, *_cells(1, 8, VTK_HEXAHEDRON), time=scene._cpp.time))
+    if vtk_split.writes(scene):     # every process holds the cell alike
+        write_atomically(path, vtu_bytes(corners, *_cells(1, 8, VTK_HEXAHEDRON), time=scene._cpp.time))
     return 1
 
 
 def write_contacts(scene: "Scene", path: str, real_only: bool = True) -> int:
     """Write the contact-force network of ``scene`` to ``path``: one line per contact (only the
-    real ones unless ``real_only`` is false); returns the number of lines."""
+    real ones unless ``real_only`` is false); returns the number of lines. Under mpirun every
+    process calls it and process 0 writes every contact once (vtk_split)."""
     c = _dem.contact_arrays(scene._cpp, bool(real_only))
+    counted = vtk_split.counted_contacts(scene, c["id1"], c["id2"])
+    c = {name: np.asarray(a)[counted] for name, a in c.items()}
     pos = scene._cpp.pos()
     id1, id2 = c["id1"], c["id2"]
     sphere_pair = (c["kind"] == 0)[:, None]
     start = np.where(sphere_pair, pos[id1], c["contactPoint"])
     end = pos[id2] + np.where(sphere_pair, c["shift2"], 0.0)   # the periodic image of body 2
-    points = np.stack([start, end], axis=1).reshape(-1, 3)
-    data = {"forceN": np.linalg.norm(c["normalForce"], axis=1),
+    data = {"start": start, "end": end, "forceN": np.linalg.norm(c["normalForce"], axis=1),
             "normalForce": c["normalForce"], "shearForce": c["shearForce"], "force": c["force"],
-            "penetration": c["penetration"], "id1": id1, "id2": id2, "kind": c["kind"], "real": c["real"]}
-    write_atomically(path, vtu_bytes(points, *_cells(len(id1), 2, VTK_LINE), cell_data=data, time=scene._cpp.time))
-    return len(id1)
+            "penetration": c["penetration"], "id1": vtk_split.global_ids(scene, id1).astype(id1.dtype),
+            "id2": vtk_split.global_ids(scene, id2).astype(id2.dtype), "kind": c["kind"], "real": c["real"]}
+    data = vtk_split.gather(scene, data, ("id1", "id2"))
+    if data is not None:    # (None: another process writes)
+        points = np.stack([data.pop("start"), data.pop("end")], axis=1).reshape(-1, 3)
+        write_atomically(path, vtu_bytes(points, *_cells(len(data["id1"]), 2, VTK_LINE), cell_data=data,
+                                         time=scene._cpp.time))
+    return vtk_split.total(scene, len(id1))
 
 
 class PvdCollection:
@@ -193,10 +220,13 @@ class PvdCollection:
         self.path = path
         self.entries: list[tuple[float, str]] = [(float(t), str(f)) for t, f in entries]
 
-    def add(self, time: float, file: str) -> None:
+    def add(self, time: float, file: str, write: bool = True) -> None:
+        """List ``file`` at ``time`` and rewrite the ``.pvd`` (unless ``write`` is false: under
+        mpirun every process lists it, process 0 writes)."""
         rel = os.path.relpath(os.path.abspath(file), os.path.dirname(os.path.abspath(self.path)))
         self.entries = [e for e in self.entries if e[1] != rel] + [(float(time), rel)]
-        self.write()
+        if write:
+            self.write()
 
     def write(self) -> None:
         lines = ['<?xml version="1.0"?>\n', '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n',
@@ -266,10 +296,13 @@ class VTKRecorder(PyRunner):
             if kind == "walls":
                 write_walls(scene, path, self.wallSize)
             elif kind == "spheres" and "thermal" in self.recorders:
-                write_spheres(scene, path, heat.sphere_arrays(scene, scene.sphere_ids()))
+                if vtk_split.is_split(scene):   # which heat fields a file has is decided per process
+                    from talus.dem import distributed
+                    distributed.refuse("VTKRecorder's 'thermal' recorder")
+                write_spheres(scene, path, heat.sphere_arrays(scene, sphere_rows(scene)))
             else:
                 _WRITERS[kind](scene, path)
-            self._collection(kind).add(scene.time, path)
+            self._collection(kind).add(scene.time, path, write=vtk_split.writes(scene))
 
     def _scene(self) -> "Scene":
         """The scene whose engine list holds this recorder; O for one called by hand outside any
@@ -298,8 +331,6 @@ class VTKExporter:
     ``{"speed": "np.linalg.norm(b.state.vel)"}``."""
 
     def __init__(self, baseName: str, startSnap: int = 0, scene: "Scene | None" = None):
-        from talus.dem import distributed
-        distributed.refuse("VTK output (export.VTKExporter)")
         self.baseName = baseName
         self.startSnap = startSnap
         self._counts: dict[str, int] = {}
@@ -321,7 +352,8 @@ class VTKExporter:
     def exportSpheres(self, what: dict | None = None, numLabel: int | None = None) -> str:
         scene = self.scene
         path = self._path("spheres", numLabel)
-        write_spheres(scene, path, _evaluate(what, [scene.bodies[int(i)] for i in scene.sphere_ids()]))
+        ids = vtk_split.global_ids(scene, sphere_rows(scene))
+        write_spheres(scene, path, _evaluate(what, [scene.bodies[int(i)] for i in ids]))
         return path
 
     def exportFacets(self, numLabel: int | None = None) -> str:
@@ -337,6 +369,7 @@ class VTKExporter:
         ``id`` and the expressions of ``what`` (see :meth:`exportSpheres`)."""
         scene = self.scene
         facets = _dem.facet_arrays(scene._cpp)
+        facets["id"] = vtk_split.global_ids(scene, facets["id"])    # (every process holds every facet)
         chosen = _chosen_ids(facets["id"], ids, "Facet")
         if connectivityTable is None:
             raise ValueError("exportFacetsAsMesh: connectivityTable is required (the node numbers of each facet)")
@@ -352,9 +385,10 @@ class VTKExporter:
             nodes[triangle] = facets["vertices"][row[int(i)]]
         data = {"id": chosen.astype(np.int32), **_evaluate(what, [scene.bodies[int(i)] for i in chosen])}
         path = self._path("facets", numLabel)
-        write_atomically(path, vtu_bytes(nodes, table.reshape(-1), 3 * np.arange(1, len(table) + 1),
-                                      np.full(len(table), VTK_TRIANGLE, dtype=np.uint8), cell_data=data,
-                                      time=scene._cpp.time))
+        if vtk_split.writes(scene):
+            write_atomically(path, vtu_bytes(nodes, table.reshape(-1), 3 * np.arange(1, len(table) + 1),
+                                             np.full(len(table), VTK_TRIANGLE, dtype=np.uint8), cell_data=data,
+                                             time=scene._cpp.time))
         return path
 
     def exportPeriodicCell(self, numLabel: int | None = None) -> str | None:
