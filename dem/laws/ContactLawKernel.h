@@ -2,6 +2,7 @@
 
 // The loops of ContactLawKernel, included by each law's .cpp (they need the Scene).
 #include "dem/laws/ContactLaw.h"
+#include "dem/contact/SphereGeometryBatch.h"
 #include "dem/core/Scene.h"
 #include "dem/base/Threads.h"
 
@@ -105,33 +106,65 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
   // counted by one (Domain::countsContact).
   const Domain* domain = Track ? scene.domain.get() : nullptr;
   ContactEnergy uncounted;
-  for (std::int64_t k = first; k < last; ++k)
-  {
-    Contact& c = list[static_cast<std::size_t>(k)];
+  // A contact's forces, its geometry of this step made.
+  auto forces = [&](Contact& c, std::int64_t k) {
+    law.template force<Track>(c, static_cast<std::size_t>(k), step,
+                              countsContact(domain, static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)) ? energy : uncounted);
+    if (overlapsTooMuch(c, ratio, step.bodies))
+      bad = std::min(bad, k);
+  };
+  auto geometryAndForces = [&](Contact& c, std::int64_t k) [[gnu::always_inline]] {
     ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
-    // The state's records are wider than the contacts' and read only for the contacts that
-    // touch: the hardware prefetchers do not see that pattern, and without the hint the force
-    // waits on the state's first line.
-    if constexpr (Law::usesExtra)
-      if (k + extraPrefetchDistance < last)
-        __builtin_prefetch(step.extra + k + extraPrefetchDistance);
     // A law whose state the geometry does not read (Hertz-Mindlin's stiffnesses) takes the
     // stateless laws' geometry: the spheres' inline fast path, and no read of the state's
     // cache lines for the bonds and moments it does not have.
     const bool sphereFastPath = !Law::geometryUsesExtra && c.kind == ContactGeometryKind::SphereSphere;
     if (!(sphereFastPath ? contactGeometry<true>(c, step.bodies, step.cell, step.dt, nullptr)
                          : updateContactGeometry(c, step.bodies, step.cell, step.dt, Law::geometryUsesExtra ? x : nullptr)))
-      continue;
+      return;
     if (c.fresh)
     {
       c.law = 0;
       law.initialize(c, x, scene);
     }
-    law.template force<Track>(c, static_cast<std::size_t>(k), step,
-                              countsContact(domain, static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)) ? energy : uncounted);
-    if (overlapsTooMuch(c, ratio, step.bodies))
-      bad = std::min(bad, k);
+    forces(c, k);
+  };
+  // Sphere pairs that were in contact go four at a time through the lanes of
+  // sphereGeometryBatch where the processor has them (the same bits as contactGeometry), the
+  // others one by one. Without energy to sum in order, the order is free: a contact writes
+  // only its own record.
+  const bool batched = !Track && !Law::geometryUsesExtra && step.cell == nullptr && sphereBatchAvailable();
+  Contact* batch[sphereBatchWidth];
+  std::int64_t batchIndex[sphereBatchWidth];
+  int waiting = 0;
+  for (std::int64_t k = first; k < last; ++k)
+  {
+    Contact& c = list[static_cast<std::size_t>(k)];
+    // The state's records are wider than the contacts' and read only for the contacts that
+    // touch: the hardware prefetchers do not see that pattern, and without the hint the force
+    // waits on the state's first line.
+    if constexpr (Law::usesExtra)
+      if (k + extraPrefetchDistance < last)
+        __builtin_prefetch(step.extra + k + extraPrefetchDistance);
+    if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere))
+    {
+      geometryAndForces(c, k);
+      continue;
+    }
+    batch[waiting] = &c;
+    batchIndex[waiting] = k;
+    if (++waiting < sphereBatchWidth)
+      continue;
+    const unsigned touching = sphereGeometryBatch(batch, step.bodies, step.dt);
+    for (int i = 0; i < sphereBatchWidth; ++i)
+      if (touching & (1U << i))
+        forces(*batch[i], batchIndex[i]);
+      else
+        geometryAndForces(*batch[i], batchIndex[i]);
+    waiting = 0;
   }
+  for (int i = 0; i < waiting; ++i)
+    geometryAndForces(*batch[i], batchIndex[i]);
   return bad;
 }
 

@@ -1,0 +1,26 @@
+#pragma once
+
+// The geometry of sphere pairs that stay in contact, four at a time in the lanes of AVX2 where
+// the processor has it: contactGeometry's sphere path, the same operations in the same order
+// lane by lane, so the same bits.
+#include "dem/core/Bodies.h"
+#include "dem/core/Contacts.h"
+
+namespace talus::dem
+{
+/// How many contacts sphereGeometryBatch takes at once.
+inline constexpr int sphereBatchWidth = 4;
+
+/// Whether this processor runs sphereGeometryBatch (AVX2), asked once.
+bool sphereBatchAvailable();
+
+/// contactGeometry<true> of four contacts that were real at the last step, between two spheres
+/// and outside a periodic cell: a contact whose spheres still overlap gets its normal, overlap,
+/// contact point, reference radii, turned shear force and shear increment (and is no longer
+/// fresh); one whose spheres came apart is left untouched, for contactGeometry to reset.
+/// Only where sphereBatchAvailable().
+/// @param contacts the four contacts (distinct)
+/// @param dt the time step (s)
+/// @return the lanes updated: bit i for contacts[i]
+unsigned sphereGeometryBatch(Contact* const* contacts, const Bodies& b, double dt);
+} // namespace talus::dem
