@@ -70,6 +70,10 @@ void RVE::setUp(const RVEEngines& engines)
   // The state came from elsewhere: engines must not trust any cache (as after loading a checkpoint).
   ++scene_.bodiesVersion;
   ++scene_.bodyPropertiesVersion;
+  // Detect now, as the first step would: the committed contact list then matches the
+  // collider's references, and a rollback before the first commit (every Newton iteration of
+  // the first load step) needs no new detection.
+  collider_->rebuild(scene_);
   initialOri_ = scene_.bodies.ori;
   commit();
 }

@@ -1,6 +1,9 @@
 // The C++ RVE on a simple cubic lattice of overlapping spheres: the cell ends at (I + G) H0,
-// stress and tangent are dem's, rollback restores the committed state exactly, bad input throws.
+// stress and tangent are dem's, rollback restores the committed state exactly (without a new
+// contact detection), bad input throws.
 #include "fem/GaussPointRVEs.h"
+
+#include "dem/contact/Collider.h"
 
 #include <gtest/gtest.h>
 
@@ -64,6 +67,23 @@ TEST(RVE, RollbackRestoresTheCommittedState)
   EXPECT_EQ(rve.scene().cell.hSize, h);
   EXPECT_EQ(rve.stress(), stress);
   EXPECT_FALSE(rve.hasTrial());
+}
+
+TEST(RVE, RollbackBeforeTheFirstCommitNeedsNoNewDetection)
+{
+  // The RVE detects its contacts when it is made: Newton iterations of the first load step
+  // (deform, rollback, deform, ...) start from a committed list that still matches the
+  // collider's references, and give the same state each time.
+  fem::RVE rve(lattice(), {});
+  const auto& collider = dynamic_cast<const dem::Collider&>(*rve.scene().engines[1]);
+  EXPECT_EQ(collider.rebuilds, 1);
+  rve.deform(gradient(), 10);
+  const std::vector<dem::Vec3> pos = rve.scene().bodies.pos;
+  rve.rollback();
+  rve.deform(gradient(), 10);
+  EXPECT_EQ(rve.scene().bodies.pos, pos);
+  rve.deform(2 * gradient(), 10); // restores the committed state first
+  EXPECT_EQ(collider.rebuilds, 1);
 }
 
 TEST(RVE, RejectsBadInput)
