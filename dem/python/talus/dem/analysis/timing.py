@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from talus.dem.core.scenes import default_scene
 
-__all__ = ["rows", "stats", "reset"]
+__all__ = ["rows", "stats", "runtime", "reset"]
 
 
 def _scene(scene):
@@ -74,6 +74,11 @@ def _load_lines(scene) -> list[str]:
         after = f"{b['imbalance_after']:.3f}" if b["imbalance_after"] else "not measured yet"
         lines.append(f"last rebalance: imbalance {b['imbalance_before']:.3f} before, {after} after")
     return lines
+
+
+def runtime(scene=None) -> int:
+    """The engines' total time in nanoseconds (the last line of stats(); Yade's timing.runtime)."""
+    return sum(engine.execTime for engine in _scene(scene).engines)
 
 
 def reset(scene=None) -> None:

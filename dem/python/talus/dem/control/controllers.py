@@ -71,11 +71,13 @@ class GlobalStiffnessTimeStepper(Engine):
     before any contact; at most 5 % growth per update; ``maxDt`` caps it. Put it after the
     InteractionLoop. As in Yade 2023, it overrides a step set by hand while ``active``.
     ``viscEl``: also bound the step by the contacts' dashpots (cn, cs), Yade's
-    2 timestepSafetyCoefficient m / c per body (its option for ViscElPhys contacts)."""
+    2 timestepSafetyCoefficient m / c per body (its option for ViscElPhys contacts).
+    ``parallelMode`` (Yade's switch for its mpy module) changes nothing: under mpirun the step is
+    always the smallest over every process."""
 
     def __init__(self, active: bool = True, timestepSafetyCoefficient: float = 0.8, defaultDt: float = -1,
                  maxDt: float = 1.7976931348623157e308, timeStepUpdateInterval: int = 1, viscEl: bool = False,
-                 label: str = ""):
+                 parallelMode: bool = False, label: str = ""):
         if not 0 < timestepSafetyCoefficient:
             raise ValueError(f"GlobalStiffnessTimeStepper: timestepSafetyCoefficient must be positive, got "
                              f"{timestepSafetyCoefficient}")
@@ -84,6 +86,7 @@ class GlobalStiffnessTimeStepper(Engine):
         self._cpp = _dem.GlobalStiffnessTimeStepper()
         self.active, self.timestepSafetyCoefficient, self.defaultDt = active, timestepSafetyCoefficient, defaultDt
         self.maxDt, self.timeStepUpdateInterval, self.viscEl, self.label = maxDt, timeStepUpdateInterval, viscEl, label
+        self.parallelMode = bool(parallelMode)
 
     active = cpp_attribute("active", kind=bool)
     viscEl = cpp_attribute("viscEl", kind=bool)

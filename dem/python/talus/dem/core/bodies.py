@@ -517,6 +517,25 @@ class Body:
     groupMask = mask   # Yade's C++ name
 
     @property
+    def subdomain(self) -> int:
+        """Yade's MPI subdomain of the body: under mpirun, once the scene is split, the rank of
+        the process owning it (0 for the walls, facets and boxes every process holds, as Yade's
+        master holds them); before, the value the script set (default 0). Setting it is
+        accepted, not used: Talus's decomposition partitions with Zoltan (yade.mpy)."""
+        from talus.dem import distributed     # (imports this module's package)
+        if distributed.is_split(self._scene):
+            return distributed.rank() if self._scene._cpp.shapeKind(self._row) in ("Sphere", "Clump") else 0
+        return getattr(self._scene, "_subdomains", {}).get(self.id, 0)
+
+    @subdomain.setter
+    def subdomain(self, value: int):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+            raise ValueError(f"body {self.id}: subdomain must be a rank (an integer >= 0), got {value!r}")
+        if not hasattr(self._scene, "_subdomains"):
+            self._scene._subdomains = {}
+        self._scene._subdomains[self.id] = int(value)
+
+    @property
     def radius(self) -> float:
         return float(self._scene._cpp.radius()[self._row])
 
