@@ -558,7 +558,7 @@ void validate(const Loaded& in, const Context& ctx)
                  false);
   validatePlaneShapes(b, ctx);
   for (std::size_t k = 0; k < b.boxes.size(); ++k)
-    if (!b.boxes[k].extents.allFinite() || !(b.boxes[k].extents.minCoeff() > 0))
+    if (!b.boxes[k].extents.allFinite() || !(b.boxes[k].extents.minCoeff() >= 0))   // a plate: one extent 0
       ctx.fail("box shape " + std::to_string(k) + " has invalid extents", false);
   for (std::size_t k = 0; k < b.walls.size(); ++k)
     if (b.walls[k].axis < 0 || b.walls[k].axis > 2 || b.walls[k].sense < -1 || b.walls[k].sense > 1)

@@ -206,6 +206,8 @@ def mpirun(nSteps: int, np: int | None = None, withMerge: bool = False) -> None:
         _before_split(scene)
     scene.timingEnabled = bool(YADE_TIMING)
     scene.run(nSteps, True)
+    if ACCUMULATE_FORCES and distributed.is_split(scene):
+        _sum_held_forces(scene)
     if withMerge:
         mergeScene()
     if YADE_TIMING:
@@ -215,8 +217,9 @@ def mpirun(nSteps: int, np: int | None = None, withMerge: bool = False) -> None:
 
 def _before_split(scene) -> None:
     """What the script's flags ask before Zoltan splits the scene (its next step)."""
-    if DISTRIBUTED_INSERT:
+    if DISTRIBUTED_INSERT and not getattr(scene, "_gathered", False):     # (a merged scene is whole already)
         _gather_inserted(scene)
+        scene._gathered = True
     distributed.rebalanceThreshold = _REBALANCE if REALLOCATE_FREQUENCY > 0 else None
     assigned = len(getattr(scene, "_subdomains", {}))
     if assigned:
@@ -232,7 +235,8 @@ def _record(b) -> tuple:
                       f"gathered as spheres and boxes only")
     size = b.shape.radius if kind == "Sphere" else tuple(b.shape.extents)
     material = b.material.id if b.material is not None else -1
-    return (b.id, kind, tuple(b.state.pos), size, tuple(b.state.ori), tuple(b.state.vel), tuple(b.state.angVel),
+    q = b.state.ori
+    return (b.id, kind, tuple(b.state.pos), size, (q.w, q.x, q.y, q.z), tuple(b.state.vel), tuple(b.state.angVel),
             tuple(b.shape.color), b.shape.wire, b.dynamic, material, b.mask)
 
 
@@ -262,6 +266,17 @@ def _gather_inserted(scene) -> None:
                        mask=mask)
         b = scene.bodies[scene.bodies.append(spec)]
         b.state.vel, b.state.angVel = vel, angVel
+
+
+def _sum_held_forces(scene) -> None:
+    """The forces and torques on the bodies every process holds (walls, facets, boxes), summed
+    over the processes now (collective), so that rank 0 alone reads them with O.forces.f until
+    the next step, as Yade's master reads the forces on its bodies (ACCUMULATE_FORCES)."""
+    split, cpp = distributed.domain(scene), scene._cpp
+    owned = set(int(r) for r in split.ownedBodies(cpp)[0])
+    alive = cpp.alive()
+    held = [r for r in range(cpp.bodyCount()) if alive[r] and r not in owned and split.owns(r)]
+    scene._summedForces = (scene.iter, {int(i): split.forceOf(cpp, int(i)) for i in split.globalIds(held)})
 
 
 def mergeScene() -> None:

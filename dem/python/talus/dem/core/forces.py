@@ -50,14 +50,23 @@ class ForceContainer:
     def f(self, id: int, sync: bool = False):
         """Resultant force on a body in the last (or current) step."""
         if (split := distributed.domain(self._scene)) is not None:   # under mpirun: summed over processes
-            return Vector3(split.forceOf(self._scene._cpp, int(id))[:3])
+            return Vector3(self._summed(split, id)[:3])
         return Vector3(self._row(self._scene._cpp.force(), id))
 
     def t(self, id: int, sync: bool = False):
         """Resultant torque on a body in the last (or current) step."""
         if (split := distributed.domain(self._scene)) is not None:
-            return Vector3(split.forceOf(self._scene._cpp, int(id))[3:])
+            return Vector3(self._summed(split, id)[3:])
         return Vector3(self._row(self._scene._cpp.torque(), id))
+
+    def _summed(self, split, id: int):
+        """Body ``id``'s force and torque summed over the processes (collective), unless yade.mpy
+        summed them at this step already (its mpirun does, for the walls, facets and boxes, so
+        that rank 0 alone may read them, as Yade's master does)."""
+        summed = getattr(self._scene, "_summedForces", None)
+        if summed is not None and summed[0] == self._scene.iter and int(id) in summed[1]:
+            return summed[1][int(id)]
+        return split.forceOf(self._scene._cpp, int(id))
 
     m = t  # Yade's alias
 
