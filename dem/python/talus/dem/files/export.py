@@ -262,10 +262,13 @@ class VTKRecorder(PyRunner):
     ``materialId``, ``mass``, ``force`` are accepted (the sphere file always has them).
     ``wallSize``: side of the squares drawn for walls (default: from the spheres' extent).
     Folders in ``fileName`` are created. Usable in ``O.engines`` and saved by ``O.save``.
+    ``parallelMode`` (Yade's switch for its mpy module, which then writes a piece per process)
+    changes nothing: under mpirun Talus writes the files above, from process 0.
     """
 
     def __init__(self, fileName: str = "", recorders: Sequence[str] = ("spheres", "facets", "intr"),
-                 iterPeriod: int = 1, initRun: bool = False, wallSize: float | None = None, label: str = ""):
+                 iterPeriod: int = 1, initRun: bool = False, wallSize: float | None = None,
+                 parallelMode: bool = False, label: str = ""):
         if isinstance(recorders, str):
             recorders = [recorders]
         kinds: list[str] = []
@@ -279,6 +282,7 @@ class VTKRecorder(PyRunner):
         self.fileName = str(fileName)
         self.recorders = list(recorders)
         self.wallSize = wallSize
+        self.parallelMode = bool(parallelMode)
         self._kinds = kinds
         self._series: dict[str, PvdCollection] = {}
 
