@@ -93,7 +93,8 @@ def test_save_gnuplot_writes_data_and_script(tmp_path):
                                           "implement yet; it is within Talus's scope"),
     ("b = Bo1_Polyhedra_Aabb()", "it belongs to polyhedra, which is outside Talus's scope"),
     ("from yade import polyhedra_utils", "polyhedra_utils is a name of Yade 2023.02a"),
-    ("import yade.mpy", "mpy is a name of Yade 2023.02a that Talus does not implement yet: it belongs to MPI subdomains (distributed DEM; planned)"),
+    ("from yade import bisectionDecomposition", "bisectionDecomposition is a name of Yade 2023.02a that Talus does not "
+                                                "implement: it belongs to MPI subdomains"),
     ("from yade import pack\npack.inTorus", None),                     # not Yade's: Python's own error
     ("O.engines = [MicroMacroAnalyzer()]", None),                       # a typo stays a plain NameError
 ])

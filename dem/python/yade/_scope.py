@@ -36,7 +36,8 @@ RULES: list[tuple[str, str]] = [
     (r"JCFpm", "jointed cohesive-frictional model"),
     (r"Luding", "Luding's model"),
     (r"Mortar", "mortar model"),
-    (r"\bmpy\b|^mpy$|Subdomain|MPIBodyContainer|FluidDomainBbox|domaindecomposition|bisectionDecomposition", "MPI subdomains (distributed DEM; planned)"),
+    (r"\bmpy\b|^mpy$|Subdomain|MPIBodyContainer|FluidDomainBbox|domaindecomposition|bisectionDecomposition", "MPI subdomains (scripts for Yade's mpy run under mpirun, cases/dem/dem_mpy_examples.py; mpy's Subdomain and "
+     "decomposition modules are not Talus's: Zoltan partitions)"),
     (r"hdaps", "laptop accelerometer input (/sys/devices/platform/hdaps)"),
     (r"LubricationPhys|Law2_ScGeom_ImplicitLubricationPhys|LubricationPDFEngine", "lubrication contact law"),
     (r"HertzMindlinExtended|Law2_ScGeom_MindlinPhys_HertzWithLinearShear|FrictMatCDM|CDMPhys|_CDM",
