@@ -1,4 +1,5 @@
 #include "dem/engines/NewtonIntegrator.h"
+#include "dem/engines/SphereIntegrationBatch.h"
 
 #include "dem/core/Clump.h"
 #include "dem/core/Domain.h"
@@ -455,10 +456,31 @@ std::int64_t NewtonIntegrator::integrateRange(Scene& scene, std::int64_t first, 
     b.ori[i] = rotated(b.ori[i], b.angVel[i] * dt);
     return true;
   };
+  // Four free spheres at a time through the lanes of integrateSphereBatch where the processor
+  // has them (the same bits), the other bodies one by one; without energy to sum in order, the
+  // order is free: a body writes only its own state.
+  const bool batched = !Track && !homogeneous && sphereIntegrationAvailable();
+  const SphereStepParameters lanes{invMass_.data(), invInertia_.data(), gravity, dampGravity, damping, dt};
+  auto plain = [&](std::size_t i) {
+    return b.alive[i] && mode_[i] == 0 && b.dynamic[i] && b.blockedDofs[i] == 0 && b.force[i].allFinite()
+           && b.torque[i].allFinite();
+  };
   std::int64_t bad = n;
   for (std::int64_t k = first; k < last; ++k)
-    if (!one(static_cast<std::size_t>(k), gravWorkSum, dampSum))
+  {
+    const auto i = static_cast<std::size_t>(k);
+    if (batched && k + sphereIntegrationWidth <= last && plain(i) && plain(i + 1) && plain(i + 2) && plain(i + 3))
+    {
+      const unsigned turnLeft = integrateSphereBatch(b, i, lanes);
+      for (std::size_t j = 0; j < sphereIntegrationWidth; ++j)
+        if (turnLeft & (1U << j))
+          b.ori[i + j] = rotated(b.ori[i + j], b.angVel[i + j] * dt);
+      k += sphereIntegrationWidth - 1;
+      continue;
+    }
+    if (!one(i, gravWorkSum, dampSum))
       bad = std::min(bad, k);
+  }
   return bad;
 }
 
@@ -500,8 +522,10 @@ void addPeriodicImageWork(Scene& scene)
   const Cell& cell = scene.cell;
   const Mat3 meanL = 0.5 * (cell.velGrad + cell.prevVelGrad);
   double power = 0;
+  // Split over processes, a contact across two of them is held by both: counted by one.
   for (const Contact& c : scene.contacts.list)
-    if (c.real && c.cellDist != Eigen::Vector3i::Zero())
+    if (c.real && c.cellDist != Eigen::Vector3i::Zero()
+        && countsContact(scene.domain.get(), static_cast<std::size_t>(c.id1), static_cast<std::size_t>(c.id2)))
       power += c.force.dot(meanL * cell.shift(c.cellDist));
   scene.energy.velGradWork += power * scene.dt;
 }
