@@ -13,19 +13,25 @@ Set-up:   cases/scenes/fluidised_column.py, unchanged in every run (a smaller va
           pressure_relative_tolerance 0), so that a decomposed fluid differs from the serial one by
           rounding only (with relTol 0.01 in the first corrector it differs by the solver's
           tolerance: 2.4e-10 in the positions after 20 fluid steps). Quick: 100 fluid steps; full: 400.
+          Then the same in the fluidised bed's periodic column (the scene's `periodic`: a periodic
+          cell across x and y, a floor wall at the inlet and a lid, the mesh's x and y patches
+          cyclic, its slabs along z), run as 1 + 1, 1 + 2 and 2 + 2.
 Checked:  cfd.mpi.parity: the largest difference of a body's position in the 2 + 2 run from the
           1 + 1 run's, every 20 fluid steps over the first 100 (the quick run), over the largest
           coordinate (relative; <= 1e-9: round-off). The details hold the same for 1 + 2, 2 + 1
           and 2 + 2 against 1 + 2 (a decomposed DEM against one process with the same fluid ranks:
           0, the same bits), the largest differences over the whole run, and each DEM process's
-          particles, messages and fluid ranks at the last exchange.
+          particles, messages and fluid ranks at the last exchange. cfd.mpi.parity.periodic-bed:
+          the same for the periodic column (the decomposed fluidised bed, 2 + 2 against 1 + 1).
 Result:   quick (2026-12-07): 2 + 2 against 1 + 1 3.6e-16; 2 + 2 against 1 + 2 and 2 + 1 against
           1 + 1: 0. Full (432 spheres, 400 fluid steps): 2 + 2 against 1 + 2 and 2 + 1 against
           1 + 1 still 0 at every sample; against 1 + 1, about 3e-16 over the first 100 fluid steps,
           then growing as the bed forms on the floor (about 2e-13 at step 220, 3e-9 at 300,
           1.7e-6 at 400): the decomposed fluid's rounding, amplified by the contacts as any
-          rounding is in a dense granular flow.
-Produces: the record and chart cfd.mpi.parity.png (the differences over the run).
+          rounding is in a dense granular flow. The periodic column, quick (2026-12-07): 2 + 2
+          against 1 + 1 2.2e-16, 2 + 2 against 1 + 2: 0.
+Produces: the records and charts cfd.mpi.parity and cfd.mpi.parity.periodic-bed (the
+          differences over the run).
 """
 import json
 import shutil
@@ -37,33 +43,35 @@ from pathlib import Path
 import numpy as np
 
 from talus import bench, results
-from talus.coupling.case_builder import Inlet, Outlet, cfd_case
+from talus.coupling.case_builder import PERIODIC, Inlet, Outlet, cfd_case
 
 SCENE = Path(__file__).resolve().parents[1] / "scenes" / "fluidised_column.py"
 L, DX, HEIGHT = 8e-3, 0.8e-3, 16e-3
 
 
-def fluid_case(folder: Path, procs: int, solver: str = "volumeaveraged"):
-    """The column's fluid (the mesh's walls at the DEM's), decomposed into ``procs`` slabs along z,
-    for ``solver`` (the case builder's name: volumeaveraged or pointforce)."""
+def fluid_case(folder: Path, procs: int, solver: str = "volumeaveraged", column: str = "walled"):
+    """The column's fluid (the mesh's walls at the DEM's; with ``column`` periodic, its x and y
+    patches cyclic), decomposed into ``procs`` slabs along z, for ``solver`` (the case builder's
+    name: volumeaveraged or pointforce)."""
     envelope = {"envelope": "gaussian", "envelopeWidth": 1.5e-3, "addedMassCoefficient": 0}
+    sides = {"x0": PERIODIC, "y0": PERIODIC} if column == "periodic" else {}
     return cfd_case(folder, solver=solver, box=((0, 0, 0), (L, L, HEIGHT)),
                     cells=(round(L / DX), round(L / DX), round(HEIGHT / DX)), rho=1000.0, nu=1e-5,
                     gravity=(0, 0, -9.81), coupling_interval=1e-4, procs=procs, write_every=100000,
                     pressure_tolerance=1e-13, pressure_relative_tolerance=0,
-                    boundaries={"z0": Inlet((0, 0, 5e-3), ramp=5e-3), "z1": Outlet()},
+                    boundaries={"z0": Inlet((0, 0, 5e-3), ramp=5e-3), "z1": Outlet(), **sides},
                     coupling_properties=envelope if solver == "volumeaveraged" else None)
 
 
 def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str = "volumeaveraged",
-        drop: float = 0.0) -> dict:
+        drop: float = 0.0, column: str = "walled") -> dict:
     """The scene with ``dem`` processes and ``fluid`` fluid ranks (the spheres starting at ``drop``
-    m/s vertically); its JSON output."""
-    name = f"run-{dem}-{fluid}-{solver}-{drop}"
-    case = fluid_case(folder / name, fluid, solver)
+    m/s vertically; the column walled or periodic); its JSON output."""
+    name = f"run-{dem}-{fluid}-{solver}-{drop}-{column}"
+    case = fluid_case(folder / name, fluid, solver, column)
     out = folder / f"{name}.json"
     talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENE), str(case.path), str(fluid), str(steps),
-             str(out), str(layers), case.solver, str(drop)]
+             str(out), str(layers), case.solver, str(drop), column]
     # the loopback for every process's traffic, as FoamCoupling asks for in one process
     command = talus if dem == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "btl_tcp_if_include",
                                       "lo", "--mca", "oob_tcp_if_include", "lo", "-np", str(dem), *talus]
@@ -80,25 +88,21 @@ def difference(a: dict, b: dict) -> np.ndarray:
     return np.abs(x - y).reshape(len(x), -1).max(axis=1) / np.abs(x).max()
 
 
-def main():
-    args = results.case_arguments(__doc__).parse_args()
-    import matplotlib
-    matplotlib.use("Agg")
+def compare(case: results.Case, runs: dict, steps: int, column: str, suffix: str | None):
+    """Record and chart how far the runs ``runs`` (by DEM processes and fluid ranks) of one column
+    lie from the 1 + 1 run and from the 1 + 2 run."""
     import matplotlib.pyplot as plt
-    case = results.Case("cfd.mpi.parity", quick=args.quick, folder=args.results)
-    steps, layers = (100, 8) if args.quick else (400, 12)
-    with tempfile.TemporaryDirectory() as tmp:
-        runs = {(d, f): run(d, f, steps, layers, Path(tmp)) for d, f in [(1, 1), (1, 2), (2, 1), (2, 2)]}
     serial = runs[1, 1]
-    pairs = {"2+2 vs 1+1": (runs[2, 2], serial), "1+2 vs 1+1": (runs[1, 2], serial),
-             "2+1 vs 1+1": (runs[2, 1], serial), "2+2 vs 1+2": (runs[2, 2], runs[1, 2])}
+    pairs = {f"{d}+{f} vs 1+1": (r, serial) for (d, f), r in runs.items() if (d, f) != (1, 1)}
+    pairs["2+2 vs 1+2"] = (runs[2, 2], runs[1, 2])
     curves = {label: difference(a, b) for label, (a, b) in pairs.items()}
     samples = np.arange(len(serial["positions"])) * 20
     samples[-1] = steps
     checked = {label: float(c[samples <= 100].max()) for label, c in curves.items()}
     worst = {label: float(c.max()) for label, c in curves.items()}
     lift = np.asarray(serial["lift"])
-    print(f"{len(serial['positions'][0]) - 5} spheres, {steps} fluid steps x {serial['substeps']} DEM steps; "
+    spheres = len(serial["positions"][0]) - (5 if column == "walled" else 2)   # less the walls
+    print(f"{column} column: {spheres} spheres, {steps} fluid steps x {serial['substeps']} DEM steps; "
           f"hydrodynamic lift {lift[0]:.3e} .. {lift[-1]:.3e} N")
     for label, value in worst.items():
         print(f"{label}: largest position difference / largest coordinate {checked[label]:.3e} over the first 100 "
@@ -112,13 +116,27 @@ def main():
     ax.axhline(1e-9, color="grey", lw=0.8, ls=":", label="checked bound (first 100 fluid steps)")
     ax.set_xlabel("fluid step")
     ax.set_ylabel("max |x - x_ref| / max |x| (0 drawn at 1e-18)")
-    ax.set_title("Coupled fluidised column: DEM processes + fluid ranks")
+    ax.set_title("Coupled fluidised column" + (" (periodic bed)" if column == "periodic" else "")
+                 + ": DEM processes + fluid ranks")
     ax.legend(fontsize=7)
     case.record("largest position difference of the 2 DEM + 2 fluid ranks run from the 1 + 1 run over the first "
                 "100 fluid steps, over the largest coordinate", checked["2+2 vs 1+1"], "the 1 + 1 run (round-off)", 1e-9,
-                differences=checked, differences_over_the_run=worst, spheres=len(serial["positions"][0]) - 5, fluid_steps=steps,
-                processes={f"{d}+{f}": r["processes"] for (d, f), r in runs.items()})
-    case.save_chart(fig)
+                suffix=suffix, differences=checked, differences_over_the_run=worst, spheres=spheres,
+                fluid_steps=steps, processes={f"{d}+{f}": r["processes"] for (d, f), r in runs.items()})
+    case.save_chart(fig, suffix)
+
+
+def main():
+    args = results.case_arguments(__doc__).parse_args()
+    import matplotlib
+    matplotlib.use("Agg")
+    case = results.Case("cfd.mpi.parity", quick=args.quick, folder=args.results)
+    steps, layers = (100, 8) if args.quick else (400, 12)
+    with tempfile.TemporaryDirectory() as tmp:
+        walled = {(d, f): run(d, f, steps, layers, Path(tmp)) for d, f in [(1, 1), (1, 2), (2, 1), (2, 2)]}
+        periodic = {(d, f): run(d, f, steps, layers, Path(tmp), column="periodic") for d, f in [(1, 1), (1, 2), (2, 2)]}
+    compare(case, walled, steps, "walled", None)
+    compare(case, periodic, steps, "periodic", "periodic-bed")
 
 
 if __name__ == "__main__":

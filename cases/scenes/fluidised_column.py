@@ -6,13 +6,16 @@ Spheres (d = 1 mm, rho_p = 2500, FrictMat, linear Cundall-Strack law) start on a
 1.25 mm apart in an 8 x 8 mm column with walls (the DEM's and the mesh's), fall onto the floor
 through water-like fluid (rho = 1000, nu = 1e-5) that enters at the floor (the inlet, ramped)
 and leaves at the top; the volume-averaged solver's drag is re-evaluated at every DEM sub-step
-(implicitDrag).
+(implicitDrag). With `periodic`, the column is the fluidised bed's (cases/cfd/cfd_fluidised_bed.py):
+periodic across x and y (a periodic cell 8 x 8 mm wide and 64 mm tall, the mesh's x and y
+patches cyclic), a floor wall at the inlet and a lid at the outlet, no side walls.
 
 Arguments: the fluid case folder (written, meshed and decomposed by the caller:
 cfd_mpi_parity.fluid_case), its fluid ranks, the fluid steps, the output file, and optionally the
 layers of spheres (8: 288 spheres), the solver (talusVolumeAveragedFoam, or
-talusPointForceFoam with a point-force case) and a vertical velocity the spheres start with
-(m/s, default 0: thrown down, they cross the DEM processes' boundaries within a few fluid steps). The output (JSON): every body's
+talusPointForceFoam with a point-force case), a vertical velocity the spheres start with
+(m/s, default 0: thrown down, they cross the DEM processes' boundaries within a few fluid steps)
+and the column (`walled`, the default, or `periodic`). The output (JSON): every body's
 position every 20 fluid steps and after the last, the hydrodynamic force on all particles after
 each exchange, each process's particles, messages and fluid ranks exchanged with at the last exchange, and the
 particles whose coupling records it handed to another process after the DEM migrated them).
@@ -28,8 +31,14 @@ case, procs, steps, output = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sy
 L, D, SPACING, LAYERS = 8e-3, 1e-3, 1.25e-3, int(sys.argv[5]) if len(sys.argv) > 5 else 8
 SOLVER = sys.argv[6] if len(sys.argv) > 6 else "talusVolumeAveragedFoam"
 DROP = float(sys.argv[7]) if len(sys.argv) > 7 else 0.0
+COLUMN = sys.argv[8] if len(sys.argv) > 8 else "walled"
+if COLUMN not in ("walled", "periodic"):
+    raise SystemExit(f"column {COLUMN!r}: walled or periodic")
 RHO, NU, G = 1000.0, 1e-5, 9.81
 
+if COLUMN == "periodic":
+    O.periodic = True
+    O.cell.setBox(L, L, 8 * L)
 O.materials.append(FrictMat(young=5e6, poisson=0.3, frictionAngle=0.3, density=2500))
 jitter = np.random.default_rng(1).uniform(-0.1e-3, 0.1e-3, size=(6 * 6 * LAYERS, 3))
 k = 0
@@ -39,10 +48,13 @@ for layer in range(LAYERS):
             x = np.array([0.875e-3 + i * SPACING, 0.875e-3 + j * SPACING, 0.75e-3 + layer * SPACING]) + jitter[k]
             O.bodies.append(utils.sphere(tuple(x), D / 2))
             k += 1
-for axis in range(3):
-    O.bodies.append(utils.wall(0, axis=axis, sense=1))
-    if axis < 2:
-        O.bodies.append(utils.wall(L, axis=axis, sense=-1))
+if COLUMN == "periodic":     # the fluidised bed's floor and lid (the mesh's inlet and outlet)
+    O.bodies.append([utils.wall(0, axis=2, sense=1), utils.wall(2 * L, axis=2, sense=-1)])
+else:
+    for axis in range(3):
+        O.bodies.append(utils.wall(0, axis=axis, sense=1))
+        if axis < 2:
+            O.bodies.append(utils.wall(L, axis=axis, sense=-1))
 O.engines = [
     ForceResetter(),
     InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
