@@ -39,7 +39,7 @@ openfoam_src=${TALUS_OPENFOAM_SRC:-/opt/talus/openfoam-v1912}
 packages=(
   g++ make cmake git pkg-config ca-certificates
   libgtest-dev googletest
-  libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libsuitesparse-dev libtbb-dev
+  libeigen3-dev libcgal-dev libgmp-dev libmpfr-dev libsuitesparse-dev libtbb-dev libhypre-dev
   libopenmpi-dev openmpi-bin libhdf5-openmpi-dev coinor-libclp-dev libtrilinos-zoltan-dev
   pybind11-dev python3-dev python3-numpy python3-scipy python3-matplotlib python3-pytest python3-h5py python3-mpi4py
   openfoam flex libfl-dev bzip2 zlib1g-dev

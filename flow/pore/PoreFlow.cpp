@@ -454,10 +454,10 @@ void PoreFlow::solve()
 {
   if (!net_)
     throw std::logic_error("FlowEngine: no pore network yet (triangulate first)");
-  if (params.useSolver != 0 && params.useSolver != 3 && params.useSolver != 4)
-    throw std::invalid_argument(
-        "FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), or Talus's 4 (multigrid), got " +
-        std::to_string(params.useSolver));
+  if (params.useSolver != 0 && params.useSolver != 3 && params.useSolver != 4 && params.useSolver != 5)
+    throw std::invalid_argument("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), or Talus's 4 "
+                                "(multigrid) or 5 (hypre's BoomerAMG), got " +
+                                std::to_string(params.useSolver));
   if (params.fluidBulkModulus < 0 || !std::isfinite(params.fluidBulkModulus))
     throw std::invalid_argument("FlowEngine.fluidBulkModulus must be >= 0 (0: incompressible)");
   const bool compressible = params.fluidBulkModulus > 0;

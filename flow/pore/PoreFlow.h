@@ -24,7 +24,7 @@ struct FlowParameters : ConductanceParameters, ViscousParameters
   /// true: the boundary is the packing's extreme (x - r or x + r); false: `wallPosition`
   std::array<bool, kBoundaries> boundaryUseMaxMin{true, true, true, true, true, true};
   std::array<double, kBoundaries> wallPosition{};
-  int useSolver = 3; ///< 0 Gauss-Seidel, 3 CHOLMOD (Yade's numbers); Talus: 4 multigrid (SolverKind)
+  int useSolver = 3; ///< 0 Gauss-Seidel, 3 CHOLMOD (Yade's numbers); Talus: 4 multigrid, 5 BoomerAMG (SolverKind)
   double tolerance = 1e-6; ///< Gauss-Seidel relative change
   double relax = 1.9;
   /// Bulk modulus of the fluid; 0: incompressible (Yade's fluidBulkModulus). With K_f > 0 each
@@ -157,7 +157,7 @@ public:
   /// Solve the pressures for the current boundary values (re-using the factor if the mesh and
   /// boundary types are unchanged).
   /// @throws std::logic_error before the first build
-  /// @throws std::invalid_argument for useSolver not 0, 3 or 4, a negative fluidBulkModulus, a
+  /// @throws std::invalid_argument for useSolver not 0, 3, 4 or 5, a negative fluidBulkModulus, a
   ///         compressible fluid without a time step, or a closed network of incompressible fluid
   ///         whose volume sources do not sum to zero
   /// @throws std::runtime_error from the solver (a singular system, no convergence)

@@ -351,10 +351,14 @@ void PressureSolver::prepare(SolverKind kind)
 {
   if (kind == SolverKind::Cholmod && !numeric_ && nUnknown_ > 0)
     factorize();
-  if (kind == SolverKind::Multigrid && !multigrid_ && nUnknown_ > 0)
+  const bool amg = kind == SolverKind::BoomerAmg;
+  if (((kind == SolverKind::Multigrid && !multigrid_) || (amg && !boomerAmg_)) && nUnknown_ > 0)
   {
     const auto start = std::chrono::steady_clock::now();
-    multigrid_ = std::make_unique<Multigrid>(fullRows());
+    if (amg)
+      boomerAmg_ = std::make_unique<BoomerAmg>(fullRows());
+    else
+      multigrid_ = std::make_unique<Multigrid>(fullRows());
     counters_.multigridSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++counters_.multigridSetups;
   }
@@ -423,6 +427,7 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
   const std::vector<int> oldNeighbour = std::move(neighbour_);
   numeric_ = false;
   multigrid_.reset();
+  boomerAmg_.reset();
   if (cholmod_->a)
     cholmod_free_sparse(&cholmod_->a, &cholmod_->common);
   rowOfPore_.assign(n, -1);
@@ -625,14 +630,15 @@ void PressureSolver::solve(SolverKind kind, std::vector<double>& p, const std::v
     iterations_ = 1;
     return;
   }
-  if (kind == SolverKind::Multigrid)
+  if (kind == SolverKind::Multigrid || kind == SolverKind::BoomerAmg)
   {
     prepare(kind);
     const auto start = std::chrono::steady_clock::now();
     std::vector<double> x(n);
     for (std::size_t r = 0; r < n; ++r)
       x[r] = p[static_cast<std::size_t>(poreOfRow_[r])];
-    iterations_ = multigrid_->solve(b, x, multigridTolerance, kMultigridIterations);
+    iterations_ = kind == SolverKind::Multigrid ? multigrid_->solve(b, x, multigridTolerance, kMultigridIterations)
+                                               : boomerAmg_->solve(b, x, multigridTolerance, kMultigridIterations);
     for (std::size_t r = 0; r < n; ++r)
       p[static_cast<std::size_t>(poreOfRow_[r])] = x[r];
     counters_.multigridSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -3,11 +3,13 @@
 //   sum_j k_ij (p_i - p_j) = q_i
 // over its finite neighbours j (k_ij: throat conductance, q_i: imposed source). Symmetric positive
 // definite as soon as every connected group of unknown pores touches an imposed pressure.
-// Three solvers: CHOLMOD Cholesky (simplicial for small systems, supernodal above; the factor is
+// Four solvers: CHOLMOD Cholesky (simplicial for small systems, supernodal above; the factor is
 // kept until the matrix changes, ordered by nested dissection on the pore centres), conjugate
-// gradients preconditioned by algebraic multigrid (for systems whose factor costs more than the
-// solves it would serve: large networks remeshed often, or too large for a factor to fit in
-// memory) and Gauss-Seidel with over-relaxation (Yade's useSolver=0) for comparison.
+// gradients preconditioned by algebraic multigrid, Talus's aggregation one or hypre's classical
+// BoomerAMG (for systems whose factor costs more than the solves it would serve: large networks
+// remeshed often, or too large for a factor to fit in memory) and Gauss-Seidel with
+// over-relaxation (Yade's useSolver=0) for comparison.
+#include "flow/pore/solver/BoomerAmg.h"
 #include "flow/pore/solver/FactorMemory.h"
 #include "flow/pore/solver/Multigrid.h"
 #include "flow/pore/PoreNetwork.h"
@@ -25,7 +27,12 @@ enum class SolverKind
   /// last pressures, to a relative residual of PressureSolver::multigridTolerance. No factor:
   /// a new matrix costs a cheap set-up, every solve some tens of cycles.
   Multigrid = 4,
+  /// Talus: conjugate gradients preconditioned by hypre's BoomerAMG (BoomerAmg.h, classical
+  /// algebraic multigrid), from the last pressures, to the same relative residual; when Talus
+  /// was built with hypre (BoomerAmg::available()).
+  BoomerAmg = 5,
 };
+
 
 /// The pressure system of a pore network, sum_j k_ij (p_j - p_i) = q_i over the pores of
 /// unknown pressure, and its solution by one of SolverKind.
@@ -66,8 +73,8 @@ public:
   /// symbolic analysis.
   int supernodalFrom = 2500;
   double tolerance = 1e-7; ///< Gauss-Seidel: relative change of the pressure field
-  /// Multigrid: ||b - A p|| <= multigridTolerance ||b|| (the boundary fluxes then agree with
-  /// CHOLMOD's to about 1e-12)
+  /// Multigrid and BoomerAMG: ||b - A p|| <= multigridTolerance ||b|| (the boundary fluxes then
+  /// agree with CHOLMOD's to about 1e-12)
   double multigridTolerance = 1e-10;
   double relax = 1.9;      ///< Gauss-Seidel over-relaxation (Yade's relax)
   int maxIterations = 100000;
@@ -85,7 +92,7 @@ public:
     int factorizations = 0;
     double analyseSeconds = 0;
     double factorizeSeconds = 0;
-    int multigridSetups = 0;
+    int multigridSetups = 0;     ///< multigrid or BoomerAMG hierarchies built
     int multigridIterations = 0; ///< conjugate-gradient iterations over all multigrid solves
     double multigridSeconds = 0; ///< set-ups and solves
   };
@@ -121,6 +128,7 @@ private:
   /// one again has the same solution, still in the solver's x (a static packing's every step).
   std::vector<double> solvedRhs_;
   std::unique_ptr<Multigrid> multigrid_; ///< the current matrix's hierarchy (null: not built)
+  std::unique_ptr<BoomerAmg> boomerAmg_; ///< the same with hypre's BoomerAMG
   int iterations_ = 0;
   Counters counters_;
 };

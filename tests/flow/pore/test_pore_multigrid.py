@@ -1,6 +1,7 @@
-"""The multigrid pressure solver (FlowEngine.useSolver=4: conjugate gradients preconditioned by
-smoothed-aggregation algebraic multigrid) against CHOLMOD's factor (useSolver=3) on the same
-networks: same pressures to its tolerance, in steady and transient solves."""
+"""The multigrid pressure solvers (FlowEngine.useSolver=4: conjugate gradients preconditioned by
+smoothed-aggregation algebraic multigrid; useSolver=5: by hypre's BoomerAMG) against CHOLMOD's
+factor (useSolver=3) on the same networks: same pressures to their tolerance, in steady and
+transient solves."""
 import numpy as np
 import pytest
 
@@ -25,9 +26,10 @@ def engine(solver, pos, rad, **kw):
     return flow
 
 
-def test_same_pressures_and_fluxes_as_cholmod_without_a_factor():
+@pytest.mark.parametrize("solver", [4, 5])
+def test_same_pressures_and_fluxes_as_cholmod_without_a_factor(solver):
     pos, rad = cloud()
-    direct, mg = engine(3, pos, rad), engine(4, pos, rad)
+    direct, mg = engine(3, pos, rad), engine(solver, pos, rad)
     assert mg.nCells() > 10000
     p, q = direct.pressures, mg.pressures
     assert np.max(np.abs(q - p)) < 1e-7 * np.max(np.abs(p))
@@ -44,12 +46,13 @@ def test_same_pressures_and_fluxes_as_cholmod_without_a_factor():
     assert np.max(np.abs(mg.pressures - q)) == 0
 
 
-def test_moving_spheres_and_a_compressible_fluid_match_cholmod():
+@pytest.mark.parametrize("solver", [4, 5])
+def test_moving_spheres_and_a_compressible_fluid_match_cholmod(solver):
     pos, rad = cloud()
     rng = np.random.default_rng(3)
     moved = pos + rng.uniform(-1e-3, 1e-3, pos.shape) * rad[:, None]
     for bulk in (0.0, 1e3):
-        direct, mg = engine(3, pos, rad), engine(4, pos, rad)
+        direct, mg = engine(3, pos, rad), engine(solver, pos, rad)
         for flow in (direct, mg):
             flow.fluidBulkModulus = bulk
             flow.moveVertices(moved, 1e-4)
@@ -63,5 +66,5 @@ def test_moving_spheres_and_a_compressible_fluid_match_cholmod():
 
 
 def test_unknown_solver_is_refused_naming_the_choices():
-    with pytest.raises(ValueError, match="4 \\(multigrid\\)"):
-        FlowEngine(useSolver=5)
+    with pytest.raises(ValueError, match="4 \\(multigrid\\) or 5 \\(hypre's BoomerAMG\\)"):
+        FlowEngine(useSolver=6)

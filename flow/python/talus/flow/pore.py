@@ -14,8 +14,9 @@ pressures solve Σ_j k_ij (p_i − p_j) = 0 with imposed pressures on the bounda
 ``bndCondIsPressure`` is set (no flux on the others; with none and an incompressible fluid the
 net volume change must be zero and the mean pressure is ``pZero``), by CHOLMOD (``useSolver=3``, the factor is
 kept until the mesh or the boundary types change), Gauss–Seidel (``useSolver=0``) or, a Talus
-addition, conjugate gradients preconditioned by algebraic multigrid (``useSolver=4``: no factor,
-for large networks remeshed often or too large for a factor).
+addition, conjugate gradients preconditioned by algebraic multigrid (``useSolver=4``, Talus's
+aggregation multigrid, or ``useSolver=5``, hypre's BoomerAMG, faster: no factor, for large
+networks remeshed often or too large for a factor).
 
 Attribute and method names are Yade's. Boundaries are numbered as Yade's ``wallIds``: 0 xmin,
 1 xmax, 2 ymin, 3 ymax, 4 zmin, 5 zmax. Sign convention of ``getBoundaryFlux`` as Yade: the sum of
@@ -140,7 +141,7 @@ class FlowEngine(Engine):
     ``boundaryUseMaxMin`` [1]*6 (boundary at the packing's extreme x±r; else at
     ``wallPosition[k]``), ``permeabilityFactor`` 1, ``viscosity`` 1, ``clampKValues`` True,
     ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
-    solid surface in the hydraulic radius), ``useSolver`` 3 (Talus: 4 multigrid), ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
+    solid surface in the hydraulic radius), ``useSolver`` 3 (Talus: 4 multigrid, 5 hypre's BoomerAMG), ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
     ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), ``yadeInsertionOrder``
     False (Talus: True inserts the spheres one by one and keeps CGAL's vertex order as Yade does, slower, the
     same numbers as Yade to round-off; False inserts them as one spatially sorted range and takes the facet
@@ -239,8 +240,9 @@ class FlowEngine(Engine):
         if name in _BOUNDARY_LISTS:
             setattr(params, name, _boundary_list(name, value))
         elif name in _SCALARS:
-            if name == "useSolver" and int(value) not in (0, 3, 4):
-                raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), or Talus's 4 (multigrid)")
+            if name == "useSolver" and int(value) not in (0, 3, 4, 5):
+                raise ValueError("FlowEngine.useSolver must be 0 (Gauss-Seidel) or 3 (CHOLMOD), or Talus's 4 (multigrid) "
+                                 "or 5 (hypre's BoomerAMG)")
             setattr(params, name, _finite_number(name, value) if name in _REALS else value)
         elif name in _THERMAL_ATTRIBUTES:
             self._thermal[name] = _thermal_value(name, value)
@@ -387,7 +389,7 @@ class FlowEngine(Engine):
 
     def solverStats(self) -> dict:
         """Solver work so far: CHOLMOD's symbolic analyses, numeric factorisations and their
-        seconds; the multigrid's (``useSolver=4``) set-ups, conjugate-gradient iterations and
+        seconds; the multigrid's (``useSolver=4`` or 5) set-ups, conjugate-gradient iterations and
         seconds."""
         c = self._flow.solverCounters()
         return dict(analyses=c.analyses, factorizations=c.factorizations,
