@@ -356,7 +356,21 @@ void PressureSolver::prepare(SolverKind kind)
   {
     const auto start = std::chrono::steady_clock::now();
     if (amg)
-      boomerAmg_ = std::make_unique<BoomerAmg>(fullRows());
+    {
+      SparseRows rows = fullRows();
+      // BoomerAMG's smoother skips a row without diagonal, which would leave that pore at its
+      // initial pressure: a pore whose throats all have zero conductance is named instead
+      for (std::size_t r = 0; r < static_cast<std::size_t>(rows.n); ++r)
+      {
+        const auto first = rows.column.begin() + rows.start[r];
+        const auto last = rows.column.begin() + rows.start[r + 1];
+        const auto d = std::lower_bound(first, last, static_cast<int>(r));
+        if (d == last || *d != static_cast<int>(r) || !(rows.value[static_cast<std::size_t>(d - rows.column.begin())] > 0))
+          throw std::runtime_error("pressure system is singular: pore " + std::to_string(poreOfRow_[r]) +
+                                   " is connected to no imposed pressure (its throats have no conductance)");
+      }
+      boomerAmg_ = std::make_unique<BoomerAmg>(rows);
+    }
     else
       multigrid_ = std::make_unique<Multigrid>(fullRows());
     counters_.multigridSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -358,7 +358,8 @@ TEST(PoreFlowErrors, NoImposedPressureNeedsABalancedVolumeChange)
 TEST(PoreFlowErrors, PoreConnectedToNoImposedPressureIsNamed)
 {
   // A pore whose throats all have zero conductance is a group of pores (of one) connected to
-  // no imposed pressure: the factorisation (simplicial for this size) reports it by its index.
+  // no imposed pressure: the factorisation (simplicial for this size) reports it by its index,
+  // and so does BoomerAMG's set-up (its smoother would leave the pore at its initial pressure).
   PoreFlow f = yFlow();
   f.build(loadPacking());
   PoreNetwork net = f.network();
@@ -370,17 +371,20 @@ TEST(PoreFlowErrors, PoreConnectedToNoImposedPressureIsNamed)
   for (int t : net.pores[lonely].throats)
     if (t >= 0)
       net.throats[static_cast<std::size_t>(t)].conductance = 0;
-  PressureSolver solver;
-  solver.setSystem(net, imposed);
-  std::vector<double> p(net.pores.size(), 0.0);
-  try
+  for (const SolverKind kind : {SolverKind::Cholmod, SolverKind::BoomerAmg})
   {
-    solver.solve(SolverKind::Cholmod, p);
-    FAIL() << "isolated pore accepted";
-  }
-  catch (const std::runtime_error& e)
-  {
-    EXPECT_NE(std::string(e.what()).find("pore " + std::to_string(lonely) + " "), std::string::npos) << e.what();
+    PressureSolver solver;
+    solver.setSystem(net, imposed);
+    std::vector<double> p(net.pores.size(), 0.0);
+    try
+    {
+      solver.solve(kind, p);
+      FAIL() << "isolated pore accepted by solver " << static_cast<int>(kind);
+    }
+    catch (const std::runtime_error& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("pore " + std::to_string(lonely) + " "), std::string::npos) << e.what();
+    }
   }
 }
 
