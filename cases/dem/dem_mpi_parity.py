@@ -42,7 +42,7 @@ from talus import bench, results
 SCENES = Path(__file__).resolve().parents[1] / "scenes"
 STEPS = 1000
 #: Each scene's arguments after its spheres, steps and output file.
-ARGUMENTS = {"periodic_cell": ["triax", "finish"]}
+ARGUMENTS = {"periodic_cell": ["triax", "finish"], "periodic_clumps": ["triax"]}
 
 
 def run(scene: str, processes: int | None, spheres: int, folder: Path) -> dict:

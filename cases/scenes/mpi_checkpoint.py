@@ -4,8 +4,9 @@ checkpoint's tests and timings: tests/dem/distributed/test_mpi_checkpoint.py,
 cases/dem/dem_mpi_checkpoint.py).
 
 Arguments: mode, spheres, steps, checkpoint file, output file (JSON), and optionally the contact
-law (linear, or hertz: Hertz-Mindlin, whose contacts keep their shear force) and `energy` (the
-energy tracked from the start: O.energy's terms in the output).
+law (linear, or hertz: Hertz-Mindlin, whose contacts keep their shear force) and flags:
+`energy` (the energy tracked from the start: O.energy's terms in the output), `clumps` (three
+spheres of every four made clumps of two spheres inside them, radii 0.7 r and 0.5 r).
 - `save`: spheres falling onto the walls of a box; `steps` steps, O.save, `steps` steps more;
 - `load`: O.load (the engines come from the file), then `steps` steps.
 The output holds the positions of every body by id after the last step, the seconds O.save or
@@ -21,7 +22,8 @@ from talus.dem import distributed
 
 mode, spheres, steps, checkpoint, output = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4], sys.argv[5]
 law = sys.argv[6] if len(sys.argv) > 6 else "linear"
-energy = len(sys.argv) > 7 and sys.argv[7] == "energy"
+flags = set(sys.argv[7:])
+energy = "energy" in flags
 
 
 def slowest(seconds):
@@ -39,7 +41,16 @@ if mode == "save":
     side = (spheres / 400.0) ** (1 / 3.0)
     cloud = pack.SpherePack()
     cloud.makeCloud((0, 0, 0), (side, side, side), rMean=0.05, rRelFuzz=0.3, num=spheres, seed=1)
-    cloud.toSimulation()
+    if "clumps" in flags:
+        for k, (c, r) in enumerate(cloud):
+            if k % 4 == 3:
+                O.bodies.append(utils.sphere(c, r))
+            else:
+                d = Vector3(1, k % 3 - 1, k % 2)                     # one of six directions
+                d *= r / d.norm()
+                O.bodies.appendClumped([utils.sphere(c - .3 * d, .7 * r), utils.sphere(c + .5 * d, .5 * r)])
+    else:
+        cloud.toSimulation()
     for axis in range(3):
         O.bodies.append(utils.wall(0, axis=axis, sense=1))
         if axis < 2:

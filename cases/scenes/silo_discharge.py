@@ -7,8 +7,9 @@ NaN for the erased ones; the spheres left and the steps they were counted at; th
 per process; the floor's vertical force summed over its facets; under mpirun the load measured
 per process and the rebalances, talus.dem.distributed.balance()); then optionally `side=N`, the
 spheres along a side of the lattice (default: enough for eight layers, at least 8: a wide silo;
-fewer make it tall), and `rebalance=X`, talus.dem.distributed.rebalanceThreshold (a number, or
-`none`).
+fewer make it tall), `rebalance=X`, talus.dem.distributed.rebalanceThreshold (a number, or
+`none`), and `clumps=1`: three spheres of every four made clumps of two spheres inside them
+(radii 0.7 and 0.5 of the sphere's), a clump erased with its members as it leaves.
 
 A square box of facets open at the top (16 triangles), its floor with a square orifice four
 diameters wide; spheres of radii 0.9-1 r on a jittered lattice above the floor, falling from
@@ -60,21 +61,33 @@ for x0, x1, y0, y1 in ((0, width, 0, a), (0, width, b, width), (0, a, a, b), (b,
     floor += rectangle((x0, y0, 0), (x1, y0, 0), (x1, y1, 0), (x0, y1, 0))
 floor_ids = O.bodies.append(floor)
 O.bodies.append(walls)
-falling = O.bodies.append([utils.sphere(tuple(c), r, material=material) for c, r in zip(centres, radii)])
-left = set(falling)
+clumped = options.get("clumps") == "1"
+falling, members = [], {}                           # spheres and clumps; each clump's members
+for n, (c, r) in enumerate(zip(centres, radii)):
+    if not clumped or n % 4 == 3:
+        falling.append(O.bodies.append(utils.sphere(tuple(c), r, material=material)))
+        continue
+    d = Vector3(1, n % 3 - 1, n % 2)                # one of six directions
+    d *= r / d.norm()
+    clump, ids = O.bodies.appendClumped([utils.sphere(Vector3(*c) - .3 * d, .7 * r, material=material),
+                                         utils.sphere(Vector3(*c) + .5 * d, .5 * r, material=material)])
+    falling.append(clump)
+    members[clump] = ids
+left, erased = set(falling), []
 samples, counts = [], []
 
 
 def erase_fallen():
     z = distributed.positions()[:, 2]               # every body, on every process
     for i in sorted(i for i in left if z[i] < exit_z):
-        O.bodies.erase(i)
+        O.bodies.erase(i, eraseClumpMembers=True)
         left.discard(i)
+        erased.extend([i] + members.get(i, []))
 
 
 def sample():
     p = distributed.positions()
-    p[sorted(set(falling) - left)] = np.nan         # erased bodies: no position
+    p[sorted(erased)] = np.nan                      # erased bodies: no position
     samples.append(p.tolist())
     counts.append([O.iter, len(left)])
 

@@ -1,6 +1,7 @@
 #include "dem/distributed/MpiDomain.h"
 
 #include "dem/contact/Collider.h"
+#include "dem/control/TriaxialStressController.h"
 #include "dem/core/Scene.h"
 #include "dem/distributed/Collective.h"
 #include "dem/distributed/Ghosts.h"
@@ -17,8 +18,13 @@
 #include <ctime>
 #include <limits>
 #include <numeric>
+#include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 namespace talus::dem::distributed
 {
@@ -66,6 +72,58 @@ struct Travelling
   std::vector<ContactExtra> extra;
   std::vector<GlobalId> ids; ///< two per record
 };
+
+/// The lowest and highest of a value over the ranks, both from one MIN reduction: the highest
+/// is carried negated. Empty (infinite both ways) until a value is added.
+struct Extremes
+{
+  double low = std::numeric_limits<double>::infinity();
+  double negatedHigh = std::numeric_limits<double>::infinity();
+
+  void add(double value)
+  {
+    low = std::min(low, value);
+    negatedHigh = std::min(negatedHigh, -value);
+  }
+  [[nodiscard]] double high() const { return -negatedHigh; }
+  /// Whether every rank gave the same value.
+  [[nodiscard]] bool alike() const { return low == high(); }
+};
+
+/// What the ranks compare before a re-detection, in one MIN reduction of its doubles.
+///
+/// A body that moved, since the last re-detection, further from the others' common drift than
+/// the ghost layer reaches may have met bodies its rank had no copy of (a teleport from Python,
+/// a diverged run): an error, not a wrong force. In a periodic cell the motion is measured
+/// twice: from where the cell's affine map A = H H_detected^-1 carried each body's position at
+/// the last re-detection (the bodies follow it as velGrad deforms the cell, which the
+/// collider's skin check takes as no motion), and from that position itself (O.cell.hSize set
+/// from a script moves no body); a body is out of reach when it is far by both. The common
+/// drift of each is the middle of its extremes.
+struct BeforeDetection
+{
+  std::array<Extremes, 3> followed; ///< per axis, the owned bodies' displacements from A x_detected
+  std::array<Extremes, 3> moved;    ///< per axis, their displacements from x_detected
+  /// What each rank erased (count, sum of the ids): the ranks must agree.
+  Extremes erasedCount, erasedSum;
+  /// The periodic cell's hSize, which every rank updates alike (the same velocity gradient from
+  /// the same reductions): a rank whose cell differs would compute other contacts.
+  std::array<Extremes, 9> cell;
+  /// The spheres' radii: spheres grown since (growParticles, a TriaxialStressController's
+  /// compaction) reach further, and the next ghost layer must reach as far.
+  Extremes radius;
+
+  /// The doubles the reduction takes.
+  std::span<double> values() { return {reinterpret_cast<double*>(this), sizeof(BeforeDetection) / sizeof(double)}; }
+  /// The middle of each axis's extremes: the common drift.
+  static Vec3 middles(const std::array<Extremes, 3>& axes)
+  {
+    return 0.5 * (Vec3(axes[0].low, axes[1].low, axes[2].low)
+                  - Vec3(axes[0].negatedHigh, axes[1].negatedHigh, axes[2].negatedHigh));
+  }
+};
+static_assert(std::is_standard_layout_v<BeforeDetection> && sizeof(BeforeDetection) == 36 * sizeof(double),
+              "BeforeDetection is reduced as an array of doubles");
 
 /// Zoltan's partition of `mine` in the space of `regions` (a periodic cell's reduced
 /// coordinates: the bodies handed to Zoltan at those coordinates; an open scene's as they are).
@@ -127,8 +185,9 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
         rmin = std::min(rmin, b.radius[i]);
         rmax = std::max(rmax, b.radius[i]);
       }
-      if (b.shape[i] == ShapeKind::Clump || b.clumpId[i] >= 0)
-        clumped_.push_back(idOf(i));
+      if (const std::size_t clump = b.clumpId[i] >= 0 ? static_cast<std::size_t>(b.clumpId[i]) : i;
+          b.shape[clump] == ShapeKind::Clump)
+        clumped_.push_back({idOf(i), idOf(clump), static_cast<std::size_t>(b.shapeIndex[clump])});
     }
     else if (b.shape[i] != ShapeKind::Wall && b.shape[i] != ShapeKind::Facet && b.shape[i] != ShapeKind::Box)
       error = "body " + std::to_string(idOf(i)) + " is a " + shapeName(b.shape[i])
@@ -142,15 +201,13 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
                 "in one process";
   }
   hasClumps_ = !clumped_.empty();
-  if (hasClumps_ && error.empty() && (scene.periodic || held))
-    error = std::string("the scene has clumps ") + (held ? "and is read in slabs" : "in a periodic cell")
-            + ": the distributed DEM takes clumps in open scenes built whole on every process only so far; run "
-              "it in one process";
-  for (std::size_t i = 0; i < b.size() && error.empty() && scene.periodic; ++i)
-    if (b.alive[i] && (b.shape[i] == ShapeKind::Wall || b.shape[i] == ShapeKind::Facet || b.shape[i] == ShapeKind::Box))
-      error = "body " + std::to_string(idOf(i)) + " is a " + shapeName(b.shape[i])
-              + " in a periodic cell: the distributed DEM takes periodic cells of spheres only so far; run it in "
-                "one process";
+  // Growing a clump scales its members' offsets in the clump table of the processes holding it
+  // only: another process it moves to later would place its members as before the growth.
+  for (const auto& engine : scene.engines)
+    if (const auto* triax = dynamic_cast<const TriaxialStressController*>(engine.get());
+        triax && triax->internalCompaction && hasClumps_ && error.empty())
+      error = "TriaxialStressController with internalCompaction (spheres grown by growParticles) in a scene with "
+              "clumps: growing clumps is not distributed yet; set internalCompaction=False or run it in one process";
   if (const std::int64_t count = sceneSpheres(comm_, spheres, held); error.empty() && count < ranks_)
     error = "the scene has " + std::to_string(count) + " spheres for " + std::to_string(ranks_)
             + " processes: each process needs at least one; run it on fewer (mpirun -np)";
@@ -189,18 +246,27 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   globalCount_ = held ? held->count : static_cast<std::int64_t>(whole.bodies.size());
   globalId_ = whole.globalId;
   std::vector<std::int64_t> slice = offeredRows(spheres, held, rank_, ranks_);
-  for (const ClumpShape& clump : whole.bodies.clumps) // by global id: the scene is whole, its rows its ids
-    clumpMembers_.emplace_back(clump.members.begin(), clump.members.end());
+  // By global id (in a scene built whole, its rows; the clumps of a scene read in slabs are of the
+  // bodies every rank holds).
+  for (const ClumpShape& clump : whole.bodies.clumps)
+  {
+    clumpMembers_.emplace_back();
+    for (const BodyId m : clump.members)
+      clumpMembers_.back().push_back(idOf(static_cast<std::size_t>(m)));
+  }
   for (std::size_t k = 0, heads = slice.size(); k < heads; ++k) // a clump's members go with it
     if (const auto i = static_cast<std::size_t>(slice[k]); whole.bodies.shape[i] == ShapeKind::Clump)
     {
-      const std::vector<GlobalId>& members = clumpMembers_[static_cast<std::size_t>(whole.bodies.shapeIndex[i])];
+      const std::vector<BodyId>& members = whole.bodies.clumps[static_cast<std::size_t>(whole.bodies.shapeIndex[i])].members;
       slice.insert(slice.end(), members.begin(), members.end());
     }
   RankBodies mine;
   std::vector<std::byte> rows;
   packRows(whole, slice, rows);
   unpackRows(rows, mine);
+  for (BodyId& clump : mine.bodies.clumpId) // while rows travel, a member names its clump by global id
+    if (clump >= 0)
+      clump = static_cast<BodyId>(idOf(static_cast<std::size_t>(clump)));
   if (scene.periodic)
     regions_ = Regions(scene.cell);
   const Plan plan = placeUnits(scene, mine, {}, true);
@@ -228,6 +294,13 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
   forEachBodyField(scene.bodies, [](auto& field) { field.shrink_to_fit(); });
   scene.contacts.list.shrink_to_fit();
   scene.contacts.extra.shrink_to_fit();
+#ifdef __GLIBC__
+  // The split's medium buffers (rows packed, sent and unpacked, Zoltan's lists, the whole
+  // scene's rows) are freed into the heap, where the allocator keeps them, while the first
+  // detection's large lists are mapped anew beside them: handed back, they no longer add to the
+  // process's peak (a tenth of it on each of two processes holding a million spheres).
+  malloc_trim(0);
+#endif
   traffic_.splitSeconds = MPI_Wtime() - start;
   balance_.begin(cpuSeconds(), waitedCpu_, scene.iter);
 }
@@ -267,23 +340,62 @@ std::int64_t MpiDomain::rowOf(GlobalId id) const
   return row >= 0 ? row : elsewhere;
 }
 
-bool MpiDomain::erase(Scene& scene, GlobalId id)
+bool MpiDomain::erase(Scene& scene, GlobalId id, bool eraseClumpMembers)
 {
   if (id < 0 || id >= globalCount_)
     throw std::out_of_range("no body with id " + std::to_string(id) + " (ids run from 0 to "
                             + std::to_string(globalCount_ - 1) + ")");
-  if (std::binary_search(clumped_.begin(), clumped_.end(), id))
-    throw CollectiveError("O.bodies.erase(" + std::to_string(id)
-                          + "): the body is a clump or a member of one, and erasing clumps is not distributed yet "
-                            "(a clump and its members are held together); run it in one process");
-  const auto at = std::lower_bound(erased_.begin(), erased_.end(), id);
-  if (at != erased_.end() && *at == id)
+  if (std::binary_search(erased_.begin(), erased_.end(), id))
     return false;
-  erased_.insert(at, id);
+  // Every rank keeps the clumps' member lists by global id and changes them alike, whether it
+  // holds the clump or not, as Scene::erase changes them where it is held (Yade's rules: a
+  // clump's members are freed, or erased with it; a member leaves its clump, which goes with its
+  // last member).
+  std::vector<GlobalId> gone{id};
+  auto unclump = [this](GlobalId body) {
+    clumped_.erase(std::lower_bound(clumped_.begin(), clumped_.end(), Clumped{body, 0, 0}));
+  };
+  const auto entry = std::lower_bound(clumped_.begin(), clumped_.end(), Clumped{id, 0, 0});
+  if (entry != clumped_.end() && entry->id == id)
+  {
+    const Clumped c = *entry;
+    std::vector<GlobalId>& members = clumpMembers_[c.shape];
+    if (c.clump == id)
+    {
+      if (eraseClumpMembers)
+        gone.insert(gone.end(), members.begin(), members.end());
+      for (const GlobalId m : members)
+        unclump(m);
+      members.clear();
+    }
+    else
+    {
+      const auto at = std::find(members.begin(), members.end(), id);
+      if (rowHeld(c.clump) < 0) // where the clump is held, Scene::erase takes out the member's placement
+      {
+        ClumpShape& shape = scene.bodies.clumps[c.shape];
+        const auto k = at - members.begin();
+        if (static_cast<std::size_t>(k) < shape.relPos.size())
+        {
+          shape.relPos.erase(shape.relPos.begin() + k);
+          shape.relOri.erase(shape.relOri.begin() + k);
+        }
+      }
+      members.erase(at);
+      if (members.empty())
+      {
+        gone.push_back(c.clump);
+        unclump(c.clump);
+      }
+    }
+    unclump(id);
+  }
+  for (const GlobalId g : gone)
+    erased_.insert(std::lower_bound(erased_.begin(), erased_.end(), g), g);
   // Until the next re-detection drops its rows, a copy here (owned, replicated or a ghost) is
-  // erased as in a whole scene: its contacts go at once.
+  // erased as in a whole scene: its contacts go at once (a clump's members are held with it).
   if (const std::int64_t row = rowHeld(id); row >= 0 && scene.bodies.alive[static_cast<std::size_t>(row)])
-    scene.erase(static_cast<BodyId>(row));
+    scene.erase(static_cast<BodyId>(row), eraseClumpMembers);
   return true;
 }
 
@@ -327,65 +439,36 @@ void MpiDomain::beforeDetection(Scene& scene)
   const double start = MPI_Wtime(), cpuAtStart = cpuSeconds(), waitedAtStart = waitedCpu_;
   const Bodies& b = scene.bodies;
   const std::size_t n = b.size();
-  // A body that moved, since the last re-detection, further from the others' common drift than
-  // the ghost layer reaches may have met bodies its rank had no copy of (a teleport from Python,
-  // a diverged run): an error, not a wrong force.
-  // With the drift, what each rank erased (count, sum of ids, each with its negation): the ranks
-  // must agree.
-  // And the periodic cell, which every rank updates alike (the same velocity gradient from the
-  // same reductions): a rank whose cell differs would compute other contacts.
-  // In a periodic cell the motion is measured twice: from where the cell's affine map A =
-  // H H_detected^-1 carried each body's position at the last re-detection (the bodies follow it
-  // as velGrad deforms the cell, which the collider's skin check takes as no motion), and from
-  // that position itself (O.cell.hSize set from a script moves no body); a body is out of reach
-  // when it is far by both (drift[28..33]: the common drift of the second).
-  // And the largest and smallest radii, negated and not (drift[34], drift[35]): spheres grown
-  // since (growParticles, a TriaxialStressController's compaction) reach further, and the next
-  // ghost layer must reach as far.
-  std::vector<double> drift(36, std::numeric_limits<double>::infinity());
-  const double erasedCount = static_cast<double>(erased_.size()),
-               erasedSum = static_cast<double>(std::accumulate(erased_.begin(), erased_.end(), GlobalId{0}));
-  drift[6] = erasedCount;
-  drift[7] = -erasedCount;
-  drift[8] = erasedSum;
-  drift[9] = -erasedSum;
-  for (int k = 0; k < 9; ++k)
-  {
-    drift[10 + static_cast<std::size_t>(k)] = scene.cell.hSize.data()[k];
-    drift[19 + static_cast<std::size_t>(k)] = -scene.cell.hSize.data()[k];
-  }
+  BeforeDetection check;
+  check.erasedCount.add(static_cast<double>(erased_.size()));
+  check.erasedSum.add(static_cast<double>(std::accumulate(erased_.begin(), erased_.end(), GlobalId{0})));
+  for (std::size_t k = 0; k < check.cell.size(); ++k)
+    check.cell[k].add(scene.cell.hSize.data()[k]);
   const Mat3 affine = scene.periodic ? Mat3(scene.cell.hSize * detectedCell_.inverse()) : Mat3::Identity();
-  auto extremes = [&](const Vec3& moved, std::size_t at) {
-    for (int d = 0; d < 3; ++d)
-    {
-      drift[at + static_cast<std::size_t>(d)] = std::min(drift[at + static_cast<std::size_t>(d)], moved[d]);
-      drift[at + static_cast<std::size_t>(d) + 3] = std::min(drift[at + static_cast<std::size_t>(d) + 3], -moved[d]);
-    }
-  };
   for (std::size_t i = 0; i < n; ++i)
     if (owned_[i] && !replicated_[i] && b.alive[i])
     {
-      extremes(b.pos[i] - affine * detectedAt_[i], 0);
-      extremes(b.pos[i] - detectedAt_[i], 28);
-      if (b.shape[i] == ShapeKind::Sphere)
+      const Vec3 followed = b.pos[i] - affine * detectedAt_[i], moved = b.pos[i] - detectedAt_[i];
+      for (int d = 0; d < 3; ++d)
       {
-        drift[34] = std::min(drift[34], -b.radius[i]);
-        drift[35] = std::min(drift[35], b.radius[i]);
+        check.followed[static_cast<std::size_t>(d)].add(followed[d]);
+        check.moved[static_cast<std::size_t>(d)].add(moved[d]);
       }
+      if (b.shape[i] == ShapeKind::Sphere)
+        check.radius.add(b.radius[i]);
     }
-  min(drift);
-  const Vec3 common = 0.5 * (Vec3(drift[0], drift[1], drift[2]) - Vec3(drift[3], drift[4], drift[5])),
-             still = 0.5 * (Vec3(drift[28], drift[29], drift[30]) - Vec3(drift[31], drift[32], drift[33]));
+  min(check.values());
+  const Vec3 common = BeforeDetection::middles(check.followed), still = BeforeDetection::middles(check.moved);
   std::string error;
-  if (drift[6] != -drift[7] || drift[8] != -drift[9])
+  if (!check.erasedCount.alike() || !check.erasedSum.alike())
     error = "step " + std::to_string(scene.iter) + ": the processes erased different bodies (" + std::to_string(erased_.size())
-            + " on process " + std::to_string(rank_) + "; from " + std::to_string(static_cast<std::int64_t>(drift[6]))
-            + " to " + std::to_string(static_cast<std::int64_t>(-drift[7]))
+            + " on process " + std::to_string(rank_) + "; from " + std::to_string(static_cast<std::int64_t>(check.erasedCount.low))
+            + " to " + std::to_string(static_cast<std::int64_t>(check.erasedCount.high()))
             + " over the processes): under mpirun O.bodies.erase must be called on every process with the same ids "
               "(from code every process runs alike, deciding from global values such as "
               "talus.dem.distributed.positions())";
-  for (int k = 0; k < 9 && error.empty(); ++k)
-    if (drift[10 + static_cast<std::size_t>(k)] != -drift[19 + static_cast<std::size_t>(k)])
+  for (std::size_t k = 0; k < check.cell.size() && error.empty(); ++k)
+    if (!check.cell[k].alike())
       error = "step " + std::to_string(scene.iter)
               + ": the periodic cell (O.cell.hSize) differs between the processes: under mpirun every process must "
                 "change the cell alike (from code every process runs alike, deciding from global values)";
@@ -404,7 +487,7 @@ void MpiDomain::beforeDetection(Scene& scene)
                 "diverged run)";
   }
   raiseOnEveryRank(comm_, error);
-  ghostDistance_ = ghostLayer(drift[35], -drift[34]); // the layer of the ghosts taken now
+  ghostDistance_ = ghostLayer(check.radius.low, check.radius.high()); // the layer of the ghosts taken now
 
   // This rank's spheres, and where each goes (in the cell as it is now).
   if (scene.periodic)
@@ -526,13 +609,22 @@ void MpiDomain::assemble(Scene& scene, RankBodies& mine, std::vector<Contact>& c
   // image through which it touches, and the contact's cellDist, as in the serial scene.
   // A clump is a ghost whole wherever one of its members reaches (its members stick out of its
   // rank's box: the regions are grown to hold them).
-  const std::vector<std::int64_t> groups = hasClumps_ ? unitsOf(mine).unitOf : std::vector<std::int64_t>{};
-  const std::vector<Box> reach = hasClumps_ ? reachingBoxes(comm_, boxes_, mine) : boxes_;
-  Ghosts ghosts = scene.periodic ? exchangeGhosts(comm_, mine, boxes_,
-                                                  [this](const Vec3& x, const Box& box) {
-                                                    return regions_.reaches(x, box, ghostDistance_);
-                                                  })
-                                 : exchangeGhosts(comm_, mine, reach, ghostDistance_, groups);
+  // In a periodic cell a member lies beside its clump, in the clump's image of the cell.
+  const Units units = hasClumps_ ? unitsOf(mine) : Units{};
+  std::vector<Box> reach = boxes_;
+  if (hasClumps_)
+  {
+    std::vector<Vec3> where(mine.size());
+    for (std::size_t i = 0; i < mine.size(); ++i)
+      where[i] = regions_.coordinatesBeside(
+          mine.bodies.pos[i], mine.bodies.pos[static_cast<std::size_t>(units.head[static_cast<std::size_t>(units.unitOf[i])])]);
+    for (Box& box : reach)
+      box = regions_.withinCell(box);
+    reach = reachingBoxes(comm_, reach, where);
+  }
+  Ghosts ghosts = exchangeGhosts(
+      comm_, mine, reach, [this](const Vec3& x, const Box& box) { return regions_.reaches(x, box, ghostDistance_); },
+      units.unitOf);
   traffic_.rebuildBytes += static_cast<std::int64_t>(ghosts.sentRows.size() * rowBytes());
 
   // The pool of rows: the walls, this rank's spheres, the ghosts; then in global-id order.

@@ -83,17 +83,21 @@ public:
   /// the same order, as a script running alike on every rank does): each rank erases its copy
   /// (its own body, a wall or facet, or a ghost) with its contacts, so no contact with it is
   /// computed anywhere, and every rank knows it was erased. A rank that erased other bodies than
-  /// the others is found at the next re-detection, which raises on every rank.
+  /// the others is found at the next re-detection, which raises on every rank. A clump frees
+  /// its members, or erases them too; a member leaves its clump, which keeps its mass and goes
+  /// with its last member (Scene::erase, Yade's rules).
   /// @param id a global id
+  /// @param eraseClumpMembers for a clump: erase its members too instead of freeing them
   /// @return false if it was erased already
   /// @throws std::out_of_range for an id that is not a body of the scene
-  /// @throws CollectiveError (on every rank alike) for a clump or a clump member
-  bool erase(Scene& scene, GlobalId id);
+  bool erase(Scene& scene, GlobalId id, bool eraseClumpMembers = false);
   /// @param row a local row, below scene.bodies.size()
   /// @return its body's global id
   [[nodiscard]] GlobalId globalIdOf(std::size_t row) const { return globalId_[row]; }
   /// Whether the scene has clumps (each held whole by the rank of its centre of mass).
   [[nodiscard]] bool hasClumps() const { return hasClumps_; }
+  /// Per clump shape (Bodies::clumps' index), its members' global ids (the same on every rank).
+  [[nodiscard]] const std::vector<std::vector<GlobalId>>& clumpMembers() const { return clumpMembers_; }
   /// Distance within which a sphere of another rank is a ghost here: twice the largest radius
   /// plus the collider's skin, taken again at each re-detection (spheres may have grown).
   [[nodiscard]] double ghostDistance() const { return ghostDistance_; }
@@ -166,7 +170,14 @@ private:
   Mat3 detectedCell_ = Mat3::Identity(); ///< the periodic cell's hSize then
   std::vector<GlobalId> erased_; ///< the bodies erased, ascending (the same on every rank)
   bool hasClumps_ = false;       ///< the scene has clumps (the same on every rank)
-  std::vector<GlobalId> clumped_; ///< the clumps and their members, ascending
+  /// A clump or a member of one (the same on every rank): its id, its clump's and the clump's shape index.
+  struct Clumped
+  {
+    GlobalId id, clump;
+    std::size_t shape;
+    bool operator<(const Clumped& other) const { return id < other.id; }
+  };
+  std::vector<Clumped> clumped_; ///< the clumps and their members, ascending
   std::vector<std::vector<GlobalId>> clumpMembers_; ///< per clump (its shape index), its members' global ids
   mutable Traffic traffic_; ///< mutable: the reductions (const) count their seconds
   mutable double waitedCpu_ = 0; ///< CPU seconds waiting in MPI calls since the split (resetTraffic keeps it)

@@ -144,6 +144,9 @@ PYBIND11_MODULE(_distributed, m)
         return out;
       })
       .def("resetTraffic", &MpiDomain::resetTraffic)
+      .def("updateGhosts", &MpiDomain::afterIntegration,
+           "Send the owned bodies' state to their ghosts (collective): what a script wrote into its bodies between "
+           "two steps reaches the other ranks' copies before the next contacts are computed")
       .def_property("rebalanceThreshold", [](const MpiDomain& d) { return d.balance().threshold(); },
                     &MpiDomain::setRebalanceThreshold,
                     "Measured imbalance above which the ranks partition again (every rank sets the same)")
@@ -184,7 +187,8 @@ PYBIND11_MODULE(_distributed, m)
         out["regions"] = regions;
         return out;
       }, "This rank's spheres, ghosts, contacts computed (with a ghost among them) and every rank's region")
-      .def("erase", [](MpiDomain& d, Scene& s, std::int64_t id) { return d.erase(s, id); },
+      .def("erase", [](MpiDomain& d, Scene& s, std::int64_t id, bool members) { return d.erase(s, id, members); },
+           py::arg("scene"), py::arg("id"), py::arg("eraseClumpMembers") = false,
            "Erase body `id` on every rank (every rank calls it with the same ids); False if erased already")
       .def("ownedBodies", [](const MpiDomain& d, const Scene& s) {
         std::vector<std::int64_t> rows, ids;

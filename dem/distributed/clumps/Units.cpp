@@ -97,7 +97,7 @@ Plan unitPlanRows(MPI_Comm comm, const RankBodies& local, const Units& units, co
   return plan;
 }
 
-std::vector<Box> reachingBoxes(MPI_Comm comm, std::span<const Box> boxes, const RankBodies& local)
+std::vector<Box> reachingBoxes(MPI_Comm comm, std::span<const Box> boxes, std::span<const Vec3> where)
 {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
@@ -105,11 +105,11 @@ std::vector<Box> reachingBoxes(MPI_Comm comm, std::span<const Box> boxes, const 
   // lower corners, then upper corners negated: one MIN reduction gives both
   std::vector<double> corners(6 * static_cast<std::size_t>(ranks), std::numeric_limits<double>::infinity());
   double* mine = corners.data() + 6 * rank;
-  for (std::size_t i = 0; i < local.size(); ++i)
+  for (const Vec3& x : where)
     for (int d = 0; d < 3; ++d)
     {
-      mine[d] = std::min(mine[d], local.bodies.pos[i][d]);
-      mine[3 + d] = std::min(mine[3 + d], -local.bodies.pos[i][d]);
+      mine[d] = std::min(mine[d], x[d]);
+      mine[3 + d] = std::min(mine[3 + d], -x[d]);
     }
   MPI_Allreduce(MPI_IN_PLACE, corners.data(), static_cast<int>(corners.size()), MPI_DOUBLE, MPI_MIN, comm);
   std::vector<Box> reach(boxes.begin(), boxes.end());

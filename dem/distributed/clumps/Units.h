@@ -59,10 +59,11 @@ struct Units
 /// of its centre, and its members may reach out of that rank's box, where another rank's bodies
 /// within the ghost distance of them must still be its ghosts.
 /// @param comm the ranks (collective)
-/// @param boxes every rank's region (index = rank)
-/// @param local this rank's own bodies
+/// @param boxes every rank's region (index = rank), finite
+/// @param where where each of this rank's own bodies lies in the regions' space (a periodic
+///        cell's members beside their clumps: periodic/Regions.h)
 /// @return every rank's region holding its rows
-[[nodiscard]] std::vector<Box> reachingBoxes(MPI_Comm comm, std::span<const Box> boxes, const RankBodies& local);
+[[nodiscard]] std::vector<Box> reachingBoxes(MPI_Comm comm, std::span<const Box> boxes, std::span<const Vec3> where);
 /// Make the clump references of `bodies` (clumpId, each held clump's member list) the rows they
 /// are now, from the global ids they are kept as while rows travel.
 /// @param bodies a rank's rows, their clumpId entries global ids (rewritten as rows)

@@ -118,13 +118,23 @@ Bodies bodySlab(MPI_Comm comm, const MpiDomain& d, Scene& scene)
   // their forces.
   d.sum(replicatedForces);
 
+  // While the rows travel, a clump's member names it by global id (each rank's rows are its own).
+  std::vector<BodyId> clumpRows = scene.bodies.clumpId;
+  for (BodyId& clump : scene.bodies.clumpId)
+    if (clump >= 0)
+      clump = static_cast<BodyId>(ids[static_cast<std::size_t>(clump)]);
   // The rows are lent to the exchange (no copy of them), and given back whatever happens.
   struct Lent
   {
     Scene& scene;
     RankBodies rows;
-    ~Lent() { scene.bodies = std::move(rows.bodies); }
-  } lent{scene, {std::move(scene.bodies), std::move(ids)}};
+    std::vector<BodyId> clumpRows;
+    ~Lent()
+    {
+      rows.bodies.clumpId = std::move(clumpRows);
+      scene.bodies = std::move(rows.bodies);
+    }
+  } lent{scene, {std::move(scene.bodies), std::move(ids)}, std::move(clumpRows)};
   RankBodies slab;
   sendRows(comm, lent.rows, sent, to, slab);
   std::vector<std::byte> packed;
@@ -161,6 +171,11 @@ Bodies bodySlab(MPI_Comm comm, const MpiDomain& d, Scene& scene)
     field.clear();
     field.shrink_to_fit();
   });
+  for (std::size_t k = 0; k < out.bodies.clumps.size(); ++k) // every clump's members, by global id
+  {
+    const std::vector<GlobalId>& members = d.clumpMembers()[k];
+    out.bodies.clumps[k].members.assign(members.begin(), members.end());
+  }
   packed.clear();
   packRows(slab, order, packed);
   unpackRows(packed, out);

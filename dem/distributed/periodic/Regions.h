@@ -27,6 +27,17 @@ public:
   /// @param x a position (m), unwrapped
   [[nodiscard]] Vec3 coordinates(const Vec3& x) const;
 
+  /// Where a body at `x` lies in the regions' space beside a body at `beside` (a clump's member
+  /// beside its clump): in a periodic cell its reduced coordinates in the image of the cell
+  /// where `beside`'s are wrapped, so that a member sticking out of the cell lies just outside
+  /// [0, 1) rather than at the far face; its position in an open scene.
+  /// @param x, beside positions (m), unwrapped
+  [[nodiscard]] Vec3 coordinatesBeside(const Vec3& x, const Vec3& beside) const;
+
+  /// `box` (a region, in coordinates()) within the cell: in a periodic cell its part of the unit
+  /// cube (RCB's outer boxes reach infinity), as it is in an open scene.
+  [[nodiscard]] Box withinCell(const Box& box) const;
+
   /// Whether a body at `x` may touch, through any periodic image, a body whose coordinates
   /// lie in `box` (a region in the regions' space): its distance to the region's part of space
   /// is at most `distance`. In a periodic cell the test is made in reduced coordinates, with
@@ -34,7 +45,9 @@ public:
   /// planes across that axis: conservative (a body farther than `distance` may pass) and exact
   /// for a rectangular cell.
   /// @param x a position (m), unwrapped
-  /// @param box a region, in coordinates(); empty (min > max) reaches nothing
+  /// @param box a region, in coordinates(); an infinite bound is the cell's face; it may reach
+  ///        out of the unit cube (a region grown to hold clumps' members); empty (min > max)
+  ///        reaches nothing
   /// @param distance the reach (m), at most the cell's narrowest width
   [[nodiscard]] bool reaches(const Vec3& x, const Box& box, double distance) const;
 

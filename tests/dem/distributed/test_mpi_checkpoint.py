@@ -30,8 +30,8 @@ def talus_run(*args, processes=None):
     return run_script(*args, processes=processes, timeout=120)      # a checkpoint's processes take longer
 
 
-def scene(mode, checkpoint, output, processes=None, law="linear", energy=""):
-    done = talus_run(SCENE, mode, SPHERES, STEPS, checkpoint, output, law, energy, processes=processes)
+def scene(mode, checkpoint, output, processes=None, law="linear", *flags):
+    done = talus_run(SCENE, mode, SPHERES, STEPS, checkpoint, output, law, *flags, processes=processes)
     assert done.returncode == 0, done.stdout + done.stderr
     return json.loads(Path(output).read_text())
 
@@ -60,11 +60,17 @@ def test_written_at_four_processes_continued_at_four_two_and_one_bit_for_bit(tmp
     # another order than its contacts' in one process.
     serial = scene("save", tmp_path / "serial.h5", tmp_path / "serial.json", law=law)
     assert np.array_equal(np.asarray(serial["positions"]), uninterrupted)
-    mine, theirs = datasets(tmp_path / "run.h5"), datasets(tmp_path / "serial.h5")
+    assert_the_serial_file(tmp_path / "run.h5", tmp_path / "serial.h5")
+
+
+def assert_the_serial_file(path, serial, contacts=SPHERES // 4):
+    """The file at `path` holds the datasets of the one at `serial` (written in one process),
+    with more than `contacts` contacts, the walls' forces within round-off (the last five bodies)."""
+    mine, theirs = datasets(path), datasets(serial)
     compared = [name for name in theirs if name.startswith(("bodies/", "contacts/")) or name == "clock"]
     assert sorted(mine) == sorted(theirs)       # no heat written where no body has any, as in one process
-    assert len(mine["contacts/id1"]) > SPHERES / 4
-    walls = np.arange(SPHERES + 5) >= SPHERES
+    assert len(mine["contacts/id1"]) > contacts
+    walls = np.arange(len(mine["bodies/shape"])) >= len(mine["bodies/shape"]) - 5
     for name in compared:
         if name in ("bodies/force", "bodies/torque"):
             assert np.array_equal(mine[name][~walls], theirs[name][~walls]), name
@@ -74,11 +80,27 @@ def test_written_at_four_processes_continued_at_four_two_and_one_bit_for_bit(tmp
             assert np.array_equal(mine[name], theirs[name]), name
 
 
+@pytest.mark.parametrize("processes", [3, 4])
+def test_clumps_written_continued_at_the_same_count_and_read_at_two_and_one_bit_for_bit(tmp_path, processes):
+    # Each process holds its clumps' member lists by its own rows: the file names them by id,
+    # as a serial file does.
+    saved = scene("save", tmp_path / "run.h5", tmp_path / "saved.json", processes, "linear", "clumps")
+    uninterrupted = np.asarray(saved["positions"])
+    for restart in (processes, 2, None):
+        restarted = scene("load", tmp_path / "run.h5", tmp_path / f"load-{restart}.json", restart)
+        assert np.array_equal(np.asarray(restarted["positions"]), uninterrupted), restart
+    serial = scene("save", tmp_path / "serial.h5", tmp_path / "serial.json", None, "linear", "clumps")
+    assert np.array_equal(np.asarray(serial["positions"]), uninterrupted)
+    assert_the_serial_file(tmp_path / "run.h5", tmp_path / "serial.h5", contacts=15)   # smaller members: fewer yet
+    clumps = datasets(tmp_path / "run.h5")["bodies/clumps/members"]
+    assert len(clumps) == 2 * (SPHERES - SPHERES // 4)      # two members a clump, every fourth sphere free
+
+
 def test_the_energy_tracked_continues_from_a_checkpoint_at_another_process_count(tmp_path):
     # Each process accumulates its share of the terms: the file holds their sums, and the
     # per-body memory of imposed motions by id, as a serial file does.
-    saved = scene("save", tmp_path / "run.h5", tmp_path / "saved.json", processes=4, energy="energy")
-    serial = scene("save", tmp_path / "serial.h5", tmp_path / "serial.json", energy="energy")
+    saved = scene("save", tmp_path / "run.h5", tmp_path / "saved.json", 4, "linear", "energy")
+    serial = scene("save", tmp_path / "serial.h5", tmp_path / "serial.json", None, "linear", "energy")
     mine, theirs = datasets(tmp_path / "run.h5"), datasets(tmp_path / "serial.h5")
     for name in ("energy/previousDisplacement", "energy/previousRotation"):
         assert np.array_equal(mine[name], theirs[name], equal_nan=True), name

@@ -112,13 +112,60 @@ def test_the_measurements_over_bodies_are_the_whole_scenes(tmp_path):
     assert split["kinetic"][1] == serial["kinetic"][1] >= 0
 
 
+@pytest.mark.parametrize("processes", [2, 3])
+def test_clumps_and_members_erased_as_in_one_process(tmp_path, processes):
+    # Yade's rules: a clump erased frees its members, or erases them with eraseClumpMembers; a
+    # member erased leaves its clump, which keeps its mass and goes with its last member. Every
+    # process erases alike, whichever holds the clump (owned, a ghost, or not at all).
+    body = ("import json, sys\n"
+            "import numpy as np\n"
+            "from talus.dem import distributed\n"
+            "O.run(10, True)\n"
+            "mass = O.bodies.gather([11])[0].state.mass\n"
+            "done = [O.bodies.erase(2), O.bodies.erase(3), O.bodies.erase(4), O.bodies.erase(5),\n"
+            "        O.bodies.erase(8, eraseClumpMembers=True), O.bodies.erase(9), O.bodies.erase(6)]\n"
+            "samples = []\n"
+            "for k in range(3):\n"
+            "    O.run(100, True)\n"
+            "    p = distributed.positions()\n"
+            "    p[[2, 3, 4, 5, 6, 7, 8, 9]] = np.nan\n"
+            "    samples.append(p.tolist())\n"
+            "checked = 0\n"      # on the process owning each body: members freed, a clump left with one
+            "for i in (0, 1, 11):\n"
+            "    try:\n"
+            "        b = O.bodies[i]\n"
+            "    except IndexError:\n"
+            "        continue\n"
+            "    if i < 2:\n"
+            "        assert b.clumpId == -1 and not b.isClumpMember, (i, b.clumpId)\n"
+            "    else:\n"
+            "        assert list(b.shape.members) == [10] and b.state.mass == mass, (b.shape.members, b.state.mass)\n"
+            "    checked += 1\n"
+            "checked = sum(p['checked'] for p in distributed.per_process({'checked': checked}))\n"
+            "values = {'done': done, 'positions': samples, 'checked': checked, 'count': len(O.bodies)}\n"
+            "if distributed.rank() == 0:\n"
+            "    open(sys.argv[1], 'w').write(json.dumps(values))\n")
+    script = tmp_path / "script.py"
+    script.write_text(CLUMPS + body)
+    out = {}
+    for n in (None, processes):
+        done = talus_run(script, tmp_path / f"values-{n}.json", processes=n)
+        assert done.returncode == 0, done.stderr
+        out[n] = json.loads((tmp_path / f"values-{n}.json").read_text())
+    serial, split = out[None], out[processes]
+    assert serial["done"] == split["done"] == [True, True, True, False, True, True, False]
+    assert np.array_equal(np.asarray(serial["positions"], float), np.asarray(split["positions"], float), equal_nan=True)
+    assert serial["count"] == split["count"] == 37 and serial["checked"] == split["checked"] == 3
+
+
 @pytest.mark.parametrize("body, named", [
-    ("O.run(10, True)\nO.bodies.erase(2)\n", "erase(2): the body is a clump"),   # a clump
-    ("O.run(10, True)\nO.bodies.erase(0)\n", "erase(0): the body is a clump"),   # a member
     ("O.bodies.append(utils.box((0, 0, -2), (1, 1, 0.1)))\nO.run(10, True)\n", "Box moved by forces"),
-    ("O.run(10, True)\nO.save('clumps.h5')\n", "O.save of a scene with clumps is not"),
-    ("O.bodies.erase(36)\nO.periodic = True\nO.cell.hSize = Matrix3(3, 0, 0, 0, 3, 0, 0, 0, 3)\nO.run(10, True)\n",
-     "clumps in a periodic cell"),
+    ("O.run(10, True)\nfrom talus.dem.control.controllers import growParticles\ngrowParticles(1.01)\n",
+     "growParticles in a scene with clumps is not"),
+    ("O.engines = O.engines + [TriaxialStressController()]\nO.run(10, True)\n",
+     "TriaxialStressController with internalCompaction"),
+    ("O.run(10, True)\nO.bodies.clump([5, 8])\n", "O.bodies.clump after the scene was split"),
+    ("O.run(10, True)\nO.bodies.releaseFromClump(0, 2)\n", "O.bodies.releaseFromClump after the scene was split"),
 ])
 def test_what_is_not_distributed_with_clumps_and_boxes_is_refused_by_name_once(tmp_path, body, named):
     done = _run(tmp_path, body)

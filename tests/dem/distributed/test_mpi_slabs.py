@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_mpi_run import talus_run
+from test_mpi_run import assert_refused_by_name_once, talus_run
 
 pytestmark = pytest.mark.skipif(shutil.which("mpirun") is None, reason="needs mpirun")
 try:
@@ -136,9 +136,53 @@ def test_a_bad_line_in_one_slab_names_the_file_and_line_and_ends_every_process(t
 
 
 def test_reference_states_after_the_split_are_refused_not_another_bodys(tmp_path):
-    # refPos is kept by row in each process, and the rows change at the split: reading it after
-    # would give another body's (body 10 read body 0's on process 1); refused by name instead.
+    # refPos is kept by body id once a scene is split, but a process built only its own slab's:
+    # reading it after would give another body's (body 10 read body 0's on process 1); refused by
+    # name instead.
     _, done = run_script(tmp_path, "O.dt = 1e-6\nO.engines = [InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()])]\n"
                                    "O.run(1, True)\n"
                                    "b = O.bodies[wall]\nprint(b.state.refPos)")
-    assert done.returncode != 0 and "State.refPos and refOri once the scene is split" in done.stderr, done.stderr
+    assert done.returncode != 0 and "State.refPos and refOri in a scene holding a packing read in slabs" in done.stderr, done.stderr
+
+
+CLUMPED = """\
+import json, sys
+from talus.dem import distributed
+O.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
+ids = O.bodies.append(ymport.text({packing!r}))
+for k in range(12):     # clumps of two spheres above the bed, every process making them whole
+    x, y = 0.015 + 0.026 * (k % 4), 0.015 + 0.03 * (k // 4)
+    O.bodies.appendClumped([utils.sphere((x, y, 0.14), 0.01), utils.sphere((x + 0.012, y, 0.145), 0.007)])
+O.bodies.append(utils.wall(0, axis=2, sense=1))
+O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                             [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+             NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.3)]
+O.dt = 0.5 * PWaveTimeStep()
+O.run(3000, True)
+p = distributed.positions().tolist()
+if distributed.rank() == 0:
+    json.dump(p, open(sys.argv[1], "w"))
+"""
+
+
+@pytest.mark.parametrize("processes", [2, 3])
+def test_clumps_appended_to_a_packing_read_in_slabs_give_the_serial_positions(tmp_path, processes):
+    packing = tmp_path / "bed.txt"
+    spheres = write_packing(packing, nx=4, nz=4)
+    script = tmp_path / "script.py"
+    script.write_text(CLUMPED.format(packing=str(packing)))
+    out = {}
+    for n in (None, processes):
+        done = talus_run(script, tmp_path / f"{n}.json", processes=n, timeout=120)
+        assert done.returncode == 0, done.stderr
+        out[n] = np.asarray(json.loads((tmp_path / f"{n}.json").read_text()))
+    assert len(out[None]) == spheres + 3 * 12 + 1
+    assert np.array_equal(out[None], out[processes])
+    # the clumps fell onto the bed (their members' ids after the file's spheres)
+    assert (0.14 - out[None][spheres:spheres + 36, 2]).min() > 0.03
+
+
+def test_a_clump_of_a_slabs_spheres_is_refused_by_name(tmp_path):
+    _, done = run_script(tmp_path, "O.bodies.clump([ids[0], ids[1]])")
+    assert_refused_by_name_once(done, "a clump of body 0, a sphere of a packing read in slabs")

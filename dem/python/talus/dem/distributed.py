@@ -20,9 +20,11 @@ cohesive-frictional) moves with it. From then on:
   (the walls' forces summed exactly: the serial bits);
 - ``print`` writes from process 0 only (the others' standard output is discarded);
 - ``O.bodies[i]`` works for the bodies this process owns (and the walls and facets); for another
-  it raises, naming the rule; an erased body is None on every process. ``positions()`` gathers
-  every body's position, ``O.bodies.gather(ids)`` snapshots of any bodies, on every process
-  (collective).
+  it raises, naming the rule; an erased body is None on every process. ``for b in O.bodies``
+  visits every body on every process (a snapshot for one owned elsewhere: talus.dem.core.remote),
+  ``positions()`` gathers every body's position, ``O.bodies.gather(ids)`` snapshots of any
+  bodies, ``O.interactions`` gives every contact once (talus.dem.core.split_contacts), all on
+  every process (collective); plots, VTK output and ``export.text`` are written by process 0.
 - ``O.bodies.erase(i)`` must be called on every process with the same ids (from code every
   process runs alike, deciding from global values such as ``positions()``): each process erases
   its copy, whoever owns the body; a process that erased other bodies stops the run, naming the
@@ -33,17 +35,17 @@ cohesive-frictional) moves with it. From then on:
   with the cell as ``O.cell.velGrad`` or PeriTriaxController deforms it; ghosts across its
   faces); every process updates the cell alike, from the same reductions (PeriTriaxController's
   stress, stiffness and mass are exact sums: the serial bits), and a script must change
-  ``O.cell`` alike on every process.
+  ``O.cell`` alike on every process; its walls, facets and boxes (a floor under a bed periodic
+  across x and y) every process holds whole, as in an open scene.
 
 What is not distributed yet is refused, on every process alike, with its name: shapes other than
 spheres, clumps of spheres, walls, facets and fixed boxes, a wall, facet or box moved by forces,
-clumps in a periodic cell or a scene read in slabs, erasing a clump, walls, facets and boxes in a
-periodic cell, engines other than ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
+a clump of spheres of a packing read in slabs, growing clumps, engines other than ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
 GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine,
 ServoPIDController and the kinematic and force engines (so
 PeriIsoCompressor and Peri3dController), contact laws other than the
 linear, Hertz-Mindlin, visco-elastic and cohesive-frictional ones, force engines on walls or
-facets, ``O.save`` of a scene with clumps. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
+facets. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
 (written at any process count) on every process; the scene is split again at its next step.
 """
 
@@ -195,6 +197,18 @@ def added(scene, row: int, id: int | None = None) -> int:
     return held.added(row, id) if isinstance(held, HeldRows) else row
 
 
+def clumpable_row(scene, id: int) -> int:
+    """The row of body ``id`` to clump in a scene holding a packing read in slabs, before its
+    split: a body every process holds (appended one by one), whose clump every process makes
+    alike; a sphere of a slab (held by one process) is refused by name."""
+    held = domain(scene)
+    row = held.rowOf(int(id))
+    if row < 0 or held.own[row]:
+        refuse(f"a clump of body {id}, a sphere of a packing read in slabs (each process holds its own slab: clump "
+               f"bodies every process appends, or read the packing whole)")
+    return row
+
+
 def append_slab(bodies, slab) -> range:
     """O.bodies.append of a slab of a file's spheres (talus.dem.files.slabs): the file's count of
     ids, of which this process adds its slab's; returns the ids (as a list of them would be)."""
@@ -215,8 +229,12 @@ def append_slab(bodies, slab) -> range:
 
 
 def attach(scene) -> None:
-    """Split ``scene`` over the processes (at its first step under mpirun; collective)."""
-    if not ACTIVE or is_split(scene):
+    """Split ``scene`` over the processes (at its first step under mpirun; collective); once
+    split, send what the script wrote into its bodies since the last step to their ghosts."""
+    if not ACTIVE:
+        return
+    if is_split(scene):
+        update_ghosts(scene)
         return
     for e in scene.engines:
         name = type(e).__name__
@@ -239,11 +257,22 @@ def attach(scene) -> None:
     held = domain(scene)
     if isinstance(held, HeldRows):
         _looks_by_id(scene, held)
+        scene._reference_by_row = True
         scene._domain = _distributed.attach(scene._cpp, method, np.frombuffer(held.globalId, dtype=np.int64),
                                             np.frombuffer(held.own, dtype=np.uint8), held.globalCount)
     else:
         scene._domain = _distributed.attach(scene._cpp, method)
     scene._domain.rebalanceThreshold = _rebalance_threshold()
+
+
+def update_ghosts(scene) -> None:
+    """Send the state of the bodies each process owns to its copies on the other processes
+    (collective; nothing in one process). Each step does it after the integration; a script's
+    writes between two steps (``b.state.vel = ...`` in a loop over the bodies, a PyRunner, between
+    two ``O.run``) need it once more, or the next contacts would be computed with the copies'
+    old state: ``O.run``, ``O.step``, the PyRunners and the end of a loop over ``O.bodies`` call it."""
+    if is_split(scene):
+        scene._domain.updateGhosts(scene._cpp)
 
 
 def _looks_by_id(scene, held: HeldRows) -> None:
@@ -291,8 +320,9 @@ def row_of(scene, id: int, missing=IndexError) -> int | None:
         return None
     if not d.owns(row):
         raise IndexError(f"body {id} is owned by another process: under mpirun (rank {d.rank} of {d.ranks}) a "
-                         f"body's state lives on the process that owns it; read the bodies of the whole scene "
-                         f"with talus.dem.distributed.positions(), called on every process")
+                         f"body's state lives on the process that owns it; read it with O.bodies.gather([{id}]) or "
+                         f"in a loop over O.bodies (both collective: every process runs them, as it runs the "
+                         f"script), or every body's position with talus.dem.distributed.positions()")
     return row
 
 
@@ -303,12 +333,13 @@ def global_ids(scene, rows) -> list[int]:
     return [int(r) for r in rows] if d is None else d.globalIds([int(r) for r in rows])
 
 
-def erase(scene, id: int) -> bool:
+def erase(scene, id: int, eraseClumpMembers: bool = False) -> bool:
     """O.bodies.erase under mpirun: every process calls it with the same ids (as code every
-    process runs alike does), and each erases its copy of the body, whichever process owns it;
-    False if it was erased already. A process that erased other bodies than the others stops
-    every process at the next re-detection, naming the rule."""
-    return domain(scene).erase(scene._cpp, int(id))
+    process runs alike does), and each erases its copy of the body, whichever process owns it
+    (a clump frees its members, or erases them too with ``eraseClumpMembers``; a member leaves
+    its clump, as in one process); False if it was erased already. A process that erased other
+    bodies than the others stops every process at the next re-detection, naming the rule."""
+    return domain(scene).erase(scene._cpp, int(id), bool(eraseClumpMembers))
 
 
 def positions(scene=None):
@@ -318,6 +349,29 @@ def positions(scene=None):
         scene = default_scene()
     d = domain(scene)
     return scene.positions().copy() if d is None else d.positions(scene._cpp)
+
+
+def gather_objects(value, root: int = -1) -> list:
+    """Every process's ``value`` (any object pickle takes), a list in rank order, on process
+    ``root`` (None elsewhere) or on every process when ``root`` is negative (collective); in one
+    process, ``[value]``."""
+    if not ACTIVE:
+        return [value]
+    import pickle
+    import numpy as np
+    from talus import _distributed
+    raw = pickle.dumps(value, protocol=pickle.HIGHEST_PROTOCOL)
+    padded = raw + bytes(-len(raw) % 8)     # whole doubles: the bytes travel as they are
+    table = np.concatenate([[float(len(raw))], np.frombuffer(padded, dtype=np.float64)]).reshape(-1, 1)
+    whole = _distributed.gather_rows(table, root).reshape(-1)
+    if root >= 0 and _rank != root:
+        return None
+    values, at = [], 0
+    while at < len(whole):
+        size = int(whole[at])
+        values.append(pickle.loads(whole[at + 1:at + 1 + (size + 7) // 8].tobytes()[:size]))
+        at += 1 + (size + 7) // 8
+    return values
 
 
 def rank() -> int:

@@ -10,7 +10,7 @@ from talus import _dem
 from talus.dem import distributed
 from talus.dem.core import clumps
 from talus.dem.geometry.appearance import Appearance
-from talus.dem.core.bodies import Body, BodySpec
+from talus.dem.core.bodies import Body, BodySpec, sphere
 from talus.dem.core.reference import ReferenceStates
 from talus.dem.files import slabs
 from talus.dem.geometry.shape_registry import shape_kind
@@ -35,6 +35,24 @@ class BodyContainer:
         if slabs.is_slab(spec):     # under mpirun: this process's part of a file's spheres
             return distributed.append_slab(self, spec)
         return self._append_specs(list(spec))
+
+    def insertAtId(self, spec: BodySpec, id: int) -> int:
+        """Add ``spec`` as body ``id`` (Yade's, which Yade's mpy scripts use to build each
+        process's bodies); the ids between the last body and ``id`` are left as erased bodies.
+        Returns ``id``."""
+        if isinstance(id, bool) or not isinstance(id, (int, np.integer)) or id < 0:
+            raise ValueError(f"O.bodies.insertAtId: id must be an integer >= 0, got {id!r}")
+        if distributed.domain(self._scene) is not None:
+            distributed.refuse("O.bodies.insertAtId after the scene was split (at its first step under mpirun) or in a "
+                               "scene holding a packing read in slabs")
+        if id < len(self):
+            raise ValueError(f"O.bodies.insertAtId: id {id} is taken (by a body or an erased one, whose ids Talus does "
+                             f"not reuse); the next free id is {len(self)}")
+        if not isinstance(spec, BodySpec):
+            raise TypeError(f"O.bodies.insertAtId: takes a body (utils.sphere(...), ...), got {spec!r}")
+        for hole in self.append([sphere((0, 0, 0), 1) for _ in range(id - len(self))]):
+            self.erase(hole)
+        return self.append(spec)
 
     def _append_specs(self, specs: list[BodySpec], ids: Iterable[int] | None = None) -> list[int]:
         """Append ``specs`` (as bodies ``ids`` of this process's slab of a packing, when given)."""
@@ -141,20 +159,36 @@ class BodyContainer:
         members summed whole (a sphere from its material's density), or, with
         ``discretization`` > 0 and overlapping spheres, the spheres' union integrated on a grid
         of cubes of edge (shortest side of their bounding box) / discretization."""
-        self._scene._views.before_adding(self._scene._cpp)
-        return int(_dem.add_clump(self._scene._cpp, [int(i) for i in ids], int(discretization)))
+        scene = self._scene
+        if distributed.is_split(scene):
+            self._whole_scene("O.bodies.clump")
+        rows = [int(i) for i in ids]
+        if isinstance(distributed.domain(scene), distributed.HeldRows):     # a scene read in slabs: ids to rows
+            rows = [distributed.clumpable_row(scene, i) for i in rows]
+        scene._views.before_adding(scene._cpp)
+        return distributed.added(scene, int(_dem.add_clump(scene._cpp, rows, int(discretization))))
 
     def addToClump(self, bids, cid: int, discretization: int = 0) -> None:
         """Yade's addToClump (talus.dem.core.clumps.addToClump)."""
+        self._whole_scene("O.bodies.addToClump")
         clumps.addToClump(self, bids, cid, discretization)
 
     def releaseFromClump(self, bid: int, cid: int, discretization: int = 0) -> None:
         """Yade's releaseFromClump (talus.dem.core.clumps.releaseFromClump)."""
+        self._whole_scene("O.bodies.releaseFromClump")
         clumps.releaseFromClump(self, bid, cid, discretization)
 
     def replaceByClumps(self, ctList, amounts, discretization: int = 0, seed: int | None = None) -> list:
         """Yade's replaceByClumps (talus.dem.core.clumps.replaceByClumps)."""
+        self._whole_scene("O.bodies.replaceByClumps")
         return clumps.replaceByClumps(self, ctList, amounts, discretization, seed)
+
+    def _whole_scene(self, what: str) -> None:
+        """Refuse ``what`` under mpirun once the scene is split or while it holds a slab of a
+        packing: it names bodies by the rows of a whole scene."""
+        if distributed.domain(self._scene) is not None:
+            distributed.refuse(f"{what} after the scene was split (at its first step under mpirun) or in a scene "
+                               f"holding a packing read in slabs")
 
     def getRoundness(self, excludeList=()) -> float:
         """Yade's roundness coefficient (talus.dem.core.clumps.getRoundness)."""
@@ -166,7 +200,7 @@ class BodyContainer:
         a member takes it out of its clump, which keeps its mass and inertia (as in Yade) and
         goes with its last member."""
         if distributed.domain(self._scene) is not None:     # under mpirun: every process erases its copy
-            return distributed.erase(self._scene, int(id) + len(self) if id < 0 else int(id))
+            return distributed.erase(self._scene, int(id) + len(self) if id < 0 else int(id), bool(eraseClumpMembers))
         if self[id] is None:
             return False
         _dem.erase(self._scene._cpp, int(id), bool(eraseClumpMembers))

@@ -396,16 +396,15 @@ def save(scene: "Scene", path: str | os.PathLike, *, engines: bool = True) -> No
             extras["engines_signature"] = signature
     extras.update(_body_data(scene))
     from talus.dem import distributed
-    if distributed.ACTIVE:
+    # a scene yade.mpy merged is whole on every process until its next split: rank 0 writes it
+    merged = distributed.ACTIVE and distributed.domain(scene) is None and getattr(scene, "_merged", False)
+    if distributed.ACTIVE and not merged:
         if isinstance(distributed.domain(scene), distributed.HeldRows):
             distributed.refuse("O.save of a scene holding a packing read in slabs, before its first step (save it "
                                "after the first step, once the scene is split)")
-        if (split := distributed.domain(scene)) is not None and split.hasClumps:
-            # each process holds its clumps' member lists by its own rows: not the file's ids
-            distributed.refuse("O.save of a scene with clumps")
         from talus import _distributed_checkpoint
         _distributed_checkpoint.save(distributed.domain(scene), scene._cpp, path, extras)
-    else:
+    elif not merged or distributed.rank() == 0:
         _dem.save_checkpoint(scene._cpp, path, extras)
     _scene_memory(scene)["last"] = path
 
