@@ -108,19 +108,22 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
 /// (with a negative penetration), and its incremental moments turn with the frame as the shear
 /// force does.
 ///
-/// `SpheresOnly`: the caller knows the pair is two spheres without extra state (x null), in a
-/// periodic scene or not — the hot path of dense granular runs, whose code carries no test of
-/// other shapes. Both forms do the same arithmetic in the same order, so they give the same bits.
+/// `SpheresOnly`: the caller knows the pair is two spheres, in a periodic scene or not — the hot
+/// path of dense granular runs, whose code carries no test of other shapes (inlined where the
+/// caller passes a null `x`, nor of bonds and moments). Both forms do the same arithmetic in the
+/// same order, so they give the same bits.
 /// @param c the contact, its geometry and shear force updated (reset when the shapes are apart)
 /// @param cell the periodic cell, or null
 /// @param dt the time step (s)
 /// @param x the contact's extra state, or null
+/// @param turnMoments x's moments turn with the frame; false when the law sets them afresh from
+///        the rotations (the total form of the cohesive law's, rolling resistance), which spares
+///        the read of their cache lines
 /// @return whether the contact is real after the update
 template <bool SpheresOnly = false>
-[[gnu::always_inline]] inline bool contactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x)
+[[gnu::always_inline]] inline bool contactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x,
+                                                   bool turnMoments = true)
 {
-  if constexpr (SpheresOnly)
-    x = nullptr;
   const bool holds = x != nullptr && !x->cohesionBroken && c.real;
   const auto i1 = static_cast<std::size_t>(c.id1);
   const auto i2 = static_cast<std::size_t>(c.id2);
@@ -167,7 +170,7 @@ template <bool SpheresOnly = false>
     const Vec3 twistAxis = (0.5 * dt * c.normal.dot(b.angVel[i1] + b.angVel[i2])) * c.normal;
     c.shearForce -= c.shearForce.cross(orthonormalAxis);
     c.shearForce -= c.shearForce.cross(twistAxis);
-    if (x)
+    if (x && turnMoments)
       for (Vec3* moment : {&x->momentBending, &x->momentTwist})
       {
         *moment -= moment->cross(orthonormalAxis);
@@ -207,10 +210,12 @@ template <bool SpheresOnly = false>
 /// @param cell the periodic cell, or null
 /// @param dt the time step (s)
 /// @param x the contact's extra state, or null
+/// @param turnMoments x's moments turn with the frame (see contactGeometry)
 /// @return whether the contact is real after the update
-inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x = nullptr)
+inline bool updateContactGeometry(Contact& c, const Bodies& b, const Cell* cell, double dt, ContactExtra* x = nullptr,
+                                  bool turnMoments = true)
 {
-  return contactGeometry<false>(c, b, cell, dt, x);
+  return contactGeometry<false>(c, b, cell, dt, x, turnMoments);
 }
 
 /// The same for a contact whose geometry is up to date (`cell`: the periodic cell, or null).

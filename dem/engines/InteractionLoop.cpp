@@ -217,7 +217,17 @@ void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, st
       // three-lines-per-record one; with it, faster (docs/dem.md, Speed: what the large beds
       // taught).
       if (e + prefetchDistance < entryCount)
-        __builtin_prefetch(&list[static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1)]);
+      {
+        const auto ahead = static_cast<std::size_t>(contacts.entries[static_cast<std::size_t>(e + prefetchDistance)] >> 1);
+        __builtin_prefetch(&list[ahead]);
+        // The moments of a law that keeps them: the first and last bytes of the pair, which
+        // may lie on two lines.
+        if (extra)
+        {
+          __builtin_prefetch(&extra[ahead].momentBending);
+          __builtin_prefetch(reinterpret_cast<const char*>(&extra[ahead].momentTwist) + sizeof(Vec3) - 1);
+        }
+      }
       // No test of c.real and no branch on the side: a contact that is not real carries a zero
       // force (Contact::reset), and whether a body is a contact's first or second is as
       // unpredictable as whether a candidate pair touches. The sign is computed, not selected

@@ -49,5 +49,7 @@ struct RollingResistance
   /// @param elastic the other parts' energy (J)
   /// @return elastic unchanged: the resistance stores nothing
   [[nodiscard]] double addElastic(double elastic, const ContactExtra* /*x*/) const { return elastic; }
+  /// @return false: the moment is set afresh at every step
+  [[nodiscard]] bool carriesMoments() const { return false; }
 };
 } // namespace talus::dem::parts
