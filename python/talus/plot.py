@@ -200,7 +200,8 @@ def plot(noShow: bool = False, subPlots: bool = True):
     ``noShow`` or there is no display. ``subPlots=False`` gives one figure per x name (the list
     of figures is returned)."""
     import matplotlib
-    if noShow or not os.environ.get("DISPLAY"):
+    if noShow or not os.environ.get("DISPLAY") or not _writes():    # (under mpirun: process 0 shows it)
+        noShow = True
         matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
@@ -236,14 +237,25 @@ def plot(noShow: bool = False, subPlots: bool = True):
             ax.legend(lines, [line.get_label() for line in lines], loc="best", fontsize="small")
     for figure in figures:
         figure.tight_layout()
-    if not (noShow or not os.environ.get("DISPLAY")):
+    if not noShow:
         plt.show()
     return figures[0] if subPlots else figures
 
 
+def _writes() -> bool:
+    """Whether this process writes the files: under ``mpirun -np N talus run`` every process runs
+    the script (and adds the same rows: the measurements give the whole scene's value on every
+    process), process 0 writes them; any process of a run of its own."""
+    from talus.dem import distributed
+    return not distributed.ACTIVE or distributed.rank() == 0
+
+
 def savePlot(path: str | os.PathLike, dpi: int = 120) -> None:
-    """Draw ``plots`` (all subplots in one figure) and write it as an image (PNG by suffix)."""
+    """Draw ``plots`` (all subplots in one figure) and write it as an image (PNG by suffix);
+    under mpirun, process 0 writes it."""
     import matplotlib.pyplot as plt
+    if not _writes():
+        return
     figure = plot(noShow=True)
     write_atomically(path, lambda tmp: figure.savefig(tmp, dpi=dpi, format=os.path.splitext(str(path))[1][1:] or "png"))
     plt.close(figure)
@@ -266,7 +278,9 @@ def saveDataTxt(fileName: str | os.PathLike, vars: Iterable[str] | None = None, 
         0.0<TAB>0.5                one row per addData
 
     comma-separated with a plain header when the name ends in ``.csv``; compressed when it ends
-    in ``.bz2`` or ``.gz``."""
+    in ``.bz2`` or ``.gz``. Under mpirun, process 0 writes it."""
+    if not _writes():
+        return
     names = list(vars) if vars is not None else sorted(data)
     columns = [_recorded(name) for name in names]
     if isinstance(headers, types.ModuleType):
@@ -308,8 +322,11 @@ def loadDataTxt(fileName: str | os.PathLike) -> dict[str, list[float]]:
 
 
 def saveDataHdf5(fileName: str | os.PathLike) -> None:
-    """Write ``data`` to an HDF5 file, one float64 dataset per name (needs h5py)."""
+    """Write ``data`` to an HDF5 file, one float64 dataset per name (needs h5py); under mpirun,
+    process 0 writes it."""
     import h5py
+    if not _writes():
+        return
 
     def write(tmp: str):
         with h5py.File(tmp, "w") as out:
@@ -357,5 +374,6 @@ def saveGnuplot(baseName: str, term: str = "wxt", extension: str | None = None, 
         with open(tmp, "w", encoding="utf-8") as out:
             out.write("\n".join(lines) + "\n")
 
-    write_atomically(script, write)
+    if _writes():
+        write_atomically(script, write)
     return script

@@ -42,8 +42,10 @@ def test_two_processes_give_the_serial_positions_bit_for_bit(tmp_path, method):
     assert done.returncode == 0, done.stderr
     a, b = json.loads(serial.read_text()), json.loads(split.read_text())
     assert len(b["positions"]) == 4 and np.array_equal(np.asarray(a["positions"]), np.asarray(b["positions"]))
-    # Each process sent ghost updates every step, and the spheres touched the floor by then.
-    assert [t["updates"] for t in b["traffic"]] == [400, 400]
+    # Each process sent ghost updates every step (and after the script's PyRunners, which may
+    # have written into the bodies), and the spheres touched the floor by then.
+    updates = [t["updates"] for t in b["traffic"]]
+    assert updates[0] == updates[1] and 400 <= updates[0] <= 410, updates
     assert all(t["update_bytes"] > 0 for t in b["traffic"])
     assert a["floor_force"] < 0 and b["floor_force"] == pytest.approx(a["floor_force"], rel=1e-12)
     # print from process 0 only: each sample's line once

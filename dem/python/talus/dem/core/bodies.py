@@ -420,34 +420,43 @@ class State(Serializable):
     @property
     def refPos(self) -> Vector3:
         """Reference position: where the body was made (a clump: the origin) unless set."""
-        return _reference(self, "refPos", self._reference().pos[self._id])
+        states, at = self._reference()
+        return _reference(self, "refPos", states.pos[at])
 
     @refPos.setter
     def refPos(self, value):
         value = np.asarray(value, dtype=float)
         if value.shape != (3,) or not np.all(np.isfinite(value)):
             raise ValueError(f"body {self._id}: refPos must be 3 finite numbers, got {value}")
-        self._reference().pos[self._id] = value
+        states, at = self._reference()
+        states.pos[at] = value
 
     @property
     def refOri(self) -> Quaternion:
         """Reference orientation: the one the body was made with (a clump: none) unless set."""
-        return Quaternion(*self._reference().ori[self._id])
+        states, at = self._reference()
+        return Quaternion(*states.ori[at])
 
     @refOri.setter
     def refOri(self, value):
         q = value if isinstance(value, Quaternion) else Quaternion(*value)
-        self._reference().ori[self._id] = (q.w, q.x, q.y, q.z)
+        states, at = self._reference()
+        states.ori[at] = (q.w, q.x, q.y, q.z)
 
     def _reference(self):
+        """The scene's reference states and this body's entry in them: its row in one process; its
+        id once the scene is split over the processes, every process keeping every body's (as it
+        built the whole scene), which a loop over O.bodies writes alike on every process."""
         from talus.dem import distributed     # (imports this module's package)
-        if distributed.is_split(self._scene):   # the table is by row, and the rows change at the split
-            distributed.refuse("State.refPos and refOri once the scene is split (they are kept by row in this "
-                               "process and do not follow the bodies between processes)")
-        states = self._scene._reference
-        states.ensure(self._scene._cpp.bodyCount())
-        return states
-
+        scene, at = self._scene, self._id
+        if distributed.is_split(scene):
+            if scene._reference_by_row:
+                distributed.refuse("State.refPos and refOri in a scene holding a packing read in slabs (each "
+                                   "process kept its own slab's only)")
+            at = distributed.global_ids(scene, [at])[0]
+        states = scene._reference
+        states.ensure(len(scene.bodies))
+        return states, at
     @property
     def blockedDOFs(self) -> str:
         mask = int(self._row("blockedDofs"))

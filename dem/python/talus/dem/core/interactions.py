@@ -86,42 +86,69 @@ class Interaction:
         return f"<Interaction {self.id1}-{self.id2}{'' if self.isReal else ' (not real)'}>"
 
 
+def _split_contacts():
+    from talus.dem.core import split_contacts     # (imports the files package, which imports this one)
+    return split_contacts
+
+
 class InteractionContainer:
     """``O.interactions``: iteration over the real contacts, lookup by id pair, counts, erase."""
 
     def __init__(self, scene: "Scene"):
         self._scene = scene
 
+    # Under mpirun (a scene split over the processes) see talus.dem.core.split_contacts: the
+    # iteration and the counts are collective, the look-ups answer where the contact lives.
+    def _split(self) -> bool:
+        from talus.dem import distributed     # (imports this module's package)
+        return distributed.is_split(self._scene)
+
     def __iter__(self) -> Iterator[Interaction]:
+        if self._split():
+            return (Interaction(values) for values in _split_contacts().every_contact(self._scene, True))
         return (Interaction(values) for values in self._scene._cpp.contacts())
 
     def __len__(self) -> int:
         """All pairs the collider keeps (real or only within the skin), as Yade's len()."""
+        if self._split():
+            return _split_contacts().count(self._scene, False)
         return self._scene._cpp.contactCount(False)
 
     def countReal(self) -> int:
+        if self._split():
+            return _split_contacts().count(self._scene, True)
         return self._scene._cpp.contactCount(True)
+
+    def _contact(self, id1: int, id2: int) -> dict | None:
+        """The values of the pair (id1, id2), None if it has none."""
+        if not self._split():
+            return self._scene._cpp.contact(id1, id2)
+        return _split_contacts().pair(self._scene, id1, id2)
 
     def __getitem__(self, ids) -> Interaction:
         try:
             id1, id2 = (int(k) for k in ids)
         except (TypeError, ValueError):
             raise TypeError(f"O.interactions[id1, id2] takes two body ids, got {ids!r}") from None
-        values = self._scene._cpp.contact(id1, id2)
+        values = self._contact(id1, id2)
         if values is None:
             raise IndexError(f"no interaction between bodies {id1} and {id2}")
         return Interaction(values)
 
     def has(self, id1: int, id2: int) -> bool:
         """Whether bodies id1 and id2 have a pair, real or within the skin."""
-        return self._scene._cpp.contact(int(id1), int(id2)) is not None
+        return self._contact(int(id1), int(id2)) is not None
 
     def withBody(self, id: int) -> list[Interaction]:
         """The real contacts of one body."""
+        if self._split():
+            return [Interaction(v) for v in _split_contacts().with_body(self._scene, int(id), True)]
         return [Interaction(v) for v in self._scene._cpp.contactsOf(int(id)) if v["isReal"]]
 
     def withBodyAll(self, id: int) -> list[Interaction]:
         """All pairs of one body, real or only within the skin."""
+        if self._split():
+            return [Interaction(v) for v in _split_contacts().with_body(self._scene, int(id), False)]
         return [Interaction(v) for v in self._scene._cpp.contactsOf(int(id))]
 
     def nr(self) -> int:
@@ -130,7 +157,13 @@ class InteractionContainer:
 
     def erase(self, id1: int, id2: int) -> bool:
         """Remove a pair and its history; the collider finds it again while the bodies stay
-        within the skin (as in Yade). Returns whether there was one."""
+        within the skin (as in Yade). Returns whether there was one. Under mpirun every process
+        calls it alike and erases its copy (True if any process had the pair: collective)."""
+        if self._split():
+            d = self._scene._domain
+            rows = [d.rowOf(int(i)) for i in (id1, id2)]
+            here = min(rows) >= 0 and bool(self._scene._cpp.eraseContact(*rows))
+            return _split_contacts().vtk_split.total(self._scene, int(here)) > 0
         return bool(self._scene._cpp.eraseContact(int(id1), int(id2)))
 
     def clear(self):
@@ -139,4 +172,6 @@ class InteractionContainer:
 
     def all(self, onlyReal: bool = False) -> list[Interaction]:
         """Every pair (or only the real ones)."""
+        if self._split():
+            return [Interaction(v) for v in _split_contacts().every_contact(self._scene, onlyReal)]
         return [Interaction(v) for v in self._scene._cpp.contacts(onlyReal)]

@@ -13,12 +13,13 @@ the whole script) and visits every live body of the scene, in id order:
   its state changes the snapshot only: its owner, running the same loop, visits the same body
   with the same values and makes the same write to the body itself (the rule ``O.bodies.erase``
   follows too: every process erases the same ids, each its copy). Its looks (``shape.color``,
-  ``highlight``, ``wire``) every process keeps for every body: written alike everywhere.
+  ``highlight``, ``wire``) and reference state (``state.refPos``, ``refOri``) every process keeps
+  for every body: written alike everywhere.
 
 So a sum over the bodies is the whole scene's on every process (in id order, as in one process),
 a loop erasing the bodies below a floor erases the same ids everywhere, and a write reaches every
-body once. What a snapshot cannot give (a body's forces, its reference state) raises, naming
-the rule. One loop exchanges the state of every body (25 numbers each) with every process:
+body once. What a snapshot cannot give (its bound, its angular momentum, a clump's members)
+raises, naming the rule. One loop exchanges the state of every body (25 numbers each) with every process:
 for large scenes, prefer the measurements that reduce (``utils.kineticEnergy()``,
 ``aabbExtrema()``, ``O.bodies.gather(ids)`` for a few bodies).
 """
@@ -30,6 +31,7 @@ from typing import TYPE_CHECKING, Iterator
 import numpy as np
 
 from talus import _dem
+from talus.dem import distributed
 from talus.dem.base.linalg import Quaternion, Vector3
 from talus.dem.geometry.appearance import check_color
 from talus.dem.geometry.shapes import Clump, ShapeSpec, Sphere
@@ -40,7 +42,8 @@ if TYPE_CHECKING:
 # Columns of a body's row in the exchanged table.
 _ID, _POS, _VEL, _ANGVEL, _ORI, _MASS, _INERTIA = 0, slice(1, 4), slice(4, 7), slice(7, 10), slice(10, 14), 14, slice(15, 18)
 _RADIUS, _DYNAMIC, _MATERIAL, _MASK, _CLUMP_ID, _IS_CLUMP, _BLOCKED = 18, 19, 20, 21, 22, 23, 24
-_WIDTH = 25
+_OWNER = 25
+_WIDTH = 26
 _DOF_LETTERS = "xyzXYZ"
 
 
@@ -49,30 +52,72 @@ def _rule(id: int, owner_note: str) -> str:
             f"is a snapshot of it taken when the loop started ({owner_note})")
 
 
+def _field(name: str, make):
+    """A snapshot's attribute: made from its row when read (most loops read a few of them), or
+    what the loop wrote into it."""
+    def get(self):
+        return self._written[name] if name in self._written else make(self._row)
+
+    def set(self, value):
+        self._written[name] = value
+    return property(get, set)
+
+
+def _blocked(row) -> str:
+    mask = int(row[_BLOCKED])
+    return "".join(c for i, c in enumerate(_DOF_LETTERS) if mask & (1 << i))
+
+
 class RemoteState:
     """The state of a body owned by another process, as it was when the loop started. Its
     attributes can be set: the snapshot changes, and the owner makes the same write in its own
     run of the loop."""
 
-    __slots__ = ("_id", "pos", "vel", "angVel", "ori", "mass", "inertia", "blockedDOFs")
+    __slots__ = ("_id", "_row", "_written", "_scene")
 
-    def __init__(self, id: int, row: np.ndarray):
-        self._id = id
-        self.pos, self.vel, self.angVel = Vector3(row[_POS]), Vector3(row[_VEL]), Vector3(row[_ANGVEL])
-        self.ori = Quaternion(*row[_ORI])
-        self.mass, self.inertia = float(row[_MASS]), Vector3(row[_INERTIA])
-        mask = int(row[_BLOCKED])
-        self.blockedDOFs = "".join(c for i, c in enumerate(_DOF_LETTERS) if mask & (1 << i))
+    def __init__(self, scene: "Scene", id: int, row: np.ndarray):
+        self._id, self._row, self._written, self._scene = id, row, {}, scene
+
+    pos = _field("pos", lambda row: Vector3(row[_POS]))
+    vel = _field("vel", lambda row: Vector3(row[_VEL]))
+    angVel = _field("angVel", lambda row: Vector3(row[_ANGVEL]))
+    ori = _field("ori", lambda row: Quaternion(*row[_ORI]))
+    mass = _field("mass", lambda row: float(row[_MASS]))
+    inertia = _field("inertia", lambda row: Vector3(row[_INERTIA]))
+    blockedDOFs = _field("blockedDOFs", _blocked)
 
     @property
     def se3(self):
         return self.pos, self.ori
+
+    # The reference state, which every process keeps for every body (State._reference): a loop
+    # writing it writes it alike on every process.
+    def _states(self):
+        scene = self._scene
+        if scene._reference_by_row:
+            distributed.refuse("State.refPos and refOri in a scene holding a packing read in slabs (each process "
+                               "kept its own slab's only)")
+        scene._reference.ensure(len(scene.bodies))
+        return scene._reference
+
+    def _set_ori(self, value):
+        q = value if isinstance(value, Quaternion) else Quaternion(*value)
+        self._states().ori[self._id] = (q.w, q.x, q.y, q.z)
+
+    refPos = property(lambda s: Vector3(s._states().pos[s._id]),
+                      lambda s, v: s._states().pos.__setitem__(s._id, np.asarray(v, dtype=float).reshape(3)))
+    refOri = property(lambda s: Quaternion(*s._states().ori[s._id]), _set_ori)
 
     def __getattr__(self, name):
         if name.startswith("__"):
             raise AttributeError(name)
         raise AttributeError(_rule(self._id, f"its state.{name} is not part of the snapshot: read it on the process "
                                              f"owning the body, or run the script in one process"))
+
+    def __setattr__(self, name, value):
+        if not hasattr(type(self), name) and name not in self.__slots__:
+            raise AttributeError(_rule(self._id, f"its state.{name} is not part of the snapshot"))
+        object.__setattr__(self, name, value)
 
     def __repr__(self):
         return f"<RemoteState of body {self._id}>"
@@ -83,25 +128,33 @@ class RemoteBody:
     module's rule): ``id``, ``state``, ``shape`` (a Sphere or Clump with the body's radius and
     colour), ``material``, ``dynamic``, ``mask``, ``clumpId``."""
 
-    __slots__ = ("id", "state", "shape", "dynamic", "mask", "clumpId", "isClump", "_material", "_scene")
+    __slots__ = ("id", "state", "_shape", "_row", "_scene", "_written")
 
     def __init__(self, scene: "Scene", row: np.ndarray):
-        id = int(row[_ID])
-        self.id, self._scene, self.state = id, scene, RemoteState(id, row)
-        self.isClump = bool(row[_IS_CLUMP])
-        spec = ShapeSpec("Clump" if self.isClump else "Sphere", tuple(row[_POS]), radius=float(row[_RADIUS]))
-        self.shape = (_RemoteClump if self.isClump else _RemoteSphere)._view(scene, id, spec)
-        self.dynamic, self.mask = bool(row[_DYNAMIC]), int(row[_MASK])
-        self.clumpId, self._material = int(row[_CLUMP_ID]), int(row[_MATERIAL])
+        self.id, self._scene, self._row, self._shape, self._written = int(row[_ID]), scene, row, None, {}
+        self.state = RemoteState(scene, self.id, row)
 
-    groupMask = property(lambda b: b.mask)
-    radius = property(lambda b: b.shape.radius)
+    @property
+    def shape(self):
+        if self._shape is None:
+            spec = ShapeSpec("Clump" if self.isClump else "Sphere", tuple(self._row[_POS]),
+                             radius=float(self._row[_RADIUS]))
+            self._shape = (_RemoteClump if self.isClump else _RemoteSphere)._view(self._scene, self.id, spec)
+        return self._shape
+
+    dynamic = _field("dynamic", lambda row: bool(row[_DYNAMIC]))
+    mask = _field("mask", lambda row: int(row[_MASK]))
+    groupMask = mask
+    clumpId = property(lambda b: int(b._row[_CLUMP_ID]))
+    isClump = property(lambda b: bool(b._row[_IS_CLUMP]))
+    radius = property(lambda b: float(b._row[_RADIUS]))
     isClumpMember = property(lambda b: not b.isClump and b.clumpId >= 0)
     isStandalone = property(lambda b: not b.isClump and b.clumpId < 0)
+    subdomain = property(lambda b: int(b._row[_OWNER]))     # the rank owning it (Yade's Body.subdomain)
 
     @property
     def material(self):
-        return None if self.isClump else self._scene.materials[self._material]
+        return None if self.isClump else self._scene.materials[int(self._row[_MATERIAL])]
 
     mat = material
 
@@ -168,6 +221,7 @@ def _own_rows(scene: "Scene", domain) -> np.ndarray:
     table[:, _MASS], table[:, _RADIUS] = cpp.mass()[rows], cpp.radius()[rows]
     table[:, _DYNAMIC], table[:, _MATERIAL] = cpp.dynamic()[rows], cpp.materialIds()[rows]
     table[:, _BLOCKED] = cpp.blockedDofs()[rows]
+    table[:, _OWNER] = domain.rank
     for k, row in enumerate(int(r) for r in rows):
         table[k, _ORI] = cpp.ori(row)
         table[k, _MASK] = _dem.group_mask(cpp, row)
@@ -196,3 +250,4 @@ def every_body(scene: "Scene", views) -> Iterator:
             yield RemoteBody(scene, table[remote[id]])
         elif alive[here[id]]:   # (not erased by the loop meanwhile)
             yield views(here[id], id)
+    distributed.update_ghosts(scene)    # what the loop wrote, to the other processes' copies

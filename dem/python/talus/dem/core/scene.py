@@ -128,6 +128,7 @@ class Scene(OmegaMethods, CheckpointMethods):
     # The scene's split over processes under mpirun (talus.dem.distributed.domain), None in one
     # process: an attribute of the class, so that asking costs no AttributeError from __getattr__.
     _domain = None
+    _reference_by_row = False   # under mpirun, a scene read in slabs: refPos/refOri of its slab only
 
     def __init__(self):
         self._cpp = _dem.Scene()

@@ -24,6 +24,7 @@ from typing import Sequence
 import numpy as np
 
 from talus.dem.core.scenes import default_scene
+from talus.dem.files import vtk_split
 
 _FORMATS = ("x_y_z_r", "x_y_z_r_matId", "id_x_y_z_r_matId", "x_y_z_r_attrs")
 
@@ -39,26 +40,37 @@ def textExt(filename: str, format: str = "x_y_z_r", comment: str = "", mask: int
     if format not in _FORMATS:
         raise ValueError(f"textExt: format={format!r} is not supported; Talus writes {', '.join(_FORMATS)}")
     lines = [f"#format {format}\n", *_comment_lines(format, comment)]
-    ids = scene.sphere_ids()
+    # Under mpirun each process holds its own spheres: process 0 writes them all (vtk_split).
+    rows = vtk_split.owned(scene, scene.sphere_ids())
+    ids = vtk_split.global_ids(scene, rows)
     if mask >= 0:
-        ids = [i for i in ids if scene.bodies[int(i)].mask & mask]
+        keep = np.array([bool(scene.bodies[int(i)].mask & mask) for i in ids], dtype=bool)
+        rows, ids = rows[keep], ids[keep]
     cpp = scene._cpp
-    pos, radius, material = cpp.pos(), cpp.radius(), cpp.materialIds()
-    for i in ids:
-        columns = [*pos[i], radius[i]]
-        if format == "id_x_y_z_r_matId":
-            line = "%d\t%g\t%g\t%g\t%g\t%d\n" % (i, *columns, material[i])
-        else:
-            line = "\t".join("%g" % c for c in columns)
-            if format == "x_y_z_r_matId":
-                line += "\t%d" % material[i]
-            elif format == "x_y_z_r_attrs":
-                line += "".join("\t%g" % v for v in _attribute_values(attrs, scene.bodies[int(i)]))
-            line += "\n"
-        lines.append(line)
-    with open(filename, "w") as out:
-        out.writelines(lines)
-    return len(ids)
+    table = {"id": ids, "pos": cpp.pos()[rows], "radius": cpp.radius()[rows], "material": cpp.materialIds()[rows]}
+    if format == "x_y_z_r_attrs":
+        values = [_attribute_values(attrs, scene.bodies[int(i)]) for i in ids]
+        width = len(values[0]) if values else 0
+        if vtk_split.is_split(scene):   # (a process without spheres learns the width from the others)
+            width = int(-scene._domain.minima([-float(width)])[0])
+        table["attrs"] = np.array(values, dtype=float).reshape(len(ids), width)
+    table = vtk_split.gather(scene, table, ("id",))
+    if table is not None:   # (None: another process writes)
+        for k, i in enumerate(table["id"]):
+            columns = [*table["pos"][k], table["radius"][k]]
+            if format == "id_x_y_z_r_matId":
+                line = "%d\t%g\t%g\t%g\t%g\t%d\n" % (i, *columns, table["material"][k])
+            else:
+                line = "\t".join("%g" % c for c in columns)
+                if format == "x_y_z_r_matId":
+                    line += "\t%d" % table["material"][k]
+                elif format == "x_y_z_r_attrs":
+                    line += "".join("\t%g" % v for v in table["attrs"][k])
+                line += "\n"
+            lines.append(line)
+        with open(filename, "w") as out:
+            out.writelines(lines)
+    return vtk_split.total(scene, len(ids))
 
 
 def text(filename: str, mask: int = -1, scene=None) -> int:

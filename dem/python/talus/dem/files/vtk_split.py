@@ -37,9 +37,18 @@ def writes(scene: "Scene") -> bool:
     return not is_split(scene) or distributed.rank() == 0
 
 
+def _whole_scene_needed(scene: "Scene") -> None:
+    """Refuse output before the first step of a scene holding a packing read in slabs (each
+    process holds its own part of the file until the split)."""
+    if isinstance(distributed.domain(scene), distributed.HeldRows):
+        distributed.refuse("file output (VTK, export.text) before the first step of a scene holding a packing read "
+                           "in slabs (each process holds its own slab until the split)")
+
+
 def owned(scene: "Scene", rows: np.ndarray) -> np.ndarray:
     """The rows of ``rows`` holding bodies this process owns (its ghosts left out); all of them
     in one process."""
+    _whole_scene_needed(scene)
     if not is_split(scene):
         return rows
     own_rows, _ = scene._domain.ownedBodies(scene._cpp)
@@ -48,6 +57,7 @@ def owned(scene: "Scene", rows: np.ndarray) -> np.ndarray:
 
 def global_ids(scene: "Scene", rows: np.ndarray) -> np.ndarray:
     """The ids the script gave the bodies in ``rows`` (the rows themselves in one process)."""
+    _whole_scene_needed(scene)
     rows = np.asarray(rows, dtype=np.int64)
     if not is_split(scene):
         return rows
