@@ -2,9 +2,10 @@
 processes (oversubscribed on this machine): a periodic triaxial compaction (PeriTriaxController,
 dynCell, reading the stress every step) and a cell compressed and sheared by O.cell.velGrad give
 the serial positions, cell and stress bit for bit, bodies having changed process across the
-cell's faces; a cell resized by the script (on every process) goes on as in one process; what is
-periodic and not distributed is refused by name, once; a cell changed on one process only stops
-every process, naming the rule."""
+cell's faces; spheres settling onto a floor (a wall, two facets, a box) in a fixed and in a
+sheared cell give the serial positions bit for bit; a cell resized by the script (on every
+process) goes on as in one process; what is periodic and not distributed is refused by name,
+once; a cell changed on one process only stops every process, naming the rule."""
 import json
 from pathlib import Path
 
@@ -13,7 +14,8 @@ import pytest
 
 from test_mpi_run import assert_refused_by_name_once, pytestmark, talus_run  # noqa: F401  (the same skip)
 
-SCENE = Path(__file__).resolve().parents[3] / "cases" / "scenes" / "periodic_cell.py"
+SCENES = Path(__file__).resolve().parents[3] / "cases" / "scenes"
+SCENE = SCENES / "periodic_cell.py"
 
 
 def run(tmp_path, mode, processes, env=None):
@@ -48,6 +50,40 @@ def test_hsfc_regions_in_the_reduced_coordinates_too(tmp_path):
     assert split["cells"] == serial["cells"] and split["stress"] == serial["stress"]
 
 
+_serial_floors = {}
+
+
+def floor_run(tmp_path, floor, cell, processes):
+    path = tmp_path / f"{floor}-{cell}-{processes or 1}.json"
+    done = talus_run(SCENES / "periodic_floor.py", 300, 1000, path, floor, cell, processes=processes, timeout=300)
+    assert done.returncode == 0, done.stderr
+    return json.loads(path.read_text())
+
+
+@pytest.mark.parametrize("processes", [2, 3])
+@pytest.mark.parametrize("cell", ["fixed", "shear"])
+@pytest.mark.parametrize("floor", ["wall", "facet", "box"])
+def test_a_floor_in_a_periodic_cell_gives_the_serial_run(tmp_path, floor, cell, processes):
+    if (floor, cell) not in _serial_floors:                # one serial run for both process counts
+        _serial_floors[floor, cell] = floor_run(tmp_path, floor, cell, None)
+    serial, split = _serial_floors[floor, cell], floor_run(tmp_path, floor, cell, processes)
+    assert len(split["positions"]) == 10
+    assert np.array_equal(np.asarray(serial["positions"]), np.asarray(split["positions"]))
+    assert split["cells"] == serial["cells"]
+    # Every process re-detected at the serial steps, no more.
+    assert [t["rebuilds"] for t in split["traffic"]] == [serial["rebuilds"]] * processes
+    # The spheres reached the floor (settling, it carries over a third of their weight, 0.7 kg
+    # each), its force summed over the processes within round-off of the serial sum.
+    assert -serial["floor_force"][2] > 300 * 0.7 * 9.81 / 3
+    assert split["floor_force"] == pytest.approx(serial["floor_force"], rel=1e-12, abs=1e-9)
+    if cell == "shear":
+        # The cell sheared and the spheres carried along x crossed its faces, changing process.
+        cells, last = np.asarray(serial["cells"]), np.asarray(serial["positions"][-1])
+        assert cells[-1][0, 2] > 1.0
+        assert (np.floor(np.linalg.solve(cells[-1], last[:300].T).T[:, 0]) != 0).sum() >= 5
+        assert all(t["migrated_bodies"] > 0 for t in split["traffic"])
+
+
 def _periodic_script(tmp_path, body):
     script = tmp_path / "script.py"
     script.write_text(
@@ -67,9 +103,6 @@ def _periodic_script(tmp_path, body):
 
 
 @pytest.mark.parametrize("body, named", [
-    ("O.bodies.append(utils.wall(0.5, axis=2))\nO.run(10, True)\n", "a Wall in a periodic cell"),
-    ("O.bodies.append(utils.box((0.5, 0.5, 0.5), (0.05, 0.05, 0.05), fixed=True))\nO.run(10, True)\n",
-     "a Box in a periodic cell"),
     ("O.engines = O.engines + [PeriIsoCompressor(stresses=[-1e3])]\nO.run(10, True)\n", "PeriIsoCompressor"),
     ("O.engines = O.engines + [Peri3dController()]\nO.run(10, True)\n", "Peri3dController"),
 ])
