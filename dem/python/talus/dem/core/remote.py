@@ -19,7 +19,7 @@ the whole script) and visits every live body of the scene, in id order:
 So a sum over the bodies is the whole scene's on every process (in id order, as in one process),
 a loop erasing the bodies below a floor erases the same ids everywhere, and a write reaches every
 body once. What a snapshot cannot give (its bound, its angular momentum, a clump's members)
-raises, naming the rule. One loop exchanges the state of every body (25 numbers each) with every process:
+raises, naming the rule. One loop exchanges the state of every body (26 numbers each) with every process:
 for large scenes, prefer the measurements that reduce (``utils.kineticEnergy()``,
 ``aabbExtrema()``, ``O.bodies.gather(ids)`` for a few bodies).
 """
