@@ -1,7 +1,8 @@
 """Clumps of two spheres in a deforming periodic cell: a script written for one process, run as it
 is by `talus run` and by `mpirun -np N talus run` (tests/dem/distributed/test_mpi_clumps_periodic.py).
 
-Arguments: clumps, steps, output file (JSON), mode:
+Arguments: clumps, steps, output file (JSON), mode, and optionally `grow` (growParticles(1.05)
+at a third of the steps: the clumps grow about their centres):
 
 - `triax`: a loose periodic cloud (makeCloud, rMean 0.1, rRelFuzz 0.3, seed 1), each sphere made
   a clump of two spheres inside it (radii 0.7 r and 0.5 r, their centres 0.3 r and 0.5 r either
@@ -24,6 +25,7 @@ from yade import pack
 from talus.dem import distributed
 
 clumps, steps, output, mode = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4]
+grow = sys.argv[5:] == ["grow"]
 if mode not in ("triax", "shear"):
     raise SystemExit(f"mode {mode!r}: triax or shear")
 sigma = -1e5
@@ -62,7 +64,10 @@ def sample():
     cells.append([list(O.cell.hSize.row(i)) for i in range(3)])
 
 
-O.run(steps, True)
+if grow:
+    O.run(steps // 3, True)
+    growParticles(1.05)
+O.run(steps - O.iter, True)
 sample()                                               # the state after the last step
 result = {"positions": samples, "cells": cells, "stress": [list(getStress().row(i)) for i in range(3)],
           "energy": {k: O.energy[k] for k in O.energy.keys()}, "traffic": distributed.traffic(),

@@ -1,7 +1,6 @@
 #include "dem/distributed/MpiDomain.h"
 
 #include "dem/contact/Collider.h"
-#include "dem/control/TriaxialStressController.h"
 #include "dem/core/Scene.h"
 #include "dem/distributed/Collective.h"
 #include "dem/distributed/Ghosts.h"
@@ -201,13 +200,6 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
                 "in one process";
   }
   hasClumps_ = !clumped_.empty();
-  // Growing a clump scales its members' offsets in the clump table of the processes holding it
-  // only: another process it moves to later would place its members as before the growth.
-  for (const auto& engine : scene.engines)
-    if (const auto* triax = dynamic_cast<const TriaxialStressController*>(engine.get());
-        triax && triax->internalCompaction && hasClumps_ && error.empty())
-      error = "TriaxialStressController with internalCompaction (spheres grown by growParticles) in a scene with "
-              "clumps: growing clumps is not distributed yet; set internalCompaction=False or run it in one process";
   if (const std::int64_t count = sceneSpheres(comm_, spheres, held); error.empty() && count < ranks_)
     error = "the scene has " + std::to_string(count) + " spheres for " + std::to_string(ranks_)
             + " processes: each process needs at least one; run it on fewer (mpirun -np)";

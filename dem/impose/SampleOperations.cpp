@@ -1,11 +1,13 @@
 #include "dem/impose/SampleOperations.h"
 
 #include "dem/core/Clump.h"
+#include "dem/core/Domain.h"
 #include "dem/measure/Energy.h"
 #include "dem/core/Scene.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,6 +29,21 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
   bool any = false;
   for (std::size_t i = 0; i < b.size() && !any; ++i)
     any = grows(i) || (b.shape[i] == ShapeKind::Clump && passes(i));
+  // Split over processes, every process scales the member offsets of every growing clump in its
+  // clump table, whether it holds the clump or not: a process the clump moves to later places
+  // its members by its own table. Each clump's owner decides whether it grows (-1 per growing
+  // clump's shape, and last whether any body grows anywhere, in one reduction).
+  std::vector<double> growing;
+  if (scene.domain)
+  {
+    growing.assign(b.clumps.size() + 1, 0.0);
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (b.shape[i] == ShapeKind::Clump && scene.domain->owns(i) && passes(i))
+        growing[static_cast<std::size_t>(b.shapeIndex[i])] = -1;
+    growing.back() = any ? -1 : 0;
+    scene.domain->min(growing);
+    any = growing.back() < 0;
+  }
   if (!any)
     return;
   if (!(multiplier > 0 && std::isfinite(multiplier)))
@@ -35,8 +52,11 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
   const double before = track ? kineticEnergy(scene) + elasticPotential(scene) : 0.0;
   // How far each member's centre moves: (multiplier - 1) times its offset from the centroid.
   std::vector<Vec3> moved(b.size(), Vec3::Zero());
+  std::vector<std::uint8_t> held(b.clumps.size(), 0); // the clumps this process holds (their offsets scaled below)
   for (std::size_t i = 0; i < b.size(); ++i)
   {
+    if (b.shape[i] == ShapeKind::Clump && b.alive[i])
+      held[static_cast<std::size_t>(b.shapeIndex[i])] = 1;
     if (b.shape[i] == ShapeKind::Clump && passes(i))
     {
       ClumpShape& clump = b.clumps[static_cast<std::size_t>(b.shapeIndex[i])];
@@ -65,6 +85,10 @@ void growParticles(Scene& scene, double multiplier, bool updateMass, bool dynami
     }
     b.radius[i] *= multiplier;
   }
+  for (std::size_t k = 0; scene.domain && k < b.clumps.size(); ++k)
+    if (growing[k] < 0 && !held[k])
+      for (Vec3& offset : b.clumps[k].relPos)
+        offset *= multiplier;
   for (Contact& c : scene.contacts.list)
   {
     if (!c.real)

@@ -2,7 +2,8 @@
 processes (oversubscribed on this machine): a clump and its members owned by the process of the
 clump's centre and ghosted whole through the cell's images, in a cell compacted by
 PeriTriaxController or compressed and sheared by O.cell.velGrad: the serial positions, cell and
-stress bit for bit, clumps having crossed the cell's faces and changed process."""
+stress bit for bit, clumps having crossed the cell's faces and changed process; clumps grown by
+growParticles placed alike wherever they go after."""
 import json
 from pathlib import Path
 
@@ -14,9 +15,9 @@ from test_mpi_run import pytestmark, talus_run  # noqa: F401  (the same skip: mp
 SCENE = Path(__file__).resolve().parents[3] / "cases" / "scenes" / "periodic_clumps.py"
 
 
-def run(tmp_path, mode, processes, env=None):
+def run(tmp_path, mode, processes, env=None, *options):
     path = tmp_path / f"{mode}-{processes or 1}.json"
-    done = talus_run(SCENE, 300, 1000, path, mode, processes=processes, env=env, timeout=300)
+    done = talus_run(SCENE, 300, 1000, path, mode, *options, processes=processes, env=env, timeout=300)
     assert done.returncode == 0, done.stderr
     return json.loads(path.read_text())
 
@@ -46,3 +47,14 @@ def test_clumps_in_a_deforming_periodic_cell_give_the_serial_run(tmp_path, mode,
 
 def test_hsfc_regions_grown_to_hold_the_members(tmp_path):
     assert_same_run(run(tmp_path, "shear", None), run(tmp_path, "shear", 3, env={"TALUS_PARTITION": "HSFC"}))
+
+
+@pytest.mark.parametrize("processes, method", [(2, "RCB"), (3, "HSFC")])
+def test_clumps_grown_are_placed_alike_wherever_they_go(tmp_path, processes, method):
+    # Every process scales the member offsets of every growing clump in its table, held there or
+    # not: HSFC moves most clumps to other processes at each re-detection after the growth.
+    serial = run(tmp_path, "shear", None, None, "grow")
+    split = run(tmp_path, "shear", processes, {"TALUS_PARTITION": method}, "grow")
+    assert np.array_equal(np.asarray(serial["positions"]), np.asarray(split["positions"]))
+    assert split["cells"] == serial["cells"] and split["stress"] == serial["stress"]
+    assert serial["energy"]["growthWork"] != 0 and sum(t["migrated_bodies"] for t in split["traffic"]) > 100

@@ -160,10 +160,6 @@ def test_clumps_and_members_erased_as_in_one_process(tmp_path, processes):
 
 @pytest.mark.parametrize("body, named", [
     ("O.bodies.append(utils.box((0, 0, -2), (1, 1, 0.1)))\nO.run(10, True)\n", "Box moved by forces"),
-    ("O.run(10, True)\nfrom talus.dem.control.controllers import growParticles\ngrowParticles(1.01)\n",
-     "growParticles in a scene with clumps is not"),
-    ("O.engines = O.engines + [TriaxialStressController()]\nO.run(10, True)\n",
-     "TriaxialStressController with internalCompaction"),
     ("O.run(10, True)\nO.bodies.clump([5, 8])\n", "O.bodies.clump after the scene was split"),
     ("O.run(10, True)\nO.bodies.releaseFromClump(0, 2)\n", "O.bodies.releaseFromClump after the scene was split"),
 ])

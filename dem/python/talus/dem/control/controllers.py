@@ -349,11 +349,7 @@ def growParticles(multiplier: float, updateMass: bool = True, dynamicOnly: bool 
     follow (``updateMass``), current contacts keep their overlap history with scaled stiffness;
     a clump grows about its centroid (members' offsets and radii, mass and moments)."""
     O = default_scene()
-    scene = scene or O
-    if getattr(distributed.domain(scene), "hasClumps", False):
-        # a clump's member offsets are kept in each process's table, scaled only where it is held
-        distributed.refuse("growParticles in a scene with clumps")
-    _dem.growParticles(scene._cpp, float(multiplier), bool(updateMass), bool(dynamicOnly))
+    _dem.growParticles((scene or O)._cpp, float(multiplier), bool(updateMass), bool(dynamicOnly))
 
 
 def setContactFriction(angleRad: float, scene=None):
