@@ -32,6 +32,12 @@ struct Lanes3
 [[TALUS_AVX2]] inline Lanes3 scale(__m256d s, const Lanes3& v) { return {mul(s, v.x), mul(s, v.y), mul(s, v.z)}; }
 /// Eigen's cwiseProduct.
 [[TALUS_AVX2]] inline Lanes3 product(const Lanes3& a, const Lanes3& b) { return {mul(a.x, b.x), mul(a.y, b.y), mul(a.z, b.z)}; }
+/// Lane by lane, a where `mask` is set (all bits of a comparison's lane), else b.
+[[TALUS_AVX2]] inline __m256d select(__m256d mask, __m256d a, __m256d b) { return _mm256_blendv_pd(b, a, mask); }
+[[TALUS_AVX2]] inline Lanes3 select(__m256d mask, const Lanes3& a, const Lanes3& b)
+{
+  return {select(mask, a.x, b.x), select(mask, a.y, b.y), select(mask, a.z, b.z)};
+}
 /// (a0 b0 + a1 b1) + a2 b2, Eigen's order.
 [[TALUS_AVX2]] inline __m256d dot(const Lanes3& a, const Lanes3& b)
 {

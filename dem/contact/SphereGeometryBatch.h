@@ -11,13 +11,21 @@ namespace talus::dem
 /// How many contacts sphereGeometryBatch takes at once.
 inline constexpr int sphereBatchWidth = 4;
 
+/// What a law's own lanes did with four contacts (PartsLaw::sphereLanes): bit i of `geometry`
+/// for contact i's geometry made, of `forces` for its forces too.
+struct SphereLanes
+{
+  unsigned geometry = 0, forces = 0;
+};
+
 /// Whether this processor runs sphereGeometryBatch (AVX2), asked once.
 bool sphereBatchAvailable();
 
 /// contactGeometry<true> of four contacts that were real at the last step, between two spheres
-/// and outside a periodic cell: a contact whose spheres still overlap gets its normal, overlap,
-/// contact point, reference radii, turned shear force and shear increment (and is no longer
-/// fresh); one whose spheres came apart is left untouched, for contactGeometry to reset.
+/// and not across a periodic boundary (cellDist zero): a contact whose spheres still overlap
+/// gets its normal, overlap, contact point, reference radii, turned shear force and shear
+/// increment (and is no longer fresh); one whose spheres came apart is left untouched, for
+/// contactGeometry to reset.
 /// Only where sphereBatchAvailable().
 /// @param contacts the four contacts (distinct)
 /// @param dt the time step (s)

@@ -113,14 +113,16 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
     if (overlapsTooMuch(c, ratio, step.bodies))
       bad = std::min(bad, k);
   };
+  const bool turnMoments = law.carriesMoments();
   auto geometryAndForces = [&](Contact& c, std::int64_t k) [[gnu::always_inline]] {
     ContactExtra* x = Law::usesExtra ? step.extra + k : nullptr;
-    // A law whose state the geometry does not read (Hertz-Mindlin's stiffnesses) takes the
-    // stateless laws' geometry: the spheres' inline fast path, and no read of the state's
-    // cache lines for the bonds and moments it does not have.
-    const bool sphereFastPath = !Law::geometryUsesExtra && c.kind == ContactGeometryKind::SphereSphere;
-    if (!(sphereFastPath ? contactGeometry<true>(c, step.bodies, step.cell, step.dt, nullptr)
-                         : updateContactGeometry(c, step.bodies, step.cell, step.dt, Law::geometryUsesExtra ? x : nullptr)))
+    // Sphere pairs take the inline geometry. A law whose state the geometry does not read
+    // (Hertz-Mindlin's stiffnesses) gives it none: no test of bonds and moments, and no read of
+    // the state's cache lines for them.
+    ContactExtra* geometryState = Law::geometryUsesExtra ? x : nullptr;
+    if (!(c.kind == ContactGeometryKind::SphereSphere
+              ? contactGeometry<true>(c, step.bodies, step.cell, step.dt, geometryState, turnMoments)
+              : updateContactGeometry(c, step.bodies, step.cell, step.dt, geometryState, turnMoments)))
       return;
     if (c.fresh)
     {
@@ -130,23 +132,29 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
     forces(c, k);
   };
   // Sphere pairs that were in contact go four at a time through the lanes of
-  // sphereGeometryBatch where the processor has them (the same bits as contactGeometry), the
-  // others one by one. Without energy to sum in order, the order is free: a contact writes
-  // only its own record.
-  const bool batched = !Track && !Law::geometryUsesExtra && step.cell == nullptr && sphereBatchAvailable();
+  // sphereGeometryBatch where the processor has them (the same bits as contactGeometry), or of
+  // the law's own lanes for the geometry and the forces, the others one by one; in a periodic cell, the pairs inside it too (their geometry is open
+  // space's), not those across its boundary (an image's shift; a fifth of a small RVE's).
+  // Without energy to sum in order, the order is free: a contact writes only its own record.
+  const bool batched = !Track && !Law::geometryUsesExtra && sphereBatchAvailable();
   Contact* batch[sphereBatchWidth];
   std::int64_t batchIndex[sphereBatchWidth];
   int waiting = 0;
+  // The lines of a state record to prefetch: a law whose geometry reads the state (bonds,
+  // moments) reads all of them, the others (Hertz-Mindlin's stiffnesses) its first.
+  constexpr std::size_t extraPrefetchBytes = Law::geometryUsesExtra ? sizeof(ContactExtra) : 1;
   for (std::int64_t k = first; k < last; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
     // The state's records are wider than the contacts' and read only for the contacts that
     // touch: the hardware prefetchers do not see that pattern, and without the hint the force
-    // waits on the state's first line.
+    // waits on the state's lines.
     if constexpr (Law::usesExtra)
       if (k + extraPrefetchDistance < last)
-        __builtin_prefetch(step.extra + k + extraPrefetchDistance);
-    if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere))
+        for (std::size_t byte = 0; byte < extraPrefetchBytes; byte += 64)
+          __builtin_prefetch(reinterpret_cast<const char*>(step.extra + k + extraPrefetchDistance) + byte);
+    if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere
+          && (step.cell == nullptr || c.cellDist == Eigen::Vector3i::Zero())))
     {
       geometryAndForces(c, k);
       continue;
@@ -155,9 +163,18 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
     batchIndex[waiting] = k;
     if (++waiting < sphereBatchWidth)
       continue;
-    const unsigned touching = sphereGeometryBatch(batch, step.bodies, step.dt);
+    SphereLanes done;
+    if constexpr (requires { law.sphereLanes(batch, batchIndex, step); })
+      done = law.sphereLanes(batch, batchIndex, step);
+    else
+      done.geometry = sphereGeometryBatch(batch, step.bodies, step.dt);
     for (int i = 0; i < sphereBatchWidth; ++i)
-      if (touching & (1U << i))
+      if (done.forces & (1U << i))
+      {
+        if (overlapsTooMuch(*batch[i], ratio, step.bodies))
+          bad = std::min(bad, batchIndex[i]);
+      }
+      else if (done.geometry & (1U << i))
         forces(*batch[i], batchIndex[i]);
       else
         geometryAndForces(*batch[i], batchIndex[i]);

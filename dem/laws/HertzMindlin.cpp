@@ -3,6 +3,7 @@
 // rolling moments): Hertz's spring, Thornton's damping and the incremental shear spring capped
 // by Coulomb friction, with the shear dashpot while it sticks.
 #include "dem/laws/PartsLaw.h"
+#include "dem/contact/SphereGeometryLanes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -153,7 +154,54 @@ struct MindlinPhys
 struct HertzMindlinNames
 {
   static constexpr const char* law = "Law2_ScGeom_MindlinPhys_Mindlin";
+  static SphereLanes sphereLanes(Contact* const* c, const std::int64_t* k, const StepContext& step);
 };
+
+/// The law's force() of four sphere contacts in AVX2 lanes, the operations in force()'s order:
+/// Hertz's spring and the shear spring capped by the normal force's magnitude, for contacts
+/// without dashpots (no betan, betas: Yade's default); with one, the forces are left to force().
+[[gnu::target("avx2")]] SphereLanes HertzMindlinNames::sphereLanes(Contact* const* c, const std::int64_t* k,
+                                                                     const StepContext& step)
+{
+  using namespace avx2;
+  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt);
+  HertzState* const x[4] = {step.extra + k[0], step.extra + k[1], step.extra + k[2], step.extra + k[3]};
+  const __m256d zero = _mm256_setzero_pd();
+  const __m256d dashpots = _mm256_or_pd(
+      _mm256_or_pd(_mm256_cmp_pd(load(x, &HertzState::betan), zero, _CMP_NEQ_UQ),
+                   _mm256_cmp_pd(load(x, &HertzState::betas), zero, _CMP_NEQ_UQ)),
+      _mm256_cmp_pd(load(c, &Contact::cs), zero, _CMP_NEQ_UQ));
+  const unsigned forces = g.touching & ~static_cast<unsigned>(_mm256_movemask_pd(dashpots));
+  if (forces != g.touching)
+  {
+    store(g, c, g.touching);
+    return {g.touching, 0};
+  }
+  if (forces == 0)
+    return {};
+  // HertzSpring: u = max(overlap, 0) (MAXPD keeps its second operand unless the first is larger).
+  const __m256d u = _mm256_max_pd(zero, g.penetration);
+  const __m256d sqrtU = _mm256_sqrt_pd(u);
+  const __m256d kno = load(x, &HertzState::kno);
+  const __m256d ks = mul(load(x, &HertzState::kso), sqrtU);
+  const __m256d fn = mul(mul(kno, u), sqrtU);
+  const Lanes3 normalForce = scale(fn, g.normal);
+  // IncrementalCoulomb from the magnitude; no shear dashpot (cs is 0).
+  Lanes3 shear = sub(g.shearForce, scale(ks, g.shearIncrement));
+  const __m256d maxFs = mul(fn, load(c, &Contact::tanPhi));
+  const __m256d fs2 = dot(shear, shear);
+  const __m256d sliding = _mm256_cmp_pd(fs2, mul(maxFs, maxFs), _CMP_GT_OQ);
+  if (_mm256_movemask_pd(sliding) != 0)
+    shear = select(sliding, scale(div(maxFs, _mm256_sqrt_pd(fs2)), shear), shear);
+  SphereGeometry out = g;
+  out.shearForce = shear;
+  store(out, c, forces);
+  store(mul(mul(broadcast(1.5), kno), sqrtU), at(c, &Contact::kn).data(), forces);
+  store(ks, at(c, &Contact::ks).data(), forces);
+  store(normalForce, at(c, &Contact::normalForce).data(), forces);
+  store(add(normalForce, shear), at(c, &Contact::force).data(), forces);
+  return {forces, forces};
+}
 } // namespace
 
 /// F_n = kno u^1.5 - cn v_n (never attractive: the dashpot at most cancels the spring),

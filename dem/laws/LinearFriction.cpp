@@ -2,6 +2,7 @@
 // Ip2_FrictMat_FrictMat_FrictPhys + Law2_ScGeom_FrictPhys_CundallStrack: a linear spring, no
 // damping and the incremental shear spring capped by Coulomb friction.
 #include "dem/laws/PartsLaw.h"
+#include "dem/contact/SphereGeometryLanes.h"
 
 #include <algorithm>
 #include <cmath>
@@ -37,7 +38,31 @@ struct FrictPhys
 struct LinearFrictionNames
 {
   static constexpr const char* law = "Law2_ScGeom_FrictPhys_CundallStrack";
+  static SphereLanes sphereLanes(Contact* const* c, const std::int64_t* k, const StepContext& step);
 };
+
+/// The law's force() of four sphere contacts in AVX2 lanes: the linear spring, no damping, the
+/// shear spring capped from the normal force's squared length, the operations in force()'s order.
+[[gnu::target("avx2")]] SphereLanes LinearFrictionNames::sphereLanes(Contact* const* c, const std::int64_t* /*k*/,
+                                                                       const StepContext& step)
+{
+  using namespace avx2;
+  SphereGeometry g = sphereGeometry(c, step.bodies, step.dt);
+  if (g.touching == 0)
+    return {};
+  const Lanes3 normalForce = scale(mul(load(c, &Contact::kn), g.penetration), g.normal);
+  g.shearForce = sub(g.shearForce, scale(load(c, &Contact::ks), g.shearIncrement));
+  const __m256d tanPhi = load(c, &Contact::tanPhi);
+  const __m256d maxFs2 = mul(mul(dot(normalForce, normalForce), tanPhi), tanPhi);
+  const __m256d fs2 = dot(g.shearForce, g.shearForce);
+  const __m256d sliding = _mm256_cmp_pd(fs2, maxFs2, _CMP_GT_OQ);
+  if (_mm256_movemask_pd(sliding) != 0)
+    g.shearForce = select(sliding, scale(_mm256_sqrt_pd(div(maxFs2, fs2)), g.shearForce), g.shearForce);
+  store(g, c, g.touching);
+  store(normalForce, at(c, &Contact::normalForce).data(), g.touching);
+  store(add(normalForce, g.shearForce), at(c, &Contact::force).data(), g.touching);
+  return {g.touching, g.touching};
+}
 } // namespace
 
 /// F_n = kn u_n n; F_s -= ks du_s, capped at tan(phi) |F_n|; sliding dissipates the slip

@@ -120,6 +120,23 @@ public:
     tangential_.template force<Track>(c, x, fn, step, motion, energy);
     moments_.template force<Track>(c, x, fn, step, motion, energy);
   }
+  /// @return whether the contacts' moments carry over from step to step, so that the geometry
+  /// turns them with the contact frame (the moments part's say)
+  [[nodiscard]] bool carriesMoments() const { return moments_.carriesMoments(); }
+  /// Four sphere contacts' geometry and forces at once, where Names gives them (its
+  /// `sphereLanes`, AVX2 lanes that do force()'s operations in the same order, without energy)
+  /// and the law keeps no moments (ContactLawKernel's batches).
+  /// @param c the four contacts, real at the last step, between spheres, not across a periodic
+  ///        boundary
+  /// @param k their indices in the contact list (their states')
+  /// @return the lanes whose geometry, and whose forces, were made
+  template <class N = Names>
+    requires requires(Contact* const* c, const std::int64_t* k, const StepContext& s) { N::sphereLanes(c, k, s); }
+             && std::is_same_v<Moments, parts::NoMoments>
+  SphereLanes sphereLanes(Contact* const* c, const std::int64_t* k, const StepContext& step) const
+  {
+    return N::sphereLanes(c, k, step);
+  }
   /// @param x the contact's state (null when the law keeps none)
   /// @return the elastic energy (J) of the normal, tangential and moments parts
   double elastic(const Contact& c, const ContactExtra* x) const

@@ -4,6 +4,7 @@
 // driven by the contact point's velocity with its dashpot while it sticks, and rolling
 // resistance once a material asks for it.
 #include "dem/laws/PartsLaw.h"
+#include "dem/contact/SphereGeometryLanes.h"
 #include "dem/laws/StateOnDemand.h"
 #include "dem/laws/parts/ContactPointMotion.h"
 #include "dem/laws/parts/NormalDashpot.h"
@@ -214,7 +215,55 @@ struct ViscElPhys
 struct ViscoElasticNames
 {
   static constexpr const char* law = "Law2_ScGeom_ViscElPhys_Basic";
+  static SphereLanes sphereLanes(Contact* const* c, const std::int64_t* k, const StepContext& step);
 };
+
+/// The law's force() of four sphere contacts in AVX2 lanes, the operations in force()'s order:
+/// the motion at the contact point, the linear spring with its dashpot that cannot pull, the
+/// velocity-driven shear spring capped by the normal force, its dashpot while it sticks.
+[[gnu::target("avx2")]] SphereLanes ViscoElasticNames::sphereLanes(Contact* const* c, const std::int64_t* /*k*/,
+                                                                     const StepContext& step)
+{
+  using namespace avx2;
+  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt);
+  if (g.touching == 0)
+    return {};
+  const Bodies& b = step.bodies;
+  std::size_t i1[4], i2[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    i1[i] = static_cast<std::size_t>(c[i]->id1);
+    i2[i] = static_cast<std::size_t>(c[i]->id2);
+  }
+  // ContactPointMotion between spheres (a zero periodic shift, as there).
+  const __m256d zero = _mm256_setzero_pd();
+  const Lanes3 none{zero, zero, zero};
+  const Lanes3 c1x = sub(g.contactPoint, load(b.pos, i1));
+  const Lanes3 c2x = sub(sub(g.contactPoint, load(b.pos, i2)), none);
+  const Lanes3 v = sub(add(load(b.vel, i1), cross(load(b.angVel, i1), c1x)),
+                       add(add(load(b.vel, i2), none), cross(load(b.angVel, i2), c2x)));
+  const __m256d vn = dot(g.normal, v);
+  const Lanes3 vs = sub(v, scale(vn, g.normal));
+  // LinearSpring and NormalDashpot.
+  const __m256d fn = add(mul(load(c, &Contact::kn), g.penetration), mul(load(c, &Contact::cn), vn));
+  const Lanes3 normalForce = select(_mm256_cmp_pd(fn, zero, _CMP_LT_OQ), none, scale(fn, g.normal));
+  const __m256d pressing = _mm256_max_pd(zero, fn);
+  // VelocityShear.
+  Lanes3 shear = add(g.shearForce, scale(mul(load(c, &Contact::ks), broadcast(step.dt)), vs));
+  const __m256d tanPhi = load(c, &Contact::tanPhi);
+  const __m256d maxFs2 = mul(mul(mul(pressing, pressing), tanPhi), tanPhi);
+  const __m256d fs2 = dot(shear, shear);
+  const __m256d sliding = _mm256_cmp_pd(fs2, maxFs2, _CMP_GT_OQ);
+  if (_mm256_movemask_pd(sliding) != 0)
+    shear = select(sliding, scale(div(_mm256_sqrt_pd(maxFs2), _mm256_sqrt_pd(fs2)), shear), shear);
+  const Lanes3 viscous = select(sliding, none, scale(load(c, &Contact::cs), vs));
+  SphereGeometry out = g;
+  out.shearForce = shear;
+  store(out, c, g.touching);
+  store(normalForce, at(c, &Contact::normalForce).data(), g.touching);
+  store(add(add(normalForce, shear), viscous), at(c, &Contact::force).data(), g.touching);
+  return {g.touching, g.touching};
+}
 
 /// F_n = kn u_n + cn v_n along the normal, never attractive; elastic shear incremental,
 /// F_s += ks v_s dt, capped at |F_n| tan(phi), plus the shear dashpot cs v_s only while not

@@ -1,0 +1,121 @@
+#pragma once
+
+// contactGeometry's sphere path for four contacts in the lanes of AVX2 vectors
+// (dem/base/Avx2Lanes.h): the same operations in the same order, so the same bits. For the
+// files whose AVX2 kernels start from a contact's geometry (sphereGeometryBatch, the laws'
+// own lanes).
+#include "dem/base/Avx2Lanes.h"
+#include "dem/core/Bodies.h"
+#include "dem/core/Contacts.h"
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace talus::dem::avx2
+{
+/// What contactGeometry writes of four contacts, in lanes.
+struct SphereGeometry
+{
+  unsigned touching = 0; ///< bit i: contact i's spheres overlap (the other lanes' values mean nothing)
+  __m256d penetration, r1, r2;
+  Lanes3 normal, contactPoint, shearForce, shearIncrement;
+};
+
+/// v[i[0]], ..., v[i[3]] as lanes 0 to 3.
+[[TALUS_AVX2]] inline Lanes3 load(const std::vector<Vec3>& v, const std::size_t* i)
+{
+  return load(v[i[0]].data(), v[i[1]].data(), v[i[2]].data(), v[i[3]].data());
+}
+[[TALUS_AVX2]] inline __m256d load(const std::vector<double>& v, const std::size_t* i)
+{
+  return _mm256_set_pd(v[i[3]], v[i[2]], v[i[1]], v[i[0]]);
+}
+/// The member of the four contacts (or contact states) as lanes 0 to 3.
+template <class Record>
+[[TALUS_AVX2]] inline Lanes3 load(Record* const* c, Vec3 Record::*member)
+{
+  return load((c[0]->*member).data(), (c[1]->*member).data(), (c[2]->*member).data(), (c[3]->*member).data());
+}
+template <class Record>
+[[TALUS_AVX2]] inline __m256d load(Record* const* c, double Record::*member)
+{
+  return _mm256_set_pd(c[3]->*member, c[2]->*member, c[1]->*member, c[0]->*member);
+}
+/// Where the member of each of the four contacts is, for store().
+template <class Record>
+inline std::array<double*, 4> at(Record* const* c, Vec3 Record::*member)
+{
+  return {(c[0]->*member).data(), (c[1]->*member).data(), (c[2]->*member).data(), (c[3]->*member).data()};
+}
+template <class Record>
+inline std::array<double*, 4> at(Record* const* c, double Record::*member)
+{
+  return {&(c[0]->*member), &(c[1]->*member), &(c[2]->*member), &(c[3]->*member)};
+}
+
+/// contactGeometry<true> of four contacts that were real at the last step, between two
+/// spheres and not across a periodic boundary (cellDist zero); nothing written.
+/// @param dt the time step (s)
+[[TALUS_AVX2]] inline SphereGeometry sphereGeometry(Contact* const* contacts, const Bodies& b, double dt)
+{
+  std::size_t i1[4], i2[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    i1[i] = static_cast<std::size_t>(contacts[i]->id1);
+    i2[i] = static_cast<std::size_t>(contacts[i]->id2);
+  }
+  SphereGeometry g;
+  // The overlap: d = (pos2 + shift2) - pos1 with a zero shift.
+  const Lanes3 p1 = load(b.pos, i1);
+  const __m256d zero = _mm256_setzero_pd();
+  const Lanes3 d = sub(add(load(b.pos, i2), Lanes3{zero, zero, zero}), p1);
+  g.r1 = load(b.radius, i1);
+  g.r2 = load(b.radius, i2);
+  const __m256d dist2 = dot(d, d);
+  const __m256d reach = add(g.r1, g.r2);
+  // Not "dist2 <= reach^2": a NaN distance goes on, as in contactGeometry.
+  g.touching = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(dist2, mul(reach, reach), _CMP_NGT_UQ)));
+  if (g.touching == 0)
+    return g;
+  const __m256d dist = _mm256_sqrt_pd(dist2);
+  g.penetration = sub(reach, dist);
+  g.normal = {div(d.x, dist), div(d.y, dist), div(d.z, dist)};
+  g.contactPoint = add(p1, scale(sub(g.r1, mul(broadcast(0.5), g.penetration)), g.normal));
+
+  // The shear force turned with the frame: by the change of the normal, then by the mean spin
+  // about the old one.
+  const Lanes3 oldNormal = load(contacts, &Contact::normal);
+  const Lanes3 w1 = load(b.angVel, i1), w2 = load(b.angVel, i2);
+  const Lanes3 orthonormalAxis = cross(oldNormal, g.normal);
+  const Lanes3 twistAxis = scale(mul(broadcast(0.5 * dt), dot(oldNormal, add(w1, w2))), oldNormal);
+  g.shearForce = load(contacts, &Contact::shearForce);
+  g.shearForce = sub(g.shearForce, cross(g.shearForce, orthonormalAxis));
+  g.shearForce = sub(g.shearForce, cross(g.shearForce, twistAxis));
+
+  // The shear increment: the incident velocity with Yade's ratcheting factor on the
+  // translation, its tangential part times dt.
+  const __m256d alpha = div(reach, sub(reach, g.penetration));
+  const Lanes3 relative = sub(add(load(b.vel, i2), Lanes3{zero, zero, zero}), load(b.vel, i1));
+  const __m256d minusR2 = _mm256_xor_pd(g.r2, broadcast(-0.0));
+  const Lanes3 incident
+      = sub(add(scale(alpha, relative), cross(w2, scale(minusR2, g.normal))), cross(w1, scale(g.r1, g.normal)));
+  g.shearIncrement = scale(broadcast(dt), sub(incident, scale(dot(g.normal, incident), g.normal)));
+  return g;
+}
+
+/// Write g's lanes `lanes` to their contacts, as contactGeometry does (no longer fresh).
+[[TALUS_AVX2]] inline void store(const SphereGeometry& g, Contact* const* contacts, unsigned lanes)
+{
+  store(g.shearForce, at(contacts, &Contact::shearForce).data(), lanes);
+  store(g.normal, at(contacts, &Contact::normal).data(), lanes);
+  store(g.penetration, at(contacts, &Contact::penetration).data(), lanes);
+  store(g.contactPoint, at(contacts, &Contact::contactPoint).data(), lanes);
+  store(g.r1, at(contacts, &Contact::refR1).data(), lanes);
+  store(g.r2, at(contacts, &Contact::refR2).data(), lanes);
+  store(g.shearIncrement, at(contacts, &Contact::shearIncrement).data(), lanes);
+  for (int i = 0; i < 4; ++i)
+    if (lanes & (1U << i))
+      contacts[i]->fresh = false;
+}
+} // namespace talus::dem::avx2
