@@ -63,7 +63,11 @@ for b in O.bodies:
         if b.state.pos[2] > 0.5:
             b.shape.color = (0, 0, 1)
     b.state.refPos = b.state.pos
+O.forces.setPermF(7, (0.3, 0, 0))     # a sphere, whichever process owns it, and the wall every process holds
+O.forces.setPermF(wall, (0, 0, 2))
+O.forces.addT(7, (0, 0, 1e-3), permanent=True)
 O.run(591, True)
+result["forces"] = [*O.forces.permF(7), *O.forces.permT(7), *O.forces.permF(wall), *O.forces.f(wall)]
 result["moved"] = sum((b.state.pos - b.state.refPos).norm() for b in O.bodies)
 result["mass"] = sum(b.state.mass for b in O.bodies if isinstance(b.shape, Sphere))
 result["ids"] = [b.id for b in O.bodies]
@@ -128,6 +132,9 @@ def test_loops_over_the_bodies_give_the_serial_answers(runs, processes):
     assert serial["moved"] > 10 and len(serial["ids"]) == 254 and 0 < len(serial["blue"]) < 250 and 0 < len(serial["erased"]) < 250
     # calm() stopped every body, wherever it was owned, and the erased bodies are gone everywhere
     assert len(serial["after"]) == 254 - len(serial["erased"])
+    # a permanent force or torque set by every process acts once, on the body's owner (a wall's on process 0)
+    assert serial["forces"][:9] == split["forces"][:9] == [0.3, 0, 0, 0, 0, 1e-3, 0, 0, 2]
+    assert split["forces"][9:] == pytest.approx(serial["forces"][9:], rel=1e-12, abs=1e-12)
     assert np.allclose(serial["measures"], split["measures"], rtol=1e-12, atol=1e-12 * np.abs(serial["measures"]).max())
 
 

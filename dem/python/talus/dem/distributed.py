@@ -40,7 +40,7 @@ cohesive-frictional) moves with it. From then on:
 
 What is not distributed yet is refused, on every process alike, with its name: shapes other than
 spheres, clumps of spheres, walls, facets and fixed boxes, a wall, facet or box moved by forces,
-a clump of spheres of a packing read in slabs, growing clumps, engines other than ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
+a clump of spheres of a packing read in slabs, engines other than ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
 GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine,
 ServoPIDController and the kinematic and force engines (so
 PeriIsoCompressor and Peri3dController), contact laws other than the
@@ -254,6 +254,8 @@ def attach(scene) -> None:
     from talus import _distributed
     import numpy as np
     method = os.environ.get("TALUS_PARTITION", "RCB")
+    from talus.dem.core import forces
+    forces.zero_copies(scene)   # a wall's permanent force: process 0's (the processes' shares are summed)
     held = domain(scene)
     if isinstance(held, HeldRows):
         _looks_by_id(scene, held)

@@ -8,7 +8,10 @@
 ``addF`` adds to the force of the step being computed: call it from a PyRunner between the
 InteractionLoop and NewtonIntegrator (as in Yade, where the integrator reads the container), or
 with ``permanent=True`` (then it is a permanent force). The arrays are the scene's own; nothing is
-copied.
+copied. Under ``mpirun -np N talus run`` every process makes the same calls (it runs the same
+script): ``addF``, ``addT`` and ``setPermF``/``setPermT`` act on the process counting the body
+(its owner; process 0 for a wall, facet or box, which every process holds), ``f``, ``t``,
+``permF`` and ``permT`` sum the processes' shares (collective).
 """
 
 from __future__ import annotations
@@ -33,6 +36,21 @@ def _vector3(value, what: str) -> np.ndarray:
     return v
 
 
+def _held_everywhere(scene, row: int) -> bool:
+    """Whether row ``row`` is a wall, facet or box, which every process holds under mpirun."""
+    return scene._cpp.shapeKind(row) in ("Wall", "Facet", "Box")
+
+
+def zero_copies(scene) -> None:
+    """At the split under mpirun: the permanent forces and torques of the walls, facets and boxes
+    kept by process 0 only (every process set them alike; their shares are summed)."""
+    if distributed.rank() != 0:
+        for row in range(scene._cpp.bodyCount()):
+            if _held_everywhere(scene, row):
+                scene._cpp.extForce()[row] = 0
+                scene._cpp.extTorque()[row] = 0
+
+
 class ForceContainer:
     """``O.forces``: per-body force and torque access; calling it gives the force array."""
 
@@ -46,6 +64,43 @@ class ForceContainer:
     def _row(self, array, id: int):
         self._scene._cpp.checkBody(int(id))
         return array[int(id)]
+
+    def _counted(self, array, id: int):
+        """Body ``id``'s entry of ``array`` where a call changing it acts: its row in one process;
+        under mpirun (every process makes the same call, as it runs the same script) on the
+        process holding the body — once the scene is split, its owner, and process 0 alone for a
+        wall, facet or box, which every process holds and whose force the processes' shares add
+        up to — and None elsewhere (the split zeroes the other processes' permanent forces on
+        walls, facets and boxes)."""
+        split = distributed.domain(self._scene)
+        if split is None:
+            return self._row(array, id)
+        row = split.rowOf(int(id))
+        if row == distributed._NO_BODY:
+            raise IndexError(f"O.forces: no body with id {int(id)} (erased, or not a body of the scene)")
+        if row < 0 or not split.owns(row):
+            return None     # held by another process, which makes the call
+        if distributed.is_split(self._scene) and distributed.rank() != 0 and _held_everywhere(self._scene, row):
+            return None
+        return array[row]
+
+    def _add(self, array, id: int, value) -> None:
+        entry = self._counted(array, id)
+        if entry is not None:
+            entry[:] += value
+
+    def _set(self, array, id: int, value) -> None:
+        entry = self._counted(array, id)
+        if entry is not None:
+            entry[:] = value
+
+    def _permanent(self, array, id: int) -> Vector3:
+        """A permanent force or torque: under mpirun once the scene is split, summed over the
+        processes (collective; each body on the process counting it)."""
+        if not distributed.is_split(self._scene):
+            return Vector3(array[distributed.row_of(self._scene, int(id))])
+        entry = self._counted(array, id)
+        return Vector3(self._scene._domain.sum([0.0] * 3 if entry is None else [float(x) for x in entry]))
 
     def f(self, id: int, sync: bool = False):
         """Resultant force on a body in the last (or current) step."""
@@ -71,28 +126,24 @@ class ForceContainer:
     m = t  # Yade's alias
 
     def addF(self, id: int, f, permanent: bool = False):
-        if permanent:
-            self._row(self._scene._cpp.extForce(), id)[:] += _vector3(f, "the force")
-            return
-        self._row(self._scene._cpp.force(), id)[:] += _vector3(f, "the force")
+        cpp = self._scene._cpp
+        self._add(cpp.extForce() if permanent else cpp.force(), id, _vector3(f, "the force"))
 
     def addT(self, id: int, t, permanent: bool = False):
-        if permanent:
-            self._row(self._scene._cpp.extTorque(), id)[:] += _vector3(t, "the torque")
-            return
-        self._row(self._scene._cpp.torque(), id)[:] += _vector3(t, "the torque")
+        cpp = self._scene._cpp
+        self._add(cpp.extTorque() if permanent else cpp.torque(), id, _vector3(t, "the torque"))
 
     def setPermF(self, id: int, f):
-        self._row(self._scene._cpp.extForce(), id)[:] = _vector3(f, "the permanent force")
+        self._set(self._scene._cpp.extForce(), id, _vector3(f, "the permanent force"))
 
     def setPermT(self, id: int, t):
-        self._row(self._scene._cpp.extTorque(), id)[:] = _vector3(t, "the permanent torque")
+        self._set(self._scene._cpp.extTorque(), id, _vector3(t, "the permanent torque"))
 
     def permF(self, id: int):
-        return Vector3(self._row(self._scene._cpp.extForce(), id))
+        return self._permanent(self._scene._cpp.extForce(), id)
 
     def permT(self, id: int):
-        return Vector3(self._row(self._scene._cpp.extTorque(), id))
+        return self._permanent(self._scene._cpp.extTorque(), id)
 
     def reset(self, resetAll: bool = True):
         """Zero this step's forces and torques, and the permanent ones too unless ``resetAll``
