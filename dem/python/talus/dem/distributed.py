@@ -21,9 +21,9 @@ cohesive-frictional) moves with it. From then on:
 - ``print`` writes from process 0 only (the others' standard output is discarded);
 - ``O.bodies[i]`` works for the bodies this process owns (and the walls and facets); for another
   it raises, naming the rule; an erased body is None on every process. ``for b in O.bodies``
-  visits every body on every process (a snapshot for one owned elsewhere: talus.dem.core.remote),
+  visits every body on every process (a snapshot for one owned elsewhere: talus.dem.split.bodies),
   ``positions()`` gathers every body's position, ``O.bodies.gather(ids)`` snapshots of any
-  bodies, ``O.interactions`` gives every contact once (talus.dem.core.split_contacts), all on
+  bodies, ``O.interactions`` gives every contact once (talus.dem.split.contacts), all on
   every process (collective); plots, VTK output and ``export.text`` are written by process 0.
 - ``O.bodies.erase(i)`` must be called on every process with the same ids (from code every
   process runs alike, deciding from global values such as ``positions()``): each process erases

@@ -289,8 +289,8 @@ class BodyContainer:
 
     def __iter__(self):
         if distributed.is_split(self._scene):   # collective: every body, owned elsewhere as a snapshot
-            from talus.dem.core import remote
-            return remote.every_body(self._scene, lambda row, id: Body(self._scene, row, id))
+            from talus.dem.split import bodies as split_bodies
+            return split_bodies.every_body(self._scene, lambda row, id: Body(self._scene, row, id))
         if distributed.domain(self._scene) is not None:
             distributed.refuse("iterating over O.bodies before the first step of a scene holding a packing read in "
                                "slabs (each process holds its own slab until the split)")

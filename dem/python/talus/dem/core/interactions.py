@@ -87,8 +87,8 @@ class Interaction:
 
 
 def _split_contacts():
-    from talus.dem.core import split_contacts     # (imports the files package, which imports this one)
-    return split_contacts
+    from talus.dem.split import contacts     # (imports the files package, which imports this one)
+    return contacts
 
 
 class InteractionContainer:
@@ -97,7 +97,7 @@ class InteractionContainer:
     def __init__(self, scene: "Scene"):
         self._scene = scene
 
-    # Under mpirun (a scene split over the processes) see talus.dem.core.split_contacts: the
+    # Under mpirun (a scene split over the processes) see talus.dem.split.contacts: the
     # iteration and the counts are collective, the look-ups answer where the contact lives.
     def _split(self) -> bool:
         from talus.dem import distributed     # (imports this module's package)

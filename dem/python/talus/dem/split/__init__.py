@@ -1,0 +1,4 @@
+"""What a script sees of a scene split over the processes (``mpirun -np N talus run``): every
+body (``bodies``: ``for b in O.bodies``, the bodies owned elsewhere as snapshots) and every
+contact (``contacts``: ``O.interactions``) of the whole scene, collectively on every process.
+The split itself is talus.dem.distributed's."""
