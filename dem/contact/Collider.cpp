@@ -204,39 +204,45 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
       c[d] = std::min(static_cast<int>(w[static_cast<int>(d)] * bins[d]), bins[d] - 1);
     return c;
   };
-  std::vector<std::size_t> start(static_cast<std::size_t>(bins[0]) * static_cast<std::size_t>(bins[1])
-                                     * static_cast<std::size_t>(bins[2]) + 1,
-                                 0);
+  std::vector<std::size_t> binOfSphere(n), start(static_cast<std::size_t>(bins[0]) * static_cast<std::size_t>(bins[1])
+                                                      * static_cast<std::size_t>(bins[2]) + 1,
+                                                  0);
   for (std::size_t s = 0; s < n; ++s)
-    ++start[flat(binOf(wrapped[s])) + 1];
+  {
+    binOfSphere[s] = flat(binOf(wrapped[s]));
+    ++start[binOfSphere[s] + 1];
+  }
   for (std::size_t k = 1; k < start.size(); ++k)
     start[k] += start[k - 1];
   std::vector<std::size_t> sorted(n), fill(start.begin(), start.end() - 1);
   for (std::size_t s = 0; s < n; ++s)
-    sorted[fill[flat(binOf(wrapped[s]))]++] = s;
+    sorted[fill[binOfSphere[s]]++] = s;
   // Bin by bin: the pairs inside it, then those with the 13 neighbours of one half of the 26
   // (the other half sees it from theirs; with 3 bins or more along each axis the 26 are
   // distinct), so each pair is met once and no test asks which of its two spheres comes first.
+  // Only the occupied bins, in ascending order, as runs of `sorted`: split over processes, a
+  // process holds its region's spheres and its ghosts, and most of the cell's bins are empty.
   // The pairs' order does not matter: the caller sorts them.
-  for (int cz = 0; cz < bins[2]; ++cz)
-    for (int cy = 0; cy < bins[1]; ++cy)
-      for (int cx = 0; cx < bins[0]; ++cx)
-      {
-        const std::size_t k = flat({cx, cy, cz});
-        for (std::size_t e = start[k]; e < start[k + 1]; ++e)
-          for (std::size_t f = e + 1; f < start[k + 1]; ++f)
-            consider(sorted[e], sorted[f]);
-        for (int dz = 0; dz <= 1; ++dz)
-          for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
-            for (int dx = dz == 0 && dy == 0 ? 1 : -1; dx <= 1; ++dx)
-            {
-              const std::size_t m = flat({(cx + dx + bins[0]) % bins[0], (cy + dy + bins[1]) % bins[1],
-                                          (cz + dz + bins[2]) % bins[2]});
-              for (std::size_t e = start[k]; e < start[k + 1]; ++e)
-                for (std::size_t f = start[m]; f < start[m + 1]; ++f)
-                  consider(sorted[e], sorted[f]);
-            }
-      }
+  for (std::size_t run = 0; run < n; run = start[binOfSphere[sorted[run]] + 1])
+  {
+    const std::size_t k = binOfSphere[sorted[run]];
+    const int cx = static_cast<int>(k % static_cast<std::size_t>(bins[0]));
+    const int cy = static_cast<int>(k / static_cast<std::size_t>(bins[0]) % static_cast<std::size_t>(bins[1]));
+    const int cz = static_cast<int>(k / (static_cast<std::size_t>(bins[0]) * static_cast<std::size_t>(bins[1])));
+    for (std::size_t e = start[k]; e < start[k + 1]; ++e)
+      for (std::size_t f = e + 1; f < start[k + 1]; ++f)
+        consider(sorted[e], sorted[f]);
+    for (int dz = 0; dz <= 1; ++dz)
+      for (int dy = dz == 0 ? 0 : -1; dy <= 1; ++dy)
+        for (int dx = dz == 0 && dy == 0 ? 1 : -1; dx <= 1; ++dx)
+        {
+          const std::size_t m = flat({(cx + dx + bins[0]) % bins[0], (cy + dy + bins[1]) % bins[1],
+                                      (cz + dz + bins[2]) % bins[2]});
+          for (std::size_t e = start[k]; e < start[k + 1]; ++e)
+            for (std::size_t f = start[m]; f < start[m + 1]; ++f)
+              consider(sorted[e], sorted[f]);
+        }
+  }
 }
 
 /// Candidate box-sphere pairs: spheres whose centre is within r + skin of the box.
