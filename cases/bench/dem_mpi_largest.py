@@ -18,9 +18,9 @@ Checked:  dem.mpi.largest: the peak resident memory of both processes together (
           first step, the steps), the bytes per sphere, the steps per second (the slower process's
           wall seconds for the timed steps, and its CPU seconds, which other work on the machine
           does not lengthen), the contacts, and the 200 000-sphere runs in one process and on two.
-Result:   full (2026-12-07): 5 038 848 spheres on 2 processes in 10.1 GB (2014 bytes per sphere,
-          the peak at the first step, when the split's buffers and the first contact list coexist;
-          9.3 GB once it runs), 1.45 steps/s of CPU time; each process read its slab in 170 s.
+Result:   full (2026-12-07, load 2): 5 038 848 spheres on 2 processes in 15.8 GB (3 144 bytes
+          per sphere, the peak at the end of the first step; much of it heap kept by the
+          allocator: docs/distributed-dem.md), 1.68 steps/s of CPU time, the reading 70 s.
 Produces: the record and the chart dem.mpi.largest.png (peak memory per process at each stage).
 """
 import importlib.util
