@@ -254,8 +254,7 @@ def attach(scene) -> None:
     from talus import _distributed
     import numpy as np
     method = os.environ.get("TALUS_PARTITION", "RCB")
-    from talus.dem.core import forces
-    forces.zero_copies(scene)   # a wall's permanent force: process 0's (the processes' shares are summed)
+    _zero_permanent_force_copies(scene)
     held = domain(scene)
     if isinstance(held, HeldRows):
         _looks_by_id(scene, held)
@@ -265,6 +264,21 @@ def attach(scene) -> None:
     else:
         scene._domain = _distributed.attach(scene._cpp, method)
     scene._domain.rebalanceThreshold = _rebalance_threshold()
+
+
+def held_everywhere(scene, row: int) -> bool:
+    """Whether row ``row`` is a wall, facet or box, which every process holds under mpirun."""
+    return scene._cpp.shapeKind(row) in ("Wall", "Facet", "Box")
+
+
+def _zero_permanent_force_copies(scene) -> None:
+    """At the split: the permanent forces and torques of the walls, facets and boxes kept by
+    process 0 only (every process set them alike; their shares are summed)."""
+    if rank() != 0:
+        for row in range(scene._cpp.bodyCount()):
+            if held_everywhere(scene, row):
+                scene._cpp.extForce()[row] = 0
+                scene._cpp.extTorque()[row] = 0
 
 
 def update_ghosts(scene) -> None:

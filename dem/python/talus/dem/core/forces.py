@@ -36,21 +36,6 @@ def _vector3(value, what: str) -> np.ndarray:
     return v
 
 
-def _held_everywhere(scene, row: int) -> bool:
-    """Whether row ``row`` is a wall, facet or box, which every process holds under mpirun."""
-    return scene._cpp.shapeKind(row) in ("Wall", "Facet", "Box")
-
-
-def zero_copies(scene) -> None:
-    """At the split under mpirun: the permanent forces and torques of the walls, facets and boxes
-    kept by process 0 only (every process set them alike; their shares are summed)."""
-    if distributed.rank() != 0:
-        for row in range(scene._cpp.bodyCount()):
-            if _held_everywhere(scene, row):
-                scene._cpp.extForce()[row] = 0
-                scene._cpp.extTorque()[row] = 0
-
-
 class ForceContainer:
     """``O.forces``: per-body force and torque access; calling it gives the force array."""
 
@@ -80,7 +65,7 @@ class ForceContainer:
             raise IndexError(f"O.forces: no body with id {int(id)} (erased, or not a body of the scene)")
         if row < 0 or not split.owns(row):
             return None     # held by another process, which makes the call
-        if distributed.is_split(self._scene) and distributed.rank() != 0 and _held_everywhere(self._scene, row):
+        if distributed.is_split(self._scene) and distributed.rank() != 0 and distributed.held_everywhere(self._scene, row):
             return None
         return array[row]
 
