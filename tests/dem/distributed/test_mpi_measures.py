@@ -5,19 +5,12 @@ avgNumInteractions, fabricTensor, porosity, aabbExtrema, PWaveTimeStep, the step
 GlobalStiffnessTimeStepper sets, and O.bodies.gather (collective). The scene: spheres settling
 in a box whose side wall moves in (imposed work), some spheres with a blocked DOF."""
 import json
-import shutil
 
 import numpy as np
 import pytest
 
-from test_mpi_run import talus_run
+from test_mpi_run import pytestmark, talus_run  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
 
-try:
-    from talus import _distributed  # noqa: F401  (built with the mpi_dem feature only)
-except ImportError:
-    _distributed = None
-pytestmark = pytest.mark.skipif(_distributed is None or shutil.which("mpirun") is None,
-                                reason="the mpi_dem feature is off or mpirun is missing")
 
 SCRIPT = """
 import json, sys

@@ -8,24 +8,17 @@ for what it does not hold. The scene: spheres thrown onto a floor of two facets,
 and a fixed box."""
 import json
 import os
-import shutil
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from test_mpi_run import talus_run
+from test_mpi_run import pytestmark, talus_run  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "python"))
 from test_export import read_pvd, read_vtu  # noqa: E402  (the .vtu reader of the export tests)
 
-try:
-    from talus import _distributed  # noqa: F401  (built with the mpi_dem feature only)
-except ImportError:
-    _distributed = None
-pytestmark = pytest.mark.skipif(_distributed is None or shutil.which("mpirun") is None,
-                                reason="the mpi_dem feature is off or mpirun is missing")
 
 SCRIPT = """
 import json, sys
