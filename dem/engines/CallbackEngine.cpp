@@ -25,5 +25,10 @@ void CallbackEngine::run(Scene& scene)
   ++nDone;
   if (callback)
     callback();
+  // A script's command may have written into the bodies after this step's ghost update: on a
+  // scene split over processes the other processes' copies take it before the next contacts.
+  // Not after a call by wall time, which the processes make at different steps.
+  if (resumable && realPeriod == 0 && scene.domain)
+    scene.domain->afterIntegration(scene);
 }
 } // namespace talus::dem

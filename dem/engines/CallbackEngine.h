@@ -29,7 +29,8 @@ public:
   bool initRun = false;
   std::int64_t nDo = -1;       ///< calls after which it is not called any more (-1: no limit)
   /// The callback is a script's Python code (a PyRunner): when it raises, the scene is as the
-  /// engines before it left it, and the step may go on (a coupling's C++ hook may stop halfway).
+  /// engines before it left it, and the step may go on (a coupling's C++ hook may stop halfway);
+  /// on a scene split over processes, what it wrote into the bodies goes to their ghosts.
   bool resumable = false;
   std::int64_t iterLast = 0; ///< iteration of the last call
   double virtLast = 0;       ///< simulated time of the last call

@@ -187,3 +187,49 @@ def test_a_snapshot_names_the_rule_for_what_it_does_not_hold(runs):
     errors = runs[2][1]["errors"]
     assert len(errors) == 2 and all("owned by another process" in e and "snapshot" in e for e in errors), errors
     assert "bound" in errors[0] and "angMom" in errors[1]
+
+
+# A PyRunner in a scene of its own (not O) writes into the spheres its process owns: the other
+# processes' ghost copies of them must take the write before the next contacts are computed.
+OWN_SCENE = """
+import json, sys
+import numpy as np
+from talus.dem import distributed
+from talus.dem.core.scene import Scene
+s = Scene()
+s.materials.append(FrictMat(young=1e7, poisson=0.3, frictionAngle=0.5, density=2600))
+rng = np.random.default_rng(3)
+for k in range(160):
+    s.bodies.append(utils.sphere((0.1 * (k % 8) + rng.uniform(0, 0.01), 0.1 * (k // 8 % 4), 0.1 * (k // 32)), 0.052))
+s.bodies.append(utils.wall(-0.1, axis=2, sense=1))
+
+
+def kick():
+    split = distributed.domain(s)
+    rows = np.arange(160) if split is None else split.ownedBodies(s._cpp)[0]
+    rows = rows[rows < len(s.radii())]
+    s.velocities()[rows, 0] += 0.05 * np.sign(s.positions()[rows, 1] - 0.15)
+
+
+s.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+             InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                             [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+             NewtonIntegrator(gravity=(0, 0, -9.81)), PyRunner(command=kick, iterPeriod=25)]
+s.dt = 2e-5
+s.run(600, True)
+result = distributed.positions(s).tolist()
+if distributed.rank() == 0:
+    json.dump(result, open(sys.argv[1], "w"))
+"""
+
+
+def test_a_pyrunner_of_another_scene_sends_its_writes_to_the_ghosts(tmp_path):
+    script = tmp_path / "own_scene.py"
+    script.write_text(OWN_SCENE)
+    out = {}
+    for processes in (None, 2):
+        path = tmp_path / f"positions-{processes}.json"
+        done = talus_run(script, path, processes=processes, timeout=300)
+        assert done.returncode == 0, done.stderr
+        out[processes] = np.asarray(json.loads(path.read_text()))
+    assert np.array_equal(out[None], out[2])

@@ -286,7 +286,8 @@ def update_ghosts(scene) -> None:
     (collective; nothing in one process). Each step does it after the integration; a script's
     writes between two steps (``b.state.vel = ...`` in a loop over the bodies, a PyRunner, between
     two ``O.run``) need it once more, or the next contacts would be computed with the copies'
-    old state: ``O.run``, ``O.step``, the PyRunners and the end of a loop over ``O.bodies`` call it."""
+    old state: ``O.run``, ``O.step`` and the end of a loop over ``O.bodies`` call it, and each
+    PyRunner's call ends with the same update in C++ (dem/engines/CallbackEngine.cpp), on its own scene."""
     if is_split(scene):
         scene._domain.updateGhosts(scene._cpp)
 

@@ -753,23 +753,9 @@ class PyRunner(Engine):
     def command(self, command):
         self._command = command
         if isinstance(command, str) and command:
-            self._cpp.callback = self._then_update_ghosts(_yade_command(command))
+            self._cpp.callback = _yade_command(command)
         else:
-            self._cpp.callback = self._then_update_ghosts(asCallback(command, "PyRunner") or (lambda: None))
-
-    def _then_update_ghosts(self, callback: Callable[[], None]) -> Callable[[], None]:
-        """Under mpirun, ``callback`` followed by the update of the ghosts (talus.dem.distributed.
-        update_ghosts): the command may have written into the bodies, after this step's update.
-        Not for a PyRunner run by wall time only, which the processes run at different steps."""
-        from talus.dem import distributed
-        if not distributed.ACTIVE:
-            return callback
-
-        def run():
-            callback()
-            if self._cpp.realPeriod == 0:
-                distributed.update_ghosts(default_scene())
-        return run
+            self._cpp.callback = asCallback(command, "PyRunner") or (lambda: None)
 
     def __call__(self):
         """Run the command once, now: Yade's ``engine()`` (whatever the periods, even when dead)."""
