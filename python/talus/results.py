@@ -31,6 +31,7 @@ import math
 import os
 import re
 import subprocess
+import sys
 import time
 from pathlib import Path
 from typing import Any
@@ -161,17 +162,28 @@ class Case:
         name = f"{self.name}.{suffix}" if suffix else self.name
         record = make_record(name, metric, value, reference, tolerance,
                              wall_s=self.elapsed(), quick=self.quick, **extra)
-        self.written.append(write_record(record, self.folder))
+        if _writes():
+            self.written.append(write_record(record, self.folder))
         return record
 
     def save_chart(self, figure: Any, suffix: str | None = None) -> Path:
         """Save a matplotlib figure as ``<folder>/<case>[.<suffix>].png``."""
         name = f"{self.name}.{suffix}" if suffix else self.name
-        self.folder.mkdir(parents=True, exist_ok=True)
         path = self.folder / f"{name}.png"
-        figure.savefig(path, dpi=120, bbox_inches="tight")
-        self.written.append(path)
+        if _writes():
+            self.folder.mkdir(parents=True, exist_ok=True)
+            figure.savefig(path, dpi=120, bbox_inches="tight")
+            self.written.append(path)
         return path
+
+
+def _writes() -> bool:
+    """Whether this process writes a case's records and charts: under ``mpirun -np N talus run
+    case.py`` every process runs the case (with the same global values: the measurements reduce
+    over the processes), process 0 writes them. talus.dem.distributed is looked up, not imported:
+    a case that never imported the DEM runs in one process."""
+    distributed = sys.modules.get("talus.dem.distributed")
+    return distributed is None or not distributed.ACTIVE or distributed.rank() == 0
 
 
 def case_arguments(description: str | None = None) -> argparse.ArgumentParser:
