@@ -2,7 +2,12 @@
 talusVolumeAveragedFoam; its case written by talus.coupling.case_builder).
 
 Run:      build/bin/talus run cases/cfd/cfd_fluidised_bed.py [--quick] [--results DIR] [--procs 2] [--fixed]
-          [--envelope-method pairwise|convolution]
+          [--envelope-method pairwise|convolution] [--positions FILE.npy]
+          or with the DEM split too: mpirun --allow-run-as-root --oversubscribe -np 2 build/bin/talus run
+          cases/cfd/cfd_fluidised_bed.py --quick --procs 2 (2 DEM processes + 2 fluid ranks; the
+          script is written for both: its ids mapped to each process's rows by shares.rows(s, ids), the
+          sums over the particles added over the processes, the fluid case written and read back
+          by process 0; cfd_mpi_parity.py compares it with the 1 + 1 run, cfd.mpi.parity.fluidised-bed)
 Set-up:   a packing deposited like cfd_packed_bed.py's periodic one (900 spheres d = 1 mm,
           rho_p = 2500, quick; 1500 full; column 8 x 8 mm periodic across x and y, in the DEM and
           in the mesh) but with the visco-elastic contacts of the coupled run (ViscElMat
@@ -62,7 +67,8 @@ from talus.coupling.case_builder import PERIODIC, FoamCase, Inlet, Outlet, cfd_c
 from talus.coupling.cases import foam_environment
 from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, Ig2_Sphere_Sphere_ScGeom, Ig2_Wall_Sphere_ScGeom,
                        InsertionSortCollider, InteractionLoop, Ip2_ViscElMat_ViscElMat_ViscElPhys,
-                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, Scene, ViscElMat, sphere, wall)
+                       Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator, Scene, ViscElMat, distributed, sphere, wall)
+from talus.dem.split import shares
 
 RHO, NU, RHO_P, D, G = 1000.0, 1e-5, 2500.0, 1e-3, 9.81
 MU = RHO * NU
@@ -105,18 +111,39 @@ def ergun_umf(eps):
     return 0.5 * (lo + hi)
 
 
-def prepare_case(procs: int, height: float, u_max: float, ramp: float, envelope_method: str | None) -> FoamCase:
+def prepare_case(procs: int, height: float, u_max: float, ramp: float, envelope_method: str | None,
+                 pressure_tolerance: float | None = None) -> FoamCase:
     """The column periodic across x and y from the floor (the inlet, the distributor: no clear
     fluid below the bed for the envelope to smear the bed's fluid fraction into; pure fluid
     enters there, so its velocity is the superficial one, ramped linearly from 0 to ``u_max``
-    over ``ramp`` s, then held) up to ``height`` (the outlet, p = 0)."""
+    over ``ramp`` s, then held) up to ``height`` (the outlet, p = 0); the pressure solved to
+    ``pressure_tolerance`` in every corrector if given (else the case builder's tolerances)."""
     nz = round((height - FLOOR) / DX)
     extra = {} if envelope_method is None else {"envelopeMethod": envelope_method}
+    solve = {} if pressure_tolerance is None else {"pressure_tolerance": pressure_tolerance,
+                                                   "pressure_relative_tolerance": 0}
     return cfd_case(tempfile.mkdtemp(prefix="talus_cfd_fluidised_bed_"), solver="volumeaveraged",
                     box=((0, 0, FLOOR), (L, L, FLOOR + nz * DX)), cells=(round(L / DX), round(L / DX), nz), rho=RHO,
                     nu=NU, gravity=(0, 0, -G), coupling_interval=1e-4, procs=procs, write_every=10000,
                     boundaries={"z0": Inlet((0, 0, u_max), ramp=ramp), "z1": Outlet(), "x0": PERIODIC, "y0": PERIODIC},
-                    coupling_properties={**COUPLING, **extra})
+                    coupling_properties={**COUPLING, **extra}, **solve)
+
+
+def fluid_pressure_drop(fluid: FoamCase) -> float:
+    """The fluid's own pressure drop at the end, from its last fields (reconstructed from the
+    ranks' if decomposed): the first cell above the inlet (zeroGradient) to the outlet. The
+    case's folder is removed."""
+    work = fluid.path
+    if fluid.procs > 1:
+        subprocess.run(["reconstructPar", "-latestTime", "-case", str(work)], check=True, capture_output=True,
+                       env=foam_environment())
+    last = max((p for p in work.iterdir() if re.fullmatch(r"[0-9.e-]+", p.name) and p.name != "0"),
+               key=lambda p: float(p.name))
+    p = packed.read_internal_field(last / "p")
+    nx = round(L / DX)
+    p_z = RHO * p.reshape(-1, nx * nx).mean(axis=1)
+    shutil.rmtree(work, ignore_errors=True)
+    return float(p_z[0] - p_z[-1])
 
 
 def main():
@@ -125,6 +152,11 @@ def main():
     parser.add_argument("--fixed", action="store_true", help="every particle held: the fixed-bed check")
     parser.add_argument("--envelope-method", choices=["pairwise", "convolution"], default=None,
                         help="talusVolumeAveragedFoam's envelopeMethod (default: the solver's)")
+    parser.add_argument("--positions", default=None,
+                        help="also write every sphere's final position to this .npy file (cfd_mpi_parity.py)")
+    parser.add_argument("--pressure-tolerance", type=float, default=None,
+                        help="solve the fluid's pressure to this tolerance in every corrector (relTol 0), so that "
+                             "a decomposed fluid differs from one rank by rounding only (cfd_mpi_parity.py)")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -144,7 +176,9 @@ def main():
     weight = (RHO_P - RHO) * G * volume / (L * L)
     print(f"{n} spheres, porosity {eps:.4f}, Ergun U_mf {u_mf:.4e} m/s, buoyant weight / area {weight:.3f} Pa")
 
-    fluid = prepare_case(args.procs, bed_top + 12e-3, 2 * u_mf, ramp, args.envelope_method)
+    # One fluid case for the run, written by process 0 under mpirun, its path shared.
+    fluid = shares.once(prepare_case, args.procs, bed_top + 12e-3, 2 * u_mf, ramp, args.envelope_method,
+                             args.pressure_tolerance)
     # Visco-elastic contacts (spring-dashpot, Yade's ViscElMat as Yade users fluidise beds): the
     # dashpot acts on the relative velocity at the contact only, so it quiets the contact
     # vibrations without touching the fluid-particle balance (Cundall's numerical damping acts
@@ -166,19 +200,22 @@ def main():
     # The packing was deposited under 10 g with softer contacts: quench it (velocities zeroed
     # every 10 steps while the stiffer contacts push the overlaps out), then let it settle under
     # its buoyant weight (the fluid at rest adds the buoyancy once coupled), damped; numerical
-    # damping only here, before the coupling starts.
+    # damping only here, before the coupling starts. The arrays are a process's own rows under
+    # mpirun: shares.rows(s, ids) are those of the spheres it owns (the ids themselves in one process).
     s.engines[-1].gravity = (0, 0, -G * (1 - RHO / RHO_P))
     for _ in range(200):
         s.run(10, True)
-        s.velocities()[ids] = 0.0
+        s.velocities()[shares.rows(s, ids)] = 0.0
     s.engines[-1].damping = 0.7
     s.run(2000, True)
     s.engines[-1].damping = 0.0
     s.engines[-1].gravity = (0, 0, -G)
-    s.velocities()[ids] = 0.0
+    s.velocities()[shares.rows(s, ids)] = 0.0
     if args.fixed:
-        for i in ids:
-            s.bodies[i].state.blockedDOFs = "xyzXYZ"
+        held = set(ids)
+        for b in s.bodies:   # every body on every process; a body's owner holds it
+            if b.id in held:
+                b.state.blockedDOFs = "xyzXYZ"
     coupling = fluid.coupling(s, ids=ids, implicitDrag=True).start()
     dt_fluid = coupling.link.fluidDt
     steps = round((ramp + hold) / dt_fluid)
@@ -189,25 +226,19 @@ def main():
         s.run(coupling.substeps, True)
         t.append(s.time - t_start)
         u0.append(2 * u_mf * min(1.0, t[-1] / ramp))
-        dp.append((float(np.sum(coupling.lastForces[:, 2])) - RHO * G * volume) / (L * L))
+        # the force on every particle: under mpirun each process has its own particles' (summed)
+        dp.append((shares.total(float(np.sum(coupling.lastForces[:, 2]))) - RHO * G * volume) / (L * L))
         if len(t) % 200 == 0:
-            v = s.velocities()[ids]
+            rows = shares.rows(s, ids)
+            v = s.velocities()[rows]
+            v_z, count = shares.total([np.sum(v[:, 2]), len(v)])
+            fastest = shares.largest(np.max(np.linalg.norm(v, axis=1), initial=0.0))
+            top = shares.largest(np.max(s.positions()[rows][:, 2], initial=-np.inf))
             print(f"t {t[-1]:.4f} s: U0 {u0[-1]:.3e} m/s, particles' pressure drop {dp[-1]:.2f} Pa, mean v_z "
-                  f"{v[:, 2].mean():+.2e} m/s, largest |v| {np.linalg.norm(v, axis=1).max():.2e} m/s, bed top "
-                  f"{np.max(s.positions()[ids][:, 2]) * 1e3:.3f} mm", flush=True)
+                  f"{v_z / count:+.2e} m/s, largest |v| {fastest:.2e} m/s, bed top {top * 1e3:.3f} mm", flush=True)
     elapsed = time.perf_counter() - start
     coupling.stop()
-    work = fluid.path
-    if args.procs > 1:
-        subprocess.run(["reconstructPar", "-latestTime", "-case", str(work)], check=True, capture_output=True,
-                       env=foam_environment())
-    last = max((p for p in work.iterdir() if re.fullmatch(r"[0-9.e-]+", p.name) and p.name != "0"),
-               key=lambda p: float(p.name))
-    p = packed.read_internal_field(last / "p")
-    nx = round(L / DX)
-    p_z = RHO * p.reshape(-1, nx * nx).mean(axis=1)
-    fluid_dp = float(p_z[0] - p_z[-1])  # the inlet (zeroGradient) to the outlet
-    shutil.rmtree(work, ignore_errors=True)
+    fluid_dp = shares.once(fluid_pressure_drop, fluid)  # the fluid ranks have written their fields
 
     t, u0, dp = np.array(t), np.array(u0), np.array(dp)
     held = t > ramp
@@ -219,7 +250,11 @@ def main():
         rising = (t <= ramp) & (dp < 0.6 * plateau) & (dp > 0)
         slope = np.polyfit(u0[rising], dp[rising], 1)
         u_mf_measured = float((plateau - slope[1]) / slope[0])
-    bed_expansion = float(np.max(s.positions()[ids][:, 2] + s.radii()[ids]) - bed_top)
+    rows = shares.rows(s, ids)
+    bed_expansion = shares.largest(float(np.max(s.positions()[rows][:, 2] + s.radii()[rows], initial=-np.inf))) - bed_top
+    if args.positions:
+        final = distributed.positions(s)[ids]     # every sphere's, on every process
+        shares.once(np.save, args.positions, final)
     print(f"plateau {plateau:.3f} Pa ({(plateau - weight) / weight:+.2%} vs buoyant weight), fluid's own "
           f"pressure drop at the end {fluid_dp:.3f} Pa ({(fluid_dp - weight) / weight:+.2%}); U_mf {u_mf_measured:.4e} m/s "
           f"({(u_mf_measured - u_mf) / u_mf:+.2%} vs Ergun); bed top rose {bed_expansion * 1e3:.2f} mm; Re_p max "
@@ -240,7 +275,8 @@ def main():
     if not args.fixed:
         case.record("relative deviation of the pressure-drop plateau from the buoyant bed weight per area",
                     abs(plateau - weight) / weight, "(rho_p - rho) g sum V_p / A", 0.05, suffix="plateau",
-                    plateau=plateau, weight=weight, fluid_pressure_drop=fluid_dp, spheres=n, fluid_procs=args.procs)
+                    plateau=plateau, weight=weight, fluid_pressure_drop=fluid_dp, spheres=n, fluid_procs=args.procs,
+                    dem_procs=distributed.RANKS)
     case.record("relative deviation of the minimum fluidisation velocity from the Ergun estimate",
                 abs(u_mf_measured - u_mf) / u_mf, "Ergun at the packing's porosity", 0.15, suffix="umf",
                 u_mf=u_mf_measured, u_mf_ergun=u_mf, porosity=eps, bed_expansion=bed_expansion)

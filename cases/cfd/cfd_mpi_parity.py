@@ -46,6 +46,7 @@ from talus import bench, results
 from talus.coupling.case_builder import PERIODIC, Inlet, Outlet, cfd_case
 
 SCENE = Path(__file__).resolve().parents[1] / "scenes" / "fluidised_column.py"
+BED = Path(__file__).resolve().parent / "cfd_fluidised_bed.py"
 L, DX, HEIGHT = 8e-3, 0.8e-3, 16e-3
 
 
@@ -63,6 +64,18 @@ def fluid_case(folder: Path, procs: int, solver: str = "volumeaveraged", column:
                     coupling_properties=envelope if solver == "volumeaveraged" else None)
 
 
+def talus_run(dem: int, arguments: list[str]):
+    """``talus run -j 1`` with ``arguments`` (a script and its own), in one process or under
+    mpirun with ``dem`` processes; raises with the output if it fails."""
+    talus = [sys.executable, "-m", "talus", "run", "-j", "1", *arguments]
+    # the loopback for every process's traffic, as FoamCoupling asks for in one process
+    command = talus if dem == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "btl_tcp_if_include",
+                                      "lo", "--mca", "oob_tcp_if_include", "lo", "-np", str(dem), *talus]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=3600, env=bench.child_environment())
+    if done.returncode != 0:
+        raise RuntimeError(f"{' '.join(command)} failed:\n{done.stdout}\n{done.stderr}")
+
+
 def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str = "volumeaveraged",
         drop: float = 0.0, column: str = "walled") -> dict:
     """The scene with ``dem`` processes and ``fluid`` fluid ranks (the spheres starting at ``drop``
@@ -70,16 +83,69 @@ def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str
     name = f"run-{dem}-{fluid}-{solver}-{drop}-{column}"
     case = fluid_case(folder / name, fluid, solver, column)
     out = folder / f"{name}.json"
-    talus = [sys.executable, "-m", "talus", "run", "-j", "1", str(SCENE), str(case.path), str(fluid), str(steps),
-             str(out), str(layers), case.solver, str(drop), column]
-    # the loopback for every process's traffic, as FoamCoupling asks for in one process
-    command = talus if dem == 1 else ["mpirun", "--allow-run-as-root", "--oversubscribe", "--mca", "btl_tcp_if_include",
-                                      "lo", "--mca", "oob_tcp_if_include", "lo", "-np", str(dem), *talus]
-    done = subprocess.run(command, capture_output=True, text=True, timeout=1800, env=bench.child_environment())
-    if done.returncode != 0:
-        raise RuntimeError(f"{' '.join(command)} failed:\n{done.stdout}\n{done.stderr}")
+    talus_run(dem, [str(SCENE), str(case.path), str(fluid), str(steps), str(out), str(layers), case.solver, str(drop),
+                    column])
     shutil.rmtree(case.path, ignore_errors=True)
     return json.loads(out.read_text())
+
+
+def run_bed(dem: int, fluid: int, folder: Path) -> dict:
+    """cfd_fluidised_bed.py itself, quick, with ``dem`` processes and ``fluid`` fluid ranks: its
+    records (by name) and every sphere's final position."""
+    out = folder / f"bed-{dem}-{fluid}"
+    out.mkdir()
+    talus_run(dem, [str(BED), "--quick", "--procs", str(fluid), "--results", str(out),
+                    "--positions", str(out / "positions.npy"), "--pressure-tolerance", "1e-13"])
+    return {"records": {r["name"]: r for r in results.read_records(out)}, "positions": np.load(out / "positions.npy")}
+
+
+#: The fluidised bed's outputs compared, (record, field).
+BED_OUTPUTS = (("cfd.fluidised_bed.plateau", "plateau"), ("cfd.fluidised_bed.plateau", "fluid_pressure_drop"),
+               ("cfd.fluidised_bed.umf", "u_mf"), ("cfd.fluidised_bed.umf", "bed_expansion"))
+
+
+def compare_bed(case: results.Case, runs: dict):
+    """Record and chart how far the fluidised bed's final positions and outputs in the 2 + 2 run
+    (and 1 + 2) lie from the 1 + 1 run's, and the 2 + 2 run from the 1 + 2 run's."""
+    import matplotlib.pyplot as plt
+    pairs = {"2+2 vs 1+1": ((2, 2), (1, 1)), "1+2 vs 1+1": ((1, 2), (1, 1)), "2+2 vs 1+2": ((2, 2), (1, 2))}
+    positions, outputs = {}, {}
+    for label, (a, b) in pairs.items():
+        x, y = runs[a]["positions"], runs[b]["positions"]
+        positions[label] = float(np.abs(x - y).max() / np.abs(y).max())
+        outputs[label] = {field: abs(runs[a]["records"][name][field] - runs[b]["records"][name][field])
+                          / abs(runs[b]["records"][name][field]) for name, field in BED_OUTPUTS}
+    serial = runs[1, 1]["records"]
+    spheres = len(runs[1, 1]["positions"])
+    print(f"fluidised bed (cfd_fluidised_bed.py --quick): {spheres} spheres; 1 + 1: plateau "
+          f"{serial['cfd.fluidised_bed.plateau']['plateau']:.6f} Pa, U_mf {serial['cfd.fluidised_bed.umf']['u_mf']:.6e} m/s")
+    for label in pairs:
+        print(f"{label}: largest final position difference / largest coordinate {positions[label]:.3e}; outputs "
+              + ", ".join(f"{k} {v:.3e}" for k, v in outputs[label].items()))
+
+    fig, ax = plt.subplots(figsize=(5.5, 4))
+    names = ["positions"] + [field for _, field in BED_OUTPUTS]
+    for k, label in enumerate(pairs):
+        values = [positions[label]] + [outputs[label][field] for _, field in BED_OUTPUTS]
+        ax.bar(np.arange(len(names)) + 0.27 * (k - 1), np.maximum(values, 1e-18), 0.27, label=label)
+    ax.set_yscale("log")
+    ax.set_xticks(np.arange(len(names)), names, fontsize=7)
+    ax.axhline(1e-9, color="grey", lw=0.8, ls=":", label="checked bound (positions)")
+    ax.set_ylabel("relative difference (0 drawn at 1e-18)")
+    ax.set_title("cfd_fluidised_bed.py --quick: DEM processes + fluid ranks")
+    ax.legend(fontsize=7)
+    case.record("largest final position difference of the fluidised-bed case run as 2 DEM processes + 2 fluid "
+                "ranks from its 1 + 1 run (quick), over the largest coordinate", positions["2+2 vs 1+1"],
+                "the 1 + 1 run (round-off)", 1e-9, suffix="fluidised-bed", differences=positions,
+                output_differences=outputs, spheres=spheres,
+                outputs={f"{d}+{f}": {field: r["records"][name][field] for name, field in BED_OUTPUTS}
+                         for (d, f), r in runs.items()})
+    # the DEM's split alone: the same fluid ranks with the DEM in one process or two
+    case.record("largest final position difference of the fluidised-bed case run as 2 DEM processes + 2 fluid "
+                "ranks from its 1 DEM process + 2 fluid ranks run (quick), over the largest coordinate",
+                positions["2+2 vs 1+2"], "the 1 + 2 run (round-off)", 1e-9, suffix="fluidised-bed-dem-split",
+                differences=positions, output_differences=outputs, spheres=spheres)
+    case.save_chart(fig, "fluidised-bed")
 
 
 def difference(a: dict, b: dict) -> np.ndarray:
@@ -134,9 +200,10 @@ def main():
     steps, layers = (100, 8) if args.quick else (400, 12)
     with tempfile.TemporaryDirectory() as tmp:
         walled = {(d, f): run(d, f, steps, layers, Path(tmp)) for d, f in [(1, 1), (1, 2), (2, 1), (2, 2)]}
+        compare(case, walled, steps, "walled", None)
         periodic = {(d, f): run(d, f, steps, layers, Path(tmp), column="periodic") for d, f in [(1, 1), (1, 2), (2, 2)]}
-    compare(case, walled, steps, "walled", None)
-    compare(case, periodic, steps, "periodic", "periodic-bed")
+        compare(case, periodic, steps, "periodic", "periodic-bed")
+        compare_bed(case, {(d, f): run_bed(d, f, Path(tmp)) for d, f in [(1, 1), (1, 2), (2, 2)]})
 
 
 if __name__ == "__main__":

@@ -49,7 +49,8 @@ from talus.dem import (Bo1_Sphere_Aabb, Bo1_Wall_Aabb, ForceResetter, FrictMat, 
                        Ig2_Wall_Sphere_ScGeom, InsertionSortCollider, InteractionLoop,
                        Ip2_FrictMat_FrictMat_FrictPhys, Ip2_ViscElMat_ViscElMat_ViscElPhys,
                        Law2_ScGeom_FrictPhys_CundallStrack, Law2_ScGeom_ViscElPhys_Basic, NewtonIntegrator,
-                       PWaveTimeStep, Scene, ViscElMat, aabbWalls, sphere, unbalancedForce, wall)
+                       PWaveTimeStep, Scene, ViscElMat, aabbWalls, distributed, sphere, unbalancedForce, wall)
+from talus.dem.split import shares
 from talus.dem.packing import pack
 
 RHO, NU, RHO_P, D, G = 1000.0, 1e-4, 2500.0, 1e-3, 9.81
@@ -115,10 +116,11 @@ def deposit(n: int, seed: int = 1, periodic: bool = False, tc: float | None = No
         for g in (5, 2.5, 1.2, 1 - 1000.0 / RHO_P):
             s.engines[-1].gravity = (0, 0, -g * G)
             s.run(1000, True)
-    x, r = s.positions()[ids].copy(), s.radii()[ids]
+    # every sphere's, on every process under mpirun (collective there: each holds its own)
+    x, r = distributed.positions(s)[ids], np.array([b.radius for b in s.bodies.gather(ids)])
     if periodic:
         x[:, :2] = np.mod(x[:, :2], L)
-    np.savez(cache, x=x, r=r)
+    shares.once(np.savez, cache, x=x, r=r)
     return x, r
 
 

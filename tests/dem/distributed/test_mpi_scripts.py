@@ -101,11 +101,12 @@ if distributed.rank() == 0:
 """
 
 
-@pytest.fixture(scope="module")
-def runs(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("scripts")
+def run_script(folder: Path, text: str) -> dict:
+    """The script ``text`` (its output folder its argument) run in one process and under mpirun
+    at 2 and 3 processes: per process count (None: one), its folder and the result.json process
+    0 wrote there; no other process wrote a file (the script reports one as WROTE)."""
     script = folder / "script.py"
-    script.write_text(SCRIPT)
+    script.write_text(text)
     out = {}
     for processes in (None, 2, 3):
         where = folder / f"run-{processes}"
@@ -115,6 +116,11 @@ def runs(tmp_path_factory):
         assert "WROTE" not in done.stderr, done.stderr
         out[processes] = (where, json.loads((where / "result.json").read_text()))
     return out
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    return run_script(tmp_path_factory.mktemp("scripts"), SCRIPT)
 
 
 @pytest.mark.parametrize("processes", [2, 3])
