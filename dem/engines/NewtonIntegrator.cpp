@@ -459,8 +459,10 @@ std::int64_t NewtonIntegrator::integrateRange(Scene& scene, std::int64_t first, 
   // Four free spheres at a time through the lanes of integrateSphereBatch where the processor
   // has them (the same bits), the other bodies one by one; without energy to sum in order, the
   // order is free: a body writes only its own state.
-  const bool batched = !Track && !homogeneous && sphereIntegrationAvailable();
-  const SphereStepParameters lanes{invMass_.data(), invInertia_.data(), gravity, dampGravity, damping, dt};
+  const bool batched = !Track && sphereIntegrationAvailable();
+  const AffineField field{L, previousL, w, previousW};
+  const SphereStepParameters lanes{invMass_.data(), invInertia_.data(), gravity, dampGravity, damping, dt,
+                                   homogeneous ? &field : nullptr};
   auto plain = [&](std::size_t i) {
     return b.alive[i] && mode_[i] == 0 && b.dynamic[i] && b.blockedDofs[i] == 0 && b.force[i].allFinite()
            && b.torque[i].allFinite();

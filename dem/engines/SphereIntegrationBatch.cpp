@@ -26,6 +26,21 @@ using namespace avx2;
           damped(accel.z, vel.z, halfDt, damping)};
 }
 
+/// m x for the four vectors x, as Eigen computes Matrix3d * Vector3d (SSE2): rows 0 and 1 as one
+/// packet, (m0 x0 + m1 x1) + m2 x2, row 2 by its scalar reduction, m0 x0 + (m1 x1 + m2 x2).
+[[TALUS_AVX2]] inline __m256d term(const Mat3& m, int row, int column, __m256d x)
+{
+  return mul(broadcast(m(row, column)), x);
+}
+[[TALUS_AVX2]] inline Lanes3 matrixTimes(const Mat3& m, const Lanes3& x)
+{
+  return {add(add(term(m, 0, 0, x.x), term(m, 0, 1, x.y)), term(m, 0, 2, x.z)),
+          add(add(term(m, 1, 0, x.x), term(m, 1, 1, x.y)), term(m, 1, 2, x.z)),
+          add(term(m, 2, 0, x.x), add(term(m, 2, 1, x.y), term(m, 2, 2, x.z)))};
+}
+/// v in all four lanes.
+[[TALUS_AVX2]] inline Lanes3 lanesOf(const Vec3& v) { return {broadcast(v[0]), broadcast(v[1]), broadcast(v[2])}; }
+
 /// The coefficients (x, y, z, w) of four quaternions.
 struct Lanes4
 {
@@ -102,6 +117,13 @@ bool sphereIntegrationAvailable()
   if (p.dampGravity)
     a = add(a, g);
   Lanes3 v = load(b.vel[first].data()), omega = load(b.angVel[first].data());
+  const Lanes3 pos = load(b.pos[first].data());
+  if (p.field)
+  {
+    // The fluctuations: the previous step's field at the previous position x - v dt taken off.
+    v = sub(v, matrixTimes(p.field->previousVelGrad, sub(pos, scale(dt, v))));
+    omega = sub(omega, lanesOf(p.field->previousSpin));
+  }
   if (p.damping != 0)
   {
     // An undamped body's lane is multiplied by 1 - 0 sign = 1: its own bits.
@@ -116,9 +138,14 @@ bool sphereIntegrationAvailable()
     a = add(a, g);
   v = add(v, scale(dt, a));
   omega = add(omega, scale(dt, alpha));
+  if (p.field)
+  {
+    v = add(v, matrixTimes(p.field->velGrad, pos));
+    omega = add(omega, lanesOf(p.field->spin));
+  }
   store(v, b.vel[first].data());
   store(omega, b.angVel[first].data());
-  store(add(load(b.pos[first].data()), scale(dt, v)), b.pos[first].data());
+  store(add(pos, scale(dt, v)), b.pos[first].data());
   return turn(b.ori[first].coeffs().data(), scale(dt, omega));
 }
 } // namespace talus::dem

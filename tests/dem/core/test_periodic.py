@@ -160,11 +160,14 @@ def test_a_bed_wall_in_a_periodic_cell():
     T.periodic = True
 
 
-def test_pairs_inside_the_cell_take_the_batched_geometry_with_the_same_bits():
-    """Sphere pairs inside a periodic cell go four at a time through the AVX2 geometry (where the
-    processor has it), those across the boundary one by one; energy tracking runs every contact
-    one by one: a small sheared RVE (a jittered fcc packing, a quarter of its contacts across the
-    boundary) gives the same bits either way."""
+def test_pairs_and_spheres_of_a_deforming_cell_take_the_batched_lanes_with_the_same_bits():
+    """Sphere pairs in a periodic cell, inside it and across its boundary (their image's shift),
+    go four at a time through the AVX2 geometry and law (where the processor has it), and the
+    spheres of the deforming cell through the integrator's lanes (the affine field and its spin
+    taken off and added back); energy tracking runs every contact and body one by one: a small
+    sheared RVE (a jittered fcc packing, a quarter of its contacts across the boundary; a velocity
+    gradient with every entry set, so that each row of L x is summed as the scalar path sums it)
+    gives the same bits either way."""
     def run(track):
         rng = np.random.default_rng(1)
         r, cells = 0.01, 4
@@ -176,7 +179,7 @@ def test_pairs_inside_the_cell_take_the_batched_geometry_with_the_same_bits():
                          for corner in np.ndindex(cells, cells, cells) for b in basis])
         S.dt = 2e-6
         S.trackEnergy = track
-        S.cell.velGrad = Matrix3(-0.5, 0.1, 0, 0, 0.2, 0, 0, 0, 0.25)
+        S.cell.velGrad = Matrix3(-0.5, 0.1, 0.03, 0.07, 0.2, -0.04, -0.06, 0.05, 0.25)
         S.run(300, True)
         return S
     batched, one_by_one = run(False), run(True)
