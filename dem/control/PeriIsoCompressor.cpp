@@ -1,10 +1,13 @@
 #include "dem/control/PeriIsoCompressor.h"
 
 #include "dem/measure/Measurements.h"
+#include "dem/core/Domain.h"
 #include "dem/core/Scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace talus::dem
@@ -25,18 +28,29 @@ void PeriIsoCompressor::run(Scene& scene)
   const Bodies& b = scene.bodies;
   if (charLen <= 0 || maxSpan <= 0)
   {
-    double largest = 0;
+    // The largest sphere and body 0's diameter over the processes (+inf: body 0 is no sphere
+    // here; split over processes, it is a sphere of another process, or no sphere anywhere).
+    std::array<double, 2> smallest{0, std::numeric_limits<double>::infinity()};
     for (std::size_t i = 0; i < b.size(); ++i)
       if (b.alive[i] && b.shape[i] == ShapeKind::Sphere)
-        largest = std::max(largest, 2 * b.radius[i]);
+        smallest[0] = std::min(smallest[0], -2 * b.radius[i]);
+    const std::int64_t first = scene.domain ? scene.domain->rowOf(0) : 0;
+    if (first >= 0 && static_cast<std::size_t>(first) < b.size())
+    {
+      const auto row = static_cast<std::size_t>(first);
+      if (b.alive[row] && b.shape[row] == ShapeKind::Sphere)
+        smallest[1] = 2 * b.radius[row];
+    }
+    if (scene.domain)
+      scene.domain->min(smallest);
     if (charLen <= 0)
     {
-      if (b.size() == 0 || b.shape[0] != ShapeKind::Sphere)
+      if (std::isinf(smallest[1]))
         throw std::runtime_error("PeriIsoCompressor: charLen is not given and body 0 is not a sphere to take it from");
-      charLen = 2 * b.radius[0];
+      charLen = smallest[1];
     }
     if (maxSpan <= 0)
-      maxSpan = largest;
+      maxSpan = -smallest[0];
   }
   if (maxDisplPerStep < 0)
     maxDisplPerStep = 1e-2 * charLen;
@@ -47,18 +61,8 @@ void PeriIsoCompressor::run(Scene& scene)
     throw std::runtime_error("PeriIsoCompressor: the cell became smaller than 2.1 times the largest sphere");
   if (scene.iter % std::max(globalUpdateInt, 1) == 0 || avgStiffness < 0 || (sigma.array() < 0).any())
   {
-    Vec3 force = Vec3::Zero();
-    double stiffness = 0;
-    long n = 0;
-    for (const Contact& c : scene.contacts.list)
-    {
-      if (!c.real)
-        continue;
-      force += c.force.cwiseAbs();
-      stiffness += c.kn / 3. + 2. * c.ks / 3.; // kn along one direction, ks along the other two
-      ++n;
-    }
-    avgStiffness = n > 0 ? stiffness / static_cast<double>(n) : -1;
+    const auto [force, stiffness] = totalForceInVolume(scene); // Yade's measure; exact over processes
+    avgStiffness = stiffness;
     sigma = -force.cwiseQuotient(area);
   }
   const double goal = stresses[state];

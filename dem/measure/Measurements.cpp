@@ -22,9 +22,10 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
 {
   const Bodies& b = scene.bodies;
   const Domain* domain = scene.domain.get();
-  // The bodies' force magnitudes and count, the contacts' force magnitudes and count (summed
-  // over every process, each body and contact once).
-  std::array<double, 4> sums{};
+  // The bodies' force magnitudes and count, the contacts' force magnitudes and count, each body
+  // and contact counted by one process and summed exactly: split over processes, the same bits
+  // as in one (the periodic cell's controllers compare it with their threshold on every process).
+  std::array<ExactSum, 4> sums;
   double maxBody = 0;
   for (std::size_t i = 0; i < b.size(); ++i)
   {
@@ -45,12 +46,11 @@ double unbalancedForce(const Scene& scene, const Vec3& gravity, bool useMaxForce
       sums[2] += c.force.norm();
       sums[3] += 1;
     }
+  sumExactly(domain, sums);
   if (domain)
-  {
-    domain->sum(sums);
     maxBody = -domain->min(-maxBody);
-  }
-  const auto [sumBodies, bodies, sumContacts, contacts] = sums;
+  const double sumBodies = sums[0].value(), bodies = sums[1].value(), sumContacts = sums[2].value(),
+               contacts = sums[3].value();
   if (contacts == 0 || sumContacts == 0 || bodies == 0)
     return std::numeric_limits<double>::quiet_NaN();
   const double meanContact = sumContacts / contacts;
@@ -112,8 +112,9 @@ void addContactForce(const Scene& scene, std::size_t row, std::span<ExactSum, 3>
 
 std::pair<Vec3, double> totalForceInVolume(const Scene& scene)
 {
-  // the force's absolute components, the stiffness, the contacts: this process's shares
-  std::array<double, 5> sums{};
+  // the force's absolute components, the stiffness, the contacts: this process's shares, summed
+  // exactly (PeriIsoCompressor moves the cell by them: the same bits at any process count)
+  std::array<ExactSum, 5> sums;
   for (const Contact& c : scene.contacts.list)
   {
     if (!countsInSums(scene, c))
@@ -124,8 +125,9 @@ std::pair<Vec3, double> totalForceInVolume(const Scene& scene)
     sums[3] += c.kn / 3 + 2 * c.ks / 3;
     sums[4] += 1;
   }
-  sumOverProcesses(scene, sums);
-  return {Vec3(sums[0], sums[1], sums[2]), sums[4] > 0 ? sums[3] / sums[4] : -1.0};
+  sumExactly(scene.domain.get(), sums);
+  const double contacts = sums[4].value();
+  return {Vec3(sums[0].value(), sums[1].value(), sums[2].value()), contacts > 0 ? sums[3].value() / contacts : -1.0};
 }
 
 Vec3 sceneGravity(const Scene& scene)

@@ -25,7 +25,8 @@ bool countsInSums(const Scene& scene, const Contact& c);
 /// Yade's unbalancedForce: the mean (or, with useMaxForce, the largest) magnitude of the total
 /// force on dynamic bodies, gravity included, divided by the mean magnitude of contact forces.
 /// 0 for a scene at equilibrium; NaN when there is no contact force to compare with. Split over
-/// processes, the whole scene's (collective: every process calls it).
+/// processes, the whole scene's, its sums exact: the bits of one process (collective: every
+/// process calls it).
 /// @param scene the scene, its forces those of the last step
 /// @param gravity the acceleration of gravity the integrator adds (sceneGravity(scene) for the
 ///        scene's own)
@@ -46,7 +47,8 @@ void addContactForce(const Scene& scene, std::size_t row, std::span<ExactSum, 3>
 
 /// Yade's totalForceInVolume: the sum over real contacts of the absolute components of each
 /// contact's force (normal + shear), and the contacts' mean isotropic stiffness kn/3 + 2 ks/3.
-/// Split over processes, the whole scene's (each contact counted once; collective).
+/// Split over processes, the whole scene's (each contact counted once, the sums exact: the bits of
+/// one process; collective).
 /// @return the summed absolute force components (N) and the mean stiffness (N/m), -1 without contacts
 std::pair<Vec3, double> totalForceInVolume(const Scene& scene);
 
