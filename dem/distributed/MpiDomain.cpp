@@ -204,11 +204,12 @@ MpiDomain::MpiDomain(MPI_Comm comm, Scene& scene, const PartitionSettings& setti
     error = "the scene has " + std::to_string(count) + " spheres for " + std::to_string(ranks_)
             + " processes: each process needs at least one; run it on fewer (mpirun -np)";
   // Every process built the scene from the script: the same bodies, or the split would mix
-  // several scenes (a random packing made without a seed differs on each).
+  // several scenes (random numbers the script draws without a seed differ on each).
   if (!held && !sameOnEveryRank(comm_, b) && error.empty())
     error = "the scene differs between the processes (its bodies' positions or sizes): under mpirun every process "
-            "builds it from the script, which must make the same scene on each; a random packing needs a seed "
-            "(makeCloud(..., seed=1)), a TriaxialTest radiusMean > 0 with its seed";
+            "builds it from the script, which must make the same scene on each; random numbers it draws need a "
+            "seed (random.seed(1)), a TriaxialTest radiusMean > 0 with its seed (makeCloud without a seed draws "
+            "one cloud for every process)";
   const Collider* collider = nullptr;
   for (const auto& engine : scene.engines)
     if (const auto* c = dynamic_cast<const Collider*>(engine.get()); c && !engine->dead)

@@ -4,15 +4,15 @@ dynCell, reading the stress every step) and a cell compressed and sheared by O.c
 the serial positions, cell and stress bit for bit, bodies having changed process across the
 cell's faces; spheres settling onto a floor (a wall, two facets, a box) in a fixed and in a
 sheared cell give the serial positions bit for bit; a cell resized by the script (on every
-process) goes on as in one process; what is periodic and not distributed is refused by name,
-once; a cell changed on one process only stops every process, naming the rule."""
+process) goes on as in one process; a cell changed on one process only stops every process,
+naming the rule (PeriIsoCompressor and Peri3dController: test_mpi_periodic_controllers.py)."""
 import json
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from test_mpi_run import assert_refused_by_name_once, pytestmark, talus_run  # noqa: F401  (the same skip)
+from test_mpi_run import pytestmark, talus_run  # noqa: F401  (the same skip)
 
 SCENES = Path(__file__).resolve().parents[3] / "cases" / "scenes"
 SCENE = SCENES / "periodic_cell.py"
@@ -100,14 +100,6 @@ def _periodic_script(tmp_path, body):
         "             NewtonIntegrator()]\n"
         "O.dt = 1e-5\n" + body)
     return script
-
-
-@pytest.mark.parametrize("body, named", [
-    ("O.engines = O.engines + [PeriIsoCompressor(stresses=[-1e3])]\nO.run(10, True)\n", "PeriIsoCompressor"),
-    ("O.engines = O.engines + [Peri3dController()]\nO.run(10, True)\n", "Peri3dController"),
-])
-def test_what_is_periodic_and_not_distributed_is_refused_by_name_once(tmp_path, body, named):
-    assert_refused_by_name_once(talus_run(_periodic_script(tmp_path, body), processes=2), named)
 
 
 def test_a_cell_changed_on_one_process_only_stops_every_process(tmp_path):

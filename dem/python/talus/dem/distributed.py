@@ -19,8 +19,9 @@ cohesive-frictional) moves with it. From then on:
   all; TriaxialStressController and ServoPIDController move the walls alike on every process
   (the walls' forces summed exactly: the serial bits);
 - ``print`` writes from process 0 only (the others' standard output is discarded);
-- ``O.bodies[i]`` works for the bodies this process owns (and the walls and facets); for another
-  it raises, naming the rule; an erased body is None on every process. ``for b in O.bodies``
+- ``O.bodies[i]`` of a sphere or clump is collective: every process reads it (the owner gets the
+  body, the others its snapshot: talus.dem.split.by_id, which names the rule for code some
+  processes only run); an erased body is None on every process. ``for b in O.bodies``
   visits every body on every process (a snapshot for one owned elsewhere: talus.dem.split.bodies),
   ``positions()`` gathers every body's position, ``O.bodies.gather(ids)`` snapshots of any
   bodies, ``O.interactions`` gives every contact once (talus.dem.split.contacts), all on
@@ -32,18 +33,19 @@ cohesive-frictional) moves with it. From then on:
 - kinematic engines (TranslationEngine, RotationEngine, ...) and force engines act on their
   ``ids`` where each body is owned (walls and facets: on every process alike).
 - a periodic cell of spheres is split in its reduced coordinates (the processes' regions move
-  with the cell as ``O.cell.velGrad`` or PeriTriaxController deforms it; ghosts across its
-  faces); every process updates the cell alike, from the same reductions (PeriTriaxController's
-  stress, stiffness and mass are exact sums: the serial bits), and a script must change
+  with the cell as ``O.cell.velGrad``, PeriTriaxController, PeriIsoCompressor or
+  Peri3dController deforms it; ghosts across its faces); every process updates the cell alike,
+  from the same reductions (the controllers' stress, stiffness, mass and unbalanced force are
+  exact sums: the serial bits), and a script must change
   ``O.cell`` alike on every process; its walls, facets and boxes (a floor under a bed periodic
   across x and y) every process holds whole, as in an open scene.
 
 What is not distributed yet is refused, on every process alike, with its name: shapes other than
 spheres, clumps of spheres, walls, facets and fixed boxes, a wall, facet or box moved by forces,
 a clump of spheres of a packing read in slabs, engines other than ForceResetter, InsertionSortCollider, InteractionLoop, NewtonIntegrator, PyRunner, GravityEngine,
-GlobalStiffnessTimeStepper, PeriTriaxController, TriaxialStressController, TriaxialCompressionEngine,
-ServoPIDController and the kinematic and force engines (so
-PeriIsoCompressor and Peri3dController), contact laws other than the
+GlobalStiffnessTimeStepper, PeriTriaxController, PeriIsoCompressor, Peri3dController,
+TriaxialStressController, TriaxialCompressionEngine, ServoPIDController and the kinematic and force
+engines, contact laws other than the
 linear, Hertz-Mindlin, visco-elastic and cohesive-frictional ones, force engines on walls or
 facets. ``O.save`` writes one checkpoint from every process, ``O.load`` reads one
 (written at any process count) on every process; the scene is split again at its next step.
@@ -69,7 +71,8 @@ _KINEMATIC = ("TranslationEngine", "RotationEngine", "HarmonicMotionEngine", "He
               "CombinedKinematicEngine")
 _FORCES = ("ForceEngine", "InterpolatingDirectedForceEngine", "HarmonicForceEngine")
 _ENGINES = ("ForceResetter", "InsertionSortCollider", "InteractionLoop", "NewtonIntegrator", "PyRunner",
-            "GravityEngine", "GlobalStiffnessTimeStepper", "PeriTriaxController", "TriaxialStressController",
+            "GravityEngine", "GlobalStiffnessTimeStepper", "PeriTriaxController", "PeriIsoCompressor", "Peri3dController",
+            "TriaxialStressController",
             "ServoPIDController", "TriaxialCompressionEngine", "VTKRecorder",
             *_KINEMATIC, *_FORCES)
 _LAWS = ("Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_MindlinPhys_Mindlin", "Law2_ScGeom_ViscElPhys_Basic",
@@ -368,6 +371,25 @@ def positions(scene=None):
     return scene.positions().copy() if d is None else d.positions(scene._cpp)
 
 
+def spheres(scene):
+    """Centres and radii of the live spheres of ``scene`` (radius > 0), in id order, as
+    (centres (N, 3), radii (N,)): once the scene is split, every process's own spheres on every
+    process (collective; the centres unwrapped, as one process holds them); otherwise its rows'."""
+    import numpy as np
+    alive = np.asarray(scene._cpp.alive(), dtype=bool)
+    radii = np.asarray(scene.radii())
+    keep = alive & (radii > 0)
+    centres = np.asarray(scene.positions())
+    if not is_split(scene):
+        return centres[keep], radii[keep]
+    rows, ids = scene._domain.ownedBodies(scene._cpp)
+    rows, ids = rows[keep[rows]], ids[keep[rows]]
+    parts = gather_objects((ids, centres[rows], radii[rows]))
+    ids = np.concatenate([p[0] for p in parts])
+    order = np.argsort(ids, kind="stable")
+    return np.concatenate([p[1] for p in parts])[order], np.concatenate([p[2] for p in parts])[order]
+
+
 def gather_objects(value, root: int = -1) -> list:
     """Every process's ``value`` (any object pickle takes), a list in rank order, on process
     ``root`` (None elsewhere) or on every process when ``root`` is negative (collective); in one
@@ -403,6 +425,18 @@ def smallest(value: float, scene=None) -> float:
         scene = default_scene()
     d = domain(scene)
     return value if d is None else d.min(float(value))
+
+
+def shared_seed(seed: int) -> int:
+    """``seed``; when it is negative (draw at random) under mpirun, one random seed for every
+    process (collective: each draws one, the smallest is taken), so that a random packing made
+    without a seed (``makeCloud``, as many of Yade's examples do) is the same scene on every
+    process, as the split needs; random from run to run as in one process."""
+    if seed >= 0 or not ACTIVE or RANKS == 1:
+        return seed
+    import secrets
+    from talus import _distributed
+    return int(_distributed.smallest(float(secrets.randbelow(2 ** 31))))
 
 
 def per_process(values: dict[str, float], scene=None) -> list[dict[str, float]]:

@@ -30,6 +30,7 @@ import time
 import numpy as np
 
 from talus.dem.packing.pack import SpherePack, check_sphere_count, filterSpherePack
+from talus.dem.split import shares
 
 __all__ = ["randomDensePack", "randomPeriPack"]
 
@@ -95,14 +96,19 @@ def _store(memoizeDb, sp: SpherePack, radius: float, rRelFuzz: float, wantPeri: 
         return
     blob = pickle.dumps([(tuple(float(x) for x in c), float(r)) for c, r in sp], protocol=2)
     dims = sp.cellSize if wantPeri else fullDim
+    # under mpirun the packing once, by process 0, the others waiting (a later search finds it)
+    shares.once(_insert, memoizeDb, radius, rRelFuzz, dims, len(sp), wantPeri, blob)
+    if not noPrint:
+        print("Packing saved to the database", memoizeDb)
+
+
+def _insert(memoizeDb, radius, rRelFuzz, dims, count, wantPeri, blob):
     with sqlite3.connect(memoizeDb) as db:
         db.execute("create table if not exists packings (radius real, rRelFuzz real, dimx real, dimy real, "
                    "dimz real, N integer, timestamp real, periodic integer, pack blob)")
         db.execute("insert into packings values (?,?,?,?,?,?,?,?,?)",
-                   (radius, rRelFuzz, *(float(d) for d in dims), len(sp), time.time(), int(wantPeri), blob))
+                   (radius, rRelFuzz, *(float(d) for d in dims), count, time.time(), int(wantPeri), blob))
     db.close()
-    if not noPrint:
-        print("Packing saved to the database", memoizeDb)
 
 
 def _find(memoizeDb, radius, rRelFuzz, x1, y1, z1, fullDim, wantPeri, fillPeriodic, spheresInCell, memoDbg=False,

@@ -16,6 +16,7 @@ from typing import Sequence
 import numpy as np
 
 from talus import _dem
+from talus.dem import distributed
 from talus.dem.packing import predicates
 from talus.dem.core.bodies import BodySpec, facet, sphere
 from talus.dem.base.linalg import Vector3
@@ -278,7 +279,8 @@ class SpherePack:
         rMean (1 +- rRelFuzz); or num spheres sized for ``porosity`` (rMean < 0); or a size
         distribution ``psdSizes`` (diameters) / ``psdCumm`` (cumulative fractions, by mass with
         ``distributeMass``). With ``seed`` >= 0 the cloud is deterministic and identical to
-        Yade's for the same arguments. ``hSize`` (with ``periodic``): a sheared cell, edges as
+        Yade's for the same arguments; without, under mpirun, every process makes the same random
+        cloud (one seed drawn for all: collective). ``hSize`` (with ``periodic``): a sheared cell, edges as
         columns, filled from ``minCorner`` (``maxCorner`` unused), as Yade's; unlike Yade's, no
         sphere overlaps any periodic image of another, however sheared the cell, and the packing
         keeps the cell (``toSimulation`` sets ``O.cell.hSize``). A periodic sphere never
@@ -294,7 +296,7 @@ class SpherePack:
         made = self._cpp.makeCloud(np.asarray(minCorner, dtype=float), np.asarray(maxCorner, dtype=float), float(rMean),
                                    float(rRelFuzz), int(num), bool(periodic), float(porosity),
                                    [float(x) for x in psdSizes], [float(x) for x in psdCumm], bool(distributeMass),
-                                   int(seed), cell)
+                                   distributed.shared_seed(int(seed)), cell)
         if periodic:
             self._periodicFlag = True   # a flat box: a periodic 2D cloud without a cell, as Yade's
         return made
@@ -342,6 +344,7 @@ class SpherePack:
         if periodic:
             if len(self) and self._hasCell and np.any(self.cellSize != size):
                 raise ValueError(f"makeClumpCloud: the packing's cell {self.cellSize} differs from the box {size}")
+        seed = distributed.shared_seed(int(seed))
         rng = np.random.default_rng(seed if seed >= 0 else None)
         centers = np.array(self._cpp.centers, dtype=float).reshape(-1, 3)
         radii = np.array(self._cpp.radii, dtype=float)
@@ -434,13 +437,11 @@ class SpherePack:
         return made
 
     def fromSimulation(self, scene=None):
-        """Replace the content by the scene's spheres (and its cell if periodic)."""
+        """Replace the content by the scene's spheres (and its cell if periodic); under mpirun,
+        every sphere of a scene split over the processes, on every process (collective)."""
         if scene is None:
             scene = default_scene()
-        alive = np.asarray(scene._cpp.alive(), dtype=bool)
-        r = np.asarray(scene.radii())
-        keep = alive & (r > 0)
-        self.fromList(list(zip(np.asarray(scene.positions())[keep], r[keep])))
+        self.fromList(list(zip(*distributed.spheres(scene))))
         self.hSize = scene.cell.hSize if scene.periodic else np.zeros((3, 3))
         self._periodicFlag = bool(scene.periodic)
 
