@@ -22,11 +22,10 @@ Checked:  dem.mpi.mpy-examples: the in-scope scripts that do not run unchanged i
           same linear contact law; the summation orders differ). For vtkRecorderExample.py the
           reference is Yade's run of its scene in one process (the script with yade.mpy's lines
           and its VTKRecorder taken out, see without_mpy): Yade's own mpy run of it departs from
-          that (recorded in the details). Its step is GlobalStiffnessTimeStepper's, which in
-          Talus sets another step than Yade's from its first update on (step 100: 0.018263
-          against 0.017862; the same bits before): the heights then differ (a difference of the
-          timestepper in one process, not of the decomposition, which gives Talus's one-process
-          bits).
+          that (recorded in the details). Its packing is a lattice with no gap, whose pairs
+          touch exactly: Talus decides when two spheres touch to the last bit as Yade does
+          (dem/contact/SphereTouch.h), else its contacts, and with them the step
+          GlobalStiffnessTimeStepper sets, would differ from Yade's from the first step.
           dem.mpi.mpy-examples.serial: testMPI_2D.py under mpirun against the same scene in one
           process (the script's own single-core branch, its number of blocks given on its command
           line), reallocateBodies.py and testMPI_3D_bisection.py against `talus run script.py`

@@ -5,6 +5,7 @@
 #include "dem/core/Contacts.h"
 #include "dem/contact/PotentialBlockContact.h"
 #include "dem/contact/PotentialParticleContact.h"
+#include "dem/contact/SphereTouch.h"
 
 #include <array>
 #include <cmath>
@@ -97,7 +98,8 @@ bool nonSphereOverlap(const Contact& c, const Bodies& b, bool holds, ContactExtr
 /// Contact kinematics of Yade's ScGeom, for one candidate pair.
 ///
 /// Computes normal, penetration depth and contact point; if the shapes do not overlap the
-/// contact is reset (history forgotten) and false is returned. For a contact that was already
+/// contact is reset (history forgotten) and false is returned (two spheres: Yade's tests to the
+/// bit, one to begin and one to hold on, see SphereTouch.h). For a contact that was already
 /// real, the stored shear force is first rotated with the contact frame: by the change of the
 /// normal (n_old x n_new) and by the mean spin about the normal (dt/2 n.(w1 + w2)), to first
 /// order as in the seed's "Shear deformation". The shear increment is the tangential part of
@@ -144,16 +146,17 @@ template <bool SpheresOnly = false>
     const Vec3 d = b.pos[i2] + shift2 - b.pos[i1];
     r1 = b.radius[i1];
     r2 = b.radius[i2];
-    const double dist2 = d.squaredNorm();
+    const double dist2 = yadeSquaredNorm(d);
     const double reach = r1 + r2;
-    if (dist2 > reach * reach && !holds)
-    {
-      if (c.real)
-        c.reset();
+    if (!c.real && !spheresBegin(dist2, reach))
       return false;
-    }
     const double dist = std::sqrt(dist2);
     penetration = reach - dist;
+    if (!spheresHold(penetration) && !holds)
+    {
+      c.reset();
+      return false;
+    }
     normal = d / dist;
     contactPoint = b.pos[i1] + (r1 - 0.5 * penetration) * normal;
   }
