@@ -7,12 +7,14 @@ namespace talus::dem::distributed
 {
 namespace
 {
-/// `values` (one per row of `before`) moved to the rows of `after`; NaN for an id not in `before`.
-void follow(std::vector<Vec3>& values, std::span<const GlobalId> before, std::span<const GlobalId> after)
+/// `values` (one per row of `before`) moved to the rows of `after`; `fresh` for an id not in `before`.
+template <class Value>
+void follow(std::vector<Value>& values, std::span<const GlobalId> before, std::span<const GlobalId> after,
+            const Value& fresh)
 {
   if (values.empty())
     return;
-  std::vector<Vec3> moved(after.size(), Vec3::Constant(std::numeric_limits<double>::quiet_NaN()));
+  std::vector<Value> moved(after.size(), fresh);
   // Both lists ascend: one walk along them.
   std::size_t k = 0;
   for (std::size_t row = 0; row < after.size(); ++row)
@@ -28,7 +30,9 @@ void follow(std::vector<Vec3>& values, std::span<const GlobalId> before, std::sp
 
 void followRows(EnergyTracker& energy, std::span<const GlobalId> before, std::span<const GlobalId> after)
 {
-  follow(energy.previousDisplacement, before, after);
-  follow(energy.previousRotation, before, after);
+  const Vec3 unknown = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+  follow(energy.previousDisplacement, before, after, unknown);
+  follow(energy.previousRotation, before, after, unknown);
+  follow(energy.grownBy, before, after, 0.0);
 }
 } // namespace talus::dem::distributed

@@ -3,6 +3,8 @@
 #include "dem/core/Scene.h"
 #include "dem/distributed/Collective.h"
 #include "dem/distributed/collect/Gather.h"
+#include "dem/distributed/script/Channel.h"
+#include "dem/distributed/script/Snapshot.h"
 #include "dem/measure/Energy.h"
 #include "dem/measure/Measurements.h"
 #include "dem/distributed/MpiDomain.h"
@@ -12,6 +14,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <optional>
@@ -52,8 +55,22 @@ PYBIND11_MODULE(_distributed, m)
     int rank = 0, ranks = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+    openScriptChannel();
     return py::make_tuple(rank, ranks);
   });
+  m.attr("snapshot_doubles") = snapshotDoubles;
+  m.def("script_gather", [](const py::array_t<double, py::array::c_style | py::array::forcecast>& mine, double patience,
+                            const std::string& waiting) {
+    std::vector<double> all = gatherOnScriptChannel(std::span<const double>(mine.data(), static_cast<std::size_t>(mine.size())),
+                                                    patience, waiting);
+    const auto width = static_cast<py::ssize_t>(mine.size());
+    py::array_t<double> table({static_cast<py::ssize_t>(all.size()) / std::max<py::ssize_t>(width, 1), width});
+    std::copy(all.begin(), all.end(), table.mutable_data());
+    return table;
+  }, py::arg("mine"), py::arg("patience"), py::arg("waiting"),
+     "Every rank's `mine` (one length on all), a row per rank, on every rank, over the script's own channel "
+     "(collective: talus.dem.split.by_id); a rank the others leave alone for `patience` seconds prints `waiting` "
+     "and ends the run");
   m.def("finalize", [] {
     int initialised = 0, finalised = 0;
     MPI_Initialized(&initialised);
@@ -202,6 +219,21 @@ PYBIND11_MODULE(_distributed, m)
                               py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data()));
       }, "The rows of the bodies this rank owns (the walls, which every rank holds, left out) and their global "
          "ids, both ascending")
+      .def("snapshots", [](const MpiDomain& d, const Scene& s,
+                           const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& rows) {
+        py::array_t<double> table({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(snapshotDoubles)});
+        for (py::ssize_t k = 0; k < rows.size(); ++k)
+          snapshotOf(d, s, static_cast<std::size_t>(rows.data()[k]), table.mutable_data() + k * static_cast<py::ssize_t>(snapshotDoubles));
+        return table;
+      }, "The snapshots of rows `rows` (a row of script/Snapshot.h's numbers each)")
+      .def("readById", [](const MpiDomain& d, const Scene& s, std::int64_t id, double patience, const std::string& rule) {
+        ScriptRead read = readById(d, s, id, patience, rule);
+        const auto width = static_cast<py::ssize_t>(placeDoubles + snapshotDoubles);
+        py::array_t<double> rows({static_cast<py::ssize_t>(read.rows.size()) / width, width});
+        std::copy(read.rows.begin(), read.rows.end(), rows.mutable_data());
+        return py::make_tuple(read.local, read.row, read.agreed, rows);
+      }, "O.bodies[id] as every rank reads it (talus.dem.split.by_id): (local, row here or -1, whether every rank "
+         "read it, every rank's place, id, sent flag and snapshot)")
       .def("positions", [](const MpiDomain& d, const Scene& s) {
         std::vector<double> all = byGlobalId(d, s, [&](std::size_t i, double* out) {
           for (int k = 0; k < 3; ++k)

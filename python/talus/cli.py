@@ -77,6 +77,10 @@ def _run(args: argparse.Namespace) -> int:
     try:
         options = yade.launcher_options(str(script), list(args.script_args), args.threads)
         runpy.run_path(str(script), init_globals={**yade.script_namespace(), "opts": options}, run_name="__main__")
+        if distributed.ACTIVE:      # every process is here (a read by id made by some only is named)
+            from talus.dem.split import by_id
+            if by_id.agree_at_end:
+                by_id.agree(by_id.END)
         if yade.O.running:
             print("talus run: the script ended with O.run() still open-ended (no step count, not waited "
                   "for): it stops here, as under yade -x; call O.wait() in the script to run it until "

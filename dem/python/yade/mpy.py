@@ -46,6 +46,7 @@ import types
 
 from talus.dem import distributed
 from talus.dem.core.scenes import default_scene
+from talus.dem.split import by_id
 
 # mpy's flags: name -> what Talus does with it. Setting another upper-case name is refused.
 _FLAGS = {
@@ -424,3 +425,5 @@ sys.modules[__name__].__class__ = _Module
 if distributed.ACTIVE and numThreads > 1:
     _comm()     # collective: every process imports mpy (the script is the same)
     atexit.register(_serve_commands if rank > 0 else _end_of_script)
+    # the workers' scripts end before rank 0's, which may still be sending them commands
+    by_id.agree_at_end = False

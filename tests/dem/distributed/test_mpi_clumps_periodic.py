@@ -60,3 +60,5 @@ def test_clumps_grown_are_placed_alike_wherever_they_go(tmp_path, processes, met
     assert np.array_equal(np.asarray(serial["positions"]), np.asarray(split["positions"]))
     assert split["cells"] == serial["cells"] and split["stress"] == serial["stress"]
     assert serial["energy"]["growthWork"] != 0 and sum(t["migrated_bodies"] for t in split["traffic"]) >= moved
+    # the growth's energy memory (per body) followed the bodies' rows at the re-detection it set off
+    assert split["energy"]["growthWork"] == pytest.approx(serial["energy"]["growthWork"], rel=1e-12)

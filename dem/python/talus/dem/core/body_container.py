@@ -241,10 +241,22 @@ class BodyContainer:
         i = int(id) + n if id < 0 else int(id)
         if not 0 <= i < n:
             raise IndexError(f"no body with id {int(id)} (ids run from 0 to {n - 1})")
-        row = distributed.row_of(scene, i)     # under mpirun: its row here, if owned here
+        if distributed.is_split(scene):     # collective: a body owned elsewhere as a snapshot
+            from talus.dem.split import by_id
+            return by_id.body(scene, i, lambda row, id: Body(scene, row, id))
+        row = distributed.row_of(scene, i)     # a scene holding a slab of a packing: the bodies held here
         if row is None or not scene._cpp.alive()[row]:
             return None
         return Body(scene, row, i)
+
+    def _here(self, id: int) -> Body | None:
+        """Body ``id`` as this process holds it (owned, or a wall, facet or box), without the
+        collective read ``O.bodies[id]`` is under mpirun: for code going over this process's own
+        bodies (the exporters); None if it was erased."""
+        if not distributed.is_split(self._scene):
+            return self[id]
+        row = distributed.row_of(self._scene, int(id))     # (raises for a body owned elsewhere)
+        return None if row is None or not self._scene._cpp.alive()[row] else Body(self._scene, row, int(id))
 
     def _view(self, row: int) -> Body:
         """The body in ``row`` of a scene in one process, made once per row: a view holds its row
@@ -289,7 +301,8 @@ class BodyContainer:
 
     def __iter__(self):
         if distributed.is_split(self._scene):   # collective: every body, owned elsewhere as a snapshot
-            from talus.dem.split import bodies as split_bodies
+            from talus.dem.split import bodies as split_bodies, by_id
+            by_id.agree(by_id.LOOP)     # every process is here (a read by id made by some only is named)
             return split_bodies.every_body(self._scene, lambda row, id: Body(self._scene, row, id))
         if distributed.domain(self._scene) is not None:
             distributed.refuse("iterating over O.bodies before the first step of a scene holding a packing read in "

@@ -1,9 +1,9 @@
 """``O.bodies.gather(ids)``: the bodies ``ids`` as snapshots, whichever process owns them.
 
-Under ``mpirun -np N talus run`` a body's state lives on the process that owns it, so
-``O.bodies[id]`` of a body owned elsewhere raises. ``gather`` is the collective alternative:
-every process calls it with the same ids (from code every process runs alike, as a PyRunner) and
-gets the same snapshots; it exchanges a few numbers per id, whatever the scene's size. In one
+Under ``mpirun -np N talus run`` a body's state lives on the process that owns it, and
+``O.bodies[id]`` reads it with one exchange per id (talus.dem.split.by_id). ``gather`` reads
+many in one: every process calls it with the same ids (from code every process runs alike, as a
+PyRunner) and gets the same snapshots; it exchanges a few numbers per id, whatever the scene's size. In one
 process it gives the same snapshots of O's bodies, so a script reads them alike either way.
 A snapshot is read-only and does not follow the body afterwards: gather again to see it move.
 """

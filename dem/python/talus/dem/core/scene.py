@@ -31,6 +31,7 @@ from talus.dem.core.scene_checks import check_engines, check_time_step
 from talus.dem.core.scenes import add_scene, default_scene
 from talus.dem.geometry.shape_registry import shape_kinds
 from talus.dem.core.views import ArrayViews
+from talus.dem.split import by_id
 
 # Whether a contact overlapping beyond maxOverlapRatio stops the run in a new scene (see
 # Scene.overlapStops). Yade has no such check: a run started as `yade -x` would start it sets
@@ -382,6 +383,7 @@ class Scene(OmegaMethods, CheckpointMethods):
     def step(self):
         """Run one time step."""
         self._openRunPending = False
+        by_id.agree(by_id.STEP)     # under mpirun: every process is here (see talus.dem.split.by_id)
         distributed.attach(self)    # under mpirun: the scene is split when its first step starts
         check_time_step(self)
         try:
@@ -453,6 +455,7 @@ class Scene(OmegaMethods, CheckpointMethods):
                 limits.append(max(1, math.ceil((stopTime - self.time) / self.dt - 1e-9)))
             steps = min(limits) if limits else -1
             before = self.iter
+            by_id.agree(by_id.STEP)     # under mpirun: every process is here (see talus.dem.split.by_id)
             distributed.attach(self)    # under mpirun: the scene is split when its first step starts
             check_time_step(self)
             try:

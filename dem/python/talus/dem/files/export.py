@@ -357,7 +357,7 @@ class VTKExporter:
         scene = self.scene
         path = self._path("spheres", numLabel)
         ids = vtk_split.global_ids(scene, sphere_rows(scene))
-        write_spheres(scene, path, _evaluate(what, [scene.bodies[int(i)] for i in ids]))
+        write_spheres(scene, path, _evaluate(what, [scene.bodies._here(i) for i in ids]))
         return path
 
     def exportFacets(self, numLabel: int | None = None) -> str:

@@ -44,12 +44,12 @@ def textExt(filename: str, format: str = "x_y_z_r", comment: str = "", mask: int
     rows = vtk_split.owned(scene, scene.sphere_ids())
     ids = vtk_split.global_ids(scene, rows)
     if mask >= 0:
-        keep = np.array([bool(scene.bodies[int(i)].mask & mask) for i in ids], dtype=bool)
+        keep = np.array([bool(scene.bodies._here(i).mask & mask) for i in ids], dtype=bool)
         rows, ids = rows[keep], ids[keep]
     cpp = scene._cpp
     table = {"id": ids, "pos": cpp.pos()[rows], "radius": cpp.radius()[rows], "material": cpp.materialIds()[rows]}
     if format == "x_y_z_r_attrs":
-        values = [_attribute_values(attrs, scene.bodies[int(i)]) for i in ids]
+        values = [_attribute_values(attrs, scene.bodies._here(i)) for i in ids]
         width = len(values[0]) if values else 0
         if vtk_split.is_split(scene):   # (a process without spheres learns the width from the others)
             width = int(-scene._domain.minima([-float(width)])[0])

@@ -19,7 +19,7 @@ the whole script) and visits every live body of the scene, in id order:
 So a sum over the bodies is the whole scene's on every process (in id order, as in one process),
 a loop erasing the bodies below a floor erases the same ids everywhere, and a write reaches every
 body once. What a snapshot cannot give (its bound, its angular momentum, a clump's members)
-raises, naming the rule. One loop exchanges the state of every body (26 numbers each) with every process:
+raises, naming the rule. One loop exchanges the state of every body (27 numbers each) with every process:
 for large scenes, prefer the measurements that reduce (``utils.kineticEnergy()``,
 ``aabbExtrema()``, ``O.bodies.gather(ids)`` for a few bodies).
 """
@@ -30,7 +30,6 @@ from typing import TYPE_CHECKING, Iterator
 
 import numpy as np
 
-from talus import _dem
 from talus.dem import distributed
 from talus.dem.base.linalg import Quaternion, Vector3
 from talus.dem.geometry.appearance import check_color
@@ -39,17 +38,16 @@ from talus.dem.geometry.shapes import Clump, ShapeSpec, Sphere
 if TYPE_CHECKING:
     from talus.dem.core.scene import Scene
 
-# Columns of a body's row in the exchanged table.
+# Columns of a body's snapshot (dem/distributed/script/Snapshot.h makes them).
 _ID, _POS, _VEL, _ANGVEL, _ORI, _MASS, _INERTIA = 0, slice(1, 4), slice(4, 7), slice(7, 10), slice(10, 14), 14, slice(15, 18)
 _RADIUS, _DYNAMIC, _MATERIAL, _MASK, _CLUMP_ID, _IS_CLUMP, _BLOCKED = 18, 19, 20, 21, 22, 23, 24
-_OWNER = 25
-_WIDTH = 26
+_OWNER, _DAMPED = 25, 26
 _DOF_LETTERS = "xyzXYZ"
 
 
 def _rule(id: int, owner_note: str) -> str:
-    return (f"body {id} is owned by another process: in a loop over O.bodies under mpirun a body owned elsewhere "
-            f"is a snapshot of it taken when the loop started ({owner_note})")
+    return (f"body {id} is owned by another process: under mpirun a body owned elsewhere is a snapshot of it, taken "
+            f"when a loop over O.bodies started or O.bodies[{id}] was read ({owner_note})")
 
 
 def _field(name: str, make):
@@ -85,6 +83,7 @@ class RemoteState:
     mass = _field("mass", lambda row: float(row[_MASS]))
     inertia = _field("inertia", lambda row: Vector3(row[_INERTIA]))
     blockedDOFs = _field("blockedDOFs", _blocked)
+    isDamped = _field("isDamped", lambda row: bool(row[_DAMPED]))
 
     @property
     def se3(self):
@@ -111,13 +110,17 @@ class RemoteState:
     def __getattr__(self, name):
         if name.startswith("__"):
             raise AttributeError(name)
+        written = object.__getattribute__(self, "_written")
+        if name in written:
+            return written[name]
         raise AttributeError(_rule(self._id, f"its state.{name} is not part of the snapshot: read it on the process "
                                              f"owning the body, or run the script in one process"))
 
     def __setattr__(self, name, value):
-        if not hasattr(type(self), name) and name not in self.__slots__:
-            raise AttributeError(_rule(self._id, f"its state.{name} is not part of the snapshot"))
-        object.__setattr__(self, name, value)
+        if hasattr(type(self), name) or name in self.__slots__:
+            object.__setattr__(self, name, value)
+        else:   # (isDamped, ...): kept here; the owner makes the same write to the body, and checks it
+            self._written[name] = value
 
     def __repr__(self):
         return f"<RemoteState of body {self._id}>"
@@ -208,27 +211,10 @@ class _RemoteClump(_Looks, Clump):
 
 
 def _own_rows(scene: "Scene", domain) -> np.ndarray:
-    """The table rows of the live bodies this process owns (walls, facets and boxes left out:
-    every process holds them)."""
-    cpp = scene._cpp
-    rows, ids = domain.ownedBodies(cpp)
-    alive = cpp.alive()[rows].astype(bool)
-    rows, ids = rows[alive], ids[alive]
-    table = np.empty((len(rows), _WIDTH))
-    table[:, _ID] = ids
-    for columns, array in ((_POS, cpp.pos()), (_VEL, cpp.vel()), (_ANGVEL, cpp.angVel()), (_INERTIA, cpp.inertia())):
-        table[:, columns] = array[rows]
-    table[:, _MASS], table[:, _RADIUS] = cpp.mass()[rows], cpp.radius()[rows]
-    table[:, _DYNAMIC], table[:, _MATERIAL] = cpp.dynamic()[rows], cpp.materialIds()[rows]
-    table[:, _BLOCKED] = cpp.blockedDofs()[rows]
-    table[:, _OWNER] = domain.rank
-    for k, row in enumerate(int(r) for r in rows):
-        table[k, _ORI] = cpp.ori(row)
-        table[k, _MASK] = _dem.group_mask(cpp, row)
-        table[k, _IS_CLUMP] = cpp.shapeKind(row) == "Clump"
-        clump = int(_dem.clump_id(cpp, row))
-        table[k, _CLUMP_ID] = domain.globalIds([clump])[0] if clump >= 0 else -1
-    return table
+    """The snapshots (the columns above, dem/distributed/script/Snapshot.h) of the live bodies
+    this process owns (walls, facets and boxes left out: every process holds them)."""
+    rows, _ = domain.ownedBodies(scene._cpp)
+    return domain.snapshots(scene._cpp, rows[scene._cpp.alive()[rows].astype(bool)])
 
 
 def every_body(scene: "Scene", views) -> Iterator:

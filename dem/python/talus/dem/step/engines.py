@@ -752,10 +752,12 @@ class PyRunner(Engine):
     @command.setter
     def command(self, command):
         self._command = command
+        from talus.dem.split import by_id
         if isinstance(command, str) and command:
-            self._cpp.callback = _yade_command(command)
+            callback = _yade_command(command)
         else:
-            self._cpp.callback = asCallback(command, "PyRunner") or (lambda: None)
+            callback = asCallback(command, "PyRunner") or (lambda: None)
+        self._cpp.callback = by_id.agreeing(callback, self._cpp)     # under mpirun: every process at its end
 
     def __call__(self):
         """Run the command once, now: Yade's ``engine()`` (whatever the periods, even when dead)."""
