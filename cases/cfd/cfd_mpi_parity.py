@@ -23,15 +23,27 @@ Checked:  cfd.mpi.parity: the largest difference of a body's position in the 2 +
           0, the same bits), the largest differences over the whole run, and each DEM process's
           particles, messages and fluid ranks at the last exchange. cfd.mpi.parity.periodic-bed:
           the same for the periodic column (the decomposed fluidised bed, 2 + 2 against 1 + 1).
+          cfd.mpi.parity.fluidised-bed: cfd_fluidised_bed.py itself, quick (its 5 800 fluid steps,
+          whatever this case's mode; the pressure solved to 1e-13 as above), run as 1 + 1, 1 + 2
+          and 2 + 2: the largest difference of a sphere's final position of 2 + 2 from 1 + 1 over
+          the largest coordinate (<= 1e-9), the details holding 1 + 2 against 1 + 1, 2 + 2 against
+          1 + 2 and the case's outputs (plateau, the fluid's pressure drop, U_mf, the bed's rise);
+          cfd.mpi.parity.fluidised-bed-dem-split: 2 + 2 against 1 + 2 (the DEM's split alone).
 Result:   quick (2026-12-07): 2 + 2 against 1 + 1 3.6e-16; 2 + 2 against 1 + 2 and 2 + 1 against
           1 + 1: 0. Full (432 spheres, 400 fluid steps): 2 + 2 against 1 + 2 and 2 + 1 against
           1 + 1 still 0 at every sample; against 1 + 1, about 3e-16 over the first 100 fluid steps,
           then growing as the bed forms on the floor (about 2e-13 at step 220, 3e-9 at 300,
           1.7e-6 at 400): the decomposed fluid's rounding, amplified by the contacts as any
           rounding is in a dense granular flow. The periodic column, quick (2026-12-07): 2 + 2
-          against 1 + 1 2.2e-16, 2 + 2 against 1 + 2: 0.
-Produces: the records and charts cfd.mpi.parity and cfd.mpi.parity.periodic-bed (the
-          differences over the run).
+          against 1 + 1 2.2e-16, 2 + 2 against 1 + 2: 0. The fluidised bed (2026-12-07): 2 + 2
+          against 1 + 2 0 (positions and outputs; U_mf 1.1e-16, from the particles' pressure
+          drop summed over 2 processes); 2 + 2 and 1 + 2 against 1 + 1 1.9e-5 (fails: the
+          decomposed fluid's rounding grown over 5 800 fluid steps of a bed resting on its
+          contacts; with the case's own pressure tolerances 1.0e-5), its outputs within 1.2e-5
+          (U_mf and the plateau 1.1e-7).
+Produces: the records and charts cfd.mpi.parity, cfd.mpi.parity.periodic-bed and
+          cfd.mpi.parity.fluidised-bed (the differences over the run; the bed's at its end), and
+          the record cfd.mpi.parity.fluidised-bed-dem-split.
 """
 import json
 import shutil
