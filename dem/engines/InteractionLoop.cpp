@@ -1,5 +1,6 @@
 #include "dem/engines/InteractionLoop.h"
 #include "dem/contact/ContactGeometry.h"
+#include "dem/engines/ForceResetter.h"
 
 #include "dem/core/Scene.h"
 #include "dem/base/Threads.h"
@@ -193,8 +194,9 @@ namespace
 /// The force-and-torque gather of bodies [first, last) for one kind of scene: `Periodic` takes
 /// body 2's lever arm from its periodic image (Cell::shift of the contact's cellDist, the
 /// shift the geometry used this step: the cell does not change inside the InteractionLoop);
-/// otherwise no record is read beyond its first cache line (Contact's layout note).
-template <bool Periodic>
+/// otherwise no record is read beyond its first cache line (Contact's layout note). `Reset` sets
+/// the sums on the permanent forces (the same bits as a reset followed by the gather's addition).
+template <bool Periodic, bool Reset>
 void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, std::int64_t last)
 {
   const ContactList& list = scene.contacts.list;
@@ -254,8 +256,16 @@ void gatherRange(Scene& scene, const ContactExtra* extra, std::int64_t first, st
         t += static_cast<double>(2 * second - 1) * moment;
       }
     }
-    b.force[i] += f;
-    b.torque[i] += t;
+    if constexpr (Reset)
+    {
+      b.force[i] = b.extForce[i] + f;
+      b.torque[i] = b.extTorque[i] + t;
+    }
+    else
+    {
+      b.force[i] += f;
+      b.torque[i] += t;
+    }
   }
 }
 
@@ -267,14 +277,23 @@ const ContactExtra* InteractionLoop::contactMoments(const Contacts& contacts) co
   return moments ? contacts.extraState() : nullptr;
 }
 
-void InteractionLoop::gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const
+void InteractionLoop::gatherIn(Scene& scene, std::int64_t first, std::int64_t last, bool reset) const
 {
   // Bodies added since the last re-detection have no contacts (nor entries in the index) yet.
-  last = std::min(last, scene.contacts.indexedBodies());
-  if (scene.periodic)
-    gatherRange<true>(scene, contactMoments(scene.contacts), first, last);
+  const std::int64_t indexed = std::min(last, scene.contacts.indexedBodies());
+  const ContactExtra* moments = contactMoments(scene.contacts);
+  if (reset)
+  {
+    if (scene.periodic)
+      gatherRange<true, true>(scene, moments, first, indexed);
+    else
+      gatherRange<false, true>(scene, moments, first, indexed);
+    ForceResetter::resetIn(scene.bodies, std::max(first, indexed), last);
+  }
+  else if (scene.periodic)
+    gatherRange<true, false>(scene, moments, first, indexed);
   else
-    gatherRange<false>(scene, contactMoments(scene.contacts), first, last);
+    gatherRange<false, false>(scene, moments, first, indexed);
 }
 
 void InteractionLoop::sumForcesPerBody(Scene& scene)

@@ -39,7 +39,9 @@ public:
   /// @param first first body id of the share
   /// @param last one past the last; bodies added since the last detection are skipped (no
   ///        contacts yet)
-  void gatherIn(Scene& scene, std::int64_t first, std::int64_t last) const;
+  /// @param reset each body's force and torque become its permanent ones (ForceResetter) plus
+  ///        its contacts', in the same pass, instead of the contacts' being added to them
+  void gatherIn(Scene& scene, std::int64_t first, std::int64_t last, bool reset = false) const;
   /// The error message for a contact overlapping beyond scene.maxOverlapRatio.
   /// @param c the contact, its penetration that of this step
   /// @return the message: step, body ids, overlap as a fraction of the smaller radius, the time

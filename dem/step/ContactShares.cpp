@@ -45,7 +45,8 @@ void ContactShares::update(const Contacts& contacts)
 }
 
 std::int64_t ContactShares::compute(Scene& scene, ContactLaw& law, int thread, int threads,
-                                    std::pair<std::int64_t, std::int64_t> myBodies, ContactEnergy* energy) const
+                                    std::pair<std::int64_t, std::int64_t> myBodies, ContactEnergy* energy,
+                                    ContactsProgress* progress) const
 {
   const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
   std::int64_t bad = contacts;
@@ -53,20 +54,43 @@ std::int64_t ContactShares::compute(Scene& scene, ContactLaw& law, int thread, i
     if (first < last)
       bad = std::min(bad, law.computeAllIn(scene, first, last, energy));
   };
-  if (energy || boundaryRuns_.empty())
+  if (energy)
   {
-    const auto share = ranges.range(contacts, thread, threads);
-    const auto [first, last] = energy ? blockAligned(share, contacts) : share;
+    const auto [first, last] = blockAligned(ranges.range(contacts, thread, threads), contacts);
     compute(first, last);
     return bad;
   }
+  // In chunks when someone follows: a chunk's records are still in the caches when the bodies
+  // it completes are gathered.
+  auto computeChunks = [&](std::int64_t first, std::int64_t last) {
+    if (!progress)
+      return compute(first, last);
+    for (std::int64_t begin = first; begin < last; begin += progressChunk)
+    {
+      const std::int64_t end = std::min(last, begin + progressChunk);
+      compute(begin, end);
+      progress->reached(end);
+    }
+  };
+  if (boundaryRuns_.empty())
+  {
+    const auto [first, last] = ranges.range(contacts, thread, threads);
+    if (progress)
+      progress->start(first, last);
+    computeChunks(first, last);
+    return bad;
+  }
+  // The runs first: a body's contacts with the boundary are then done before its others.
+  computeRuns(scene, thread, threads, myBodies, compute);
   // This thread's share of the other contacts, counted over the gaps between the runs.
   const auto [from, to] = ranges.range(contacts - boundaryContacts_, thread, threads);
+  if (progress)
+    progress->start(listPosition(from, contacts), listPosition(to, contacts));
   std::int64_t gapStart = 0, counted = 0;
   auto gap = [&](std::int64_t gapEnd) {
     const std::int64_t length = gapEnd - gapStart;
-    compute(gapStart + std::clamp(from - counted, std::int64_t{0}, length),
-            gapStart + std::clamp(to - counted, std::int64_t{0}, length));
+    computeChunks(gapStart + std::clamp(from - counted, std::int64_t{0}, length),
+                  gapStart + std::clamp(to - counted, std::int64_t{0}, length));
     counted += length;
   };
   for (const auto& [begin, end] : boundaryRuns_)
@@ -75,8 +99,16 @@ std::int64_t ContactShares::compute(Scene& scene, ContactLaw& law, int thread, i
     gapStart = end;
   }
   gap(contacts);
-  computeRuns(scene, thread, threads, myBodies, compute);
   return bad;
+}
+
+std::int64_t ContactShares::listPosition(std::int64_t counted, std::int64_t contacts) const
+{
+  std::int64_t position = counted;
+  for (const auto& [begin, end] : boundaryRuns_)
+    if (begin <= position)
+      position += end - begin;
+  return std::min(position, contacts);
 }
 
 void ContactShares::computeRuns(Scene& scene, int thread, int threads, std::pair<std::int64_t, std::int64_t> bodies,

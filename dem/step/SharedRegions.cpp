@@ -7,6 +7,7 @@
 #include "dem/engines/NewtonIntegrator.h"
 
 #include <algorithm>
+#include <optional>
 
 namespace talus::dem
 {
@@ -139,7 +140,7 @@ void SharedRegions::forces(Scene& scene, const Engines& engines, Flow flow)
     redetect(scene, engines.collider, law, skin);
   if (!oneRegion || skin.moved)
     region(scene, [&](int thread, int threads) {
-      contactsThenBodies(scene, engines, law, integrate, skin, skin.check, thread, threads);
+      contactsThenBodies(scene, engines, law, flow, skin, skin.check, thread, threads);
     });
   contactsDone(scene, engines, law);
   if (integrate)
@@ -154,7 +155,7 @@ void SharedRegions::resetAndCheck(Scene& scene, const Engines& engines, ContactL
     Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
     const auto [first, last] = bodyRanges_.range(owned, thread, threads);
     const double start = now();
-    if (flow.reset)
+    if (flow.reset && !gathersAhead(scene, law, flow))
     {
       ForceResetter::resetIn(scene.bodies, first, last);
       team_.lap(my, StagePoint::Reset);
@@ -182,7 +183,7 @@ void SharedRegions::resetAndCheck(Scene& scene, const Engines& engines, ContactL
     }
     team_.lap(my, StagePoint::SkinCheck);
     if (!moved)
-      contactsThenBodies(scene, engines, law, flow.integrate, skin, ahead, thread, threads);
+      contactsThenBodies(scene, engines, law, flow, skin, ahead, thread, threads);
     if (thread == 0)
     {
       skin.moved = moved;
@@ -227,36 +228,64 @@ void SharedRegions::settleSkin(Scene& scene, const Engines& engines, ContactLaw*
   }
 }
 
-void SharedRegions::contactsThenBodies(Scene& scene, const Engines& engines, ContactLaw* law, bool integrate,
+bool SharedRegions::gathersAhead(const Scene& scene, const ContactLaw* law, Flow flow)
+{
+  // The reset then goes into the gather (nothing else writes the forces between them in the
+  // region, and a step stopped by an overlap resets its bodies as the engines leave them).
+  // Energy tracking computes the contacts in blocks in list order, which the gather does not
+  // follow; split over processes, the bodies migrate between the reset and the contacts.
+  return law && flow.reset && !scene.energy.enabled && !scene.domain;
+}
+
+void SharedRegions::contactsThenBodies(Scene& scene, const Engines& engines, ContactLaw* law, Flow flow,
                                        const Skin& skin, const Collider::SkinCheck& ahead, int thread, int threads)
 {
+  const bool integrate = flow.integrate;
   Team::Member& my = team_.members[static_cast<std::size_t>(thread)];
   const auto owned = static_cast<std::int64_t>(scene.ownedBodies());
   // Tracking energy, the integration sums the bodies' terms in whole blocks.
   BodyEnergy* bodyEnergy = integrate && scene.energy.enabled ? bodyEnergy_.data() : nullptr;
   const auto share = bodyRanges_.range(owned, thread, threads);
   const auto [first, last] = bodyEnergy ? blockAligned(share, owned) : share;
+  std::optional<GatherAhead::Thread> gathering;
+  if (gathersAhead(scene, law, flow))
+    gathering.emplace(gatherAhead_, scene, engines.loop, thread, first, last, true);
   if (law)
   {
     const double start = now();
     const auto contacts = static_cast<std::int64_t>(scene.contacts.list.size());
     ContactEnergy* energy = scene.energy.enabled ? contactEnergy_.data() : nullptr;
-    const std::int64_t bad = contactShares_.compute(scene, *law, thread, threads, {first, last}, energy);
+    const std::int64_t bad = contactShares_.compute(scene, *law, thread, threads, {first, last}, energy,
+                                                    gathering ? &*gathering : nullptr);
     my.badContact = bad < contacts ? bad : -1;
-    my.contactSeconds = now() - start;
+    const double early = gathering ? gathering->seconds() : 0;
+    my.contactSeconds = now() - start - early;
+    my.bodySeconds += early;
 #pragma omp barrier
     if (thread == 0)
         ++barriers;
     team_.lap(my, StagePoint::Contacts);
+    if (team_.timing)
+    {
+      my.stage[at(StagePoint::Contacts)] -= early;
+      my.stage[at(StagePoint::Gather)] += early;
+    }
     // A contact overlapping too much stops the step before any body moves, as the engines do,
     // unless the scene only counts such overlaps.
     if (scene.overlapStops)
       for (int t = 0; t < threads; ++t)
         if (team_.members[static_cast<std::size_t>(t)].badContact >= 0)
+        {
+          if (gathering)
+            ForceResetter::resetIn(scene.bodies, first, last);
           return;
+        }
   }
   const double start = now();
-  engines.loop.gatherIn(scene, first, last);
+  if (gathering)
+    gathering->finish();
+  else
+    engines.loop.gatherIn(scene, first, last);
   team_.lap(my, StagePoint::Gather);
   if (integrate)
   {
@@ -282,6 +311,7 @@ void SharedRegions::listChanged(Scene& scene, ContactLaw* law)
   if (law->needsExtra())
     alignContactExtra(scene.contacts);
   contactShares_.update(scene.contacts);
+  gatherAhead_.update(scene.contacts, contactShares_);
   if (scene.energy.enabled)
     contactEnergy_.assign(energyBlocks(static_cast<std::int64_t>(scene.contacts.list.size())), ContactEnergy{});
 }

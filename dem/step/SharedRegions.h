@@ -5,6 +5,7 @@
 #include "dem/core/EnergyTracker.h"
 #include "dem/core/Stage.h"
 #include "dem/step/ContactShares.h"
+#include "dem/step/GatherAhead.h"
 
 #include <array>
 #include <cstdint>
@@ -114,10 +115,13 @@ private:
     bool moved = false;               ///< the check in the region calls for a re-detection
     Collider::Displacements measured; ///< that check, all threads together
   };
-  /// The region's work of each thread after the skin check: contacts (with `law`), a barrier,
-  /// then its bodies: gather, and with `integrate` integrate and check ahead.
-  void contactsThenBodies(Scene& scene, const Engines& engines, ContactLaw* law, bool integrate, const Skin& skin,
+  /// The region's work of each thread after the skin check: contacts (with `law`; the bodies
+  /// they complete gathered as they go, GatherAhead), a barrier, then its bodies: the rest of
+  /// the gather, and with `flow.integrate` integrate and check ahead.
+  void contactsThenBodies(Scene& scene, const Engines& engines, ContactLaw* law, Flow flow, const Skin& skin,
                           const Collider::SkinCheck& ahead, int thread, int threads);
+  /// The bodies are gathered as the contacts stage goes (GatherAhead), their reset with them.
+  static bool gathersAhead(const Scene& scene, const ContactLaw* law, Flow flow);
   /// Each thread's reset (with flow.reset) and skin check; in one region with the rest when
   /// `rest` (and the skin did not call for a re-detection).
   void resetAndCheck(Scene& scene, const Engines& engines, ContactLaw* law, Flow flow, Skin& skin, bool rest);
@@ -144,6 +148,7 @@ private:
   void region(Scene& scene, const Body& body);
 
   ContactShares contactShares_;
+  GatherAhead gatherAhead_;
   /// With energy tracked, the step's energy sums per block of contacts and of bodies (the
   /// engines' blocks: the same sums whatever the threads' ranges).
   std::vector<ContactEnergy> contactEnergy_;

@@ -53,6 +53,26 @@ def test_an_overlapping_start_is_detected_at_the_first_step():
     S.step()
 
 
+def test_a_step_stopped_by_an_overlap_leaves_every_force_reset():
+    """The step gathers a body's forces as soon as its contacts are computed (dem/step/GatherAhead);
+    a step an overlap stops still leaves every body with its reset force, the persistent one, as
+    the engines run one by one do: the touching pair (0, 1) comes before the overlapping one in
+    the contact list, so its forces are summed before the overlap is found."""
+    S = Scene()
+    S.materials.append(FrictMat(young=1e7, density=2600))
+    S.bodies.append([sphere((0, 0, 0), 0.1), sphere((0, 0, 0.199), 0.1),
+                     sphere((1, 0, 0), 0.1), sphere((1, 0, 0.05), 0.1)])
+    S.engines = [ForceResetter(), InsertionSortCollider(),
+                 InteractionLoop([], [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
+                 NewtonIntegrator()]
+    S.dt = 1e-6
+    persistent = np.array([[0.0, 0.0, 1.5 + k] for k in range(4)])
+    S.persistent_forces()[:] = persistent
+    with pytest.raises(RuntimeError, match="bodies 2 and 3 overlap"):
+        S.step()
+    assert np.array_equal(np.array([S.forces.f(k) for k in range(4)]), persistent)
+
+
 def test_a_non_finite_force_names_the_body():
     S = column(0.3)
     S.persistent_forces()[3] = (0, math.nan, 0)
