@@ -68,7 +68,9 @@ void spherePairs(const Bodies& b, const std::vector<BodyId>& spheres, const Cell
           const CellGrid::Packed& p = grid.packed(e);
           const double dx = p.x - center[0], dy = p.y - center[1], dz = p.z - center[2];
           const double range = reach + p.radius;
-          if (dx * dx + dy * dy + dz * dz >= range * range)
+          // Inclusive and summed as the contact's own test (spheresBegin), so that with no skin
+          // a pair touching exactly stays a candidate.
+          if (yadeSquaredNorm(dx, dy, dz) > range * range)
             continue;
           if (filtered && !filter(b, i, static_cast<std::size_t>(other)))
             continue;
@@ -183,7 +185,7 @@ void periodicSpherePairs(const Bodies& b, const std::vector<BodyId>& spheres, co
     const Vec3 d = cell.hSize * (delta + image.cast<double>());
     const auto i = static_cast<std::size_t>(spheres[first]), j = static_cast<std::size_t>(spheres[second]);
     const double reach = b.radius[i] + b.radius[j] + skin;
-    if (d.squaredNorm() < reach * reach && (!filtered || filter(b, i, j)))
+    if (yadeSquaredNorm(d) <= reach * reach && (!filtered || filter(b, i, j)))
       pairs.push_back({key(spheres[first], spheres[second]), image + period[first] - period[second]});
   };
   if (*std::min_element(bins.begin(), bins.end()) < 3)
