@@ -10,9 +10,9 @@ bool sphereBatchAvailable()
   return available;
 }
 
-[[gnu::target("avx2")]] unsigned sphereGeometryBatch(Contact* const* contacts, const Bodies& b, double dt)
+[[gnu::target("avx2")]] unsigned sphereGeometryBatch(Contact* const* contacts, const Bodies& b, double dt, const Cell* cell)
 {
-  const avx2::SphereGeometry g = avx2::sphereGeometry(contacts, b, dt);
+  const avx2::SphereGeometry g = avx2::sphereGeometry(contacts, b, dt, cell);
   avx2::store(g, contacts, g.touching);
   return g.touching;
 }

@@ -4,6 +4,7 @@
 // the processor has it: contactGeometry's sphere path, the same operations in the same order
 // lane by lane, so the same bits.
 #include "dem/core/Bodies.h"
+#include "dem/core/Cell.h"
 #include "dem/core/Contacts.h"
 
 namespace talus::dem
@@ -22,13 +23,14 @@ struct SphereLanes
 bool sphereBatchAvailable();
 
 /// contactGeometry<true> of four contacts that were real at the last step, between two spheres
-/// and not across a periodic boundary (cellDist zero): a contact whose spheres still overlap
+/// (in a periodic cell, inside it or across its boundary): a contact whose spheres still overlap
 /// gets its normal, overlap, contact point, reference radii, turned shear force and shear
 /// increment (and is no longer fresh); one whose spheres came apart is left untouched, for
 /// contactGeometry to reset.
 /// Only where sphereBatchAvailable().
 /// @param contacts the four contacts (distinct)
 /// @param dt the time step (s)
+/// @param cell the periodic cell, or null (the pairs' shift zero: inside the cell, or open space)
 /// @return the lanes updated: bit i for contacts[i]
-unsigned sphereGeometryBatch(Contact* const* contacts, const Bodies& b, double dt);
+unsigned sphereGeometryBatch(Contact* const* contacts, const Bodies& b, double dt, const Cell* cell = nullptr);
 } // namespace talus::dem

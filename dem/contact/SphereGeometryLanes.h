@@ -6,6 +6,7 @@
 // own lanes).
 #include "dem/base/Avx2Lanes.h"
 #include "dem/core/Bodies.h"
+#include "dem/core/Cell.h"
 #include "dem/core/Contacts.h"
 
 #include <array>
@@ -54,10 +55,44 @@ inline std::array<double*, 4> at(Record* const* c, double Record::*member)
   return {&(c[0]->*member), &(c[1]->*member), &(c[2]->*member), &(c[3]->*member)};
 }
 
+/// Where body 2's periodic image of each of four contacts is relative to body 2, and its
+/// velocity: zero for a pair inside the cell, else the cell's own products (Cell::shift,
+/// shiftVelocity) as contactGeometry takes them.
+struct ImageShift
+{
+  Lanes3 offset, velocity;
+};
+/// @param cell the periodic cell, or null
+[[TALUS_AVX2]] inline ImageShift imageShift(Contact* const* contacts, const Cell* cell)
+{
+  const __m256d zero = _mm256_setzero_pd();
+  ImageShift s{{zero, zero, zero}, {zero, zero, zero}};
+  if (cell == nullptr)
+    return s;
+  alignas(32) double offset[3][4] = {}, velocity[3][4] = {};
+  bool across = false;
+  for (int i = 0; i < 4; ++i)
+    if (contacts[i]->cellDist != Eigen::Vector3i::Zero())
+    {
+      const Vec3 o = cell->shift(contacts[i]->cellDist), v = cell->shiftVelocity(contacts[i]->cellDist);
+      for (int d = 0; d < 3; ++d)
+      {
+        offset[d][i] = o[d];
+        velocity[d][i] = v[d];
+      }
+      across = true;
+    }
+  if (across)
+    s = {{_mm256_load_pd(offset[0]), _mm256_load_pd(offset[1]), _mm256_load_pd(offset[2])},
+         {_mm256_load_pd(velocity[0]), _mm256_load_pd(velocity[1]), _mm256_load_pd(velocity[2])}};
+  return s;
+}
+
 /// contactGeometry<true> of four contacts that were real at the last step, between two
-/// spheres and not across a periodic boundary (cellDist zero); nothing written.
+/// spheres (in a periodic cell, inside it or across its boundary); nothing written.
 /// @param dt the time step (s)
-[[TALUS_AVX2]] inline SphereGeometry sphereGeometry(Contact* const* contacts, const Bodies& b, double dt)
+/// @param cell the periodic cell, or null
+[[TALUS_AVX2]] inline SphereGeometry sphereGeometry(Contact* const* contacts, const Bodies& b, double dt, const Cell* cell)
 {
   std::size_t i1[4], i2[4];
   for (int i = 0; i < 4; ++i)
@@ -66,20 +101,22 @@ inline std::array<double*, 4> at(Record* const* c, double Record::*member)
     i2[i] = static_cast<std::size_t>(contacts[i]->id2);
   }
   SphereGeometry g;
-  // The overlap: d = (pos2 + shift2) - pos1 with a zero shift.
+  // The overlap: d = (pos2 + shift2) - pos1.
+  const ImageShift shift = imageShift(contacts, cell);
   const Lanes3 p1 = load(b.pos, i1);
   const __m256d zero = _mm256_setzero_pd();
-  const Lanes3 d = sub(add(load(b.pos, i2), Lanes3{zero, zero, zero}), p1);
+  const Lanes3 d = sub(add(load(b.pos, i2), shift.offset), p1);
   g.r1 = load(b.radius, i1);
   g.r2 = load(b.radius, i2);
-  const __m256d dist2 = dot(d, d);
+  // Real contacts: they hold on while the penetration is not negative (spheresHold: a NaN goes
+  // on), |d|^2 summed in Yade's order (yadeSquaredNorm).
+  const __m256d dist2 = add(mul(d.x, d.x), add(mul(d.y, d.y), mul(d.z, d.z)));
   const __m256d reach = add(g.r1, g.r2);
-  // Not "dist2 <= reach^2": a NaN distance goes on, as in contactGeometry.
-  g.touching = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(dist2, mul(reach, reach), _CMP_NGT_UQ)));
-  if (g.touching == 0)
-    return g;
   const __m256d dist = _mm256_sqrt_pd(dist2);
   g.penetration = sub(reach, dist);
+  g.touching = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(g.penetration, zero, _CMP_NLT_UQ)));
+  if (g.touching == 0)
+    return g;
   g.normal = {div(d.x, dist), div(d.y, dist), div(d.z, dist)};
   g.contactPoint = add(p1, scale(sub(g.r1, mul(broadcast(0.5), g.penetration)), g.normal));
 
@@ -96,7 +133,7 @@ inline std::array<double*, 4> at(Record* const* c, double Record::*member)
   // The shear increment: the incident velocity with Yade's ratcheting factor on the
   // translation, its tangential part times dt.
   const __m256d alpha = div(reach, sub(reach, g.penetration));
-  const Lanes3 relative = sub(add(load(b.vel, i2), Lanes3{zero, zero, zero}), load(b.vel, i1));
+  const Lanes3 relative = sub(add(load(b.vel, i2), shift.velocity), load(b.vel, i1));
   const __m256d minusR2 = _mm256_xor_pd(g.r2, broadcast(-0.0));
   const Lanes3 incident
       = sub(add(scale(alpha, relative), cross(w2, scale(minusR2, g.normal))), cross(w1, scale(g.r1, g.normal)));

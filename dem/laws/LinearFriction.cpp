@@ -47,7 +47,7 @@ struct LinearFrictionNames
                                                                        const StepContext& step)
 {
   using namespace avx2;
-  SphereGeometry g = sphereGeometry(c, step.bodies, step.dt);
+  SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell);
   if (g.touching == 0)
     return {};
   const Lanes3 normalForce = scale(mul(load(c, &Contact::kn), g.penetration), g.normal);

@@ -225,7 +225,7 @@ struct ViscoElasticNames
                                                                      const StepContext& step)
 {
   using namespace avx2;
-  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt);
+  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell);
   if (g.touching == 0)
     return {};
   const Bodies& b = step.bodies;
