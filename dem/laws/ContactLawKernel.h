@@ -2,6 +2,7 @@
 
 // The loops of ContactLawKernel, included by each law's .cpp (they need the Scene).
 #include "dem/laws/ContactLaw.h"
+#include "dem/contact/FacetGeometryBatch.h"
 #include "dem/contact/SphereGeometryBatch.h"
 #include "dem/core/Scene.h"
 #include "dem/base/Threads.h"
@@ -133,8 +134,8 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
   };
   // Sphere pairs that were in contact go four at a time through the lanes of
   // sphereGeometryBatch where the processor has them (the same bits as contactGeometry), or of
-  // the law's own lanes for the geometry and the forces, the others one by one; in a periodic cell, the pairs inside it too (their geometry is open
-  // space's), not those across its boundary (an image's shift; a fifth of a small RVE's).
+  // the law's own lanes for the geometry and the forces, the others one by one; in a periodic
+  // cell, those across its boundary too (their image's shift taken as contactGeometry takes it).
   // Without energy to sum in order, the order is free: a contact writes only its own record.
   const bool batched = !Track && !Law::geometryUsesExtra && sphereBatchAvailable();
   Contact* batch[sphereBatchWidth];
@@ -143,6 +144,12 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
   // The lines of a state record to prefetch: a law whose geometry reads the state (bonds,
   // moments) reads all of them, the others (Hertz-Mindlin's stiffnesses) its first.
   constexpr std::size_t extraPrefetchBytes = Law::geometryUsesExtra ? sizeof(ContactExtra) : 1;
+  // Facet-sphere pairs likewise, four at a time through facetGeometryBatch: the real ones that
+  // still touch get their geometry there, the others that do not touch are done, the rest
+  // (beginning or ending) go one by one.
+  Contact* facets[sphereBatchWidth];
+  std::int64_t facetIndex[sphereBatchWidth];
+  int facetsWaiting = 0;
   for (std::int64_t k = first; k < last; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
@@ -153,8 +160,23 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
       if (k + extraPrefetchDistance < last)
         for (std::size_t byte = 0; byte < extraPrefetchBytes; byte += 64)
           __builtin_prefetch(reinterpret_cast<const char*>(step.extra + k + extraPrefetchDistance) + byte);
-    if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere
-          && (step.cell == nullptr || c.cellDist == Eigen::Vector3i::Zero())))
+    if (batched && c.kind == ContactGeometryKind::FacetSphere
+        && (step.cell == nullptr || c.cellDist == Eigen::Vector3i::Zero()))
+    {
+      facets[facetsWaiting] = &c;
+      facetIndex[facetsWaiting] = k;
+      if (++facetsWaiting < sphereBatchWidth)
+        continue;
+      const FacetLanes done = facetGeometryBatch(facets, step.bodies, step.dt);
+      for (int i = 0; i < sphereBatchWidth; ++i)
+        if (done.geometry & (1U << i))
+          forces(*facets[i], facetIndex[i]);
+        else if (!(done.apart & (1U << i)))
+          geometryAndForces(*facets[i], facetIndex[i]);
+      facetsWaiting = 0;
+      continue;
+    }
+    if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere))
     {
       geometryAndForces(c, k);
       continue;
@@ -167,7 +189,7 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
     if constexpr (requires { law.sphereLanes(batch, batchIndex, step); })
       done = law.sphereLanes(batch, batchIndex, step);
     else
-      done.geometry = sphereGeometryBatch(batch, step.bodies, step.dt);
+      done.geometry = sphereGeometryBatch(batch, step.bodies, step.dt, step.cell);
     for (int i = 0; i < sphereBatchWidth; ++i)
       if (done.forces & (1U << i))
       {
@@ -182,6 +204,8 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
   }
   for (int i = 0; i < waiting; ++i)
     geometryAndForces(*batch[i], batchIndex[i]);
+  for (int i = 0; i < facetsWaiting; ++i)
+    geometryAndForces(*facets[i], facetIndex[i]);
   return bad;
 }
 
