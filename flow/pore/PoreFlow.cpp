@@ -84,6 +84,9 @@ void PoreFlow::build(const std::vector<PoreSphere>& spheres)
                                 "one (set alphaBound < 0)");
   if (std::isnan(params.alphaBound))
     throw std::invalid_argument("FlowEngine.alphaBound must be a number (negative: no alpha-shape boundary)");
+  if (params.concurrentTriangulation && params.yadeInsertionOrder && !params.periodic && params.alphaBound < 0)
+    throw std::invalid_argument("FlowEngine.concurrentTriangulation needs yadeInsertionOrder=False (the threads "
+                                "insert the spheres in no fixed order, Yade's is one by one)");
   const InsertionOrder order = params.yadeInsertionOrder ? InsertionOrder::Yade : InsertionOrder::Sorted;
   AlphaBoundary alpha;
   PoreNetwork fresh = params.periodic ? triangulatePeriodic(spheres, boundaries(spheres), params.hasBoundary,

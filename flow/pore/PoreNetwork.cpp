@@ -80,6 +80,79 @@ void buildPores(PoreNetwork& net, const Rt& rt, const std::vector<typename Rt::C
     }
 }
 
+/// Where CGAL starts the point location of each sphere inserted one by one (Yade's order): the
+/// last vertex inserted in the sphere's bucket of nested grids over the spheres (the finest about
+/// one sphere a bucket, each next one half as fine, the last one bucket), the finest non-empty
+/// one. Yade starts every location from the infinite cell, a walk across the sample; the
+/// triangulation does not depend on where the walk starts (each new cell takes the vertices of
+/// the cell it replaces, in their order), so the cells and their vertex orders stay Yade's.
+template <class Rt>
+class NearbyVertices
+{
+public:
+  using Vertex_handle = typename Rt::Vertex_handle;
+
+  NearbyVertices(const std::vector<Vertex>& vertices, const std::vector<int>& order)
+  {
+    std::size_t spheres = 0;
+    for (const int i : order)
+      if (const Vertex& v = vertices[static_cast<std::size_t>(i)]; !v.fictitious)
+      {
+        lo_ = lo_.cwiseMin(v.pos);
+        hi_ = hi_.cwiseMax(v.pos);
+        ++spheres;
+      }
+    for (int side = std::max(1, static_cast<int>(std::cbrt(static_cast<double>(spheres))));; side = (side + 1) / 2)
+    {
+      sides_.push_back(side);
+      grids_.emplace_back(static_cast<std::size_t>(side) * static_cast<std::size_t>(side) * static_cast<std::size_t>(side));
+      if (side == 1)
+        break;
+    }
+    buckets_.resize(sides_.size());
+  }
+
+  /// A cell to start locating x from (none before the first sphere); x's buckets are kept for
+  /// inserted().
+  typename Rt::Cell_handle near(const Vec3& x)
+  {
+    const Eigen::Array3d unit = ((x - lo_).array() / (hi_ - lo_).array().max(1e-300)).max(0.0).min(1.0);
+    Vertex_handle found;
+    for (std::size_t l = 0; l < sides_.size(); ++l)
+    {
+      const auto side = static_cast<std::size_t>(sides_[l]);
+      std::size_t b = 0;
+      for (int a = 0; a < 3; ++a)
+        b = b * side + std::min(side - 1, static_cast<std::size_t>(unit[a] * static_cast<double>(side)));
+      buckets_[l] = b;
+      if (found == Vertex_handle())
+        found = grids_[l][b];
+    }
+    return found == Vertex_handle() ? typename Rt::Cell_handle() : found->cell();
+  }
+
+  /// v was inserted at the x of the last near().
+  void inserted(Vertex_handle v)
+  {
+    for (std::size_t l = 0; l < sides_.size(); ++l)
+      grids_[l][buckets_[l]] = v;
+  }
+
+  /// An insertion removed vertices (it hid them): their handles are no start any more.
+  void forget()
+  {
+    for (std::vector<Vertex_handle>& g : grids_)
+      std::fill(g.begin(), g.end(), Vertex_handle());
+  }
+
+private:
+  Vec3 lo_ = Vec3::Constant(std::numeric_limits<double>::max());
+  Vec3 hi_ = Vec3::Constant(std::numeric_limits<double>::lowest());
+  std::vector<int> sides_;
+  std::vector<std::vector<Vertex_handle>> grids_;
+  std::vector<std::size_t> buckets_;
+};
+
 /// The finite cell (its info()) holding y, -1 outside; CGAL walks from the cell `near` points
 /// to (if given and valid; from an arbitrary cell otherwise, across the triangulation) and
 /// leaves the cell found there.
@@ -222,6 +295,7 @@ void insertVertices(PoreNetwork& net, Rt& rt, const std::vector<int>& order, Ins
   std::vector<char> inserted(net.vertices.size(), 0);
   std::vector<std::pair<Weighted, int>> range;
   range.reserve(order.size());
+  NearbyVertices<Rt> nearby(net.vertices, insertion == InsertionOrder::Yade ? order : std::vector<int>{});
   for (const int i : order)
   {
     const Vertex& v = net.vertices[static_cast<std::size_t>(i)];
@@ -234,9 +308,15 @@ void insertVertices(PoreNetwork& net, Rt& rt, const std::vector<int>& order, Ins
     }
     // the six boundaries first, one by one (they enclose the sample, the spheres' range goes
     // inside them); everything one by one in Yade's order
-    const typename Rt::Vertex_handle h = rt.insert(w);
-    if (h != typename Rt::Vertex_handle())
-      h->info() = i;
+    const std::size_t before = rt.number_of_vertices();
+    const typename Rt::Vertex_handle h = rt.insert(w, v.fictitious ? typename Rt::Cell_handle() : nearby.near(v.pos));
+    if (h == typename Rt::Vertex_handle())
+      continue;
+    h->info() = i;
+    if (rt.number_of_vertices() < before + 1)
+      nearby.forget();
+    if (!v.fictitious)
+      nearby.inserted(h);
   }
   rt.insert(range.begin(), range.end());
   // A sphere is hidden if it was not inserted or a later one removed it.

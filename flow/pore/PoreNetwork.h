@@ -134,19 +134,24 @@ struct PoreNetwork
 
 /// How the spheres enter the CGAL triangulation. Both give the same pores (the regular
 /// triangulation is unique unless points are degenerate); they differ in speed and in the order
-/// of the vertices inside each cell, on which one of Yade's throat formulas depends (the
-/// sphere-edge overlap S0 takes the first sphere it finds crossing its opposite edge).
+/// of the vertices inside each cell, on which Yade's geometry depends (the weighted centres of
+/// the pores touching a wall, see Sorted; the sphere-edge overlap S0 takes the first sphere it
+/// finds crossing its opposite edge).
 enum class InsertionOrder
 {
-  /// one range, spatially sorted by CGAL (faster: docs/flow.md, "Measurements behind the
-  /// code"); the facet vertices are then taken in a
-  /// canonical order (boundaries, then by body id), so the geometry depends neither on CGAL's
-  /// order nor on the order of the input (differs from Yade's on
-  /// facets where two spheres cross their opposite edges: 0.4 % on the most affected
-  /// conductance of the 400-sphere reference, 2.4e-7 on the flux)
+  /// one range, spatially sorted by CGAL (faster from about 30 000 spheres, where inserting in
+  /// the input's order misses the caches: docs/flow.md, "Measurements behind the code"); the
+  /// cell and facet vertices are then taken in a canonical order (boundaries, then by body id),
+  /// so the geometry depends neither on CGAL's order nor on the order of the input. It differs
+  /// from Yade's where the weighted centres of the pores touching a wall carry the round-off of
+  /// the fictitious spheres' huge weights, which depends on the order of the four vertices
+  /// (throat lengths by percents where two such centres nearly coincide; the flux by 2.4e-6 at
+  /// 10 000 spheres, 4.5e-4 at 200 000), and on facets where two spheres cross their opposite
+  /// edges (Yade's S0)
   Sorted,
-  /// one by one in the caller's order and the facet vertices in CGAL's cell order, as Yade's
-  /// FlowEngine: the same numbers as Yade to round-off (for side-by-side checks)
+  /// one by one in the caller's order, each location started near the sphere, and the vertices
+  /// in CGAL's cell order, as Yade's FlowEngine: the same cells with their vertices in the same
+  /// order as Yade's, the same numbers to round-off
   Yade,
 };
 

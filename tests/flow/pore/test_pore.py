@@ -122,7 +122,7 @@ def test_same_network_and_flux_as_yade_stored():
 
 
 def test_sorted_insertion_stays_within_the_issue_tolerance_of_yade():
-    # The default inserts the spheres as one sorted range: the same pores, but each cell's
+    # yadeInsertionOrder=False inserts the spheres as one sorted range: the same pores, but each cell's
     # vertices in a canonical order instead of CGAL's. Two things then differ from Yade by
     # more than round-off: which sphere Yade's sphere-edge overlap S0 counts on facets where
     # two spheres cross their opposite edges, and the round-off of the weighted circumcentres
@@ -132,7 +132,7 @@ def test_sorted_insertion_stays_within_the_issue_tolerance_of_yade():
     # 1e-3, 2 by more than 1e-2 (worst 2.2 %); pressure 3.1e-5, flux 8.2e-7, forces 1.5e-5,
     # average velocity 9.5e-5. The issue's bar is 1 % on permeability (the flux).
     ref = json.load(open(DATA / "pore_yade_reference.json"))
-    flow = y_flow()
+    flow = y_flow(yadeInsertionOrder=False)
     d = compare(ref, flow)
     assert d["conductance"] < 5e-2 and d["flux"] < 1e-5, d
     assert d["pressure"] < 1e-4 and d["force"] < 1e-4 and d["averageVelocity"] < 1e-3, d
@@ -143,7 +143,7 @@ def test_sorted_insertion_stays_within_the_issue_tolerance_of_yade():
     # and the geometry no longer depends on the order of the spheres (measured: 1e-14)
     pos, rad, ids = packing()
     order = np.random.default_rng(3).permutation(len(rad))
-    shuffled = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0])
+    shuffled = FlowEngine(bndCondIsPressure=[0, 0, 1, 1, 0, 0], bndCondValue=[0, 0, 1, 0, 0, 0], yadeInsertionOrder=False)
     shuffled.triangulate(pos[order], rad[order], ids[order])
     shuffled.solve()
     assert shuffled.getBoundaryFlux(2) == pytest.approx(flow.getBoundaryFlux(2), rel=1e-12)

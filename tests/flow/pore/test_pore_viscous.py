@@ -61,7 +61,7 @@ def test_same_viscous_forces_as_yade_stored():
     d = differences(ref)
     assert max(d.values()) < 1e-9, {k: v for k, v in d.items() if v >= 1e-9}
     assert max(v for k, v in d.items() if k[0] != "viscousShear") < 1e-12
-    # The default sorted insertion computes the wall pores' centres in another vertex order
+    # The sorted insertion (yadeInsertionOrder=False) computes the wall pores' centres in another vertex order
     # (their round-off is ~6e-5 of the box, see docs/flow.md): the faces of the pairs next to the
     # walls move, the lubrication forces do not (measured: viscous shear 5.1e-5, others 1.4e-13).
     d = differences(ref, order=False)

@@ -143,10 +143,11 @@ class FlowEngine(Engine):
     ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
     solid surface in the hydraulic radius), ``useSolver`` 3 (Talus: 4 multigrid, 5 hypre's BoomerAMG), ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
     ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), ``yadeInsertionOrder``
-    False (Talus: True inserts the spheres one by one and keeps CGAL's vertex order as Yade does, slower, the
-    same numbers as Yade to round-off; False inserts them as one spatially sorted range and takes the facet
-    vertices in a canonical order, within 0.4 % of Yade on the most affected throat),
-    ``concurrentTriangulation`` False (Talus: True lets CGAL insert the spheres of a box network on
+    True (Talus: the spheres enter the triangulation one by one and each cell keeps CGAL's vertex order, as
+    Yade's: the same numbers as Yade to round-off; False inserts them as one spatially sorted range, faster
+    from about 30 000 spheres, and takes the vertices in a canonical order: the wall pores' centres then
+    carry other round-off, the permeability up to 5e-4 from Yade's at 200 000 spheres),
+    ``concurrentTriangulation`` False (Talus: True, with ``yadeInsertionOrder`` False, lets CGAL insert the spheres of a box network on
     the OpenMP threads when there are several; the results then differ from a one-thread run's by
     round-off; False gives the same bits at any thread count), and for the engine
     ``meshUpdateInterval`` 1000 (<= 0: never by count), ``decoupleForces`` False (True: the fluid forces are
