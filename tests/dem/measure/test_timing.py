@@ -19,7 +19,10 @@ def test_engines_are_timed_only_while_enabled():
     S.timingEnabled = True
     S.run(25)
     for e in S.engines:
-        assert e.execCount == 25 and e.execTime > 0, type(e).__name__
+        # The step resets each body's forces in the gather (dem/step/GatherAhead.h): the
+        # resetter is counted and its time booked with the gather's.
+        reset_in_gather = type(e).__name__ == "ForceResetter"
+        assert e.execCount == 25 and (e.execTime > 0 or reset_in_gather), type(e).__name__
     collider, loop = S.engines[1], S.engines[2]
     stages = {name: (nsec, count) for name, nsec, count in loop.timingDeltas.data}
     assert list(stages) == ["geometry, physics, law", "forces per body"]
