@@ -235,13 +235,15 @@ struct ViscoElasticNames
     i1[i] = static_cast<std::size_t>(c[i]->id1);
     i2[i] = static_cast<std::size_t>(c[i]->id2);
   }
-  // ContactPointMotion between spheres (a zero periodic shift, as there).
+  // ContactPointMotion between spheres: body 2's arm and velocity are its periodic image's for a
+  // pair across the cell's boundary (zero shifts inside it).
   const __m256d zero = _mm256_setzero_pd();
   const Lanes3 none{zero, zero, zero};
+  const ImageShift shift = imageShift(c, step.cell);
   const Lanes3 c1x = sub(g.contactPoint, load(b.pos, i1));
-  const Lanes3 c2x = sub(sub(g.contactPoint, load(b.pos, i2)), none);
+  const Lanes3 c2x = sub(sub(g.contactPoint, load(b.pos, i2)), shift.offset);
   const Lanes3 v = sub(add(load(b.vel, i1), cross(load(b.angVel, i1), c1x)),
-                       add(add(load(b.vel, i2), none), cross(load(b.angVel, i2), c2x)));
+                       add(add(load(b.vel, i2), shift.velocity), cross(load(b.angVel, i2), c2x)));
   const __m256d vn = dot(g.normal, v);
   const Lanes3 vs = sub(v, scale(vn, g.normal));
   // LinearSpring and NormalDashpot.
