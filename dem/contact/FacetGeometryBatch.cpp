@@ -145,11 +145,7 @@ using namespace avx2;
 
   // The shear force turned with the frame, as for two spheres.
   const Lanes3 w1 = load(b.angVel, i1), w2 = load(b.angVel, i2);
-  const Lanes3 orthonormalAxis = cross(oldNormal, g.normal);
-  const Lanes3 twistAxis = scale(mul(broadcast(0.5 * dt), dot(oldNormal, add(w1, w2))), oldNormal);
-  g.shearForce = load(contacts, &Contact::shearForce);
-  g.shearForce = sub(g.shearForce, cross(g.shearForce, orthonormalAxis));
-  g.shearForce = sub(g.shearForce, cross(g.shearForce, twistAxis));
+  g.shearForce = turnedShearForce(contacts, oldNormal, g.normal, w1, w2, dt);
 
   // The shear increment: the incident velocity with the true arms to the contact point
   // (incidentVelocity), its tangential part times dt.
