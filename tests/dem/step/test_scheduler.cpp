@@ -235,7 +235,12 @@ TEST(Scheduler, TimingTimesTheStagesAndKeepsTheBits)
   for (const auto& engine : timed.engines)
   {
     EXPECT_EQ(engine->execCount, 200) << engine->typeName();
-    EXPECT_GT(engine->execTime, 0) << engine->typeName();
+    // The gather resets each body's forces in its own pass (GatherAhead.h): the resetter is
+    // counted, its time booked with the gather's.
+    if (engine->typeName() != "ForceResetter")
+    {
+      EXPECT_GT(engine->execTime, 0) << engine->typeName();
+    }
   }
   const TimingDeltas& loop = timed.engines[2]->timingDeltas;
   ASSERT_EQ(loop.labels, (std::vector<std::string>{"geometry, physics, law", "forces per body"}));
