@@ -42,7 +42,8 @@ def test_quick_mode_on_a_tiny_bed_records_the_bound_and_fractions(talus_cmd, tmp
         # the bound named is the roof that is lower at the step's intensity
         memory_roof = step["intensity"] * machine["triad_bed_gbs"]
         assert (record["bound"] == "memory") == (memory_roof < machine["peak_gflops"])
-        for name in ("reset", "contacts", "gather", "integration"):
+        # the reset is a stage of its own unless the step makes it in the gather's pass
+        for name in {"contacts", "gather", "integration"} | ({"reset"} & set(record["stages"])):
             assert record["stages"][name]["ns_per_particle_step"] > 0
     assert (tmp_path / "dem.roofline.png").stat().st_size > 0
 
