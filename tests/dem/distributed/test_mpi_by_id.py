@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from test_mpi_run import _script, pytestmark, talus_run  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
+from test_mpi_run import _script, json_of_runs, pytestmark, talus_run  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
 
 EXAMPLES = Path("/usr/share/doc/yade/examples")
 
@@ -105,16 +105,7 @@ if distributed.rank() == 0:
 
 @pytest.fixture(scope="module")
 def pile(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("by_id")
-    script = folder / "pile.py"
-    script.write_text(PILE)
-    out = {}
-    for processes in (None, 2, 3):
-        path = folder / f"pile-{processes}.json"
-        done = talus_run(script, path, processes=processes, timeout=600)
-        assert done.returncode == 0, done.stderr
-        out[processes] = json.loads(path.read_text())
-    return out
+    return json_of_runs(tmp_path_factory.mktemp("by_id"), "pile", PILE, timeout=600)
 
 
 @pytest.mark.parametrize("processes", [2, 3])

@@ -4,12 +4,11 @@ being added in another order), getStress, getStressAndTangent (both forms), body
 avgNumInteractions, fabricTensor, porosity, aabbExtrema, PWaveTimeStep, the step
 GlobalStiffnessTimeStepper sets, and O.bodies.gather (collective). The scene: spheres settling
 in a box whose side wall moves in (imposed work), some spheres with a blocked DOF."""
-import json
 
 import numpy as np
 import pytest
 
-from test_mpi_run import pytestmark, talus_run  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
+from test_mpi_run import json_of_runs, pytestmark  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
 
 
 SCRIPT = """
@@ -68,16 +67,7 @@ SUMS = ("stress", "tangent", "yade", "coordination", "fabric", "porosity")
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    folder = tmp_path_factory.mktemp("measures")
-    script = folder / "measures.py"
-    script.write_text(SCRIPT)
-    out = {}
-    for processes in (None, 2, 3):
-        path = folder / f"out-{processes}.json"
-        done = talus_run(script, path, processes=processes)
-        assert done.returncode == 0, done.stderr
-        out[processes] = json.loads(path.read_text())
-    return out
+    return json_of_runs(tmp_path_factory.mktemp("measures"), "measures", SCRIPT)
 
 
 @pytest.mark.parametrize("processes", [2, 3])

@@ -34,6 +34,20 @@ def talus_run(script, *args, processes=None, env=None, timeout=60):
     return subprocess.run(command, capture_output=True, text=True, timeout=timeout, env=environment)
 
 
+def json_of_runs(folder, name, text, counts=(None, 2, 3), timeout=60):
+    """The script `text` (which writes a JSON file named by its first argument) run alone
+    (None) and under mpirun at each count: the JSON of each run, by count."""
+    script = folder / f"{name}.py"
+    script.write_text(text)
+    out = {}
+    for processes in counts:
+        path = folder / f"{name}-{processes}.json"
+        done = talus_run(script, path, processes=processes, timeout=timeout)
+        assert done.returncode == 0, done.stderr
+        out[processes] = json.loads(path.read_text())
+    return out
+
+
 @pytest.mark.parametrize("method", ["RCB", "HSFC"])
 def test_two_processes_give_the_serial_positions_bit_for_bit(tmp_path, method):
     serial, split = tmp_path / "serial.json", tmp_path / "split.json"
