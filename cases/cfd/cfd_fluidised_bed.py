@@ -2,7 +2,7 @@
 talusVolumeAveragedFoam; its case written by talus.coupling.case_builder).
 
 Run:      build/bin/talus run cases/cfd/cfd_fluidised_bed.py [--quick] [--results DIR] [--procs 2] [--fixed]
-          [--envelope-method pairwise|convolution] [--positions FILE.npy]
+          [--envelope-method pairwise|convolution] [--trajectory FILE.npy] [--nudge K]
           or with the DEM split too: mpirun --allow-run-as-root --oversubscribe -np 2 build/bin/talus run
           cases/cfd/cfd_fluidised_bed.py --quick --procs 2 (2 DEM processes + 2 fluid ranks; the
           script is written for both: its ids mapped to each process's rows by shares.rows(s, ids), the
@@ -152,11 +152,15 @@ def main():
     parser.add_argument("--fixed", action="store_true", help="every particle held: the fixed-bed check")
     parser.add_argument("--envelope-method", choices=["pairwise", "convolution"], default=None,
                         help="talusVolumeAveragedFoam's envelopeMethod (default: the solver's)")
-    parser.add_argument("--positions", default=None,
-                        help="also write every sphere's final position to this .npy file (cfd_mpi_parity.py)")
     parser.add_argument("--pressure-tolerance", type=float, default=None,
                         help="solve the fluid's pressure to this tolerance in every corrector (relTol 0), so that "
                              "a decomposed fluid differs from one rank by rounding only (cfd_mpi_parity.py)")
+    parser.add_argument("--trajectory", default=None,
+                        help="also write every sphere's position every 200 fluid steps and at the last to this "
+                             ".npy file (samples x spheres x 3; cfd_mpi_parity.py)")
+    parser.add_argument("--nudge", type=int, default=None, metavar="K",
+                        help="before the coupling, move the K-th sphere's x by one ulp: a change of the state "
+                             "the size of one rounding, whose growth is the reference scale of cfd_mpi_parity.py")
     args = parser.parse_args()
     import matplotlib
     matplotlib.use("Agg")
@@ -211,6 +215,9 @@ def main():
     s.engines[-1].damping = 0.0
     s.engines[-1].gravity = (0, 0, -G)
     s.velocities()[shares.rows(s, ids)] = 0.0
+    if args.nudge is not None:
+        nudged = shares.rows(s, ids[args.nudge:args.nudge + 1])   # on its owner only under mpirun
+        s.positions()[nudged, 0] = np.nextafter(s.positions()[nudged, 0], np.inf)
     if args.fixed:
         held = set(ids)
         for b in s.bodies:   # every body on every process; a body's owner holds it
@@ -220,7 +227,7 @@ def main():
     dt_fluid = coupling.link.fluidDt
     steps = round((ramp + hold) / dt_fluid)
     t_start = s.time  # the fluid's clock starts at the coupling, after the DEM-only relaxation
-    t, u0, dp = [], [], []
+    t, u0, dp, trajectory = [], [], [], []
     start = time.perf_counter()
     for _ in range(steps):
         s.run(coupling.substeps, True)
@@ -228,6 +235,8 @@ def main():
         u0.append(2 * u_mf * min(1.0, t[-1] / ramp))
         # the force on every particle: under mpirun each process has its own particles' (summed)
         dp.append((shares.total(float(np.sum(coupling.lastForces[:, 2]))) - RHO * G * volume) / (L * L))
+        if len(t) % 200 == 0 and args.trajectory:
+            trajectory.append(distributed.positions(s)[ids])
         if len(t) % 200 == 0:
             rows = shares.rows(s, ids)
             v = s.velocities()[rows]
@@ -252,9 +261,9 @@ def main():
         u_mf_measured = float((plateau - slope[1]) / slope[0])
     rows = shares.rows(s, ids)
     bed_expansion = shares.largest(float(np.max(s.positions()[rows][:, 2] + s.radii()[rows], initial=-np.inf))) - bed_top
-    if args.positions:
-        final = distributed.positions(s)[ids]     # every sphere's, on every process
-        shares.once(np.save, args.positions, final)
+    if args.trajectory:     # every sphere's positions, on every process (collective)
+        last = [] if steps % 200 == 0 else [distributed.positions(s)[ids]]
+        shares.once(np.save, args.trajectory, np.array(trajectory + last))
     print(f"plateau {plateau:.3f} Pa ({(plateau - weight) / weight:+.2%} vs buoyant weight), fluid's own "
           f"pressure drop at the end {fluid_dp:.3f} Pa ({(fluid_dp - weight) / weight:+.2%}); U_mf {u_mf_measured:.4e} m/s "
           f"({(u_mf_measured - u_mf) / u_mf:+.2%} vs Ergun); bed top rose {bed_expansion * 1e3:.2f} mm; Re_p max "
