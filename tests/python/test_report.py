@@ -55,3 +55,24 @@ def test_cli_report(talus_cmd, tmp_path):
     assert "demo.one" in (tmp_path / "v.md").read_text()
     missing = talus_cmd("report", "--results", tmp_path / "none", check=False)
     assert missing.returncode == 2 and "does not exist" in missing.stderr
+
+
+def test_the_page_keeps_its_records_and_a_new_run_replaces_its_own(tmp_path):
+    page = tmp_path / "docs" / "validation.md"
+    first = tmp_path / "first"
+    case = results.Case("dem.one", quick=True, folder=first)
+    case.record("e", 0.5, "x", 1.0)
+    fig, ax = plt.subplots()
+    case.save_chart(fig)
+    plt.close(fig)
+    results.Case("dem.two", quick=True, folder=first).record("e", 0.5, "x", 1.0, detail=7)
+    report.render(first, page)
+    # another machine ran dem.two only: dem.one keeps its row, details and chart
+    second = tmp_path / "second"
+    results.Case("dem.two", quick=True, folder=second).record("e", 2.0, "x", 1.0)
+    text = report.render(second, page)
+    assert "1 of 2 records pass" in text
+    assert "| dem.one | e | 0.5 |" in text and "| dem.two | e | 2 |" in text
+    assert "![dem.one](validation/dem.one.png)" in text
+    kept = {r["name"]: r for r in results.read_records(tmp_path / "docs" / "validation" / "records")}
+    assert kept["dem.two"]["value"] == 2.0 and "detail" not in kept["dem.two"]
