@@ -3,6 +3,7 @@
 // triangulation grouped by periodic translation: one pore (one pressure unknown) per group, the
 // others being its images.
 #include "flow/pore/CgalTriangulation.h"
+#include "flow/pore/CurveOrder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -348,6 +349,7 @@ PoreNetwork triangulatePeriodic(const std::vector<PoreSphere>& spheres, const st
   const std::vector<Cell> poreCell = groupCellsByTranslation(net, *owner);
   addPores(net, *owner, poreCell, rank, duplicateThreshold);
   addThroats(net, owner->rt, poreCell, rank, duplicateThreshold);
+  net.curveOrder = poresAlongCurve(net);
   net.triangulation = std::move(owner);
   return net;
 }

@@ -1,6 +1,7 @@
 // The box variant of the pore network (the periodic one is PeriodicNetwork.cpp): triangulation
 // and topology, and the construction steps both variants share.
 #include "flow/pore/CgalTriangulation.h"
+#include "flow/pore/CurveOrder.h"
 
 #include <algorithm>
 #include <cmath>
@@ -116,19 +117,26 @@ public:
   /// inserted().
   typename Rt::Cell_handle near(const Vec3& x)
   {
-    const Eigen::Array3d unit = ((x - lo_).array() / (hi_ - lo_).array().max(1e-300)).max(0.0).min(1.0);
+    const Eigen::Array3d unit = unitOf(x);
     Vertex_handle found;
     for (std::size_t l = 0; l < sides_.size(); ++l)
     {
-      const auto side = static_cast<std::size_t>(sides_[l]);
-      std::size_t b = 0;
-      for (int a = 0; a < 3; ++a)
-        b = b * side + std::min(side - 1, static_cast<std::size_t>(unit[a] * static_cast<double>(side)));
-      buckets_[l] = b;
+      buckets_[l] = bucket(unit, l);
       if (found == Vertex_handle())
-        found = grids_[l][b];
+        found = grids_[l][buckets_[l]];
     }
     return found == Vertex_handle() ? typename Rt::Cell_handle() : found->cell();
+  }
+
+  /// The vertex near() would start from now (none: a null handle), without keeping x's buckets:
+  /// a look ahead, for prefetching.
+  [[nodiscard]] Vertex_handle peek(const Vec3& x) const
+  {
+    const Eigen::Array3d unit = unitOf(x);
+    for (std::size_t l = 0; l < sides_.size(); ++l)
+      if (const Vertex_handle v = grids_[l][bucket(unit, l)]; v != Vertex_handle())
+        return v;
+    return Vertex_handle();
   }
 
   /// v was inserted at the x of the last near().
@@ -146,6 +154,20 @@ public:
   }
 
 private:
+  [[nodiscard]] Eigen::Array3d unitOf(const Vec3& x) const
+  {
+    return ((x - lo_).array() / (hi_ - lo_).array().max(1e-300)).max(0.0).min(1.0);
+  }
+  /// x's bucket (from unitOf) in grid l.
+  [[nodiscard]] std::size_t bucket(const Eigen::Array3d& unit, std::size_t l) const
+  {
+    const auto side = static_cast<std::size_t>(sides_[l]);
+    std::size_t b = 0;
+    for (int a = 0; a < 3; ++a)
+      b = b * side + std::min(side - 1, static_cast<std::size_t>(unit[a] * static_cast<double>(side)));
+    return b;
+  }
+
   Vec3 lo_ = Vec3::Constant(std::numeric_limits<double>::max());
   Vec3 hi_ = Vec3::Constant(std::numeric_limits<double>::lowest());
   std::vector<int> sides_;
@@ -204,15 +226,6 @@ std::vector<std::array<int, 4>> numberCellsCanonically(ParallelRegular& rt, cons
     std::array<int, 4> local{};
     ParallelRegular::Cell_handle cell;
   };
-  // 21 bits a coordinate: interleaved into 63
-  const auto spread = [](std::uint64_t x) {
-    x &= 0x1fffff;
-    x = (x | x << 32) & 0x1f00000000ffffULL;
-    x = (x | x << 16) & 0x1f0000ff0000ffULL;
-    x = (x | x << 8) & 0x100f00f00f00f00fULL;
-    x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-    return (x | x << 2) & 0x1249249249249249ULL;
-  };
   std::vector<Entry> entries;
   entries.reserve(rt.number_of_finite_cells());
   for (auto c = rt.finite_cells_begin(); c != rt.finite_cells_end(); ++c)
@@ -240,10 +253,7 @@ std::vector<std::array<int, 4>> numberCellsCanonically(ParallelRegular& rt, cons
     }
     if (inversions % 2 != 0)
       std::swap(e.local[2], e.local[3]);
-    const Vec3 at = spheres > 0 ? Vec3(centroid / spheres) : lo;
-    const Eigen::Array3d unit = ((at - lo).array() / (hi - lo).array()).max(0.0).min(1.0);
-    for (int a = 0; a < 3; ++a)
-      e.morton |= spread(static_cast<std::uint64_t>(unit[a] * 0x1fffff)) << a;
+    e.morton = mortonKey(spheres > 0 ? Vec3(centroid / spheres) : lo, lo, hi);
     entries.push_back(e);
   }
   tbb::parallel_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
@@ -296,8 +306,32 @@ void insertVertices(PoreNetwork& net, Rt& rt, const std::vector<int>& order, Ins
   std::vector<std::pair<Weighted, int>> range;
   range.reserve(order.size());
   NearbyVertices<Rt> nearby(net.vertices, insertion == InsertionOrder::Yade ? order : std::vector<int>{});
-  for (const int i : order)
+  // The start vertex of the insertion `d` spheres after the j-th (a null handle for none).
+  const auto startAhead = [&](std::size_t j, std::size_t d) {
+    const std::size_t k = j + d;
+    if (insertion != InsertionOrder::Yade || k >= order.size())
+      return typename Rt::Vertex_handle();
+    const Vertex& w = net.vertices[static_cast<std::size_t>(order[k])];
+    return w.fictitious ? typename Rt::Vertex_handle() : nearby.peek(w.pos);
+  };
+  for (std::size_t j = 0; j < order.size(); ++j)
   {
+    const int i = order[j];
+    // One by one in Yade's order, each sphere lands away from the last one, in cells and
+    // vertices out of the caches: the memory of the next insertions is fetched while this one
+    // runs, their start vertex four spheres ahead, its cell two ahead (the vertex read by then),
+    // that cell's neighbours and vertices one ahead, where the location and the conflict zone
+    // begin. Reads only: the triangulation is the same.
+    if (const auto v = startAhead(j, 4); v != typename Rt::Vertex_handle())
+      __builtin_prefetch(&*v);
+    if (const auto v = startAhead(j, 2); v != typename Rt::Vertex_handle())
+      __builtin_prefetch(&*v->cell());
+    if (const auto v = startAhead(j, 1); v != typename Rt::Vertex_handle())
+      for (int k = 0; k < 4; ++k)
+      {
+        __builtin_prefetch(&*v->cell()->neighbor(k));
+        __builtin_prefetch(&*v->cell()->vertex(k));
+      }
     const Vertex& v = net.vertices[static_cast<std::size_t>(i)];
     inserted[static_cast<std::size_t>(i)] = 1;
     const Weighted w(Point(v.pos.x(), v.pos.y(), v.pos.z()), v.radius * v.radius);
@@ -476,6 +510,7 @@ PoreNetwork triangulate(const std::vector<PoreSphere>& spheres, const std::array
     for (int v : net.pores[pi].vertices)
       if (v < kBoundaries)
         net.boundaryPores[static_cast<std::size_t>(v)].push_back(static_cast<int>(pi));
+  net.curveOrder = poresAlongCurve(net);
   net.triangulation = std::move(owner);
   return net;
 }

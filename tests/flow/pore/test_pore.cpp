@@ -297,6 +297,38 @@ TEST(PressureSolver, SupernodalAndSimplicialFactorsGiveTheSamePressures)
   EXPECT_LT(relativeDifference(a, b), 1e-12);
 }
 
+// The solver numbers its rows along the network's curve (PoreNetwork::curveOrder), the pores
+// keeping their ids: the Cholesky factor is ordered from the pores' sequence (NestedDissection),
+// so the pressures are the same bits as with the rows in pore order; the multigrid's differ by
+// the round-off of its tolerance. Also: the curve is a permutation of the pores, not theirs.
+TEST(PressureSolver, RowsAlongTheCurveGiveThePressuresOfRowsInPoreOrder)
+{
+  PoreFlow f = yFlow();
+  f.build(latticeSpheres(12));
+  const PoreNetwork& net = f.network();
+  std::vector<int> sorted = net.curveOrder;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<int> ids(net.pores.size());
+  std::iota(ids.begin(), ids.end(), 0);
+  ASSERT_EQ(sorted, ids);
+  EXPECT_NE(net.curveOrder, ids);
+  PoreNetwork inPoreOrder = net;
+  inPoreOrder.curveOrder.clear();
+  const std::vector<char> imposed = yImposed(net);
+  const auto pressures = [&](const PoreNetwork& n, SolverKind kind) {
+    PressureSolver solver;
+    std::vector<double> p(n.pores.size(), 0.0);
+    for (int pi : n.boundaryPores[2])
+      p[static_cast<std::size_t>(pi)] = 1.0;
+    solver.setSystem(n, imposed);
+    solver.solve(kind, p);
+    return p;
+  };
+  EXPECT_EQ(pressures(net, SolverKind::Cholmod), pressures(inPoreOrder, SolverKind::Cholmod));
+  EXPECT_LT(relativeDifference(pressures(net, SolverKind::Multigrid), pressures(inPoreOrder, SolverKind::Multigrid)),
+            1e-8);
+}
+
 TEST(PoreFlowErrors, FewerThanFourSpheresNaNAndOutside)
 {
   PoreFlow f = yFlow();
