@@ -88,6 +88,13 @@ O.bodies[12].state.isDamped = False
 O.bodies[13].state.vel[2] = 3       # in place: Yade's vel is a reference
 O.bodies.erase(14)
 erased = O.bodies[14] is None
+# what the ghost update does not carry, on the body and its copies at once: body 15 heavier (its
+# contacts' stiffness does not change with it, the integration does), body 16 through the other
+# spheres but not the walls
+O.bodies[15].state.mass = 8 * O.bodies[15].state.mass
+for w in range(300, 306):
+    O.bodies[w].mask = 3
+O.bodies[16].mask = 2
 for k in range(4):
     O.run(200, True)
     p = distributed.positions()
@@ -95,7 +102,8 @@ for k in range(4):
     samples.append(p.tolist())
 wall = O.bodies[300]
 read_back = [list(O.bodies[7].state.vel), O.bodies[9].dynamic, O.bodies[10].state.blockedDOFs,
-             list(O.bodies[11].shape.color), O.bodies[12].state.isDamped, O.bodies[3].id, list(wall.state.pos)]
+             list(O.bodies[11].shape.color), O.bodies[12].state.isDamped, O.bodies[3].id, list(wall.state.pos),
+             O.bodies[15].state.mass, O.bodies[16].mask]
 result = {"samples": samples, "heights": heights, "erased": erased, "read_back": read_back,
           "cpu": distributed.per_process({"cpu": cpu[0]}), "calls": len(heights) * 10}
 if distributed.rank() == 0:
@@ -159,3 +167,28 @@ def test_a_read_by_id_left_alone_ends_the_run_naming_the_rule(tmp_path):
     assert done.returncode != 0 and time.monotonic() - start < 60
     assert "process 0 read O.bodies[3] and the other processes did not come to it" in done.stderr, done.stderr
     assert "O.bodies[id] of a sphere or clump is collective" in done.stderr, done.stderr
+
+
+def test_a_write_by_id_reaches_the_copies_at_once(tmp_path):
+    # What the ghost update does not carry (mass, inertia, dynamic, mask, blockedDOFs) is written
+    # on every process holding a copy of the body, at the write: a copy's mask decides the pairs
+    # its process's collider makes, its mass a new contact's stiffness (visco-elastic laws).
+    body = ("import json\n"
+            "from talus.dem.core.bodies import Body\n"
+            "d = distributed.domain(O)\n"
+            "ghosts = [i for r, i in enumerate(d.globalIds(list(range(len(O.positions()))))) if not d.owns(r)]\n"
+            "k = min(min(g) for g in distributed.gather_objects(ghosts) if g)\n"
+            "b = O.bodies[k]\n"
+            "b.state.mass, b.state.inertia, b.dynamic, b.mask, b.state.blockedDOFs = 5.0, (1, 2, 3), False, 2, 'xZ'\n"
+            "row = d.rowOf(k)\n"
+            "copy = Body(O, row, k) if row >= 0 else None\n"
+            "seen = None if copy is None else [d.owns(row), copy.state.mass, list(copy.state.inertia), copy.dynamic,\n"
+            "                                  copy.mask, copy.state.blockedDOFs]\n"
+            "every = distributed.gather_objects(seen)\n"
+            "if distributed.rank() == 0:\n"
+            "    print('RESULT', json.dumps(every))\n")
+    done = talus_run(_split_script(tmp_path, body), processes=2)
+    assert done.returncode == 0, done.stderr
+    held = [h for h in json.loads(done.stdout.split("RESULT", 1)[1]) if h is not None]
+    assert sorted(h[0] for h in held) == [False, True], held       # the owner and a copy
+    assert all(h[1:] == [5.0, [1.0, 2.0, 3.0], False, 2, "xZ"] for h in held), held

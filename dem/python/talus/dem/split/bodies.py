@@ -50,15 +50,31 @@ def _rule(id: int, owner_note: str) -> str:
             f"when a loop over O.bodies started or O.bodies[{id}] was read ({owner_note})")
 
 
-def _field(name: str, make):
+def _field(name: str, make, held=None):
     """A snapshot's attribute: made from its row when read (most loops read a few of them), or
-    what the loop wrote into it."""
+    what the loop wrote into it. ``held(view)`` names where the attribute lives on this
+    process's copy of the body (a Body view of its row), for what the ghost update does not carry:
+    written there too, so that every copy has it at once, as the owner's body does (a copy's
+    mask decides which pairs this process's collider makes, its mass a new contact's stiffness
+    under the visco-elastic laws). The others (pos, vel, ...) reach the copies with the update."""
     def get(self):
         return self._written[name] if name in self._written else make(self._row)
 
     def set(self, value):
         self._written[name] = value
+        if held is not None:
+            copy = _held_copy(self._scene, self._body_id)
+            if copy is not None:
+                setattr(held(copy), name, value)
     return property(get, set)
+
+
+def _held_copy(scene: "Scene", id: int):
+    """This process's copy (ghost) of body ``id`` owned by another process, as a Body view of
+    its row; None if it holds none."""
+    from talus.dem.core.bodies import Body
+    row = scene._domain.rowOf(int(id))
+    return Body(scene, row, id) if row >= 0 else None
 
 
 def _blocked(row) -> str:
@@ -80,9 +96,9 @@ class RemoteState:
     vel = _field("vel", lambda row: Vector3(row[_VEL]))
     angVel = _field("angVel", lambda row: Vector3(row[_ANGVEL]))
     ori = _field("ori", lambda row: Quaternion(*row[_ORI]))
-    mass = _field("mass", lambda row: float(row[_MASS]))
-    inertia = _field("inertia", lambda row: Vector3(row[_INERTIA]))
-    blockedDOFs = _field("blockedDOFs", _blocked)
+    mass = _field("mass", lambda row: float(row[_MASS]), held=lambda copy: copy.state)
+    inertia = _field("inertia", lambda row: Vector3(row[_INERTIA]), held=lambda copy: copy.state)
+    blockedDOFs = _field("blockedDOFs", _blocked, held=lambda copy: copy.state)
     isDamped = _field("isDamped", lambda row: bool(row[_DAMPED]))
 
     @property
@@ -122,6 +138,8 @@ class RemoteState:
         else:   # (isDamped, ...): kept here; the owner makes the same write to the body, and checks it
             self._written[name] = value
 
+    _body_id = property(lambda s: s._id)
+
     def __repr__(self):
         return f"<RemoteState of body {self._id}>"
 
@@ -145,8 +163,8 @@ class RemoteBody:
             self._shape = (_RemoteClump if self.isClump else _RemoteSphere)._view(self._scene, self.id, spec)
         return self._shape
 
-    dynamic = _field("dynamic", lambda row: bool(row[_DYNAMIC]))
-    mask = _field("mask", lambda row: int(row[_MASK]))
+    dynamic = _field("dynamic", lambda row: bool(row[_DYNAMIC]), held=lambda copy: copy)
+    mask = _field("mask", lambda row: int(row[_MASK]), held=lambda copy: copy)
     groupMask = mask
     clumpId = property(lambda b: int(b._row[_CLUMP_ID]))
     isClump = property(lambda b: bool(b._row[_IS_CLUMP]))
@@ -154,6 +172,7 @@ class RemoteBody:
     isClumpMember = property(lambda b: not b.isClump and b.clumpId >= 0)
     isStandalone = property(lambda b: not b.isClump and b.clumpId < 0)
     subdomain = property(lambda b: int(b._row[_OWNER]))     # the rank owning it (Yade's Body.subdomain)
+    _body_id = property(lambda b: b.id)
 
     @property
     def material(self):

@@ -8,7 +8,9 @@ sends the others the body's snapshot (talus.dem.split.bodies: state, shape, mate
 mask, clump) as it answers. The owner gets the body itself, the others the snapshot: a write
 through it (``b.state.vel = ...``, ``b.dynamic``, ``b.state.blockedDOFs``) changes the snapshot
 only, the owner making the same write to the body, and the ghosts take it at the end of the
-PyRunner or loop, or when the next ``O.run``/``O.step`` starts (talus.dem.distributed.update_ghosts).
+PyRunner or loop, or when the next ``O.run``/``O.step`` starts (talus.dem.distributed.update_ghosts);
+what that update does not carry (mass, inertia, blockedDOFs, dynamic, mask) a process holding a
+copy of the body writes to its copy at once (talus.dem.split.bodies).
 Walls, facets and boxes, which every process holds, are read as they are, without an exchange.
 
 **The rule: code that only some processes run must not read a sphere or clump by id** (a branch
