@@ -173,20 +173,22 @@ def test_a_write_by_id_reaches_the_copies_at_once(tmp_path):
     # What the ghost update does not carry (mass, inertia, dynamic, mask, blockedDOFs) is written
     # on every process holding a copy of the body, at the write: a copy's mask decides the pairs
     # its process's collider makes, its mass a new contact's stiffness (visco-elastic laws).
-    body = ("import json\n"
-            "from talus.dem.core.bodies import Body\n"
-            "d = distributed.domain(O)\n"
-            "ghosts = [i for r, i in enumerate(d.globalIds(list(range(len(O.positions()))))) if not d.owns(r)]\n"
-            "k = min(min(g) for g in distributed.gather_objects(ghosts) if g)\n"
-            "b = O.bodies[k]\n"
-            "b.state.mass, b.state.inertia, b.dynamic, b.mask, b.state.blockedDOFs = 5.0, (1, 2, 3), False, 2, 'xZ'\n"
-            "row = d.rowOf(k)\n"
-            "copy = Body(O, row, k) if row >= 0 else None\n"
-            "seen = None if copy is None else [d.owns(row), copy.state.mass, list(copy.state.inertia), copy.dynamic,\n"
-            "                                  copy.mask, copy.state.blockedDOFs]\n"
-            "every = distributed.gather_objects(seen)\n"
-            "if distributed.rank() == 0:\n"
-            "    print('RESULT', json.dumps(every))\n")
+    body = """
+import json
+from talus.dem.core.bodies import Body
+d = distributed.domain(O)
+ghosts = [i for r, i in enumerate(d.globalIds(list(range(len(O.positions()))))) if not d.owns(r)]
+k = min(min(g) for g in distributed.gather_objects(ghosts) if g)
+b = O.bodies[k]
+b.state.mass, b.state.inertia, b.dynamic, b.mask, b.state.blockedDOFs = 5.0, (1, 2, 3), False, 2, 'xZ'
+row = d.rowOf(k)
+copy = Body(O, row, k) if row >= 0 else None
+seen = None if copy is None else [d.owns(row), copy.state.mass, list(copy.state.inertia), copy.dynamic, copy.mask,
+                                  copy.state.blockedDOFs]
+every = distributed.gather_objects(seen)
+if distributed.rank() == 0:
+    print('RESULT', json.dumps(every))
+"""
     done = talus_run(_split_script(tmp_path, body), processes=2)
     assert done.returncode == 0, done.stderr
     held = [h for h in json.loads(done.stdout.split("RESULT", 1)[1]) if h is not None]
