@@ -13,10 +13,12 @@ namespace talus::dem
 inline constexpr int sphereBatchWidth = 4;
 
 /// What a law's own lanes did with four contacts (PartsLaw::sphereLanes): bit i of `geometry`
-/// for contact i's geometry made, of `forces` for its forces too.
+/// for contact i's geometry made, of `forces` for its forces too, and of `deep` for forces made
+/// at an overlap beyond StepContext::maxOverlapRatio of the smaller reference radius (the first
+/// tests of overlapsTooMuch, which the contact loop then makes for those lanes alone).
 struct SphereLanes
 {
-  unsigned geometry = 0, forces = 0;
+  unsigned geometry = 0, forces = 0, deep = 0;
 };
 
 /// Whether this processor runs sphereGeometryBatch (AVX2), asked once.

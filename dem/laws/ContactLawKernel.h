@@ -8,6 +8,7 @@
 #include "dem/base/Threads.h"
 
 #include <algorithm>
+#include <bit>
 
 namespace talus::dem
 {
@@ -23,7 +24,8 @@ StepContext stepContext(Scene& scene)
     alignContactExtra(scene.contacts);
     extra = scene.contacts.extra.data();
   }
-  return StepContext{scene.bodies, scene.materials, scene.periodic ? &scene.cell : nullptr, scene.dt, extra};
+  return StepContext{scene.bodies, scene.materials, scene.periodic ? &scene.cell : nullptr, scene.dt, extra,
+                     scene.maxOverlapRatio};
 }
 
 /// Add per-block contact energies to the scene's tracker, in block order.
@@ -190,16 +192,21 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
       done = law.sphereLanes(batch, batchIndex, step);
     else
       done.geometry = sphereGeometryBatch(batch, step.bodies, step.dt, step.cell);
-    for (int i = 0; i < sphereBatchWidth; ++i)
-      if (done.forces & (1U << i))
-      {
-        if (overlapsTooMuch(*batch[i], ratio, step.bodies))
-          bad = std::min(bad, batchIndex[i]);
-      }
-      else if (done.geometry & (1U << i))
-        forces(*batch[i], batchIndex[i]);
-      else
-        geometryAndForces(*batch[i], batchIndex[i]);
+    // The lanes' forces are made; those overlapping too little to fail the check are done.
+    for (unsigned deep = done.deep; deep != 0; deep &= deep - 1)
+    {
+      const int i = std::countr_zero(deep);
+      if (overlapsTooMuch(*batch[i], ratio, step.bodies))
+        bad = std::min(bad, batchIndex[i]);
+    }
+    if (done.forces != (1U << sphereBatchWidth) - 1)
+    {
+      for (int i = 0; i < sphereBatchWidth; ++i)
+        if (!(done.geometry & (1U << i)))
+          geometryAndForces(*batch[i], batchIndex[i]);
+        else if (!(done.forces & (1U << i)))
+          forces(*batch[i], batchIndex[i]);
+    }
     waiting = 0;
   }
   for (int i = 0; i < waiting; ++i)

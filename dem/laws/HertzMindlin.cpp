@@ -3,7 +3,7 @@
 // rolling moments): Hertz's spring, Thornton's damping and the incremental shear spring capped
 // by Coulomb friction, with the shear dashpot while it sticks.
 #include "dem/laws/PartsLaw.h"
-#include "dem/contact/SphereGeometryLanes.h"
+#include "dem/contact/SphereLanesStore.h"
 
 #include <algorithm>
 #include <cmath>
@@ -195,12 +195,10 @@ struct HertzMindlinNames
     shear = select(sliding, scale(div(maxFs, _mm256_sqrt_pd(fs2)), shear), shear);
   SphereGeometry out = g;
   out.shearForce = shear;
-  store(out, c, forces);
+  storeForces(out, normalForce, add(normalForce, shear), c, forces);
   store(mul(mul(broadcast(1.5), kno), sqrtU), at(c, &Contact::kn).data(), forces);
   store(ks, at(c, &Contact::ks).data(), forces);
-  store(normalForce, at(c, &Contact::normalForce).data(), forces);
-  store(add(normalForce, shear), at(c, &Contact::force).data(), forces);
-  return {forces, forces};
+  return {forces, forces, deepLanes(g, step.maxOverlapRatio, forces)};
 }
 } // namespace
 

@@ -2,7 +2,7 @@
 // Ip2_FrictMat_FrictMat_FrictPhys + Law2_ScGeom_FrictPhys_CundallStrack: a linear spring, no
 // damping and the incremental shear spring capped by Coulomb friction.
 #include "dem/laws/PartsLaw.h"
-#include "dem/contact/SphereGeometryLanes.h"
+#include "dem/contact/SphereLanesStore.h"
 
 #include <algorithm>
 #include <cmath>
@@ -58,10 +58,8 @@ struct LinearFrictionNames
   const __m256d sliding = _mm256_cmp_pd(fs2, maxFs2, _CMP_GT_OQ);
   if (_mm256_movemask_pd(sliding) != 0)
     g.shearForce = select(sliding, scale(_mm256_sqrt_pd(div(maxFs2, fs2)), g.shearForce), g.shearForce);
-  store(g, c, g.touching);
-  store(normalForce, at(c, &Contact::normalForce).data(), g.touching);
-  store(add(normalForce, g.shearForce), at(c, &Contact::force).data(), g.touching);
-  return {g.touching, g.touching};
+  storeForces(g, normalForce, add(normalForce, g.shearForce), c, g.touching);
+  return {g.touching, g.touching, deepLanes(g, step.maxOverlapRatio, g.touching)};
 }
 } // namespace
 

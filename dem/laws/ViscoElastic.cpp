@@ -4,7 +4,7 @@
 // driven by the contact point's velocity with its dashpot while it sticks, and rolling
 // resistance once a material asks for it.
 #include "dem/laws/PartsLaw.h"
-#include "dem/contact/SphereGeometryLanes.h"
+#include "dem/contact/SphereLanesStore.h"
 #include "dem/laws/StateOnDemand.h"
 #include "dem/laws/parts/ContactPointMotion.h"
 #include "dem/laws/parts/NormalDashpot.h"
@@ -261,10 +261,8 @@ struct ViscoElasticNames
   const Lanes3 viscous = select(sliding, none, scale(load(c, &Contact::cs), vs));
   SphereGeometry out = g;
   out.shearForce = shear;
-  store(out, c, g.touching);
-  store(normalForce, at(c, &Contact::normalForce).data(), g.touching);
-  store(add(add(normalForce, shear), viscous), at(c, &Contact::force).data(), g.touching);
-  return {g.touching, g.touching};
+  storeForces(out, normalForce, add(add(normalForce, shear), viscous), c, g.touching);
+  return {g.touching, g.touching, deepLanes(g, step.maxOverlapRatio, g.touching)};
 }
 
 /// F_n = kn u_n + cn v_n along the normal, never attractive; elastic shear incremental,

@@ -174,3 +174,28 @@ def test_overlapping_fixed_bodies_are_not_an_overlap_error():
     S.bodies[1].dynamic = True
     with pytest.raises(RuntimeError, match="bodies 0 and 1 overlap"):
         S.run(1, True)
+
+
+@pytest.mark.parametrize("law", ["linear", "hertz"])
+@pytest.mark.parametrize("track", [False, True])
+def test_an_overlap_in_the_lanes_is_found_as_one_by_one(law, track):
+    """Sphere contacts real at the last step go four at a time through the laws' AVX2 lanes (where
+    the processor has them), which test the overlap against maxOverlapRatio in the lanes and leave
+    only the deep ones to the full check; energy tracking takes every contact one by one. Nine
+    spheres in a row (contacts (4, 5) to (7, 8) in one group of four), sphere 6 pushed 60 % of a
+    radius into sphere 5 after the first step: either way the step stops on bodies 5 and 6."""
+    from talus.dem import Ip2_FrictMat_FrictMat_MindlinPhys, Law2_ScGeom_MindlinPhys_Mindlin
+    S = Scene()
+    S.materials.append(FrictMat(young=1e7, density=2600))
+    r = 0.1
+    S.bodies.append([sphere((2 * r * 0.999 * k, 0, 0), r) for k in range(9)])
+    physics, contact_law = ((Ip2_FrictMat_FrictMat_FrictPhys(), Law2_ScGeom_FrictPhys_CundallStrack()) if law == "linear"
+                            else (Ip2_FrictMat_FrictMat_MindlinPhys(), Law2_ScGeom_MindlinPhys_Mindlin()))
+    S.engines = [ForceResetter(), InsertionSortCollider(), InteractionLoop([], [physics], [contact_law]), NewtonIntegrator()]
+    S.dt = 1e-6
+    S.trackEnergy = track
+    S.step()
+    assert S.interactions.countReal() == 8
+    S.bodies[6].state.pos = (2 * r * 0.999 * 6 - 0.6 * r, 0, 0)
+    with pytest.raises(RuntimeError, match=r"step 1: bodies 5 and 6 overlap by .*, 6\d(\.\d+)?% of the smaller radius"):
+        S.step()
