@@ -129,7 +129,7 @@ struct StepContext
   const Cell* cell; ///< the periodic cell, null if space is not periodic
   double dt;
   ContactExtra* extra; ///< Contacts::extra (index = contact index), null unless the law needs it
-  double maxOverlapRatio; ///< Scene::maxOverlapRatio (<= 0: no check; overlapsTooMuch)
+  double maxOverlapRatio = 0; ///< Scene::maxOverlapRatio (<= 0: no check; overlapsTooMuch)
 };
 
 /// 1/2 kn u^2 + 1/2 Fs^2/ks: the energy of a contact's linear springs, the normal one compressed
