@@ -63,18 +63,10 @@ def _field(name: str, make, held=None):
     def set(self, value):
         self._written[name] = value
         if held is not None:
-            copy = _held_copy(self._scene, self._body_id)
-            if copy is not None:
-                setattr(held(copy), name, value)
+            row = self._scene._domain.rowOf(self._body_id)     # this process's copy, if it holds one
+            if row >= 0:
+                setattr(held(self._view(row, self._body_id)), name, value)
     return property(get, set)
-
-
-def _held_copy(scene: "Scene", id: int):
-    """This process's copy (ghost) of body ``id`` owned by another process, as a Body view of
-    its row; None if it holds none."""
-    from talus.dem.core.bodies import Body
-    row = scene._domain.rowOf(int(id))
-    return Body(scene, row, id) if row >= 0 else None
 
 
 def _blocked(row) -> str:
@@ -87,10 +79,10 @@ class RemoteState:
     attributes can be set: the snapshot changes, and the owner makes the same write in its own
     run of the loop."""
 
-    __slots__ = ("_id", "_row", "_written", "_scene")
+    __slots__ = ("_id", "_row", "_written", "_scene", "_view")
 
-    def __init__(self, scene: "Scene", id: int, row: np.ndarray):
-        self._id, self._row, self._written, self._scene = id, row, {}, scene
+    def __init__(self, scene: "Scene", id: int, row: np.ndarray, view):
+        self._id, self._row, self._written, self._scene, self._view = id, row, {}, scene, view
 
     pos = _field("pos", lambda row: Vector3(row[_POS]))
     vel = _field("vel", lambda row: Vector3(row[_VEL]))
@@ -147,13 +139,15 @@ class RemoteState:
 class RemoteBody:
     """A body owned by another process, as a loop over ``O.bodies`` sees it there (see the
     module's rule): ``id``, ``state``, ``shape`` (a Sphere or Clump with the body's radius and
-    colour), ``material``, ``dynamic``, ``mask``, ``clumpId``."""
+    colour), ``material``, ``dynamic``, ``mask``, ``clumpId``. ``view(row, id)`` is a Body view
+    of a row of this process's arrays (for its copy of the body, if it holds one)."""
 
-    __slots__ = ("id", "state", "_shape", "_row", "_scene", "_written")
+    __slots__ = ("id", "state", "_shape", "_row", "_scene", "_written", "_view")
 
-    def __init__(self, scene: "Scene", row: np.ndarray):
+    def __init__(self, scene: "Scene", row: np.ndarray, view):
         self.id, self._scene, self._row, self._shape, self._written = int(row[_ID]), scene, row, None, {}
-        self.state = RemoteState(scene, self.id, row)
+        self._view = view
+        self.state = RemoteState(scene, self.id, row, view)
 
     @property
     def shape(self):
@@ -252,7 +246,7 @@ def every_body(scene: "Scene", views) -> Iterator:
     remote = {int(i): k for k, i in enumerate(table[:, _ID]) if int(i) not in here}
     for id in sorted(here.keys() | remote.keys()):
         if id in remote:
-            yield RemoteBody(scene, table[remote[id]])
+            yield RemoteBody(scene, table[remote[id]], views)
         elif alive[here[id]]:   # (not erased by the loop meanwhile)
             yield views(here[id], id)
     distributed.update_ghosts(scene)    # what the loop wrote, to the other processes' copies

@@ -100,7 +100,7 @@ def body(scene: "Scene", id: int, view: Callable[[int, int], object]):
     if local or row >= 0:
         return None if row < 0 else view(row, id)
     sent = table[:, 2] == 1
-    return split_bodies.RemoteBody(scene, table[sent.argmax(), _HEAD:]) if sent.any() else None
+    return split_bodies.RemoteBody(scene, table[sent.argmax(), _HEAD:], view) if sent.any() else None
 
 
 def agreeing(callback: Callable[[], None], engine) -> Callable[[], None]:
