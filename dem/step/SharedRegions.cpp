@@ -27,6 +27,17 @@ int teamLimit() { return 1; }
 double now() { return 0; }
 #endif
 
+/// The team's barrier; none for a thread alone, which runs outside any parallel region
+/// (SharedRegions::region) or inside another's (a Gauss point's RVE), whose team it must not
+/// wait for.
+void teamBarrier(int threads)
+{
+  if (threads > 1)
+  {
+#pragma omp barrier
+  }
+}
+
 std::size_t at(StagePoint point) { return static_cast<std::size_t>(point); }
 /// How many blocks of energyBlock hold `items` contacts or bodies.
 std::size_t energyBlocks(std::int64_t items) { return static_cast<std::size_t>((items + energyBlock - 1) / energyBlock); }
@@ -66,7 +77,18 @@ void SharedRegions::region(Scene& scene, const Body& body)
   const bool parallel = static_cast<std::int64_t>(scene.ownedBodies()) >= parallelLoopMinimum
                         || static_cast<std::int64_t>(scene.contacts.list.size()) >= parallelLoopMinimum;
   ++regions;
-#pragma omp parallel if (parallel) num_threads(teamLimit())
+  if (!parallel || teamLimit() == 1)
+  {
+    // One thread runs the body outside any parallel region, without its barriers (teamBarrier):
+    // libgomp makes a futex system call at every barrier and at a region's end even for a team
+    // of one, three a step of a 400-sphere RVE (docs/dem.md, Speed).
+    if (team_.timing)
+      team_.members[0].mark = now();
+    body(0, 1);
+    team_.used = 1;
+    return;
+  }
+#pragma omp parallel num_threads(teamLimit())
   {
     const int thread = threadNumber(), threads = teamSize();
     if (team_.timing)
@@ -173,7 +195,7 @@ void SharedRegions::resetAndCheck(Scene& scene, const Engines& engines, ContactL
     Collider::Displacements all;
     if (skin.checkNow)
     {
-#pragma omp barrier
+      teamBarrier(threads);
       if (thread == 0)
         ++barriers;
       for (int t = 0; t < threads; ++t)
@@ -261,7 +283,7 @@ void SharedRegions::contactsThenBodies(Scene& scene, const Engines& engines, Con
     const double early = gathering ? gathering->seconds() : 0;
     my.contactSeconds = now() - start - early;
     my.bodySeconds += early;
-#pragma omp barrier
+    teamBarrier(threads);
     if (thread == 0)
         ++barriers;
     team_.lap(my, StagePoint::Contacts);
@@ -292,7 +314,7 @@ void SharedRegions::contactsThenBodies(Scene& scene, const Engines& engines, Con
     if (engines.newton.hasClumps())
     {
       // A clump reads its members' forces and moves them, whichever thread gathered them.
-#pragma omp barrier
+      teamBarrier(threads);
       if (thread == 0)
         ++barriers;
     }
