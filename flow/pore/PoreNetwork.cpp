@@ -299,6 +299,14 @@ Vertex boundaryVertex(const std::array<Boundary, kBoundaries>& boundaries, int k
   return v;
 }
 
+/// Ask the processor to fetch what a CGAL handle points to, if it points to anything.
+template <class Handle>
+void prefetchHandle(const Handle& h)
+{
+  if (h != Handle())
+    __builtin_prefetch(&*h);
+}
+
 template <class Rt>
 void insertVertices(PoreNetwork& net, Rt& rt, const std::vector<int>& order, InsertionOrder insertion)
 {
@@ -322,15 +330,16 @@ void insertVertices(PoreNetwork& net, Rt& rt, const std::vector<int>& order, Ins
     // runs, their start vertex four spheres ahead, its cell two ahead (the vertex read by then),
     // that cell's neighbours and vertices one ahead, where the location and the conflict zone
     // begin. Reads only: the triangulation is the same.
-    if (const auto v = startAhead(j, 4); v != typename Rt::Vertex_handle())
-      __builtin_prefetch(&*v);
+    // (While the triangulation has fewer than three dimensions a cell's last neighbours and
+    // vertices are null handles: every handle is tested before its address is taken.)
+    prefetchHandle(startAhead(j, 4));
     if (const auto v = startAhead(j, 2); v != typename Rt::Vertex_handle())
-      __builtin_prefetch(&*v->cell());
-    if (const auto v = startAhead(j, 1); v != typename Rt::Vertex_handle())
+      prefetchHandle(v->cell());
+    if (const auto v = startAhead(j, 1); v != typename Rt::Vertex_handle() && v->cell() != typename Rt::Cell_handle())
       for (int k = 0; k < 4; ++k)
       {
-        __builtin_prefetch(&*v->cell()->neighbor(k));
-        __builtin_prefetch(&*v->cell()->vertex(k));
+        prefetchHandle(v->cell()->neighbor(k));
+        prefetchHandle(v->cell()->vertex(k));
       }
     const Vertex& v = net.vertices[static_cast<std::size_t>(i)];
     inserted[static_cast<std::size_t>(i)] = 1;
