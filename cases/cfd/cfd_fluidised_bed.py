@@ -235,9 +235,9 @@ def main():
         u0.append(2 * u_mf * min(1.0, t[-1] / ramp))
         # the force on every particle: under mpirun each process has its own particles' (summed)
         dp.append((shares.total(float(np.sum(coupling.lastForces[:, 2]))) - RHO * G * volume) / (L * L))
-        if len(t) % 200 == 0 and args.trajectory:
-            trajectory.append(distributed.positions(s)[ids])
         if len(t) % 200 == 0:
+            if args.trajectory:
+                trajectory.append(distributed.positions(s)[ids])
             rows = shares.rows(s, ids)
             v = s.velocities()[rows]
             v_z, count = shares.total([np.sum(v[:, 2]), len(v)])

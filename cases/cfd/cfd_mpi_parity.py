@@ -112,14 +112,14 @@ def run(dem: int, fluid: int, steps: int, layers: int, folder: Path, solver: str
 def run_bed(dem: int, fluid: int, folder: Path, nudge: int | None = None) -> dict:
     """cfd_fluidised_bed.py itself, quick, with ``dem`` processes and ``fluid`` fluid ranks (and
     its sphere ``nudge`` moved by one ulp before the coupling, if given): its records (by name)
-    and every sphere's position every 200 fluid steps and at the end."""
+    and, as its positions, every sphere's every 200 fluid steps and at the end."""
     out = folder / f"bed-{dem}-{fluid}-{nudge}"
     out.mkdir()
     talus_run(dem, [str(BED), "--quick", "--procs", str(fluid), "--results", str(out),
                     "--trajectory", str(out / "trajectory.npy"), "--pressure-tolerance", "1e-13",
                     *([] if nudge is None else ["--nudge", str(nudge)])])
     return {"records": {r["name"]: r for r in results.read_records(out)},
-            "trajectory": np.load(out / "trajectory.npy")}
+            "positions": np.load(out / "trajectory.npy")}
 
 
 #: The fluidised bed's outputs compared, (record, field).
@@ -135,15 +135,15 @@ def compare_bed(case: results.Case, runs: dict, nudged: dict):
     serial = runs[1, 1]
     pairs = {"2+2 vs 1+1": (runs[2, 2], serial), "1+2 vs 1+1": (runs[1, 2], serial),
              "2+2 vs 1+2": (runs[2, 2], runs[1, 2])}
-    pairs.update({f"1+1, sphere {k} moved 1 ulp": (r, serial) for k, r in nudged.items()})
-    curves = {label: difference({"positions": a["trajectory"]}, {"positions": b["trajectory"]})
-              for label, (a, b) in pairs.items()}
+    one_ulp = {f"1+1, sphere {k} moved 1 ulp": (r, serial) for k, r in nudged.items()}
+    pairs.update(one_ulp)
+    curves = {label: difference(a, b) for label, (a, b) in pairs.items()}
     largest = {label: float(c.max()) for label, c in curves.items()}
     outputs = {label: {field: abs(a["records"][name][field] - b["records"][name][field])
                        / abs(b["records"][name][field]) for name, field in BED_OUTPUTS}
                for label, (a, b) in pairs.items()}
-    rounding = max(largest[label] for label in largest if "ulp" in label)
-    spheres = serial["trajectory"].shape[1]
+    rounding = max(largest[label] for label in one_ulp)
+    spheres = serial["positions"].shape[1]
     print(f"fluidised bed (cfd_fluidised_bed.py --quick): {spheres} spheres; 1 + 1: plateau "
           f"{serial['records']['cfd.fluidised_bed.plateau']['plateau']:.6f} Pa, U_mf "
           f"{serial['records']['cfd.fluidised_bed.umf']['u_mf']:.6e} m/s")
@@ -152,9 +152,9 @@ def compare_bed(case: results.Case, runs: dict, nudged: dict):
               f"end {curves[label][-1]:.3e}); outputs " + ", ".join(f"{k} {v:.3e}" for k, v in outputs[label].items()))
 
     fig, ax = plt.subplots(figsize=(5.5, 4))
-    steps = np.arange(1, len(serial["trajectory"]) + 1) * 200     # the last sample is the run's end
+    steps = np.arange(1, len(serial["positions"]) + 1) * 200     # the last sample is the run's end
     for label, c in curves.items():
-        style = {"color": "grey", "lw": 0.8, "ls": "--"} if "ulp" in label else {"marker": "o", "ms": 3}
+        style = {"color": "grey", "lw": 0.8, "ls": "--"} if label in one_ulp else {"marker": "o", "ms": 3}
         ax.semilogy(steps, np.maximum(c, 1e-18), label=label, **style)
     ax.set_xlabel("fluid step")
     ax.set_ylabel("max |x - x_ref| / max |x| (0 drawn at 1e-18)")
@@ -232,7 +232,7 @@ def main():
         periodic = {(d, f): run(d, f, steps, layers, Path(tmp), column="periodic") for d, f in [(1, 1), (1, 2), (2, 2)]}
         compare(case, periodic, steps, "periodic", "periodic-bed")
         bed = {(d, f): run_bed(d, f, Path(tmp)) for d, f in [(1, 1), (1, 2), (2, 2)]}
-        spheres = bed[1, 1]["trajectory"].shape[1]
+        spheres = bed[1, 1]["positions"].shape[1]
         compare_bed(case, bed, {k: run_bed(1, 1, Path(tmp), nudge=k) for k in (0, spheres // 2, spheres - 1)})
 
 

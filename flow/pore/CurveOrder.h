@@ -2,9 +2,9 @@
 // A local order of the pores: along a Morton (Z-order) curve through their centres, so that pores
 // close in space come close in the order. The pore ids stay CGAL's cell order (Yade's: users,
 // the two-phase engine and Yade-side tests see them), which follows the insertion history and is
-// scattered in space when the spheres enter one by one in Yade's order; the solvers number their
-// rows and the geometry walks the pores in this order instead, which keeps their reads in the
-// caches (docs/flow.md, "Remeshing large packings").
+// scattered in space when the spheres enter one by one in Yade's order; the pressure solver numbers
+// its rows in this order instead, which keeps the multigrids' reads in the caches (the geometry's
+// loops stay in CGAL's order, local enough for them: docs/flow.md, "The solvers' rows along a curve").
 #include "flow/pore/PoreNetwork.h"
 
 #include <cstdint>

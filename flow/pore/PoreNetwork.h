@@ -116,8 +116,8 @@ struct PoreNetwork
   std::array<bool, kBoundaries> hasBoundary{true, true, true, true, true, true};
   std::size_t nSpheres = 0;          ///< real spheres (vertices kBoundaries .. kBoundaries + nSpheres)
   /// The pore indices along a space-filling curve through their centres (CurveOrder.h), set
-  /// with the triangulation: the order of the pressure solver's rows and of the geometry's
-  /// loops, local in memory where the pore ids (CGAL's cell order) are not.
+  /// with the triangulation: the order of the pressure solver's rows, local in memory where the
+  /// pore ids (CGAL's cell order) are not.
   std::vector<int> curveOrder;
   std::vector<Vec3i> wrap;           ///< periodic: cells each sphere was moved by to enter the cell
 

@@ -40,8 +40,9 @@ def render(results: Path | str, output: Path | str) -> str:
     results, output = Path(results), Path(output)
     chart_dir = output.parent / output.stem
     kept = chart_dir / "records"
+    added = read_records(results)
     by_name = {r["name"]: r for r in read_records(kept)} if kept.is_dir() else {}
-    by_name.update({r["name"]: r for r in read_records(results)})
+    by_name.update({r["name"]: r for r in added})
     records = [by_name[name] for name in sorted(by_name)]
     lines = [
         "# Validation and benchmarks",
@@ -87,7 +88,7 @@ def render(results: Path | str, output: Path | str) -> str:
     pngs = sorted({**old, **new}.values(), key=lambda p: p.name)
     charts = [(r["name"], chart) for r in records for chart in _charts_of(r["name"], pngs)]
     kept.mkdir(parents=True, exist_ok=True)
-    for r in records:
+    for r in added:     # (the others are there already)
         write_record(r, kept)
     if charts:
         lines += ["## Charts", ""]
