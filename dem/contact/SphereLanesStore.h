@@ -32,8 +32,8 @@ namespace talus::dem::avx2
 
 /// What a law's lanes write of four contacts, where bit i of `lanes` is set: the geometry g (as
 /// store()), the normal force and the force. With all four lanes set (nearly always), the
-/// neighbouring members of a record go two doubles a store: the per-lane, per-member stores
-/// were a third of the instructions of the linear law's lanes (callgrind on the dense bed).
+/// neighbouring members of a record go two doubles a store, far fewer instructions than a store
+/// per lane and member (measured in docs/dem.md, Speed).
 [[TALUS_AVX2]] inline void storeForces(const SphereGeometry& g, const Lanes3& normalForce, const Lanes3& force,
                                        Contact* const* contacts, unsigned lanes)
 {

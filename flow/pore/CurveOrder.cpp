@@ -46,7 +46,7 @@ std::vector<int> poresAlongCurve(const PoreNetwork& net)
       hi = hi.cwiseMax(v.pos);
     }
   // key and index in one integer (the index in the low bits breaks ties): one sort of plain
-  // integers, a third of the time of sorting (key, index) pairs; the key keeps what the index
+  // integers, cheaper than sorting (key, index) pairs; the key keeps what the index
   // leaves, 21 bits an axis at most (13 for 6 million pores: 8 000 cells along each axis)
   const int indexBits = std::max(1, static_cast<int>(std::bit_width(n)));
   const int bits = std::min(21, (64 - indexBits) / 3);

@@ -455,8 +455,8 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
   centreOfRow_.reserve(n);
   // the rows along the network's space-filling curve: a row's couplings are to rows close to
   // it, so the multigrids' set-ups and cycles and the assembly below read within the caches (in
-  // pore order, CGAL's cell order, they jumped across the arrays at every coupling: BoomerAMG's
-  // remesh + solve took 1.6x as long at 100 000 spheres inserted in Yade's order)
+  // pore order, CGAL's cell order, they jumped across the arrays at every coupling; measured in
+  // docs/flow.md, "The solvers' rows along a curve")
   const bool alongCurve = net.curveOrder.size() == n;
   for (std::size_t k = 0; k < n; ++k)
     if (const std::size_t i = alongCurve ? static_cast<std::size_t>(net.curveOrder[k]) : k; !imposed[i])
