@@ -2,7 +2,9 @@
 is by `talus run` and by `mpirun -np N talus run` (tests/dem/distributed/test_mpi_clumps_periodic.py).
 
 Arguments: clumps, steps, output file (JSON), mode, and optionally `grow` (growParticles(1.05)
-at a third of the steps: the clumps grow about their centres):
+at a third of the steps: the clumps grow about their centres) and `rebalance` (under mpirun,
+partition again at every re-detection the measured loads differ at all:
+distributed.rebalanceThreshold 1, so that bodies land on processes that held no copy of them):
 
 - `triax`: a loose periodic cloud (makeCloud, rMean 0.1, rRelFuzz 0.3, seed 1), each sphere made
   a clump of two spheres inside it (radii 0.7 r and 0.5 r, their centres 0.3 r and 0.5 r either
@@ -25,9 +27,12 @@ from yade import pack
 from talus.dem import distributed
 
 clumps, steps, output, mode = int(sys.argv[1]), int(sys.argv[2]), sys.argv[3], sys.argv[4]
-grow = sys.argv[5:] == ["grow"]
-if mode not in ("triax", "shear"):
-    raise SystemExit(f"mode {mode!r}: triax or shear")
+options = sys.argv[5:]
+if mode not in ("triax", "shear") or not set(options) <= {"grow", "rebalance"}:
+    raise SystemExit(f"mode {mode!r}, options {options}: triax or shear, then grow and rebalance or neither")
+grow = "grow" in options
+if "rebalance" in options:
+    distributed.rebalanceThreshold = 1
 sigma = -1e5
 size = 2.0 * (clumps / 458.0) ** (1 / 3.0)
 

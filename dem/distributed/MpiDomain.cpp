@@ -111,6 +111,9 @@ struct BeforeDetection
   /// The spheres' radii: spheres grown since (growParticles, a TriaxialStressController's
   /// compaction) reach further, and the next ghost layer must reach as far.
   Extremes radius;
+  /// Whether a rank holds a growth its contacts have not seen yet (EnergyTracker::grownBy): its
+  /// bodies carry it to the ranks holding them next (shareGrowth).
+  Extremes growthPending;
 
   /// The doubles the reduction takes.
   std::span<double> values() { return {reinterpret_cast<double*>(this), sizeof(BeforeDetection) / sizeof(double)}; }
@@ -121,7 +124,7 @@ struct BeforeDetection
                   - Vec3(axes[0].negatedHigh, axes[1].negatedHigh, axes[2].negatedHigh));
   }
 };
-static_assert(std::is_standard_layout_v<BeforeDetection> && sizeof(BeforeDetection) == 36 * sizeof(double),
+static_assert(std::is_standard_layout_v<BeforeDetection> && sizeof(BeforeDetection) == 38 * sizeof(double),
               "BeforeDetection is reduced as an array of doubles");
 
 /// Zoltan's partition of `mine` in the space of `regions` (a periodic cell's reduced
@@ -450,6 +453,7 @@ void MpiDomain::beforeDetection(Scene& scene)
       if (b.shape[i] == ShapeKind::Sphere)
         check.radius.add(b.radius[i]);
     }
+  check.growthPending.add(scene.energy.grownBy.empty() ? 0 : 1);
   min(check.values());
   const Vec3 common = BeforeDetection::middles(check.followed), still = BeforeDetection::middles(check.moved);
   std::string error;
@@ -494,6 +498,8 @@ void MpiDomain::beforeDetection(Scene& scene)
   const bool rebalance = balance_.measure(comm_, cpuAtStart, waitedAtStart, scene.iter,
                                           static_cast<std::int64_t>(mineRows.size()),
                                           static_cast<std::int64_t>(scene.contacts.list.size()));
+  const bool growthPending = check.growthPending.high() > 0;
+  const PendingGrowth growth = growthPending ? ownGrowth(scene.energy, globalId_, mineRows) : PendingGrowth{};
   RankBodies current{std::move(scene.bodies), globalId_};
   RankBodies mine;
   std::vector<std::byte> packed;
@@ -564,6 +570,8 @@ void MpiDomain::beforeDetection(Scene& scene)
   traffic_.migratedBodies += static_cast<std::int64_t>(plan.exportRows.size());
   traffic_.rebuildBytes += sent + static_cast<std::int64_t>(plan.exportRows.size() * rowBytes());
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
+  if (growthPending)
+    shareGrowth(comm_, scene.energy, growth, globalId_, replicated_);
   traffic_.rebuildSeconds += MPI_Wtime() - start;
   balance_.begin(cpuSeconds(), waitedCpu_, scene.iter);
 }

@@ -50,13 +50,15 @@ def test_hsfc_regions_grown_to_hold_the_members(tmp_path):
 
 
 # RCB's two halves move little with the shear (a dozen bodies change process, more when the
-# measured load sets off a rebalancing); HSFC moves most clumps at each re-detection.
-@pytest.mark.parametrize("processes, method, moved", [(2, "RCB", 1), (3, "HSFC", 100)])
-def test_clumps_grown_are_placed_alike_wherever_they_go(tmp_path, processes, method, moved):
+# measured load sets off a rebalancing); HSFC moves most clumps at each re-detection; `rebalance`
+# partitions again at every re-detection, so that grown bodies land where no copy of them was.
+@pytest.mark.parametrize("processes, method, moved, options", [(2, "RCB", 1, ()), (3, "HSFC", 100, ()),
+                                                              (3, "RCB", 1, ("rebalance",))])
+def test_clumps_grown_are_placed_alike_wherever_they_go(tmp_path, processes, method, moved, options):
     # Every process scales the member offsets of every growing clump in its table, held there or
     # not, so a clump placed after the growth by a process that did not hold it is the serial one.
     serial = run(tmp_path, "shear", None, None, "grow")
-    split = run(tmp_path, "shear", processes, {"TALUS_PARTITION": method}, "grow")
+    split = run(tmp_path, "shear", processes, {"TALUS_PARTITION": method}, "grow", *options)
     assert np.array_equal(np.asarray(serial["positions"]), np.asarray(split["positions"]))
     assert split["cells"] == serial["cells"] and split["stress"] == serial["stress"]
     assert serial["energy"]["growthWork"] != 0 and sum(t["migrated_bodies"] for t in split["traffic"]) >= moved
