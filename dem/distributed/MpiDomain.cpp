@@ -112,7 +112,7 @@ struct BeforeDetection
   /// compaction) reach further, and the next ghost layer must reach as far.
   Extremes radius;
   /// Whether a rank holds a growth its contacts have not seen yet (EnergyTracker::grownBy): its
-  /// bodies carry it to the ranks holding them next (shareGrowth).
+  /// bodies carry it to the ranks holding them next (shareMemory).
   Extremes growthPending;
 
   /// The doubles the reduction takes.
@@ -498,8 +498,6 @@ void MpiDomain::beforeDetection(Scene& scene)
   const bool rebalance = balance_.measure(comm_, cpuAtStart, waitedAtStart, scene.iter,
                                           static_cast<std::int64_t>(mineRows.size()),
                                           static_cast<std::int64_t>(scene.contacts.list.size()));
-  const bool growthPending = check.growthPending.high() > 0;
-  const PendingGrowth growth = growthPending ? ownGrowth(scene.energy, globalId_, mineRows) : PendingGrowth{};
   RankBodies current{std::move(scene.bodies), globalId_};
   RankBodies mine;
   std::vector<std::byte> packed;
@@ -510,6 +508,10 @@ void MpiDomain::beforeDetection(Scene& scene)
     if (clump >= 0)
       clump = static_cast<BodyId>(globalId_[static_cast<std::size_t>(clump)]);
   const bool partitionAgain = method_ != Method::RCB || rebalance;
+  // The energy memory of bodies that may land where no copy of them was goes with them.
+  const bool shareMemoryAfter = check.growthPending.high() > 0 || (partitionAgain && scene.energy.enabled);
+  const std::vector<Remembered> memory =
+      shareMemoryAfter ? ownMemory(scene.energy, scene.bodies, globalId_, mineRows, partitionAgain) : std::vector<Remembered>{};
   const Plan plan = placeUnits(scene, mine, partitionAgain ? balance_.weights(scene.contacts, mineRows, replicated_)
                                                            : std::vector<double>{},
                                partitionAgain);
@@ -570,8 +572,8 @@ void MpiDomain::beforeDetection(Scene& scene)
   traffic_.migratedBodies += static_cast<std::int64_t>(plan.exportRows.size());
   traffic_.rebuildBytes += sent + static_cast<std::int64_t>(plan.exportRows.size() * rowBytes());
   assemble(scene, mine, contacts.records, contacts.extra, contacts.ids);
-  if (growthPending)
-    shareGrowth(comm_, scene.energy, growth, globalId_, replicated_);
+  if (shareMemoryAfter)
+    shareMemory(comm_, scene.energy, memory, globalId_, replicated_);
   traffic_.rebuildSeconds += MPI_Wtime() - start;
   balance_.begin(cpuSeconds(), waitedCpu_, scene.iter);
 }

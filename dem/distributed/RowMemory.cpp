@@ -1,6 +1,7 @@
 #include "dem/distributed/RowMemory.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <vector>
 
@@ -37,36 +38,58 @@ void followRows(EnergyTracker& energy, std::span<const GlobalId> before, std::sp
   follow(energy.grownBy, before, after, 0.0);
 }
 
-PendingGrowth ownGrowth(const EnergyTracker& energy, std::span<const GlobalId> globalId,
-                        std::span<const std::int64_t> ownedRows)
+std::vector<Remembered> ownMemory(const EnergyTracker& energy, const Bodies& bodies,
+                                 std::span<const GlobalId> globalId, std::span<const std::int64_t> ownedRows,
+                                 bool imposed)
 {
-  PendingGrowth own;
+  constexpr double none = std::numeric_limits<double>::quiet_NaN();
+  auto plain = [](const Vec3& v) { return std::array<double, 3>{v[0], v[1], v[2]}; };
+  std::vector<Remembered> own;
   for (const std::int64_t row : ownedRows)
-    if (const auto i = static_cast<std::size_t>(row); i < energy.grownBy.size() && energy.grownBy[i] != 0)
-      own.emplace_back(globalId[i], energy.grownBy[i]);
+  {
+    const auto i = static_cast<std::size_t>(row);
+    Remembered r{globalId[i], i < energy.grownBy.size() ? energy.grownBy[i] : 0.0, {none, none, none}, {none, none, none}};
+    if (imposed && (!bodies.dynamic[i] || bodies.blockedDofs[i] != 0) && i < energy.previousDisplacement.size())
+    {
+      r.displacement = plain(energy.previousDisplacement[i]);
+      r.rotation = plain(energy.previousRotation[i]);
+    }
+    if (r.grownBy != 0 || !std::isnan(r.displacement[0]) || !std::isnan(r.rotation[0]))
+      own.push_back(r);
+  }
   return own;
 }
 
-void shareGrowth(MPI_Comm comm, EnergyTracker& energy, const PendingGrowth& own, std::span<const GlobalId> rows,
-                 std::span<const std::uint8_t> replicated)
+void shareMemory(MPI_Comm comm, EnergyTracker& energy, const std::vector<Remembered>& own,
+                 std::span<const GlobalId> rows, std::span<const std::uint8_t> replicated)
 {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const int mine = static_cast<int>(own.size() * sizeof(PendingGrowth::value_type));
+  const int mine = static_cast<int>(own.size() * sizeof(Remembered));
   std::vector<int> bytes(static_cast<std::size_t>(ranks)), offsets(static_cast<std::size_t>(ranks) + 1, 0);
   MPI_Allgather(&mine, 1, MPI_INT, bytes.data(), 1, MPI_INT, comm);
   for (std::size_t r = 0; r < bytes.size(); ++r)
     offsets[r + 1] = offsets[r] + bytes[r];
-  PendingGrowth all(static_cast<std::size_t>(offsets.back()) / sizeof(PendingGrowth::value_type));
+  std::vector<Remembered> all(static_cast<std::size_t>(offsets.back()) / sizeof(Remembered));
   MPI_Allgatherv(own.data(), mine, MPI_BYTE, all.data(), bytes.data(), offsets.data(), MPI_BYTE, comm);
-  std::sort(all.begin(), all.end());
-  energy.grownBy.resize(rows.size(), 0.0);
+  auto byId = [](const Remembered& a, const Remembered& b) { return a.id < b.id; };
+  std::sort(all.begin(), all.end(), byId);
+  const bool growing = !energy.grownBy.empty() || !all.empty();
+  if (growing)
+    energy.grownBy.resize(rows.size(), 0.0);
   for (std::size_t row = 0; row < rows.size(); ++row)
   {
     if (replicated[row])
       continue;
-    const auto at = std::lower_bound(all.begin(), all.end(), std::pair(rows[row], -std::numeric_limits<double>::infinity()));
-    energy.grownBy[row] = at != all.end() && at->first == rows[row] ? at->second : 0.0;
+    const auto at = std::lower_bound(all.begin(), all.end(), Remembered{rows[row], 0, {}, {}}, byId);
+    const bool found = at != all.end() && at->id == rows[row];
+    if (growing)
+      energy.grownBy[row] = found ? at->grownBy : 0.0;
+    if (found && row < energy.previousDisplacement.size() && !std::isnan(at->displacement[0]))
+    {
+      energy.previousDisplacement[row] = Vec3(at->displacement.data());
+      energy.previousRotation[row] = Vec3(at->rotation.data());
+    }
   }
 }
 } // namespace talus::dem::distributed

@@ -5,8 +5,9 @@
 
 #include <mpi.h>
 
+#include <array>
 #include <span>
-#include <utility>
+#include <type_traits>
 #include <vector>
 
 namespace talus::dem::distributed
@@ -25,19 +26,32 @@ namespace talus::dem::distributed
 /// @param after the global id of each row now, ascending
 void followRows(EnergyTracker& energy, std::span<const GlobalId> before, std::span<const GlobalId> after);
 
-/// A growth not yet seen by the contacts, by body: (global id, EnergyTracker::grownBy), ascending.
-using PendingGrowth = std::vector<std::pair<GlobalId, double>>;
+/// What the energy tracker remembers of one body, by global id, as it travels to the ranks that
+/// hold the body next.
+struct Remembered
+{
+  GlobalId id;
+  double grownBy; ///< EnergyTracker::grownBy (0: none)
+  /// EnergyTracker::previousDisplacement and previousRotation (NaN: none), as plain doubles: the
+  /// record travels as bytes.
+  std::array<double, 3> displacement, rotation;
+};
+static_assert(std::is_trivially_copyable_v<Remembered>);
 
-/// The pending growth of this rank's own bodies (the rows `ownedRows` of `globalId`), before a
-/// re-detection moves them: what shareGrowth hands to whichever ranks hold them next.
-[[nodiscard]] PendingGrowth ownGrowth(const EnergyTracker& energy, std::span<const GlobalId> globalId,
-                                      std::span<const std::int64_t> ownedRows);
+/// The memory of this rank's own bodies (the rows `ownedRows` of `globalId`) that a body new to a
+/// rank would otherwise lose, before a re-detection moves them: a growth not yet seen by the
+/// contacts (every grown body), and when `imposed`, the last imposed motion of each body moved by
+/// velocities or with blocked DOFs (what kinematicWork averages over two steps).
+[[nodiscard]] std::vector<Remembered> ownMemory(const EnergyTracker& energy, const Bodies& bodies,
+                                                std::span<const GlobalId> globalId,
+                                                std::span<const std::int64_t> ownedRows, bool imposed);
 
-/// After a re-detection laid the rows out again, every row's pending growth from its owner's
-/// (collective: every rank's `own` gathered, 16 bytes a grown body, once per growParticles). A body
-/// new to a rank, migrated or a new ghost, grew before it arrived: followRows alone would give it
-/// none, and the contacts it makes there would miss that growth's energy. Rows `replicated` (walls,
-/// every rank's alike) keep theirs.
-void shareGrowth(MPI_Comm comm, EnergyTracker& energy, const PendingGrowth& own, std::span<const GlobalId> rows,
-                 std::span<const std::uint8_t> replicated);
+/// After a re-detection laid the rows out again (and followRows ran), every row's memory from its
+/// owner's (collective: every rank's `own` gathered, 64 bytes a body listed). A body new to a
+/// rank, migrated or a new ghost, grew or moved before it arrived: followRows alone would give it
+/// no growth (its contacts there would miss the growth's energy) and no last motion. Called when
+/// a growth is pending (after growParticles: once) or the ranks partitioned again (bodies may then
+/// land where no copy of them was). Rows `replicated` (walls, every rank's alike) keep theirs.
+void shareMemory(MPI_Comm comm, EnergyTracker& energy, const std::vector<Remembered>& own,
+                 std::span<const GlobalId> rows, std::span<const std::uint8_t> replicated);
 } // namespace talus::dem::distributed

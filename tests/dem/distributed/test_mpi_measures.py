@@ -3,16 +3,19 @@ O.energy (every term, each body and contact counted once; within round-off, the 
 being added in another order), getStress, getStressAndTangent (both forms), bodyStressTensors,
 avgNumInteractions, fabricTensor, porosity, aabbExtrema, PWaveTimeStep, the step
 GlobalStiffnessTimeStepper sets, and O.bodies.gather (collective). The scene: spheres settling
-in a box whose side wall moves in (imposed work), some spheres with a blocked DOF."""
+in a box whose side wall moves in (imposed work), some spheres with a blocked DOF moved by the
+script along it."""
+
+import json
 
 import numpy as np
 import pytest
 
-from test_mpi_run import json_of_runs, pytestmark  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
+from test_mpi_run import json_of_runs, pytestmark, talus_run  # noqa: F401  (the same skip: mpi_dem feature and mpirun)
 
 
 SCRIPT = """
-import json, sys
+import json, math, sys
 import numpy as np
 from yade import pack
 from talus.dem import distributed
@@ -30,7 +33,17 @@ O.engines = [ForceResetter(), InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall
                              [Ip2_FrictMat_FrictMat_FrictPhys()], [Law2_ScGeom_FrictPhys_CundallStrack()]),
              GlobalStiffnessTimeStepper(timeStepUpdateInterval=50, timestepSafetyCoefficient=0.5),
              NewtonIntegrator(gravity=(0, 0, -9.81), damping=0.4),
-             PyRunner(command='energies.append(dict(O.energy))', iterPeriod=100)]
+             PyRunner(command='energies.append(dict(O.energy))', iterPeriod=100),
+             PyRunner(command='drive()', iterPeriod=1)]
+
+
+def drive():  # the spheres blocked along x move as the script says, at a speed changing every step
+    for k in range(0, 300, 7):
+        v = O.bodies[k].state.vel
+        O.bodies[k].state.vel = (0.02 * math.sin(300 * O.time + k), v[1], v[2])
+
+
+
 O.dt = 0.7 * PWaveTimeStep()
 O.trackEnergy = True
 O.bodies[301].state.vel = (-0.05, 0, 0)      # the side wall at x = 1 moves in
@@ -67,10 +80,19 @@ SUMS = ("stress", "tangent", "yade", "coordination", "fabric", "porosity")
 
 @pytest.fixture(scope="module")
 def runs(tmp_path_factory):
-    return json_of_runs(tmp_path_factory.mktemp("measures"), "measures", SCRIPT)
+    folder = tmp_path_factory.mktemp("measures")
+    out = json_of_runs(folder, "measures", SCRIPT)
+    # HSFC partitions again at every re-detection, weighted by the measured loads: bodies land on
+    # processes that held no copy of them, and their energy memory (the blocked DOFs' last
+    # motion) must go with them.
+    done = talus_run(folder / "measures.py", folder / "hsfc.json", processes=3, env={"TALUS_PARTITION": "HSFC"},
+                     timeout=60)
+    assert done.returncode == 0, done.stderr
+    out["3-HSFC"] = json.loads((folder / "hsfc.json").read_text())
+    return out
 
 
-@pytest.mark.parametrize("processes", [2, 3])
+@pytest.mark.parametrize("processes", [2, 3, "3-HSFC"])
 def test_energy_is_the_serial_runs_within_round_off(runs, processes):
     serial, split = runs[None], runs[processes]
     assert len(serial["energy"]) == len(split["energy"]) == 5
