@@ -219,6 +219,16 @@ PYBIND11_MODULE(_distributed, m)
                               py::array_t<std::int64_t>(static_cast<py::ssize_t>(ids.size()), ids.data()));
       }, "The rows of the bodies this rank owns (the walls, which every rank holds, left out) and their global "
          "ids, both ascending")
+      .def("rowsActedOn", [](const MpiDomain& d, const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& ids) {
+        std::vector<std::int64_t> rows;
+        rows.reserve(static_cast<std::size_t>(ids.size()));
+        for (py::ssize_t k = 0; k < ids.size(); ++k)
+          if (const std::int64_t row = d.rowOf(ids.data()[k]);
+              row >= 0 && (d.owns(static_cast<std::size_t>(row)) || d.replicated(static_cast<std::size_t>(row))))
+            rows.push_back(row);
+        return py::array_t<std::int64_t>(static_cast<py::ssize_t>(rows.size()), rows.data());
+      }, "The rows of the bodies of `ids` this rank acts on, in the order of `ids`: those it owns and the walls, "
+         "facets and boxes (every rank holds them); erased bodies and other ranks' left out")
       .def("snapshots", [](const MpiDomain& d, const Scene& s,
                            const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>& rows) {
         py::array_t<double> table({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(snapshotDoubles)});

@@ -37,26 +37,19 @@ def rows(scene, ids) -> np.ndarray:
     process holds those, and a write there is made alike on every process). A write through the
     rows is the owner's (its copies on the other processes follow at the next step); a sum over
     them is this process's share. Rows change as bodies move between processes: take them again
-    after each run. The owned bodies are found at once; the other ids are looked up one by one
-    for the walls, facets and boxes among them (fine for thousands of ids, slow for millions)."""
+    after each run. Held in slabs (a packing read in slabs, before the first step): the rows of
+    the ids this process holds. Erased bodies have no row."""
     ids = np.asarray(ids, dtype=np.int64).reshape(-1)
     d = distributed.domain(scene)
     if d is None:
         return ids
-    held = np.full(len(ids), -1, dtype=np.int64)
-    rest = np.arange(len(ids))
-    slabs = isinstance(d, distributed.HeldRows)   # a packing read in slabs, before the split
-    if not slabs:       # split: the spheres and clumps this process owns
-        own_rows, own_ids = d.ownedBodies(scene._cpp)
-        at = np.minimum(np.searchsorted(own_ids, ids), max(len(own_ids) - 1, 0))
-        found = own_ids[at] == ids if len(own_ids) else np.zeros(len(ids), dtype=bool)
-        held[found] = own_rows[at[found]]
-        rest = np.flatnonzero(~found)
-    for k in rest:      # the walls, facets and boxes every process holds (in slabs: what it holds)
-        row = d.rowOf(int(ids[k]))
-        if row >= 0 and (slabs or distributed.held_everywhere(scene, row)):
-            held[k] = row
-    return held[held >= 0]
+    if isinstance(d, distributed.HeldRows):
+        held = np.frombuffer(d.globalId, dtype=np.int64)
+        if not len(held):
+            return np.zeros(0, dtype=np.int64)
+        at = np.minimum(np.searchsorted(held, ids), len(held) - 1)
+        return at[held[at] == ids]
+    return d.rowsActedOn(ids)
 
 
 def total(values):
