@@ -12,7 +12,7 @@ bool sphereBatchAvailable()
 
 [[gnu::target("avx2")]] unsigned sphereGeometryBatch(Contact* const* contacts, const Bodies& b, double dt, const Cell* cell)
 {
-  const avx2::SphereGeometry g = avx2::sphereGeometry(contacts, b, dt, cell);
+  const avx2::SphereGeometry g = avx2::sphereGeometry(contacts, b, dt, cell, nullptr);
   avx2::store(g, contacts, g.touching);
   return g.touching;
 }

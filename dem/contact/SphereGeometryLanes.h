@@ -7,6 +7,7 @@
 #include "dem/base/Avx2Lanes.h"
 #include "dem/core/Bodies.h"
 #include "dem/core/Cell.h"
+#include "dem/core/CellImages.h"
 #include "dem/core/Contacts.h"
 
 #include <array>
@@ -15,12 +16,21 @@
 
 namespace talus::dem::avx2
 {
-/// What contactGeometry writes of four contacts, in lanes.
+/// Where body 2's periodic image of each of four contacts is relative to body 2, and its
+/// velocity: zero for a pair inside the cell, else the cell's own products (Cell::shift,
+/// shiftVelocity) as contactGeometry takes them.
+struct ImageShift
+{
+  Lanes3 offset, velocity;
+};
+
+/// What contactGeometry writes of four contacts, in lanes, and the image shifts it took.
 struct SphereGeometry
 {
   unsigned touching = 0; ///< bit i: contact i's spheres overlap (the other lanes' values mean nothing)
   __m256d penetration, r1, r2;
   Lanes3 normal, contactPoint, shearForce, shearIncrement;
+  ImageShift image;
 };
 
 /// v[i[0]], ..., v[i[3]] as lanes 0 to 3.
@@ -31,6 +41,11 @@ struct SphereGeometry
 [[TALUS_AVX2]] inline __m256d load(const std::vector<double>& v, const std::size_t* i)
 {
   return _mm256_set_pd(v[i[3]], v[i[2]], v[i[1]], v[i[0]]);
+}
+/// Rows i[0], ..., i[3] of a table of near images as lanes 0 to 3.
+[[TALUS_AVX2]] inline Lanes3 load(const NearImageRows& t, const int* i)
+{
+  return load(t.row[i[0]], t.row[i[1]], t.row[i[2]], t.row[i[3]]);
 }
 /// The member of the four contacts (or contact states) as lanes 0 to 3.
 template <class Record>
@@ -55,20 +70,47 @@ inline std::array<double*, 4> at(Record* const* c, double Record::*member)
   return {&(c[0]->*member), &(c[1]->*member), &(c[2]->*member), &(c[3]->*member)};
 }
 
-/// Where body 2's periodic image of each of four contacts is relative to body 2, and its
-/// velocity: zero for a pair inside the cell, else the cell's own products (Cell::shift,
-/// shiftVelocity) as contactGeometry takes them.
-struct ImageShift
+/// The rows (nearImage) of the four contacts' images in a table of near images, made in the
+/// lanes of integer vectors: the cell offsets of the four records turned to one vector per edge.
+/// @return false if one lies more than a cell away (row not set)
+[[TALUS_AVX2]] inline bool nearImageRows(Contact* const* contacts, int* row)
 {
-  Lanes3 offset, velocity;
-};
+  // A whole vector's load per record: its cell offset and the four bytes after it (lane 3, unused).
+  static_assert(offsetof(Contact, cellDist) + 4 * sizeof(int) <= sizeof(Contact));
+  auto offsets = [&](int i) { return _mm_loadu_si128(reinterpret_cast<const __m128i*>(contacts[i]->cellDist.data())); };
+  const __m128i c0 = offsets(0), c1 = offsets(1), c2 = offsets(2), c3 = offsets(3);
+  const __m128i xy01 = _mm_unpacklo_epi32(c0, c1), xy23 = _mm_unpacklo_epi32(c2, c3); // x0 x1 y0 y1, x2 x3 y2 y3
+  const __m128i z01 = _mm_unpackhi_epi32(c0, c1), z23 = _mm_unpackhi_epi32(c2, c3);   // z0 z1 - -, z2 z3 - -
+  const __m128i x = _mm_unpacklo_epi64(xy01, xy23), y = _mm_unpackhi_epi64(xy01, xy23), z = _mm_unpacklo_epi64(z01, z23);
+  // |x|, |y| and |z| at most 1: their bits OR-ed have none but the lowest (|INT_MIN| keeps its sign bit).
+  const __m128i magnitudes = _mm_or_si128(_mm_or_si128(_mm_abs_epi32(x), _mm_abs_epi32(y)), _mm_abs_epi32(z));
+  if (!_mm_testz_si128(magnitudes, _mm_set1_epi32(~1)))
+    return false;
+  // 9 (x + 1) + 3 (y + 1) + (z + 1)
+  const __m128i nine = _mm_add_epi32(_mm_slli_epi32(x, 3), x), three = _mm_add_epi32(_mm_slli_epi32(y, 1), y);
+  _mm_store_si128(reinterpret_cast<__m128i*>(row),
+                  _mm_add_epi32(_mm_add_epi32(nine, three), _mm_add_epi32(z, _mm_set1_epi32(13))));
+  return true;
+}
+
+/// The image shifts of four contacts (ImageShift).
 /// @param cell the periodic cell, or null
-[[TALUS_AVX2]] inline ImageShift imageShift(Contact* const* contacts, const Cell* cell)
+/// @param images its near images (CellImages), or null: then each lane across the boundary
+///        computes its own
+[[TALUS_AVX2]] inline ImageShift imageShift(Contact* const* contacts, const Cell* cell, const CellImages* images)
 {
   const __m256d zero = _mm256_setzero_pd();
   ImageShift s{{zero, zero, zero}, {zero, zero, zero}};
   if (cell == nullptr)
     return s;
+  if (images != nullptr)
+  {
+    // Each lane's row, the pairs inside the cell included (their row is +0): no branch per lane
+    // (which a lane across the boundary, one in five in a small cell, mispredicts).
+    alignas(16) int row[4];
+    if (nearImageRows(contacts, row)) [[likely]]
+      return {load(images->shift, row), load(images->velocity, row)};
+  }
   alignas(32) double offset[3][4] = {}, velocity[3][4] = {};
   bool across = false;
   for (int i = 0; i < 4; ++i)
@@ -106,7 +148,9 @@ struct ImageShift
 /// spheres (in a periodic cell, inside it or across its boundary); nothing written.
 /// @param dt the time step (s)
 /// @param cell the periodic cell, or null
-[[TALUS_AVX2]] inline SphereGeometry sphereGeometry(Contact* const* contacts, const Bodies& b, double dt, const Cell* cell)
+/// @param images the cell's near images, or null (imageShift)
+[[TALUS_AVX2]] inline SphereGeometry sphereGeometry(Contact* const* contacts, const Bodies& b, double dt, const Cell* cell,
+                                                   const CellImages* images)
 {
   std::size_t i1[4], i2[4];
   for (int i = 0; i < 4; ++i)
@@ -116,7 +160,8 @@ struct ImageShift
   }
   SphereGeometry g;
   // The overlap: d = (pos2 + shift2) - pos1.
-  const ImageShift shift = imageShift(contacts, cell);
+  const ImageShift shift = imageShift(contacts, cell, images);
+  g.image = shift;
   const Lanes3 p1 = load(b.pos, i1);
   const __m256d zero = _mm256_setzero_pd();
   const Lanes3 d = sub(add(load(b.pos, i2), shift.offset), p1);

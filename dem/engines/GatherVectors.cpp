@@ -3,12 +3,12 @@
 // lane by lane in the same order, and its cross product as Eigen's (a1 b2 - a2 b1, a2 b0 - a0 b2,
 // a0 b1 - a1 b0) from the vectors' rotations. Where the time went before: docs/dem.md, Speed.
 #include "dem/engines/GatherVectors.h"
+#include "dem/core/CellImages.h"
 
 #include <immintrin.h>
 
 #include <cstddef>
 
-#include <array>
 #include <optional>
 
 namespace talus::dem
@@ -53,32 +53,24 @@ public:
   /// Cell::shift(d) in lanes 0 to 2.
   [[TALUS_GATHER_AVX2]] __m256d shift(const Eigen::Vector3i& d)
   {
-    const auto a = static_cast<unsigned>(d[0] + 1), b = static_cast<unsigned>(d[1] + 1),
-               c = static_cast<unsigned>(d[2] + 1);
-    if (!(a < 3 && b < 3 && c < 3)) [[unlikely]]
+    const int row = nearImage(d);
+    if (row < 0) [[unlikely]]
     {
       const Vec3 s = cell_.shift(d);
       return _mm256_setr_pd(s[0], s[1], s[2], 0);
     }
-    if (!near_) [[unlikely]]
+    if (!made_) [[unlikely]]
     {
-      near_.emplace();
-      for (int k = 0; k < 27; ++k)
-      {
-        const Vec3 s = cell_.shift(Eigen::Vector3i(k / 9 - 1, k / 3 % 3 - 1, k % 3 - 1));
-        (*near_)[static_cast<std::size_t>(k)] = {s[0], s[1], s[2], 0};
-      }
+      fillNearImages(near_, [this](const Eigen::Vector3i& image) { return cell_.shift(image); });
+      made_ = true;
     }
-    return _mm256_load_pd((*near_)[9 * a + 3 * b + c].v);
+    return _mm256_load_pd(near_.row[row]);
   }
 
 private:
-  struct alignas(32) Padded
-  {
-    double v[4];
-  };
   const Cell& cell_;
-  std::optional<std::array<Padded, 27>> near_;
+  bool made_ = false;
+  NearImageRows near_;
 };
 } // namespace
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "dem/contact/ContactGeometry.h"
+#include "dem/core/CellImages.h"
 #include "dem/core/Contacts.h"
 #include "dem/core/EnergyTracker.h"
 #include "dem/core/Material.h"
@@ -130,6 +131,8 @@ struct StepContext
   double dt;
   ContactExtra* extra; ///< Contacts::extra (index = contact index), null unless the law needs it
   double maxOverlapRatio = 0; ///< Scene::maxOverlapRatio (<= 0: no check; overlapsTooMuch)
+  /// The cell's near images, made once for the laws' AVX2 lanes (none without a cell).
+  CellImages images = CellImages(cell);
 };
 
 /// 1/2 kn u^2 + 1/2 Fs^2/ks: the energy of a contact's linear springs, the normal one compressed

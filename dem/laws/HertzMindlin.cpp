@@ -164,7 +164,7 @@ struct HertzMindlinNames
                                                                      const StepContext& step)
 {
   using namespace avx2;
-  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell);
+  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell, &step.images);
   HertzState* const x[4] = {step.extra + k[0], step.extra + k[1], step.extra + k[2], step.extra + k[3]};
   const __m256d zero = _mm256_setzero_pd();
   const __m256d dashpots = _mm256_or_pd(

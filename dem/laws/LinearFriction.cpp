@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 namespace talus::dem
 {
@@ -47,11 +48,14 @@ struct LinearFrictionNames
                                                                        const StepContext& step)
 {
   using namespace avx2;
-  SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell);
+  SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell, &step.images);
   if (g.touching == 0)
     return {};
-  const Lanes3 normalForce = scale(mul(load(c, &Contact::kn), g.penetration), g.normal);
-  g.shearForce = sub(g.shearForce, scale(load(c, &Contact::ks), g.shearIncrement));
+  static_assert(offsetof(Contact, ks) == offsetof(Contact, kn) + sizeof(double), "kn and ks load as a pair");
+  __m256d kn, ks;
+  loadPairs(c, offsetof(Contact, kn), kn, ks);
+  const Lanes3 normalForce = scale(mul(kn, g.penetration), g.normal);
+  g.shearForce = sub(g.shearForce, scale(ks, g.shearIncrement));
   const __m256d tanPhi = load(c, &Contact::tanPhi);
   const __m256d maxFs2 = mul(mul(dot(normalForce, normalForce), tanPhi), tanPhi);
   const __m256d fs2 = dot(g.shearForce, g.shearForce);

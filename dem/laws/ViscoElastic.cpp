@@ -225,7 +225,7 @@ struct ViscoElasticNames
                                                                      const StepContext& step)
 {
   using namespace avx2;
-  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell);
+  const SphereGeometry g = sphereGeometry(c, step.bodies, step.dt, step.cell, &step.images);
   if (g.touching == 0)
     return {};
   const Bodies& b = step.bodies;
@@ -239,7 +239,7 @@ struct ViscoElasticNames
   // pair across the cell's boundary (zero shifts inside it).
   const __m256d zero = _mm256_setzero_pd();
   const Lanes3 none{zero, zero, zero};
-  const ImageShift shift = imageShift(c, step.cell);
+  const ImageShift& shift = g.image;
   const Lanes3 c1x = sub(g.contactPoint, load(b.pos, i1));
   const Lanes3 c2x = sub(sub(g.contactPoint, load(b.pos, i2)), shift.offset);
   const Lanes3 v = sub(add(load(b.vel, i1), cross(load(b.angVel, i1), c1x)),
