@@ -3,6 +3,7 @@
 // The loops of ContactLawKernel, included by each law's .cpp (they need the Scene).
 #include "dem/laws/ContactLaw.h"
 #include "dem/contact/FacetGeometryBatch.h"
+#include "dem/contact/SphereCandidatesApart.h"
 #include "dem/contact/SphereGeometryBatch.h"
 #include "dem/core/Scene.h"
 #include "dem/base/Threads.h"
@@ -152,6 +153,12 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
   Contact* facets[sphereBatchWidth];
   std::int64_t facetIndex[sphereBatchWidth];
   int facetsWaiting = 0;
+  // Sphere pairs that are candidates only, not across a periodic boundary: four at a time
+  // through spheresApart, which dismisses those whose spheres stay apart (most of them); the
+  // others, beginning a contact, go one by one.
+  Contact* candidates[sphereBatchWidth];
+  std::int64_t candidateIndex[sphereBatchWidth];
+  int candidatesWaiting = 0;
   for (std::int64_t k = first; k < last; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
@@ -176,6 +183,22 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
         else if (!(done.apart & (1U << i)))
           geometryAndForces(*facets[i], facetIndex[i]);
       facetsWaiting = 0;
+      continue;
+    }
+    if (batched && !c.real && c.kind == ContactGeometryKind::SphereSphere
+        && (step.cell == nullptr || c.cellDist == Eigen::Vector3i::Zero()))
+    {
+      candidates[candidatesWaiting] = &c;
+      candidateIndex[candidatesWaiting] = k;
+      if (++candidatesWaiting < sphereBatchWidth)
+        continue;
+      for (unsigned near = ~spheresApart(candidates, step.bodies) & ((1U << sphereBatchWidth) - 1); near != 0;
+           near &= near - 1)
+      {
+        const int i = std::countr_zero(near);
+        geometryAndForces(*candidates[i], candidateIndex[i]);
+      }
+      candidatesWaiting = 0;
       continue;
     }
     if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere))
@@ -213,6 +236,8 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
     geometryAndForces(*batch[i], batchIndex[i]);
   for (int i = 0; i < facetsWaiting; ++i)
     geometryAndForces(*facets[i], facetIndex[i]);
+  for (int i = 0; i < candidatesWaiting; ++i)
+    geometryAndForces(*candidates[i], candidateIndex[i]);
   return bad;
 }
 
