@@ -7,7 +7,6 @@
 #include "dem/base/Avx2Lanes.h"
 #include "dem/core/Bodies.h"
 #include "dem/core/Cell.h"
-#include "dem/core/CellImages.h"
 #include "dem/core/Contacts.h"
 
 #include <array>

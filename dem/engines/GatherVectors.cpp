@@ -3,7 +3,7 @@
 // lane by lane in the same order, and its cross product as Eigen's (a1 b2 - a2 b1, a2 b0 - a0 b2,
 // a0 b1 - a1 b0) from the vectors' rotations. Where the time went before: docs/dem.md, Speed.
 #include "dem/engines/GatherVectors.h"
-#include "dem/core/CellImages.h"
+#include "dem/core/Cell.h"
 
 #include <immintrin.h>
 

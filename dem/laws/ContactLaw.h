@@ -1,7 +1,7 @@
 #pragma once
 
 #include "dem/contact/ContactGeometry.h"
-#include "dem/core/CellImages.h"
+#include "dem/core/Cell.h"
 #include "dem/core/Contacts.h"
 #include "dem/core/EnergyTracker.h"
 #include "dem/core/Material.h"

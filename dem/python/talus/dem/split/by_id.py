@@ -32,7 +32,6 @@ from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
-from talus import _distributed
 from talus.dem import distributed
 from talus.dem.split import bodies as split_bodies
 
@@ -49,7 +48,6 @@ READ, STEP, PYRUNNER, LOOP, END = 1, 2, 3, 4, 5
 _DOING = {READ: "read O.bodies[{id}]", STEP: "started O.run or O.step", PYRUNNER: "ended a PyRunner's command",
           LOOP: "started a loop over O.bodies", END: "reached the end of the script"}
 _HEAD = 3   # place, id, whether this process sent the body's snapshot (script/Snapshot.h)
-_WIDTH = _HEAD + _distributed.snapshot_doubles     # the same on every process in every exchange: a read's, an agreement's
 
 RULE = ("under mpirun O.bodies[id] of a sphere or clump is collective: every process must read the same ids in the "
         "same order, as it runs the same script (the owner answers with the body, the others get a snapshot of it); "
@@ -66,6 +64,7 @@ def _check(table: np.ndarray) -> None:
     different places of the script."""
     if (table[:, :2] != table[0, :2]).any():
         where = "; ".join(f"process {r} {_doing(*table[r, :2])}" for r in range(len(table)))
+        from talus import _distributed     # under mpirun only: a build without the DEM over MPI has none
         raise _distributed.CollectiveError(f"the processes are at different places of the script ({where}): {RULE}")
 
 
@@ -81,8 +80,10 @@ def agree(place: int) -> None:
     (collective under mpirun; nothing in one process)."""
     if not distributed.ACTIVE:
         return
+    from talus import _distributed     # under mpirun only: a build without the DEM over MPI has none
     if place not in _said:
-        mine = np.zeros(_WIDTH)
+        # the same width on every process in every exchange: a read's, an agreement's
+        mine = np.zeros(_HEAD + _distributed.snapshot_doubles)
         mine[0], mine[1] = place, -1
         _said[place] = mine, (f"talus run: process {distributed.rank()} {_doing(place, -1)} and the other processes "
                               f"did not come to it: {RULE}")
