@@ -1,6 +1,7 @@
 """DEM speed by kind of scene: Talus against Yade and LIGGGHTS, one thread each, per core.
 
 Run:      build/bin/talus run cases/bench/dem_bench_kinds.py [--quick] [--only NAME] [--results DIR]
+          [--chart-from DIR] (the chart alone, from the records of kinds run one at a time)
 Kinds:    each a scene script under cases/scenes/ run unchanged by `talus run` and `yade -n -j1 -x`
           on a packing this case writes (radius 5 mm, density 2600, young 1e7, poisson 0.3,
           friction 0.5 rad; dt half the P-wave step of the smallest sphere):
@@ -34,6 +35,7 @@ Produces: dem.bench.kind.<name>-yade (Talus over Yade, target >= 5; >= 10 for th
           and Talus's fused-step count; the chart dem.bench.kind.png.
 """
 import importlib
+import json
 import math
 import os
 import re
@@ -367,7 +369,13 @@ def prepare(kind: Kind, folder: Path, quick: bool):
 def main():
     parser = results.case_arguments(__doc__)
     parser.add_argument("--only", choices=[k.name for k in KINDS], help="run this kind alone")
+    parser.add_argument("--chart-from", metavar="DIR", type=Path,
+                        help="run nothing: draw the chart from the records dem.bench.kind.*.json in DIR (kinds run "
+                             "one at a time with --only, each ratio from its own invocation)")
     args = parser.parse_args()
+    if args.chart_from:
+        chart(results.Case("dem.bench.kind", quick=args.quick, folder=args.results), table_of_records(args.chart_from))
+        return
     os.environ["OMP_NUM_THREADS"] = "1"
     sys.path.insert(0, str(HERE))
     repeat = 1 if args.quick else 3
@@ -413,6 +421,20 @@ def main():
     for row in table:
         print(" | ".join(f"{k} {v:.3g}" if isinstance(v, float) else f"{k} {v}" for k, v in row.items()))
     chart(case, table)
+
+
+def table_of_records(folder: Path) -> list[dict]:
+    """The chart's rows from the records in `folder`, in the order of KINDS: per kind Talus's ns
+    per particle-step and each peer's, as the records of its runs with the peers wrote them."""
+    rows = {}
+    for kind in KINDS:
+        for peer in ("yade", "liggghts"):
+            path = folder / f"dem.bench.kind.{kind.name}-{peer}.json"
+            if path.exists():
+                record = json.loads(path.read_text())
+                row = rows.setdefault(kind.name, {"kind": kind.name, "talus": record["ours"]})
+                row[peer] = record["theirs"]
+    return list(rows.values())
 
 
 def chart(case, table) -> None:

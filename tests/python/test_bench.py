@@ -113,3 +113,7 @@ def test_the_scene_kinds_benchmark_runs_a_small_drum(talus_cmd, tmp_path):
         assert record["ours"] > 0 and record["theirs"] > 0 and record["spheres"] == 1500
         assert record["ratio"] == pytest.approx(record["theirs"] / record["ours"])
         assert record["fused_steps"] == 501           # 1 + 500 steps, the drum above 1024 bodies
+    # the chart alone, drawn from those records (kinds run one at a time): nothing run, a PNG written
+    charted = tmp_path / "chart"
+    talus_cmd("run", case, "--chart-from", tmp_path, "--results", charted, timeout=120)
+    assert (charted / "dem.bench.kind.png").stat().st_size > 0 and not list(charted.glob("*.json"))
