@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace talus::dem::distributed
@@ -65,11 +68,24 @@ void shareMemory(MPI_Comm comm, EnergyTracker& energy, const std::vector<Remembe
 {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
-  const int mine = static_cast<int>(own.size() * sizeof(Remembered));
+  // Every rank learns every rank's count, so all refuse alike a gather past MPI's int counts.
+  const auto records = static_cast<std::int64_t>(own.size());
+  std::vector<std::int64_t> counts(static_cast<std::size_t>(ranks));
+  MPI_Allgather(&records, 1, MPI_INT64_T, counts.data(), 1, MPI_INT64_T, comm);
+  std::int64_t total = 0;
+  for (const std::int64_t n : counts)
+    total += n;
+  if (total > std::numeric_limits<int>::max() / static_cast<std::int64_t>(sizeof(Remembered)))
+    throw std::overflow_error("re-detection: the energy memory of " + std::to_string(total) +
+                              " bodies (a growth or imposed motions to hand over) is more than one MPI gather carries "
+                              "(2 GiB); track no energy (O.trackEnergy = False) for runs of this size");
+  const int mine = static_cast<int>(records * static_cast<std::int64_t>(sizeof(Remembered)));
   std::vector<int> bytes(static_cast<std::size_t>(ranks)), offsets(static_cast<std::size_t>(ranks) + 1, 0);
-  MPI_Allgather(&mine, 1, MPI_INT, bytes.data(), 1, MPI_INT, comm);
   for (std::size_t r = 0; r < bytes.size(); ++r)
+  {
+    bytes[r] = static_cast<int>(counts[r] * static_cast<std::int64_t>(sizeof(Remembered)));
     offsets[r + 1] = offsets[r] + bytes[r];
+  }
   std::vector<Remembered> all(static_cast<std::size_t>(offsets.back()) / sizeof(Remembered));
   MPI_Allgatherv(own.data(), mine, MPI_BYTE, all.data(), bytes.data(), offsets.data(), MPI_BYTE, comm);
   auto byId = [](const Remembered& a, const Remembered& b) { return a.id < b.id; };
