@@ -90,7 +90,10 @@ void shareMemory(MPI_Comm comm, EnergyTracker& energy, const std::vector<Remembe
   MPI_Allgatherv(own.data(), mine, MPI_BYTE, all.data(), bytes.data(), offsets.data(), MPI_BYTE, comm);
   auto byId = [](const Remembered& a, const Remembered& b) { return a.id < b.id; };
   std::sort(all.begin(), all.end(), byId);
-  const bool growing = !energy.grownBy.empty() || !all.empty();
+  // a growth pending here or at any owner (records of imposed motions alone leave grownBy empty,
+  // sparing the next contacts pass its growth check)
+  const bool growing =
+      !energy.grownBy.empty() || std::any_of(all.begin(), all.end(), [](const Remembered& r) { return r.grownBy != 0; });
   if (growing)
     energy.grownBy.resize(rows.size(), 0.0);
   for (std::size_t row = 0; row < rows.size(); ++row)

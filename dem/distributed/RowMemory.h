@@ -19,8 +19,7 @@ namespace talus::dem::distributed
 /// steps; and the radius growth not yet seen by the contacts (EnergyTracker::grownBy), from
 /// which the next contacts pass takes the energy a growth put into them (growthWork). The row
 /// of global id g takes what g's row held; a body new to the rank starts afresh (NaN, as a body
-/// new to a serial scene, so its first step's work is taken over that step alone; its pending growth
-/// comes from shareGrowth).
+/// new to a serial scene; no growth) until shareMemory hands it its owner's memory.
 /// @param energy the scene's tracker (nothing to do when it keeps no such memory)
 /// @param before the global id of each row before, ascending
 /// @param after the global id of each row now, ascending
