@@ -520,7 +520,11 @@ void PoreFlow::solve()
           source[i] += net.throats[static_cast<std::size_t>(net.pores[i].throats[f])].conductance *
                        pressureJump(net.pores[i].neighbourPeriod[f]);
   }
+  if (!(params.multigridTolerance > 0 && params.multigridTolerance < 1))
+    throw std::invalid_argument("FlowEngine.multigridTolerance must be in (0, 1) (a relative residual), got " +
+                                std::to_string(params.multigridTolerance));
   solver_.tolerance = params.tolerance;
+  solver_.multigridTolerance = params.multigridTolerance;
   solver_.relax = params.relax;
   solver_.solve(static_cast<SolverKind>(params.useSolver), p_, source);
   if (reference_)

@@ -73,9 +73,8 @@ public:
   /// symbolic analysis.
   int supernodalFrom = 2500;
   double tolerance = 1e-7; ///< Gauss-Seidel: relative change of the pressure field
-  /// Multigrid and BoomerAMG: ||b - A p|| <= multigridTolerance ||b|| (the boundary fluxes then
-  /// agree with CHOLMOD's to about 1e-12)
-  double multigridTolerance = 1e-10;
+  /// Multigrid and BoomerAMG: ||b - A p|| <= multigridTolerance ||b|| (FlowParameters's)
+  double multigridTolerance = 1e-8;
   double relax = 1.9;      ///< Gauss-Seidel over-relaxation (Yade's relax)
   int maxIterations = 100000;
 
