@@ -475,8 +475,17 @@ void PressureSolver::setSystem(const PoreNetwork& net, const std::vector<char>& 
   neighbour_.reserve(4 * poreOfRow_.size());
   k_.clear();
   k_.reserve(4 * poreOfRow_.size());
+  // the rows go along the curve, their pores and throats are anywhere in the arrays: each is
+  // fetched some rows ahead (the pore twice as far, its throats once it is there)
+  constexpr std::size_t kAhead = 8;
   for (std::size_t r = 0; r < poreOfRow_.size(); ++r)
   {
+    if (r + 2 * kAhead < poreOfRow_.size())
+      __builtin_prefetch(&net.pores[static_cast<std::size_t>(poreOfRow_[r + 2 * kAhead])].throats);
+    if (r + kAhead < poreOfRow_.size())
+      for (const int t : net.pores[static_cast<std::size_t>(poreOfRow_[r + kAhead])].throats)
+        if (t >= 0)
+          __builtin_prefetch(&net.throats[static_cast<std::size_t>(t)].conductance);
     const Pore& p = net.pores[static_cast<std::size_t>(poreOfRow_[r])];
     for (int f = 0; f < 4; ++f)
     {
