@@ -157,6 +157,46 @@ inline bool overlapsTooMuch(const Contact& c, double ratio, const Bodies& b)
          && (b.dynamic[static_cast<std::size_t>(c.id1)] || b.dynamic[static_cast<std::size_t>(c.id2)]);
 }
 
+/// Follows whether a contact list's records are so mixed between real contacts and candidates
+/// that the contact loop's branch on `real` would often be mispredicted: then the loop queues
+/// sphere pairs without that branch (ContactLawKernel::firstBadIn's RealMixed), a few stores a
+/// record more. Where the branch is predictable (a dense bed's records are nearly all real)
+/// those stores are the dearer: docs/dem.md, "Speed", the drum and the silo.
+class RealMix
+{
+public:
+  /// Measure the list's share of real records again if the list changed since (a re-detection,
+  /// a removal) or every stepsBetween steps (contacts begin and end between re-detections: a
+  /// periodic cell compacted may keep its list for thousands of steps). Called before a step's
+  /// contacts: the flags are then those the last pass left, not those of a list just detected
+  /// (all candidates).
+  void follow(const Contacts& contacts)
+  {
+    if (contacts.version == version_ && ++steps_ < stepsBetween)
+      return;
+    version_ = contacts.version;
+    steps_ = 0;
+    const double real = contacts.list.empty() ? 0.0
+                                              : static_cast<double>(contacts.countReal())
+                                                    / static_cast<double>(contacts.list.size());
+    mixed_ = real >= fewestReal && real < mostReal;
+  }
+  [[nodiscard]] bool mixed() const { return mixed_; }
+
+private:
+  /// The shares of real records the queues without the branch take. Measured (one thread,
+  /// alternating with the branch): the drum (0.21-0.46 real) and the silo (0.50-0.56) gain, the
+  /// dense bed (0.97-1) and the periodic RVE (0.58-0.83) lose, the RVE's candidates on a
+  /// jittered lattice in a pattern the predictor learns. Below a tenth real, the branch is
+  /// seldom missed again.
+  static constexpr double fewestReal = 0.1, mostReal = 0.6;
+  /// A pass over the records' first lines, a small share of so many steps' work.
+  static constexpr int stepsBetween = 100;
+  std::uint64_t version_ = 0; ///< the Contacts::version measured
+  int steps_ = 0;             ///< steps since the measure
+  bool mixed_ = false;
+};
+
 /// Base of the concrete laws: the loops over contacts, calling the law's inline
 /// `template <bool Track> void force(Contact&, std::size_t k, const StepContext&, ContactEnergy&) const`
 /// (k: the contact's index; energies dissipated are added to the last argument when Track) and
@@ -171,6 +211,7 @@ public:
   static constexpr bool usesExtra = false;
   [[nodiscard]] bool needsExtra() const override { return Law::usesExtra; }
   [[nodiscard]] bool keepsMoments() const override { return Law::keepsMomentState; }
+  void prepare(Scene& scene) override;
   void computeForces(Scene& scene, std::uint8_t lawIndex) override;
   std::int64_t computeAll(Scene& scene) override;
   std::int64_t computeAllIn(Scene& scene, std::int64_t first, std::int64_t last, ContactEnergy* energyBlocks) override;
@@ -181,12 +222,13 @@ public:
 private:
   template <bool Track>
   std::int64_t loopAll(Scene& scene);
-  template <bool Track>
+  template <bool Track, bool RealMixed = false>
   std::int64_t firstBadIn(Scene& scene, const StepContext& step, std::int64_t first, std::int64_t last,
                           ContactEnergy& energy) const;
   template <bool Track>
   void loopForces(Scene& scene, std::uint8_t lawIndex);
   BalancedRanges ranges_; ///< computeAll's contacts per thread
+  RealMix realMix_;       ///< how computeAll's and computeAllIn's loops queue sphere pairs
 };
 
 /// Make Contacts::extra as long as the contact list (allocating it on first use).

@@ -41,6 +41,12 @@ inline void addContactEnergy(Scene& scene, const std::vector<ContactEnergy>& blo
 } // namespace detail
 
 template <class Law>
+void ContactLawKernel<Law>::prepare(Scene& scene)
+{
+  realMix_.follow(scene.contacts);
+}
+
+template <class Law>
 void ContactLawKernel<Law>::computeForces(Scene& scene, std::uint8_t lawIndex)
 {
   if (scene.energy.enabled)
@@ -96,7 +102,7 @@ std::int64_t ContactLawKernel<Law>::computeAll(Scene& scene)
 }
 
 template <class Law>
-template <bool Track>
+template <bool Track, bool RealMixed>
 std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& step, std::int64_t first,
                                                std::int64_t last, ContactEnergy& energy) const
 {
@@ -160,6 +166,38 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
   Contact* candidates[sphereBatchWidth];
   std::int64_t candidateIndex[sphereBatchWidth];
   int candidatesWaiting = 0;
+  auto testCandidates = [&]() [[gnu::always_inline]] {
+    for (unsigned near = ~spheresApart(candidates, step.bodies) & ((1U << sphereBatchWidth) - 1); near != 0;
+         near &= near - 1)
+    {
+      const int i = std::countr_zero(near);
+      geometryAndForces(*candidates[i], candidateIndex[i]);
+    }
+    candidatesWaiting = 0;
+  };
+  auto runLanes = [&]() [[gnu::always_inline]] {
+    SphereLanes done;
+    if constexpr (requires { law.sphereLanes(batch, batchIndex, step); })
+      done = law.sphereLanes(batch, batchIndex, step);
+    else
+      done.geometry = sphereGeometryBatch(batch, step.bodies, step.dt, step.cell);
+    // The lanes' forces are made; those overlapping too little to fail the check are done.
+    for (unsigned deep = done.deep; deep != 0; deep &= deep - 1)
+    {
+      const int i = std::countr_zero(deep);
+      if (overlapsTooMuch(*batch[i], ratio, step.bodies))
+        bad = std::min(bad, batchIndex[i]);
+    }
+    if (done.forces != (1U << sphereBatchWidth) - 1)
+    {
+      for (int i = 0; i < sphereBatchWidth; ++i)
+        if (!(done.geometry & (1U << i)))
+          geometryAndForces(*batch[i], batchIndex[i]);
+        else if (!(done.forces & (1U << i)))
+          forces(*batch[i], batchIndex[i]);
+    }
+    waiting = 0;
+  };
   for (std::int64_t k = first; k < last; ++k)
   {
     Contact& c = list[static_cast<std::size_t>(k)];
@@ -191,52 +229,52 @@ std::int64_t ContactLawKernel<Law>::firstBadIn(Scene& scene, const StepContext& 
       facetsWaiting = 0;
       continue;
     }
-    if (batched && !c.real && c.kind == ContactGeometryKind::SphereSphere
-        && (step.cell == nullptr || c.cellDist == Eigen::Vector3i::Zero()))
+    if constexpr (RealMixed)
     {
+      if (!(batched && c.kind == ContactGeometryKind::SphereSphere))
+      {
+        geometryAndForces(c, k);
+        continue;
+      }
+      // Both queues take the record and only its own counts it: no branch on `real`, which
+      // the predictor misses often in a list of contacts and candidates mixed (RealMix).
+      const bool real = c.real;
+      const bool inside = step.cell == nullptr || c.cellDist == Eigen::Vector3i::Zero();
+      batch[waiting] = &c;
+      batchIndex[waiting] = k;
       candidates[candidatesWaiting] = &c;
       candidateIndex[candidatesWaiting] = k;
-      if (++candidatesWaiting < sphereBatchWidth)
+      waiting += static_cast<int>(real);
+      candidatesWaiting += static_cast<int>(inside && !real);
+      if (!inside && !real)
+        geometryAndForces(c, k); // a candidate across the periodic boundary
+      if (candidatesWaiting == sphereBatchWidth)
+        testCandidates();
+      if (waiting < sphereBatchWidth)
         continue;
-      for (unsigned near = ~spheresApart(candidates, step.bodies) & ((1U << sphereBatchWidth) - 1); near != 0;
-           near &= near - 1)
-      {
-        const int i = std::countr_zero(near);
-        geometryAndForces(*candidates[i], candidateIndex[i]);
-      }
-      candidatesWaiting = 0;
-      continue;
     }
-    if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere))
-    {
-      geometryAndForces(c, k);
-      continue;
-    }
-    batch[waiting] = &c;
-    batchIndex[waiting] = k;
-    if (++waiting < sphereBatchWidth)
-      continue;
-    SphereLanes done;
-    if constexpr (requires { law.sphereLanes(batch, batchIndex, step); })
-      done = law.sphereLanes(batch, batchIndex, step);
     else
-      done.geometry = sphereGeometryBatch(batch, step.bodies, step.dt, step.cell);
-    // The lanes' forces are made; those overlapping too little to fail the check are done.
-    for (unsigned deep = done.deep; deep != 0; deep &= deep - 1)
     {
-      const int i = std::countr_zero(deep);
-      if (overlapsTooMuch(*batch[i], ratio, step.bodies))
-        bad = std::min(bad, batchIndex[i]);
+      if (batched && !c.real && c.kind == ContactGeometryKind::SphereSphere
+          && (step.cell == nullptr || c.cellDist == Eigen::Vector3i::Zero()))
+      {
+        candidates[candidatesWaiting] = &c;
+        candidateIndex[candidatesWaiting] = k;
+        if (++candidatesWaiting == sphereBatchWidth)
+          testCandidates();
+        continue;
+      }
+      if (!(batched && c.real && c.kind == ContactGeometryKind::SphereSphere))
+      {
+        geometryAndForces(c, k);
+        continue;
+      }
+      batch[waiting] = &c;
+      batchIndex[waiting] = k;
+      if (++waiting < sphereBatchWidth)
+        continue;
     }
-    if (done.forces != (1U << sphereBatchWidth) - 1)
-    {
-      for (int i = 0; i < sphereBatchWidth; ++i)
-        if (!(done.geometry & (1U << i)))
-          geometryAndForces(*batch[i], batchIndex[i]);
-        else if (!(done.forces & (1U << i)))
-          forces(*batch[i], batchIndex[i]);
-    }
-    waiting = 0;
+    runLanes();
   }
   for (int i = 0; i < waiting; ++i)
     geometryAndForces(*batch[i], batchIndex[i]);
@@ -267,9 +305,11 @@ std::int64_t ContactLawKernel<Law>::loopAll(Scene& scene)
   }
   else
   {
+    const bool mixed = realMix_.mixed();
     auto firstIn = [&](std::int64_t first, std::int64_t last) {
       ContactEnergy unused;
-      return firstBadIn<false>(scene, step, first, last, unused);
+      return mixed ? firstBadIn<false, true>(scene, step, first, last, unused)
+                   : firstBadIn<false>(scene, step, first, last, unused);
     };
     firstBad = balancedFor(ranges_, n, n, firstIn, [](std::int64_t a, std::int64_t c) { return std::min(a, c); });
   }
@@ -285,7 +325,8 @@ std::int64_t ContactLawKernel<Law>::computeAllIn(Scene& scene, std::int64_t firs
   if (!energyBlocks)
   {
     ContactEnergy unused;
-    return firstBadIn<false>(scene, step, first, last, unused);
+    return realMix_.mixed() ? firstBadIn<false, true>(scene, step, first, last, unused)
+                            : firstBadIn<false>(scene, step, first, last, unused);
   }
   std::int64_t bad = static_cast<std::int64_t>(scene.contacts.list.size());
   for (std::int64_t start = first; start < last; start += energyBlock)

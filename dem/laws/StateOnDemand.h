@@ -28,6 +28,7 @@ public:
     withState_ = withState_ || needed(scene);
     if (withState_)
       alignContactExtra(scene.contacts);
+    active().prepare(scene);
   }
   void initialize(Contact& c, ContactExtra* x, const Scene& scene) const override { active().initialize(c, x, scene); }
   void computeForces(Scene& scene, std::uint8_t lawIndex) override { active().computeForces(scene, lawIndex); }
