@@ -334,7 +334,10 @@ void computeGeometry(PoreNetwork& net, bool slipBoundary)
     // the second pore is anywhere in the array (the first near the last throat's): its centre
     // is fetched a few throats ahead instead of waited for (unitForceVectors does the same)
     if (i + kPrefetchAhead < n)
-      __builtin_prefetch(&net.pores[static_cast<std::size_t>(net.throats[static_cast<std::size_t>(i + kPrefetchAhead)].pores[1])].centre);
+    {
+      const Throat& ahead = net.throats[static_cast<std::size_t>(i + kPrefetchAhead)];
+      __builtin_prefetch(&net.pores[static_cast<std::size_t>(ahead.pores[1])].centre);
+    }
     Throat& t = net.throats[static_cast<std::size_t>(i)];
     const Pore& p = net.pores[static_cast<std::size_t>(t.pores[0])];
     const Pore& q = net.pores[static_cast<std::size_t>(t.pores[1])];
