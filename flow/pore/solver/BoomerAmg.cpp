@@ -128,9 +128,9 @@ BoomerAmg::BoomerAmg(const SparseRows& a) : hypre_(std::make_unique<Hypre>())
   check(HYPRE_IJMatrixCreate(MPI_COMM_SELF, 0, a.n - 1, 0, a.n - 1, &h.matrix), "the matrix");
   check(HYPRE_IJMatrixSetObjectType(h.matrix, HYPRE_PARCSR), "the matrix");
   // every column is in this process's diagonal block: given that split, hypre writes the values
-  // straight into its CSR arrays instead of an auxiliary matrix it copies at the assembly (at
-  // 10 000 spheres 9.5 -> 2.4 ms; the entries of a row land in another order, which moves the
-  // pressures by round-off, 2e-14 of the inlet flux)
+  // straight into its CSR arrays instead of an auxiliary matrix it copies at the assembly (the
+  // entries of a row land in another order: round-off; measured in docs/flow.md, "10 000 spheres
+  // on one thread reached")
   const std::vector<HYPRE_Int> noOffDiagonal(entries.size(), 0);
   check(HYPRE_IJMatrixSetDiagOffdSizes(h.matrix, entries.data(), noOffDiagonal.data()), "the matrix");
   check(HYPRE_IJMatrixInitialize(h.matrix), "the matrix");

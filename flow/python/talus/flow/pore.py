@@ -67,8 +67,8 @@ _THERMAL_ATTRIBUTES = {"thermalEngine": False, "tZero": 0.0, "fluidRho": 1000.0,
                        "thermalPorosity": 0.0, "tempDependentViscosity": False}
 
 # the real numbers among them (the others are flags and the solver's number)
-_REALS = ("permeabilityFactor", "viscosity", "minKdivKmean", "maxKdivKmean", "tolerance", "multigridTolerance", "relax",
-          "fluidBulkModulus", "eps", "stiffness", "pZero", "alphaBound", "alphaBoundValue")
+_REALS = ("permeabilityFactor", "viscosity", "minKdivKmean", "maxKdivKmean", "tolerance", "multigridTolerance",
+          "relax", "fluidBulkModulus", "eps", "stiffness", "pZero", "alphaBound", "alphaBoundValue")
 
 
 def _finite_number(name: str, value) -> float:
@@ -143,8 +143,8 @@ class FlowEngine(Engine):
     ``wallPosition[k]``), ``permeabilityFactor`` 1, ``viscosity`` 1, ``clampKValues`` True,
     ``minKdivKmean`` 1e-4, ``maxKdivKmean`` 100, ``slipBoundary`` True (no-flux walls are not
     solid surface in the hydraulic radius), ``useSolver`` 3 (Talus: 4 multigrid, 5 hypre's BoomerAMG), ``tolerance`` 1e-6 and ``relax`` 1.9 (Gauss–Seidel only),
-    ``multigridTolerance`` 1e-8 (Talus: the relative residual at which ``useSolver`` 4 and 5 stop; boundary fluxes
-    within about 1e-9 of CHOLMOD's),
+    ``multigridTolerance`` 1e-8 (Talus: the relative residual at which ``useSolver`` 4 and 5 stop; pressures
+    within 1e-6 of CHOLMOD's largest, boundary fluxes within 1e-7 of CHOLMOD's),
     ``fluidBulkModulus`` 0 (incompressible; > 0: transient storage V_void / (K_f dt)), ``yadeInsertionOrder``
     True (Talus: the spheres enter the triangulation one by one and each cell keeps CGAL's vertex order, as
     Yade's: the same numbers as Yade to round-off; False inserts them as one spatially sorted range, faster
